@@ -1,0 +1,53 @@
+#include "plateball/ball_model.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "check.h"
+
+namespace plateball {
+
+std::string PhysicalParameters::Validate() const {
+  std::ostringstream os;
+  auto bad = [&](const char* field, double v, const char* bound) {
+    os << "physical parameter '" << field << "' = " << v << " is invalid: " << bound;
+    return os.str();
+  };
+  if (!(std::isfinite(inertia_1) && inertia_1 > 0)) return bad("inertia_1", inertia_1, "must be finite and > 0");
+  if (!(std::isfinite(inertia_3) && inertia_3 > 0)) return bad("inertia_3", inertia_3, "must be finite and > 0");
+  if (inertia_3 > 2.0 * inertia_1 * (1.0 + 1e-12))
+    return bad("inertia_3", inertia_3, "a rigid body has I3 <= I1 + I2 = 2 I1");
+  if (!(std::isfinite(ball_mass) && ball_mass >= 0)) return bad("ball_mass", ball_mass, "must be finite and >= 0");
+  if (!(std::isfinite(radius) && radius > 0)) return bad("radius", radius, "must be finite and > 0");
+  if (!(std::isfinite(plate_mass) && plate_mass >= 0)) return bad("plate_mass", plate_mass, "must be finite and >= 0");
+  return {};
+}
+
+BallModel BallModel::FromPhysical(const PhysicalParameters& p) {
+  const std::string err = p.Validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  const double alpha = p.inertia_3 / p.inertia_1;
+  const double beta = p.EffectiveMass() * p.radius * p.radius / p.inertia_1;
+  return FromAlphaBeta(alpha, beta);
+}
+
+BallModel BallModel::FromLambda(double lambda) {
+  internal::RequirePositive("lambda", lambda);
+  return BallModel(lambda, 0.0, 0.0, false);
+}
+
+BallModel BallModel::FromAlphaBeta(double alpha, double beta) {
+  internal::RequirePositive("alpha", alpha);
+  internal::RequireNonNegative("beta", beta);
+  return BallModel((alpha + beta) / (1.0 + beta), alpha, beta, true);
+}
+
+double BallModel::EnergyToMu(const PhysicalParameters& p, double kinetic_energy) {
+  const std::string err = p.Validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  internal::RequireNonNegative("kinetic_energy", kinetic_energy);
+  return 2.0 * kinetic_energy / (p.inertia_1 + p.EffectiveMass() * p.radius * p.radius);
+}
+
+}  // namespace plateball

@@ -1,0 +1,110 @@
+#include "plateball/ball_state.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "check.h"
+
+namespace plateball {
+namespace {
+double WrapPi(double a) {
+  a = std::remainder(a, 2.0 * M_PI);  // in [-pi, pi]
+  return a <= -M_PI ? a + 2.0 * M_PI : a;
+}
+}  // namespace
+
+AngleState AngleState::Canonicalize() const {
+  double th = std::remainder(theta, 2.0 * M_PI);  // [-pi, pi]
+  double ph = phi;
+  if (th < 0) {  // (theta, phi, psi) ~ (-theta, phi + pi, psi)
+    th = -th;
+    ph += M_PI;
+  }
+  return {th, WrapPi(ph), WrapPi(psi)};
+}
+
+double SemiAxisA(double theta, double mu, double lambda) {
+  const double s = std::sin(theta), c = std::cos(theta);
+  return std::sqrt(mu / (lambda * s * s + c * c));
+}
+
+PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& model) {
+  internal::RequireFinite("theta", s.theta);
+  internal::RequireFinite("phi", s.phi);
+  internal::RequireFinite("psi", s.psi);
+  internal::RequirePositive("mu", mu);
+  const double st = std::sin(s.theta), ct = std::cos(s.theta);
+  const double sp = std::sin(s.phi), cp = std::cos(s.phi);
+  const double w = s.phi - s.psi;
+  const double cw = std::cos(w), sw = std::sin(w);
+  const double a = SemiAxisA(s.theta, mu, model.lambda());
+  const double b = std::sqrt(mu);
+  PhaseVariables p;
+  p.z = {st * cp, st * sp, ct};                               // (12)-(14)
+  p.u = {-a * cw * ct * ct * cp - b * sw * sp,                // (15)
+         -a * cw * ct * ct * sp + b * sw * cp,                // (16)
+         a * cw * ct * st};                                   // (17)
+  p.v0 = a * cw * st;                                         // (18)
+  p.omega = p.v0 * p.z - p.u;
+  p.omega.z() = 0.0;  // exactly zero in exact arithmetic (eq. (8)); remove round-off
+  return p;
+}
+
+BallState StateFromAngles(const AngleState& s, double mu, const BallModel& model) {
+  const PhaseVariables p = PhaseFromAngles(s, mu, model);
+  BallState out;
+  out.z = p.z;
+  out.omega = p.omega;
+  return out;
+}
+
+AngleState AnglesFromState(const BallState& s, const BallModel& model) {
+  ValidateState(s);
+  const double mu = Energy(s, model);
+  if (!(mu > 0)) internal::ThrowInvalid("state energy mu", mu, "the angle chart needs mu > 0");
+  const double rho = std::hypot(s.z.x(), s.z.y());
+  const double theta = std::atan2(rho, s.z.z());
+  const double phi = rho > 0 ? std::atan2(s.z.y(), s.z.x()) : 0.0;
+  const Eigen::Vector2d er(std::cos(phi), std::sin(phi)), ephi(-std::sin(phi), std::cos(phi));
+  const Eigen::Vector2d wh = s.omega.head<2>();
+  const double a = SemiAxisA(theta, mu, model.lambda());
+  const double b = std::sqrt(mu);
+  const double w = std::atan2(-wh.dot(ephi) / b, wh.dot(er) / a);
+  return AngleState{theta, phi, phi - w}.Canonicalize();
+}
+
+double Energy(const BallState& s, const BallModel& model) {
+  const double v0 = s.omega.dot(s.z);
+  return s.omega.cross(s.z).squaredNorm() + model.lambda() * v0 * v0;
+}
+
+Eigen::Vector2d ConservedMomentum(const BallState& s, const BallModel& model) {
+  const double v0 = s.omega.dot(s.z);
+  return s.omega.head<2>() + (model.lambda() - 1.0) * v0 * s.z.head<2>();
+}
+
+Eigen::Vector3d OmegaFromMomentum(const Eigen::Vector3d& z, const Eigen::Vector2d& k, const BallModel& model) {
+  const double l = model.lambda();
+  const double zh2 = z.x() * z.x() + z.y() * z.y();
+  const double v0 = (k.x() * z.x() + k.y() * z.y()) / (z.z() * z.z() + l * zh2);
+  return {k.x() - (l - 1.0) * v0 * z.x(), k.y() - (l - 1.0) * v0 * z.y(), 0.0};
+}
+
+Eigen::Vector4d ConstraintResiduals(const PhaseVariables& p, double mu, const BallModel& model) {
+  return {p.u.z() - p.v0 * p.z.z(),                                     // (8)
+          p.u.squaredNorm() + model.lambda() * p.v0 * p.v0 - mu,        // (9)
+          p.z.squaredNorm() - 1.0,                                      // (10)
+          p.z.dot(p.u)};                                                // (11)
+}
+
+void ValidateState(const BallState& s, const char* field) {
+  const std::string f(field);
+  internal::RequireFinite(f + ".z", s.z);
+  internal::RequireFinite(f + ".omega", s.omega);
+  if (std::abs(s.z.norm() - 1.0) > 1e-9)
+    internal::ThrowInvalid(f + ".z norm", s.z.norm(), "the symmetry axis must be a unit vector");
+  if (std::abs(s.omega.z()) > 1e-9 * std::max(1.0, s.omega.norm()))
+    internal::ThrowInvalid(f + ".omega[2]", s.omega.z(), "no spin: omega_3 must be 0");
+}
+
+}  // namespace plateball

@@ -1,0 +1,78 @@
+#include "plateball/rolling.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+#include "check.h"
+#include "dynamics.h"
+#include "plateball/cubic_spline.h"
+#include "plateball/so3.h"
+
+namespace plateball {
+namespace {
+using Mat9 = std::array<double, 9>;
+
+struct RollingRhs {
+  const PlanarVelocity* velocity;
+  void operator()(const Mat9& y, Mat9& dy, double tau) const {
+    const Eigen::Vector2d v = (*velocity)(tau);
+    const double w0 = -v.y(), w1 = v.x();  // omega = e3 x x', omega_3 = 0
+    for (int c = 0; c < 3; ++c) {
+      dy[0 + c] = w1 * y[6 + c];
+      dy[3 + c] = -w0 * y[6 + c];
+      dy[6 + c] = -w1 * y[0 + c] + w0 * y[3 + c];
+    }
+  }
+};
+}  // namespace
+
+Eigen::Matrix3d RollingReorientation(const PlanarVelocity& velocity, double a, double b,
+                                     const std::vector<double>& breakpoints, const IntegrationOptions& options) {
+  internal::RequireFinite("a", a);
+  internal::RequireFinite("b", b);
+  const std::string err = options.Validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  if (!velocity) throw std::invalid_argument("velocity: an empty function was given");
+  std::vector<double> knots{a};
+  for (double t : breakpoints) {
+    internal::RequireFinite("breakpoints", t);
+    if ((t - a) * (t - b) < 0) knots.push_back(t);
+  }
+  std::sort(knots.begin() + 1, knots.end());
+  if (b < a) std::reverse(knots.begin() + 1, knots.end());
+  knots.push_back(b);
+  Mat9 y{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  RollingRhs rhs{&velocity};
+  for (std::size_t i = 0; i + 1 < knots.size(); ++i) {
+    const double h = knots[i + 1] - knots[i];
+    if (h == 0) continue;
+    internal::IntegrateAdaptive(rhs, y, knots[i], knots[i + 1], h / 16.0, options);
+  }
+  Eigen::Matrix3d r;
+  r << y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], y[8];
+  return ProjectToSO3(r);
+}
+
+Eigen::Matrix3d RollAlongSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+  const Eigen::Vector2d d = q - p;
+  return ExpSO3(RollingAngularVelocity(d));
+}
+
+Eigen::Matrix3d RollAlongPolyline(const std::vector<Eigen::Vector2d>& points) {
+  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    internal::RequireFinite("points[" + std::to_string(i) + "]", points[i]);
+    if (i > 0) r = RollAlongSegment(points[i - 1], points[i]) * r;
+  }
+  return r;
+}
+
+Eigen::Matrix3d RollAlongSamples(const std::vector<Eigen::Vector2d>& points, const IntegrationOptions& options) {
+  const CubicSpline2d spline(points);
+  const PlanarVelocity v = [&spline](double s) { return spline.Derivative(s); };
+  return RollingReorientation(v, spline.ParameterBegin(), spline.ParameterEnd(), spline.knots(), options);
+}
+
+}  // namespace plateball

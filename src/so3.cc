@@ -1,0 +1,91 @@
+#include "plateball/so3.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace plateball {
+
+Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d m;
+  m << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
+  return m;
+}
+
+Eigen::Vector3d Vee(const Eigen::Matrix3d& m) {
+  return 0.5 * Eigen::Vector3d(m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1));
+}
+
+Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& w) {
+  const double t2 = w.squaredNorm();
+  const double t = std::sqrt(t2);
+  double a, b;  // sin(t)/t and (1 - cos t)/t^2, by series near 0
+  if (t < 1e-4) {
+    a = 1.0 - t2 / 6.0 + t2 * t2 / 120.0;
+    b = 0.5 - t2 / 24.0 + t2 * t2 / 720.0;
+  } else {
+    a = std::sin(t) / t;
+    b = (1.0 - std::cos(t)) / t2;
+  }
+  const Eigen::Matrix3d k = Hat(w);
+  return Eigen::Matrix3d::Identity() + a * k + b * k * k;
+}
+
+Eigen::Vector3d LogSO3(const Eigen::Matrix3d& r) {
+  // Quaternion route: stable at 0 and at pi.
+  Eigen::Quaterniond q(r);
+  q.normalize();
+  if (q.w() < 0) q.coeffs() = -q.coeffs();
+  const Eigen::Vector3d v = q.vec();
+  const double s = v.norm();
+  if (s < 1e-12) return 2.0 * v;  // angle ~ 2 s
+  const double angle = 2.0 * std::atan2(s, q.w());
+  return (angle / s) * v;
+}
+
+double OperatorNormDistance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  const Eigen::Matrix3d d = a - b;
+  // Largest singular value = sqrt of the largest eigenvalue of d^T d (symmetric 3x3).
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(d.transpose() * d, Eigen::EigenvaluesOnly);
+  return std::sqrt(std::max(0.0, es.eigenvalues()(2)));
+}
+
+double RotationAngle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return LogSO3(a.transpose() * b).norm();
+}
+
+Eigen::Matrix3d ProjectToSO3(const Eigen::Matrix3d& m) {
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d u = svd.matrixU();
+  const Eigen::Matrix3d v = svd.matrixV();
+  if ((u * v.transpose()).determinant() < 0) u.col(2) = -u.col(2);
+  return u * v.transpose();
+}
+
+bool IsRotation(const Eigen::Matrix3d& m, double tol) {
+  if (!m.allFinite()) return false;
+  const double orth = (m.transpose() * m - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  return orth <= tol && std::abs(m.determinant() - 1.0) <= tol;
+}
+
+Eigen::Matrix3d RotationZ(double a) {
+  Eigen::Matrix3d r;
+  const double c = std::cos(a), s = std::sin(a);
+  r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
+  return r;
+}
+
+Eigen::Matrix3d QuaternionToRotation(const Eigen::Vector4d& wxyz, const std::string& field) {
+  const double n = wxyz.norm();
+  if (!wxyz.allFinite() || !(n > 1e-12)) {
+    std::ostringstream os;
+    os << field << ": quaternion (" << wxyz(0) << ", " << wxyz(1) << ", " << wxyz(2) << ", "
+       << wxyz(3) << ") is not a finite non-zero quaternion";
+    throw std::invalid_argument(os.str());
+  }
+  const Eigen::Quaterniond q(wxyz(0) / n, wxyz(1) / n, wxyz(2) / n, wxyz(3) / n);
+  return q.toRotationMatrix();
+}
+
+}  // namespace plateball

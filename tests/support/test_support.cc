@@ -1,0 +1,25 @@
+#include "support/test_support.h"
+
+#include <Eigen/Dense>
+#include <sstream>
+
+#include "plateball/so3.h"
+
+namespace plateball::testing {
+
+::testing::AssertionResult IsRotationMatrix(const Eigen::Matrix3d& r, double tol) {
+  if (!r.allFinite()) return ::testing::AssertionFailure() << "matrix has non-finite entries:\n" << r;
+  const double orth = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  const double det = r.determinant();
+  const double round_trip = (ExpSO3(LogSO3(r)) - r).cwiseAbs().maxCoeff();
+  if (orth > tol || std::abs(det - 1.0) > tol || round_trip > tol) {
+    return ::testing::AssertionFailure() << "not a rotation to " << tol << ": |R^T R - I|_max = " << orth
+                                         << ", det - 1 = " << det - 1.0 << ", |exp(log R) - R|_max = " << round_trip
+                                         << "\n" << r;
+  }
+  return ::testing::AssertionSuccess();
+}
+
+std::string SourcePath(const std::string& relative) { return std::string(PLATEBALL_SOURCE_DIR) + "/" + relative; }
+
+}  // namespace plateball::testing

@@ -1,0 +1,41 @@
+// `plateball`: command-line front end of the library; subcommands live in cmd_*.cc.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <map>
+#include <stdexcept>
+
+#include "common/command_registry.h"
+#include "common/exit_codes.h"
+
+int main(int argc, char** argv) {
+  using namespace plateball::tools;
+  CLI::App app{"plateball: impulsive control of a symmetric ball rolling without sliding or spinning"};
+  app.set_version_flag("--version", std::string("plateball ") + PLATEBALL_VERSION_STRING);
+  app.require_subcommand(1);
+  std::map<const CLI::App*, std::function<int()>> runners;
+  for (const Command& c : Commands()) {
+    CLI::App* sub = app.add_subcommand(c.name, c.description);
+    runners[sub] = c.setup(*sub);
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitSuccess : kExitUsage;
+  }
+  for (const auto& [sub, run] : runners) {
+    if (sub->parsed()) {
+      try {
+        return run();
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "plateball " << sub->get_name() << ": invalid input: " << e.what() << "\n";
+        return kExitBadInput;
+      } catch (const std::exception& e) {
+        std::cerr << "plateball " << sub->get_name() << ": error: " << e.what() << "\n";
+        return kExitInternalError;
+      }
+    }
+  }
+  return kExitUsage;
+}
