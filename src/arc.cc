@@ -1,0 +1,70 @@
+#include "arc.h"
+
+#include <ceres/jet.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "dynamics.h"
+
+namespace plateball::internal {
+
+void OmegaFromAngles(double theta, double phi, double psi, double mu, double lambda, Eigen::Vector2d* omega,
+                     Eigen::Vector2d* domega_dpsi) {
+  const double st = std::sin(theta), ct = std::cos(theta);
+  const double a = std::sqrt(mu / (lambda * st * st + ct * ct));
+  const double b = std::sqrt(mu);
+  const double sp = std::sin(phi), cp = std::cos(phi);
+  const double w = phi - psi;
+  const double cw = std::cos(w), sw = std::sin(w);
+  *omega = {a * cw * cp + b * sw * sp, a * cw * sp - b * sw * cp};
+  // d/dpsi = -d/dw.
+  if (domega_dpsi) *domega_dpsi = {a * sw * cp - b * cw * sp, a * sw * sp + b * cw * cp};
+}
+
+Eigen::Vector2d ContactAcceleration(double lambda, const Eigen::Vector3d& z, const Eigen::Vector2d& k) {
+  using J = ceres::Jet<double, 1>;
+  double wd[2];
+  const double zd[3] = {z.x(), z.y(), z.z()};
+  const double kd[2] = {k.x(), k.y()};
+  OmegaFromZK(zd, kd, lambda, wd);
+  // Directional derivative of omega(z, K) along z' = omega x z (K is constant).
+  J zj[3], kj[2], wj[2];
+  const double dz[3] = {wd[1] * zd[2], -wd[0] * zd[2], wd[0] * zd[1] - wd[1] * zd[0]};
+  for (int i = 0; i < 3; ++i) zj[i] = J(zd[i], 0), zj[i].v[0] = dz[i];
+  for (int i = 0; i < 2; ++i) kj[i] = J(kd[i]);
+  OmegaFromZK(zj, kj, lambda, wj);
+  return {wj[1].v[0], -wj[0].v[0]};
+}
+
+ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
+                    const IntegrationOptions& options) {
+  FullRhs rhs{lambda, {k.x(), k.y()}};
+  FullState y{};
+  y[0] = z0.x();
+  y[1] = z0.y();
+  y[2] = z0.z();
+  y[5] = y[9] = y[13] = 1.0;
+  ArcEnd out;
+  auto track = [&](const double* yy) {
+    const Eigen::Vector3d z(yy[0], yy[1], yy[2]);
+    double w[2];
+    const double kd[2] = {k.x(), k.y()};
+    OmegaFromZK(yy, kd, lambda, w);
+    out.max_speed = std::max(out.max_speed, std::hypot(w[0], w[1]));
+    out.max_acceleration = std::max(out.max_acceleration, ContactAcceleration(lambda, z, k).norm());
+  };
+  track(y.data());
+  if (t > 0) {
+    IntegrateAdaptive(rhs, y, 0.0, t, t, options, [&](double, const FullState& s) {
+      ++out.steps;
+      track(s.data());
+    });
+  }
+  out.z = Eigen::Vector3d(y[0], y[1], y[2]).normalized();
+  out.dx = {y[3], y[4]};
+  out.phi << y[5], y[6], y[7], y[8], y[9], y[10], y[11], y[12], y[13];
+  return out;
+}
+
+}  // namespace plateball::internal

@@ -1,0 +1,315 @@
+#include "plateball/join.h"
+
+#include <ceres/jet.h>
+#include <ceres/tiny_solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "arc.h"
+#include "check.h"
+#include "dynamics.h"
+
+namespace plateball {
+namespace {
+
+using Jet = ceres::Jet<double, 1>;
+using SensState = std::array<double, 10>;  // z[3], x[2], dz/ds[3], dx/ds[2]
+
+// Motion and its derivative with respect to s: K depends on s, z(0) and x(0) do not.
+struct SensitivityRhs {
+  double lambda;
+  double k[2];
+  double dk[2];
+  void operator()(const SensState& y, SensState& dy, double /*t*/) const {
+    Jet z[3], kk[2], w[2], dz[3], dx[2];
+    for (int i = 0; i < 3; ++i) {
+      z[i].a = y[i];
+      z[i].v[0] = y[5 + i];
+    }
+    for (int i = 0; i < 2; ++i) {
+      kk[i].a = k[i];
+      kk[i].v[0] = dk[i];
+    }
+    internal::OmegaFromZK(z, kk, lambda, w);
+    internal::ZxRhs(z, w, dz, dx);
+    for (int i = 0; i < 3; ++i) {
+      dy[i] = dz[i].a;
+      dy[5 + i] = dz[i].v[0];
+    }
+    for (int i = 0; i < 2; ++i) {
+      dy[3 + i] = dx[i].a;
+      dy[8 + i] = dx[i].v[0];
+    }
+  }
+};
+
+double WrapPi(double a) {
+  a = std::remainder(a, 2.0 * M_PI);
+  return a <= -M_PI ? a + 2.0 * M_PI : a;
+}
+
+// The residual x_s(t) - (target - x0) and its exact Jacobian, for Ceres' TinySolver. TinySolver
+// evaluates the residual alone at a trial point and then the Jacobian at the same point once the
+// step is accepted; one rollout gives both, so the last one is cached.
+class JoinFunction {
+ public:
+  using Scalar = double;
+  enum { NUM_RESIDUALS = 2, NUM_PARAMETERS = 2 };
+
+  JoinFunction(const AngleState& start, double mu, double lambda, const Eigen::Vector2d& d,
+               const IntegrationOptions& options)
+      : start_(start), mu_(mu), lambda_(lambda), d_(d), options_(options) {
+    z0_ = {std::sin(start.theta) * std::cos(start.phi), std::sin(start.theta) * std::sin(start.phi),
+           std::cos(start.theta)};
+  }
+
+  bool operator()(const double* p, double* r, double* jac) const {
+    if (!(has_cache_ && p[0] == cache_p_[0] && p[1] == cache_p_[1])) Evaluate(p[0], p[1]);
+    r[0] = cache_r_[0];
+    r[1] = cache_r_[1];
+    if (jac) {
+      for (int i = 0; i < 4; ++i) jac[i] = cache_j_[i];
+    }
+    return !failed_;
+  }
+
+  // One rollout over [0, t] (t may be negative during the iteration) with dx/ds.
+  void Evaluate(double s, double t) const {
+    ++evaluations_;
+    has_cache_ = true;
+    cache_p_[0] = s;
+    cache_p_[1] = t;
+    Eigen::Vector2d w, dw;
+    internal::OmegaFromAngles(start_.theta, start_.phi, start_.psi + s, mu_, lambda_, &w, &dw);
+    const Eigen::Vector2d zh = z0_.head<2>();
+    k_ = w + (lambda_ - 1.0) * w.dot(zh) * zh;
+    const Eigen::Vector2d dk = dw + (lambda_ - 1.0) * dw.dot(zh) * zh;
+    SensState y{};
+    y[0] = z0_.x();
+    y[1] = z0_.y();
+    y[2] = z0_.z();
+    failed_ = false;
+    if (!std::isfinite(s) || !std::isfinite(t)) {
+      failed_ = true;
+    } else if (t != 0.0) {
+      SensitivityRhs rhs{lambda_, {k_.x(), k_.y()}, {dk.x(), dk.y()}};
+      try {
+        double last = 0.0;
+        double largest = 0.0;
+        internal::IntegrateAdaptive(rhs, y, 0.0, t, dt_hint_, options_, [&](double tt, const SensState&) {
+          largest = std::max(largest, std::abs(tt - last));
+          last = tt;
+        });
+        if (largest > 0) dt_hint_ = largest;
+      } catch (const std::runtime_error& e) {
+        failed_ = true;
+        failure_ = e.what();
+      }
+    }
+    if (failed_) {
+      // A huge residual makes TinySolver reject the step.
+      cache_r_[0] = cache_r_[1] = 1e100;
+      for (double& v : cache_j_) v = 0.0;
+      return;
+    }
+    z_end_ = Eigen::Vector3d(y[0], y[1], y[2]);
+    double wt[2];
+    const double kd[2] = {k_.x(), k_.y()};
+    internal::OmegaFromZK(y.data(), kd, lambda_, wt);
+    cache_r_[0] = y[3] - d_.x();
+    cache_r_[1] = y[4] - d_.y();
+    cache_j_[0] = y[8];  // column-major: d r / d s
+    cache_j_[1] = y[9];
+    cache_j_[2] = wt[1];  // d r / d t = x'(t) = (omega_2, -omega_1)
+    cache_j_[3] = -wt[0];
+  }
+
+  double Residual() const { return std::hypot(cache_r_[0], cache_r_[1]); }
+  Eigen::Vector2d residual_vector() const { return {cache_r_[0], cache_r_[1]}; }
+  double Conditioning() const {
+    const double det = cache_j_[0] * cache_j_[3] - cache_j_[1] * cache_j_[2];
+    const double scale = std::hypot(cache_j_[0], cache_j_[1]) * std::hypot(cache_j_[2], cache_j_[3]);
+    return scale > 0 ? std::abs(det) / scale : 0.0;
+  }
+  bool failed() const { return failed_; }
+  const std::string& failure() const { return failure_; }
+  const Eigen::Vector3d& z_end() const { return z_end_; }
+  const Eigen::Vector2d& k() const { return k_; }
+  int evaluations() const { return evaluations_; }
+  void set_dt_hint(double h) const { dt_hint_ = h; }
+
+ private:
+  AngleState start_;
+  double mu_, lambda_;
+  Eigen::Vector2d d_;
+  IntegrationOptions options_;
+  Eigen::Vector3d z0_;
+  mutable bool has_cache_ = false;
+  mutable double cache_p_[2] = {0, 0};
+  mutable double cache_r_[2] = {0, 0};
+  mutable double cache_j_[4] = {0, 0, 0, 0};
+  mutable Eigen::Vector2d k_ = Eigen::Vector2d::Zero();
+  mutable Eigen::Vector3d z_end_ = Eigen::Vector3d::UnitZ();
+  mutable bool failed_ = false;
+  mutable std::string failure_;
+  mutable double dt_hint_ = 0.01;
+  mutable int evaluations_ = 0;
+};
+
+void ValidateJoinInput(const AngleState& start, double mu, const Eigen::Vector2d& x0, const Eigen::Vector2d& target,
+                       const JoinOptions& options) {
+  const std::string err = options.Validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  internal::RequireFinite("start.theta", start.theta);
+  internal::RequireFinite("start.phi", start.phi);
+  internal::RequireFinite("start.psi", start.psi);
+  internal::RequirePositive("mu", mu);
+  internal::RequireFinite("x0", x0);
+  internal::RequireFinite("target", target);
+}
+
+}  // namespace
+
+std::string ToString(JoinStatus status) {
+  switch (status) {
+    case JoinStatus::kConverged: return "converged";
+    case JoinStatus::kTargetEqualsStart: return "target_equals_start";
+    case JoinStatus::kTargetBeyondLocalRadius: return "target_beyond_local_radius";
+    case JoinStatus::kIntegrationFailure: return "integration_failure";
+  }
+  return "unknown";
+}
+
+std::string JoinOptions::Validate() const {
+  std::ostringstream os;
+  os.precision(17);
+  if (!(std::isfinite(residual_tolerance) && residual_tolerance > 0))
+    os << "join option 'residual_tolerance' = " << residual_tolerance << " must be finite and > 0";
+  else if (max_iterations < 1)
+    os << "join option 'max_iterations' = " << max_iterations << " must be >= 1";
+  else if (!(std::isfinite(local_time_factor) && local_time_factor >= 1))
+    os << "join option 'local_time_factor' = " << local_time_factor << " must be finite and >= 1";
+  else
+    return integration.Validate();
+  return os.str();
+}
+
+std::string JoinSummary::BriefReport() const {
+  std::ostringstream os;
+  os.precision(6);
+  os << "Join: " << ToString(status) << ", delta_psi = " << delta_psi << ", t = " << t
+     << ", residual = " << residual << ", iterations = " << iterations;
+  if (!message.empty()) os << " (" << message << ")";
+  return os.str();
+}
+
+double MinimumContactSpeed(double mu, const BallModel& model) {
+  internal::RequirePositive("mu", mu);
+  return std::sqrt(mu / std::max(1.0, model.lambda()));
+}
+
+JoinSummary Join(const BallModel& model, const AngleState& start, double mu, const Eigen::Vector2d& x0,
+                 const Eigen::Vector2d& target, const JoinOptions& options) {
+  ValidateJoinInput(start, mu, x0, target, options);
+  const double lambda = model.lambda();
+  JoinSummary out;
+  out.start = start;
+  out.mu = mu;
+  out.x0 = x0;
+  out.target = target;
+  const Eigen::Vector2d d = target - x0;
+  const double dist = d.norm();
+  const double k1 = options.local_time_factor / MinimumContactSpeed(mu, model);
+  out.time_limit = k1 * dist;
+
+  auto finish_state = [&](double s, const Eigen::Vector3d& z, const Eigen::Vector2d& k, const Eigen::Vector2d& x) {
+    out.impulse = EnergyPreservingImpulse(start, mu, s, model);
+    out.state_after.z = z.normalized();
+    out.state_after.omega = OmegaFromMomentum(out.state_after.z, k, model);
+    out.angles_after = AnglesFromState(out.state_after, model);
+    out.x_after = x;
+  };
+
+  if (dist <= options.residual_tolerance) {
+    out.status = JoinStatus::kTargetEqualsStart;
+    out.message = "target equals the start point x0 (|target - x0| = " + std::to_string(dist) + ")";
+    out.residual = dist;
+    const BallState s0 = StateFromAngles(start, mu, model);
+    finish_state(0.0, s0.z, ConservedMomentum(s0, model), x0);
+    return out;
+  }
+
+  // Velocity-ellipse guess (27)-(28): x'_s(0) = -b sin(w) e_r - a cos(w) e_phi with w = phi - psi - s.
+  const double st = std::sin(start.theta), ct = std::cos(start.theta);
+  const double a = std::sqrt(mu / (lambda * st * st + ct * ct)), b = std::sqrt(mu);
+  const Eigen::Vector2d er(std::cos(start.phi), std::sin(start.phi)), ephi(-er.y(), er.x());
+  const double w = std::atan2(-d.dot(er) / b, -d.dot(ephi) / a);
+  const double speed = std::hypot(b * std::sin(w), a * std::cos(w));
+  Eigen::Vector2d params(WrapPi(start.phi - start.psi - w), dist / speed);
+
+  JoinFunction fn(start, mu, lambda, d, options.integration);
+  fn.set_dt_hint(params[1] / 5);
+  double r0[2];
+  fn(params.data(), r0, nullptr);
+  out.initial_guess_residual = std::hypot(r0[0], r0[1]);
+
+  ceres::TinySolver<JoinFunction> solver;
+  solver.options.max_num_iterations = options.max_iterations;
+  solver.options.gradient_tolerance = 0.0;       // stop on the residual, not the gradient
+  solver.options.function_tolerance = 0.0;       // (an absolute test in Ceres 2.1)
+  solver.options.parameter_tolerance = 1e-15;
+  solver.options.cost_threshold = 0.5 * options.residual_tolerance * options.residual_tolerance;
+  solver.options.initial_trust_region_radius = 1e12;  // Gauss-Newton while the model is good
+  const auto& ts = solver.Solve(fn, &params);
+  out.iterations = ts.iterations;
+
+  // The reversed motion: (psi + pi) flips omega, and (z(-t), -omega(-t)) is again a solution, so a
+  // solution with t < 0 is the solution (s + pi, -t).
+  if (params[1] < 0) {
+    params[0] += M_PI;
+    params[1] = -params[1];
+    double r[2];
+    fn(params.data(), r, nullptr);
+  } else {
+    double r[2];
+    fn(params.data(), r, nullptr);  // make the cache hold the final point
+  }
+  out.delta_psi = WrapPi(params[0]);
+  out.t = params[1];
+  out.residual = fn.Residual();
+  out.jacobian_conditioning = fn.Conditioning();
+
+  if (fn.failed()) {
+    out.status = JoinStatus::kIntegrationFailure;
+    out.message = fn.failure();
+    return out;
+  }
+  finish_state(out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector());
+  std::ostringstream why;
+  why.precision(6);
+  if (!(out.residual <= options.residual_tolerance)) {
+    why << "no solution found within " << out.iterations << " iterations: residual " << out.residual
+        << " > tolerance " << options.residual_tolerance << " (|target - x0| = " << dist << ")";
+  } else if (out.t > out.time_limit) {
+    why << "the solution found has t = " << out.t << " > K1 |target - x0| = " << out.time_limit
+        << ": not the local branch of Lemma 2.1 (|target - x0| = " << dist << ")";
+  } else if (out.jacobian_conditioning < 1e-3) {
+    why << "the polar coordinates (s, t) degenerate at the solution (conditioning "
+        << out.jacobian_conditioning << ")";
+  }
+  out.message = why.str();
+  out.status = out.message.empty() ? JoinStatus::kConverged : JoinStatus::kTargetBeyondLocalRadius;
+  return out;
+}
+
+JoinSummary Join(const BallModel& model, const BallState& start, const Eigen::Vector2d& x0,
+                 const Eigen::Vector2d& target, const JoinOptions& options) {
+  ValidateState(start, "start");
+  const double mu = Energy(start, model);
+  return Join(model, AnglesFromState(start, model), mu, x0, target, options);
+}
+
+}  // namespace plateball
