@@ -1,0 +1,495 @@
+// The JSON problem-file reader and writer (problem_io.h): round trips, one error message format
+// for every kind of bad input, the three orientation forms, golden values, robustness.
+#include "plateball/problem_io.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "support/test_support.h"
+
+using namespace plateball;
+using nlohmann::json;
+
+namespace {
+
+// Orientations from different forms agree up to the round-off of building them.
+constexpr double kOrientationTolerance = 1e-14;
+
+// A valid document with every section filled, the base of the round trip and error cases.
+json FullDocument() {
+  return json::parse(R"({
+    "name": "full",
+    "description": "every section",
+    "seed": 42,
+    "integration": {"absolute_tolerance": 1e-11, "relative_tolerance": 1e-10, "max_steps": 50000},
+    "ball": {"physical": {"inertia_1": 0.4, "inertia_3": 0.3, "ball_mass": 1.0, "radius": 1.0, "plate_mass": 0.25}},
+    "initial": {"theta": -1.0471975511965976, "phi": 1.5707963267948966, "psi": 0.1, "mu": 1.3,
+                "x0": [0.5, -0.25], "orientation": {"quaternion": [0.9, 0.1, -0.3, 0.2]}},
+    "simulate": {"t_end": 12.5, "samples": 7},
+    "reach": {"targets": [[1, 2], [-3.5, 0.25]], "horizon_periods": 4},
+    "plan": {
+      "path": {"type": "piecewise", "pieces": [
+        {"type": "line", "from": [0, 0], "to": [1, 0]},
+        {"type": "circle", "center": [1, 1], "radius": 1, "tau_begin": -1.5707963267948966, "tau_end": 0},
+        {"type": "samples", "points": [[2, 1], [2.5, 1.5], [3, 1.25]]},
+        {"type": "sine", "from": [3, 1.25], "rotation": 0.3, "length": 2, "amplitude": 0.1, "wavelength": 1}
+      ]},
+      "partition": {"type": "explicit", "taus": [0, 0.5, 1.5, 2]},
+      "energy_changes": [{"index": 1, "factor": 0.5}, {"index": 2, "factor": 2}],
+      "converge_n": [4, 8, 16]
+    },
+    "isoparallel": {"start": [0, 0], "goal": [3, 3],
+                    "start_orientation": {"axis_angle": {"axis": [1, 0, 0], "angle": 0.5}},
+                    "goal_orientation": {"matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]},
+                    "impulses": 24,
+                    "solver": {"starts": 10, "length_cap_factor": 2.5, "max_iterations": 60,
+                               "tolerance": 1e-10, "threads": 2}},
+    "expected": {"length": {"value": 7.25, "tolerance": 1e-6}, "count": {"value": 3, "tolerance": 0}}
+  })");
+}
+
+json MinimalDocument() {
+  return json::parse(R"({"ball": {"lambda": 1.5}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": 1}})");
+}
+
+void ExpectSamePath(const PathSpec& a, const PathSpec& b) {
+  EXPECT_EQ(a.type, b.type);
+  EXPECT_EQ(a.from, b.from);
+  EXPECT_EQ(a.to, b.to);
+  EXPECT_EQ(a.center, b.center);
+  EXPECT_EQ(a.radius, b.radius);
+  EXPECT_EQ(a.semi_axes, b.semi_axes);
+  EXPECT_EQ(a.rotation, b.rotation);
+  EXPECT_EQ(a.scale, b.scale);
+  EXPECT_EQ(a.length, b.length);
+  EXPECT_EQ(a.amplitude, b.amplitude);
+  EXPECT_EQ(a.wavelength, b.wavelength);
+  EXPECT_EQ(a.tau_begin, b.tau_begin);
+  EXPECT_EQ(a.tau_end, b.tau_end);
+  EXPECT_EQ(a.points, b.points);
+  ASSERT_EQ(a.pieces.size(), b.pieces.size());
+  for (std::size_t i = 0; i < a.pieces.size(); ++i) ExpectSamePath(a.pieces[i], b.pieces[i]);
+}
+
+// Field-by-field, bit-exact equality of two problems (except `source`).
+void ExpectSameProblem(const Problem& a, const Problem& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.description, b.description);
+  EXPECT_EQ(a.seed, b.seed);
+  EXPECT_EQ(a.integration.absolute_tolerance, b.integration.absolute_tolerance);
+  EXPECT_EQ(a.integration.relative_tolerance, b.integration.relative_tolerance);
+  EXPECT_EQ(a.integration.max_steps, b.integration.max_steps);
+  EXPECT_EQ(a.model.lambda(), b.model.lambda());
+  EXPECT_EQ(a.model.has_inertia(), b.model.has_inertia());
+  EXPECT_EQ(a.model.alpha(), b.model.alpha());
+  EXPECT_EQ(a.model.beta(), b.model.beta());
+  ASSERT_EQ(a.physical.has_value(), b.physical.has_value());
+  if (a.physical) {
+    EXPECT_EQ(a.physical->inertia_1, b.physical->inertia_1);
+    EXPECT_EQ(a.physical->inertia_3, b.physical->inertia_3);
+    EXPECT_EQ(a.physical->ball_mass, b.physical->ball_mass);
+    EXPECT_EQ(a.physical->radius, b.physical->radius);
+    EXPECT_EQ(a.physical->plate_mass, b.physical->plate_mass);
+  }
+  EXPECT_EQ(a.initial_angles.theta, b.initial_angles.theta);
+  EXPECT_EQ(a.initial_angles.phi, b.initial_angles.phi);
+  EXPECT_EQ(a.initial_angles.psi, b.initial_angles.psi);
+  EXPECT_EQ(a.mu, b.mu);
+  EXPECT_EQ(a.x0, b.x0);
+  EXPECT_EQ(a.A0, b.A0);
+  ASSERT_EQ(a.simulate.has_value(), b.simulate.has_value());
+  if (a.simulate) {
+    EXPECT_EQ(a.simulate->t_end, b.simulate->t_end);
+    EXPECT_EQ(a.simulate->samples, b.simulate->samples);
+  }
+  ASSERT_EQ(a.reach.has_value(), b.reach.has_value());
+  if (a.reach) {
+    EXPECT_EQ(a.reach->targets, b.reach->targets);
+    EXPECT_EQ(a.reach->horizon_periods, b.reach->horizon_periods);
+  }
+  ASSERT_EQ(a.plan.has_value(), b.plan.has_value());
+  if (a.plan) {
+    ExpectSamePath(a.plan->path, b.plan->path);
+    EXPECT_EQ(a.plan->partition.type, b.plan->partition.type);
+    EXPECT_EQ(a.plan->partition.n, b.plan->partition.n);
+    EXPECT_EQ(a.plan->partition.taus, b.plan->partition.taus);
+    ASSERT_EQ(a.plan->energy_changes.size(), b.plan->energy_changes.size());
+    for (std::size_t i = 0; i < a.plan->energy_changes.size(); ++i) {
+      EXPECT_EQ(a.plan->energy_changes[i].index, b.plan->energy_changes[i].index);
+      EXPECT_EQ(a.plan->energy_changes[i].factor, b.plan->energy_changes[i].factor);
+    }
+    EXPECT_EQ(a.plan->converge_n, b.plan->converge_n);
+  }
+  ASSERT_EQ(a.isoparallel.has_value(), b.isoparallel.has_value());
+  if (a.isoparallel) {
+    const IsoparallelTask &x = *a.isoparallel, &y = *b.isoparallel;
+    EXPECT_EQ(x.start, y.start);
+    EXPECT_EQ(x.goal, y.goal);
+    EXPECT_EQ(x.start_orientation, y.start_orientation);
+    EXPECT_EQ(x.goal_orientation, y.goal_orientation);
+    EXPECT_EQ(x.impulses, y.impulses);
+    EXPECT_EQ(x.solver.starts, y.solver.starts);
+    EXPECT_EQ(x.solver.length_cap_factor, y.solver.length_cap_factor);
+    EXPECT_EQ(x.solver.max_iterations, y.solver.max_iterations);
+    EXPECT_EQ(x.solver.tolerance, y.solver.tolerance);
+    EXPECT_EQ(x.solver.threads, y.solver.threads);
+  }
+  ASSERT_EQ(a.expected.size(), b.expected.size());
+  for (const auto& [name, v] : a.expected) {
+    ASSERT_EQ(b.expected.count(name), 1u) << name;
+    EXPECT_EQ(v.value, b.expected.at(name).value);
+    EXPECT_EQ(v.tolerance, b.expected.at(name).tolerance);
+  }
+}
+
+}  // namespace
+
+TEST(ProblemIo, FullDocumentParsesEveryField) {
+  const Problem p = ParseProblem(FullDocument().dump(), "full.json");
+  EXPECT_EQ(p.source, "full.json");
+  EXPECT_EQ(p.name, "full");
+  EXPECT_EQ(p.seed, 42u);
+  EXPECT_EQ(p.integration.max_steps, 50000);
+  ASSERT_TRUE(p.physical.has_value());
+  // alpha = I3/I1, beta = (M_ball + 2 M_plate) r^2 / I1 (section 2.1), lambda = (alpha+beta)/(1+beta).
+  const double alpha = 0.3 / 0.4, beta = 1.5 / 0.4;
+  EXPECT_DOUBLE_EQ(p.model.lambda(), (alpha + beta) / (1.0 + beta));
+  EXPECT_DOUBLE_EQ(p.initial_angles.theta, -M_PI / 3);
+  EXPECT_EQ(p.x0, Eigen::Vector2d(0.5, -0.25));
+  EXPECT_TRUE(plateball::testing::IsRotationMatrix(p.A0));
+  ASSERT_TRUE(p.plan.has_value());
+  EXPECT_EQ(p.plan->path.pieces.size(), 4u);
+  EXPECT_EQ(p.plan->partition.n, 3);  // explicit: one step fewer than the taus
+  ASSERT_TRUE(p.isoparallel.has_value());
+  EXPECT_TRUE(p.isoparallel->start_orientation.isApprox(
+      Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX()).toRotationMatrix(), kOrientationTolerance));
+  EXPECT_EQ(p.isoparallel->solver.threads, 2);
+}
+
+TEST(ProblemIo, WriteThenParseRoundTripsBitExactly) {
+  const Problem p = ParseProblem(FullDocument().dump(), "full.json");
+  const std::string text = WriteProblemJson(p);
+  const Problem q = ParseProblem(text, "written.json");
+  ExpectSameProblem(p, q);
+  // Canonical: writing the re-read problem gives the same bytes.
+  EXPECT_EQ(WriteProblemJson(q), text);
+}
+
+TEST(ProblemIo, RoundTripsProblemsBuiltInCode) {
+  Problem p;
+  p.name = "in code";
+  p.model = BallModel::FromAlphaBeta(0.7, 2.5);
+  p.initial_angles = {0.1, -2.0, 3.0};
+  p.mu = 1.0 / 3.0;
+  p.x0 = {M_PI, -M_E};
+  p.A0 = Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  p.seed = 18446744073709551615ull;  // largest seed
+  PlanTask plan;
+  plan.path.type = "lemniscate";
+  plan.path.center = {0.1, 0.2};
+  plan.path.scale = 2.0;
+  plan.path.rotation = 0.25;
+  plan.path.tau_begin = 0.0;
+  plan.path.tau_end = 2 * M_PI;
+  plan.partition.type = "uniform_arc_length";
+  plan.partition.n = 33;
+  p.plan = plan;
+  ExpectSameProblem(p, ParseProblem(WriteProblemJson(p)));
+  // Only the fields of the path's type are written (and allowed), so set only those.
+  p.plan->path.type = "ellipse";
+  p.plan->path.scale = 0.0;
+  p.plan->path.semi_axes = {2.0, 0.5};
+  ExpectSameProblem(p, ParseProblem(WriteProblemJson(p)));
+  p.model = BallModel::FromLambda(5.0);
+  ExpectSameProblem(p, ParseProblem(WriteProblemJson(p)));
+}
+
+TEST(ProblemIo, DefaultsOfOptionalFields) {
+  const Problem p = ParseProblem(MinimalDocument().dump(), "min.json");
+  EXPECT_EQ(p.model.lambda(), 1.5);
+  EXPECT_EQ(p.x0, Eigen::Vector2d::Zero());
+  EXPECT_EQ(p.A0, Eigen::Matrix3d::Identity());
+  EXPECT_FALSE(p.simulate || p.reach || p.plan || p.isoparallel);
+  json d = MinimalDocument();
+  d["simulate"] = json::object();
+  d["plan"] = json::parse(R"({"path": {"type": "ellipse", "center": [0, 0], "semi_axes": [2, 1],
+                                       "tau_begin": 0, "tau_end": 3}})");
+  const Problem q = ParseProblem(d.dump(), "defaults.json");
+  EXPECT_EQ(q.simulate->t_end, SimulateTask{}.t_end);
+  EXPECT_EQ(q.simulate->samples, SimulateTask{}.samples);
+  EXPECT_EQ(q.plan->path.rotation, 0.0);
+  EXPECT_EQ(q.plan->partition.type, "uniform_parameter");
+  EXPECT_EQ(q.plan->partition.n, PartitionSpec{}.n);
+}
+
+TEST(ProblemIo, ThreeOrientationFormsGiveTheSameRotation) {
+  // Rotation by 0.7 rad about (1, 2, 3)/sqrt(14): built independently with Eigen's AngleAxis.
+  const Eigen::Vector3d axis = Eigen::Vector3d(1, 2, 3).normalized();
+  const double angle = 0.7;
+  const Eigen::Matrix3d reference = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+  const Eigen::Vector3d qv = std::sin(angle / 2) * axis;
+  json quaternion = {{"quaternion", {std::cos(angle / 2), qv.x(), qv.y(), qv.z()}}};
+  json matrix = {{"matrix", json::array()}};
+  for (int i = 0; i < 3; ++i) matrix["matrix"].push_back({reference(i, 0), reference(i, 1), reference(i, 2)});
+  json axis_angle = {{"axis_angle", {{"axis", {1, 2, 3}}, {"angle", angle}}}};  // axis normalised by the reader
+  std::vector<Eigen::Matrix3d> got;
+  for (const json& o : {quaternion, matrix, axis_angle}) {
+    json d = MinimalDocument();
+    d["initial"]["orientation"] = o;
+    d["isoparallel"] = {{"start", {0, 0}}, {"goal", {1, 1}}, {"goal_orientation", o}};
+    const Problem p = ParseProblem(d.dump(), "orientation.json");
+    EXPECT_TRUE(p.A0.isApprox(reference, kOrientationTolerance)) << o.dump();
+    EXPECT_TRUE(p.isoparallel->goal_orientation.isApprox(reference, kOrientationTolerance)) << o.dump();
+    EXPECT_TRUE(plateball::testing::IsRotationMatrix(p.A0));
+    got.push_back(p.A0);
+    EXPECT_TRUE(ParseOrientation(o.dump(), "--orientation").isApprox(reference, kOrientationTolerance));
+  }
+  EXPECT_LT((got[0] - got[2]).norm(), kOrientationTolerance);
+  // A non-unit quaternion is normalised: (2w, 2x, 2y, 2z) is the same rotation.
+  json d = MinimalDocument();
+  d["initial"]["orientation"] = {{"quaternion", {2 * std::cos(angle / 2), 2 * qv.x(), 2 * qv.y(), 2 * qv.z()}}};
+  EXPECT_TRUE(ParseProblem(d.dump()).A0.isApprox(reference, kOrientationTolerance));
+}
+
+TEST(ProblemIo, GoldenExpectedValuesAreParsed) {
+  const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/simulate_example.json"));
+  ASSERT_EQ(p.expected.count("period"), 1u);
+  // The period is 2 pi / sqrt(mu) with mu = 1 in this file.
+  EXPECT_DOUBLE_EQ(p.expected.at("period").value, 2 * M_PI / std::sqrt(p.mu));
+  EXPECT_EQ(p.expected.at("period").tolerance, 1e-12);
+  EXPECT_EQ(p.expected.at("energy").value, 1.0);
+  ASSERT_TRUE(p.simulate.has_value());
+  EXPECT_EQ(p.simulate->samples, 5);
+}
+
+TEST(ProblemIo, EveryRepositoryProblemFileParsesAndRoundTrips) {
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(plateball::testing::SourcePath("problems"))) {
+    if (entry.path().extension() != ".json") continue;
+    ++files;
+    SCOPED_TRACE(entry.path().string());
+    const Problem p = ReadProblemFile(entry.path().string());
+    ExpectSameProblem(p, ParseProblem(WriteProblemJson(p)));
+  }
+  EXPECT_GE(files, 1);
+}
+
+// ------------------------------------------------------------------ errors
+struct ErrorCase {
+  const char* what;
+  std::function<void(json&)> mutate;  // applied to FullDocument() unless `raw` is set
+  const char* raw;                    // the whole text, when it is not valid JSON
+  const char* field;
+  const char* value;
+  const char* reason;
+};
+
+TEST(ProblemIo, EveryErrorNamesFileFieldAndValue) {
+  const std::vector<ErrorCase> cases = {
+      {"negative energy", [](json& d) { d["initial"]["mu"] = -1; }, nullptr, "initial.mu", "-1", "must be > 0"},
+      {"missing required field", [](json& d) { d["initial"].erase("theta"); }, nullptr, "initial.theta", "(missing)",
+       "required field is missing"},
+      {"missing section", [](json& d) { d.erase("ball"); }, nullptr, "ball", "(missing)", "required field is missing"},
+      {"unknown top-level key", [](json& d) { d["colour"] = "red"; }, nullptr, "colour", "\"red\"", "unknown key"},
+      {"unknown nested key", [](json& d) { d["initial"]["omega"] = 1; }, nullptr, "initial.omega", "1", "unknown key"},
+      {"string for number", [](json& d) { d["ball"] = {{"lambda", "two"}}; }, nullptr, "ball.lambda", "\"two\"",
+       "must be a number"},
+      {"bool for number", [](json& d) { d["initial"]["phi"] = true; }, nullptr, "initial.phi", "true", "must be a number"},
+      {"null for number", [](json& d) { d["initial"]["psi"] = nullptr; }, nullptr, "initial.psi", "null",
+       "must be a number"},
+      {"two ball forms", [](json& d) { d["ball"] = {{"lambda", 1}, {"alpha", 1}, {"beta", 1}}; }, nullptr, "ball",
+       "{object with keys alpha, beta, lambda}", "exactly one of"},
+      {"beta without alpha", [](json& d) { d["ball"] = {{"beta", 1}}; }, nullptr, "ball.alpha", "(missing)",
+       "required field is missing"},
+      {"non-positive lambda", [](json& d) { d["ball"] = {{"lambda", 0}}; }, nullptr, "ball.lambda", "0", "must be > 0"},
+      {"I3 above 2 I1", [](json& d) { d["ball"]["physical"]["inertia_3"] = 0.9; }, nullptr,
+       "ball.physical.inertia_3", "0.9", "I3 <= I1 + I2"},
+      {"zero radius", [](json& d) { d["ball"]["physical"]["radius"] = 0.0; }, nullptr, "ball.physical.radius", "0",
+       "must be > 0"},
+      {"negative mass", [](json& d) { d["ball"]["physical"]["plate_mass"] = -0.5; }, nullptr,
+       "ball.physical.plate_mass", "-0.5", "must be >= 0"},
+      {"short vector", [](json& d) { d["initial"]["x0"] = {1}; }, nullptr, "initial.x0", "[1]", "array of 2 numbers"},
+      {"vector element type", [](json& d) { d["reach"]["targets"] = {{1, "a"}}; }, nullptr, "reach.targets[0][1]",
+       "\"a\"", "must be a number"},
+      {"number overflow", nullptr,
+       R"({"ball": {"lambda": 1}, "initial": {"theta": 1e400, "phi": 0, "psi": 0, "mu": 1}})", "(document)", "",
+       "number overflow parsing '1e400'"},
+      {"scaled matrix", [](json& d) { d["initial"]["orientation"] = {{"matrix", {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}}}}; },
+       nullptr, "initial.orientation.matrix", "[[2, 0, 0], [0, 2, 0], [0, 0, 2]]", "not a rotation matrix to 1e-9"},
+      {"reflection", [](json& d) { d["initial"]["orientation"] = {{"matrix", {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}}}}; },
+       nullptr, "initial.orientation.matrix", "[[1, 0, 0], [0, 1, 0], [0, 0, -1]]", "det R = -1 (a reflection)"},
+      {"matrix off by 1e-6",
+       [](json& d) { d["isoparallel"]["goal_orientation"] = {{"matrix", {{1, 1e-6, 0}, {0, 1, 0}, {0, 0, 1}}}}; },
+       nullptr, "isoparallel.goal_orientation.matrix", "[[1, 1e-06, 0]", "max |R^T R - I| = 1e-06"},
+      {"zero quaternion", [](json& d) { d["initial"]["orientation"] = {{"quaternion", {0, 0, 0, 0}}}; }, nullptr,
+       "initial.orientation.quaternion", "[0, 0, 0, 0]", "non-zero quaternion"},
+      {"two orientation forms",
+       [](json& d) { d["initial"]["orientation"]["matrix"] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}; }, nullptr,
+       "initial.orientation", "{object with keys matrix, quaternion}", "exactly one of"},
+      {"zero rotation axis",
+       [](json& d) { d["initial"]["orientation"] = {{"axis_angle", {{"axis", {0, 0, 0}}, {"angle", 1}}}}; }, nullptr,
+       "initial.orientation.axis_angle.axis", "[0, 0, 0]", "non-zero vector"},
+      {"zero samples", [](json& d) { d["simulate"]["samples"] = 0; }, nullptr, "simulate.samples", "0", "must be >= 2"},
+      {"fractional count", [](json& d) { d["simulate"]["samples"] = 2.5; }, nullptr, "simulate.samples", "2.5",
+       "must be an integer"},
+      {"absurd count", [](json& d) { d["simulate"]["samples"] = 1e12; }, nullptr, "simulate.samples", "1000000000000",
+       "must be <= 1000000"},
+      {"zero tolerance", [](json& d) { d["integration"]["absolute_tolerance"] = 0; }, nullptr,
+       "integration.absolute_tolerance", "0", "must be in (0, 1)"},
+      {"negative max_steps", [](json& d) { d["integration"]["max_steps"] = -5; }, nullptr, "integration.max_steps",
+       "-5", "must be >= 1"},
+      {"negative seed", [](json& d) { d["seed"] = -3; }, nullptr, "seed", "-3", "non-negative integer"},
+      {"string name", [](json& d) { d["name"] = 5; }, nullptr, "name", "5", "must be a string"},
+      {"unknown path type", [](json& d) { d["plan"]["path"] = {{"type", "spiral"}}; }, nullptr, "plan.path.type",
+       "\"spiral\"", "unknown path type"},
+      {"field of another path type",
+       [](json& d) { d["plan"]["path"]["pieces"][0]["radius"] = 1; }, nullptr, "plan.path.pieces[0].radius", "1",
+       "unknown key (allowed here: type, from, to)"},
+      {"missing path field", [](json& d) { d["plan"]["path"]["pieces"][1].erase("radius"); }, nullptr,
+       "plan.path.pieces[1].radius", "(missing)", "required field is missing"},
+      {"gap between pieces", [](json& d) { d["plan"]["path"]["pieces"][0]["to"] = {1, 0.5}; }, nullptr,
+       "plan.path.pieces[1]", "[1, 0]", "must share end points"},
+      {"repeated sample", [](json& d) { d["plan"]["path"]["pieces"][2]["points"][1] = {2, 1}; }, nullptr,
+       "plan.path.pieces[2].points[1]", "[2, 1]", "repeats the previous point"},
+      {"zero-length line", [](json& d) { d["plan"]["path"] = {{"type", "line"}, {"from", {1, 1}}, {"to", {1, 1}}}; },
+       nullptr, "plan.path.to", "[1, 1]", "length 0"},
+      {"empty arc", [](json& d) { d["plan"]["path"]["pieces"][1]["tau_end"] = -1.5707963267948966; }, nullptr,
+       "plan.path.pieces[1].tau_end", "-1.5707963267948966", "must differ from tau_begin"},
+      {"non-increasing taus", [](json& d) { d["plan"]["partition"]["taus"] = {0, 1, 1, 2}; }, nullptr,
+       "plan.partition.taus[2]", "1", "strictly increasing"},
+      {"unknown partition", [](json& d) { d["plan"]["partition"] = {{"type", "random"}}; }, nullptr,
+       "plan.partition.type", "\"random\"", "unknown partition type"},
+      {"zero energy factor", [](json& d) { d["plan"]["energy_changes"][0]["factor"] = 0; }, nullptr,
+       "plan.energy_changes[0].factor", "0", "must be > 0"},
+      {"zero in converge_n", [](json& d) { d["plan"]["converge_n"] = {4, 0}; }, nullptr, "plan.converge_n[1]", "0",
+       "must be >= 1"},
+      {"no targets", [](json& d) { d["reach"]["targets"] = json::array(); }, nullptr, "reach.targets", "[]",
+       "at least 1 element"},
+      {"negative horizon", [](json& d) { d["reach"]["horizon_periods"] = -2; }, nullptr, "reach.horizon_periods", "-2",
+       "must be in (0, 10000]"},
+      {"zero threads", [](json& d) { d["isoparallel"]["solver"]["threads"] = 0; }, nullptr,
+       "isoparallel.solver.threads", "0", "must be >= 1"},
+      {"negative solver tolerance", [](json& d) { d["isoparallel"]["solver"]["tolerance"] = -1e-9; }, nullptr,
+       "isoparallel.solver.tolerance", "-1e-09", "must be in (0, 1)"},
+      {"zero impulses", [](json& d) { d["isoparallel"]["impulses"] = 0; }, nullptr, "isoparallel.impulses", "0",
+       "must be >= 1"},
+      {"golden without tolerance", [](json& d) { d["expected"]["length"].erase("tolerance"); }, nullptr,
+       "expected.length.tolerance", "(missing)", "required field is missing"},
+      {"section of wrong type", [](json& d) { d["simulate"] = {1, 2}; }, nullptr, "simulate", "[1, 2]",
+       "must be a JSON object"},
+      {"malformed JSON", nullptr, "{\n  \"ball\": {\"lambda\": 1},\n  \"initial\" 5\n}", "(document)", "",
+       "malformed JSON at line 3, column 13"},
+      {"empty text", nullptr, "", "(document)", "''", "unexpected end of input"},
+      {"duplicate key", nullptr,
+       R"({"ball": {"lambda": 1}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": 1, "mu": 2}})", "initial.mu",
+       "(duplicate)", "more than once"},
+      {"array document", nullptr, "[1, 2]", "(document)", "[1, 2]", "must be a JSON object"},
+  };
+  ASSERT_GE(cases.size(), 20u);
+  for (const ErrorCase& c : cases) {
+    SCOPED_TRACE(c.what);
+    std::string text = c.raw ? std::string(c.raw) : std::string();
+    if (!c.raw) {
+      json d = FullDocument();
+      c.mutate(d);
+      text = d.dump();
+    }
+    try {
+      ParseProblem(text, "case.json");
+      ADD_FAILURE() << "no error for: " << text;
+    } catch (const std::invalid_argument& e) {
+      const std::string msg = e.what();
+      const std::string head = std::string("case.json: ") + c.field + ": value " + c.value;
+      EXPECT_EQ(msg.rfind(head, 0), 0u) << "message: " << msg << "\nexpected to start with: " << head;
+      EXPECT_NE(msg.find(c.reason), std::string::npos) << "message: " << msg << "\nexpected reason: " << c.reason;
+    }
+  }
+}
+
+TEST(ProblemIo, UnreadableFileIsAReadErrorNamingThePath) {
+  const std::string missing = "/nonexistent/dir/figure7.json";
+  try {
+    ReadProblemFile(missing);
+    ADD_FAILURE() << "no error";
+  } catch (const ProblemFileReadError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(missing + ": (file): value \"" + missing + "\"", 0), 0u) << e.what();
+  }
+  // A directory is not a problem file either.
+  EXPECT_THROW(ReadProblemFile(plateball::testing::SourcePath("problems")), ProblemFileReadError);
+}
+
+TEST(ProblemIo, FileErrorsNameTheFileAsGiven) {
+  const std::string path = (std::filesystem::temp_directory_path() / "plateball_problem_io_bad.json").string();
+  {
+    std::ofstream out(path);
+    out << R"({"ball": {"lambda": 1}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": -1}})";
+  }
+  try {
+    ReadProblemFile(path);
+    ADD_FAILURE() << "no error";
+  } catch (const ProblemFileReadError&) {
+    ADD_FAILURE() << "a content error is not a read error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": initial.mu: value -1: must be > 0");
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(ProblemIo, WriterRejectsNonFiniteNumbersNamingTheField) {
+  Problem p;
+  p.mu = std::nan("");
+  try {
+    WriteProblemJson(p);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("initial.mu: value nan"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ProblemIo, ArbitraryBytesEitherParseOrThrowInvalidArgument) {
+  // Truncations at every byte and seeded random byte edits of a full document: the reader must
+  // return or throw std::invalid_argument, never anything else (the fuzz target checks more).
+  const std::string base = FullDocument().dump(1);
+  std::mt19937 rng(12345);
+  std::vector<std::string> inputs;
+  for (std::size_t n = 0; n < base.size(); n += 3) inputs.push_back(base.substr(0, n));
+  const std::string alphabet = "{}[]:,\"0123456789.-+eE \n\\truefalsnl\x01\xff";
+  for (int k = 0; k < 3000; ++k) {
+    std::string s = base;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) {
+      const std::size_t at = rng() % s.size();
+      switch (rng() % 3) {
+        case 0: s[at] = alphabet[rng() % alphabet.size()]; break;
+        case 1: s.erase(at, 1 + rng() % 8); break;
+        default: s.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
+      }
+      if (s.empty()) s = "{";
+    }
+    inputs.push_back(s);
+  }
+  // Deep nesting must not exhaust the stack.
+  inputs.push_back(std::string(100000, '[') + std::string(100000, ']'));
+  inputs.push_back(R"({"ball": {"lambda": 1}, "initial": )" + std::string(50000, '[') + std::string(50000, ']') + "}");
+  int parsed = 0, rejected = 0;
+  for (const std::string& s : inputs) {
+    try {
+      ParseProblem(s, "fuzz.json");
+      ++parsed;
+    } catch (const std::invalid_argument& e) {
+      ++rejected;
+      EXPECT_EQ(std::string(e.what()).rfind("fuzz.json: ", 0), 0u) << e.what();
+    }
+  }
+  EXPECT_GT(rejected, 0);
+  EXPECT_EQ(parsed + rejected, static_cast<int>(inputs.size()));
+}
