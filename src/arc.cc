@@ -46,13 +46,24 @@ ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vecto
   y[2] = z0.z();
   y[5] = y[9] = y[13] = 1.0;
   ArcEnd out;
+  // Maxima over the accepted steps plus the largest change between neighbouring steps, so that a
+  // maximum between two steps of a smooth arc is covered.
+  double prev_v = -1.0, prev_a = -1.0, jump_v = 0.0, jump_a = 0.0;
   auto track = [&](const double* yy) {
     const Eigen::Vector3d z(yy[0], yy[1], yy[2]);
     double w[2];
     const double kd[2] = {k.x(), k.y()};
     OmegaFromZK(yy, kd, lambda, w);
-    out.max_speed = std::max(out.max_speed, std::hypot(w[0], w[1]));
-    out.max_acceleration = std::max(out.max_acceleration, ContactAcceleration(lambda, z, k).norm());
+    const double v = std::hypot(w[0], w[1]);
+    const double acc = ContactAcceleration(lambda, z, k).norm();
+    if (prev_v >= 0) {
+      jump_v = std::max(jump_v, std::abs(v - prev_v));
+      jump_a = std::max(jump_a, std::abs(acc - prev_a));
+    }
+    prev_v = v;
+    prev_a = acc;
+    out.max_speed = std::max(out.max_speed, v);
+    out.max_acceleration = std::max(out.max_acceleration, acc);
   };
   track(y.data());
   if (t > 0) {
@@ -61,6 +72,8 @@ ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vecto
       track(s.data());
     });
   }
+  out.max_speed += jump_v;
+  out.max_acceleration += jump_a;
   out.z = Eigen::Vector3d(y[0], y[1], y[2]).normalized();
   out.dx = {y[3], y[4]};
   out.phi << y[5], y[6], y[7], y[8], y[9], y[10], y[11], y[12], y[13];

@@ -22,8 +22,10 @@ struct ArcEnd {
   Eigen::Vector3d z;                              ///< axis at t (renormalised)
   Eigen::Vector2d dx = Eigen::Vector2d::Zero();   ///< x(t) - x(0)
   Eigen::Matrix3d phi = Eigen::Matrix3d::Identity();  ///< A(t) A(0)^-1 (when asked)
-  double max_speed = 0.0;          ///< max |x'| over the arc (at the accepted steps)
-  double max_acceleration = 0.0;   ///< max |x''| = |omega_h'| over the arc (at the accepted steps)
+  /// max |x'| over the arc: at the accepted steps plus the largest change between neighbours.
+  double max_speed = 0.0;
+  /// max |x''| = |omega_h'| over the arc, estimated the same way.
+  double max_acceleration = 0.0;
   int steps = 0;
 };
 

@@ -1,0 +1,110 @@
+// Impulsive path following (section 2.3, "Control strategy", Theorems 2.5 and 2.6): the sequence
+// of energy-preserving impulses that makes the ball pass through every partition point of a
+// planned path, the orientations the paper compares, and the error bounds.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "plateball/ball_model.h"
+#include "plateball/ball_state.h"
+#include "plateball/error_bounds.h"
+#include "plateball/impulse.h"
+#include "plateball/integration_options.h"
+#include "plateball/join.h"
+#include "plateball/path.h"
+#include "plateball/problem.h"
+
+namespace plateball {
+
+enum class PlanStatus {
+  kSuccess,                   ///< every partition point reached
+  kSegmentBeyondLocalRadius,  ///< a join found no local solution (refine the partition)
+  kIntegrationFailure,        ///< an ODE integration failed
+};
+std::string ToString(PlanStatus status);
+
+struct PlanOptions {
+  JoinOptions join;                 ///< per-segment join (tolerances, local-branch factor)
+  IntegrationOptions integration;   ///< arcs with orientation and the rolling reference
+  int bound_samples = 9;            ///< samples of p', p'' per segment for the bounds (>= 2)
+  std::string Validate() const;
+};
+
+/// One segment k: the impulse at p(tau_k) and the free arc to p(tau_k+1).
+struct PlanStep {
+  int piece = 0;           ///< smooth piece of the path
+  int index = 0;           ///< k within the piece
+  int global_index = 0;    ///< k over the whole plan
+  double tau_begin = 0.0, tau_end = 0.0;
+  Eigen::Vector2d p_begin = Eigen::Vector2d::Zero();  ///< p(tau_k)
+  Eigen::Vector2d p_end = Eigen::Vector2d::Zero();    ///< p(tau_k+1)
+  double t_impulse = 0.0;  ///< time of the impulse since the start of the plan (sum of earlier t_k)
+  double duration = 0.0;   ///< t_k: time of flight to p(tau_k+1)
+  double delta_psi = 0.0;
+  Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();
+  Eigen::Vector3d plate_velocity_change = Eigen::Vector3d::Zero();  ///< 2 delta_omega x e3
+  std::vector<Impulse> energy_changes;  ///< energy-changing impulses applied at p(tau_k) first
+  Impulse impulse;                      ///< the energy-preserving impulse at p(tau_k)
+  BallState state_before;               ///< on arrival at p(tau_k), before any impulse
+  BallState state_after;                ///< on arrival at p(tau_k+1)
+  AngleState angles_before, angles_after;
+  double mu = 0.0;                      ///< energy on this arc
+  Eigen::Vector2d x_end = Eigen::Vector2d::Zero();  ///< contact point reached (independent arc integration)
+  double pass_miss = 0.0;               ///< |x_end - p(tau_k+1)|
+  JoinStatus join_status = JoinStatus::kConverged;
+  double join_residual = 0.0;
+  int join_iterations = 0;
+  Eigen::Matrix3d A_planned = Eigen::Matrix3d::Identity();    ///< A(tau_k+1) rolling along p
+  Eigen::Matrix3d A_polyline = Eigen::Matrix3d::Identity();   ///< Abar_k+1 rolling along the chords
+  Eigen::Matrix3d A_impulsive = Eigen::Matrix3d::Identity();  ///< Atilde_k+1 of the impulsive trajectory
+  double path_max_speed = 0.0, path_max_acceleration = 0.0;   ///< max |p'|, |p''| on [tau_k, tau_k+1]
+  double arc_max_speed = 0.0, arc_max_acceleration = 0.0;     ///< max |x'|, |x''| on the arc
+  double path_bound = 0.0;  ///< ||R_k - S_k|| <= max|p'| max|p''| h^3 / 12
+  double arc_bound = 0.0;   ///< ||S_k - Rtilde_k|| <= max|x'| max|x''| t_k^3 / 12
+};
+
+struct PlanSummary {
+  // What was asked.
+  int pieces = 0;
+  int segments = 0;  ///< n over all pieces
+  double mu_initial = 0.0;
+  Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();  ///< initial orientation used (A0 e3 = z)
+
+  PlanStatus status = PlanStatus::kSuccess;
+  std::string message;
+  std::vector<PlanStep> steps;
+  double total_time = 0.0;        ///< physical time of the whole impulsive trajectory
+  double max_pass_miss = 0.0;     ///< max_k |x(t_k) - p(tau_k)|
+  double max_join_residual = 0.0;
+  Eigen::Matrix3d A_planned = Eigen::Matrix3d::Identity();    ///< A(T)
+  Eigen::Matrix3d A_polyline = Eigen::Matrix3d::Identity();   ///< Abar_n
+  Eigen::Matrix3d A_impulsive = Eigen::Matrix3d::Identity();  ///< Atilde_n
+  double measured_error = 0.0;   ///< ||A(T) - Atilde_n|| (operator norm)
+  double polyline_error = 0.0;   ///< ||A(T) - Abar_n||
+  ErrorBounds bounds;            ///< bounds.a_posteriori is the reported bound
+  BallState final_state;
+  double mu_final = 0.0;
+
+  bool IsSolutionUsable() const { return status == PlanStatus::kSuccess; }
+  std::string BriefReport() const;
+};
+
+/// Plans the impulses for `path` with one partition per smooth piece (partition.h). The ball starts
+/// at p(tau_0) of the first piece with angles `initial`, energy mu and orientation A0 (rotated
+/// minimally so that A0 e3 = z, as FreeMotion::FromAngles does). `energy_changes[i].index` is a
+/// global partition index in [0, n). Throws std::invalid_argument naming the field for invalid
+/// input (partition count, indices, factors, mu, A0, options); a join that fails is a status.
+PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
+                         const Path& path, const std::vector<std::vector<double>>& partition,
+                         const std::vector<EnergyChangeSpec>& energy_changes = {}, const PlanOptions& options = {});
+
+/// The plan task of a problem (problem.plan), with its integration options. `n` > 0 overrides
+/// plan.partition.n (for convergence studies). Requires problem.x0 == the path's start point.
+PlanSummary PlanImpulses(const Problem& problem, const PlanOptions& options = {}, int n = 0);
+
+/// A0 rotated minimally so that its third column is z (the symmetry axis).
+Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z);
+
+}  // namespace plateball

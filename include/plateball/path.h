@@ -1,0 +1,91 @@
+// Planned paths p(tau) on the lower plate (section 2.3): smooth curves given analytically or as
+// samples, and piecewise-smooth chains of them (the paper's remark: each smooth piece is planned
+// on its own).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plateball/problem.h"
+
+namespace plateball {
+
+class CubicSpline2d;
+
+enum class CurveKind { kLine, kCircle, kEllipse, kLemniscate, kSine, kSamples };
+std::string ToString(CurveKind kind);
+
+/// One smooth piece p(tau), tau in [Begin(), End()], with exact first and second derivatives.
+/// The factories validate every value (std::invalid_argument naming the field) and reject a
+/// curve whose speed |p'| vanishes anywhere (checked on a fine grid).
+class SmoothCurve {
+ public:
+  /// p = from + tau (to - from), tau in [0, 1].
+  static SmoothCurve Line(const Eigen::Vector2d& from, const Eigen::Vector2d& to);
+  /// p = center + radius (cos tau, sin tau).
+  static SmoothCurve Circle(const Eigen::Vector2d& center, double radius, double tau_begin, double tau_end);
+  /// p = center + Rot(rotation) (a cos tau, b sin tau) with (a, b) = semi_axes.
+  static SmoothCurve Ellipse(const Eigen::Vector2d& center, const Eigen::Vector2d& semi_axes, double rotation,
+                             double tau_begin, double tau_end);
+  /// Lemniscate of Bernoulli of half-width `scale`:
+  /// p = center + Rot(rotation) scale (cos tau, sin tau cos tau) / (1 + sin^2 tau).
+  static SmoothCurve Lemniscate(const Eigen::Vector2d& center, double scale, double rotation, double tau_begin,
+                                double tau_end);
+  /// p = from + Rot(rotation) (tau, amplitude sin(2 pi tau / wavelength)), tau in [0, length].
+  static SmoothCurve Sine(const Eigen::Vector2d& from, double rotation, double length, double amplitude,
+                          double wavelength);
+  /// Natural C^2 cubic spline through the samples, tau = cumulative chord length.
+  static SmoothCurve Samples(const std::vector<Eigen::Vector2d>& points);
+
+  CurveKind kind() const { return kind_; }
+  double Begin() const { return tau_begin_; }
+  double End() const { return tau_end_; }
+  Eigen::Vector2d Value(double tau) const;
+  Eigen::Vector2d Derivative(double tau) const;
+  Eigen::Vector2d SecondDerivative(double tau) const;
+  Eigen::Vector2d StartPoint() const { return Value(tau_begin_); }
+  Eigen::Vector2d EndPoint() const { return Value(tau_end_); }
+  /// Arc length between parameters a and b (Gauss-Legendre, accurate to ~1e-13 relative).
+  double ArcLength(double a, double b) const;
+  double Length() const { return ArcLength(tau_begin_, tau_end_); }
+
+ private:
+  SmoothCurve() = default;
+  void CheckSpeed(const std::string& field) const;
+  CurveKind kind_ = CurveKind::kLine;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();  // from / center
+  Eigen::Vector2d vec_ = Eigen::Vector2d::Zero();     // to - from, or semi-axes
+  Eigen::Matrix2d rot_ = Eigen::Matrix2d::Identity();
+  double scale_ = 1.0;       // radius, lemniscate scale, sine amplitude
+  double wavenumber_ = 0.0;  // 2 pi / wavelength
+  double tau_begin_ = 0.0;
+  double tau_end_ = 1.0;
+  std::shared_ptr<const CubicSpline2d> spline_;
+};
+
+/// A piecewise-smooth planned path: consecutive pieces share their end points (to 1e-9 of the
+/// path's size). A smooth path is a chain of one piece.
+class Path {
+ public:
+  /// Throws std::invalid_argument (naming "pieces[i]") for an empty chain or a gap between pieces.
+  explicit Path(std::vector<SmoothCurve> pieces);
+  /// Builds the path described by a PathSpec (problem.h), validating every field; error messages
+  /// name the field as `field`.key (e.g. "plan.path.radius").
+  static Path FromSpec(const PathSpec& spec, const std::string& field = "path");
+
+  const std::vector<SmoothCurve>& pieces() const { return pieces_; }
+  int PieceCount() const { return static_cast<int>(pieces_.size()); }
+  Eigen::Vector2d StartPoint() const { return pieces_.front().StartPoint(); }
+  Eigen::Vector2d EndPoint() const { return pieces_.back().EndPoint(); }
+  double Length() const;
+
+ private:
+  std::vector<SmoothCurve> pieces_;
+};
+
+/// A single smooth curve from a PathSpec whose type is not "piecewise".
+SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field = "path");
+
+}  // namespace plateball

@@ -1,0 +1,126 @@
+#include "plateball/partition.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "check.h"
+
+namespace plateball {
+namespace {
+using internal::ThrowInvalid;
+
+void RequireCount(int n, const std::string& field) {
+  if (n < 1) ThrowInvalid(field, n, "a partition needs n >= 1 steps (at least 2 points)");
+}
+}  // namespace
+
+void ValidatePartition(const SmoothCurve& curve, const std::vector<double>& taus, const std::string& field) {
+  if (taus.size() < 2)
+    ThrowInvalid(field + " (point count)", static_cast<double>(taus.size()), "a partition needs at least 2 points");
+  const double span = curve.End() - curve.Begin();
+  for (std::size_t k = 0; k < taus.size(); ++k) {
+    const std::string f = field + "[" + std::to_string(k) + "]";
+    internal::RequireFinite(f, taus[k]);
+    if (k > 0 && !(taus[k] > taus[k - 1]))
+      ThrowInvalid(f, taus[k], "partition values must increase strictly (previous " + std::to_string(taus[k - 1]) + ")");
+  }
+  if (std::abs(taus.front() - curve.Begin()) > 1e-12 * std::max(1.0, std::abs(span)))
+    ThrowInvalid(field + "[0]", taus.front(), "must equal the start of the parameter interval " + std::to_string(curve.Begin()));
+  if (std::abs(taus.back() - curve.End()) > 1e-12 * std::max(1.0, std::abs(span)))
+    ThrowInvalid(field + "[" + std::to_string(taus.size() - 1) + "]", taus.back(),
+                 "must equal the end of the parameter interval " + std::to_string(curve.End()));
+  const double size = std::max(1.0, curve.Length());
+  for (std::size_t k = 1; k < taus.size(); ++k) {
+    const double step = (curve.Value(taus[k]) - curve.Value(taus[k - 1])).norm();
+    if (!(step > 1e-12 * size))
+      ThrowInvalid(field + "[" + std::to_string(k) + "] (|p(tau_k) - p(tau_k-1)|)", step,
+                   "repeated path point: consecutive partition points must be distinct on the plate");
+  }
+}
+
+std::vector<double> UniformParameterPartition(const SmoothCurve& curve, int n) {
+  RequireCount(n, "partition.n");
+  std::vector<double> t(static_cast<std::size_t>(n) + 1);
+  for (int k = 0; k <= n; ++k) t[k] = curve.Begin() + (curve.End() - curve.Begin()) * k / n;
+  t.back() = curve.End();
+  ValidatePartition(curve, t, "partition (uniform_parameter, n = " + std::to_string(n) + ")");
+  return t;
+}
+
+std::vector<double> UniformArcLengthPartition(const SmoothCurve& curve, int n) {
+  RequireCount(n, "partition.n");
+  // Cumulative length on a grid, then Newton on L(tau) = target inside the bracketing cell.
+  constexpr int kGrid = 256;
+  std::vector<double> grid(kGrid + 1), cum(kGrid + 1, 0.0);
+  for (int i = 0; i <= kGrid; ++i) grid[i] = curve.Begin() + (curve.End() - curve.Begin()) * i / kGrid;
+  for (int i = 1; i <= kGrid; ++i) cum[i] = cum[i - 1] + curve.ArcLength(grid[i - 1], grid[i]);
+  const double total = cum.back();
+  std::vector<double> t(static_cast<std::size_t>(n) + 1);
+  t.front() = curve.Begin();
+  t.back() = curve.End();
+  for (int k = 1; k < n; ++k) {
+    const double target = total * k / n;
+    const int i = static_cast<int>(std::upper_bound(cum.begin(), cum.end(), target) - cum.begin()) - 1;
+    const int cell = std::clamp(i, 0, kGrid - 1);
+    double lo = grid[cell], hi = grid[cell + 1];
+    double tau = lo + (hi - lo) * (target - cum[cell]) / (cum[cell + 1] - cum[cell]);
+    for (int it = 0; it < 50; ++it) {  // safeguarded Newton: L'(tau) = |p'(tau)| > 0
+      const double f = cum[cell] + curve.ArcLength(grid[cell], tau) - target;
+      if (std::abs(f) <= 1e-14 * std::max(1.0, total)) break;
+      if (f > 0) hi = tau; else lo = tau;
+      double next = tau - f / curve.Derivative(tau).norm();
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      tau = next;
+    }
+    t[k] = tau;
+  }
+  ValidatePartition(curve, t, "partition (uniform_arc_length, n = " + std::to_string(n) + ")");
+  return t;
+}
+
+std::vector<double> ExplicitPartition(const SmoothCurve& curve, const std::vector<double>& taus) {
+  ValidatePartition(curve, taus, "partition.taus");
+  std::vector<double> t = taus;
+  t.front() = curve.Begin();
+  t.back() = curve.End();
+  return t;
+}
+
+std::vector<std::vector<double>> MakePartition(const Path& path, const PartitionSpec& spec, const std::string& field) {
+  std::vector<std::vector<double>> out;
+  if (spec.type == "explicit") {
+    if (path.PieceCount() != 1)
+      ThrowInvalid(field + ".taus (pieces)", path.PieceCount(),
+                   "explicit partitions are for single-piece paths; use a uniform type for piecewise paths");
+    try {
+      out.push_back(ExplicitPartition(path.pieces().front(), spec.taus));
+    } catch (const std::invalid_argument& e) {
+      const std::string m = e.what();
+      throw std::invalid_argument(m.rfind("'partition", 0) == 0 ? "'" + field + m.substr(10) : m);
+    }
+    return out;
+  }
+  if (spec.type != "uniform_parameter" && spec.type != "uniform_arc_length")
+    throw std::invalid_argument("'" + field + ".type' = \"" + spec.type +
+                                "\" is invalid: must be uniform_parameter, uniform_arc_length or explicit");
+  if (spec.n < 1) ThrowInvalid(field + ".n", spec.n, "a partition needs n >= 1 steps (at least 2 points)");
+  for (const SmoothCurve& c : path.pieces())
+    out.push_back(spec.type == "uniform_parameter" ? UniformParameterPartition(c, spec.n)
+                                                   : UniformArcLengthPartition(c, spec.n));
+  return out;
+}
+
+double PointNorm(const SmoothCurve& curve, const std::vector<double>& taus) {
+  double m = 0.0;
+  for (std::size_t k = 1; k < taus.size(); ++k) m = std::max(m, (curve.Value(taus[k]) - curve.Value(taus[k - 1])).norm());
+  return m;
+}
+
+double ParameterNorm(const std::vector<double>& taus) {
+  double m = 0.0;
+  for (std::size_t k = 1; k < taus.size(); ++k) m = std::max(m, taus[k] - taus[k - 1]);
+  return m;
+}
+
+}  // namespace plateball

@@ -1,0 +1,289 @@
+#include "plateball/path.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "check.h"
+#include "plateball/cubic_spline.h"
+
+namespace plateball {
+namespace {
+
+using internal::RequireFinite;
+using internal::ThrowInvalid;
+
+// "'radius' = 0 is invalid..." -> "'path.radius' = 0 is invalid...".
+std::string Prefixed(const std::string& field, const std::string& message) {
+  if (!message.empty() && message[0] == '\'') return "'" + field + "." + message.substr(1);
+  return field + ": " + message;
+}
+
+Eigen::Matrix2d Rot(double a) {
+  Eigen::Matrix2d r;
+  r << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  return r;
+}
+
+void RequireRange(const std::string& field, double tau_begin, double tau_end) {
+  RequireFinite(field + ".tau_begin", tau_begin);
+  RequireFinite(field + ".tau_end", tau_end);
+  if (!(tau_end > tau_begin)) ThrowInvalid(field + ".tau_end", tau_end, "must be > tau_begin = " + std::to_string(tau_begin));
+}
+
+// 8-point Gauss-Legendre nodes and weights on [-1, 1].
+constexpr double kGlX[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+                            0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
+constexpr double kGlW[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
+                            0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+
+}  // namespace
+
+std::string ToString(CurveKind kind) {
+  switch (kind) {
+    case CurveKind::kLine: return "line";
+    case CurveKind::kCircle: return "circle";
+    case CurveKind::kEllipse: return "ellipse";
+    case CurveKind::kLemniscate: return "lemniscate";
+    case CurveKind::kSine: return "sine";
+    case CurveKind::kSamples: return "samples";
+  }
+  return "unknown";
+}
+
+SmoothCurve SmoothCurve::Line(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+  RequireFinite("from", from);
+  RequireFinite("to", to);
+  if ((to - from).norm() == 0.0) ThrowInvalid("to", to.x(), "equals 'from': a line needs two distinct points (zero speed)");
+  SmoothCurve c;
+  c.kind_ = CurveKind::kLine;
+  c.origin_ = from;
+  c.vec_ = to - from;
+  c.tau_begin_ = 0.0;
+  c.tau_end_ = 1.0;
+  return c;
+}
+
+SmoothCurve SmoothCurve::Circle(const Eigen::Vector2d& center, double radius, double tau_begin, double tau_end) {
+  RequireFinite("center", center);
+  internal::RequirePositive("radius", radius);
+  RequireRange("circle", tau_begin, tau_end);
+  SmoothCurve c;
+  c.kind_ = CurveKind::kCircle;
+  c.origin_ = center;
+  c.scale_ = radius;
+  c.tau_begin_ = tau_begin;
+  c.tau_end_ = tau_end;
+  c.CheckSpeed("speed");
+  return c;
+}
+
+SmoothCurve SmoothCurve::Ellipse(const Eigen::Vector2d& center, const Eigen::Vector2d& semi_axes, double rotation,
+                                 double tau_begin, double tau_end) {
+  RequireFinite("center", center);
+  internal::RequirePositive("semi_axes[0]", semi_axes.x());
+  internal::RequirePositive("semi_axes[1]", semi_axes.y());
+  RequireFinite("rotation", rotation);
+  RequireRange("ellipse", tau_begin, tau_end);
+  SmoothCurve c;
+  c.kind_ = CurveKind::kEllipse;
+  c.origin_ = center;
+  c.vec_ = semi_axes;
+  c.rot_ = Rot(rotation);
+  c.tau_begin_ = tau_begin;
+  c.tau_end_ = tau_end;
+  c.CheckSpeed("speed");
+  return c;
+}
+
+SmoothCurve SmoothCurve::Lemniscate(const Eigen::Vector2d& center, double scale, double rotation, double tau_begin,
+                                    double tau_end) {
+  RequireFinite("center", center);
+  internal::RequirePositive("scale", scale);
+  RequireFinite("rotation", rotation);
+  RequireRange("lemniscate", tau_begin, tau_end);
+  SmoothCurve c;
+  c.kind_ = CurveKind::kLemniscate;
+  c.origin_ = center;
+  c.scale_ = scale;
+  c.rot_ = Rot(rotation);
+  c.tau_begin_ = tau_begin;
+  c.tau_end_ = tau_end;
+  c.CheckSpeed("speed");
+  return c;
+}
+
+SmoothCurve SmoothCurve::Sine(const Eigen::Vector2d& from, double rotation, double length, double amplitude,
+                              double wavelength) {
+  RequireFinite("from", from);
+  RequireFinite("rotation", rotation);
+  internal::RequirePositive("length", length);
+  RequireFinite("amplitude", amplitude);
+  internal::RequirePositive("wavelength", wavelength);
+  SmoothCurve c;
+  c.kind_ = CurveKind::kSine;
+  c.origin_ = from;
+  c.rot_ = Rot(rotation);
+  c.scale_ = amplitude;
+  c.wavenumber_ = 2.0 * M_PI / wavelength;
+  c.tau_begin_ = 0.0;
+  c.tau_end_ = length;
+  c.CheckSpeed("speed");
+  return c;
+}
+
+SmoothCurve SmoothCurve::Samples(const std::vector<Eigen::Vector2d>& points) {
+  SmoothCurve c;
+  c.kind_ = CurveKind::kSamples;
+  c.spline_ = std::make_shared<const CubicSpline2d>(points);
+  c.tau_begin_ = c.spline_->ParameterBegin();
+  c.tau_end_ = c.spline_->ParameterEnd();
+  c.CheckSpeed("points (spline speed)");
+  return c;
+}
+
+Eigen::Vector2d SmoothCurve::Value(double tau) const {
+  switch (kind_) {
+    case CurveKind::kLine: return origin_ + tau * vec_;
+    case CurveKind::kCircle: return origin_ + scale_ * Eigen::Vector2d(std::cos(tau), std::sin(tau));
+    case CurveKind::kEllipse: return origin_ + rot_ * Eigen::Vector2d(vec_.x() * std::cos(tau), vec_.y() * std::sin(tau));
+    case CurveKind::kLemniscate: {
+      const double s = std::sin(tau), c = std::cos(tau);
+      return origin_ + rot_ * (scale_ / (1.0 + s * s) * Eigen::Vector2d(c, s * c));
+    }
+    case CurveKind::kSine: return origin_ + rot_ * Eigen::Vector2d(tau, scale_ * std::sin(wavenumber_ * tau));
+    case CurveKind::kSamples: return spline_->Value(tau);
+  }
+  return origin_;
+}
+
+Eigen::Vector2d SmoothCurve::Derivative(double tau) const {
+  switch (kind_) {
+    case CurveKind::kLine: return vec_;
+    case CurveKind::kCircle: return scale_ * Eigen::Vector2d(-std::sin(tau), std::cos(tau));
+    case CurveKind::kEllipse: return rot_ * Eigen::Vector2d(-vec_.x() * std::sin(tau), vec_.y() * std::cos(tau));
+    case CurveKind::kLemniscate: {
+      // p = f / g, f = (cos, sin cos), g = 1 + sin^2: p' = f'/g - f g'/g^2.
+      const double s = std::sin(tau), c = std::cos(tau);
+      const double g = 1.0 + s * s, gp = 2.0 * s * c;
+      const Eigen::Vector2d f(c, s * c), fp(-s, c * c - s * s);
+      return rot_ * (scale_ * (fp / g - f * gp / (g * g)));
+    }
+    case CurveKind::kSine:
+      return rot_ * Eigen::Vector2d(1.0, scale_ * wavenumber_ * std::cos(wavenumber_ * tau));
+    case CurveKind::kSamples: return spline_->Derivative(tau);
+  }
+  return vec_;
+}
+
+Eigen::Vector2d SmoothCurve::SecondDerivative(double tau) const {
+  switch (kind_) {
+    case CurveKind::kLine: return Eigen::Vector2d::Zero();
+    case CurveKind::kCircle: return -scale_ * Eigen::Vector2d(std::cos(tau), std::sin(tau));
+    case CurveKind::kEllipse: return rot_ * Eigen::Vector2d(-vec_.x() * std::cos(tau), -vec_.y() * std::sin(tau));
+    case CurveKind::kLemniscate: {
+      // p'' = f''/g - 2 f' g'/g^2 - f g''/g^2 + 2 f g'^2/g^3.
+      const double s = std::sin(tau), c = std::cos(tau);
+      const double g = 1.0 + s * s, gp = 2.0 * s * c, gpp = 2.0 * (c * c - s * s);
+      const Eigen::Vector2d f(c, s * c), fp(-s, c * c - s * s), fpp(-c, -4.0 * s * c);
+      return rot_ * (scale_ * (fpp / g - 2.0 * fp * gp / (g * g) - f * gpp / (g * g) + 2.0 * f * gp * gp / (g * g * g)));
+    }
+    case CurveKind::kSine:
+      return rot_ * Eigen::Vector2d(0.0, -scale_ * wavenumber_ * wavenumber_ * std::sin(wavenumber_ * tau));
+    case CurveKind::kSamples: return spline_->SecondDerivative(tau);
+  }
+  return Eigen::Vector2d::Zero();
+}
+
+double SmoothCurve::ArcLength(double a, double b) const {
+  RequireFinite("a", a);
+  RequireFinite("b", b);
+  // Composite 8-point Gauss-Legendre; panels no longer than 1/64 of the parameter range.
+  const int panels = std::max(1, static_cast<int>(std::ceil(64.0 * std::abs(b - a) / (tau_end_ - tau_begin_))));
+  const double h = (b - a) / panels;
+  double sum = 0.0;
+  for (int i = 0; i < panels; ++i) {
+    const double mid = a + (i + 0.5) * h;
+    for (int j = 0; j < 8; ++j) sum += kGlW[j] * Derivative(mid + 0.5 * h * kGlX[j]).norm();
+  }
+  return 0.5 * h * sum;
+}
+
+void SmoothCurve::CheckSpeed(const std::string& field) const {
+  // A regular curve: |p'| > 0. Checked on a fine grid against the curve's mean speed.
+  constexpr int kGrid = 1024;
+  double mean = 0.0, least = INFINITY, at = tau_begin_;
+  for (int i = 0; i <= kGrid; ++i) {
+    const double tau = tau_begin_ + (tau_end_ - tau_begin_) * i / kGrid;
+    const double v = Derivative(tau).norm();
+    if (!std::isfinite(v)) ThrowInvalid(field + " (speed at tau = " + std::to_string(tau) + ")", v, "must be finite");
+    mean += v / (kGrid + 1);
+    if (v < least) least = v, at = tau;
+  }
+  if (!(least > 1e-9 * mean))
+    ThrowInvalid(field + " (speed |p'| at tau = " + std::to_string(at) + ")", least,
+                 "the path must have nonzero speed everywhere");
+}
+
+SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field) {
+  auto named = [&](auto make) {
+    try {
+      return make();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(Prefixed(field, e.what()));
+    }
+  };
+  if (spec.type == "line") return named([&] { return SmoothCurve::Line(spec.from, spec.to); });
+  if (spec.type == "circle")
+    return named([&] { return SmoothCurve::Circle(spec.center, spec.radius, spec.tau_begin, spec.tau_end); });
+  if (spec.type == "ellipse")
+    return named([&] {
+      return SmoothCurve::Ellipse(spec.center, spec.semi_axes, spec.rotation, spec.tau_begin, spec.tau_end);
+    });
+  if (spec.type == "lemniscate")
+    return named([&] {
+      return SmoothCurve::Lemniscate(spec.center, spec.scale, spec.rotation, spec.tau_begin, spec.tau_end);
+    });
+  if (spec.type == "sine")
+    return named([&] {
+      return SmoothCurve::Sine(spec.from, spec.rotation, spec.length, spec.amplitude, spec.wavelength);
+    });
+  if (spec.type == "samples") return named([&] { return SmoothCurve::Samples(spec.points); });
+  if (spec.type == "piecewise")
+    throw std::invalid_argument("'" + field + ".type' = \"piecewise\" is not a single smooth curve here (pieces may not nest)");
+  throw std::invalid_argument("'" + field + ".type' = \"" + spec.type +
+                              "\" is invalid: must be one of line, circle, ellipse, lemniscate, sine, samples, piecewise");
+}
+
+Path::Path(std::vector<SmoothCurve> pieces) : pieces_(std::move(pieces)) {
+  if (pieces_.empty()) ThrowInvalid("pieces (count)", 0, "a path needs at least one piece");
+  double size = 0.0;
+  for (const auto& p : pieces_) size = std::max({size, p.StartPoint().norm(), p.EndPoint().norm(), p.Length()});
+  for (std::size_t i = 1; i < pieces_.size(); ++i) {
+    const double gap = (pieces_[i].StartPoint() - pieces_[i - 1].EndPoint()).norm();
+    if (gap > 1e-9 * std::max(1.0, size))
+      ThrowInvalid("pieces[" + std::to_string(i) + "] (gap to the end of the previous piece)", gap,
+                   "consecutive pieces must share their end points");
+  }
+}
+
+Path Path::FromSpec(const PathSpec& spec, const std::string& field) {
+  if (spec.type != "piecewise") return Path({CurveFromSpec(spec, field)});
+  if (spec.pieces.empty()) ThrowInvalid(field + ".pieces (count)", 0, "a piecewise path needs at least one piece");
+  std::vector<SmoothCurve> pieces;
+  for (std::size_t i = 0; i < spec.pieces.size(); ++i)
+    pieces.push_back(CurveFromSpec(spec.pieces[i], field + ".pieces[" + std::to_string(i) + "]"));
+  try {
+    return Path(std::move(pieces));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(Prefixed(field, e.what()));
+  }
+}
+
+double Path::Length() const {
+  double l = 0.0;
+  for (const auto& p : pieces_) l += p.Length();
+  return l;
+}
+
+}  // namespace plateball

@@ -1,0 +1,148 @@
+#include "plateball/path.h"
+
+#include <gtest/gtest.h>
+
+#include <boost/math/special_functions/ellint_2.hpp>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "plateball/partition.h"
+
+using namespace plateball;
+
+namespace {
+// Central differences with step 1e-5 on O(1) curves: truncation ~1e-10, round-off ~1e-11.
+constexpr double kFiniteDifferenceTolerance = 1e-7;
+// Gauss-Legendre with 64 panels of 8 points on analytic curves.
+constexpr double kLengthTolerance = 1e-11;
+
+std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::vector<SmoothCurve> AllKinds() {
+  return {SmoothCurve::Line({1, 2}, {-3, 0.5}),
+          SmoothCurve::Circle({1, -1}, 2.5, 0.3, 4.0),
+          SmoothCurve::Ellipse({0.5, 0}, {2, 1}, 0.7, 0, 2 * M_PI),
+          SmoothCurve::Lemniscate({0, 1}, 1.5, -0.4, 0, 2 * M_PI),
+          SmoothCurve::Sine({0, 0}, 0.2, 5.0, 0.4, 2.0),
+          SmoothCurve::Samples({{0, 0}, {1, 0.5}, {2, 0.2}, {3, 1.0}, {4, 0.0}})};
+}
+}  // namespace
+
+TEST(Path, DerivativesAgreeWithFiniteDifferences) {
+  const double h = 1e-5;
+  for (const SmoothCurve& c : AllKinds()) {
+    for (int i = 1; i < 10; ++i) {
+      const double tau = c.Begin() + (c.End() - c.Begin()) * i / 10.0;
+      const Eigen::Vector2d d1 = (c.Value(tau + h) - c.Value(tau - h)) / (2 * h);
+      const Eigen::Vector2d d2 = (c.Derivative(tau + h) - c.Derivative(tau - h)) / (2 * h);
+      EXPECT_LT((d1 - c.Derivative(tau)).norm(), kFiniteDifferenceTolerance) << ToString(c.kind()) << " tau " << tau;
+      EXPECT_LT((d2 - c.SecondDerivative(tau)).norm(), kFiniteDifferenceTolerance) << ToString(c.kind()) << " tau " << tau;
+    }
+  }
+}
+
+TEST(Path, LengthsMatchClosedForms) {
+  // Circle arc: radius * angle. Ellipse: 4 a E(e) (complete elliptic integral, Boost.Math).
+  // Lemniscate of Bernoulli of half-width s: 2 varpi s, varpi = 2.622057554292119810464839589891.
+  EXPECT_NEAR(SmoothCurve::Circle({0, 0}, 2.5, 0.3, 4.0).Length(), 2.5 * 3.7, kLengthTolerance);
+  const double e = std::sqrt(1.0 - 0.25);
+  EXPECT_NEAR(SmoothCurve::Ellipse({0, 0}, {2, 1}, 0.7, 0, 2 * M_PI).Length(), 8.0 * boost::math::ellint_2(e),
+              kLengthTolerance);
+  EXPECT_NEAR(SmoothCurve::Lemniscate({0, 0}, 1.5, 0.0, 0, 2 * M_PI).Length(),
+              2.0 * 2.622057554292119810464839589891 * 1.5, kLengthTolerance);
+  EXPECT_NEAR(SmoothCurve::Line({1, 2}, {4, 6}).Length(), 5.0, kLengthTolerance);
+}
+
+TEST(Path, LemniscatePassesThroughItsCentreAndVertices) {
+  const SmoothCurve c = SmoothCurve::Lemniscate({1, 1}, 2.0, 0.0, 0, 2 * M_PI);
+  EXPECT_LT((c.Value(0) - Eigen::Vector2d(3, 1)).norm(), 1e-15);
+  EXPECT_LT((c.Value(M_PI / 2) - Eigen::Vector2d(1, 1)).norm(), 1e-15);
+  EXPECT_LT((c.Value(M_PI) - Eigen::Vector2d(-1, 1)).norm(), 1e-15);
+  // (x^2 + y^2)^2 = a^2 (x^2 - y^2) about the centre.
+  for (double tau : {0.3, 1.1, 2.5, 4.0}) {
+    const Eigen::Vector2d q = c.Value(tau) - Eigen::Vector2d(1, 1);
+    EXPECT_NEAR(std::pow(q.squaredNorm(), 2), 4.0 * (q.x() * q.x() - q.y() * q.y()), 1e-13);
+  }
+}
+
+TEST(Path, SamplesOnACircleApproximateItsLength) {
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i <= 64; ++i) pts.emplace_back(std::cos(i * M_PI / 64), std::sin(i * M_PI / 64));
+  const SmoothCurve c = SmoothCurve::Samples(pts);
+  EXPECT_NEAR(c.Length(), M_PI, 1e-4);  // spline vs circle: O(h^2) at the natural ends
+  EXPECT_LT((c.StartPoint() - pts.front()).norm(), 1e-15);
+  EXPECT_LT((c.EndPoint() - pts.back()).norm(), 1e-15);
+}
+
+TEST(Path, FromSpecBuildsEveryTypeAndPiecewiseChains) {
+  PathSpec line;
+  line.type = "line";
+  line.from = {0, 0};
+  line.to = {2, 0};
+  PathSpec arc;
+  arc.type = "circle";
+  arc.center = {2, 1};
+  arc.radius = 1;
+  arc.tau_begin = -M_PI / 2;
+  arc.tau_end = M_PI / 2;
+  PathSpec pw;
+  pw.type = "piecewise";
+  pw.pieces = {line, arc};
+  const Path p = Path::FromSpec(pw);
+  EXPECT_EQ(p.PieceCount(), 2);
+  EXPECT_NEAR(p.Length(), 2.0 + M_PI, 1e-12);
+  EXPECT_LT((p.EndPoint() - Eigen::Vector2d(2, 2)).norm(), 1e-15);
+}
+
+TEST(Path, BadSpecsNameTheField) {
+  PathSpec c;
+  c.type = "circle";
+  c.radius = 0.0;
+  c.tau_end = 1.0;
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(c, "plan.path"); }).find("plan.path.radius"), std::string::npos);
+  c.radius = 1.0;
+  c.tau_end = 0.0;
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(c, "plan.path"); }).find("tau_end"), std::string::npos);
+  PathSpec l;
+  l.type = "line";
+  l.from = l.to = {1, 1};
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(l); }).find("zero speed"), std::string::npos);
+  l.to = {NAN, 0};
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(l); }).find("path.to"), std::string::npos);
+  PathSpec s;
+  s.type = "samples";
+  s.points = {{0, 0}, {1, 1}, {1, 1}, {2, 0}};
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(s); }).find("samples[2]"), std::string::npos);
+  s.points = {{0, 0}, {INFINITY, 1}};
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(s); }).find("must be finite"), std::string::npos);
+  PathSpec w;
+  w.type = "sine";
+  w.length = 1;
+  w.wavelength = 0;
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(w); }).find("path.wavelength"), std::string::npos);
+  PathSpec u;
+  u.type = "spiral";
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(u); }).find("spiral"), std::string::npos);
+  // A gap between pieces.
+  PathSpec a, b2;
+  a.type = b2.type = "line";
+  a.from = {0, 0};
+  a.to = {1, 0};
+  b2.from = {1, 0.5};
+  b2.to = {2, 0};
+  PathSpec pw;
+  pw.type = "piecewise";
+  pw.pieces = {a, b2};
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(pw); }).find("pieces[1]"), std::string::npos);
+  pw.pieces.clear();
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(pw); }).find("pieces"), std::string::npos);
+}
