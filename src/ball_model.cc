@@ -39,6 +39,8 @@ BallModel BallModel::FromLambda(double lambda) {
 
 BallModel BallModel::FromAlphaBeta(double alpha, double beta) {
   internal::RequirePositive("alpha", alpha);
+  // A rigid body has I3 <= I1 + I2 = 2 I1 (docs/paper_notes.md, "Physical range of lambda").
+  if (alpha > 2.0 * (1.0 + 1e-12)) internal::ThrowInvalid("alpha", alpha, "a rigid body has alpha = I3/I1 <= 2");
   internal::RequireNonNegative("beta", beta);
   return BallModel((alpha + beta) / (1.0 + beta), alpha, beta, true);
 }

@@ -7,10 +7,16 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "plateball/integration_options.h"
 
 namespace plateball::internal {
+
+/// Thrown by IntegrateAdaptive when IntegrationOptions::max_steps is exceeded.
+struct StepLimitError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 /// omega_h from (z, K): v0 = <K, z_h>/(z3^2 + lambda |z_h|^2), omega_h = K - (lambda-1) v0 z_h.
 template <typename T>
@@ -52,39 +58,45 @@ struct FullRhs {
 };
 
 /// Integrates y from t0 to t1 (either direction) with a controlled Dormand-Prince 5(4) stepper,
-/// calling observer(t, y) after every accepted step (and at t1). Throws std::runtime_error when
-/// options.max_steps is exceeded or the state stops being finite.
+/// calling observer(t, y) after every accepted step (and at t1). An observer that returns bool
+/// stops the integration by returning false. Returns the time reached (t1 unless stopped).
+/// Throws std::runtime_error when options.max_steps is exceeded or the state stops being finite.
 template <typename State, typename Rhs, typename Observer>
-void IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double dt0,
-                       const IntegrationOptions& options, Observer&& observer) {
+double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double dt0,
+                         const IntegrationOptions& options, Observer&& observer) {
   namespace odeint = boost::numeric::odeint;
   using Stepper = odeint::runge_kutta_dopri5<State>;
   auto stepper = odeint::make_controlled(options.absolute_tolerance, options.relative_tolerance, Stepper());
   const double dir = t1 >= t0 ? 1.0 : -1.0;
   double t = t0;
   double dt = dir * std::min(std::abs(dt0), std::abs(t1 - t0));
-  if (t1 == t0) return;
+  if (t1 == t0) return t1;
   long steps = 0;
   while (dir * (t1 - t) > 0) {
     if (dir * (t + dt - t1) > 0) dt = t1 - t;
     if (++steps > options.max_steps)
-      throw std::runtime_error("integration exceeded max_steps = " + std::to_string(options.max_steps) +
+      throw StepLimitError("integration exceeded max_steps = " + std::to_string(options.max_steps) +
                                " at t = " + std::to_string(t));
     const double t_before = t;
     if (stepper.try_step(rhs, y, t, dt) == odeint::success) {
       for (double v : y)
         if (!std::isfinite(v)) throw std::runtime_error("integration produced a non-finite state at t = " + std::to_string(t_before));
-      observer(t, y);
+      if constexpr (std::is_same_v<decltype(observer(t, y)), bool>) {
+        if (!observer(t, y)) return t;
+      } else {
+        observer(t, y);
+      }
     } else if (std::abs(dt) < 1e-14 * std::max(1.0, std::abs(t))) {
       throw std::runtime_error("integration step size underflow at t = " + std::to_string(t));
     }
   }
+  return t;
 }
 
 template <typename State, typename Rhs>
-void IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double dt0,
-                       const IntegrationOptions& options) {
-  IntegrateAdaptive(rhs, y, t0, t1, dt0, options, [](double, const State&) {});
+double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double dt0,
+                         const IntegrationOptions& options) {
+  return IntegrateAdaptive(rhs, y, t0, t1, dt0, options, [](double, const State&) {});
 }
 
 }  // namespace plateball::internal

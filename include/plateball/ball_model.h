@@ -30,7 +30,7 @@ class BallModel {
   static BallModel FromPhysical(const PhysicalParameters& p);
   /// lambda > 0 and finite; alpha and beta are then unknown (reported as 0 by has_inertia()).
   static BallModel FromLambda(double lambda);
-  /// alpha > 0, beta >= 0.
+  /// 0 < alpha <= 2 (a rigid body has I3 <= 2 I1), beta >= 0.
   static BallModel FromAlphaBeta(double alpha, double beta);
 
   double lambda() const { return lambda_; }
