@@ -25,10 +25,10 @@ Eigen::Matrix2d Rot(double a) {
   return r;
 }
 
-void RequireRange(const std::string& field, double tau_begin, double tau_end) {
-  RequireFinite(field + ".tau_begin", tau_begin);
-  RequireFinite(field + ".tau_end", tau_end);
-  if (!(tau_end > tau_begin)) ThrowInvalid(field + ".tau_end", tau_end, "must be > tau_begin = " + std::to_string(tau_begin));
+void RequireRange(double tau_begin, double tau_end) {
+  RequireFinite("tau_begin", tau_begin);
+  RequireFinite("tau_end", tau_end);
+  if (tau_end == tau_begin) ThrowInvalid("tau_end", tau_end, "must differ from tau_begin (an empty curve)");
 }
 
 // 8-point Gauss-Legendre nodes and weights on [-1, 1].
@@ -67,13 +67,12 @@ SmoothCurve SmoothCurve::Line(const Eigen::Vector2d& from, const Eigen::Vector2d
 SmoothCurve SmoothCurve::Circle(const Eigen::Vector2d& center, double radius, double tau_begin, double tau_end) {
   RequireFinite("center", center);
   internal::RequirePositive("radius", radius);
-  RequireRange("circle", tau_begin, tau_end);
+  RequireRange(tau_begin, tau_end);
   SmoothCurve c;
   c.kind_ = CurveKind::kCircle;
   c.origin_ = center;
   c.scale_ = radius;
-  c.tau_begin_ = tau_begin;
-  c.tau_end_ = tau_end;
+  c.SetRange(tau_begin, tau_end);
   c.CheckSpeed("speed");
   return c;
 }
@@ -84,14 +83,13 @@ SmoothCurve SmoothCurve::Ellipse(const Eigen::Vector2d& center, const Eigen::Vec
   internal::RequirePositive("semi_axes[0]", semi_axes.x());
   internal::RequirePositive("semi_axes[1]", semi_axes.y());
   RequireFinite("rotation", rotation);
-  RequireRange("ellipse", tau_begin, tau_end);
+  RequireRange(tau_begin, tau_end);
   SmoothCurve c;
   c.kind_ = CurveKind::kEllipse;
   c.origin_ = center;
   c.vec_ = semi_axes;
   c.rot_ = Rot(rotation);
-  c.tau_begin_ = tau_begin;
-  c.tau_end_ = tau_end;
+  c.SetRange(tau_begin, tau_end);
   c.CheckSpeed("speed");
   return c;
 }
@@ -101,14 +99,13 @@ SmoothCurve SmoothCurve::Lemniscate(const Eigen::Vector2d& center, double scale,
   RequireFinite("center", center);
   internal::RequirePositive("scale", scale);
   RequireFinite("rotation", rotation);
-  RequireRange("lemniscate", tau_begin, tau_end);
+  RequireRange(tau_begin, tau_end);
   SmoothCurve c;
   c.kind_ = CurveKind::kLemniscate;
   c.origin_ = center;
   c.scale_ = scale;
   c.rot_ = Rot(rotation);
-  c.tau_begin_ = tau_begin;
-  c.tau_end_ = tau_end;
+  c.SetRange(tau_begin, tau_end);
   c.CheckSpeed("speed");
   return c;
 }
@@ -142,7 +139,7 @@ SmoothCurve SmoothCurve::Samples(const std::vector<Eigen::Vector2d>& points) {
   return c;
 }
 
-Eigen::Vector2d SmoothCurve::Value(double tau) const {
+Eigen::Vector2d SmoothCurve::RawValue(double tau) const {
   switch (kind_) {
     case CurveKind::kLine: return origin_ + tau * vec_;
     case CurveKind::kCircle: return origin_ + scale_ * Eigen::Vector2d(std::cos(tau), std::sin(tau));
@@ -157,7 +154,7 @@ Eigen::Vector2d SmoothCurve::Value(double tau) const {
   return origin_;
 }
 
-Eigen::Vector2d SmoothCurve::Derivative(double tau) const {
+Eigen::Vector2d SmoothCurve::RawDerivative(double tau) const {
   switch (kind_) {
     case CurveKind::kLine: return vec_;
     case CurveKind::kCircle: return scale_ * Eigen::Vector2d(-std::sin(tau), std::cos(tau));
@@ -176,7 +173,7 @@ Eigen::Vector2d SmoothCurve::Derivative(double tau) const {
   return vec_;
 }
 
-Eigen::Vector2d SmoothCurve::SecondDerivative(double tau) const {
+Eigen::Vector2d SmoothCurve::RawSecondDerivative(double tau) const {
   switch (kind_) {
     case CurveKind::kLine: return Eigen::Vector2d::Zero();
     case CurveKind::kCircle: return -scale_ * Eigen::Vector2d(std::cos(tau), std::sin(tau));
@@ -194,6 +191,18 @@ Eigen::Vector2d SmoothCurve::SecondDerivative(double tau) const {
   }
   return Eigen::Vector2d::Zero();
 }
+
+void SmoothCurve::SetRange(double tau_begin, double tau_end) {
+  reversed_ = tau_end < tau_begin;
+  tau_begin_ = reversed_ ? -tau_begin : tau_begin;
+  tau_end_ = reversed_ ? -tau_end : tau_end;
+}
+
+Eigen::Vector2d SmoothCurve::Value(double s) const { return RawValue(reversed_ ? -s : s); }
+Eigen::Vector2d SmoothCurve::Derivative(double s) const {
+  return reversed_ ? Eigen::Vector2d(-RawDerivative(-s)) : RawDerivative(s);
+}
+Eigen::Vector2d SmoothCurve::SecondDerivative(double s) const { return RawSecondDerivative(reversed_ ? -s : s); }
 
 double SmoothCurve::ArcLength(double a, double b) const {
   RequireFinite("a", a);

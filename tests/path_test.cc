@@ -111,7 +111,7 @@ TEST(Path, BadSpecsNameTheField) {
   EXPECT_NE(ErrorOf([&] { Path::FromSpec(c, "plan.path"); }).find("plan.path.radius"), std::string::npos);
   c.radius = 1.0;
   c.tau_end = 0.0;
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(c, "plan.path"); }).find("tau_end"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(c, "plan.path"); }).find("plan.path.tau_end"), std::string::npos);
   PathSpec l;
   l.type = "line";
   l.from = l.to = {1, 1};
@@ -145,4 +145,19 @@ TEST(Path, BadSpecsNameTheField) {
   EXPECT_NE(ErrorOf([&] { Path::FromSpec(pw); }).find("pieces[1]"), std::string::npos);
   pw.pieces.clear();
   EXPECT_NE(ErrorOf([&] { Path::FromSpec(pw); }).find("pieces"), std::string::npos);
+}
+
+TEST(Path, ReversedRangeTraversesTheCurveBackwards) {
+  // Clockwise unit circle from angle 0 to -pi/2: parameter s = -tau in [0, pi/2].
+  const SmoothCurve c = SmoothCurve::Circle({0, 0}, 1, 0.0, -M_PI / 2);
+  EXPECT_TRUE(c.reversed());
+  EXPECT_EQ(c.Begin(), 0.0);
+  EXPECT_NEAR(c.End(), M_PI / 2, 1e-15);
+  EXPECT_LT((c.EndPoint() - Eigen::Vector2d(0, -1)).norm(), 1e-15);
+  EXPECT_LT((c.Derivative(0.0) - Eigen::Vector2d(0, -1)).norm(), 1e-15);  // moving clockwise
+  EXPECT_NEAR(c.Length(), M_PI / 2, 1e-12);
+  const double h = 1e-5, s = 0.7;
+  EXPECT_LT(((c.Value(s + h) - c.Value(s - h)) / (2 * h) - c.Derivative(s)).norm(), kFiniteDifferenceTolerance);
+  EXPECT_LT(((c.Derivative(s + h) - c.Derivative(s - h)) / (2 * h) - c.SecondDerivative(s)).norm(),
+            kFiniteDifferenceTolerance);
 }

@@ -18,6 +18,9 @@ enum class CurveKind { kLine, kCircle, kEllipse, kLemniscate, kSine, kSamples };
 std::string ToString(CurveKind kind);
 
 /// One smooth piece p(tau), tau in [Begin(), End()], with exact first and second derivatives.
+/// A circle, ellipse or lemniscate with tau_end < tau_begin is traversed backwards; its curve
+/// parameter is then s = -tau, increasing from -tau_begin to -tau_end (reversed() is true), and
+/// Value, Derivative, partitions and bounds use s.
 /// The factories validate every value (std::invalid_argument naming the field) and reject a
 /// curve whose speed |p'| vanishes anywhere (checked on a fine grid).
 class SmoothCurve {
@@ -40,6 +43,7 @@ class SmoothCurve {
   static SmoothCurve Samples(const std::vector<Eigen::Vector2d>& points);
 
   CurveKind kind() const { return kind_; }
+  bool reversed() const { return reversed_; }
   double Begin() const { return tau_begin_; }
   double End() const { return tau_end_; }
   Eigen::Vector2d Value(double tau) const;
@@ -54,6 +58,11 @@ class SmoothCurve {
  private:
   SmoothCurve() = default;
   void CheckSpeed(const std::string& field) const;
+  void SetRange(double tau_begin, double tau_end);
+  Eigen::Vector2d RawValue(double tau) const;
+  Eigen::Vector2d RawDerivative(double tau) const;
+  Eigen::Vector2d RawSecondDerivative(double tau) const;
+  bool reversed_ = false;
   CurveKind kind_ = CurveKind::kLine;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();  // from / center
   Eigen::Vector2d vec_ = Eigen::Vector2d::Zero();     // to - from, or semi-axes
