@@ -1,0 +1,82 @@
+// SO(3) helpers: exp/log round trips (near 0 and near pi), the operator-norm distance against
+// an SVD, projection, rotations about e3 and quaternions.
+#include "plateball/so3.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include "support/test_support.h"
+
+namespace plateball {
+namespace {
+
+using testing::IsRotationMatrix;
+
+TEST(So3, HatIsTheCrossProductAndVeeInvertsIt) {
+  const Eigen::Vector3d w(0.3, -1.2, 2.0), v(1.0, 0.5, -0.7);
+  EXPECT_LT((Hat(w) * v - w.cross(v)).norm(), 1e-15);
+  EXPECT_LT((Vee(Hat(w)) - w).norm(), 1e-15);
+}
+
+TEST(So3, ExpAndLogRoundTripNearZeroNearPiAndBetween) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (double angle : {0.0, 1e-12, 1e-6, 1e-3, 0.5, 2.0, 3.0, M_PI - 1e-6, M_PI - 1e-9}) {
+    for (int i = 0; i < 5; ++i) {
+      const Eigen::Vector3d axis = Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
+      const Eigen::Vector3d w = angle * axis;
+      const Eigen::Matrix3d r = ExpSO3(w);
+      EXPECT_TRUE(IsRotationMatrix(r, 1e-14));
+      // Rodrigues against Eigen's angle-axis (independent implementation).
+      EXPECT_LT((r - Eigen::AngleAxisd(angle, axis).toRotationMatrix()).norm(), 1e-14);
+      EXPECT_LT((ExpSO3(LogSO3(r)) - r).norm(), 1e-12) << "angle " << angle;
+      EXPECT_NEAR(LogSO3(r).norm(), angle, 1e-8 + 1e-12);
+    }
+  }
+  // Exactly pi: the log has norm pi and exp of it gives back the rotation.
+  const Eigen::Matrix3d half_turn = Eigen::AngleAxisd(M_PI, Eigen::Vector3d(1, 2, 2).normalized()).toRotationMatrix();
+  EXPECT_NEAR(LogSO3(half_turn).norm(), M_PI, 1e-12);
+  EXPECT_LT((ExpSO3(LogSO3(half_turn)) - half_turn).norm(), 1e-12);
+}
+
+TEST(So3, OperatorNormDistanceIsTheLargestSingularValue) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int i = 0; i < 20; ++i) {
+    const Eigen::Matrix3d a = ExpSO3({n(rng), n(rng), n(rng)}), b = ExpSO3({n(rng), n(rng), n(rng)});
+    Eigen::JacobiSVD<Eigen::Matrix3d> svd(a - b);
+    EXPECT_NEAR(OperatorNormDistance(a, b), svd.singularValues()(0), 1e-13);
+    // For rotations: ||a - b||_2 = 2 sin(angle / 2) with angle the rotation angle of a^T b.
+    EXPECT_NEAR(OperatorNormDistance(a, b), 2.0 * std::sin(RotationAngle(a, b) / 2.0), 1e-12);
+  }
+}
+
+TEST(So3, ProjectionRotationZAndQuaternions) {
+  const Eigen::Matrix3d r = ExpSO3({0.4, -0.1, 1.3});
+  Eigen::Matrix3d noisy = r;
+  noisy(0, 1) += 1e-6;
+  const Eigen::Matrix3d p = ProjectToSO3(noisy);
+  EXPECT_TRUE(IsRotationMatrix(p, 1e-14));
+  EXPECT_LT((p - r).norm(), 2e-6);
+  EXPECT_TRUE(IsRotation(r));
+  EXPECT_FALSE(IsRotation(2.0 * r));
+  EXPECT_LT((RotationZ(0.7) - ExpSO3({0, 0, 0.7})).norm(), 1e-15);
+  // q = (cos(a/2), sin(a/2) n) is the rotation by a about n; scaling q does not matter.
+  const Eigen::Vector3d axis = Eigen::Vector3d(1, -1, 0.5).normalized();
+  const Eigen::Vector4d q(std::cos(0.6), std::sin(0.6) * axis.x(), std::sin(0.6) * axis.y(), std::sin(0.6) * axis.z());
+  EXPECT_LT((QuaternionToRotation(3.0 * q) - ExpSO3(1.2 * axis)).norm(), 1e-14);
+  try {
+    QuaternionToRotation(Eigen::Vector4d::Zero(), "start.orientation");
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("start.orientation"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace plateball
