@@ -113,21 +113,36 @@ void FreeMotion::LocalState(double tau, double* out) const {
   std::copy(y.begin(), y.end(), out);
 }
 
-MotionSample FreeMotion::At(double t) const {
+namespace {
+// Beyond this many periods the periodic evaluation would lose all significant digits of the
+// position (k * drift) and of the phase; such times are rejected instead of answered with noise.
+constexpr double kMaxPeriods = 1e12;
+
+void RequireEvaluableTime(double t, double period) {
   internal::RequireFinite("t", t);
+  if (std::abs(t) > kMaxPeriods * period)
+    internal::ThrowInvalid("t", t, "beyond 1e12 periods the periodic evaluation has no significant digits left");
+}
+}  // namespace
+
+MotionSample FreeMotion::At(double t) const {
+  RequireEvaluableTime(t, period_);
   const double kf = std::floor(t / period_);
   double tau = t - kf * period_;
   tau = std::clamp(tau, 0.0, period_);
   double y[14];
   LocalState(tau, y);
   const Eigen::Vector2d x = start_.x0 + kf * drift_ + Eigen::Vector2d(y[3], y[4]);
-  const Eigen::Matrix3d phi_k = ExpSO3(kf * monodromy_log_);
+  // Phi(T)^k: rotation about the monodromy axis by k times its angle, reduced mod 2 pi.
+  const double angle = monodromy_log_.norm();
+  const Eigen::Matrix3d phi_k =
+      angle > 0 ? ExpSO3(std::fmod(kf * angle, 2.0 * M_PI) / angle * monodromy_log_) : Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d A = ProjectToSO3(PhiOf(y) * phi_k * start_.A0);
   return MakeSample(t, y, x, A, k_, model_);
 }
 
 Eigen::Vector2d FreeMotion::PositionAt(double t) const {
-  internal::RequireFinite("t", t);
+  RequireEvaluableTime(t, period_);
   const double kf = std::floor(t / period_);
   const double tau = std::clamp(t - kf * period_, 0.0, period_);
   double y[14];

@@ -57,7 +57,8 @@ class FreeMotion {
   /// The conserved vector K (docs/paper_notes.md).
   const Eigen::Vector2d& Momentum() const { return k_; }
 
-  /// Full sample at any real t (negative too), accurate to the integration tolerance.
+  /// Full sample at any real t (negative too) with |t| <= 1e12 periods (beyond, std::invalid_argument:
+  /// no significant digits would be left), accurate to the integration tolerance.
   MotionSample At(double t) const;
   /// Contact point only (cheaper: no orientation).
   Eigen::Vector2d PositionAt(double t) const;

@@ -1,0 +1,154 @@
+#include "fuzz_entries.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "plateball/ball_model.h"
+#include "plateball/ball_state.h"
+#include "plateball/free_motion.h"
+#include "plateball/impulse.h"
+#include "plateball/impulse_planner.h"
+#include "plateball/join.h"
+#include "plateball/path.h"
+#include "plateball/problem_io.h"
+
+namespace plateball::fuzz {
+namespace {
+
+[[noreturn]] void Defect(const std::string& what) {
+  std::fprintf(stderr, "fuzz defect: %s\n", what.c_str());
+  std::abort();
+}
+
+template <typename Derived>
+void RequireFiniteResult(const char* what, const Eigen::MatrixBase<Derived>& m) {
+  if (!m.allFinite()) Defect(std::string(what) + " is not finite in a result reported as valid");
+}
+void RequireFiniteResult(const char* what, double v) {
+  if (!std::isfinite(v)) Defect(std::string(what) + " is not finite in a result reported as valid");
+}
+
+/// Reads doubles from the input, 8 bytes each; past the end it yields 0.
+class Numbers {
+ public:
+  Numbers(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
+  double Next() {
+    double v = 0.0;
+    if (pos_ + sizeof(double) <= size_) std::memcpy(&v, data_ + pos_, sizeof(double));
+    pos_ += sizeof(double);
+    return v;
+  }
+  // A number in a plausible range half of the time (so that the solvers get exercised), raw otherwise.
+  double Mixed(double lo, double hi) {
+    const double v = Next();
+    if (!std::isfinite(v) || (pos_ / 8) % 2 == 0) return v;
+    const double f = std::abs(std::fmod(v, 1.0));
+    return lo + (hi - lo) * f;
+  }
+
+ private:
+  const std::uint8_t* data_;
+  std::size_t size_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+void ProblemReader(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  Problem p;
+  try {
+    p = ParseProblem(text, "fuzz.json");
+  } catch (const std::invalid_argument&) {
+    return;  // a clear error is the expected outcome for most inputs
+  }
+  const std::string once = WriteProblemJson(p);
+  Problem q;
+  try {
+    q = ParseProblem(once, "roundtrip.json");
+  } catch (const std::invalid_argument& e) {
+    Defect(std::string("a written problem does not read back: ") + e.what());
+  }
+  if (WriteProblemJson(q) != once) Defect("problem round trip is not stable");
+}
+
+void SolveEntries(const std::uint8_t* data, std::size_t size) {
+  Numbers in(data, size);
+  const double lambda = in.Mixed(0.05, 10.0);
+  const AngleState angles{in.Mixed(-4.0, 4.0), in.Mixed(-4.0, 4.0), in.Mixed(-4.0, 4.0)};
+  const double mu = in.Mixed(0.01, 10.0);
+  const Eigen::Vector2d target(in.Mixed(-0.2, 0.2), in.Mixed(-0.2, 0.2));
+  const double delta_psi = in.Mixed(-7.0, 7.0);
+  const double factor = in.Mixed(0.1, 3.0);
+  const double t = in.Mixed(-50.0, 50.0);
+  const double radius = in.Mixed(0.1, 3.0);
+  const int n = 2 + static_cast<int>(std::abs(std::fmod(in.Mixed(0.0, 6.0), 6.0)));
+
+  BallModel model = BallModel::FromLambda(1.0);
+  try {
+    model = BallModel::FromLambda(lambda);
+  } catch (const std::invalid_argument&) {
+    return;
+  }
+  try {
+    const BallState s = StateFromAngles(angles, mu, model);
+    RequireFiniteResult("state.z", s.z);
+    RequireFiniteResult("state.omega", s.omega);
+    const AngleState back = AnglesFromState(s, model);
+    RequireFiniteResult("angles.theta", back.theta);
+    RequireFiniteResult("angles.psi", back.psi);
+  } catch (const std::invalid_argument&) {
+  }
+  try {
+    const Impulse a = EnergyPreservingImpulse(angles, mu, delta_psi, model);
+    RequireFiniteResult("impulse.delta_omega", a.delta_omega);
+    const Impulse b = EnergyChangingImpulse(angles, mu, factor, model);
+    RequireFiniteResult("impulse.mu_after", b.mu_after);
+  } catch (const std::invalid_argument&) {
+  }
+  try {
+    const FreeMotion m = FreeMotion::FromAngles(model, angles, mu);
+    const MotionSample s = m.At(t);
+    RequireFiniteResult("sample.x", s.x);
+    RequireFiniteResult("sample.A", s.A);
+    RequireFiniteResult("sample.energy", s.energy);
+  } catch (const std::invalid_argument&) {
+  } catch (const std::runtime_error&) {  // a reported integration failure (step bound)
+  }
+  try {
+    const JoinSummary j = Join(model, angles, mu, Eigen::Vector2d::Zero(), target);
+    if (j.IsSolutionUsable()) {
+      RequireFiniteResult("join.t", j.t);
+      RequireFiniteResult("join.delta_psi", j.delta_psi);
+      RequireFiniteResult("join.x_after", j.x_after);
+      if (j.residual > 1e-9) Defect("join reported converged with residual " + std::to_string(j.residual));
+    }
+  } catch (const std::invalid_argument&) {
+  }
+  try {
+    const Path path = Path::FromSpec([&] {
+      PathSpec spec;
+      spec.type = "circle";
+      spec.center = Eigen::Vector2d(-radius, 0.0);
+      spec.radius = radius;
+      spec.tau_begin = 0.0;
+      spec.tau_end = 1.0;
+      return spec;
+    }());
+    std::vector<double> taus;
+    for (int k = 0; k <= n; ++k) taus.push_back(static_cast<double>(k) / n);
+    const PlanSummary plan = PlanImpulses(model, angles, mu, Eigen::Matrix3d::Identity(), path, {taus});
+    if (plan.IsSolutionUsable()) {
+      RequireFiniteResult("plan.measured_error", plan.measured_error);
+      RequireFiniteResult("plan.A_impulsive", plan.A_impulsive);
+    }
+  } catch (const std::invalid_argument&) {
+  }
+}
+
+}  // namespace plateball::fuzz

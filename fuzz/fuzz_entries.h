@@ -1,0 +1,20 @@
+// Fuzz entry points, shared by the libFuzzer targets (fuzz/*_fuzzer.cc) and the regression test
+// that replays fuzz/regressions/ (tests/fuzz_regression_test.cc). Each returns normally for any
+// input; a defect (crash, uncaught unexpected exception, NaN in a result reported as valid, a
+// broken round trip) aborts.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace plateball::fuzz {
+
+/// The problem-file reader: any bytes either parse or throw std::invalid_argument; a parsed
+/// problem written and read again gives the same canonical text.
+void ProblemReader(const std::uint8_t* data, std::size_t size);
+
+/// Public solve entry points fed with arbitrary numbers (the bytes read as doubles, NaN and
+/// infinities included): state conversions, free motion, join, impulses and a short plan.
+void SolveEntries(const std::uint8_t* data, std::size_t size);
+
+}  // namespace plateball::fuzz
