@@ -77,6 +77,32 @@ TEST(AngleForm, ConservesHorizontalMomentumOverHundredPeriods) {
   }
 }
 
+TEST(AngleForm, Equation2HoldsForTheHorizontalComponentsOnly) {
+  // (2) integrates to (1 + beta) omega + (alpha - 1) v0 z = const; only its horizontal part (K)
+  // is conserved: with omega_3 = 0 the vertical part would need v0 z3 constant, which fails for
+  // alpha != 1 (the no-spin constraint exerts a vertical torque that (2) as printed omits).
+  const BallModel model = BallModel::FromAlphaBeta(1.6, 0.5);
+  const AngleState a{1.0, 0.3, -0.2};
+  const double mu = 1.0;
+  std::vector<double> times;
+  for (int i = 0; i <= 40; ++i) times.push_back(0.15 * i);
+  const AngleFormResult r = IntegrateAngleForm(model, a, mu, {0, 0}, times);
+  ASSERT_EQ(r.status, AngleFormStatus::kCompleted);
+  auto conserved = [&](const AngleState& s) {
+    const PhaseVariables p = PhaseFromAngles(s, mu, model);
+    return Eigen::Vector3d((1 + model.beta()) * p.omega + (model.alpha() - 1) * p.v0 * p.z);
+  };
+  const Eigen::Vector3d c0 = conserved(a);
+  double horizontal = 0.0, vertical = 0.0;
+  for (const AngleFormSample& s : r.samples) {
+    const Eigen::Vector3d c = conserved(s.angles);
+    horizontal = std::max(horizontal, (c - c0).head<2>().norm());
+    vertical = std::max(vertical, std::abs(c.z() - c0.z()));
+  }
+  EXPECT_LT(horizontal, kConservation);
+  EXPECT_GT(vertical, 1e-2);
+}
+
 TEST(AngleForm, ReturnsToInitialAnglesAfterOnePeriod) {
   // The periodicity theorem (docs/paper_notes.md): the whole angle state is 2 pi/sqrt(mu)
   // periodic for every lambda, phi and psi included (no winding).
@@ -118,6 +144,22 @@ TEST(AngleForm, StopsNearPoleForNearlyPolarTrajectory) {
   const AngleFormResult r = IntegrateAngleForm(model, {theta0, w0, 0.0}, 1.0, {0, 0}, {10.0});
   EXPECT_EQ(r.status, AngleFormStatus::kReachedPole) << r.message;
   EXPECT_LT(std::abs(std::sin(r.last.angles.theta)), 1e-3);
+}
+
+TEST(AngleForm, NearlyPolarTrajectoriesAboveTheThresholdAgreeWithChartFreeForm) {
+  // min |sin theta| = |c| on a trajectory; for c = 1e-3 and 1e-5 (above the 1e-6 threshold) the
+  // angle form passes close to the pole, where w turns by ~pi quickly, and still agrees.
+  const BallModel model = BallModel::FromLambda(2.0);
+  for (double c : {1e-3, 1e-5}) {
+    const AngleState a{1.0, std::acos(c / std::sin(1.0)), 0.0};
+    const FreeMotion motion = FreeMotion::FromAngles(model, a, 1.0);
+    const AngleFormResult r = IntegrateAngleForm(model, a, 1.0, {0, 0}, {0.9, 1.0, 1.1, motion.Period()});
+    ASSERT_EQ(r.status, AngleFormStatus::kCompleted) << r.message;
+    for (const AngleFormSample& s : r.samples) {
+      EXPECT_LT((StateFromAngles(s.angles, 1.0, model).z - motion.At(s.t).state.z).norm(), kFormAgreement);
+      EXPECT_LT((s.x - motion.At(s.t).x).norm(), kFormAgreement);
+    }
+  }
 }
 
 TEST(AngleForm, StartOnPoleIsReportedNotIntegrated) {
