@@ -47,7 +47,7 @@ void BM_T1Join(benchmark::State& state) {
   long joins = 0;
   for (auto _ : state) {
     const JoinSummary j = Join(model, start, 1.0, {0, 0}, targets[i]);
-    benchmark::DoNotOptimize(j.t);
+    benchmark::DoNotOptimize(&j);
     iterations += j.iterations;
     ++joins;
     i = (i + 1) % targets.size();

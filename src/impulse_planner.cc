@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -9,11 +10,44 @@
 #include "arc.h"
 #include "check.h"
 #include "connect.h"
+#include "dynamics.h"
 #include "plateball/partition.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
 
 namespace plateball {
+namespace {
+
+using Mat9 = std::array<double, 9>;
+
+// A' = hat(e3 x p'(tau)) A along one smooth piece (rolling.h, RollingReorientation), integrated
+// segment by segment with the step size carried over, so that each A(tau_k) costs about one step.
+struct CurveRollingRhs {
+  const SmoothCurve* curve;
+  void operator()(const Mat9& y, Mat9& dy, double tau) const {
+    const Eigen::Vector2d v = curve->Derivative(tau);
+    const double w0 = -v.y(), w1 = v.x();
+    for (int c = 0; c < 3; ++c) {
+      dy[0 + c] = w1 * y[6 + c];
+      dy[3 + c] = -w0 * y[6 + c];
+      dy[6 + c] = -w1 * y[0 + c] + w0 * y[3 + c];
+    }
+  }
+};
+
+Eigen::Matrix3d ToMatrix(const Mat9& y) {
+  Eigen::Matrix3d m;
+  m << y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], y[8];
+  return m;
+}
+
+// One Newton-Schulz step towards the nearest rotation: removes the O(1e-16) drift of a product of
+// rotations at the cost of two 3x3 products (ProjectToSO3, an SVD, is used once at the end).
+Eigen::Matrix3d Reorthonormalize(const Eigen::Matrix3d& r) {
+  return 0.5 * r * (3.0 * Eigen::Matrix3d::Identity() - r.transpose() * r);
+}
+
+}  // namespace
 
 std::string ToString(PlanStatus status) {
   switch (status) {
@@ -101,7 +135,15 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
   for (int piece = 0; piece < path.PieceCount() && out.status == PlanStatus::kSuccess; ++piece) {
     const SmoothCurve& curve = path.pieces()[piece];
     const std::vector<double>& taus = partition[piece];
-    const PlanarVelocity velocity = [&curve](double tau) { return curve.Derivative(tau); };
+    // Reference A(tau) along this piece: one integration carried through the partition points.
+    Mat9 ref{};
+    {
+      const Eigen::Matrix3d a = a_ref;
+      for (int r = 0; r < 3; ++r)
+        for (int q = 0; q < 3; ++q) ref[3 * r + q] = a(r, q);
+    }
+    const CurveRollingRhs ref_rhs{&curve};
+    double ref_dt = taus[1] - taus[0];
     for (std::size_t k = 0; k + 1 < taus.size(); ++k, ++g) {
       PlanStep s;
       s.piece = piece;
@@ -157,7 +199,7 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
         break;
       }
       x = x + arc.dx;
-      a_imp = ProjectToSO3(arc.phi * a_imp);
+      a_imp = Reorthonormalize(arc.phi * a_imp);
       state = {arc.z, OmegaFromMomentum(arc.z, k_mom, model)};
       s.state_after = state;
       s.angles_after = AnglesFromState(state, model);
@@ -167,8 +209,21 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
       s.arc_max_acceleration = arc.max_acceleration;
 
       // The orientations compared by Theorems 2.5 and 2.6.
-      a_ref = ProjectToSO3(RollingReorientation(velocity, s.tau_begin, s.tau_end, {}, options.integration) * a_ref);
-      a_poly = ProjectToSO3(RollAlongSegment(s.p_begin, s.p_end) * a_poly);
+      try {
+        double last = s.tau_begin;
+        internal::IntegrateAdaptive(ref_rhs, ref, s.tau_begin, s.tau_end, ref_dt, options.integration,
+                                    [&](double tau, const Mat9&) {
+                                      if (tau < s.tau_end) ref_dt = tau - last;
+                                      last = tau;
+                                    });
+      } catch (const std::runtime_error& e) {
+        out.status = PlanStatus::kIntegrationFailure;
+        out.message = "segment " + std::to_string(g) + " (rolling reference): " + e.what();
+        out.steps.push_back(s);
+        break;
+      }
+      a_ref = Reorthonormalize(ToMatrix(ref));
+      a_poly = Reorthonormalize(RollAlongSegment(s.p_begin, s.p_end) * a_poly);
       s.A_planned = a_ref;
       s.A_polyline = a_poly;
       s.A_impulsive = a_imp;
@@ -211,6 +266,9 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
   b.a_posteriori = b.a_posteriori_path + b.a_posteriori_arcs;
 
   out.total_time = time;
+  a_ref = ProjectToSO3(a_ref);
+  a_poly = ProjectToSO3(a_poly);
+  a_imp = ProjectToSO3(a_imp);
   out.A_planned = a_ref;
   out.A_polyline = a_poly;
   out.A_impulsive = a_imp;

@@ -17,6 +17,8 @@ namespace {
 
 using Jet = ceres::Jet<double, 1>;
 using SensState = std::array<double, 10>;  // z[3], x[2], dz/ds[3], dx/ds[2]
+// Arcs shorter than this (t sqrt(mu), about the distance rolled) use dopri5, longer ones rkf78.
+constexpr double kShortArc = 0.02;
 
 // Motion and its derivative with respect to s: K depends on s, z(0) and x(0) do not.
 struct SensitivityRhs {
@@ -45,6 +47,38 @@ struct SensitivityRhs {
     }
   }
 };
+
+// Controlled explicit Runge-Kutta over [0, t1]. Dormand-Prince 5(4) for arcs that it covers in about
+// one step at tolerance 1e-12; Fehlberg 7(8) beyond, where it needs far fewer right-hand-side
+// evaluations (T1, |x - x0| = 0.05: 52 instead of 88 per join; 0.2: 113 instead of 369).
+// Boost 1.74's generic RK steppers trip GCC's -Wuninitialized on their (unused) copy constructor.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+template <typename Stepper, typename Observer>
+void IntegrateSensitivities(const SensitivityRhs& rhs, SensState& y, double t1, double dt0,
+                            const IntegrationOptions& options, Observer&& observer) {
+  namespace odeint = boost::numeric::odeint;
+  auto stepper = odeint::make_controlled(options.absolute_tolerance, options.relative_tolerance, Stepper());
+  const double dir = t1 >= 0 ? 1.0 : -1.0;
+  double t = 0.0;
+  double dt = dir * std::min(std::abs(dt0), std::abs(t1));
+  long steps = 0;
+  while (dir * (t1 - t) > 0) {
+    if (dir * (t + dt - t1) > 0) dt = t1 - t;
+    if (++steps > options.max_steps)
+      throw std::runtime_error("integration exceeded max_steps = " + std::to_string(options.max_steps));
+    if (stepper.try_step(rhs, y, t, dt) == odeint::success) {
+      for (double v : y)
+        if (!std::isfinite(v)) throw std::runtime_error("integration produced a non-finite state");
+      observer(t);
+    } else if (std::abs(dt) < 1e-14 * std::max(1.0, std::abs(t))) {
+      throw std::runtime_error("integration step size underflow");
+    }
+  }
+}
+
+#pragma GCC diagnostic pop
 
 double WrapPi(double a) {
   a = std::remainder(a, 2.0 * M_PI);
@@ -99,10 +133,15 @@ class JoinFunction {
       try {
         double last = 0.0;
         double largest = 0.0;
-        internal::IntegrateAdaptive(rhs, y, 0.0, t, dt_hint_, options_, [&](double tt, const SensState&) {
+        auto observe = [&](double tt) {
           largest = std::max(largest, std::abs(tt - last));
           last = tt;
-        });
+        };
+        namespace odeint = boost::numeric::odeint;
+        if (std::abs(t) * std::sqrt(mu_) <= kShortArc)
+          IntegrateSensitivities<odeint::runge_kutta_dopri5<SensState>>(rhs, y, t, dt_hint_, options_, observe);
+        else
+          IntegrateSensitivities<odeint::runge_kutta_fehlberg78<SensState>>(rhs, y, t, dt_hint_, options_, observe);
         if (largest > 0) dt_hint_ = largest;
       } catch (const std::runtime_error& e) {
         failed_ = true;
@@ -251,7 +290,7 @@ JoinSummary Join(const BallModel& model, const AngleState& start, double mu, con
   Eigen::Vector2d params(WrapPi(start.phi - start.psi - w), dist / speed);
 
   JoinFunction fn(start, mu, lambda, d, options.integration);
-  fn.set_dt_hint(params[1] / 5);
+  fn.set_dt_hint(params[1]);
   double r0[2];
   fn(params.data(), r0, nullptr);
   out.initial_guess_residual = std::hypot(r0[0], r0[1]);
