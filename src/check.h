@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <charconv>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -9,11 +10,15 @@
 
 namespace plateball::internal {
 
+/// Shortest text that reads back as the same double ("0.1", "1e+200", "nan", "-inf").
+inline std::string FormatNumber(double value) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof(buf), value);
+  return std::string(buf, res.ptr);
+}
+
 [[noreturn]] inline void ThrowInvalid(const std::string& field, double value, const std::string& bound) {
-  std::ostringstream os;
-  os.precision(17);
-  os << "'" << field << "' = " << value << " is invalid: " << bound;
-  throw std::invalid_argument(os.str());
+  throw std::invalid_argument("'" + field + "' = " + FormatNumber(value) + " is invalid: " + bound);
 }
 
 inline void RequireFinite(const std::string& field, double v) {

@@ -14,11 +14,11 @@ std::vector<double> ChordKnots(const std::vector<Eigen::Vector2d>& p) {
   return s;
 }
 void CheckPoints(const std::vector<Eigen::Vector2d>& p) {
-  if (p.size() < 2) internal::ThrowInvalid("samples (count)", static_cast<double>(p.size()), "a path needs at least 2 samples");
+  if (p.size() < 2) internal::ThrowInvalid("points (count)", static_cast<double>(p.size()), "a path needs at least 2 samples");
   for (std::size_t i = 0; i < p.size(); ++i) {
-    internal::RequireFinite("samples[" + std::to_string(i) + "]", p[i]);
+    internal::RequireFinite("points[" + std::to_string(i) + "]", p[i]);
     if (i > 0 && (p[i] - p[i - 1]).norm() == 0.0)
-      internal::ThrowInvalid("samples[" + std::to_string(i) + "]", p[i].x(), "repeats the previous sample point");
+      internal::ThrowInvalid("points[" + std::to_string(i) + "]", p[i].x(), "repeats the previous sample point");
   }
 }
 }  // namespace

@@ -121,7 +121,7 @@ TEST(Path, BadSpecsNameTheField) {
   PathSpec s;
   s.type = "samples";
   s.points = {{0, 0}, {1, 1}, {1, 1}, {2, 0}};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(s); }).find("samples[2]"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { Path::FromSpec(s); }).find("points[2]"), std::string::npos);
   s.points = {{0, 0}, {INFINITY, 1}};
   EXPECT_NE(ErrorOf([&] { Path::FromSpec(s); }).find("must be finite"), std::string::npos);
   PathSpec w;
