@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/command_registry.h"
+#include "common/errors.h"
 #include "common/exit_codes.h"
 
 int main(int argc, char** argv) {
@@ -20,22 +21,20 @@ int main(int argc, char** argv) {
   }
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ConversionError& e) {
+    // A value of the wrong type ("--mu abc") is bad input, like a bad value in a file.
+    std::cerr << "plateball: invalid input: command line: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const CLI::ValidationError& e) {
+    std::cerr << "plateball: invalid input: command line: " << e.what() << "\n";
+    return kExitBadInput;
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? kExitSuccess : kExitUsage;
   }
   for (const auto& [sub, run] : runners) {
-    if (sub->parsed()) {
-      try {
-        return run();
-      } catch (const std::invalid_argument& e) {
-        std::cerr << "plateball " << sub->get_name() << ": invalid input: " << e.what() << "\n";
-        return kExitBadInput;
-      } catch (const std::exception& e) {
-        std::cerr << "plateball " << sub->get_name() << ": error: " << e.what() << "\n";
-        return kExitInternalError;
-      }
-    }
+    // Failures map to exit codes in one place (common/errors.h) for every tool.
+    if (sub->parsed()) return RunWithExitCodes("plateball " + sub->get_name(), run);
   }
   return kExitUsage;
 }

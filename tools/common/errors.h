@@ -1,0 +1,29 @@
+// How the command-line tools turn failures into messages and exit codes (exit_codes.h).
+#pragma once
+
+#include <functional>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+namespace plateball::tools {
+
+/// A file the tool had to read or write could not be (exit code kExitIoError).
+class IoError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The exit code of a run that ended with the exception currently being handled, after printing
+/// "PROGRAM: KIND: message" on `err`. Call it only inside a catch block. The mapping:
+///   plateball::ProblemFileReadError, IoError      -> kExitIoError (5)      "cannot read/write"
+///   std::invalid_argument (a field and its value) -> kExitBadInput (3)     "invalid input"
+///   other std::runtime_error (an integration that  -> kExitNoSolution (4)  "computation failed"
+///     exceeded max_steps, ...)
+///   anything else                                 -> kExitInternalError (6) "internal error"
+int ReportCurrentException(const std::string& program, std::ostream& err = std::cerr);
+
+/// Runs `run` and returns its exit code, or ReportCurrentException's when it throws.
+int RunWithExitCodes(const std::string& program, const std::function<int()>& run, std::ostream& err = std::cerr);
+
+}  // namespace plateball::tools

@@ -1,0 +1,59 @@
+// The problem a subcommand works on: an optional PROBLEM.json (problem_io.h) plus command-line
+// overrides of the ball, the initial state and the integration, validated like the file.
+//
+//   ProblemOptions problem;            // in the subcommand's setup
+//   problem.Add(sub);
+//   ... Problem p = problem.Load();    // in its run function
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "plateball/problem.h"
+
+namespace plateball::tools {
+
+/// Source name of command-line values in error messages: "command line: --mu: value -1: ...".
+inline constexpr const char* kCommandLine = "command line";
+
+class ProblemOptions {
+ public:
+  /// Adds the positional PROBLEM.json and --lambda --theta --phi --psi --mu --x0 X,Y
+  /// --orientation JSON --atol --rtol --max-steps --seed to `app`.
+  void Add(CLI::App& app);
+
+  /// The problem file (or, without one, the defaults of problem.h: lambda = 1,
+  /// (theta, phi, psi) = (pi/3, 0.4, 0.1), mu = 1, x0 = 0, identity orientation) with the given
+  /// options applied. Throws ProblemFileReadError for an unreadable file and std::invalid_argument
+  /// ("command line: --OPTION: value V: reason", or the reader's message) for bad values.
+  Problem Load() const;
+
+  /// The file given, or empty.
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+  double lambda_ = 0, theta_ = 0, phi_ = 0, psi_ = 0, mu_ = 0, atol_ = 0, rtol_ = 0;
+  long max_steps_ = 0;
+  std::string seed_, x0_, orientation_;
+  CLI::Option *lambda_opt_ = nullptr, *theta_opt_ = nullptr, *phi_opt_ = nullptr, *psi_opt_ = nullptr,
+              *mu_opt_ = nullptr, *atol_opt_ = nullptr, *rtol_opt_ = nullptr, *max_steps_opt_ = nullptr,
+              *seed_opt_ = nullptr, *x0_opt_ = nullptr, *orientation_opt_ = nullptr;
+};
+
+/// Checks of single command-line values; each throws std::invalid_argument
+/// "command line: OPTION: value V: reason".
+double RequireFiniteOption(const std::string& option, double v);
+double RequirePositiveOption(const std::string& option, double v);
+long long RequireIntegerInRange(const std::string& option, long long v, long long lo, long long hi);
+/// "X,Y" (two finite numbers separated by a comma).
+Eigen::Vector2d ParsePointOption(const std::string& option, const std::string& text);
+/// "X1,Y1;X2,Y2;..." or "X1,Y1 X2,Y2 ..." (separated by ';' or white space; at least
+/// `min_points` points).
+std::vector<Eigen::Vector2d> ParsePointsOption(const std::string& option, const std::string& text,
+                                               std::size_t min_points = 1);
+
+}  // namespace plateball::tools

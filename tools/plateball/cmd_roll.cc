@@ -1,0 +1,171 @@
+// `plateball roll`: the reorientation of the ball rolled without sliding or spinning along a
+// planar path (rolling.h), as JSON.
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/command_registry.h"
+#include "common/errors.h"
+#include "common/exit_codes.h"
+#include "common/json_output.h"
+#include "common/problem_options.h"
+#include "plateball/problem_io.h"
+#include "plateball/rolling.h"
+#include "plateball/so3.h"
+
+namespace plateball::tools {
+namespace {
+
+constexpr std::size_t kMaxPoints = 1'000'000;
+
+struct RollOptions {
+  std::string points;
+  std::string samples_file;
+  bool segment = false;
+  std::string orientation;
+  double atol = 0.0, rtol = 0.0;
+  std::string out;
+  CLI::Option* points_opt = nullptr;
+  CLI::Option* samples_file_opt = nullptr;
+  CLI::Option* orientation_opt = nullptr;
+  CLI::Option* atol_opt = nullptr;
+  CLI::Option* rtol_opt = nullptr;
+};
+
+[[noreturn]] void FileError(const std::string& file, const std::string& field, const std::string& value,
+                            const std::string& what) {
+  throw std::invalid_argument(file + ": " + field + ": value " + value + ": " + what);
+}
+
+// A samples file: {"points": [[x, y], ...]} or a bare array [[x, y], ...].
+std::vector<Eigen::Vector2d> ReadSamplesFile(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw IoError(file + ": cannot open the file for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw IoError(file + ": read error");
+  using nlohmann::json;
+  json doc;
+  try {
+    doc = json::parse(buffer.str());
+  } catch (const json::exception& e) {
+    FileError(file, "(document)", "(see message)", std::string("malformed JSON: ") + e.what());
+  }
+  std::string field = "(document)";
+  const json* points = &doc;
+  if (doc.is_object()) {
+    for (auto it = doc.begin(); it != doc.end(); ++it)
+      if (it.key() != "points") FileError(file, it.key(), "(any)", "unknown key (a samples file has only \"points\")");
+    const auto it = doc.find("points");
+    if (it == doc.end()) FileError(file, "points", "(missing)", "required field is missing");
+    points = &*it;
+    field = "points";
+  }
+  if (!points->is_array() || points->size() < 2 || points->size() > kMaxPoints)
+    FileError(file, field, points->is_array() ? "[array of " + std::to_string(points->size()) + "]" : points->dump(),
+              "must be an array of 2 ... 1e6 points [x, y]");
+  std::vector<Eigen::Vector2d> out;
+  for (std::size_t i = 0; i < points->size(); ++i) {
+    const json& p = (*points)[i];
+    const std::string f = (field == "(document)" ? std::string() : field) + "[" + std::to_string(i) + "]";
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+      FileError(file, f, p.dump(-1, ' ', false, json::error_handler_t::replace).substr(0, 80),
+                "must be an array of 2 numbers [x, y]");
+    const Eigen::Vector2d q(p[0].get<double>(), p[1].get<double>());
+    if (!q.allFinite()) FileError(file, f, p.dump(), "must be finite");
+    out.push_back(q);
+  }
+  return out;
+}
+
+std::string PointText(const Eigen::Vector2d& p) {
+  std::string text = DumpJson(ToJson(p));
+  if (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
+double PolylineLength(const std::vector<Eigen::Vector2d>& pts) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < pts.size(); ++i) length += (pts[i] - pts[i - 1]).norm();
+  return length;
+}
+
+int RunRoll(const RollOptions& o) {
+  const bool from_points = o.points_opt->count() > 0, from_file = o.samples_file_opt->count() > 0;
+  if (from_points == from_file)
+    throw std::invalid_argument(std::string(kCommandLine) + ": --points/--samples-file: value (" +
+                                (from_points ? "both" : "neither") + "): give exactly one path");
+  std::vector<Eigen::Vector2d> points =
+      from_points ? ParsePointsOption("--points", o.points, 2) : ReadSamplesFile(o.samples_file);
+  const std::string source = from_points ? std::string("--points") : o.samples_file;
+  if (points.size() > kMaxPoints)
+    throw std::invalid_argument(std::string(kCommandLine) + ": --points: value [" + std::to_string(points.size()) +
+                                " points]: at most 1e6 points");
+  for (std::size_t i = 1; i < points.size(); ++i)
+    if (points[i] == points[i - 1])
+      throw std::invalid_argument((from_points ? std::string(kCommandLine) + ": --points" : o.samples_file + ": points") +
+                                  "[" + std::to_string(i) + "]: value " + PointText(points[i]) +
+                                  ": repeats the previous point (consecutive points must differ)");
+  IntegrationOptions integration;
+  if (o.atol_opt->count() > 0) integration.absolute_tolerance = o.atol;
+  if (o.rtol_opt->count() > 0) integration.relative_tolerance = o.rtol;
+  if (const std::string err = integration.Validate(); !err.empty())
+    throw std::invalid_argument(std::string(kCommandLine) + ": --atol/--rtol: value (" + std::to_string(o.atol) +
+                                ", " + std::to_string(o.rtol) + "): " + err);
+
+  const Eigen::Matrix3d r = o.segment ? RollAlongPolyline(points) : RollAlongSamples(points, integration);
+
+  Json doc;
+  doc["command"] = "roll";
+  doc["path"] = Json{{"source", source},
+                     {"mode", o.segment ? "polyline" : "spline"},
+                     {"points", points.size()},
+                     {"start", ToJson(points.front())},
+                     {"end", ToJson(points.back())},
+                     {"polyline_length", PolylineLength(points)}};
+  const Json rotation = RotationToJson(r);
+  doc["reorientation"] = rotation["matrix"];
+  doc["rotation_vector"] = rotation["rotation_vector"];
+  doc["angle"] = rotation["angle"];
+  if (rotation.contains("axis")) doc["axis"] = rotation["axis"];
+  if (o.orientation_opt->count() > 0) {
+    const Eigen::Matrix3d a0 = ParseOrientation(o.orientation, "--orientation", kCommandLine);
+    doc["initial_orientation"] = ToJson(a0);
+    doc["final_orientation"] = ToJson(Eigen::Matrix3d(r * a0));
+  }
+  WriteJson(doc, o.out);
+  return kExitSuccess;
+}
+
+std::function<int()> SetupRoll(CLI::App& sub) {
+  auto o = std::make_shared<RollOptions>();
+  o->points_opt = sub.add_option("--points", o->points,
+                                 "the path through the points \"X1,Y1;X2,Y2;...\" (or separated by spaces; >= 2; a natural C^2 spline unless --segment)");
+  o->samples_file_opt = sub.add_option("--samples-file", o->samples_file,
+                                       "the path through the points of a JSON file {\"points\": [[x, y], ...]}");
+  sub.add_flag("--segment", o->segment, "roll along the straight segments between the points (a polyline; exact)");
+  o->orientation_opt = sub.add_option("--orientation", o->orientation,
+                                      "initial orientation (JSON, as in problem files); adds the final orientation R A0");
+  o->atol_opt = sub.add_option("--atol", o->atol, "absolute tolerance of the rolling integration (spline paths)");
+  o->rtol_opt = sub.add_option("--rtol", o->rtol, "relative tolerance of the rolling integration (spline paths)");
+  sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
+  sub.footer(
+      "Prints JSON: the reorientation R = A(end) A(start)^-1 of the ball (radius 1) rolled along the path,\n"
+      "its rotation vector w (R = exp(hat w), |w| <= pi), angle |w| and axis. A straight segment of length L\n"
+      "in the direction d gives the rotation by L about e3 x d.\n"
+      "Example: plateball roll --segment --points \"0,0;1.2,1.6\"\n"
+      "         plateball roll --points \"0,0;1,0.5;2,0;3,-0.5\"\n"
+      "Exit codes: 0 ok, 2 usage, 3 invalid input, 5 unreadable file.");
+  return [o] { return RunRoll(*o); };
+}
+
+const CommandRegistrar kRegistrar{
+    {"roll", "reorientation of the ball rolled along a planar path (points, polyline or samples file) as JSON",
+     SetupRoll}};
+
+}  // namespace
+}  // namespace plateball::tools
