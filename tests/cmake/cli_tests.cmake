@@ -80,6 +80,15 @@ plateball_cli_test(roll.spline_through_collinear_points 0
 # Samples file along +y, length 2.5: rotation by 2.5 about e3 x e2 = -e1.
 plateball_cli_test(roll.samples_file 0 --vector rotation_vector "-2.5,0,0" 1e-9
   -- roll --samples-file tests/data/roll_samples.json)
+# A full turn on the circle of radius R = 0.75 (tests/data/roll_circle.json, plan.path): with
+# A = Rz(t) B, B' = hat(-(R e1 + e3)) B, so R_total = exp(2 pi hat(-(R e1 + e3))), the rotation by
+# 2.5 pi about -(0.6, 0, 0.8), i.e. rotation vector (pi/2) (-0.6, 0, -0.8).
+plateball_cli_test(roll.problem_circle_closed_form 0
+  --vector rotation_vector "-0.9424777960769379,0,-1.2566370614359172" 1e-9
+  --number angle 1.5707963267948966 1e-9 --number length 4.71238898038469 1e-9
+  -- roll tests/data/roll_circle.json)
+plateball_cli_test(roll.problem_without_plan 3 REGEX "simulate_example.json: plan.path: value \\(missing\\)"
+  -- roll problems/simulate_example.json)
 # Final orientation R A0 with A0 = rotation by pi/2 about e3 and R = rotation by 2 about e2
 # (segment (0,0)-(2,0)): R A0 = [[0, -cos 2, sin 2], [1, 0, 0], [0, sin 2, cos 2]]; its second row
 # is printed as [1.0, 0.0, 0.0] up to round-off.
@@ -111,6 +120,8 @@ plateball_cli_test(simulate.unknown_option 2 -- simulate --no-such-option)
 plateball_cli_test(roll.one_point 3 REGEX "--points: value \"0,0\": must give at least 2 points" -- roll --points "0,0")
 plateball_cli_test(roll.repeated_point 3 REGEX "--points\\[1\\]: value \\[1.0, 2.0\\]: repeats" -- roll --points "1,2 1,2")
 plateball_cli_test(roll.no_path 3 REGEX "give exactly one path" -- roll)
+plateball_cli_test(roll.two_paths 3 REGEX "value \\(2 given\\): give exactly one path"
+  -- roll tests/data/roll_circle.json --points "0,0 1,0")
 plateball_cli_test(roll.missing_samples_file 5 -- roll --samples-file tests/data/no_such_samples.json)
 plateball_cli_test(roll.bad_samples_file 3 REGEX "bad_mu.json: ball: value" -- roll --samples-file tests/data/bad_mu.json)
 

@@ -13,6 +13,7 @@
 #include "common/exit_codes.h"
 #include "common/json_output.h"
 #include "common/problem_options.h"
+#include "plateball/path.h"
 #include "plateball/problem_io.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
@@ -23,12 +24,14 @@ namespace {
 constexpr std::size_t kMaxPoints = 1'000'000;
 
 struct RollOptions {
+  std::string problem_file;
   std::string points;
   std::string samples_file;
   bool segment = false;
   std::string orientation;
   double atol = 0.0, rtol = 0.0;
   std::string out;
+  CLI::Option* problem_opt = nullptr;
   CLI::Option* points_opt = nullptr;
   CLI::Option* samples_file_opt = nullptr;
   CLI::Option* orientation_opt = nullptr;
@@ -94,39 +97,69 @@ double PolylineLength(const std::vector<Eigen::Vector2d>& pts) {
   return length;
 }
 
-int RunRoll(const RollOptions& o) {
-  const bool from_points = o.points_opt->count() > 0, from_file = o.samples_file_opt->count() > 0;
-  if (from_points == from_file)
-    throw std::invalid_argument(std::string(kCommandLine) + ": --points/--samples-file: value (" +
-                                (from_points ? "both" : "neither") + "): give exactly one path");
-  std::vector<Eigen::Vector2d> points =
-      from_points ? ParsePointsOption("--points", o.points, 2) : ReadSamplesFile(o.samples_file);
-  const std::string source = from_points ? std::string("--points") : o.samples_file;
-  if (points.size() > kMaxPoints)
-    throw std::invalid_argument(std::string(kCommandLine) + ": --points: value [" + std::to_string(points.size()) +
-                                " points]: at most 1e6 points");
-  for (std::size_t i = 1; i < points.size(); ++i)
-    if (points[i] == points[i - 1])
-      throw std::invalid_argument((from_points ? std::string(kCommandLine) + ": --points" : o.samples_file + ": points") +
-                                  "[" + std::to_string(i) + "]: value " + PointText(points[i]) +
-                                  ": repeats the previous point (consecutive points must differ)");
-  IntegrationOptions integration;
+IntegrationOptions RollIntegration(const RollOptions& o, IntegrationOptions integration) {
   if (o.atol_opt->count() > 0) integration.absolute_tolerance = o.atol;
   if (o.rtol_opt->count() > 0) integration.relative_tolerance = o.rtol;
   if (const std::string err = integration.Validate(); !err.empty())
     throw std::invalid_argument(std::string(kCommandLine) + ": --atol/--rtol: value (" + std::to_string(o.atol) +
                                 ", " + std::to_string(o.rtol) + "): " + err);
+  return integration;
+}
 
-  const Eigen::Matrix3d r = o.segment ? RollAlongPolyline(points) : RollAlongSamples(points, integration);
+// The planned path of a problem file: each smooth piece integrated on its own (the velocity
+// may jump between pieces), R = R_n ... R_1.
+Json RollAlongProblemPath(const RollOptions& o, Eigen::Matrix3d* r) {
+  const Problem p = ReadProblemFile(o.problem_file);
+  if (!p.plan)
+    throw std::invalid_argument(o.problem_file + ": plan.path: value (missing): roll needs a problem with a plan.path");
+  const IntegrationOptions integration = RollIntegration(o, p.integration);
+  const Path path = Path::FromSpec(p.plan->path, "plan.path");
+  *r = Eigen::Matrix3d::Identity();
+  for (const SmoothCurve& piece : path.pieces()) {
+    const PlanarVelocity velocity = [&piece](double tau) { return piece.Derivative(tau); };
+    *r = ProjectToSO3(RollingReorientation(velocity, piece.Begin(), piece.End(), {}, integration) * *r);
+  }
+  return Json{{"source", o.problem_file},
+              {"mode", "plan.path"},
+              {"type", p.plan->path.type},
+              {"pieces", path.PieceCount()},
+              {"start", ToJson(path.StartPoint())},
+              {"end", ToJson(path.EndPoint())},
+              {"length", path.Length()}};
+}
 
+Json RollThroughPoints(const RollOptions& o, Eigen::Matrix3d* r) {
+  const bool from_points = o.points_opt->count() > 0;
+  std::vector<Eigen::Vector2d> points =
+      from_points ? ParsePointsOption("--points", o.points, 2) : ReadSamplesFile(o.samples_file);
+  for (std::size_t i = 1; i < points.size(); ++i)
+    if (points[i] == points[i - 1])
+      throw std::invalid_argument((from_points ? std::string(kCommandLine) + ": --points" : o.samples_file + ": points") +
+                                  "[" + std::to_string(i) + "]: value " + PointText(points[i]) +
+                                  ": repeats the previous point (consecutive points must differ)");
+  const IntegrationOptions integration = RollIntegration(o, IntegrationOptions{});
+  *r = o.segment ? RollAlongPolyline(points) : RollAlongSamples(points, integration);
+  return Json{{"source", from_points ? std::string("--points") : o.samples_file},
+              {"mode", o.segment ? "polyline" : "spline"},
+              {"points", points.size()},
+              {"start", ToJson(points.front())},
+              {"end", ToJson(points.back())},
+              {"polyline_length", PolylineLength(points)}};
+}
+
+int RunRoll(const RollOptions& o) {
+  const int sources = int(o.problem_opt->count() > 0) + int(o.points_opt->count() > 0) +
+                      int(o.samples_file_opt->count() > 0);
+  if (sources != 1)
+    throw std::invalid_argument(std::string(kCommandLine) + ": PROBLEM.json/--points/--samples-file: value (" +
+                                std::to_string(sources) + " given): give exactly one path");
+  if (o.segment && o.problem_opt->count() > 0)
+    throw std::invalid_argument(std::string(kCommandLine) +
+                                ": --segment: value (set): only for --points or --samples-file, not a problem's plan.path");
+  Eigen::Matrix3d r;
   Json doc;
   doc["command"] = "roll";
-  doc["path"] = Json{{"source", source},
-                     {"mode", o.segment ? "polyline" : "spline"},
-                     {"points", points.size()},
-                     {"start", ToJson(points.front())},
-                     {"end", ToJson(points.back())},
-                     {"polyline_length", PolylineLength(points)}};
+  doc["path"] = o.problem_opt->count() > 0 ? RollAlongProblemPath(o, &r) : RollThroughPoints(o, &r);
   const Json rotation = RotationToJson(r);
   doc["reorientation"] = rotation["matrix"];
   doc["rotation_vector"] = rotation["rotation_vector"];
@@ -143,6 +176,8 @@ int RunRoll(const RollOptions& o) {
 
 std::function<int()> SetupRoll(CLI::App& sub) {
   auto o = std::make_shared<RollOptions>();
+  o->problem_opt = sub.add_option("problem", o->problem_file,
+                                  "a problem file whose plan.path is rolled along (each smooth piece exactly)");
   o->points_opt = sub.add_option("--points", o->points,
                                  "the path through the points \"X1,Y1;X2,Y2;...\" (or separated by spaces; >= 2; a natural C^2 spline unless --segment)");
   o->samples_file_opt = sub.add_option("--samples-file", o->samples_file,
@@ -150,8 +185,8 @@ std::function<int()> SetupRoll(CLI::App& sub) {
   sub.add_flag("--segment", o->segment, "roll along the straight segments between the points (a polyline; exact)");
   o->orientation_opt = sub.add_option("--orientation", o->orientation,
                                       "initial orientation (JSON, as in problem files); adds the final orientation R A0");
-  o->atol_opt = sub.add_option("--atol", o->atol, "absolute tolerance of the rolling integration (spline paths)");
-  o->rtol_opt = sub.add_option("--rtol", o->rtol, "relative tolerance of the rolling integration (spline paths)");
+  o->atol_opt = sub.add_option("--atol", o->atol, "absolute tolerance of the rolling integration (spline paths and plan.path)");
+  o->rtol_opt = sub.add_option("--rtol", o->rtol, "relative tolerance of the rolling integration (spline paths and plan.path)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
   sub.footer(
       "Prints JSON: the reorientation R = A(end) A(start)^-1 of the ball (radius 1) rolled along the path,\n"
@@ -159,12 +194,13 @@ std::function<int()> SetupRoll(CLI::App& sub) {
       "in the direction d gives the rotation by L about e3 x d.\n"
       "Example: plateball roll --segment --points \"0,0;1.2,1.6\"\n"
       "         plateball roll --points \"0,0;1,0.5;2,0;3,-0.5\"\n"
+      "         plateball roll PROBLEM.json     (its plan.path)\n"
       "Exit codes: 0 ok, 2 usage, 3 invalid input, 5 unreadable file.");
   return [o] { return RunRoll(*o); };
 }
 
 const CommandRegistrar kRegistrar{
-    {"roll", "reorientation of the ball rolled along a planar path (points, polyline or samples file) as JSON",
+    {"roll", "reorientation of the ball rolled along a planar path (points, polyline, samples file or plan.path) as JSON",
      SetupRoll}};
 
 }  // namespace

@@ -1,0 +1,49 @@
+# cmake -DBUILD_DIR=... -DCONSUMER_SOURCE=... -DWORK_DIR=... -DGENERATOR=... [-DCXX_COMPILER=...]
+#       -P run_install_consumer.cmake
+# Installs the plateball build tree into WORK_DIR/prefix, configures and builds the consumer
+# project against it (CMAKE_PREFIX_PATH = the prefix only), runs it and checks its output.
+foreach(v BUILD_DIR CONSUMER_SOURCE WORK_DIR GENERATOR)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "run_install_consumer.cmake: -D${v}=... is required")
+  endif()
+endforeach()
+
+set(prefix ${WORK_DIR}/prefix)
+set(consumer_build ${WORK_DIR}/build)
+file(REMOVE_RECURSE ${WORK_DIR})
+
+function(run step)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "${step} failed (${result}):\n${out}\n${err}")
+  endif()
+  set(step_output "${out}" PARENT_SCOPE)
+endfunction()
+
+run("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+if(NOT EXISTS ${prefix}/include/plateball/free_motion.h)
+  message(FATAL_ERROR "install: no headers under ${prefix}/include/plateball")
+endif()
+file(GLOB_RECURSE config_files ${prefix}/*/plateballConfig.cmake)
+if(NOT config_files)
+  message(FATAL_ERROR "install: no plateballConfig.cmake under ${prefix}")
+endif()
+
+set(configure_args -S ${CONSUMER_SOURCE} -B ${consumer_build} -G ${GENERATOR}
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix}
+    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON)
+if(DEFINED CXX_COMPILER)
+  list(APPEND configure_args -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
+endif()
+run("configure consumer" ${CMAKE_COMMAND} ${configure_args})
+# The package must come from the install prefix, never from the build tree.
+string(FIND "${step_output}" "plateball_DIR=${prefix}/" found)
+if(found EQUAL -1)
+  message(FATAL_ERROR "consumer found plateball outside ${prefix}:\n${step_output}")
+endif()
+run("build consumer" ${CMAKE_COMMAND} --build ${consumer_build})
+run("run consumer" ${consumer_build}/consumer)
+message(STATUS "${step_output}")
+if(NOT step_output MATCHES "consumer: period 3\\.14159265358979")
+  message(FATAL_ERROR "unexpected consumer output: ${step_output}")
+endif()
