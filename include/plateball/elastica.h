@@ -1,0 +1,97 @@
+// The optimal paths of the isoparallel problem in closed form (section 2.2, Figures 6 and 7).
+//
+// With unit speed x' = (cos g, sin g) (g the heading, s the arc length) the extremal equations
+// v' = (e3 x x') x v, x'' = v^3 e3 x x' of section 2.2 give the curvature g' = v^3, and
+// W = v_h + e3 x x' is a constant horizontal vector (docs/paper_notes.md, "Isoparallel extremals").
+// Then g'' = -|W| cos(g - g_W): with theta = g - g_W + pi/2 the heading is the pendulum of Figure 6,
+//     theta'' = -G sin(theta),   G = |W|   (1/length^2; the paper's g/R),
+// with energy E = theta'^2/2 - G cos(theta). The paths are Euler's elastica:
+//  - oscillating (E < G): sin(theta/2) = k sn(b s + u0, k), b = sqrt(G), k^2 = (E + G)/(2G);
+//  - rotating (E > G):    theta/2 = am(a s + u0, k), |a| = sqrt(G)/k, k^2 = 2G/(E + G);
+//  - G = 0: circles (rotating, k = 0) and straight lines (rate 0).
+// Positions are elliptic integrals too (Jacobi epsilon / Legendre's D), so every quantity of the
+// path is evaluated in closed form with Boost.Math, at any s, without integration.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+namespace plateball {
+namespace internal {
+class ElasticaRollingTable;
+}
+
+enum class PendulumRegime { kOscillating, kRotating };
+std::string ToString(PendulumRegime regime);
+
+/// The three pendulum parameters (G, energy, phase) of section 2.2 in the form the closed
+/// forms use, plus the direction g_W of W (the plane's rotation freedom).
+struct ElasticaParameters {
+  PendulumRegime regime = PendulumRegime::kOscillating;
+  /// Oscillating: b = +-sqrt(G) (the sign is the direction of pendulum time).
+  /// Rotating: a = +-sqrt(G)/k (the sign is the sense of rotation: a > 0 turns left).
+  /// Units 1/length. 0 gives a straight line.
+  double rate = 0.0;
+  /// Elliptic modulus k, |k| < 1 (only k^2 matters for the shape up to a phase shift).
+  /// Oscillating: k = sin(amplitude/2); rotating: k = 0 is a circle of curvature 2a.
+  double modulus = 0.0;
+  /// u0, the argument of the Jacobi functions at s = 0.
+  double phase = 0.0;
+  /// g_W: direction of W; the heading is g = theta + g_W - pi/2.
+  double heading_w = 0.0;
+};
+
+/// One optimal path x(s), s = arc length, starting at the origin: x(0) = 0.
+class Elastica {
+ public:
+  /// Throws std::invalid_argument naming the field for non-finite values or |modulus| >= 1
+  /// (the separatrix E = G has an infinite period and is not represented).
+  explicit Elastica(const ElasticaParameters& parameters);
+  /// The path with g'' = -G cos(g - g_W), g(0) = heading0, g'(0) = curvature0 (G >= 0).
+  /// Throws std::invalid_argument on the separatrix (E = G to 1e-12 relative) or invalid values.
+  static Elastica FromInitialState(double G, double heading_w, double heading0, double curvature0);
+
+  const ElasticaParameters& parameters() const { return p_; }
+  /// G = |W| (1/length^2).
+  double G() const { return g_; }
+  /// Pendulum energy E = theta'^2/2 - G cos(theta).
+  double Energy() const { return energy_; }
+  /// Pendulum angle theta(s) (continuous in s).
+  double PendulumAngle(double s) const;
+  /// Heading g(s) = theta(s) + g_W - pi/2 (continuous in s).
+  double Heading(double s) const;
+  /// Signed curvature g'(s).
+  double Curvature(double s) const;
+  /// Unit tangent x'(s).
+  Eigen::Vector2d Tangent(double s) const;
+  /// x(s) - x(0), in closed form.
+  Eigen::Vector2d Position(double s) const;
+  /// Period of the curvature in s: 4K/|b| (oscillating), 2K/|a| (rotating); +infinity for
+  /// straight lines. Over one period the tangent returns (the heading changes by 0 or +-2 pi).
+  double Period() const { return period_; }
+  /// x(Period()) - x(0) (zero vector for a straight line, whose period is infinite).
+  Eigen::Vector2d DriftPerPeriod() const { return drift_; }
+  /// True for rate = 0 (straight line).
+  bool IsStraight() const { return p_.rate == 0.0; }
+
+ private:
+  friend class internal::ElasticaRollingTable;  // marches the Jacobi functions along a table
+  struct Jacobi {
+    double sn, cn, dn;
+  };
+  Jacobi Eval(double u) const;
+  Eigen::Vector2d TangentOf(const Jacobi& j) const;
+  double IntegralSn2(double u) const;  // int_0^u sn^2
+  double AmplitudeOf(double u) const;  // am(u), continuous
+  ElasticaParameters p_;
+  double k_ = 0.0;       // |modulus|
+  double kk_ = 0.0;      // complete K(k)
+  double dk_ = 0.0;      // complete D(k) = int_0^K sn^2
+  double g_ = 0.0;
+  double energy_ = 0.0;
+  double period_ = 0.0;
+  double cos_w_ = 1.0, sin_w_ = 0.0;  // rotation by g_W - pi/2 (pendulum frame -> plane)
+  Eigen::Vector2d drift_ = Eigen::Vector2d::Zero();
+};
+
+}  // namespace plateball

@@ -1,0 +1,99 @@
+// The isoparallel problem (section 2.2): the shortest smooth path on the plate from (x0, A0) to
+// (x1, A1), where rolling along the path takes the orientation A0 to A1.
+//
+// Optimal paths are elastica (elastica.h): the heading is a pendulum with three parameters
+// (G, energy, phase). The solver shoots over exactly these with Ceres (TinySolver,
+// Levenberg-Marquardt, 3 residuals in 3 unknowns) using the paper's rotation trick: a candidate
+// from x0 runs until its n-th crossing of the circle |x - x0| = |x1 - x0| (n = 1, 2, ...: paths
+// that leave and re-enter the circle count), the plane is rotated by the B about e3 taking the
+// crossing point to x1, and B A B^-1 is compared with A1 A0^-1 (residual: LogSO3 of the mismatch).
+// Seeded multi-start over both pendulum regimes; every distinct solution up to
+// length_cap_factor times the shortest is reported, sorted by length. Each reported solution is
+// verified independently of the shooting by RollingReorientation (rolling.h) along the path.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "plateball/elastica.h"
+
+namespace plateball {
+
+/// Options of SolveIsoparallel (JSON "isoparallel.solver", problem.h: IsoparallelSolverSpec).
+struct IsoparallelOptions {
+  int starts = 64;                 ///< multi-start points (seeded Halton sequence)
+  double length_cap_factor = 3.0;  ///< report solutions up to this times the shortest length (>= 1)
+  int max_iterations = 100;        ///< Levenberg-Marquardt iterations per local solve
+  double tolerance = 1e-12;        ///< accepted |LogSO3| orientation residual (radians)
+  int threads = 1;                 ///< worker threads (results do not depend on it)
+  std::uint64_t seed = 1;          ///< scrambles the start sequence
+  /// Longest path searched before a shortest one is known; 0 = automatic (see README).
+  double max_length = 0.0;
+  /// Empty when valid, else a message naming the field, the value and the bound.
+  std::string Validate() const;
+};
+
+/// Boundary data: x0 = start, x1 = goal, A0 = start_orientation, A1 = goal_orientation.
+struct IsoparallelProblem {
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  Eigen::Vector2d goal = Eigen::Vector2d::Zero();
+  Eigen::Matrix3d start_orientation = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d goal_orientation = Eigen::Matrix3d::Identity();
+};
+
+/// One optimal path: x(s) = start + elastica.Position(s), s in [0, length].
+struct IsoparallelSolution {
+  ElasticaParameters parameters;  ///< in the plate's frame (heading_w includes the rotation B)
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  double length = 0.0;
+  int crossing = 1;         ///< which crossing of the circle |x - x0| = |x1 - x0| ends the path
+  double G = 0.0;           ///< pendulum "gravity" |W| (1/length^2); R ~ 1/sqrt(G)
+  double energy = 0.0;      ///< pendulum energy E = theta'^2/2 - G cos(theta)
+  double periods = 0.0;     ///< length / curvature period
+  /// A one-parameter family: the path covers a whole number of curvature periods and stays a
+  /// solution for every starting phase (e.g. identity target). Counted once; the phase
+  /// reported is the canonical one, parameters.phase = 0.
+  bool family = false;
+  double shooting_residual = 0.0;     ///< |LogSO3| in the shooting's own integrator
+  double orientation_residual = 0.0;  ///< |LogSO3(A1 A0^-1)^-1 R)|, R by RollingReorientation
+  double orientation_error = 0.0;     ///< operator 2-norm ||A1 - R A0|| (verification)
+  double endpoint_error = 0.0;        ///< |x(length) - x1|
+  Elastica Path() const { return Elastica(parameters); }
+  Eigen::Vector2d PositionAt(double s) const { return start + Elastica(parameters).Position(s); }
+};
+
+enum class IsoparallelStatus {
+  kSolved,          ///< at least one verified solution
+  kNoSolution,      ///< no start converged to a verified solution
+};
+std::string ToString(IsoparallelStatus status);
+
+struct IsoparallelSummary {
+  IsoparallelProblem problem;
+  IsoparallelOptions options;
+  IsoparallelStatus status = IsoparallelStatus::kNoSolution;
+  std::vector<IsoparallelSolution> solutions;  ///< distinct, sorted by length (shortest first)
+  int local_solves = 0;        ///< Levenberg-Marquardt runs (start, crossing)
+  int converged_solves = 0;    ///< runs that reached the tolerance
+  long evaluations = 0;        ///< candidate paths evaluated (residuals and Jacobians)
+  double searched_length = 0;  ///< longest path considered
+  double time_seconds = 0.0;
+  bool IsSolutionUsable() const { return status == IsoparallelStatus::kSolved; }
+  /// Shortest solution (requires IsSolutionUsable()).
+  const IsoparallelSolution& Shortest() const { return solutions.front(); }
+  std::string BriefReport() const;
+  std::string FullReport() const;
+};
+
+/// Solves the isoparallel problem. Throws std::invalid_argument (naming the field and value)
+/// for non-finite points, start == goal (the rotation trick needs a circle of positive radius),
+/// non-rotation orientations or invalid options. Non-convergence is a status.
+IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const IsoparallelOptions& options = {});
+
+/// Reorientation R = A(length) A(0)^-1 of rolling along the path, by RollingReorientation of
+/// rolling.h (dopri5 at 1e-12, independent of the solver's Magnus tables).
+Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution);
+
+}  // namespace plateball

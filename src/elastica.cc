@@ -1,0 +1,247 @@
+#include "plateball/elastica.h"
+
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <boost/math/special_functions/ellint_d.hpp>
+#include <boost/math/policies/policy.hpp>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "check.h"
+#include "jacobi_elliptic.h"
+
+namespace plateball {
+namespace internal {
+
+// sn, cn, dn by the descending Landen / arithmetic-geometric mean scheme (Abramowitz and Stegun
+// 16.4; the iteration of Numerical Recipes' sncndn), 0 <= k < 1. About 6x faster than
+// boost::math::jacobi_elliptic, which the tests use as the reference.
+void JacobiSnCnDn(double u, double k, double* sn, double* cn, double* dn) {
+  double emc = (1.0 - k) * (1.0 + k);  // complementary parameter 1 - k^2
+  if (k == 0.0) {
+    *sn = std::sin(u);
+    *cn = std::cos(u);
+    *dn = 1.0;
+    return;
+  }
+  double em[16], en[16];
+  double a = 1.0, c = 1.0, d = 1.0;
+  int l = 0;
+  for (int i = 0; i < 16; ++i) {
+    l = i;
+    em[i] = a;
+    emc = std::sqrt(emc);
+    en[i] = emc;
+    c = 0.5 * (a + emc);
+    if (std::abs(a - emc) <= 1e-9 * a) break;
+    emc *= a;
+    a = c;
+  }
+  u *= c;
+  double s = std::sin(u), co = std::cos(u);
+  if (s != 0.0) {
+    a = co / s;
+    c *= a;
+    for (int ii = l; ii >= 0; --ii) {
+      const double b = em[ii];
+      a *= c;
+      c *= d;
+      d = (en[ii] + a) / (b + a);
+      a = c / b;
+    }
+    a = 1.0 / std::sqrt(c * c + 1.0);
+    s = s >= 0.0 ? a : -a;
+    co = c * s;
+  }
+  *sn = s;
+  *cn = co;
+  *dn = d;
+}
+
+}  // namespace internal
+
+namespace {
+using FastPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+
+// Incomplete F(phi, k) for any real phi: F(phi + m pi) = F(phi) + 2 m K.
+double FullEllipticF(double k, double phi, double complete_k) {
+  const double m = std::round(phi / M_PI);
+  return 2.0 * m * complete_k + boost::math::ellint_1(k, phi - m * M_PI, FastPolicy());
+}
+
+// 8-point Gauss-Legendre nodes/weights on [-1, 1] (for short arcs where the closed form loses
+// relative accuracy to cancellation).
+constexpr double kGlNodes[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+constexpr double kGlWeights[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+
+// Below this |u - u0| the position is evaluated by quadrature of the closed-form tangent:
+// the closed form divides a difference of O(|u - u0|) by the rate.
+constexpr double kShortArcArgument = 0.05;
+
+}  // namespace
+
+std::string ToString(PendulumRegime regime) {
+  switch (regime) {
+    case PendulumRegime::kOscillating:
+      return "oscillating";
+    case PendulumRegime::kRotating:
+      return "rotating";
+  }
+  return "unknown";
+}
+
+Elastica::Elastica(const ElasticaParameters& parameters) : p_(parameters) {
+  internal::RequireFinite("rate", p_.rate);
+  internal::RequireFinite("modulus", p_.modulus);
+  internal::RequireFinite("phase", p_.phase);
+  internal::RequireFinite("heading_w", p_.heading_w);
+  if (!(std::abs(p_.modulus) < 1.0))
+    internal::ThrowInvalid("modulus", p_.modulus, "|modulus| must be < 1 (the separatrix k = 1 has an infinite period)");
+  k_ = std::abs(p_.modulus);
+  kk_ = boost::math::ellint_1(k_, FastPolicy());
+  dk_ = boost::math::ellint_d(k_, FastPolicy());
+  const double r = p_.rate;
+  if (p_.regime == PendulumRegime::kOscillating) {
+    g_ = r * r;
+    energy_ = g_ * (2.0 * k_ * k_ - 1.0);
+    period_ = r == 0.0 ? std::numeric_limits<double>::infinity() : 4.0 * kk_ / std::abs(r);
+  } else {
+    g_ = r * r * k_ * k_;
+    energy_ = 2.0 * r * r - g_;
+    period_ = r == 0.0 ? std::numeric_limits<double>::infinity() : 2.0 * kk_ / std::abs(r);
+  }
+  cos_w_ = std::sin(p_.heading_w);   // cos(g_W - pi/2)
+  sin_w_ = -std::cos(p_.heading_w);  // sin(g_W - pi/2)
+  if (std::isfinite(period_)) drift_ = Position(period_);
+}
+
+Elastica Elastica::FromInitialState(double G, double heading_w, double heading0, double curvature0) {
+  internal::RequireNonNegative("G", G);
+  internal::RequireFinite("heading_w", heading_w);
+  internal::RequireFinite("heading0", heading0);
+  internal::RequireFinite("curvature0", curvature0);
+  const double theta_raw = heading0 - heading_w + M_PI / 2;
+  const double theta0 = std::remainder(theta_raw, 2.0 * M_PI);  // in [-pi, pi]
+  ElasticaParameters p;
+  p.heading_w = heading_w + (theta_raw - theta0);  // so that Heading(0) = heading0 exactly
+  const double energy = 0.5 * curvature0 * curvature0 - G * std::cos(theta0);
+  if (G == 0.0) {
+    // Circle of curvature curvature0 (or a line): theta = 2 am(a s + u0, 0) = 2 (a s + u0).
+    p.regime = PendulumRegime::kRotating;
+    p.rate = 0.5 * curvature0;
+    p.modulus = 0.0;
+    p.phase = 0.5 * theta0;
+    return Elastica(p);
+  }
+  if (std::abs(energy - G) <= 1e-12 * G)
+    internal::ThrowInvalid("curvature0", curvature0, "gives the pendulum separatrix E = G (infinite period)");
+  if (energy < G) {
+    p.regime = PendulumRegime::kOscillating;
+    const double k2 = std::max(0.0, (energy + G) / (2.0 * G));
+    const double k = std::sqrt(k2);
+    const double b = std::sqrt(G);
+    p.rate = b;
+    p.modulus = k;
+    if (k == 0.0) {
+      p.phase = 0.0;
+    } else {
+      const double kk = boost::math::ellint_1(k, FastPolicy());
+      const double phi0 = std::atan2(std::sin(0.5 * theta0) / k, curvature0 / (2.0 * k * b));
+      p.phase = FullEllipticF(k, phi0, kk);
+    }
+  } else {
+    p.regime = PendulumRegime::kRotating;
+    const double k = std::sqrt(2.0 * G / (energy + G));
+    p.modulus = k;
+    p.rate = (curvature0 > 0 ? 1.0 : -1.0) * std::sqrt(0.5 * (energy + G));
+    p.phase = FullEllipticF(k, 0.5 * theta0, boost::math::ellint_1(k, FastPolicy()));
+  }
+  return Elastica(p);
+}
+
+Elastica::Jacobi Elastica::Eval(double u) const {
+  const double quarter4 = 4.0 * kk_;
+  const double r = u - quarter4 * std::round(u / quarter4);
+  Jacobi j{};
+  internal::JacobiSnCnDn(r, k_, &j.sn, &j.cn, &j.dn);
+  return j;
+}
+
+double Elastica::IntegralSn2(double u) const {
+  const double m = std::round(u / (2.0 * kk_));
+  const double r = u - 2.0 * kk_ * m;  // |r| <= K: cn(r) >= 0
+  double sn = 0, cn = 0, dn = 0;
+  internal::JacobiSnCnDn(r, k_, &sn, &cn, &dn);
+  return 2.0 * m * dk_ + boost::math::ellint_d(k_, std::atan2(sn, cn), FastPolicy());
+}
+
+double Elastica::AmplitudeOf(double u) const {
+  const double m = std::round(u / (2.0 * kk_));
+  const double r = u - 2.0 * kk_ * m;
+  double sn = 0, cn = 0, dn = 0;
+  internal::JacobiSnCnDn(r, k_, &sn, &cn, &dn);
+  return m * M_PI + std::atan2(sn, cn);
+}
+
+double Elastica::PendulumAngle(double s) const {
+  const double u = p_.rate * s + p_.phase;
+  if (p_.regime == PendulumRegime::kOscillating) {
+    const double v = std::clamp(p_.modulus * Eval(u).sn, -1.0, 1.0);
+    return 2.0 * std::asin(v);
+  }
+  return 2.0 * AmplitudeOf(u);
+}
+
+double Elastica::Heading(double s) const { return PendulumAngle(s) + p_.heading_w - M_PI / 2; }
+
+double Elastica::Curvature(double s) const {
+  const Jacobi j = Eval(p_.rate * s + p_.phase);
+  if (p_.regime == PendulumRegime::kOscillating) return 2.0 * p_.modulus * p_.rate * j.cn;
+  return 2.0 * p_.rate * j.dn;
+}
+
+Eigen::Vector2d Elastica::Tangent(double s) const { return TangentOf(Eval(p_.rate * s + p_.phase)); }
+
+Eigen::Vector2d Elastica::TangentOf(const Jacobi& j) const {
+  double c, sn;  // cos(theta), sin(theta) in the pendulum frame
+  if (p_.regime == PendulumRegime::kOscillating) {
+    const double ks = p_.modulus;
+    c = 1.0 - 2.0 * ks * ks * j.sn * j.sn;
+    sn = 2.0 * ks * j.sn * j.dn;
+  } else {
+    c = 1.0 - 2.0 * j.sn * j.sn;
+    sn = 2.0 * j.sn * j.cn;
+  }
+  return {cos_w_ * c - sin_w_ * sn, sin_w_ * c + cos_w_ * sn};
+}
+
+Eigen::Vector2d Elastica::Position(double s) const {
+  const double du = p_.rate * s;
+  if (std::abs(du) < kShortArcArgument) {
+    // Short arc (or straight line): 8-point Gauss-Legendre quadrature of the closed-form
+    // tangent; the tangent is analytic, so the error is O(du^16) relative.
+    Eigen::Vector2d acc = Eigen::Vector2d::Zero();
+    const double half = 0.5 * s;
+    for (int i = 0; i < 4; ++i) {
+      acc += kGlWeights[i] * (Tangent(half * (1.0 - kGlNodes[i])) + Tangent(half * (1.0 + kGlNodes[i])));
+    }
+    return half * acc;
+  }
+  const double u0 = p_.phase, u = u0 + du;
+  const Jacobi j0 = Eval(u0), j = Eval(u);
+  const double di = IntegralSn2(u) - IntegralSn2(u0);
+  double x, y;  // pendulum frame
+  if (p_.regime == PendulumRegime::kOscillating) {
+    const double ks = p_.modulus, b = p_.rate;
+    x = s - 2.0 * ks * ks * di / b;
+    y = -2.0 * ks * (j.cn - j0.cn) / b;
+  } else {
+    const double a = p_.rate;
+    x = s - 2.0 * di / a;
+    y = 2.0 * (j.sn * j.sn - j0.sn * j0.sn) / ((j.dn + j0.dn) * a);
+  }
+  return {cos_w_ * x - sin_w_ * y, sin_w_ * x + cos_w_ * y};
+}
+
+}  // namespace plateball

@@ -1,0 +1,222 @@
+#include "elastica_rolling.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "plateball/so3.h"
+
+namespace plateball::internal {
+namespace {
+
+Eigen::Vector3d Omega(const Eigen::Vector2d& t) { return {-t.y(), t.x(), 0.0}; }  // e3 x x'
+
+const double kSqrt15 = std::sqrt(15.0);
+const double kGaussOffset = kSqrt15 / 10.0;
+// The Jacobi functions along the table are marched by the addition theorem (a few flops instead
+// of an AGM) and re-evaluated directly every kResync steps to bound round-off growth.
+constexpr int kResync = 16;
+
+struct Sncndn {
+  double sn, cn, dn;
+};
+
+// Addition theorem: f(u + v) from f(u), f(v) (Abramowitz and Stegun 16.17).
+Sncndn Add(const Sncndn& a, const Sncndn& b, double k2) {
+  const double den = 1.0 / (1.0 - k2 * a.sn * a.sn * b.sn * b.sn);
+  return {(a.sn * b.cn * b.dn + b.sn * a.cn * a.dn) * den, (a.cn * b.cn - a.sn * b.sn * a.dn * b.dn) * den,
+          (a.dn * b.dn - k2 * a.sn * b.sn * a.cn * b.cn) * den};
+}
+
+}  // namespace
+
+// The Magnus step from the tangents at the three Gauss nodes.
+static Eigen::Matrix3d MagnusFromTangents(const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3,
+                                   double h, Eigen::Vector2d* displacement) {
+  // Same Gauss nodes: three-point Gauss-Legendre quadrature of x' (order 6).
+  if (displacement) *displacement = (h / 18.0) * (5.0 * t1 + 8.0 * t2 + 5.0 * t3);
+  const Eigen::Vector3d w1 = Omega(t1), w2 = Omega(t2), w3 = Omega(t3);
+  // Blanes, Casas, Ros (2000), order 6 with Gauss-Legendre nodes; [hat a, hat b] = hat(a x b).
+  const Eigen::Vector3d a1 = h * w2;
+  const Eigen::Vector3d a2 = (kSqrt15 * h / 3.0) * (w3 - w1);
+  const Eigen::Vector3d a3 = (10.0 * h / 3.0) * (w3 - 2.0 * w2 + w1);
+  const Eigen::Vector3d c1 = a1.cross(a2);
+  const Eigen::Vector3d c2 = -(1.0 / 60.0) * a1.cross(2.0 * a3 + c1);
+  const Eigen::Vector3d omega = a1 + a3 / 12.0 + (1.0 / 240.0) * (-20.0 * a1 - a3 + c1).cross(a2 + c2);
+  return ExpSO3(omega);
+}
+
+Eigen::Matrix3d MagnusRollingStep(const Elastica& e, double s0, double s1, Eigen::Vector2d* displacement) {
+  const double h = s1 - s0;
+  if (h == 0.0) {
+    if (displacement) displacement->setZero();
+    return Eigen::Matrix3d::Identity();
+  }
+  const double c = kGaussOffset;
+  return MagnusFromTangents(e.Tangent(s0 + (0.5 - c) * h), e.Tangent(s0 + 0.5 * h), e.Tangent(s0 + (0.5 + c) * h), h,
+                            displacement);
+}
+
+ElasticaRollingTable::ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
+                                           int max_total_steps)
+    : e_(&e), s_limit_(s_limit) {
+  steps_per_period = std::max(4, steps_per_period);
+  straight_ = e.IsStraight();
+  if (straight_) {
+    period_ = s_limit;
+    steps_ = 1;
+    h_ = s_limit;
+    rot_ = {Eigen::Matrix3d::Identity(), ExpSO3(s_limit * Omega(e.Tangent(0.0)))};
+    pos_ = {Eigen::Vector2d::Zero(), e.Position(s_limit)};
+    drift_ = pos_[1];
+    monodromy_ = rot_[1];
+    return;
+  }
+  period_ = e.Period();
+  const double periods = s_limit / period_;
+  const double steps = std::max<double>(steps_per_period, std::ceil(period_ / max_step));
+  if (!(std::isfinite(period_) && steps * std::min(1.0, periods) <= max_total_steps && periods <= max_total_steps)) {
+    valid_ = false;
+    return;
+  }
+  // Tables never need more than s_limit: a period longer than s_limit is tabulated up to s_limit.
+  double span = period_;
+  if (periods < 1.0) span = s_limit;
+  steps_ = static_cast<int>(std::ceil(steps * span / period_));
+  steps_ = std::max(steps_, 4);
+  h_ = span / steps_;
+  Build(steps_);
+  if (periods < 1.0) {
+    period_ = std::numeric_limits<double>::infinity();  // no repetition needed
+    monodromy_.setIdentity();
+    drift_.setZero();
+  } else {
+    monodromy_ = rot_[steps_];
+    drift_ = e.DriftPerPeriod();
+  }
+}
+
+void ElasticaRollingTable::Build(int steps) {
+  const Elastica& e = *e_;
+  rot_.resize(steps + 1);
+  pos_.resize(steps + 1);
+  rot_[0].setIdentity();
+  pos_[0].setZero();
+  const double rate = e.parameters().rate, u0 = e.parameters().phase;
+  const double k2 = e.k_ * e.k_;
+  const double offsets[3] = {(0.5 - kGaussOffset) * h_, 0.5 * h_, (0.5 + kGaussOffset) * h_};
+  auto eval = [&e](double u) {
+    const Elastica::Jacobi j = e.Eval(u);
+    return Sncndn{j.sn, j.cn, j.dn};
+  };
+  const Sncndn step = eval(rate * h_);
+  Sncndn node[3];
+  for (int j = 0; j < steps; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      const double u = u0 + rate * (j * h_ + offsets[i]);
+      node[i] = (j % kResync == 0) ? eval(u) : Add(node[i], step, k2);
+    }
+    Eigen::Vector2d t[3];
+    for (int i = 0; i < 3; ++i) t[i] = e.TangentOf({node[i].sn, node[i].cn, node[i].dn});
+    Eigen::Vector2d dx;
+    rot_[j + 1] = MagnusFromTangents(t[0], t[1], t[2], h_, &dx) * rot_[j];
+    pos_[j + 1] = pos_[j] + dx;
+  }
+}
+
+Eigen::Matrix3d ElasticaRollingTable::Rolling(double s) const {
+  if (straight_) return ExpSO3(s * Omega(e_->Tangent(0.0)));
+  double n = 0.0, r = s;
+  if (std::isfinite(period_)) {
+    n = std::floor(s / period_);
+    r = s - n * period_;
+  }
+  int j = static_cast<int>(std::floor(r / h_));
+  j = std::clamp(j, 0, steps_ - 1);
+  const double sj = j * h_;
+  Eigen::Matrix3d q = MagnusRollingStep(*e_, sj, r) * rot_[j];
+  Eigen::Matrix3d p = Eigen::Matrix3d::Identity();
+  for (int i = 0; i < static_cast<int>(n); ++i) p = monodromy_ * p;
+  return q * p;
+}
+
+Eigen::Vector2d ElasticaRollingTable::NodePosition(long global_index) const {
+  if (!std::isfinite(period_)) return pos_[std::min<long>(global_index, steps_)];
+  const long n = global_index / steps_;
+  const int j = static_cast<int>(global_index % steps_);
+  return static_cast<double>(n) * drift_ + pos_[j];
+}
+
+bool ElasticaRollingTable::Refine(double radius, double sa, double sb, double* s) const {
+  const double r2 = radius * radius;
+  auto f = [&](double t) { return e_->Position(t).squaredNorm() - r2; };
+  double fa = f(sa), fb = f(sb);
+  // Node positions are exact up to round-off; a crossing within round-off of a node can land on
+  // the wrong side: widen once.
+  if (fa * fb > 0) {
+    sa = std::max(0.0, sa - h_);
+    sb = sb + h_;
+    fa = f(sa);
+    fb = f(sb);
+    if (fa * fb > 0) return false;
+  }
+  double t = 0.5 * (sa + sb);
+  for (int it = 0; it < 60; ++it) {
+    const Eigen::Vector2d x = e_->Position(t);
+    const double ft = x.squaredNorm() - r2;
+    if (ft == 0.0) break;
+    if ((ft < 0) == (fa < 0)) {
+      sa = t;
+      fa = ft;
+    } else {
+      sb = t;
+      fb = ft;
+    }
+    const double df = 2.0 * x.dot(e_->Tangent(t));
+    double next = df != 0.0 ? t - ft / df : 0.5 * (sa + sb);
+    if (!(next > std::min(sa, sb) && next < std::max(sa, sb))) next = 0.5 * (sa + sb);
+    const double step = std::abs(next - t);
+    t = next;
+    if (step <= 1e-15 * (1.0 + std::abs(t))) break;
+  }
+  *s = t;
+  return true;
+}
+
+std::vector<double> ElasticaRollingTable::Crossings(double radius, int max_count) const {
+  std::vector<double> out;
+  if (!valid_) return out;
+  const double r2 = radius * radius;
+  double prev_f = -r2;  // x(0) = 0
+  double prev_s = 0.0;
+  const long total = straight_ ? 1 : static_cast<long>(std::ceil(s_limit_ / h_));
+  for (long i = 1; i <= total && static_cast<int>(out.size()) < max_count; ++i) {
+    double s = i * h_;
+    Eigen::Vector2d x;
+    if (s >= s_limit_) {
+      s = s_limit_;
+      x = e_->Position(s);
+    } else {
+      x = NodePosition(i);
+    }
+    const double f = x.squaredNorm() - r2;
+    if ((f > 0) != (prev_f > 0)) {
+      double root;
+      if (Refine(radius, prev_s, s, &root) && root <= s_limit_ && root > 0) out.push_back(root);
+    }
+    prev_f = f;
+    prev_s = s;
+    if (s >= s_limit_) break;
+  }
+  return out;
+}
+
+bool ElasticaRollingTable::FindCrossing(double radius, int n, double* s) const {
+  const std::vector<double> c = Crossings(radius, n);
+  if (static_cast<int>(c.size()) < n) return false;
+  *s = c[n - 1];
+  return true;
+}
+
+}  // namespace plateball::internal

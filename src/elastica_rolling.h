@@ -1,0 +1,54 @@
+// Internal: rolling the ball along an elastica, fast, for the isoparallel shooting.
+//
+// A' = hat(e3 x x') A (section 2.1) is integrated over ONE curvature period only, with a
+// sixth-order Magnus method (three Gauss nodes, Blanes-Casas-Ros 2000) driven by the closed-form
+// tangent; the tangent is periodic, so Q(0, N T + r) = Q(0, r) P^N with P = Q(0, T) gives the
+// reorientation at any arc length. The result is exactly a rotation (products of exponentials).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "plateball/elastica.h"
+
+namespace plateball::internal {
+
+/// One Magnus step of order 6 of A' = hat(e3 x x'(s)) A from s0 to s1: returns Q(s0, s1);
+/// optionally x(s1) - x(s0) by Gauss quadrature on the same nodes.
+Eigen::Matrix3d MagnusRollingStep(const Elastica& e, double s0, double s1, Eigen::Vector2d* displacement = nullptr);
+
+/// Rolling along an elastica on [0, s_limit], from a table over one curvature period.
+class ElasticaRollingTable {
+ public:
+  /// steps_per_period >= 4 Magnus steps per period, and no step longer than max_step.
+  /// Valid() is false when the table would need more than max_total_steps steps.
+  ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
+                       int max_total_steps = 200000);
+  bool Valid() const { return valid_; }
+  int Steps() const { return steps_; }
+  /// Q(0, s) = A(s) A(0)^-1 for s in [0, s_limit].
+  Eigen::Matrix3d Rolling(double s) const;
+  /// The n-th (n >= 1) arc length s in (0, s_limit] where |x(s)| crosses `radius` (sign changes
+  /// of |x|^2 - radius^2 on the table's nodes, refined in closed form). False if fewer.
+  bool FindCrossing(double radius, int n, double* s) const;
+  /// All crossings in (0, s_limit] (node brackets, refined).
+  std::vector<double> Crossings(double radius, int max_count) const;
+
+ private:
+  void Build(int steps);
+  Eigen::Vector2d NodePosition(long global_index) const;
+  bool Refine(double radius, double sa, double sb, double* s) const;
+  const Elastica* e_;
+  double s_limit_;
+  bool valid_ = true;
+  bool straight_ = false;
+  double period_ = 0.0;
+  double h_ = 0.0;
+  int steps_ = 0;
+  Eigen::Vector2d drift_;
+  Eigen::Matrix3d monodromy_;
+  std::vector<Eigen::Matrix3d> rot_;  // Q(0, j h), j = 0..steps_
+  std::vector<Eigen::Vector2d> pos_;  // x(j h)
+};
+
+}  // namespace plateball::internal

@@ -1,0 +1,493 @@
+#include "plateball/isoparallel.h"
+
+#include <ceres/tiny_solver.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <atomic>
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "check.h"
+#include "elastica_rolling.h"
+#include "plateball/rolling.h"
+#include "plateball/so3.h"
+
+namespace plateball {
+namespace {
+
+// Accuracy of one evaluation of a candidate: Magnus steps per curvature period and longest step.
+struct Accuracy {
+  int steps_per_period;
+  double max_step;
+};
+// Search: ~1e-8 in the residual, cheap. Polish: ~1e-14 (sixth order, checked against dopri5 by
+// tests/isoparallel_test.cc).
+constexpr Accuracy kSearch{12, 0.5};
+constexpr Accuracy kPolish{160, 0.02};
+// A search run stops below kSearchStop (the search accuracy) and is polished when below
+// kSearchAccept; runs that do not get there in kSearchIterations are abandoned.
+constexpr double kSearchStop = 3e-6;
+constexpr double kSearchAccept = 1e-4;
+constexpr int kSearchIterations = 40;
+constexpr int kPolishIterations = 12;
+// Relative tolerance for "the same solution" between a search result and a polished one.
+constexpr double kSearchSameTol = 1e-4;
+// Relative tolerances for "same solution" (lengths, G, E) and for "whole number of periods".
+constexpr double kSameTol = 1e-7;
+constexpr double kWholePeriodTol = 1e-6;
+// Residual bound under which a phase-shifted path still counts as a solution (family test).
+constexpr double kFamilyTol = 1e-8;
+constexpr int kMaxCrossingsPerStart = 12;
+
+struct Context {
+  Eigen::Matrix3d target;  // A1 A0^-1
+  double radius;           // |x1 - x0|
+  double goal_angle;       // direction of x1 - x0
+  double s_limit;
+};
+
+ElasticaParameters ToParameters(PendulumRegime regime, const double* x) {
+  ElasticaParameters p;
+  p.regime = regime;
+  p.rate = x[0];
+  p.modulus = std::tanh(x[1]);
+  p.phase = x[2];
+  p.heading_w = M_PI / 2;  // pendulum frame = plane frame; B supplies the rotation freedom
+  return p;
+}
+
+struct Evaluation {
+  double s = 0.0;     // arc length at the crossing
+  double beta = 0.0;  // rotation B = RotationZ(beta)
+  Eigen::Vector3d residual = Eigen::Vector3d::Zero();
+};
+
+// The rotation trick of section 2.2 on the n-th crossing of the circle.
+bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, const Accuracy& acc, Evaluation* out,
+              double fixed_length = -1.0) {
+  if (!(std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase)) || std::abs(p.modulus) >= 1.0)
+    return false;
+  const Elastica e(p);
+  const double limit = fixed_length > 0 ? fixed_length : ctx.s_limit;
+  const internal::ElasticaRollingTable table(e, limit, acc.steps_per_period, acc.max_step);
+  if (!table.Valid()) return false;
+  double s = fixed_length;
+  if (fixed_length <= 0 && !table.FindCrossing(ctx.radius, crossing, &s)) return false;
+  const Eigen::Vector2d xs = e.Position(s);
+  if (xs.norm() == 0.0) return false;
+  const double beta = ctx.goal_angle - std::atan2(xs.y(), xs.x());
+  const Eigen::Matrix3d b = RotationZ(beta);
+  const Eigen::Matrix3d q = table.Rolling(s);
+  out->s = s;
+  out->beta = beta;
+  out->residual = LogSO3(ctx.target.transpose() * b * q * b.transpose());
+  return out->residual.allFinite();
+}
+
+struct ShootingFunctor {
+  using Scalar = double;
+  enum { NUM_RESIDUALS = 3, NUM_PARAMETERS = 3 };
+  const Context* ctx;
+  PendulumRegime regime;
+  int crossing;
+  Accuracy acc;
+  bool central = false;  // central differences (polish) or forward (search)
+  mutable long evaluations = 0;
+
+  bool Residual(const double* x, double* r) const {
+    ++evaluations;
+    Evaluation ev;
+    if (!Evaluate(*ctx, ToParameters(regime, x), crossing, acc, &ev)) return false;
+    for (int i = 0; i < 3; ++i) r[i] = ev.residual[i];
+    return true;
+  }
+
+  bool operator()(const double* x, double* r, double* jacobian) const {
+    if (!Residual(x, r)) {
+      // A trial step without the n-th crossing: NaN makes TinySolver reject the step.
+      for (int i = 0; i < 3; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
+      return jacobian == nullptr;
+    }
+    if (jacobian == nullptr) return true;
+    for (int j = 0; j < 3; ++j) {
+      const double h = 1e-6 * (1.0 + std::abs(x[j]));
+      double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]};
+      xp[j] += h;
+      xm[j] -= h;
+      double rp[3] = {0, 0, 0}, rm[3] = {0, 0, 0};
+      const bool okp = Residual(xp, rp), okm = central && Residual(xm, rm);
+      for (int i = 0; i < 3; ++i) {
+        double d;
+        if (okp && okm) d = (rp[i] - rm[i]) / (2 * h);
+        else if (okp) d = (rp[i] - r[i]) / h;
+        else if (okm) d = (r[i] - rm[i]) / h;
+        else return false;
+        jacobian[j * 3 + i] = d;  // column-major 3x3
+      }
+    }
+    return true;
+  }
+};
+
+struct LocalResult {
+  bool converged = false;
+  PendulumRegime regime = PendulumRegime::kOscillating;
+  double x[3] = {0, 0, 0};
+  int crossing = 1;
+  bool searched = false;  // the search stage got within kSearchAccept
+  Evaluation ev;
+  long evaluations = 0;
+};
+
+// Levenberg-Marquardt (ceres::TinySolver) on the three pendulum parameters.
+bool RunLm(ShootingFunctor& f, double* x, int max_iterations, double cost_threshold) {
+  Eigen::Vector3d v(x[0], x[1], x[2]);
+  double r0[3];
+  if (!f.Residual(x, r0)) return false;
+  ceres::TinySolver<ShootingFunctor> solver;
+  solver.options.max_num_iterations = max_iterations;
+  solver.options.gradient_tolerance = 0.0;
+  solver.options.parameter_tolerance = 1e-15;
+  solver.options.function_tolerance = 0.0;
+  solver.options.cost_threshold = cost_threshold;
+  solver.Solve(f, &v);
+  for (int i = 0; i < 3; ++i) x[i] = v[i];
+  return v.allFinite();
+}
+
+// Search stage (cheap accuracy): LM from a start; `searched` tells whether it got close.
+LocalResult SearchLocal(const Context& ctx, PendulumRegime regime, const double* x0, int crossing,
+                        const IsoparallelOptions& options) {
+  LocalResult out;
+  out.regime = regime;
+  out.crossing = crossing;
+  std::copy(x0, x0 + 3, out.x);
+  ShootingFunctor search{&ctx, regime, crossing, kSearch, false};
+  const bool ok = RunLm(search, out.x, std::min(options.max_iterations, kSearchIterations),
+                        0.5 * kSearchStop * kSearchStop);
+  out.evaluations += search.evaluations;
+  if (!ok) return out;
+  out.searched = Evaluate(ctx, ToParameters(regime, out.x), crossing, kSearch, &out.ev) &&
+                 out.ev.residual.norm() <= kSearchAccept;
+  return out;
+}
+
+// Polish stage: LM (in effect Newton) with the accurate tables, to options.tolerance.
+void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalResult* r) {
+  ShootingFunctor polish{&ctx, r->regime, r->crossing, kPolish, true};
+  const double thr = 0.5 * std::pow(0.1 * options.tolerance, 2);
+  RunLm(polish, r->x, std::min(options.max_iterations, kPolishIterations), thr);
+  r->evaluations += polish.evaluations;
+  r->converged = Evaluate(ctx, ToParameters(r->regime, r->x), r->crossing, kPolish, &r->ev) &&
+                 r->ev.residual.norm() <= options.tolerance;
+}
+
+// Radical-inverse (Halton) with a seeded Cranley-Patterson shift: deterministic, portable.
+double Halton(long index, int base) {
+  double f = 1.0, r = 0.0;
+  for (long i = index; i > 0; i /= base) {
+    f /= base;
+    r += f * static_cast<double>(i % base);
+  }
+  return r;
+}
+
+struct Start {
+  PendulumRegime regime;
+  double x[3];
+};
+
+std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit, double radius) {
+  std::mt19937_64 rng(options.seed);
+  auto unit = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  double shift[4];
+  for (double& v : shift) v = unit();
+  std::vector<Start> starts;
+  // Curvature periods from a tenth of the chord to twice the longest path searched.
+  const double t_min = std::max(0.25, 0.1 * radius), t_max = 2.0 * s_limit;
+  for (int i = 0; i < options.starts; ++i) {
+    double u[4];
+    const int bases[4] = {2, 3, 5, 7};
+    for (int d = 0; d < 4; ++d) u[d] = std::fmod(Halton(i + 1, bases[d]) + shift[d], 1.0);
+    Start s;
+    // u0: regime and sense (two quarters each).
+    s.regime = u[0] < 0.5 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
+    const double sign = std::fmod(2.0 * u[0], 1.0) < 0.5 ? 1.0 : -1.0;
+    const double k = 0.97 * u[2];
+    const double kk = boost::math::ellint_1(k);
+    const double period = t_min * std::pow(t_max / t_min, u[1]);
+    const double u_period = s.regime == PendulumRegime::kOscillating ? 4.0 * kk : 2.0 * kk;
+    s.x[0] = sign * u_period / period;
+    s.x[1] = std::atanh(k);
+    s.x[2] = u[3] * u_period;
+    starts.push_back(s);
+  }
+  return starts;
+}
+
+struct Candidate {
+  IsoparallelSolution solution;
+  std::vector<Eigen::Vector2d> signature;  // world positions at s = L/3, 2L/3
+};
+
+// Length, G, E and world-frame signature of a search result, without the family test.
+Candidate MakeRoughCandidate(const Context&, const IsoparallelProblem& problem, const LocalResult& r) {
+  Candidate c;
+  ElasticaParameters p = ToParameters(r.regime, r.x);
+  const Elastica e(p);
+  c.solution.length = r.ev.s;
+  c.solution.G = e.G();
+  c.solution.energy = e.Energy();
+  p.heading_w += r.ev.beta;
+  c.solution.parameters = p;
+  c.solution.start = problem.start;
+  c.signature = {c.solution.PositionAt(r.ev.s / 3), c.solution.PositionAt(2 * r.ev.s / 3)};
+  return c;
+}
+
+// Builds the reported solution from a converged local result: world frame, family test.
+Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, const LocalResult& r) {
+  Candidate c;
+  IsoparallelSolution& sol = c.solution;
+  ElasticaParameters p = ToParameters(r.regime, r.x);
+  Evaluation ev = r.ev;
+  const Elastica e(p);
+  sol.length = ev.s;
+  sol.crossing = r.crossing;
+  sol.G = e.G();
+  sol.energy = e.Energy();
+  sol.periods = e.IsStraight() ? 0.0 : ev.s / e.Period();
+  const double whole = std::round(sol.periods);
+  if (!e.IsStraight() && whole >= 1 && std::abs(sol.periods - whole) < kWholePeriodTol * whole) {
+    // Family test: shift the starting phase, keep the length (a whole number of periods).
+    const double u_period = (r.regime == PendulumRegime::kOscillating ? 2.0 : 1.0) * 2.0 *
+                            boost::math::ellint_1(std::abs(p.modulus));
+    bool family = true;
+    for (double frac : {0.31, 0.67}) {
+      ElasticaParameters q = p;
+      q.phase += frac * u_period;
+      Evaluation evq;
+      if (!Evaluate(ctx, q, 1, kPolish, &evq, ev.s) || evq.residual.norm() > kFamilyTol) family = false;
+    }
+    if (family) {
+      ElasticaParameters q = p;
+      q.phase = 0.0;  // canonical member
+      Evaluation evq;
+      if (Evaluate(ctx, q, 1, kPolish, &evq, ev.s)) {
+        sol.family = true;
+        p = q;
+        ev = evq;
+        const Elastica eq(q);
+        const internal::ElasticaRollingTable table(eq, ev.s * (1 + 1e-9), kSearch.steps_per_period, kSearch.max_step);
+        sol.crossing = std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 1000).size()));
+      }
+    }
+  }
+  sol.shooting_residual = ev.residual.norm();
+  p.heading_w += ev.beta;
+  sol.parameters = p;
+  sol.start = problem.start;
+  c.signature = {sol.PositionAt(sol.length / 3), sol.PositionAt(2 * sol.length / 3)};
+  return c;
+}
+
+// `a` is a known (polished) candidate; `b` a new one, possibly rough (family not yet tested).
+bool SameSolution(const Candidate& a, const Candidate& b, double tol) {
+  const IsoparallelSolution &x = a.solution, &y = b.solution;
+  const double scale = 1.0 + x.length;
+  if (std::abs(x.length - y.length) > tol * scale) return false;
+  if (x.family) {
+    const bool rot_x = x.parameters.regime == PendulumRegime::kRotating;
+    const bool rot_y = y.parameters.regime == PendulumRegime::kRotating;
+    if (rot_x != rot_y) return false;
+    if (rot_x && (x.parameters.rate > 0) != (y.parameters.rate > 0)) return false;
+    return std::abs(x.G - y.G) <= tol * (1 + x.G) && std::abs(x.energy - y.energy) <= tol * (1 + std::abs(x.energy));
+  }
+  if (y.family) return false;
+  for (std::size_t i = 0; i < a.signature.size(); ++i)
+    if ((a.signature[i] - b.signature[i]).norm() > tol * scale) return false;
+  return true;
+}
+
+void ValidateProblem(const IsoparallelProblem& problem) {
+  internal::RequireFinite("start", problem.start);
+  internal::RequireFinite("goal", problem.goal);
+  internal::RequireFinite("start_orientation", problem.start_orientation);
+  internal::RequireFinite("goal_orientation", problem.goal_orientation);
+  if ((problem.goal - problem.start).norm() == 0.0)
+    throw std::invalid_argument("'goal' equals 'start': the isoparallel rotation trick needs |x1 - x0| > 0");
+  if (!IsRotation(problem.start_orientation, 1e-9))
+    throw std::invalid_argument("'start_orientation' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+  if (!IsRotation(problem.goal_orientation, 1e-9))
+    throw std::invalid_argument("'goal_orientation' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+}
+
+}  // namespace
+
+std::string IsoparallelOptions::Validate() const {
+  std::ostringstream os;
+  os.precision(17);
+  if (starts < 1 || starts > 1000000) os << "'starts' = " << starts << " is invalid: must be in [1, 1000000]";
+  else if (!(std::isfinite(length_cap_factor) && length_cap_factor >= 1.0))
+    os << "'length_cap_factor' = " << length_cap_factor << " is invalid: must be finite and >= 1";
+  else if (max_iterations < 1 || max_iterations > 100000)
+    os << "'max_iterations' = " << max_iterations << " is invalid: must be in [1, 100000]";
+  else if (!(std::isfinite(tolerance) && tolerance > 0 && tolerance < 1))
+    os << "'tolerance' = " << tolerance << " is invalid: must be in (0, 1)";
+  else if (threads < 1 || threads > 256) os << "'threads' = " << threads << " is invalid: must be in [1, 256]";
+  else if (!(std::isfinite(max_length) && max_length >= 0))
+    os << "'max_length' = " << max_length << " is invalid: must be finite and >= 0 (0 = automatic)";
+  return os.str();
+}
+
+std::string ToString(IsoparallelStatus status) {
+  switch (status) {
+    case IsoparallelStatus::kSolved:
+      return "solved";
+    case IsoparallelStatus::kNoSolution:
+      return "no_solution";
+  }
+  return "unknown";
+}
+
+Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution) {
+  const Elastica e = solution.Path();
+  const PlanarVelocity v = [&e](double s) { return e.Tangent(s); };
+  return RollingReorientation(v, 0.0, solution.length);
+}
+
+IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const IsoparallelOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ValidateProblem(problem);
+  const std::string err = options.Validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+
+  IsoparallelSummary summary;
+  summary.problem = problem;
+  summary.options = options;
+  Context ctx;
+  ctx.target = problem.goal_orientation * problem.start_orientation.transpose();
+  const Eigen::Vector2d chord = problem.goal - problem.start;
+  ctx.radius = chord.norm();
+  ctx.goal_angle = std::atan2(chord.y(), chord.x());
+  // Automatic search length: the cap factor times a multiple of the chord long enough to turn
+  // the ball through any angle (a loop of length 2 pi rolls it through a full turn).
+  ctx.s_limit = options.max_length > 0 ? options.max_length
+                                       : options.length_cap_factor * std::max(2.0 * ctx.radius, ctx.radius + 2 * M_PI);
+
+  std::vector<Candidate> found;
+  double covered = 0.0;  // crossings up to this length were already searched
+  for (int pass = 0; pass < 3; ++pass) {
+    const std::vector<Start> starts = MakeStarts(options, ctx.s_limit, ctx.radius);
+    std::vector<std::vector<LocalResult>> per_start(starts.size());
+    std::atomic<int> next{0};
+    auto worker = [&]() {
+      for (int i = next++; i < static_cast<int>(starts.size()); i = next++) {
+        const Start& st = starts[i];
+        const Elastica e(ToParameters(st.regime, st.x));
+        const internal::ElasticaRollingTable table(e, ctx.s_limit, kSearch.steps_per_period, kSearch.max_step);
+        const std::vector<double> crossings = table.Crossings(ctx.radius, kMaxCrossingsPerStart);
+        for (std::size_t n = 0; n < crossings.size(); ++n) {
+          if (crossings[n] <= covered) continue;
+          per_start[i].push_back(SearchLocal(ctx, st.regime, st.x, static_cast<int>(n) + 1, options));
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < options.threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& th : pool) th.join();
+    for (const auto& results : per_start) {
+      for (LocalResult r : results) {
+        ++summary.local_solves;
+        summary.evaluations += r.evaluations;
+        if (!r.searched) continue;
+        // Polish only what is not already known (compared at the search accuracy).
+        const Candidate rough = MakeRoughCandidate(ctx, problem, r);
+        bool known = false;
+        for (const Candidate& f : found)
+          if (SameSolution(f, rough, kSearchSameTol)) known = true;
+        if (known) {
+          ++summary.converged_solves;
+          continue;
+        }
+        const long before = r.evaluations;
+        PolishLocal(ctx, options, &r);
+        summary.evaluations += r.evaluations - before;
+        if (!r.converged) continue;
+        ++summary.converged_solves;
+        Candidate c = MakeCandidate(ctx, problem, r);
+        bool dup = false;
+        for (const Candidate& f : found)
+          if (SameSolution(f, c, kSameTol)) dup = true;
+        if (!dup) found.push_back(c);
+      }
+    }
+    covered = ctx.s_limit;
+    if (found.empty()) {
+      if (options.max_length > 0) break;
+      ctx.s_limit *= 2.0;
+      continue;
+    }
+    double shortest = std::numeric_limits<double>::infinity();
+    for (const Candidate& c : found) shortest = std::min(shortest, c.solution.length);
+    const double needed = options.length_cap_factor * shortest;
+    if (needed <= ctx.s_limit * (1 + 1e-12)) break;
+    ctx.s_limit = needed;
+  }
+  summary.searched_length = ctx.s_limit;
+
+  std::sort(found.begin(), found.end(),
+            [](const Candidate& a, const Candidate& b) { return a.solution.length < b.solution.length; });
+  if (!found.empty()) {
+    const double cap = options.length_cap_factor * found.front().solution.length * (1 + 1e-12);
+    for (const Candidate& c : found) {
+      if (c.solution.length > cap) break;
+      IsoparallelSolution sol = c.solution;
+      const Eigen::Matrix3d r = VerifyRolling(sol);
+      sol.orientation_residual = LogSO3(ctx.target.transpose() * r).norm();
+      sol.orientation_error = OperatorNormDistance(problem.goal_orientation, r * problem.start_orientation);
+      sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
+      summary.solutions.push_back(sol);
+    }
+  }
+  summary.status = summary.solutions.empty() ? IsoparallelStatus::kNoSolution : IsoparallelStatus::kSolved;
+  summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+std::string IsoparallelSummary::BriefReport() const {
+  std::ostringstream os;
+  os << "Isoparallel: " << ToString(status) << ", " << solutions.size() << " solution(s)";
+  if (!solutions.empty()) {
+    os << std::setprecision(10) << ", shortest length " << solutions.front().length << std::setprecision(3)
+       << ", verified residual " << solutions.front().orientation_residual;
+  }
+  os << std::setprecision(4) << ", " << local_solves << " local solves, " << time_seconds << " s";
+  return os.str();
+}
+
+std::string IsoparallelSummary::FullReport() const {
+  std::ostringstream os;
+  os << BriefReport() << "\n";
+  os << "  start (" << problem.start.transpose() << "), goal (" << problem.goal.transpose() << "), starts "
+     << options.starts << ", seed " << options.seed << ", searched length " << searched_length << "\n";
+  for (std::size_t i = 0; i < solutions.size(); ++i) {
+    const IsoparallelSolution& s = solutions[i];
+    os << std::setprecision(10) << "  #" << i + 1 << " length " << s.length << " " << ToString(s.parameters.regime)
+       << " G " << s.G << " E " << s.energy << " periods " << s.periods << (s.family ? " family" : "")
+       << std::setprecision(3) << " crossing " << s.crossing << " residual " << s.orientation_residual
+       << " endpoint " << s.endpoint_error << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace plateball

@@ -1,0 +1,10 @@
+// Internal: fast Jacobi elliptic functions for the closed-form elastica (elastica.h).
+#pragma once
+
+namespace plateball::internal {
+
+/// sn(u, k), cn(u, k), dn(u, k) for 0 <= k < 1 (descending Landen / AGM; ~1e-15 accurate for
+/// |u| up to a few periods; callers reduce u modulo 4K first).
+void JacobiSnCnDn(double u, double k, double* sn, double* cn, double* dn);
+
+}  // namespace plateball::internal

@@ -1,0 +1,200 @@
+// The isoparallel solver (section 2.2): rolling tables against dopri5, the Figure 7 problem,
+// a non-trivial target, a constructed problem with a known admissible path, the straight-line
+// lower bound, families, determinism and input errors.
+#include "plateball/isoparallel.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "elastica_rolling.h"
+#include "plateball/elastica.h"
+#include "plateball/rolling.h"
+#include "plateball/so3.h"
+
+using namespace plateball;
+
+namespace {
+
+// dopri5 at 1e-12 over lengths ~10-30 is accurate to ~1e-11; the solver's own tolerance is 1e-12.
+constexpr double kVerifiedTol = 1e-9;
+// Lengths agree to the shooting tolerance propagated through the crossing (~1e-12 / slope).
+constexpr double kLengthTol = 1e-7;
+
+IsoparallelProblem Figure7() {
+  IsoparallelProblem p;
+  p.goal = {3.0, 3.0};
+  return p;
+}
+
+Eigen::Matrix3d ReferenceRolling(const Elastica& e, double length) {
+  IntegrationOptions o;
+  o.absolute_tolerance = 1e-14;
+  o.relative_tolerance = 1e-14;
+  return RollingReorientation([&e](double s) { return e.Tangent(s); }, 0.0, length, {}, o);
+}
+
+}  // namespace
+
+TEST(ElasticaRolling, MagnusTableMatchesDopriAndIsSixthOrder) {
+  for (const auto& [G, k0] : {std::pair{0.24, 0.3}, std::pair{1.47, 1.5}, std::pair{0.14, 1.2}}) {
+    const Elastica e = Elastica::FromInitialState(G, 0.4, 0.1, k0);
+    const double length = 2.3 * e.Period();
+    const Eigen::Matrix3d ref = ReferenceRolling(e, length);
+    const internal::ElasticaRollingTable coarse(e, length, 8, 0.25), fine(e, length, 8, 0.125);
+    const double err_coarse = RotationAngle(coarse.Rolling(length), ref);
+    const double err_fine = RotationAngle(fine.Rolling(length), ref);
+    EXPECT_GT(err_coarse / err_fine, 40.0) << "order 6 gives 64";
+    const internal::ElasticaRollingTable polish(e, length, 160, 0.02);
+    // The solver's polish accuracy must be below its 1e-12 tolerance.
+    EXPECT_LT(RotationAngle(polish.Rolling(length), ref), 1e-12);
+  }
+}
+
+TEST(ElasticaRolling, CrossingsLieOnTheCircle) {
+  const Elastica e = Elastica::FromInitialState(0.6, 0.2, 0.9, 0.4);
+  const internal::ElasticaRollingTable table(e, 40.0, 12, 0.5);
+  const auto crossings = table.Crossings(2.5, 100);
+  ASSERT_GE(crossings.size(), 2u);
+  for (double s : crossings) EXPECT_NEAR(e.Position(s).norm(), 2.5, 1e-12);
+  // Independent count: sign changes of |x| - 2.5 on a fine grid of the closed form.
+  int changes = 0;
+  double prev = -2.5;
+  for (int i = 1; i <= 40000; ++i) {
+    const double f = e.Position(i * 1e-3).norm() - 2.5;
+    if ((f > 0) != (prev > 0)) ++changes;
+    prev = f;
+  }
+  EXPECT_EQ(static_cast<int>(crossings.size()), changes);
+}
+
+TEST(Isoparallel, Figure7ShortestIsAVerifiedFamily) {
+  const IsoparallelSummary s = SolveIsoparallel(Figure7());
+  ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
+  const IsoparallelSolution& best = s.Shortest();
+  EXPECT_LT(best.orientation_residual, kVerifiedTol);
+  EXPECT_LT(best.endpoint_error, kVerifiedTol);
+  EXPECT_LT(best.shooting_residual, 1e-12);
+  EXPECT_TRUE(best.family) << s.FullReport();
+  // Every reported solution is verified, distinct, sorted and within the length cap.
+  for (std::size_t i = 0; i < s.solutions.size(); ++i) {
+    EXPECT_LT(s.solutions[i].orientation_residual, kVerifiedTol) << i;
+    EXPECT_LT(s.solutions[i].endpoint_error, kVerifiedTol) << i;
+    EXPECT_LE(s.solutions[i].length, 3.0 * best.length * (1 + 1e-12));
+    if (i > 0) {
+      EXPECT_GE(s.solutions[i].length, s.solutions[i - 1].length);
+    }
+  }
+  // The family: the same pendulum orbit started at other phases is still a solution of the same
+  // length, checked with dopri5 only (no solver code): rotate the plane so that the end lands on
+  // the goal and compare the reorientation with the identity.
+  const double u_period = 2.0 * M_PI;  // any shift works for a family; sample a few
+  for (double shift : {0.4, 1.7, 3.3}) {
+    ElasticaParameters p = best.parameters;
+    p.phase += shift * u_period / (2 * M_PI);
+    const Elastica e(p);
+    EXPECT_NEAR(e.Position(best.length).norm(), std::sqrt(18.0), 1e-9);
+    const Eigen::Matrix3d r = ReferenceRolling(e, best.length);
+    // Conjugation by the plane rotation B keeps the identity the identity.
+    EXPECT_LT(RotationAngle(r, Eigen::Matrix3d::Identity()), kVerifiedTol) << shift;
+  }
+}
+
+TEST(Isoparallel, Figure7DenserIndependentSearchFindsNothingShorter) {
+  const IsoparallelSummary s = SolveIsoparallel(Figure7());
+  ASSERT_TRUE(s.IsSolutionUsable());
+  const double shortest = s.Shortest().length;
+  // Eight times the starts, another seed, every path up to the shortest length: nothing shorter.
+  IsoparallelOptions dense;
+  dense.starts = 512;
+  dense.seed = 987654321;
+  dense.max_length = shortest * (1 + 1e-6);
+  dense.length_cap_factor = 1.0;
+  const IsoparallelSummary d = SolveIsoparallel(Figure7(), dense);
+  ASSERT_TRUE(d.IsSolutionUsable()) << "the dense search must find the shortest again";
+  EXPECT_NEAR(d.Shortest().length, shortest, kLengthTol);
+  for (const IsoparallelSolution& sol : d.solutions) EXPECT_GE(sol.length, shortest - kLengthTol);
+}
+
+TEST(Isoparallel, NonTrivialTargetIsSolvedAndVerified) {
+  IsoparallelProblem p;
+  p.start = {0.5, -1.0};
+  p.goal = {2.5, 0.0};
+  p.start_orientation = ExpSO3({0.1, 0.2, -0.3});
+  p.goal_orientation = ExpSO3({0.7, -0.4, 1.1}) * p.start_orientation;
+  const IsoparallelSummary s = SolveIsoparallel(p);
+  ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
+  for (const IsoparallelSolution& sol : s.solutions) {
+    EXPECT_LT(sol.orientation_residual, kVerifiedTol);
+    EXPECT_LT(sol.endpoint_error, kVerifiedTol);
+    EXPECT_GE(sol.length, (p.goal - p.start).norm());
+    // Independent: roll along the path with dopri5 and compare the final orientation.
+    const Eigen::Matrix3d a1 = ReferenceRolling(sol.Path(), sol.length) * p.start_orientation;
+    EXPECT_LT(OperatorNormDistance(a1, p.goal_orientation), kVerifiedTol);
+  }
+}
+
+TEST(Isoparallel, ConstructedProblemFindsThePathOrAShorterOne) {
+  // Pose the problem from a known elastica: its end point and its dopri5 reorientation. That path
+  // is admissible, so the shortest solution can be no longer.
+  const Elastica e = Elastica::FromInitialState(0.8, 0.3, 1.0, 0.9);
+  const double length = 4.1;
+  IsoparallelProblem p;
+  p.goal = e.Position(length);
+  p.goal_orientation = ReferenceRolling(e, length);
+  const IsoparallelSummary s = SolveIsoparallel(p);
+  ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
+  EXPECT_LE(s.Shortest().length, length + kLengthTol) << s.FullReport();
+  EXPECT_LT(s.Shortest().orientation_residual, kVerifiedTol);
+}
+
+TEST(Isoparallel, StraightSegmentTargetGivesTheSegment) {
+  // Rolling along the segment gives exp(hat(e3 x d)); no path is shorter than the chord.
+  IsoparallelProblem p;
+  p.goal = {1.2, -0.7};
+  p.goal_orientation = RollAlongSegment(p.start, p.goal);
+  const IsoparallelSummary s = SolveIsoparallel(p);
+  ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
+  EXPECT_NEAR(s.Shortest().length, p.goal.norm(), kLengthTol);
+}
+
+TEST(Isoparallel, SameSeedGivesIdenticalResultsWithAnyThreadCount) {
+  IsoparallelOptions o;
+  o.starts = 24;
+  const IsoparallelSummary a = SolveIsoparallel(Figure7(), o);
+  o.threads = 2;
+  const IsoparallelSummary b = SolveIsoparallel(Figure7(), o);
+  ASSERT_EQ(a.solutions.size(), b.solutions.size());
+  for (std::size_t i = 0; i < a.solutions.size(); ++i) {
+    EXPECT_EQ(a.solutions[i].length, b.solutions[i].length);
+    EXPECT_EQ(a.solutions[i].parameters.rate, b.solutions[i].parameters.rate);
+    EXPECT_EQ(a.solutions[i].parameters.phase, b.solutions[i].parameters.phase);
+  }
+}
+
+TEST(Isoparallel, InvalidInputNamesTheField) {
+  IsoparallelProblem p;
+  auto message = [](const IsoparallelProblem& q, const IsoparallelOptions& o) {
+    try {
+      SolveIsoparallel(q, o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no exception");
+  };
+  EXPECT_NE(message(p, {}).find("goal"), std::string::npos);  // start == goal
+  p.goal = {1.0, std::nan("")};
+  EXPECT_NE(message(p, {}).find("goal"), std::string::npos);
+  p.goal = {1.0, 1.0};
+  p.goal_orientation(0, 0) = 2.0;
+  EXPECT_NE(message(p, {}).find("goal_orientation"), std::string::npos);
+  p.goal_orientation.setIdentity();
+  IsoparallelOptions o;
+  o.starts = 0;
+  EXPECT_NE(message(p, o).find("starts"), std::string::npos);
+  o.starts = 8;
+  o.length_cap_factor = 0.5;
+  EXPECT_NE(message(p, o).find("length_cap_factor"), std::string::npos);
+}
