@@ -10,6 +10,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <mutex>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -389,6 +390,8 @@ IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const Iso
     const std::vector<Start> starts = MakeStarts(options, ctx.s_limit, ctx.radius);
     std::vector<std::vector<LocalResult>> per_start(starts.size());
     std::atomic<int> next{0};
+    std::mutex progress_mutex;
+    int starts_done = 0;
     auto worker = [&]() {
       for (int i = next++; i < static_cast<int>(starts.size()); i = next++) {
         const Start& st = starts[i];
@@ -398,6 +401,10 @@ IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const Iso
         for (std::size_t n = 0; n < crossings.size(); ++n) {
           if (crossings[n] <= covered) continue;
           per_start[i].push_back(SearchLocal(ctx, st.regime, st.x, static_cast<int>(n) + 1, options));
+        }
+        if (options.progress) {
+          std::lock_guard<std::mutex> lock(progress_mutex);
+          options.progress(++starts_done, static_cast<int>(starts.size()));
         }
       }
     };

@@ -47,6 +47,7 @@ std::string ToString(CurveKind kind) {
     case CurveKind::kLemniscate: return "lemniscate";
     case CurveKind::kSine: return "sine";
     case CurveKind::kSamples: return "samples";
+    case CurveKind::kCustom: return "custom";
   }
   return "unknown";
 }
@@ -139,6 +140,23 @@ SmoothCurve SmoothCurve::Samples(const std::vector<Eigen::Vector2d>& points) {
   return c;
 }
 
+SmoothCurve SmoothCurve::Custom(CurveFunction value, CurveFunction derivative, CurveFunction second_derivative,
+                                double tau_begin, double tau_end) {
+  RequireFinite("tau_begin", tau_begin);
+  RequireFinite("tau_end", tau_end);
+  if (!(tau_end > tau_begin)) ThrowInvalid("tau_end", tau_end, "must be > tau_begin");
+  if (!value || !derivative || !second_derivative)
+    throw std::invalid_argument("custom curve: value, derivative and second_derivative must all be given");
+  SmoothCurve c;
+  c.kind_ = CurveKind::kCustom;
+  c.custom_ = std::make_shared<const CustomFunctions>(
+      CustomFunctions{std::move(value), std::move(derivative), std::move(second_derivative)});
+  c.tau_begin_ = tau_begin;
+  c.tau_end_ = tau_end;
+  c.CheckSpeed("speed");
+  return c;
+}
+
 Eigen::Vector2d SmoothCurve::RawValue(double tau) const {
   switch (kind_) {
     case CurveKind::kLine: return origin_ + tau * vec_;
@@ -150,6 +168,7 @@ Eigen::Vector2d SmoothCurve::RawValue(double tau) const {
     }
     case CurveKind::kSine: return origin_ + rot_ * Eigen::Vector2d(tau, scale_ * std::sin(wavenumber_ * tau));
     case CurveKind::kSamples: return spline_->Value(tau);
+    case CurveKind::kCustom: return custom_->value(tau);
   }
   return origin_;
 }
@@ -169,6 +188,7 @@ Eigen::Vector2d SmoothCurve::RawDerivative(double tau) const {
     case CurveKind::kSine:
       return rot_ * Eigen::Vector2d(1.0, scale_ * wavenumber_ * std::cos(wavenumber_ * tau));
     case CurveKind::kSamples: return spline_->Derivative(tau);
+    case CurveKind::kCustom: return custom_->derivative(tau);
   }
   return vec_;
 }
@@ -188,6 +208,7 @@ Eigen::Vector2d SmoothCurve::RawSecondDerivative(double tau) const {
     case CurveKind::kSine:
       return rot_ * Eigen::Vector2d(0.0, -scale_ * wavenumber_ * wavenumber_ * std::sin(wavenumber_ * tau));
     case CurveKind::kSamples: return spline_->SecondDerivative(tau);
+    case CurveKind::kCustom: return custom_->second_derivative(tau);
   }
   return Eigen::Vector2d::Zero();
 }

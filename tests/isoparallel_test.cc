@@ -10,7 +10,11 @@
 #include <string>
 
 #include "elastica_rolling.h"
+#include "support/test_support.h"
 #include "plateball/elastica.h"
+#include "plateball/isoparallel_plan.h"
+#include "plateball/path.h"
+#include "plateball/problem_io.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
 
@@ -197,4 +201,67 @@ TEST(Isoparallel, InvalidInputNamesTheField) {
   o.starts = 8;
   o.length_cap_factor = 0.5;
   EXPECT_NE(message(p, o).find("length_cap_factor"), std::string::npos);
+}
+
+TEST(IsoparallelPlan, CustomCurveAgreesWithTheAnalyticCircle) {
+  const SmoothCurve circle = SmoothCurve::Circle({1.0, 2.0}, 1.5, 0.2, 2.9);
+  const SmoothCurve custom = SmoothCurve::Custom([&](double t) { return circle.Value(t); },
+                                                 [&](double t) { return circle.Derivative(t); },
+                                                 [&](double t) { return circle.SecondDerivative(t); }, 0.2, 2.9);
+  EXPECT_EQ(custom.kind(), CurveKind::kCustom);
+  EXPECT_NEAR(custom.Length(), 1.5 * 2.7, 1e-12);  // radius times angle
+  EXPECT_THROW(SmoothCurve::Custom(nullptr, nullptr, nullptr, 0.0, 1.0), std::invalid_argument);
+}
+
+TEST(IsoparallelPlan, Figure7ImpulsiveErrorIsWithinBoundAndShrinksWithMoreImpulses) {
+  const IsoparallelSummary s = SolveIsoparallel(Figure7());
+  ASSERT_TRUE(s.IsSolutionUsable());
+  const Path path = OptimalPath(s.Shortest());
+  EXPECT_NEAR(path.Length(), s.Shortest().length, 1e-9);
+  EXPECT_LT((path.EndPoint() - Figure7().goal).norm(), 1e-9);
+  const BallModel model = BallModel::FromLambda(2.0);
+  const PlanSummary coarse = PlanOptimalPath(model, 0.0, 1.0, Eigen::Matrix3d::Identity(), s.Shortest(), 12);
+  const PlanSummary fine = PlanOptimalPath(model, 0.0, 1.0, Eigen::Matrix3d::Identity(), s.Shortest(), 48);
+  ASSERT_TRUE(coarse.IsSolutionUsable()) << coarse.message;
+  ASSERT_TRUE(fine.IsSolutionUsable()) << fine.message;
+  // The planner's reference (rolling along the optimal path) is the goal orientation, the identity.
+  EXPECT_LT(OperatorNormDistance(coarse.A_planned, Eigen::Matrix3d::Identity()), 1e-9);
+  const double e12 = OperatorNormDistance(Eigen::Matrix3d::Identity(), coarse.A_impulsive);
+  const double e48 = OperatorNormDistance(Eigen::Matrix3d::Identity(), fine.A_impulsive);
+  EXPECT_LE(e12, coarse.bounds.a_posteriori);
+  EXPECT_LE(e48, fine.bounds.a_posteriori);
+  EXPECT_LE(e12, coarse.bounds.theorem_2_6);
+  // Theorem 2.6: O(n^-2); four times the impulses must at least quarter the error.
+  EXPECT_LT(e48, e12 / 4.0) << e12 << " " << e48;
+}
+
+TEST(IsoparallelPlan, InitialAnglesComeFromTheStartOrientation) {
+  const AngleState a = InitialAnglesFromOrientation(Eigen::Matrix3d::Identity(), 0.3);
+  EXPECT_EQ(a.theta, 0.0);  // the pole
+  EXPECT_EQ(a.psi, 0.3);
+  const AngleState b = InitialAnglesFromOrientation(ExpSO3({M_PI / 2, 0.0, 0.0}), 0.0);  // z = (0, -1, 0)
+  EXPECT_NEAR(b.theta, M_PI / 2, 1e-15);
+  EXPECT_NEAR(b.phi, -M_PI / 2, 1e-15);
+}
+
+TEST(Isoparallel, ProblemFilesSolveToTheirExpectedValues) {
+  for (const char* name : {"problems/figure7.json", "problems/isoparallel_rotation.json"}) {
+    const Problem p = ReadProblemFile(plateball::testing::SourcePath(name));
+    ASSERT_TRUE(p.isoparallel.has_value()) << name;
+    IsoparallelProblem q;
+    q.start = p.isoparallel->start;
+    q.goal = p.isoparallel->goal;
+    q.start_orientation = p.isoparallel->start_orientation;
+    q.goal_orientation = p.isoparallel->goal_orientation;
+    IsoparallelOptions o;
+    o.starts = p.isoparallel->solver.starts;
+    o.seed = p.seed;
+    const IsoparallelSummary s = SolveIsoparallel(q, o);
+    ASSERT_TRUE(s.IsSolutionUsable()) << name;
+    EXPECT_LT(s.Shortest().orientation_residual, kVerifiedTol) << name;
+    if (p.expected.count("shortest_length")) {
+      const ExpectedValue& e = p.expected.at("shortest_length");
+      EXPECT_NEAR(s.Shortest().length, e.value, e.tolerance) << name;
+    }
+  }
 }

@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct IsoparallelOptions {
   std::uint64_t seed = 1;          ///< scrambles the start sequence
   /// Longest path searched before a shortest one is known; 0 = automatic (see README).
   double max_length = 0.0;
+  /// Called (from a worker thread, serialised) after each start with (starts done, starts in
+  /// this pass); for a tool's progress line. The library never prints.
+  std::function<void(int, int)> progress;
   /// Empty when valid, else a message naming the field, the value and the bound.
   std::string Validate() const;
 };

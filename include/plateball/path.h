@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,7 +15,7 @@ namespace plateball {
 
 class CubicSpline2d;
 
-enum class CurveKind { kLine, kCircle, kEllipse, kLemniscate, kSine, kSamples };
+enum class CurveKind { kLine, kCircle, kEllipse, kLemniscate, kSine, kSamples, kCustom };
 std::string ToString(CurveKind kind);
 
 /// One smooth piece p(tau), tau in [Begin(), End()], with exact first and second derivatives.
@@ -41,6 +42,12 @@ class SmoothCurve {
                           double wavelength);
   /// Natural C^2 cubic spline through the samples, tau = cumulative chord length.
   static SmoothCurve Samples(const std::vector<Eigen::Vector2d>& points);
+  /// Any analytic curve given by its value and first and second derivatives on [tau_begin, tau_end]
+  /// (e.g. an optimal path of the isoparallel problem, elastica.h). The functions must be finite
+  /// there; the speed check applies.
+  using CurveFunction = std::function<Eigen::Vector2d(double)>;
+  static SmoothCurve Custom(CurveFunction value, CurveFunction derivative, CurveFunction second_derivative,
+                            double tau_begin, double tau_end);
 
   CurveKind kind() const { return kind_; }
   bool reversed() const { return reversed_; }
@@ -72,6 +79,10 @@ class SmoothCurve {
   double tau_begin_ = 0.0;
   double tau_end_ = 1.0;
   std::shared_ptr<const CubicSpline2d> spline_;
+  struct CustomFunctions {
+    CurveFunction value, derivative, second_derivative;
+  };
+  std::shared_ptr<const CustomFunctions> custom_;
 };
 
 /// A piecewise-smooth planned path: consecutive pieces share their end points (to 1e-9 of the

@@ -1,0 +1,55 @@
+// T4 of the standard benchmarks (../shared/design/benchmarks.md): the isoparallel problem of
+// Figure 7, from (0, 0) to (3, 3) with final reorientation equal to the identity.
+// Figures (counters): the length of the shortest path found, the number of distinct solutions
+// (all up to 3x the shortest), the final orientation residual of the shortest one (verified by
+// RollingReorientation, dopri5 at 1e-12, independent of the solver) and the wall time of the
+// whole solve (the benchmark's time), with the seed and the number of starts stated.
+// Tolerances: shooting residual 1e-12 (options.tolerance).
+#include <benchmark/benchmark.h>
+
+#include "plateball/isoparallel.h"
+
+namespace {
+
+using namespace plateball;
+
+void BM_T4IsoparallelFigure7(benchmark::State& state) {
+  IsoparallelProblem problem;
+  problem.goal = {3.0, 3.0};
+  IsoparallelOptions options;
+  options.starts = static_cast<int>(state.range(0));
+  options.seed = 1;
+  options.threads = static_cast<int>(state.range(1));
+  IsoparallelSummary summary;
+  for (auto _ : state) {
+    summary = SolveIsoparallel(problem, options);
+    benchmark::DoNotOptimize(summary.solutions.data());
+  }
+  state.counters["starts"] = options.starts;
+  state.counters["seed"] = static_cast<double>(options.seed);
+  state.counters["threads"] = options.threads;
+  state.counters["solutions"] = static_cast<double>(summary.solutions.size());
+  state.counters["local_solves"] = summary.local_solves;
+  if (summary.IsSolutionUsable()) {
+    state.counters["shortest_length"] = summary.Shortest().length;
+    state.counters["shortest_residual"] = summary.Shortest().orientation_residual;
+    state.counters["shortest_family"] = summary.Shortest().family ? 1 : 0;
+    double worst = 0.0;
+    for (const auto& s : summary.solutions) worst = std::max(worst, s.orientation_residual);
+    state.counters["worst_residual"] = worst;
+  }
+}
+
+}  // namespace
+
+BENCHMARK(BM_T4IsoparallelFigure7)
+    ->ArgNames({"starts", "threads"})
+    ->Args({16, 1})
+    ->Args({64, 1})
+    ->Args({64, 2})
+    ->Args({256, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+BENCHMARK_MAIN();

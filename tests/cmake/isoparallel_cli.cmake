@@ -1,0 +1,14 @@
+# Command-line tests of isoparallel_solve: exit codes, the built-in Figure 7 problem, byte-identical
+# plan files for the same problem and seed, SVG output.
+if(TARGET isoparallel_solve)
+  add_test(NAME IsoparallelCli.BuiltInFigure7Succeeds COMMAND isoparallel_solve)
+  set_tests_properties(IsoparallelCli.BuiltInFigure7Succeeds PROPERTIES
+    PASS_REGULAR_EXPRESSION "shortest length: 9\\.4127724")
+  add_test(NAME IsoparallelCli.HelpExitsZero COMMAND isoparallel_solve --help)
+  add_test(NAME IsoparallelCli.UnknownOptionIsUsageError COMMAND isoparallel_solve --no-such-option)
+  set_tests_properties(IsoparallelCli.UnknownOptionIsUsageError PROPERTIES WILL_FAIL TRUE)
+  add_test(NAME IsoparallelCli.ExitCodes
+    COMMAND ${CMAKE_COMMAND} -DTOOL=$<TARGET_FILE:isoparallel_solve> -DSRC=${PROJECT_SOURCE_DIR}
+            -DWORK=${CMAKE_CURRENT_BINARY_DIR}/isoparallel_cli
+            -P ${PROJECT_SOURCE_DIR}/tests/cmake/isoparallel_cli_check.cmake.in)
+endif()
