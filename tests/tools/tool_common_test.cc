@@ -1,0 +1,141 @@
+// The shared helpers of the command-line tools (tools/common): exit-code mapping, JSON output,
+// option parsing and problem overrides.
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstring>
+#include <iterator>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/errors.h"
+#include "common/exit_codes.h"
+#include "common/json_output.h"
+#include "common/problem_options.h"
+#include "plateball/problem_io.h"
+#include "plateball/so3.h"
+
+using namespace plateball;
+using namespace plateball::tools;
+
+namespace {
+int CodeFor(const std::function<void()>& thrower, std::string* message = nullptr) {
+  std::ostringstream err;
+  const int code = RunWithExitCodes("tool", [&] {
+    thrower();
+    return kExitSuccess;
+  }, err);
+  if (message) *message = err.str();
+  return code;
+}
+}  // namespace
+
+TEST(ToolErrors, ExceptionsMapToTheDocumentedExitCodes) {
+  std::string message;
+  EXPECT_EQ(CodeFor([] { throw std::invalid_argument("f.json: initial.mu: value -1: must be > 0"); }, &message),
+            kExitBadInput);
+  EXPECT_EQ(message, "tool: invalid input: f.json: initial.mu: value -1: must be > 0\n");
+  EXPECT_EQ(CodeFor([] { throw ProblemFileReadError("x.json: cannot open"); }), kExitIoError);
+  EXPECT_EQ(CodeFor([] { throw IoError("out.json: cannot open the file for writing"); }), kExitIoError);
+  EXPECT_EQ(CodeFor([] { throw std::runtime_error("integration exceeded max_steps"); }), kExitNoSolution);
+  EXPECT_EQ(CodeFor([] { throw std::logic_error("bug"); }), kExitInternalError);
+  EXPECT_EQ(CodeFor([] { throw 42; }), kExitInternalError);
+  EXPECT_EQ(CodeFor([] {}), kExitSuccess);
+}
+
+TEST(JsonOutput, DoublesReadBackBitExactly) {
+  const double values[] = {0.1, 1.0 / 3.0, M_PI, -2.5e-300, std::numeric_limits<double>::denorm_min(),
+                           std::numeric_limits<double>::max(), -0.0, 123456789.123456789};
+  Json doc = Json::array();
+  for (double v : values) doc.push_back(v);
+  const nlohmann::json back = nlohmann::json::parse(DumpJson(Json{{"v", doc}}));
+  for (std::size_t i = 0; i < std::size(values); ++i) {
+    const double got = back["v"][i].get<double>();
+    EXPECT_EQ(std::memcmp(&got, &values[i], sizeof got), 0) << i << ": " << got;
+  }
+}
+
+TEST(JsonOutput, NonFiniteNumbersAreRejectedNamingThePath) {
+  Json doc{{"samples", Json::array({Json{{"t", 0.0}}, Json{{"t", std::nan("")}}})}};
+  try {
+    DumpJson(doc);
+    ADD_FAILURE() << "no error";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("samples[1].t"), std::string::npos) << e.what();
+  }
+}
+
+TEST(JsonOutput, VectorsAndMatricesAreOneLineAndStillJson) {
+  Json doc{{"x", ToJson(Eigen::Vector2d(1.5, -2))}, {"A", ToJson(Eigen::Matrix3d::Identity().eval())}};
+  const std::string text = DumpJson(doc);
+  EXPECT_NE(text.find("\"x\": [1.5, -2.0]"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"A\": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]"), std::string::npos) << text;
+  EXPECT_EQ(nlohmann::json::parse(text)["A"][2][2].get<double>(), 1.0);
+}
+
+TEST(JsonOutput, RotationHasVectorAngleAndAxis) {
+  // Rotation by 0.5 about e2: rotation vector (0, 0.5, 0).
+  const Json r = RotationToJson(ExpSO3(Eigen::Vector3d(0, 0.5, 0)));
+  EXPECT_NEAR(r["angle"].get<double>(), 0.5, 1e-15);
+  EXPECT_NEAR(r["axis"][1].get<double>(), 1.0, 1e-15);
+  const Json identity = RotationToJson(Eigen::Matrix3d::Identity());
+  EXPECT_EQ(identity["angle"].get<double>(), 0.0);
+  EXPECT_FALSE(identity.contains("axis"));  // no axis for the identity
+}
+
+TEST(ToolOptions, PointsAcceptSemicolonsAndSpaces) {
+  const auto a = ParsePointsOption("--points", "0,0;1.5,-2; 3,4e-1", 2);
+  const auto b = ParsePointsOption("--points", "0,0 1.5,-2\t3,4e-1;", 2);
+  ASSERT_EQ(a.size(), 3u);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a[2], Eigen::Vector2d(3, 0.4));
+}
+
+TEST(ToolOptions, BadValuesNameTheOptionAndValue) {
+  struct Case {
+    std::function<void()> call;
+    const char* message;
+  };
+  const Case cases[] = {
+      {[] { ParsePointsOption("--points", "0,0", 2); }, "command line: --points: value \"0,0\": must give at least 2"},
+      {[] { ParsePointsOption("--points", "0,0;1,x", 2); }, "command line: --points[1]: value \"1,x\": must be two"},
+      {[] { ParsePointOption("--x0", "1,inf"); }, "command line: --x0: value \"1,inf\": must be two finite numbers"},
+      {[] { ParsePointOption("--x0", "1e999,0"); }, "command line: --x0: value \"1e999,0\""},
+      {[] { RequirePositiveOption("--mu", -1); }, "command line: --mu: value -1: must be a finite number > 0"},
+      {[] { RequireFiniteOption("--theta", INFINITY); }, "command line: --theta: value inf: must be a finite number"},
+      {[] { RequireIntegerInRange("--samples", 1, 2, 10); }, "command line: --samples: value 1: must be >= 2"},
+  };
+  for (const Case& c : cases) {
+    try {
+      c.call();
+      ADD_FAILURE() << "no error for " << c.message;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(c.message, 0), 0u) << e.what();
+    }
+  }
+}
+
+TEST(ToolOptions, OverridesApplyOnTopOfTheDefaultsAndAreValidated) {
+  CLI::App app;
+  ProblemOptions options;
+  options.Add(app);
+  app.parse("--lambda 2 --mu 4 --x0 1,-2 --seed 18446744073709551615 --orientation "
+            "{\"axis_angle\":{\"axis\":[0,0,1],\"angle\":0.5}}",
+            false);
+  const Problem p = options.Load();
+  EXPECT_EQ(p.model.lambda(), 2.0);
+  EXPECT_EQ(p.mu, 4.0);
+  EXPECT_EQ(p.x0, Eigen::Vector2d(1, -2));
+  EXPECT_EQ(p.seed, 18446744073709551615ull);
+  EXPECT_LT((p.A0 - ExpSO3(Eigen::Vector3d(0, 0, 0.5))).norm(), 1e-15);
+  EXPECT_EQ(p.initial_angles.phi, Problem{}.initial_angles.phi);  // not overridden
+
+  CLI::App app2;
+  ProblemOptions bad;
+  bad.Add(app2);
+  app2.parse("--atol 1e-16 --rtol 1e-16", false);
+  // Each tolerance alone is in (0, 1); the combination is rejected like in a file.
+  EXPECT_THROW(bad.Load(), std::invalid_argument);
+}
