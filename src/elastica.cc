@@ -113,7 +113,13 @@ Elastica::Elastica(const ElasticaParameters& parameters) : p_(parameters) {
   }
   cos_w_ = std::sin(p_.heading_w);   // cos(g_W - pi/2)
   sin_w_ = -std::cos(p_.heading_w);  // sin(g_W - pi/2)
-  if (std::isfinite(period_)) drift_ = Position(period_);
+  if (std::isfinite(period_)) {
+    // Over one period u advances by 4K (oscillating) or 2K (rotating); int sn^2 by 4D(k) or
+    // 2D(k); the transverse coordinate returns. (Position(Period()) agrees: elastica_test.)
+    const double x = p_.regime == PendulumRegime::kOscillating ? period_ - 8.0 * k_ * k_ * dk_ / std::abs(r)
+                                                                : period_ - 4.0 * dk_ / std::abs(r);
+    drift_ = Eigen::Vector2d(cos_w_ * x, sin_w_ * x);
+  }
 }
 
 Elastica Elastica::FromInitialState(double G, double heading_w, double heading0, double curvature0) {

@@ -186,12 +186,19 @@ bool ElasticaRollingTable::Refine(double radius, double sa, double sb, double* s
 
 std::vector<double> ElasticaRollingTable::Crossings(double radius, int max_count) const {
   std::vector<double> out;
-  if (!valid_) return out;
+  ScanCrossings(radius, max_count, false, &out);
+  return out;
+}
+
+int ElasticaRollingTable::ScanCrossings(double radius, int max_count, bool refine_last_only,
+                                        std::vector<double>* out) const {
+  if (!valid_) return 0;
   const double r2 = radius * radius;
   double prev_f = -r2;  // x(0) = 0
   double prev_s = 0.0;
+  int count = 0;
   const long total = straight_ ? 1 : static_cast<long>(std::ceil(s_limit_ / h_));
-  for (long i = 1; i <= total && static_cast<int>(out.size()) < max_count; ++i) {
+  for (long i = 1; i <= total && count < max_count; ++i) {
     double s = i * h_;
     Eigen::Vector2d x;
     if (s >= s_limit_) {
@@ -202,20 +209,27 @@ std::vector<double> ElasticaRollingTable::Crossings(double radius, int max_count
     }
     const double f = x.squaredNorm() - r2;
     if ((f > 0) != (prev_f > 0)) {
-      double root;
-      if (Refine(radius, prev_s, s, &root) && root <= s_limit_ && root > 0) out.push_back(root);
+      ++count;
+      if (!refine_last_only || count == max_count) {
+        double root;
+        if (Refine(radius, prev_s, s, &root) && root <= s_limit_ && root > 0) {
+          out->push_back(root);
+        } else {
+          return -1;  // a bracket that does not refine: treat as missing
+        }
+      }
     }
     prev_f = f;
     prev_s = s;
     if (s >= s_limit_) break;
   }
-  return out;
+  return count;
 }
 
 bool ElasticaRollingTable::FindCrossing(double radius, int n, double* s) const {
-  const std::vector<double> c = Crossings(radius, n);
-  if (static_cast<int>(c.size()) < n) return false;
-  *s = c[n - 1];
+  std::vector<double> c;
+  if (ScanCrossings(radius, n, true, &c) != n || c.empty()) return false;
+  *s = c.back();
   return true;
 }
 

@@ -36,6 +36,8 @@ class ElasticaRollingTable {
 
  private:
   void Build(int steps);
+  // Counts node brackets up to max_count, refining all of them or only the last; -1 on failure.
+  int ScanCrossings(double radius, int max_count, bool refine_last_only, std::vector<double>* out) const;
   Eigen::Vector2d NodePosition(long global_index) const;
   bool Refine(double radius, double sa, double sb, double* s) const;
   const Elastica* e_;

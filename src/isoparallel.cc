@@ -183,7 +183,7 @@ LocalResult SearchLocal(const Context& ctx, PendulumRegime regime, const double*
 
 // Polish stage: LM (in effect Newton) with the accurate tables, to options.tolerance.
 void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalResult* r) {
-  ShootingFunctor polish{&ctx, r->regime, r->crossing, kPolish, true};
+  ShootingFunctor polish{&ctx, r->regime, r->crossing, kPolish, false};  // forward differences suffice from 1e-4
   const double thr = 0.5 * std::pow(0.1 * options.tolerance, 2);
   RunLm(polish, r->x, std::min(options.max_iterations, kPolishIterations), thr);
   r->evaluations += polish.evaluations;
