@@ -9,6 +9,7 @@ add_test(NAME install.consumer_uses_installed_package
                  -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/install_consumer
                  -DGENERATOR=${CMAKE_GENERATOR}
                  -DCXX_COMPILER=${CMAKE_CXX_COMPILER}
+                 -DSANITIZE=${PLATEBALL_SANITIZE}
                  -P ${PROJECT_SOURCE_DIR}/tests/consumer/run_install_consumer.cmake)
 # It needs the whole build tree built (cmake --install installs every target) and takes a few
 # seconds (one small compile).

@@ -1,5 +1,5 @@
 # cmake -DBUILD_DIR=... -DCONSUMER_SOURCE=... -DWORK_DIR=... -DGENERATOR=... [-DCXX_COMPILER=...]
-#       -P run_install_consumer.cmake
+#       [-DSANITIZE=ON] -P run_install_consumer.cmake
 # Installs the plateball build tree into WORK_DIR/prefix, configures and builds the consumer
 # project against it (CMAKE_PREFIX_PATH = the prefix only), runs it and checks its output.
 foreach(v BUILD_DIR CONSUMER_SOURCE WORK_DIR GENERATOR)
@@ -34,6 +34,11 @@ set(configure_args -S ${CONSUMER_SOURCE} -B ${consumer_build} -G ${GENERATOR}
     -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON)
 if(DEFINED CXX_COMPILER)
   list(APPEND configure_args -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
+endif()
+# A sanitizer build of plateball (PLATEBALL_SANITIZE) needs the sanitizer runtime in the consumer.
+if(SANITIZE)
+  list(APPEND configure_args "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined -fno-omit-frame-pointer"
+       "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined")
 endif()
 run("configure consumer" ${CMAKE_COMMAND} ${configure_args})
 # The package must come from the install prefix, never from the build tree.
