@@ -1,0 +1,631 @@
+#include "plateball/reach.h"
+
+#include <ceres/tiny_solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <nlopt.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "check.h"
+#include "reach_internal.h"
+
+namespace plateball {
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+// Two refined solutions are the same when s (mod 2 pi) and t agree to this (the refinement
+// converges to ~1e-13; distinct transversal solutions are separated by far more).
+constexpr double kSameSolution = 1e-7;
+// Cells of the scan grid in each time block tested against the target together.
+constexpr int kBlockSteps = 16;
+
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+double WrapTwoPi(double s) {
+  double r = std::fmod(s, kTwoPi);
+  if (r < 0) r += kTwoPi;
+  return r >= kTwoPi ? 0.0 : r;
+}
+
+struct Box {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = Eigen::Vector2d::Constant(-std::numeric_limits<double>::infinity());
+  void Add(const Eigen::Vector2d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+};
+
+// A starting point for the refinement.
+struct Candidate {
+  double s = 0.0;
+  double t = 0.0;
+  int sign = 0;  // orientation of the scan cell: the sheet of the map (s, t) -> x
+  bool fold = false;
+  double distance = 0.0;  // fold seeds: distance of the target to the cell's linear image
+};
+
+// The scan: one RK4-tabulated period for each of ns directions s_i = 2 pi i / ns; the node
+// (i, j) is t_j = j h, x = x0 + x_i(t_j mod T) + floor(t_j / T) drift_i.
+class Scan {
+ public:
+  Scan(const ReachProblem& p, const ReachOptions& o, double period, double horizon)
+      : ns_(o.scan_directions), n_(o.scan_steps_per_period), period_(period) {
+    h_ = period / n_;
+    ds_ = kTwoPi / ns_;
+    m_ = static_cast<int>(std::ceil(horizon / h_ - 1e-9));
+    m_ = std::max(m_, 1);
+    tab_.resize(static_cast<std::size_t>(ns_));
+    for (int i = 0; i < ns_; ++i) {
+      const internal::ReachDirection d = internal::DirectionFor(p.start, p.mu, p.model.lambda(), i * ds_);
+      internal::TabulatePeriod(d, p.model.lambda(), period, n_, &tab_[static_cast<std::size_t>(i)]);
+    }
+    blocks_ = (n_ + kBlockSteps - 1) / kBlockSteps;
+    boxes_.assign(static_cast<std::size_t>(ns_ * blocks_), Box());
+    for (int i = 0; i < ns_; ++i)
+      for (int b = 0; b < blocks_; ++b) {
+        Box& box = boxes_[static_cast<std::size_t>(i * blocks_ + b)];
+        for (int r = b * kBlockSteps; r <= std::min((b + 1) * kBlockSteps, n_); ++r) box.Add(Tab(i).x[static_cast<std::size_t>(r)]);
+      }
+  }
+
+  int ns() const { return ns_; }
+  int n() const { return n_; }
+  int m() const { return m_; }
+  double h() const { return h_; }
+  double ds() const { return ds_; }
+  const internal::ScanPeriod& Tab(int i) const { return tab_[static_cast<std::size_t>(((i % ns_) + ns_) % ns_)]; }
+  // Position relative to x0 of node (i, j).
+  Eigen::Vector2d Node(int i, int j) const {
+    const internal::ScanPeriod& tp = Tab(i);
+    const int k = j / n_, r = j % n_;
+    return tp.x[static_cast<std::size_t>(r)] + static_cast<double>(k) * tp.drift;
+  }
+  Eigen::Vector2d NodeVelocity(int i, int j) const { return Tab(i).v[static_cast<std::size_t>(j % n_)]; }
+  // Bounding box (relative to x0) of the nodes of direction i in block b of period k.
+  Box BlockBox(int i, int b, int k) const {
+    Box box = boxes_[static_cast<std::size_t>((((i % ns_) + ns_) % ns_) * blocks_ + b)];
+    const Eigen::Vector2d shift = static_cast<double>(k) * Tab(i).drift;
+    box.lo += shift;
+    box.hi += shift;
+    return box;
+  }
+  int blocks() const { return blocks_; }
+
+ private:
+  int ns_, n_, m_ = 0, blocks_ = 0;
+  double period_, h_ = 0.0, ds_ = 0.0;
+  std::vector<internal::ScanPeriod> tab_;
+  std::vector<Box> boxes_;
+};
+
+// Barycentric coordinates of q in triangle (a, b, c); false for a degenerate triangle.
+bool Barycentric(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                 const Eigen::Vector2d& q, double* l1, double* l2, double* l3) {
+  const double area = Cross(b - a, c - a);
+  if (!(std::abs(area) > 1e-300)) return false;
+  *l1 = Cross(b - q, c - q) / area;
+  *l2 = Cross(c - q, a - q) / area;
+  *l3 = Cross(a - q, b - q) / area;
+  return true;
+}
+
+// Orientation of the quad (a, b, c, d): sign of its signed area (diagonals' cross product).
+int QuadSign(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+  const double v = Cross(c - a, d - b);
+  return v > 0 ? 1 : (v < 0 ? -1 : 0);
+}
+
+// Distance from q to the convex hull-ish neighbourhood of a quad: distance to its bounding box.
+double BoxDistance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                   const Eigen::Vector2d& d, const Eigen::Vector2d& q, double* diameter) {
+  Box box;
+  box.Add(a);
+  box.Add(b);
+  box.Add(c);
+  box.Add(d);
+  *diameter = (box.hi - box.lo).norm();
+  const Eigen::Vector2d e = (box.lo - q).cwiseMax(q - box.hi).cwiseMax(0.0);
+  return e.norm();
+}
+
+double SegmentDistance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& q) {
+  const Eigen::Vector2d ab = b - a;
+  const double l2 = ab.squaredNorm();
+  const double u = l2 > 0 ? std::clamp((q - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (a + u * ab - q).norm();
+}
+
+// Distance from q to the piecewise-linear image of a cell (0 inside either triangle).
+double CellDistance(const Eigen::Vector2d* c, const Eigen::Vector2d& q) {
+  double l1, l2, l3;
+  if (Barycentric(c[0], c[1], c[2], q, &l1, &l2, &l3) && l1 >= 0 && l2 >= 0 && l3 >= 0) return 0.0;
+  if (Barycentric(c[0], c[2], c[3], q, &l1, &l2, &l3) && l1 >= 0 && l2 >= 0 && l3 >= 0) return 0.0;
+  return std::min({SegmentDistance(c[0], c[1], q), SegmentDistance(c[1], c[2], q), SegmentDistance(c[2], c[3], q),
+                   SegmentDistance(c[3], c[0], q)});
+}
+
+// Collects refinement seeds: cells whose piecewise-linear image contains the target, and cells
+// next to a fold (orientation change) whose image is close to the target.
+std::vector<Candidate> FindCandidates(const Scan& scan, const Eigen::Vector2d& rel_target, bool skip_first_row) {
+  std::vector<Candidate> hits, folds;
+  const int ns = scan.ns(), n = scan.n(), m = scan.m();
+  const int periods = (m + n - 1) / n;
+  const double bary_slack = 1e-9;
+  auto cell_corners = [&](int i, int j, Eigen::Vector2d* c) {
+    c[0] = scan.Node(i, j);
+    c[1] = scan.Node(i + 1, j);
+    c[2] = scan.Node(i + 1, j + 1);
+    c[3] = scan.Node(i, j + 1);
+  };
+  for (int i = 0; i < ns; ++i) {
+    for (int k = 0; k < periods; ++k) {
+      for (int b = 0; b < scan.blocks(); ++b) {
+        const int j0 = k * n + b * kBlockSteps;
+        if (j0 >= m) break;
+        const int j1 = std::min({j0 + kBlockSteps, k * n + n, m});  // cells j0 .. j1-1
+        Box box = scan.BlockBox(i, b, k);
+        const Box other = scan.BlockBox(i + 1, b, k);
+        box.Add(other.lo);
+        box.Add(other.hi);
+        // Margin: a fold seed needs the target within one cell diameter of a cell, and a cell
+        // diameter is at most the block's box diagonal.
+        const double margin = (box.hi - box.lo).norm() + 1e-12;
+        if ((rel_target.array() < box.lo.array() - margin).any() || (rel_target.array() > box.hi.array() + margin).any())
+          continue;
+        for (int j = j0; j < j1; ++j) {
+          if (skip_first_row && j == 0) continue;
+          Eigen::Vector2d c[4];
+          cell_corners(i, j, c);
+          double diameter = 0.0;
+          const double dist = BoxDistance(c[0], c[1], c[2], c[3], rel_target, &diameter);
+          if (dist > diameter) continue;
+          const int sign = QuadSign(c[0], c[1], c[2], c[3]);
+          if (dist == 0.0) {
+            double l1, l2, l3;
+            // Triangle (a, b, c): (u, v) = l2 (1, 0) + l3 (1, 1); triangle (a, c, d): l2 (1, 1) + l3 (0, 1).
+            if (Barycentric(c[0], c[1], c[2], rel_target, &l1, &l2, &l3) && l1 >= -bary_slack && l2 >= -bary_slack &&
+                l3 >= -bary_slack) {
+              hits.push_back({(i + l2 + l3) * scan.ds(), (j + l3) * scan.h(), sign});
+            } else if (Barycentric(c[0], c[2], c[3], rel_target, &l1, &l2, &l3) && l1 >= -bary_slack &&
+                       l2 >= -bary_slack && l3 >= -bary_slack) {
+              hits.push_back({(i + l2) * scan.ds(), (j + l2 + l3) * scan.h(), sign});
+            }
+          }
+          // Fold: the orientation changes to the next cell in s or in t (the first row is
+          // degenerate: every direction starts at x0). Near a fold the true map and its
+          // piecewise-linear image may cover the target a different number of times (a close
+          // pair of solutions): when the target is within the linearisation error of either
+          // image and neither cell caught it, seed both sides.
+          if (j == 0 || sign == 0) continue;
+          const double d_here = CellDistance(c, rel_target);
+          // How far the true cell image may be from the piecewise-linear one: the midpoint
+          // deviation of a parabola, |second difference| / 8, in s and in t (safety factor 4).
+          const double pl_error =
+              0.5 * ((scan.Node(i + 2, j) - 2.0 * scan.Node(i + 1, j) + scan.Node(i, j)).norm() +
+                     (scan.Node(i, j + 2) - 2.0 * scan.Node(i, j + 1) + scan.Node(i, j)).norm()) + 1e-12;
+          auto seed_if_fold = [&](int i2, int j2) {
+            if (j2 >= m) return;
+            Eigen::Vector2d c2[4];
+            cell_corners(i2, j2, c2);
+            const int sign2 = QuadSign(c2[0], c2[1], c2[2], c2[3]);
+            if (sign2 == 0 || sign2 == sign) return;
+            const double d_there = CellDistance(c2, rel_target);
+            if (d_here == 0.0 || d_there == 0.0 || std::min(d_here, d_there) > pl_error) return;
+            const double dist_pair = std::min(d_here, d_there);
+            folds.push_back({(i + 0.5) * scan.ds(), (j + 0.5) * scan.h(), sign, true, dist_pair});
+            folds.push_back({(i2 + 0.5) * scan.ds(), (j2 + 0.5) * scan.h(), sign2, true, dist_pair});
+          };
+          seed_if_fold(i + 1, j);
+          seed_if_fold(i, j + 1);
+        }
+      }
+    }
+  }
+  // Hits in neighbouring cells of the same sheet are the same solution (target on a shared edge).
+  std::vector<Candidate> out;
+  auto near = [&](const Candidate& a, const Candidate& b, double cells) {
+    double dsv = std::abs(a.s - b.s);
+    dsv = std::min(dsv, kTwoPi - dsv);
+    return a.sign == b.sign && dsv <= cells * scan.ds() && std::abs(a.t - b.t) <= cells * scan.h();
+  };
+  for (const Candidate& c : hits) {
+    bool dup = false;
+    for (const Candidate& o : out) dup = dup || near(c, o, 1.0);
+    if (!dup) out.push_back(c);
+  }
+  // Along one fold many cell pairs may qualify; the pair nearest the target stands for the
+  // others within a few cells (a close pair of solutions lies next to the nearest one).
+  std::stable_sort(folds.begin(), folds.end(), [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
+  std::vector<Candidate> kept;
+  for (const Candidate& c : folds) {
+    bool dup = false;
+    for (const Candidate& o : kept) {
+      double dsv = std::abs(c.s - o.s);
+      dsv = std::min(dsv, kTwoPi - dsv);
+      dup = dup || (c.sign == o.sign && dsv <= 3.0 * scan.ds() && std::abs(c.t - o.t) <= 3.0 * scan.h());
+    }
+    if (!dup) kept.push_back(c);
+  }
+  out.insert(out.end(), kept.begin(), kept.end());
+  return out;
+}
+
+// F(s, t) = x_s(t) - target for Ceres' TinySolver; exact Jacobian [dx/ds, dx/dt]. Every call
+// integrates with the variational equations and keeps the result: TinySolver evaluates an
+// accepted point twice (without, then with the Jacobian), and the caller reuses the last point.
+class ReachResidual {
+ public:
+  using Scalar = double;
+  enum { NUM_RESIDUALS = 2, NUM_PARAMETERS = 2 };
+  ReachResidual(const ReachProblem& problem, double period, const IntegrationOptions& integration, int* evaluations)
+      : problem_(problem), period_(period), integration_(integration), evaluations_(evaluations) {}
+
+  bool operator()(const double* p, double* r, double* jacobian) const {
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || std::abs(p[1]) > 1e12) {
+      r[0] = r[1] = 1e30;
+      return false;
+    }
+    const internal::TightPoint& tp = Evaluate(p[0], p[1]);
+    const Eigen::Vector2d f = problem_.x0 + tp.x - problem_.target;
+    r[0] = f.x();
+    r[1] = f.y();
+    if (jacobian != nullptr) {  // column-major 2 x 2
+      jacobian[0] = tp.dx_ds.x();
+      jacobian[1] = tp.dx_ds.y();
+      jacobian[2] = tp.velocity.x();
+      jacobian[3] = tp.velocity.y();
+    }
+    return true;
+  }
+
+  const internal::TightPoint& Evaluate(double s, double t) const {
+    if (has_cache_ && s == cache_s_ && t == cache_t_) return cache_;
+    const double lambda = problem_.model.lambda();
+    const internal::ReachDirection d = internal::DirectionFor(problem_.start, problem_.mu, lambda, s);
+    cache_ = internal::EvaluateTight(d, lambda, period_, t, true, integration_);
+    ++*evaluations_;
+    cache_s_ = s;
+    cache_t_ = t;
+    has_cache_ = true;
+    return cache_;
+  }
+
+ private:
+  const ReachProblem& problem_;
+  double period_;
+  const IntegrationOptions& integration_;
+  int* evaluations_;
+  mutable bool has_cache_ = false;
+  mutable double cache_s_ = 0.0, cache_t_ = 0.0;
+  mutable internal::TightPoint cache_;
+};
+
+// Cheap closest approach along the direction s: min over t in [0, horizon] of |x_s(t) - target|
+// from the RK4 table, refined on the cubic Hermite interpolant around the best node.
+struct CheapDistance {
+  const ReachProblem* problem;
+  double period, horizon;
+  int steps;
+  int* periods_integrated;
+  double operator()(double s, double* t_best) const {
+    internal::ScanPeriod tab;
+    const double lambda = problem->model.lambda();
+    internal::TabulatePeriod(internal::DirectionFor(problem->start, problem->mu, lambda, s), lambda, period, steps, &tab);
+    ++*periods_integrated;
+    const Eigen::Vector2d rel = problem->target - problem->x0;
+    const double h = period / steps;
+    const int m = static_cast<int>(std::floor(horizon / h + 1e-9));
+    auto node = [&](int j) { return tab.x[static_cast<std::size_t>(j % steps)] + static_cast<double>(j / steps) * tab.drift; };
+    auto vel = [&](int j) { return tab.v[static_cast<std::size_t>(j % steps)]; };
+    auto at = [&](double t) {  // cubic Hermite between the two nodes around t
+      int j = std::min(static_cast<int>(std::floor(t / h)), std::max(m - 1, 0));
+      j = std::max(j, 0);
+      const double u = (t - j * h) / h;
+      const double h00 = (1 + 2 * u) * (1 - u) * (1 - u), h10 = u * (1 - u) * (1 - u);
+      const double h01 = u * u * (3 - 2 * u), h11 = u * u * (u - 1);
+      return Eigen::Vector2d(h00 * node(j) + h10 * h * vel(j) + h01 * node(j + 1) + h11 * h * vel(j + 1));
+    };
+    double best = std::numeric_limits<double>::infinity();
+    int jb = 0;
+    for (int j = 0; j <= m; ++j) {
+      const double dist = (node(j) - rel).norm();
+      if (dist < best) {
+        best = dist;
+        jb = j;
+      }
+    }
+    double tb = jb * h;
+    if (m * h < horizon) {  // the horizon itself
+      const double dist = (at(horizon) - rel).norm();
+      if (dist < best) {
+        best = dist;
+        tb = horizon;
+      }
+    }
+    // Golden-section search on the interpolant over the two neighbouring steps.
+    double lo = std::max(0.0, tb - h), hi = std::min(horizon, tb + h);
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+    double fa = (at(a) - rel).norm(), fb = (at(b) - rel).norm();
+    for (int it = 0; it < 40; ++it) {
+      if (fa < fb) {
+        hi = b;
+        b = a;
+        fb = fa;
+        a = hi - g * (hi - lo);
+        fa = (at(a) - rel).norm();
+      } else {
+        lo = a;
+        a = b;
+        fa = fb;
+        b = lo + g * (hi - lo);
+        fb = (at(b) - rel).norm();
+      }
+    }
+    if (std::min(fa, fb) < best) {
+      best = std::min(fa, fb);
+      tb = fa < fb ? a : b;
+    }
+    *t_best = tb;
+    return best;
+  }
+};
+
+// The paper's first guess: the s whose drift per period points from x0 to the target.
+double DriftGuess(const Scan& scan, const Eigen::Vector2d& dir) {
+  if (dir.norm() == 0.0) return std::numeric_limits<double>::quiet_NaN();
+  double best_s = std::numeric_limits<double>::quiet_NaN(), best_dot = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < scan.ns(); ++i) {
+    const Eigen::Vector2d d0 = scan.Tab(i).drift, d1 = scan.Tab(i + 1).drift;
+    const double c0 = Cross(d0, dir), c1 = Cross(d1, dir);
+    if ((c0 <= 0 && c1 > 0) || (c0 >= 0 && c1 < 0)) {
+      const double u = c0 / (c0 - c1);
+      const double dot = ((1 - u) * d0 + u * d1).dot(dir);
+      if (dot > best_dot) {
+        best_dot = dot;
+        best_s = WrapTwoPi((i + u) * scan.ds());
+      }
+    }
+  }
+  return best_dot > 0 ? best_s : std::numeric_limits<double>::quiet_NaN();
+}
+
+double Objective1d(unsigned /*n*/, const double* x, double* /*grad*/, void* data) {
+  auto* f = static_cast<std::function<double(double)>*>(data);
+  return (*f)(x[0]);
+}
+
+double Objective2d(unsigned /*n*/, const double* x, double* /*grad*/, void* data) {
+  auto* f = static_cast<std::function<double(double, double)>*>(data);
+  return (*f)(x[0], x[1]);
+}
+
+}  // namespace
+
+std::string ReachOptions::Validate() const {
+  std::ostringstream os;
+  os.precision(17);
+  if (!(std::isfinite(horizon_periods) && horizon_periods > 0 && horizon_periods <= 1e4))
+    os << "'horizon_periods' = " << horizon_periods << " is invalid: must be in (0, 1e4]";
+  else if (scan_directions < 8 || scan_directions > 100000)
+    os << "'scan_directions' = " << scan_directions << " is invalid: must be in [8, 100000]";
+  else if (scan_steps_per_period < 8 || scan_steps_per_period > 100000)
+    os << "'scan_steps_per_period' = " << scan_steps_per_period << " is invalid: must be in [8, 100000]";
+  else if (!(std::isfinite(tolerance) && tolerance > 0))
+    os << "'tolerance' = " << tolerance << " is invalid: must be finite and > 0";
+  else if (max_refine_iterations < 1)
+    os << "'max_refine_iterations' = " << max_refine_iterations << " is invalid: must be >= 1";
+  else if (max_candidates < 1)
+    os << "'max_candidates' = " << max_candidates << " is invalid: must be >= 1";
+  else if (global_max_evaluations < 1)
+    os << "'global_max_evaluations' = " << global_max_evaluations << " is invalid: must be >= 1";
+  else {
+    const std::string e = integration.Validate();
+    if (!e.empty()) os << "integration: " << e;
+  }
+  return os.str();
+}
+
+std::string ToString(ReachStatus status) {
+  switch (status) {
+    case ReachStatus::kSolved:
+      return "solved";
+    case ReachStatus::kUnreachableWithinHorizon:
+      return "unreachable_within_horizon";
+    case ReachStatus::kNumericalFailure:
+      return "numerical_failure";
+  }
+  return "unknown";
+}
+
+const ReachSolution& ReachSummary::Earliest() const {
+  if (solutions.empty()) throw std::logic_error("ReachSummary::Earliest: no solution (status " + ToString(status) + ")");
+  return solutions.front();
+}
+
+std::string ReachSummary::BriefReport() const {
+  std::ostringstream os;
+  os.precision(10);
+  os << "Reach: " << ToString(status) << ", " << solutions.size() << " solution(s) with t <= " << horizon << " ("
+     << horizon / period << " periods)";
+  if (!solutions.empty()) {
+    const ReachSolution& e = solutions.front();
+    os << "; earliest delta_psi = " << e.delta_psi << ", t = " << e.t << " (" << e.periods << " periods), residual "
+       << e.residual;
+  } else if (status == ReachStatus::kUnreachableWithinHorizon) {
+    os << "; closest approach " << closest_approach.distance << " at delta_psi = " << closest_approach.delta_psi
+       << ", t = " << closest_approach.t;
+  }
+  if (!message.empty()) os << "; " << message;
+  os << "; " << candidates << " candidates, " << tight_evaluations << " tight evaluations";
+  return os.str();
+}
+
+ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options) {
+  const std::string err = options.Validate();
+  if (!err.empty()) throw std::invalid_argument("ReachOptions: " + err);
+  internal::RequireFinite("problem.start.theta", problem.start.theta);
+  internal::RequireFinite("problem.start.phi", problem.start.phi);
+  internal::RequireFinite("problem.start.psi", problem.start.psi);
+  internal::RequirePositive("problem.mu", problem.mu);
+  internal::RequireFinite("problem.x0", problem.x0);
+  internal::RequireFinite("problem.target", problem.target);
+  internal::RequireFinite("problem.A0", problem.A0);
+
+  ReachSummary summary;
+  summary.problem = problem;
+  summary.period = kTwoPi / std::sqrt(problem.mu);
+  summary.horizon = options.horizon_periods * summary.period;
+  const double period = summary.period, horizon = summary.horizon;
+  const double t_min = 1e-9 * period;
+  const Eigen::Vector2d rel = problem.target - problem.x0;
+  const double lambda = problem.model.lambda();
+
+  try {
+    const Scan scan(problem, options, period, horizon);
+    summary.scan_periods_integrated = scan.ns();
+    summary.drift_guess_delta_psi = DriftGuess(scan, rel);
+
+    std::vector<Candidate> candidates = FindCandidates(scan, rel, rel.norm() <= options.tolerance);
+    if (candidates.empty() && std::isfinite(summary.drift_guess_delta_psi)) {
+      // The paper's method as a last resort: uniform drift towards the target.
+      const double s = summary.drift_guess_delta_psi;
+      internal::ScanPeriod tab;
+      internal::TabulatePeriod(internal::DirectionFor(problem.start, problem.mu, lambda, s), lambda, period,
+                               options.scan_steps_per_period, &tab);
+      ++summary.scan_periods_integrated;
+      const double t = rel.norm() / std::max(tab.drift.norm(), 1e-300) * period;
+      if (t <= horizon) candidates.push_back({s, t, 0});
+    }
+    if (static_cast<int>(candidates.size()) > options.max_candidates) candidates.resize(static_cast<std::size_t>(options.max_candidates));
+    summary.candidates = static_cast<int>(candidates.size());
+
+    ReachResidual residual(problem, period, options.integration, &summary.tight_evaluations);
+    ceres::TinySolver<ReachResidual> solver;
+    solver.options.max_num_iterations = options.max_refine_iterations;
+    solver.options.gradient_tolerance = 0.0;
+    solver.options.parameter_tolerance = 1e-15;
+    solver.options.function_tolerance = 0.0;
+    solver.options.cost_threshold = 0.5 * std::pow(0.1 * options.tolerance, 2);
+    for (const Candidate& c : candidates) {
+      if (c.fold) {  // a fold seed next to a solution already found adds nothing
+        bool near_found = false;
+        for (const ReachSolution& o : summary.solutions) {
+          double dsv = std::abs(o.delta_psi - WrapTwoPi(c.s));
+          dsv = std::min(dsv, kTwoPi - dsv);
+          near_found = near_found || (dsv <= 2.0 * scan.ds() && std::abs(o.t - c.t) <= 2.0 * scan.h());
+        }
+        if (near_found) continue;
+      }
+      Eigen::Vector2d x(c.s, c.t);
+      solver.Solve(residual, &x);
+      summary.refine_iterations += solver.summary.iterations;
+      const double t = x[1];
+      if (!(t > t_min && t <= horizon)) continue;
+      const internal::TightPoint tp = residual.Evaluate(x[0], x[1]);
+      const double s = WrapTwoPi(x[0]);
+      const double res = (problem.x0 + tp.x - problem.target).norm();
+      if (!(res <= options.tolerance)) continue;
+      bool dup = false;
+      for (const ReachSolution& o : summary.solutions) {
+        double dsv = std::abs(o.delta_psi - s);
+        dsv = std::min(dsv, kTwoPi - dsv);
+        dup = dup || (dsv < kSameSolution && std::abs(o.t - t) < kSameSolution * std::max(1.0, t));
+      }
+      if (dup) continue;
+      ReachSolution sol;
+      sol.delta_psi = s;
+      sol.t = t;
+      sol.periods = t / period;
+      sol.residual = res;
+      sol.jacobian_determinant = Cross(tp.dx_ds, tp.velocity);
+      summary.solutions.push_back(sol);
+    }
+    std::sort(summary.solutions.begin(), summary.solutions.end(),
+              [](const ReachSolution& a, const ReachSolution& b) { return a.t < b.t; });
+
+    if (!summary.solutions.empty()) {
+      summary.status = ReachStatus::kSolved;
+      for (ReachSolution& sol : summary.solutions) {
+        sol.impulse = EnergyPreservingImpulse(problem.start, problem.mu, sol.delta_psi, problem.model);
+        AngleState after = problem.start;
+        after.psi += sol.delta_psi;
+        const FreeMotion motion = FreeMotion::FromAngles(problem.model, after, problem.mu, problem.x0, problem.A0, options.integration);
+        sol.end = motion.At(sol.t);
+      }
+      const ReachSolution& e = summary.solutions.front();
+      summary.closest_approach = {e.residual, e.delta_psi, e.t};
+      return summary;
+    }
+
+    // Unreachable within the horizon: the closest approach. Global search over s (NLopt
+    // DIRECT-L on the cheap d(s)), then a bounded polish of (s, t) on the tight integration.
+    summary.status = ReachStatus::kUnreachableWithinHorizon;
+    CheapDistance cheap{&problem, period, horizon, options.scan_steps_per_period, &summary.scan_periods_integrated};
+    std::function<double(double)> d_of_s = [&](double s) {
+      ++summary.global_evaluations;
+      double t;
+      return cheap(s, &t);
+    };
+    nlopt::srand(static_cast<unsigned long>(options.seed));
+    nlopt::opt global(nlopt::GN_DIRECT_L, 1);
+    global.set_lower_bounds(std::vector<double>{0.0});
+    global.set_upper_bounds(std::vector<double>{kTwoPi});
+    global.set_min_objective(Objective1d, &d_of_s);
+    global.set_maxeval(options.global_max_evaluations);
+    global.set_xtol_abs(1e-10);
+    std::vector<double> sx{M_PI};
+    double best_d = std::numeric_limits<double>::infinity();
+    try {
+      global.optimize(sx, best_d);
+    } catch (const nlopt::roundoff_limited&) {
+    } catch (const nlopt::forced_stop&) {
+    }
+    // The scan grid's best node competes (DIRECT may stop on its budget first).
+    double best_s = sx[0];
+    for (int i = 0; i < scan.ns(); ++i)
+      for (int j = 0; j <= scan.m() && j * scan.h() <= horizon; ++j) {
+        const double dij = (scan.Node(i, j) - rel).norm();
+        if (dij < best_d) {
+          best_d = dij;
+          best_s = i * scan.ds();
+        }
+      }
+    double best_t = 0.0;
+    cheap(best_s, &best_t);
+
+    std::function<double(double, double)> dist2 = [&](double s, double t) {
+      const internal::TightPoint tp = internal::EvaluateTight(internal::DirectionFor(problem.start, problem.mu, lambda, s),
+                                                              lambda, period, t, false, options.integration);
+      ++summary.tight_evaluations;
+      return (problem.x0 + tp.x - problem.target).squaredNorm();
+    };
+    nlopt::srand(static_cast<unsigned long>(options.seed));
+    nlopt::opt local(nlopt::LN_BOBYQA, 2);
+    local.set_lower_bounds(std::vector<double>{best_s - scan.ds(), std::max(0.0, best_t - scan.h())});
+    local.set_upper_bounds(std::vector<double>{best_s + scan.ds(), std::min(horizon, best_t + scan.h())});
+    local.set_min_objective(Objective2d, &dist2);
+    local.set_maxeval(60);
+    local.set_xtol_abs(std::vector<double>{1e-10, 1e-10});
+    std::vector<double> st{best_s, std::clamp(best_t, std::max(0.0, best_t - scan.h()), std::min(horizon, best_t + scan.h()))};
+    double f2 = dist2(st[0], st[1]);
+    try {
+      local.optimize(st, f2);
+    } catch (const nlopt::roundoff_limited&) {
+    } catch (const nlopt::forced_stop&) {
+    }
+    summary.closest_approach = {std::sqrt(dist2(st[0], st[1])), WrapTwoPi(st[0]), st[1]};
+  } catch (const std::runtime_error& e) {
+    summary.status = ReachStatus::kNumericalFailure;
+    summary.message = e.what();
+    summary.solutions.clear();
+  }
+  return summary;
+}
+
+}  // namespace plateball

@@ -1,0 +1,135 @@
+#include "reach_internal.h"
+
+#include <ceres/jet.h>
+
+#include <array>
+#include <cmath>
+
+#include "dynamics.h"
+
+namespace plateball::internal {
+namespace {
+
+using Jet1 = ceres::Jet<double, 1>;
+using ZxState = std::array<double, 5>;           // z[3], x[2]
+using SensitivityState = std::array<double, 10>;  // z[3], x[2], dz/ds[3], dx/ds[2]
+
+struct ZxOnlyRhs {
+  double lambda;
+  std::array<double, 2> k;
+  void operator()(const ZxState& y, ZxState& dy, double /*t*/) const {
+    double w[2];
+    OmegaFromZK(y.data(), k.data(), lambda, w);
+    ZxRhs(y.data(), w, dy.data(), dy.data() + 3);
+  }
+};
+
+// The (z, x) equations and their variational equations in s in one right-hand side: the Jet
+// carries d/ds through OmegaFromZK and ZxRhs (K depends on s, z0 does not).
+struct SensitivityRhs {
+  double lambda;
+  std::array<Jet1, 2> k;
+  void operator()(const SensitivityState& y, SensitivityState& dy, double /*t*/) const {
+    Jet1 z[3];
+    for (int i = 0; i < 3; ++i) {
+      z[i].a = y[i];
+      z[i].v[0] = y[5 + i];
+    }
+    Jet1 w[2], dz[3], dx[2];
+    OmegaFromZK(z, k.data(), lambda, w);
+    ZxRhs(z, w, dz, dx);
+    for (int i = 0; i < 3; ++i) {
+      dy[i] = dz[i].a;
+      dy[5 + i] = dz[i].v[0];
+    }
+    for (int i = 0; i < 2; ++i) {
+      dy[3 + i] = dx[i].a;
+      dy[8 + i] = dx[i].v[0];
+    }
+  }
+};
+
+Eigen::Vector2d VelocityAt(const double* z, const Eigen::Vector2d& k, double lambda) {
+  const double kk[2] = {k.x(), k.y()};
+  double w[2];
+  OmegaFromZK(z, kk, lambda, w);
+  return {w[1], -w[0]};
+}
+
+}  // namespace
+
+ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, double s) {
+  ReachDirection d;
+  d.s = s;
+  const double st = std::sin(start.theta), ct = std::cos(start.theta);
+  d.z0 = Eigen::Vector3d(st * std::cos(start.phi), st * std::sin(start.phi), ct);  // (12)-(14)
+  Jet1 psi(start.psi + s, 0);
+  Jet1 w[2];
+  OmegaHFromAngles(start.theta, start.phi, psi, mu, lambda, w);
+  // K = omega_h + (lambda - 1) v0 z_h with v0 = <omega, z> = <omega_h, z_h> (omega_3 = 0).
+  const Jet1 v0 = w[0] * d.z0.x() + w[1] * d.z0.y();
+  const Jet1 k0 = w[0] + (lambda - 1.0) * v0 * d.z0.x();
+  const Jet1 k1 = w[1] + (lambda - 1.0) * v0 * d.z0.y();
+  d.k = {k0.a, k1.a};
+  d.dk_ds = {k0.v[0], k1.v[0]};
+  return d;
+}
+
+void TabulatePeriod(const ReachDirection& d, double lambda, double period, int steps, ScanPeriod* out) {
+  const ZxOnlyRhs rhs{lambda, {d.k.x(), d.k.y()}};
+  out->x.resize(static_cast<std::size_t>(steps) + 1);
+  out->v.resize(static_cast<std::size_t>(steps) + 1);
+  ZxState y{d.z0.x(), d.z0.y(), d.z0.z(), 0.0, 0.0};
+  const double h = period / steps;
+  ZxState k1, k2, k3, k4, tmp;
+  for (int j = 0;; ++j) {
+    rhs(y, k1, 0.0);
+    out->x[static_cast<std::size_t>(j)] = {y[3], y[4]};
+    out->v[static_cast<std::size_t>(j)] = {k1[3], k1[4]};
+    if (j == steps) break;
+    for (int i = 0; i < 5; ++i) tmp[i] = y[i] + 0.5 * h * k1[i];
+    rhs(tmp, k2, 0.0);
+    for (int i = 0; i < 5; ++i) tmp[i] = y[i] + 0.5 * h * k2[i];
+    rhs(tmp, k3, 0.0);
+    for (int i = 0; i < 5; ++i) tmp[i] = y[i] + h * k3[i];
+    rhs(tmp, k4, 0.0);
+    for (int i = 0; i < 5; ++i) y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+  }
+  out->drift = out->x.back();
+}
+
+TightPoint EvaluateTight(const ReachDirection& d, double lambda, double period, double t, bool with_ds,
+                         const IntegrationOptions& options) {
+  const double kf = std::floor(t / period);
+  const double tau = std::min(std::max(t - kf * period, 0.0), period);
+  const double dt0 = period / 64.0;
+  TightPoint p;
+  if (!with_ds) {
+    const ZxOnlyRhs rhs{lambda, {d.k.x(), d.k.y()}};
+    ZxState y{d.z0.x(), d.z0.y(), d.z0.z(), 0.0, 0.0};
+    IntegrateAdaptive(rhs, y, 0.0, tau, dt0, options);
+    p.x = {y[3], y[4]};
+    p.velocity = VelocityAt(y.data(), d.k, lambda);
+    if (kf != 0.0) {
+      IntegrateAdaptive(rhs, y, tau, period, dt0, options);
+      p.x += kf * Eigen::Vector2d(y[3], y[4]);
+    }
+    return p;
+  }
+  SensitivityRhs rhs{lambda, {Jet1(d.k.x(), 0), Jet1(d.k.y(), 0)}};
+  rhs.k[0].v[0] = d.dk_ds.x();
+  rhs.k[1].v[0] = d.dk_ds.y();
+  SensitivityState y{d.z0.x(), d.z0.y(), d.z0.z(), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  IntegrateAdaptive(rhs, y, 0.0, tau, dt0, options);
+  p.x = {y[3], y[4]};
+  p.dx_ds = {y[8], y[9]};
+  p.velocity = VelocityAt(y.data(), d.k, lambda);
+  if (kf != 0.0) {
+    IntegrateAdaptive(rhs, y, tau, period, dt0, options);
+    p.x += kf * Eigen::Vector2d(y[3], y[4]);
+    p.dx_ds += kf * Eigen::Vector2d(y[8], y[9]);
+  }
+  return p;
+}
+
+}  // namespace plateball::internal
