@@ -1,6 +1,6 @@
 // Internal: the one place where the planner connects two consecutive partition points. It tries
-// the local join of Lemma 2.1; a target beyond the local radius is reported as such (a global
-// reach, reach.h, can be added here as the fallback).
+// the local join of Lemma 2.1; when the target is beyond the local radius and a fallback is
+// given, the global reach of reach.h connects the points with its earliest solution.
 #pragma once
 
 #include <Eigen/Core>
@@ -8,10 +8,15 @@
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/join.h"
+#include "plateball/reach.h"
 
 namespace plateball::internal {
 
+/// `reach_fallback` == nullptr: the local join only. Otherwise a kTargetBeyondLocalRadius join is
+/// retried with Reach (earliest solution, converted to a JoinSummary with status kConverged and
+/// a message saying so); *reached_globally (when given) tells which one answered.
 JoinSummary ConnectPoints(const BallModel& model, const AngleState& angles, double mu, const Eigen::Vector2d& x0,
-                          const Eigen::Vector2d& target, const JoinOptions& options);
+                          const Eigen::Vector2d& target, const JoinOptions& options,
+                          const ReachOptions* reach_fallback = nullptr, bool* reached_globally = nullptr);
 
 }  // namespace plateball::internal

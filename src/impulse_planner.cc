@@ -62,6 +62,10 @@ std::string PlanOptions::Validate() const {
   if (bound_samples < 2) return "plan option 'bound_samples' = " + std::to_string(bound_samples) + " must be >= 2";
   std::string e = join.Validate();
   if (!e.empty()) return e;
+  if (reach_fallback) {
+    e = reach.Validate();
+    if (!e.empty()) return "plan option 'reach': " + e;
+  }
   return integration.Validate();
 }
 
@@ -168,7 +172,9 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
 
       // The energy is tracked nominally (it is a constant of the free motion; recomputing it from
       // the integrated state would let round-off drift into it).
-      const JoinSummary j = internal::ConnectPoints(model, s.angles_before, mu_now, x, s.p_end, options.join);
+      const JoinSummary j = internal::ConnectPoints(model, s.angles_before, mu_now, x, s.p_end, options.join,
+                                                    options.reach_fallback ? &options.reach : nullptr,
+                                                    &s.reached_globally);
       s.join_status = j.status;
       s.join_residual = j.residual;
       s.join_iterations = j.iterations;

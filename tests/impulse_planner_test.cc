@@ -167,6 +167,7 @@ TEST(ImpulsePlanner, PiecewisePathIsPlannedPieceByPiece) {
 TEST(ImpulsePlanner, FailedJoinIsAStatusNamingTheSegment) {
   PlanOptions o;
   o.join.max_iterations = 1;  // cannot converge from the ellipse guess on long segments
+  o.reach_fallback = false;   // and no global reach to fall back on
   const PlanSummary plan = PlanUniform(T2Circle(), 4, {}, o);
   EXPECT_EQ(plan.status, PlanStatus::kSegmentBeyondLocalRadius);
   EXPECT_NE(plan.message.find("segment 0"), std::string::npos) << plan.message;

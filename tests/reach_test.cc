@@ -9,6 +9,9 @@
 
 #include "plateball/ball_state.h"
 #include "plateball/free_motion.h"
+#include "plateball/impulse_planner.h"
+#include "plateball/partition.h"
+#include "plateball/path.h"
 #include "reach_internal.h"
 #include "support/test_support.h"
 
@@ -375,4 +378,34 @@ TEST(ReachInternal, SensitivitiesMatchCentralDifferences) {
       // And the position against the direct integration of the library's free motion.
       EXPECT_LT((p.x0 + tp.x - IntegrateFreeMotion(p.model, StartAfterImpulse(p, s), {t})[0].x).norm(), 1e-10);
     }
+}
+
+TEST(ReachPlannerFallback, CoarsePartitionOfALongPathStillGivesAPlan) {
+  // The slender ball on a long straight path cut into 3 segments of 14 units: the local join
+  // (Lemma 2.1) finds no solution on its local branch for such a segment.
+  const ReachProblem start = Slender({0, 0});
+  PathSpec line;
+  line.type = "line";
+  line.from = {0, 0};
+  line.to = {30, 30};
+  const Path path = Path::FromSpec(line);
+  const std::vector<std::vector<double>> partition{UniformParameterPartition(path.pieces()[0], 3)};
+  PlanOptions local_only;
+  local_only.reach_fallback = false;
+  const PlanSummary without =
+      PlanImpulses(start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, partition, {}, local_only);
+  EXPECT_EQ(without.status, PlanStatus::kSegmentBeyondLocalRadius) << without.BriefReport();
+
+  const PlanSummary plan = PlanImpulses(start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, partition);
+  ASSERT_TRUE(plan.IsSolutionUsable()) << plan.BriefReport();
+  ASSERT_EQ(plan.steps.size(), 3u);
+  int global = 0;
+  for (const PlanStep& s : plan.steps) {
+    global += s.reached_globally ? 1 : 0;
+    // The planner integrates each arc itself (independently of Reach): it passes every point.
+    EXPECT_LT(s.pass_miss, kReachTolerance) << "segment " << s.global_index;
+  }
+  EXPECT_GE(global, 1);
+  EXPECT_LE(plan.max_pass_miss, kReachTolerance);
+  EXPECT_LE(plan.measured_error, plan.bounds.a_posteriori);
 }

@@ -15,6 +15,7 @@
 #include "plateball/join.h"
 #include "plateball/path.h"
 #include "plateball/problem.h"
+#include "plateball/reach.h"
 
 namespace plateball {
 
@@ -27,6 +28,11 @@ std::string ToString(PlanStatus status);
 
 struct PlanOptions {
   JoinOptions join;                 ///< per-segment join (tolerances, local-branch factor)
+  /// A segment beyond the join's local radius is connected by Reach (reach.h, earliest solution)
+  /// so that coarse partitions still give a plan; false: such a segment ends the plan with
+  /// kSegmentBeyondLocalRadius.
+  bool reach_fallback = true;
+  ReachOptions reach;               ///< options of that fallback (integration: join's)
   IntegrationOptions integration;   ///< arcs with orientation and the rolling reference
   int bound_samples = 9;            ///< samples of p', p'' per segment for the bounds (>= 2)
   std::string Validate() const;
@@ -54,6 +60,7 @@ struct PlanStep {
   Eigen::Vector2d x_end = Eigen::Vector2d::Zero();  ///< contact point reached (independent arc integration)
   double pass_miss = 0.0;               ///< |x_end - p(tau_k+1)|
   JoinStatus join_status = JoinStatus::kConverged;
+  bool reached_globally = false;        ///< connected by the Reach fallback, not the local join
   double join_residual = 0.0;
   int join_iterations = 0;
   Eigen::Matrix3d A_planned = Eigen::Matrix3d::Identity();    ///< A(tau_k+1) rolling along p
