@@ -12,6 +12,7 @@
 #include "plateball/impulse_planner.h"
 #include "plateball/partition.h"
 #include "plateball/path.h"
+#include "plateball/problem_io.h"
 #include "reach_internal.h"
 #include "support/test_support.h"
 
@@ -166,6 +167,50 @@ TEST(Reach, Figure8TargetsAreReachedByAnIndependentIntegration) {
     EXPECT_NEAR(std::remainder(e.impulse.after.psi - e.impulse.before.psi - e.delta_psi, 2 * M_PI), 0.0, 1e-12);
     EXPECT_NEAR(e.impulse.mu_after, p.mu, 1e-12);
   }
+}
+
+TEST(Reach, StraightRollingTargetHasTheClosedFormSolution) {
+  // Closed form: from Figure 8's state, delta_psi = pi gives w = phi - psi = -pi/2, so
+  // omega = (-1, 0, 0) (section 2.1's omega_1, omega_2 with b = 1) and v0 = <omega, z> = 0 since
+  // z = (0, -sqrt(3)/2, 1/2). Then K = (-1, 0), z turns about e1 keeping z_1 = 0, v0 stays 0 and
+  // omega = K is constant: the ball rolls straight along +y at unit speed, x(t) = (0, t).
+  const ReachSummary s = Reach(Figure8({0, 10}));
+  ASSERT_EQ(s.status, ReachStatus::kSolved) << s.BriefReport();
+  ASSERT_EQ(s.solutions.size(), 1u);
+  EXPECT_NEAR(s.Earliest().delta_psi, M_PI, 1e-10);
+  EXPECT_NEAR(s.Earliest().t, 10.0, 1e-10);
+}
+
+TEST(Reach, Figure8ProblemFileExpectedValuesHold) {
+  const Problem problem = ReadProblemFile(plateball::testing::SourcePath("problems/figure8_reach.json"));
+  ASSERT_TRUE(problem.reach.has_value());
+  ASSERT_EQ(problem.reach->targets.size(), 3u);
+  EXPECT_EQ(problem.initial_angles.theta, -M_PI / 3);  // as the paper gives it
+  ReachOptions o;
+  o.horizon_periods = problem.reach->horizon_periods;
+  o.seed = problem.seed;
+  o.integration = problem.integration;
+  for (std::size_t k = 0; k < problem.reach->targets.size(); ++k) {
+    ReachProblem rp;
+    rp.model = problem.model;
+    rp.start = problem.initial_angles;
+    rp.mu = problem.mu;
+    rp.x0 = problem.x0;
+    rp.A0 = problem.A0;
+    rp.target = problem.reach->targets[k];
+    const ReachSummary s = Reach(rp, o);
+    ASSERT_TRUE(s.IsSolutionUsable()) << s.BriefReport();
+    const std::string prefix = "target_" + std::to_string(k) + "_earliest_";
+    for (const auto& [name, value] : problem.expected) {
+      if (name == prefix + "delta_psi") {
+        EXPECT_NEAR(s.Earliest().delta_psi, value.value, value.tolerance) << name;
+      }
+      if (name == prefix + "t") {
+        EXPECT_NEAR(s.Earliest().t, value.value, value.tolerance) << name;
+      }
+    }
+  }
+  EXPECT_EQ(problem.expected.count("target_1_earliest_t"), 1u);
 }
 
 TEST(Reach, DenserIndependentScanFindsNoOtherSolutionForFigure8Targets) {
