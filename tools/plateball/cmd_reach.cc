@@ -6,31 +6,27 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <memory>
-#include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "common/command_registry.h"
+#include "common/errors.h"
 #include "common/exit_codes.h"
+#include "common/json_output.h"
+#include "common/problem_options.h"
 #include "plateball/free_motion.h"
-#include "plateball/problem_io.h"
 #include "plateball/reach.h"
 
 namespace plateball::tools {
 namespace {
 
-using json = nlohmann::ordered_json;
+using json = Json;
 
-json Vec(const Eigen::Vector2d& v) { return json::array({v.x(), v.y()}); }
-json Vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
-json Mat(const Eigen::Matrix3d& m) {
-  json rows = json::array();
-  for (int r = 0; r < 3; ++r) rows.push_back(json::array({m(r, 0), m(r, 1), m(r, 2)}));
-  return rows;
-}
+json Vec(const Eigen::Vector2d& v) { return ToJson(v); }
+json Vec(const Eigen::Vector3d& v) { return ToJson(v); }
 
 json SolutionJson(const ReachSolution& s) {
   return json{{"delta_psi", s.delta_psi},
@@ -39,13 +35,7 @@ json SolutionJson(const ReachSolution& s) {
               {"residual", s.residual},
               {"jacobian_determinant", s.jacobian_determinant},
               {"plate_velocity_change", Vec(s.impulse.plate_velocity_change)},
-              {"end",
-               {{"x", Vec(s.end.x)},
-                {"z", Vec(s.end.state.z)},
-                {"omega", Vec(s.end.state.omega)},
-                {"angles", {{"theta", s.end.angles.theta}, {"phi", s.end.angles.phi}, {"psi", s.end.angles.psi}}},
-                {"orientation", Mat(s.end.A)},
-                {"energy", s.end.energy}}}};
+              {"end", ToJson(s.end)}};
 }
 
 json SummaryJson(const ReachSummary& s) {
@@ -56,7 +46,6 @@ json SummaryJson(const ReachSummary& s) {
            {"report", s.BriefReport()},
            {"period", s.period},
            {"horizon", s.horizon},
-           {"drift_guess_delta_psi", std::isfinite(s.drift_guess_delta_psi) ? json(s.drift_guess_delta_psi) : json(nullptr)},
            {"solutions", sols},
            {"closest_approach",
             {{"distance", s.closest_approach.distance},
@@ -68,6 +57,8 @@ json SummaryJson(const ReachSummary& s) {
              {"tight_evaluations", s.tight_evaluations},
              {"scan_periods_integrated", s.scan_periods_integrated},
              {"global_evaluations", s.global_evaluations}}}};
+  // The paper's first guess (absent when the target is x0: no direction).
+  if (std::isfinite(s.drift_guess_delta_psi)) out["drift_guess_delta_psi"] = s.drift_guess_delta_psi;
   if (!s.message.empty()) out["message"] = s.message;
   return out;
 }
@@ -156,89 +147,95 @@ std::string Svg(const Problem& problem, const std::vector<ReachSummary>& summari
   return svg.str();
 }
 
-std::function<int()> Setup(CLI::App& sub) {
-  struct Args {
-    std::string problem;
-    std::vector<double> target;
-    double horizon_periods = std::numeric_limits<double>::quiet_NaN();
-    std::string out;
-    std::string svg;
-    bool svg_all = false;
-  };
-  auto args = std::make_shared<Args>();
-  sub.add_option("problem", args->problem, "problem file (JSON) with a \"reach\" section, e.g. problems/figure8_reach.json")
-      ->required();
-  sub.add_option("--target", args->target, "reach this point X Y instead of the file's targets")->expected(2);
-  sub.add_option("--horizon-periods", args->horizon_periods, "enumerate solutions with t up to this many periods");
-  sub.add_option("--out", args->out, "write the JSON here instead of standard output");
-  sub.add_option("--svg", args->svg, "draw the trajectories reaching the targets (Figure 8) into this SVG file");
-  sub.add_flag("--svg-all", args->svg_all, "draw every solution, not only the earliest (later ones dashed)");
-  return [args]() -> int {
-    Problem problem;
-    try {
-      problem = ReadProblemFile(args->problem);
-    } catch (const ProblemFileReadError& e) {
-      std::cerr << "plateball reach: " << e.what() << "\n";
-      return kExitIoError;
-    }
-    ReachTask task = problem.reach.value_or(ReachTask{});
-    if (!args->target.empty()) task.targets = {Eigen::Vector2d(args->target[0], args->target[1])};
-    if (!std::isnan(args->horizon_periods)) task.horizon_periods = args->horizon_periods;
-    if (task.targets.empty())
-      throw std::invalid_argument(args->problem + ": reach.targets: value (missing): the problem has no \"reach\" section; give one or use --target X Y");
-    ReachOptions options;
-    options.horizon_periods = task.horizon_periods;
-    options.seed = problem.seed;
-    options.integration = problem.integration;
-    std::vector<ReachSummary> summaries;
-    json results = json::array();
-    bool all_solved = true;
-    for (const Eigen::Vector2d& target : task.targets) {
-      ReachProblem rp;
-      rp.model = problem.model;
-      rp.start = problem.initial_angles;
-      rp.mu = problem.mu;
-      rp.x0 = problem.x0;
-      rp.A0 = problem.A0;
-      rp.target = target;
-      summaries.push_back(Reach(rp, options));
-      results.push_back(SummaryJson(summaries.back()));
-      all_solved = all_solved && summaries.back().IsSolutionUsable();
-    }
-    const json doc{{"problem", problem.name.empty() ? problem.source : problem.name},
-                   {"lambda", problem.model.lambda()},
-                   {"mu", problem.mu},
-                   {"initial", {{"theta", problem.initial_angles.theta}, {"phi", problem.initial_angles.phi}, {"psi", problem.initial_angles.psi}}},
-                   {"x0", Vec(problem.x0)},
-                   {"horizon_periods", task.horizon_periods},
-                   {"seed", problem.seed},
-                   {"results", results}};
-    const std::string text = doc.dump(2) + "\n";
-    if (args->out.empty()) {
-      std::cout << text;
-    } else {
-      std::ofstream f(args->out);
-      f << text;
-      if (!f) {
-        std::cerr << "plateball reach: cannot write " << args->out << "\n";
-        return kExitIoError;
-      }
-    }
-    if (!args->svg.empty()) {
-      std::ofstream f(args->svg);
-      f << Svg(problem, summaries, args->svg_all);
-      if (!f) {
-        std::cerr << "plateball reach: cannot write " << args->svg << "\n";
-        return kExitIoError;
-      }
-    }
-    for (const ReachSummary& s : summaries) std::cerr << s.BriefReport() << "\n";
-    return all_solved ? kExitSuccess : kExitNoSolution;
-  };
+struct ReachCliOptions {
+  ProblemOptions problem;
+  std::string targets;
+  double horizon_periods = 0.0;
+  std::string out;
+  std::string svg;
+  bool svg_all = false;
+  CLI::Option* targets_opt = nullptr;
+  CLI::Option* horizon_opt = nullptr;
+};
+
+int RunReach(const ReachCliOptions& o) {
+  const Problem problem = o.problem.Load();
+  ReachTask task = problem.reach.value_or(ReachTask{});
+  if (o.targets_opt->count() > 0) task.targets = ParsePointsOption("--targets", o.targets);
+  if (o.horizon_opt->count() > 0) {
+    task.horizon_periods = RequirePositiveOption("--horizon-periods", o.horizon_periods);
+    if (task.horizon_periods > 1e4)
+      throw std::invalid_argument(std::string(kCommandLine) + ": --horizon-periods: value " + std::to_string(task.horizon_periods) +
+                                  ": must be <= 1e4 (as the problem file)");
+  }
+  if (task.targets.empty())
+    throw std::invalid_argument((o.problem.file().empty() ? std::string(kCommandLine) : o.problem.file()) +
+                                ": reach.targets: value (missing): no target; give a problem file with a \"reach\" section or --targets X,Y");
+  ReachOptions options;
+  options.horizon_periods = task.horizon_periods;
+  options.seed = problem.seed;
+  options.integration = problem.integration;
+  std::vector<ReachSummary> summaries;
+  json results = json::array();
+  bool all_solved = true;
+  for (const Eigen::Vector2d& target : task.targets) {
+    ReachProblem rp;
+    rp.model = problem.model;
+    rp.start = problem.initial_angles;
+    rp.mu = problem.mu;
+    rp.x0 = problem.x0;
+    rp.A0 = problem.A0;
+    rp.target = target;
+    summaries.push_back(Reach(rp, options));
+    if (summaries.back().status == ReachStatus::kNumericalFailure) throw std::runtime_error(summaries.back().BriefReport());
+    results.push_back(SummaryJson(summaries.back()));
+    all_solved = all_solved && summaries.back().IsSolutionUsable();
+  }
+  json doc;
+  doc["command"] = "reach";
+  doc["problem"] = problem.name.empty() ? problem.source : problem.name;
+  doc["model"] = ToJson(problem.model);
+  doc["initial"] = json{{"theta", problem.initial_angles.theta},
+                        {"phi", problem.initial_angles.phi},
+                        {"psi", problem.initial_angles.psi},
+                        {"mu", problem.mu},
+                        {"x0", ToJson(problem.x0)}};
+  doc["horizon_periods"] = task.horizon_periods;
+  doc["seed"] = problem.seed;
+  doc["results"] = std::move(results);
+  WriteJson(doc, o.out);
+  if (!o.svg.empty()) {
+    std::ofstream f(o.svg);
+    f << Svg(problem, summaries, o.svg_all);
+    if (!f) throw IoError("cannot write " + o.svg);
+  }
+  for (const ReachSummary& s : summaries) std::cerr << s.BriefReport() << "\n";
+  return all_solved ? kExitSuccess : kExitNoSolution;
+}
+
+std::function<int()> SetupReach(CLI::App& sub) {
+  auto o = std::make_shared<ReachCliOptions>();
+  o->problem.Add(sub);
+  o->targets_opt = sub.add_option("--targets", o->targets, "reach these points \"X1,Y1;X2,Y2;...\" instead of the file's reach.targets");
+  o->horizon_opt = sub.add_option("--horizon-periods", o->horizon_periods,
+                                  "enumerate solutions with t up to this many periods, (0, 1e4] (default: the file's, else 5)");
+  sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
+  sub.add_option("--svg", o->svg, "draw the trajectories reaching the targets (like Figure 8) into this SVG file");
+  sub.add_flag("--svg-all", o->svg_all, "draw every solution, not only the earliest (later ones dashed)");
+  sub.footer(
+      "Prints JSON: per target the status, every solution (delta_psi, t, periods, residual, Jacobian\n"
+      "determinant, plate velocity change of the impulse, end state) sorted by t, the closest approach\n"
+      "(when unreachable within the horizon) and the paper's drift-direction first guess; one summary\n"
+      "line per target on standard error.\n"
+      "Example: plateball reach problems/figure8_reach.json --svg figure8.svg\n"
+      "         plateball reach problems/figure8_reach.json --targets \"40,0\" --horizon-periods 5\n"
+      "Exit codes: 0 every target reached, 2 usage, 3 invalid input, 4 a target not reachable within the\n"
+      "horizon (or computation failed), 5 unreadable/unwritable file.");
+  return [o] { return RunReach(*o); };
 }
 
 const CommandRegistrar kRegistrar{
-    {"reach", "reach distant points: every (delta psi, t) within a horizon of periods (section 2.3, Figure 8)", Setup}};
+    {"reach", "reach distant points: every (delta psi, t) within a horizon of periods (section 2.3, Figure 8)", SetupReach}};
 
 }  // namespace
 }  // namespace plateball::tools
