@@ -38,6 +38,8 @@ constexpr Accuracy kPolish{160, 0.02};
 constexpr double kSearchStop = 3e-6;
 constexpr double kSearchAccept = 1e-4;
 constexpr int kSearchIterations = 40;
+constexpr int kSearchChunk = 8;
+constexpr double kSearchProgress = 0.95;
 constexpr int kPolishIterations = 12;
 // Relative tolerance for "the same solution" between a search result and a polished one.
 constexpr double kSearchSameTol = 1e-4;
@@ -172,12 +174,19 @@ LocalResult SearchLocal(const Context& ctx, PendulumRegime regime, const double*
   out.crossing = crossing;
   std::copy(x0, x0 + 3, out.x);
   ShootingFunctor search{&ctx, regime, crossing, kSearch, false};
-  const bool ok = RunLm(search, out.x, std::min(options.max_iterations, kSearchIterations),
-                        0.5 * kSearchStop * kSearchStop);
+  // LM in chunks of kSearchChunk iterations; a run whose residual does not at least shrink by
+  // kSearchProgress per chunk is abandoned (most starts lead nowhere; this halves their cost).
+  const int budget = std::min(options.max_iterations, kSearchIterations);
+  double previous = std::numeric_limits<double>::infinity();
+  for (int used = 0; used < budget; used += kSearchChunk) {
+    const bool ok = RunLm(search, out.x, std::min(kSearchChunk, budget - used), 0.5 * kSearchStop * kSearchStop);
+    if (!ok || !Evaluate(ctx, ToParameters(regime, out.x), crossing, kSearch, &out.ev)) break;
+    const double r = out.ev.residual.norm();
+    if (r <= kSearchStop || r > kSearchProgress * previous) break;
+    previous = r;
+  }
   out.evaluations += search.evaluations;
-  if (!ok) return out;
-  out.searched = Evaluate(ctx, ToParameters(regime, out.x), crossing, kSearch, &out.ev) &&
-                 out.ev.residual.norm() <= kSearchAccept;
+  out.searched = out.ev.residual.allFinite() && out.ev.s > 0 && out.ev.residual.norm() <= kSearchAccept;
   return out;
 }
 

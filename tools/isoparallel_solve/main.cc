@@ -242,7 +242,7 @@ int main(int argc, char** argv) {
       return kExitNoSolution;
     }
     const IsoparallelSolution& best = summary.Shortest();
-    std::cout << "solutions found: " << summary.solutions.size() << " (all up to " << opt.length_cap_factor
+    std::cout << "solutions found: " << summary.solutions.size() << " (distinct, up to " << opt.length_cap_factor
               << "x the shortest; " << opt.starts << " starts, seed " << opt.seed << ")\n";
     std::cout << std::setprecision(10) << "shortest length: " << best.length << std::setprecision(6) << "  ("
               << ToString(best.parameters.regime) << " pendulum, G = " << best.G << ", energy = " << best.energy
