@@ -151,7 +151,7 @@ double CellDistance(const Eigen::Vector2d* c, const Eigen::Vector2d& q) {
 
 // Collects refinement seeds: cells whose piecewise-linear image contains the target, and cells
 // next to a fold (orientation change) whose image is close to the target.
-std::vector<Candidate> FindCandidates(const Scan& scan, const Eigen::Vector2d& rel_target, bool skip_first_row) {
+std::vector<Candidate> FindCandidates(const Scan& scan, const Eigen::Vector2d& rel_target) {
   std::vector<Candidate> hits, folds;
   const int ns = scan.ns(), n = scan.n(), m = scan.m();
   const int periods = (m + n - 1) / n;
@@ -178,7 +178,6 @@ std::vector<Candidate> FindCandidates(const Scan& scan, const Eigen::Vector2d& r
         if ((rel_target.array() < box.lo.array() - margin).any() || (rel_target.array() > box.hi.array() + margin).any())
           continue;
         for (int j = j0; j < j1; ++j) {
-          if (skip_first_row && j == 0) continue;
           Eigen::Vector2d c[4];
           cell_corners(i, j, c);
           double diameter = 0.0;
@@ -439,6 +438,8 @@ std::string ToString(ReachStatus status) {
       return "unreachable_within_horizon";
     case ReachStatus::kNumericalFailure:
       return "numerical_failure";
+    case ReachStatus::kTargetEqualsStart:
+      return "target_equals_start";
   }
   return "unknown";
 }
@@ -482,16 +483,21 @@ ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options) {
   summary.period = kTwoPi / std::sqrt(problem.mu);
   summary.horizon = options.horizon_periods * summary.period;
   const double period = summary.period, horizon = summary.horizon;
-  const double t_min = 1e-9 * period;
   const Eigen::Vector2d rel = problem.target - problem.x0;
   const double lambda = problem.model.lambda();
+  if (rel.norm() <= options.tolerance) {
+    summary.status = ReachStatus::kTargetEqualsStart;
+    summary.drift_guess_delta_psi = std::numeric_limits<double>::quiet_NaN();
+    summary.closest_approach = {rel.norm(), 0.0, 0.0};
+    return summary;
+  }
 
   try {
     const Scan scan(problem, options, period, horizon);
     summary.scan_periods_integrated = scan.ns();
     summary.drift_guess_delta_psi = DriftGuess(scan, rel);
 
-    std::vector<Candidate> candidates = FindCandidates(scan, rel, rel.norm() <= options.tolerance);
+    std::vector<Candidate> candidates = FindCandidates(scan, rel);
     if (candidates.empty() && std::isfinite(summary.drift_guess_delta_psi)) {
       // The paper's method as a last resort: uniform drift towards the target.
       const double s = summary.drift_guess_delta_psi;
@@ -526,7 +532,8 @@ ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options) {
       solver.Solve(residual, &x);
       summary.refine_iterations += solver.summary.iterations;
       const double t = x[1];
-      if (!(t > t_min && t <= horizon)) continue;
+      // t > 0: the target is not x0 (checked above), so t = 0 cannot have a residual this small.
+      if (!(t > 0.0 && t <= horizon)) continue;
       const internal::TightPoint tp = residual.Evaluate(x[0], x[1]);
       const double s = WrapTwoPi(x[0]);
       const double res = (problem.x0 + tp.x - problem.target).norm();

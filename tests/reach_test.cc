@@ -365,10 +365,32 @@ TEST(Reach, InvalidInputNamesTheField) {
   EXPECT_NE(message_of(Figure8({6, 0}), o).find("relative_tolerance"), std::string::npos);
 }
 
+TEST(Reach, TargetAtTheStartIsAStatus) {
+  const ReachSummary s = Reach(Figure8({0, 0}));
+  EXPECT_EQ(s.status, ReachStatus::kTargetEqualsStart);
+  EXPECT_FALSE(s.IsSolutionUsable());
+  EXPECT_EQ(s.closest_approach.distance, 0.0);
+}
+
+TEST(Reach, TargetVeryCloseToTheStartIsReachedAlongTheVelocityEllipse) {
+  // Lemma 2.1's local polar coordinates: a target at distance 1e-9 is reached at t ~ 1e-9 / |x'|
+  // with |x'| between the ellipse's semi-axes a(theta) and b = sqrt(mu) ((27)).
+  const ReachProblem p = Figure8({1e-9, 0});
+  const ReachSummary s = Reach(p);
+  ASSERT_EQ(s.status, ReachStatus::kSolved) << s.BriefReport();
+  const double a = SemiAxisA(p.start.theta, p.mu, p.model.lambda()), b = std::sqrt(p.mu);
+  // The residual is absolute (ReachOptions::tolerance), so t is known to residual / speed.
+  const double slack = s.Earliest().residual / std::min(a, b) + 1e-18;
+  EXPECT_GE(s.Earliest().t, 1e-9 / std::max(a, b) - slack);
+  EXPECT_LE(s.Earliest().t, 1e-9 / std::min(a, b) + slack);
+  EXPECT_LT(DirectMiss(p, s.Earliest().delta_psi, s.Earliest().t), kReachTolerance);
+}
+
 TEST(Reach, StatusNamesAreStable) {
   EXPECT_EQ(ToString(ReachStatus::kSolved), "solved");
   EXPECT_EQ(ToString(ReachStatus::kUnreachableWithinHorizon), "unreachable_within_horizon");
   EXPECT_EQ(ToString(ReachStatus::kNumericalFailure), "numerical_failure");
+  EXPECT_EQ(ToString(ReachStatus::kTargetEqualsStart), "target_equals_start");
 }
 
 TEST(Reach, IntegrationStepBoundIsANumericalFailureStatus) {

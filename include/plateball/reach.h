@@ -62,6 +62,7 @@ enum class ReachStatus {
   kSolved,                     ///< at least one solution with t <= horizon
   kUnreachableWithinHorizon,   ///< none found; closest_approach says how near the ball gets
   kNumericalFailure,           ///< an integration failed (step bound); message says where
+  kTargetEqualsStart,          ///< |target - x0| <= tolerance: nothing to reach (t = 0)
 };
 std::string ToString(ReachStatus status);
 
