@@ -60,10 +60,9 @@ class Scan {
     m_ = static_cast<int>(std::ceil(horizon / h_ - 1e-9));
     m_ = std::max(m_, 1);
     tab_.resize(static_cast<std::size_t>(ns_));
-    for (int i = 0; i < ns_; ++i) {
-      const internal::ReachDirection d = internal::DirectionFor(p.start, p.mu, p.model.lambda(), i * ds_);
-      internal::TabulatePeriod(d, p.model.lambda(), period, n_, &tab_[static_cast<std::size_t>(i)]);
-    }
+    std::vector<internal::ReachDirection> dirs(static_cast<std::size_t>(ns_));
+    for (int i = 0; i < ns_; ++i) dirs[static_cast<std::size_t>(i)] = internal::DirectionFor(p.start, p.mu, p.model.lambda(), i * ds_);
+    internal::TabulatePeriods(dirs.data(), ns_, p.model.lambda(), period, n_, tab_.data());
     blocks_ = (n_ + kBlockSteps - 1) / kBlockSteps;
     boxes_.assign(static_cast<std::size_t>(ns_ * blocks_), Box());
     for (int i = 0; i < ns_; ++i)

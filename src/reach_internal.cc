@@ -98,6 +98,54 @@ void TabulatePeriod(const ReachDirection& d, double lambda, double period, int s
   out->drift = out->x.back();
 }
 
+void TabulatePeriods(const ReachDirection* d, int count, double lambda, double period, int steps, ScanPeriod* out) {
+  constexpr int kLanes = 4;
+  int first = 0;
+  for (; first + kLanes <= count; first += kLanes) {
+    double y[kLanes][5], k1[kLanes][5], k2[kLanes][5], k3[kLanes][5], k4[kLanes][5], tmp[kLanes][5], kk[kLanes][2];
+    for (int l = 0; l < kLanes; ++l) {
+      const ReachDirection& dl = d[first + l];
+      y[l][0] = dl.z0.x();
+      y[l][1] = dl.z0.y();
+      y[l][2] = dl.z0.z();
+      y[l][3] = y[l][4] = 0.0;
+      kk[l][0] = dl.k.x();
+      kk[l][1] = dl.k.y();
+      out[first + l].x.resize(static_cast<std::size_t>(steps) + 1);
+      out[first + l].v.resize(static_cast<std::size_t>(steps) + 1);
+    }
+    auto rhs = [&](const double (*in)[5], double (*o)[5]) {
+      for (int l = 0; l < kLanes; ++l) {
+        double w[2];
+        OmegaFromZK(in[l], kk[l], lambda, w);
+        ZxRhs(in[l], w, o[l], o[l] + 3);
+      }
+    };
+    const double h = period / steps;
+    for (int j = 0;; ++j) {
+      rhs(y, k1);
+      for (int l = 0; l < kLanes; ++l) {
+        out[first + l].x[static_cast<std::size_t>(j)] = {y[l][3], y[l][4]};
+        out[first + l].v[static_cast<std::size_t>(j)] = {k1[l][3], k1[l][4]};
+      }
+      if (j == steps) break;
+      for (int l = 0; l < kLanes; ++l)
+        for (int i = 0; i < 5; ++i) tmp[l][i] = y[l][i] + 0.5 * h * k1[l][i];
+      rhs(tmp, k2);
+      for (int l = 0; l < kLanes; ++l)
+        for (int i = 0; i < 5; ++i) tmp[l][i] = y[l][i] + 0.5 * h * k2[l][i];
+      rhs(tmp, k3);
+      for (int l = 0; l < kLanes; ++l)
+        for (int i = 0; i < 5; ++i) tmp[l][i] = y[l][i] + h * k3[l][i];
+      rhs(tmp, k4);
+      for (int l = 0; l < kLanes; ++l)
+        for (int i = 0; i < 5; ++i) y[l][i] += h / 6.0 * (k1[l][i] + 2.0 * k2[l][i] + 2.0 * k3[l][i] + k4[l][i]);
+    }
+    for (int l = 0; l < kLanes; ++l) out[first + l].drift = out[first + l].x.back();
+  }
+  for (; first < count; ++first) TabulatePeriod(d[first], lambda, period, steps, &out[first]);
+}
+
 TightPoint EvaluateTight(const ReachDirection& d, double lambda, double period, double t, bool with_ds,
                          const IntegrationOptions& options) {
   const double kf = std::floor(t / period);

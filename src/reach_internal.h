@@ -47,6 +47,9 @@ struct ScanPeriod {
   Eigen::Vector2d drift = Eigen::Vector2d::Zero();
 };
 void TabulatePeriod(const ReachDirection& d, double lambda, double period, int steps, ScanPeriod* out);
+/// The same for several directions at once (identical results; the independent RK4 chains run in
+/// lockstep, which lets the processor overlap them).
+void TabulatePeriods(const ReachDirection* d, int count, double lambda, double period, int steps, ScanPeriod* out);
 
 /// x_s(t) - x0 from a tight integration (Dormand-Prince, `options`), using x(t + kT) = x(t) + k
 /// drift: at most one period is integrated. velocity = x'(t) (the contact velocity);
