@@ -632,6 +632,8 @@ class DuplicateKeyDetector {
     return true;
   }
   const std::string& duplicate_path() const { return duplicate_path_; }
+  /// Path of the value being parsed when the parser stopped (empty at the top level).
+  std::string CurrentPath() const { return Path(); }
 
  private:
   struct Frame {
@@ -687,11 +689,17 @@ json ParseJson(const std::string& text, const Reader& reader) {
       if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = ' ';
     reader.Fail("(document)", "'" + excerpt + "'", "malformed JSON at " + what);
   } catch (const json::exception& e) {
-    // e.g. out_of_range.406, a number that overflows a double.
+    // e.g. out_of_range.406, a number that overflows a double: name the field being parsed and
+    // the offending token.
     std::string what = e.what();
     const auto close = what.find("] ");
     if (close != std::string::npos) what = what.substr(close + 2);
-    reader.Fail("(document)", "(see message)", "malformed JSON: " + what);
+    std::string value = "(see message)";
+    const auto q0 = what.find('\'');
+    const auto q1 = q0 == std::string::npos ? q0 : what.find('\'', q0 + 1);
+    if (q1 != std::string::npos) value = what.substr(q0 + 1, q1 - q0 - 1);
+    const std::string field = detector.CurrentPath();
+    reader.Fail(field.empty() ? "(document)" : field, value, "malformed JSON: " + what);
   }
   if (!detector.duplicate_path().empty())
     reader.Fail(detector.duplicate_path(), "(duplicate)", "key given more than once in the same object");

@@ -321,7 +321,7 @@ TEST(ProblemIo, EveryErrorNamesFileFieldAndValue) {
       {"vector element type", [](json& d) { d["reach"]["targets"] = {{1, "a"}}; }, nullptr, "reach.targets[0][1]",
        "\"a\"", "must be a number"},
       {"number overflow", nullptr,
-       R"({"ball": {"lambda": 1}, "initial": {"theta": 1e400, "phi": 0, "psi": 0, "mu": 1}})", "(document)", "",
+       R"({"ball": {"lambda": 1}, "initial": {"theta": 1e400, "phi": 0, "psi": 0, "mu": 1}})", "initial.theta", "1e400",
        "number overflow parsing '1e400'"},
       {"scaled matrix", [](json& d) { d["initial"]["orientation"] = {{"matrix", {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}}}}; },
        nullptr, "initial.orientation.matrix", "[[2, 0, 0], [0, 2, 0], [0, 0, 2]]", "not a rotation matrix to 1e-9"},
