@@ -6,6 +6,11 @@
 namespace plateball {
 
 std::string IntegrationOptions::Validate() const {
+  // Fast path: no string stream when valid (called once per join in the planner's loop).
+  if (std::isfinite(absolute_tolerance) && absolute_tolerance > 0 && absolute_tolerance < 1 &&
+      std::isfinite(relative_tolerance) && relative_tolerance > 0 && relative_tolerance < 1 &&
+      !(absolute_tolerance < 1e-15 && relative_tolerance < 1e-15) && max_steps >= 1)
+    return {};
   std::ostringstream os;
   if (!(std::isfinite(absolute_tolerance) && absolute_tolerance > 0 && absolute_tolerance < 1))
     os << "integration option 'absolute_tolerance' = " << absolute_tolerance << " must be in (0, 1)";

@@ -223,6 +223,9 @@ std::string ToString(JoinStatus status) {
 }
 
 std::string JoinOptions::Validate() const {
+  if (std::isfinite(residual_tolerance) && residual_tolerance > 0 && max_iterations >= 1 &&
+      std::isfinite(local_time_factor) && local_time_factor >= 1)
+    return integration.Validate();
   std::ostringstream os;
   os.precision(17);
   if (!(std::isfinite(residual_tolerance) && residual_tolerance > 0))
@@ -327,19 +330,22 @@ JoinSummary Join(const BallModel& model, const AngleState& start, double mu, con
     return out;
   }
   finish_state(out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector());
-  std::ostringstream why;
-  why.precision(6);
+  // Messages are built only on failure (a string stream costs more than a short rollout).
+  auto why = [&](auto&&... parts) {
+    std::ostringstream os;
+    os.precision(6);
+    (os << ... << parts);
+    out.message = os.str();
+  };
   if (!(out.residual <= options.residual_tolerance)) {
-    why << "no solution found within " << out.iterations << " iterations: residual " << out.residual
-        << " > tolerance " << options.residual_tolerance << " (|target - x0| = " << dist << ")";
+    why("no solution found within ", out.iterations, " iterations: residual ", out.residual, " > tolerance ",
+        options.residual_tolerance, " (|target - x0| = ", dist, ")");
   } else if (out.t > out.time_limit) {
-    why << "the solution found has t = " << out.t << " > K1 |target - x0| = " << out.time_limit
-        << ": not the local branch of Lemma 2.1 (|target - x0| = " << dist << ")";
+    why("the solution found has t = ", out.t, " > K1 |target - x0| = ", out.time_limit,
+        ": not the local branch of Lemma 2.1 (|target - x0| = ", dist, ")");
   } else if (out.jacobian_conditioning < 1e-3) {
-    why << "the polar coordinates (s, t) degenerate at the solution (conditioning "
-        << out.jacobian_conditioning << ")";
+    why("the polar coordinates (s, t) degenerate at the solution (conditioning ", out.jacobian_conditioning, ")");
   }
-  out.message = why.str();
   out.status = out.message.empty() ? JoinStatus::kConverged : JoinStatus::kTargetBeyondLocalRadius;
   return out;
 }

@@ -34,7 +34,7 @@ struct PlanOptions {
   bool reach_fallback = true;
   ReachOptions reach;               ///< options of that fallback (integration: join's)
   IntegrationOptions integration;   ///< arcs with orientation and the rolling reference
-  int bound_samples = 9;            ///< samples of p', p'' per segment for the bounds (>= 2)
+  int bound_samples = 5;            ///< samples of p', p'' per segment for the bounds (>= 2)
   std::string Validate() const;
 };
 
