@@ -1,0 +1,133 @@
+// `plateball converge PROBLEM.json`: plan the problem for a sequence of partition sizes n and
+// report the table (n, time, measured error, bound) as JSON or CSV, the fitted log-log slope, and
+// the log-log chart as SVG (convergence.h).
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/command_registry.h"
+#include "common/exit_codes.h"
+#include "common/json_output.h"
+#include "common/problem_options.h"
+#include "common/svg.h"
+#include "plateball/convergence.h"
+
+namespace plateball::tools {
+namespace {
+
+struct ConvergeCliOptions {
+  ProblemOptions problem;
+  std::vector<long long> ns;
+  std::string format = "json";
+  std::string out;
+  std::string svg;
+};
+
+std::string Csv(const ConvergenceStudy& s) {
+  std::ostringstream os;
+  os.precision(17);
+  os << "n,segments,plan_seconds,measured_error,polyline_error,bound,theorem_2_6,corollary_3,max_pass_miss,status\n";
+  for (const auto& r : s.rows)
+    os << r.n << "," << r.segments << "," << r.plan_seconds << "," << r.measured_error << "," << r.polyline_error
+       << "," << r.bound << "," << r.theorem_2_6 << "," << r.corollary_3 << "," << r.max_pass_miss << ","
+       << ToString(r.status) << "\n";
+  return os.str();
+}
+
+// Least-squares line through (log n, log e): returns the intercept for the chart's fitted line.
+double Intercept(const std::vector<double>& x, const std::vector<double>& y, double slope) {
+  double sx = 0, sy = 0;
+  int m = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (x[i] > 0 && y[i] > 0) sx += std::log(x[i]), sy += std::log(y[i]), ++m;
+  return m > 0 ? (sy - slope * sx) / m : 0.0;
+}
+
+void DrawStudy(const Problem& p, const ConvergenceStudy& s, const std::string& file) {
+  LogLogSeries err{"measured error ||A(T) - A_n||", {}, {}, {"#c0392b", 1.8, "", "none"}, true};
+  LogLogSeries poly{"polyline error ||A(T) - Abar_n||", {}, {}, {"#7f8c8d", 1.2, "3,3", "none"}, true};
+  LogLogSeries bound{"reported bound (a-posteriori)", {}, {}, {"#1f5fbf", 1.6, "7,5", "none"}, true};
+  for (const auto& r : s.rows) {
+    if (r.status != PlanStatus::kSuccess) continue;
+    err.x.push_back(r.n), err.y.push_back(r.measured_error);
+    poly.x.push_back(r.n), poly.y.push_back(r.polyline_error);
+    bound.x.push_back(r.n), bound.y.push_back(r.bound);
+  }
+  std::ostringstream label;
+  label.precision(3);
+  label << "fit: slope " << s.error_slope;
+  LogLogSeries fit{label.str(), {}, {}, {"black", 1.0, "2,4", "none"}, false};
+  const double c = Intercept(err.x, err.y, s.error_slope);
+  for (double n : err.x) fit.x.push_back(n), fit.y.push_back(std::exp(c) * std::pow(n, s.error_slope));
+  std::ostringstream title;
+  title.precision(3);
+  title << (p.name.empty() ? std::string("convergence") : p.name) << ": error ~ n^" << s.error_slope;
+  WriteTextFile(file, RenderLogLogChart(title.str(), "impulses per piece n", "orientation error",
+                                        {err, poly, bound, fit}));
+}
+
+int RunConverge(const ConvergeCliOptions& o) {
+  const Problem p = o.problem.Load();
+  if (!p.plan) throw std::invalid_argument(p.source + ": plan: value (missing): the problem has no plan task");
+  if (o.format != "json" && o.format != "csv")
+    throw std::invalid_argument(std::string(kCommandLine) + ": --format: value " + o.format + ": must be json or csv");
+  std::vector<int> ns;
+  for (long long n : o.ns) ns.push_back(static_cast<int>(RequireIntegerInRange("--n", n, 1, 1'000'000)));
+  const ConvergenceStudy s = RunConvergenceStudy(p, ns);
+  if (o.format == "csv") {
+    if (o.out.empty() || o.out == "-") std::cout << Csv(s);
+    else WriteTextFile(o.out, Csv(s));
+  } else {
+    Json doc;
+    doc["command"] = "converge";
+    doc["problem"] = p.name.empty() ? p.source : p.name;
+    doc["path"] = p.plan->path.type;
+    doc["partition"] = p.plan->partition.type;
+    Json rows = Json::array();
+    for (const auto& r : s.rows) {
+      Json j{{"n", r.n}, {"segments", r.segments}, {"plan_seconds", r.plan_seconds},
+             {"measured_error", r.measured_error}, {"polyline_error", r.polyline_error}, {"bound", r.bound},
+             {"theorem_2_6", r.theorem_2_6}, {"corollary_3", r.corollary_3}, {"max_pass_miss", r.max_pass_miss},
+             {"status", ToString(r.status)}};
+      if (!r.message.empty()) j["message"] = r.message;
+      rows.push_back(std::move(j));
+    }
+    doc["rows"] = std::move(rows);
+    auto finite_or_null = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+    doc["error_slope"] = finite_or_null(s.error_slope);
+    doc["bound_slope"] = finite_or_null(s.bound_slope);
+    doc["time_slope"] = finite_or_null(s.time_slope);
+    doc["bound_holds"] = s.bound_holds;
+    doc["failed_rows"] = s.failed_rows;
+    doc["report"] = s.BriefReport();
+    WriteJson(doc, o.out);
+  }
+  if (!o.svg.empty()) DrawStudy(p, s, o.svg);
+  return s.failed_rows == 0 ? kExitSuccess : kExitNoSolution;
+}
+
+std::function<int()> SetupConverge(CLI::App& sub) {
+  auto o = std::make_shared<ConvergeCliOptions>();
+  o->problem.Add(sub);
+  sub.add_option("--n", o->ns, "partition sizes, e.g. --n 16,32,64 (default: plan.converge_n, else 16 ... 1024)")
+      ->delimiter(',');
+  sub.add_option("--format", o->format, "json (default) or csv");
+  sub.add_option("--out", o->out, "write the table to this file instead of standard output");
+  sub.add_option("--svg", o->svg, "draw the log-log chart (error, bound, fitted slope) to this SVG file");
+  sub.footer(
+      "Plans plan.path for each n and reports n, plan time, measured error ||A(T) - A_n||, the polyline's\n"
+      "error, the reported bound and Theorem 2.6 / Corollary 3, with the least-squares log-log slopes\n"
+      "(Corollary 3: error ~ n^-2).\n"
+      "Example: plateball converge problems/circle.json --n 16,32,64,128 --svg circle_convergence.svg\n"
+      "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 some plan failed, 5 unreadable file.");
+  return [o] { return RunConverge(*o); };
+}
+
+const CommandRegistrar kRegistrar{
+    {"converge", "convergence study: plan for several n, fit the log-log slope of the error (JSON/CSV, SVG)",
+     SetupConverge}};
+
+}  // namespace
+}  // namespace plateball::tools

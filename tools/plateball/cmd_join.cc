@@ -1,0 +1,110 @@
+// `plateball join`: join the initial contact point to nearby targets with one energy-preserving
+// impulse each (Lemma 2.1, join.h) and print the solutions as JSON.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/command_registry.h"
+#include "common/exit_codes.h"
+#include "common/json_output.h"
+#include "common/problem_options.h"
+#include "plateball/join.h"
+
+namespace plateball::tools {
+namespace {
+
+struct JoinCliOptions {
+  ProblemOptions problem;
+  std::string targets;
+  std::string out;
+  int max_iterations = 30;
+  double residual_tolerance = 1e-12;
+};
+
+Json ImpulseToJson(const Impulse& i) {
+  return Json{{"angles_before", ToJson(i.before)},
+              {"angles_after", ToJson(i.after)},
+              {"mu", i.mu_after},
+              {"delta_u", ToJson(i.delta_u)},
+              {"delta_v0", i.delta_v0},
+              {"delta_omega", ToJson(i.delta_omega)},
+              {"plate_velocity_change", ToJson(i.plate_velocity_change)},
+              {"omega_before", ToJson(i.state_before.omega)},
+              {"omega_after", ToJson(i.state_after.omega)}};
+}
+
+Json JoinToJson(const JoinSummary& j) {
+  Json out{{"target", ToJson(j.target)},
+           {"status", ToString(j.status)},
+           {"usable", j.IsSolutionUsable()},
+           {"delta_psi", j.delta_psi},
+           {"t", j.t},
+           {"residual", j.residual},
+           {"iterations", j.iterations},
+           {"initial_guess_residual", j.initial_guess_residual},
+           {"time_limit_K1_distance", j.time_limit},
+           {"jacobian_conditioning", j.jacobian_conditioning}};
+  if (!j.message.empty()) out["message"] = j.message;
+  out["impulse"] = ImpulseToJson(j.impulse);
+  out["arrival"] = Json{{"x", ToJson(j.x_after)},
+                        {"angles", ToJson(j.angles_after)},
+                        {"z", ToJson(j.state_after.z)},
+                        {"omega", ToJson(j.state_after.omega)}};
+  out["report"] = j.BriefReport();
+  return out;
+}
+
+int RunJoin(const JoinCliOptions& o) {
+  const Problem p = o.problem.Load();
+  std::vector<Eigen::Vector2d> targets;
+  if (!o.targets.empty()) targets = ParsePointsOption("--targets", o.targets);
+  else if (p.reach) targets = p.reach->targets;
+  if (targets.empty())
+    throw std::invalid_argument(std::string(kCommandLine) +
+                                ": --targets: value (missing): give targets with --targets X,Y;X,Y or in the file's reach.targets");
+  JoinOptions options;
+  options.max_iterations = static_cast<int>(RequireIntegerInRange("--max-iterations", o.max_iterations, 1, 10000));
+  options.residual_tolerance = RequirePositiveOption("--residual-tolerance", o.residual_tolerance);
+  options.integration = p.integration;
+
+  Json doc;
+  doc["command"] = "join";
+  doc["problem"] = p.name.empty() ? p.source : p.name;
+  doc["model"] = ToJson(p.model);
+  doc["initial"] = Json{{"theta", p.initial_angles.theta}, {"phi", p.initial_angles.phi},
+                        {"psi", p.initial_angles.psi}, {"mu", p.mu}, {"x0", ToJson(p.x0)}};
+  doc["minimum_contact_speed"] = MinimumContactSpeed(p.mu, p.model);
+  Json list = Json::array();
+  bool all = true;
+  for (const auto& target : targets) {
+    const JoinSummary j = Join(p.model, p.initial_angles, p.mu, p.x0, target, options);
+    all = all && j.IsSolutionUsable();
+    list.push_back(JoinToJson(j));
+  }
+  doc["joins"] = std::move(list);
+  WriteJson(doc, o.out);
+  return all ? kExitSuccess : kExitNoSolution;
+}
+
+std::function<int()> SetupJoin(CLI::App& sub) {
+  auto o = std::make_shared<JoinCliOptions>();
+  o->problem.Add(sub);
+  sub.add_option("--targets", o->targets, "targets X1,Y1;X2,Y2;... (default: the file's reach.targets)");
+  sub.add_option("--max-iterations", o->max_iterations, "Levenberg-Marquardt iterations per join (default 30)");
+  sub.add_option("--residual-tolerance", o->residual_tolerance, "accepted |x(t) - target| (default 1e-12)");
+  sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
+  sub.footer(
+      "For each target x near x0 finds (delta_psi, t), t >= 0, such that the free motion from\n"
+      "(theta, phi, psi + delta_psi) at x0 passes through x at time t (Lemma 2.1), with the impulse\n"
+      "(delta omega, upper-plate velocity change 2 delta omega x e3) and the state on arrival.\n"
+      "A target beyond the local radius is reported with status target_beyond_local_radius.\n"
+      "Example: plateball join --lambda 2 --theta 1.0471975511965976 --phi 0.4 --psi 0.1 --targets 0.05,0;0,0.05\n"
+      "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 a target not joined, 5 unreadable file.");
+  return [o] { return RunJoin(*o); };
+}
+
+const CommandRegistrar kRegistrar{
+    {"join", "join the start point to nearby targets with one energy-preserving impulse each (Lemma 2.1)", SetupJoin}};
+
+}  // namespace
+}  // namespace plateball::tools
