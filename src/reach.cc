@@ -497,6 +497,37 @@ ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options) {
     summary.drift_guess_delta_psi = DriftGuess(scan, rel);
 
     std::vector<Candidate> candidates = FindCandidates(scan, rel);
+
+    // NLopt's global search (DIRECT-L) over s in [0, 2 pi) of the closest approach
+    // d(s) = min_t |x_s(t) - target|, t in [0, horizon], on the cheap one-period tables. Its
+    // minimiser is refined by Ceres like every scan candidate (a solution when d reaches 0; the
+    // scan enumerates the others, since a global optimiser returns one minimum), and when nothing
+    // reaches the target it gives the closest approach.
+    CheapDistance cheap{&problem, period, horizon, options.scan_steps_per_period, &summary.scan_periods_integrated};
+    std::function<double(double)> d_of_s = [&](double s) {
+      ++summary.global_evaluations;
+      double t;
+      return cheap(s, &t);
+    };
+    nlopt::srand(static_cast<unsigned long>(options.seed));
+    nlopt::opt global(nlopt::GN_DIRECT_L, 1);
+    global.set_lower_bounds(std::vector<double>{0.0});
+    global.set_upper_bounds(std::vector<double>{kTwoPi});
+    global.set_min_objective(Objective1d, &d_of_s);
+    global.set_maxeval(options.global_max_evaluations);
+    global.set_xtol_abs(1e-10);
+    std::vector<double> sx{M_PI};
+    double global_d = std::numeric_limits<double>::infinity();
+    try {
+      global.optimize(sx, global_d);
+    } catch (const nlopt::roundoff_limited&) {
+    } catch (const nlopt::forced_stop&) {
+    }
+    const double global_s = sx[0];
+    double global_t = 0.0;
+    cheap(global_s, &global_t);
+    if (std::isfinite(global_d) && global_t > 0.0) candidates.insert(candidates.begin(), {global_s, global_t, 0});
+
     if (candidates.empty() && std::isfinite(summary.drift_guess_delta_psi)) {
       // The paper's method as a last resort: uniform drift towards the target.
       const double s = summary.drift_guess_delta_psi;
@@ -572,28 +603,9 @@ ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options) {
     // Unreachable within the horizon: the closest approach. Global search over s (NLopt
     // DIRECT-L on the cheap d(s)), then a bounded polish of (s, t) on the tight integration.
     summary.status = ReachStatus::kUnreachableWithinHorizon;
-    CheapDistance cheap{&problem, period, horizon, options.scan_steps_per_period, &summary.scan_periods_integrated};
-    std::function<double(double)> d_of_s = [&](double s) {
-      ++summary.global_evaluations;
-      double t;
-      return cheap(s, &t);
-    };
-    nlopt::srand(static_cast<unsigned long>(options.seed));
-    nlopt::opt global(nlopt::GN_DIRECT_L, 1);
-    global.set_lower_bounds(std::vector<double>{0.0});
-    global.set_upper_bounds(std::vector<double>{kTwoPi});
-    global.set_min_objective(Objective1d, &d_of_s);
-    global.set_maxeval(options.global_max_evaluations);
-    global.set_xtol_abs(1e-10);
-    std::vector<double> sx{M_PI};
-    double best_d = std::numeric_limits<double>::infinity();
-    try {
-      global.optimize(sx, best_d);
-    } catch (const nlopt::roundoff_limited&) {
-    } catch (const nlopt::forced_stop&) {
-    }
-    // The scan grid's best node competes (DIRECT may stop on its budget first).
-    double best_s = sx[0];
+    // The scan grid's best node competes with the global search (DIRECT may stop on its budget first).
+    double best_d = global_d;
+    double best_s = global_s;
     for (int i = 0; i < scan.ns(); ++i)
       for (int j = 0; j <= scan.m() && j * scan.h() <= horizon; ++j) {
         const double dij = (scan.Node(i, j) - rel).norm();

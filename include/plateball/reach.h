@@ -47,8 +47,9 @@ struct ReachOptions {
   /// Upper bound on the candidates refined (bounds the work for pathological inputs).
   int max_candidates = 256;
   /// Function evaluations of the NLopt global search (GN_DIRECT_L over s of the closest
-  /// approach d(s) = min_t |x_s(t) - target|), run when no solution is found.
-  int global_max_evaluations = 300;
+  /// approach d(s) = min_t |x_s(t) - target|). It runs on every call: its minimiser is refined
+  /// like a scan candidate, and it gives the closest approach when nothing reaches the target.
+  int global_max_evaluations = 80;
   /// Seed of NLopt's generator (nlopt::srand) before each NLopt run: results are reproducible.
   std::uint64_t seed = 1;
   /// Tolerances of the tight integrations (refinement, end states).
@@ -120,8 +121,8 @@ struct ReachSummary {
 /// whose image contains the target (and cells next to a fold of that map) seed a
 /// Levenberg-Marquardt refinement of (s, t) (Ceres TinySolver, exact Jacobian: dx/dt is the
 /// contact velocity, dx/ds comes from the variational equations); results are de-duplicated and
-/// sorted by t. When nothing is found, NLopt's global DIRECT-L search over s gives the closest
-/// approach. Throws std::invalid_argument (naming the field) for invalid problem or options.
+/// sorted by t. NLopt's global DIRECT-L search over s of the closest approach runs alongside:
+/// its minimiser is refined the same way, and when nothing is found it gives the closest approach. Throws std::invalid_argument (naming the field) for invalid problem or options.
 ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options = {});
 
 }  // namespace plateball
