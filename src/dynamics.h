@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <ceres/jet.h>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <stdexcept>
@@ -35,6 +36,39 @@ inline void ZxRhs(const T* z, const T* w, T* dz, T* dx) {
   dx[0] = w[1];
   dx[1] = -w[0];
 }
+
+/// (z, x) together with their derivatives with respect to s = delta psi:
+/// y = (z[3], x[2], dz/ds[3], dx/ds[2]). K depends on s, z(0) and x(0) do not; the variational
+/// equations come exactly from evaluating OmegaFromZK and ZxRhs on ceres::Jet (forward mode).
+using SensitivityState = std::array<double, 10>;
+
+struct SensitivityRhs {
+  double lambda;
+  double k[2];   ///< K(s)
+  double dk[2];  ///< dK/ds
+  void operator()(const SensitivityState& y, SensitivityState& dy, double /*t*/) const {
+    using Jet = ceres::Jet<double, 1>;
+    Jet z[3], kk[2], w[2], dz[3], dx[2];
+    for (int i = 0; i < 3; ++i) {
+      z[i].a = y[i];
+      z[i].v[0] = y[5 + i];
+    }
+    for (int i = 0; i < 2; ++i) {
+      kk[i].a = k[i];
+      kk[i].v[0] = dk[i];
+    }
+    OmegaFromZK(z, kk, lambda, w);
+    ZxRhs(z, w, dz, dx);
+    for (int i = 0; i < 3; ++i) {
+      dy[i] = dz[i].a;
+      dy[5 + i] = dz[i].v[0];
+    }
+    for (int i = 0; i < 2; ++i) {
+      dy[3 + i] = dx[i].a;
+      dy[8 + i] = dx[i].v[0];
+    }
+  }
+};
 
 /// Full state y = (z[3], x[2], Phi[9] row-major) with Phi' = hat(omega) Phi.
 using FullState = std::array<double, 14>;

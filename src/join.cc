@@ -15,38 +15,11 @@
 namespace plateball {
 namespace {
 
-using Jet = ceres::Jet<double, 1>;
-using SensState = std::array<double, 10>;  // z[3], x[2], dz/ds[3], dx/ds[2]
+using SensState = internal::SensitivityState;  // z[3], x[2], dz/ds[3], dx/ds[2]
 // Arcs shorter than this (t sqrt(mu), about the distance rolled) use dopri5, longer ones rkf78.
 constexpr double kShortArc = 0.02;
 
-// Motion and its derivative with respect to s: K depends on s, z(0) and x(0) do not.
-struct SensitivityRhs {
-  double lambda;
-  double k[2];
-  double dk[2];
-  void operator()(const SensState& y, SensState& dy, double /*t*/) const {
-    Jet z[3], kk[2], w[2], dz[3], dx[2];
-    for (int i = 0; i < 3; ++i) {
-      z[i].a = y[i];
-      z[i].v[0] = y[5 + i];
-    }
-    for (int i = 0; i < 2; ++i) {
-      kk[i].a = k[i];
-      kk[i].v[0] = dk[i];
-    }
-    internal::OmegaFromZK(z, kk, lambda, w);
-    internal::ZxRhs(z, w, dz, dx);
-    for (int i = 0; i < 3; ++i) {
-      dy[i] = dz[i].a;
-      dy[5 + i] = dz[i].v[0];
-    }
-    for (int i = 0; i < 2; ++i) {
-      dy[3 + i] = dx[i].a;
-      dy[8 + i] = dx[i].v[0];
-    }
-  }
-};
+using internal::SensitivityRhs;
 
 // Controlled explicit Runge-Kutta over [0, t1]. Dormand-Prince 5(4) for arcs that it covers in about
 // one step at tolerance 1e-12; Fehlberg 7(8) beyond, where it needs far fewer right-hand-side

@@ -12,7 +12,6 @@ namespace {
 
 using Jet1 = ceres::Jet<double, 1>;
 using ZxState = std::array<double, 5>;           // z[3], x[2]
-using SensitivityState = std::array<double, 10>;  // z[3], x[2], dz/ds[3], dx/ds[2]
 
 struct ZxOnlyRhs {
   double lambda;
@@ -24,30 +23,6 @@ struct ZxOnlyRhs {
   }
 };
 
-// The (z, x) equations and their variational equations in s in one right-hand side: the Jet
-// carries d/ds through OmegaFromZK and ZxRhs (K depends on s, z0 does not).
-struct SensitivityRhs {
-  double lambda;
-  std::array<Jet1, 2> k;
-  void operator()(const SensitivityState& y, SensitivityState& dy, double /*t*/) const {
-    Jet1 z[3];
-    for (int i = 0; i < 3; ++i) {
-      z[i].a = y[i];
-      z[i].v[0] = y[5 + i];
-    }
-    Jet1 w[2], dz[3], dx[2];
-    OmegaFromZK(z, k.data(), lambda, w);
-    ZxRhs(z, w, dz, dx);
-    for (int i = 0; i < 3; ++i) {
-      dy[i] = dz[i].a;
-      dy[5 + i] = dz[i].v[0];
-    }
-    for (int i = 0; i < 2; ++i) {
-      dy[3 + i] = dx[i].a;
-      dy[8 + i] = dx[i].v[0];
-    }
-  }
-};
 
 Eigen::Vector2d VelocityAt(const double* z, const Eigen::Vector2d& k, double lambda) {
   const double kk[2] = {k.x(), k.y()};
@@ -164,9 +139,7 @@ TightPoint EvaluateTight(const ReachDirection& d, double lambda, double period, 
     }
     return p;
   }
-  SensitivityRhs rhs{lambda, {Jet1(d.k.x(), 0), Jet1(d.k.y(), 0)}};
-  rhs.k[0].v[0] = d.dk_ds.x();
-  rhs.k[1].v[0] = d.dk_ds.y();
+  const SensitivityRhs rhs{lambda, {d.k.x(), d.k.y()}, {d.dk_ds.x(), d.dk_ds.y()}};
   SensitivityState y{d.z0.x(), d.z0.y(), d.z0.z(), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   IntegrateAdaptive(rhs, y, 0.0, tau, dt0, options);
   p.x = {y[3], y[4]};
