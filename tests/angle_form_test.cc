@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/test_support.h"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -183,14 +185,7 @@ TEST(AngleForm, StepLimitIsAStatus) {
 
 TEST(AngleForm, RejectsInvalidInputNamingTheField) {
   const BallModel model = BallModel::FromLambda(2.0);
-  auto message = [&](auto&& f) {
-    try {
-      f();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no exception");
-  };
+  const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   EXPECT_NE(message([&] { IntegrateAngleForm(model, {1.0, 0.0, 0.0}, 0.0, {0, 0}, {1.0}); }).find("mu"), std::string::npos);
   EXPECT_NE(message([&] { IntegrateAngleForm(model, {NAN, 0.0, 0.0}, 1.0, {0, 0}, {1.0}); }).find("theta"), std::string::npos);
   EXPECT_NE(message([&] { IntegrateAngleForm(model, {1.0, 0.0, 0.0}, 1.0, {0, 0}, {2.0, 1.0}); }).find("times[1]"), std::string::npos);

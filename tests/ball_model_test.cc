@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/test_support.h"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -86,14 +88,7 @@ TEST(BallModel, InvalidPhysicalParametersAreRejectedNamingTheField) {
 }
 
 TEST(BallModel, InvalidDimensionlessValuesAreRejectedNamingTheField) {
-  auto message = [](auto&& f) {
-    try {
-      f();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no exception");
-  };
+  const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   for (double lambda : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()})
     EXPECT_NE(message([&] { BallModel::FromLambda(lambda); }).find("'lambda'"), std::string::npos);
   EXPECT_NE(message([] { BallModel::FromAlphaBeta(0.0, 1.0); }).find("'alpha'"), std::string::npos);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/test_support.h"
+
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
@@ -109,14 +111,7 @@ TEST(BallState, VelocityEllipseMatchesEquations27And28) {
 
 TEST(BallState, InvalidStatesAreRejectedNamingTheField) {
   const BallModel model = BallModel::FromLambda(2.0);
-  auto message = [](auto&& f) {
-    try {
-      f();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no exception");
-  };
+  const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   EXPECT_NE(message([&] { StateFromAngles({1.0, 0.0, 0.0}, 0.0, model); }).find("'mu'"), std::string::npos);
   EXPECT_NE(message([&] { StateFromAngles({1.0, NAN, 0.0}, 1.0, model); }).find("'phi'"), std::string::npos);
   EXPECT_NE(message([&] { ValidateState({Eigen::Vector3d(0, 0, 2), Eigen::Vector3d::Zero()}); }).find("z norm"),

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/test_support.h"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -254,14 +256,7 @@ TEST(ClosedForms, ClosedFormIsPeriodicWithTwoPiOverSqrtMu) {
 
 TEST(ClosedForms, RejectsInvalidInputNamingTheField) {
   const BallModel model = BallModel::FromLambda(2.0);
-  auto message = [&](auto&& f) {
-    try {
-      f();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no exception");
-  };
+  const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   EXPECT_NE(message([&] { AppendixSolution(model, {1.0, 0.0, 0.0}, 0.0); }).find("'mu'"), std::string::npos);
   EXPECT_NE(message([&] { AppendixSolution(model, {1.0, NAN, 0.0}, 1.0); }).find("'phi'"), std::string::npos);
   EXPECT_NE(message([&] { AppendixSolution(model, {1.0, 0.0, 0.0}, 1.0).At(std::numeric_limits<double>::infinity()); })

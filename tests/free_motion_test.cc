@@ -280,14 +280,7 @@ TEST(FreeMotion, FromAnglesRotatesA0MinimallyOntoZ) {
 
 TEST(FreeMotion, RejectsInvalidInputNamingTheField) {
   const BallModel model = BallModel::FromLambda(2.0);
-  auto message = [&](auto&& f) {
-    try {
-      f();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no exception");
-  };
+  const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   FreeMotionStart at_rest;  // omega = 0
   EXPECT_NE(message([&] { FreeMotion(model, at_rest); }).find("mu"), std::string::npos);
   FreeMotionStart bad_a0 = StartFromAngles(model, {1.0, 0.0, 0.0}, 1.0);

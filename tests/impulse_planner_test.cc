@@ -25,14 +25,7 @@ constexpr double kOrientationTolerance = 1e-9;
 const BallModel kModel = BallModel::FromLambda(2.0);
 const AngleState kStart{M_PI / 3, 0.4, 0.1};
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::function<void()>& f) { return plateball::testing::InvalidArgumentMessage(f, ""); }
 
 Path T2Circle() { return Path({SmoothCurve::Circle({-2, 0}, 2, 0, 2 * M_PI)}); }
 

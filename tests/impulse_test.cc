@@ -113,14 +113,7 @@ TEST(Impulse, EnergyChangingImpulseScalesOmegaAndKeepsThePath) {
 
 TEST(Impulse, InvalidInputIsRejectedNamingTheField) {
   const BallModel model = BallModel::FromLambda(2.0);
-  auto message = [](auto&& f) {
-    try {
-      f();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no exception");
-  };
+  const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   const AngleState a{1.0, 0.0, 0.0};
   EXPECT_NE(message([&] { EnergyPreservingImpulse(a, 1.0, NAN, model); }).find("'delta_psi'"), std::string::npos);
   EXPECT_NE(message([&] { EnergyPreservingImpulse(a, 0.0, 1.0, model); }).find("'mu'"), std::string::npos);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/test_support.h"
+
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <functional>
@@ -11,14 +13,7 @@
 using namespace plateball;
 
 namespace {
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::function<void()>& f) { return plateball::testing::InvalidArgumentMessage(f, ""); }
 }  // namespace
 
 TEST(Partition, UniformParameterHasEqualSteps) {

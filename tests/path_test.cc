@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/test_support.h"
+
 #include <boost/math/special_functions/ellint_2.hpp>
 #include <cmath>
 #include <functional>
@@ -18,14 +20,7 @@ constexpr double kFiniteDifferenceTolerance = 1e-7;
 // Gauss-Legendre with 64 panels of 8 points on analytic curves.
 constexpr double kLengthTolerance = 1e-11;
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::function<void()>& f) { return plateball::testing::InvalidArgumentMessage(f, ""); }
 
 std::vector<SmoothCurve> AllKinds() {
   return {SmoothCurve::Line({1, 2}, {-3, 0.5}),

@@ -123,14 +123,7 @@ TEST(Rolling, SamplesConvergeToTheExactCircle) {
 }
 
 TEST(Rolling, InvalidInputIsRejectedNamingTheField) {
-  auto message = [](auto&& f) {
-    try {
-      f();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no exception");
-  };
+  const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   const PlanarVelocity v = [](double) { return Eigen::Vector2d(1.0, 0.0); };
   EXPECT_NE(message([&] { RollingReorientation(v, NAN, 1.0); }).find("'a'"), std::string::npos);
   EXPECT_NE(message([&] { RollingReorientation(PlanarVelocity(), 0.0, 1.0); }).find("velocity"), std::string::npos);

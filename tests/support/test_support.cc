@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <sstream>
+#include <stdexcept>
 
 #include "plateball/so3.h"
 
@@ -18,6 +19,15 @@ namespace plateball::testing {
                                          << "\n" << r;
   }
   return ::testing::AssertionSuccess();
+}
+
+std::string InvalidArgumentMessage(const std::function<void()>& f, const std::string& if_none) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return if_none;
 }
 
 std::string SourcePath(const std::string& relative) { return std::string(PLATEBALL_SOURCE_DIR) + "/" + relative; }
