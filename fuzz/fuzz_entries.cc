@@ -87,7 +87,8 @@ void SolveEntries(const std::uint8_t* data, std::size_t size) {
   const double factor = in.Mixed(0.1, 3.0);
   const double t = in.Mixed(-50.0, 50.0);
   const double radius = in.Mixed(0.1, 3.0);
-  const int n = 2 + static_cast<int>(std::abs(std::fmod(in.Mixed(0.0, 6.0), 6.0)));
+  const double n_raw = std::fmod(in.Mixed(0.0, 6.0), 6.0);  // NaN for a non-finite input
+  const int n = 2 + (std::isfinite(n_raw) ? static_cast<int>(std::abs(n_raw)) : 0);
 
   BallModel model = BallModel::FromLambda(1.0);
   try {
