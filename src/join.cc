@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -101,6 +102,11 @@ class JoinFunction {
     failed_ = false;
     if (!std::isfinite(s) || !std::isfinite(t)) {
       failed_ = true;
+    } else if (std::abs(t) > max_abs_t_) {
+      // Lemma 2.1 is local: its branch has t well below a period. Rolling out further only costs
+      // time in proportion to t (and an absurd target would make LM integrate for hours).
+      failed_ = true;
+      failure_ = "the iteration left the local range |t| <= one period";
     } else if (t != 0.0) {
       SensitivityRhs rhs{lambda_, {k_.x(), k_.y()}, {dk.x(), dk.y()}};
       try {
@@ -147,6 +153,7 @@ class JoinFunction {
     return scale > 0 ? std::abs(det) / scale : 0.0;
   }
   bool failed() const { return failed_; }
+  void set_max_abs_t(double t) { max_abs_t_ = t; }
   const std::string& failure() const { return failure_; }
   const Eigen::Vector3d& z_end() const { return z_end_; }
   const Eigen::Vector2d& k() const { return k_; }
@@ -166,6 +173,7 @@ class JoinFunction {
   mutable Eigen::Vector2d k_ = Eigen::Vector2d::Zero();
   mutable Eigen::Vector3d z_end_ = Eigen::Vector3d::UnitZ();
   mutable bool failed_ = false;
+  double max_abs_t_ = std::numeric_limits<double>::infinity();
   mutable std::string failure_;
   mutable double dt_hint_ = 0.01;
   mutable int evaluations_ = 0;
@@ -265,7 +273,23 @@ JoinSummary Join(const BallModel& model, const AngleState& start, double mu, con
   const double speed = std::hypot(b * std::sin(w), a * std::cos(w));
   Eigen::Vector2d params(WrapPi(start.phi - start.psi - w), dist / speed);
 
+  // Lemma 2.1's branch needs much less than a period; a target whose first-guess time is above
+  // half a period is beyond the local radius (Reach handles it), and is answered without rolling out.
+  const double period = 2.0 * M_PI / std::sqrt(mu);
+  if (!(params[1] <= 0.5 * period)) {
+    out.delta_psi = params[0];
+    out.t = params[1];
+    out.residual = dist;
+    out.status = JoinStatus::kTargetBeyondLocalRadius;
+    out.message = "target at distance " + std::to_string(dist) + " needs t ~ " + std::to_string(params[1]) +
+                  " > half a period (" + std::to_string(0.5 * period) + "): beyond the local radius of Lemma 2.1";
+    const BallState s0 = StateFromAngles(start, mu, model);
+    finish_state(0.0, s0.z, ConservedMomentum(s0, model), x0);
+    return out;
+  }
+
   JoinFunction fn(start, mu, lambda, d, options.integration);
+  fn.set_max_abs_t(period);
   fn.set_dt_hint(params[1]);
   double r0[2];
   fn(params.data(), r0, nullptr);
