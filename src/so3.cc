@@ -19,17 +19,28 @@ Eigen::Vector3d Vee(const Eigen::Matrix3d& m) {
 
 Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& w) {
   const double t2 = w.squaredNorm();
-  const double t = std::sqrt(t2);
-  double a, b;  // sin(t)/t and (1 - cos t)/t^2, by series near 0
-  if (t < 1e-4) {
-    a = 1.0 - t2 / 6.0 + t2 * t2 / 120.0;
-    b = 0.5 - t2 / 24.0 + t2 * t2 / 720.0;
+  double a, b;  // sin(t)/t and (1 - cos t)/t^2; Taylor series (to below 1e-18) for small t
+  if (t2 < 0.04) {
+    a = 1.0 + t2 * (-1.0 / 6 + t2 * (1.0 / 120 + t2 * (-1.0 / 5040 + t2 * (1.0 / 362880 - t2 / 39916800))));
+    b = 0.5 + t2 * (-1.0 / 24 + t2 * (1.0 / 720 + t2 * (-1.0 / 40320 + t2 * (1.0 / 3628800 - t2 / 479001600))));
   } else {
+    const double t = std::sqrt(t2);
     a = std::sin(t) / t;
     b = (1.0 - std::cos(t)) / t2;
   }
-  const Eigen::Matrix3d k = Hat(w);
-  return Eigen::Matrix3d::Identity() + a * k + b * k * k;
+  // Rodrigues: I + a hat(w) + b hat(w)^2, with hat(w)^2 = w w^T - |w|^2 I.
+  Eigen::Matrix3d r = b * (w * w.transpose());
+  const double d = 1.0 - b * t2;
+  r(0, 0) += d;
+  r(1, 1) += d;
+  r(2, 2) += d;
+  r(0, 1) -= a * w.z();
+  r(1, 0) += a * w.z();
+  r(0, 2) += a * w.y();
+  r(2, 0) -= a * w.y();
+  r(1, 2) -= a * w.x();
+  r(2, 1) += a * w.x();
+  return r;
 }
 
 Eigen::Vector3d LogSO3(const Eigen::Matrix3d& r) {
