@@ -17,19 +17,12 @@ namespace internal {
 // sn, cn, dn by the descending Landen / arithmetic-geometric mean scheme (Abramowitz and Stegun
 // 16.4; the iteration of Numerical Recipes' sncndn), 0 <= k < 1. About 6x faster than
 // boost::math::jacobi_elliptic, which the tests use as the reference.
-void JacobiSnCnDn(double u, double k, double* sn, double* cn, double* dn) {
+JacobiAgm::JacobiAgm(double modulus) : k(modulus) {
+  if (k == 0.0) return;
   double emc = (1.0 - k) * (1.0 + k);  // complementary parameter 1 - k^2
-  if (k == 0.0) {
-    *sn = std::sin(u);
-    *cn = std::cos(u);
-    *dn = 1.0;
-    return;
-  }
-  double em[16], en[16];
-  double a = 1.0, c = 1.0, d = 1.0;
-  int l = 0;
+  double a = 1.0;
   for (int i = 0; i < 16; ++i) {
-    l = i;
+    levels = i;
     em[i] = a;
     emc = std::sqrt(emc);
     en[i] = emc;
@@ -38,16 +31,26 @@ void JacobiSnCnDn(double u, double k, double* sn, double* cn, double* dn) {
     emc *= a;
     a = c;
   }
+}
+
+void JacobiSnCnDn(double u, const JacobiAgm& agm, double* sn, double* cn, double* dn) {
+  if (agm.k == 0.0) {
+    *sn = std::sin(u);
+    *cn = std::cos(u);
+    *dn = 1.0;
+    return;
+  }
+  double c = agm.c, d = 1.0, a;
   u *= c;
   double s = std::sin(u), co = std::cos(u);
   if (s != 0.0) {
     a = co / s;
     c *= a;
-    for (int ii = l; ii >= 0; --ii) {
-      const double b = em[ii];
+    for (int ii = agm.levels; ii >= 0; --ii) {
+      const double b = agm.em[ii];
       a *= c;
       c *= d;
-      d = (en[ii] + a) / (b + a);
+      d = (agm.en[ii] + a) / (b + a);
       a = c / b;
     }
     a = 1.0 / std::sqrt(c * c + 1.0);
@@ -58,6 +61,8 @@ void JacobiSnCnDn(double u, double k, double* sn, double* cn, double* dn) {
   *cn = co;
   *dn = d;
 }
+
+void JacobiSnCnDn(double u, double k, double* sn, double* cn, double* dn) { JacobiSnCnDn(u, JacobiAgm(k), sn, cn, dn); }
 
 }  // namespace internal
 
@@ -99,6 +104,7 @@ Elastica::Elastica(const ElasticaParameters& parameters) : p_(parameters) {
   if (!(std::abs(p_.modulus) < 1.0))
     internal::ThrowInvalid("modulus", p_.modulus, "|modulus| must be < 1 (the separatrix k = 1 has an infinite period)");
   k_ = std::abs(p_.modulus);
+  agm_ = internal::JacobiAgm(k_);
   kk_ = boost::math::ellint_1(k_, FastPolicy());
   dk_ = boost::math::ellint_d(k_, FastPolicy());
   const double r = p_.rate;
@@ -170,7 +176,7 @@ Elastica::Jacobi Elastica::Eval(double u) const {
   const double quarter4 = 4.0 * kk_;
   const double r = u - quarter4 * std::round(u / quarter4);
   Jacobi j{};
-  internal::JacobiSnCnDn(r, k_, &j.sn, &j.cn, &j.dn);
+  internal::JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);
   return j;
 }
 
@@ -178,7 +184,7 @@ double Elastica::IntegralSn2(double u) const {
   const double m = std::round(u / (2.0 * kk_));
   const double r = u - 2.0 * kk_ * m;  // |r| <= K: cn(r) >= 0
   double sn = 0, cn = 0, dn = 0;
-  internal::JacobiSnCnDn(r, k_, &sn, &cn, &dn);
+  internal::JacobiSnCnDn(r, agm_, &sn, &cn, &dn);
   return 2.0 * m * dk_ + boost::math::ellint_d(k_, std::atan2(sn, cn), FastPolicy());
 }
 
@@ -186,7 +192,7 @@ double Elastica::AmplitudeOf(double u) const {
   const double m = std::round(u / (2.0 * kk_));
   const double r = u - 2.0 * kk_ * m;
   double sn = 0, cn = 0, dn = 0;
-  internal::JacobiSnCnDn(r, k_, &sn, &cn, &dn);
+  internal::JacobiSnCnDn(r, agm_, &sn, &cn, &dn);
   return m * M_PI + std::atan2(sn, cn);
 }
 

@@ -17,6 +17,8 @@ const double kGaussOffset = kSqrt15 / 10.0;
 // The Jacobi functions along the table are marched by the addition theorem (a few flops instead
 // of an AGM) and re-evaluated directly every kResync steps to bound round-off growth.
 constexpr int kResync = 16;
+// Marching by the addition theorem needs 1 - k^2 sn^2(u) sn^2(step) >= 1 - kMaxMarchSn2.
+constexpr double kMaxMarchSn2 = 0.5;
 
 struct Sncndn {
   double sn, cn, dn;
@@ -30,6 +32,18 @@ Sncndn Add(const Sncndn& a, const Sncndn& b, double k2) {
 }
 
 }  // namespace
+
+// Private access to the Jacobi evaluation of an Elastica (friend of the class).
+struct ElasticaAccess {
+  static Sncndn Jacobi(const Elastica& e, double u) {
+    const Elastica::Jacobi j = e.Eval(u);
+    return {j.sn, j.cn, j.dn};
+  }
+  static Eigen::Vector2d TangentOf(const Elastica& e, const Sncndn& s) { return e.TangentOf({s.sn, s.cn, s.dn}); }
+};
+
+static Sncndn ElasticaJacobi(const Elastica& e, double u) { return ElasticaAccess::Jacobi(e, u); }
+static Eigen::Vector2d ElasticaTangentOf(const Elastica& e, const Sncndn& s) { return ElasticaAccess::TangentOf(e, s); }
 
 // The Magnus step from the tangents at the three Gauss nodes.
 static Eigen::Matrix3d MagnusFromTangents(const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3,
@@ -97,32 +111,49 @@ ElasticaRollingTable::ElasticaRollingTable(const Elastica& e, double s_limit, in
   }
 }
 
+// Marches the Jacobi functions over `steps` uniform steps of length h from s = 0 and calls
+// on_step(j, t1, t2, t3) with the unit tangents at the step's three Gauss nodes.
+template <class OnStep>
+static void MarchGaussTangents(const Elastica& e, double h, int steps, OnStep&& on_step) {
+  const double rate = e.parameters().rate, u0 = e.parameters().phase;
+  const double k2 = e.parameters().modulus * e.parameters().modulus;
+  const double offsets[3] = {(0.5 - kGaussOffset) * h, 0.5 * h, (0.5 + kGaussOffset) * h};
+  const Sncndn step = ElasticaJacobi(e, rate * h);
+  // The addition theorem divides by 1 - k^2 sn^2(u) sn^2(step): stable for short steps only
+  // (near the separatrix, k -> 1, long steps cancel catastrophically).
+  const int resync = k2 * step.sn * step.sn <= kMaxMarchSn2 ? kResync : 1;
+  Sncndn node[3] = {};
+  for (int j = 0; j < steps; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      const double u = u0 + rate * (j * h + offsets[i]);
+      node[i] = (j % resync == 0) ? ElasticaJacobi(e, u) : Add(node[i], step, k2);
+    }
+    on_step(j, ElasticaTangentOf(e, node[0]), ElasticaTangentOf(e, node[1]), ElasticaTangentOf(e, node[2]));
+  }
+}
+
 void ElasticaRollingTable::Build(int steps) {
-  const Elastica& e = *e_;
   rot_.resize(steps + 1);
   pos_.resize(steps + 1);
   rot_[0].setIdentity();
   pos_[0].setZero();
-  const double rate = e.parameters().rate, u0 = e.parameters().phase;
-  const double k2 = e.k_ * e.k_;
-  const double offsets[3] = {(0.5 - kGaussOffset) * h_, 0.5 * h_, (0.5 + kGaussOffset) * h_};
-  auto eval = [&e](double u) {
-    const Elastica::Jacobi j = e.Eval(u);
-    return Sncndn{j.sn, j.cn, j.dn};
-  };
-  const Sncndn step = eval(rate * h_);
-  Sncndn node[3];
-  for (int j = 0; j < steps; ++j) {
-    for (int i = 0; i < 3; ++i) {
-      const double u = u0 + rate * (j * h_ + offsets[i]);
-      node[i] = (j % kResync == 0) ? eval(u) : Add(node[i], step, k2);
-    }
-    Eigen::Vector2d t[3];
-    for (int i = 0; i < 3; ++i) t[i] = e.TangentOf({node[i].sn, node[i].cn, node[i].dn});
-    Eigen::Vector2d dx;
-    rot_[j + 1] = MagnusFromTangents(t[0], t[1], t[2], h_, &dx) * rot_[j];
-    pos_[j + 1] = pos_[j] + dx;
-  }
+  MarchGaussTangents(*e_, h_, steps,
+                     [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
+                       Eigen::Vector2d dx;
+                       rot_[j + 1] = MagnusFromTangents(t1, t2, t3, h_, &dx) * rot_[j];
+                       pos_[j + 1] = pos_[j] + dx;
+                     });
+}
+
+Eigen::Matrix3d PeriodRolling(const Elastica& e, int steps) {
+  steps = std::max(steps, 1);
+  const double h = e.Period() / steps;
+  Eigen::Matrix3d q = Eigen::Matrix3d::Identity();
+  MarchGaussTangents(e, h, steps,
+                     [&q, h](int, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
+                       q = MagnusFromTangents(t1, t2, t3, h, nullptr) * q;
+                     });
+  return q;
 }
 
 Eigen::Matrix3d ElasticaRollingTable::Rolling(double s) const {

@@ -17,6 +17,10 @@ namespace plateball::internal {
 /// optionally x(s1) - x(s0) by Gauss quadrature on the same nodes.
 Eigen::Matrix3d MagnusRollingStep(const Elastica& e, double s0, double s1, Eigen::Vector2d* displacement = nullptr);
 
+/// P = Q(0, T): rolling over one curvature period T from the elastica's phase, by `steps`
+/// uniform sixth-order Magnus steps (no table kept). Not for straight lines (infinite period).
+Eigen::Matrix3d PeriodRolling(const Elastica& e, int steps);
+
 /// Rolling along an elastica on [0, s_limit], from a table over one curvature period.
 class ElasticaRollingTable {
  public:

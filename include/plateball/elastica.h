@@ -18,8 +18,19 @@
 
 namespace plateball {
 namespace internal {
-class ElasticaRollingTable;
-}
+struct ElasticaAccess;
+
+/// The arithmetic-geometric mean sequence of the modulus k (depends on k only): computed once
+/// per elastica, it leaves the per-argument work of JacobiSnCnDn to one sincos and a short
+/// descending recursion.
+struct JacobiAgm {
+  explicit JacobiAgm(double k = 0.0);
+  double k = 0.0;
+  double c = 1.0;  // final AGM value
+  int levels = 0;  // index of the last level
+  double em[16] = {}, en[16] = {};
+};
+}  // namespace internal
 
 enum class PendulumRegime { kOscillating, kRotating };
 std::string ToString(PendulumRegime regime);
@@ -75,7 +86,7 @@ class Elastica {
   bool IsStraight() const { return p_.rate == 0.0; }
 
  private:
-  friend class internal::ElasticaRollingTable;  // marches the Jacobi functions along a table
+  friend struct internal::ElasticaAccess;  // elastica_rolling.cc marches the Jacobi functions
   struct Jacobi {
     double sn, cn, dn;
   };
@@ -85,6 +96,7 @@ class Elastica {
   double AmplitudeOf(double u) const;  // am(u), continuous
   ElasticaParameters p_;
   double k_ = 0.0;       // |modulus|
+  internal::JacobiAgm agm_;  // AGM sequence of k (jacobi_elliptic.h)
   double kk_ = 0.0;      // complete K(k)
   double dk_ = 0.0;      // complete D(k) = int_0^K sn^2
   double g_ = 0.0;
