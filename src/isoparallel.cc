@@ -18,6 +18,7 @@
 
 #include "check.h"
 #include "elastica_rolling.h"
+#include "plateball/isoparallel_families.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
 
@@ -340,6 +341,65 @@ void ValidateProblem(const IsoparallelProblem& problem) {
     throw std::invalid_argument("'goal_orientation' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
 }
 
+// A reported solution from an enumerated family (sense = +-1: the mirror image of a rotating
+// family), rotated so that its end lands on the goal.
+Candidate FamilyCandidate(const Context& ctx, const IsoparallelProblem& problem, const ElasticaFamily& f, double sense) {
+  Candidate c;
+  IsoparallelSolution& sol = c.solution;
+  ElasticaParameters p = f.Parameters();
+  p.rate *= sense;
+  sol.length = f.length;
+  sol.shooting_residual = f.residual;
+  sol.start = problem.start;
+  if (f.periods == 0) {  // the straight segment (chord a multiple of 2 pi)
+    p.rate = 0.0;
+    p.modulus = 0.0;
+    p.heading_w = ctx.goal_angle + M_PI / 2;
+    sol.parameters = p;
+    c.signature = {sol.PositionAt(sol.length / 3), sol.PositionAt(2 * sol.length / 3)};
+    return c;
+  }
+  const Elastica e(p);
+  sol.G = e.G();
+  sol.energy = e.Energy();
+  sol.periods = f.periods;
+  sol.family = true;
+  const Eigen::Vector2d drift = e.DriftPerPeriod();
+  p.heading_w += ctx.goal_angle - std::atan2(drift.y(), drift.x());
+  sol.parameters = p;
+  const internal::ElasticaRollingTable table(e, f.length * (1 + 1e-9), kSearch.steps_per_period, kSearch.max_step);
+  sol.crossing = std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 100000).size()));
+  c.signature = {sol.PositionAt(sol.length / 3), sol.PositionAt(2 * sol.length / 3)};
+  return c;
+}
+
+// Identity target: every solution is a family (isoparallel_families.h); enumerate them.
+std::vector<Candidate> SolveByFamilies(Context* ctx, const IsoparallelProblem& problem,
+                                       const IsoparallelOptions& options, IsoparallelSummary* summary) {
+  FamilySearchOptions fo;
+  fo.length_cap_factor = options.length_cap_factor;
+  fo.tolerance = options.tolerance;
+  fo.threads = options.threads;
+  FamilySearch search;
+  for (int pass = 0; pass < 4; ++pass) {
+    fo.max_length = ctx->s_limit;
+    search = EnumerateIdentityFamilies(ctx->radius, fo);
+    summary->evaluations += search.evaluations;
+    if (!search.families.empty() || options.max_length > 0) break;
+    ctx->s_limit *= 2.0;  // nothing this short: search longer paths
+  }
+  summary->method = IsoparallelMethod::kFamilyEnumeration;
+  summary->complete = search.complete;
+  summary->periods_searched = search.periods_searched;
+  std::vector<Candidate> found;
+  for (const ElasticaFamily& f : search.families) {
+    found.push_back(FamilyCandidate(*ctx, problem, f, 1.0));
+    if (f.regime == PendulumRegime::kRotating) found.push_back(FamilyCandidate(*ctx, problem, f, -1.0));
+  }
+  ctx->s_limit = search.families.empty() ? ctx->s_limit : search.searched_length;
+  return found;
+}
+
 }  // namespace
 
 std::string IsoparallelOptions::Validate() const {
@@ -356,6 +416,16 @@ std::string IsoparallelOptions::Validate() const {
   else if (!(std::isfinite(max_length) && max_length >= 0))
     os << "'max_length' = " << max_length << " is invalid: must be finite and >= 0 (0 = automatic)";
   return os.str();
+}
+
+std::string ToString(IsoparallelMethod method) {
+  switch (method) {
+    case IsoparallelMethod::kShooting:
+      return "shooting";
+    case IsoparallelMethod::kFamilyEnumeration:
+      return "family_enumeration";
+  }
+  return "unknown";
 }
 
 std::string ToString(IsoparallelStatus status) {
@@ -394,8 +464,10 @@ IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const Iso
                                        : options.length_cap_factor * std::max(2.0 * ctx.radius, ctx.radius + 2 * M_PI);
 
   std::vector<Candidate> found;
+  const bool identity = LogSO3(ctx.target).norm() <= options.tolerance;
+  if (identity && options.enumerate_families) found = SolveByFamilies(&ctx, problem, options, &summary);
   double covered = 0.0;  // crossings up to this length were already searched
-  for (int pass = 0; pass < 3; ++pass) {
+  for (int pass = 0; pass < 3 && summary.method == IsoparallelMethod::kShooting; ++pass) {
     const std::vector<Start> starts = MakeStarts(options, ctx.s_limit, ctx.radius);
     std::vector<std::vector<LocalResult>> per_start(starts.size());
     std::atomic<int> next{0};
@@ -461,19 +533,30 @@ IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const Iso
   }
   summary.searched_length = ctx.s_limit;
 
-  std::sort(found.begin(), found.end(),
+  std::stable_sort(found.begin(), found.end(),
             [](const Candidate& a, const Candidate& b) { return a.solution.length < b.solution.length; });
   if (!found.empty()) {
     const double cap = options.length_cap_factor * found.front().solution.length * (1 + 1e-12);
     for (const Candidate& c : found) {
       if (c.solution.length > cap) break;
-      IsoparallelSolution sol = c.solution;
-      const Eigen::Matrix3d r = VerifyRolling(sol);
-      sol.orientation_residual = LogSO3(ctx.target.transpose() * r).norm();
-      sol.orientation_error = OperatorNormDistance(problem.goal_orientation, r * problem.start_orientation);
-      sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
-      summary.solutions.push_back(sol);
+      summary.solutions.push_back(c.solution);
     }
+    // Independent verification (dopri5 along the path), spread over the threads.
+    const int n = static_cast<int>(summary.solutions.size());
+    const int threads = std::max(1, std::min(options.threads, n));
+    auto verify = [&](int first) {
+      for (int i = first; i < n; i += threads) {
+        IsoparallelSolution& sol = summary.solutions[i];
+        const Eigen::Matrix3d r = VerifyRolling(sol);
+        sol.orientation_residual = LogSO3(ctx.target.transpose() * r).norm();
+        sol.orientation_error = OperatorNormDistance(problem.goal_orientation, r * problem.start_orientation);
+        sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(verify, t);
+    verify(0);
+    for (auto& th : pool) th.join();
   }
   summary.status = summary.solutions.empty() ? IsoparallelStatus::kNoSolution : IsoparallelStatus::kSolved;
   summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -494,8 +577,13 @@ std::string IsoparallelSummary::BriefReport() const {
 std::string IsoparallelSummary::FullReport() const {
   std::ostringstream os;
   os << BriefReport() << "\n";
-  os << "  start (" << problem.start.transpose() << "), goal (" << problem.goal.transpose() << "), starts "
-     << options.starts << ", seed " << options.seed << ", searched length " << searched_length << "\n";
+  os << "  start (" << problem.start.transpose() << "), goal (" << problem.goal.transpose() << "), method "
+     << ToString(method);
+  if (method == IsoparallelMethod::kShooting)
+    os << ", starts " << options.starts << ", seed " << options.seed;
+  else
+    os << ", periods searched " << periods_searched << (complete ? ", complete" : ", NOT certified complete");
+  os << ", searched length " << searched_length << "\n";
   for (std::size_t i = 0; i < solutions.size(); ++i) {
     const IsoparallelSolution& s = solutions[i];
     os << std::setprecision(10) << "  #" << i + 1 << " length " << s.length << " " << ToString(s.parameters.regime)

@@ -549,7 +549,7 @@ class Reader {
     if (const json* v = Find(j, "impulses")) t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 1, kMaxCount));
     if (const json* v = Find(j, "solver")) {
       const std::string sp = Join(path, "solver");
-      Object(*v, sp, {"starts", "length_cap_factor", "max_iterations", "tolerance", "threads"});
+      Object(*v, sp, {"starts", "length_cap_factor", "max_iterations", "tolerance", "threads", "enumerate_families"});
       IsoparallelSolverSpec& s = t.solver;
       if (const json* w = Find(*v, "starts")) s.starts = static_cast<int>(Integer(*w, Join(sp, "starts"), 1, kMaxCount));
       if (const json* w = Find(*v, "length_cap_factor")) {
@@ -561,6 +561,10 @@ class Reader {
         s.max_iterations = static_cast<int>(Integer(*w, Join(sp, "max_iterations"), 1, kMaxCount));
       if (const json* w = Find(*v, "tolerance")) s.tolerance = InRangeOpen01(*w, Join(sp, "tolerance"));
       if (const json* w = Find(*v, "threads")) s.threads = static_cast<int>(Integer(*w, Join(sp, "threads"), 1, kMaxThreads));
+      if (const json* w = Find(*v, "enumerate_families")) {
+        if (!w->is_boolean()) Fail(Join(sp, "enumerate_families"), *w, "must be true or false");
+        s.enumerate_families = w->get<bool>();
+      }
     }
     return t;
   }
@@ -829,7 +833,8 @@ class Writer {
                            {"length_cap_factor", Num("isoparallel.solver.length_cap_factor", t.solver.length_cap_factor)},
                            {"max_iterations", t.solver.max_iterations},
                            {"tolerance", Num("isoparallel.solver.tolerance", t.solver.tolerance)},
-                           {"threads", t.solver.threads}}}};
+                           {"threads", t.solver.threads},
+                           {"enumerate_families", t.solver.enumerate_families}}}};
     }
     if (!p.expected.empty()) {
       ojson e = ojson::object();

@@ -112,6 +112,7 @@ TEST(Isoparallel, Figure7DenserIndependentSearchFindsNothingShorter) {
   const double shortest = s.Shortest().length;
   // Eight times the starts, another seed, every path up to the shortest length: nothing shorter.
   IsoparallelOptions dense;
+  dense.enumerate_families = false;  // the multi-start shooting: an independent method
   dense.starts = 512;
   dense.seed = 987654321;
   dense.max_length = shortest * (1 + 1e-6);
@@ -165,16 +166,21 @@ TEST(Isoparallel, StraightSegmentTargetGivesTheSegment) {
 }
 
 TEST(Isoparallel, SameSeedGivesIdenticalResultsWithAnyThreadCount) {
-  IsoparallelOptions o;
-  o.starts = 24;
-  const IsoparallelSummary a = SolveIsoparallel(Figure7(), o);
-  o.threads = 2;
-  const IsoparallelSummary b = SolveIsoparallel(Figure7(), o);
-  ASSERT_EQ(a.solutions.size(), b.solutions.size());
-  for (std::size_t i = 0; i < a.solutions.size(); ++i) {
-    EXPECT_EQ(a.solutions[i].length, b.solutions[i].length);
-    EXPECT_EQ(a.solutions[i].parameters.rate, b.solutions[i].parameters.rate);
-    EXPECT_EQ(a.solutions[i].parameters.phase, b.solutions[i].parameters.phase);
+  for (bool enumerate : {false, true}) {
+    IsoparallelOptions o;
+    o.starts = 24;
+    o.enumerate_families = enumerate;
+    const IsoparallelSummary a = SolveIsoparallel(Figure7(), o);
+    o.threads = 2;
+    const IsoparallelSummary b = SolveIsoparallel(Figure7(), o);
+    EXPECT_EQ(a.method, enumerate ? IsoparallelMethod::kFamilyEnumeration : IsoparallelMethod::kShooting);
+    ASSERT_EQ(a.solutions.size(), b.solutions.size());
+    for (std::size_t i = 0; i < a.solutions.size(); ++i) {
+      EXPECT_EQ(a.solutions[i].length, b.solutions[i].length);
+      EXPECT_EQ(a.solutions[i].parameters.rate, b.solutions[i].parameters.rate);
+      EXPECT_EQ(a.solutions[i].parameters.phase, b.solutions[i].parameters.phase);
+      EXPECT_EQ(a.solutions[i].orientation_residual, b.solutions[i].orientation_residual);
+    }
   }
 }
 
@@ -255,6 +261,7 @@ TEST(Isoparallel, ProblemFilesSolveToTheirExpectedValues) {
     q.goal_orientation = p.isoparallel->goal_orientation;
     IsoparallelOptions o;
     o.starts = p.isoparallel->solver.starts;
+    o.enumerate_families = p.isoparallel->solver.enumerate_families;
     o.seed = p.seed;
     const IsoparallelSummary s = SolveIsoparallel(q, o);
     ASSERT_TRUE(s.IsSolutionUsable()) << name;
@@ -262,6 +269,10 @@ TEST(Isoparallel, ProblemFilesSolveToTheirExpectedValues) {
     if (p.expected.count("shortest_length")) {
       const ExpectedValue& e = p.expected.at("shortest_length");
       EXPECT_NEAR(s.Shortest().length, e.value, e.tolerance) << name;
+    }
+    if (p.expected.count("solution_count")) {
+      const ExpectedValue& e = p.expected.at("solution_count");
+      EXPECT_NEAR(static_cast<double>(s.solutions.size()), e.value, e.tolerance) << name;
     }
   }
 }

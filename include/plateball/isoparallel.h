@@ -10,6 +10,11 @@
 // Seeded multi-start over both pendulum regimes; every distinct solution up to
 // length_cap_factor times the shortest is reported, sorted by length. Each reported solution is
 // verified independently of the shooting by RollingReorientation (rolling.h) along the path.
+//
+// Identity targets (A1 = A0, Figure 7) are solved by direct enumeration instead
+// (isoparallel_families.h): there every solution covers a whole number of curvature periods and
+// is a one-parameter family, the families are the roots of one scalar function of the modulus per
+// period count, and a certificate ends the enumeration. Set enumerate_families = false to shoot.
 #pragma once
 
 #include <Eigen/Core>
@@ -24,7 +29,9 @@ namespace plateball {
 
 /// Options of SolveIsoparallel (JSON "isoparallel.solver", problem.h: IsoparallelSolverSpec).
 struct IsoparallelOptions {
-  int starts = 64;                 ///< multi-start points (seeded Halton sequence)
+  /// Multi-start points (seeded Halton sequence) of the shooting. Fewer miss short solutions of
+  /// general targets (64 starts miss the shortest path of problems/isoparallel_rotation.json).
+  int starts = 1024;
   double length_cap_factor = 3.0;  ///< report solutions up to this times the shortest length (>= 1)
   int max_iterations = 100;        ///< Levenberg-Marquardt iterations per local solve
   double tolerance = 1e-12;        ///< accepted |LogSO3| orientation residual (radians)
@@ -32,6 +39,9 @@ struct IsoparallelOptions {
   std::uint64_t seed = 1;          ///< scrambles the start sequence
   /// Longest path searched before a shortest one is known; 0 = automatic (see README).
   double max_length = 0.0;
+  /// Identity targets (|LogSO3(A1 A0^-1)| <= tolerance): enumerate the families directly
+  /// (complete up to the length cap; isoparallel_families.h). false: multi-start shooting.
+  bool enumerate_families = true;
   /// Called (from a worker thread, serialised) after each start with (starts done, starts in
   /// this pass); for a tool's progress line. The library never prints.
   std::function<void(int, int)> progress;
@@ -74,10 +84,21 @@ enum class IsoparallelStatus {
 };
 std::string ToString(IsoparallelStatus status);
 
+enum class IsoparallelMethod {
+  kShooting,            ///< seeded multi-start shooting (general targets)
+  kFamilyEnumeration,   ///< identity target: families enumerated directly
+};
+std::string ToString(IsoparallelMethod method);
+
 struct IsoparallelSummary {
   IsoparallelProblem problem;
   IsoparallelOptions options;
   IsoparallelStatus status = IsoparallelStatus::kNoSolution;
+  IsoparallelMethod method = IsoparallelMethod::kShooting;
+  /// Family enumeration: the certificate ended the search (every solution up to the cap is
+  /// reported), and the largest period count examined. Shooting: false and 0.
+  bool complete = false;
+  int periods_searched = 0;
   std::vector<IsoparallelSolution> solutions;  ///< distinct, sorted by length (shortest first)
   int local_solves = 0;        ///< Levenberg-Marquardt runs (start, crossing)
   int converged_solves = 0;    ///< runs that reached the tolerance

@@ -85,11 +85,14 @@ struct PlanTask {
 
 /// Options of the isoparallel solver (JSON object "solver" inside "isoparallel").
 struct IsoparallelSolverSpec {
-  int starts = 64;                   ///< multi-start count (seeded)
+  int starts = 1024;                 ///< multi-start count (seeded; shooting only)
   double length_cap_factor = 3.0;    ///< report solutions up to this times the shortest length
   int max_iterations = 100;          ///< per Ceres solve
   double tolerance = 1e-12;          ///< residual tolerance of an accepted solution
   int threads = 1;
+  /// Identity targets: enumerate the one-parameter families directly (complete up to the cap)
+  /// instead of the multi-start shooting.
+  bool enumerate_families = true;
 };
 
 /// The isoparallel problem (section 2.2): shortest path from (start, A_start) to (goal, A_goal).

@@ -47,7 +47,7 @@ const char* const kFigure7 = R"json({
     "start": [0.0, 0.0],
     "goal": [3.0, 3.0],
     "impulses": 12,
-    "solver": {"starts": 64, "length_cap_factor": 3.0, "max_iterations": 100, "tolerance": 1e-12, "threads": 1}
+    "solver": {"starts": 1024, "length_cap_factor": 3.0, "max_iterations": 100, "tolerance": 1e-12, "threads": 1, "enumerate_families": true}
   }
 })json";
 
@@ -172,6 +172,9 @@ int main(int argc, char** argv) {
   app.add_option("--impulses", impulses, "number of impulses (overrides isoparallel.impulses)")->check(CLI::Range(1, 100000));
   app.add_option("--seed", seed, "seed of the multi-start (overrides the problem's seed)")->check(CLI::NonNegativeNumber);
   app.add_option("--starts", starts, "multi-start count (overrides isoparallel.solver.starts)")->check(CLI::Range(1, 1000000));
+  bool shooting = false;
+  app.add_flag("--shooting", shooting,
+               "identity targets: use the multi-start shooting instead of the family enumeration");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -195,6 +198,7 @@ int main(int argc, char** argv) {
     opt.max_iterations = task.solver.max_iterations;
     opt.tolerance = task.solver.tolerance;
     opt.threads = task.solver.threads;
+    opt.enumerate_families = task.solver.enumerate_families && !shooting;
     opt.seed = seed >= 0 ? static_cast<std::uint64_t>(seed) : problem.seed;
     const int n_impulses = impulses > 0 ? impulses : task.impulses;
 
@@ -237,13 +241,22 @@ int main(int argc, char** argv) {
               << prob.start.x() << ", " << prob.start.y() << ") -> (" << prob.goal.x() << ", " << prob.goal.y()
               << "), target reorientation angle " << angle << " rad\n";
     if (!summary.IsSolutionUsable()) {
-      std::cout << "no solution found (" << summary.local_solves << " local solves from " << opt.starts
-                << " starts, seed " << opt.seed << ", paths up to length " << summary.searched_length << ")\n";
+      if (summary.method == IsoparallelMethod::kFamilyEnumeration)
+        std::cout << "no solution found (family enumeration over 1.." << summary.periods_searched
+                  << " curvature periods, paths up to length " << summary.searched_length << ")\n";
+      else
+        std::cout << "no solution found (" << summary.local_solves << " local solves from " << opt.starts
+                  << " starts, seed " << opt.seed << ", paths up to length " << summary.searched_length << ")\n";
       return kExitNoSolution;
     }
     const IsoparallelSolution& best = summary.Shortest();
     std::cout << "solutions found: " << summary.solutions.size() << " (distinct, up to " << opt.length_cap_factor
-              << "x the shortest; " << opt.starts << " starts, seed " << opt.seed << ")\n";
+              << "x the shortest; ";
+    if (summary.method == IsoparallelMethod::kFamilyEnumeration)
+      std::cout << "identity target: one-parameter families enumerated over 1.." << summary.periods_searched
+                << " curvature periods, " << (summary.complete ? "certified complete" : "NOT certified complete") << ")\n";
+    else
+      std::cout << opt.starts << " starts, seed " << opt.seed << ")\n";
     std::cout << std::setprecision(10) << "shortest length: " << best.length << std::setprecision(6) << "  ("
               << ToString(best.parameters.regime) << " pendulum, G = " << best.G << ", energy = " << best.energy
               << ", " << best.periods << " curvature period(s)"
@@ -276,7 +289,10 @@ int main(int argc, char** argv) {
                       {"goal", Vec(prob.goal)},
                       {"start_orientation", Mat(prob.start_orientation)},
                       {"goal_orientation", Mat(prob.goal_orientation)}};
-      j["solver"] = {{"starts", opt.starts},
+      j["solver"] = {{"method", ToString(summary.method)},
+                     {"complete", summary.complete},
+                     {"periods_searched", summary.periods_searched},
+                     {"starts", opt.starts},
                      {"seed", opt.seed},
                      {"length_cap_factor", opt.length_cap_factor},
                      {"tolerance", opt.tolerance},
