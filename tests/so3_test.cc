@@ -23,6 +23,15 @@ TEST(So3, HatIsTheCrossProductAndVeeInvertsIt) {
   EXPECT_LT((Vee(Hat(w)) - w).norm(), 1e-15);
 }
 
+TEST(So3, ExpMatchesEigenAngleAxisOnBothSidesOfTheSeriesThreshold) {
+  // ExpSO3 switches from Taylor series to sin/cos at 0.2 rad: both branches against Eigen.
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.8, 0.52).normalized();
+  for (double angle : {1e-9, 1e-4, 0.05, 0.15, 0.1999999, 0.2, 0.2000001, 0.3, 1.0, 3.0}) {
+    const Eigen::Matrix3d ref = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+    EXPECT_LT((ExpSO3(angle * axis) - ref).norm(), 1e-15) << angle;
+  }
+}
+
 TEST(So3, ExpAndLogRoundTripNearZeroNearPiAndBetween) {
   std::mt19937 rng(3);
   std::normal_distribution<double> n(0.0, 1.0);
