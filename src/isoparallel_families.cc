@@ -244,8 +244,12 @@ bool Polish(const CoarseRoot& root, double chord, double tolerance, ElasticaFami
     std::swap(x0, x1);
     std::swap(f0, f1);
   }
-  if (!(std::abs(f1) <= tolerance)) return false;
   const double k = std::tanh(x1);
+  // Near the separatrix the modulus itself is the limit: one unit in the last place of k moves
+  // m phi by |slope| ulp(k) / (1 - k^2) (e.g. ~1e-11 rad at 1 - k ~ 1e-7). Accept that floor.
+  const double k_ulp = std::nextafter(k, 2.0) - k;
+  const double floor = 4.0 * std::abs(slope) * k_ulp / ((1.0 - k) * (1.0 + k));
+  if (!(std::abs(f1) <= std::max(tolerance, floor))) return false;
   const ElasticaParameters p = MakeParameters(root.regime, k, root.m, chord);
   out->regime = root.regime;
   out->modulus = k;

@@ -138,6 +138,36 @@ TEST(IdentityFamilies, IndependentMultiStartShootingFindsNothingElse) {
   EXPECT_GT(matched_total, 40);
 }
 
+TEST(IdentityFamilies, LongChordAgreesWithTheShootingIncludingNearTheSeparatrix) {
+  // Chord 12: the shooting (512 starts) found a one-period rotating family with 1 - k ~ 1e-7,
+  // where one ulp of k moves m phi by ~1e-11; the enumeration must have it (and all others).
+  IsoparallelProblem problem;
+  problem.goal = {12.0, 0.0};
+  const IsoparallelSummary enumerated = SolveIsoparallel(problem);
+  ASSERT_TRUE(enumerated.complete);
+  bool separatrix_family = false;
+  for (const IsoparallelSolution& e : enumerated.solutions) {
+    EXPECT_LT(e.orientation_residual, 1e-9) << e.length;
+    separatrix_family = separatrix_family || (std::abs(e.length - 15.36243998) < 1e-7 &&
+                                              e.parameters.regime == PendulumRegime::kRotating);
+  }
+  EXPECT_TRUE(separatrix_family);
+  IsoparallelOptions shoot;
+  shoot.enumerate_families = false;
+  shoot.starts = 512;
+  shoot.seed = 5;
+  const IsoparallelSummary s = SolveIsoparallel(problem, shoot);
+  ASSERT_TRUE(s.IsSolutionUsable());
+  EXPECT_NEAR(s.Shortest().length, enumerated.Shortest().length, 1e-7);
+  for (const IsoparallelSolution& sol : s.solutions) {
+    bool matched = false;
+    for (const IsoparallelSolution& e : enumerated.solutions)
+      matched = matched || (std::abs(e.length - sol.length) < 1e-6 && std::abs(e.G - sol.G) < 1e-5);
+    EXPECT_TRUE(matched) << "not enumerated: length " << sol.length << " G " << sol.G;
+  }
+  EXPECT_LT(s.solutions.size(), enumerated.solutions.size());
+}
+
 TEST(IdentityFamilies, SolverReportsVerifiedFamiliesAndMirrorPairs) {
   IsoparallelProblem problem;
   problem.start = {1.0, -2.0};
