@@ -380,6 +380,7 @@ std::vector<Candidate> SolveByFamilies(Context* ctx, const IsoparallelProblem& p
   fo.length_cap_factor = options.length_cap_factor;
   fo.tolerance = options.tolerance;
   fo.threads = options.threads;
+  if (options.progress) fo.progress = [&options](int m) { options.progress(m, 0); };
   FamilySearch search;
   for (int pass = 0; pass < 4; ++pass) {
     fo.max_length = ctx->s_limit;

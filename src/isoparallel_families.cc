@@ -378,6 +378,7 @@ FamilySearch EnumerateIdentityFamilies(double chord, const FamilySearchOptions& 
       out.families.push_back(polished[i]);
       if (options.length_cap_factor > 0) cap = std::min(cap, options.length_cap_factor * polished[i].length);
     }
+    if (options.progress) options.progress(m);
   }
   out.complete = done[0] && done[1];
   out.searched_length = cap;

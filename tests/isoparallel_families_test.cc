@@ -8,6 +8,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "elastica_rolling.h"
 #include "plateball/elastica.h"
@@ -192,6 +194,20 @@ TEST(IdentityFamilies, SolverReportsVerifiedFamiliesAndMirrorPairs) {
                         s.solutions[i + 1].parameters.rate == -sol.parameters.rate;
       EXPECT_TRUE(prev || next) << i;
     }
+  }
+}
+
+TEST(IdentityFamilies, ProgressReportsEachPeriodCount) {
+  IsoparallelProblem problem;
+  problem.goal = {3.0, 3.0};
+  IsoparallelOptions o;
+  std::vector<std::pair<int, int>> calls;
+  o.progress = [&calls](int done, int total) { calls.emplace_back(done, total); };
+  const IsoparallelSummary s = SolveIsoparallel(problem, o);
+  ASSERT_EQ(static_cast<int>(calls.size()), s.periods_searched);
+  for (std::size_t i = 0; i < calls.size(); ++i) {
+    EXPECT_EQ(calls[i].first, static_cast<int>(i) + 1);
+    EXPECT_EQ(calls[i].second, 0);
   }
 }
 

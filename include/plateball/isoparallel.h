@@ -43,7 +43,8 @@ struct IsoparallelOptions {
   /// (complete up to the length cap; isoparallel_families.h). false: multi-start shooting.
   bool enumerate_families = true;
   /// Called (from a worker thread, serialised) after each start with (starts done, starts in
-  /// this pass); for a tool's progress line. The library never prints.
+  /// this pass), or by the family enumeration after each period count m with (m, 0); for a
+  /// tool's progress line. The library never prints.
   std::function<void(int, int)> progress;
   /// Empty when valid, else a message naming the field, the value and the bound.
   std::string Validate() const;

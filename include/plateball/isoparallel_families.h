@@ -22,6 +22,7 @@
 // limit of many small periods (rolling along the chord). See docs/paper_notes.md.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,8 @@ struct FamilySearchOptions {
   int max_periods = 512;     ///< largest m examined if the certificate never holds
   int certified_run = 3;     ///< consecutive certified m (no roots possible) that end the search
   int threads = 1;           ///< worker threads (the two regimes, the polishing; results do not depend on it)
+  /// Called after each period count m is finished, with m (for a tool's progress line).
+  std::function<void(int)> progress;
   /// Empty when valid, else a message naming the field, the value and the bound.
   std::string Validate() const;
 };

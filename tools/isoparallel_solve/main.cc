@@ -216,8 +216,12 @@ int main(int argc, char** argv) {
       int seconds = 0;
       while (!cv.wait_for(lock, std::chrono::seconds(1), [&] { return finished; })) {
         ++seconds;
-        std::cerr << "isoparallel_solve: solving, " << seconds << " s, start " << done.load() << " of "
-                  << total.load() << "\n";
+        if (total.load() > 0)
+          std::cerr << "isoparallel_solve: solving, " << seconds << " s, start " << done.load() << " of "
+                    << total.load() << "\n";
+        else
+          std::cerr << "isoparallel_solve: solving, " << seconds << " s, families over 1.." << done.load()
+                    << " curvature periods examined\n";
       }
     });
     IsoparallelSummary summary;
