@@ -21,6 +21,11 @@ namespace {
 // xi = atanh(k) is searched up to kXiMax (1 - k ~ 1e-11): closer to the separatrix the modulus
 // is not resolved in double precision.
 constexpr double kXiMax = 13.0;
+// Longest family searched: max(kSearchLengthPerChord chord, kMinSearchLength). The sampling
+// cost grows with the length (longer periods, faster-turning m phi); a longer cap is clamped
+// and the search then does not claim completeness.
+constexpr double kSearchLengthPerChord = 64.0;
+constexpr double kMinSearchLength = 200.0;
 // Coarse rollings (bracketing): ~1e-8 rad. Accurate rollings (polish): below 1e-13 rad
 // (tests/isoparallel_families_test.cc checks both against dopri5).
 constexpr int kCoarseSteps = 12;
@@ -75,6 +80,8 @@ double LengthOf(PendulumRegime regime, double k, double chord) { return chord / 
 std::vector<std::pair<double, double>> AllowedIntervals(PendulumRegime regime, double chord, double max_length) {
   auto excess = [&](double xi) { return LengthOf(regime, std::tanh(xi), chord) - max_length; };
   auto solve = [&](double a, double b) {
+    // L - max_length changes sign on [a, b] unless the cap lies beyond the far end's length.
+    if (!(excess(a) * excess(b) < 0)) return excess(a) <= 0 ? b : a;
     std::uintmax_t iters = 200;
     const auto r = boost::math::tools::toms748_solve(excess, a, b, boost::math::tools::eps_tolerance<double>(50),
                                                       iters);
@@ -326,7 +333,8 @@ FamilySearch EnumerateIdentityFamilies(double chord, const FamilySearchOptions& 
   const std::string err = options.Validate();
   if (!err.empty()) throw std::invalid_argument(err);
   FamilySearch out;
-  double cap = options.max_length;
+  const double search_limit = std::max(kSearchLengthPerChord * chord, kMinSearchLength);
+  double cap = std::min(options.max_length, search_limit);
   // A straight segment rolls the ball through its length about a horizontal axis: the identity
   // when the chord is a multiple of 2 pi. No path is shorter than the chord.
   const double turns = std::round(chord / (2.0 * M_PI));
@@ -380,7 +388,7 @@ FamilySearch EnumerateIdentityFamilies(double chord, const FamilySearchOptions& 
     }
     if (options.progress) options.progress(m);
   }
-  out.complete = done[0] && done[1];
+  out.complete = done[0] && done[1] && (options.max_length <= search_limit || cap < search_limit);
   out.searched_length = cap;
   std::stable_sort(out.families.begin(), out.families.end(),
                    [](const ElasticaFamily& a, const ElasticaFamily& b) { return a.length < b.length; });

@@ -253,6 +253,24 @@ TEST(IdentityFamilies, ShortCapsFindNothingAndSayComplete) {
   EXPECT_TRUE(f.complete);
 }
 
+TEST(IdentityFamilies, HugeLengthCapsAreClampedAndCertifiedOnlyWhenTheCapShrinks) {
+  // max_length = 1e300 is clamped (max(64 chord, 200)); with the 3x cap the search shrinks far
+  // below the clamp, so the result is the complete Figure 7 set; without a cap it is not complete.
+  FamilySearchOptions o;
+  o.max_length = 1e300;
+  o.length_cap_factor = 3.0;
+  const FamilySearch f = EnumerateIdentityFamilies(kChord, o);
+  EXPECT_TRUE(f.complete);
+  EXPECT_EQ(f.families.size(), Figure7Families().families.size());
+  o.length_cap_factor = 0.0;
+  o.max_periods = 2;
+  const FamilySearch g = EnumerateIdentityFamilies(kChord, o);
+  EXPECT_FALSE(g.complete);
+  ASSERT_FALSE(g.families.empty());
+  EXPECT_NEAR(g.families.front().length, 9.41277243, 1e-8);
+  EXPECT_LE(g.families.back().length, 64.0 * kChord);
+}
+
 TEST(IdentityFamilies, InvalidInputNamesTheField) {
   FamilySearchOptions o;
   o.max_length = 10.0;

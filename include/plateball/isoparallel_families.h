@@ -32,7 +32,9 @@ namespace plateball {
 
 /// Options of EnumerateIdentityFamilies.
 struct FamilySearchOptions {
-  double max_length = 0.0;   ///< longest family searched
+  /// Longest family searched; clamped to max(64 chord, 200) (then `complete` stays false
+  /// unless the length cap shrank below the clamp).
+  double max_length = 0.0;
   /// When > 0, the search also stops at this factor times the shortest family found so far
   /// (the length cap of the isoparallel solver; families beyond it are not reported).
   double length_cap_factor = 0.0;
