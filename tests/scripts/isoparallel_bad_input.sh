@@ -53,6 +53,7 @@ cases=(
   "negative seed|3|seed|$work/negative_seed.json"
   "missing problem file|5|no_such_file.json|$work/no_such_file.json"
   "unwritable plan file|5|/nonexistent_dir/plan.json|--out|/nonexistent_dir/plan.json"
+  "unwritable figure file|5|/nonexistent_dir/figure.svg|--svg|/nonexistent_dir/figure.svg"
   "zero impulses on the command line|2|--impulses|--impulses|0"
   "non-numeric seed|2|--seed|--seed|abc"
   "unknown option|2|--frobnicate|--frobnicate"

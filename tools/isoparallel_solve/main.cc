@@ -3,27 +3,32 @@
 // approximation (section 2.3) as in Figure 7.
 //
 //   isoparallel_solve [problem.json] [--out plan.json] [--svg figure.svg] [--impulses N] [--seed S]
+//                     [--starts N] [--shooting]
 //
 // With no problem file it solves the built-in Figure 7 problem (problems/figure7.json).
 // Exit codes (tools/common/exit_codes.h): 0 solved and planned, 2 usage, 3 bad input,
-// 4 no solution (or the impulsive plan failed), 5 I/O error, 6 internal error.
+// 4 no solution (or the impulsive plan failed), 5 I/O error, 6 internal error; failures are
+// reported as by the `plateball` subcommands (tools/common/errors.h), the plan file is written
+// with tools/common/json_output.h and the figure with tools/common/svg.h.
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
-#include <cstdio>
 #include <exception>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <mutex>
-#include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "common/errors.h"
 #include "common/exit_codes.h"
+#include "common/json_output.h"
+#include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/isoparallel.h"
 #include "plateball/isoparallel_plan.h"
@@ -32,8 +37,8 @@
 
 namespace {
 
-using plateball::tools::ExitCode;
-using Json = nlohmann::ordered_json;
+using plateball::tools::Json;
+using plateball::tools::ToJson;
 
 // The paper's Figure 7 problem: from (0, 0) to (3, 3), final reorientation the identity. The
 // ball of Figures 8 and T2/T3 (lambda = 2, mu = 1); A0 = I puts the symmetry axis at the pole.
@@ -50,14 +55,6 @@ const char* const kFigure7 = R"json({
     "solver": {"starts": 1024, "length_cap_factor": 3.0, "max_iterations": 100, "tolerance": 1e-12, "threads": 1, "enumerate_families": true}
   }
 })json";
-
-Json Vec(const Eigen::Vector2d& v) { return Json::array({v.x(), v.y()}); }
-Json Vec(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
-Json Mat(const Eigen::Matrix3d& m) {
-  Json rows = Json::array();
-  for (int i = 0; i < 3; ++i) rows.push_back(Json::array({m(i, 0), m(i, 1), m(i, 2)}));
-  return rows;
-}
 
 std::vector<Eigen::Vector2d> SamplePath(const plateball::IsoparallelSolution& s, int n) {
   std::vector<Eigen::Vector2d> pts;
@@ -83,7 +80,7 @@ std::vector<std::vector<Eigen::Vector2d>> SampleArcs(const plateball::BallModel&
 }
 
 Json SolutionJson(const plateball::IsoparallelSolution& s) {
-  Json j;
+  Json j = Json::object();
   j["length"] = s.length;
   j["regime"] = plateball::ToString(s.parameters.regime);
   j["G"] = s.G;
@@ -103,197 +100,20 @@ Json SolutionJson(const plateball::IsoparallelSolution& s) {
   return j;
 }
 
-std::string Svg(const plateball::IsoparallelProblem& prob, const std::vector<Eigen::Vector2d>& path,
-                const std::vector<std::vector<Eigen::Vector2d>>& arcs, const plateball::PlanSummary& plan) {
-  Eigen::Vector2d lo = path.front(), hi = path.front();
-  auto grow = [&](const Eigen::Vector2d& p) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  };
-  for (const auto& p : path) grow(p);
-  for (const auto& a : arcs)
-    for (const auto& p : a) grow(p);
-  const double margin = 0.05 * std::max(hi.x() - lo.x(), hi.y() - lo.y()) + 0.2;
-  lo.array() -= margin;
-  hi.array() += margin;
-  const double scale = 600.0 / std::max(hi.x() - lo.x(), hi.y() - lo.y());
-  const double w = (hi.x() - lo.x()) * scale, h = (hi.y() - lo.y()) * scale;
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(2);
-  auto pt = [&](const Eigen::Vector2d& p) {
-    std::ostringstream q;
-    q << std::fixed << std::setprecision(2) << (p.x() - lo.x()) * scale << "," << (hi.y() - p.y()) * scale;
-    return q.str();
-  };
-  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w << "\" height=\"" << h + 30 << "\" viewBox=\"0 0 "
-     << w << " " << h + 30 << "\">\n";
-  os << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  os << "<polyline fill=\"none\" stroke=\"#555\" stroke-width=\"2\" stroke-dasharray=\"8,6\" points=\"";
-  for (const auto& p : path) os << pt(p) << " ";
-  os << "\"/>\n";
-  for (const auto& a : arcs) {
-    os << "<polyline fill=\"none\" stroke=\"#c03\" stroke-width=\"1.5\" points=\"";
-    for (const auto& p : a) os << pt(p) << " ";
-    os << "\"/>\n";
-  }
-  for (const plateball::PlanStep& st : plan.steps) {
-    const std::string c = pt(st.p_begin);
-    os << "<circle cx=\"" << c.substr(0, c.find(',')) << "\" cy=\"" << c.substr(c.find(',') + 1)
-       << "\" r=\"4\" fill=\"#c03\"/>\n";
-  }
-  for (const auto& [p, label] : {std::pair{prob.start, "x0"}, std::pair{prob.goal, "x1"}}) {
-    const std::string c = pt(p);
-    os << "<circle cx=\"" << c.substr(0, c.find(',')) << "\" cy=\"" << c.substr(c.find(',') + 1)
-       << "\" r=\"6\" fill=\"none\" stroke=\"black\" stroke-width=\"2\"/>\n";
-    os << "<text x=\"" << c.substr(0, c.find(',')) << "\" y=\"" << c.substr(c.find(',') + 1)
-       << "\" dx=\"8\" dy=\"-8\" font-family=\"sans-serif\" font-size=\"14\">" << label << "</text>\n";
-  }
-  os << "<text x=\"10\" y=\"" << h + 20
-     << "\" font-family=\"sans-serif\" font-size=\"13\">dashed: optimal path; solid: impulsive approximation ("
-     << plan.steps.size() << " impulses, dots)</text>\n";
-  os << "</svg>\n";
-  return os.str();
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
+// The plan file (--out): what was solved, every solution, the sampled optimal path and the
+// impulsive plan. No timings, so the same problem and seed give a byte-identical file.
+Json PlanFileJson(const plateball::Problem& problem, const plateball::IsoparallelProblem& prob,
+                  const plateball::IsoparallelOptions& opt, const plateball::IsoparallelSummary& summary,
+                  const std::vector<Eigen::Vector2d>& path_pts, const plateball::PlanSummary& plan,
+                  const std::vector<std::vector<Eigen::Vector2d>>& arcs, double final_error) {
   using namespace plateball;
-  using namespace plateball::tools;
-  CLI::App app{"isoparallel_solve: shortest path on the plate whose rolling gives a prescribed reorientation "
-               "(section 2.2), and its impulsive approximation (Figure 7)"};
-  app.set_version_flag("--version", std::string("isoparallel_solve (plateball) ") + PLATEBALL_VERSION_STRING);
-  std::string problem_file, out_file, svg_file;
-  int impulses = 0, starts = 0;
-  long long seed = -1;
-  app.add_option("problem", problem_file, "problem JSON file (default: the built-in Figure 7 problem)");
-  app.add_option("--out", out_file, "write the full plan as JSON");
-  app.add_option("--svg", svg_file, "write an SVG figure of the plate (as Figure 7)");
-  app.add_option("--impulses", impulses, "number of impulses (overrides isoparallel.impulses)")->check(CLI::Range(1, 100000));
-  app.add_option("--seed", seed, "seed of the multi-start (overrides the problem's seed)")->check(CLI::NonNegativeNumber);
-  app.add_option("--starts", starts, "multi-start count (overrides isoparallel.solver.starts)")->check(CLI::Range(1, 1000000));
-  bool shooting = false;
-  app.add_flag("--shooting", shooting,
-               "identity targets: use the multi-start shooting instead of the family enumeration");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitSuccess : kExitUsage;
-  }
-
-  try {
-    const Problem problem = problem_file.empty() ? ParseProblem(kFigure7, "figure7 (built-in)") : ReadProblemFile(problem_file);
-    if (!problem.isoparallel)
-      throw std::invalid_argument(problem.source + ": isoparallel: value (missing): the problem has no isoparallel section");
-    const IsoparallelTask& task = *problem.isoparallel;
-    IsoparallelProblem prob;
-    prob.start = task.start;
-    prob.goal = task.goal;
-    prob.start_orientation = task.start_orientation;
-    prob.goal_orientation = task.goal_orientation;
-    IsoparallelOptions opt;
-    opt.starts = starts > 0 ? starts : task.solver.starts;
-    opt.length_cap_factor = task.solver.length_cap_factor;
-    opt.max_iterations = task.solver.max_iterations;
-    opt.tolerance = task.solver.tolerance;
-    opt.threads = task.solver.threads;
-    opt.enumerate_families = task.solver.enumerate_families && !shooting;
-    opt.seed = seed >= 0 ? static_cast<std::uint64_t>(seed) : problem.seed;
-    const int n_impulses = impulses > 0 ? impulses : task.impulses;
-
-    // Solve; a progress line on stderr when it takes longer than a second.
-    std::atomic<int> done{0}, total{0};
-    opt.progress = [&](int d, int t) {
-      done = d;
-      total = t;
-    };
-    std::mutex mu;
-    std::condition_variable cv;
-    bool finished = false;
-    std::thread monitor([&]() {
-      std::unique_lock<std::mutex> lock(mu);
-      int seconds = 0;
-      while (!cv.wait_for(lock, std::chrono::seconds(1), [&] { return finished; })) {
-        ++seconds;
-        if (total.load() > 0)
-          std::cerr << "isoparallel_solve: solving, " << seconds << " s, start " << done.load() << " of "
-                    << total.load() << "\n";
-        else
-          std::cerr << "isoparallel_solve: solving, " << seconds << " s, families over 1.." << done.load()
-                    << " curvature periods examined\n";
-      }
-    });
-    IsoparallelSummary summary;
-    std::exception_ptr failure;
-    try {
-      summary = SolveIsoparallel(prob, opt);
-    } catch (...) {
-      failure = std::current_exception();
-    }
-    {
-      std::lock_guard<std::mutex> lock(mu);
-      finished = true;
-    }
-    cv.notify_all();
-    monitor.join();
-    if (failure) std::rethrow_exception(failure);
-
-    const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
-    std::cout << std::setprecision(6);
-    std::cout << "isoparallel_solve: " << (problem.name.empty() ? problem.source : problem.name) << ": ("
-              << prob.start.x() << ", " << prob.start.y() << ") -> (" << prob.goal.x() << ", " << prob.goal.y()
-              << "), target reorientation angle " << angle << " rad\n";
-    if (!summary.IsSolutionUsable()) {
-      if (summary.method == IsoparallelMethod::kFamilyEnumeration)
-        std::cout << "no solution found (family enumeration over 1.." << summary.periods_searched
-                  << " curvature periods, paths up to length " << summary.searched_length << ")\n";
-      else
-        std::cout << "no solution found (" << summary.local_solves << " local solves from " << opt.starts
-                  << " starts, seed " << opt.seed << ", paths up to length " << summary.searched_length << ")\n";
-      return kExitNoSolution;
-    }
-    const IsoparallelSolution& best = summary.Shortest();
-    std::cout << "solutions found: " << summary.solutions.size() << " (distinct, up to " << opt.length_cap_factor
-              << "x the shortest; ";
-    if (summary.method == IsoparallelMethod::kFamilyEnumeration)
-      std::cout << "identity target: one-parameter families enumerated over 1.." << summary.periods_searched
-                << " curvature periods, " << (summary.complete ? "certified complete" : "NOT certified complete") << ")\n";
-    else
-      std::cout << opt.starts << " starts, seed " << opt.seed << ")\n";
-    std::cout << std::setprecision(10) << "shortest length: " << best.length << std::setprecision(6) << "  ("
-              << ToString(best.parameters.regime) << " pendulum, G = " << best.G << ", energy = " << best.energy
-              << ", " << best.periods << " curvature period(s)"
-              << (best.family ? ", a one-parameter family: phase free, phase 0 reported" : "") << ")\n";
-    std::cout << std::setprecision(3) << "verified by rolling (dopri5): orientation residual " << best.orientation_residual
-              << " rad, endpoint error " << best.endpoint_error << "\n";
-    const auto t_plan = std::chrono::steady_clock::now();
-    const PlanSummary plan =
-        PlanOptimalPath(problem.model, problem.initial_angles.psi, problem.mu, prob.start_orientation, best, n_impulses);
-    const double plan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_plan).count();
-    const double final_error = OperatorNormDistance(prob.goal_orientation, plan.A_impulsive);
-    std::cout << "impulses: " << plan.steps.size() << " (" << ToString(plan.status) << "), max pass miss "
-              << plan.max_pass_miss << "\n";
-    if (plan.IsSolutionUsable()) {
-      std::cout << "final orientation error ||A_goal - A~_n|| = " << final_error << ", bound (Theorem 2.6) "
-                << plan.bounds.theorem_2_6 << ", a-posteriori bound " << plan.bounds.a_posteriori << "\n";
-    } else {
-      std::cout << "impulsive plan failed: " << plan.message << " (try more impulses)\n";
-    }
-    std::cout << std::setprecision(3) << "time: solve " << summary.time_seconds * 1e3 << " ms, plan " << plan_seconds * 1e3
-              << " ms\n";
-
-    const std::vector<Eigen::Vector2d> path_pts = SamplePath(best, 400);
-    const std::vector<std::vector<Eigen::Vector2d>> arcs =
-        plan.IsSolutionUsable() ? SampleArcs(problem.model, plan, 40) : std::vector<std::vector<Eigen::Vector2d>>{};
-    if (!out_file.empty()) {
-      Json j;
-      j["problem"] = {{"name", problem.name},
-                      {"start", Vec(prob.start)},
-                      {"goal", Vec(prob.goal)},
-                      {"start_orientation", Mat(prob.start_orientation)},
-                      {"goal_orientation", Mat(prob.goal_orientation)}};
-      j["solver"] = {{"method", ToString(summary.method)},
+  Json j;
+  j["problem"] = Json{{"name", problem.name},
+                      {"start", ToJson(prob.start)},
+                      {"goal", ToJson(prob.goal)},
+                      {"start_orientation", ToJson(prob.start_orientation)},
+                      {"goal_orientation", ToJson(prob.goal_orientation)}};
+  j["solver"] = Json{{"method", ToString(summary.method)},
                      {"complete", summary.complete},
                      {"periods_searched", summary.periods_searched},
                      {"starts", opt.starts},
@@ -303,65 +123,218 @@ int main(int argc, char** argv) {
                      {"status", ToString(summary.status)},
                      {"local_solves", summary.local_solves},
                      {"searched_length", summary.searched_length}};
-      Json sols = Json::array();
-      for (const auto& s : summary.solutions) sols.push_back(SolutionJson(s));
-      j["solutions"] = sols;
-      Json path = Json::array();
-      for (const auto& p : path_pts) path.push_back(Vec(p));
-      j["optimal_path"] = path;
-      const AngleState a0 = InitialAnglesFromOrientation(prob.start_orientation, problem.initial_angles.psi);
-      Json pj;
-      pj["status"] = ToString(plan.status);
-      pj["message"] = plan.message;
-      pj["initial_angles"] = {{"theta", a0.theta}, {"phi", a0.phi}, {"psi", a0.psi}};
-      pj["mu"] = problem.mu;
-      Json steps = Json::array();
-      for (const PlanStep& st : plan.steps) {
-        steps.push_back({{"k", st.global_index},
-                         {"point", Vec(st.p_begin)},
+  Json sols = Json::array();
+  for (const auto& s : summary.solutions) sols.push_back(SolutionJson(s));
+  j["solutions"] = std::move(sols);
+  j["optimal_path"] = ToJson(path_pts);
+  Json pj;
+  pj["status"] = ToString(plan.status);
+  pj["message"] = plan.message;
+  pj["initial_angles"] = ToJson(InitialAnglesFromOrientation(prob.start_orientation, problem.initial_angles.psi));
+  pj["mu"] = problem.mu;
+  Json steps = Json::array();
+  for (const PlanStep& st : plan.steps) {
+    steps.push_back(Json{{"k", st.global_index},
+                         {"point", ToJson(st.p_begin)},
                          {"t_impulse", st.t_impulse},
                          {"duration", st.duration},
                          {"delta_psi", st.delta_psi},
-                         {"delta_omega", Vec(st.delta_omega)},
-                         {"plate_velocity_change", Vec(st.plate_velocity_change)},
+                         {"delta_omega", ToJson(st.delta_omega)},
+                         {"plate_velocity_change", ToJson(st.plate_velocity_change)},
                          {"pass_miss", st.pass_miss}});
-      }
-      pj["impulses"] = steps;
-      Json traj = Json::array();
-      for (const auto& a : arcs) {
-        Json arc = Json::array();
-        for (const auto& p : a) arc.push_back(Vec(p));
-        traj.push_back(arc);
-      }
-      pj["trajectory"] = traj;
-      pj["A_impulsive"] = Mat(plan.A_impulsive);
-      pj["orientation_error"] = final_error;
-      pj["measured_error_vs_planned"] = plan.measured_error;
-      pj["bound_theorem_2_6"] = plan.bounds.theorem_2_6;
-      pj["bound_a_posteriori"] = plan.bounds.a_posteriori;
-      j["plan"] = pj;
-      std::ofstream f(out_file);
-      if (!(f << j.dump(2) << "\n")) {
-        std::cerr << "isoparallel_solve: cannot write " << out_file << "\n";
-        return kExitIoError;
-      }
-    }
-    if (!svg_file.empty()) {
-      std::ofstream f(svg_file);
-      if (!(f << Svg(prob, path_pts, arcs, plan))) {
-        std::cerr << "isoparallel_solve: cannot write " << svg_file << "\n";
-        return kExitIoError;
-      }
-    }
-    return plan.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
-  } catch (const ProblemFileReadError& e) {
-    std::cerr << "isoparallel_solve: " << e.what() << "\n";
-    return kExitIoError;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "isoparallel_solve: invalid input: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "isoparallel_solve: error: " << e.what() << "\n";
-    return kExitInternalError;
   }
+  pj["impulses"] = std::move(steps);
+  Json traj = Json::array();
+  for (const auto& a : arcs) traj.push_back(ToJson(a));
+  pj["trajectory"] = std::move(traj);
+  pj["A_impulsive"] = ToJson(plan.A_impulsive);
+  pj["orientation_error"] = final_error;
+  pj["measured_error_vs_planned"] = plan.measured_error;
+  pj["bound_theorem_2_6"] = plan.bounds.theorem_2_6;
+  pj["bound_a_posteriori"] = plan.bounds.a_posteriori;
+  j["plan"] = std::move(pj);
+  return j;
+}
+
+// The plate as in Figure 7: optimal path dashed, impulsive trajectory solid, impulse points as dots,
+// start x0 and goal x1 circled.
+plateball::tools::SvgFigure Figure(const std::string& name, const plateball::IsoparallelProblem& prob,
+                                   const plateball::IsoparallelSolution& best,
+                                   const std::vector<Eigen::Vector2d>& path,
+                                   const std::vector<std::vector<Eigen::Vector2d>>& arcs,
+                                   const plateball::PlanSummary& plan) {
+  using plateball::tools::SvgFigure;
+  const SvgFigure::Style optimal{"#555", 2.0, "8,6", "none"};
+  const SvgFigure::Style impulsive{"#c03", 1.5, "", "none"};
+  const SvgFigure::Style dot{"#c03", 1.0, "", "#c03"};
+  const SvgFigure::Style end_point{"black", 2.0, "", "none"};
+  SvgFigure fig;
+  fig.Polyline(path, optimal);
+  for (const auto& a : arcs) fig.Polyline(a, impulsive);
+  for (const plateball::PlanStep& st : plan.steps) fig.Marker(st.p_begin, 4, dot);
+  // Labels a little above and right of their points (1.5% of the drawing's extent).
+  Eigen::Vector2d lo = path.front(), hi = path.front();
+  for (const auto& p : path) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  for (const auto& a : arcs)
+    for (const auto& p : a) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const Eigen::Vector2d label_offset = Eigen::Vector2d::Constant(0.015 * (hi - lo).maxCoeff());
+  for (const auto& [p, label] : {std::pair{prob.start, "x0"}, std::pair{prob.goal, "x1"}}) {
+    fig.Marker(p, 6, end_point);
+    fig.Text(p + label_offset, label, 14);
+  }
+  // The caption goes in the title: a legend in the corner would cover the path.
+  std::ostringstream title;
+  title.precision(3);
+  title << name << ": optimal path dashed (length " << best.length << "); " << plan.steps.size()
+        << " impulses solid, dots";
+  fig.Title(title.str());
+  return fig;
+}
+
+struct CliOptions {
+  std::string problem_file, out_file, svg_file;
+  int impulses = 0, starts = 0;
+  long long seed = -1;
+  bool shooting = false;
+};
+
+int Run(const CliOptions& cli) {
+  using namespace plateball;
+  using namespace plateball::tools;
+  const Problem problem =
+      cli.problem_file.empty() ? ParseProblem(kFigure7, "figure7 (built-in)") : ReadProblemFile(cli.problem_file);
+  if (!problem.isoparallel)
+    throw std::invalid_argument(problem.source + ": isoparallel: value (missing): the problem has no isoparallel section");
+  const IsoparallelTask& task = *problem.isoparallel;
+  IsoparallelProblem prob;
+  prob.start = task.start;
+  prob.goal = task.goal;
+  prob.start_orientation = task.start_orientation;
+  prob.goal_orientation = task.goal_orientation;
+  IsoparallelOptions opt;
+  opt.starts = cli.starts > 0 ? cli.starts : task.solver.starts;
+  opt.length_cap_factor = task.solver.length_cap_factor;
+  opt.max_iterations = task.solver.max_iterations;
+  opt.tolerance = task.solver.tolerance;
+  opt.threads = task.solver.threads;
+  opt.enumerate_families = task.solver.enumerate_families && !cli.shooting;
+  opt.seed = cli.seed >= 0 ? static_cast<std::uint64_t>(cli.seed) : problem.seed;
+  const int n_impulses = cli.impulses > 0 ? cli.impulses : task.impulses;
+
+  // Solve; a progress line on stderr when it takes longer than a second.
+  std::atomic<int> done{0}, total{0};
+  opt.progress = [&](int d, int t) {
+    done = d;
+    total = t;
+  };
+  std::mutex mu;
+  std::condition_variable cv;
+  bool finished = false;
+  std::thread monitor([&]() {
+    std::unique_lock<std::mutex> lock(mu);
+    int seconds = 0;
+    while (!cv.wait_for(lock, std::chrono::seconds(1), [&] { return finished; })) {
+      ++seconds;
+      if (total.load() > 0)
+        std::cerr << "isoparallel_solve: solving, " << seconds << " s, start " << done.load() << " of "
+                  << total.load() << "\n";
+      else
+        std::cerr << "isoparallel_solve: solving, " << seconds << " s, families over 1.." << done.load()
+                  << " curvature periods examined\n";
+    }
+  });
+  IsoparallelSummary summary;
+  std::exception_ptr failure;
+  try {
+    summary = SolveIsoparallel(prob, opt);
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  {
+    std::lock_guard<std::mutex> lock(mu);
+    finished = true;
+  }
+  cv.notify_all();
+  monitor.join();
+  if (failure) std::rethrow_exception(failure);  // reported by RunWithExitCodes
+
+  const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
+  const std::string name = problem.name.empty() ? problem.source : problem.name;
+  std::cout << std::setprecision(6);
+  std::cout << "isoparallel_solve: " << name << ": (" << prob.start.x() << ", " << prob.start.y() << ") -> ("
+            << prob.goal.x() << ", " << prob.goal.y() << "), target reorientation angle " << angle << " rad\n";
+  if (!summary.IsSolutionUsable()) {
+    if (summary.method == IsoparallelMethod::kFamilyEnumeration)
+      std::cout << "no solution found (family enumeration over 1.." << summary.periods_searched
+                << " curvature periods, paths up to length " << summary.searched_length << ")\n";
+    else
+      std::cout << "no solution found (" << summary.local_solves << " local solves from " << opt.starts
+                << " starts, seed " << opt.seed << ", paths up to length " << summary.searched_length << ")\n";
+    return kExitNoSolution;
+  }
+  const IsoparallelSolution& best = summary.Shortest();
+  std::cout << "solutions found: " << summary.solutions.size() << " (distinct, up to " << opt.length_cap_factor
+            << "x the shortest; ";
+  if (summary.method == IsoparallelMethod::kFamilyEnumeration)
+    std::cout << "identity target: one-parameter families enumerated over 1.." << summary.periods_searched
+              << " curvature periods, " << (summary.complete ? "certified complete" : "NOT certified complete") << ")\n";
+  else
+    std::cout << opt.starts << " starts, seed " << opt.seed << ")\n";
+  std::cout << std::setprecision(10) << "shortest length: " << best.length << std::setprecision(6) << "  ("
+            << ToString(best.parameters.regime) << " pendulum, G = " << best.G << ", energy = " << best.energy
+            << ", " << best.periods << " curvature period(s)"
+            << (best.family ? ", a one-parameter family: phase free, phase 0 reported" : "") << ")\n";
+  std::cout << std::setprecision(3) << "verified by rolling (dopri5): orientation residual " << best.orientation_residual
+            << " rad, endpoint error " << best.endpoint_error << "\n";
+  const auto t_plan = std::chrono::steady_clock::now();
+  const PlanSummary plan =
+      PlanOptimalPath(problem.model, problem.initial_angles.psi, problem.mu, prob.start_orientation, best, n_impulses);
+  const double plan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_plan).count();
+  const double final_error = OperatorNormDistance(prob.goal_orientation, plan.A_impulsive);
+  std::cout << "impulses: " << plan.steps.size() << " (" << ToString(plan.status) << "), max pass miss "
+            << plan.max_pass_miss << "\n";
+  if (plan.IsSolutionUsable()) {
+    std::cout << "final orientation error ||A_goal - A~_n|| = " << final_error << ", bound (Theorem 2.6) "
+              << plan.bounds.theorem_2_6 << ", a-posteriori bound " << plan.bounds.a_posteriori << "\n";
+  } else {
+    std::cout << "impulsive plan failed: " << plan.message << " (try more impulses)\n";
+  }
+  std::cout << std::setprecision(3) << "time: solve " << summary.time_seconds * 1e3 << " ms, plan " << plan_seconds * 1e3
+            << " ms\n";
+  std::cout.flush();
+
+  const std::vector<Eigen::Vector2d> path_pts = SamplePath(best, 400);
+  const std::vector<std::vector<Eigen::Vector2d>> arcs =
+      plan.IsSolutionUsable() ? SampleArcs(problem.model, plan, 40) : std::vector<std::vector<Eigen::Vector2d>>{};
+  if (!cli.out_file.empty())
+    WriteJson(PlanFileJson(problem, prob, opt, summary, path_pts, plan, arcs, final_error), cli.out_file);
+  if (!cli.svg_file.empty()) Figure(name, prob, best, path_pts, arcs, plan).Write(cli.svg_file);
+  return plan.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace plateball::tools;
+  CLI::App app{"isoparallel_solve: shortest path on the plate whose rolling gives a prescribed reorientation "
+               "(section 2.2), and its impulsive approximation (Figure 7)"};
+  app.set_version_flag("--version", std::string("isoparallel_solve (plateball) ") + PLATEBALL_VERSION_STRING);
+  CliOptions cli;
+  app.add_option("problem", cli.problem_file, "problem JSON file (default: the built-in Figure 7 problem)");
+  app.add_option("--out", cli.out_file, "write the full plan as JSON");
+  app.add_option("--svg", cli.svg_file, "write an SVG figure of the plate (as Figure 7)");
+  app.add_option("--impulses", cli.impulses, "number of impulses (overrides isoparallel.impulses)")->check(CLI::Range(1, 100000));
+  app.add_option("--seed", cli.seed, "seed of the multi-start (overrides the problem's seed)")->check(CLI::NonNegativeNumber);
+  app.add_option("--starts", cli.starts, "multi-start count (overrides isoparallel.solver.starts)")->check(CLI::Range(1, 1000000));
+  app.add_flag("--shooting", cli.shooting,
+               "identity targets: use the multi-start shooting instead of the family enumeration");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitSuccess : kExitUsage;
+  }
+  // Failures read as in the `plateball` CLI (errors.h): 3 bad input, 4 computation failed,
+  // 5 unreadable/unwritable file, 6 internal error.
+  return RunWithExitCodes("isoparallel_solve", [&] { return Run(cli); });
 }
