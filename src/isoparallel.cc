@@ -18,6 +18,7 @@
 
 #include "check.h"
 #include "elastica_rolling.h"
+#include "parallel_for.h"
 #include "plateball/isoparallel_families.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
@@ -249,6 +250,13 @@ struct Candidate {
   std::vector<Eigen::Vector2d> signature;  // world positions at s = L/3, 2L/3
 };
 
+// How many times a family member crosses the circle |x - x0| = |x1 - x0| up to its end (which
+// lies on the circle): the `crossing` reported for a family.
+int CrossingCount(const Context& ctx, const Elastica& e, double length) {
+  const internal::ElasticaRollingTable table(e, length * (1 + 1e-9), kSearch.steps_per_period, kSearch.max_step);
+  return std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 100000).size()));
+}
+
 // Length, G, E and world-frame signature of a search result, without the family test.
 Candidate MakeRoughCandidate(const Context&, const IsoparallelProblem& problem, const LocalResult& r) {
   Candidate c;
@@ -296,9 +304,7 @@ Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, c
         sol.family = true;
         p = q;
         ev = evq;
-        const Elastica eq(q);
-        const internal::ElasticaRollingTable table(eq, ev.s * (1 + 1e-9), kSearch.steps_per_period, kSearch.max_step);
-        sol.crossing = std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 1000).size()));
+        sol.crossing = CrossingCount(ctx, Elastica(q), ev.s);
       }
     }
   }
@@ -367,8 +373,7 @@ Candidate FamilyCandidate(const Context& ctx, const IsoparallelProblem& problem,
   const Eigen::Vector2d drift = e.DriftPerPeriod();
   p.heading_w += ctx.goal_angle - std::atan2(drift.y(), drift.x());
   sol.parameters = p;
-  const internal::ElasticaRollingTable table(e, f.length * (1 + 1e-9), kSearch.steps_per_period, kSearch.max_step);
-  sol.crossing = std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 100000).size()));
+  sol.crossing = CrossingCount(ctx, e, f.length);
   c.signature = {sol.PositionAt(sol.length / 3), sol.PositionAt(2 * sol.length / 3)};
   return c;
 }
@@ -543,21 +548,13 @@ IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const Iso
       summary.solutions.push_back(c.solution);
     }
     // Independent verification (dopri5 along the path), spread over the threads.
-    const int n = static_cast<int>(summary.solutions.size());
-    const int threads = std::max(1, std::min(options.threads, n));
-    auto verify = [&](int first) {
-      for (int i = first; i < n; i += threads) {
-        IsoparallelSolution& sol = summary.solutions[i];
-        const Eigen::Matrix3d r = VerifyRolling(sol);
-        sol.orientation_residual = LogSO3(ctx.target.transpose() * r).norm();
-        sol.orientation_error = OperatorNormDistance(problem.goal_orientation, r * problem.start_orientation);
-        sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(verify, t);
-    verify(0);
-    for (auto& th : pool) th.join();
+    internal::ParallelFor(static_cast<int>(summary.solutions.size()), options.threads, [&](int i) {
+      IsoparallelSolution& sol = summary.solutions[i];
+      const Eigen::Matrix3d r = VerifyRolling(sol);
+      sol.orientation_residual = LogSO3(ctx.target.transpose() * r).norm();
+      sol.orientation_error = OperatorNormDistance(problem.goal_orientation, r * problem.start_orientation);
+      sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
+    });
   }
   summary.status = summary.solutions.empty() ? IsoparallelStatus::kNoSolution : IsoparallelStatus::kSolved;
   summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -10,10 +10,10 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #include "check.h"
 #include "elastica_rolling.h"
+#include "parallel_for.h"
 
 namespace plateball {
 namespace {
@@ -61,8 +61,7 @@ Shape ShapeOf(PendulumRegime regime, double k) {
   return s;
 }
 
-ElasticaParameters MakeParameters(PendulumRegime regime, double k, int m, double chord) {
-  const Shape sh = ShapeOf(regime, k);
+ElasticaParameters MakeParameters(PendulumRegime regime, double k, int m, double chord, const Shape& sh) {
   ElasticaParameters p;
   p.regime = regime;
   p.modulus = k;
@@ -70,6 +69,10 @@ ElasticaParameters MakeParameters(PendulumRegime regime, double k, int m, double
   p.phase = 0.0;
   p.heading_w = M_PI / 2;
   return p;
+}
+
+ElasticaParameters MakeParameters(PendulumRegime regime, double k, int m, double chord) {
+  return MakeParameters(regime, k, m, chord, ShapeOf(regime, k));
 }
 
 double LengthOf(PendulumRegime regime, double k, double chord) { return chord / std::abs(ShapeOf(regime, k).rho); }
@@ -112,7 +115,7 @@ struct Point {
 Point EvaluatePhi(PendulumRegime regime, double chord, int m, double xi, bool accurate) {
   const double k = std::tanh(xi);
   const Shape shape = ShapeOf(regime, k);
-  const Elastica e(MakeParameters(regime, k, m, chord));
+  const Elastica e(MakeParameters(regime, k, m, chord, shape));
   // Steps short in arc length and in the Jacobi argument (near the separatrix the turning
   // concentrates in a few units of u out of a period of 4K or 2K).
   const double max_step = accurate ? kAccurateMaxStep : kCoarseMaxStep;
@@ -268,23 +271,6 @@ bool Polish(const CoarseRoot& root, double chord, double tolerance, ElasticaFami
   return true;
 }
 
-// Runs job(i) for i in [0, n) on `threads` threads, statically partitioned (deterministic).
-template <class Job>
-void ParallelFor(int n, int threads, Job&& job) {
-  threads = std::max(1, std::min(threads, n));
-  if (threads == 1) {
-    for (int i = 0; i < n; ++i) job(i);
-    return;
-  }
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      for (int i = t; i < n; i += threads) job(i);
-    });
-  for (int i = 0; i < n; i += threads) job(i);
-  for (auto& th : pool) th.join();
-}
-
 }  // namespace
 
 std::string FamilySearchOptions::Validate() const {
@@ -356,7 +342,7 @@ FamilySearch EnumerateIdentityFamilies(double chord, const FamilySearchOptions& 
     out.periods_searched = m;
     std::vector<PeriodScan> scans;
     for (int r = 0; r < 2; ++r) scans.emplace_back(regimes[r], chord, m, options);
-    ParallelFor(2, options.threads, [&](int r) {
+    internal::ParallelFor(2, options.threads, [&](int r) {
       if (!done[r]) scans[r].Run(cap);
     });
     std::vector<CoarseRoot> roots;
@@ -372,7 +358,7 @@ FamilySearch EnumerateIdentityFamilies(double chord, const FamilySearchOptions& 
     std::vector<ElasticaFamily> polished(roots.size());
     std::vector<char> ok(roots.size(), 0);
     std::vector<long> evals(roots.size(), 0);
-    ParallelFor(static_cast<int>(roots.size()), options.threads,
+    internal::ParallelFor(static_cast<int>(roots.size()), options.threads,
                 [&](int i) { ok[i] = Polish(roots[i], chord, options.tolerance, &polished[i], &evals[i]); });
     for (std::size_t i = 0; i < roots.size(); ++i) {
       out.evaluations += evals[i];
