@@ -28,9 +28,7 @@ using ojson = nlohmann::ordered_json;
 constexpr long long kMaxSamples = 1'000'000;          // simulate.samples, path sample points
 constexpr long long kMaxCount = 1'000'000;            // partition n, impulses, starts, indices
 constexpr long long kMaxListLength = 100'000;         // targets, pieces, energy changes, taus
-constexpr long long kMaxThreads = 1024;
 constexpr double kMaxHorizonPeriods = 10'000.0;
-constexpr double kMaxLengthCapFactor = 1'000.0;
 constexpr int kMaxPieceDepth = 8;                     // nesting of piecewise paths
 constexpr std::size_t kMaxFileBytes = 64u << 20;      // 64 MiB
 constexpr double kRotationTolerance = 1e-9;           // a "matrix" orientation must be a rotation to this
@@ -550,17 +548,19 @@ class Reader {
     if (const json* v = Find(j, "solver")) {
       const std::string sp = Join(path, "solver");
       Object(*v, sp, {"starts", "length_cap_factor", "max_iterations", "tolerance", "threads", "enumerate_families"});
-      IsoparallelSolverSpec& s = t.solver;
-      if (const json* w = Find(*v, "starts")) s.starts = static_cast<int>(Integer(*w, Join(sp, "starts"), 1, kMaxCount));
+      // The solver's own options and ranges (isoparallel.h), so that the reader and the solver agree.
+      IsoparallelOptions& s = t.solver;
+      using O = IsoparallelOptions;
+      if (const json* w = Find(*v, "starts")) s.starts = static_cast<int>(Integer(*w, Join(sp, "starts"), 1, O::kMaxStarts));
       if (const json* w = Find(*v, "length_cap_factor")) {
         s.length_cap_factor = Number(*w, Join(sp, "length_cap_factor"));
-        if (!(s.length_cap_factor >= 1.0 && s.length_cap_factor <= kMaxLengthCapFactor))
-          Fail(Join(sp, "length_cap_factor"), *w, "must be in [1, " + NumberText(kMaxLengthCapFactor) + "]");
+        if (!(s.length_cap_factor >= 1.0 && s.length_cap_factor <= O::kMaxLengthCapFactor))
+          Fail(Join(sp, "length_cap_factor"), *w, "must be in [1, " + NumberText(O::kMaxLengthCapFactor) + "]");
       }
       if (const json* w = Find(*v, "max_iterations"))
-        s.max_iterations = static_cast<int>(Integer(*w, Join(sp, "max_iterations"), 1, kMaxCount));
+        s.max_iterations = static_cast<int>(Integer(*w, Join(sp, "max_iterations"), 1, O::kMaxIterations));
       if (const json* w = Find(*v, "tolerance")) s.tolerance = InRangeOpen01(*w, Join(sp, "tolerance"));
-      if (const json* w = Find(*v, "threads")) s.threads = static_cast<int>(Integer(*w, Join(sp, "threads"), 1, kMaxThreads));
+      if (const json* w = Find(*v, "threads")) s.threads = static_cast<int>(Integer(*w, Join(sp, "threads"), 1, O::kMaxThreads));
       if (const json* w = Find(*v, "enumerate_families")) {
         if (!w->is_boolean()) Fail(Join(sp, "enumerate_families"), *w, "must be true or false");
         s.enumerate_families = w->get<bool>();

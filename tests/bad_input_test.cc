@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "plateball/task_adapters.h"
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/cubic_spline.h"
@@ -124,33 +125,33 @@ std::vector<BadInputCase> Cases() {
                  FreeMotion::FromAngles(Model(), {1.0, 0.4, 0.1}, 1.0, {0, 0}, Eigen::Matrix3d::Identity(), o);
                },
                {"max_steps", "0"}});
-  c.push_back({"NaN join target", [] { Join(Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {kNaN, 0.0}); },
+  c.push_back({"NaN join target", [] { Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {kNaN, 0.0}}); },
                {"target", "nan"}});
   c.push_back({"zero join iterations",
                [] {
                  JoinOptions o;
                  o.max_iterations = 0;
-                 Join(Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.01, 0.0}, o);
+                 Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.01, 0.0}}, o);
                },
                {"max_iterations", "0"}});
   c.push_back({"negative join tolerance",
                [] {
                  JoinOptions o;
                  o.residual_tolerance = -1.0;
-                 Join(Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.01, 0.0}, o);
+                 Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.01, 0.0}}, o);
                },
                {"residual_tolerance", "-1"}});
   c.push_back({"zero speed-up factor", [] { EnergyChangingImpulse({1.0, 0.4, 0.1}, 1.0, 0.0, Model()); },
                {"factor", "0"}});
   c.push_back({"infinite impulse", [] { EnergyPreservingImpulse({1.0, 0.4, 0.1}, 1.0, kInf, Model()); },
                {"delta_psi", "inf"}});
-  c.push_back({"negative circle radius", [] { Path::FromSpec(Circle(-1.0)); }, {"radius", "-1"}});
+  c.push_back({"negative circle radius", [] { PathFromSpec(Circle(-1.0)); }, {"radius", "-1"}});
   c.push_back({"repeated sample points",
                [] {
                  PathSpec s;
                  s.type = "samples";
                  s.points = {{0, 0}, {1, 0}, {1, 0}, {2, 1}};
-                 Path::FromSpec(s);
+                 PathFromSpec(s);
                },
                {"points[2]"}});
   c.push_back({"NaN sample point",
@@ -158,7 +159,7 @@ std::vector<BadInputCase> Cases() {
                  PathSpec s;
                  s.type = "samples";
                  s.points = {{0, 0}, {kNaN, 0}, {2, 1}};
-                 Path::FromSpec(s);
+                 PathFromSpec(s);
                },
                {"points[1]", "nan"}});
   c.push_back({"single sample point", [] { CubicSpline2d({Eigen::Vector2d(1, 2)}); }, {"points", "1"}});
@@ -168,7 +169,7 @@ std::vector<BadInputCase> Cases() {
                  s.type = "line";
                  s.from = {1, 1};
                  s.to = {1, 1};
-                 Path::FromSpec(s);
+                 PathFromSpec(s);
                },
                {"path"}});
   c.push_back({"zero wavelength sine",
@@ -178,14 +179,15 @@ std::vector<BadInputCase> Cases() {
                  s.length = 2;
                  s.amplitude = 0.5;
                  s.wavelength = 0;
-                 Path::FromSpec(s);
+                 PathFromSpec(s);
                },
                {"wavelength", "0"}});
   c.push_back({"partition of one point",
                [] {
                  PartitionSpec p;
                  p.n = 0;
-                 MakePartition(Path::FromSpec(Circle(1.0)), p);
+                 const Path path = PathFromSpec(Circle(1.0));
+                 MakePartition(path, PartitionFromSpec(p, path));
                },
                {"n", "0"}});
   c.push_back({"non-increasing explicit partition",
@@ -193,7 +195,8 @@ std::vector<BadInputCase> Cases() {
                  PartitionSpec p;
                  p.type = "explicit";
                  p.taus = {0.0, 0.5, 0.4, 1.0};
-                 MakePartition(Path::FromSpec(Circle(1.0)), p);
+                 const Path path = PathFromSpec(Circle(1.0));
+                 MakePartition(path, PartitionFromSpec(p, path));
                },
                {"taus"}});
   c.push_back({"zero quaternion", [] { QuaternionToRotation(Eigen::Vector4d::Zero(), "goal_orientation"); },
@@ -239,7 +242,7 @@ TEST(BadInput, EveryCaseThrowsInvalidArgumentNamingFieldAndValue) {
 }
 
 TEST(BadInput, TargetEqualToStartIsAStatusNotAnError) {
-  const JoinSummary j = Join(Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0.3, 0.2}, {0.3, 0.2});
+  const JoinSummary j = Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0.3, 0.2}, {0.3, 0.2}});
   EXPECT_EQ(j.status, JoinStatus::kTargetEqualsStart);
   EXPECT_FALSE(j.IsSolutionUsable());
   EXPECT_TRUE(std::isfinite(j.t));
@@ -263,7 +266,7 @@ TEST(BadInput, StarvedJoinReturnsAStatusWithFiniteNumbers) {
   // target at the edge of the local radius: a status comes back, with finite numbers.
   JoinOptions o;
   o.max_iterations = 1;
-  const JoinSummary j = Join(Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.4, 0.3}, o);
+  const JoinSummary j = Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.4, 0.3}}, o);
   EXPECT_NE(j.status, JoinStatus::kConverged);
   EXPECT_TRUE(std::isfinite(j.residual));
   EXPECT_TRUE(std::isfinite(j.delta_psi));

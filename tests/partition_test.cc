@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "support/test_support.h"
+#include "plateball/task_adapters.h"
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
@@ -58,15 +59,16 @@ TEST(Partition, BadPartitionsNameWhatIsWrong) {
   PathSpec pw;
   pw.type = "piecewise";
   pw.pieces = {a, b};
+  const Path path = PathFromSpec(pw);
   PartitionSpec spec;
   spec.type = "explicit";
   spec.taus = {0, 1};
-  EXPECT_NE(ErrorOf([&] { MakePartition(Path::FromSpec(pw), spec); }).find("single-piece"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { MakePartition(path, PartitionFromSpec(spec, path)); }).find("single-piece"), std::string::npos);
   spec.type = "random";
-  EXPECT_NE(ErrorOf([&] { MakePartition(Path::FromSpec(pw), spec); }).find("partition.type"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { MakePartition(path, PartitionFromSpec(spec, path)); }).find("partition.type"), std::string::npos);
   spec.type = "uniform_parameter";
   spec.n = 0;
-  EXPECT_NE(ErrorOf([&] { MakePartition(Path::FromSpec(pw), spec); }).find("partition.n"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { MakePartition(path, PartitionFromSpec(spec, path)); }).find("partition.n"), std::string::npos);
 }
 
 TEST(Partition, PiecewisePathsGetOnePartitionPerPiece) {
@@ -81,8 +83,24 @@ TEST(Partition, PiecewisePathsGetOnePartitionPerPiece) {
   PartitionSpec spec;
   spec.type = "uniform_arc_length";
   spec.n = 4;
-  const auto parts = MakePartition(Path::FromSpec(pw), spec);
+  const Path path = PathFromSpec(pw);
+  const auto parts = MakePartition(path, PartitionFromSpec(spec, path));
   ASSERT_EQ(parts.size(), 2u);
   EXPECT_EQ(parts[0].size(), 5u);
   EXPECT_EQ(parts[1].size(), 5u);
+}
+
+TEST(Partition, RulesAreAClosedSetOneRulePerPieceOrOneForAll) {
+  const Path path({SmoothCurve::Line({0, 0}, {1, 0}), SmoothCurve::Line({1, 0}, {1, 3})});
+  EXPECT_EQ(ToString(PartitionRule{UniformParameter{}}), "uniform_parameter");
+  EXPECT_EQ(ToString(PartitionRule{UniformArcLength{}}), "uniform_arc_length");
+  EXPECT_EQ(ToString(PartitionRule{ExplicitTaus{}}), "explicit");
+  const auto mixed = MakePartition(path, {UniformParameter{2}, ExplicitTaus{{0.0, 0.25, 1.0}}});
+  ASSERT_EQ(mixed.size(), 2u);
+  EXPECT_EQ(mixed[0], (std::vector<double>{0.0, 0.5, 1.0}));
+  EXPECT_EQ(mixed[1], (std::vector<double>{0.0, 0.25, 1.0}));
+  const std::string e = ErrorOf([&] { MakePartition(path, {UniformParameter{2}, UniformParameter{2}, UniformParameter{2}}); });
+  EXPECT_NE(e.find("rule count"), std::string::npos) << e;
+  EXPECT_NE(ErrorOf([&] { MakePartition(path, {UniformParameter{2}, ExplicitTaus{{0.0, 2.0}}}); }).find("partition[1].taus"),
+            std::string::npos);
 }

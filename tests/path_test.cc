@@ -11,6 +11,7 @@
 #include <string>
 
 #include "plateball/partition.h"
+#include "plateball/task_adapters.h"
 
 using namespace plateball;
 
@@ -92,7 +93,7 @@ TEST(Path, FromSpecBuildsEveryTypeAndPiecewiseChains) {
   PathSpec pw;
   pw.type = "piecewise";
   pw.pieces = {line, arc};
-  const Path p = Path::FromSpec(pw);
+  const Path p = PathFromSpec(pw);
   EXPECT_EQ(p.PieceCount(), 2);
   EXPECT_NEAR(p.Length(), 2.0 + M_PI, 1e-12);
   EXPECT_LT((p.EndPoint() - Eigen::Vector2d(2, 2)).norm(), 1e-15);
@@ -103,30 +104,30 @@ TEST(Path, BadSpecsNameTheField) {
   c.type = "circle";
   c.radius = 0.0;
   c.tau_end = 1.0;
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(c, "plan.path"); }).find("plan.path.radius"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PathFromSpec(c, "plan.path"); }).find("plan.path.radius"), std::string::npos);
   c.radius = 1.0;
   c.tau_end = 0.0;
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(c, "plan.path"); }).find("plan.path.tau_end"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PathFromSpec(c, "plan.path"); }).find("plan.path.tau_end"), std::string::npos);
   PathSpec l;
   l.type = "line";
   l.from = l.to = {1, 1};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(l); }).find("zero speed"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PathFromSpec(l); }).find("zero speed"), std::string::npos);
   l.to = {NAN, 0};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(l); }).find("path.to"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PathFromSpec(l); }).find("path.to"), std::string::npos);
   PathSpec s;
   s.type = "samples";
   s.points = {{0, 0}, {1, 1}, {1, 1}, {2, 0}};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(s); }).find("points[2]"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PathFromSpec(s); }).find("points[2]"), std::string::npos);
   s.points = {{0, 0}, {INFINITY, 1}};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(s); }).find("must be finite"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PathFromSpec(s); }).find("must be finite"), std::string::npos);
   PathSpec w;
   w.type = "sine";
   w.length = 1;
   w.wavelength = 0;
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(w); }).find("path.wavelength"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PathFromSpec(w); }).find("path.wavelength"), std::string::npos);
   PathSpec u;
   u.type = "spiral";
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(u); }).find("spiral"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PathFromSpec(u); }).find("spiral"), std::string::npos);
   // A gap between pieces.
   PathSpec a, b2;
   a.type = b2.type = "line";
@@ -137,9 +138,9 @@ TEST(Path, BadSpecsNameTheField) {
   PathSpec pw;
   pw.type = "piecewise";
   pw.pieces = {a, b2};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(pw); }).find("pieces[1]"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PathFromSpec(pw); }).find("pieces[1]"), std::string::npos);
   pw.pieces.clear();
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(pw); }).find("pieces"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PathFromSpec(pw); }).find("pieces"), std::string::npos);
 }
 
 TEST(Path, ReversedRangeTraversesTheCurveBackwards) {

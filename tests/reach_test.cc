@@ -15,6 +15,7 @@
 #include "plateball/problem_io.h"
 #include "reach_internal.h"
 #include "support/test_support.h"
+#include "plateball/task_adapters.h"
 
 using namespace plateball;
 
@@ -455,15 +456,14 @@ TEST(ReachPlannerFallback, CoarsePartitionOfALongPathStillGivesAPlan) {
   line.type = "line";
   line.from = {0, 0};
   line.to = {30, 30};
-  const Path path = Path::FromSpec(line);
-  const std::vector<std::vector<double>> partition{UniformParameterPartition(path.pieces()[0], 3)};
+  const Path path = PathFromSpec(line);
+  const PlanProblem problem{start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, {UniformParameter{3}}, {}};
   PlanOptions local_only;
   local_only.reach_fallback = false;
-  const PlanSummary without =
-      PlanImpulses(start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, partition, {}, local_only);
+  const PlanSummary without = PlanImpulses(problem, local_only);
   EXPECT_EQ(without.status, PlanStatus::kSegmentBeyondLocalRadius) << without.BriefReport();
 
-  const PlanSummary plan = PlanImpulses(start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, partition);
+  const PlanSummary plan = PlanImpulses(problem);
   ASSERT_TRUE(plan.IsSolutionUsable()) << plan.BriefReport();
   ASSERT_EQ(plan.steps.size(), 3u);
   int global = 0;
@@ -495,4 +495,13 @@ TEST(ReachInternal, LockstepTabulationEqualsOneDirectionAtATime) {
     const FreeMotion m = FreeMotion::FromAngles(p.model, {p.start.theta, p.start.phi, p.start.psi + 0.9 * static_cast<double>(i)}, p.mu);
     EXPECT_LT((one.drift - m.DriftPerPeriod()).norm(), 1e-3);
   }
+}
+
+TEST(Reach, DefaultSummarySaysNotRunAndEarliestThrows) {
+  const ReachSummary s;
+  EXPECT_EQ(s.status, ReachStatus::kNotRun);
+  EXPECT_EQ(ToString(s.status), "not_run");
+  EXPECT_EQ(s.message, "not run");
+  EXPECT_FALSE(s.IsSolutionUsable());
+  EXPECT_THROW(s.Earliest(), std::logic_error);
 }

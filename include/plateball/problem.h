@@ -13,7 +13,9 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/impulse_planner.h"
 #include "plateball/integration_options.h"
+#include "plateball/isoparallel.h"
 
 namespace plateball {
 
@@ -56,12 +58,9 @@ struct PartitionSpec {
   std::vector<double> taus;
 };
 
-/// An energy-changing impulse inserted into a plan (JSON "energy_changes"): at partition point
-/// `index` the speed |omega| is multiplied by `factor` (> 0); the path is unchanged.
-struct EnergyChangeSpec {
-  int index = 0;
-  double factor = 1.0;
-};
+/// An energy-changing impulse inserted into a plan (JSON "energy_changes"): the planner's
+/// EnergyChange (impulse_planner.h).
+using EnergyChangeSpec = EnergyChange;
 
 /// `plateball simulate`: sample the free motion on [0, t_end].
 struct SimulateTask {
@@ -83,18 +82,6 @@ struct PlanTask {
   std::vector<int> converge_n;  ///< the n values of a convergence study (may be empty)
 };
 
-/// Options of the isoparallel solver (JSON object "solver" inside "isoparallel").
-struct IsoparallelSolverSpec {
-  int starts = 1024;                 ///< multi-start count (seeded; shooting only)
-  double length_cap_factor = 3.0;    ///< report solutions up to this times the shortest length
-  int max_iterations = 100;          ///< per Ceres solve
-  double tolerance = 1e-12;          ///< residual tolerance of an accepted solution
-  int threads = 1;
-  /// Identity targets: enumerate the one-parameter families directly (complete up to the cap)
-  /// instead of the multi-start shooting.
-  bool enumerate_families = true;
-};
-
 /// The isoparallel problem (section 2.2): shortest path from (start, A_start) to (goal, A_goal).
 struct IsoparallelTask {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
@@ -102,7 +89,9 @@ struct IsoparallelTask {
   Eigen::Matrix3d start_orientation = Eigen::Matrix3d::Identity();
   Eigen::Matrix3d goal_orientation = Eigen::Matrix3d::Identity();
   int impulses = 12;  ///< partition size of the impulsive approximation
-  IsoparallelSolverSpec solver;
+  /// JSON "solver": read straight into the solver's options with its ranges (isoparallel.h);
+  /// the task adapter adds the file's seed and integration section.
+  IsoparallelOptions solver;
 };
 
 /// Golden values a problem file may carry ("expected"): name -> value, with a tolerance each.

@@ -32,6 +32,7 @@
 #include "plateball/free_motion.h"
 #include "plateball/isoparallel.h"
 #include "plateball/isoparallel_plan.h"
+#include "plateball/task_adapters.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
 
@@ -198,32 +199,22 @@ struct CliOptions {
   bool shooting = false;
 };
 
-int Run(const CliOptions& cli) {
+// The problem (file or built-in Figure 7) mapped by the task adapter, with the command line's
+// overrides.
+plateball::IsoparallelSetup LoadSetup(const CliOptions& cli, plateball::Problem* problem) {
   using namespace plateball;
-  using namespace plateball::tools;
-  const Problem problem =
-      cli.problem_file.empty() ? ParseProblem(kFigure7, "figure7 (built-in)") : ReadProblemFile(cli.problem_file);
-  if (!problem.isoparallel)
-    throw std::invalid_argument(problem.source + ": isoparallel: value (missing): the problem has no isoparallel section");
-  const IsoparallelTask& task = *problem.isoparallel;
-  IsoparallelProblem prob;
-  prob.start = task.start;
-  prob.goal = task.goal;
-  prob.start_orientation = task.start_orientation;
-  prob.goal_orientation = task.goal_orientation;
-  IsoparallelOptions opt;
-  opt.starts = cli.starts > 0 ? cli.starts : task.solver.starts;
-  opt.length_cap_factor = task.solver.length_cap_factor;
-  opt.max_iterations = task.solver.max_iterations;
-  opt.tolerance = task.solver.tolerance;
-  opt.threads = task.solver.threads;
-  opt.enumerate_families = task.solver.enumerate_families && !cli.shooting;
-  opt.seed = cli.seed >= 0 ? static_cast<std::uint64_t>(cli.seed) : problem.seed;
-  const int n_impulses = cli.impulses > 0 ? cli.impulses : task.impulses;
+  *problem = cli.problem_file.empty() ? ParseProblem(kFigure7, "figure7 (built-in)") : ReadProblemFile(cli.problem_file);
+  IsoparallelSetup setup = IsoparallelSetupFor(*problem);
+  if (cli.starts > 0) setup.options.starts = cli.starts;
+  if (cli.shooting) setup.options.enumerate_families = false;
+  if (cli.seed >= 0) setup.options.seed = static_cast<std::uint64_t>(cli.seed);
+  return setup;
+}
 
-  // Solve; a progress line on stderr when it takes longer than a second.
+// Solves; a progress line on stderr when it takes longer than a second.
+plateball::IsoparallelSummary SolveWithProgress(plateball::IsoparallelSetup setup) {
   std::atomic<int> done{0}, total{0};
-  opt.progress = [&](int d, int t) {
+  setup.options.progress = [&](int d, int t) {
     done = d;
     total = t;
   };
@@ -243,10 +234,10 @@ int Run(const CliOptions& cli) {
                   << " curvature periods examined\n";
     }
   });
-  IsoparallelSummary summary;
+  plateball::IsoparallelSummary summary;
   std::exception_ptr failure;
   try {
-    summary = SolveIsoparallel(prob, opt);
+    summary = plateball::SolveIsoparallel(setup.problem, setup.options);
   } catch (...) {
     failure = std::current_exception();
   }
@@ -257,21 +248,23 @@ int Run(const CliOptions& cli) {
   cv.notify_all();
   monitor.join();
   if (failure) std::rethrow_exception(failure);  // reported by RunWithExitCodes
+  return summary;
+}
 
-  const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
-  const std::string name = problem.name.empty() ? problem.source : problem.name;
-  std::cout << std::setprecision(6);
-  std::cout << "isoparallel_solve: " << name << ": (" << prob.start.x() << ", " << prob.start.y() << ") -> ("
-            << prob.goal.x() << ", " << prob.goal.y() << "), target reorientation angle " << angle << " rad\n";
-  if (!summary.IsSolutionUsable()) {
-    if (summary.method == IsoparallelMethod::kFamilyEnumeration)
-      std::cout << "no solution found (family enumeration over 1.." << summary.periods_searched
-                << " curvature periods, paths up to length " << summary.searched_length << ")\n";
-    else
-      std::cout << "no solution found (" << summary.local_solves << " local solves from " << opt.starts
-                << " starts, seed " << opt.seed << ", paths up to length " << summary.searched_length << ")\n";
-    return kExitNoSolution;
-  }
+void PrintNoSolution(const plateball::IsoparallelSummary& summary, const plateball::IsoparallelOptions& opt) {
+  using plateball::IsoparallelMethod;
+  if (summary.status == plateball::IsoparallelStatus::kIntegrationFailure)
+    std::cout << "solver failed: " << plateball::ToString(summary.status) << ": " << summary.message << "\n";
+  else if (summary.method == IsoparallelMethod::kFamilyEnumeration)
+    std::cout << "no solution found (family enumeration over 1.." << summary.periods_searched
+              << " curvature periods, paths up to length " << summary.searched_length << ")\n";
+  else
+    std::cout << "no solution found (" << summary.local_solves << " local solves from " << opt.starts
+              << " starts, seed " << opt.seed << ", paths up to length " << summary.searched_length << ")\n";
+}
+
+void PrintSolutions(const plateball::IsoparallelSummary& summary, const plateball::IsoparallelOptions& opt) {
+  using namespace plateball;
   const IsoparallelSolution& best = summary.Shortest();
   std::cout << "solutions found: " << summary.solutions.size() << " (distinct, up to " << opt.length_cap_factor
             << "x the shortest; ";
@@ -286,12 +279,10 @@ int Run(const CliOptions& cli) {
             << (best.family ? ", a one-parameter family: phase free, phase 0 reported" : "") << ")\n";
   std::cout << std::setprecision(3) << "verified by rolling (dopri5): orientation residual " << best.orientation_residual
             << " rad, endpoint error " << best.endpoint_error << "\n";
-  const auto t_plan = std::chrono::steady_clock::now();
-  const PlanSummary plan =
-      PlanOptimalPath(problem.model, problem.initial_angles.psi, problem.mu, prob.start_orientation, best, n_impulses);
-  const double plan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_plan).count();
-  const double final_error = OperatorNormDistance(prob.goal_orientation, plan.A_impulsive);
-  std::cout << "impulses: " << plan.steps.size() << " (" << ToString(plan.status) << "), max pass miss "
+}
+
+void PrintPlan(const plateball::PlanSummary& plan, double final_error, double solve_seconds, double plan_seconds) {
+  std::cout << "impulses: " << plan.steps.size() << " (" << plateball::ToString(plan.status) << "), max pass miss "
             << plan.max_pass_miss << "\n";
   if (plan.IsSolutionUsable()) {
     std::cout << "final orientation error ||A_goal - A~_n|| = " << final_error << ", bound (Theorem 2.6) "
@@ -299,9 +290,37 @@ int Run(const CliOptions& cli) {
   } else {
     std::cout << "impulsive plan failed: " << plan.message << " (try more impulses)\n";
   }
-  std::cout << std::setprecision(3) << "time: solve " << summary.time_seconds * 1e3 << " ms, plan " << plan_seconds * 1e3
+  std::cout << std::setprecision(3) << "time: solve " << solve_seconds * 1e3 << " ms, plan " << plan_seconds * 1e3
             << " ms\n";
   std::cout.flush();
+}
+
+int Run(const CliOptions& cli) {
+  using namespace plateball;
+  using namespace plateball::tools;
+  Problem problem;
+  const IsoparallelSetup setup = LoadSetup(cli, &problem);
+  const IsoparallelProblem& prob = setup.problem;
+  const IsoparallelOptions& opt = setup.options;
+  const IsoparallelSummary summary = SolveWithProgress(setup);
+
+  const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
+  const std::string name = problem.name.empty() ? problem.source : problem.name;
+  std::cout << std::setprecision(6);
+  std::cout << "isoparallel_solve: " << name << ": (" << prob.start.x() << ", " << prob.start.y() << ") -> ("
+            << prob.goal.x() << ", " << prob.goal.y() << "), target reorientation angle " << angle << " rad\n";
+  if (!summary.IsSolutionUsable()) {
+    PrintNoSolution(summary, opt);
+    return kExitNoSolution;
+  }
+  PrintSolutions(summary, opt);
+  const IsoparallelSolution& best = summary.Shortest();
+  const IsoparallelPlanSetup plan_setup = IsoparallelPlanSetupFor(problem, best, cli.impulses);
+  const auto t_plan = std::chrono::steady_clock::now();
+  const PlanSummary plan = PlanOptimalPath(plan_setup.problem, plan_setup.options);
+  const double plan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_plan).count();
+  const double final_error = OperatorNormDistance(prob.goal_orientation, plan.A_impulsive);
+  PrintPlan(plan, final_error, summary.time_seconds, plan_seconds);
 
   const std::vector<Eigen::Vector2d> path_pts = SamplePath(best, 400);
   const std::vector<std::vector<Eigen::Vector2d>> arcs =

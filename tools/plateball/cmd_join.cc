@@ -9,6 +9,7 @@
 #include "common/json_output.h"
 #include "common/problem_options.h"
 #include "plateball/join.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
@@ -62,10 +63,9 @@ int RunJoin(const JoinCliOptions& o) {
   if (targets.empty())
     throw std::invalid_argument(std::string(kCommandLine) +
                                 ": --targets: value (missing): give targets with --targets X,Y;X,Y or in the file's reach.targets");
-  JoinOptions options;
+  JoinOptions options = JoinSetupFor(p, p.x0).options;
   options.max_iterations = static_cast<int>(RequireIntegerInRange("--max-iterations", o.max_iterations, 1, 10000));
   options.residual_tolerance = RequirePositiveOption("--residual-tolerance", o.residual_tolerance);
-  options.integration = p.integration;
 
   Json doc;
   doc["command"] = "join";
@@ -77,7 +77,7 @@ int RunJoin(const JoinCliOptions& o) {
   Json list = Json::array();
   bool all = true;
   for (const auto& target : targets) {
-    const JoinSummary j = Join(p.model, p.initial_angles, p.mu, p.x0, target, options);
+    const JoinSummary j = Join(JoinSetupFor(p, target).problem, options);
     all = all && j.IsSolutionUsable();
     list.push_back(JoinToJson(j));
   }

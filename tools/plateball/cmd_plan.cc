@@ -14,6 +14,7 @@
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/path.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
@@ -123,10 +124,10 @@ void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const
 
 int RunPlan(const PlanCliOptions& o) {
   const Problem p = o.problem.Load();
-  if (!p.plan) throw std::invalid_argument(p.source + ": plan: value (missing): the problem has no plan task");
   const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--n", o.n, 1, 1'000'000));
-  const PlanSummary plan = PlanImpulses(p, PlanOptions{}, n);
-  const Path path = Path::FromSpec(p.plan->path, "plan.path");
+  const PlanSetup setup = PlanSetupFor(p, n, std::string(kCommandLine) + ": --n");
+  const PlanSummary plan = PlanImpulses(setup.problem, setup.options);
+  const Path& path = setup.problem.path;
 
   Json doc;
   doc["command"] = "plan";

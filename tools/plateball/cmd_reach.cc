@@ -19,6 +19,7 @@
 #include "common/problem_options.h"
 #include "plateball/free_motion.h"
 #include "plateball/reach.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
@@ -171,22 +172,13 @@ int RunReach(const ReachCliOptions& o) {
   if (task.targets.empty())
     throw std::invalid_argument((o.problem.file().empty() ? std::string(kCommandLine) : o.problem.file()) +
                                 ": reach.targets: value (missing): no target; give a problem file with a \"reach\" section or --targets X,Y");
-  ReachOptions options;
-  options.horizon_periods = task.horizon_periods;
-  options.seed = problem.seed;
-  options.integration = problem.integration;
   std::vector<ReachSummary> summaries;
   json results = json::array();
   bool all_solved = true;
   for (const Eigen::Vector2d& target : task.targets) {
-    ReachProblem rp;
-    rp.model = problem.model;
-    rp.start = problem.initial_angles;
-    rp.mu = problem.mu;
-    rp.x0 = problem.x0;
-    rp.A0 = problem.A0;
-    rp.target = target;
-    summaries.push_back(Reach(rp, options));
+    ReachSetup setup = ReachSetupFor(problem, target);
+    setup.options.horizon_periods = task.horizon_periods;
+    summaries.push_back(Reach(setup.problem, setup.options));
     if (summaries.back().status == ReachStatus::kNumericalFailure) throw std::runtime_error(summaries.back().BriefReport());
     results.push_back(SummaryJson(summaries.back()));
     all_solved = all_solved && summaries.back().IsSolutionUsable();

@@ -17,6 +17,7 @@
 #include "plateball/problem_io.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
@@ -113,7 +114,7 @@ Json RollAlongProblemPath(const RollOptions& o, Eigen::Matrix3d* r) {
   if (!p.plan)
     throw std::invalid_argument(o.problem_file + ": plan.path: value (missing): roll needs a problem with a plan.path");
   const IntegrationOptions integration = RollIntegration(o, p.integration);
-  const Path path = Path::FromSpec(p.plan->path, "plan.path");
+  const Path path = PathFromSpec(p.plan->path, "plan.path");
   *r = Eigen::Matrix3d::Identity();
   for (const SmoothCurve& piece : path.pieces()) {
     const PlanarVelocity velocity = [&piece](double tau) { return piece.Derivative(tau); };

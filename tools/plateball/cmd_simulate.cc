@@ -8,6 +8,7 @@
 #include "common/json_output.h"
 #include "common/problem_options.h"
 #include "plateball/free_motion.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
@@ -30,7 +31,7 @@ int RunSimulate(const SimulateOptions& o) {
   if (o.samples_opt->count() > 0)
     task.samples = static_cast<int>(RequireIntegerInRange("--samples", o.samples, 2, kMaxSamples));
 
-  const FreeMotion motion = FreeMotion::FromAngles(p.model, p.initial_angles, p.mu, p.x0, p.A0, p.integration);
+  const FreeMotion motion = FreeMotionFor(p);
   const std::vector<MotionSample> samples = motion.Sample(0.0, task.t_end, task.samples);
 
   Json doc;
