@@ -108,14 +108,6 @@ std::string ErrorOf(const std::function<void()>& f) {
 }
 }  // namespace
 
-TEST(Convergence, DefaultStudySaysNotRun) {
-  const ConvergenceStudy s;
-  EXPECT_TRUE(s.rows.empty());
-  EXPECT_FALSE(s.error_slope.has_value());
-  EXPECT_EQ(s.message, "not run");
-  EXPECT_EQ(ConvergenceRow{}.status, PlanStatus::kNotRun);
-}
-
 // Issue 16: `converge --n 16,16,16` fitted a bound slope of -0.125 from one point.
 TEST(Convergence, RepeatedPartitionSizeIsAnInputErrorNamingTheField) {
   const Problem p = FileProblem(Closed("circle"));

@@ -203,14 +203,6 @@ TEST(ImpulsePlanner, BadInputNamesTheField) {
   EXPECT_NE(ErrorOf([&] { PlanSetupFor(none); }).find("none.json: plan: value (missing)"), std::string::npos);
 }
 
-TEST(ImpulsePlanner, DefaultSummarySaysNotRun) {
-  const PlanSummary s;
-  EXPECT_EQ(s.status, PlanStatus::kNotRun);
-  EXPECT_EQ(ToString(s.status), "not_run");
-  EXPECT_EQ(s.message, "not run");
-  EXPECT_FALSE(s.IsSolutionUsable());
-}
-
 // An integration failure is a status, not an exception (the file's integration section).
 TEST(ImpulsePlanner, StepBoundExceededIsAnIntegrationFailureStatus) {
   PlanOptions o;

@@ -294,15 +294,6 @@ TEST(Isoparallel, ProblemFilesSolveToTheirExpectedValues) {
   }
 }
 
-TEST(Isoparallel, DefaultSummarySaysNotRunAndShortestThrows) {
-  const IsoparallelSummary s;
-  EXPECT_EQ(s.status, IsoparallelStatus::kNotRun);
-  EXPECT_EQ(ToString(s.status), "not_run");
-  EXPECT_EQ(s.message, "not run");
-  EXPECT_FALSE(s.IsSolutionUsable());
-  EXPECT_THROW(s.Shortest(), std::logic_error);
-}
-
 // Issue 10: the file's integration section reaches the solver and the plan (figure7.json with
 // max_steps 5 used to solve and plan); the failure is a status, with one thread or several.
 TEST(Isoparallel, IntegrationSectionReachesSolverAsAFailureStatus) {

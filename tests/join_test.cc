@@ -180,14 +180,6 @@ TEST(Join, ChartFreeStateEntersThroughItsAngles) {
   EXPECT_LT((a.impulse.state_after.omega - b.impulse.state_after.omega).norm(), 1e-12);
 }
 
-TEST(Join, DefaultSummarySaysNotRun) {
-  const JoinSummary j;
-  EXPECT_EQ(j.status, JoinStatus::kNotRun);
-  EXPECT_EQ(ToString(j.status), "not_run");
-  EXPECT_EQ(j.message, "not run");
-  EXPECT_FALSE(j.IsSolutionUsable());
-}
-
 TEST(Join, StepBoundExceededIsAnIntegrationFailureStatus) {
   JoinOptions o;
   o.integration.max_steps = 2;

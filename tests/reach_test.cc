@@ -496,12 +496,3 @@ TEST(ReachInternal, LockstepTabulationEqualsOneDirectionAtATime) {
     EXPECT_LT((one.drift - m.DriftPerPeriod()).norm(), 1e-3);
   }
 }
-
-TEST(Reach, DefaultSummarySaysNotRunAndEarliestThrows) {
-  const ReachSummary s;
-  EXPECT_EQ(s.status, ReachStatus::kNotRun);
-  EXPECT_EQ(ToString(s.status), "not_run");
-  EXPECT_EQ(s.message, "not run");
-  EXPECT_FALSE(s.IsSolutionUsable());
-  EXPECT_THROW(s.Earliest(), std::logic_error);
-}
