@@ -1,10 +1,9 @@
 #include "common/svg.h"
 
-#include "common/errors.h"
+#include "common/output_file.h"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -31,14 +30,6 @@ std::string StyleAttr(const SvgFigure::Style& s) {
 }
 
 }  // namespace
-
-void WriteTextFile(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) throw IoError("cannot write '" + path + "'");
-  f << text;
-  f.close();
-  if (!f) throw IoError("cannot write '" + path + "'");
-}
 
 void SvgFigure::Polyline(const std::vector<Eigen::Vector2d>& points, const Style& style) {
   items_.push_back({0, points, style, 0, ""});
@@ -109,7 +100,7 @@ std::string SvgFigure::Render() const {
   return os.str();
 }
 
-void SvgFigure::Write(const std::string& path) const { WriteTextFile(path, Render()); }
+void SvgFigure::Write(const std::string& path) const { WriteOutput(path, Render()); }
 
 std::string RenderLogLogChart(const std::string& title, const std::string& x_label, const std::string& y_label,
                               const std::vector<LogLogSeries>& series, double width_px, double height_px) {

@@ -31,7 +31,8 @@ class SvgFigure {
   void EqualAspect(bool equal) { equal_aspect_ = equal; }
 
   std::string Render() const;
-  /// Writes Render() to `path`; throws IoError (errors.h) when it cannot.
+  /// Writes Render() to `path` ("-": standard output) atomically (output_file.h); throws IoError
+  /// (errors.h) when it cannot.
   void Write(const std::string& path) const;
 
  private:
@@ -58,8 +59,5 @@ struct LogLogSeries {
 };
 std::string RenderLogLogChart(const std::string& title, const std::string& x_label, const std::string& y_label,
                               const std::vector<LogLogSeries>& series, double width_px = 720, double height_px = 520);
-
-/// Writes text to a file; throws IoError naming the path when it cannot.
-void WriteTextFile(const std::string& path, const std::string& text);
 
 }  // namespace plateball::tools

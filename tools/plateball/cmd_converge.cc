@@ -10,6 +10,8 @@
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/number_format.h"
+#include "common/output_file.h"
 #include "common/problem_options.h"
 #include "common/svg.h"
 #include "plateball/convergence.h"
@@ -27,12 +29,11 @@ struct ConvergeCliOptions {
 
 std::string Csv(const ConvergenceStudy& s) {
   std::ostringstream os;
-  os.precision(17);
   os << "n,segments,plan_seconds,measured_error,polyline_error,bound,theorem_2_6,corollary_3,max_pass_miss,status\n";
   for (const auto& r : s.rows)
-    os << r.n << "," << r.segments << "," << r.plan_seconds << "," << r.measured_error << "," << r.polyline_error
-       << "," << r.bound << "," << r.theorem_2_6 << "," << r.corollary_3 << "," << r.max_pass_miss << ","
-       << ToString(r.status) << "\n";
+    os << r.n << "," << r.segments << "," << FormatNumber(r.plan_seconds) << "," << FormatNumber(r.measured_error)
+       << "," << FormatNumber(r.polyline_error) << "," << FormatNumber(r.bound) << "," << FormatNumber(r.theorem_2_6)
+       << "," << FormatNumber(r.corollary_3) << "," << FormatNumber(r.max_pass_miss) << "," << ToString(r.status) << "\n";
   return os.str();
 }
 
@@ -64,11 +65,12 @@ void DrawStudy(const Problem& p, const ConvergenceStudy& s, const std::string& f
   std::ostringstream title;
   title.precision(3);
   title << (p.name.empty() ? std::string("convergence") : p.name) << ": error ~ n^" << s.error_slope;
-  WriteTextFile(file, RenderLogLogChart(title.str(), "impulses per piece n", "orientation error",
+  WriteOutput(file, RenderLogLogChart(title.str(), "impulses per piece n", "orientation error",
                                         {err, poly, bound, fit}));
 }
 
 int RunConverge(const ConvergeCliOptions& o) {
+  CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   if (!p.plan) throw std::invalid_argument(p.source + ": plan: value (missing): the problem has no plan task");
   if (o.format != "json" && o.format != "csv")
@@ -77,8 +79,7 @@ int RunConverge(const ConvergeCliOptions& o) {
   for (long long n : o.ns) ns.push_back(static_cast<int>(RequireIntegerInRange("--n", n, 1, 1'000'000)));
   const ConvergenceStudy s = RunConvergenceStudy(p, ns);
   if (o.format == "csv") {
-    if (o.out.empty() || o.out == "-") std::cout << Csv(s);
-    else WriteTextFile(o.out, Csv(s));
+    WriteOutput(o.out, Csv(s));
   } else {
     Json doc;
     doc["command"] = "converge";
@@ -114,8 +115,8 @@ std::function<int()> SetupConverge(CLI::App& sub) {
   sub.add_option("--n", o->ns, "partition sizes, e.g. --n 16,32,64 (default: plan.converge_n, else 16 ... 1024)")
       ->delimiter(',');
   sub.add_option("--format", o->format, "json (default) or csv");
-  sub.add_option("--out", o->out, "write the table to this file instead of standard output");
-  sub.add_option("--svg", o->svg, "draw the log-log chart (error, bound, fitted slope) to this SVG file");
+  sub.add_option("--out", o->out, "write the table to this file instead of standard output (\"-\": standard output)");
+  sub.add_option("--svg", o->svg, "draw the log-log chart (error, bound, fitted slope) to this SVG file (\"-\": standard output, with --out FILE)");
   sub.footer(
       "Plans plan.path for each n and reports n, plan time, measured error ||A(T) - A_n||, the polyline's\n"
       "error, the reported bound and Theorem 2.6 / Corollary 3, with the least-squares log-log slopes\n"
