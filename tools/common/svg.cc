@@ -55,17 +55,21 @@ std::string SvgFigure::Render() const {
   hi += 0.06 * span;
   span = hi - lo;
   const double margin = 40, top = title_.empty() ? 20 : 50;
-  const double w = width_ - 2 * margin, h = height_ - margin - top;
+  const double w = width_ - 2 * margin;
+  double h = height_ - margin - top;
   double sx = w / span.x(), sy = h / span.y();
   if (equal_aspect_) sx = sy = std::min(sx, sy);
+  // A wide drawing at 1:1 leaves the canvas's lower part empty: the canvas ends below the drawing.
+  if (equal_aspect_) h = span.y() * sy;
+  const double height = top + h + margin;
   const double ox = 0.5 * (w - span.x() * sx), oy = 0.5 * (h - span.y() * sy);  // centre the drawing
   auto map = [&](const Eigen::Vector2d& p) {
     return Eigen::Vector2d(margin + ox + (p.x() - lo.x()) * sx, top + h - oy - (p.y() - lo.y()) * sy);
   };
   std::ostringstream os;
   os.precision(6);
-  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width_ << "\" height=\"" << height_
-     << "\" viewBox=\"0 0 " << width_ << " " << height_ << "\">\n";
+  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width_ << "\" height=\"" << height
+     << "\" viewBox=\"0 0 " << width_ << " " << height << "\">\n";
   os << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   if (!title_.empty())
     os << "<text x=\"" << width_ / 2 << "\" y=\"28\" font-family=\"sans-serif\" font-size=\"16\" text-anchor=\"middle\">"

@@ -27,7 +27,8 @@ class SvgFigure {
   /// A legend line in the top-left corner (drawn after the figure).
   void Legend(const std::string& text, const Style& style);
   void Title(const std::string& title) { title_ = title; }
-  /// Keep the aspect ratio 1:1 (plate figures); false for charts.
+  /// Keep the aspect ratio 1:1 (plate figures; the canvas then ends below the drawing, so a wide
+  /// drawing leaves no empty lower half); false for charts.
   void EqualAspect(bool equal) { equal_aspect_ = equal; }
 
   std::string Render() const;
