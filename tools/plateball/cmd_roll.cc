@@ -14,6 +14,7 @@
 #include "common/exit_codes.h"
 #include "common/json_output.h"
 #include "common/limits.h"
+#include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
 #include "plateball/path.h"
@@ -134,8 +135,9 @@ IntegrationOptions RollIntegration(const RollOptions& o, IntegrationOptions inte
   if (o.atol_opt->count() > 0) integration.absolute_tolerance = o.atol;
   if (o.rtol_opt->count() > 0) integration.relative_tolerance = o.rtol;
   if (const std::string err = integration.Validate(); !err.empty())
-    throw std::invalid_argument(std::string(kCommandLine) + ": --atol/--rtol: value (" + std::to_string(o.atol) +
-                                ", " + std::to_string(o.rtol) + "): " + err);
+    throw std::invalid_argument(std::string(kCommandLine) + ": --atol/--rtol: value (" +
+                                FormatNumber(integration.absolute_tolerance) + ", " +
+                                FormatNumber(integration.relative_tolerance) + "): " + err);
   return integration;
 }
 
