@@ -25,9 +25,12 @@
 #include <thread>
 #include <vector>
 
+#include "common/command_line.h"
 #include "common/errors.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/output_file.h"
+#include "common/plan_json.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/isoparallel.h"
@@ -128,31 +131,15 @@ Json PlanFileJson(const plateball::Problem& problem, const plateball::Isoparalle
   for (const auto& s : summary.solutions) sols.push_back(SolutionJson(s));
   j["solutions"] = std::move(sols);
   j["optimal_path"] = ToJson(path_pts);
-  Json pj;
-  pj["status"] = ToString(plan.status);
-  pj["message"] = plan.message;
+  // The plan in the layout of `plateball plan` (plan_json.h), with what only this tool knows: the
+  // start angles and energy, the sampled impulsive trajectory and the error against the goal.
+  Json pj = tools::PlanSummaryToJson(plan);
   pj["initial_angles"] = ToJson(InitialAnglesFromOrientation(prob.start_orientation, problem.initial_angles.psi));
   pj["mu"] = problem.mu;
-  Json steps = Json::array();
-  for (const PlanStep& st : plan.steps) {
-    steps.push_back(Json{{"k", st.global_index},
-                         {"point", ToJson(st.p_begin)},
-                         {"t_impulse", st.t_impulse},
-                         {"duration", st.duration},
-                         {"delta_psi", st.delta_psi},
-                         {"delta_omega", ToJson(st.delta_omega)},
-                         {"plate_velocity_change", ToJson(st.plate_velocity_change)},
-                         {"pass_miss", st.pass_miss}});
-  }
-  pj["impulses"] = std::move(steps);
   Json traj = Json::array();
   for (const auto& a : arcs) traj.push_back(ToJson(a));
   pj["trajectory"] = std::move(traj);
-  pj["A_impulsive"] = ToJson(plan.A_impulsive);
   pj["orientation_error"] = final_error;
-  pj["measured_error_vs_planned"] = plan.measured_error;
-  pj["bound_theorem_2_6"] = plan.bounds.theorem_2_6;
-  pj["bound_a_posteriori"] = plan.bounds.a_posteriori;
   j["plan"] = std::move(pj);
   return j;
 }
@@ -195,7 +182,7 @@ plateball::tools::SvgFigure Figure(const std::string& name, const plateball::Iso
 struct CliOptions {
   std::string problem_file, out_file, svg_file;
   int impulses = 0, starts = 0;
-  long long seed = -1;
+  std::string seed;  // empty: the problem's
   bool shooting = false;
 };
 
@@ -203,11 +190,17 @@ struct CliOptions {
 // overrides.
 plateball::IsoparallelSetup LoadSetup(const CliOptions& cli, plateball::Problem* problem) {
   using namespace plateball;
+  using namespace plateball::tools;
+  // Outputs checked before the solve: distinct, not the input, writable. Standard output carries the
+  // report, so "-" is not an output file here.
+  CheckOutputPaths({{"standard output (the report)", "-"}, {"--out", cli.out_file}, {"--svg", cli.svg_file}},
+                   {{"problem file", cli.problem_file}});
+  const std::uint64_t seed_override = cli.seed.empty() ? 0 : ParseSeedOption("--seed", cli.seed);
   *problem = cli.problem_file.empty() ? ParseProblem(kFigure7, "figure7 (built-in)") : ReadProblemFile(cli.problem_file);
   IsoparallelSetup setup = IsoparallelSetupFor(*problem);
   if (cli.starts > 0) setup.options.starts = cli.starts;
   if (cli.shooting) setup.options.enumerate_families = false;
-  if (cli.seed >= 0) setup.options.seed = static_cast<std::uint64_t>(cli.seed);
+  if (!cli.seed.empty()) setup.options.seed = seed_override;
   return setup;
 }
 
@@ -343,16 +336,12 @@ int main(int argc, char** argv) {
   app.add_option("--out", cli.out_file, "write the full plan as JSON");
   app.add_option("--svg", cli.svg_file, "write an SVG figure of the plate (as Figure 7)");
   app.add_option("--impulses", cli.impulses, "number of impulses (overrides isoparallel.impulses)")->check(CLI::Range(1, 100000));
-  app.add_option("--seed", cli.seed, "seed of the multi-start (overrides the problem's seed)")->check(CLI::NonNegativeNumber);
+  app.add_option("--seed", cli.seed, "seed of the multi-start, 0 ... 2^64 - 1 (overrides the problem's seed)")
+      ->type_name(kSeedTypeName);
   app.add_option("--starts", cli.starts, "multi-start count (overrides isoparallel.solver.starts)")->check(CLI::Range(1, 1000000));
   app.add_flag("--shooting", cli.shooting,
                "identity targets: use the multi-start shooting instead of the family enumeration");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitSuccess : kExitUsage;
-  }
+  if (const auto code = ParseCommandLine(app, argc, argv, "isoparallel_solve")) return *code;
   // Failures read as in the `plateball` CLI (errors.h): 3 bad input, 4 computation failed,
   // 5 unreadable/unwritable file, 6 internal error.
   return RunWithExitCodes("isoparallel_solve", [&] { return Run(cli); });

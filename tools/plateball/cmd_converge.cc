@@ -11,6 +11,8 @@
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/number_format.h"
+#include "common/output_file.h"
 #include "common/problem_options.h"
 #include "common/svg.h"
 #include "plateball/convergence.h"
@@ -31,15 +33,14 @@ struct ConvergeCliOptions {
 // plan_seconds only with --timings: without it the output is a deterministic function of the input.
 std::string Csv(const ConvergenceStudy& s, bool timings) {
   std::ostringstream os;
-  os.precision(17);
   os << "n,segments," << (timings ? "plan_seconds," : "")
      << "measured_error,polyline_error,bound,theorem_2_6,corollary_3,max_pass_miss,status\n";
   for (const auto& r : s.rows) {
     os << r.n << "," << r.segments << ",";
-    if (timings) os << r.plan_seconds << ",";
-    os << r.measured_error << "," << r.polyline_error
-       << "," << r.bound << "," << r.theorem_2_6 << "," << r.corollary_3 << "," << r.max_pass_miss << ","
-       << ToString(r.status) << "\n";
+    if (timings) os << FormatNumber(r.plan_seconds) << ",";
+    os << FormatNumber(r.measured_error) << "," << FormatNumber(r.polyline_error) << "," << FormatNumber(r.bound)
+       << "," << FormatNumber(r.theorem_2_6) << "," << FormatNumber(r.corollary_3) << ","
+       << FormatNumber(r.max_pass_miss) << "," << ToString(r.status) << "\n";
   }
   return os.str();
 }
@@ -80,10 +81,11 @@ void DrawStudy(const Problem& p, const ConvergenceStudy& s, const std::string& f
   } else {
     title << ": no slope (fewer than 2 successful n)";
   }
-  WriteTextFile(file, RenderLogLogChart(title.str(), "impulses per piece n", "orientation error", series));
+  WriteOutput(file, RenderLogLogChart(title.str(), "impulses per piece n", "orientation error", series));
 }
 
 int RunConverge(const ConvergeCliOptions& o) {
+  CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   if (o.format != "json" && o.format != "csv")
     throw std::invalid_argument(std::string(kCommandLine) + ": --format: value " + o.format + ": must be json or csv");
@@ -92,8 +94,7 @@ int RunConverge(const ConvergeCliOptions& o) {
   const ConvergenceSetup setup = ConvergenceSetupFor(p, ns, std::string(kCommandLine) + ": --n", o.timings);
   const ConvergenceStudy s = RunConvergenceStudy(setup.problem, setup.options);
   if (o.format == "csv") {
-    if (o.out.empty() || o.out == "-") std::cout << Csv(s, o.timings);
-    else WriteTextFile(o.out, Csv(s, o.timings));
+    WriteOutput(o.out, Csv(s, o.timings));
   } else {
     Json doc;
     doc["command"] = "converge";
@@ -131,8 +132,8 @@ std::function<int()> SetupConverge(CLI::App& sub) {
                  "uniform partition only)")
       ->delimiter(',');
   sub.add_option("--format", o->format, "json (default) or csv");
-  sub.add_option("--out", o->out, "write the table to this file instead of standard output");
-  sub.add_option("--svg", o->svg, "draw the log-log chart (error, bound, fitted slope) to this SVG file");
+  sub.add_option("--out", o->out, "write the table to this file instead of standard output (\"-\": standard output)");
+  sub.add_option("--svg", o->svg, "draw the log-log chart (error, bound, fitted slope) to this SVG file (\"-\": standard output, with --out FILE)");
   sub.add_flag("--timings", o->timings,
                "also report the wall time of every plan (plan_seconds, time_slope); without it the output is "
                "reproducible byte for byte");

@@ -7,6 +7,7 @@
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/output_file.h"
 #include "common/problem_options.h"
 #include "plateball/join.h"
 #include "plateball/task_adapters.h"
@@ -56,6 +57,7 @@ Json JoinToJson(const JoinSummary& j) {
 }
 
 int RunJoin(const JoinCliOptions& o) {
+  CheckOutputPaths({{"--out", o.out}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   std::vector<Eigen::Vector2d> targets;
   if (!o.targets.empty()) targets = ParsePointsOption("--targets", o.targets);
@@ -89,7 +91,7 @@ int RunJoin(const JoinCliOptions& o) {
 std::function<int()> SetupJoin(CLI::App& sub) {
   auto o = std::make_shared<JoinCliOptions>();
   o->problem.Add(sub);
-  sub.add_option("--targets", o->targets, "targets X1,Y1;X2,Y2;... (default: the file's reach.targets)");
+  sub.add_option("--targets", o->targets, "targets \"X1,Y1;X2,Y2;...\" (default: the file's reach.targets)");
   sub.add_option("--max-iterations", o->max_iterations, "Levenberg-Marquardt iterations per join (default 30)");
   sub.add_option("--residual-tolerance", o->residual_tolerance, "accepted |x(t) - target| (default 1e-12)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
@@ -98,7 +100,7 @@ std::function<int()> SetupJoin(CLI::App& sub) {
       "(theta, phi, psi + delta_psi) at x0 passes through x at time t (Lemma 2.1), with the impulse\n"
       "(delta omega, upper-plate velocity change 2 delta omega x e3) and the state on arrival.\n"
       "A target beyond the local radius is reported with status target_beyond_local_radius.\n"
-      "Example: plateball join --lambda 2 --theta 1.0471975511965976 --phi 0.4 --psi 0.1 --targets 0.05,0;0,0.05\n"
+      "Example: plateball join --lambda 2 --theta 1.0471975511965976 --phi 0.4 --psi 0.1 --targets \"0.05,0;0,0.05\"\n"
       "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 a target not joined, 5 unreadable file.");
   return [o] { return RunJoin(*o); };
 }
