@@ -23,11 +23,7 @@ Problem T2Problem() {
   p.mu = 1.0;
   p.x0 = {0, 0};
   p.plan = PlanTask{};
-  p.plan->path.type = "circle";
-  p.plan->path.center = {-2, 0};
-  p.plan->path.radius = 2;
-  p.plan->path.tau_begin = 0;
-  p.plan->path.tau_end = 2 * M_PI;
+  p.plan->path = PathSpec{CircleSpec{{-2, 0}, 2, 0, 2 * M_PI}};
   return p;
 }
 

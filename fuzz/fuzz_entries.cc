@@ -133,15 +133,7 @@ void SolveEntries(const std::uint8_t* data, std::size_t size) {
   } catch (const std::invalid_argument&) {
   }
   try {
-    const Path path = PathFromSpec([&] {
-      PathSpec spec;
-      spec.type = "circle";
-      spec.center = Eigen::Vector2d(-radius, 0.0);
-      spec.radius = radius;
-      spec.tau_begin = 0.0;
-      spec.tau_end = 1.0;
-      return spec;
-    }());
+    const Path path = PathFromSpec(PathSpec{CircleSpec{Eigen::Vector2d(-radius, 0.0), radius, 0.0, 1.0}});
     std::vector<double> taus;
     for (int k = 0; k <= n; ++k) taus.push_back(static_cast<double>(k) / n);
     const PlanSummary plan =

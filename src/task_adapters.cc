@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 #include <stdexcept>
+#include <variant>
 
 #include "check.h"
 
@@ -58,48 +59,44 @@ PlanOptions PlanOptionsFor(const Problem& problem) {
 }  // namespace
 
 SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field) {
-  if (spec.type == "line") return Named(field, [&] { return SmoothCurve::Line(spec.from, spec.to); });
-  if (spec.type == "circle")
-    return Named(field, [&] { return SmoothCurve::Circle(spec.center, spec.radius, spec.tau_begin, spec.tau_end); });
-  if (spec.type == "ellipse")
-    return Named(field, [&] {
-      return SmoothCurve::Ellipse(spec.center, spec.semi_axes, spec.rotation, spec.tau_begin, spec.tau_end);
-    });
-  if (spec.type == "lemniscate")
-    return Named(field, [&] {
-      return SmoothCurve::Lemniscate(spec.center, spec.scale, spec.rotation, spec.tau_begin, spec.tau_end);
-    });
-  if (spec.type == "sine")
-    return Named(field, [&] {
-      return SmoothCurve::Sine(spec.from, spec.rotation, spec.length, spec.amplitude, spec.wavelength);
-    });
-  if (spec.type == "samples") return Named(field, [&] { return SmoothCurve::Samples(spec.points); });
-  if (spec.type == "piecewise")
+  struct Make {
+    SmoothCurve operator()(const LineSpec& l) const { return SmoothCurve::Line(l.from, l.to); }
+    SmoothCurve operator()(const CircleSpec& c) const {
+      return SmoothCurve::Circle(c.center, c.radius, c.tau_begin, c.tau_end);
+    }
+    SmoothCurve operator()(const EllipseSpec& e) const {
+      return SmoothCurve::Ellipse(e.center, e.semi_axes, e.rotation, e.tau_begin, e.tau_end);
+    }
+    SmoothCurve operator()(const LemniscateSpec& m) const {
+      return SmoothCurve::Lemniscate(m.center, m.scale, m.rotation, m.tau_begin, m.tau_end);
+    }
+    SmoothCurve operator()(const SineSpec& w) const {
+      return SmoothCurve::Sine(w.from, w.rotation, w.length, w.amplitude, w.wavelength);
+    }
+    SmoothCurve operator()(const SamplesSpec& m) const { return SmoothCurve::Samples(m.points); }
+    SmoothCurve operator()(const PiecewiseSpec&) const { throw std::logic_error("not a smooth curve"); }
+  };
+  if (std::holds_alternative<PiecewiseSpec>(spec.shape))
     throw std::invalid_argument("'" + field + ".type' = \"piecewise\" is not a single smooth curve here (pieces may not nest)");
-  throw std::invalid_argument("'" + field + ".type' = \"" + spec.type +
-                              "\" is invalid: must be one of line, circle, ellipse, lemniscate, sine, samples, piecewise");
+  return Named(field, [&] { return std::visit(Make{}, spec.shape); });
 }
 
 Path PathFromSpec(const PathSpec& spec, const std::string& field) {
-  if (spec.type != "piecewise") return Path({CurveFromSpec(spec, field)});
-  if (spec.pieces.empty())
+  const auto* pw = std::get_if<PiecewiseSpec>(&spec.shape);
+  if (pw == nullptr) return Path({CurveFromSpec(spec, field)});
+  if (pw->pieces.empty())
     internal::ThrowInvalid(field + ".pieces (count)", 0, "a piecewise path needs at least one piece");
   std::vector<SmoothCurve> pieces;
-  for (std::size_t i = 0; i < spec.pieces.size(); ++i)
-    pieces.push_back(CurveFromSpec(spec.pieces[i], field + ".pieces[" + std::to_string(i) + "]"));
+  for (std::size_t i = 0; i < pw->pieces.size(); ++i)
+    pieces.push_back(CurveFromSpec(pw->pieces[i], field + ".pieces[" + std::to_string(i) + "]"));
   return Named(field, [&] { return Path(std::move(pieces)); });
 }
 
 std::vector<PartitionRule> PartitionFromSpec(const PartitionSpec& spec, const Path& path, const std::string& field) {
-  if (spec.type == "uniform_parameter") return {UniformParameter{spec.n}};
-  if (spec.type == "uniform_arc_length") return {UniformArcLength{spec.n}};
-  if (spec.type != "explicit")
-    throw std::invalid_argument("'" + field + ".type' = \"" + spec.type +
-                                "\" is invalid: must be uniform_parameter, uniform_arc_length or explicit");
-  if (path.PieceCount() != 1)
+  if (std::holds_alternative<ExplicitTaus>(spec) && path.PieceCount() != 1)
     internal::ThrowInvalid(field + ".taus (pieces)", path.PieceCount(),
                            "explicit partitions are for single-piece paths; use a uniform type for piecewise paths");
-  return {ExplicitTaus{spec.taus}};
+  return {spec};
 }
 
 FreeMotion FreeMotionFor(const Problem& problem) {
@@ -138,9 +135,9 @@ PlanSetup PlanSetupFor(const Problem& problem, int n, const std::string& n_field
   s.problem.path = PathFromSpec(task.path, "plan.path");
   PartitionSpec spec = task.partition;
   if (n > 0) {
-    if (spec.type == "explicit")
-      internal::ThrowInvalid(n_field, n, "not allowed with an explicit partition (plan.partition.type explicit)");
-    spec.n = n;
+    if (auto* u = std::get_if<UniformParameter>(&spec)) u->n = n;
+    else if (auto* a = std::get_if<UniformArcLength>(&spec)) a->n = n;
+    else internal::ThrowInvalid(n_field, n, "not allowed with an explicit partition (plan.partition.type explicit)");
   }
   s.problem.partition = PartitionFromSpec(spec, s.problem.path, "plan.partition");
   s.problem.energy_changes = task.energy_changes;
@@ -160,9 +157,9 @@ ConvergenceSetup ConvergenceSetupFor(const Problem& problem, const std::vector<i
     ValidatePartitionSizes(task.converge_n, "plan.converge_n");
     s.problem.ns = task.converge_n;
   }
-  if (task.partition.type == "explicit")
+  if (const auto* e = std::get_if<ExplicitTaus>(&task.partition))
     internal::ThrowInvalid(ns.empty() ? std::string("plan.partition.taus (count)") : ns_field,
-                           ns.empty() ? static_cast<double>(task.partition.taus.size()) : ns.front(),
+                           ns.empty() ? static_cast<double>(e->taus.size()) : ns.front(),
                            "a convergence study varies n: it needs a uniform partition, not an explicit one");
   PlanSetup plan = PlanSetupFor(problem);
   s.problem.plan = std::move(plan.problem);

@@ -50,15 +50,7 @@ PhysicalParameters GoodPhysical() {
   return p;
 }
 
-PathSpec Circle(double radius) {
-  PathSpec s;
-  s.type = "circle";
-  s.center = {-radius, 0.0};
-  s.radius = radius;
-  s.tau_begin = 0.0;
-  s.tau_end = 1.0;
-  return s;
-}
+PathSpec Circle(double radius) { return {CircleSpec{{-radius, 0.0}, radius, 0.0, 1.0}}; }
 
 std::string MinimalProblem(const std::string& initial_extra, const std::string& top_extra = "") {
   return R"({"ball": {"lambda": 2}, "initial": {"theta": 1.0, "phi": 0.4, "psi": 0.1, "mu": 1)" + initial_extra +
@@ -148,55 +140,33 @@ std::vector<BadInputCase> Cases() {
   c.push_back({"negative circle radius", [] { PathFromSpec(Circle(-1.0)); }, {"radius", "-1"}});
   c.push_back({"repeated sample points",
                [] {
-                 PathSpec s;
-                 s.type = "samples";
-                 s.points = {{0, 0}, {1, 0}, {1, 0}, {2, 1}};
-                 PathFromSpec(s);
+                 PathFromSpec(PathSpec{SamplesSpec{{{0, 0}, {1, 0}, {1, 0}, {2, 1}}}});
                },
                {"points[2]"}});
   c.push_back({"NaN sample point",
                [] {
-                 PathSpec s;
-                 s.type = "samples";
-                 s.points = {{0, 0}, {kNaN, 0}, {2, 1}};
-                 PathFromSpec(s);
+                 PathFromSpec(PathSpec{SamplesSpec{{{0, 0}, {kNaN, 0}, {2, 1}}}});
                },
                {"points[1]", "nan"}});
   c.push_back({"single sample point", [] { CubicSpline2d({Eigen::Vector2d(1, 2)}); }, {"points", "1"}});
   c.push_back({"zero-speed line",
                [] {
-                 PathSpec s;
-                 s.type = "line";
-                 s.from = {1, 1};
-                 s.to = {1, 1};
-                 PathFromSpec(s);
+                 PathFromSpec(PathSpec{LineSpec{{1, 1}, {1, 1}}});
                },
                {"path"}});
   c.push_back({"zero wavelength sine",
                [] {
-                 PathSpec s;
-                 s.type = "sine";
-                 s.length = 2;
-                 s.amplitude = 0.5;
-                 s.wavelength = 0;
-                 PathFromSpec(s);
+                 PathFromSpec(PathSpec{SineSpec{{0, 0}, 0.0, 2, 0.5, 0}});
                },
                {"wavelength", "0"}});
   c.push_back({"partition of one point",
                [] {
-                 PartitionSpec p;
-                 p.n = 0;
-                 const Path path = PathFromSpec(Circle(1.0));
-                 MakePartition(path, PartitionFromSpec(p, path));
+                 MakePartition(PathFromSpec(Circle(1.0)), {UniformParameter{0}});
                },
                {"n", "0"}});
   c.push_back({"non-increasing explicit partition",
                [] {
-                 PartitionSpec p;
-                 p.type = "explicit";
-                 p.taus = {0.0, 0.5, 0.4, 1.0};
-                 const Path path = PathFromSpec(Circle(1.0));
-                 MakePartition(path, PartitionFromSpec(p, path));
+                 MakePartition(PathFromSpec(Circle(1.0)), {ExplicitTaus{{0.0, 0.5, 0.4, 1.0}}});
                },
                {"taus"}});
   c.push_back({"zero quaternion", [] { QuaternionToRotation(Eigen::Vector4d::Zero(), "goal_orientation"); },

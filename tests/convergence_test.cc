@@ -24,20 +24,15 @@ Problem FileProblem(const PathSpec& path) {
   p.mu = 1.0;
   p.plan = PlanTask{};
   p.plan->path = path;
-  p.plan->partition.type = "uniform_parameter";
+  p.plan->partition = UniformParameter{};
   p.x0 = PathFromSpec(path).StartPoint();
   return p;
 }
 
 PathSpec Closed(const std::string& type) {
-  PathSpec s;
-  s.type = type;
-  s.tau_begin = 0;
-  s.tau_end = 2 * M_PI;
-  if (type == "circle") s.center = {-2, 0}, s.radius = 2;
-  if (type == "ellipse") s.semi_axes = {2, 1}, s.rotation = 0.3;
-  if (type == "lemniscate") s.scale = 2;
-  return s;
+  if (type == "circle") return {CircleSpec{{-2, 0}, 2, 0, 2 * M_PI}};
+  if (type == "ellipse") return {EllipseSpec{{0, 0}, {2, 1}, 0.3, 0, 2 * M_PI}};
+  return {LemniscateSpec{{0, 0}, 2, 0.0, 0, 2 * M_PI}};
 }
 
 void ExpectConverges(const Problem& p, bool check_slope) {
@@ -70,30 +65,16 @@ TEST(Convergence, LemniscateErrorFallsAsInverseSquareOfImpulseCount) {
 }
 
 TEST(Convergence, PiecewisePathBoundHoldsForEveryN) {
-  PathSpec a, arc, b;
-  a.type = "line";
-  a.from = {0, 0};
-  a.to = {2, 0};
-  arc.type = "circle";
-  arc.center = {2, 1};
-  arc.radius = 1;
-  arc.tau_begin = -M_PI / 2;
-  arc.tau_end = M_PI / 2;
-  b.type = "sine";
-  b.from = {2, 2};
-  b.rotation = M_PI;
-  b.length = 3;
-  b.amplitude = 0.3;
-  b.wavelength = 1.5;
-  PathSpec pw;
-  pw.type = "piecewise";
-  pw.pieces = {a, arc, b};
+  const PathSpec a{LineSpec{{0, 0}, {2, 0}}};
+  const PathSpec arc{CircleSpec{{2, 1}, 1, -M_PI / 2, M_PI / 2}};
+  const PathSpec b{SineSpec{{2, 2}, M_PI, 3, 0.3, 1.5}};
+  const PathSpec pw{PiecewiseSpec{{a, arc, b}}};
   ExpectConverges(FileProblem(pw), true);
 }
 
 TEST(Convergence, ArcLengthPartitionAlsoConverges) {
   Problem p = FileProblem(Closed("ellipse"));
-  p.plan->partition.type = "uniform_arc_length";
+  p.plan->partition = UniformArcLength{};
   ExpectConverges(p, true);
 }
 
@@ -137,8 +118,7 @@ TEST(Convergence, OnePartitionSizeGivesNoSlopeAndSaysSo) {
 // Issue 16: with an explicit partition `--n` was silently ignored (every row the same).
 TEST(Convergence, ExplicitPartitionRejectsPartitionSizes) {
   Problem p = FileProblem(Closed("circle"));
-  p.plan->partition.type = "explicit";
-  p.plan->partition.taus = {0.0, M_PI, 2 * M_PI};
+  p.plan->partition = ExplicitTaus{{0.0, M_PI, 2 * M_PI}};
   const std::string with_n = ErrorOf([&] { ConvergenceSetupFor(p, {16, 32}, "--n"); });
   EXPECT_NE(with_n.find("--n"), std::string::npos) << with_n;
   EXPECT_NE(with_n.find("explicit"), std::string::npos) << with_n;

@@ -134,22 +134,8 @@ TEST(ImpulsePlanner, EnergyChangingImpulsesKeepTheGeometry) {
 }
 
 TEST(ImpulsePlanner, PiecewisePathIsPlannedPieceByPiece) {
-  PathSpec a, arc, b;
-  a.type = "line";
-  a.from = {0, 0};
-  a.to = {2, 0};
-  arc.type = "circle";
-  arc.center = {2, 1};
-  arc.radius = 1;
-  arc.tau_begin = -M_PI / 2;
-  arc.tau_end = M_PI / 2;
-  b.type = "line";
-  b.from = {2, 2};
-  b.to = {0, 3};
-  PathSpec pw;
-  pw.type = "piecewise";
-  pw.pieces = {a, arc, b};
-  const Path path = PathFromSpec(pw);
+  const Path path({SmoothCurve::Line({0, 0}, {2, 0}), SmoothCurve::Circle({2, 1}, 1, -M_PI / 2, M_PI / 2),
+                   SmoothCurve::Line({2, 2}, {0, 3})});
   const PlanSummary plan = PlanUniform(path, 12);
   ASSERT_TRUE(plan.IsSolutionUsable()) << plan.BriefReport();
   EXPECT_EQ(plan.segments, 36);
@@ -189,10 +175,7 @@ TEST(ImpulsePlanner, BadInputNamesTheField) {
   Problem p;
   p.model = kModel;
   p.plan = PlanTask{};
-  p.plan->path.type = "circle";
-  p.plan->path.center = {-2, 0};
-  p.plan->path.radius = 2;
-  p.plan->path.tau_end = 2 * M_PI;
+  p.plan->path = PathSpec{CircleSpec{{-2, 0}, 2, 0, 2 * M_PI}};
   p.x0 = {1, 1};
   EXPECT_NE(ErrorOf([&] { PlanSetupFor(p); }).find("'x0'"), std::string::npos);
   p.x0 = {0, 0};

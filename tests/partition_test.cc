@@ -51,40 +51,14 @@ TEST(Partition, BadPartitionsNameWhatIsWrong) {
   EXPECT_NE(ErrorOf([&] { ExplicitPartition(c, {0.1, 2 * M_PI}); }).find("start of the parameter interval"),
             std::string::npos);
   EXPECT_NE(ErrorOf([&] { ExplicitPartition(c, {0.0, NAN, 2 * M_PI}); }).find("must be finite"), std::string::npos);
-  PathSpec a, b;
-  a.type = b.type = "line";
-  a.from = {0, 0};
-  a.to = b.from = {1, 0};
-  b.to = {1, 1};
-  PathSpec pw;
-  pw.type = "piecewise";
-  pw.pieces = {a, b};
-  const Path path = PathFromSpec(pw);
-  PartitionSpec spec;
-  spec.type = "explicit";
-  spec.taus = {0, 1};
-  EXPECT_NE(ErrorOf([&] { MakePartition(path, PartitionFromSpec(spec, path)); }).find("single-piece"), std::string::npos);
-  spec.type = "random";
-  EXPECT_NE(ErrorOf([&] { MakePartition(path, PartitionFromSpec(spec, path)); }).find("partition.type"), std::string::npos);
-  spec.type = "uniform_parameter";
-  spec.n = 0;
-  EXPECT_NE(ErrorOf([&] { MakePartition(path, PartitionFromSpec(spec, path)); }).find("partition.n"), std::string::npos);
+  const Path path({SmoothCurve::Line({0, 0}, {1, 0}), SmoothCurve::Line({1, 0}, {1, 1})});
+  EXPECT_NE(ErrorOf([&] { PartitionFromSpec(ExplicitTaus{{0, 1}}, path); }).find("single-piece"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { MakePartition(path, {UniformParameter{0}}); }).find("partition.n"), std::string::npos);
 }
 
 TEST(Partition, PiecewisePathsGetOnePartitionPerPiece) {
-  PathSpec a, b;
-  a.type = b.type = "line";
-  a.from = {0, 0};
-  a.to = b.from = {1, 0};
-  b.to = {1, 3};
-  PathSpec pw;
-  pw.type = "piecewise";
-  pw.pieces = {a, b};
-  PartitionSpec spec;
-  spec.type = "uniform_arc_length";
-  spec.n = 4;
-  const Path path = PathFromSpec(pw);
-  const auto parts = MakePartition(path, PartitionFromSpec(spec, path));
+  const Path path({SmoothCurve::Line({0, 0}, {1, 0}), SmoothCurve::Line({1, 0}, {1, 3})});
+  const auto parts = MakePartition(path, {UniformArcLength{4}});
   ASSERT_EQ(parts.size(), 2u);
   EXPECT_EQ(parts[0].size(), 5u);
   EXPECT_EQ(parts[1].size(), 5u);

@@ -15,7 +15,6 @@
 #include "plateball/problem_io.h"
 #include "reach_internal.h"
 #include "support/test_support.h"
-#include "plateball/task_adapters.h"
 
 using namespace plateball;
 
@@ -452,11 +451,7 @@ TEST(ReachPlannerFallback, CoarsePartitionOfALongPathStillGivesAPlan) {
   // The slender ball on a long straight path cut into 3 segments of 14 units: the local join
   // (Lemma 2.1) finds no solution on its local branch for such a segment.
   const ReachProblem start = Slender({0, 0});
-  PathSpec line;
-  line.type = "line";
-  line.from = {0, 0};
-  line.to = {30, 30};
-  const Path path = PathFromSpec(line);
+  const Path path({SmoothCurve::Line({0, 0}, {30, 30})});
   const PlanProblem problem{start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, {UniformParameter{3}}, {}};
   PlanOptions local_only;
   local_only.reach_fallback = false;

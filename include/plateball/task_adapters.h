@@ -27,7 +27,7 @@ namespace plateball {
 Path PathFromSpec(const PathSpec& spec, const std::string& field = "path");
 /// A single smooth curve from a PathSpec whose type is not "piecewise".
 SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field = "path");
-/// The partition rule of a PartitionSpec for `path` (explicit taus: single-piece paths only).
+/// The partition rules of a file's partition for `path` (explicit taus: single-piece paths only).
 std::vector<PartitionRule> PartitionFromSpec(const PartitionSpec& spec, const Path& path,
                                              const std::string& field = "partition");
 

@@ -99,8 +99,8 @@ int RunConverge(const ConvergeCliOptions& o) {
     Json doc;
     doc["command"] = "converge";
     doc["problem"] = p.name.empty() ? p.source : p.name;
-    doc["path"] = p.plan->path.type;
-    doc["partition"] = p.plan->partition.type;
+    doc["path"] = ToString(p.plan->path);
+    doc["partition"] = ToString(p.plan->partition);
     Json rows = Json::array();
     for (const auto& r : s.rows) {
       Json j{{"n", r.n}, {"segments", r.segments}, {"measured_error", r.measured_error}, {"polyline_error", r.polyline_error}, {"bound", r.bound},

@@ -86,8 +86,8 @@ int RunPlan(const PlanCliOptions& o) {
   doc["initial"] = Json{{"theta", p.initial_angles.theta}, {"phi", p.initial_angles.phi},
                         {"psi", p.initial_angles.psi}, {"mu", p.mu}, {"x0", ToJson(p.x0)},
                         {"orientation", ToJson(plan.A0)}};
-  doc["path"] = Json{{"type", p.plan->path.type}, {"pieces", path.PieceCount()}, {"length", path.Length()}};
-  doc["partition"] = Json{{"type", p.plan->partition.type}, {"segments", plan.segments}};
+  doc["path"] = Json{{"type", ToString(p.plan->path)}, {"pieces", path.PieceCount()}, {"length", path.Length()}};
+  doc["partition"] = Json{{"type", ToString(p.plan->partition)}, {"segments", plan.segments}};
   Json plan_json = PlanSummaryToJson(plan, !o.summary_only);
   for (auto it = plan_json.begin(); it != plan_json.end(); ++it) doc[it.key()] = std::move(it.value());
   WriteJson(doc, o.out);

@@ -157,7 +157,7 @@ Json RollAlongProblemPath(const RollOptions& o, Eigen::Matrix3d* r) {
   }
   return Json{{"source", o.problem_file},
               {"mode", "plan.path"},
-              {"type", p.plan->path.type},
+              {"type", ToString(p.plan->path)},
               {"pieces", path.PieceCount()},
               {"start", ToJson(path.StartPoint())},
               {"end", ToJson(path.EndPoint())},
