@@ -1,0 +1,126 @@
+// Exact arrival (issue 11): the energy-preserving impulses (delta psi_k, t_k), k = 0..n-1, of the
+// paper's control strategy (section 2.3) corrected so that the ball arrives at the goal position
+// x1 *and* the goal orientation A1 exactly, not only to O(1/n^2) (Theorem 2.6).
+//
+// Unknowns: u = (delta psi_0..n-1, t_0..n-1) (2n values). Conditions (five):
+//   x(T) - x1 = 0 (two) and LogSO3(A1^T A(T)) = 0 (three), T = sum t_k,
+// where x(t), A(t) are the free motion between impulses (eqs. (12)-(18), the chart-free equations
+// of docs/paper_notes.md) and each impulse psi -> psi + delta psi_k keeps theta, phi and mu
+// (section 2.1, "Modeling an impulse"). 2n >= 5 is required, so n >= 3.
+//
+// "Closest to the reference" (the definition reported as `deviation`): among the impulse
+// sequences that arrive exactly, the one whose pass points x(t_1 + ... + t_k), k = 1..n-1, are
+// moved least from the planned pass points p(tau_k) of the reference, in the sense of
+//   D(u) = sqrt( sum_{k=1}^{n-1} |x_k(u) - p(tau_k)|^2 )   subject to the five conditions.
+// The solver is a Gauss-Newton method for this equality-constrained least-squares problem (each
+// step solves the linearised KKT system: minimise |d + D du|^2 subject to r + J du = 0),
+// warm-started from the paper's plan (PlanImpulses on the reference, n uniform segments), whose
+// pass points are on the reference (D = 0) but whose arrival is only approximate.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "plateball/ball_model.h"
+#include "plateball/ball_state.h"
+#include "plateball/impulse_planner.h"
+#include "plateball/integration_options.h"
+#include "plateball/path.h"
+
+namespace plateball {
+
+enum class ExactArrivalStatus {
+  kNotRun,               ///< default: nothing was solved
+  kArrived,              ///< position and orientation within the tolerances
+  kNotReached,           ///< the iteration stopped without meeting the tolerances (closest arrival reported)
+  kWarmStartFailed,      ///< the paper's plan along the reference failed (its message is kept)
+  kIntegrationFailure,   ///< an ODE integration failed
+};
+std::string ToString(ExactArrivalStatus status);
+
+/// What is asked: the ball at `x0` with angles `initial`, energy mu and orientation A0, the
+/// reference path (it must start at x0), n impulses and the goal (x1, A1).
+struct ExactArrivalProblem {
+  BallModel model = BallModel::FromLambda(1.0);
+  AngleState initial{M_PI / 3, 0.4, 0.1};  ///< (theta, phi, psi) at the start
+  double mu = 1.0;                          ///< energy, eq. (9), > 0, kept by every impulse
+  /// Start orientation R_WB, rotated minimally so that A0 e3 = z (AlignOrientationToAxis).
+  Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();
+  Eigen::Vector2d x0 = Eigen::Vector2d::Zero();  ///< start point (= reference start)
+  Path reference = Path({SmoothCurve::Line(Eigen::Vector2d::Zero(), Eigen::Vector2d::UnitX())});
+  int impulses = 12;                               ///< n, >= 3 (2n unknowns >= 5 conditions)
+  Eigen::Vector2d x1 = Eigen::Vector2d::UnitX();   ///< goal position
+  Eigen::Matrix3d A1 = Eigen::Matrix3d::Identity();  ///< goal orientation (a rotation)
+};
+
+struct ExactArrivalOptions {
+  double position_tolerance = 1e-12;     ///< |x(T) - x1| to reach
+  double orientation_tolerance = 1e-10;  ///< |LogSO3(A1^T A(T))| (rad) to reach
+  int max_iterations = 50;               ///< Gauss-Newton (KKT) iterations, >= 1
+  /// Once arrived, the iteration stops when the deviation falls by less than this fraction.
+  double deviation_tolerance = 1e-6;
+  double difference_step = 1e-5;         ///< central-difference step of the Jacobian, in (0, 1)
+  /// Rollouts of the solver (tighter than the library default so that 1e-12 is meaningful).
+  IntegrationOptions integration{1e-14, 1e-14, 2'000'000};
+  /// Rollouts of the Jacobian's central differences (looser: the derivatives need ~1e-7).
+  IntegrationOptions jacobian_integration{1e-11, 1e-11, 2'000'000};
+  PlanOptions warm_start;                ///< options of the paper's plan (the warm start)
+  std::string Validate() const;
+};
+
+/// One impulse k at time t_impulse, then the free arc of duration t_k.
+struct ExactImpulse {
+  double t_impulse = 0.0;                             ///< since the start
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  ///< contact point at the impulse
+  double delta_psi = 0.0;
+  double duration = 0.0;                              ///< t_k
+  Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();
+  Eigen::Vector3d plate_velocity_change = Eigen::Vector3d::Zero();  ///< 2 delta_omega x e3
+  AngleState angles_before;                           ///< (theta, phi, psi) before the impulse
+  Eigen::Vector2d planned_position = Eigen::Vector2d::Zero();  ///< p(tau_k) of the reference
+  double planned_delta_psi = 0.0, planned_duration = 0.0;     ///< the paper's plan (warm start)
+};
+
+/// A default-constructed summary says "not run".
+struct ExactArrivalSummary {
+  ExactArrivalStatus status = ExactArrivalStatus::kNotRun;
+  std::string message = "not run";
+  std::vector<ExactImpulse> impulses;
+  Eigen::Vector2d x_final = Eigen::Vector2d::Zero();
+  Eigen::Matrix3d A_final = Eigen::Matrix3d::Identity();
+  double position_error = 0.0;     ///< |x(T) - x1|
+  double orientation_error = 0.0;  ///< |LogSO3(A1^T A(T))| in rad
+  /// D = sqrt(sum_k |x_k - p(tau_k)|^2) over the interior pass points (see the file comment).
+  double deviation = 0.0;
+  double max_pass_displacement = 0.0;  ///< max_k |x_k - p(tau_k)|
+  double total_time = 0.0;             ///< T = sum t_k
+  int iterations = 0;                  ///< Gauss-Newton iterations
+  int rollouts = 0;                    ///< trajectories integrated (including the Jacobians')
+  // The paper's plan (warm start), for comparison.
+  double planned_position_error = 0.0;
+  double planned_orientation_error = 0.0;
+  double planned_total_time = 0.0;
+
+  bool IsSolutionUsable() const { return status == ExactArrivalStatus::kArrived; }
+  std::string BriefReport() const;
+};
+
+/// Solves the exact-arrival problem. Throws std::invalid_argument naming the field for invalid
+/// input (impulses < 3, mu, angles, A0 or A1 not rotations, x0 not the reference start, options);
+/// a goal that is not reached is the status kNotReached with the closest arrival found.
+ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const ExactArrivalOptions& options = {});
+
+/// Independent check: re-integrates the reported impulses with FreeMotion (one stored period per
+/// arc, its own tolerances) from the problem's start and returns the final position and
+/// orientation. Used by the tests and the tools.
+struct ReplayResult {
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+  double position_error = 0.0;
+  double orientation_error = 0.0;
+};
+ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
+                                const IntegrationOptions& integration = {1e-14, 1e-14, 2'000'000});
+
+}  // namespace plateball

@@ -1,0 +1,351 @@
+#include "plateball/exact_arrival.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "arc.h"
+#include "check.h"
+#include "plateball/free_motion.h"
+#include "plateball/impulse.h"
+#include "plateball/so3.h"
+
+namespace plateball {
+
+std::string ToString(ExactArrivalStatus status) {
+  switch (status) {
+    case ExactArrivalStatus::kNotRun: return "not_run";
+    case ExactArrivalStatus::kArrived: return "arrived";
+    case ExactArrivalStatus::kNotReached: return "not_reached";
+    case ExactArrivalStatus::kWarmStartFailed: return "warm_start_failed";
+    case ExactArrivalStatus::kIntegrationFailure: return "integration_failure";
+  }
+  return "unknown";
+}
+
+std::string ExactArrivalOptions::Validate() const {
+  auto bad = [](const std::string& field, double v, const std::string& what) {
+    return "exact option '" + field + "' = " + internal::FormatNumber(v) + " is invalid: " + what;
+  };
+  if (!(std::isfinite(position_tolerance) && position_tolerance > 0))
+    return bad("position_tolerance", position_tolerance, "must be finite and > 0");
+  if (!(std::isfinite(orientation_tolerance) && orientation_tolerance > 0))
+    return bad("orientation_tolerance", orientation_tolerance, "must be finite and > 0");
+  if (max_iterations < 1) return bad("max_iterations", max_iterations, "must be >= 1");
+  if (!(std::isfinite(difference_step) && difference_step > 0 && difference_step < 1))
+    return bad("difference_step", difference_step, "must be in (0, 1)");
+  if (!(std::isfinite(deviation_tolerance) && deviation_tolerance >= 0))
+    return bad("deviation_tolerance", deviation_tolerance, "must be finite and >= 0");
+  std::string e = integration.Validate();
+  if (e.empty()) e = jacobian_integration.Validate();
+  if (!e.empty()) return e;
+  return warm_start.Validate();
+}
+
+std::string ExactArrivalSummary::BriefReport() const {
+  std::ostringstream os;
+  os.precision(3);
+  os << "ExactArrival: " << ToString(status) << ", n = " << impulses.size() << ", position error = " << position_error
+     << ", orientation error = " << orientation_error << " rad, deviation = " << deviation
+     << ", T = " << total_time << ", iterations = " << iterations;
+  if (!message.empty()) os << " (" << message << ")";
+  return os.str();
+}
+
+namespace {
+
+// The ball just before impulse k: state, contact point, orientation.
+struct Node {
+  BallState state;
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+};
+
+// The fixed data of one solve: the start, the goal, the reference pass points.
+struct Setup {
+  const BallModel* model = nullptr;
+  double mu = 1.0;
+  Node start;
+  Eigen::Vector2d x1;
+  Eigen::Matrix3d A1;
+  std::vector<Eigen::Vector2d> planned;  // p(tau_k), k = 0..n
+  IntegrationOptions integration;
+  int n = 0;
+};
+
+// u = (delta psi_0..n-1, t_0..n-1). Rolls the trajectory from node k0 (nodes[k0] given) to the
+// end, filling nodes[k0+1..n].
+void RollOut(const Setup& s, const Eigen::VectorXd& u, int k0, std::vector<Node>& nodes) {
+  for (int k = k0; k < s.n; ++k) {
+    const Node& a = nodes[static_cast<std::size_t>(k)];
+    const Impulse imp = EnergyPreservingImpulse(AnglesFromState(a.state, *s.model), s.mu, u[k], *s.model);
+    const Eigen::Vector2d mom = ConservedMomentum(imp.state_after, *s.model);
+    const internal::ArcEnd arc = internal::IntegrateArc(s.model->lambda(), imp.state_after.z, mom, u[s.n + k],
+                                                        s.integration);
+    Node& b = nodes[static_cast<std::size_t>(k) + 1];
+    b.state = {arc.z, OmegaFromMomentum(arc.z, mom, *s.model)};
+    b.x = a.x + arc.dx;
+    b.A = ProjectToSO3(arc.phi * a.A);
+  }
+}
+
+// The five arrival conditions followed by the 2(n-1) pass-point displacements.
+Eigen::VectorXd Residuals(const Setup& s, const std::vector<Node>& nodes) {
+  Eigen::VectorXd r(5 + 2 * (s.n - 1));
+  const Node& end = nodes.back();
+  r.head<2>() = end.x - s.x1;
+  r.segment<3>(2) = LogSO3(s.A1.transpose() * end.A);
+  for (int k = 1; k < s.n; ++k)
+    r.segment<2>(5 + 2 * (k - 1)) = nodes[static_cast<std::size_t>(k)].x - s.planned[static_cast<std::size_t>(k)];
+  return r;
+}
+
+// Central differences; a parameter of segment k only changes the nodes after k, so each column
+// rolls out from node k.
+Eigen::MatrixXd Jacobian(Setup s, const Eigen::VectorXd& u, const std::vector<Node>& nodes, double h,
+                         const IntegrationOptions& integration, int* rollouts) {
+  s.integration = integration;
+  const int m = 5 + 2 * (s.n - 1);
+  Eigen::MatrixXd jac = Eigen::MatrixXd::Zero(m, 2 * s.n);
+  std::vector<Node> work = nodes;
+  for (int j = 0; j < 2 * s.n; ++j) {
+    const int k = j % s.n;
+    const double step = j < s.n ? h : h * std::max(1.0, std::abs(u[j]));
+    Eigen::VectorXd up = u, um = u;
+    up[j] += step;
+    um[j] -= step;
+    RollOut(s, up, k, work);
+    const Eigen::VectorXd rp = Residuals(s, work);
+    RollOut(s, um, k, work);
+    const Eigen::VectorXd rm = Residuals(s, work);
+    jac.col(j) = (rp - rm) / (2 * step);
+    *rollouts += 2;
+  }
+  return jac;
+}
+
+// One Gauss-Newton step of min |d|^2 subject to r = 0: the linearised KKT system
+// [D^T D + eps I, J^T; J, 0] [du; nu] = [-D^T d; -r].
+Eigen::VectorXd KktStep(const Eigen::MatrixXd& jac, const Eigen::VectorXd& res) {
+  const int p = static_cast<int>(jac.cols());
+  const Eigen::MatrixXd J = jac.topRows(5);
+  const Eigen::MatrixXd D = jac.bottomRows(jac.rows() - 5);
+  Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(p + 5, p + 5);
+  const Eigen::MatrixXd dtd = D.transpose() * D;
+  kkt.topLeftCorner(p, p) = dtd + 1e-10 * (1.0 + dtd.diagonal().maxCoeff()) * Eigen::MatrixXd::Identity(p, p);
+  kkt.topRightCorner(p, 5) = J.transpose();
+  kkt.bottomLeftCorner(5, p) = J;
+  Eigen::VectorXd rhs(p + 5);
+  rhs.head(p) = -D.transpose() * res.tail(res.size() - 5);
+  rhs.tail<5>() = -res.head<5>();
+  return kkt.fullPivLu().solve(rhs).head(p);
+}
+
+bool Arrived(const Eigen::VectorXd& r, const ExactArrivalOptions& o) {
+  return r.head<2>().norm() <= o.position_tolerance && r.segment<3>(2).norm() <= o.orientation_tolerance;
+}
+
+// Merit of a trial point: the arrival conditions dominate (scaled to their tolerances' ratio),
+// the deviation counts once they are met.
+double Merit(const Eigen::VectorXd& r) { return r.head<5>().norm(); }
+
+void ValidateProblem(const ExactArrivalProblem& p) {
+  if (p.impulses < 3)
+    internal::ThrowInvalid("impulses", p.impulses, "must be >= 3 (2n unknowns for the 5 arrival conditions)");
+  internal::RequirePositive("mu", p.mu);
+  internal::RequireFinite("x0", p.x0);
+  internal::RequireFinite("x1", p.x1);
+  if (!IsRotation(p.A0, 1e-9)) internal::ThrowInvalid("A0", p.A0.determinant(), "not a rotation matrix (to 1e-9)");
+  if (!IsRotation(p.A1, 1e-9)) internal::ThrowInvalid("A1", p.A1.determinant(), "not a rotation matrix (to 1e-9)");
+  const double miss = (p.reference.StartPoint() - p.x0).norm();
+  if (miss > 1e-9) internal::ThrowInvalid("x0", miss, "distance from the reference's start must be <= 1e-9");
+}
+
+// The summary's per-impulse report and errors from the final parameters.
+void Report(const Setup& s, const Eigen::VectorXd& u, const std::vector<Node>& nodes, const PlanSummary& plan,
+            ExactArrivalSummary& out) {
+  out.impulses.clear();
+  double t = 0.0;
+  for (int k = 0; k < s.n; ++k) {
+    const Node& a = nodes[static_cast<std::size_t>(k)];
+    ExactImpulse e;
+    e.t_impulse = t;
+    e.position = a.x;
+    e.delta_psi = u[k];
+    e.duration = u[s.n + k];
+    e.angles_before = AnglesFromState(a.state, *s.model);
+    const Impulse imp = EnergyPreservingImpulse(e.angles_before, s.mu, e.delta_psi, *s.model);
+    e.delta_omega = imp.delta_omega;
+    e.plate_velocity_change = imp.plate_velocity_change;
+    e.planned_position = s.planned[static_cast<std::size_t>(k)];
+    e.planned_delta_psi = plan.steps[static_cast<std::size_t>(k)].delta_psi;
+    e.planned_duration = plan.steps[static_cast<std::size_t>(k)].duration;
+    out.impulses.push_back(e);
+    t += e.duration;
+  }
+  const Eigen::VectorXd r = Residuals(s, nodes);
+  out.total_time = t;
+  out.x_final = nodes.back().x;
+  out.A_final = nodes.back().A;
+  out.position_error = r.head<2>().norm();
+  out.orientation_error = r.segment<3>(2).norm();
+  out.deviation = r.tail(r.size() - 5).norm();
+  out.max_pass_displacement = 0.0;
+  for (int k = 1; k < s.n; ++k)
+    out.max_pass_displacement = std::max(out.max_pass_displacement, r.segment<2>(5 + 2 * (k - 1)).norm());
+}
+
+// The paper's plan along the reference with n uniform segments: the warm start.
+PlanSummary WarmStart(const ExactArrivalProblem& p, const ExactArrivalOptions& o) {
+  PlanProblem plan;
+  plan.model = p.model;
+  plan.initial = p.initial;
+  plan.mu = p.mu;
+  plan.A0 = p.A0;
+  plan.path = p.reference;
+  plan.partition = {UniformParameter{p.impulses}};
+  return PlanImpulses(plan, o.warm_start);
+}
+
+Setup MakeSetup(const ExactArrivalProblem& p, const ExactArrivalOptions& o, const PlanSummary& plan) {
+  Setup s;
+  s.model = &p.model;
+  s.mu = p.mu;
+  s.n = p.impulses;
+  s.start.state = StateFromAngles(p.initial, p.mu, p.model);
+  s.start.x = p.x0;
+  s.start.A = AlignOrientationToAxis(p.A0, s.start.state.z);
+  s.x1 = p.x1;
+  s.A1 = p.A1;
+  s.integration = o.integration;
+  for (const PlanStep& st : plan.steps) s.planned.push_back(st.p_begin);
+  s.planned.push_back(plan.steps.back().p_end);
+  return s;
+}
+
+// Backtracking: the full KKT step unless it lengthens a flight below zero or worsens the arrival.
+bool TryStep(const Setup& s, const Eigen::VectorXd& u, const Eigen::VectorXd& du, double merit, Eigen::VectorXd* u_new,
+             std::vector<Node>* nodes, Eigen::VectorXd* r_new, int* rollouts) {
+  double alpha = 1.0;
+  for (int tries = 0; tries < 12; ++tries, alpha *= 0.5) {
+    *u_new = u + alpha * du;
+    if ((u_new->tail(s.n).array() <= 0).any()) continue;
+    RollOut(s, *u_new, 0, *nodes);
+    ++*rollouts;
+    *r_new = Residuals(s, *nodes);
+    if (Merit(*r_new) <= std::max(merit, 1e-9) || Merit(*r_new) < 0.9 * merit) return true;
+  }
+  return false;
+}
+
+// Polish with the last Jacobian (chord steps): the minimum-norm correction of the five arrival
+// conditions only, J^T (J J^T)^-1 r, while it reduces them; it moves the pass points by O(|r|).
+void Polish(const Setup& s, const Eigen::MatrixXd& jac, Eigen::VectorXd* u, std::vector<Node>* nodes,
+            Eigen::VectorXd* r, int* rollouts) {
+  const Eigen::MatrixXd J = jac.topRows(5);
+  const Eigen::MatrixXd jjt = J * J.transpose();
+  const auto lu = jjt.fullPivLu();
+  for (int i = 0; i < 6 && Merit(*r) > 0.0; ++i) {
+    const Eigen::VectorXd u_new = *u - J.transpose() * lu.solve(r->head<5>());
+    if ((u_new.tail(s.n).array() <= 0).any()) return;
+    std::vector<Node> trial = *nodes;
+    RollOut(s, u_new, 0, trial);
+    ++*rollouts;
+    const Eigen::VectorXd r_new = Residuals(s, trial);
+    if (!(Merit(r_new) < Merit(*r))) return;
+    *u = u_new;
+    *nodes = trial;
+    *r = r_new;
+  }
+}
+
+}  // namespace
+
+ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const ExactArrivalOptions& options) {
+  const std::string err = options.Validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  ValidateProblem(problem);
+  ExactArrivalSummary out;
+  const PlanSummary plan = WarmStart(problem, options);
+  if (!plan.IsSolutionUsable()) {
+    out.status = ExactArrivalStatus::kWarmStartFailed;
+    out.message = "warm start: " + plan.BriefReport();
+    return out;
+  }
+  const Setup s = MakeSetup(problem, options, plan);
+  Eigen::VectorXd u(2 * s.n);
+  for (int k = 0; k < s.n; ++k) {
+    u[k] = plan.steps[static_cast<std::size_t>(k)].delta_psi;
+    u[s.n + k] = plan.steps[static_cast<std::size_t>(k)].duration;
+  }
+  std::vector<Node> nodes(static_cast<std::size_t>(s.n) + 1);
+  nodes[0] = s.start;
+  try {
+    RollOut(s, u, 0, nodes);
+    out.rollouts = 1;
+    Eigen::VectorXd r = Residuals(s, nodes);
+    out.planned_position_error = r.head<2>().norm();
+    out.planned_orientation_error = r.segment<3>(2).norm();
+    out.planned_total_time = u.tail(s.n).sum();
+    bool stalled = false;
+    double deviation = 0.0;
+    Eigen::MatrixXd jac;
+    while (out.iterations < options.max_iterations) {
+      jac = Jacobian(s, u, nodes, options.difference_step, options.jacobian_integration, &out.rollouts);
+      const Eigen::VectorXd du = KktStep(jac, r);
+      ++out.iterations;
+      Eigen::VectorXd u_new, r_new;
+      std::vector<Node> trial = nodes;
+      if (!TryStep(s, u, du, Merit(r), &u_new, &trial, &r_new, &out.rollouts)) {
+        stalled = true;
+        break;
+      }
+      u = u_new;
+      nodes = trial;
+      r = r_new;
+      const double deviation_before = deviation;
+      deviation = r.tail(r.size() - 5).norm();
+      if (Arrived(r, options) && (du.norm() <= 1e-8 * (1.0 + u.norm()) ||
+                                  deviation_before - deviation <= options.deviation_tolerance * deviation_before))
+        break;
+    }
+    if (jac.size() > 0) Polish(s, jac, &u, &nodes, &r, &out.rollouts);
+    Report(s, u, nodes, plan, out);
+    if (Arrived(r, options)) {
+      out.status = ExactArrivalStatus::kArrived;
+      out.message.clear();
+    } else {
+      out.status = ExactArrivalStatus::kNotReached;
+      out.message = stalled ? "no step reduced the arrival error (closest arrival reported)"
+                            : "iteration limit reached (closest arrival reported)";
+    }
+  } catch (const std::runtime_error& e) {
+    out.status = ExactArrivalStatus::kIntegrationFailure;
+    out.message = e.what();
+  }
+  return out;
+}
+
+ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
+                                const IntegrationOptions& integration) {
+  BallState state = StateFromAngles(problem.initial, problem.mu, problem.model);
+  ReplayResult out;
+  out.x = problem.x0;
+  out.A = AlignOrientationToAxis(problem.A0, state.z);
+  for (std::size_t k = 0; k < impulses.size(); ++k) {
+    const AngleState angles = AnglesFromState(state, problem.model);
+    const Impulse imp = EnergyPreservingImpulse(angles, problem.mu, impulses[k].delta_psi, problem.model);
+    const FreeMotion motion(problem.model, FreeMotionStart{imp.state_after, out.x, out.A}, integration);
+    const MotionSample end = motion.At(impulses[k].duration);
+    state = end.state;
+    out.x = end.x;
+    out.A = end.A;
+  }
+  out.position_error = (out.x - problem.x1).norm();
+  out.orientation_error = LogSO3(problem.A1.transpose() * out.A).norm();
+  return out;
+}
+
+}  // namespace plateball
