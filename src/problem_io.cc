@@ -607,6 +607,15 @@ class Reader {
     return t;
   }
 
+  SteerTask Steer(const json& j, const std::string& path) const {
+    Object(j, path, {"goal", "goal_orientation", "impulses"});
+    SteerTask t;
+    t.goal = Vector<2>(Require(j, path, "goal"), Join(path, "goal"));
+    if (const json* v = Find(j, "goal_orientation")) t.goal_orientation = Orientation(*v, Join(path, "goal_orientation"));
+    if (const json* v = Find(j, "impulses")) t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 3, kMaxCount));
+    return t;
+  }
+
   std::map<std::string, ExpectedValue> Expected(const json& j, const std::string& path) const {
     if (!j.is_object()) Fail(path, j, "must be a JSON object of name: {value, tolerance}");
     std::map<std::string, ExpectedValue> out;
@@ -625,7 +634,7 @@ class Reader {
   Problem Document(const json& root) const {
     if (!root.is_object()) Fail("(document)", root, "a problem file must be a JSON object");
     Object(root, "", {"name", "description", "seed", "integration", "ball", "initial", "simulate", "reach",
-                      "plan", "isoparallel", "expected"});
+                      "plan", "isoparallel", "steer", "expected"});
     Problem p;
     p.source = source_;
     if (const json* v = Find(root, "name")) p.name = String(*v, "name");
@@ -638,6 +647,7 @@ class Reader {
     if (const json* v = Find(root, "reach")) p.reach = Reach(*v, "reach");
     if (const json* v = Find(root, "plan")) p.plan = Plan(*v, "plan");
     if (const json* v = Find(root, "isoparallel")) p.isoparallel = Isoparallel(*v, "isoparallel");
+    if (const json* v = Find(root, "steer")) p.steer = Steer(*v, "steer");
     if (const json* v = Find(root, "expected")) p.expected = Expected(*v, "expected");
     return p;
   }
@@ -879,6 +889,10 @@ class Writer {
                            {"threads", t.solver.threads},
                            {"enumerate_families", t.solver.enumerate_families}}}};
     }
+    if (p.steer)
+      d["steer"] = ojson{{"goal", Vec("steer.goal", p.steer->goal)},
+                         {"goal_orientation", Mat("steer.goal_orientation.matrix", p.steer->goal_orientation)},
+                         {"impulses", p.steer->impulses}};
     if (!p.expected.empty()) {
       ojson e = ojson::object();
       for (const auto& [name, v] : p.expected)

@@ -195,4 +195,63 @@ IsoparallelPlanSetup IsoparallelPlanSetupFor(const Problem& problem, const Isopa
   return s;
 }
 
+namespace {
+
+const SteerTask& RequireSteer(const Problem& problem) {
+  if (!problem.steer) ThrowMissing(problem, "steer", "the problem has no steer section");
+  return *problem.steer;
+}
+
+ExactArrivalOptions ExactOptionsFor(const Problem& problem) {
+  ExactArrivalOptions o;
+  o.warm_start = PlanOptionsFor(problem);
+  return o;
+}
+
+void SetImpulses(int impulses, const std::string& n_field, ExactArrivalProblem* p) {
+  if (impulses == 0) return;
+  if (impulses < 3) internal::ThrowInvalid(n_field, impulses, "must be >= 3 (2n unknowns for the 5 arrival conditions)");
+  p->impulses = impulses;
+}
+
+}  // namespace
+
+ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, int impulses, const std::string& n_field) {
+  const SteerTask& steer = RequireSteer(problem);
+  const PlanTask& task = RequirePlan(problem);
+  ExactArrivalSetup s;
+  s.problem.model = problem.model;
+  s.problem.initial = problem.initial_angles;
+  s.problem.mu = problem.mu;
+  s.problem.A0 = problem.A0;
+  s.problem.x0 = problem.x0;
+  s.problem.reference = PathFromSpec(task.path, "plan.path");
+  RequireStartOnPath(problem, s.problem.reference);
+  s.problem.x1 = steer.goal;
+  s.problem.A1 = steer.goal_orientation;
+  s.problem.impulses = steer.impulses;
+  SetImpulses(impulses, n_field, &s.problem);
+  s.options = ExactOptionsFor(problem);
+  return s;
+}
+
+ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, const IsoparallelSolution& solution, int impulses,
+                                       const std::string& n_field) {
+  const IsoparallelTask& task = RequireIsoparallel(problem);
+  const IsoparallelPlanSetup plan = IsoparallelPlanSetupFor(problem, solution);
+  ExactArrivalSetup s;
+  s.problem.model = plan.problem.model;
+  s.problem.initial = InitialAnglesFromOrientation(plan.problem.A0, plan.problem.psi);
+  s.problem.mu = plan.problem.mu;
+  s.problem.A0 = plan.problem.A0;
+  s.problem.x0 = solution.start;
+  s.problem.reference = OptimalPath(solution);
+  s.problem.x1 = problem.steer ? problem.steer->goal : task.goal;
+  s.problem.A1 = problem.steer ? problem.steer->goal_orientation : task.goal_orientation;
+  s.problem.impulses = problem.steer ? problem.steer->impulses : std::max(3, task.impulses);
+  SetImpulses(impulses, n_field, &s.problem);
+  s.options = ExactOptionsFor(problem);
+  return s;
+}
+
 }  // namespace plateball

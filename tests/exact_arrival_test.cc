@@ -161,3 +161,51 @@ TEST(ExactArrival, DefaultSummarySaysNotRun) {
 
 }  // namespace
 }  // namespace plateball
+
+namespace plateball {
+namespace {
+
+// The steer problems in problems/ (what `plateball steer` runs): the reference is the shortest
+// isoparallel path, the certified answers the arrival errors of the independent re-integration.
+void CheckSteerProblem(const std::string& file) {
+  const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/" + file));
+  ASSERT_TRUE(p.steer.has_value()) << file;
+  ASSERT_TRUE(p.isoparallel.has_value()) << file;
+  const IsoparallelSetup iso = IsoparallelSetupFor(p);
+  const IsoparallelSummary solved = SolveIsoparallel(iso.problem, iso.options);
+  ASSERT_TRUE(solved.IsSolutionUsable()) << file;
+  const ExactArrivalSetup setup = ExactArrivalSetupFor(p, solved.Shortest());
+  EXPECT_EQ(setup.problem.impulses, p.steer->impulses);
+  const ExactArrivalSummary s = SolveExactArrival(setup.problem, setup.options);
+  ExpectArrivesByReplay(setup.problem, s);
+  const ReplayResult replay = ReplayExactArrival(setup.problem, s.impulses);
+  int checked = 0;
+  for (const auto& [name, e] : p.expected) {
+    double value = NAN;
+    if (name == "position_error") value = replay.position_error;
+    else if (name == "orientation_error") value = replay.orientation_error;
+    else if (name == "shortest_length") value = solved.Shortest().length;
+    else ADD_FAILURE() << file << ": unknown expected value '" << name << "'";
+    EXPECT_NEAR(value, e.value, e.tolerance) << file << ": " << name;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3) << file;
+}
+
+TEST(ExactArrivalProblems, Figure7ExactMatchesItsCertifiedAnswers) { CheckSteerProblem("figure7_exact.json"); }
+TEST(ExactArrivalProblems, RotationExactMatchesItsCertifiedAnswers) {
+  CheckSteerProblem("isoparallel_rotation_exact.json");
+}
+
+TEST(ExactArrivalProblems, AdapterRejectsTooFewImpulsesNamingTheField) {
+  const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/figure7_exact.json"));
+  IsoparallelSolution fake;
+  fake.length = 1.0;
+  const std::string m = plateball::testing::InvalidArgumentMessage([&] { ExactArrivalSetupFor(p, fake, 2, "--impulses"); });
+  EXPECT_NE(m.find("--impulses"), std::string::npos) << m;
+  const std::string missing = plateball::testing::InvalidArgumentMessage([&] { ExactArrivalSetupFor(p); });
+  EXPECT_NE(missing.find("figure7_exact.json"), std::string::npos) << missing;
+}
+
+}  // namespace
+}  // namespace plateball

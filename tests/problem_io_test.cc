@@ -176,6 +176,12 @@ void ExpectSameProblem(const Problem& a, const Problem& b) {
     EXPECT_EQ(x.solver.tolerance, y.solver.tolerance);
     EXPECT_EQ(x.solver.threads, y.solver.threads);
   }
+  ASSERT_EQ(a.steer.has_value(), b.steer.has_value());
+  if (a.steer) {
+    EXPECT_EQ(a.steer->goal, b.steer->goal);
+    EXPECT_EQ(a.steer->goal_orientation, b.steer->goal_orientation);
+    EXPECT_EQ(a.steer->impulses, b.steer->impulses);
+  }
   ASSERT_EQ(a.expected.size(), b.expected.size());
   for (const auto& [name, v] : a.expected) {
     ASSERT_EQ(b.expected.count(name), 1u) << name;

@@ -118,6 +118,15 @@ struct IsoparallelTask {
   IsoparallelOptions solver;
 };
 
+/// `plateball steer` / `isoparallel_solve --exact` (issue 11): exact arrival at (goal,
+/// goal_orientation) with `impulses` impulses along a reference: the plan section's path when the
+/// file has one, else the shortest isoparallel path.
+struct SteerTask {
+  Eigen::Vector2d goal = Eigen::Vector2d::Zero();
+  Eigen::Matrix3d goal_orientation = Eigen::Matrix3d::Identity();
+  int impulses = 12;  ///< n >= 3
+};
+
 /// Golden values a problem file may carry ("expected"): name -> value, with a tolerance each.
 struct ExpectedValue {
   double value = 0.0;
@@ -144,6 +153,7 @@ struct Problem {
   std::optional<ReachTask> reach;
   std::optional<PlanTask> plan;
   std::optional<IsoparallelTask> isoparallel;
+  std::optional<SteerTask> steer;
   std::map<std::string, ExpectedValue> expected;
 };
 

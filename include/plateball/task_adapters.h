@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "plateball/convergence.h"
+#include "plateball/exact_arrival.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/isoparallel.h"
@@ -82,5 +83,19 @@ struct IsoparallelPlanSetup {
 /// impulse count (`impulses` > 0 overrides it) and integration section.
 IsoparallelPlanSetup IsoparallelPlanSetupFor(const Problem& problem, const IsoparallelSolution& solution,
                                              int impulses = 0);
+
+struct ExactArrivalSetup {
+  ExactArrivalProblem problem;
+  ExactArrivalOptions options;
+};
+/// `steer` along the plan section's path: the file's ball, initial state, x0 (= the path's start),
+/// the steer section's goal and impulse count (`impulses` > 0 overrides it, naming `n_field`).
+ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, int impulses = 0,
+                                       const std::string& n_field = "impulses");
+/// `steer` / `isoparallel_solve --exact` along an isoparallel optimal path: ball, psi, mu and
+/// start orientation as IsoparallelPlanSetupFor; goal and impulse count from the steer section
+/// when present, else the isoparallel section's goal, goal orientation and impulses.
+ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, const IsoparallelSolution& solution,
+                                       int impulses = 0, const std::string& n_field = "impulses");
 
 }  // namespace plateball
