@@ -20,3 +20,13 @@ plateball_cli_test(steer.impulses_are_recorded 0 REGEX "\"plate_velocity_change\
 plateball_cli_test(steer.too_few_impulses 3 REGEX "--impulses: value 2" -- steer problems/figure7_exact.json --impulses 2)
 plateball_cli_test(steer.needs_a_steer_task 3 REGEX "steer" -- steer problems/circle.json)
 plateball_cli_test(steer.missing_file 5 -- steer problems/no_such_problem.json)
+
+# isoparallel_solve --exact: the built-in Figure 7 problem arrives exactly with its 12 impulses.
+if(TARGET isoparallel_solve)
+  add_test(NAME IsoparallelCli.ExactArrivesWith12Impulses COMMAND isoparallel_solve --exact)
+  set_tests_properties(IsoparallelCli.ExactArrivesWith12Impulses PROPERTIES
+    PASS_REGULAR_EXPRESSION "exact arrival: arrived with 12 impulses, re-integrated errors: position [0-9.]+e-1[3-9], orientation [0-9.]+e-1[1-9] rad")
+  add_test(NAME IsoparallelCli.ExactNeedsThreeImpulses COMMAND isoparallel_solve --exact --impulses 2)
+  set_tests_properties(IsoparallelCli.ExactNeedsThreeImpulses PROPERTIES
+    PASS_REGULAR_EXPRESSION "--impulses' = 2 is invalid")
+endif()

@@ -19,6 +19,7 @@
 #include <iomanip>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -27,6 +28,7 @@
 
 #include "common/command_line.h"
 #include "common/errors.h"
+#include "common/exact_output.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
 #include "common/output_file.h"
@@ -184,6 +186,7 @@ struct CliOptions {
   int impulses = 0, starts = 0;
   std::string seed;  // empty: the problem's
   bool shooting = false;
+  bool exact = false;  // exact arrival along the optimal path (issue 11)
 };
 
 // The problem (file or built-in Figure 7) mapped by the task adapter, with the command line's
@@ -288,6 +291,28 @@ void PrintPlan(const plateball::PlanSummary& plan, double final_error, double so
   std::cout.flush();
 }
 
+// --exact: exact arrival at the goal (position and orientation) with the same impulse count along
+// the optimal path (exact_arrival.h), re-integrated independently; one line on standard output.
+struct ExactRun {
+  plateball::ExactArrivalProblem problem;
+  plateball::ExactArrivalSummary summary;
+  plateball::ReplayResult replay;
+};
+ExactRun SolveExact(const plateball::Problem& problem, const plateball::IsoparallelSolution& best, int impulses) {
+  using namespace plateball;
+  const ExactArrivalSetup setup = ExactArrivalSetupFor(problem, best, impulses, "--impulses");
+  const auto t0 = std::chrono::steady_clock::now();
+  ExactRun r{setup.problem, SolveExactArrival(setup.problem, setup.options), {}};
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.replay = ReplayExactArrival(setup.problem, r.summary.impulses);
+  std::cout << std::setprecision(3) << "exact arrival: " << ToString(r.summary.status) << " with "
+            << r.summary.impulses.size() << " impulses, re-integrated errors: position " << r.replay.position_error
+            << ", orientation " << r.replay.orientation_error << " rad; max pass-point displacement "
+            << r.summary.max_pass_displacement << ", total time " << r.summary.total_time << ", "
+            << r.summary.iterations << " iterations, " << seconds * 1e3 << " ms\n";
+  return r;
+}
+
 int Run(const CliOptions& cli) {
   using namespace plateball;
   using namespace plateball::tools;
@@ -318,9 +343,18 @@ int Run(const CliOptions& cli) {
   const std::vector<Eigen::Vector2d> path_pts = SamplePath(best, 400);
   const std::vector<std::vector<Eigen::Vector2d>> arcs =
       plan.IsSolutionUsable() ? SampleArcs(problem.model, plan, 40) : std::vector<std::vector<Eigen::Vector2d>>{};
-  if (!cli.out_file.empty())
-    WriteJson(PlanFileJson(problem, prob, opt, summary, path_pts, plan, arcs, final_error), cli.out_file);
-  if (!cli.svg_file.empty()) Figure(name, prob, best, path_pts, arcs, plan).Write(cli.svg_file);
+  std::optional<ExactRun> exact;
+  if (cli.exact) exact = SolveExact(problem, best, cli.impulses);
+  if (!cli.out_file.empty()) {
+    Json doc = PlanFileJson(problem, prob, opt, summary, path_pts, plan, arcs, final_error);
+    if (exact) doc["exact"] = ExactArrivalToJson(exact->summary, exact->replay);
+    WriteJson(doc, cli.out_file);
+  }
+  if (!cli.svg_file.empty() && exact)
+    DrawExactArrival(exact->problem, exact->summary, name + ": exact arrival", cli.svg_file);
+  else if (!cli.svg_file.empty())
+    Figure(name, prob, best, path_pts, arcs, plan).Write(cli.svg_file);
+  if (exact && !exact->summary.IsSolutionUsable()) return kExitNoSolution;
   return plan.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
 }
 
@@ -341,6 +375,9 @@ int main(int argc, char** argv) {
   app.add_option("--starts", cli.starts, "multi-start count (overrides isoparallel.solver.starts)")->check(CLI::Range(1, 1000000));
   app.add_flag("--shooting", cli.shooting,
                "identity targets: use the multi-start shooting instead of the family enumeration");
+  app.add_flag("--exact", cli.exact,
+               "also solve exact arrival at the goal position and orientation with the same impulse count "
+               "(JSON section \"exact\", SVG: the exact trajectory)");
   if (const auto code = ParseCommandLine(app, argc, argv, "isoparallel_solve")) return *code;
   // Failures read as in the `plateball` CLI (errors.h): 3 bad input, 4 computation failed,
   // 5 unreadable/unwritable file, 6 internal error.
