@@ -116,6 +116,7 @@ Eigen::MatrixXd Jacobian(Setup s, const Eigen::VectorXd& u, const std::vector<No
     Eigen::VectorXd up = u, um = u;
     up[j] += step;
     um[j] -= step;
+    work[static_cast<std::size_t>(k)] = nodes[static_cast<std::size_t>(k)];  // the earlier columns moved it
     RollOut(s, up, k, work);
     const Eigen::VectorXd rp = Residuals(s, work);
     RollOut(s, um, k, work);
@@ -247,7 +248,7 @@ void Polish(const Setup& s, const Eigen::MatrixXd& jac, Eigen::VectorXd* u, std:
   const Eigen::MatrixXd J = jac.topRows(5);
   const Eigen::MatrixXd jjt = J * J.transpose();
   const auto lu = jjt.fullPivLu();
-  for (int i = 0; i < 6 && Merit(*r) > 0.0; ++i) {
+  for (int i = 0; i < 8 && Merit(*r) > 0.0; ++i) {
     const Eigen::VectorXd u_new = *u - J.transpose() * lu.solve(r->head<5>());
     if ((u_new.tail(s.n).array() <= 0).any()) return;
     std::vector<Node> trial = *nodes;
@@ -305,11 +306,13 @@ ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const 
       u = u_new;
       nodes = trial;
       r = r_new;
+      // Stop when the deviation has settled (the arrival is then finished by Polish's chord steps,
+      // which move the pass points by O(|r|)) or when the step vanished at arrival.
       const double deviation_before = deviation;
       deviation = r.tail(r.size() - 5).norm();
-      if (Arrived(r, options) && (du.norm() <= 1e-8 * (1.0 + u.norm()) ||
-                                  deviation_before - deviation <= options.deviation_tolerance * deviation_before))
-        break;
+      const bool settled = out.iterations > 1 && Merit(r) < 1e-6 &&
+                           std::abs(deviation_before - deviation) <= options.deviation_tolerance * deviation_before;
+      if (settled || (Arrived(r, options) && du.norm() <= 1e-8 * (1.0 + u.norm()))) break;
     }
     if (jac.size() > 0) Polish(s, jac, &u, &nodes, &r, &out.rollouts);
     Report(s, u, nodes, plan, out);
