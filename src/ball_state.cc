@@ -32,7 +32,7 @@ PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& 
   internal::RequireFinite("theta", s.theta);
   internal::RequireFinite("phi", s.phi);
   internal::RequireFinite("psi", s.psi);
-  internal::RequirePositive("mu", mu);
+  internal::RequireEnergy("mu", mu);
   const double st = std::sin(s.theta), ct = std::cos(s.theta);
   const double sp = std::sin(s.phi), cp = std::cos(s.phi);
   const double w = s.phi - s.psi;

@@ -38,7 +38,7 @@ std::string ConvergenceStudy::BriefReport() const {
 }
 
 ConvergenceStudy RunConvergenceStudy(const Problem& problem, std::vector<int> ns, const PlanOptions& options) {
-  if (!problem.plan) throw std::invalid_argument("'plan' is missing: the problem has no plan task");
+  if (!problem.plan) internal::ThrowInvalid("plan", "(missing)", "the problem has no plan task");
   if (ns.empty()) ns = problem.plan->converge_n;
   if (ns.empty()) ns = {16, 32, 64, 128, 256, 512, 1024};
   for (std::size_t i = 0; i < ns.size(); ++i)

@@ -15,14 +15,14 @@ namespace {
 using internal::FullState;
 
 void ValidateStart(const FreeMotionStart& s, const IntegrationOptions& options) {
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
+  internal::ThrowIfInvalid(options.Validate());
   ValidateState(s.state, "start.state");
-  internal::RequireFinite("start.x0", s.x0);
-  if (!IsRotation(s.A0, 1e-9)) throw std::invalid_argument("start.A0 is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+  internal::RequireCoordinates("start.x0", s.x0);
+  if (!IsRotation(s.A0, 1e-9))
+    internal::ThrowInvalid("start.A0", "(matrix)", "not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
   if (std::abs(s.A0.col(2).dot(s.state.z) - 1.0) > 1e-9)
-    throw std::invalid_argument("start.A0 e3 must equal start.state.z (the symmetry axis); |A0 e3 - z| = " +
-                                std::to_string((s.A0.col(2) - s.state.z).norm()));
+    internal::ThrowInvalid("start.A0 (|A0 e3 - z|)", (s.A0.col(2) - s.state.z).norm(),
+                           "A0 e3 must equal start.state.z (the symmetry axis)");
 }
 
 FullState InitialFull(const Eigen::Vector3d& z) {
@@ -86,7 +86,7 @@ FreeMotion FreeMotion::FromAngles(const BallModel& model, const AngleState& angl
   // angles fix z, A0 fixes the rest of the frame.
   Eigen::Matrix3d a = A0;
   internal::RequireFinite("A0", a);
-  if (!IsRotation(a, 1e-9)) throw std::invalid_argument("A0 is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+  if (!IsRotation(a, 1e-9)) internal::ThrowInvalid("A0", "(matrix)", "not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
   const Eigen::Vector3d e = a.col(2);
   const Eigen::Vector3d axis = e.cross(s.state.z);
   const double angle = std::atan2(axis.norm(), e.dot(s.state.z));
@@ -153,7 +153,8 @@ Eigen::Vector2d FreeMotion::PositionAt(double t) const {
 std::vector<MotionSample> FreeMotion::Sample(double t0, double t1, int n) const {
   internal::RequireFinite("t0", t0);
   internal::RequireFinite("t1", t1);
-  if (n < 2) internal::ThrowInvalid("samples", n, "must be >= 2");
+  if (n < 2 || n > internal::kMaxSamples)
+    internal::ThrowInvalid("samples", n, "must be in [2, " + std::to_string(internal::kMaxSamples) + "]");
   if (!(t1 >= t0)) internal::ThrowInvalid("t1", t1, "must be >= t0");
   std::vector<MotionSample> out;
   out.reserve(static_cast<std::size_t>(n));

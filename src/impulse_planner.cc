@@ -59,7 +59,8 @@ std::string ToString(PlanStatus status) {
 }
 
 std::string PlanOptions::Validate() const {
-  if (bound_samples < 2) return "plan option 'bound_samples' = " + std::to_string(bound_samples) + " must be >= 2";
+  if (bound_samples < 2 || bound_samples > 100000)
+    return internal::InvalidValueMessage("bound_samples", bound_samples, "must be in [2, 100000]");
   std::string e = join.Validate();
   if (!e.empty()) return e;
   if (reach_fallback) {
@@ -82,7 +83,7 @@ std::string PlanSummary::BriefReport() const {
 
 Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
   internal::RequireFinite("A0", A0);
-  if (!IsRotation(A0, 1e-9)) throw std::invalid_argument("'A0' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+  if (!IsRotation(A0, 1e-9)) internal::ThrowInvalid("A0", "(matrix)", "not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
   Eigen::Matrix3d a = A0;
   const Eigen::Vector3d e = a.col(2);
   const Eigen::Vector3d axis = e.cross(z);
@@ -98,9 +99,8 @@ Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::V
 PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
                          const Path& path, const std::vector<std::vector<double>>& partition,
                          const std::vector<EnergyChangeSpec>& energy_changes, const PlanOptions& options) {
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
-  internal::RequirePositive("mu", mu);
+  internal::ThrowIfInvalid(options.Validate());
+  internal::RequireEnergy("mu", mu);
   BallState state = StateFromAngles(initial, mu, model);  // validates the angles
   if (static_cast<int>(partition.size()) != path.PieceCount())
     internal::ThrowInvalid("partition (piece count)", static_cast<double>(partition.size()),
@@ -109,6 +109,8 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
   for (int i = 0; i < path.PieceCount(); ++i) {
     ValidatePartition(path.pieces()[i], partition[i], "partition[" + std::to_string(i) + "]");
     n_total += static_cast<int>(partition[i].size()) - 1;
+    if (n_total > internal::kMaxPartitionSteps)  // README, "Limits"
+      internal::ThrowInvalid("partition (steps)", n_total, "must be <= " + std::to_string(internal::kMaxPartitionSteps));
   }
   std::vector<std::vector<double>> factors(static_cast<std::size_t>(n_total));
   for (std::size_t i = 0; i < energy_changes.size(); ++i) {
@@ -286,7 +288,7 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
 }
 
 PlanSummary PlanImpulses(const Problem& problem, const PlanOptions& options, int n) {
-  if (!problem.plan) throw std::invalid_argument("'plan' is missing: the problem has no plan task");
+  if (!problem.plan) internal::ThrowInvalid("plan", "(missing)", "the problem has no plan task");
   const PlanTask& task = *problem.plan;
   const Path path = Path::FromSpec(task.path, "plan.path");
   PartitionSpec spec = task.partition;
@@ -294,11 +296,10 @@ PlanSummary PlanImpulses(const Problem& problem, const PlanOptions& options, int
   const auto partition = MakePartition(path, spec, "plan.partition");
   const double size = std::max(1.0, path.Length());
   if ((problem.x0 - path.StartPoint()).norm() > 1e-9 * size) {
-    std::ostringstream os;
-    os.precision(17);
-    os << "'x0' = (" << problem.x0.x() << ", " << problem.x0.y() << ") is invalid: must equal the path start p(tau_0) = ("
-       << path.StartPoint().x() << ", " << path.StartPoint().y() << ")";
-    throw std::invalid_argument(os.str());
+    auto pair = [](const Eigen::Vector2d& v) {
+      return "(" + internal::FormatNumber(v.x()) + ", " + internal::FormatNumber(v.y()) + ")";
+    };
+    internal::ThrowInvalid("x0", pair(problem.x0), "must equal the path start p(tau_0) = " + pair(path.StartPoint()));
   }
   PlanOptions o = options;
   o.integration = problem.integration;

@@ -181,14 +181,13 @@ class JoinFunction {
 
 void ValidateJoinInput(const AngleState& start, double mu, const Eigen::Vector2d& x0, const Eigen::Vector2d& target,
                        const JoinOptions& options) {
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
+  internal::ThrowIfInvalid(options.Validate());
   internal::RequireFinite("start.theta", start.theta);
   internal::RequireFinite("start.phi", start.phi);
   internal::RequireFinite("start.psi", start.psi);
-  internal::RequirePositive("mu", mu);
-  internal::RequireFinite("x0", x0);
-  internal::RequireFinite("target", target);
+  internal::RequireEnergy("mu", mu);
+  internal::RequireCoordinates("x0", x0);
+  internal::RequireCoordinates("target", target);
 }
 
 }  // namespace
@@ -204,20 +203,15 @@ std::string ToString(JoinStatus status) {
 }
 
 std::string JoinOptions::Validate() const {
-  if (std::isfinite(residual_tolerance) && residual_tolerance > 0 && max_iterations >= 1 &&
-      std::isfinite(local_time_factor) && local_time_factor >= 1)
-    return integration.Validate();
-  std::ostringstream os;
-  os.precision(17);
-  if (!(std::isfinite(residual_tolerance) && residual_tolerance > 0))
-    os << "join option 'residual_tolerance' = " << residual_tolerance << " must be finite and > 0";
-  else if (max_iterations < 1)
-    os << "join option 'max_iterations' = " << max_iterations << " must be >= 1";
-  else if (!(std::isfinite(local_time_factor) && local_time_factor >= 1))
-    os << "join option 'local_time_factor' = " << local_time_factor << " must be finite and >= 1";
-  else
-    return integration.Validate();
-  return os.str();
+  // residual_tolerance in [1e-15, 1e-3]: beyond 1e-3 a join "converges" to the wrong point (0.999
+  // called every target the start), below 1e-15 no double residual meets it.
+  if (!(residual_tolerance >= 1e-15 && residual_tolerance <= 1e-3))
+    return internal::InvalidValueMessage("residual_tolerance", residual_tolerance, "must be in [1e-15, 0.001]");
+  if (max_iterations < 1 || max_iterations > 10000)
+    return internal::InvalidValueMessage("max_iterations", max_iterations, "must be in [1, 10000]");
+  if (!(local_time_factor >= 1 && local_time_factor <= 1000))
+    return internal::InvalidValueMessage("local_time_factor", local_time_factor, "must be in [1, 1000]");
+  return integration.Validate();
 }
 
 std::string JoinSummary::BriefReport() const {

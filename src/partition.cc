@@ -12,6 +12,8 @@ using internal::ThrowInvalid;
 
 void RequireCount(int n, const std::string& field) {
   if (n < 1) ThrowInvalid(field, n, "a partition needs n >= 1 steps (at least 2 points)");
+  if (n > internal::kMaxPartitionSteps)  // README, "Limits": a plan's work and memory grow with n
+    ThrowInvalid(field, n, "must be <= " + std::to_string(internal::kMaxPartitionSteps));
 }
 }  // namespace
 
@@ -23,19 +25,19 @@ void ValidatePartition(const SmoothCurve& curve, const std::vector<double>& taus
     const std::string f = field + "[" + std::to_string(k) + "]";
     internal::RequireFinite(f, taus[k]);
     if (k > 0 && !(taus[k] > taus[k - 1]))
-      ThrowInvalid(f, taus[k], "partition values must increase strictly (previous " + std::to_string(taus[k - 1]) + ")");
+      ThrowInvalid(f, taus[k], "partition values must increase strictly (previous " + internal::FormatNumber(taus[k - 1]) + ")");
   }
   if (std::abs(taus.front() - curve.Begin()) > 1e-12 * std::max(1.0, std::abs(span)))
-    ThrowInvalid(field + "[0]", taus.front(), "must equal the start of the parameter interval " + std::to_string(curve.Begin()));
+    ThrowInvalid(field + "[0]", taus.front(), "must equal the start of the parameter interval " + internal::FormatNumber(curve.Begin()));
   if (std::abs(taus.back() - curve.End()) > 1e-12 * std::max(1.0, std::abs(span)))
     ThrowInvalid(field + "[" + std::to_string(taus.size() - 1) + "]", taus.back(),
-                 "must equal the end of the parameter interval " + std::to_string(curve.End()));
+                 "must equal the end of the parameter interval " + internal::FormatNumber(curve.End()));
   const double size = std::max(1.0, curve.Length());
   for (std::size_t k = 1; k < taus.size(); ++k) {
     const double step = (curve.Value(taus[k]) - curve.Value(taus[k - 1])).norm();
     if (!(step > 1e-12 * size))
       ThrowInvalid(field + "[" + std::to_string(k) + "] (|p(tau_k) - p(tau_k-1)|)", step,
-                   "repeated path point: consecutive partition points must be distinct on the plate");
+                   "consecutive partition points must be more than 1e-12 x the path length apart on the plate");
   }
 }
 
@@ -93,18 +95,18 @@ std::vector<std::vector<double>> MakePartition(const Path& path, const Partition
     if (path.PieceCount() != 1)
       ThrowInvalid(field + ".taus (pieces)", path.PieceCount(),
                    "explicit partitions are for single-piece paths; use a uniform type for piecewise paths");
-    try {
-      out.push_back(ExplicitPartition(path.pieces().front(), spec.taus));
-    } catch (const std::invalid_argument& e) {
-      const std::string m = e.what();
-      throw std::invalid_argument(m.rfind("'partition", 0) == 0 ? "'" + field + m.substr(10) : m);
-    }
+    RequireCount(static_cast<int>(std::min<std::size_t>(spec.taus.size(), 1u << 30)) - 1, field + ".taus (steps)");
+    ValidatePartition(path.pieces().front(), spec.taus, field + ".taus");  // named by the caller's field
+    out.push_back(ExplicitPartition(path.pieces().front(), spec.taus));
     return out;
   }
   if (spec.type != "uniform_parameter" && spec.type != "uniform_arc_length")
-    throw std::invalid_argument("'" + field + ".type' = \"" + spec.type +
-                                "\" is invalid: must be uniform_parameter, uniform_arc_length or explicit");
-  if (spec.n < 1) ThrowInvalid(field + ".n", spec.n, "a partition needs n >= 1 steps (at least 2 points)");
+    ThrowInvalid(field + ".type", "\"" + spec.type + "\"", "must be uniform_parameter, uniform_arc_length or explicit");
+  RequireCount(spec.n, field + ".n");
+  const double steps = static_cast<double>(spec.n) * static_cast<double>(path.PieceCount());
+  if (steps > internal::kMaxPartitionSteps)  // every piece gets n steps
+    ThrowInvalid(field + ".n", spec.n, "n x pieces = " + internal::FormatNumber(steps) + " must be <= " +
+                                           std::to_string(internal::kMaxPartitionSteps));
   for (const SmoothCurve& c : path.pieces())
     out.push_back(spec.type == "uniform_parameter" ? UniformParameterPartition(c, spec.n)
                                                    : UniformArcLengthPartition(c, spec.n));

@@ -13,11 +13,9 @@ namespace {
 using internal::RequireFinite;
 using internal::ThrowInvalid;
 
-// "'radius' = 0 is invalid..." -> "'path.radius' = 0 is invalid...".
-std::string Prefixed(const std::string& field, const std::string& message) {
-  if (!message.empty() && message[0] == '\'') return "'" + field + "." + message.substr(1);
-  return field + ": " + message;
-}
+// Every library message starts with its field (check.h, "FIELD: value V: ..."), so the caller's
+// field is a path prefix: "radius: value 0: ..." -> "plan.path.radius: value 0: ...".
+std::string Prefixed(const std::string& field, const std::string& message) { return field + "." + message; }
 
 Eigen::Matrix2d Rot(double a) {
   Eigen::Matrix2d r;
@@ -146,7 +144,7 @@ SmoothCurve SmoothCurve::Custom(CurveFunction value, CurveFunction derivative, C
   RequireFinite("tau_end", tau_end);
   if (!(tau_end > tau_begin)) ThrowInvalid("tau_end", tau_end, "must be > tau_begin");
   if (!value || !derivative || !second_derivative)
-    throw std::invalid_argument("custom curve: value, derivative and second_derivative must all be given");
+    ThrowInvalid("custom", "(empty function)", "value, derivative and second_derivative must all be given");
   SmoothCurve c;
   c.kind_ = CurveKind::kCustom;
   c.custom_ = std::make_shared<const CustomFunctions>(
@@ -246,12 +244,12 @@ void SmoothCurve::CheckSpeed(const std::string& field) const {
   for (int i = 0; i <= kGrid; ++i) {
     const double tau = tau_begin_ + (tau_end_ - tau_begin_) * i / kGrid;
     const double v = Derivative(tau).norm();
-    if (!std::isfinite(v)) ThrowInvalid(field + " (speed at tau = " + std::to_string(tau) + ")", v, "must be finite");
+    if (!std::isfinite(v)) ThrowInvalid(field + " (speed at tau = " + internal::FormatNumber(tau) + ")", v, "must be finite");
     mean += v / (kGrid + 1);
     if (v < least) least = v, at = tau;
   }
   if (!(least > 1e-9 * mean))
-    ThrowInvalid(field + " (speed |p'| at tau = " + std::to_string(at) + ")", least,
+    ThrowInvalid(field + " (speed |p'| at tau = " + internal::FormatNumber(at) + ")", least,
                  "the path must have nonzero speed everywhere");
 }
 
@@ -280,9 +278,9 @@ SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field) {
     });
   if (spec.type == "samples") return named([&] { return SmoothCurve::Samples(spec.points); });
   if (spec.type == "piecewise")
-    throw std::invalid_argument("'" + field + ".type' = \"piecewise\" is not a single smooth curve here (pieces may not nest)");
-  throw std::invalid_argument("'" + field + ".type' = \"" + spec.type +
-                              "\" is invalid: must be one of line, circle, ellipse, lemniscate, sine, samples, piecewise");
+    ThrowInvalid(field + ".type", "\"piecewise\"", "not a single smooth curve here (pieces may not nest)");
+  ThrowInvalid(field + ".type", "\"" + spec.type + "\"",
+               "must be one of line, circle, ellipse, lemniscate, sine, samples, piecewise");
 }
 
 Path::Path(std::vector<SmoothCurve> pieces) : pieces_(std::move(pieces)) {

@@ -22,6 +22,9 @@ constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kSameSolution = 1e-7;
 // Cells of the scan grid in each time block tested against the target together.
 constexpr int kBlockSteps = 16;
+// Work budgets of one Reach call (README, "Limits"), checked up front by ReachOptions::Validate.
+constexpr double kMaxReachScanNodes = 1e8;      // horizon_periods x scan_directions x scan_steps_per_period
+constexpr double kMaxReachRefinePeriods = 25600;  // horizon_periods x max_candidates
 
 double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -406,27 +409,35 @@ double Objective2d(unsigned /*n*/, const double* x, double* /*grad*/, void* data
 }  // namespace
 
 std::string ReachOptions::Validate() const {
-  std::ostringstream os;
-  os.precision(17);
-  if (!(std::isfinite(horizon_periods) && horizon_periods > 0 && horizon_periods <= 1e4))
-    os << "'horizon_periods' = " << horizon_periods << " is invalid: must be in (0, 1e4]";
-  else if (scan_directions < 8 || scan_directions > 100000)
-    os << "'scan_directions' = " << scan_directions << " is invalid: must be in [8, 100000]";
-  else if (scan_steps_per_period < 8 || scan_steps_per_period > 100000)
-    os << "'scan_steps_per_period' = " << scan_steps_per_period << " is invalid: must be in [8, 100000]";
-  else if (!(std::isfinite(tolerance) && tolerance > 0))
-    os << "'tolerance' = " << tolerance << " is invalid: must be finite and > 0";
-  else if (max_refine_iterations < 1)
-    os << "'max_refine_iterations' = " << max_refine_iterations << " is invalid: must be >= 1";
-  else if (max_candidates < 1)
-    os << "'max_candidates' = " << max_candidates << " is invalid: must be >= 1";
-  else if (global_max_evaluations < 1)
-    os << "'global_max_evaluations' = " << global_max_evaluations << " is invalid: must be >= 1";
-  else {
-    const std::string e = integration.Validate();
-    if (!e.empty()) os << "integration: " << e;
-  }
-  return os.str();
+  using internal::InvalidValueMessage;
+  if (!(horizon_periods > 0 && horizon_periods <= 1e4))
+    return InvalidValueMessage("horizon_periods", horizon_periods, "must be in (0, 1e4]");
+  if (scan_directions < 8 || scan_directions > 100000)
+    return InvalidValueMessage("scan_directions", scan_directions, "must be in [8, 100000]");
+  if (scan_steps_per_period < 8 || scan_steps_per_period > 100000)
+    return InvalidValueMessage("scan_steps_per_period", scan_steps_per_period, "must be in [8, 100000]");
+  if (!(std::isfinite(tolerance) && tolerance > 0))
+    return InvalidValueMessage("tolerance", tolerance, "must be finite and > 0");
+  if (max_refine_iterations < 1 || max_refine_iterations > 1000)
+    return InvalidValueMessage("max_refine_iterations", max_refine_iterations, "must be in [1, 1000]");
+  if (max_candidates < 1 || max_candidates > 100000)
+    return InvalidValueMessage("max_candidates", max_candidates, "must be in [1, 100000]");
+  if (global_max_evaluations < 1 || global_max_evaluations > 100000)
+    return InvalidValueMessage("global_max_evaluations", global_max_evaluations, "must be in [1, 100000]");
+  // Work budget (README, "Limits"): the scan visits directions x steps x periods nodes and each
+  // candidate is refined by integrations over up to the whole horizon.
+  const double scan_nodes = horizon_periods * scan_directions * scan_steps_per_period;
+  if (scan_nodes > kMaxReachScanNodes)
+    return InvalidValueMessage("horizon_periods", horizon_periods,
+                               "horizon_periods x scan_directions x scan_steps_per_period = " +
+                                   internal::FormatNumber(scan_nodes) + " exceeds the scan budget " +
+                                   internal::FormatNumber(kMaxReachScanNodes));
+  const double refine_periods = horizon_periods * max_candidates;
+  if (refine_periods > kMaxReachRefinePeriods)
+    return InvalidValueMessage("horizon_periods", horizon_periods,
+                               "horizon_periods x max_candidates = " + internal::FormatNumber(refine_periods) +
+                                   " exceeds the refinement budget " + internal::FormatNumber(kMaxReachRefinePeriods));
+  return integration.Validate();
 }
 
 std::string ToString(ReachStatus status) {
@@ -467,15 +478,14 @@ std::string ReachSummary::BriefReport() const {
 }
 
 ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options) {
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument("ReachOptions: " + err);
-  internal::RequireFinite("problem.start.theta", problem.start.theta);
-  internal::RequireFinite("problem.start.phi", problem.start.phi);
-  internal::RequireFinite("problem.start.psi", problem.start.psi);
-  internal::RequirePositive("problem.mu", problem.mu);
-  internal::RequireFinite("problem.x0", problem.x0);
-  internal::RequireFinite("problem.target", problem.target);
-  internal::RequireFinite("problem.A0", problem.A0);
+  internal::ThrowIfInvalid(options.Validate());
+  internal::RequireFinite("start.theta", problem.start.theta);
+  internal::RequireFinite("start.phi", problem.start.phi);
+  internal::RequireFinite("start.psi", problem.start.psi);
+  internal::RequireEnergy("mu", problem.mu);
+  internal::RequireCoordinates("x0", problem.x0);
+  internal::RequireCoordinates("target", problem.target);
+  internal::RequireFinite("A0", problem.A0);
 
   ReachSummary summary;
   summary.problem = problem;

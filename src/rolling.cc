@@ -32,9 +32,8 @@ Eigen::Matrix3d RollingReorientation(const PlanarVelocity& velocity, double a, d
                                      const std::vector<double>& breakpoints, const IntegrationOptions& options) {
   internal::RequireFinite("a", a);
   internal::RequireFinite("b", b);
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
-  if (!velocity) throw std::invalid_argument("velocity: an empty function was given");
+  internal::ThrowIfInvalid(options.Validate());
+  if (!velocity) internal::ThrowInvalid("velocity", "(empty function)", "a velocity function must be given");
   std::vector<double> knots{a};
   for (double t : breakpoints) {
     internal::RequireFinite("breakpoints", t);

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "check.h"
+
 namespace plateball {
 
 Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
@@ -90,10 +92,10 @@ Eigen::Matrix3d RotationZ(double a) {
 Eigen::Matrix3d QuaternionToRotation(const Eigen::Vector4d& wxyz, const std::string& field) {
   const double n = wxyz.norm();
   if (!wxyz.allFinite() || !(n > 1e-12)) {
-    std::ostringstream os;
-    os << field << ": quaternion (" << wxyz(0) << ", " << wxyz(1) << ", " << wxyz(2) << ", "
-       << wxyz(3) << ") is not a finite non-zero quaternion";
-    throw std::invalid_argument(os.str());
+    using internal::FormatNumber;
+    internal::ThrowInvalid(field, "[" + FormatNumber(wxyz(0)) + ", " + FormatNumber(wxyz(1)) + ", " + FormatNumber(wxyz(2)) +
+                                      ", " + FormatNumber(wxyz(3)) + "]",
+                           "not a finite non-zero quaternion [w, x, y, z]");
   }
   const Eigen::Quaterniond q(wxyz(0) / n, wxyz(1) / n, wxyz(2) / n, wxyz(3) / n);
   return q.toRotationMatrix();

@@ -11,7 +11,8 @@ struct IntegrationOptions {
   /// Upper bound on accepted + rejected steps of one integration; exceeding it is an error
   /// status (never a hang).
   long max_steps = 2'000'000;
-  /// Empty when valid, else a message naming the field, the value and the bound.
+  /// Empty when valid, else a message naming the field, the value and the bound. Each tolerance
+  /// must be in [1e-15, 1) (below, the step size underflows in double precision).
   std::string Validate() const;
 };
 
