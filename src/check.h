@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace plateball::internal {
 
@@ -27,12 +28,21 @@ inline std::string InvalidValueMessage(const std::string& field, const std::stri
 inline std::string InvalidValueMessage(const std::string& field, double value, const std::string& what) {
   return InvalidValueMessage(field, FormatNumber(value), what);
 }
+/// Counts print as integers ("1000000", not "1e+06").
+template <typename Int, std::enable_if_t<std::is_integral_v<Int>, int> = 0>
+std::string InvalidValueMessage(const std::string& field, Int value, const std::string& what) {
+  return InvalidValueMessage(field, std::to_string(value), what);
+}
 
 [[noreturn]] inline void ThrowInvalid(const std::string& field, const std::string& value_text,
                                       const std::string& what) {
   throw std::invalid_argument(InvalidValueMessage(field, value_text, what));
 }
 [[noreturn]] inline void ThrowInvalid(const std::string& field, double value, const std::string& what) {
+  throw std::invalid_argument(InvalidValueMessage(field, value, what));
+}
+template <typename Int, std::enable_if_t<std::is_integral_v<Int>, int> = 0>
+[[noreturn]] void ThrowInvalid(const std::string& field, Int value, const std::string& what) {
   throw std::invalid_argument(InvalidValueMessage(field, value, what));
 }
 
@@ -80,8 +90,8 @@ constexpr int kMaxIsoparallelStarts = 10000;
 constexpr double kMaxLengthCapFactor = 10;
 
 /// 1 <= n <= hi for a count.
-inline void RequireCount(const std::string& field, double n, double hi) {
-  if (!(n >= 1 && n <= hi)) ThrowInvalid(field, n, "must be in [1, " + FormatNumber(hi) + "]");
+inline void RequireCount(const std::string& field, long long n, long long hi) {
+  if (!(n >= 1 && n <= hi)) ThrowInvalid(field, n, "must be in [1, " + std::to_string(hi) + "]");
 }
 
 /// |v| <= kMaxCoordinate for a coordinate (finite first).

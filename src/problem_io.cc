@@ -209,7 +209,7 @@ class Reader {
   double Coordinate(const json& v, const std::string& path) const {
     const double d = Number(v, path);
     if (!(std::abs(d) <= internal::kMaxCoordinate))
-      Fail(path, v, "|coordinate| must be <= " + NumberText(internal::kMaxCoordinate) + " (precision limit)");
+      Fail(path, v, "|coordinate| must be <= " + internal::FormatNumber(internal::kMaxCoordinate) + " (precision limit)");
     return d;
   }
   double PositiveLength(const json& v, const std::string& path) const {
@@ -223,7 +223,8 @@ class Reader {
   }
   double InClosedRange(const json& v, const std::string& path, double lo, double hi) const {
     const double d = Number(v, path);
-    if (!(d >= lo && d <= hi)) Fail(path, v, "must be in [" + NumberText(lo) + ", " + NumberText(hi) + "]");
+    if (!(d >= lo && d <= hi))
+      Fail(path, v, "must be in [" + internal::FormatNumber(lo) + ", " + internal::FormatNumber(hi) + "]");
     return d;
   }
 

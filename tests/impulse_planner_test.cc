@@ -191,9 +191,9 @@ TEST(ImpulsePlanner, BadInputNamesTheField) {
   p.plan->path.radius = 2;
   p.plan->path.tau_end = 2 * M_PI;
   p.x0 = {1, 1};
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(p); }).find("'x0'"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanImpulses(p); }).find("x0: value"), std::string::npos);
   p.x0 = {0, 0};
   EXPECT_TRUE(PlanImpulses(p).IsSolutionUsable());
   Problem none;
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(none); }).find("'plan'"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanImpulses(none); }).find("plan: value"), std::string::npos);
 }
