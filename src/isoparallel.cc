@@ -457,6 +457,11 @@ IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const Iso
   const auto t0 = std::chrono::steady_clock::now();
   ValidateProblem(problem);
   internal::ThrowIfInvalid(options.Validate());
+  const double start_work = options.starts * (problem.goal - problem.start).norm();  // README, "Limits"
+  if (start_work > internal::kMaxStartsTimesChord)
+    internal::ThrowInvalid("starts", options.starts, "starts x |goal - start| = " + internal::FormatNumber(start_work) +
+                                                         " exceeds the multi-start budget " +
+                                                         internal::FormatNumber(internal::kMaxStartsTimesChord));
 
   IsoparallelSummary summary;
   summary.problem = problem;

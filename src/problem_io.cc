@@ -143,7 +143,7 @@ class Reader {
   explicit Reader(std::string source) : source_(std::move(source)) {}
 
   [[noreturn]] void Fail(const std::string& path, const std::string& value, const std::string& what) const {
-    throw std::invalid_argument(source_ + ": " + path + ": value " + value + ": " + what);
+    throw std::invalid_argument(internal::InvalidValueMessage(source_ + ": " + path, value, what));
   }
   [[noreturn]] void Fail(const std::string& path, const char* value, const std::string& what) const {
     Fail(path, std::string(value), what);

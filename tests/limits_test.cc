@@ -154,6 +154,15 @@ TEST(Limits, IsoparallelCoordinatesThatLosePrecisionAreRefused) {
   ExpectNames(InvalidArgumentMessage([&] { SolveIsoparallel(p); }), {"start[0]: value 1e+155"});
 }
 
+TEST(Limits, IsoparallelMultiStartBudgetScalesWithTheChord) {
+  IsoparallelProblem p;
+  p.goal = {35, 0};
+  IsoparallelOptions o;
+  o.starts = 10000;  // 28 s of shooting at chord 35
+  ExpectNames(InvalidArgumentMessage([&] { SolveIsoparallel(p, o); }),
+              {"starts: value 10000", "starts x |goal - start| = 350000 exceeds the multi-start budget 1e+05"});
+}
+
 TEST(Limits, IsoparallelOptionLimitsAreNamed) {
   IsoparallelOptions o;
   o.starts = 1000000;  // about 13 minutes before
