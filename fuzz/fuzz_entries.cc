@@ -158,11 +158,8 @@ void SolveEntries(const std::uint8_t* data, std::size_t size) {
 void ReachEntry(const std::uint8_t* data, std::size_t size) {
   Numbers in(data, size);
   ReachProblem p;
-  ReachOptions o;
-  o.scan_directions = 16;
-  o.scan_steps_per_period = 16;
-  o.max_candidates = 4;
-  o.max_refine_iterations = 10;
+  ReachOptions o;  // small scan sizes: milliseconds per input
+  o.scan_directions = o.scan_steps_per_period = 16, o.max_candidates = 4, o.max_refine_iterations = 10;
   o.global_max_evaluations = 20;
   try {
     p.model = BallModel::FromLambda(in.Mixed(0.05, 10.0));
@@ -185,9 +182,8 @@ void ReachEntry(const std::uint8_t* data, std::size_t size) {
 void IsoparallelEntry(const std::uint8_t* data, std::size_t size) {
   Numbers in(data, size);
   IsoparallelProblem p;
-  IsoparallelOptions o;
-  o.starts = 8;
-  o.max_iterations = 20;
+  IsoparallelOptions o;  // few starts: milliseconds per input
+  o.starts = 8, o.max_iterations = 20;
   try {
     p.start = {in.Mixed(-5.0, 5.0), in.Mixed(-5.0, 5.0)};
     p.goal = p.start + Eigen::Vector2d(in.Mixed(-6.0, 6.0), in.Mixed(-6.0, 6.0));
