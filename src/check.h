@@ -86,9 +86,8 @@ constexpr double kMinTolerance = 1e-15;   ///< integration tolerances
 constexpr int kMaxPartitionSteps = 10000;   ///< partition n (steps of a plan), impulses of a plan
 constexpr int kMaxSamples = 100000;         ///< samples of a simulation, sample points of a path
 constexpr double kMaxIsoparallelChord = 40;  ///< |goal - start| of the isoparallel problem
-constexpr int kMaxIsoparallelStarts = 10000;
 constexpr double kMaxStartsTimesChord = 1e5;  ///< multi-start: starts x |goal - start|
-constexpr double kMaxLengthCapFactor = 10;
+constexpr double kMaxLengthCapFactor = 10;   ///< family search (= IsoparallelOptions::kMaxLengthCapFactor)
 
 /// 1 <= n <= hi for a count.
 inline void RequireCount(const std::string& field, long long n, long long hi) {

@@ -51,6 +51,7 @@ Eigen::Matrix3d Reorthonormalize(const Eigen::Matrix3d& r) {
 
 std::string ToString(PlanStatus status) {
   switch (status) {
+    case PlanStatus::kNotRun: return "not_run";
     case PlanStatus::kSuccess: return "success";
     case PlanStatus::kSegmentBeyondLocalRadius: return "segment_beyond_local_radius";
     case PlanStatus::kIntegrationFailure: return "integration_failure";
@@ -96,9 +97,10 @@ Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::V
   return ProjectToSO3(a);
 }
 
-PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
-                         const Path& path, const std::vector<std::vector<double>>& partition,
-                         const std::vector<EnergyChangeSpec>& energy_changes, const PlanOptions& options) {
+// The plan for explicit per-piece partitions (PlanImpulses unpacks its problem into this).
+static PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
+                                   const Path& path, const std::vector<std::vector<double>>& partition,
+                                   const std::vector<EnergyChange>& energy_changes, const PlanOptions& options) {
   internal::ThrowIfInvalid(options.Validate());
   internal::RequireEnergy("mu", mu);
   BallState state = StateFromAngles(initial, mu, model);  // validates the angles
@@ -115,7 +117,7 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
   std::vector<std::vector<double>> factors(static_cast<std::size_t>(n_total));
   for (std::size_t i = 0; i < energy_changes.size(); ++i) {
     const std::string f = "energy_changes[" + std::to_string(i) + "]";
-    const EnergyChangeSpec& e = energy_changes[i];
+    const EnergyChange& e = energy_changes[i];
     if (e.index < 0 || e.index >= n_total)
       internal::ThrowInvalid(f + ".index", e.index, "must be a partition index in [0, " + std::to_string(n_total) + ")");
     internal::RequirePositive(f + ".factor", e.factor);
@@ -123,6 +125,8 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
   }
 
   PlanSummary out;
+  out.status = PlanStatus::kSuccess;  // until a segment fails
+  out.message.clear();
   out.pieces = path.PieceCount();
   out.segments = n_total;
   out.mu_initial = mu;
@@ -287,25 +291,10 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
   return out;
 }
 
-PlanSummary PlanImpulses(const Problem& problem, const PlanOptions& options, int n) {
-  if (!problem.plan) internal::ThrowInvalid("plan", "(missing)", "the problem has no plan task");
-  const PlanTask& task = *problem.plan;
-  const Path path = Path::FromSpec(task.path, "plan.path");
-  PartitionSpec spec = task.partition;
-  if (n > 0) spec.n = n;
-  const auto partition = MakePartition(path, spec, "plan.partition");
-  const double size = std::max(1.0, path.Length());
-  if ((problem.x0 - path.StartPoint()).norm() > 1e-9 * size) {
-    auto pair = [](const Eigen::Vector2d& v) {
-      return "(" + internal::FormatNumber(v.x()) + ", " + internal::FormatNumber(v.y()) + ")";
-    };
-    internal::ThrowInvalid("x0", pair(problem.x0), "must equal the path start p(tau_0) = " + pair(path.StartPoint()));
-  }
-  PlanOptions o = options;
-  o.integration = problem.integration;
-  o.join.integration = problem.integration;
-  return PlanImpulses(problem.model, problem.initial_angles, problem.mu, problem.A0, path, partition,
-                      task.energy_changes, o);
+PlanSummary PlanImpulses(const PlanProblem& problem, const PlanOptions& options) {
+  const std::vector<std::vector<double>> partition = MakePartition(problem.path, problem.partition, "partition");
+  return PlanPartitioned(problem.model, problem.initial, problem.mu, problem.A0, problem.path, partition,
+                         problem.energy_changes, options);
 }
 
 }  // namespace plateball

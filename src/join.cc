@@ -194,6 +194,7 @@ void ValidateJoinInput(const AngleState& start, double mu, const Eigen::Vector2d
 
 std::string ToString(JoinStatus status) {
   switch (status) {
+    case JoinStatus::kNotRun: return "not_run";
     case JoinStatus::kConverged: return "converged";
     case JoinStatus::kTargetEqualsStart: return "target_equals_start";
     case JoinStatus::kTargetBeyondLocalRadius: return "target_beyond_local_radius";
@@ -228,11 +229,16 @@ double MinimumContactSpeed(double mu, const BallModel& model) {
   return std::sqrt(mu / std::max(1.0, model.lambda()));
 }
 
-JoinSummary Join(const BallModel& model, const AngleState& start, double mu, const Eigen::Vector2d& x0,
-                 const Eigen::Vector2d& target, const JoinOptions& options) {
+JoinSummary Join(const JoinProblem& problem, const JoinOptions& options) {
+  const BallModel& model = problem.model;
+  const AngleState& start = problem.start;
+  const double mu = problem.mu;
+  const Eigen::Vector2d& x0 = problem.x0;
+  const Eigen::Vector2d& target = problem.target;
   ValidateJoinInput(start, mu, x0, target, options);
   const double lambda = model.lambda();
   JoinSummary out;
+  out.message.clear();  // filled only when the join does not converge
   out.start = start;
   out.mu = mu;
   out.x0 = x0;
@@ -339,13 +345,6 @@ JoinSummary Join(const BallModel& model, const AngleState& start, double mu, con
   }
   out.status = out.message.empty() ? JoinStatus::kConverged : JoinStatus::kTargetBeyondLocalRadius;
   return out;
-}
-
-JoinSummary Join(const BallModel& model, const BallState& start, const Eigen::Vector2d& x0,
-                 const Eigen::Vector2d& target, const JoinOptions& options) {
-  ValidateState(start, "start");
-  const double mu = Energy(start, model);
-  return Join(model, AnglesFromState(start, model), mu, x0, target, options);
 }
 
 }  // namespace plateball

@@ -89,27 +89,48 @@ std::vector<double> ExplicitPartition(const SmoothCurve& curve, const std::vecto
   return t;
 }
 
-std::vector<std::vector<double>> MakePartition(const Path& path, const PartitionSpec& spec, const std::string& field) {
+std::string ToString(const PartitionRule& rule) {
+  struct Name {
+    std::string operator()(const UniformParameter&) const { return "uniform_parameter"; }
+    std::string operator()(const UniformArcLength&) const { return "uniform_arc_length"; }
+    std::string operator()(const ExplicitTaus&) const { return "explicit"; }
+  };
+  return std::visit(Name{}, rule);
+}
+
+std::vector<std::vector<double>> MakePartition(const Path& path, const std::vector<PartitionRule>& rules,
+                                               const std::string& field) {
+  const std::size_t pieces = static_cast<std::size_t>(path.PieceCount());
+  if (rules.size() != 1 && rules.size() != pieces)
+    ThrowInvalid(field + " (rule count)", static_cast<double>(rules.size()),
+                 "must be 1 or the number of path pieces " + std::to_string(pieces));
   std::vector<std::vector<double>> out;
-  if (spec.type == "explicit") {
-    if (path.PieceCount() != 1)
-      ThrowInvalid(field + ".taus (pieces)", path.PieceCount(),
-                   "explicit partitions are for single-piece paths; use a uniform type for piecewise paths");
-    RequireCount(static_cast<int>(std::min<std::size_t>(spec.taus.size(), 1u << 30)) - 1, field + ".taus (steps)");
-    ValidatePartition(path.pieces().front(), spec.taus, field + ".taus");  // named by the caller's field
-    out.push_back(ExplicitPartition(path.pieces().front(), spec.taus));
-    return out;
+  long long steps = 0;  // every piece gets its rule's steps (README, "Limits")
+  for (std::size_t i = 0; i < pieces; ++i) {
+    const PartitionRule& rule = rules.size() == 1 ? rules.front() : rules[i];
+    if (const auto* u = std::get_if<UniformParameter>(&rule)) steps += u->n;
+    else if (const auto* a = std::get_if<UniformArcLength>(&rule)) steps += a->n;
+    else steps += static_cast<long long>(std::get<ExplicitTaus>(rule).taus.size()) - 1;
   }
-  if (spec.type != "uniform_parameter" && spec.type != "uniform_arc_length")
-    ThrowInvalid(field + ".type", "\"" + spec.type + "\"", "must be uniform_parameter, uniform_arc_length or explicit");
-  RequireCount(spec.n, field + ".n");
-  const double steps = static_cast<double>(spec.n) * static_cast<double>(path.PieceCount());
-  if (steps > internal::kMaxPartitionSteps)  // every piece gets n steps
-    ThrowInvalid(field + ".n", spec.n, "n x pieces = " + internal::FormatNumber(steps) + " must be <= " +
-                                           std::to_string(internal::kMaxPartitionSteps));
-  for (const SmoothCurve& c : path.pieces())
-    out.push_back(spec.type == "uniform_parameter" ? UniformParameterPartition(c, spec.n)
-                                                   : UniformArcLengthPartition(c, spec.n));
+  if (steps > internal::kMaxPartitionSteps)
+    ThrowInvalid(rules.size() == 1 ? field + " (n x " + std::to_string(pieces) + " pieces)" : field + " (steps)", steps,
+                 "steps over all pieces must be <= " + std::to_string(internal::kMaxPartitionSteps));
+  for (std::size_t i = 0; i < pieces; ++i) {
+    const PartitionRule& rule = rules.size() == 1 ? rules.front() : rules[i];
+    const SmoothCurve& curve = path.pieces()[i];
+    const std::string f = rules.size() == 1 ? field : field + "[" + std::to_string(i) + "]";
+    if (const auto* u = std::get_if<UniformParameter>(&rule)) {
+      RequireCount(u->n, f + ".n");
+      out.push_back(UniformParameterPartition(curve, u->n));
+    } else if (const auto* a = std::get_if<UniformArcLength>(&rule)) {
+      RequireCount(a->n, f + ".n");
+      out.push_back(UniformArcLengthPartition(curve, a->n));
+    } else {
+      const std::vector<double>& taus = std::get<ExplicitTaus>(rule).taus;
+      ValidatePartition(curve, taus, f + ".taus");
+      out.push_back(ExplicitPartition(curve, taus));
+    }
+  }
   return out;
 }
 

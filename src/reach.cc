@@ -442,6 +442,8 @@ std::string ReachOptions::Validate() const {
 
 std::string ToString(ReachStatus status) {
   switch (status) {
+    case ReachStatus::kNotRun:
+      return "not_run";
     case ReachStatus::kSolved:
       return "solved";
     case ReachStatus::kUnreachableWithinHorizon:
@@ -488,6 +490,7 @@ ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options) {
   internal::RequireFinite("A0", problem.A0);
 
   ReachSummary summary;
+  summary.message.clear();  // filled only for kNumericalFailure
   summary.problem = problem;
   summary.period = kTwoPi / std::sqrt(problem.mu);
   summary.horizon = options.horizon_periods * summary.period;
