@@ -184,18 +184,15 @@ TEST(Limits, ImpulseAndPartitionCountsAreBounded) {
   ExpectNames(InvalidArgumentMessage([&] { UniformParameterPartition(c, 1000000); }),
               {"partition.n: value 1000000", "must be <= 10000"});
   EXPECT_NO_THROW(UniformParameterPartition(c, 10000));
-  IsoparallelSolution s;
-  s.length = 1.0;
-  ExpectNames(InvalidArgumentMessage([&] {
-                PlanOptimalPath(BallModel::FromLambda(2), 0.0, 1.0, Eigen::Matrix3d::Identity(), s, 1000000);
-              }),
-              {"impulses: value 1000000", "[1, 10000]"});
-  // n x pieces counts: 10 pieces of n = 2000 is 20000 steps.
+  IsoparallelPlanProblem iso;
+  iso.model = BallModel::FromLambda(2);
+  iso.solution.length = 1.0;
+  iso.impulses = 1000000;
+  ExpectNames(InvalidArgumentMessage([&] { PlanOptimalPath(iso); }), {"impulses: value 1000000", "[1, 10000]"});
+  // Every piece gets n steps: 3 pieces of n = 5000 are 15000 steps.
   const Path path({SmoothCurve::Line({0, 0}, {1, 0}), SmoothCurve::Line({1, 0}, {2, 0}), SmoothCurve::Line({2, 0}, {3, 0})});
-  PartitionSpec spec;
-  spec.n = 5000;
-  ExpectNames(InvalidArgumentMessage([&] { MakePartition(path, spec, "plan.partition"); }),
-              {"plan.partition.n: value 5000", "n x pieces = 15000"});
+  ExpectNames(InvalidArgumentMessage([&] { MakePartition(path, {UniformParameter{5000}}, "plan.partition"); }),
+              {"plan.partition (n x 3 pieces): value 15000", "steps over all pieces must be <= 10000"});
 }
 
 // ------------------------------------------------------------------ reach work budget
