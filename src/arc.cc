@@ -9,17 +9,19 @@
 
 namespace plateball::internal {
 
-void OmegaFromAngles(double theta, double phi, double psi, double mu, double lambda, Eigen::Vector2d* omega,
-                     Eigen::Vector2d* domega_dpsi) {
-  const double st = std::sin(theta), ct = std::cos(theta);
-  const double a = std::sqrt(mu / (lambda * st * st + ct * ct));
-  const double b = std::sqrt(mu);
-  const double sp = std::sin(phi), cp = std::cos(phi);
-  const double w = phi - psi;
-  const double cw = std::cos(w), sw = std::sin(w);
-  *omega = {a * cw * cp + b * sw * sp, a * cw * sp - b * sw * cp};
-  // d/dpsi = -d/dw.
-  if (domega_dpsi) *domega_dpsi = {a * sw * cp - b * cw * sp, a * sw * sp + b * cw * cp};
+ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, double s) {
+  using Jet1 = ceres::Jet<double, 1>;
+  ReachDirection d;
+  d.s = s;
+  d.z0 = AxisFromAngles(start.theta, start.phi);
+  const Jet1 psi(start.psi + s, 0);
+  Jet1 w[2], k[2];
+  OmegaHFromAngles(start.theta, start.phi, psi, mu, lambda, w);
+  const double z[2] = {d.z0.x(), d.z0.y()};
+  MomentumFromOmega(z, w, lambda, k);
+  d.k = {k[0].a, k[1].a};
+  d.dk_ds = {k[0].v[0], k[1].v[0]};
+  return d;
 }
 
 Eigen::Vector2d ContactAcceleration(double lambda, const Eigen::Vector3d& z, const Eigen::Vector2d& k) {
@@ -40,11 +42,7 @@ Eigen::Vector2d ContactAcceleration(double lambda, const Eigen::Vector3d& z, con
 ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
                     const IntegrationOptions& options) {
   FullRhs rhs{lambda, {k.x(), k.y()}};
-  FullState y{};
-  y[0] = z0.x();
-  y[1] = z0.y();
-  y[2] = z0.z();
-  y[5] = y[9] = y[13] = 1.0;
+  FullState y = InitialFullState(z0);
   ArcEnd out;
   // Maxima over the accepted steps plus the largest change between neighbouring steps, so that a
   // maximum between two steps of a smooth arc is covered.
@@ -76,7 +74,7 @@ ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vecto
   out.max_acceleration += jump_a;
   out.z = Eigen::Vector3d(y[0], y[1], y[2]).normalized();
   out.dx = {y[3], y[4]};
-  out.phi << y[5], y[6], y[7], y[8], y[9], y[10], y[11], y[12], y[13];
+  out.phi = MatrixFromRowMajor(y.data() + 5);
   return out;
 }
 

@@ -80,21 +80,6 @@ std::string PlanSummary::BriefReport() const {
   return os.str();
 }
 
-Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
-  internal::RequireFinite("A0", A0);
-  if (!IsRotation(A0, 1e-9)) throw std::invalid_argument("'A0' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
-  Eigen::Matrix3d a = A0;
-  const Eigen::Vector3d e = a.col(2);
-  const Eigen::Vector3d axis = e.cross(z);
-  const double angle = std::atan2(axis.norm(), e.dot(z));
-  if (axis.norm() > 1e-15) {
-    a = ExpSO3(axis.normalized() * angle) * a;
-  } else if (e.dot(z) < 0) {
-    a = ExpSO3(a.col(0) * M_PI) * a;
-  }
-  return ProjectToSO3(a);
-}
-
 PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
                          const Path& path, const std::vector<std::vector<double>>& partition,
                          const std::vector<EnergyChangeSpec>& energy_changes, const PlanOptions& options) {

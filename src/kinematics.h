@@ -1,0 +1,150 @@
+// Internal: the kinematics kernel. Every formula of the chart-free dynamics (docs/paper_notes.md,
+// /work/shared/design/dynamics.md) and of the angle chart that more than one solver needs is
+// written here once. Templated on the scalar where ceres::Jet gives exact derivatives.
+//
+//   z       = (sin th cos ph, sin th sin ph, cos th)                         (12)-(14)
+//   omega_h = a cos(w) e_r(ph) - b sin(w) e_phi(ph) rotated, w = ph - psi  (section 2.1, (25)-(26))
+//   K       = omega_h + (lambda - 1) v0 z_h,  v0 = <omega_h, z_h>           (conserved)
+//   omega_h = K - (lambda - 1) v0 z_h,  v0 = <K, z_h> / (z3^2 + lambda |z_h|^2)
+//   z'      = omega x z,  x' = omega x e3 = (omega_2, -omega_1)
+//   A'      = hat(omega) A  (free motion: omega(z, K); rolling along a curve: omega = e3 x p')
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "check.h"
+#include "plateball/ball_state.h"
+
+namespace plateball::internal {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+// ---------------------------------------------------------------------------------------------
+// Angles on the circle.
+
+/// a reduced to (-pi, pi].
+inline double WrapPi(double a) {
+  a = std::remainder(a, kTwoPi);  // [-pi, pi]
+  return a <= -M_PI ? a + kTwoPi : a;
+}
+
+/// a reduced to [0, 2 pi).
+inline double WrapTwoPi(double a) {
+  double r = std::fmod(a, kTwoPi);
+  if (r < 0) r += kTwoPi;
+  return r >= kTwoPi ? 0.0 : r;
+}
+
+/// Distance of a and b on the circle, in [0, pi].
+inline double CircularDistance(double a, double b) { return std::abs(std::remainder(a - b, kTwoPi)); }
+
+/// Beyond this magnitude an angle has no significant digit left modulo 2 pi (the spacing of
+/// doubles near 1e15 is 0.125).
+constexpr double kMaxAngleMagnitude = 1e15;
+
+/// One reduction of an angle at a public boundary: finite, |a| <= 1e15 (else an error naming
+/// `field`), and reduced to [-pi, pi] (unchanged when already there). A psi of 1e6 loses about
+/// 1e-10 in the reduction; every later formula then works on a small angle at full precision.
+inline double ReduceAngle(const std::string& field, double a) {
+  RequireFinite(field, a);
+  if (std::abs(a) > kMaxAngleMagnitude)
+    ThrowInvalid(field, a, "an angle beyond 1e15 in magnitude has no significant digits left modulo 2 pi");
+  return std::abs(a) <= M_PI ? a : std::remainder(a, kTwoPi);
+}
+
+/// ReduceAngle on theta, phi and psi (fields `prefix`.theta, ...). The state is the same.
+inline AngleState ReduceAngles(const std::string& prefix, const AngleState& s) {
+  return {ReduceAngle(prefix + ".theta", s.theta), ReduceAngle(prefix + ".phi", s.phi),
+          ReduceAngle(prefix + ".psi", s.psi)};
+}
+
+// ---------------------------------------------------------------------------------------------
+// The angle chart.
+
+/// z = A e3 from (theta, phi), eqs. (12)-(14).
+inline Eigen::Vector3d AxisFromAngles(double theta, double phi) {
+  const double st = std::sin(theta);
+  return {st * std::cos(phi), st * std::sin(phi), std::cos(theta)};
+}
+
+/// Horizontal angular velocity at (theta, phi, psi) and energy mu (section 2.1):
+///   omega_1 = a cos(w) cos(phi) + b sin(w) sin(phi), omega_2 = a cos(w) sin(phi) - b sin(w) cos(phi)
+/// with w = phi - psi and (a, b) the semi-axes of SemiAxisA, so x' = (omega_2, -omega_1) is
+/// eqs. (25)-(26). Templated on the scalar of psi so that ceres::Jet gives d omega / d psi.
+template <typename T>
+inline void OmegaHFromAngles(double theta, double phi, const T& psi, double mu, double lambda, T* w) {
+  using std::cos;
+  using std::sin;
+  const double a = SemiAxisA(theta, mu, lambda);
+  const double b = std::sqrt(mu);
+  const T wv = phi - psi;
+  const T cw = cos(wv), sw = sin(wv);
+  w[0] = a * cw * std::cos(phi) + b * sw * std::sin(phi);
+  w[1] = a * cw * std::sin(phi) - b * sw * std::cos(phi);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The conserved vector K and the chart-free right-hand side.
+
+/// K = omega_h + (lambda - 1) v0 z_h with v0 = <omega_h, z_h> (omega_3 = 0).
+template <typename T, typename Z>
+inline void MomentumFromOmega(const Z* z, const T* w, double lambda, T* k) {
+  const T v0 = w[0] * z[0] + w[1] * z[1];
+  k[0] = w[0] + (lambda - 1.0) * v0 * z[0];
+  k[1] = w[1] + (lambda - 1.0) * v0 * z[1];
+}
+
+/// omega_h from (z, K): v0 = <K, z_h>/(z3^2 + lambda |z_h|^2), omega_h = K - (lambda-1) v0 z_h.
+template <typename T>
+inline void OmegaFromZK(const T* z, const T* k, double lambda, T* w) {
+  const T v0 = (k[0] * z[0] + k[1] * z[1]) / (z[2] * z[2] + lambda * (z[0] * z[0] + z[1] * z[1]));
+  w[0] = k[0] - (lambda - 1.0) * v0 * z[0];
+  w[1] = k[1] - (lambda - 1.0) * v0 * z[1];
+}
+
+/// z' = omega x z (omega_3 = 0), x' = omega x e3 = (omega_2, -omega_1).
+template <typename T>
+inline void ZxRhs(const T* z, const T* w, T* dz, T* dx) {
+  dz[0] = w[1] * z[2];
+  dz[1] = -w[0] * z[2];
+  dz[2] = w[0] * z[1] - w[1] * z[0];
+  dx[0] = w[1];
+  dx[1] = -w[0];
+}
+
+/// A' = hat(omega) A for omega = (w0, w1, 0), A stored row-major in a[9]: the rolling equation
+/// of the free motion and, with omega = e3 x p', of rolling along a curve.
+template <typename T>
+inline void RotationRhs(const T& w0, const T& w1, const T* a, T* da) {
+  // hat(w) = rows (0, 0, w1), (0, 0, -w0), (-w1, w0, 0).
+  for (int c = 0; c < 3; ++c) {
+    da[0 + c] = w1 * a[6 + c];
+    da[3 + c] = -w0 * a[6 + c];
+    da[6 + c] = -w1 * a[0 + c] + w0 * a[3 + c];
+  }
+}
+
+/// omega = e3 x v = (-v_2, v_1, 0) for a planar velocity v: the rolling of section 2.2.
+inline void RollingOmega(const Eigen::Vector2d& v, double* w0, double* w1) {
+  *w0 = -v.y();
+  *w1 = v.x();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Row-major 3x3 storage used inside integrator states.
+
+inline Eigen::Matrix3d MatrixFromRowMajor(const double* y) {
+  Eigen::Matrix3d m;
+  m << y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], y[8];
+  return m;
+}
+
+inline void RowMajorFromMatrix(const Eigen::Matrix3d& m, double* y) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) y[3 * r + c] = m(r, c);
+}
+
+}  // namespace plateball::internal
