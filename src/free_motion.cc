@@ -68,7 +68,7 @@ FreeMotion FreeMotion::FromAngles(const BallModel& model, const AngleState& angl
   s.state = StateFromAngles(angles, mu, model);
   s.x0 = x0;
   // If A0 does not carry z on its third column, rotate it minimally so that A0 e3 = z.
-  s.A0 = AlignOrientationToAxis(A0, s.state.z);
+  s.A0 = internal::RotateAxisOnto(A0, s.state.z);
   return FreeMotion(model, s, options);
 }
 

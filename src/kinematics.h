@@ -133,6 +133,10 @@ inline void RollingOmega(const Eigen::Vector2d& v, double* w0, double* w1) {
   *w1 = v.x();
 }
 
+/// A0 turned minimally so that A0 e3 = z (so3.cc): the product of two rotations, not re-projected
+/// (FreeMotion's start frame). AlignOrientationToAxis (so3.h) is this projected onto SO(3).
+Eigen::Matrix3d RotateAxisOnto(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z);
+
 // ---------------------------------------------------------------------------------------------
 // Row-major 3x3 storage used inside integrator states.
 

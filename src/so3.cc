@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "kinematics.h"
 
 namespace plateball {
 
@@ -89,19 +90,21 @@ Eigen::Matrix3d RotationZ(double a) {
   return r;
 }
 
-Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
-  internal::RequireFinite("A0", A0);
+namespace internal {
+Eigen::Matrix3d RotateAxisOnto(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
+  RequireFinite("A0", A0);
   if (!IsRotation(A0, 1e-9)) throw std::invalid_argument("'A0' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
-  Eigen::Matrix3d a = A0;
-  const Eigen::Vector3d e = a.col(2);
+  const Eigen::Vector3d e = A0.col(2);
   const Eigen::Vector3d axis = e.cross(z);
   const double angle = std::atan2(axis.norm(), e.dot(z));
-  if (axis.norm() > 1e-15) {
-    a = ExpSO3(axis.normalized() * angle) * a;
-  } else if (e.dot(z) < 0) {
-    a = ExpSO3(a.col(0) * M_PI) * a;
-  }
-  return ProjectToSO3(a);
+  if (axis.norm() > 1e-15) return ExpSO3(axis.normalized() * angle) * A0;
+  if (e.dot(z) < 0) return ExpSO3(A0.col(0) * M_PI) * A0;
+  return A0;
+}
+}  // namespace internal
+
+Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
+  return ProjectToSO3(internal::RotateAxisOnto(A0, z));
 }
 
 Eigen::Matrix3d QuaternionToRotation(const Eigen::Vector4d& wxyz, const std::string& field) {
