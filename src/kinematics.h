@@ -89,12 +89,16 @@ inline void OmegaHFromAngles(double theta, double phi, const T& psi, double mu, 
 // ---------------------------------------------------------------------------------------------
 // The conserved vector K and the chart-free right-hand side.
 
-/// K = omega_h + (lambda - 1) v0 z_h with v0 = <omega_h, z_h> (omega_3 = 0).
+/// K = omega_h + (lambda - 1) v0 z_h for the axial spin v0 = <omega, z>.
 template <typename T, typename Z>
-inline void MomentumFromOmega(const Z* z, const T* w, double lambda, T* k) {
-  const T v0 = w[0] * z[0] + w[1] * z[1];
+inline void MomentumFromOmega(const Z* z, const T* w, const T& v0, double lambda, T* k) {
   k[0] = w[0] + (lambda - 1.0) * v0 * z[0];
   k[1] = w[1] + (lambda - 1.0) * v0 * z[1];
+}
+/// The same with v0 = <omega_h, z_h> (omega_3 = 0).
+template <typename T, typename Z>
+inline void MomentumFromOmega(const Z* z, const T* w, double lambda, T* k) {
+  MomentumFromOmega(z, w, T(w[0] * z[0] + w[1] * z[1]), lambda, k);
 }
 
 /// omega_h from (z, K): v0 = <K, z_h>/(z3^2 + lambda |z_h|^2), omega_h = K - (lambda-1) v0 z_h.
