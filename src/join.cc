@@ -60,34 +60,7 @@ class JoinFunction {
     y[0] = dir.z0.x();
     y[1] = dir.z0.y();
     y[2] = dir.z0.z();
-    failed_ = false;
-    if (!std::isfinite(s) || !std::isfinite(t)) {
-      failed_ = true;
-    } else if (std::abs(t) > max_abs_t_) {
-      // Lemma 2.1 is local: its branch has t well below a period. Rolling out further only costs
-      // time in proportion to t (and an absurd target would make LM integrate for hours).
-      failed_ = true;
-      failure_ = "the iteration left the local range |t| <= one period";
-    } else if (t != 0.0) {
-      SensitivityRhs rhs{lambda_, {k_.x(), k_.y()}, {dir.dk_ds.x(), dir.dk_ds.y()}};
-      try {
-        double last = 0.0;
-        double largest = 0.0;
-        auto observe = [&](double tt, const SensState&) {
-          largest = std::max(largest, std::abs(tt - last));
-          last = tt;
-        };
-        namespace odeint = boost::numeric::odeint;
-        if (std::abs(t) * std::sqrt(mu_) <= kShortArc)
-          internal::IntegrateAdaptive<odeint::runge_kutta_dopri5<SensState>>(rhs, y, 0.0, t, dt_hint_, options_, observe);
-        else
-          internal::IntegrateAdaptive<odeint::runge_kutta_fehlberg78<SensState>>(rhs, y, 0.0, t, dt_hint_, options_, observe);
-        if (largest > 0) dt_hint_ = largest;
-      } catch (const std::runtime_error& e) {
-        failed_ = true;
-        failure_ = e.what();
-      }
-    }
+    failed_ = !Rollout(dir, s, t, &y);
     if (failed_) {
       // A huge residual makes TinySolver reject the step.
       cache_r_[0] = cache_r_[1] = 1e100;
@@ -104,6 +77,37 @@ class JoinFunction {
     cache_j_[1] = y[9];
     cache_j_[2] = wt[1];  // d r / d t = x'(t) = (omega_2, -omega_1)
     cache_j_[3] = -wt[0];
+  }
+
+  // Integrates (z, x, dz/ds, dx/ds) over [0, t]; false (failure_ says why) when the point is not
+  // finite, leaves the local range or the integration fails.
+  bool Rollout(const internal::ReachDirection& dir, double s, double t, SensState* y) const {
+    if (!std::isfinite(s) || !std::isfinite(t)) return false;
+    if (std::abs(t) > max_abs_t_) {
+      // Lemma 2.1 is local: its branch has t well below a period. Rolling out further only costs
+      // time in proportion to t (and an absurd target would make LM integrate for hours).
+      failure_ = "the iteration left the local range |t| <= one period";
+      return false;
+    }
+    if (t == 0.0) return true;
+    const SensitivityRhs rhs{lambda_, {k_.x(), k_.y()}, {dir.dk_ds.x(), dir.dk_ds.y()}};
+    double last = 0.0, largest = 0.0;
+    auto observe = [&](double tt, const SensState&) {
+      largest = std::max(largest, std::abs(tt - last));
+      last = tt;
+    };
+    namespace odeint = boost::numeric::odeint;
+    try {
+      if (std::abs(t) * std::sqrt(mu_) <= kShortArc)
+        internal::IntegrateAdaptive<odeint::runge_kutta_dopri5<SensState>>(rhs, *y, 0.0, t, dt_hint_, options_, observe);
+      else
+        internal::IntegrateAdaptive<odeint::runge_kutta_fehlberg78<SensState>>(rhs, *y, 0.0, t, dt_hint_, options_, observe);
+    } catch (const std::runtime_error& e) {
+      failure_ = e.what();
+      return false;
+    }
+    if (largest > 0) dt_hint_ = largest;
+    return true;
   }
 
   double Residual() const { return std::hypot(cache_r_[0], cache_r_[1]); }

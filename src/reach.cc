@@ -312,6 +312,32 @@ class ReachResidual {
   mutable internal::TightPoint cache_;
 };
 
+// Golden-section search (40 steps) for the minimum of a unimodal f on [lo, hi]: the smaller of
+// the last two probes, and where it is.
+template <typename F>
+double GoldenSection(const F& f, double lo, double hi, double* x_min) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+  double fa = f(a), fb = f(b);
+  for (int it = 0; it < 40; ++it) {
+    if (fa < fb) {
+      hi = b;
+      b = a;
+      fb = fa;
+      a = hi - g * (hi - lo);
+      fa = f(a);
+    } else {
+      lo = a;
+      a = b;
+      fa = fb;
+      b = lo + g * (hi - lo);
+      fb = f(b);
+    }
+  }
+  *x_min = fa < fb ? a : b;
+  return std::min(fa, fb);
+}
+
 // Cheap closest approach along the direction s: min over t in [0, horizon] of |x_s(t) - target|
 // from the RK4 table, refined on the cubic Hermite interpolant around the best node.
 struct CheapDistance {
@@ -355,28 +381,12 @@ struct CheapDistance {
       }
     }
     // Golden-section search on the interpolant over the two neighbouring steps.
-    double lo = std::max(0.0, tb - h), hi = std::min(horizon, tb + h);
-    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-    double fa = (at(a) - rel).norm(), fb = (at(b) - rel).norm();
-    for (int it = 0; it < 40; ++it) {
-      if (fa < fb) {
-        hi = b;
-        b = a;
-        fb = fa;
-        a = hi - g * (hi - lo);
-        fa = (at(a) - rel).norm();
-      } else {
-        lo = a;
-        a = b;
-        fa = fb;
-        b = lo + g * (hi - lo);
-        fb = (at(b) - rel).norm();
-      }
-    }
-    if (std::min(fa, fb) < best) {
-      best = std::min(fa, fb);
-      tb = fa < fb ? a : b;
+    double t_min = 0.0;
+    const double f_min = GoldenSection([&](double t) { return (at(t) - rel).norm(); }, std::max(0.0, tb - h),
+                                       std::min(horizon, tb + h), &t_min);
+    if (f_min < best) {
+      best = f_min;
+      tb = t_min;
     }
     *t_best = tb;
     return best;
