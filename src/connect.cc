@@ -10,7 +10,7 @@ JoinSummary ConnectPoints(const BallModel& model, const AngleState& angles, doub
                           const Eigen::Vector2d& target, const JoinOptions& options,
                           const ReachOptions* reach_fallback, bool* reached_globally) {
   if (reached_globally != nullptr) *reached_globally = false;
-  JoinSummary join = Join(model, angles, mu, x0, target, options);
+  JoinSummary join = JoinValidated(model, angles, mu, x0, target, options);
   if (join.status != JoinStatus::kTargetBeyondLocalRadius || reach_fallback == nullptr) return join;
 
   ReachProblem problem;

@@ -11,6 +11,7 @@
 
 #include "arc.h"
 #include "check.h"
+#include "connect.h"
 #include "dynamics.h"
 
 namespace plateball {
@@ -269,12 +270,19 @@ std::string JoinSummary::BriefReport() const {
 
 double MinimumContactSpeed(double mu, const BallModel& model) {
   internal::RequirePositive("mu", mu);
-  return std::sqrt(mu / std::max(1.0, model.lambda()));
+  return internal::MinimumContactSpeed(mu, model.lambda());
 }
 
 JoinSummary Join(const BallModel& model, const AngleState& start, double mu, const Eigen::Vector2d& x0,
                  const Eigen::Vector2d& target, const JoinOptions& options) {
   const AngleState start_reduced = ValidateJoinInput(start, mu, x0, target, options);
+  return internal::JoinValidated(model, start_reduced, mu, x0, target, options);
+}
+
+namespace internal {
+
+JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduced, double mu,
+                          const Eigen::Vector2d& x0, const Eigen::Vector2d& target, const JoinOptions& options) {
   const double lambda = model.lambda();
   JoinSummary out;
   out.start = start_reduced;
@@ -283,7 +291,7 @@ JoinSummary Join(const BallModel& model, const AngleState& start, double mu, con
   out.target = target;
   const Eigen::Vector2d d = target - x0;
   const double dist = d.norm();
-  out.time_limit = options.local_time_factor / MinimumContactSpeed(mu, model) * dist;
+  out.time_limit = options.local_time_factor / internal::MinimumContactSpeed(mu, lambda) * dist;
 
   if (dist <= options.residual_tolerance) {
     out.status = JoinStatus::kTargetEqualsStart;
@@ -329,6 +337,8 @@ JoinSummary Join(const BallModel& model, const AngleState& start, double mu, con
   out.status = out.message.empty() ? JoinStatus::kConverged : JoinStatus::kTargetBeyondLocalRadius;
   return out;
 }
+
+}  // namespace internal
 
 JoinSummary Join(const BallModel& model, const BallState& start, const Eigen::Vector2d& x0,
                  const Eigen::Vector2d& target, const JoinOptions& options) {

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -85,6 +86,10 @@ inline void OmegaHFromAngles(double theta, double phi, const T& psi, double mu, 
   w[0] = a * cw * std::cos(phi) + b * sw * std::sin(phi);
   w[1] = a * cw * std::sin(phi) - b * sw * std::cos(phi);
 }
+
+/// The least contact speed |x'| at energy mu: sqrt(mu / max(1, lambda)) (|x'|^2 = |omega|^2 =
+/// mu + (1 - lambda) v0^2 with lambda v0^2 <= mu; docs/paper_notes.md, the constant K^1).
+inline double MinimumContactSpeed(double mu, double lambda) { return std::sqrt(mu / std::max(1.0, lambda)); }
 
 // ---------------------------------------------------------------------------------------------
 // The conserved vector K and the chart-free right-hand side.
