@@ -9,19 +9,37 @@
 
 namespace plateball::internal {
 
-ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, double s) {
-  using Jet1 = ceres::Jet<double, 1>;
+ImpulseBasis MakeImpulseBasis(const AngleState& start, double mu, double lambda) {
+  ImpulseBasis e;
+  e.z0 = AxisFromAngles(start.theta, start.phi);
+  e.a = SemiAxisA(start.theta, mu, lambda);
+  e.b = std::sqrt(mu);
+  e.cos_phi = std::cos(start.phi);
+  e.sin_phi = std::sin(start.phi);
+  e.phi = start.phi;
+  e.psi = start.psi;
+  e.lambda = lambda;
+  return e;
+}
+
+ReachDirection DirectionFor(const ImpulseBasis& e, double s) {
   ReachDirection d;
   d.s = s;
-  d.z0 = AxisFromAngles(start.theta, start.phi);
-  const Jet1 psi(start.psi + s, 0);
-  Jet1 w[2], k[2];
-  OmegaHFromAngles(start.theta, start.phi, psi, mu, lambda, w);
-  const double z[2] = {d.z0.x(), d.z0.y()};
-  MomentumFromOmega(z, w, lambda, k);
-  d.k = {k[0].a, k[1].a};
-  d.dk_ds = {k[0].v[0], k[1].v[0]};
+  d.z0 = e.z0;
+  const double w = e.phi - (e.psi + s);
+  const double cw = std::cos(w), sw = std::sin(w);
+  double omega[2], domega[2];
+  OmegaHOnEllipse(e.a, e.b, e.cos_phi, e.sin_phi, cw, sw, omega);
+  OmegaHOnEllipse(e.a, e.b, e.cos_phi, e.sin_phi, sw, -cw, domega);  // d/dpsi = -d/dw
+  // K is linear in omega_h at fixed z: dK/ds is K of d omega_h / ds.
+  const double zh[2] = {e.z0.x(), e.z0.y()};
+  MomentumFromOmega(zh, omega, e.lambda, d.k.data());
+  MomentumFromOmega(zh, domega, e.lambda, d.dk_ds.data());
   return d;
+}
+
+ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, double s) {
+  return DirectionFor(MakeImpulseBasis(start, mu, lambda), s);
 }
 
 Eigen::Vector2d ContactAcceleration(double lambda, const Eigen::Vector3d& z, const Eigen::Vector2d& k) {

@@ -20,7 +20,16 @@ struct ReachDirection {
   Eigen::Vector2d k = Eigen::Vector2d::Zero();
   Eigen::Vector2d dk_ds = Eigen::Vector2d::Zero();
 };
-/// The direction of the impulse s from `start` at energy mu (angles already reduced).
+/// What does not depend on the impulse s: the axis z0, the velocity ellipse (a, b) and the trig
+/// of phi. Built once per start so that each direction costs one sine and one cosine.
+struct ImpulseBasis {
+  Eigen::Vector3d z0 = Eigen::Vector3d::UnitZ();
+  double a = 0.0, b = 0.0, cos_phi = 1.0, sin_phi = 0.0, phi = 0.0, psi = 0.0, lambda = 1.0;
+};
+ImpulseBasis MakeImpulseBasis(const AngleState& start, double mu, double lambda);
+/// The direction of the impulse s: K(s) = K(omega_h(theta, phi, psi + s)) and dK/ds.
+ReachDirection DirectionFor(const ImpulseBasis& basis, double s);
+/// The same from the angles (angles already reduced).
 ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, double s);
 
 /// Result of integrating one arc of the free motion over [0, t] from the axis z0 and momentum K.

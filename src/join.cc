@@ -37,7 +37,7 @@ class JoinFunction {
 
   JoinFunction(const AngleState& start, double mu, double lambda, const Eigen::Vector2d& d,
                const IntegrationOptions& options)
-      : start_(start), mu_(mu), lambda_(lambda), d_(d), options_(options) {}
+      : basis_(internal::MakeImpulseBasis(start, mu, lambda)), mu_(mu), lambda_(lambda), d_(d), options_(options) {}
 
   bool operator()(const double* p, double* r, double* jac) const {
     if (!(has_cache_ && p[0] == cache_p_[0] && p[1] == cache_p_[1])) Evaluate(p[0], p[1]);
@@ -55,7 +55,7 @@ class JoinFunction {
     has_cache_ = true;
     cache_p_[0] = s;
     cache_p_[1] = t;
-    const internal::ReachDirection dir = internal::DirectionFor(start_, mu_, lambda_, s);
+    const internal::ReachDirection dir = internal::DirectionFor(basis_, s);
     k_ = dir.k;
     SensState y{};
     y[0] = dir.z0.x();
@@ -127,7 +127,7 @@ class JoinFunction {
   void set_dt_hint(double h) const { dt_hint_ = h; }
 
  private:
-  AngleState start_;
+  internal::ImpulseBasis basis_;
   double mu_, lambda_;
   Eigen::Vector2d d_;
   IntegrationOptions options_;
@@ -195,6 +195,8 @@ int SolveLocal(JoinFunction& fn, const JoinOptions& options, Eigen::Vector2d* pa
 // Why a finished iteration is not the local solution of Lemma 2.1 (empty when it is). Messages
 // are built only on failure (a string stream costs more than a short rollout).
 std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, double dist) {
+  if (out.residual <= options.residual_tolerance && out.t <= out.time_limit && out.jacobian_conditioning >= 1e-3)
+    return {};
   std::ostringstream os;
   os.precision(6);
   if (!(out.residual <= options.residual_tolerance)) {

@@ -46,20 +46,22 @@ inline double CircularDistance(double a, double b) { return std::abs(std::remain
 /// doubles near 1e15 is 0.125).
 constexpr double kMaxAngleMagnitude = 1e15;
 
-/// One reduction of an angle at a public boundary: finite, |a| <= 1e15 (else an error naming
-/// `field`), and reduced to [-pi, pi] (unchanged when already there). A psi of 1e6 loses about
-/// 1e-10 in the reduction; every later formula then works on a small angle at full precision.
-inline double ReduceAngle(const std::string& field, double a) {
+/// One reduction of an angle at a public boundary: finite, |a| <= 1e15 (else an error naming the
+/// field `prefix`.`name`), and reduced to [-pi, pi] (unchanged when already there). A psi of 1e6
+/// loses about 1e-10 in the reduction; every later formula then works on a small angle at full
+/// precision. The field name is built only for the error (this runs on every join).
+inline double ReduceAngle(double a, const char* prefix, const char* name) {
+  if (std::abs(a) <= M_PI) return a;
+  const std::string field = std::string(prefix) + "." + name;
   RequireFinite(field, a);
   if (std::abs(a) > kMaxAngleMagnitude)
     ThrowInvalid(field, a, "an angle beyond 1e15 in magnitude has no significant digits left modulo 2 pi");
-  return std::abs(a) <= M_PI ? a : std::remainder(a, kTwoPi);
+  return std::remainder(a, kTwoPi);
 }
 
 /// ReduceAngle on theta, phi and psi (fields `prefix`.theta, ...). The state is the same.
-inline AngleState ReduceAngles(const std::string& prefix, const AngleState& s) {
-  return {ReduceAngle(prefix + ".theta", s.theta), ReduceAngle(prefix + ".phi", s.phi),
-          ReduceAngle(prefix + ".psi", s.psi)};
+inline AngleState ReduceAngles(const char* prefix, const AngleState& s) {
+  return {ReduceAngle(s.theta, prefix, "theta"), ReduceAngle(s.phi, prefix, "phi"), ReduceAngle(s.psi, prefix, "psi")};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -71,20 +73,25 @@ inline Eigen::Vector3d AxisFromAngles(double theta, double phi) {
   return {st * std::cos(phi), st * std::sin(phi), std::cos(theta)};
 }
 
-/// Horizontal angular velocity at (theta, phi, psi) and energy mu (section 2.1):
+/// Horizontal angular velocity on the velocity ellipse of semi-axes (a, b) at the azimuth phi
+/// (cp = cos phi, sp = sin phi) and the phase w = phi - psi (cw = cos w, sw = sin w), section 2.1:
 ///   omega_1 = a cos(w) cos(phi) + b sin(w) sin(phi), omega_2 = a cos(w) sin(phi) - b sin(w) cos(phi)
-/// with w = phi - psi and (a, b) the semi-axes of SemiAxisA, so x' = (omega_2, -omega_1) is
-/// eqs. (25)-(26). Templated on the scalar of psi so that ceres::Jet gives d omega / d psi.
+/// so that x' = (omega_2, -omega_1) is eqs. (25)-(26). Passing (sw, -cw) for (cw, sw) gives
+/// d omega / d psi (= -d omega / d w).
+template <typename T>
+inline void OmegaHOnEllipse(double a, double b, double cp, double sp, const T& cw, const T& sw, T* w) {
+  w[0] = a * cw * cp + b * sw * sp;
+  w[1] = a * cw * sp - b * sw * cp;
+}
+
+/// Horizontal angular velocity at (theta, phi, psi) and energy mu: OmegaHOnEllipse with the
+/// semi-axes of SemiAxisA. Templated on the scalar of psi so that ceres::Jet gives d omega / d psi.
 template <typename T>
 inline void OmegaHFromAngles(double theta, double phi, const T& psi, double mu, double lambda, T* w) {
   using std::cos;
   using std::sin;
-  const double a = SemiAxisA(theta, mu, lambda);
-  const double b = std::sqrt(mu);
   const T wv = phi - psi;
-  const T cw = cos(wv), sw = sin(wv);
-  w[0] = a * cw * std::cos(phi) + b * sw * std::sin(phi);
-  w[1] = a * cw * std::sin(phi) - b * sw * std::cos(phi);
+  OmegaHOnEllipse(SemiAxisA(theta, mu, lambda), std::sqrt(mu), std::cos(phi), std::sin(phi), T(cos(wv)), T(sin(wv)), w);
 }
 
 /// The least contact speed |x'| at energy mu: sqrt(mu / max(1, lambda)) (|x'|^2 = |omega|^2 =
