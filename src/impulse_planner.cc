@@ -28,6 +28,7 @@ Eigen::Matrix3d Reorthonormalize(const Eigen::Matrix3d& r) {
 
 std::string ToString(PlanStatus status) {
   switch (status) {
+    case PlanStatus::kNotRun: return "not_run";
     case PlanStatus::kSuccess: return "success";
     case PlanStatus::kSegmentBeyondLocalRadius: return "segment_beyond_local_radius";
     case PlanStatus::kIntegrationFailure: return "integration_failure";
@@ -71,7 +72,7 @@ struct PlanInput {
 // every piece, the energy-change indices and factors.
 PlanInput ValidatePlan(const AngleState& initial, double mu, const Path& path,
                        const std::vector<std::vector<double>>& partition,
-                       const std::vector<EnergyChangeSpec>& energy_changes, const PlanOptions& options) {
+                       const std::vector<EnergyChange>& energy_changes, const PlanOptions& options) {
   const std::string err = options.Validate();
   if (!err.empty()) throw std::invalid_argument(err);
   internal::RequirePositive("mu", mu);
@@ -87,7 +88,7 @@ PlanInput ValidatePlan(const AngleState& initial, double mu, const Path& path,
   in.factors.resize(static_cast<std::size_t>(in.n_total));
   for (std::size_t i = 0; i < energy_changes.size(); ++i) {
     const std::string f = "energy_changes[" + std::to_string(i) + "]";
-    const EnergyChangeSpec& e = energy_changes[i];
+    const EnergyChange& e = energy_changes[i];
     if (e.index < 0 || e.index >= in.n_total)
       internal::ThrowInvalid(f + ".index", e.index, "must be a partition index in [0, " + std::to_string(in.n_total) + ")");
     internal::RequirePositive(f + ".factor", e.factor);
@@ -245,13 +246,14 @@ void FinishPlan(const PlanCursor& cur, int n_total, PlanSummary* out) {
   out->mu_final = cur.mu;
 }
 
-}  // namespace
-
-PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
-                         const Path& path, const std::vector<std::vector<double>>& partition,
-                         const std::vector<EnergyChangeSpec>& energy_changes, const PlanOptions& options) {
+// The plan for explicit per-piece partitions (PlanImpulses unpacks its problem into this).
+PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
+                            const Path& path, const std::vector<std::vector<double>>& partition,
+                            const std::vector<EnergyChange>& energy_changes, const PlanOptions& options) {
   const PlanInput in = ValidatePlan(initial, mu, path, partition, energy_changes, options);
   PlanSummary out;
+  out.status = PlanStatus::kSuccess;  // until a segment fails
+  out.message.clear();
   out.pieces = path.PieceCount();
   out.segments = in.n_total;
   out.mu_initial = mu;
@@ -285,26 +287,12 @@ PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, doub
   return out;
 }
 
-PlanSummary PlanImpulses(const Problem& problem, const PlanOptions& options, int n) {
-  if (!problem.plan) throw std::invalid_argument("'plan' is missing: the problem has no plan task");
-  const PlanTask& task = *problem.plan;
-  const Path path = Path::FromSpec(task.path, "plan.path");
-  PartitionSpec spec = task.partition;
-  if (n > 0) spec.n = n;
-  const auto partition = MakePartition(path, spec, "plan.partition");
-  const double size = std::max(1.0, path.Length());
-  if ((problem.x0 - path.StartPoint()).norm() > 1e-9 * size) {
-    std::ostringstream os;
-    os.precision(17);
-    os << "'x0' = (" << problem.x0.x() << ", " << problem.x0.y() << ") is invalid: must equal the path start p(tau_0) = ("
-       << path.StartPoint().x() << ", " << path.StartPoint().y() << ")";
-    throw std::invalid_argument(os.str());
-  }
-  PlanOptions o = options;
-  o.integration = problem.integration;
-  o.join.integration = problem.integration;
-  return PlanImpulses(problem.model, problem.initial_angles, problem.mu, problem.A0, path, partition,
-                      task.energy_changes, o);
+}  // namespace
+
+PlanSummary PlanImpulses(const PlanProblem& problem, const PlanOptions& options) {
+  const std::vector<std::vector<double>> partition = MakePartition(problem.path, problem.partition, "partition");
+  return PlanPartitioned(problem.model, problem.initial, problem.mu, problem.A0, problem.path, partition,
+                         problem.energy_changes, options);
 }
 
 }  // namespace plateball

@@ -231,6 +231,7 @@ void FinishAtStart(const BallModel& model, JoinSummary* out) {
 
 std::string ToString(JoinStatus status) {
   switch (status) {
+    case JoinStatus::kNotRun: return "not_run";
     case JoinStatus::kConverged: return "converged";
     case JoinStatus::kTargetEqualsStart: return "target_equals_start";
     case JoinStatus::kTargetBeyondLocalRadius: return "target_beyond_local_radius";
@@ -275,10 +276,10 @@ double MinimumContactSpeed(double mu, const BallModel& model) {
   return internal::MinimumContactSpeed(mu, model.lambda());
 }
 
-JoinSummary Join(const BallModel& model, const AngleState& start, double mu, const Eigen::Vector2d& x0,
-                 const Eigen::Vector2d& target, const JoinOptions& options) {
-  const AngleState start_reduced = ValidateJoinInput(start, mu, x0, target, options);
-  return internal::JoinValidated(model, start_reduced, mu, x0, target, options);
+JoinSummary Join(const JoinProblem& problem, const JoinOptions& options) {
+  const AngleState start_reduced =
+      ValidateJoinInput(problem.start, problem.mu, problem.x0, problem.target, options);
+  return internal::JoinValidated(problem.model, start_reduced, problem.mu, problem.x0, problem.target, options);
 }
 
 namespace internal {
@@ -287,6 +288,7 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
                           const Eigen::Vector2d& x0, const Eigen::Vector2d& target, const JoinOptions& options) {
   const double lambda = model.lambda();
   JoinSummary out;
+  out.message.clear();  // filled only when the join does not converge
   out.start = start_reduced;
   out.mu = mu;
   out.x0 = x0;
@@ -341,12 +343,5 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
 }
 
 }  // namespace internal
-
-JoinSummary Join(const BallModel& model, const BallState& start, const Eigen::Vector2d& x0,
-                 const Eigen::Vector2d& target, const JoinOptions& options) {
-  ValidateState(start, "start");
-  const double mu = Energy(start, model);
-  return Join(model, AnglesFromState(start, model), mu, x0, target, options);
-}
 
 }  // namespace plateball

@@ -450,6 +450,8 @@ std::string ReachOptions::Validate() const {
 
 std::string ToString(ReachStatus status) {
   switch (status) {
+    case ReachStatus::kNotRun:
+      return "not_run";
     case ReachStatus::kSolved:
       return "solved";
     case ReachStatus::kUnreachableWithinHorizon:
@@ -663,6 +665,7 @@ ClosestApproach PolishClosestApproach(const Scan& scan, const CheapDistance& che
 ReachSummary Reach(const ReachProblem& problem_in, const ReachOptions& options) {
   const ReachProblem problem = ValidateReach(problem_in, options);
   ReachSummary summary;
+  summary.message.clear();  // filled only for kNumericalFailure
   summary.problem = problem;
   summary.period = kTwoPi / std::sqrt(problem.mu);
   summary.horizon = options.horizon_periods * summary.period;

@@ -540,19 +540,14 @@ TEST(ReachPlannerFallback, CoarsePartitionOfALongPathStillGivesAPlan) {
   // The slender ball on a long straight path cut into 3 segments of 14 units: the local join
   // (Lemma 2.1) finds no solution on its local branch for such a segment.
   const ReachProblem start = Slender({0, 0});
-  PathSpec line;
-  line.type = "line";
-  line.from = {0, 0};
-  line.to = {30, 30};
-  const Path path = Path::FromSpec(line);
-  const std::vector<std::vector<double>> partition{UniformParameterPartition(path.pieces()[0], 3)};
+  const Path path({SmoothCurve::Line({0, 0}, {30, 30})});
+  const PlanProblem problem{start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, {UniformParameter{3}}, {}};
   PlanOptions local_only;
   local_only.reach_fallback = false;
-  const PlanSummary without =
-      PlanImpulses(start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, partition, {}, local_only);
+  const PlanSummary without = PlanImpulses(problem, local_only);
   EXPECT_EQ(without.status, PlanStatus::kSegmentBeyondLocalRadius) << without.BriefReport();
 
-  const PlanSummary plan = PlanImpulses(start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, partition);
+  const PlanSummary plan = PlanImpulses(problem);
   ASSERT_TRUE(plan.IsSolutionUsable()) << plan.BriefReport();
   ASSERT_EQ(plan.steps.size(), 3u);
   int global = 0;
