@@ -116,9 +116,9 @@ TEST(Limits, TolerancesBelowDoublePrecisionAreRefusedNamingThem) {
 TEST(Limits, JoinResidualToleranceHasARange) {
   JoinOptions o;
   o.residual_tolerance = 0.999;  // called every target the start
-  EXPECT_EQ(o.Validate(), "residual_tolerance: value 0.999: must be in [1e-15, 0.001]");
+  EXPECT_EQ(o.Validate(), "residual_tolerance: value 0.999: must be in [1e-15, 1e-3]");
   o.residual_tolerance = 1e-300;
-  EXPECT_EQ(o.Validate(), "residual_tolerance: value 1e-300: must be in [1e-15, 0.001]");
+  EXPECT_EQ(o.Validate(), "residual_tolerance: value 1e-300: must be in [1e-15, 1e-3]");
   o.residual_tolerance = 1e-3;
   EXPECT_EQ(o.Validate(), "");
 }

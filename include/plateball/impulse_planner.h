@@ -16,6 +16,7 @@
 #include "plateball/partition.h"
 #include "plateball/path.h"
 #include "plateball/reach.h"
+#include "plateball/so3.h"  // AlignOrientationToAxis
 
 namespace plateball {
 
@@ -127,8 +128,5 @@ struct PlanSummary {
 /// does). Throws std::invalid_argument naming the field for invalid input (partition, indices,
 /// factors, mu, A0, options); a join or an integration that fails is a status.
 PlanSummary PlanImpulses(const PlanProblem& problem, const PlanOptions& options = {});
-
-/// A0 rotated minimally so that its third column is z (the symmetry axis).
-Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z);
 
 }  // namespace plateball
