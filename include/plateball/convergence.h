@@ -5,10 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "plateball/export.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/problem.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 struct ConvergenceRow {
   int n = 0;                    ///< segments per piece

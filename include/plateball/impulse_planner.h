@@ -10,6 +10,7 @@
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/error_bounds.h"
+#include "plateball/export.h"
 #include "plateball/impulse.h"
 #include "plateball/integration_options.h"
 #include "plateball/join.h"
@@ -17,7 +18,7 @@
 #include "plateball/problem.h"
 #include "plateball/reach.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 enum class PlanStatus {
   kSuccess,                   ///< every partition point reached

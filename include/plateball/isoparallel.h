@@ -24,8 +24,9 @@
 #include <vector>
 
 #include "plateball/elastica.h"
+#include "plateball/export.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// Options of SolveIsoparallel (JSON "isoparallel.solver", problem.h: IsoparallelSolverSpec).
 struct IsoparallelOptions {

@@ -5,10 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "plateball/export.h"
 #include "plateball/path.h"
 #include "plateball/problem.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// n equal steps of the parameter (n >= 1, i.e. at least 2 points).
 std::vector<double> UniformParameterPartition(const SmoothCurve& curve, int n);

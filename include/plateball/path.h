@@ -9,9 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "plateball/export.h"
 #include "plateball/problem.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 class CubicSpline2d;
 

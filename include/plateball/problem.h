@@ -13,9 +13,10 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/export.h"
 #include "plateball/integration_options.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// A planned planar path (JSON object "path"). `type` selects which fields are used:
 ///  "line":       from, to                             tau in [0, 1]

@@ -34,6 +34,7 @@
 #include "plateball/isoparallel_plan.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
+#include "plateball/version.h"
 
 namespace {
 
