@@ -1,8 +1,11 @@
 #include "plateball/path.h"
 
 #include <algorithm>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "check.h"
 #include "plateball/cubic_spline.h"
@@ -31,11 +34,11 @@ void RequireRange(double tau_begin, double tau_end) {
   if (tau_end == tau_begin) ThrowInvalid("tau_end", tau_end, "must differ from tau_begin (an empty curve)");
 }
 
-// 8-point Gauss-Legendre nodes and weights on [-1, 1].
-constexpr double kGlX[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
-                            0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
-constexpr double kGlW[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
-                            0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+// ArcLength: adaptive Gauss-Kronrod (15 points, error estimate |K15 - G7|) on each panel, panels
+// split in two until the estimate is below kArcLengthTolerance of the panel's length, at most
+// kArcLengthMaxDepth times.
+constexpr double kArcLengthTolerance = 1e-13;
+constexpr unsigned kArcLengthMaxDepth = 12;
 
 }  // namespace
 
@@ -228,15 +231,44 @@ Eigen::Vector2d SmoothCurve::SecondDerivative(double s) const { return RawSecond
 double SmoothCurve::ArcLength(double a, double b) const {
   RequireFinite("a", a);
   RequireFinite("b", b);
-  // Composite 8-point Gauss-Legendre; panels no longer than 1/64 of the parameter range.
-  const int panels = std::max(1, static_cast<int>(std::ceil(64.0 * std::abs(b - a) / (tau_end_ - tau_begin_))));
-  const double h = (b - a) / panels;
-  double sum = 0.0;
-  for (int i = 0; i < panels; ++i) {
-    const double mid = a + (i + 0.5) * h;
-    for (int j = 0; j < 8; ++j) sum += kGlW[j] * Derivative(mid + 0.5 * h * kGlX[j]).norm();
+  if (b < a) return -ArcLength(b, a);
+  const auto speed = [this](double tau) { return Derivative(tau).norm(); };
+  const std::vector<double> breaks = PanelBreaks(a, b);
+  double length = 0.0;
+  for (std::size_t i = 1; i < breaks.size(); ++i)
+    length += boost::math::quadrature::gauss_kronrod<double, 15>::integrate(speed, breaks[i - 1], breaks[i],
+                                                                             kArcLengthMaxDepth, kArcLengthTolerance);
+  return length;
+}
+
+std::vector<double> SmoothCurve::PanelBreaks(double a, double b) const {
+  // Panels on which the speed |p'| is smooth and has at most a few oscillations, so that each
+  // needs few subdivisions: the knot intervals of a spline (|p'| is only C^1 at the knots); a
+  // quarter turn of the angle of a circle, ellipse or lemniscate; a quarter wavelength of a sine
+  // (|p'| has period half a wavelength); 1/64 of the parameter range of a custom curve.
+  std::vector<double> breaks{a};
+  double width = std::numeric_limits<double>::infinity();
+  switch (kind_) {
+    case CurveKind::kLine: break;
+    case CurveKind::kCircle:
+    case CurveKind::kEllipse:
+    case CurveKind::kLemniscate: width = 0.5 * M_PI; break;
+    case CurveKind::kSine: width = wavenumber_ > 0.0 ? 0.5 * M_PI / wavenumber_ : width; break;
+    case CurveKind::kSamples:
+      for (const double knot : spline_->knots()) {
+        const double s = reversed_ ? -knot : knot;
+        if (s > a && s < b) breaks.push_back(s);
+      }
+      std::sort(breaks.begin(), breaks.end());
+      break;
+    case CurveKind::kCustom: width = (tau_end_ - tau_begin_) / 64.0; break;
   }
-  return 0.5 * h * sum;
+  if (std::isfinite(width)) {
+    const int panels = static_cast<int>(std::clamp(std::ceil((b - a) / width), 1.0, 1e6));
+    for (int i = 1; i < panels; ++i) breaks.push_back(a + (b - a) * i / panels);
+  }
+  breaks.push_back(b);
+  return breaks;
 }
 
 void SmoothCurve::CheckSpeed(const std::string& field) const {
