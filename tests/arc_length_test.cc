@@ -54,14 +54,15 @@ std::vector<double> ChordKnots(const std::vector<Eigen::Vector2d>& pts) {
 }
 }  // namespace
 
-// Issue 10's case: a sine of length 200 and wavelength 0.5 (400 wavelengths). The fixed 64
+// Issue 10's case: a sine of length 200, amplitude 1 and wavelength 0.5 (400 wavelengths). The fixed 64
 // Gauss-Legendre panels gave 1607.54 instead of 1622.366 (0.9% short).
 TEST(ArcLength, LongShortWavelengthSineMatchesTheEllipticIntegral) {
-  const double amplitude = 0.3, wavelength = 0.5;
+  const double amplitude = 1.0, wavelength = 0.5;
   const SmoothCurve c = SmoothCurve::Sine({0, 0}, 0.0, 200.0, amplitude, wavelength);
   const double k = 2.0 * M_PI / wavelength, m = amplitude * amplitude * k * k;
   const double whole = 400.0 * 4.0 * std::sqrt(1.0 + m) * boost::math::ellint_2(std::sqrt(m / (1.0 + m))) / k;
   EXPECT_NEAR(whole, SineArcLength(amplitude, wavelength, 0.0, 200.0), 1e-12 * whole);  // the two forms agree
+  EXPECT_NEAR(whole, 1622.36572376791, 1e-10);  // mpmath.ellipe, 15 digits
   EXPECT_NEAR(c.Length(), whole, kRelativeTolerance * whole);
   // Arbitrary sub-ranges (not whole wavelengths), and the reverse direction.
   for (const auto& [a, b] : {std::pair{0.1, 37.3}, std::pair{12.345, 12.4}, std::pair{3.0, 199.9}}) {
@@ -122,7 +123,7 @@ TEST(ArcLength, SplinesThroughCircleSamplesConvergeTo2PiR) {
 
 TEST(ArcLength, UniformArcLengthPartitionOfALongSineHasEqualLengths) {
   // Equal pieces of the closed-form length (was up to 0.9% off with the fixed panels).
-  const double amplitude = 0.3, wavelength = 0.5;
+  const double amplitude = 1.0, wavelength = 0.5;
   const SmoothCurve c = SmoothCurve::Sine({0, 0}, 0.0, 200.0, amplitude, wavelength);
   const int n = 37;
   const std::vector<double> t = UniformArcLengthPartition(c, n);
