@@ -1,6 +1,8 @@
 #include "plateball/path.h"
 
 #include <algorithm>
+#include <array>
+#include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <limits>
@@ -34,11 +36,56 @@ void RequireRange(double tau_begin, double tau_end) {
   if (tau_end == tau_begin) ThrowInvalid("tau_end", tau_end, "must differ from tau_begin (an empty curve)");
 }
 
-// ArcLength: adaptive Gauss-Kronrod (15 points, error estimate |K15 - G7|) on each panel, panels
-// split in two until the estimate is below kArcLengthTolerance of the panel's length, at most
-// kArcLengthMaxDepth times.
-constexpr double kArcLengthTolerance = 1e-13;
-constexpr unsigned kArcLengthMaxDepth = 12;
+// ArcLength on one smooth panel: Gauss-Kronrod G15/K31 (Boost.Math's nodes and weights), the
+// panel halved until the error estimate |K31 - G15| (which bounds the error of the far more
+// accurate K31 generously) is below kArcLengthTolerance of the panel's own length or below the
+// round-off floor, at most kArcLengthMaxDepth times.
+constexpr double kArcLengthTolerance = 1e-12;
+constexpr unsigned kArcLengthMaxDepth = 8;
+
+struct PanelQuadrature {
+  double length = 0.0;  // K31
+  double error = 0.0;   // |K31 - G15|
+  double floor = 0.0;   // round-off in both: below it halving cannot help
+};
+
+// The round-off floor: a node lo + h x is rounded by up to eps max(|lo|, |hi|), which moves the
+// speed by |speed'| times that (|speed'| estimated from neighbouring nodes); each speed and the sum
+// carry a few eps relative more. Far from tau = 0 (e.g. tau = 200 on a sine of wavelength 0.1) this
+// floor is above 1e-12 of a short panel's length, and halving such a panel only makes it worse.
+template <class Speed>
+PanelQuadrature GaussKronrod31(const Speed& speed, double lo, double hi) {
+  using Kronrod = boost::math::quadrature::gauss_kronrod<double, 31>;
+  using Gauss = boost::math::quadrature::gauss<double, 15>;
+  const auto& x = Kronrod::abscissa();  // x[0] = 0 < x[1] < ... < x[15]; even i: the Gauss nodes
+  const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+  std::array<double, 31> f{};  // speeds at mid + half * t[j], t ascending
+  f[15] = speed(mid);
+  double kronrod = f[15] * Kronrod::weights()[0], gauss = f[15] * Gauss::weights()[0];
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    f[15 + i] = speed(mid + half * x[i]);
+    f[15 - i] = speed(mid - half * x[i]);
+    kronrod += (f[15 + i] + f[15 - i]) * Kronrod::weights()[i];
+    if (i % 2 == 0) gauss += (f[15 + i] + f[15 - i]) * Gauss::weights()[i / 2];
+  }
+  double slope = 0.0;  // max |d speed / d x| over [-1, 1]
+  for (std::size_t j = 0; j + 1 < f.size(); ++j) {
+    const double t0 = j < 15 ? -x[15 - j] : x[j - 15], t1 = j + 1 < 15 ? -x[14 - j] : x[j - 14];
+    slope = std::max(slope, std::abs(f[j + 1] - f[j]) / (t1 - t0));
+  }
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  const double length = half * kronrod;
+  const double floor = 8.0 * kEps * (2.0 * std::max(std::abs(lo), std::abs(hi)) * slope + 8.0 * length);
+  return {length, half * std::abs(kronrod - gauss), floor};
+}
+
+template <class Speed>
+double PanelLength(const Speed& speed, double lo, double hi, unsigned depth) {
+  const PanelQuadrature q = GaussKronrod31(speed, lo, hi);
+  if (depth == 0 || q.error <= std::max(kArcLengthTolerance * q.length, q.floor)) return q.length;
+  const double mid = 0.5 * (lo + hi);
+  return PanelLength(speed, lo, mid, depth - 1) + PanelLength(speed, mid, hi, depth - 1);
+}
 
 }  // namespace
 
@@ -234,39 +281,56 @@ double SmoothCurve::ArcLength(double a, double b) const {
   if (b < a) return -ArcLength(b, a);
   const auto speed = [this](double tau) { return Derivative(tau).norm(); };
   const std::vector<double> breaks = PanelBreaks(a, b);
+  const std::size_t last = breaks.size() - 1;
+  // The whole quarter turns of a circle, ellipse or lemniscate and the whole quarter wavelengths of
+  // a sine all have one length (|p'| is periodic and even about every break): measured once, on
+  // [0, width], where the nodes carry no round-off from a large tau.
+  const bool equal_panels = kind_ != CurveKind::kSamples && kind_ != CurveKind::kCustom && last >= 3;
+  if (equal_panels) {
+    const double whole = PanelLength(speed, 0.0, PanelWidth(), kArcLengthMaxDepth);
+    return PanelLength(speed, breaks[0], breaks[1], kArcLengthMaxDepth) + static_cast<double>(last - 2) * whole +
+           PanelLength(speed, breaks[last - 1], breaks[last], kArcLengthMaxDepth);
+  }
   double length = 0.0;
-  for (std::size_t i = 1; i < breaks.size(); ++i)
-    length += boost::math::quadrature::gauss_kronrod<double, 15>::integrate(speed, breaks[i - 1], breaks[i],
-                                                                             kArcLengthMaxDepth, kArcLengthTolerance);
+  for (std::size_t i = 1; i <= last; ++i) length += PanelLength(speed, breaks[i - 1], breaks[i], kArcLengthMaxDepth);
   return length;
 }
 
-std::vector<double> SmoothCurve::PanelBreaks(double a, double b) const {
-  // Panels on which the speed |p'| is smooth and has at most a few oscillations, so that each
-  // needs few subdivisions: the knot intervals of a spline (|p'| is only C^1 at the knots); a
-  // quarter turn of the angle of a circle, ellipse or lemniscate; a quarter wavelength of a sine
-  // (|p'| has period half a wavelength); 1/64 of the parameter range of a custom curve.
-  std::vector<double> breaks{a};
-  double width = std::numeric_limits<double>::infinity();
+double SmoothCurve::PanelWidth() const {
+  // A quarter turn of the angle of a circle, ellipse or lemniscate; a quarter wavelength of a sine
+  // (|p'| has period half a wavelength); 1/64 of the parameter range of a custom curve; none
+  // (infinite) for a line and a spline (whose panels are its knot intervals).
   switch (kind_) {
-    case CurveKind::kLine: break;
     case CurveKind::kCircle:
     case CurveKind::kEllipse:
-    case CurveKind::kLemniscate: width = 0.5 * M_PI; break;
-    case CurveKind::kSine: width = wavenumber_ > 0.0 ? 0.5 * M_PI / wavenumber_ : width; break;
-    case CurveKind::kSamples:
-      for (const double knot : spline_->knots()) {
-        const double s = reversed_ ? -knot : knot;
-        if (s > a && s < b) breaks.push_back(s);
-      }
-      std::sort(breaks.begin(), breaks.end());
-      break;
-    case CurveKind::kCustom: width = (tau_end_ - tau_begin_) / 64.0; break;
+    case CurveKind::kLemniscate: return 0.5 * M_PI;
+    case CurveKind::kSine: return wavenumber_ > 0.0 ? 0.5 * M_PI / wavenumber_ : INFINITY;
+    case CurveKind::kCustom: return (tau_end_ - tau_begin_) / 64.0;
+    case CurveKind::kLine:
+    case CurveKind::kSamples: break;
   }
-  if (std::isfinite(width)) {
-    const int panels = static_cast<int>(std::clamp(std::ceil((b - a) / width), 1.0, 1e6));
-    for (int i = 1; i < panels; ++i) breaks.push_back(a + (b - a) * i / panels);
+  return INFINITY;
+}
+
+std::vector<double> SmoothCurve::PanelBreaks(double a, double b) const {
+  // Panels on which the speed |p'| is smooth and monotone or nearly so, so that each needs few
+  // halvings: the knot intervals of a spline (|p'| is only C^1 at the knots); the multiples of
+  // PanelWidth() otherwise (from tau_begin for a custom curve, from 0 else: for a sine that is where
+  // cos(k tau) is 0 or +-1, and |p'|, near-singular at its minima, has them at panel ends, where
+  // the Gauss nodes cluster).
+  std::vector<double> breaks{a};
+  if (kind_ == CurveKind::kSamples) {
+    for (const double knot : spline_->knots()) {
+      const double s = reversed_ ? -knot : knot;
+      if (s > a && s < b) breaks.push_back(s);
+    }
+    std::sort(breaks.begin(), breaks.end());
   }
+  const double width = PanelWidth(), anchor = kind_ == CurveKind::kCustom ? tau_begin_ : 0.0;
+  const double first = std::floor((a - anchor) / width) + 1.0, last = std::ceil((b - anchor) / width) - 1.0;
+  if (std::isfinite(width) && last - first < 1e6)  // at most a million panels
+    for (double j = first; j <= last; ++j)
+      if (anchor + j * width > breaks.back() && anchor + j * width < b) breaks.push_back(anchor + j * width);
   breaks.push_back(b);
   return breaks;
 }
