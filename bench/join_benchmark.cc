@@ -46,7 +46,7 @@ void BM_T1Join(benchmark::State& state) {
   double iterations = 0;
   long joins = 0;
   for (auto _ : state) {
-    const JoinSummary j = Join(model, start, 1.0, {0, 0}, targets[i]);
+    const JoinSummary j = Join(JoinProblem{model, start, 1.0, {0, 0}, targets[i]});
     benchmark::DoNotOptimize(&j);
     iterations += j.iterations;
     ++joins;
@@ -56,7 +56,7 @@ void BM_T1Join(benchmark::State& state) {
   int ok = 0;
   double worst = 0.0;
   for (const auto& target : targets) {
-    const JoinSummary j = Join(model, start, 1.0, {0, 0}, target, options);
+    const JoinSummary j = Join(JoinProblem{model, start, 1.0, {0, 0}, target}, options);
     if (j.IsSolutionUsable()) ++ok;
     worst = std::max(worst, IndependentMiss(model, start, j));
   }

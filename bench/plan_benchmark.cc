@@ -10,6 +10,7 @@
 #include "plateball/convergence.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/partition.h"
+#include "plateball/task_adapters.h"
 
 namespace {
 
@@ -22,11 +23,7 @@ Problem T2Problem() {
   p.mu = 1.0;
   p.x0 = {0, 0};
   p.plan = PlanTask{};
-  p.plan->path.type = "circle";
-  p.plan->path.center = {-2, 0};
-  p.plan->path.radius = 2;
-  p.plan->path.tau_begin = 0;
-  p.plan->path.tau_end = 2 * M_PI;
+  p.plan->path = PathSpec{CircleSpec{{-2, 0}, 2, 0, 2 * M_PI}};
   return p;
 }
 
@@ -34,10 +31,10 @@ void BM_T2Plan(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const BallModel model = BallModel::FromLambda(2.0);
   const Path path({SmoothCurve::Circle({-2, 0}, 2, 0, 2 * M_PI)});
-  const std::vector<std::vector<double>> partition{UniformParameterPartition(path.pieces()[0], n)};
+  const PlanProblem problem{model, {M_PI / 3, 0.4, 0.1}, 1.0, Eigen::Matrix3d::Identity(), path, {UniformParameter{n}}, {}};
   PlanSummary plan;
   for (auto _ : state) {
-    plan = PlanImpulses(model, {M_PI / 3, 0.4, 0.1}, 1.0, Eigen::Matrix3d::Identity(), path, partition);
+    plan = PlanImpulses(problem);
     benchmark::DoNotOptimize(plan.steps.data());
   }
   state.counters["orientation_error"] = plan.measured_error;
@@ -50,15 +47,15 @@ void BM_T2Plan(benchmark::State& state) {
 BENCHMARK(BM_T2Plan)->RangeMultiplier(2)->Range(16, 1024)->Unit(benchmark::kMillisecond);
 
 void BM_T2Slopes(benchmark::State& state) {
-  const Problem p = T2Problem();
+  const ConvergenceSetup setup = ConvergenceSetupFor(T2Problem(), {16, 32, 64, 128, 256, 512, 1024}, "ns", true);
   ConvergenceStudy study;
   for (auto _ : state) {
-    study = RunConvergenceStudy(p, {16, 32, 64, 128, 256, 512, 1024});
+    study = RunConvergenceStudy(setup.problem, setup.options);
     benchmark::DoNotOptimize(study.rows.data());
   }
-  state.counters["slope"] = study.error_slope;
-  state.counters["bound_slope"] = study.bound_slope;
-  state.counters["time_slope"] = study.time_slope;
+  state.counters["slope"] = study.error_slope.value_or(NAN);
+  state.counters["bound_slope"] = study.bound_slope.value_or(NAN);
+  state.counters["time_slope"] = study.time_slope.value_or(NAN);
   state.counters["bound_holds"] = study.bound_holds ? 1 : 0;
 }
 BENCHMARK(BM_T2Slopes)->Unit(benchmark::kMillisecond)->Iterations(3);

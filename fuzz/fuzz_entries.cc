@@ -16,6 +16,7 @@
 #include "plateball/join.h"
 #include "plateball/path.h"
 #include "plateball/problem_io.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::fuzz {
 namespace {
@@ -122,7 +123,7 @@ void SolveEntries(const std::uint8_t* data, std::size_t size) {
   } catch (const std::runtime_error&) {  // a reported integration failure (step bound)
   }
   try {
-    const JoinSummary j = Join(model, angles, mu, Eigen::Vector2d::Zero(), target);
+    const JoinSummary j = Join(JoinProblem{model, angles, mu, Eigen::Vector2d::Zero(), target});
     if (j.IsSolutionUsable()) {
       RequireFiniteResult("join.t", j.t);
       RequireFiniteResult("join.delta_psi", j.delta_psi);
@@ -132,18 +133,11 @@ void SolveEntries(const std::uint8_t* data, std::size_t size) {
   } catch (const std::invalid_argument&) {
   }
   try {
-    const Path path = Path::FromSpec([&] {
-      PathSpec spec;
-      spec.type = "circle";
-      spec.center = Eigen::Vector2d(-radius, 0.0);
-      spec.radius = radius;
-      spec.tau_begin = 0.0;
-      spec.tau_end = 1.0;
-      return spec;
-    }());
+    const Path path = PathFromSpec(PathSpec{CircleSpec{Eigen::Vector2d(-radius, 0.0), radius, 0.0, 1.0}});
     std::vector<double> taus;
     for (int k = 0; k <= n; ++k) taus.push_back(static_cast<double>(k) / n);
-    const PlanSummary plan = PlanImpulses(model, angles, mu, Eigen::Matrix3d::Identity(), path, {taus});
+    const PlanSummary plan =
+        PlanImpulses(PlanProblem{model, angles, mu, Eigen::Matrix3d::Identity(), path, {ExplicitTaus{taus}}, {}});
     if (plan.IsSolutionUsable()) {
       RequireFiniteResult("plan.measured_error", plan.measured_error);
       RequireFiniteResult("plan.A_impulsive", plan.A_impulsive);

@@ -4,7 +4,6 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <atomic>
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <chrono>
 #include <cmath>
@@ -14,7 +13,6 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #include "check.h"
 #include "elastica_rolling.h"
@@ -406,21 +404,136 @@ std::vector<Candidate> SolveByFamilies(Context* ctx, const IsoparallelProblem& p
   return found;
 }
 
+// The search context: the target reorientation, the circle of the rotation trick and the
+// first search length.
+Context MakeContext(const IsoparallelProblem& problem, const IsoparallelOptions& options) {
+  Context ctx;
+  ctx.target = problem.goal_orientation * problem.start_orientation.transpose();
+  const Eigen::Vector2d chord = problem.goal - problem.start;
+  ctx.radius = chord.norm();
+  ctx.goal_angle = std::atan2(chord.y(), chord.x());
+  // Automatic search length: the cap factor times a multiple of the chord long enough to turn
+  // the ball through any angle (a loop of length 2 pi rolls it through a full turn).
+  ctx.s_limit = options.max_length > 0 ? options.max_length
+                                       : options.length_cap_factor * std::max(2.0 * ctx.radius, ctx.radius + 2 * M_PI);
+  return ctx;
+}
+
+// Local searches from every start, over the crossings beyond `covered` (one ParallelFor; the
+// results per start do not depend on the thread count).
+std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const IsoparallelOptions& options,
+                                                   double covered) {
+  const std::vector<Start> starts = MakeStarts(options, ctx.s_limit, ctx.radius);
+  std::vector<std::vector<LocalResult>> per_start(starts.size());
+  std::mutex progress_mutex;
+  int starts_done = 0;
+  internal::ParallelFor(static_cast<int>(starts.size()), options.threads, [&](int i) {
+    const Start& st = starts[i];
+    const Elastica e(ToParameters(st.regime, st.x));
+    const internal::ElasticaRollingTable table(e, ctx.s_limit, kSearch.steps_per_period, kSearch.max_step);
+    const std::vector<double> crossings = table.Crossings(ctx.radius, kMaxCrossingsPerStart);
+    for (std::size_t n = 0; n < crossings.size(); ++n) {
+      if (crossings[n] <= covered) continue;
+      per_start[i].push_back(SearchLocal(ctx, st.regime, st.x, static_cast<int>(n) + 1, options));
+    }
+    if (options.progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      options.progress(++starts_done, static_cast<int>(starts.size()));
+    }
+  });
+  return per_start;
+}
+
+bool Known(const std::vector<Candidate>& found, const Candidate& c, double tol) {
+  for (const Candidate& f : found)
+    if (SameSolution(f, c, tol)) return true;
+  return false;
+}
+
+// Polishes the searched results that are not known yet and adds the new distinct solutions.
+void MergeResults(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
+                  std::vector<std::vector<LocalResult>> per_start, std::vector<Candidate>* found,
+                  IsoparallelSummary* summary) {
+  for (auto& results : per_start) {
+    for (LocalResult& r : results) {
+      ++summary->local_solves;
+      summary->evaluations += r.evaluations;
+      if (!r.searched) continue;
+      // Polish only what is not already known (compared at the search accuracy).
+      if (Known(*found, MakeRoughCandidate(ctx, problem, r), kSearchSameTol)) {
+        ++summary->converged_solves;
+        continue;
+      }
+      const long before = r.evaluations;
+      PolishLocal(ctx, options, &r);
+      summary->evaluations += r.evaluations - before;
+      if (!r.converged) continue;
+      ++summary->converged_solves;
+      const Candidate c = MakeCandidate(ctx, problem, r);
+      if (!Known(*found, c, kSameTol)) found->push_back(c);
+    }
+  }
+}
+
+// Shooting passes: search, merge, then lengthen the search until the cap is covered.
+void SolveByShooting(Context* ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
+                     std::vector<Candidate>* found, IsoparallelSummary* summary) {
+  double covered = 0.0;  // crossings up to this length were already searched
+  for (int pass = 0; pass < 3; ++pass) {
+    MergeResults(*ctx, problem, options, SearchStarts(*ctx, options, covered), found, summary);
+    covered = ctx->s_limit;
+    if (found->empty()) {
+      if (options.max_length > 0) break;
+      ctx->s_limit *= 2.0;
+      continue;
+    }
+    double shortest = std::numeric_limits<double>::infinity();
+    for (const Candidate& c : *found) shortest = std::min(shortest, c.solution.length);
+    const double needed = options.length_cap_factor * shortest;
+    if (needed <= ctx->s_limit * (1 + 1e-12)) break;
+    ctx->s_limit = needed;
+  }
+}
+
+// The solutions up to the length cap, sorted, each verified independently by rolling (dopri5
+// along the path, spread over the threads; a failed integration is rethrown here).
+void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
+                    std::vector<Candidate> found, IsoparallelSummary* summary) {
+  std::stable_sort(found.begin(), found.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.solution.length < b.solution.length; });
+  if (found.empty()) return;
+  const double cap = options.length_cap_factor * found.front().solution.length * (1 + 1e-12);
+  for (const Candidate& c : found) {
+    if (c.solution.length > cap) break;
+    summary->solutions.push_back(c.solution);
+  }
+  internal::ParallelFor(static_cast<int>(summary->solutions.size()), options.threads, [&](int i) {
+    IsoparallelSolution& sol = summary->solutions[i];
+    const Eigen::Matrix3d r = VerifyRolling(sol, options.integration);
+    sol.orientation_residual = LogSO3(ctx.target.transpose() * r).norm();
+    sol.orientation_error = OperatorNormDistance(problem.goal_orientation, r * problem.start_orientation);
+    sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
+  });
+}
+
 }  // namespace
 
 std::string IsoparallelOptions::Validate() const {
   std::ostringstream os;
   os.precision(17);
-  if (starts < 1 || starts > 1000000) os << "'starts' = " << starts << " is invalid: must be in [1, 1000000]";
-  else if (!(std::isfinite(length_cap_factor) && length_cap_factor >= 1.0))
-    os << "'length_cap_factor' = " << length_cap_factor << " is invalid: must be finite and >= 1";
-  else if (max_iterations < 1 || max_iterations > 100000)
-    os << "'max_iterations' = " << max_iterations << " is invalid: must be in [1, 100000]";
+  if (starts < 1 || starts > kMaxStarts) os << "'starts' = " << starts << " is invalid: must be in [1, " << kMaxStarts << "]";
+  else if (!(std::isfinite(length_cap_factor) && length_cap_factor >= 1.0 && length_cap_factor <= kMaxLengthCapFactor))
+    os << "'length_cap_factor' = " << length_cap_factor << " is invalid: must be in [1, " << kMaxLengthCapFactor << "]";
+  else if (max_iterations < 1 || max_iterations > kMaxIterations)
+    os << "'max_iterations' = " << max_iterations << " is invalid: must be in [1, " << kMaxIterations << "]";
   else if (!(std::isfinite(tolerance) && tolerance > 0 && tolerance < 1))
     os << "'tolerance' = " << tolerance << " is invalid: must be in (0, 1)";
-  else if (threads < 1 || threads > 256) os << "'threads' = " << threads << " is invalid: must be in [1, 256]";
+  else if (threads < 1 || threads > kMaxThreads)
+    os << "'threads' = " << threads << " is invalid: must be in [1, " << kMaxThreads << "]";
   else if (!(std::isfinite(max_length) && max_length >= 0))
     os << "'max_length' = " << max_length << " is invalid: must be finite and >= 0 (0 = automatic)";
+  else
+    return integration.Validate();
   return os.str();
 }
 
@@ -436,18 +549,28 @@ std::string ToString(IsoparallelMethod method) {
 
 std::string ToString(IsoparallelStatus status) {
   switch (status) {
+    case IsoparallelStatus::kNotRun:
+      return "not_run";
     case IsoparallelStatus::kSolved:
       return "solved";
     case IsoparallelStatus::kNoSolution:
       return "no_solution";
+    case IsoparallelStatus::kIntegrationFailure:
+      return "integration_failure";
   }
   return "unknown";
 }
 
-Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution) {
+const IsoparallelSolution& IsoparallelSummary::Shortest() const {
+  if (solutions.empty())
+    throw std::logic_error("IsoparallelSummary::Shortest: no solution (status " + ToString(status) + ")");
+  return solutions.front();
+}
+
+Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution, const IntegrationOptions& integration) {
   const Elastica e = solution.Path();
   const PlanarVelocity v = [&e](double s) { return e.Tangent(s); };
-  return RollingReorientation(v, 0.0, solution.length);
+  return RollingReorientation(v, 0.0, solution.length, {}, integration);
 }
 
 IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const IsoparallelOptions& options) {
@@ -459,104 +582,21 @@ IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const Iso
   IsoparallelSummary summary;
   summary.problem = problem;
   summary.options = options;
-  Context ctx;
-  ctx.target = problem.goal_orientation * problem.start_orientation.transpose();
-  const Eigen::Vector2d chord = problem.goal - problem.start;
-  ctx.radius = chord.norm();
-  ctx.goal_angle = std::atan2(chord.y(), chord.x());
-  // Automatic search length: the cap factor times a multiple of the chord long enough to turn
-  // the ball through any angle (a loop of length 2 pi rolls it through a full turn).
-  ctx.s_limit = options.max_length > 0 ? options.max_length
-                                       : options.length_cap_factor * std::max(2.0 * ctx.radius, ctx.radius + 2 * M_PI);
-
+  Context ctx = MakeContext(problem, options);
   std::vector<Candidate> found;
   const bool identity = LogSO3(ctx.target).norm() <= options.tolerance;
   if (identity && options.enumerate_families) found = SolveByFamilies(&ctx, problem, options, &summary);
-  double covered = 0.0;  // crossings up to this length were already searched
-  for (int pass = 0; pass < 3 && summary.method == IsoparallelMethod::kShooting; ++pass) {
-    const std::vector<Start> starts = MakeStarts(options, ctx.s_limit, ctx.radius);
-    std::vector<std::vector<LocalResult>> per_start(starts.size());
-    std::atomic<int> next{0};
-    std::mutex progress_mutex;
-    int starts_done = 0;
-    auto worker = [&]() {
-      for (int i = next++; i < static_cast<int>(starts.size()); i = next++) {
-        const Start& st = starts[i];
-        const Elastica e(ToParameters(st.regime, st.x));
-        const internal::ElasticaRollingTable table(e, ctx.s_limit, kSearch.steps_per_period, kSearch.max_step);
-        const std::vector<double> crossings = table.Crossings(ctx.radius, kMaxCrossingsPerStart);
-        for (std::size_t n = 0; n < crossings.size(); ++n) {
-          if (crossings[n] <= covered) continue;
-          per_start[i].push_back(SearchLocal(ctx, st.regime, st.x, static_cast<int>(n) + 1, options));
-        }
-        if (options.progress) {
-          std::lock_guard<std::mutex> lock(progress_mutex);
-          options.progress(++starts_done, static_cast<int>(starts.size()));
-        }
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < options.threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (auto& th : pool) th.join();
-    for (const auto& results : per_start) {
-      for (LocalResult r : results) {
-        ++summary.local_solves;
-        summary.evaluations += r.evaluations;
-        if (!r.searched) continue;
-        // Polish only what is not already known (compared at the search accuracy).
-        const Candidate rough = MakeRoughCandidate(ctx, problem, r);
-        bool known = false;
-        for (const Candidate& f : found)
-          if (SameSolution(f, rough, kSearchSameTol)) known = true;
-        if (known) {
-          ++summary.converged_solves;
-          continue;
-        }
-        const long before = r.evaluations;
-        PolishLocal(ctx, options, &r);
-        summary.evaluations += r.evaluations - before;
-        if (!r.converged) continue;
-        ++summary.converged_solves;
-        Candidate c = MakeCandidate(ctx, problem, r);
-        bool dup = false;
-        for (const Candidate& f : found)
-          if (SameSolution(f, c, kSameTol)) dup = true;
-        if (!dup) found.push_back(c);
-      }
-    }
-    covered = ctx.s_limit;
-    if (found.empty()) {
-      if (options.max_length > 0) break;
-      ctx.s_limit *= 2.0;
-      continue;
-    }
-    double shortest = std::numeric_limits<double>::infinity();
-    for (const Candidate& c : found) shortest = std::min(shortest, c.solution.length);
-    const double needed = options.length_cap_factor * shortest;
-    if (needed <= ctx.s_limit * (1 + 1e-12)) break;
-    ctx.s_limit = needed;
-  }
+  if (summary.method == IsoparallelMethod::kShooting) SolveByShooting(&ctx, problem, options, &found, &summary);
   summary.searched_length = ctx.s_limit;
-
-  std::stable_sort(found.begin(), found.end(),
-            [](const Candidate& a, const Candidate& b) { return a.solution.length < b.solution.length; });
-  if (!found.empty()) {
-    const double cap = options.length_cap_factor * found.front().solution.length * (1 + 1e-12);
-    for (const Candidate& c : found) {
-      if (c.solution.length > cap) break;
-      summary.solutions.push_back(c.solution);
-    }
-    // Independent verification (dopri5 along the path), spread over the threads.
-    internal::ParallelFor(static_cast<int>(summary.solutions.size()), options.threads, [&](int i) {
-      IsoparallelSolution& sol = summary.solutions[i];
-      const Eigen::Matrix3d r = VerifyRolling(sol);
-      sol.orientation_residual = LogSO3(ctx.target.transpose() * r).norm();
-      sol.orientation_error = OperatorNormDistance(problem.goal_orientation, r * problem.start_orientation);
-      sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
-    });
+  try {
+    ReportVerified(ctx, problem, options, std::move(found), &summary);
+    summary.status = summary.solutions.empty() ? IsoparallelStatus::kNoSolution : IsoparallelStatus::kSolved;
+    summary.message = summary.solutions.empty() ? "no start converged to a verified solution" : "";
+  } catch (const std::runtime_error& e) {
+    summary.status = IsoparallelStatus::kIntegrationFailure;
+    summary.message = std::string("verification by rolling: ") + e.what();
+    summary.solutions.clear();
   }
-  summary.status = summary.solutions.empty() ? IsoparallelStatus::kNoSolution : IsoparallelStatus::kSolved;
   summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return summary;
 }

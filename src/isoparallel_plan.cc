@@ -34,17 +34,17 @@ AngleState InitialAnglesFromOrientation(const Eigen::Matrix3d& A0, double psi) {
   return a;
 }
 
-PlanSummary PlanOptimalPath(const BallModel& model, double psi, double mu, const Eigen::Matrix3d& A0,
-                            const IsoparallelSolution& solution, int impulses, const PlanOptions& options) {
-  if (impulses < 1) internal::ThrowInvalid("impulses", impulses, "must be >= 1");
-  internal::RequirePositive("mu", mu);
-  const AngleState initial = InitialAnglesFromOrientation(A0, psi);
-  const Path path = OptimalPath(solution);
-  PartitionSpec spec;
-  spec.type = "uniform_parameter";  // tau is arc length already
-  spec.n = impulses;
-  const std::vector<std::vector<double>> partition = MakePartition(path, spec);
-  return PlanImpulses(model, initial, mu, A0, path, partition, {}, options);
+PlanSummary PlanOptimalPath(const IsoparallelPlanProblem& problem, const PlanOptions& options) {
+  if (problem.impulses < 1) internal::ThrowInvalid("impulses", problem.impulses, "must be >= 1");
+  internal::RequirePositive("mu", problem.mu);
+  PlanProblem plan;
+  plan.model = problem.model;
+  plan.initial = InitialAnglesFromOrientation(problem.A0, problem.psi);
+  plan.mu = problem.mu;
+  plan.A0 = problem.A0;
+  plan.path = OptimalPath(problem.solution);
+  plan.partition = {UniformParameter{problem.impulses}};  // tau is arc length already
+  return PlanImpulses(plan, options);
 }
 
 }  // namespace plateball

@@ -3,26 +3,38 @@
 #pragma once
 
 #include <algorithm>
+#include <exception>
 #include <thread>
 #include <vector>
 
 namespace plateball::internal {
 
-/// Runs job(i) for i in [0, n) on `threads` threads, index i on thread i mod threads.
+/// Runs job(i) for i in [0, n) on `threads` threads, index i on thread i mod threads. An
+/// exception thrown by a job never reaches std::terminate: each thread stops at its first one,
+/// and after every thread has joined the exception of the lowest index is rethrown on the calling
+/// thread (deterministic for any thread count when jobs fail independently of each other).
 template <class Job>
 void ParallelFor(int n, int threads, Job&& job) {
   threads = std::max(1, std::min(threads, n));
-  if (threads == 1) {
-    for (int i = 0; i < n; ++i) job(i);
-    return;
-  }
+  std::vector<std::exception_ptr> failure(static_cast<std::size_t>(std::max(threads, 1)));
+  std::vector<int> failed_at(failure.size(), n);
+  auto run = [&](int t) {
+    for (int i = t; i < n; i += threads) {
+      try {
+        job(i);
+      } catch (...) {
+        failure[t] = std::current_exception();
+        failed_at[t] = i;
+        return;
+      }
+    }
+  };
   std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      for (int i = t; i < n; i += threads) job(i);
-    });
-  for (int i = 0; i < n; i += threads) job(i);
+  for (int t = 1; t < threads; ++t) pool.emplace_back(run, t);
+  run(0);
   for (auto& th : pool) th.join();
+  const auto first = std::min_element(failed_at.begin(), failed_at.end()) - failed_at.begin();
+  if (failure[first]) std::rethrow_exception(failure[first]);
 }
 
 }  // namespace plateball::internal

@@ -87,27 +87,38 @@ std::vector<double> ExplicitPartition(const SmoothCurve& curve, const std::vecto
   return t;
 }
 
-std::vector<std::vector<double>> MakePartition(const Path& path, const PartitionSpec& spec, const std::string& field) {
+std::string ToString(const PartitionRule& rule) {
+  struct Name {
+    std::string operator()(const UniformParameter&) const { return "uniform_parameter"; }
+    std::string operator()(const UniformArcLength&) const { return "uniform_arc_length"; }
+    std::string operator()(const ExplicitTaus&) const { return "explicit"; }
+  };
+  return std::visit(Name{}, rule);
+}
+
+std::vector<std::vector<double>> MakePartition(const Path& path, const std::vector<PartitionRule>& rules,
+                                               const std::string& field) {
+  const std::size_t pieces = static_cast<std::size_t>(path.PieceCount());
+  if (rules.size() != 1 && rules.size() != pieces)
+    ThrowInvalid(field + " (rule count)", static_cast<double>(rules.size()),
+                 "must be 1 or the number of path pieces " + std::to_string(pieces));
   std::vector<std::vector<double>> out;
-  if (spec.type == "explicit") {
-    if (path.PieceCount() != 1)
-      ThrowInvalid(field + ".taus (pieces)", path.PieceCount(),
-                   "explicit partitions are for single-piece paths; use a uniform type for piecewise paths");
-    try {
-      out.push_back(ExplicitPartition(path.pieces().front(), spec.taus));
-    } catch (const std::invalid_argument& e) {
-      const std::string m = e.what();
-      throw std::invalid_argument(m.rfind("'partition", 0) == 0 ? "'" + field + m.substr(10) : m);
+  for (std::size_t i = 0; i < pieces; ++i) {
+    const PartitionRule& rule = rules.size() == 1 ? rules.front() : rules[i];
+    const SmoothCurve& curve = path.pieces()[i];
+    const std::string f = rules.size() == 1 ? field : field + "[" + std::to_string(i) + "]";
+    if (const auto* u = std::get_if<UniformParameter>(&rule)) {
+      RequireCount(u->n, f + ".n");
+      out.push_back(UniformParameterPartition(curve, u->n));
+    } else if (const auto* a = std::get_if<UniformArcLength>(&rule)) {
+      RequireCount(a->n, f + ".n");
+      out.push_back(UniformArcLengthPartition(curve, a->n));
+    } else {
+      const std::vector<double>& taus = std::get<ExplicitTaus>(rule).taus;
+      ValidatePartition(curve, taus, f + ".taus");
+      out.push_back(ExplicitPartition(curve, taus));
     }
-    return out;
   }
-  if (spec.type != "uniform_parameter" && spec.type != "uniform_arc_length")
-    throw std::invalid_argument("'" + field + ".type' = \"" + spec.type +
-                                "\" is invalid: must be uniform_parameter, uniform_arc_length or explicit");
-  if (spec.n < 1) ThrowInvalid(field + ".n", spec.n, "a partition needs n >= 1 steps (at least 2 points)");
-  for (const SmoothCurve& c : path.pieces())
-    out.push_back(spec.type == "uniform_parameter" ? UniformParameterPartition(c, spec.n)
-                                                   : UniformArcLengthPartition(c, spec.n));
   return out;
 }
 

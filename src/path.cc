@@ -18,12 +18,6 @@ namespace {
 using internal::RequireFinite;
 using internal::ThrowInvalid;
 
-// "'radius' = 0 is invalid..." -> "'path.radius' = 0 is invalid...".
-std::string Prefixed(const std::string& field, const std::string& message) {
-  if (!message.empty() && message[0] == '\'') return "'" + field + "." + message.substr(1);
-  return field + ": " + message;
-}
-
 Eigen::Matrix2d Rot(double a) {
   Eigen::Matrix2d r;
   r << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
@@ -351,36 +345,6 @@ void SmoothCurve::CheckSpeed(const std::string& field) const {
                  "the path must have nonzero speed everywhere");
 }
 
-SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field) {
-  auto named = [&](auto make) {
-    try {
-      return make();
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(Prefixed(field, e.what()));
-    }
-  };
-  if (spec.type == "line") return named([&] { return SmoothCurve::Line(spec.from, spec.to); });
-  if (spec.type == "circle")
-    return named([&] { return SmoothCurve::Circle(spec.center, spec.radius, spec.tau_begin, spec.tau_end); });
-  if (spec.type == "ellipse")
-    return named([&] {
-      return SmoothCurve::Ellipse(spec.center, spec.semi_axes, spec.rotation, spec.tau_begin, spec.tau_end);
-    });
-  if (spec.type == "lemniscate")
-    return named([&] {
-      return SmoothCurve::Lemniscate(spec.center, spec.scale, spec.rotation, spec.tau_begin, spec.tau_end);
-    });
-  if (spec.type == "sine")
-    return named([&] {
-      return SmoothCurve::Sine(spec.from, spec.rotation, spec.length, spec.amplitude, spec.wavelength);
-    });
-  if (spec.type == "samples") return named([&] { return SmoothCurve::Samples(spec.points); });
-  if (spec.type == "piecewise")
-    throw std::invalid_argument("'" + field + ".type' = \"piecewise\" is not a single smooth curve here (pieces may not nest)");
-  throw std::invalid_argument("'" + field + ".type' = \"" + spec.type +
-                              "\" is invalid: must be one of line, circle, ellipse, lemniscate, sine, samples, piecewise");
-}
-
 Path::Path(std::vector<SmoothCurve> pieces) : pieces_(std::move(pieces)) {
   if (pieces_.empty()) ThrowInvalid("pieces (count)", 0, "a path needs at least one piece");
   double size = 0.0;
@@ -390,19 +354,6 @@ Path::Path(std::vector<SmoothCurve> pieces) : pieces_(std::move(pieces)) {
     if (gap > 1e-9 * std::max(1.0, size))
       ThrowInvalid("pieces[" + std::to_string(i) + "] (gap to the end of the previous piece)", gap,
                    "consecutive pieces must share their end points");
-  }
-}
-
-Path Path::FromSpec(const PathSpec& spec, const std::string& field) {
-  if (spec.type != "piecewise") return Path({CurveFromSpec(spec, field)});
-  if (spec.pieces.empty()) ThrowInvalid(field + ".pieces (count)", 0, "a piecewise path needs at least one piece");
-  std::vector<SmoothCurve> pieces;
-  for (std::size_t i = 0; i < spec.pieces.size(); ++i)
-    pieces.push_back(CurveFromSpec(spec.pieces[i], field + ".pieces[" + std::to_string(i) + "]"));
-  try {
-    return Path(std::move(pieces));
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(Prefixed(field, e.what()));
   }
 }
 

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "plateball/so3.h"
@@ -28,9 +29,7 @@ using ojson = nlohmann::ordered_json;
 constexpr long long kMaxSamples = 1'000'000;          // simulate.samples, path sample points
 constexpr long long kMaxCount = 1'000'000;            // partition n, impulses, starts, indices
 constexpr long long kMaxListLength = 100'000;         // targets, pieces, energy changes, taus
-constexpr long long kMaxThreads = 1024;
 constexpr double kMaxHorizonPeriods = 10'000.0;
-constexpr double kMaxLengthCapFactor = 1'000.0;
 constexpr int kMaxPieceDepth = 8;                     // nesting of piecewise paths
 constexpr std::size_t kMaxFileBytes = 64u << 20;      // 64 MiB
 constexpr double kRotationTolerance = 1e-9;           // a "matrix" orientation must be a rotation to this
@@ -396,24 +395,38 @@ class Reader {
   static Eigen::Vector2d Rot(double a, const Eigen::Vector2d& v) {
     return {std::cos(a) * v.x() - std::sin(a) * v.y(), std::sin(a) * v.x() + std::cos(a) * v.y()};
   }
-  static std::pair<Eigen::Vector2d, Eigen::Vector2d> EndPoints(const PathSpec& s) {
-    auto at = [&](double tau) -> Eigen::Vector2d {
-      if (s.type == "circle") return s.center + s.radius * Eigen::Vector2d(std::cos(tau), std::sin(tau));
-      if (s.type == "ellipse")
-        return s.center + Rot(s.rotation, {s.semi_axes.x() * std::cos(tau), s.semi_axes.y() * std::sin(tau)});
-      // lemniscate
-      const double d = 1.0 + std::sin(tau) * std::sin(tau);
-      return s.center + Rot(s.rotation, s.scale * Eigen::Vector2d(std::cos(tau), std::sin(tau) * std::cos(tau)) / d);
+  static Eigen::Vector2d LemniscatePoint(const LemniscateSpec& l, double tau) {
+    const double d = 1.0 + std::sin(tau) * std::sin(tau);
+    return l.center + Rot(l.rotation, l.scale * Eigen::Vector2d(std::cos(tau), std::sin(tau) * std::cos(tau)) / d);
+  }
+  static std::pair<Eigen::Vector2d, Eigen::Vector2d> EndPoints(const PathSpec& spec) {
+    using Ends = std::pair<Eigen::Vector2d, Eigen::Vector2d>;
+    struct Visitor {
+      Ends operator()(const LineSpec& l) const { return {l.from, l.to}; }
+      Ends operator()(const CircleSpec& c) const {
+        auto at = [&](double t) -> Eigen::Vector2d { return c.center + c.radius * Eigen::Vector2d(std::cos(t), std::sin(t)); };
+        return {at(c.tau_begin), at(c.tau_end)};
+      }
+      Ends operator()(const EllipseSpec& e) const {
+        auto at = [&](double t) -> Eigen::Vector2d {
+          return e.center + Rot(e.rotation, {e.semi_axes.x() * std::cos(t), e.semi_axes.y() * std::sin(t)});
+        };
+        return {at(e.tau_begin), at(e.tau_end)};
+      }
+      Ends operator()(const LemniscateSpec& l) const { return {LemniscatePoint(l, l.tau_begin), LemniscatePoint(l, l.tau_end)}; }
+      Ends operator()(const SineSpec& w) const {
+        return {w.from, w.from + Rot(w.rotation, {w.length, w.amplitude * std::sin(2.0 * M_PI * w.length / w.wavelength)})};
+      }
+      Ends operator()(const SamplesSpec& m) const { return {m.points.front(), m.points.back()}; }
+      Ends operator()(const PiecewiseSpec& w) const {
+        return {EndPoints(w.pieces.front()).first, EndPoints(w.pieces.back()).second};
+      }
     };
-    if (s.type == "line") return {s.from, s.to};
-    if (s.type == "sine")
-      return {s.from, s.from + Rot(s.rotation, {s.length, s.amplitude * std::sin(2.0 * M_PI * s.length / s.wavelength)})};
-    if (s.type == "samples") return {s.points.front(), s.points.back()};
-    if (s.type == "piecewise") return {EndPoints(s.pieces.front()).first, EndPoints(s.pieces.back()).second};
-    return {at(s.tau_begin), at(s.tau_end)};
+    return std::visit(Visitor{}, spec.shape);
   }
 
-  void TauRange(const json& j, const std::string& path, PathSpec* s) const {
+  template <class Spec>
+  void TauRange(const json& j, const std::string& path, Spec* s) const {
     s->tau_begin = Number(Require(j, path, "tau_begin"), Join(path, "tau_begin"));
     s->tau_end = Number(Require(j, path, "tau_end"), Join(path, "tau_end"));
     if (s->tau_end == s->tau_begin) Fail(Join(path, "tau_end"), j["tau_end"], "must differ from tau_begin (empty path)");
@@ -425,91 +438,114 @@ class Reader {
 
   PathSpec Path(const json& j, const std::string& path, int depth) const {
     if (!j.is_object()) Fail(path, j, "must be a JSON object with a \"type\"");
-    PathSpec s;
-    s.type = String(Require(j, path, "type"), Join(path, "type"));
-    if (s.type == "line") {
+    const std::string type = String(Require(j, path, "type"), Join(path, "type"));
+    if (type == "line") {
       Object(j, path, {"type", "from", "to"});
+      LineSpec s;
       s.from = Vector<2>(Require(j, path, "from"), Join(path, "from"));
       s.to = Vector<2>(Require(j, path, "to"), Join(path, "to"));
       if (s.from == s.to) Fail(Join(path, "to"), j["to"], "must differ from from (a line of length 0)");
-    } else if (s.type == "circle") {
+      return {s};
+    }
+    if (type == "circle") {
       Object(j, path, {"type", "center", "radius", "tau_begin", "tau_end"});
+      CircleSpec s;
       s.center = Vector<2>(Require(j, path, "center"), Join(path, "center"));
       s.radius = Positive(Require(j, path, "radius"), Join(path, "radius"));
       TauRange(j, path, &s);
-    } else if (s.type == "ellipse") {
+      return {s};
+    }
+    if (type == "ellipse") {
       Object(j, path, {"type", "center", "semi_axes", "rotation", "tau_begin", "tau_end"});
+      EllipseSpec s;
       s.center = Vector<2>(Require(j, path, "center"), Join(path, "center"));
       const std::string sp = Join(path, "semi_axes");
       s.semi_axes = Vector<2>(Require(j, path, "semi_axes"), sp);
       for (std::size_t i = 0; i < 2; ++i) Positive(j["semi_axes"][i], Index(sp, i));
       s.rotation = OptionalRotation(j, path);
       TauRange(j, path, &s);
-    } else if (s.type == "lemniscate") {
+      return {s};
+    }
+    if (type == "lemniscate") {
       Object(j, path, {"type", "center", "scale", "rotation", "tau_begin", "tau_end"});
+      LemniscateSpec s;
       s.center = Vector<2>(Require(j, path, "center"), Join(path, "center"));
       s.scale = Positive(Require(j, path, "scale"), Join(path, "scale"));
       s.rotation = OptionalRotation(j, path);
       TauRange(j, path, &s);
-    } else if (s.type == "sine") {
+      return {s};
+    }
+    if (type == "sine") {
       Object(j, path, {"type", "from", "rotation", "length", "amplitude", "wavelength"});
+      SineSpec s;
       s.from = Vector<2>(Require(j, path, "from"), Join(path, "from"));
       s.rotation = OptionalRotation(j, path);
       s.length = Positive(Require(j, path, "length"), Join(path, "length"));
       s.amplitude = Number(Require(j, path, "amplitude"), Join(path, "amplitude"));
       s.wavelength = Positive(Require(j, path, "wavelength"), Join(path, "wavelength"));
-    } else if (s.type == "samples") {
-      Object(j, path, {"type", "points"});
-      const std::string pp = Join(path, "points");
-      s.points = Points(Require(j, path, "points"), pp, 2, kMaxSamples);
-      for (std::size_t i = 1; i < s.points.size(); ++i)
-        if (s.points[i] == s.points[i - 1])
-          Fail(Index(pp, i), j["points"][i], "repeats the previous point (consecutive samples must differ)");
-    } else if (s.type == "piecewise") {
-      Object(j, path, {"type", "pieces"});
-      const std::string pp = Join(path, "pieces");
-      const json& pieces = Array(Require(j, path, "pieces"), pp, 1, kMaxListLength);
-      if (depth >= kMaxPieceDepth)
-        Fail(pp, pieces, "piecewise paths nested deeper than " + std::to_string(kMaxPieceDepth) + " levels");
-      for (std::size_t i = 0; i < pieces.size(); ++i) {
-        s.pieces.push_back(Path(pieces[i], Index(pp, i), depth + 1));
-        if (i > 0) {
-          const Eigen::Vector2d end = EndPoints(s.pieces[i - 1]).second;
-          const Eigen::Vector2d start = EndPoints(s.pieces[i]).first;
-          const double gap = (end - start).norm();
-          if (!(gap <= kJoinTolerance * (1.0 + end.norm())))
-            Fail(Index(pp, i), VectorText(start.data(), 2),
-                 "starts " + NumberText(gap) + " away from the end " + VectorText(end.data(), 2) +
-                     " of the previous piece (consecutive pieces must share end points to 1e-9)");
-        }
+      return {s};
+    }
+    if (type == "samples") return {Samples(j, path)};
+    if (type == "piecewise") return {Piecewise(j, path, depth)};
+    Fail(Join(path, "type"), j["type"],
+         "unknown path type (one of line, circle, ellipse, lemniscate, sine, samples, piecewise)");
+  }
+
+  SamplesSpec Samples(const json& j, const std::string& path) const {
+    Object(j, path, {"type", "points"});
+    SamplesSpec s;
+    const std::string pp = Join(path, "points");
+    s.points = Points(Require(j, path, "points"), pp, 2, kMaxSamples);
+    for (std::size_t i = 1; i < s.points.size(); ++i)
+      if (s.points[i] == s.points[i - 1])
+        Fail(Index(pp, i), j["points"][i], "repeats the previous point (consecutive samples must differ)");
+    return s;
+  }
+
+  PiecewiseSpec Piecewise(const json& j, const std::string& path, int depth) const {
+    Object(j, path, {"type", "pieces"});
+    PiecewiseSpec s;
+    const std::string pp = Join(path, "pieces");
+    const json& pieces = Array(Require(j, path, "pieces"), pp, 1, kMaxListLength);
+    if (depth >= kMaxPieceDepth)
+      Fail(pp, pieces, "piecewise paths nested deeper than " + std::to_string(kMaxPieceDepth) + " levels");
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      s.pieces.push_back(Path(pieces[i], Index(pp, i), depth + 1));
+      if (i > 0) {
+        const Eigen::Vector2d end = EndPoints(s.pieces[i - 1]).second;
+        const Eigen::Vector2d start = EndPoints(s.pieces[i]).first;
+        const double gap = (end - start).norm();
+        if (!(gap <= kJoinTolerance * (1.0 + end.norm())))
+          Fail(Index(pp, i), VectorText(start.data(), 2),
+               "starts " + NumberText(gap) + " away from the end " + VectorText(end.data(), 2) +
+                   " of the previous piece (consecutive pieces must share end points to 1e-9)");
       }
-    } else {
-      Fail(Join(path, "type"), j["type"],
-           "unknown path type (one of line, circle, ellipse, lemniscate, sine, samples, piecewise)");
     }
     return s;
   }
 
   PartitionSpec Partition(const json& j, const std::string& path) const {
     Object(j, path, {"type", "n", "taus"});
-    PartitionSpec s;
-    if (const json* v = Find(j, "type")) s.type = String(*v, Join(path, "type"));
-    if (s.type == "explicit") {
+    std::string type = "uniform_parameter";
+    if (const json* v = Find(j, "type")) type = String(*v, Join(path, "type"));
+    if (type == "explicit") {
       if (const json* v = Find(j, "n")) Fail(Join(path, "n"), *v, "not allowed for an explicit partition (n = taus - 1)");
       const std::string tp = Join(path, "taus");
       const json& taus = Array(Require(j, path, "taus"), tp, 2, kMaxListLength);
+      ExplicitTaus s;
       for (std::size_t i = 0; i < taus.size(); ++i) {
         s.taus.push_back(Number(taus[i], Index(tp, i)));
         if (i > 0 && !(s.taus[i] > s.taus[i - 1])) Fail(Index(tp, i), taus[i], "taus must be strictly increasing");
       }
-      s.n = static_cast<int>(s.taus.size()) - 1;
-    } else if (s.type == "uniform_parameter" || s.type == "uniform_arc_length") {
-      if (const json* v = Find(j, "taus")) Fail(Join(path, "taus"), *v, "only allowed for an explicit partition");
-      if (const json* v = Find(j, "n")) s.n = static_cast<int>(Integer(*v, Join(path, "n"), 1, kMaxCount));
-    } else {
-      Fail(Join(path, "type"), j["type"], "unknown partition type (one of uniform_parameter, uniform_arc_length, explicit)");
+      return s;
     }
-    return s;
+    if (type != "uniform_parameter" && type != "uniform_arc_length")
+      Fail(Join(path, "type"), j["type"], "unknown partition type (one of uniform_parameter, uniform_arc_length, explicit)");
+    if (const json* v = Find(j, "taus")) Fail(Join(path, "taus"), *v, "only allowed for an explicit partition");
+    int n = UniformParameter{}.n;
+    if (const json* v = Find(j, "n")) n = static_cast<int>(Integer(*v, Join(path, "n"), 1, kMaxCount));
+    if (type == "uniform_parameter") return UniformParameter{n};
+    return UniformArcLength{n};
   }
 
   PlanTask Plan(const json& j, const std::string& path) const {
@@ -550,17 +586,19 @@ class Reader {
     if (const json* v = Find(j, "solver")) {
       const std::string sp = Join(path, "solver");
       Object(*v, sp, {"starts", "length_cap_factor", "max_iterations", "tolerance", "threads", "enumerate_families"});
-      IsoparallelSolverSpec& s = t.solver;
-      if (const json* w = Find(*v, "starts")) s.starts = static_cast<int>(Integer(*w, Join(sp, "starts"), 1, kMaxCount));
+      // The solver's own options and ranges (isoparallel.h), so that the reader and the solver agree.
+      IsoparallelOptions& s = t.solver;
+      using O = IsoparallelOptions;
+      if (const json* w = Find(*v, "starts")) s.starts = static_cast<int>(Integer(*w, Join(sp, "starts"), 1, O::kMaxStarts));
       if (const json* w = Find(*v, "length_cap_factor")) {
         s.length_cap_factor = Number(*w, Join(sp, "length_cap_factor"));
-        if (!(s.length_cap_factor >= 1.0 && s.length_cap_factor <= kMaxLengthCapFactor))
-          Fail(Join(sp, "length_cap_factor"), *w, "must be in [1, " + NumberText(kMaxLengthCapFactor) + "]");
+        if (!(s.length_cap_factor >= 1.0 && s.length_cap_factor <= O::kMaxLengthCapFactor))
+          Fail(Join(sp, "length_cap_factor"), *w, "must be in [1, " + NumberText(O::kMaxLengthCapFactor) + "]");
       }
       if (const json* w = Find(*v, "max_iterations"))
-        s.max_iterations = static_cast<int>(Integer(*w, Join(sp, "max_iterations"), 1, kMaxCount));
+        s.max_iterations = static_cast<int>(Integer(*w, Join(sp, "max_iterations"), 1, O::kMaxIterations));
       if (const json* w = Find(*v, "tolerance")) s.tolerance = InRangeOpen01(*w, Join(sp, "tolerance"));
-      if (const json* w = Find(*v, "threads")) s.threads = static_cast<int>(Integer(*w, Join(sp, "threads"), 1, kMaxThreads));
+      if (const json* w = Find(*v, "threads")) s.threads = static_cast<int>(Integer(*w, Join(sp, "threads"), 1, O::kMaxThreads));
       if (const json* w = Find(*v, "enumerate_families")) {
         if (!w->is_boolean()) Fail(Join(sp, "enumerate_families"), *w, "must be true or false");
         s.enumerate_families = w->get<bool>();
@@ -730,42 +768,44 @@ class Writer {
     return a;
   }
 
-  ojson Path(const PathSpec& s, const std::string& path) const {
+  ojson Path(const PathSpec& spec, const std::string& path) const {
     ojson o;
-    o["type"] = s.type;
-    if (s.type == "line") {
-      o["from"] = Vec(path + ".from", s.from);
-      o["to"] = Vec(path + ".to", s.to);
-    } else if (s.type == "circle") {
-      o["center"] = Vec(path + ".center", s.center);
-      o["radius"] = Num(path + ".radius", s.radius);
-    } else if (s.type == "ellipse") {
-      o["center"] = Vec(path + ".center", s.center);
-      o["semi_axes"] = Vec(path + ".semi_axes", s.semi_axes);
-      o["rotation"] = Num(path + ".rotation", s.rotation);
-    } else if (s.type == "lemniscate") {
-      o["center"] = Vec(path + ".center", s.center);
-      o["scale"] = Num(path + ".scale", s.scale);
-      o["rotation"] = Num(path + ".rotation", s.rotation);
-    } else if (s.type == "sine") {
-      o["from"] = Vec(path + ".from", s.from);
-      o["rotation"] = Num(path + ".rotation", s.rotation);
-      o["length"] = Num(path + ".length", s.length);
-      o["amplitude"] = Num(path + ".amplitude", s.amplitude);
-      o["wavelength"] = Num(path + ".wavelength", s.wavelength);
-    } else if (s.type == "samples") {
-      o["points"] = Points(path + ".points", s.points);
-    } else if (s.type == "piecewise") {
-      ojson pieces = ojson::array();
-      for (std::size_t i = 0; i < s.pieces.size(); ++i)
-        pieces.push_back(Path(s.pieces[i], path + ".pieces[" + std::to_string(i) + "]"));
-      o["pieces"] = pieces;
+    o["type"] = ToString(spec);
+    auto tau_range = [&](double begin, double end) {
+      o["tau_begin"] = Num(path + ".tau_begin", begin);
+      o["tau_end"] = Num(path + ".tau_end", end);
+    };
+    if (const auto* l = std::get_if<LineSpec>(&spec.shape)) {
+      o["from"] = Vec(path + ".from", l->from);
+      o["to"] = Vec(path + ".to", l->to);
+    } else if (const auto* c = std::get_if<CircleSpec>(&spec.shape)) {
+      o["center"] = Vec(path + ".center", c->center);
+      o["radius"] = Num(path + ".radius", c->radius);
+      tau_range(c->tau_begin, c->tau_end);
+    } else if (const auto* e = std::get_if<EllipseSpec>(&spec.shape)) {
+      o["center"] = Vec(path + ".center", e->center);
+      o["semi_axes"] = Vec(path + ".semi_axes", e->semi_axes);
+      o["rotation"] = Num(path + ".rotation", e->rotation);
+      tau_range(e->tau_begin, e->tau_end);
+    } else if (const auto* m = std::get_if<LemniscateSpec>(&spec.shape)) {
+      o["center"] = Vec(path + ".center", m->center);
+      o["scale"] = Num(path + ".scale", m->scale);
+      o["rotation"] = Num(path + ".rotation", m->rotation);
+      tau_range(m->tau_begin, m->tau_end);
+    } else if (const auto* w = std::get_if<SineSpec>(&spec.shape)) {
+      o["from"] = Vec(path + ".from", w->from);
+      o["rotation"] = Num(path + ".rotation", w->rotation);
+      o["length"] = Num(path + ".length", w->length);
+      o["amplitude"] = Num(path + ".amplitude", w->amplitude);
+      o["wavelength"] = Num(path + ".wavelength", w->wavelength);
+    } else if (const auto* sm = std::get_if<SamplesSpec>(&spec.shape)) {
+      o["points"] = Points(path + ".points", sm->points);
     } else {
-      throw std::invalid_argument("WriteProblemJson: " + path + ".type: value \"" + s.type + "\": unknown path type");
-    }
-    if (s.type == "circle" || s.type == "ellipse" || s.type == "lemniscate") {
-      o["tau_begin"] = Num(path + ".tau_begin", s.tau_begin);
-      o["tau_end"] = Num(path + ".tau_end", s.tau_end);
+      const PiecewiseSpec& pw = std::get<PiecewiseSpec>(spec.shape);
+      ojson pieces = ojson::array();
+      for (std::size_t i = 0; i < pw.pieces.size(); ++i)
+        pieces.push_back(Path(pw.pieces[i], path + ".pieces[" + std::to_string(i) + "]"));
+      o["pieces"] = pieces;
     }
     return o;
   }
@@ -805,13 +845,16 @@ class Writer {
       ojson plan;
       plan["path"] = Path(p.plan->path, "plan.path");
       ojson part;
-      part["type"] = p.plan->partition.type;
-      if (p.plan->partition.type == "explicit") {
+      const PartitionSpec& rule = p.plan->partition;
+      part["type"] = ToString(rule);
+      if (const auto* e = std::get_if<ExplicitTaus>(&rule)) {
         ojson taus = ojson::array();
-        for (double t : p.plan->partition.taus) taus.push_back(Num("plan.partition.taus", t));
+        for (double t : e->taus) taus.push_back(Num("plan.partition.taus", t));
         part["taus"] = taus;
+      } else if (const auto* u = std::get_if<UniformParameter>(&rule)) {
+        part["n"] = u->n;
       } else {
-        part["n"] = p.plan->partition.n;
+        part["n"] = std::get<UniformArcLength>(rule).n;
       }
       plan["partition"] = part;
       ojson changes = ojson::array();
@@ -848,6 +891,12 @@ class Writer {
 };
 
 }  // namespace
+
+std::string ToString(const PathSpec& spec) {
+  static const char* const kNames[] = {"line", "circle", "ellipse", "lemniscate", "sine", "samples", "piecewise"};
+  static_assert(std::variant_size_v<PathSpec::Shape> == 7, "one name per path shape");
+  return kNames[spec.shape.index()];
+}
 
 Problem ParseProblem(const std::string& json_text, const std::string& source_name) {
   const Reader reader(source_name);

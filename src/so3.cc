@@ -5,6 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "check.h"
+#include "kinematics.h"
+
 namespace plateball {
 
 Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
@@ -85,6 +88,23 @@ Eigen::Matrix3d RotationZ(double a) {
   const double c = std::cos(a), s = std::sin(a);
   r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
   return r;
+}
+
+namespace internal {
+Eigen::Matrix3d RotateAxisOnto(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
+  RequireFinite("A0", A0);
+  if (!IsRotation(A0, 1e-9)) throw std::invalid_argument("'A0' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+  const Eigen::Vector3d e = A0.col(2);
+  const Eigen::Vector3d axis = e.cross(z);
+  const double angle = std::atan2(axis.norm(), e.dot(z));
+  if (axis.norm() > 1e-15) return ExpSO3(axis.normalized() * angle) * A0;
+  if (e.dot(z) < 0) return ExpSO3(A0.col(0) * M_PI) * A0;
+  return A0;
+}
+}  // namespace internal
+
+Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
+  return ProjectToSO3(internal::RotateAxisOnto(A0, z));
 }
 
 Eigen::Matrix3d QuaternionToRotation(const Eigen::Vector4d& wxyz, const std::string& field) {

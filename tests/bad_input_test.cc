@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "plateball/task_adapters.h"
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/cubic_spline.h"
@@ -49,15 +50,7 @@ PhysicalParameters GoodPhysical() {
   return p;
 }
 
-PathSpec Circle(double radius) {
-  PathSpec s;
-  s.type = "circle";
-  s.center = {-radius, 0.0};
-  s.radius = radius;
-  s.tau_begin = 0.0;
-  s.tau_end = 1.0;
-  return s;
-}
+PathSpec Circle(double radius) { return {CircleSpec{{-radius, 0.0}, radius, 0.0, 1.0}}; }
 
 std::string MinimalProblem(const std::string& initial_extra, const std::string& top_extra = "") {
   return R"({"ball": {"lambda": 2}, "initial": {"theta": 1.0, "phi": 0.4, "psi": 0.1, "mu": 1)" + initial_extra +
@@ -124,76 +117,56 @@ std::vector<BadInputCase> Cases() {
                  FreeMotion::FromAngles(Model(), {1.0, 0.4, 0.1}, 1.0, {0, 0}, Eigen::Matrix3d::Identity(), o);
                },
                {"max_steps", "0"}});
-  c.push_back({"NaN join target", [] { Join(Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {kNaN, 0.0}); },
+  c.push_back({"NaN join target", [] { Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {kNaN, 0.0}}); },
                {"target", "nan"}});
   c.push_back({"zero join iterations",
                [] {
                  JoinOptions o;
                  o.max_iterations = 0;
-                 Join(Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.01, 0.0}, o);
+                 Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.01, 0.0}}, o);
                },
                {"max_iterations", "0"}});
   c.push_back({"negative join tolerance",
                [] {
                  JoinOptions o;
                  o.residual_tolerance = -1.0;
-                 Join(Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.01, 0.0}, o);
+                 Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.01, 0.0}}, o);
                },
                {"residual_tolerance", "-1"}});
   c.push_back({"zero speed-up factor", [] { EnergyChangingImpulse({1.0, 0.4, 0.1}, 1.0, 0.0, Model()); },
                {"factor", "0"}});
   c.push_back({"infinite impulse", [] { EnergyPreservingImpulse({1.0, 0.4, 0.1}, 1.0, kInf, Model()); },
                {"delta_psi", "inf"}});
-  c.push_back({"negative circle radius", [] { Path::FromSpec(Circle(-1.0)); }, {"radius", "-1"}});
+  c.push_back({"negative circle radius", [] { PathFromSpec(Circle(-1.0)); }, {"radius", "-1"}});
   c.push_back({"repeated sample points",
                [] {
-                 PathSpec s;
-                 s.type = "samples";
-                 s.points = {{0, 0}, {1, 0}, {1, 0}, {2, 1}};
-                 Path::FromSpec(s);
+                 PathFromSpec(PathSpec{SamplesSpec{{{0, 0}, {1, 0}, {1, 0}, {2, 1}}}});
                },
                {"points[2]"}});
   c.push_back({"NaN sample point",
                [] {
-                 PathSpec s;
-                 s.type = "samples";
-                 s.points = {{0, 0}, {kNaN, 0}, {2, 1}};
-                 Path::FromSpec(s);
+                 PathFromSpec(PathSpec{SamplesSpec{{{0, 0}, {kNaN, 0}, {2, 1}}}});
                },
                {"points[1]", "nan"}});
   c.push_back({"single sample point", [] { CubicSpline2d({Eigen::Vector2d(1, 2)}); }, {"points", "1"}});
   c.push_back({"zero-speed line",
                [] {
-                 PathSpec s;
-                 s.type = "line";
-                 s.from = {1, 1};
-                 s.to = {1, 1};
-                 Path::FromSpec(s);
+                 PathFromSpec(PathSpec{LineSpec{{1, 1}, {1, 1}}});
                },
                {"path"}});
   c.push_back({"zero wavelength sine",
                [] {
-                 PathSpec s;
-                 s.type = "sine";
-                 s.length = 2;
-                 s.amplitude = 0.5;
-                 s.wavelength = 0;
-                 Path::FromSpec(s);
+                 PathFromSpec(PathSpec{SineSpec{{0, 0}, 0.0, 2, 0.5, 0}});
                },
                {"wavelength", "0"}});
   c.push_back({"partition of one point",
                [] {
-                 PartitionSpec p;
-                 p.n = 0;
-                 MakePartition(Path::FromSpec(Circle(1.0)), p);
+                 MakePartition(PathFromSpec(Circle(1.0)), {UniformParameter{0}});
                },
                {"n", "0"}});
   c.push_back({"non-increasing explicit partition",
                [] {
-                 PartitionSpec p;
-                 p.type = "explicit";
-                 p.taus = {0.0, 0.5, 0.4, 1.0};
-                 MakePartition(Path::FromSpec(Circle(1.0)), p);
+                 MakePartition(PathFromSpec(Circle(1.0)), {ExplicitTaus{{0.0, 0.5, 0.4, 1.0}}});
                },
                {"taus"}});
   c.push_back({"zero quaternion", [] { QuaternionToRotation(Eigen::Vector4d::Zero(), "goal_orientation"); },
@@ -239,7 +212,7 @@ TEST(BadInput, EveryCaseThrowsInvalidArgumentNamingFieldAndValue) {
 }
 
 TEST(BadInput, TargetEqualToStartIsAStatusNotAnError) {
-  const JoinSummary j = Join(Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0.3, 0.2}, {0.3, 0.2});
+  const JoinSummary j = Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0.3, 0.2}, {0.3, 0.2}});
   EXPECT_EQ(j.status, JoinStatus::kTargetEqualsStart);
   EXPECT_FALSE(j.IsSolutionUsable());
   EXPECT_TRUE(std::isfinite(j.t));
@@ -263,7 +236,7 @@ TEST(BadInput, StarvedJoinReturnsAStatusWithFiniteNumbers) {
   // target at the edge of the local radius: a status comes back, with finite numbers.
   JoinOptions o;
   o.max_iterations = 1;
-  const JoinSummary j = Join(Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.4, 0.3}, o);
+  const JoinSummary j = Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.4, 0.3}}, o);
   EXPECT_NE(j.status, JoinStatus::kConverged);
   EXPECT_TRUE(std::isfinite(j.residual));
   EXPECT_TRUE(std::isfinite(j.delta_psi));

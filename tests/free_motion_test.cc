@@ -42,7 +42,11 @@ IntegrationOptions Tight() {
 
 FreeMotionStart StartFromAngles(const BallModel& model, const AngleState& a, double mu,
                                 const Eigen::Vector2d& x0 = Eigen::Vector2d::Zero()) {
-  return FreeMotion::FromAngles(model, a, mu, x0).start();
+  FreeMotionStart s;
+  s.state = StateFromAngles(a, mu, model);
+  s.x0 = x0;
+  s.A0 = AlignOrientationToAxis(Eigen::Matrix3d::Identity(), s.state.z);
+  return s;
 }
 
 TEST(FreeMotion, EnergyKeptOverHundredPeriods) {

@@ -12,6 +12,7 @@
 #include "plateball/partition.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
+#include "plateball/task_adapters.h"
 #include "support/test_support.h"
 
 using namespace plateball;
@@ -29,11 +30,14 @@ std::string ErrorOf(const std::function<void()>& f) { return plateball::testing:
 
 Path T2Circle() { return Path({SmoothCurve::Circle({-2, 0}, 2, 0, 2 * M_PI)}); }
 
-PlanSummary PlanUniform(const Path& path, int n, const std::vector<EnergyChangeSpec>& changes = {},
+PlanProblem MakePlan(const Path& path, std::vector<PartitionRule> partition, std::vector<EnergyChange> changes = {},
+                    double mu = 1.0, const Eigen::Matrix3d& A0 = Eigen::Matrix3d::Identity()) {
+  return PlanProblem{kModel, kStart, mu, A0, path, std::move(partition), std::move(changes)};
+}
+
+PlanSummary PlanUniform(const Path& path, int n, const std::vector<EnergyChange>& changes = {},
                         const PlanOptions& options = {}) {
-  std::vector<std::vector<double>> part;
-  for (const auto& c : path.pieces()) part.push_back(UniformParameterPartition(c, n));
-  return PlanImpulses(kModel, kStart, 1.0, Eigen::Matrix3d::Identity(), path, part, changes, options);
+  return PlanImpulses(MakePlan(path, {UniformParameter{n}}, changes), options);
 }
 }  // namespace
 
@@ -130,22 +134,8 @@ TEST(ImpulsePlanner, EnergyChangingImpulsesKeepTheGeometry) {
 }
 
 TEST(ImpulsePlanner, PiecewisePathIsPlannedPieceByPiece) {
-  PathSpec a, arc, b;
-  a.type = "line";
-  a.from = {0, 0};
-  a.to = {2, 0};
-  arc.type = "circle";
-  arc.center = {2, 1};
-  arc.radius = 1;
-  arc.tau_begin = -M_PI / 2;
-  arc.tau_end = M_PI / 2;
-  b.type = "line";
-  b.from = {2, 2};
-  b.to = {0, 3};
-  PathSpec pw;
-  pw.type = "piecewise";
-  pw.pieces = {a, arc, b};
-  const Path path = Path::FromSpec(pw);
+  const Path path({SmoothCurve::Line({0, 0}, {2, 0}), SmoothCurve::Circle({2, 1}, 1, -M_PI / 2, M_PI / 2),
+                   SmoothCurve::Line({2, 2}, {0, 3})});
   const PlanSummary plan = PlanUniform(path, 12);
   ASSERT_TRUE(plan.IsSolutionUsable()) << plan.BriefReport();
   EXPECT_EQ(plan.segments, 36);
@@ -169,31 +159,39 @@ TEST(ImpulsePlanner, FailedJoinIsAStatusNamingTheSegment) {
 
 TEST(ImpulsePlanner, BadInputNamesTheField) {
   const Path path = T2Circle();
-  const auto part = std::vector<std::vector<double>>{UniformParameterPartition(path.pieces()[0], 8)};
+  const std::vector<PartitionRule> part{UniformParameter{8}};
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(kModel, kStart, 1.0, I, path, {}); }).find("partition (piece count)"),
+  EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, {})); }).find("partition (rule count)"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, {ExplicitTaus{{0.0}}})); }).find("at least 2 points"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(kModel, kStart, 1.0, I, path, {{0.0}}); }).find("at least 2 points"),
+  EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, {UniformArcLength{0}})); }).find("partition.n"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(kModel, kStart, 1.0, I, path, part, {{8, 2.0}}); })
-                .find("energy_changes[0].index"),
+  EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, part, {{8, 2.0}})); }).find("energy_changes[0].index"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(kModel, kStart, 1.0, I, path, part, {{1, 0.0}}); })
-                .find("energy_changes[0].factor"),
+  EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, part, {{1, 0.0}})); }).find("energy_changes[0].factor"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(kModel, kStart, 0.0, I, path, part); }).find("mu"), std::string::npos);
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(kModel, kStart, 1.0, 2.0 * I, path, part); }).find("A0"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, part, {}, 0.0)); }).find("mu"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, part, {}, 1.0, 2.0 * I)); }).find("A0"), std::string::npos);
   Problem p;
   p.model = kModel;
   p.plan = PlanTask{};
-  p.plan->path.type = "circle";
-  p.plan->path.center = {-2, 0};
-  p.plan->path.radius = 2;
-  p.plan->path.tau_end = 2 * M_PI;
+  p.plan->path = PathSpec{CircleSpec{{-2, 0}, 2, 0, 2 * M_PI}};
   p.x0 = {1, 1};
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(p); }).find("'x0'"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanSetupFor(p); }).find("'x0'"), std::string::npos);
   p.x0 = {0, 0};
-  EXPECT_TRUE(PlanImpulses(p).IsSolutionUsable());
+  const PlanSetup setup = PlanSetupFor(p);
+  EXPECT_TRUE(PlanImpulses(setup.problem, setup.options).IsSolutionUsable());
   Problem none;
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(none); }).find("'plan'"), std::string::npos);
+  none.source = "none.json";
+  EXPECT_NE(ErrorOf([&] { PlanSetupFor(none); }).find("none.json: plan: value (missing)"), std::string::npos);
+}
+
+// An integration failure is a status, not an exception (the file's integration section).
+TEST(ImpulsePlanner, StepBoundExceededIsAnIntegrationFailureStatus) {
+  PlanOptions o;
+  o.integration.max_steps = 5;
+  o.join.integration.max_steps = 5;
+  const PlanSummary plan = PlanUniform(T2Circle(), 8, {}, o);
+  EXPECT_EQ(plan.status, PlanStatus::kIntegrationFailure) << plan.BriefReport();
+  EXPECT_FALSE(plan.message.empty());
 }

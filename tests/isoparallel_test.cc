@@ -17,6 +17,7 @@
 #include "plateball/problem_io.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
+#include "plateball/task_adapters.h"
 
 using namespace plateball;
 
@@ -128,12 +129,8 @@ TEST(Isoparallel, RotationProblemDenserIndependentSearchFindsNothingShorter) {
   // another seed over paths up to 1.5x that length: nothing shorter. (64 starts used to report
   // 9.449 here: the multi-start covers the parameter space only statistically.)
   const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
-  IsoparallelProblem q;
-  q.start = p.isoparallel->start;
-  q.goal = p.isoparallel->goal;
-  q.start_orientation = p.isoparallel->start_orientation;
-  q.goal_orientation = p.isoparallel->goal_orientation;
-  const IsoparallelSummary s = SolveIsoparallel(q);
+  const IsoparallelProblem q = IsoparallelSetupFor(p).problem;
+  const IsoparallelSummary s = SolveIsoparallel(IsoparallelSetupFor(p).problem);
   ASSERT_TRUE(s.IsSolutionUsable());
   ASSERT_EQ(s.method, IsoparallelMethod::kShooting);
   const double shortest = s.Shortest().length;
@@ -250,8 +247,8 @@ TEST(IsoparallelPlan, Figure7ImpulsiveErrorIsWithinBoundAndShrinksWithMoreImpuls
   EXPECT_NEAR(path.Length(), s.Shortest().length, 1e-9);
   EXPECT_LT((path.EndPoint() - Figure7().goal).norm(), 1e-9);
   const BallModel model = BallModel::FromLambda(2.0);
-  const PlanSummary coarse = PlanOptimalPath(model, 0.0, 1.0, Eigen::Matrix3d::Identity(), s.Shortest(), 12);
-  const PlanSummary fine = PlanOptimalPath(model, 0.0, 1.0, Eigen::Matrix3d::Identity(), s.Shortest(), 48);
+  const PlanSummary coarse = PlanOptimalPath({model, 0.0, 1.0, Eigen::Matrix3d::Identity(), s.Shortest(), 12});
+  const PlanSummary fine = PlanOptimalPath({model, 0.0, 1.0, Eigen::Matrix3d::Identity(), s.Shortest(), 48});
   ASSERT_TRUE(coarse.IsSolutionUsable()) << coarse.message;
   ASSERT_TRUE(fine.IsSolutionUsable()) << fine.message;
   // The planner's reference (rolling along the optimal path) is the goal orientation, the identity.
@@ -278,17 +275,13 @@ TEST(Isoparallel, ProblemFilesSolveToTheirExpectedValues) {
   for (const char* name : {"problems/figure7.json", "problems/isoparallel_rotation.json"}) {
     const Problem p = ReadProblemFile(plateball::testing::SourcePath(name));
     ASSERT_TRUE(p.isoparallel.has_value()) << name;
-    IsoparallelProblem q;
-    q.start = p.isoparallel->start;
-    q.goal = p.isoparallel->goal;
-    q.start_orientation = p.isoparallel->start_orientation;
-    q.goal_orientation = p.isoparallel->goal_orientation;
-    IsoparallelOptions o;
-    o.starts = p.isoparallel->solver.starts;
-    o.enumerate_families = p.isoparallel->solver.enumerate_families;
-    o.seed = p.seed;
-    const IsoparallelSummary s = SolveIsoparallel(q, o);
+    const IsoparallelSetup setup = IsoparallelSetupFor(p);  // what isoparallel_solve runs
+    const IsoparallelSummary s = SolveIsoparallel(setup.problem, setup.options);
     ASSERT_TRUE(s.IsSolutionUsable()) << name;
+    const IsoparallelPlanSetup plan_setup = IsoparallelPlanSetupFor(p, s.Shortest());
+    const PlanSummary plan = PlanOptimalPath(plan_setup.problem, plan_setup.options);
+    EXPECT_TRUE(plan.IsSolutionUsable()) << name << ": " << plan.BriefReport();
+    EXPECT_EQ(plan.segments, p.isoparallel->impulses) << name;
     EXPECT_LT(s.Shortest().orientation_residual, kVerifiedTol) << name;
     if (p.expected.count("shortest_length")) {
       const ExpectedValue& e = p.expected.at("shortest_length");
@@ -298,5 +291,51 @@ TEST(Isoparallel, ProblemFilesSolveToTheirExpectedValues) {
       const ExpectedValue& e = p.expected.at("solution_count");
       EXPECT_NEAR(static_cast<double>(s.solutions.size()), e.value, e.tolerance) << name;
     }
+  }
+}
+
+// Issue 10: the file's integration section reaches the solver and the plan (figure7.json with
+// max_steps 5 used to solve and plan); the failure is a status, with one thread or several.
+TEST(Isoparallel, IntegrationSectionReachesSolverAsAFailureStatus) {
+  Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/figure7.json"));
+  p.integration.max_steps = 5;
+  for (int threads : {1, 3}) {
+    IsoparallelSetup setup = IsoparallelSetupFor(p);
+    EXPECT_EQ(setup.options.integration.max_steps, 5);
+    setup.options.threads = threads;
+    const IsoparallelSummary s = SolveIsoparallel(setup.problem, setup.options);
+    EXPECT_EQ(s.status, IsoparallelStatus::kIntegrationFailure) << s.BriefReport();
+    EXPECT_NE(s.message.find("max_steps"), std::string::npos) << s.message;
+    EXPECT_TRUE(s.solutions.empty());
+  }
+  // The plan of a solution found with the default section fails the same way.
+  const Problem fine = ReadProblemFile(plateball::testing::SourcePath("problems/figure7.json"));
+  const IsoparallelSetup setup = IsoparallelSetupFor(fine);
+  const IsoparallelSummary s = SolveIsoparallel(setup.problem, setup.options);
+  ASSERT_TRUE(s.IsSolutionUsable());
+  const IsoparallelPlanSetup plan_setup = IsoparallelPlanSetupFor(p, s.Shortest());
+  const PlanSummary plan = PlanOptimalPath(plan_setup.problem, plan_setup.options);
+  EXPECT_EQ(plan.status, PlanStatus::kIntegrationFailure) << plan.BriefReport();
+}
+
+// The reader fills the solver's options with the solver's ranges, naming the file and field.
+TEST(Isoparallel, ReaderAndSolverShareOneThreadRange) {
+  const std::string base = R"({"ball": {"lambda": 2}, "initial": {"theta": 0, "phi": 0, "psi": 0, "mu": 1},
+    "isoparallel": {"start": [0, 0], "goal": [3, 3], "solver": {"threads": THREADS}}})";
+  auto with = [&](const std::string& threads) {
+    std::string t = base;
+    t.replace(t.find("THREADS"), 7, threads);
+    return t;
+  };
+  const Problem ok = ParseProblem(with("256"), "t.json");
+  EXPECT_EQ(ok.isoparallel->solver.threads, IsoparallelOptions::kMaxThreads);
+  EXPECT_EQ(IsoparallelSetupFor(ok).options.Validate(), "");
+  try {
+    ParseProblem(with("257"), "t.json");
+    FAIL() << "threads 257 accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("t.json"), std::string::npos) << m;
+    EXPECT_NE(m.find("isoparallel.solver.threads"), std::string::npos) << m;
   }
 }

@@ -46,7 +46,7 @@ TEST(Join, ReachesEveryT1TargetCheckedByIndependentIntegration) {
   for (int k = 0; k < 64; ++k) {
     const double b = 2 * M_PI * k / 64;
     const Eigen::Vector2d target = 0.05 * Eigen::Vector2d(std::cos(b), std::sin(b));
-    const JoinSummary j = Join(model, start, 1.0, x0, target);
+    const JoinSummary j = Join(JoinProblem{model, start, 1.0, x0, target});
     ASSERT_EQ(j.status, JoinStatus::kConverged) << j.BriefReport();
     EXPECT_GT(j.t, 0.0);
     EXPECT_LE(j.residual, 1e-12);
@@ -65,7 +65,7 @@ TEST(Join, HomogeneousBallMovesStraightAtSpeedSqrtMu) {
   const Eigen::Vector2d x0(1.0, -2.0);
   for (double b : {0.0, 1.0, 2.5, 4.0, 5.5}) {
     const Eigen::Vector2d target = x0 + 0.3 * Eigen::Vector2d(std::cos(b), std::sin(b));
-    const JoinSummary j = Join(model, {1.1, -0.3, 2.0}, mu, x0, target);
+    const JoinSummary j = Join(JoinProblem{model, {1.1, -0.3, 2.0}, mu, x0, target});
     ASSERT_EQ(j.status, JoinStatus::kConverged) << j.BriefReport();
     EXPECT_NEAR(j.t, 0.3 / std::sqrt(mu), 1e-12);
     // omega after the impulse points along e3 x (target - x0).
@@ -83,7 +83,7 @@ TEST(Join, WorksForSeveralLambdaThroughThePolesAndForNegativeTheta) {
                                     AngleState{M_PI / 2, 1.0, 2.0}, AngleState{-M_PI / 3, M_PI / 2, 0.0}}) {
       for (double b : {0.3, 2.0, 4.1}) {
         const Eigen::Vector2d target = x0 + 0.1 * Eigen::Vector2d(std::cos(b), std::sin(b));
-        const JoinSummary j = Join(model, start, 0.7, x0, target);
+        const JoinSummary j = Join(JoinProblem{model, start, 0.7, x0, target});
         ASSERT_EQ(j.status, JoinStatus::kConverged) << "lambda " << lambda << ": " << j.BriefReport();
         const MotionSample end = Arrive(model, start, 0.7, x0, j.delta_psi, j.t);
         EXPECT_LT((end.x - target).norm(), kReachTolerance);
@@ -98,7 +98,7 @@ TEST(Join, TimeIsTheLocalBranchDistanceOverEllipseSpeed) {
   const BallModel model = BallModel::FromLambda(2.0);
   const AngleState start{M_PI / 3, 0.4, 0.1};
   for (double d : {1e-2, 1e-3}) {
-    const JoinSummary j = Join(model, start, 1.0, {0, 0}, {d, 0.0});
+    const JoinSummary j = Join(JoinProblem{model, start, 1.0, {0, 0}, {d, 0.0}});
     ASSERT_TRUE(j.IsSolutionUsable());
     const Eigen::Vector3d w = j.impulse.state_after.omega;  // omega just after the impulse
     EXPECT_NEAR(j.t * w.head<2>().norm() / d, 1.0, 10 * d);
@@ -107,7 +107,7 @@ TEST(Join, TimeIsTheLocalBranchDistanceOverEllipseSpeed) {
 
 TEST(Join, ImpulsePreservesEnergyAndArrivalStateHasTheSameEnergy) {
   const BallModel model = BallModel::FromLambda(2.0);
-  const JoinSummary j = Join(model, AngleState{M_PI / 3, 0.4, 0.1}, 1.3, {0, 0}, {0.02, 0.07});
+  const JoinSummary j = Join(JoinProblem{model, AngleState{M_PI / 3, 0.4, 0.1}, 1.3, {0, 0}, {0.02, 0.07}});
   ASSERT_TRUE(j.IsSolutionUsable());
   EXPECT_NEAR(j.impulse.mu_after, 1.3, 1e-14);
   EXPECT_NEAR(Energy(j.impulse.state_after, model), 1.3, 1e-12);
@@ -118,7 +118,7 @@ TEST(Join, ImpulsePreservesEnergyAndArrivalStateHasTheSameEnergy) {
 
 TEST(Join, TargetEqualToStartIsAStatus) {
   const BallModel model = BallModel::FromLambda(2.0);
-  const JoinSummary j = Join(model, AngleState{M_PI / 3, 0.4, 0.1}, 1.0, {1, 2}, {1, 2});
+  const JoinSummary j = Join(JoinProblem{model, AngleState{M_PI / 3, 0.4, 0.1}, 1.0, {1, 2}, {1, 2}});
   EXPECT_EQ(j.status, JoinStatus::kTargetEqualsStart);
   EXPECT_FALSE(j.IsSolutionUsable());
   EXPECT_EQ(j.t, 0.0);
@@ -129,7 +129,7 @@ TEST(Join, DistantTargetIsReportedBeyondLocalRadiusNotAWrongBranch) {
   const BallModel model = BallModel::FromLambda(2.0);
   const AngleState start{M_PI / 3, 0.4, 0.1};
   for (const Eigen::Vector2d& target : {Eigen::Vector2d(40.0, 3.0), Eigen::Vector2d(-7.0, 12.0)}) {
-    const JoinSummary j = Join(model, start, 1.0, {0, 0}, target);
+    const JoinSummary j = Join(JoinProblem{model, start, 1.0, {0, 0}, target});
     if (j.status == JoinStatus::kConverged) {
       // Only acceptable if it truly is a short arc with t within the local bound.
       EXPECT_LE(j.t, j.time_limit);
@@ -146,13 +146,13 @@ TEST(Join, InvalidInputNamesTheField) {
   const BallModel model = BallModel::FromLambda(2.0);
   const AngleState start{M_PI / 3, 0.4, 0.1};
   try {
-    Join(model, start, 1.0, {0, 0}, {NAN, 0});
+    Join(JoinProblem{model, start, 1.0, {0, 0}, {NAN, 0}});
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("target"), std::string::npos) << e.what();
   }
   try {
-    Join(model, start, -1.0, {0, 0}, {0.1, 0});
+    Join(JoinProblem{model, start, -1.0, {0, 0}, {0.1, 0}});
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("mu"), std::string::npos) << e.what();
@@ -160,22 +160,76 @@ TEST(Join, InvalidInputNamesTheField) {
   JoinOptions bad;
   bad.residual_tolerance = 0.0;
   try {
-    Join(model, start, 1.0, {0, 0}, {0.1, 0}, bad);
+    Join(JoinProblem{model, start, 1.0, {0, 0}, {0.1, 0}}, bad);
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("residual_tolerance"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(Join(model, AngleState{INFINITY, 0, 0}, 1.0, {0, 0}, {0.1, 0}), std::invalid_argument);
+  EXPECT_THROW(Join(JoinProblem{model, AngleState{INFINITY, 0, 0}, 1.0, {0, 0}, {0.1, 0}}), std::invalid_argument);
 }
 
-TEST(Join, ChartFreeOverloadAgreesWithAngles) {
+TEST(Join, HugePsiIsReducedOnceAndJoins) {
+  // Issue 16: psi = 1e6 said target_beyond_local_radius for a target 0.05 away. lambda = 1 rolls
+  // straight at speed sqrt(mu) (eq. (9)): t = 0.05 / sqrt(mu) exactly, whatever psi is.
+  const BallModel model = BallModel::FromLambda(1.0);
+  for (double psi : {0.1, 1e6, -2.5e12}) {
+    const JoinSummary j = Join(JoinProblem{model, AngleState{1.0, 0.4, psi}, 1.0, {0, 0}, {0.05, 0}});
+    ASSERT_EQ(j.status, JoinStatus::kConverged) << "psi = " << psi << ": " << j.BriefReport();
+    EXPECT_NEAR(j.t, 0.05, 1e-12) << psi;
+    EXPECT_LE(std::abs(j.start.psi), M_PI) << "the summary holds the reduced angle";
+    const MotionSample end = Arrive(model, j.start, 1.0, {0, 0}, j.delta_psi, j.t);
+    EXPECT_LT((end.x - Eigen::Vector2d(0.05, 0)).norm(), kReachTolerance) << psi;
+  }
+  try {
+    Join(JoinProblem{model, AngleState{1.0, 0.4, 1e16}, 1.0, {0, 0}, {0.05, 0}});
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("start.psi"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1e+16"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Join, ResidualToleranceOutsideItsRangeIsRejected) {
+  // Issue 16: 0.999 reported target_equals_start, 1e-300 target_beyond_local_radius.
+  const BallModel model = BallModel::FromLambda(2.0);
+  const AngleState start{M_PI / 3, 0.4, 0.1};
+  for (double tol : {0.999, 1e-300, 2e-3, 9e-16, 0.0, -1.0, double(NAN), double(INFINITY)}) {
+    JoinOptions o;
+    o.residual_tolerance = tol;
+    try {
+      Join(JoinProblem{model, start, 1.0, {0, 0}, {0.05, 0}}, o);
+      FAIL() << "expected std::invalid_argument for " << tol;
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("residual_tolerance"), std::string::npos) << what;
+      EXPECT_NE(what.find("[1e-15, 1e-3]"), std::string::npos) << what;
+    }
+  }
+  for (double tol : {1e-15, 1e-3}) {
+    JoinOptions o;
+    o.residual_tolerance = tol;
+    const JoinSummary j = Join(JoinProblem{model, start, 1.0, {0, 0}, {0.05, 0}}, o);
+    EXPECT_EQ(j.status, JoinStatus::kConverged) << tol << ": " << j.BriefReport();
+    EXPECT_LE(j.residual, tol);
+  }
+}
+
+TEST(Join, ChartFreeStateEntersThroughItsAngles) {
   const BallModel model = BallModel::FromLambda(2.0);
   const AngleState start{M_PI / 3, 0.4, 0.1};
   const BallState s = StateFromAngles(start, 1.0, model);
-  const JoinSummary a = Join(model, start, 1.0, {0, 0}, {0.03, -0.04});
-  const JoinSummary b = Join(model, s, {0, 0}, {0.03, -0.04});
+  const JoinSummary a = Join(JoinProblem{model, start, 1.0, {0, 0}, {0.03, -0.04}});
+  const JoinSummary b = Join(JoinProblem{model, AnglesFromState(s, model), Energy(s, model), {0, 0}, {0.03, -0.04}});
   ASSERT_TRUE(a.IsSolutionUsable());
   ASSERT_TRUE(b.IsSolutionUsable());
   EXPECT_NEAR(a.t, b.t, 1e-12);
   EXPECT_LT((a.impulse.state_after.omega - b.impulse.state_after.omega).norm(), 1e-12);
+}
+
+TEST(Join, StepBoundExceededIsAnIntegrationFailureStatus) {
+  JoinOptions o;
+  o.integration.max_steps = 2;
+  const JoinSummary j = Join(JoinProblem{BallModel::FromLambda(2.0), {M_PI / 3, 0.4, 0.1}, 1.0, {0, 0}, {0.3, 0.2}}, o);
+  EXPECT_EQ(j.status, JoinStatus::kIntegrationFailure) << j.BriefReport();
+  EXPECT_NE(j.message.find("max_steps"), std::string::npos) << j.message;
 }

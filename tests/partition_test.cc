@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "support/test_support.h"
+#include "plateball/task_adapters.h"
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
@@ -50,39 +51,30 @@ TEST(Partition, BadPartitionsNameWhatIsWrong) {
   EXPECT_NE(ErrorOf([&] { ExplicitPartition(c, {0.1, 2 * M_PI}); }).find("start of the parameter interval"),
             std::string::npos);
   EXPECT_NE(ErrorOf([&] { ExplicitPartition(c, {0.0, NAN, 2 * M_PI}); }).find("must be finite"), std::string::npos);
-  PathSpec a, b;
-  a.type = b.type = "line";
-  a.from = {0, 0};
-  a.to = b.from = {1, 0};
-  b.to = {1, 1};
-  PathSpec pw;
-  pw.type = "piecewise";
-  pw.pieces = {a, b};
-  PartitionSpec spec;
-  spec.type = "explicit";
-  spec.taus = {0, 1};
-  EXPECT_NE(ErrorOf([&] { MakePartition(Path::FromSpec(pw), spec); }).find("single-piece"), std::string::npos);
-  spec.type = "random";
-  EXPECT_NE(ErrorOf([&] { MakePartition(Path::FromSpec(pw), spec); }).find("partition.type"), std::string::npos);
-  spec.type = "uniform_parameter";
-  spec.n = 0;
-  EXPECT_NE(ErrorOf([&] { MakePartition(Path::FromSpec(pw), spec); }).find("partition.n"), std::string::npos);
+  const Path path({SmoothCurve::Line({0, 0}, {1, 0}), SmoothCurve::Line({1, 0}, {1, 1})});
+  EXPECT_NE(ErrorOf([&] { PartitionFromSpec(ExplicitTaus{{0, 1}}, path); }).find("single-piece"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { MakePartition(path, {UniformParameter{0}}); }).find("partition.n"), std::string::npos);
 }
 
 TEST(Partition, PiecewisePathsGetOnePartitionPerPiece) {
-  PathSpec a, b;
-  a.type = b.type = "line";
-  a.from = {0, 0};
-  a.to = b.from = {1, 0};
-  b.to = {1, 3};
-  PathSpec pw;
-  pw.type = "piecewise";
-  pw.pieces = {a, b};
-  PartitionSpec spec;
-  spec.type = "uniform_arc_length";
-  spec.n = 4;
-  const auto parts = MakePartition(Path::FromSpec(pw), spec);
+  const Path path({SmoothCurve::Line({0, 0}, {1, 0}), SmoothCurve::Line({1, 0}, {1, 3})});
+  const auto parts = MakePartition(path, {UniformArcLength{4}});
   ASSERT_EQ(parts.size(), 2u);
   EXPECT_EQ(parts[0].size(), 5u);
   EXPECT_EQ(parts[1].size(), 5u);
+}
+
+TEST(Partition, RulesAreAClosedSetOneRulePerPieceOrOneForAll) {
+  const Path path({SmoothCurve::Line({0, 0}, {1, 0}), SmoothCurve::Line({1, 0}, {1, 3})});
+  EXPECT_EQ(ToString(PartitionRule{UniformParameter{}}), "uniform_parameter");
+  EXPECT_EQ(ToString(PartitionRule{UniformArcLength{}}), "uniform_arc_length");
+  EXPECT_EQ(ToString(PartitionRule{ExplicitTaus{}}), "explicit");
+  const auto mixed = MakePartition(path, {UniformParameter{2}, ExplicitTaus{{0.0, 0.25, 1.0}}});
+  ASSERT_EQ(mixed.size(), 2u);
+  EXPECT_EQ(mixed[0], (std::vector<double>{0.0, 0.5, 1.0}));
+  EXPECT_EQ(mixed[1], (std::vector<double>{0.0, 0.25, 1.0}));
+  const std::string e = ErrorOf([&] { MakePartition(path, {UniformParameter{2}, UniformParameter{2}, UniformParameter{2}}); });
+  EXPECT_NE(e.find("rule count"), std::string::npos) << e;
+  EXPECT_NE(ErrorOf([&] { MakePartition(path, {UniformParameter{2}, ExplicitTaus{{0.0, 2.0}}}); }).find("partition[1].taus"),
+            std::string::npos);
 }

@@ -6,7 +6,6 @@
 
 #include <boost/math/special_functions/ellint_2.hpp>
 #include <cmath>
-#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -19,8 +18,6 @@ namespace {
 constexpr double kFiniteDifferenceTolerance = 1e-7;
 // Gauss-Legendre with 64 panels of 8 points on analytic curves.
 constexpr double kLengthTolerance = 1e-11;
-
-std::string ErrorOf(const std::function<void()>& f) { return plateball::testing::InvalidArgumentMessage(f, ""); }
 
 std::vector<SmoothCurve> AllKinds() {
   return {SmoothCurve::Line({1, 2}, {-3, 0.5}),
@@ -76,70 +73,6 @@ TEST(Path, SamplesOnACircleApproximateItsLength) {
   EXPECT_NEAR(c.Length(), M_PI, 1e-4);  // spline vs circle: O(h^2) at the natural ends
   EXPECT_LT((c.StartPoint() - pts.front()).norm(), 1e-15);
   EXPECT_LT((c.EndPoint() - pts.back()).norm(), 1e-15);
-}
-
-TEST(Path, FromSpecBuildsEveryTypeAndPiecewiseChains) {
-  PathSpec line;
-  line.type = "line";
-  line.from = {0, 0};
-  line.to = {2, 0};
-  PathSpec arc;
-  arc.type = "circle";
-  arc.center = {2, 1};
-  arc.radius = 1;
-  arc.tau_begin = -M_PI / 2;
-  arc.tau_end = M_PI / 2;
-  PathSpec pw;
-  pw.type = "piecewise";
-  pw.pieces = {line, arc};
-  const Path p = Path::FromSpec(pw);
-  EXPECT_EQ(p.PieceCount(), 2);
-  EXPECT_NEAR(p.Length(), 2.0 + M_PI, 1e-12);
-  EXPECT_LT((p.EndPoint() - Eigen::Vector2d(2, 2)).norm(), 1e-15);
-}
-
-TEST(Path, BadSpecsNameTheField) {
-  PathSpec c;
-  c.type = "circle";
-  c.radius = 0.0;
-  c.tau_end = 1.0;
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(c, "plan.path"); }).find("plan.path.radius"), std::string::npos);
-  c.radius = 1.0;
-  c.tau_end = 0.0;
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(c, "plan.path"); }).find("plan.path.tau_end"), std::string::npos);
-  PathSpec l;
-  l.type = "line";
-  l.from = l.to = {1, 1};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(l); }).find("zero speed"), std::string::npos);
-  l.to = {NAN, 0};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(l); }).find("path.to"), std::string::npos);
-  PathSpec s;
-  s.type = "samples";
-  s.points = {{0, 0}, {1, 1}, {1, 1}, {2, 0}};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(s); }).find("points[2]"), std::string::npos);
-  s.points = {{0, 0}, {INFINITY, 1}};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(s); }).find("must be finite"), std::string::npos);
-  PathSpec w;
-  w.type = "sine";
-  w.length = 1;
-  w.wavelength = 0;
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(w); }).find("path.wavelength"), std::string::npos);
-  PathSpec u;
-  u.type = "spiral";
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(u); }).find("spiral"), std::string::npos);
-  // A gap between pieces.
-  PathSpec a, b2;
-  a.type = b2.type = "line";
-  a.from = {0, 0};
-  a.to = {1, 0};
-  b2.from = {1, 0.5};
-  b2.to = {2, 0};
-  PathSpec pw;
-  pw.type = "piecewise";
-  pw.pieces = {a, b2};
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(pw); }).find("pieces[1]"), std::string::npos);
-  pw.pieces.clear();
-  EXPECT_NE(ErrorOf([&] { Path::FromSpec(pw); }).find("pieces"), std::string::npos);
 }
 
 TEST(Path, ReversedRangeTraversesTheCurveBackwards) {

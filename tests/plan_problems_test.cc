@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "plateball/task_adapters.h"
 #include "plateball/convergence.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/path.h"
@@ -22,7 +23,8 @@ void CheckProblem(const std::string& file) {
   const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/" + file));
   ASSERT_TRUE(p.plan.has_value()) << file;
   ASSERT_FALSE(p.expected.empty()) << file;
-  const PlanSummary plan = PlanImpulses(p);
+  const PlanSetup setup = PlanSetupFor(p);  // what `plateball plan` runs
+  const PlanSummary plan = PlanImpulses(setup.problem, setup.options);
   ASSERT_TRUE(plan.IsSolutionUsable()) << file << ": " << plan.BriefReport();
   EXPECT_LE(plan.measured_error, plan.bounds.a_posteriori) << file;
   int checked = 0;
@@ -30,14 +32,17 @@ void CheckProblem(const std::string& file) {
   for (const auto& [name, e] : p.expected) {
     double value = NAN;
     if (name == "path_length") {
-      value = Path::FromSpec(p.plan->path).Length();
+      value = PathFromSpec(p.plan->path).Length();
     } else if (name == "planned_rotation_angle") {
       value = RotationAngle(plan.A_planned, plan.A0);
     } else if (name == "max_pass_miss") {
       value = plan.max_pass_miss;
     } else if (name == "error_slope" || name == "bound_holds") {
-      if (!study) study = RunConvergenceStudy(p);
-      value = name == "error_slope" ? study->error_slope : (study->bound_holds ? 1.0 : 0.0);
+      if (!study) {
+        const ConvergenceSetup c = ConvergenceSetupFor(p);  // what `plateball converge` runs
+        study = RunConvergenceStudy(c.problem, c.options);
+      }
+      value = name == "error_slope" ? study->error_slope.value_or(NAN) : (study->bound_holds ? 1.0 : 0.0);
     } else {
       ADD_FAILURE() << file << ": unknown expected value '" << name << "'";
       continue;

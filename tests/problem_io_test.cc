@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "support/test_support.h"
@@ -62,22 +64,51 @@ json MinimalDocument() {
 }
 
 void ExpectSamePath(const PathSpec& a, const PathSpec& b) {
-  EXPECT_EQ(a.type, b.type);
-  EXPECT_EQ(a.from, b.from);
-  EXPECT_EQ(a.to, b.to);
-  EXPECT_EQ(a.center, b.center);
-  EXPECT_EQ(a.radius, b.radius);
-  EXPECT_EQ(a.semi_axes, b.semi_axes);
-  EXPECT_EQ(a.rotation, b.rotation);
-  EXPECT_EQ(a.scale, b.scale);
-  EXPECT_EQ(a.length, b.length);
-  EXPECT_EQ(a.amplitude, b.amplitude);
-  EXPECT_EQ(a.wavelength, b.wavelength);
-  EXPECT_EQ(a.tau_begin, b.tau_begin);
-  EXPECT_EQ(a.tau_end, b.tau_end);
-  EXPECT_EQ(a.points, b.points);
-  ASSERT_EQ(a.pieces.size(), b.pieces.size());
-  for (std::size_t i = 0; i < a.pieces.size(); ++i) ExpectSamePath(a.pieces[i], b.pieces[i]);
+  ASSERT_EQ(ToString(a), ToString(b));
+  std::visit(
+      [&](const auto& x) {
+        using T = std::decay_t<decltype(x)>;
+        const T& y = std::get<T>(b.shape);
+        if constexpr (std::is_same_v<T, LineSpec>) {
+          EXPECT_EQ(x.from, y.from);
+          EXPECT_EQ(x.to, y.to);
+        } else if constexpr (std::is_same_v<T, CircleSpec>) {
+          EXPECT_EQ(x.center, y.center);
+          EXPECT_EQ(x.radius, y.radius);
+        } else if constexpr (std::is_same_v<T, EllipseSpec>) {
+          EXPECT_EQ(x.center, y.center);
+          EXPECT_EQ(x.semi_axes, y.semi_axes);
+          EXPECT_EQ(x.rotation, y.rotation);
+        } else if constexpr (std::is_same_v<T, LemniscateSpec>) {
+          EXPECT_EQ(x.center, y.center);
+          EXPECT_EQ(x.scale, y.scale);
+          EXPECT_EQ(x.rotation, y.rotation);
+        } else if constexpr (std::is_same_v<T, SineSpec>) {
+          EXPECT_EQ(x.from, y.from);
+          EXPECT_EQ(x.rotation, y.rotation);
+          EXPECT_EQ(x.length, y.length);
+          EXPECT_EQ(x.amplitude, y.amplitude);
+          EXPECT_EQ(x.wavelength, y.wavelength);
+        } else if constexpr (std::is_same_v<T, SamplesSpec>) {
+          EXPECT_EQ(x.points, y.points);
+        } else {
+          ASSERT_EQ(x.pieces.size(), y.pieces.size());
+          for (std::size_t i = 0; i < x.pieces.size(); ++i) ExpectSamePath(x.pieces[i], y.pieces[i]);
+        }
+        if constexpr (std::is_same_v<T, CircleSpec> || std::is_same_v<T, EllipseSpec> ||
+                      std::is_same_v<T, LemniscateSpec>) {
+          EXPECT_EQ(x.tau_begin, y.tau_begin);
+          EXPECT_EQ(x.tau_end, y.tau_end);
+        }
+      },
+      a.shape);
+}
+
+// n of a uniform rule, the step count of an explicit one.
+int Steps(const PartitionSpec& rule) {
+  if (const auto* e = std::get_if<ExplicitTaus>(&rule)) return static_cast<int>(e->taus.size()) - 1;
+  if (const auto* u = std::get_if<UniformParameter>(&rule)) return u->n;
+  return std::get<UniformArcLength>(rule).n;
 }
 
 // Field-by-field, bit-exact equality of two problems (except `source`).
@@ -119,9 +150,11 @@ void ExpectSameProblem(const Problem& a, const Problem& b) {
   ASSERT_EQ(a.plan.has_value(), b.plan.has_value());
   if (a.plan) {
     ExpectSamePath(a.plan->path, b.plan->path);
-    EXPECT_EQ(a.plan->partition.type, b.plan->partition.type);
-    EXPECT_EQ(a.plan->partition.n, b.plan->partition.n);
-    EXPECT_EQ(a.plan->partition.taus, b.plan->partition.taus);
+    EXPECT_EQ(ToString(a.plan->partition), ToString(b.plan->partition));
+    EXPECT_EQ(Steps(a.plan->partition), Steps(b.plan->partition));
+    if (const auto* e = std::get_if<ExplicitTaus>(&a.plan->partition)) {
+      EXPECT_EQ(e->taus, std::get<ExplicitTaus>(b.plan->partition).taus);
+    }
     ASSERT_EQ(a.plan->energy_changes.size(), b.plan->energy_changes.size());
     for (std::size_t i = 0; i < a.plan->energy_changes.size(); ++i) {
       EXPECT_EQ(a.plan->energy_changes[i].index, b.plan->energy_changes[i].index);
@@ -167,8 +200,8 @@ TEST(ProblemIo, FullDocumentParsesEveryField) {
   EXPECT_EQ(p.x0, Eigen::Vector2d(0.5, -0.25));
   EXPECT_TRUE(plateball::testing::IsRotationMatrix(p.A0));
   ASSERT_TRUE(p.plan.has_value());
-  EXPECT_EQ(p.plan->path.pieces.size(), 4u);
-  EXPECT_EQ(p.plan->partition.n, 3);  // explicit: one step fewer than the taus
+  EXPECT_EQ(std::get<PiecewiseSpec>(p.plan->path.shape).pieces.size(), 4u);
+  EXPECT_EQ(Steps(p.plan->partition), 3);  // explicit: one step fewer than the taus
   ASSERT_TRUE(p.isoparallel.has_value());
   EXPECT_TRUE(p.isoparallel->start_orientation.isApprox(
       Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX()).toRotationMatrix(), kOrientationTolerance));
@@ -194,20 +227,11 @@ TEST(ProblemIo, RoundTripsProblemsBuiltInCode) {
   p.A0 = Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   p.seed = 18446744073709551615ull;  // largest seed
   PlanTask plan;
-  plan.path.type = "lemniscate";
-  plan.path.center = {0.1, 0.2};
-  plan.path.scale = 2.0;
-  plan.path.rotation = 0.25;
-  plan.path.tau_begin = 0.0;
-  plan.path.tau_end = 2 * M_PI;
-  plan.partition.type = "uniform_arc_length";
-  plan.partition.n = 33;
+  plan.path = PathSpec{LemniscateSpec{{0.1, 0.2}, 2.0, 0.25, 0.0, 2 * M_PI}};
+  plan.partition = UniformArcLength{33};
   p.plan = plan;
   ExpectSameProblem(p, ParseProblem(WriteProblemJson(p)));
-  // Only the fields of the path's type are written (and allowed), so set only those.
-  p.plan->path.type = "ellipse";
-  p.plan->path.scale = 0.0;
-  p.plan->path.semi_axes = {2.0, 0.5};
+  p.plan->path = PathSpec{EllipseSpec{{0.1, 0.2}, {2.0, 0.5}, 0.25, 0.0, 2 * M_PI}};
   ExpectSameProblem(p, ParseProblem(WriteProblemJson(p)));
   p.model = BallModel::FromLambda(5.0);
   ExpectSameProblem(p, ParseProblem(WriteProblemJson(p)));
@@ -226,9 +250,9 @@ TEST(ProblemIo, DefaultsOfOptionalFields) {
   const Problem q = ParseProblem(d.dump(), "defaults.json");
   EXPECT_EQ(q.simulate->t_end, SimulateTask{}.t_end);
   EXPECT_EQ(q.simulate->samples, SimulateTask{}.samples);
-  EXPECT_EQ(q.plan->path.rotation, 0.0);
-  EXPECT_EQ(q.plan->partition.type, "uniform_parameter");
-  EXPECT_EQ(q.plan->partition.n, PartitionSpec{}.n);
+  EXPECT_EQ(std::get<EllipseSpec>(q.plan->path.shape).rotation, 0.0);
+  EXPECT_EQ(ToString(q.plan->partition), "uniform_parameter");
+  EXPECT_EQ(Steps(q.plan->partition), Steps(PartitionSpec{}));
 }
 
 TEST(ProblemIo, ThreeOrientationFormsGiveTheSameRotation) {

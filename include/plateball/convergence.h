@@ -2,45 +2,69 @@
 // sequence of partition sizes n and fit the log-log slope of the error against n (about -2).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "plateball/export.h"
 #include "plateball/impulse_planner.h"
-#include "plateball/problem.h"
 
 namespace plateball PLATEBALL_EXPORT {
+
+/// What is asked: the plan problem (its partition rules must be uniform; each n of `ns` replaces
+/// their n) and the distinct partition sizes.
+struct ConvergenceProblem {
+  PlanProblem plan;
+  std::vector<int> ns{16, 32, 64, 128, 256, 512, 1024};  ///< distinct, each >= 1
+};
+
+struct ConvergenceOptions {
+  PlanOptions plan;
+  /// Measure the wall time of every plan (ConvergenceRow::plan_seconds, time_slope). Off by
+  /// default: a study is then a deterministic function of its problem (reproducible files).
+  bool timings = false;
+  std::string Validate() const { return plan.Validate(); }
+};
 
 struct ConvergenceRow {
   int n = 0;                    ///< segments per piece
   int segments = 0;             ///< over all pieces
-  double plan_seconds = 0.0;    ///< wall time of the whole plan
+  double plan_seconds = 0.0;    ///< wall time of the whole plan (0 unless options.timings)
   double measured_error = 0.0;  ///< ||A(T) - Atilde_n||
   double polyline_error = 0.0;  ///< ||A(T) - Abar_n||
   double bound = 0.0;           ///< the plan's a-posteriori bound
   double theorem_2_6 = 0.0;     ///< (Kbar_p + Ktilde_p) sum dtau^3
   double corollary_3 = 0.0;     ///< (Kbar_p + Ktilde_p) n ||P||^3
   double max_pass_miss = 0.0;
-  PlanStatus status = PlanStatus::kSuccess;
-  std::string message;
+  PlanStatus status = PlanStatus::kNotRun;
+  std::string message = "not run";
 };
 
+/// A default-constructed study says "not run" (no rows, no slopes).
 struct ConvergenceStudy {
   std::vector<ConvergenceRow> rows;
-  double error_slope = 0.0;     ///< least-squares slope of log(error) against log(n) (successful rows)
-  double bound_slope = 0.0;     ///< same for the bound
-  double time_slope = 0.0;      ///< same for the plan time
-  bool bound_holds = true;      ///< measured error <= bound on every successful row
+  /// Least-squares slope of log(error) against log(n) over the successful rows; empty with
+  /// fewer than 2 successful rows (a slope needs two distinct n).
+  std::optional<double> error_slope;
+  std::optional<double> bound_slope;  ///< same for the bound
+  std::optional<double> time_slope;   ///< same for the plan time (only with options.timings)
+  bool bound_holds = true;            ///< measured error <= bound on every successful row
   int failed_rows = 0;
+  std::string message = "not run";    ///< empty once run, or why there is no slope
   std::string BriefReport() const;
 };
 
-/// Least-squares slope of log(y) against log(x) over the pairs with x, y > 0 (NaN with fewer than 2).
-double LogLogSlope(const std::vector<double>& x, const std::vector<double>& y);
+/// Least-squares slope of log(y) against log(x) over the pairs with x, y > 0; empty with fewer
+/// than 2 such pairs or all x equal.
+std::optional<double> LogLogSlope(const std::vector<double>& x, const std::vector<double>& y);
 
-/// Plans problem.plan for every n in `ns` (each >= 1; default: plan.converge_n, else
-/// 16, 32, ..., 1024). Throws std::invalid_argument naming the field for bad input.
-ConvergenceStudy RunConvergenceStudy(const Problem& problem, std::vector<int> ns = {},
-                                     const PlanOptions& options = {});
+/// Checks a list of partition sizes: each in [1, 1000000] and none repeated (a repeated n would
+/// weigh one point twice in the fit). Throws std::invalid_argument naming `field`[i].
+void ValidatePartitionSizes(const std::vector<int>& ns, const std::string& field);
+
+/// Plans problem.plan for every n in problem.ns (ValidatePartitionSizes; the partition rules
+/// must be uniform). Throws std::invalid_argument naming the field for bad input; a plan that
+/// fails is a row status.
+ConvergenceStudy RunConvergenceStudy(const ConvergenceProblem& problem, const ConvergenceOptions& options = {});
 
 }  // namespace plateball

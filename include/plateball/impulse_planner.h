@@ -14,18 +14,41 @@
 #include "plateball/impulse.h"
 #include "plateball/integration_options.h"
 #include "plateball/join.h"
+#include "plateball/partition.h"
 #include "plateball/path.h"
-#include "plateball/problem.h"
 #include "plateball/reach.h"
+#include "plateball/so3.h"  // AlignOrientationToAxis
 
 namespace plateball PLATEBALL_EXPORT {
 
 enum class PlanStatus {
+  kNotRun,                    ///< default: no plan was run
   kSuccess,                   ///< every partition point reached
   kSegmentBeyondLocalRadius,  ///< a join found no local solution (refine the partition)
   kIntegrationFailure,        ///< an ODE integration failed
 };
 std::string ToString(PlanStatus status);
+
+/// An energy-changing impulse inserted into a plan: at global partition point `index` the speed
+/// |omega| is multiplied by `factor` (> 0); the path is unchanged.
+struct EnergyChange {
+  int index = 0;
+  double factor = 1.0;
+};
+
+/// What is asked (section 2.3): the ball at p(tau_0) of the first piece and the path to follow.
+struct PlanProblem {
+  BallModel model = BallModel::FromLambda(1.0);
+  AngleState initial{M_PI / 3, 0.4, 0.1};  ///< (theta, phi, psi) at the start
+  double mu = 1.0;                          ///< initial energy, eq. (9), > 0
+  /// Initial orientation R_WB, rotated minimally so that A0 e3 = z (AlignOrientationToAxis).
+  Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();
+  /// The planned path (default: the unit segment from the origin along x).
+  Path path = Path({SmoothCurve::Line(Eigen::Vector2d::Zero(), Eigen::Vector2d::UnitX())});
+  /// One rule per smooth piece, or one rule for every piece (partition.h).
+  std::vector<PartitionRule> partition{UniformParameter{16}};
+  std::vector<EnergyChange> energy_changes;  ///< index: global partition index in [0, n)
+};
 
 struct PlanOptions {
   JoinOptions join;                 ///< per-segment join (tolerances, local-branch factor)
@@ -73,6 +96,7 @@ struct PlanStep {
   double arc_bound = 0.0;   ///< ||S_k - Rtilde_k|| <= max|x'| max|x''| t_k^3 / 12
 };
 
+/// A default-constructed summary says "not run".
 struct PlanSummary {
   // What was asked.
   int pieces = 0;
@@ -80,8 +104,8 @@ struct PlanSummary {
   double mu_initial = 0.0;
   Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();  ///< initial orientation used (A0 e3 = z)
 
-  PlanStatus status = PlanStatus::kSuccess;
-  std::string message;
+  PlanStatus status = PlanStatus::kNotRun;
+  std::string message = "not run";  ///< why, when not kSuccess
   std::vector<PlanStep> steps;
   double total_time = 0.0;        ///< physical time of the whole impulsive trajectory
   double max_pass_miss = 0.0;     ///< max_k |x(t_k) - p(tau_k)|
@@ -99,20 +123,11 @@ struct PlanSummary {
   std::string BriefReport() const;
 };
 
-/// Plans the impulses for `path` with one partition per smooth piece (partition.h). The ball starts
-/// at p(tau_0) of the first piece with angles `initial`, energy mu and orientation A0 (rotated
-/// minimally so that A0 e3 = z, as FreeMotion::FromAngles does). `energy_changes[i].index` is a
-/// global partition index in [0, n). Throws std::invalid_argument naming the field for invalid
-/// input (partition count, indices, factors, mu, A0, options); a join that fails is a status.
-PlanSummary PlanImpulses(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
-                         const Path& path, const std::vector<std::vector<double>>& partition,
-                         const std::vector<EnergyChangeSpec>& energy_changes = {}, const PlanOptions& options = {});
-
-/// The plan task of a problem (problem.plan), with its integration options. `n` > 0 overrides
-/// plan.partition.n (for convergence studies). Requires problem.x0 == the path's start point.
-PlanSummary PlanImpulses(const Problem& problem, const PlanOptions& options = {}, int n = 0);
-
-/// A0 rotated minimally so that its third column is z (the symmetry axis).
-Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z);
+/// Plans the impulses for problem.path with the partition of problem.partition (one per smooth
+/// piece, partition.h). The ball starts at p(tau_0) of the first piece with angles `initial`,
+/// energy mu and orientation A0 (rotated minimally so that A0 e3 = z, as FreeMotion::FromAngles
+/// does). Throws std::invalid_argument naming the field for invalid input (partition, indices,
+/// factors, mu, A0, options); a join or an integration that fails is a status.
+PlanSummary PlanImpulses(const PlanProblem& problem, const PlanOptions& options = {});
 
 }  // namespace plateball

@@ -25,24 +25,33 @@
 
 #include "plateball/elastica.h"
 #include "plateball/export.h"
+#include "plateball/integration_options.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
-/// Options of SolveIsoparallel (JSON "isoparallel.solver", problem.h: IsoparallelSolverSpec).
+/// Options of SolveIsoparallel. The problem reader fills them from the JSON "isoparallel.solver"
+/// section (plus the file's seed and integration section) with the same ranges as Validate().
 struct IsoparallelOptions {
+  static constexpr int kMaxStarts = 1000000;
+  static constexpr int kMaxIterations = 100000;
+  static constexpr int kMaxThreads = 256;
+  static constexpr double kMaxLengthCapFactor = 1000.0;
   /// Multi-start points (seeded Halton sequence) of the shooting. Fewer miss short solutions of
   /// general targets (64 starts miss the shortest path of problems/isoparallel_rotation.json).
   int starts = 1024;
   double length_cap_factor = 3.0;  ///< report solutions up to this times the shortest length (>= 1)
   int max_iterations = 100;        ///< Levenberg-Marquardt iterations per local solve
   double tolerance = 1e-12;        ///< accepted |LogSO3| orientation residual (radians)
-  int threads = 1;                 ///< worker threads (results do not depend on it)
+  int threads = 1;                 ///< worker threads in [1, kMaxThreads] (results do not depend on it)
   std::uint64_t seed = 1;          ///< scrambles the start sequence
   /// Longest path searched before a shortest one is known; 0 = automatic (see README).
   double max_length = 0.0;
   /// Identity targets (|LogSO3(A1 A0^-1)| <= tolerance): enumerate the families directly
   /// (complete up to the length cap; isoparallel_families.h). false: multi-start shooting.
   bool enumerate_families = true;
+  /// Tolerances and step bound of the independent verification by rolling (VerifyRolling);
+  /// exceeding the step bound ends the solve with kIntegrationFailure.
+  IntegrationOptions integration;
   /// Called (from a worker thread, serialised) after each start with (starts done, starts in
   /// this pass), or by the family enumeration after each period count m with (m, 0); for a
   /// tool's progress line. The library never prints.
@@ -81,8 +90,10 @@ struct IsoparallelSolution {
 };
 
 enum class IsoparallelStatus {
-  kSolved,          ///< at least one verified solution
-  kNoSolution,      ///< no start converged to a verified solution
+  kNotRun,              ///< default: no solve was run
+  kSolved,              ///< at least one verified solution
+  kNoSolution,          ///< no start converged to a verified solution
+  kIntegrationFailure,  ///< the verification by rolling failed (step bound); message says where
 };
 std::string ToString(IsoparallelStatus status);
 
@@ -95,7 +106,8 @@ std::string ToString(IsoparallelMethod method);
 struct IsoparallelSummary {
   IsoparallelProblem problem;
   IsoparallelOptions options;
-  IsoparallelStatus status = IsoparallelStatus::kNoSolution;
+  IsoparallelStatus status = IsoparallelStatus::kNotRun;
+  std::string message = "not run";  ///< why, when not kSolved (empty when solved)
   IsoparallelMethod method = IsoparallelMethod::kShooting;
   /// Family enumeration: the certificate ended the search (every solution up to the cap is
   /// reported), and the largest period count examined. Shooting: false and 0.
@@ -108,8 +120,8 @@ struct IsoparallelSummary {
   double searched_length = 0;  ///< longest path considered
   double time_seconds = 0.0;
   bool IsSolutionUsable() const { return status == IsoparallelStatus::kSolved; }
-  /// Shortest solution (requires IsSolutionUsable()).
-  const IsoparallelSolution& Shortest() const { return solutions.front(); }
+  /// Shortest solution. Throws std::logic_error when there is none.
+  const IsoparallelSolution& Shortest() const;
   std::string BriefReport() const;
   std::string FullReport() const;
 };
@@ -120,7 +132,8 @@ struct IsoparallelSummary {
 IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const IsoparallelOptions& options = {});
 
 /// Reorientation R = A(length) A(0)^-1 of rolling along the path, by RollingReorientation of
-/// rolling.h (dopri5 at 1e-12, independent of the solver's Magnus tables).
-Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution);
+/// rolling.h (dopri5, by default at 1e-12, independent of the solver's Magnus tables). Throws
+/// std::runtime_error when the integration exceeds integration.max_steps.
+Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution, const IntegrationOptions& integration = {});
 
 }  // namespace plateball

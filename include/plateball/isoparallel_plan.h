@@ -22,11 +22,21 @@ Path OptimalPath(const IsoparallelSolution& solution);
 /// the chart-free dynamics handles); psi is free (the problem's initial.psi).
 AngleState InitialAnglesFromOrientation(const Eigen::Matrix3d& A0, double psi);
 
-/// The impulsive approximation with `impulses` segments of equal arc length (impulses at
+/// What is asked: the ball at the start of an optimal path and the number of impulses.
+struct IsoparallelPlanProblem {
+  BallModel model = BallModel::FromLambda(1.0);
+  double psi = 0.0;  ///< initial psi (theta and phi come from A0 e3)
+  double mu = 1.0;   ///< energy level, eq. (9), > 0
+  Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();  ///< start orientation (a rotation)
+  IsoparallelSolution solution;                       ///< the optimal path to follow
+  int impulses = 12;                                  ///< segments of equal arc length, >= 1
+};
+
+/// The impulsive approximation with problem.impulses segments of equal arc length (impulses at
 /// p(tau_k), k = 0..n-1). The ball starts at the solution's start with orientation A0 (its third
 /// column defines theta, phi), the given psi and energy mu. Throws std::invalid_argument naming
-/// the field for impulses < 1, invalid mu or psi, a non-rotation A0.
-PlanSummary PlanOptimalPath(const BallModel& model, double psi, double mu, const Eigen::Matrix3d& A0,
-                            const IsoparallelSolution& solution, int impulses, const PlanOptions& options = {});
+/// the field for impulses < 1, invalid mu or psi, a non-rotation A0; an integration failure
+/// (options.integration) is a status.
+PlanSummary PlanOptimalPath(const IsoparallelPlanProblem& problem, const PlanOptions& options = {});
 
 }  // namespace plateball

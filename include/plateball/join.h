@@ -15,6 +15,7 @@ namespace plateball PLATEBALL_EXPORT {
 
 /// How a join ended.
 enum class JoinStatus {
+  kNotRun,                   ///< default: no join was run
   kConverged,                ///< x_s(t) = target to the residual tolerance, t in the local range
   kTargetEqualsStart,        ///< target == x0: t = 0 and any delta psi; nothing to join
   kTargetBeyondLocalRadius,  ///< the unique small-t solution of Lemma 2.1 was not found
@@ -38,7 +39,16 @@ struct JoinOptions {
   std::string Validate() const;
 };
 
-/// The answer of Join, with what was asked.
+/// What is asked (Lemma 2.1): the ball just before the impulse at x0, and the point to reach.
+struct JoinProblem {
+  BallModel model = BallModel::FromLambda(1.0);
+  AngleState start;                                  ///< (theta, phi, psi) before the impulse
+  double mu = 1.0;                                   ///< energy level, eq. (9), > 0
+  Eigen::Vector2d x0 = Eigen::Vector2d::Zero();      ///< contact point at the impulse
+  Eigen::Vector2d target = Eigen::Vector2d::Zero();  ///< the close point to reach
+};
+
+/// The answer of Join, with what was asked. A default-constructed summary says "not run".
 struct JoinSummary {
   // What was asked.
   AngleState start;  ///< (theta, phi, psi) just before the impulse
@@ -46,8 +56,8 @@ struct JoinSummary {
   Eigen::Vector2d x0 = Eigen::Vector2d::Zero();
   Eigen::Vector2d target = Eigen::Vector2d::Zero();
 
-  JoinStatus status = JoinStatus::kTargetBeyondLocalRadius;
-  std::string message;     ///< why, when not kConverged
+  JoinStatus status = JoinStatus::kNotRun;
+  std::string message = "not run";  ///< why, when not kConverged (empty when converged)
   double delta_psi = 0.0;  ///< s of Lemma 2.1, in (-pi, pi]
   double t = 0.0;          ///< time of flight, >= 0
   double residual = 0.0;   ///< |x_s(t) - target|
@@ -77,11 +87,7 @@ double MinimumContactSpeed(double mu, const BallModel& model);
 /// dx/ds from the variational equations integrated with the motion (dopri5). Initial guess from
 /// the velocity ellipse (27)-(28): x'_s(0) pointing at the target, t = |target - x0| / |x'_s(0)|.
 /// Throws std::invalid_argument (naming the field) for non-finite input, mu <= 0 or invalid options.
-JoinSummary Join(const BallModel& model, const AngleState& start, double mu, const Eigen::Vector2d& x0,
-                 const Eigen::Vector2d& target, const JoinOptions& options = {});
-
-/// Same, from a chart-free state (its angles are taken with AnglesFromState).
-JoinSummary Join(const BallModel& model, const BallState& start, const Eigen::Vector2d& x0,
-                 const Eigen::Vector2d& target, const JoinOptions& options = {});
+/// A chart-free start state enters through AnglesFromState (ball_state.h).
+JoinSummary Join(const JoinProblem& problem, const JoinOptions& options = {});
 
 }  // namespace plateball

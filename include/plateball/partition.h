@@ -3,11 +3,11 @@
 #pragma once
 
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "plateball/export.h"
 #include "plateball/path.h"
-#include "plateball/problem.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
@@ -24,9 +24,27 @@ std::vector<double> ExplicitPartition(const SmoothCurve& curve, const std::vecto
 /// points p(tau_k) == p(tau_{k+1}).
 void ValidatePartition(const SmoothCurve& curve, const std::vector<double>& taus, const std::string& field = "partition");
 
-/// One partition per smooth piece of `path` from a PartitionSpec (problem.h): for a piecewise
-/// path n applies to each piece; explicit taus are accepted for a single-piece path only.
-std::vector<std::vector<double>> MakePartition(const Path& path, const PartitionSpec& spec,
+/// n equal steps of the parameter of a piece (n >= 1).
+struct UniformParameter {
+  int n = 16;
+};
+/// n steps of equal arc length of a piece (n >= 1).
+struct UniformArcLength {
+  int n = 16;
+};
+/// The given parameter values of a piece (the checks of ExplicitPartition).
+struct ExplicitTaus {
+  std::vector<double> taus;
+};
+/// How one smooth piece of a planned path is partitioned (section 2.3): a closed set of rules.
+using PartitionRule = std::variant<UniformParameter, UniformArcLength, ExplicitTaus>;
+/// "uniform_parameter", "uniform_arc_length" or "explicit" (the file's partition.type).
+std::string ToString(const PartitionRule& rule);
+
+/// One partition per smooth piece of `path`: `rules` holds one rule per piece, or a single rule
+/// that applies to every piece. Throws std::invalid_argument naming `field`[i] for an invalid
+/// rule or a rule count that is neither 1 nor the piece count.
+std::vector<std::vector<double>> MakePartition(const Path& path, const std::vector<PartitionRule>& rules,
                                                const std::string& field = "partition");
 
 /// ||P||_p = max_k |p(tau_{k+1}) - p(tau_k)|.

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "plateball/export.h"
-#include "plateball/problem.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
@@ -95,9 +94,6 @@ class Path {
  public:
   /// Throws std::invalid_argument (naming "pieces[i]") for an empty chain or a gap between pieces.
   explicit Path(std::vector<SmoothCurve> pieces);
-  /// Builds the path described by a PathSpec (problem.h), validating every field; error messages
-  /// name the field as `field`.key (e.g. "plan.path.radius").
-  static Path FromSpec(const PathSpec& spec, const std::string& field = "path");
 
   const std::vector<SmoothCurve>& pieces() const { return pieces_; }
   int PieceCount() const { return static_cast<int>(pieces_.size()); }
@@ -108,8 +104,5 @@ class Path {
  private:
   std::vector<SmoothCurve> pieces_;
 };
-
-/// A single smooth curve from a PathSpec whose type is not "piecewise".
-SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field = "path");
 
 }  // namespace plateball

@@ -9,60 +9,83 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/export.h"
+#include "plateball/impulse_planner.h"
 #include "plateball/integration_options.h"
+#include "plateball/isoparallel.h"
+#include "plateball/partition.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
-/// A planned planar path (JSON object "path"). `type` selects which fields are used:
-///  "line":       from, to                             tau in [0, 1]
-///  "circle":     center, radius, tau_begin, tau_end   p = center + radius (cos tau, sin tau)
-///  "ellipse":    center, semi_axes (a, b), rotation, tau_begin, tau_end
-///                p = center + Rot(rotation) (a cos tau, b sin tau)
-///  "lemniscate": center, scale, rotation, tau_begin, tau_end   (Bernoulli, half-width `scale`)
-///                p = center + Rot(rotation) scale (cos tau, sin tau cos tau) / (1 + sin^2 tau)
-///  "sine":       from, rotation (direction of travel), length, amplitude, wavelength
-///                p = from + Rot(rotation) (tau, amplitude sin(2 pi tau / wavelength)), tau in [0, length]
-///  "samples":    points (>= 2), interpolated by a natural C^2 cubic spline, tau = chord length
-///  "piecewise":  pieces (>= 1 PathSpec, consecutive pieces share end points)
-struct PathSpec {
-  std::string type;
+/// A planned planar path (JSON object "path"): a closed set of shapes, one struct per JSON
+/// "type". Each is turned into a library Path by PathFromSpec (task_adapters.h).
+/// "line": p = from + tau (to - from), tau in [0, 1].
+struct LineSpec {
   Eigen::Vector2d from = Eigen::Vector2d::Zero();
-  Eigen::Vector2d to = Eigen::Vector2d::Zero();
+  Eigen::Vector2d to = Eigen::Vector2d::UnitX();
+};
+/// "circle": p = center + radius (cos tau, sin tau), tau from tau_begin to tau_end.
+struct CircleSpec {
   Eigen::Vector2d center = Eigen::Vector2d::Zero();
-  double radius = 0.0;
-  Eigen::Vector2d semi_axes = Eigen::Vector2d::Zero();
-  double rotation = 0.0;
-  double scale = 0.0;
-  double length = 0.0;
-  double amplitude = 0.0;
-  double wavelength = 0.0;
+  double radius = 1.0;
   double tau_begin = 0.0;
-  double tau_end = 0.0;
+  double tau_end = 2 * M_PI;
+};
+/// "ellipse": p = center + Rot(rotation) (a cos tau, b sin tau), (a, b) = semi_axes.
+struct EllipseSpec {
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  Eigen::Vector2d semi_axes = Eigen::Vector2d::Ones();
+  double rotation = 0.0;
+  double tau_begin = 0.0;
+  double tau_end = 2 * M_PI;
+};
+/// "lemniscate" (Bernoulli, half-width `scale`):
+/// p = center + Rot(rotation) scale (cos tau, sin tau cos tau) / (1 + sin^2 tau).
+struct LemniscateSpec {
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  double scale = 1.0;
+  double rotation = 0.0;
+  double tau_begin = 0.0;
+  double tau_end = 2 * M_PI;
+};
+/// "sine": p = from + Rot(rotation) (tau, amplitude sin(2 pi tau / wavelength)), tau in [0, length].
+struct SineSpec {
+  Eigen::Vector2d from = Eigen::Vector2d::Zero();
+  double rotation = 0.0;  ///< direction of travel
+  double length = 1.0;
+  double amplitude = 0.0;
+  double wavelength = 1.0;
+};
+/// "samples": points (>= 2), interpolated by a natural C^2 cubic spline, tau = chord length.
+struct SamplesSpec {
   std::vector<Eigen::Vector2d> points;
+};
+struct PathSpec;
+/// "piecewise": pieces (>= 1 smooth PathSpec, consecutive pieces share end points).
+struct PiecewiseSpec {
   std::vector<PathSpec> pieces;
 };
-
-/// How the path parameter interval is partitioned (JSON object "partition").
-///  "uniform_parameter": n equal steps of tau; "uniform_arc_length": n equal steps of arc
-///  length; "explicit": the given parameter values (strictly increasing, first and last at the
-///  ends of the parameter interval). For piecewise paths n applies to each piece.
-struct PartitionSpec {
-  std::string type = "uniform_parameter";
-  int n = 16;
-  std::vector<double> taus;
+struct PathSpec {
+  using Shape = std::variant<LineSpec, CircleSpec, EllipseSpec, LemniscateSpec, SineSpec, SamplesSpec, PiecewiseSpec>;
+  Shape shape;
 };
+/// The JSON "type" of a path: "line", "circle", ..., "piecewise".
+std::string ToString(const PathSpec& spec);
 
-/// An energy-changing impulse inserted into a plan (JSON "energy_changes"): at partition point
-/// `index` the speed |omega| is multiplied by `factor` (> 0); the path is unchanged.
-struct EnergyChangeSpec {
-  int index = 0;
-  double factor = 1.0;
-};
+/// How the path parameter interval is partitioned (JSON object "partition"): the planner's
+/// PartitionRule (partition.h). "uniform_parameter" (n, default 16), "uniform_arc_length" (n) or
+/// "explicit" (taus: strictly increasing, first and last at the ends of the parameter interval;
+/// single-piece paths only). For piecewise paths n applies to each piece.
+using PartitionSpec = PartitionRule;
+
+/// An energy-changing impulse inserted into a plan (JSON "energy_changes"): the planner's
+/// EnergyChange (impulse_planner.h).
+using EnergyChangeSpec = EnergyChange;
 
 /// `plateball simulate`: sample the free motion on [0, t_end].
 struct SimulateTask {
@@ -84,18 +107,6 @@ struct PlanTask {
   std::vector<int> converge_n;  ///< the n values of a convergence study (may be empty)
 };
 
-/// Options of the isoparallel solver (JSON object "solver" inside "isoparallel").
-struct IsoparallelSolverSpec {
-  int starts = 1024;                 ///< multi-start count (seeded; shooting only)
-  double length_cap_factor = 3.0;    ///< report solutions up to this times the shortest length
-  int max_iterations = 100;          ///< per Ceres solve
-  double tolerance = 1e-12;          ///< residual tolerance of an accepted solution
-  int threads = 1;
-  /// Identity targets: enumerate the one-parameter families directly (complete up to the cap)
-  /// instead of the multi-start shooting.
-  bool enumerate_families = true;
-};
-
 /// The isoparallel problem (section 2.2): shortest path from (start, A_start) to (goal, A_goal).
 struct IsoparallelTask {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
@@ -103,7 +114,9 @@ struct IsoparallelTask {
   Eigen::Matrix3d start_orientation = Eigen::Matrix3d::Identity();
   Eigen::Matrix3d goal_orientation = Eigen::Matrix3d::Identity();
   int impulses = 12;  ///< partition size of the impulsive approximation
-  IsoparallelSolverSpec solver;
+  /// JSON "solver": read straight into the solver's options with its ranges (isoparallel.h);
+  /// the task adapter adds the file's seed and integration section.
+  IsoparallelOptions solver;
 };
 
 /// Golden values a problem file may carry ("expected"): name -> value, with a tolerance each.

@@ -51,7 +51,8 @@ struct ReachOptions {
   /// approach d(s) = min_t |x_s(t) - target|). It runs on every call: its minimiser is refined
   /// like a scan candidate, and it gives the closest approach when nothing reaches the target.
   int global_max_evaluations = 80;
-  /// Seed of NLopt's generator (nlopt::srand) before each NLopt run: results are reproducible.
+  /// Unused: the searches (DIRECT-L, BOBYQA) are deterministic and Reach touches no global
+  /// random state. Kept so that problem files and callers that set it still compile.
   std::uint64_t seed = 1;
   /// Tolerances of the tight integrations (refinement, end states).
   IntegrationOptions integration;
@@ -61,6 +62,7 @@ struct ReachOptions {
 };
 
 enum class ReachStatus {
+  kNotRun,                     ///< default: no reach was run
   kSolved,                     ///< at least one solution with t <= horizon
   kUnreachableWithinHorizon,   ///< none found; closest_approach says how near the ball gets
   kNumericalFailure,           ///< an integration failed (step bound); message says where
@@ -92,8 +94,8 @@ struct ReachSummary {
   ReachProblem problem;
   double period = 0.0;              ///< T = 2 pi / sqrt(mu)
   double horizon = 0.0;             ///< horizon_periods * T
-  ReachStatus status = ReachStatus::kUnreachableWithinHorizon;
-  std::string message;              ///< why, for kNumericalFailure
+  ReachStatus status = ReachStatus::kNotRun;
+  std::string message = "not run";  ///< why, for kNumericalFailure (empty otherwise once run)
   /// Distinct solutions sorted by t (earliest first).
   std::vector<ReachSolution> solutions;
   /// Filled when status is kUnreachableWithinHorizon (and, for reference, equal to the earliest
@@ -109,7 +111,7 @@ struct ReachSummary {
   int global_evaluations = 0;       ///< NLopt objective evaluations
 
   bool IsSolutionUsable() const { return status == ReachStatus::kSolved && !solutions.empty(); }
-  /// The default answer: the earliest solution. Requires IsSolutionUsable().
+  /// The default answer: the earliest solution. Throws std::logic_error when there is none.
   const ReachSolution& Earliest() const;
   /// One line: status, number of solutions, earliest (s, t, residual) or closest approach.
   std::string BriefReport() const;

@@ -113,7 +113,7 @@ plateball_cli_test(simulate.bad_problem_file 3 REGEX "bad_mu.json: initial.mu: v
   -- simulate tests/data/bad_mu.json)
 plateball_cli_test(simulate.missing_problem_file 5 REGEX "no_such_problem.json.*cannot open"
   -- simulate tests/data/no_such_problem.json)
-plateball_cli_test(simulate.unwritable_out 5 REGEX "cannot open the file for writing"
+plateball_cli_test(simulate.unwritable_out 5 REGEX "out.json: cannot write \\(--out\\): the directory /nonexistent-dir does not exist"
   -- simulate --samples 2 --out /nonexistent-dir/out.json)
 plateball_cli_test(simulate.step_limit 4 REGEX "max_steps = 3" -- simulate --max-steps 3)
 plateball_cli_test(simulate.unknown_option 2 -- simulate --no-such-option)

@@ -40,8 +40,15 @@ plateball_cli_test(plan.missing_file 5 -- plan problems/no_such_problem.json)
 plateball_cli_test(converge.circle_slope 0
   --number error_slope -2 0.2 REGEX "\"bound_holds\": true"
   -- converge problems/circle.json --n 16,32,64,128)
-plateball_cli_test(converge.csv 0 REGEX "n,segments,plan_seconds,measured_error"
+plateball_cli_test(converge.csv 0 REGEX "n,segments,measured_error"
   -- converge problems/ellipse.json --n 16,32 --format csv)
+# Wall times only on request (--timings): without it the output is reproducible byte for byte.
+plateball_cli_test(converge.csv_timings 0 REGEX "n,segments,plan_seconds,measured_error"
+  -- converge problems/ellipse.json --n 16,32 --format csv --timings)
+# Issue 16: a repeated n, an n for an explicit partition: input errors naming --n; one n: no slope.
+plateball_cli_test(converge.repeated_n 3 REGEX "--n.*repeated"
+  -- converge problems/circle.json --n 16,16,16)
+plateball_cli_test(converge.one_n 0 REGEX "no slope" -- converge problems/circle.json --n 16)
 plateball_cli_test(converge.svg 0 REGEX "fit: slope -[12]\\."
   --cat ${CMAKE_CURRENT_BINARY_DIR}/cli_converge_lemniscate.svg
   -- converge problems/lemniscate.json --n 16,32,64 --svg ${CMAKE_CURRENT_BINARY_DIR}/cli_converge_lemniscate.svg)

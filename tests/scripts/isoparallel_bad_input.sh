@@ -54,8 +54,8 @@ cases=(
   "missing problem file|5|no_such_file.json|$work/no_such_file.json"
   "unwritable plan file|5|/nonexistent_dir/plan.json|--out|/nonexistent_dir/plan.json"
   "unwritable figure file|5|/nonexistent_dir/figure.svg|--svg|/nonexistent_dir/figure.svg"
-  "zero impulses on the command line|2|--impulses|--impulses|0"
-  "non-numeric seed|2|--seed|--seed|abc"
+  "zero impulses on the command line|3|--impulses|--impulses|0"
+  "non-numeric seed|3|--seed|--seed|abc"
   "unknown option|2|--frobnicate|--frobnicate"
   "solver starved of iterations|4|solution|$work/stall_one_iteration.json"
 )

@@ -1,18 +1,25 @@
 // The shared helpers of the command-line tools (tools/common): exit-code mapping, JSON output,
-// option parsing and problem overrides.
+// option parsing and problem overrides, the number formatter, output files, the plan layout.
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstring>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iterator>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
+#include "common/command_line.h"
 #include "common/errors.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/number_format.h"
+#include "common/output_file.h"
+#include "common/plan_json.h"
 #include "common/problem_options.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
@@ -138,4 +145,112 @@ TEST(ToolOptions, OverridesApplyOnTopOfTheDefaultsAndAreValidated) {
   app2.parse("--atol 1e-16 --rtol 1e-16", false);
   // Each tolerance alone is in (0, 1); the combination is rejected like in a file.
   EXPECT_THROW(bad.Load(), std::invalid_argument);
+}
+
+TEST(NumberFormat, ShortestTextReadsBackBitExactly) {
+  EXPECT_EQ(FormatNumber(0.1), "0.1");
+  EXPECT_EQ(FormatNumber(-3), "-3");
+  EXPECT_EQ(FormatNumber(1e200), "1e+200");
+  EXPECT_EQ(FormatNumber(INFINITY), "inf");
+  // 17 digits would print 0.10000000000000001; every value reads back to the same double.
+  for (double v : {0.1, 1.0 / 3.0, 2.0 / 3.0 * 1e-300, 6.02214076e23, std::nextafter(1.0, 2.0), 5e-324}) {
+    const std::string text = FormatNumber(v);
+    EXPECT_EQ(std::strtod(text.c_str(), nullptr), v) << text;
+    EXPECT_LE(text.size(), 24u) << text;
+  }
+}
+
+namespace {
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+std::string TempDir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+}  // namespace
+
+TEST(OutputFile, ReplacesTheFileAndLeavesNoTemporary) {
+  const std::string dir = TempDir("plateball_output_file");
+  const std::string path = dir + "/out.json";
+  WriteOutput(path, "first\n");
+  WriteOutput(path, "second\n");
+  EXPECT_EQ(ReadAll(path), "second\n");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator{}), 1);
+  // A path under a plain file cannot be created: IoError naming it (exit code 5), nothing written.
+  EXPECT_THROW(WriteOutput(path + "/x", "y"), IoError);
+  EXPECT_EQ(ReadAll(path), "second\n");
+}
+
+TEST(OutputFile, PathsAreCheckedBeforeAnyWork) {
+  const std::string dir = TempDir("plateball_output_paths");
+  const std::string in = dir + "/in.json";
+  WriteOutput(in, "{}\n");
+  std::string message;
+  EXPECT_EQ(CodeFor([&] { CheckOutputPaths({{"--out", dir + "/a"}, {"--svg", dir + "/./a"}}); }, &message), kExitBadInput);
+  EXPECT_NE(message.find("--out and --svg"), std::string::npos) << message;
+  EXPECT_EQ(CodeFor([&] { CheckOutputPaths({{"--out", in}}, {{"PROBLEM.json", in}}); }, &message), kExitBadInput);
+  EXPECT_NE(message.find("--out and PROBLEM.json"), std::string::npos) << message;
+  EXPECT_EQ(CodeFor([&] { CheckOutputPaths({{"--out", "-"}, {"--svg", "-"}}); }, &message), kExitBadInput);
+  EXPECT_EQ(CodeFor([&] { CheckOutputPaths({{"--out", dir + "/missing/a.json"}}); }, &message), kExitIoError);
+  EXPECT_NE(message.find("missing/a.json"), std::string::npos) << message;
+  EXPECT_NO_THROW(CheckOutputPaths({{"--out", "-"}, {"--svg", dir + "/b.svg"}, {"--csv", ""}}, {{"PROBLEM.json", in}}));
+  EXPECT_NO_THROW(CheckOutputPaths({{"--out", "/dev/null"}}));
+}
+
+TEST(CommandLine, SeedsAreUnsigned64BitIntegers) {
+  EXPECT_EQ(ParseSeedOption("--seed", "0"), 0u);
+  EXPECT_EQ(ParseSeedOption("--seed", "18446744073709551615"), 18446744073709551615ull);
+  for (const char* bad : {"", "-1", "18446744073709551616", "1e3", "abc", " 1", "99999999999999999999999"}) {
+    try {
+      ParseSeedOption("--seed", bad);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()), std::string("command line: --seed: value \"") + bad +
+                                           "\": must be an integer in [0, 2^64 - 1]");
+    }
+  }
+}
+
+TEST(CommandLine, BlankAndNonNumericValuesAreBadInputInEveryTool) {
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"tool", "--mu", ""}, {"tool", "--mu", "  "}, {"tool", "--mu", "abc"}}) {
+    CLI::App app;
+    double mu = 1;
+    app.add_option("--mu", mu);
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    EXPECT_EQ(ParseCommandLine(app, static_cast<int>(argv.size()), argv.data(), "tool"), kExitBadInput) << args[2];
+  }
+  CLI::App app;
+  double mu = 1;
+  app.add_option("--mu", mu);
+  std::vector<std::string> args{"tool", "--mu", "2.5"};
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  EXPECT_FALSE(ParseCommandLine(app, 3, argv.data(), "tool").has_value());
+  EXPECT_EQ(mu, 2.5);
+}
+
+TEST(PlanJson, OneLayoutWithOrWithoutSteps) {
+  PlanSummary plan;
+  plan.steps.resize(2);
+  const Json full = PlanSummaryToJson(plan);
+  const Json brief = PlanSummaryToJson(plan, false);
+  std::vector<std::string> keys;
+  for (auto it = brief.begin(); it != brief.end(); ++it) keys.push_back(it.key());
+  const std::vector<std::string> expected{"status", "usable", "message", "total_time", "max_pass_miss",
+                                          "max_join_residual", "measured_error", "polyline_error", "bounds",
+                                          "orientation", "final", "report"};
+  std::vector<std::string> expected_present;
+  for (const std::string& k : expected)
+    if (k != "message" || !plan.message.empty()) expected_present.push_back(k);
+  EXPECT_EQ(keys, expected_present);
+  ASSERT_TRUE(full.contains("steps"));
+  EXPECT_EQ(full["steps"].size(), 2u);
+  EXPECT_FALSE(brief.contains("steps"));
+  EXPECT_EQ(full["usable"].get<bool>(), plan.IsSolutionUsable());
 }

@@ -3,6 +3,7 @@
 #include <exception>
 
 #include "common/exit_codes.h"
+#include "common/output_file.h"
 #include "plateball/problem_io.h"
 
 namespace plateball::tools {
@@ -33,7 +34,9 @@ int ReportCurrentException(const std::string& program, std::ostream& err) {
 
 int RunWithExitCodes(const std::string& program, const std::function<int()>& run, std::ostream& err) {
   try {
-    return run();
+    const int code = run();
+    FlushStandardOutput();  // a write error on standard output is an I/O failure (exit code 5)
+    return code;
   } catch (...) {
     return ReportCurrentException(program, err);
   }

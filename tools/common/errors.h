@@ -23,7 +23,8 @@ class IoError : public std::runtime_error {
 ///   anything else                                 -> kExitInternalError (6) "internal error"
 int ReportCurrentException(const std::string& program, std::ostream& err = std::cerr);
 
-/// Runs `run` and returns its exit code, or ReportCurrentException's when it throws.
+/// Runs `run` and returns its exit code, or ReportCurrentException's when it throws; then flushes
+/// standard output: a failed write to it (a full disk) is reported as an IoError (exit code 5).
 int RunWithExitCodes(const std::string& program, const std::function<int()>& run, std::ostream& err = std::cerr);
 
 }  // namespace plateball::tools

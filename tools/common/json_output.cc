@@ -1,11 +1,9 @@
 #include "common/json_output.h"
 
 #include <cmath>
-#include <fstream>
-#include <iostream>
 #include <stdexcept>
 
-#include "common/errors.h"
+#include "common/output_file.h"
 #include "plateball/so3.h"
 
 namespace plateball::tools {
@@ -128,18 +126,6 @@ std::string DumpJson(const Json& doc) {
   return out + "\n";
 }
 
-void WriteJson(const Json& doc, const std::string& out_path) {
-  const std::string text = DumpJson(doc);
-  if (out_path.empty() || out_path == "-") {
-    std::cout << text << std::flush;
-    if (!std::cout) throw IoError("standard output: write failed");
-    return;
-  }
-  std::ofstream out(out_path, std::ios::binary | std::ios::trunc);
-  if (!out) throw IoError(out_path + ": cannot open the file for writing");
-  out << text;
-  out.flush();
-  if (!out) throw IoError(out_path + ": write failed");
-}
+void WriteJson(const Json& doc, const std::string& out_path) { WriteOutput(out_path, DumpJson(doc)); }
 
 }  // namespace plateball::tools

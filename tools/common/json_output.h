@@ -38,7 +38,7 @@ Json RotationToJson(const Eigen::Matrix3d& r);
 std::string DumpJson(const Json& doc);
 
 /// Writes DumpJson(doc) to stdout when `out_path` is empty or "-", else to the file `out_path`
-/// (replaced). Throws IoError (exit code 5) when the file cannot be written.
+/// (replaced atomically, output_file.h). Throws IoError (exit code 5) when it cannot be written.
 void WriteJson(const Json& doc, const std::string& out_path);
 
 }  // namespace plateball::tools

@@ -6,20 +6,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/command_line.h"
+#include "common/number_format.h"
 #include "plateball/problem_io.h"
 
 namespace plateball::tools {
 namespace {
-
-std::string Shortest(double v) {
-  for (int precision = 1; precision <= 17; ++precision) {
-    std::ostringstream os;
-    os.precision(precision);
-    os << v;
-    if (std::strtod(os.str().c_str(), nullptr) == v) return os.str();
-  }
-  return std::to_string(v);
-}
 
 [[noreturn]] void Fail(const std::string& option, const std::string& value, const std::string& what) {
   throw std::invalid_argument(std::string(kCommandLine) + ": " + option + ": value " + value + ": " + what);
@@ -44,11 +36,11 @@ bool ParseDouble(std::string text, double* out) {
 }  // namespace
 
 double RequireFiniteOption(const std::string& option, double v) {
-  if (!std::isfinite(v)) Fail(option, Shortest(v), "must be a finite number");
+  if (!std::isfinite(v)) Fail(option, FormatNumber(v), "must be a finite number");
   return v;
 }
 double RequirePositiveOption(const std::string& option, double v) {
-  if (!(std::isfinite(v) && v > 0)) Fail(option, Shortest(v), "must be a finite number > 0");
+  if (!(std::isfinite(v) && v > 0)) Fail(option, FormatNumber(v), "must be a finite number > 0");
   return v;
 }
 long long RequireIntegerInRange(const std::string& option, long long v, long long lo, long long hi) {
@@ -103,7 +95,7 @@ void ProblemOptions::Add(CLI::App& app) {
   atol_opt_ = app.add_option("--atol", atol_, "absolute tolerance of the integration, in (0, 1)");
   rtol_opt_ = app.add_option("--rtol", rtol_, "relative tolerance of the integration, in (0, 1)");
   max_steps_opt_ = app.add_option("--max-steps", max_steps_, "step limit of one integration (>= 1)");
-  seed_opt_ = app.add_option("--seed", seed_, "seed of randomised searches (>= 0)");
+  seed_opt_ = app.add_option("--seed", seed_, "seed of randomised searches, 0 ... 2^64 - 1")->type_name(kSeedTypeName);
 }
 
 Problem ProblemOptions::Load() const {
@@ -123,24 +115,15 @@ Problem ProblemOptions::Load() const {
   if (given(x0_opt_)) p.x0 = ParsePointOption("--x0", x0_);
   if (given(orientation_opt_)) p.A0 = ParseOrientation(orientation_, "--orientation", kCommandLine);
   if (given(atol_opt_)) {
-    if (!(std::isfinite(atol_) && atol_ > 0 && atol_ < 1)) Fail("--atol", Shortest(atol_), "must be in (0, 1)");
+    if (!(std::isfinite(atol_) && atol_ > 0 && atol_ < 1)) Fail("--atol", FormatNumber(atol_), "must be in (0, 1)");
     p.integration.absolute_tolerance = atol_;
   }
   if (given(rtol_opt_)) {
-    if (!(std::isfinite(rtol_) && rtol_ > 0 && rtol_ < 1)) Fail("--rtol", Shortest(rtol_), "must be in (0, 1)");
+    if (!(std::isfinite(rtol_) && rtol_ > 0 && rtol_ < 1)) Fail("--rtol", FormatNumber(rtol_), "must be in (0, 1)");
     p.integration.relative_tolerance = rtol_;
   }
   if (given(max_steps_opt_)) p.integration.max_steps = static_cast<long>(RequireIntegerInRange("--max-steps", max_steps_, 1, 1'000'000'000'000LL));
-  if (given(seed_opt_)) {
-    // Parsed here: CLI11 would read "-1" as 2^64 - 1.
-    char* end = nullptr;
-    errno = 0;
-    const unsigned long long v = std::strtoull(seed_.c_str(), &end, 10);
-    if (seed_.empty() || seed_.find_first_not_of("0123456789") != std::string::npos || errno == ERANGE ||
-        end != seed_.c_str() + seed_.size())
-      Fail("--seed", Quote(seed_), "must be an integer in [0, 2^64 - 1]");
-    p.seed = v;
-  }
+  if (given(seed_opt_)) p.seed = ParseSeedOption("--seed", seed_);
   if (overridden) {
     // Validate the combination exactly as a file is validated (e.g. both tolerances below
     // double precision), then keep the source name for later messages.

@@ -1,10 +1,9 @@
 #include "common/svg.h"
 
-#include "common/errors.h"
+#include "common/output_file.h"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -32,14 +31,6 @@ std::string StyleAttr(const SvgFigure::Style& s) {
 
 }  // namespace
 
-void WriteTextFile(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) throw IoError("cannot write '" + path + "'");
-  f << text;
-  f.close();
-  if (!f) throw IoError("cannot write '" + path + "'");
-}
-
 void SvgFigure::Polyline(const std::vector<Eigen::Vector2d>& points, const Style& style) {
   items_.push_back({0, points, style, 0, ""});
 }
@@ -64,17 +55,21 @@ std::string SvgFigure::Render() const {
   hi += 0.06 * span;
   span = hi - lo;
   const double margin = 40, top = title_.empty() ? 20 : 50;
-  const double w = width_ - 2 * margin, h = height_ - margin - top;
+  const double w = width_ - 2 * margin;
+  double h = height_ - margin - top;
   double sx = w / span.x(), sy = h / span.y();
   if (equal_aspect_) sx = sy = std::min(sx, sy);
+  // A wide drawing at 1:1 leaves the canvas's lower part empty: the canvas ends below the drawing.
+  if (equal_aspect_) h = span.y() * sy;
+  const double height = top + h + margin;
   const double ox = 0.5 * (w - span.x() * sx), oy = 0.5 * (h - span.y() * sy);  // centre the drawing
   auto map = [&](const Eigen::Vector2d& p) {
     return Eigen::Vector2d(margin + ox + (p.x() - lo.x()) * sx, top + h - oy - (p.y() - lo.y()) * sy);
   };
   std::ostringstream os;
   os.precision(6);
-  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width_ << "\" height=\"" << height_
-     << "\" viewBox=\"0 0 " << width_ << " " << height_ << "\">\n";
+  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width_ << "\" height=\"" << height
+     << "\" viewBox=\"0 0 " << width_ << " " << height << "\">\n";
   os << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   if (!title_.empty())
     os << "<text x=\"" << width_ / 2 << "\" y=\"28\" font-family=\"sans-serif\" font-size=\"16\" text-anchor=\"middle\">"
@@ -109,7 +104,7 @@ std::string SvgFigure::Render() const {
   return os.str();
 }
 
-void SvgFigure::Write(const std::string& path) const { WriteTextFile(path, Render()); }
+void SvgFigure::Write(const std::string& path) const { WriteOutput(path, Render()); }
 
 std::string RenderLogLogChart(const std::string& title, const std::string& x_label, const std::string& y_label,
                               const std::vector<LogLogSeries>& series, double width_px, double height_px) {

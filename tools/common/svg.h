@@ -27,11 +27,13 @@ class SvgFigure {
   /// A legend line in the top-left corner (drawn after the figure).
   void Legend(const std::string& text, const Style& style);
   void Title(const std::string& title) { title_ = title; }
-  /// Keep the aspect ratio 1:1 (plate figures); false for charts.
+  /// Keep the aspect ratio 1:1 (plate figures; the canvas then ends below the drawing, so a wide
+  /// drawing leaves no empty lower half); false for charts.
   void EqualAspect(bool equal) { equal_aspect_ = equal; }
 
   std::string Render() const;
-  /// Writes Render() to `path`; throws IoError (errors.h) when it cannot.
+  /// Writes Render() to `path` ("-": standard output) atomically (output_file.h); throws IoError
+  /// (errors.h) when it cannot.
   void Write(const std::string& path) const;
 
  private:
@@ -58,8 +60,5 @@ struct LogLogSeries {
 };
 std::string RenderLogLogChart(const std::string& title, const std::string& x_label, const std::string& y_label,
                               const std::vector<LogLogSeries>& series, double width_px = 720, double height_px = 520);
-
-/// Writes text to a file; throws IoError naming the path when it cannot.
-void WriteTextFile(const std::string& path, const std::string& text);
 
 }  // namespace plateball::tools

@@ -25,13 +25,17 @@
 #include <thread>
 #include <vector>
 
+#include "common/command_line.h"
 #include "common/errors.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/output_file.h"
+#include "common/plan_json.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/isoparallel.h"
 #include "plateball/isoparallel_plan.h"
+#include "plateball/task_adapters.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
 #include "plateball/version.h"
@@ -128,31 +132,15 @@ Json PlanFileJson(const plateball::Problem& problem, const plateball::Isoparalle
   for (const auto& s : summary.solutions) sols.push_back(SolutionJson(s));
   j["solutions"] = std::move(sols);
   j["optimal_path"] = ToJson(path_pts);
-  Json pj;
-  pj["status"] = ToString(plan.status);
-  pj["message"] = plan.message;
+  // The plan in the layout of `plateball plan` (plan_json.h), with what only this tool knows: the
+  // start angles and energy, the sampled impulsive trajectory and the error against the goal.
+  Json pj = tools::PlanSummaryToJson(plan);
   pj["initial_angles"] = ToJson(InitialAnglesFromOrientation(prob.start_orientation, problem.initial_angles.psi));
   pj["mu"] = problem.mu;
-  Json steps = Json::array();
-  for (const PlanStep& st : plan.steps) {
-    steps.push_back(Json{{"k", st.global_index},
-                         {"point", ToJson(st.p_begin)},
-                         {"t_impulse", st.t_impulse},
-                         {"duration", st.duration},
-                         {"delta_psi", st.delta_psi},
-                         {"delta_omega", ToJson(st.delta_omega)},
-                         {"plate_velocity_change", ToJson(st.plate_velocity_change)},
-                         {"pass_miss", st.pass_miss}});
-  }
-  pj["impulses"] = std::move(steps);
   Json traj = Json::array();
   for (const auto& a : arcs) traj.push_back(ToJson(a));
   pj["trajectory"] = std::move(traj);
-  pj["A_impulsive"] = ToJson(plan.A_impulsive);
   pj["orientation_error"] = final_error;
-  pj["measured_error_vs_planned"] = plan.measured_error;
-  pj["bound_theorem_2_6"] = plan.bounds.theorem_2_6;
-  pj["bound_a_posteriori"] = plan.bounds.a_posteriori;
   j["plan"] = std::move(pj);
   return j;
 }
@@ -195,36 +183,32 @@ plateball::tools::SvgFigure Figure(const std::string& name, const plateball::Iso
 struct CliOptions {
   std::string problem_file, out_file, svg_file;
   int impulses = 0, starts = 0;
-  long long seed = -1;
+  std::string seed;  // empty: the problem's
   bool shooting = false;
 };
 
-int Run(const CliOptions& cli) {
+// The problem (file or built-in Figure 7) mapped by the task adapter, with the command line's
+// overrides.
+plateball::IsoparallelSetup LoadSetup(const CliOptions& cli, plateball::Problem* problem) {
   using namespace plateball;
   using namespace plateball::tools;
-  const Problem problem =
-      cli.problem_file.empty() ? ParseProblem(kFigure7, "figure7 (built-in)") : ReadProblemFile(cli.problem_file);
-  if (!problem.isoparallel)
-    throw std::invalid_argument(problem.source + ": isoparallel: value (missing): the problem has no isoparallel section");
-  const IsoparallelTask& task = *problem.isoparallel;
-  IsoparallelProblem prob;
-  prob.start = task.start;
-  prob.goal = task.goal;
-  prob.start_orientation = task.start_orientation;
-  prob.goal_orientation = task.goal_orientation;
-  IsoparallelOptions opt;
-  opt.starts = cli.starts > 0 ? cli.starts : task.solver.starts;
-  opt.length_cap_factor = task.solver.length_cap_factor;
-  opt.max_iterations = task.solver.max_iterations;
-  opt.tolerance = task.solver.tolerance;
-  opt.threads = task.solver.threads;
-  opt.enumerate_families = task.solver.enumerate_families && !cli.shooting;
-  opt.seed = cli.seed >= 0 ? static_cast<std::uint64_t>(cli.seed) : problem.seed;
-  const int n_impulses = cli.impulses > 0 ? cli.impulses : task.impulses;
+  // Outputs checked before the solve: distinct, not the input, writable. Standard output carries the
+  // report, so "-" is not an output file here.
+  CheckOutputPaths({{"standard output (the report)", "-"}, {"--out", cli.out_file}, {"--svg", cli.svg_file}},
+                   {{"problem file", cli.problem_file}});
+  const std::uint64_t seed_override = cli.seed.empty() ? 0 : ParseSeedOption("--seed", cli.seed);
+  *problem = cli.problem_file.empty() ? ParseProblem(kFigure7, "figure7 (built-in)") : ReadProblemFile(cli.problem_file);
+  IsoparallelSetup setup = IsoparallelSetupFor(*problem);
+  if (cli.starts > 0) setup.options.starts = cli.starts;
+  if (cli.shooting) setup.options.enumerate_families = false;
+  if (!cli.seed.empty()) setup.options.seed = seed_override;
+  return setup;
+}
 
-  // Solve; a progress line on stderr when it takes longer than a second.
+// Solves; a progress line on stderr when it takes longer than a second.
+plateball::IsoparallelSummary SolveWithProgress(plateball::IsoparallelSetup setup) {
   std::atomic<int> done{0}, total{0};
-  opt.progress = [&](int d, int t) {
+  setup.options.progress = [&](int d, int t) {
     done = d;
     total = t;
   };
@@ -244,10 +228,10 @@ int Run(const CliOptions& cli) {
                   << " curvature periods examined\n";
     }
   });
-  IsoparallelSummary summary;
+  plateball::IsoparallelSummary summary;
   std::exception_ptr failure;
   try {
-    summary = SolveIsoparallel(prob, opt);
+    summary = plateball::SolveIsoparallel(setup.problem, setup.options);
   } catch (...) {
     failure = std::current_exception();
   }
@@ -258,21 +242,23 @@ int Run(const CliOptions& cli) {
   cv.notify_all();
   monitor.join();
   if (failure) std::rethrow_exception(failure);  // reported by RunWithExitCodes
+  return summary;
+}
 
-  const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
-  const std::string name = problem.name.empty() ? problem.source : problem.name;
-  std::cout << std::setprecision(6);
-  std::cout << "isoparallel_solve: " << name << ": (" << prob.start.x() << ", " << prob.start.y() << ") -> ("
-            << prob.goal.x() << ", " << prob.goal.y() << "), target reorientation angle " << angle << " rad\n";
-  if (!summary.IsSolutionUsable()) {
-    if (summary.method == IsoparallelMethod::kFamilyEnumeration)
-      std::cout << "no solution found (family enumeration over 1.." << summary.periods_searched
-                << " curvature periods, paths up to length " << summary.searched_length << ")\n";
-    else
-      std::cout << "no solution found (" << summary.local_solves << " local solves from " << opt.starts
-                << " starts, seed " << opt.seed << ", paths up to length " << summary.searched_length << ")\n";
-    return kExitNoSolution;
-  }
+void PrintNoSolution(const plateball::IsoparallelSummary& summary, const plateball::IsoparallelOptions& opt) {
+  using plateball::IsoparallelMethod;
+  if (summary.status == plateball::IsoparallelStatus::kIntegrationFailure)
+    std::cout << "solver failed: " << plateball::ToString(summary.status) << ": " << summary.message << "\n";
+  else if (summary.method == IsoparallelMethod::kFamilyEnumeration)
+    std::cout << "no solution found (family enumeration over 1.." << summary.periods_searched
+              << " curvature periods, paths up to length " << summary.searched_length << ")\n";
+  else
+    std::cout << "no solution found (" << summary.local_solves << " local solves from " << opt.starts
+              << " starts, seed " << opt.seed << ", paths up to length " << summary.searched_length << ")\n";
+}
+
+void PrintSolutions(const plateball::IsoparallelSummary& summary, const plateball::IsoparallelOptions& opt) {
+  using namespace plateball;
   const IsoparallelSolution& best = summary.Shortest();
   std::cout << "solutions found: " << summary.solutions.size() << " (distinct, up to " << opt.length_cap_factor
             << "x the shortest; ";
@@ -287,12 +273,10 @@ int Run(const CliOptions& cli) {
             << (best.family ? ", a one-parameter family: phase free, phase 0 reported" : "") << ")\n";
   std::cout << std::setprecision(3) << "verified by rolling (dopri5): orientation residual " << best.orientation_residual
             << " rad, endpoint error " << best.endpoint_error << "\n";
-  const auto t_plan = std::chrono::steady_clock::now();
-  const PlanSummary plan =
-      PlanOptimalPath(problem.model, problem.initial_angles.psi, problem.mu, prob.start_orientation, best, n_impulses);
-  const double plan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_plan).count();
-  const double final_error = OperatorNormDistance(prob.goal_orientation, plan.A_impulsive);
-  std::cout << "impulses: " << plan.steps.size() << " (" << ToString(plan.status) << "), max pass miss "
+}
+
+void PrintPlan(const plateball::PlanSummary& plan, double final_error, double solve_seconds, double plan_seconds) {
+  std::cout << "impulses: " << plan.steps.size() << " (" << plateball::ToString(plan.status) << "), max pass miss "
             << plan.max_pass_miss << "\n";
   if (plan.IsSolutionUsable()) {
     std::cout << "final orientation error ||A_goal - A~_n|| = " << final_error << ", bound (Theorem 2.6) "
@@ -300,9 +284,37 @@ int Run(const CliOptions& cli) {
   } else {
     std::cout << "impulsive plan failed: " << plan.message << " (try more impulses)\n";
   }
-  std::cout << std::setprecision(3) << "time: solve " << summary.time_seconds * 1e3 << " ms, plan " << plan_seconds * 1e3
+  std::cout << std::setprecision(3) << "time: solve " << solve_seconds * 1e3 << " ms, plan " << plan_seconds * 1e3
             << " ms\n";
   std::cout.flush();
+}
+
+int Run(const CliOptions& cli) {
+  using namespace plateball;
+  using namespace plateball::tools;
+  Problem problem;
+  const IsoparallelSetup setup = LoadSetup(cli, &problem);
+  const IsoparallelProblem& prob = setup.problem;
+  const IsoparallelOptions& opt = setup.options;
+  const IsoparallelSummary summary = SolveWithProgress(setup);
+
+  const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
+  const std::string name = problem.name.empty() ? problem.source : problem.name;
+  std::cout << std::setprecision(6);
+  std::cout << "isoparallel_solve: " << name << ": (" << prob.start.x() << ", " << prob.start.y() << ") -> ("
+            << prob.goal.x() << ", " << prob.goal.y() << "), target reorientation angle " << angle << " rad\n";
+  if (!summary.IsSolutionUsable()) {
+    PrintNoSolution(summary, opt);
+    return kExitNoSolution;
+  }
+  PrintSolutions(summary, opt);
+  const IsoparallelSolution& best = summary.Shortest();
+  const IsoparallelPlanSetup plan_setup = IsoparallelPlanSetupFor(problem, best, cli.impulses);
+  const auto t_plan = std::chrono::steady_clock::now();
+  const PlanSummary plan = PlanOptimalPath(plan_setup.problem, plan_setup.options);
+  const double plan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_plan).count();
+  const double final_error = OperatorNormDistance(prob.goal_orientation, plan.A_impulsive);
+  PrintPlan(plan, final_error, summary.time_seconds, plan_seconds);
 
   const std::vector<Eigen::Vector2d> path_pts = SamplePath(best, 400);
   const std::vector<std::vector<Eigen::Vector2d>> arcs =
@@ -325,16 +337,12 @@ int main(int argc, char** argv) {
   app.add_option("--out", cli.out_file, "write the full plan as JSON");
   app.add_option("--svg", cli.svg_file, "write an SVG figure of the plate (as Figure 7)");
   app.add_option("--impulses", cli.impulses, "number of impulses (overrides isoparallel.impulses)")->check(CLI::Range(1, 100000));
-  app.add_option("--seed", cli.seed, "seed of the multi-start (overrides the problem's seed)")->check(CLI::NonNegativeNumber);
+  app.add_option("--seed", cli.seed, "seed of the multi-start, 0 ... 2^64 - 1 (overrides the problem's seed)")
+      ->type_name(kSeedTypeName);
   app.add_option("--starts", cli.starts, "multi-start count (overrides isoparallel.solver.starts)")->check(CLI::Range(1, 1000000));
   app.add_flag("--shooting", cli.shooting,
                "identity targets: use the multi-start shooting instead of the family enumeration");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitSuccess : kExitUsage;
-  }
+  if (const auto code = ParseCommandLine(app, argc, argv, "isoparallel_solve")) return *code;
   // Failures read as in the `plateball` CLI (errors.h): 3 bad input, 4 computation failed,
   // 5 unreadable/unwritable file, 6 internal error.
   return RunWithExitCodes("isoparallel_solve", [&] { return Run(cli); });

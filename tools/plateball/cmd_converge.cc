@@ -3,6 +3,7 @@
 // the log-log chart as SVG (convergence.h).
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -10,9 +11,12 @@
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/number_format.h"
+#include "common/output_file.h"
 #include "common/problem_options.h"
 #include "common/svg.h"
 #include "plateball/convergence.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
@@ -23,16 +27,21 @@ struct ConvergeCliOptions {
   std::string format = "json";
   std::string out;
   std::string svg;
+  bool timings = false;
 };
 
-std::string Csv(const ConvergenceStudy& s) {
+// plan_seconds only with --timings: without it the output is a deterministic function of the input.
+std::string Csv(const ConvergenceStudy& s, bool timings) {
   std::ostringstream os;
-  os.precision(17);
-  os << "n,segments,plan_seconds,measured_error,polyline_error,bound,theorem_2_6,corollary_3,max_pass_miss,status\n";
-  for (const auto& r : s.rows)
-    os << r.n << "," << r.segments << "," << r.plan_seconds << "," << r.measured_error << "," << r.polyline_error
-       << "," << r.bound << "," << r.theorem_2_6 << "," << r.corollary_3 << "," << r.max_pass_miss << ","
-       << ToString(r.status) << "\n";
+  os << "n,segments," << (timings ? "plan_seconds," : "")
+     << "measured_error,polyline_error,bound,theorem_2_6,corollary_3,max_pass_miss,status\n";
+  for (const auto& r : s.rows) {
+    os << r.n << "," << r.segments << ",";
+    if (timings) os << FormatNumber(r.plan_seconds) << ",";
+    os << FormatNumber(r.measured_error) << "," << FormatNumber(r.polyline_error) << "," << FormatNumber(r.bound)
+       << "," << FormatNumber(r.theorem_2_6) << "," << FormatNumber(r.corollary_3) << ","
+       << FormatNumber(r.max_pass_miss) << "," << ToString(r.status) << "\n";
+  }
   return os.str();
 }
 
@@ -55,50 +64,57 @@ void DrawStudy(const Problem& p, const ConvergenceStudy& s, const std::string& f
     poly.x.push_back(r.n), poly.y.push_back(r.polyline_error);
     bound.x.push_back(r.n), bound.y.push_back(r.bound);
   }
-  std::ostringstream label;
-  label.precision(3);
-  label << "fit: slope " << s.error_slope;
-  LogLogSeries fit{label.str(), {}, {}, {"black", 1.0, "2,4", "none"}, false};
-  const double c = Intercept(err.x, err.y, s.error_slope);
-  for (double n : err.x) fit.x.push_back(n), fit.y.push_back(std::exp(c) * std::pow(n, s.error_slope));
+  std::vector<LogLogSeries> series{err, poly, bound};
   std::ostringstream title;
   title.precision(3);
-  title << (p.name.empty() ? std::string("convergence") : p.name) << ": error ~ n^" << s.error_slope;
-  WriteTextFile(file, RenderLogLogChart(title.str(), "impulses per piece n", "orientation error",
-                                        {err, poly, bound, fit}));
+  title << (p.name.empty() ? std::string("convergence") : p.name);
+  if (s.error_slope) {  // a fitted line needs two successful n
+    const double slope = *s.error_slope;
+    std::ostringstream label;
+    label.precision(3);
+    label << "fit: slope " << slope;
+    LogLogSeries fit{label.str(), {}, {}, {"black", 1.0, "2,4", "none"}, false};
+    const double c = Intercept(err.x, err.y, slope);
+    for (double n : err.x) fit.x.push_back(n), fit.y.push_back(std::exp(c) * std::pow(n, slope));
+    series.push_back(fit);
+    title << ": error ~ n^" << slope;
+  } else {
+    title << ": no slope (fewer than 2 successful n)";
+  }
+  WriteOutput(file, RenderLogLogChart(title.str(), "impulses per piece n", "orientation error", series));
 }
 
 int RunConverge(const ConvergeCliOptions& o) {
+  CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
-  if (!p.plan) throw std::invalid_argument(p.source + ": plan: value (missing): the problem has no plan task");
   if (o.format != "json" && o.format != "csv")
     throw std::invalid_argument(std::string(kCommandLine) + ": --format: value " + o.format + ": must be json or csv");
   std::vector<int> ns;
   for (long long n : o.ns) ns.push_back(static_cast<int>(RequireIntegerInRange("--n", n, 1, 1'000'000)));
-  const ConvergenceStudy s = RunConvergenceStudy(p, ns);
+  const ConvergenceSetup setup = ConvergenceSetupFor(p, ns, std::string(kCommandLine) + ": --n", o.timings);
+  const ConvergenceStudy s = RunConvergenceStudy(setup.problem, setup.options);
   if (o.format == "csv") {
-    if (o.out.empty() || o.out == "-") std::cout << Csv(s);
-    else WriteTextFile(o.out, Csv(s));
+    WriteOutput(o.out, Csv(s, o.timings));
   } else {
     Json doc;
     doc["command"] = "converge";
     doc["problem"] = p.name.empty() ? p.source : p.name;
-    doc["path"] = p.plan->path.type;
-    doc["partition"] = p.plan->partition.type;
+    doc["path"] = ToString(p.plan->path);
+    doc["partition"] = ToString(p.plan->partition);
     Json rows = Json::array();
     for (const auto& r : s.rows) {
-      Json j{{"n", r.n}, {"segments", r.segments}, {"plan_seconds", r.plan_seconds},
-             {"measured_error", r.measured_error}, {"polyline_error", r.polyline_error}, {"bound", r.bound},
+      Json j{{"n", r.n}, {"segments", r.segments}, {"measured_error", r.measured_error}, {"polyline_error", r.polyline_error}, {"bound", r.bound},
              {"theorem_2_6", r.theorem_2_6}, {"corollary_3", r.corollary_3}, {"max_pass_miss", r.max_pass_miss},
              {"status", ToString(r.status)}};
+      if (o.timings) j["plan_seconds"] = r.plan_seconds;
       if (!r.message.empty()) j["message"] = r.message;
       rows.push_back(std::move(j));
     }
     doc["rows"] = std::move(rows);
-    auto finite_or_null = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
-    doc["error_slope"] = finite_or_null(s.error_slope);
-    doc["bound_slope"] = finite_or_null(s.bound_slope);
-    doc["time_slope"] = finite_or_null(s.time_slope);
+    auto slope_or_null = [](const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); };
+    doc["error_slope"] = slope_or_null(s.error_slope);
+    doc["bound_slope"] = slope_or_null(s.bound_slope);
+    if (o.timings) doc["time_slope"] = slope_or_null(s.time_slope);
     doc["bound_holds"] = s.bound_holds;
     doc["failed_rows"] = s.failed_rows;
     doc["report"] = s.BriefReport();
@@ -111,11 +127,16 @@ int RunConverge(const ConvergeCliOptions& o) {
 std::function<int()> SetupConverge(CLI::App& sub) {
   auto o = std::make_shared<ConvergeCliOptions>();
   o->problem.Add(sub);
-  sub.add_option("--n", o->ns, "partition sizes, e.g. --n 16,32,64 (default: plan.converge_n, else 16 ... 1024)")
+  sub.add_option("--n", o->ns,
+                 "distinct partition sizes, e.g. --n 16,32,64 (default: plan.converge_n, else 16 ... 1024; a "
+                 "uniform partition only)")
       ->delimiter(',');
   sub.add_option("--format", o->format, "json (default) or csv");
-  sub.add_option("--out", o->out, "write the table to this file instead of standard output");
-  sub.add_option("--svg", o->svg, "draw the log-log chart (error, bound, fitted slope) to this SVG file");
+  sub.add_option("--out", o->out, "write the table to this file instead of standard output (\"-\": standard output)");
+  sub.add_option("--svg", o->svg, "draw the log-log chart (error, bound, fitted slope) to this SVG file (\"-\": standard output, with --out FILE)");
+  sub.add_flag("--timings", o->timings,
+               "also report the wall time of every plan (plan_seconds, time_slope); without it the output is "
+               "reproducible byte for byte");
   sub.footer(
       "Plans plan.path for each n and reports n, plan time, measured error ||A(T) - A_n||, the polyline's\n"
       "error, the reported bound and Theorem 2.6 / Corollary 3, with the least-squares log-log slopes\n"

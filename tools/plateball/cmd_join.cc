@@ -7,8 +7,10 @@
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/output_file.h"
 #include "common/problem_options.h"
 #include "plateball/join.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
@@ -55,6 +57,7 @@ Json JoinToJson(const JoinSummary& j) {
 }
 
 int RunJoin(const JoinCliOptions& o) {
+  CheckOutputPaths({{"--out", o.out}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   std::vector<Eigen::Vector2d> targets;
   if (!o.targets.empty()) targets = ParsePointsOption("--targets", o.targets);
@@ -62,10 +65,9 @@ int RunJoin(const JoinCliOptions& o) {
   if (targets.empty())
     throw std::invalid_argument(std::string(kCommandLine) +
                                 ": --targets: value (missing): give targets with --targets X,Y;X,Y or in the file's reach.targets");
-  JoinOptions options;
+  JoinOptions options = JoinSetupFor(p, p.x0).options;
   options.max_iterations = static_cast<int>(RequireIntegerInRange("--max-iterations", o.max_iterations, 1, 10000));
   options.residual_tolerance = RequirePositiveOption("--residual-tolerance", o.residual_tolerance);
-  options.integration = p.integration;
 
   Json doc;
   doc["command"] = "join";
@@ -77,7 +79,7 @@ int RunJoin(const JoinCliOptions& o) {
   Json list = Json::array();
   bool all = true;
   for (const auto& target : targets) {
-    const JoinSummary j = Join(p.model, p.initial_angles, p.mu, p.x0, target, options);
+    const JoinSummary j = Join(JoinSetupFor(p, target).problem, options);
     all = all && j.IsSolutionUsable();
     list.push_back(JoinToJson(j));
   }
@@ -89,7 +91,7 @@ int RunJoin(const JoinCliOptions& o) {
 std::function<int()> SetupJoin(CLI::App& sub) {
   auto o = std::make_shared<JoinCliOptions>();
   o->problem.Add(sub);
-  sub.add_option("--targets", o->targets, "targets X1,Y1;X2,Y2;... (default: the file's reach.targets)");
+  sub.add_option("--targets", o->targets, "targets \"X1,Y1;X2,Y2;...\" (default: the file's reach.targets)");
   sub.add_option("--max-iterations", o->max_iterations, "Levenberg-Marquardt iterations per join (default 30)");
   sub.add_option("--residual-tolerance", o->residual_tolerance, "accepted |x(t) - target| (default 1e-12)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
@@ -98,7 +100,7 @@ std::function<int()> SetupJoin(CLI::App& sub) {
       "(theta, phi, psi + delta_psi) at x0 passes through x at time t (Lemma 2.1), with the impulse\n"
       "(delta omega, upper-plate velocity change 2 delta omega x e3) and the state on arrival.\n"
       "A target beyond the local radius is reported with status target_beyond_local_radius.\n"
-      "Example: plateball join --lambda 2 --theta 1.0471975511965976 --phi 0.4 --psi 0.1 --targets 0.05,0;0,0.05\n"
+      "Example: plateball join --lambda 2 --theta 1.0471975511965976 --phi 0.4 --psi 0.1 --targets \"0.05,0;0,0.05\"\n"
       "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 a target not joined, 5 unreadable file.");
   return [o] { return RunJoin(*o); };
 }

@@ -9,11 +9,14 @@
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/output_file.h"
+#include "common/plan_json.h"
 #include "common/problem_options.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/path.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
@@ -26,59 +29,6 @@ struct PlanCliOptions {
   std::string svg;
   bool summary_only = false;
 };
-
-Json BoundsToJson(const ErrorBounds& b) {
-  const ErrorBoundConstants& c = b.constants;
-  return Json{{"a_posteriori", b.a_posteriori},
-              {"a_posteriori_path", b.a_posteriori_path},
-              {"a_posteriori_arcs", b.a_posteriori_arcs},
-              {"theorem_2_5", b.theorem_2_5},
-              {"corollary_2", b.corollary_2},
-              {"theorem_2_6", b.theorem_2_6},
-              {"corollary_3", b.corollary_3},
-              {"sum_dtau_cubed", b.sum_dtau_cubed},
-              {"parameter_norm", b.parameter_norm},
-              {"constants",
-               Json{{"K_p", c.K_p}, {"M_prime_p", c.M_prime_p}, {"K_bar_p", c.K_bar_p}, {"C_p", c.C_p},
-                    {"M_prime", c.M_prime}, {"K_10", c.K_10}, {"K_tilde", c.K_tilde}, {"K1", c.K1},
-                    {"D_p", c.D_p}, {"K_tilde_p", c.K_tilde_p}}}};
-}
-
-Json StepToJson(const PlanStep& s) {
-  Json j{{"k", s.global_index},
-         {"piece", s.piece},
-         {"tau", Json::array({s.tau_begin, s.tau_end})},
-         {"p_begin", ToJson(s.p_begin)},
-         {"p_end", ToJson(s.p_end)},
-         {"t_impulse", s.t_impulse},
-         {"duration", s.duration},
-         {"delta_psi", s.delta_psi},
-         {"delta_omega", ToJson(s.delta_omega)},
-         {"plate_velocity_change", ToJson(s.plate_velocity_change)},
-         {"mu", s.mu},
-         {"angles_before", ToJson(s.angles_before)},
-         {"omega_before", ToJson(s.state_before.omega)},
-         {"omega_after_impulse", ToJson(s.impulse.state_after.omega)},
-         {"angles_after", ToJson(s.angles_after)},
-         {"omega_after", ToJson(s.state_after.omega)},
-         {"x_end", ToJson(s.x_end)},
-         {"pass_miss", s.pass_miss},
-         {"join", Json{{"status", ToString(s.join_status)}, {"residual", s.join_residual},
-                       {"iterations", s.join_iterations}}},
-         {"orientation_planned", ToJson(s.A_planned)},
-         {"orientation_polyline", ToJson(s.A_polyline)},
-         {"orientation_impulsive", ToJson(s.A_impulsive)},
-         {"path_bound", s.path_bound},
-         {"arc_bound", s.arc_bound}};
-  if (!s.energy_changes.empty()) {
-    Json e = Json::array();
-    for (const Impulse& i : s.energy_changes)
-      e.push_back(Json{{"mu_before", i.mu_before}, {"mu_after", i.mu_after}, {"delta_omega", ToJson(i.delta_omega)},
-                       {"plate_velocity_change", ToJson(i.plate_velocity_change)}});
-    j["energy_changes"] = std::move(e);
-  }
-  return j;
-}
 
 void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const std::string& file) {
   SvgFigure fig;
@@ -118,15 +68,16 @@ void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const
   fig.Legend("planned path p(tau)", planned);
   fig.Legend("impulsive trajectory", actual);
   fig.Legend("impulse points p(tau_k)", impulse);
-  WriteTextFile(file, fig.Render());
+  fig.Write(file);
 }
 
 int RunPlan(const PlanCliOptions& o) {
+  CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
-  if (!p.plan) throw std::invalid_argument(p.source + ": plan: value (missing): the problem has no plan task");
   const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--n", o.n, 1, 1'000'000));
-  const PlanSummary plan = PlanImpulses(p, PlanOptions{}, n);
-  const Path path = Path::FromSpec(p.plan->path, "plan.path");
+  const PlanSetup setup = PlanSetupFor(p, n, std::string(kCommandLine) + ": --n");
+  const PlanSummary plan = PlanImpulses(setup.problem, setup.options);
+  const Path& path = setup.problem.path;
 
   Json doc;
   doc["command"] = "plan";
@@ -135,28 +86,10 @@ int RunPlan(const PlanCliOptions& o) {
   doc["initial"] = Json{{"theta", p.initial_angles.theta}, {"phi", p.initial_angles.phi},
                         {"psi", p.initial_angles.psi}, {"mu", p.mu}, {"x0", ToJson(p.x0)},
                         {"orientation", ToJson(plan.A0)}};
-  doc["path"] = Json{{"type", p.plan->path.type}, {"pieces", path.PieceCount()}, {"length", path.Length()}};
-  doc["partition"] = Json{{"type", p.plan->partition.type}, {"segments", plan.segments}};
-  doc["status"] = ToString(plan.status);
-  doc["usable"] = plan.IsSolutionUsable();
-  if (!plan.message.empty()) doc["message"] = plan.message;
-  doc["total_time"] = plan.total_time;
-  doc["max_pass_miss"] = plan.max_pass_miss;
-  doc["max_join_residual"] = plan.max_join_residual;
-  doc["measured_error"] = plan.measured_error;
-  doc["polyline_error"] = plan.polyline_error;
-  doc["bounds"] = BoundsToJson(plan.bounds);
-  doc["orientation"] = Json{{"planned", RotationToJson(plan.A_planned)},
-                           {"polyline", RotationToJson(plan.A_polyline)},
-                           {"impulsive", RotationToJson(plan.A_impulsive)}};
-  doc["final"] = Json{{"mu", plan.mu_final}, {"z", ToJson(plan.final_state.z)},
-                      {"omega", ToJson(plan.final_state.omega)}};
-  doc["report"] = plan.BriefReport();
-  if (!o.summary_only) {
-    Json steps = Json::array();
-    for (const PlanStep& s : plan.steps) steps.push_back(StepToJson(s));
-    doc["steps"] = std::move(steps);
-  }
+  doc["path"] = Json{{"type", ToString(p.plan->path)}, {"pieces", path.PieceCount()}, {"length", path.Length()}};
+  doc["partition"] = Json{{"type", ToString(p.plan->partition)}, {"segments", plan.segments}};
+  Json plan_json = PlanSummaryToJson(plan, !o.summary_only);
+  for (auto it = plan_json.begin(); it != plan_json.end(); ++it) doc[it.key()] = std::move(it.value());
   WriteJson(doc, o.out);
   if (!o.svg.empty()) DrawPlan(p, path, plan, o.svg);
   return plan.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
@@ -166,8 +99,8 @@ std::function<int()> SetupPlan(CLI::App& sub) {
   auto o = std::make_shared<PlanCliOptions>();
   o->problem.Add(sub);
   o->n_opt = sub.add_option("--n", o->n, "segments per smooth piece (overrides plan.partition.n)");
-  sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
-  sub.add_option("--svg", o->svg, "draw the plate to this SVG file (planned path dashed, trajectory solid)");
+  sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
+  sub.add_option("--svg", o->svg, "draw the plate to this SVG file (planned path dashed, trajectory solid; \"-\": standard output, with --out FILE)");
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
   sub.footer(
       "Plans one energy-preserving impulse per partition point of plan.path (section 2.3): per impulse the\n"

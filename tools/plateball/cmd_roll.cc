@@ -4,6 +4,7 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -12,16 +13,18 @@
 #include "common/errors.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/limits.h"
+#include "common/number_format.h"
+#include "common/output_file.h"
 #include "common/problem_options.h"
 #include "plateball/path.h"
 #include "plateball/problem_io.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
-
-constexpr std::size_t kMaxPoints = 1'000'000;
 
 struct RollOptions {
   std::string problem_file;
@@ -44,20 +47,52 @@ struct RollOptions {
   throw std::invalid_argument(file + ": " + field + ": value " + value + ": " + what);
 }
 
-// A samples file: {"points": [[x, y], ...]} or a bare array [[x, y], ...].
-std::vector<Eigen::Vector2d> ReadSamplesFile(const std::string& file) {
+// At most kMaxInputFileBytes of the file (so that /dev/zero or a huge file ends at once).
+std::string ReadBoundedFile(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw IoError(file + ": cannot open the file for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
+  std::string text(kMaxInputFileBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (in.bad()) throw IoError(file + ": read error");
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > kMaxInputFileBytes)
+    FileError(file, "(document)", "(more than " + std::to_string(kMaxInputFileBytes >> 20) + " MiB)",
+              "the file is larger than the limit of " + std::to_string(kMaxInputFileBytes >> 20) + " MiB");
+  return text;
+}
+
+// A value as text for a message: compact and at most kMaxValueTextChars characters.
+std::string ValueText(const nlohmann::json& j) {
+  std::string text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  if (text.size() > kMaxValueTextChars) text = text.substr(0, kMaxValueTextChars) + "...";
+  return text;
+}
+
+// Parses with the nesting depth capped (kMaxJsonDepth) and duplicate keys rejected.
+nlohmann::json ParseSamplesJson(const std::string& file, const std::string& text) {
   using nlohmann::json;
-  json doc;
+  std::vector<std::set<std::string>> keys;  // the keys seen in each open object
+  const json::parser_callback_t check = [&](int depth, json::parse_event_t event, json& parsed) {
+    if (depth > kMaxJsonDepth)
+      FileError(file, "(document)", "(nested deeper than " + std::to_string(kMaxJsonDepth) + ")",
+                "arrays and objects may be nested at most " + std::to_string(kMaxJsonDepth) + " deep");
+    if (event == json::parse_event_t::object_start) keys.emplace_back();
+    if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    if (event == json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second)
+      FileError(file, parsed.get<std::string>(), "(repeated)", "duplicate key");
+    return true;
+  };
   try {
-    doc = json::parse(buffer.str());
+    return json::parse(text, check);
   } catch (const json::exception& e) {
     FileError(file, "(document)", "(see message)", std::string("malformed JSON: ") + e.what());
   }
+}
+
+// A samples file: {"points": [[x, y], ...]} or a bare array [[x, y], ...].
+std::vector<Eigen::Vector2d> ReadSamplesFile(const std::string& file) {
+  using nlohmann::json;
+  const json doc = ParseSamplesJson(file, ReadBoundedFile(file));
   std::string field = "(document)";
   const json* points = &doc;
   if (doc.is_object()) {
@@ -69,17 +104,17 @@ std::vector<Eigen::Vector2d> ReadSamplesFile(const std::string& file) {
     field = "points";
   }
   if (!points->is_array() || points->size() < 2 || points->size() > kMaxPoints)
-    FileError(file, field, points->is_array() ? "[array of " + std::to_string(points->size()) + "]" : points->dump(),
+    FileError(file, field, points->is_array() ? "[array of " + std::to_string(points->size()) + "]" : ValueText(*points),
               "must be an array of 2 ... 1e6 points [x, y]");
   std::vector<Eigen::Vector2d> out;
   for (std::size_t i = 0; i < points->size(); ++i) {
     const json& p = (*points)[i];
     const std::string f = (field == "(document)" ? std::string() : field) + "[" + std::to_string(i) + "]";
     if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
-      FileError(file, f, p.dump(-1, ' ', false, json::error_handler_t::replace).substr(0, 80),
+      FileError(file, f, ValueText(p),
                 "must be an array of 2 numbers [x, y]");
     const Eigen::Vector2d q(p[0].get<double>(), p[1].get<double>());
-    if (!q.allFinite()) FileError(file, f, p.dump(), "must be finite");
+    if (!q.allFinite()) FileError(file, f, ValueText(p), "must be finite");
     out.push_back(q);
   }
   return out;
@@ -101,8 +136,9 @@ IntegrationOptions RollIntegration(const RollOptions& o, IntegrationOptions inte
   if (o.atol_opt->count() > 0) integration.absolute_tolerance = o.atol;
   if (o.rtol_opt->count() > 0) integration.relative_tolerance = o.rtol;
   if (const std::string err = integration.Validate(); !err.empty())
-    throw std::invalid_argument(std::string(kCommandLine) + ": --atol/--rtol: value (" + std::to_string(o.atol) +
-                                ", " + std::to_string(o.rtol) + "): " + err);
+    throw std::invalid_argument(std::string(kCommandLine) + ": --atol/--rtol: value (" +
+                                FormatNumber(integration.absolute_tolerance) + ", " +
+                                FormatNumber(integration.relative_tolerance) + "): " + err);
   return integration;
 }
 
@@ -113,7 +149,7 @@ Json RollAlongProblemPath(const RollOptions& o, Eigen::Matrix3d* r) {
   if (!p.plan)
     throw std::invalid_argument(o.problem_file + ": plan.path: value (missing): roll needs a problem with a plan.path");
   const IntegrationOptions integration = RollIntegration(o, p.integration);
-  const Path path = Path::FromSpec(p.plan->path, "plan.path");
+  const Path path = PathFromSpec(p.plan->path, "plan.path");
   *r = Eigen::Matrix3d::Identity();
   for (const SmoothCurve& piece : path.pieces()) {
     const PlanarVelocity velocity = [&piece](double tau) { return piece.Derivative(tau); };
@@ -121,7 +157,7 @@ Json RollAlongProblemPath(const RollOptions& o, Eigen::Matrix3d* r) {
   }
   return Json{{"source", o.problem_file},
               {"mode", "plan.path"},
-              {"type", p.plan->path.type},
+              {"type", ToString(p.plan->path)},
               {"pieces", path.PieceCount()},
               {"start", ToJson(path.StartPoint())},
               {"end", ToJson(path.EndPoint())},
@@ -132,11 +168,20 @@ Json RollThroughPoints(const RollOptions& o, Eigen::Matrix3d* r) {
   const bool from_points = o.points_opt->count() > 0;
   std::vector<Eigen::Vector2d> points =
       from_points ? ParsePointsOption("--points", o.points, 2) : ReadSamplesFile(o.samples_file);
-  for (std::size_t i = 1; i < points.size(); ++i)
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const std::string field =
+        (from_points ? std::string(kCommandLine) + ": --points" : o.samples_file + ": points") + "[" + std::to_string(i) + "]";
     if (points[i] == points[i - 1])
-      throw std::invalid_argument((from_points ? std::string(kCommandLine) + ": --points" : o.samples_file + ": points") +
-                                  "[" + std::to_string(i) + "]: value " + PointText(points[i]) +
+      throw std::invalid_argument(field + ": value " + PointText(points[i]) +
                                   ": repeats the previous point (consecutive points must differ)");
+    // Chord lengths are squared on the way (spline knots): they must stay finite.
+    if (!std::isfinite((points[i] - points[i - 1]).squaredNorm()))
+      throw std::invalid_argument(field + ": value " + PointText(points[i]) +
+                                  ": too far from the previous point (the squared distance overflows a double)");
+  }
+  if (!std::isfinite(PolylineLength(points)))
+    throw std::invalid_argument((from_points ? std::string(kCommandLine) + ": --points" : o.samples_file + ": points") +
+                                ": value [array of " + std::to_string(points.size()) + "]: the path length overflows a double");
   const IntegrationOptions integration = RollIntegration(o, IntegrationOptions{});
   *r = o.segment ? RollAlongPolyline(points) : RollAlongSamples(points, integration);
   return Json{{"source", from_points ? std::string("--points") : o.samples_file},
@@ -148,6 +193,7 @@ Json RollThroughPoints(const RollOptions& o, Eigen::Matrix3d* r) {
 }
 
 int RunRoll(const RollOptions& o) {
+  CheckOutputPaths({{"--out", o.out}}, {{"PROBLEM.json", o.problem_file}, {"--samples-file", o.samples_file}});
   const int sources = int(o.problem_opt->count() > 0) + int(o.points_opt->count() > 0) +
                       int(o.samples_file_opt->count() > 0);
   if (sources != 1)

@@ -1,18 +1,22 @@
 // `plateball simulate`: sample the free rolling of the ball (free_motion.h) and print it as JSON.
+#include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/limits.h"
+#include "common/number_format.h"
+#include "common/output_file.h"
 #include "common/problem_options.h"
 #include "plateball/free_motion.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
-
-constexpr long long kMaxSamples = 1'000'000;  // as the problem-file reader
 
 struct SimulateOptions {
   ProblemOptions problem;
@@ -24,13 +28,20 @@ struct SimulateOptions {
 };
 
 int RunSimulate(const SimulateOptions& o) {
+  CheckOutputPaths({{"--out", o.out}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   SimulateTask task = p.simulate.value_or(SimulateTask{});
   if (o.t_end_opt->count() > 0) task.t_end = RequirePositiveOption("--t-end", o.t_end);
   if (o.samples_opt->count() > 0)
     task.samples = static_cast<int>(RequireIntegerInRange("--samples", o.samples, 2, kMaxSamples));
+  // free_motion.h evaluates |t| <= 1e12 periods: checked here to name the option.
+  const double period = 2.0 * M_PI / std::sqrt(p.mu);
+  if (task.t_end > kMaxPeriods * period)
+    throw std::invalid_argument((o.t_end_opt->count() > 0 ? std::string(kCommandLine) + ": --t-end" : p.source + ": simulate.t_end") +
+                                ": value " + FormatNumber(task.t_end) + ": must be <= 1e12 periods (" +
+                                FormatNumber(kMaxPeriods * period) + " at mu = " + FormatNumber(p.mu) + ")");
 
-  const FreeMotion motion = FreeMotion::FromAngles(p.model, p.initial_angles, p.mu, p.x0, p.A0, p.integration);
+  const FreeMotion motion = FreeMotionFor(p);
   const std::vector<MotionSample> samples = motion.Sample(0.0, task.t_end, task.samples);
 
   Json doc;

@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "common/command_line.h"
 #include "common/command_registry.h"
 #include "common/errors.h"
 #include "common/exit_codes.h"
@@ -20,19 +21,7 @@ int main(int argc, char** argv) {
     CLI::App* sub = app.add_subcommand(c.name, c.description);
     runners[sub] = c.setup(*sub);
   }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ConversionError& e) {
-    // A value of the wrong type ("--mu abc") is bad input, like a bad value in a file.
-    std::cerr << "plateball: invalid input: command line: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const CLI::ValidationError& e) {
-    std::cerr << "plateball: invalid input: command line: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitSuccess : kExitUsage;
-  }
+  if (const auto code = ParseCommandLine(app, argc, argv, "plateball")) return *code;
   for (const auto& [sub, run] : runners) {
     // Failures map to exit codes in one place (common/errors.h) for every tool.
     if (sub->parsed()) return RunWithExitCodes("plateball " + sub->get_name(), run);

@@ -1,0 +1,76 @@
+onvergence.h"/s||#include "plateball/convergence.h"
+#include "plateball/export.h"|
+#include "plateball/free_motion.h"
+#include "plateball/impulse_planner.h"
+#include "plateball/isoparallel.h"
+#include "plateball/isoparallel_plan.h"
+#include "plateball/join.h"
+#include "plateball/partition.h"
+#include "plateball/path.h"
+#include "plateball/problem.h"
+#include "plateball/reach.h"
+
+namespace plateball PLATEBALL_EXPORT {
+
+/// The planned path of a PathSpec, validating every field; messages name `field`.key
+/// (e.g. "plan.path.radius").
+Path PathFromSpec(const PathSpec& spec, const std::string& field = "path");
+/// A single smooth curve from a PathSpec whose type is not "piecewise".
+SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field = "path");
+/// The partition rules of a file's partition for `path` (explicit taus: single-piece paths only).
+std::vector<PartitionRule> PartitionFromSpec(const PartitionSpec& spec, const Path& path,
+                                             const std::string& field = "partition");
+
+/// `simulate`: the free motion from the initial state, with the file's integration options.
+FreeMotion FreeMotionFor(const Problem& problem);
+
+struct JoinSetup {
+  JoinProblem problem;
+  JoinOptions options;
+};
+/// `join`: from the initial state at x0 to `target` (integration options from the file).
+JoinSetup JoinSetupFor(const Problem& problem, const Eigen::Vector2d& target);
+
+struct ReachSetup {
+  ReachProblem problem;
+  ReachOptions options;
+};
+/// `reach`: from the initial state at x0 to `target`; horizon from the reach section (when
+/// present), seed and integration options from the file.
+ReachSetup ReachSetupFor(const Problem& problem, const Eigen::Vector2d& target);
+
+struct PlanSetup {
+  PlanProblem problem;
+  PlanOptions options;
+};
+/// `plan`: the plan section. `n` > 0 replaces the n of a uniform partition (an explicit one
+/// rejects it, naming `n_field`). Requires problem.x0 == the path's start point.
+PlanSetup PlanSetupFor(const Problem& problem, int n = 0, const std::string& n_field = "n");
+
+struct ConvergenceSetup {
+  ConvergenceProblem problem;
+  ConvergenceOptions options;
+};
+/// `converge`: the plan section with the partition sizes `ns` (checked with
+/// ValidatePartitionSizes, messages naming `ns_field`), else plan.converge_n, else 16 ... 1024.
+/// An explicit partition has no n to vary: rejected, naming `ns_field` when ns were given.
+ConvergenceSetup ConvergenceSetupFor(const Problem& problem, const std::vector<int>& ns = {},
+                                     const std::string& ns_field = "ns", bool timings = false);
+
+struct IsoparallelSetup {
+  IsoparallelProblem problem;
+  IsoparallelOptions options;  ///< the file's solver section, seed and integration section
+};
+/// `isoparallel_solve`: the isoparallel section.
+IsoparallelSetup IsoparallelSetupFor(const Problem& problem);
+
+struct IsoparallelPlanSetup {
+  IsoparallelPlanProblem problem;
+  PlanOptions options;
+};
+/// The impulsive approximation of `solution` with the file's ball, psi, mu, start orientation,
+/// impulse count (`impulses` > 0 overrides it) and integration section.
+IsoparallelPlanSetup IsoparallelPlanSetupFor(const Problem& problem, const IsoparallelSolution& solution,
+                                             int impulses = 0);
+
+}  // namespace plateball

@@ -1,0 +1,198 @@
+#include "plateball/task_adapters.h"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+#include <variant>
+
+#include "check.h"
+
+namespace plateball {
+namespace {
+
+// "'radius' = 0 is invalid..." -> "'path.radius' = 0 is invalid...".
+std::string Prefixed(const std::string& field, const std::string& message) {
+  if (!message.empty() && message[0] == '\'') return "'" + field + "." + message.substr(1);
+  return field + ": " + message;
+}
+
+template <class Make>
+auto Named(const std::string& field, Make make) {
+  try {
+    return make();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(Prefixed(field, e.what()));
+  }
+}
+
+[[noreturn]] void ThrowMissing(const Problem& problem, const std::string& section, const std::string& what) {
+  throw std::invalid_argument(problem.source + ": " + section + ": value (missing): " + what);
+}
+
+const PlanTask& RequirePlan(const Problem& problem) {
+  if (!problem.plan) ThrowMissing(problem, "plan", "the problem has no plan task");
+  return *problem.plan;
+}
+
+const IsoparallelTask& RequireIsoparallel(const Problem& problem) {
+  if (!problem.isoparallel) ThrowMissing(problem, "isoparallel", "the problem has no isoparallel section");
+  return *problem.isoparallel;
+}
+
+void RequireStartOnPath(const Problem& problem, const Path& path) {
+  const double size = std::max(1.0, path.Length());
+  if ((problem.x0 - path.StartPoint()).norm() <= 1e-9 * size) return;
+  std::ostringstream os;
+  os.precision(17);
+  os << "'x0' = (" << problem.x0.x() << ", " << problem.x0.y() << ") is invalid: must equal the path start p(tau_0) = ("
+     << path.StartPoint().x() << ", " << path.StartPoint().y() << ")";
+  throw std::invalid_argument(os.str());
+}
+
+PlanOptions PlanOptionsFor(const Problem& problem) {
+  PlanOptions o;
+  o.integration = problem.integration;
+  o.join.integration = problem.integration;
+  return o;
+}
+
+}  // namespace
+
+SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field) {
+  struct Make {
+    SmoothCurve operator()(const LineSpec& l) const { return SmoothCurve::Line(l.from, l.to); }
+    SmoothCurve operator()(const CircleSpec& c) const {
+      return SmoothCurve::Circle(c.center, c.radius, c.tau_begin, c.tau_end);
+    }
+    SmoothCurve operator()(const EllipseSpec& e) const {
+      return SmoothCurve::Ellipse(e.center, e.semi_axes, e.rotation, e.tau_begin, e.tau_end);
+    }
+    SmoothCurve operator()(const LemniscateSpec& m) const {
+      return SmoothCurve::Lemniscate(m.center, m.scale, m.rotation, m.tau_begin, m.tau_end);
+    }
+    SmoothCurve operator()(const SineSpec& w) const {
+      return SmoothCurve::Sine(w.from, w.rotation, w.length, w.amplitude, w.wavelength);
+    }
+    SmoothCurve operator()(const SamplesSpec& m) const { return SmoothCurve::Samples(m.points); }
+    SmoothCurve operator()(const PiecewiseSpec&) const { throw std::logic_error("not a smooth curve"); }
+  };
+  if (std::holds_alternative<PiecewiseSpec>(spec.shape))
+    throw std::invalid_argument("'" + field + ".type' = \"piecewise\" is not a single smooth curve here (pieces may not nest)");
+  return Named(field, [&] { return std::visit(Make{}, spec.shape); });
+}
+
+Path PathFromSpec(const PathSpec& spec, const std::string& field) {
+  const auto* pw = std::get_if<PiecewiseSpec>(&spec.shape);
+  if (pw == nullptr) return Path({CurveFromSpec(spec, field)});
+  if (pw->pieces.empty())
+    internal::ThrowInvalid(field + ".pieces (count)", 0, "a piecewise path needs at least one piece");
+  std::vector<SmoothCurve> pieces;
+  for (std::size_t i = 0; i < pw->pieces.size(); ++i)
+    pieces.push_back(CurveFromSpec(pw->pieces[i], field + ".pieces[" + std::to_string(i) + "]"));
+  return Named(field, [&] { return Path(std::move(pieces)); });
+}
+
+std::vector<PartitionRule> PartitionFromSpec(const PartitionSpec& spec, const Path& path, const std::string& field) {
+  if (std::holds_alternative<ExplicitTaus>(spec) && path.PieceCount() != 1)
+    internal::ThrowInvalid(field + ".taus (pieces)", path.PieceCount(),
+                           "explicit partitions are for single-piece paths; use a uniform type for piecewise paths");
+  return {spec};
+}
+
+FreeMotion FreeMotionFor(const Problem& problem) {
+  return FreeMotion::FromAngles(problem.model, problem.initial_angles, problem.mu, problem.x0, problem.A0,
+                                problem.integration);
+}
+
+JoinSetup JoinSetupFor(const Problem& problem, const Eigen::Vector2d& target) {
+  JoinSetup s;
+  s.problem = JoinProblem{problem.model, problem.initial_angles, problem.mu, problem.x0, target};
+  s.options.integration = problem.integration;
+  return s;
+}
+
+ReachSetup ReachSetupFor(const Problem& problem, const Eigen::Vector2d& target) {
+  ReachSetup s;
+  s.problem.model = problem.model;
+  s.problem.start = problem.initial_angles;
+  s.problem.mu = problem.mu;
+  s.problem.x0 = problem.x0;
+  s.problem.A0 = problem.A0;
+  s.problem.target = target;
+  if (problem.reach) s.options.horizon_periods = problem.reach->horizon_periods;
+  s.options.seed = problem.seed;
+  s.options.integration = problem.integration;
+  return s;
+}
+
+PlanSetup PlanSetupFor(const Problem& problem, int n, const std::string& n_field) {
+  const PlanTask& task = RequirePlan(problem);
+  PlanSetup s;
+  s.problem.model = problem.model;
+  s.problem.initial = problem.initial_angles;
+  s.problem.mu = problem.mu;
+  s.problem.A0 = problem.A0;
+  s.problem.path = PathFromSpec(task.path, "plan.path");
+  PartitionSpec spec = task.partition;
+  if (n > 0) {
+    if (auto* u = std::get_if<UniformParameter>(&spec)) u->n = n;
+    else if (auto* a = std::get_if<UniformArcLength>(&spec)) a->n = n;
+    else internal::ThrowInvalid(n_field, n, "not allowed with an explicit partition (plan.partition.type explicit)");
+  }
+  s.problem.partition = PartitionFromSpec(spec, s.problem.path, "plan.partition");
+  s.problem.energy_changes = task.energy_changes;
+  RequireStartOnPath(problem, s.problem.path);
+  s.options = PlanOptionsFor(problem);
+  return s;
+}
+
+ConvergenceSetup ConvergenceSetupFor(const Problem& problem, const std::vector<int>& ns, const std::string& ns_field,
+                                     bool timings) {
+  const PlanTask& task = RequirePlan(problem);
+  ConvergenceSetup s;
+  if (!ns.empty()) {
+    ValidatePartitionSizes(ns, ns_field);
+    s.problem.ns = ns;
+  } else if (!task.converge_n.empty()) {
+    ValidatePartitionSizes(task.converge_n, "plan.converge_n");
+    s.problem.ns = task.converge_n;
+  }
+  if (const auto* e = std::get_if<ExplicitTaus>(&task.partition))
+    internal::ThrowInvalid(ns.empty() ? std::string("plan.partition.taus (count)") : ns_field,
+                           ns.empty() ? static_cast<double>(e->taus.size()) : ns.front(),
+                           "a convergence study varies n: it needs a uniform partition, not an explicit one");
+  PlanSetup plan = PlanSetupFor(problem);
+  s.problem.plan = std::move(plan.problem);
+  s.options.plan = std::move(plan.options);
+  s.options.timings = timings;
+  return s;
+}
+
+IsoparallelSetup IsoparallelSetupFor(const Problem& problem) {
+  const IsoparallelTask& task = RequireIsoparallel(problem);
+  IsoparallelSetup s;
+  s.problem.start = task.start;
+  s.problem.goal = task.goal;
+  s.problem.start_orientation = task.start_orientation;
+  s.problem.goal_orientation = task.goal_orientation;
+  s.options = task.solver;
+  s.options.seed = problem.seed;
+  s.options.integration = problem.integration;
+  return s;
+}
+
+IsoparallelPlanSetup IsoparallelPlanSetupFor(const Problem& problem, const IsoparallelSolution& solution,
+                                             int impulses) {
+  const IsoparallelTask& task = RequireIsoparallel(problem);
+  IsoparallelPlanSetup s;
+  s.problem.model = problem.model;
+  s.problem.psi = problem.initial_angles.psi;
+  s.problem.mu = problem.mu;
+  s.problem.A0 = task.start_orientation;
+  s.problem.solution = solution;
+  s.problem.impulses = impulses > 0 ? impulses : task.impulses;
+  s.options = PlanOptionsFor(problem);
+  return s;
+}
+
+}  // namespace plateball

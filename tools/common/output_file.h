@@ -1,0 +1,36 @@
+// Where the command-line tools write: standard output ("-" or no path) or a file, replaced
+// atomically. Output paths are checked before any work is done.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace plateball::tools {
+
+/// True for the path that means standard output: "-" (or an empty path: the option not given).
+bool IsStandardOutput(const std::string& path);
+
+/// Writes `text` to standard output (IsStandardOutput) or to the file `path`. A file is written to
+/// a temporary file in the same directory and renamed over `path` only when every byte is written,
+/// so on any failure (full disk, unwritable directory) the previous file is untouched and no partial
+/// file is left. A path that exists and is not a regular file (/dev/null, a FIFO) is written in
+/// place. Throws IoError (exit code 5) naming the path, or "standard output".
+void WriteOutput(const std::string& path, const std::string& text);
+
+/// Flushes standard output; throws IoError("standard output: write failed") when any write to it
+/// failed (a full disk, a closed pipe). RunWithExitCodes calls it after every run.
+void FlushStandardOutput();
+
+/// A path given on the command line and the option (or argument) that gave it.
+struct PathArgument {
+  std::string option;  ///< e.g. "--out", "PROBLEM.json"
+  std::string path;    ///< empty: not given
+};
+
+/// Checks, before any work, the output paths of a run: no two outputs name the same file (or both
+/// standard output), no output is one of the input files (std::invalid_argument naming both
+/// options, exit code 3), and each output file can be created: its directory exists and is
+/// writable, or it is an existing writable non-regular file (IoError naming the path, exit code 5).
+void CheckOutputPaths(const std::vector<PathArgument>& outputs, const std::vector<PathArgument>& inputs = {});
+
+}  // namespace plateball::tools
