@@ -1,5 +1,16 @@
-onvergence.h"/s||#include "plateball/convergence.h"
-#include "plateball/export.h"|
+// Task adapters: the one mapping from a problem file (problem.h, the I/O layer) to each solver's
+// problem and options. The tools, the tests, the benchmarks and the fuzz harnesses all call
+// these, so that what a test checks is what a tool runs. Every adapter throws
+// std::invalid_argument naming the file (problem.source) and the field when the file lacks the
+// task or a value does not fit the solver.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "plateball/convergence.h"
+#include "plateball/export.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/isoparallel.h"
