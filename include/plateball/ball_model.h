@@ -4,7 +4,9 @@
 
 #include <string>
 
-namespace plateball {
+#include "plateball/export.h"
+
+namespace plateball PLATEBALL_EXPORT {
 
 /// Physical parameters of the plate-ball system (SI or any consistent units).
 /// The upper plate moves with twice the velocity of the ball centre, so for momentum it counts

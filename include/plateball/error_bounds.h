@@ -13,9 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "plateball/export.h"
 #include "plateball/path.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// The constants of Lemmas 2.1-2.4 and Theorems 2.5-2.6, estimated over one plan.
 struct ErrorBoundConstants {

@@ -10,6 +10,7 @@
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/error_bounds.h"
+#include "plateball/export.h"
 #include "plateball/impulse.h"
 #include "plateball/integration_options.h"
 #include "plateball/join.h"
@@ -18,7 +19,7 @@
 #include "plateball/reach.h"
 #include "plateball/so3.h"  // AlignOrientationToAxis
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 enum class PlanStatus {
   kNotRun,                    ///< default: no plan was run

@@ -3,7 +3,9 @@
 
 #include <string>
 
-namespace plateball {
+#include "plateball/export.h"
+
+namespace plateball PLATEBALL_EXPORT {
 
 struct IntegrationOptions {
   double absolute_tolerance = 1e-12;

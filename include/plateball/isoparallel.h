@@ -24,9 +24,10 @@
 #include <vector>
 
 #include "plateball/elastica.h"
+#include "plateball/export.h"
 #include "plateball/integration_options.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// Options of SolveIsoparallel. The problem reader fills them from the JSON "isoparallel.solver"
 /// section (plus the file's seed and integration section) with the same ranges as Validate().

@@ -10,11 +10,12 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/export.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/integration_options.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// What is asked: the ball just before the impulse and the point to reach.
 struct ReachProblem {

@@ -4,7 +4,9 @@
 #include <Eigen/Core>
 #include <string>
 
-namespace plateball {
+#include "plateball/export.h"
+
+namespace plateball PLATEBALL_EXPORT {
 
 /// hat(w) v = w x v.
 Eigen::Matrix3d Hat(const Eigen::Vector3d& w);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "plateball/convergence.h"
+#include "plateball/export.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/isoparallel.h"
@@ -20,7 +21,7 @@
 #include "plateball/problem.h"
 #include "plateball/reach.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// The planned path of a PathSpec, validating every field; messages name `field`.key
 /// (e.g. "plan.path.radius").
