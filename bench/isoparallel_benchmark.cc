@@ -1,4 +1,4 @@
-// T4 of the standard benchmarks (../shared/design/benchmarks.md): the isoparallel problem of
+// T4 of the standard benchmarks (docs/benchmarks.md): the isoparallel problem of
 // Figure 7, from (0, 0) to (3, 3) with final reorientation equal to the identity.
 // Figures (counters): the length of the shortest path found, the number of distinct solutions
 // (all up to 3x the shortest), the final orientation residual of the shortest one (verified by

@@ -1,4 +1,4 @@
-// T1 of docs benchmarks (../shared/design/benchmarks.md): join two close points (Lemma 2.1).
+// T1 of docs/benchmarks.md: join two close points (Lemma 2.1).
 // lambda = 2, mu = 1, (theta, phi, psi) = (pi/3, 0.4, 0.1) at x0 = 0, 64 targets at distance 0.05.
 // Reports the time per join (the benchmark's own statistics give the median over repetitions),
 // how many joins succeed and the largest miss |x(t) - target| measured by an independent

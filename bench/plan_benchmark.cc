@@ -1,4 +1,4 @@
-// T2 of ../shared/design/benchmarks.md: follow the circle p(tau) = (2 cos tau - 2, 2 sin tau),
+// T2 of docs/benchmarks.md: follow the circle p(tau) = (2 cos tau - 2, 2 sin tau),
 // tau in [0, 2 pi], from (theta, phi, psi) = (pi/3, 0.4, 0.1), lambda = 2, mu = 1, A0 = I, with
 // uniform partitions n = 16 ... 1024. Per n: wall time of the whole plan (joins, arcs with
 // orientation, rolling reference, polyline, bounds), the final error ||A_ref(2 pi) - A_n||, the

@@ -1,4 +1,4 @@
-// Standard task T3 (shared/design/benchmarks.md): reach distant points from the paper's
+// Standard task T3 (docs/benchmarks.md): reach distant points from the paper's
 // Figure 8 state, lambda = 2, mu = 1, (theta0, phi0, psi0) = (-pi/3, pi/2, 0) as the paper gives
 // it, targets (6, 0), (0, 10), (-12, 5). Each iteration is one complete Reach() call (scan,
 // refinement of every solution below 5 periods, end states). Counters: the earliest solution,

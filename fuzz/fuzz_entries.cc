@@ -13,9 +13,12 @@
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/impulse_planner.h"
+#include "plateball/isoparallel.h"
 #include "plateball/join.h"
 #include "plateball/path.h"
 #include "plateball/problem_io.h"
+#include "plateball/reach.h"
+#include "plateball/so3.h"
 #include "plateball/task_adapters.h"
 
 namespace plateball::fuzz {
@@ -141,6 +144,53 @@ void SolveEntries(const std::uint8_t* data, std::size_t size) {
     if (plan.IsSolutionUsable()) {
       RequireFiniteResult("plan.measured_error", plan.measured_error);
       RequireFiniteResult("plan.A_impulsive", plan.A_impulsive);
+    }
+  } catch (const std::invalid_argument&) {
+  }
+}
+
+void ReachEntry(const std::uint8_t* data, std::size_t size) {
+  Numbers in(data, size);
+  ReachProblem p;
+  ReachOptions o;  // small scan sizes: milliseconds per input
+  o.scan_directions = o.scan_steps_per_period = 16, o.max_candidates = 4, o.max_refine_iterations = 10;
+  o.global_max_evaluations = 20;
+  try {
+    p.model = BallModel::FromLambda(in.Mixed(0.05, 10.0));
+    p.start = {in.Mixed(-4.0, 4.0), in.Mixed(-4.0, 4.0), in.Mixed(-4.0, 4.0)};
+    p.mu = in.Mixed(0.1, 10.0);
+    p.x0 = {in.Mixed(-5.0, 5.0), in.Mixed(-5.0, 5.0)};
+    p.target = {in.Mixed(-5.0, 5.0), in.Mixed(-5.0, 5.0)};
+    o.horizon_periods = in.Mixed(0.0, 3.0);
+    o.tolerance = in.Mixed(1e-12, 1e-6);
+    const ReachSummary s = Reach(p, o);
+    for (const ReachSolution& r : s.solutions) {
+      RequireFiniteResult("reach.t", r.t);
+      RequireFiniteResult("reach.delta_psi", r.delta_psi);
+      if (!(r.residual <= 10.0 * o.tolerance)) Defect("reach solution with residual " + std::to_string(r.residual));
+    }
+  } catch (const std::invalid_argument&) {
+  }
+}
+
+void IsoparallelEntry(const std::uint8_t* data, std::size_t size) {
+  Numbers in(data, size);
+  IsoparallelProblem p;
+  IsoparallelOptions o;  // few starts: milliseconds per input
+  o.starts = 8, o.max_iterations = 20;
+  try {
+    p.start = {in.Mixed(-5.0, 5.0), in.Mixed(-5.0, 5.0)};
+    p.goal = p.start + Eigen::Vector2d(in.Mixed(-6.0, 6.0), in.Mixed(-6.0, 6.0));
+    p.start_orientation = ExpSO3(Eigen::Vector3d(in.Mixed(-1.0, 1.0), in.Mixed(-1.0, 1.0), in.Mixed(-1.0, 1.0)));
+    p.goal_orientation = ExpSO3(Eigen::Vector3d(in.Mixed(-1.0, 1.0), in.Mixed(-1.0, 1.0), in.Mixed(-1.0, 1.0)));
+    o.length_cap_factor = in.Mixed(1.0, 3.0);
+    o.enumerate_families = in.Next() > 0;
+    if (in.Next() > 0) p.goal_orientation = p.start_orientation;  // identity targets: the family search
+    const IsoparallelSummary s = SolveIsoparallel(p, o);
+    for (const IsoparallelSolution& r : s.solutions) {
+      RequireFiniteResult("isoparallel.length", r.length);
+      RequireFiniteResult("isoparallel.endpoint_error", r.endpoint_error);
+      RequireFiniteResult("isoparallel.orientation_error", r.orientation_error);
     }
   } catch (const std::invalid_argument&) {
   }

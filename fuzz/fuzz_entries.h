@@ -17,4 +17,13 @@ void ProblemReader(const std::uint8_t* data, std::size_t size);
 /// infinities included): state conversions, free motion, join, impulses and a short plan.
 void SolveEntries(const std::uint8_t* data, std::size_t size);
 
+/// Reach fed with arbitrary start, energy, model, target and options (small scan sizes so that
+/// one input runs in milliseconds): an error names the input, a solution is finite and hits the
+/// target to its tolerance.
+void ReachEntry(const std::uint8_t* data, std::size_t size);
+
+/// The isoparallel entry (SolveIsoparallel) fed with arbitrary start, goal, orientations and
+/// options (few starts): an error names the input, a reported solution is finite.
+void IsoparallelEntry(const std::uint8_t* data, std::size_t size);
+
 }  // namespace plateball::fuzz

@@ -15,7 +15,7 @@ if [[ "${1:-}" == "--ci" ]]; then
 else
   seconds="${1:-30}"
 fi
-declare -A ci_runs=([problem_reader_fuzzer]=20000 [solve_entries_fuzzer]=1500)
+declare -A ci_runs=([problem_reader_fuzzer]=20000 [solve_entries_fuzzer]=1500 [reach_fuzzer]=300 [isoparallel_fuzzer]=100)
 bash scripts/setup.sh
 if ! command -v clang++ >/dev/null; then
   apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq clang libclang-rt-14-dev

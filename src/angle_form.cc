@@ -54,11 +54,8 @@ std::string ToString(AngleFormStatus status) {
 std::string AngleFormOptions::Validate() const {
   const std::string err = integration.Validate();
   if (!err.empty()) return err;
-  if (!(std::isfinite(pole_threshold) && pole_threshold > 0 && pole_threshold < 1)) {
-    std::ostringstream os;
-    os << "angle-form option 'pole_threshold' = " << pole_threshold << " must be in (0, 1)";
-    return os.str();
-  }
+  if (!(std::isfinite(pole_threshold) && pole_threshold > 0 && pole_threshold < 1))
+    return internal::InvalidValueMessage("pole_threshold", pole_threshold, "must be in (0, 1)");
   return {};
 }
 
@@ -77,8 +74,7 @@ void AngleFormDerivative(const AngleState& s, double mu, const BallModel& model,
 AngleFormResult IntegrateAngleForm(const BallModel& model, const AngleState& angles, double mu,
                                    const Eigen::Vector2d& x0, const std::vector<double>& times,
                                    const AngleFormOptions& options) {
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
+  internal::ThrowIfInvalid(options.Validate());
   internal::RequireFinite("theta", angles.theta);
   internal::RequireFinite("phi", angles.phi);
   internal::RequireFinite("psi", angles.psi);

@@ -9,17 +9,37 @@
 
 namespace plateball::internal {
 
-void OmegaFromAngles(double theta, double phi, double psi, double mu, double lambda, Eigen::Vector2d* omega,
-                     Eigen::Vector2d* domega_dpsi) {
-  const double st = std::sin(theta), ct = std::cos(theta);
-  const double a = std::sqrt(mu / (lambda * st * st + ct * ct));
-  const double b = std::sqrt(mu);
-  const double sp = std::sin(phi), cp = std::cos(phi);
-  const double w = phi - psi;
+ImpulseBasis MakeImpulseBasis(const AngleState& start, double mu, double lambda) {
+  ImpulseBasis e;
+  e.z0 = AxisFromAngles(start.theta, start.phi);
+  e.a = SemiAxisA(start.theta, mu, lambda);
+  e.b = std::sqrt(mu);
+  e.cos_phi = std::cos(start.phi);
+  e.sin_phi = std::sin(start.phi);
+  e.phi = start.phi;
+  e.psi = start.psi;
+  e.lambda = lambda;
+  return e;
+}
+
+ReachDirection DirectionFor(const ImpulseBasis& e, double s) {
+  ReachDirection d;
+  d.s = s;
+  d.z0 = e.z0;
+  const double w = e.phi - (e.psi + s);
   const double cw = std::cos(w), sw = std::sin(w);
-  *omega = {a * cw * cp + b * sw * sp, a * cw * sp - b * sw * cp};
-  // d/dpsi = -d/dw.
-  if (domega_dpsi) *domega_dpsi = {a * sw * cp - b * cw * sp, a * sw * sp + b * cw * cp};
+  double omega[2], domega[2];
+  OmegaHOnEllipse(e.a, e.b, e.cos_phi, e.sin_phi, cw, sw, omega);
+  OmegaHOnEllipse(e.a, e.b, e.cos_phi, e.sin_phi, sw, -cw, domega);  // d/dpsi = -d/dw
+  // K is linear in omega_h at fixed z: dK/ds is K of d omega_h / ds.
+  const double zh[2] = {e.z0.x(), e.z0.y()};
+  MomentumFromOmega(zh, omega, e.lambda, d.k.data());
+  MomentumFromOmega(zh, domega, e.lambda, d.dk_ds.data());
+  return d;
+}
+
+ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, double s) {
+  return DirectionFor(MakeImpulseBasis(start, mu, lambda), s);
 }
 
 Eigen::Vector2d ContactAcceleration(double lambda, const Eigen::Vector3d& z, const Eigen::Vector2d& k) {
@@ -40,11 +60,7 @@ Eigen::Vector2d ContactAcceleration(double lambda, const Eigen::Vector3d& z, con
 ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
                     const IntegrationOptions& options) {
   FullRhs rhs{lambda, {k.x(), k.y()}};
-  FullState y{};
-  y[0] = z0.x();
-  y[1] = z0.y();
-  y[2] = z0.z();
-  y[5] = y[9] = y[13] = 1.0;
+  FullState y = InitialFullState(z0);
   ArcEnd out;
   // Maxima over the accepted steps plus the largest change between neighbouring steps, so that a
   // maximum between two steps of a smooth arc is covered.
@@ -76,7 +92,7 @@ ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vecto
   out.max_acceleration += jump_a;
   out.z = Eigen::Vector3d(y[0], y[1], y[2]).normalized();
   out.dx = {y[3], y[4]};
-  out.phi << y[5], y[6], y[7], y[8], y[9], y[10], y[11], y[12], y[13];
+  out.phi = MatrixFromRowMajor(y.data() + 5);
   return out;
 }
 

@@ -1,21 +1,36 @@
 // Internal: free-motion arcs between impulses, integrated directly from (z, K) over a short time
-// (no period is built). Used by the join (with s-sensitivities) and the planner (with the
-// orientation).
+// (no period is built), and the start data of an arc after an impulse. Used by the join (with
+// s-sensitivities), the reach and the planner (with the orientation).
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 
+#include "kinematics.h"
+#include "plateball/ball_state.h"
 #include "plateball/integration_options.h"
 
 namespace plateball::internal {
 
-/// Horizontal omega at (theta, phi, psi) and energy mu, and its derivative with respect to psi:
-/// omega_1 = a cos(w) cos(phi) + b sin(w) sin(phi), omega_2 = a cos(w) sin(phi) - b sin(w) cos(phi)
-/// with w = phi - psi (section 2.1, the formulas before (25)). The same numbers as
-/// PhaseFromAngles (omega = v0 z - u with (12)-(18)).
-void OmegaFromAngles(double theta, double phi, double psi, double mu, double lambda, Eigen::Vector2d* omega,
-                     Eigen::Vector2d* domega_dpsi);
+/// Everything the free motion after the impulse psi -> psi + s depends on: the axis z0 (unchanged
+/// by the impulse), the conserved vector K(s) (kinematics.h) and dK/ds (exact, from ceres::Jet).
+struct ReachDirection {
+  double s = 0.0;
+  Eigen::Vector3d z0 = Eigen::Vector3d::UnitZ();
+  Eigen::Vector2d k = Eigen::Vector2d::Zero();
+  Eigen::Vector2d dk_ds = Eigen::Vector2d::Zero();
+};
+/// What does not depend on the impulse s: the axis z0, the velocity ellipse (a, b) and the trig
+/// of phi. Built once per start so that each direction costs one sine and one cosine.
+struct ImpulseBasis {
+  Eigen::Vector3d z0 = Eigen::Vector3d::UnitZ();
+  double a = 0.0, b = 0.0, cos_phi = 1.0, sin_phi = 0.0, phi = 0.0, psi = 0.0, lambda = 1.0;
+};
+ImpulseBasis MakeImpulseBasis(const AngleState& start, double mu, double lambda);
+/// The direction of the impulse s: K(s) = K(omega_h(theta, phi, psi + s)) and dK/ds.
+ReachDirection DirectionFor(const ImpulseBasis& basis, double s);
+/// The same from the angles (angles already reduced).
+ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, double s);
 
 /// Result of integrating one arc of the free motion over [0, t] from the axis z0 and momentum K.
 struct ArcEnd {

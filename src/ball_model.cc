@@ -1,18 +1,23 @@
 #include "plateball/ball_model.h"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "check.h"
 
 namespace plateball {
+namespace {
+// lambda in [1e-3, 1e3] (README, "Limits"): beyond, the rolling ODE is so stiff that the
+// energy drifts at tolerance 1e-12 (lambda 1e12) or the step size underflows (lambda 1e-300).
+void RequireLambda(double lambda) {
+  internal::RequirePositive("lambda", lambda);
+  internal::RequireInRange("lambda", lambda, internal::kMinLambda, internal::kMaxLambda);
+}
+}  // namespace
 
 std::string PhysicalParameters::Validate() const {
-  std::ostringstream os;
-  auto bad = [&](const char* field, double v, const char* bound) {
-    os << "physical parameter '" << field << "' = " << v << " is invalid: " << bound;
-    return os.str();
+  auto bad = [](const char* field, double v, const char* bound) {
+    return internal::InvalidValueMessage(std::string("physical.") + field, v, bound);
   };
   if (!(std::isfinite(inertia_1) && inertia_1 > 0)) return bad("inertia_1", inertia_1, "must be finite and > 0");
   if (!(std::isfinite(inertia_3) && inertia_3 > 0)) return bad("inertia_3", inertia_3, "must be finite and > 0");
@@ -25,15 +30,14 @@ std::string PhysicalParameters::Validate() const {
 }
 
 BallModel BallModel::FromPhysical(const PhysicalParameters& p) {
-  const std::string err = p.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
+  internal::ThrowIfInvalid(p.Validate());
   const double alpha = p.inertia_3 / p.inertia_1;
   const double beta = p.EffectiveMass() * p.radius * p.radius / p.inertia_1;
   return FromAlphaBeta(alpha, beta);
 }
 
 BallModel BallModel::FromLambda(double lambda) {
-  internal::RequirePositive("lambda", lambda);
+  RequireLambda(lambda);
   return BallModel(lambda, 0.0, 0.0, false);
 }
 
@@ -42,12 +46,13 @@ BallModel BallModel::FromAlphaBeta(double alpha, double beta) {
   // A rigid body has I3 <= I1 + I2 = 2 I1 (docs/paper_notes.md, "Physical range of lambda").
   if (alpha > 2.0 * (1.0 + 1e-12)) internal::ThrowInvalid("alpha", alpha, "a rigid body has alpha = I3/I1 <= 2");
   internal::RequireNonNegative("beta", beta);
-  return BallModel((alpha + beta) / (1.0 + beta), alpha, beta, true);
+  const double lambda = (alpha + beta) / (1.0 + beta);
+  RequireLambda(lambda);
+  return BallModel(lambda, alpha, beta, true);
 }
 
 double BallModel::EnergyToMu(const PhysicalParameters& p, double kinetic_energy) {
-  const std::string err = p.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
+  internal::ThrowIfInvalid(p.Validate());
   internal::RequireNonNegative("kinetic_energy", kinetic_energy);
   return 2.0 * kinetic_energy / (p.inertia_1 + p.EffectiveMass() * p.radius * p.radius);
 }

@@ -4,14 +4,10 @@
 #include <cmath>
 
 #include "check.h"
+#include "kinematics.h"
 
 namespace plateball {
-namespace {
-double WrapPi(double a) {
-  a = std::remainder(a, 2.0 * M_PI);  // in [-pi, pi]
-  return a <= -M_PI ? a + 2.0 * M_PI : a;
-}
-}  // namespace
+using internal::WrapPi;
 
 AngleState AngleState::Canonicalize() const {
   double th = std::remainder(theta, 2.0 * M_PI);  // [-pi, pi]
@@ -32,15 +28,16 @@ PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& 
   internal::RequireFinite("theta", s.theta);
   internal::RequireFinite("phi", s.phi);
   internal::RequireFinite("psi", s.psi);
-  internal::RequirePositive("mu", mu);
-  const double st = std::sin(s.theta), ct = std::cos(s.theta);
+  internal::RequireEnergy("mu", mu);
+  const double ct = std::cos(s.theta);
   const double sp = std::sin(s.phi), cp = std::cos(s.phi);
   const double w = s.phi - s.psi;
   const double cw = std::cos(w), sw = std::sin(w);
   const double a = SemiAxisA(s.theta, mu, model.lambda());
   const double b = std::sqrt(mu);
   PhaseVariables p;
-  p.z = {st * cp, st * sp, ct};                               // (12)-(14)
+  p.z = internal::AxisFromAngles(s.theta, s.phi);             // (12)-(14)
+  const double st = std::sin(s.theta);
   p.u = {-a * cw * ct * ct * cp - b * sw * sp,                // (15)
          -a * cw * ct * ct * sp + b * sw * cp,                // (16)
          a * cw * ct * st};                                   // (17)
@@ -79,15 +76,15 @@ double Energy(const BallState& s, const BallModel& model) {
 }
 
 Eigen::Vector2d ConservedMomentum(const BallState& s, const BallModel& model) {
-  const double v0 = s.omega.dot(s.z);
-  return s.omega.head<2>() + (model.lambda() - 1.0) * v0 * s.z.head<2>();
+  Eigen::Vector2d k;
+  internal::MomentumFromOmega(s.z.data(), s.omega.data(), s.omega.dot(s.z), model.lambda(), k.data());
+  return k;
 }
 
 Eigen::Vector3d OmegaFromMomentum(const Eigen::Vector3d& z, const Eigen::Vector2d& k, const BallModel& model) {
-  const double l = model.lambda();
-  const double zh2 = z.x() * z.x() + z.y() * z.y();
-  const double v0 = (k.x() * z.x() + k.y() * z.y()) / (z.z() * z.z() + l * zh2);
-  return {k.x() - (l - 1.0) * v0 * z.x(), k.y() - (l - 1.0) * v0 * z.y(), 0.0};
+  Eigen::Vector3d w = Eigen::Vector3d::Zero();
+  internal::OmegaFromZK(z.data(), k.data(), model.lambda(), w.data());
+  return w;
 }
 
 Eigen::Vector4d ConstraintResiduals(const PhaseVariables& p, double mu, const BallModel& model) {

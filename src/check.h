@@ -1,4 +1,6 @@
-// Input checks shared by the library: every failure names the field and the value.
+// Input checks shared by the library: every failure names the field and the value, in one
+// format built by InvalidValueMessage: "FIELD: value V: what is wrong" (V in shortest round-trip
+// form). The problem-file reader prefixes the file name ("figure7.json: initial.mu: value -1: ...").
 #pragma once
 
 #include <Eigen/Core>
@@ -7,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace plateball::internal {
 
@@ -17,8 +20,35 @@ inline std::string FormatNumber(double value) {
   return std::string(buf, res.ptr);
 }
 
-[[noreturn]] inline void ThrowInvalid(const std::string& field, double value, const std::string& bound) {
-  throw std::invalid_argument("'" + field + "' = " + FormatNumber(value) + " is invalid: " + bound);
+/// The one message for an invalid value: "FIELD: value V: WHAT".
+inline std::string InvalidValueMessage(const std::string& field, const std::string& value_text,
+                                       const std::string& what) {
+  return field + ": value " + value_text + ": " + what;
+}
+inline std::string InvalidValueMessage(const std::string& field, double value, const std::string& what) {
+  return InvalidValueMessage(field, FormatNumber(value), what);
+}
+/// Counts print as integers ("1000000", not "1e+06").
+template <typename Int, std::enable_if_t<std::is_integral_v<Int>, int> = 0>
+std::string InvalidValueMessage(const std::string& field, Int value, const std::string& what) {
+  return InvalidValueMessage(field, std::to_string(value), what);
+}
+
+[[noreturn]] inline void ThrowInvalid(const std::string& field, const std::string& value_text,
+                                      const std::string& what) {
+  throw std::invalid_argument(InvalidValueMessage(field, value_text, what));
+}
+[[noreturn]] inline void ThrowInvalid(const std::string& field, double value, const std::string& what) {
+  throw std::invalid_argument(InvalidValueMessage(field, value, what));
+}
+template <typename Int, std::enable_if_t<std::is_integral_v<Int>, int> = 0>
+[[noreturn]] void ThrowInvalid(const std::string& field, Int value, const std::string& what) {
+  throw std::invalid_argument(InvalidValueMessage(field, value, what));
+}
+
+/// Throws the message of a Validate() function when it is not empty.
+inline void ThrowIfInvalid(const std::string& message) {
+  if (!message.empty()) throw std::invalid_argument(message);
 }
 
 inline void RequireFinite(const std::string& field, double v) {
@@ -30,11 +60,55 @@ inline void RequirePositive(const std::string& field, double v) {
 inline void RequireNonNegative(const std::string& field, double v) {
   if (!(std::isfinite(v) && v >= 0)) ThrowInvalid(field, v, "must be finite and >= 0");
 }
+/// lo <= v <= hi (both finite), with the range named in the message.
+inline void RequireInRange(const std::string& field, double v, double lo, double hi) {
+  if (!(v >= lo && v <= hi))
+    ThrowInvalid(field, v, "must be in [" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
+}
 template <typename Derived>
 inline void RequireFinite(const std::string& field, const Eigen::MatrixBase<Derived>& m) {
   const auto e = m.eval();
   for (Eigen::Index i = 0; i < e.size(); ++i)
     if (!std::isfinite(e.data()[i])) ThrowInvalid(field + "[" + std::to_string(i) + "]", e.data()[i], "must be finite");
+}
+
+// ------------------------------------------------------------------ documented input ranges
+// Beyond these the double arithmetic of the solvers loses the digits the answer needs (README,
+// "Limits"); each is checked where the value enters the library.
+constexpr double kMaxCoordinate = 1e6;    ///< |x|, |y| of positions and targets (absolute accuracy ~2e-16 |x|)
+constexpr double kMinLambda = 1e-3;       ///< lambda: stiffness and drift beyond these
+constexpr double kMaxLambda = 1e3;
+constexpr double kMinMu = 1e-12;          ///< energy mu
+constexpr double kMaxMu = 1e12;
+constexpr double kMinTolerance = 1e-15;   ///< integration tolerances
+
+// Sizes that drive the work (README, "Limits"): each keeps one call under ~10 s and ~1 GB.
+constexpr int kMaxPartitionSteps = 10000;   ///< partition n (steps of a plan), impulses of a plan
+constexpr int kMaxSamples = 100000;         ///< samples of a simulation, sample points of a path
+constexpr double kMaxIsoparallelChord = 40;  ///< |goal - start| of the isoparallel problem
+constexpr double kMaxStartsTimesChord = 1e5;  ///< multi-start: starts x |goal - start|
+constexpr double kMaxLengthCapFactor = 10;   ///< family search (= IsoparallelOptions::kMaxLengthCapFactor)
+
+/// 1 <= n <= hi for a count.
+inline void RequireCount(const std::string& field, long long n, long long hi) {
+  if (!(n >= 1 && n <= hi)) ThrowInvalid(field, n, "must be in [1, " + std::to_string(hi) + "]");
+}
+
+/// |v| <= kMaxCoordinate for a coordinate (finite first).
+inline void RequireCoordinate(const std::string& field, double v) {
+  RequireFinite(field, v);
+  if (!(std::abs(v) <= kMaxCoordinate))
+    ThrowInvalid(field, v, "|coordinate| must be <= " + FormatNumber(kMaxCoordinate) + " (precision limit)");
+}
+template <typename Derived>
+inline void RequireCoordinates(const std::string& field, const Eigen::MatrixBase<Derived>& m) {
+  const auto e = m.eval();
+  for (Eigen::Index i = 0; i < e.size(); ++i) RequireCoordinate(field + "[" + std::to_string(i) + "]", e.data()[i]);
+}
+/// mu in [kMinMu, kMaxMu].
+inline void RequireEnergy(const std::string& field, double mu) {
+  RequirePositive(field, mu);
+  RequireInRange(field, mu, kMinMu, kMaxMu);
 }
 
 }  // namespace plateball::internal

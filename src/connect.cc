@@ -2,13 +2,15 @@
 
 #include <cmath>
 
+#include "kinematics.h"
+
 namespace plateball::internal {
 
 JoinSummary ConnectPoints(const BallModel& model, const AngleState& angles, double mu, const Eigen::Vector2d& x0,
                           const Eigen::Vector2d& target, const JoinOptions& options,
                           const ReachOptions* reach_fallback, bool* reached_globally) {
   if (reached_globally != nullptr) *reached_globally = false;
-  JoinSummary join = Join(JoinProblem{model, angles, mu, x0, target}, options);
+  JoinSummary join = JoinValidated(model, angles, mu, x0, target, options);
   if (join.status != JoinStatus::kTargetBeyondLocalRadius || reach_fallback == nullptr) return join;
 
   ReachProblem problem;
@@ -33,7 +35,7 @@ JoinSummary ConnectPoints(const BallModel& model, const AngleState& angles, doub
   JoinSummary out = join;
   out.status = JoinStatus::kConverged;
   out.message = "beyond the local radius; connected by " + reach.BriefReport();
-  out.delta_psi = std::remainder(e.delta_psi, 2.0 * M_PI);  // the join's convention, (-pi, pi]
+  out.delta_psi = WrapPi(e.delta_psi);  // the join's convention, (-pi, pi]
   out.t = e.t;
   out.residual = e.residual;
   out.iterations = reach.refine_iterations;

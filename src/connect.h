@@ -12,6 +12,12 @@
 
 namespace plateball::internal {
 
+/// Join (join.h) for input already validated by the caller: options valid, mu > 0, finite
+/// points, angles reduced (|angle| <= pi or canonical). The planner checks all of it once.
+JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduced, double mu,
+                          const Eigen::Vector2d& x0, const Eigen::Vector2d& target, const JoinOptions& options);
+
+/// The planner's input is validated once (PlanImpulses); the join is JoinValidated.
 /// `reach_fallback` == nullptr: the local join only. Otherwise a kTargetBeyondLocalRadius join is
 /// retried with Reach (earliest solution, converted to a JoinSummary with status kConverged and
 /// a message saying so); *reached_globally (when given) tells which one answered.

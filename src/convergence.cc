@@ -12,7 +12,7 @@
 namespace plateball {
 namespace {
 
-constexpr int kMaxPartitionSize = 1'000'000;
+constexpr int kMaxPartitionSize = internal::kMaxPartitionSteps;  // README, "Limits"
 
 // The plan problem with every uniform rule set to n steps per piece.
 PlanProblem WithPartitionSize(const PlanProblem& plan, int n) {
@@ -22,8 +22,8 @@ PlanProblem WithPartitionSize(const PlanProblem& plan, int n) {
     if (auto* u = std::get_if<UniformParameter>(&rule)) u->n = n;
     else if (auto* a = std::get_if<UniformArcLength>(&rule)) a->n = n;
     else
-      throw std::invalid_argument("'plan.partition[" + std::to_string(i) +
-                                  "]' = explicit is invalid: a convergence study needs uniform partitions (n varies)");
+      internal::ThrowInvalid("plan.partition[" + std::to_string(i) + "]", "explicit",
+                             "a convergence study needs uniform partitions (n varies)");
   }
   return p;
 }
@@ -95,8 +95,7 @@ std::string ConvergenceStudy::BriefReport() const {
 
 ConvergenceStudy RunConvergenceStudy(const ConvergenceProblem& problem, const ConvergenceOptions& options) {
   ValidatePartitionSizes(problem.ns, "ns");
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
+  internal::ThrowIfInvalid(options.Validate());
   std::vector<PlanProblem> plans;
   for (int n : problem.ns) plans.push_back(WithPartitionSize(problem.plan, n));
   ConvergenceStudy out;

@@ -17,8 +17,11 @@ void CheckPoints(const std::vector<Eigen::Vector2d>& p) {
   if (p.size() < 2) internal::ThrowInvalid("points (count)", static_cast<double>(p.size()), "a path needs at least 2 samples");
   for (std::size_t i = 0; i < p.size(); ++i) {
     internal::RequireFinite("points[" + std::to_string(i) + "]", p[i]);
-    if (i > 0 && (p[i] - p[i - 1]).norm() == 0.0)
+    if (i > 0 && p[i] == p[i - 1])
       internal::ThrowInvalid("points[" + std::to_string(i) + "]", p[i].x(), "repeats the previous sample point");
+    if (i > 0 && !((p[i] - p[i - 1]).norm() > 0.0))  // distinct, but the distance underflows
+      internal::ThrowInvalid("points[" + std::to_string(i) + "]", p[i].x(),
+                             "distinct from the previous sample point but closer than double precision resolves");
   }
 }
 }  // namespace

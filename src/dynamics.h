@@ -10,6 +10,7 @@
 #include <string>
 #include <type_traits>
 
+#include "kinematics.h"
 #include "plateball/integration_options.h"
 
 namespace plateball::internal {
@@ -18,24 +19,6 @@ namespace plateball::internal {
 struct StepLimitError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-/// omega_h from (z, K): v0 = <K, z_h>/(z3^2 + lambda |z_h|^2), omega_h = K - (lambda-1) v0 z_h.
-template <typename T>
-inline void OmegaFromZK(const T* z, const T* k, double lambda, T* w) {
-  const T v0 = (k[0] * z[0] + k[1] * z[1]) / (z[2] * z[2] + lambda * (z[0] * z[0] + z[1] * z[1]));
-  w[0] = k[0] - (lambda - 1.0) * v0 * z[0];
-  w[1] = k[1] - (lambda - 1.0) * v0 * z[1];
-}
-
-/// z' = omega x z (omega_3 = 0), x' = omega x e3 = (omega_2, -omega_1).
-template <typename T>
-inline void ZxRhs(const T* z, const T* w, T* dz, T* dx) {
-  dz[0] = w[1] * z[2];
-  dz[1] = -w[0] * z[2];
-  dz[2] = w[0] * z[1] - w[1] * z[0];
-  dx[0] = w[1];
-  dx[1] = -w[0];
-}
 
 /// (z, x) together with their derivatives with respect to s = delta psi:
 /// y = (z[3], x[2], dz/ds[3], dx/ds[2]). K depends on s, z(0) and x(0) do not; the variational
@@ -80,27 +63,51 @@ struct FullRhs {
     double w[2];
     OmegaFromZK(y.data(), k.data(), lambda, w);
     ZxRhs(y.data(), w, dy.data(), dy.data() + 3);
-    // hat(w) with w = (w0, w1, 0): rows (0, 0, w1), (0, 0, -w0), (-w1, w0, 0).
-    const double* p = y.data() + 5;
-    double* d = dy.data() + 5;
-    for (int c = 0; c < 3; ++c) {
-      d[0 + c] = w[1] * p[6 + c];
-      d[3 + c] = -w[0] * p[6 + c];
-      d[6 + c] = -w[1] * p[0 + c] + w[0] * p[3 + c];
-    }
+    RotationRhs(w[0], w[1], y.data() + 5, dy.data() + 5);
   }
 };
 
-/// Integrates y from t0 to t1 (either direction) with a controlled Dormand-Prince 5(4) stepper,
-/// calling observer(t, y) after every accepted step (and at t1). An observer that returns bool
-/// stops the integration by returning false. Returns the time reached (t1 unless stopped).
-/// Throws std::runtime_error when options.max_steps is exceeded or the state stops being finite.
-template <typename State, typename Rhs, typename Observer>
+/// A' = hat(e3 x p'(tau)) A for a planar velocity p'(tau) = velocity(tau): rolling along a curve
+/// (section 2.2), A row-major.
+using RowMajor3x3 = std::array<double, 9>;
+template <typename Velocity>
+struct RollingRhs {
+  Velocity velocity;
+  void operator()(const RowMajor3x3& a, RowMajor3x3& da, double tau) const {
+    double w0, w1;
+    RollingOmega(velocity(tau), &w0, &w1);
+    RotationRhs(w0, w1, a.data(), da.data());
+  }
+};
+template <typename Velocity>
+RollingRhs(Velocity) -> RollingRhs<Velocity>;
+
+/// (z0, x = 0, Phi = I): the start of a free arc.
+inline FullState InitialFullState(const Eigen::Vector3d& z0) {
+  FullState y{};
+  y[0] = z0.x();
+  y[1] = z0.y();
+  y[2] = z0.z();
+  y[5] = y[9] = y[13] = 1.0;
+  return y;
+}
+
+/// Integrates y from t0 to t1 (either direction) with a controlled explicit Runge-Kutta stepper
+/// (Dormand-Prince 5(4) unless another odeint error stepper is named), calling observer(t, y)
+/// after every accepted step (and at t1). An observer that returns bool stops the integration by
+/// returning false. Returns the time reached (t1 unless stopped). Throws StepLimitError when
+/// options.max_steps is exceeded, std::runtime_error when the state stops being finite or the step
+/// underflows. The one adaptive loop of the library.
+// Boost 1.74's generic RK steppers (rkf78) trip GCC's -Wuninitialized on their unused copy constructor.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+template <typename Stepper = void, typename State, typename Rhs, typename Observer>
 double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double dt0,
                          const IntegrationOptions& options, Observer&& observer) {
   namespace odeint = boost::numeric::odeint;
-  using Stepper = odeint::runge_kutta_dopri5<State>;
-  auto stepper = odeint::make_controlled(options.absolute_tolerance, options.relative_tolerance, Stepper());
+  using ErrorStepper = std::conditional_t<std::is_void_v<Stepper>, odeint::runge_kutta_dopri5<State>, Stepper>;
+  auto stepper = odeint::make_controlled(options.absolute_tolerance, options.relative_tolerance, ErrorStepper());
   const double dir = t1 >= t0 ? 1.0 : -1.0;
   double t = t0;
   double dt = dir * std::min(std::abs(dt0), std::abs(t1 - t0));
@@ -126,6 +133,7 @@ double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double 
   }
   return t;
 }
+#pragma GCC diagnostic pop
 
 template <typename State, typename Rhs>
 double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double dt0,

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "check.h"
@@ -104,7 +105,7 @@ Elastica::Elastica(const ElasticaParameters& parameters) : p_(parameters) {
   if (!(std::abs(p_.modulus) < 1.0))
     internal::ThrowInvalid("modulus", p_.modulus, "|modulus| must be < 1 (the separatrix k = 1 has an infinite period)");
   k_ = std::abs(p_.modulus);
-  agm_ = internal::JacobiAgm(k_);
+  agm_ = std::make_shared<const internal::JacobiAgm>(k_);
   kk_ = boost::math::ellint_1(k_, FastPolicy());
   dk_ = boost::math::ellint_d(k_, FastPolicy());
   const double r = p_.rate;
@@ -176,7 +177,7 @@ Elastica::Jacobi Elastica::Eval(double u) const {
   const double quarter4 = 4.0 * kk_;
   const double r = u - quarter4 * std::round(u / quarter4);
   Jacobi j{};
-  internal::JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);
+  internal::JacobiSnCnDn(r, *agm_, &j.sn, &j.cn, &j.dn);
   return j;
 }
 
@@ -184,7 +185,7 @@ double Elastica::IntegralSn2(double u) const {
   const double m = std::round(u / (2.0 * kk_));
   const double r = u - 2.0 * kk_ * m;  // |r| <= K: cn(r) >= 0
   double sn = 0, cn = 0, dn = 0;
-  internal::JacobiSnCnDn(r, agm_, &sn, &cn, &dn);
+  internal::JacobiSnCnDn(r, *agm_, &sn, &cn, &dn);
   return 2.0 * m * dk_ + boost::math::ellint_d(k_, std::atan2(sn, cn), FastPolicy());
 }
 
@@ -192,7 +193,7 @@ double Elastica::AmplitudeOf(double u) const {
   const double m = std::round(u / (2.0 * kk_));
   const double r = u - 2.0 * kk_ * m;
   double sn = 0, cn = 0, dn = 0;
-  internal::JacobiSnCnDn(r, agm_, &sn, &cn, &dn);
+  internal::JacobiSnCnDn(r, *agm_, &sn, &cn, &dn);
   return m * M_PI + std::atan2(sn, cn);
 }
 

@@ -26,21 +26,21 @@ std::string ToString(ExactArrivalStatus status) {
 }
 
 std::string ExactArrivalOptions::Validate() const {
-  auto bad = [](const std::string& field, double v, const std::string& what) {
-    return "exact option '" + field + "' = " + internal::FormatNumber(v) + " is invalid: " + what;
-  };
+  using internal::InvalidValueMessage;
   if (!(std::isfinite(position_tolerance) && position_tolerance > 0))
-    return bad("position_tolerance", position_tolerance, "must be finite and > 0");
+    return InvalidValueMessage("position_tolerance", position_tolerance, "must be finite and > 0");
   if (!(std::isfinite(orientation_tolerance) && orientation_tolerance > 0))
-    return bad("orientation_tolerance", orientation_tolerance, "must be finite and > 0");
-  if (max_iterations < 1) return bad("max_iterations", max_iterations, "must be >= 1");
-  if (!(std::isfinite(difference_step) && difference_step > 0 && difference_step < 1))
-    return bad("difference_step", difference_step, "must be in (0, 1)");
+    return InvalidValueMessage("orientation_tolerance", orientation_tolerance, "must be finite and > 0");
+  if (max_iterations < 1 || max_iterations > kMaxIterations)
+    return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, " + std::to_string(kMaxIterations) + "]");
   if (!(std::isfinite(deviation_tolerance) && deviation_tolerance >= 0))
-    return bad("deviation_tolerance", deviation_tolerance, "must be finite and >= 0");
+    return InvalidValueMessage("deviation_tolerance", deviation_tolerance, "must be finite and >= 0");
+  if (!(std::isfinite(difference_step) && difference_step > 0 && difference_step < 1))
+    return InvalidValueMessage("difference_step", difference_step, "must be in (0, 1)");
   std::string e = integration.Validate();
-  if (e.empty()) e = jacobian_integration.Validate();
-  if (!e.empty()) return e;
+  if (!e.empty()) return "integration." + e;
+  e = jacobian_integration.Validate();
+  if (!e.empty()) return "jacobian_integration." + e;
   return warm_start.Validate();
 }
 
@@ -153,15 +153,21 @@ bool Arrived(const Eigen::VectorXd& r, const ExactArrivalOptions& o) {
 double Merit(const Eigen::VectorXd& r) { return r.head<5>().norm(); }
 
 void ValidateProblem(const ExactArrivalProblem& p) {
-  if (p.impulses < 3)
-    internal::ThrowInvalid("impulses", p.impulses, "must be >= 3 (2n unknowns for the 5 arrival conditions)");
-  internal::RequirePositive("mu", p.mu);
-  internal::RequireFinite("x0", p.x0);
-  internal::RequireFinite("x1", p.x1);
-  if (!IsRotation(p.A0, 1e-9)) internal::ThrowInvalid("A0", p.A0.determinant(), "not a rotation matrix (to 1e-9)");
-  if (!IsRotation(p.A1, 1e-9)) internal::ThrowInvalid("A1", p.A1.determinant(), "not a rotation matrix (to 1e-9)");
+  if (p.impulses < 3 || p.impulses > kMaxExactImpulses)
+    internal::ThrowInvalid("impulses", p.impulses,
+                           "must be in [3, " + std::to_string(kMaxExactImpulses) +
+                               "] (2n unknowns for the 5 arrival conditions; the Jacobian costs n^2 arcs)");
+  internal::RequireEnergy("mu", p.mu);
+  internal::RequireCoordinates("x0", p.x0);
+  internal::RequireCoordinates("x1", p.x1);
+  internal::RequireFinite("A0", p.A0);
+  internal::RequireFinite("A1", p.A1);
+  if (!IsRotation(p.A0, 1e-9)) internal::ThrowInvalid("A0", "(matrix)", "not a rotation matrix (to 1e-9)");
+  if (!IsRotation(p.A1, 1e-9)) internal::ThrowInvalid("A1", "(matrix)", "not a rotation matrix (to 1e-9)");
   const double miss = (p.reference.StartPoint() - p.x0).norm();
-  if (miss > 1e-9) internal::ThrowInvalid("x0", miss, "distance from the reference's start must be <= 1e-9");
+  if (!(miss <= 1e-9 * std::max(1.0, p.reference.Length())))
+    internal::ThrowInvalid("x0", "(" + internal::FormatNumber(p.x0.x()) + ", " + internal::FormatNumber(p.x0.y()) + ")",
+                           "must equal the reference's start point (to 1e-9 of its length)");
 }
 
 // The summary's per-impulse report and errors from the final parameters.

@@ -15,29 +15,14 @@ namespace {
 using internal::FullState;
 
 void ValidateStart(const FreeMotionStart& s, const IntegrationOptions& options) {
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
+  internal::ThrowIfInvalid(options.Validate());
   ValidateState(s.state, "start.state");
-  internal::RequireFinite("start.x0", s.x0);
-  if (!IsRotation(s.A0, 1e-9)) throw std::invalid_argument("start.A0 is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+  internal::RequireCoordinates("start.x0", s.x0);
+  if (!IsRotation(s.A0, 1e-9))
+    internal::ThrowInvalid("start.A0", "(matrix)", "not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
   if (std::abs(s.A0.col(2).dot(s.state.z) - 1.0) > 1e-9)
-    throw std::invalid_argument("start.A0 e3 must equal start.state.z (the symmetry axis); |A0 e3 - z| = " +
-                                std::to_string((s.A0.col(2) - s.state.z).norm()));
-}
-
-FullState InitialFull(const Eigen::Vector3d& z) {
-  FullState y{};
-  y[0] = z.x();
-  y[1] = z.y();
-  y[2] = z.z();
-  y[5] = y[9] = y[13] = 1.0;  // Phi(0) = I, x(0) = 0
-  return y;
-}
-
-Eigen::Matrix3d PhiOf(const double* y) {
-  Eigen::Matrix3d m;
-  m << y[5], y[6], y[7], y[8], y[9], y[10], y[11], y[12], y[13];
-  return m;
+    internal::ThrowInvalid("start.A0 (|A0 e3 - z|)", (s.A0.col(2) - s.state.z).norm(),
+                           "A0 e3 must equal start.state.z (the symmetry axis)");
 }
 
 MotionSample MakeSample(double t, const double* y, const Eigen::Vector2d& x, const Eigen::Matrix3d& A,
@@ -63,7 +48,7 @@ FreeMotion::FreeMotion(const BallModel& model, const FreeMotionStart& start, con
   period_ = 2.0 * M_PI / std::sqrt(mu_);
   k_ = ConservedMomentum(start.state, model);
   internal::FullRhs rhs{model.lambda(), {k_.x(), k_.y()}};
-  FullState y = InitialFull(start.state.z);
+  FullState y = internal::InitialFullState(start.state.z);
   checkpoint_t_.push_back(0.0);
   checkpoint_y_.push_back(y);
   internal::IntegrateAdaptive(rhs, y, 0.0, period_, period_ / 64.0, options_, [&](double t, const FullState& s) {
@@ -72,7 +57,7 @@ FreeMotion::FreeMotion(const BallModel& model, const FreeMotionStart& start, con
   });
   checkpoint_t_.back() = period_;
   drift_ = Eigen::Vector2d(y[3], y[4]);
-  monodromy_ = ProjectToSO3(PhiOf(y.data()));
+  monodromy_ = ProjectToSO3(internal::MatrixFromRowMajor(y.data() + 5));
   monodromy_log_ = LogSO3(monodromy_);
 }
 
@@ -82,20 +67,8 @@ FreeMotion FreeMotion::FromAngles(const BallModel& model, const AngleState& angl
   FreeMotionStart s;
   s.state = StateFromAngles(angles, mu, model);
   s.x0 = x0;
-  // If A0 does not carry z on its third column, rotate it minimally so that A0 e3 = z: the
-  // angles fix z, A0 fixes the rest of the frame.
-  Eigen::Matrix3d a = A0;
-  internal::RequireFinite("A0", a);
-  if (!IsRotation(a, 1e-9)) throw std::invalid_argument("A0 is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
-  const Eigen::Vector3d e = a.col(2);
-  const Eigen::Vector3d axis = e.cross(s.state.z);
-  const double angle = std::atan2(axis.norm(), e.dot(s.state.z));
-  if (axis.norm() > 1e-15) {
-    a = ExpSO3(axis.normalized() * angle) * a;
-  } else if (e.dot(s.state.z) < 0) {
-    a = ExpSO3(a.col(0) * M_PI) * a;
-  }
-  s.A0 = a;
+  // If A0 does not carry z on its third column, rotate it minimally so that A0 e3 = z.
+  s.A0 = internal::RotateAxisOnto(A0, s.state.z);
   return FreeMotion(model, s, options);
 }
 
@@ -137,7 +110,7 @@ MotionSample FreeMotion::At(double t) const {
   const double angle = monodromy_log_.norm();
   const Eigen::Matrix3d phi_k =
       angle > 0 ? ExpSO3(std::fmod(kf * angle, 2.0 * M_PI) / angle * monodromy_log_) : Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d A = ProjectToSO3(PhiOf(y) * phi_k * start_.A0);
+  const Eigen::Matrix3d A = ProjectToSO3(internal::MatrixFromRowMajor(y + 5) * phi_k * start_.A0);
   return MakeSample(t, y, x, A, k_, model_);
 }
 
@@ -153,7 +126,8 @@ Eigen::Vector2d FreeMotion::PositionAt(double t) const {
 std::vector<MotionSample> FreeMotion::Sample(double t0, double t1, int n) const {
   internal::RequireFinite("t0", t0);
   internal::RequireFinite("t1", t1);
-  if (n < 2) internal::ThrowInvalid("samples", n, "must be >= 2");
+  if (n < 2 || n > internal::kMaxSamples)
+    internal::ThrowInvalid("samples", n, "must be in [2, " + std::to_string(internal::kMaxSamples) + "]");
   if (!(t1 >= t0)) internal::ThrowInvalid("t1", t1, "must be >= t0");
   std::vector<MotionSample> out;
   out.reserve(static_cast<std::size_t>(n));
@@ -170,7 +144,7 @@ std::vector<MotionSample> IntegrateFreeMotion(const BallModel& model, const Free
   }
   const Eigen::Vector2d k = ConservedMomentum(start.state, model);
   internal::FullRhs rhs{model.lambda(), {k.x(), k.y()}};
-  FullState y = InitialFull(start.state.z);
+  FullState y = internal::InitialFullState(start.state.z);
   std::vector<MotionSample> out;
   double t = 0.0;
   double dt = 0.01;
@@ -185,7 +159,7 @@ std::vector<MotionSample> IntegrateFreeMotion(const BallModel& model, const Free
       dt = std::max(last_dt, 1e-6);
       t = target;
     }
-    const Eigen::Matrix3d A = ProjectToSO3(PhiOf(y.data()) * start.A0);
+    const Eigen::Matrix3d A = ProjectToSO3(internal::MatrixFromRowMajor(y.data() + 5) * start.A0);
     out.push_back(MakeSample(t, y.data(), start.x0 + Eigen::Vector2d(y[3], y[4]), A, k, model));
   }
   return out;

@@ -18,29 +18,6 @@
 namespace plateball {
 namespace {
 
-using Mat9 = std::array<double, 9>;
-
-// A' = hat(e3 x p'(tau)) A along one smooth piece (rolling.h, RollingReorientation), integrated
-// segment by segment with the step size carried over, so that each A(tau_k) costs about one step.
-struct CurveRollingRhs {
-  const SmoothCurve* curve;
-  void operator()(const Mat9& y, Mat9& dy, double tau) const {
-    const Eigen::Vector2d v = curve->Derivative(tau);
-    const double w0 = -v.y(), w1 = v.x();
-    for (int c = 0; c < 3; ++c) {
-      dy[0 + c] = w1 * y[6 + c];
-      dy[3 + c] = -w0 * y[6 + c];
-      dy[6 + c] = -w1 * y[0 + c] + w0 * y[3 + c];
-    }
-  }
-};
-
-Eigen::Matrix3d ToMatrix(const Mat9& y) {
-  Eigen::Matrix3d m;
-  m << y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], y[8];
-  return m;
-}
-
 // One Newton-Schulz step towards the nearest rotation: removes the O(1e-16) drift of a product of
 // rotations at the cost of two 3x3 products (ProjectToSO3, an SVD, is used once at the end).
 Eigen::Matrix3d Reorthonormalize(const Eigen::Matrix3d& r) {
@@ -60,7 +37,8 @@ std::string ToString(PlanStatus status) {
 }
 
 std::string PlanOptions::Validate() const {
-  if (bound_samples < 2) return "plan option 'bound_samples' = " + std::to_string(bound_samples) + " must be >= 2";
+  if (bound_samples < 2 || bound_samples > 100000)
+    return internal::InvalidValueMessage("bound_samples", bound_samples, "must be in [2, 100000]");
   std::string e = join.Validate();
   if (!e.empty()) return e;
   if (reach_fallback) {
@@ -81,77 +59,220 @@ std::string PlanSummary::BriefReport() const {
   return os.str();
 }
 
-Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
-  internal::RequireFinite("A0", A0);
-  if (!IsRotation(A0, 1e-9)) throw std::invalid_argument("'A0' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
-  Eigen::Matrix3d a = A0;
-  const Eigen::Vector3d e = a.col(2);
-  const Eigen::Vector3d axis = e.cross(z);
-  const double angle = std::atan2(axis.norm(), e.dot(z));
-  if (axis.norm() > 1e-15) {
-    a = ExpSO3(axis.normalized() * angle) * a;
-  } else if (e.dot(z) < 0) {
-    a = ExpSO3(a.col(0) * M_PI) * a;
-  }
-  return ProjectToSO3(a);
-}
+namespace {
 
-// The plan for explicit per-piece partitions (PlanImpulses unpacks its problem into this).
-static PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
-                                   const Path& path, const std::vector<std::vector<double>>& partition,
-                                   const std::vector<EnergyChange>& energy_changes, const PlanOptions& options) {
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
-  internal::RequirePositive("mu", mu);
-  BallState state = StateFromAngles(initial, mu, model);  // validates the angles
+// What the validation of a plan hands on: the reduced initial angles, n, and the
+// energy-changing factors of each global segment index.
+struct PlanInput {
+  AngleState initial;
+  int n_total = 0;
+  std::vector<std::vector<double>> factors;
+};
+
+// The public boundary, checked once: options, mu, angles (reduced mod 2 pi), the partition of
+// every piece, the energy-change indices and factors.
+PlanInput ValidatePlan(const AngleState& initial, double mu, const Path& path,
+                       const std::vector<std::vector<double>>& partition,
+                       const std::vector<EnergyChange>& energy_changes, const PlanOptions& options) {
+  internal::ThrowIfInvalid(options.Validate());
+  internal::RequireEnergy("mu", mu);
+  PlanInput in;
+  in.initial = internal::ReduceAngles("initial", initial);
   if (static_cast<int>(partition.size()) != path.PieceCount())
     internal::ThrowInvalid("partition (piece count)", static_cast<double>(partition.size()),
                            "must equal the number of path pieces " + std::to_string(path.PieceCount()));
-  int n_total = 0;
   for (int i = 0; i < path.PieceCount(); ++i) {
     ValidatePartition(path.pieces()[i], partition[i], "partition[" + std::to_string(i) + "]");
-    n_total += static_cast<int>(partition[i].size()) - 1;
+    in.n_total += static_cast<int>(partition[i].size()) - 1;
+    if (in.n_total > internal::kMaxPartitionSteps)  // README, "Limits"
+      internal::ThrowInvalid("partition (steps)", in.n_total, "must be <= " + std::to_string(internal::kMaxPartitionSteps));
   }
-  std::vector<std::vector<double>> factors(static_cast<std::size_t>(n_total));
+  in.factors.resize(static_cast<std::size_t>(in.n_total));
   for (std::size_t i = 0; i < energy_changes.size(); ++i) {
     const std::string f = "energy_changes[" + std::to_string(i) + "]";
     const EnergyChange& e = energy_changes[i];
-    if (e.index < 0 || e.index >= n_total)
-      internal::ThrowInvalid(f + ".index", e.index, "must be a partition index in [0, " + std::to_string(n_total) + ")");
+    if (e.index < 0 || e.index >= in.n_total)
+      internal::ThrowInvalid(f + ".index", e.index, "must be a partition index in [0, " + std::to_string(in.n_total) + ")");
     internal::RequirePositive(f + ".factor", e.factor);
-    factors[static_cast<std::size_t>(e.index)].push_back(e.factor);
+    in.factors[static_cast<std::size_t>(e.index)].push_back(e.factor);
   }
+  return in;
+}
 
+// The state carried from segment to segment: the ball, its energy, the contact point, the clock,
+// the canonical angles of the ball (computed once per arrival) and the three orientations that
+// Theorems 2.5 and 2.6 compare.
+struct PlanCursor {
+  BallState state;
+  AngleState angles;
+  double mu = 0.0;
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  double time = 0.0;
+  Eigen::Matrix3d a_ref, a_poly, a_imp;
+  internal::RowMajor3x3 ref{};  // A(tau) integrated along the current piece
+  double ref_dt = 0.0;          // its step size, carried from segment to segment
+};
+
+// "segment g (piece p, k = k): " and the like, for the failure messages.
+std::string SegmentName(const PlanStep& s) {
+  return "segment " + std::to_string(s.global_index) + " (piece " + std::to_string(s.piece) + ", k = " +
+         std::to_string(s.index) + ")";
+}
+
+// Energy-changing impulses at p(tau_k) (the paper's remark): scale |omega|, keep its direction
+// (the angles do not change). The energy is tracked nominally: it is a constant of the free
+// motion, and recomputing it from the integrated state would let round-off drift into it.
+void ApplyEnergyChanges(const BallModel& model, const std::vector<double>& factors, PlanCursor* cur, PlanStep* s) {
+  for (double f : factors) {
+    const Impulse e = EnergyChangingImpulse(s->angles_before, cur->mu, f, model);
+    s->energy_changes.push_back(e);
+    cur->mu = e.mu_after;
+    cur->state = e.state_after;
+  }
+  s->mu = cur->mu;
+}
+
+// The impulse at p(tau_k) and the free arc with its orientation, integrated directly over
+// [0, t_k]. Returns the arc; the step records the join and the arrival.
+internal::ArcEnd FlyArc(const BallModel& model, const JoinSummary& j, const PlanOptions& options, PlanCursor* cur,
+                        PlanStep* s) {
+  s->delta_psi = j.delta_psi;
+  s->duration = j.t;
+  s->impulse = j.impulse;
+  s->delta_omega = j.impulse.delta_omega;
+  s->plate_velocity_change = j.impulse.plate_velocity_change;
+  const BallState after_impulse = j.impulse.state_after;
+  const Eigen::Vector2d k_mom = ConservedMomentum(after_impulse, model);
+  const internal::ArcEnd arc = internal::IntegrateArc(model.lambda(), after_impulse.z, k_mom, j.t, options.integration);
+  cur->x += arc.dx;
+  cur->a_imp = Reorthonormalize(arc.phi * cur->a_imp);
+  cur->state = {arc.z, OmegaFromMomentum(arc.z, k_mom, model)};
+  cur->angles = AnglesFromState(cur->state, model);
+  s->state_after = cur->state;
+  s->angles_after = cur->angles;
+  s->x_end = cur->x;
+  s->pass_miss = (cur->x - s->p_end).norm();
+  s->arc_max_speed = arc.max_speed;
+  s->arc_max_acceleration = arc.max_acceleration;
+  return arc;
+}
+
+// The planned A(tau_k+1) (rolling along the curve, one integration carried through the partition
+// points so that each costs about one step) and the polyline's Abar_k+1.
+void AdvanceReferences(const SmoothCurve& curve, const PlanOptions& options, PlanCursor* cur, PlanStep* s) {
+  const internal::RollingRhs rhs{[&curve](double tau) { return curve.Derivative(tau); }};
+  double last = s->tau_begin;
+  internal::IntegrateAdaptive(rhs, cur->ref, s->tau_begin, s->tau_end, cur->ref_dt, options.integration,
+                              [&](double tau, const internal::RowMajor3x3&) {
+                                if (tau < s->tau_end) cur->ref_dt = tau - last;
+                                last = tau;
+                              });
+  cur->a_ref = Reorthonormalize(internal::MatrixFromRowMajor(cur->ref.data()));
+  cur->a_poly = Reorthonormalize(RollAlongSegment(s->p_begin, s->p_end) * cur->a_poly);
+  s->A_planned = cur->a_ref;
+  s->A_polyline = cur->a_poly;
+  s->A_impulsive = cur->a_imp;
+}
+
+// The measured derivative maxima of the segment and its terms of the bounds.
+void AddBounds(const SmoothCurve& curve, const internal::ArcEnd& arc, const JoinSummary& j, const PlanOptions& options,
+               PlanStep* s, ErrorBounds* b) {
+  SegmentMeasures m;
+  m.h = s->tau_end - s->tau_begin;
+  m.chord = (s->p_end - s->p_begin).norm();
+  m.path = EstimateCurveDerivativeBounds(curve, s->tau_begin, s->tau_end, options.bound_samples);
+  m.arc_time = j.t;
+  m.arc_max_speed = arc.max_speed;
+  m.arc_max_acceleration = arc.max_acceleration;
+  s->path_max_speed = m.path.max_speed;
+  s->path_max_acceleration = m.path.max_acceleration;
+  s->path_bound = SegmentBound(m.path.max_speed, m.path.max_acceleration, m.h);
+  s->arc_bound = SegmentBound(arc.max_speed, arc.max_acceleration, j.t);
+  AccumulateSegment(m, b);
+}
+
+// One segment k of a piece: energy changes, the join to p(tau_k+1), the arc, the references and
+// the bounds. False (with out->status and out->message set) when the plan cannot go on.
+bool PlanSegment(const BallModel& model, const SmoothCurve& curve, const std::vector<double>& factors,
+                 const PlanOptions& options, PlanCursor* cur, PlanStep* s, PlanSummary* out) {
+  s->p_begin = curve.Value(s->tau_begin);
+  s->p_end = curve.Value(s->tau_end);
+  s->t_impulse = cur->time;
+  s->state_before = cur->state;
+  s->angles_before = cur->angles;
+  ApplyEnergyChanges(model, factors, cur, s);
+  const JoinSummary j = internal::ConnectPoints(model, s->angles_before, cur->mu, cur->x, s->p_end, options.join,
+                                                options.reach_fallback ? &options.reach : nullptr,
+                                                &s->reached_globally);
+  s->join_status = j.status;
+  s->join_residual = j.residual;
+  s->join_iterations = j.iterations;
+  if (!j.IsSolutionUsable()) {
+    out->status = j.status == JoinStatus::kIntegrationFailure ? PlanStatus::kIntegrationFailure
+                                                              : PlanStatus::kSegmentBeyondLocalRadius;
+    out->message = SegmentName(*s) + ": " + j.BriefReport();
+    return false;
+  }
+  internal::ArcEnd arc;
+  try {
+    arc = FlyArc(model, j, options, cur, s);
+  } catch (const std::runtime_error& e) {
+    out->status = PlanStatus::kIntegrationFailure;
+    out->message = "segment " + std::to_string(s->global_index) + ": " + e.what();
+    return false;
+  }
+  try {
+    AdvanceReferences(curve, options, cur, s);
+  } catch (const std::runtime_error& e) {
+    out->status = PlanStatus::kIntegrationFailure;
+    out->message = "segment " + std::to_string(s->global_index) + " (rolling reference): " + e.what();
+    return false;
+  }
+  AddBounds(curve, arc, j, options, s, &out->bounds);
+  cur->time += j.t;
+  out->max_pass_miss = std::max(out->max_pass_miss, s->pass_miss);
+  out->max_join_residual = std::max(out->max_join_residual, j.residual);
+  return true;
+}
+
+// The bounds from the accumulated constants, the final orientations and their errors.
+void FinishPlan(const PlanCursor& cur, int n_total, PlanSummary* out) {
+  CompleteBounds(n_total, &out->bounds);
+  out->total_time = cur.time;
+  out->A_planned = ProjectToSO3(cur.a_ref);
+  out->A_polyline = ProjectToSO3(cur.a_poly);
+  out->A_impulsive = ProjectToSO3(cur.a_imp);
+  out->measured_error = OperatorNormDistance(out->A_planned, out->A_impulsive);
+  out->polyline_error = OperatorNormDistance(out->A_planned, out->A_polyline);
+  out->final_state = cur.state;
+  out->mu_final = cur.mu;
+}
+
+// The plan for explicit per-piece partitions (PlanImpulses unpacks its problem into this).
+PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
+                            const Path& path, const std::vector<std::vector<double>>& partition,
+                            const std::vector<EnergyChange>& energy_changes, const PlanOptions& options) {
+  const PlanInput in = ValidatePlan(initial, mu, path, partition, energy_changes, options);
   PlanSummary out;
   out.status = PlanStatus::kSuccess;  // until a segment fails
   out.message.clear();
   out.pieces = path.PieceCount();
-  out.segments = n_total;
+  out.segments = in.n_total;
   out.mu_initial = mu;
-  out.A0 = AlignOrientationToAxis(A0, state.z);
-  out.steps.reserve(static_cast<std::size_t>(n_total));
-
-  Eigen::Matrix3d a_ref = out.A0, a_poly = out.A0, a_imp = out.A0;
-  Eigen::Vector2d x = path.StartPoint();
-  double time = 0.0;
-  double mu_now = mu;
-  ErrorBoundConstants& c = out.bounds.constants;
-  ErrorBounds& b = out.bounds;
+  PlanCursor cur;
+  cur.state = StateFromAngles(in.initial, mu, model);
+  cur.angles = AnglesFromState(cur.state, model);
+  cur.mu = mu;
+  cur.x = path.StartPoint();
+  out.A0 = AlignOrientationToAxis(A0, cur.state.z);
+  cur.a_ref = cur.a_poly = cur.a_imp = out.A0;
+  out.steps.reserve(static_cast<std::size_t>(in.n_total));
   int g = 0;
-  const double lambda = model.lambda();
-
   for (int piece = 0; piece < path.PieceCount() && out.status == PlanStatus::kSuccess; ++piece) {
     const SmoothCurve& curve = path.pieces()[piece];
     const std::vector<double>& taus = partition[piece];
-    // Reference A(tau) along this piece: one integration carried through the partition points.
-    Mat9 ref{};
-    {
-      const Eigen::Matrix3d a = a_ref;
-      for (int r = 0; r < 3; ++r)
-        for (int q = 0; q < 3; ++q) ref[3 * r + q] = a(r, q);
-    }
-    const CurveRollingRhs ref_rhs{&curve};
-    double ref_dt = taus[1] - taus[0];
+    internal::RowMajorFromMatrix(cur.a_ref, cur.ref.data());
+    cur.ref_dt = taus[1] - taus[0];
     for (std::size_t k = 0; k + 1 < taus.size(); ++k, ++g) {
       PlanStep s;
       s.piece = piece;
@@ -159,135 +280,16 @@ static PlanSummary PlanPartitioned(const BallModel& model, const AngleState& ini
       s.global_index = g;
       s.tau_begin = taus[k];
       s.tau_end = taus[k + 1];
-      s.p_begin = curve.Value(s.tau_begin);
-      s.p_end = curve.Value(s.tau_end);
-      s.t_impulse = time;
-      s.state_before = state;
-      s.angles_before = AnglesFromState(state, model);
-      // Energy-changing impulses (the paper's remark): scale |omega|, keep its direction (the
-      // angles do not change).
-      for (double f : factors[static_cast<std::size_t>(g)]) {
-        const Impulse e = EnergyChangingImpulse(s.angles_before, mu_now, f, model);
-        s.energy_changes.push_back(e);
-        mu_now = e.mu_after;
-        state = e.state_after;
-      }
-      s.mu = mu_now;
-
-      // The energy is tracked nominally (it is a constant of the free motion; recomputing it from
-      // the integrated state would let round-off drift into it).
-      const JoinSummary j = internal::ConnectPoints(model, s.angles_before, mu_now, x, s.p_end, options.join,
-                                                    options.reach_fallback ? &options.reach : nullptr,
-                                                    &s.reached_globally);
-      s.join_status = j.status;
-      s.join_residual = j.residual;
-      s.join_iterations = j.iterations;
-      if (!j.IsSolutionUsable()) {
-        out.status = j.status == JoinStatus::kIntegrationFailure ? PlanStatus::kIntegrationFailure
-                                                                 : PlanStatus::kSegmentBeyondLocalRadius;
-        out.message = "segment " + std::to_string(g) + " (piece " + std::to_string(piece) + ", k = " +
-                      std::to_string(k) + "): " + j.BriefReport();
-        out.steps.push_back(s);
-        break;
-      }
-      s.delta_psi = j.delta_psi;
-      s.duration = j.t;
-      s.impulse = j.impulse;
-      s.delta_omega = j.impulse.delta_omega;
-      s.plate_velocity_change = j.impulse.plate_velocity_change;
-
-      // The free arc with its orientation, integrated directly over [0, t_k].
-      const BallState after_impulse = j.impulse.state_after;
-      const Eigen::Vector2d k_mom = ConservedMomentum(after_impulse, model);
-      internal::ArcEnd arc;
-      try {
-        arc = internal::IntegrateArc(lambda, after_impulse.z, k_mom, j.t, options.integration);
-      } catch (const std::runtime_error& e) {
-        out.status = PlanStatus::kIntegrationFailure;
-        out.message = "segment " + std::to_string(g) + ": " + e.what();
-        out.steps.push_back(s);
-        break;
-      }
-      x = x + arc.dx;
-      a_imp = Reorthonormalize(arc.phi * a_imp);
-      state = {arc.z, OmegaFromMomentum(arc.z, k_mom, model)};
-      s.state_after = state;
-      s.angles_after = AnglesFromState(state, model);
-      s.x_end = x;
-      s.pass_miss = (x - s.p_end).norm();
-      s.arc_max_speed = arc.max_speed;
-      s.arc_max_acceleration = arc.max_acceleration;
-
-      // The orientations compared by Theorems 2.5 and 2.6.
-      try {
-        double last = s.tau_begin;
-        internal::IntegrateAdaptive(ref_rhs, ref, s.tau_begin, s.tau_end, ref_dt, options.integration,
-                                    [&](double tau, const Mat9&) {
-                                      if (tau < s.tau_end) ref_dt = tau - last;
-                                      last = tau;
-                                    });
-      } catch (const std::runtime_error& e) {
-        out.status = PlanStatus::kIntegrationFailure;
-        out.message = "segment " + std::to_string(g) + " (rolling reference): " + e.what();
-        out.steps.push_back(s);
-        break;
-      }
-      a_ref = Reorthonormalize(ToMatrix(ref));
-      a_poly = Reorthonormalize(RollAlongSegment(s.p_begin, s.p_end) * a_poly);
-      s.A_planned = a_ref;
-      s.A_polyline = a_poly;
-      s.A_impulsive = a_imp;
-
-      // Bounds and constants.
-      const double h = s.tau_end - s.tau_begin;
-      const double chord = (s.p_end - s.p_begin).norm();
-      const CurveDerivativeBounds pb = EstimateCurveDerivativeBounds(curve, s.tau_begin, s.tau_end, options.bound_samples);
-      s.path_max_speed = pb.max_speed;
-      s.path_max_acceleration = pb.max_acceleration;
-      s.path_bound = SegmentBound(pb.max_speed, pb.max_acceleration, h);
-      s.arc_bound = SegmentBound(arc.max_speed, arc.max_acceleration, j.t);
-      b.a_posteriori_path += s.path_bound;
-      b.a_posteriori_arcs += s.arc_bound;
-      b.sum_dtau_cubed += h * h * h;
-      b.parameter_norm = std::max(b.parameter_norm, h);
-      c.K_p = std::max(c.K_p, pb.max_acceleration);
-      c.M_prime_p = std::max(c.M_prime_p, pb.max_speed);
-      c.C_p = std::max(c.C_p, h / chord);
-      c.M_prime = std::max(c.M_prime, arc.max_speed);
-      c.K_10 = std::max(c.K_10, 0.5 * arc.max_acceleration);
-      c.K1 = std::max(c.K1, j.t / chord);
-
-      out.max_pass_miss = std::max(out.max_pass_miss, s.pass_miss);
-      out.max_join_residual = std::max(out.max_join_residual, j.residual);
-      time += j.t;
+      const bool ok = PlanSegment(model, curve, in.factors[static_cast<std::size_t>(g)], options, &cur, &s, &out);
       out.steps.push_back(std::move(s));
+      if (!ok) break;
     }
   }
-
-  c.K_bar_p = c.K_p * c.M_prime_p;
-  c.D_p = c.M_prime_p;
-  c.K_tilde = 2.0 * c.K_10 * c.M_prime;
-  c.K_tilde_p = c.K_tilde * std::pow(c.K1 * c.D_p, 3);
-  b.segments = n_total;
-  b.theorem_2_5 = c.K_bar_p * b.sum_dtau_cubed;
-  b.corollary_2 = c.K_bar_p * n_total * std::pow(b.parameter_norm, 3);
-  b.theorem_2_6 = (c.K_bar_p + c.K_tilde_p) * b.sum_dtau_cubed;
-  b.corollary_3 = (c.K_bar_p + c.K_tilde_p) * n_total * std::pow(b.parameter_norm, 3);
-  b.a_posteriori = b.a_posteriori_path + b.a_posteriori_arcs;
-
-  out.total_time = time;
-  a_ref = ProjectToSO3(a_ref);
-  a_poly = ProjectToSO3(a_poly);
-  a_imp = ProjectToSO3(a_imp);
-  out.A_planned = a_ref;
-  out.A_polyline = a_poly;
-  out.A_impulsive = a_imp;
-  out.measured_error = OperatorNormDistance(a_ref, a_imp);
-  out.polyline_error = OperatorNormDistance(a_ref, a_poly);
-  out.final_state = state;
-  out.mu_final = mu_now;
+  FinishPlan(cur, in.n_total, &out);
   return out;
 }
+
+}  // namespace
 
 PlanSummary PlanImpulses(const PlanProblem& problem, const PlanOptions& options) {
   const std::vector<std::vector<double>> partition = MakePartition(problem.path, problem.partition, "partition");

@@ -333,16 +333,18 @@ bool SameSolution(const Candidate& a, const Candidate& b, double tol) {
 }
 
 void ValidateProblem(const IsoparallelProblem& problem) {
-  internal::RequireFinite("start", problem.start);
-  internal::RequireFinite("goal", problem.goal);
+  internal::RequireCoordinates("start", problem.start);
+  internal::RequireCoordinates("goal", problem.goal);
   internal::RequireFinite("start_orientation", problem.start_orientation);
   internal::RequireFinite("goal_orientation", problem.goal_orientation);
-  if ((problem.goal - problem.start).norm() == 0.0)
-    throw std::invalid_argument("'goal' equals 'start': the isoparallel rotation trick needs |x1 - x0| > 0");
+  const double chord = (problem.goal - problem.start).norm();
+  if (chord == 0.0) internal::ThrowInvalid("goal", "(equal to start)", "the isoparallel rotation trick needs |x1 - x0| > 0");
+  if (chord > internal::kMaxIsoparallelChord)  // the family search grows like chord^3 (README, "Limits")
+    internal::ThrowInvalid("goal", chord, "|goal - start| must be <= " + internal::FormatNumber(internal::kMaxIsoparallelChord));
   if (!IsRotation(problem.start_orientation, 1e-9))
-    throw std::invalid_argument("'start_orientation' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+    internal::ThrowInvalid("start_orientation", "(matrix)", "not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
   if (!IsRotation(problem.goal_orientation, 1e-9))
-    throw std::invalid_argument("'goal_orientation' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+    internal::ThrowInvalid("goal_orientation", "(matrix)", "not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
 }
 
 // A reported solution from an enumerated family (sense = +-1: the mirror image of a rotating
@@ -519,22 +521,21 @@ void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const
 }  // namespace
 
 std::string IsoparallelOptions::Validate() const {
-  std::ostringstream os;
-  os.precision(17);
-  if (starts < 1 || starts > kMaxStarts) os << "'starts' = " << starts << " is invalid: must be in [1, " << kMaxStarts << "]";
-  else if (!(std::isfinite(length_cap_factor) && length_cap_factor >= 1.0 && length_cap_factor <= kMaxLengthCapFactor))
-    os << "'length_cap_factor' = " << length_cap_factor << " is invalid: must be in [1, " << kMaxLengthCapFactor << "]";
-  else if (max_iterations < 1 || max_iterations > kMaxIterations)
-    os << "'max_iterations' = " << max_iterations << " is invalid: must be in [1, " << kMaxIterations << "]";
-  else if (!(std::isfinite(tolerance) && tolerance > 0 && tolerance < 1))
-    os << "'tolerance' = " << tolerance << " is invalid: must be in (0, 1)";
-  else if (threads < 1 || threads > kMaxThreads)
-    os << "'threads' = " << threads << " is invalid: must be in [1, " << kMaxThreads << "]";
-  else if (!(std::isfinite(max_length) && max_length >= 0))
-    os << "'max_length' = " << max_length << " is invalid: must be finite and >= 0 (0 = automatic)";
-  else
-    return integration.Validate();
-  return os.str();
+  using internal::InvalidValueMessage;
+  if (starts < 1 || starts > kMaxStarts)
+    return InvalidValueMessage("starts", starts, "must be in [1, " + std::to_string(kMaxStarts) + "]");
+  if (!(length_cap_factor >= 1.0 && length_cap_factor <= kMaxLengthCapFactor))
+    return InvalidValueMessage("length_cap_factor", length_cap_factor,
+                               "must be in [1, " + internal::FormatNumber(kMaxLengthCapFactor) + "]");
+  if (max_iterations < 1 || max_iterations > kMaxIterations)
+    return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, " + std::to_string(kMaxIterations) + "]");
+  if (!(tolerance >= internal::kMinTolerance && tolerance < 1))
+    return InvalidValueMessage("tolerance", tolerance, "must be in [1e-15, 1)");
+  if (threads < 1 || threads > kMaxThreads)
+    return InvalidValueMessage("threads", threads, "must be in [1, " + std::to_string(kMaxThreads) + "]");
+  if (!(std::isfinite(max_length) && max_length >= 0))
+    return InvalidValueMessage("max_length", max_length, "must be finite and >= 0 (0 = automatic)");
+  return integration.Validate();
 }
 
 std::string ToString(IsoparallelMethod method) {
@@ -576,8 +577,12 @@ Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution, const Integra
 IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const IsoparallelOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   ValidateProblem(problem);
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
+  internal::ThrowIfInvalid(options.Validate());
+  const double start_work = options.starts * (problem.goal - problem.start).norm();  // README, "Limits"
+  if (start_work > internal::kMaxStartsTimesChord)
+    internal::ThrowInvalid("starts", options.starts, "starts x |goal - start| = " + internal::FormatNumber(start_work) +
+                                                         " exceeds the multi-start budget " +
+                                                         internal::FormatNumber(internal::kMaxStartsTimesChord));
 
   IsoparallelSummary summary;
   summary.problem = problem;

@@ -274,23 +274,20 @@ bool Polish(const CoarseRoot& root, double chord, double tolerance, ElasticaFami
 }  // namespace
 
 std::string FamilySearchOptions::Validate() const {
-  std::ostringstream os;
-  os.precision(17);
+  using internal::InvalidValueMessage;
   if (!(std::isfinite(max_length) && max_length > 0))
-    os << "'max_length' = " << max_length << " is invalid: must be finite and > 0";
-  else if (!(std::isfinite(length_cap_factor) && (length_cap_factor == 0 || length_cap_factor >= 1)))
-    os << "'length_cap_factor' = " << length_cap_factor << " is invalid: must be 0 (no cap) or finite and >= 1";
-  else if (!(std::isfinite(tolerance) && tolerance > 0 && tolerance < 1))
-    os << "'tolerance' = " << tolerance << " is invalid: must be in (0, 1)";
-  else if (!(std::isfinite(cell) && cell >= 1e-4 && cell <= 2.0))
-    os << "'cell' = " << cell << " is invalid: must be in [1e-4, 2]";
-  else if (max_periods < 1 || max_periods > 100000)
-    os << "'max_periods' = " << max_periods << " is invalid: must be in [1, 100000]";
-  else if (certified_run < 1 || certified_run > 1000)
-    os << "'certified_run' = " << certified_run << " is invalid: must be in [1, 1000]";
-  else if (threads < 1 || threads > 256)
-    os << "'threads' = " << threads << " is invalid: must be in [1, 256]";
-  return os.str();
+    return InvalidValueMessage("max_length", max_length, "must be finite and > 0");
+  if (!(length_cap_factor == 0 || (length_cap_factor >= 1 && length_cap_factor <= internal::kMaxLengthCapFactor)))
+    return InvalidValueMessage("length_cap_factor", length_cap_factor,
+                               "must be 0 (no cap) or in [1, " + internal::FormatNumber(internal::kMaxLengthCapFactor) + "]");
+  if (!(tolerance >= internal::kMinTolerance && tolerance < 1))
+    return InvalidValueMessage("tolerance", tolerance, "must be in [1e-15, 1)");
+  if (!(cell >= 1e-4 && cell <= 2.0)) return InvalidValueMessage("cell", cell, "must be in [1e-4, 2]");
+  if (max_periods < 1 || max_periods > 100000) return InvalidValueMessage("max_periods", max_periods, "must be in [1, 100000]");
+  if (certified_run < 1 || certified_run > 1000)
+    return InvalidValueMessage("certified_run", certified_run, "must be in [1, 1000]");
+  if (threads < 1 || threads > 256) return InvalidValueMessage("threads", threads, "must be in [1, 256]");
+  return {};
 }
 
 ElasticaParameters ElasticaFamily::Parameters() const {
@@ -316,8 +313,9 @@ Eigen::Vector3d ElasticaCostate(const Elastica& e, double s) {
 
 FamilySearch EnumerateIdentityFamilies(double chord, const FamilySearchOptions& options) {
   internal::RequirePositive("chord", chord);
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
+  if (chord > internal::kMaxIsoparallelChord)  // the work grows like chord^3 (README, "Limits")
+    internal::ThrowInvalid("chord", chord, "must be <= " + internal::FormatNumber(internal::kMaxIsoparallelChord));
+  internal::ThrowIfInvalid(options.Validate());
   FamilySearch out;
   const double search_limit = std::max(kSearchLengthPerChord * chord, kMinSearchLength);
   double cap = std::min(options.max_length, search_limit);

@@ -25,7 +25,7 @@ Path OptimalPath(const IsoparallelSolution& solution) {
 
 AngleState InitialAnglesFromOrientation(const Eigen::Matrix3d& A0, double psi) {
   internal::RequireFinite("psi", psi);
-  if (!IsRotation(A0, 1e-9)) throw std::invalid_argument("'start_orientation' is not a rotation matrix");
+  if (!IsRotation(A0, 1e-9)) internal::ThrowInvalid("start_orientation", "(matrix)", "not a rotation matrix (to 1e-9)");
   const Eigen::Vector3d z = A0.col(2);
   AngleState a;
   a.theta = std::acos(std::clamp(z.z(), -1.0, 1.0));
@@ -35,8 +35,8 @@ AngleState InitialAnglesFromOrientation(const Eigen::Matrix3d& A0, double psi) {
 }
 
 PlanSummary PlanOptimalPath(const IsoparallelPlanProblem& problem, const PlanOptions& options) {
-  if (problem.impulses < 1) internal::ThrowInvalid("impulses", problem.impulses, "must be >= 1");
-  internal::RequirePositive("mu", problem.mu);
+  internal::RequireCount("impulses", problem.impulses, internal::kMaxPartitionSteps);
+  internal::RequireEnergy("mu", problem.mu);
   PlanProblem plan;
   plan.model = problem.model;
   plan.initial = InitialAnglesFromOrientation(problem.A0, problem.psi);

@@ -11,53 +11,21 @@
 
 #include "arc.h"
 #include "check.h"
+#include "connect.h"
 #include "dynamics.h"
 
 namespace plateball {
 namespace {
 
 using SensState = internal::SensitivityState;  // z[3], x[2], dz/ds[3], dx/ds[2]
-// Arcs shorter than this (t sqrt(mu), about the distance rolled) use dopri5, longer ones rkf78.
+// Arcs shorter than this (t sqrt(mu), about the distance rolled) use Dormand-Prince 5(4), which
+// covers them in about one step at tolerance 1e-12; longer ones Fehlberg 7(8), which needs far
+// fewer right-hand-side evaluations there (T1, |x - x0| = 0.05: 52 instead of 88 per join; 0.2:
+// 113 instead of 369).
 constexpr double kShortArc = 0.02;
 
 using internal::SensitivityRhs;
-
-// Controlled explicit Runge-Kutta over [0, t1]. Dormand-Prince 5(4) for arcs that it covers in about
-// one step at tolerance 1e-12; Fehlberg 7(8) beyond, where it needs far fewer right-hand-side
-// evaluations (T1, |x - x0| = 0.05: 52 instead of 88 per join; 0.2: 113 instead of 369).
-// Boost 1.74's generic RK steppers trip GCC's -Wuninitialized on their (unused) copy constructor.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-template <typename Stepper, typename Observer>
-void IntegrateSensitivities(const SensitivityRhs& rhs, SensState& y, double t1, double dt0,
-                            const IntegrationOptions& options, Observer&& observer) {
-  namespace odeint = boost::numeric::odeint;
-  auto stepper = odeint::make_controlled(options.absolute_tolerance, options.relative_tolerance, Stepper());
-  const double dir = t1 >= 0 ? 1.0 : -1.0;
-  double t = 0.0;
-  double dt = dir * std::min(std::abs(dt0), std::abs(t1));
-  long steps = 0;
-  while (dir * (t1 - t) > 0) {
-    if (dir * (t + dt - t1) > 0) dt = t1 - t;
-    if (++steps > options.max_steps)
-      throw std::runtime_error("integration exceeded max_steps = " + std::to_string(options.max_steps));
-    if (stepper.try_step(rhs, y, t, dt) == odeint::success) {
-      for (double v : y)
-        if (!std::isfinite(v)) throw std::runtime_error("integration produced a non-finite state");
-      observer(t);
-    } else if (std::abs(dt) < 1e-14 * std::max(1.0, std::abs(t))) {
-      throw std::runtime_error("integration step size underflow");
-    }
-  }
-}
-
-#pragma GCC diagnostic pop
-
-double WrapPi(double a) {
-  a = std::remainder(a, 2.0 * M_PI);
-  return a <= -M_PI ? a + 2.0 * M_PI : a;
-}
+using internal::WrapPi;
 
 // The residual x_s(t) - (target - x0) and its exact Jacobian, for Ceres' TinySolver. TinySolver
 // evaluates the residual alone at a trial point and then the Jacobian at the same point once the
@@ -69,10 +37,7 @@ class JoinFunction {
 
   JoinFunction(const AngleState& start, double mu, double lambda, const Eigen::Vector2d& d,
                const IntegrationOptions& options)
-      : start_(start), mu_(mu), lambda_(lambda), d_(d), options_(options) {
-    z0_ = {std::sin(start.theta) * std::cos(start.phi), std::sin(start.theta) * std::sin(start.phi),
-           std::cos(start.theta)};
-  }
+      : basis_(internal::MakeImpulseBasis(start, mu, lambda)), mu_(mu), lambda_(lambda), d_(d), options_(options) {}
 
   bool operator()(const double* p, double* r, double* jac) const {
     if (!(has_cache_ && p[0] == cache_p_[0] && p[1] == cache_p_[1])) Evaluate(p[0], p[1]);
@@ -90,43 +55,13 @@ class JoinFunction {
     has_cache_ = true;
     cache_p_[0] = s;
     cache_p_[1] = t;
-    Eigen::Vector2d w, dw;
-    internal::OmegaFromAngles(start_.theta, start_.phi, start_.psi + s, mu_, lambda_, &w, &dw);
-    const Eigen::Vector2d zh = z0_.head<2>();
-    k_ = w + (lambda_ - 1.0) * w.dot(zh) * zh;
-    const Eigen::Vector2d dk = dw + (lambda_ - 1.0) * dw.dot(zh) * zh;
+    const internal::ReachDirection dir = internal::DirectionFor(basis_, s);
+    k_ = dir.k;
     SensState y{};
-    y[0] = z0_.x();
-    y[1] = z0_.y();
-    y[2] = z0_.z();
-    failed_ = false;
-    if (!std::isfinite(s) || !std::isfinite(t)) {
-      failed_ = true;
-    } else if (std::abs(t) > max_abs_t_) {
-      // Lemma 2.1 is local: its branch has t well below a period. Rolling out further only costs
-      // time in proportion to t (and an absurd target would make LM integrate for hours).
-      failed_ = true;
-      failure_ = "the iteration left the local range |t| <= one period";
-    } else if (t != 0.0) {
-      SensitivityRhs rhs{lambda_, {k_.x(), k_.y()}, {dk.x(), dk.y()}};
-      try {
-        double last = 0.0;
-        double largest = 0.0;
-        auto observe = [&](double tt) {
-          largest = std::max(largest, std::abs(tt - last));
-          last = tt;
-        };
-        namespace odeint = boost::numeric::odeint;
-        if (std::abs(t) * std::sqrt(mu_) <= kShortArc)
-          IntegrateSensitivities<odeint::runge_kutta_dopri5<SensState>>(rhs, y, t, dt_hint_, options_, observe);
-        else
-          IntegrateSensitivities<odeint::runge_kutta_fehlberg78<SensState>>(rhs, y, t, dt_hint_, options_, observe);
-        if (largest > 0) dt_hint_ = largest;
-      } catch (const std::runtime_error& e) {
-        failed_ = true;
-        failure_ = e.what();
-      }
-    }
+    y[0] = dir.z0.x();
+    y[1] = dir.z0.y();
+    y[2] = dir.z0.z();
+    failed_ = !Rollout(dir, s, t, &y);
     if (failed_) {
       // A huge residual makes TinySolver reject the step.
       cache_r_[0] = cache_r_[1] = 1e100;
@@ -145,6 +80,37 @@ class JoinFunction {
     cache_j_[3] = -wt[0];
   }
 
+  // Integrates (z, x, dz/ds, dx/ds) over [0, t]; false (failure_ says why) when the point is not
+  // finite, leaves the local range or the integration fails.
+  bool Rollout(const internal::ReachDirection& dir, double s, double t, SensState* y) const {
+    if (!std::isfinite(s) || !std::isfinite(t)) return false;
+    if (std::abs(t) > max_abs_t_) {
+      // Lemma 2.1 is local: its branch has t well below a period. Rolling out further only costs
+      // time in proportion to t (and an absurd target would make LM integrate for hours).
+      failure_ = "the iteration left the local range |t| <= one period";
+      return false;
+    }
+    if (t == 0.0) return true;
+    const SensitivityRhs rhs{lambda_, {k_.x(), k_.y()}, {dir.dk_ds.x(), dir.dk_ds.y()}};
+    double last = 0.0, largest = 0.0;
+    auto observe = [&](double tt, const SensState&) {
+      largest = std::max(largest, std::abs(tt - last));
+      last = tt;
+    };
+    namespace odeint = boost::numeric::odeint;
+    try {
+      if (std::abs(t) * std::sqrt(mu_) <= kShortArc)
+        internal::IntegrateAdaptive<odeint::runge_kutta_dopri5<SensState>>(rhs, *y, 0.0, t, dt_hint_, options_, observe);
+      else
+        internal::IntegrateAdaptive<odeint::runge_kutta_fehlberg78<SensState>>(rhs, *y, 0.0, t, dt_hint_, options_, observe);
+    } catch (const std::runtime_error& e) {
+      failure_ = e.what();
+      return false;
+    }
+    if (largest > 0) dt_hint_ = largest;
+    return true;
+  }
+
   double Residual() const { return std::hypot(cache_r_[0], cache_r_[1]); }
   Eigen::Vector2d residual_vector() const { return {cache_r_[0], cache_r_[1]}; }
   double Conditioning() const {
@@ -161,11 +127,10 @@ class JoinFunction {
   void set_dt_hint(double h) const { dt_hint_ = h; }
 
  private:
-  AngleState start_;
+  internal::ImpulseBasis basis_;
   double mu_, lambda_;
   Eigen::Vector2d d_;
   IntegrationOptions options_;
-  Eigen::Vector3d z0_;
   mutable bool has_cache_ = false;
   mutable double cache_p_[2] = {0, 0};
   mutable double cache_r_[2] = {0, 0};
@@ -179,16 +144,86 @@ class JoinFunction {
   mutable int evaluations_ = 0;
 };
 
-void ValidateJoinInput(const AngleState& start, double mu, const Eigen::Vector2d& x0, const Eigen::Vector2d& target,
-                       const JoinOptions& options) {
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
-  internal::RequireFinite("start.theta", start.theta);
-  internal::RequireFinite("start.phi", start.phi);
-  internal::RequireFinite("start.psi", start.psi);
-  internal::RequirePositive("mu", mu);
-  internal::RequireFinite("x0", x0);
-  internal::RequireFinite("target", target);
+// The public boundary: options, finite input, mu and coordinates in range (check.h); the angles come back reduced once
+// (kinematics.h, ReduceAngles) so that a psi of 1e6 is answered like psi mod 2 pi.
+AngleState ValidateJoinInput(const AngleState& start, double mu, const Eigen::Vector2d& x0,
+                             const Eigen::Vector2d& target, const JoinOptions& options) {
+  internal::ThrowIfInvalid(options.Validate());
+  const AngleState reduced = internal::ReduceAngles("start", start);
+  internal::RequireEnergy("mu", mu);
+  internal::RequireCoordinates("x0", x0);
+  internal::RequireCoordinates("target", target);
+  return reduced;
+}
+
+// Velocity-ellipse guess (27)-(28): x'_s(0) = -b sin(w) e_r - a cos(w) e_phi with w = phi - psi - s
+// pointing at the target; t = distance / speed. Returns (s, t).
+Eigen::Vector2d EllipseGuess(const AngleState& start, double mu, double lambda, const Eigen::Vector2d& d) {
+  const double a = SemiAxisA(start.theta, mu, lambda), b = std::sqrt(mu);
+  const Eigen::Vector2d er(std::cos(start.phi), std::sin(start.phi)), ephi(-er.y(), er.x());
+  const double w = std::atan2(-d.dot(er) / b, -d.dot(ephi) / a);
+  const double speed = std::hypot(b * std::sin(w), a * std::cos(w));
+  return {WrapPi(start.phi - start.psi - w), d.norm() / speed};
+}
+
+// Levenberg-Marquardt (Ceres TinySolver) on (s, t) from the guess; leaves fn's cache at the
+// final point with t >= 0. The reversed motion: (psi + pi) flips omega, and (z(-t), -omega(-t))
+// is again a solution, so a solution with t < 0 is the solution (s + pi, -t).
+// Ceres 2.1's TinySolver leaves members unset until Solve; GCC cannot see that once it is inlined here.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+int SolveLocal(JoinFunction& fn, const JoinOptions& options, Eigen::Vector2d* params) {
+  ceres::TinySolver<JoinFunction> solver;
+  solver.options.max_num_iterations = options.max_iterations;
+  solver.options.gradient_tolerance = 0.0;       // stop on the residual, not the gradient
+  solver.options.function_tolerance = 0.0;       // (an absolute test in Ceres 2.1)
+  solver.options.parameter_tolerance = 1e-15;
+  solver.options.cost_threshold = 0.5 * options.residual_tolerance * options.residual_tolerance;
+  solver.options.initial_trust_region_radius = 1e12;  // Gauss-Newton while the model is good
+  const auto& ts = solver.Solve(fn, params);
+  if ((*params)[1] < 0) {
+    (*params)[0] += M_PI;
+    (*params)[1] = -(*params)[1];
+  }
+  double r[2];
+  fn(params->data(), r, nullptr);  // make the cache hold the final point
+  return ts.iterations;
+}
+#pragma GCC diagnostic pop
+
+// Why a finished iteration is not the local solution of Lemma 2.1 (empty when it is). Messages
+// are built only on failure (a string stream costs more than a short rollout).
+std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, double dist) {
+  if (out.residual <= options.residual_tolerance && out.t <= out.time_limit && out.jacobian_conditioning >= 1e-3)
+    return {};
+  std::ostringstream os;
+  os.precision(6);
+  if (!(out.residual <= options.residual_tolerance)) {
+    os << "no solution found within " << out.iterations << " iterations: residual " << out.residual
+       << " > tolerance " << options.residual_tolerance << " (|target - x0| = " << dist << ")";
+  } else if (out.t > out.time_limit) {
+    os << "the solution found has t = " << out.t << " > K1 |target - x0| = " << out.time_limit
+       << ": not the local branch of Lemma 2.1 (|target - x0| = " << dist << ")";
+  } else if (out.jacobian_conditioning < 1e-3) {
+    os << "the polar coordinates (s, t) degenerate at the solution (conditioning " << out.jacobian_conditioning << ")";
+  }
+  return os.str();
+}
+
+// The impulse s and the state on arrival (z, K at the end of the arc, the contact point x).
+void FinishState(const BallModel& model, double s, const Eigen::Vector3d& z, const Eigen::Vector2d& k,
+                 const Eigen::Vector2d& x, JoinSummary* out) {
+  out->impulse = EnergyPreservingImpulse(out->start, out->mu, s, model);
+  out->state_after.z = z.normalized();
+  out->state_after.omega = OmegaFromMomentum(out->state_after.z, k, model);
+  out->angles_after = AnglesFromState(out->state_after, model);
+  out->x_after = x;
+}
+
+// The start itself as the end state (no impulse, no motion): the answer of the early exits.
+void FinishAtStart(const BallModel& model, JoinSummary* out) {
+  const BallState s0 = StateFromAngles(out->start, out->mu, model);
+  FinishState(model, 0.0, s0.z, ConservedMomentum(s0, model), out->x0, out);
 }
 
 }  // namespace
@@ -204,21 +239,20 @@ std::string ToString(JoinStatus status) {
   return "unknown";
 }
 
+// Below 1e-15 a residual is round-off (a rollout cannot reach it); above 1e-3 the join's
+// target-equals-start test and its local branch stop meaning anything.
+constexpr double kMinResidualTolerance = 1e-15, kMaxResidualTolerance = 1e-3;
+
 std::string JoinOptions::Validate() const {
-  if (std::isfinite(residual_tolerance) && residual_tolerance > 0 && max_iterations >= 1 &&
-      std::isfinite(local_time_factor) && local_time_factor >= 1)
-    return integration.Validate();
-  std::ostringstream os;
-  os.precision(17);
-  if (!(std::isfinite(residual_tolerance) && residual_tolerance > 0))
-    os << "join option 'residual_tolerance' = " << residual_tolerance << " must be finite and > 0";
-  else if (max_iterations < 1)
-    os << "join option 'max_iterations' = " << max_iterations << " must be >= 1";
-  else if (!(std::isfinite(local_time_factor) && local_time_factor >= 1))
-    os << "join option 'local_time_factor' = " << local_time_factor << " must be finite and >= 1";
-  else
-    return integration.Validate();
-  return os.str();
+  // residual_tolerance in [1e-15, 1e-3]: beyond 1e-3 a join "converges" to the wrong point (0.999
+  // called every target the start), below 1e-15 no double residual meets it.
+  if (!(residual_tolerance >= kMinResidualTolerance && residual_tolerance <= kMaxResidualTolerance))
+    return internal::InvalidValueMessage("residual_tolerance", residual_tolerance, "must be in [1e-15, 1e-3]");
+  if (max_iterations < 1 || max_iterations > 10000)
+    return internal::InvalidValueMessage("max_iterations", max_iterations, "must be in [1, 10000]");
+  if (!(local_time_factor >= 1 && local_time_factor <= 1000))
+    return internal::InvalidValueMessage("local_time_factor", local_time_factor, "must be in [1, 1000]");
+  return integration.Validate();
 }
 
 std::string JoinSummary::BriefReport() const {
@@ -232,55 +266,41 @@ std::string JoinSummary::BriefReport() const {
 
 double MinimumContactSpeed(double mu, const BallModel& model) {
   internal::RequirePositive("mu", mu);
-  return std::sqrt(mu / std::max(1.0, model.lambda()));
+  return internal::MinimumContactSpeed(mu, model.lambda());
 }
 
 JoinSummary Join(const JoinProblem& problem, const JoinOptions& options) {
-  const BallModel& model = problem.model;
-  const AngleState& start = problem.start;
-  const double mu = problem.mu;
-  const Eigen::Vector2d& x0 = problem.x0;
-  const Eigen::Vector2d& target = problem.target;
-  ValidateJoinInput(start, mu, x0, target, options);
+  const AngleState start_reduced =
+      ValidateJoinInput(problem.start, problem.mu, problem.x0, problem.target, options);
+  return internal::JoinValidated(problem.model, start_reduced, problem.mu, problem.x0, problem.target, options);
+}
+
+namespace internal {
+
+JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduced, double mu,
+                          const Eigen::Vector2d& x0, const Eigen::Vector2d& target, const JoinOptions& options) {
   const double lambda = model.lambda();
   JoinSummary out;
   out.message.clear();  // filled only when the join does not converge
-  out.start = start;
+  out.start = start_reduced;
   out.mu = mu;
   out.x0 = x0;
   out.target = target;
   const Eigen::Vector2d d = target - x0;
   const double dist = d.norm();
-  const double k1 = options.local_time_factor / MinimumContactSpeed(mu, model);
-  out.time_limit = k1 * dist;
-
-  auto finish_state = [&](double s, const Eigen::Vector3d& z, const Eigen::Vector2d& k, const Eigen::Vector2d& x) {
-    out.impulse = EnergyPreservingImpulse(start, mu, s, model);
-    out.state_after.z = z.normalized();
-    out.state_after.omega = OmegaFromMomentum(out.state_after.z, k, model);
-    out.angles_after = AnglesFromState(out.state_after, model);
-    out.x_after = x;
-  };
+  out.time_limit = options.local_time_factor / internal::MinimumContactSpeed(mu, lambda) * dist;
 
   if (dist <= options.residual_tolerance) {
     out.status = JoinStatus::kTargetEqualsStart;
     out.message = "target equals the start point x0 (|target - x0| = " + std::to_string(dist) + ")";
     out.residual = dist;
-    const BallState s0 = StateFromAngles(start, mu, model);
-    finish_state(0.0, s0.z, ConservedMomentum(s0, model), x0);
+    FinishAtStart(model, &out);
     return out;
   }
 
-  // Velocity-ellipse guess (27)-(28): x'_s(0) = -b sin(w) e_r - a cos(w) e_phi with w = phi - psi - s.
-  const double st = std::sin(start.theta), ct = std::cos(start.theta);
-  const double a = std::sqrt(mu / (lambda * st * st + ct * ct)), b = std::sqrt(mu);
-  const Eigen::Vector2d er(std::cos(start.phi), std::sin(start.phi)), ephi(-er.y(), er.x());
-  const double w = std::atan2(-d.dot(er) / b, -d.dot(ephi) / a);
-  const double speed = std::hypot(b * std::sin(w), a * std::cos(w));
-  Eigen::Vector2d params(WrapPi(start.phi - start.psi - w), dist / speed);
-
   // Lemma 2.1's branch needs much less than a period; a target whose first-guess time is above
   // half a period is beyond the local radius (Reach handles it), and is answered without rolling out.
+  Eigen::Vector2d params = EllipseGuess(out.start, mu, lambda, d);
   const double period = 2.0 * M_PI / std::sqrt(mu);
   if (!(params[1] <= 0.5 * period)) {
     out.delta_psi = params[0];
@@ -289,68 +309,32 @@ JoinSummary Join(const JoinProblem& problem, const JoinOptions& options) {
     out.status = JoinStatus::kTargetBeyondLocalRadius;
     out.message = "target at distance " + std::to_string(dist) + " needs t ~ " + std::to_string(params[1]) +
                   " > half a period (" + std::to_string(0.5 * period) + "): beyond the local radius of Lemma 2.1";
-    const BallState s0 = StateFromAngles(start, mu, model);
-    finish_state(0.0, s0.z, ConservedMomentum(s0, model), x0);
+    FinishAtStart(model, &out);
     return out;
   }
 
-  JoinFunction fn(start, mu, lambda, d, options.integration);
+  JoinFunction fn(out.start, mu, lambda, d, options.integration);
   fn.set_max_abs_t(period);
   fn.set_dt_hint(params[1]);
   double r0[2];
   fn(params.data(), r0, nullptr);
   out.initial_guess_residual = std::hypot(r0[0], r0[1]);
-
-  ceres::TinySolver<JoinFunction> solver;
-  solver.options.max_num_iterations = options.max_iterations;
-  solver.options.gradient_tolerance = 0.0;       // stop on the residual, not the gradient
-  solver.options.function_tolerance = 0.0;       // (an absolute test in Ceres 2.1)
-  solver.options.parameter_tolerance = 1e-15;
-  solver.options.cost_threshold = 0.5 * options.residual_tolerance * options.residual_tolerance;
-  solver.options.initial_trust_region_radius = 1e12;  // Gauss-Newton while the model is good
-  const auto& ts = solver.Solve(fn, &params);
-  out.iterations = ts.iterations;
-
-  // The reversed motion: (psi + pi) flips omega, and (z(-t), -omega(-t)) is again a solution, so a
-  // solution with t < 0 is the solution (s + pi, -t).
-  if (params[1] < 0) {
-    params[0] += M_PI;
-    params[1] = -params[1];
-    double r[2];
-    fn(params.data(), r, nullptr);
-  } else {
-    double r[2];
-    fn(params.data(), r, nullptr);  // make the cache hold the final point
-  }
+  out.iterations = SolveLocal(fn, options, &params);
   out.delta_psi = WrapPi(params[0]);
   out.t = params[1];
   out.residual = fn.Residual();
   out.jacobian_conditioning = fn.Conditioning();
-
   if (fn.failed()) {
     out.status = JoinStatus::kIntegrationFailure;
     out.message = fn.failure();
     return out;
   }
-  finish_state(out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector());
-  // Messages are built only on failure (a string stream costs more than a short rollout).
-  auto why = [&](auto&&... parts) {
-    std::ostringstream os;
-    os.precision(6);
-    (os << ... << parts);
-    out.message = os.str();
-  };
-  if (!(out.residual <= options.residual_tolerance)) {
-    why("no solution found within ", out.iterations, " iterations: residual ", out.residual, " > tolerance ",
-        options.residual_tolerance, " (|target - x0| = ", dist, ")");
-  } else if (out.t > out.time_limit) {
-    why("the solution found has t = ", out.t, " > K1 |target - x0| = ", out.time_limit,
-        ": not the local branch of Lemma 2.1 (|target - x0| = ", dist, ")");
-  } else if (out.jacobian_conditioning < 1e-3) {
-    why("the polar coordinates (s, t) degenerate at the solution (conditioning ", out.jacobian_conditioning, ")");
-  }
+  FinishState(model, out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector(), &out);
+  out.message = LocalFailure(out, options, dist);
   out.status = out.message.empty() ? JoinStatus::kConverged : JoinStatus::kTargetBeyondLocalRadius;
   return out;
 }
+
+}  // namespace internal
 
 }  // namespace plateball

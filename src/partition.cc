@@ -12,6 +12,8 @@ using internal::ThrowInvalid;
 
 void RequireCount(int n, const std::string& field) {
   if (n < 1) ThrowInvalid(field, n, "a partition needs n >= 1 steps (at least 2 points)");
+  if (n > internal::kMaxPartitionSteps)  // README, "Limits": a plan's work and memory grow with n
+    ThrowInvalid(field, n, "must be <= " + std::to_string(internal::kMaxPartitionSteps));
 }
 }  // namespace
 
@@ -23,19 +25,19 @@ void ValidatePartition(const SmoothCurve& curve, const std::vector<double>& taus
     const std::string f = field + "[" + std::to_string(k) + "]";
     internal::RequireFinite(f, taus[k]);
     if (k > 0 && !(taus[k] > taus[k - 1]))
-      ThrowInvalid(f, taus[k], "partition values must increase strictly (previous " + std::to_string(taus[k - 1]) + ")");
+      ThrowInvalid(f, taus[k], "partition values must increase strictly (previous " + internal::FormatNumber(taus[k - 1]) + ")");
   }
   if (std::abs(taus.front() - curve.Begin()) > 1e-12 * std::max(1.0, std::abs(span)))
-    ThrowInvalid(field + "[0]", taus.front(), "must equal the start of the parameter interval " + std::to_string(curve.Begin()));
+    ThrowInvalid(field + "[0]", taus.front(), "must equal the start of the parameter interval " + internal::FormatNumber(curve.Begin()));
   if (std::abs(taus.back() - curve.End()) > 1e-12 * std::max(1.0, std::abs(span)))
     ThrowInvalid(field + "[" + std::to_string(taus.size() - 1) + "]", taus.back(),
-                 "must equal the end of the parameter interval " + std::to_string(curve.End()));
+                 "must equal the end of the parameter interval " + internal::FormatNumber(curve.End()));
   const double size = std::max(1.0, curve.Length());
   for (std::size_t k = 1; k < taus.size(); ++k) {
     const double step = (curve.Value(taus[k]) - curve.Value(taus[k - 1])).norm();
     if (!(step > 1e-12 * size))
       ThrowInvalid(field + "[" + std::to_string(k) + "] (|p(tau_k) - p(tau_k-1)|)", step,
-                   "repeated path point: consecutive partition points must be distinct on the plate");
+                   "consecutive partition points must be more than 1e-12 x the path length apart on the plate");
   }
 }
 
@@ -103,6 +105,16 @@ std::vector<std::vector<double>> MakePartition(const Path& path, const std::vect
     ThrowInvalid(field + " (rule count)", static_cast<double>(rules.size()),
                  "must be 1 or the number of path pieces " + std::to_string(pieces));
   std::vector<std::vector<double>> out;
+  long long steps = 0;  // every piece gets its rule's steps (README, "Limits")
+  for (std::size_t i = 0; i < pieces; ++i) {
+    const PartitionRule& rule = rules.size() == 1 ? rules.front() : rules[i];
+    if (const auto* u = std::get_if<UniformParameter>(&rule)) steps += u->n;
+    else if (const auto* a = std::get_if<UniformArcLength>(&rule)) steps += a->n;
+    else steps += static_cast<long long>(std::get<ExplicitTaus>(rule).taus.size()) - 1;
+  }
+  if (steps > internal::kMaxPartitionSteps)
+    ThrowInvalid(rules.size() == 1 ? field + " (n x " + std::to_string(pieces) + " pieces)" : field + " (steps)", steps,
+                 "steps over all pieces must be <= " + std::to_string(internal::kMaxPartitionSteps));
   for (std::size_t i = 0; i < pieces; ++i) {
     const PartitionRule& rule = rules.size() == 1 ? rules.front() : rules[i];
     const SmoothCurve& curve = path.pieces()[i];

@@ -1,8 +1,13 @@
 #include "plateball/path.h"
 
 #include <algorithm>
+#include <array>
+#include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "check.h"
 #include "plateball/cubic_spline.h"
@@ -25,11 +30,56 @@ void RequireRange(double tau_begin, double tau_end) {
   if (tau_end == tau_begin) ThrowInvalid("tau_end", tau_end, "must differ from tau_begin (an empty curve)");
 }
 
-// 8-point Gauss-Legendre nodes and weights on [-1, 1].
-constexpr double kGlX[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
-                            0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
-constexpr double kGlW[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
-                            0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+// ArcLength on one smooth panel: Gauss-Kronrod G15/K31 (Boost.Math's nodes and weights), the
+// panel halved until the error estimate |K31 - G15| (which bounds the error of the far more
+// accurate K31 generously) is below kArcLengthTolerance of the panel's own length or below the
+// round-off floor, at most kArcLengthMaxDepth times.
+constexpr double kArcLengthTolerance = 1e-12;
+constexpr unsigned kArcLengthMaxDepth = 8;
+
+struct PanelQuadrature {
+  double length = 0.0;  // K31
+  double error = 0.0;   // |K31 - G15|
+  double floor = 0.0;   // round-off in both: below it halving cannot help
+};
+
+// The round-off floor: a node lo + h x is rounded by up to eps max(|lo|, |hi|), which moves the
+// speed by |speed'| times that (|speed'| estimated from neighbouring nodes); each speed and the sum
+// carry a few eps relative more. Far from tau = 0 (e.g. tau = 200 on a sine of wavelength 0.1) this
+// floor is above 1e-12 of a short panel's length, and halving such a panel only makes it worse.
+template <class Speed>
+PanelQuadrature GaussKronrod31(const Speed& speed, double lo, double hi) {
+  using Kronrod = boost::math::quadrature::gauss_kronrod<double, 31>;
+  using Gauss = boost::math::quadrature::gauss<double, 15>;
+  const auto& x = Kronrod::abscissa();  // x[0] = 0 < x[1] < ... < x[15]; even i: the Gauss nodes
+  const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+  std::array<double, 31> f{};  // speeds at mid + half * t[j], t ascending
+  f[15] = speed(mid);
+  double kronrod = f[15] * Kronrod::weights()[0], gauss = f[15] * Gauss::weights()[0];
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    f[15 + i] = speed(mid + half * x[i]);
+    f[15 - i] = speed(mid - half * x[i]);
+    kronrod += (f[15 + i] + f[15 - i]) * Kronrod::weights()[i];
+    if (i % 2 == 0) gauss += (f[15 + i] + f[15 - i]) * Gauss::weights()[i / 2];
+  }
+  double slope = 0.0;  // max |d speed / d x| over [-1, 1]
+  for (std::size_t j = 0; j + 1 < f.size(); ++j) {
+    const double t0 = j < 15 ? -x[15 - j] : x[j - 15], t1 = j + 1 < 15 ? -x[14 - j] : x[j - 14];
+    slope = std::max(slope, std::abs(f[j + 1] - f[j]) / (t1 - t0));
+  }
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  const double length = half * kronrod;
+  const double floor = 8.0 * kEps * (2.0 * std::max(std::abs(lo), std::abs(hi)) * slope + 8.0 * length);
+  return {length, half * std::abs(kronrod - gauss), floor};
+}
+
+template <class Speed>
+double PanelLength(const Speed& speed, double lo, double hi, unsigned depth) {
+  const PanelQuadrature q = GaussKronrod31(speed, lo, hi);
+  if (depth == 0 || q.error <= std::max(kArcLengthTolerance * q.length, q.floor)) return q.length;
+  const double mid = 0.5 * (lo + hi);
+  return PanelLength(speed, lo, mid, depth - 1) + PanelLength(speed, mid, hi, depth - 1);
+}
 
 }  // namespace
 
@@ -140,7 +190,7 @@ SmoothCurve SmoothCurve::Custom(CurveFunction value, CurveFunction derivative, C
   RequireFinite("tau_end", tau_end);
   if (!(tau_end > tau_begin)) ThrowInvalid("tau_end", tau_end, "must be > tau_begin");
   if (!value || !derivative || !second_derivative)
-    throw std::invalid_argument("custom curve: value, derivative and second_derivative must all be given");
+    ThrowInvalid("custom", "(empty function)", "value, derivative and second_derivative must all be given");
   SmoothCurve c;
   c.kind_ = CurveKind::kCustom;
   c.custom_ = std::make_shared<const CustomFunctions>(
@@ -222,15 +272,61 @@ Eigen::Vector2d SmoothCurve::SecondDerivative(double s) const { return RawSecond
 double SmoothCurve::ArcLength(double a, double b) const {
   RequireFinite("a", a);
   RequireFinite("b", b);
-  // Composite 8-point Gauss-Legendre; panels no longer than 1/64 of the parameter range.
-  const int panels = std::max(1, static_cast<int>(std::ceil(64.0 * std::abs(b - a) / (tau_end_ - tau_begin_))));
-  const double h = (b - a) / panels;
-  double sum = 0.0;
-  for (int i = 0; i < panels; ++i) {
-    const double mid = a + (i + 0.5) * h;
-    for (int j = 0; j < 8; ++j) sum += kGlW[j] * Derivative(mid + 0.5 * h * kGlX[j]).norm();
+  if (b < a) return -ArcLength(b, a);
+  const auto speed = [this](double tau) { return Derivative(tau).norm(); };
+  const std::vector<double> breaks = PanelBreaks(a, b);
+  const std::size_t last = breaks.size() - 1;
+  // The whole quarter turns of a circle, ellipse or lemniscate and the whole quarter wavelengths of
+  // a sine all have one length (|p'| is periodic and even about every break): measured once, on
+  // [0, width], where the nodes carry no round-off from a large tau.
+  const bool equal_panels = kind_ != CurveKind::kSamples && kind_ != CurveKind::kCustom && last >= 3;
+  if (equal_panels) {
+    const double whole = PanelLength(speed, 0.0, PanelWidth(), kArcLengthMaxDepth);
+    return PanelLength(speed, breaks[0], breaks[1], kArcLengthMaxDepth) + static_cast<double>(last - 2) * whole +
+           PanelLength(speed, breaks[last - 1], breaks[last], kArcLengthMaxDepth);
   }
-  return 0.5 * h * sum;
+  double length = 0.0;
+  for (std::size_t i = 1; i <= last; ++i) length += PanelLength(speed, breaks[i - 1], breaks[i], kArcLengthMaxDepth);
+  return length;
+}
+
+double SmoothCurve::PanelWidth() const {
+  // A quarter turn of the angle of a circle, ellipse or lemniscate; a quarter wavelength of a sine
+  // (|p'| has period half a wavelength); 1/64 of the parameter range of a custom curve; none
+  // (infinite) for a line and a spline (whose panels are its knot intervals).
+  switch (kind_) {
+    case CurveKind::kCircle:
+    case CurveKind::kEllipse:
+    case CurveKind::kLemniscate: return 0.5 * M_PI;
+    case CurveKind::kSine: return wavenumber_ > 0.0 ? 0.5 * M_PI / wavenumber_ : INFINITY;
+    case CurveKind::kCustom: return (tau_end_ - tau_begin_) / 64.0;
+    case CurveKind::kLine:
+    case CurveKind::kSamples: break;
+  }
+  return INFINITY;
+}
+
+std::vector<double> SmoothCurve::PanelBreaks(double a, double b) const {
+  // Panels on which the speed |p'| is smooth and monotone or nearly so, so that each needs few
+  // halvings: the knot intervals of a spline (|p'| is only C^1 at the knots); the multiples of
+  // PanelWidth() otherwise (from tau_begin for a custom curve, from 0 else: for a sine that is where
+  // cos(k tau) is 0 or +-1, and |p'|, near-singular at its minima, has them at panel ends, where
+  // the Gauss nodes cluster).
+  std::vector<double> breaks{a};
+  if (kind_ == CurveKind::kSamples) {
+    for (const double knot : spline_->knots()) {
+      const double s = reversed_ ? -knot : knot;
+      if (s > a && s < b) breaks.push_back(s);
+    }
+    std::sort(breaks.begin(), breaks.end());
+  }
+  const double width = PanelWidth(), anchor = kind_ == CurveKind::kCustom ? tau_begin_ : 0.0;
+  const double first = std::floor((a - anchor) / width) + 1.0, last = std::ceil((b - anchor) / width) - 1.0;
+  if (std::isfinite(width) && last - first < 1e6)  // at most a million panels
+    for (double j = first; j <= last; ++j)
+      if (anchor + j * width > breaks.back() && anchor + j * width < b) breaks.push_back(anchor + j * width);
+  breaks.push_back(b);
+  return breaks;
 }
 
 void SmoothCurve::CheckSpeed(const std::string& field) const {
@@ -240,12 +336,12 @@ void SmoothCurve::CheckSpeed(const std::string& field) const {
   for (int i = 0; i <= kGrid; ++i) {
     const double tau = tau_begin_ + (tau_end_ - tau_begin_) * i / kGrid;
     const double v = Derivative(tau).norm();
-    if (!std::isfinite(v)) ThrowInvalid(field + " (speed at tau = " + std::to_string(tau) + ")", v, "must be finite");
+    if (!std::isfinite(v)) ThrowInvalid(field + " (speed at tau = " + internal::FormatNumber(tau) + ")", v, "must be finite");
     mean += v / (kGrid + 1);
     if (v < least) least = v, at = tau;
   }
   if (!(least > 1e-9 * mean))
-    ThrowInvalid(field + " (speed |p'| at tau = " + std::to_string(at) + ")", least,
+    ThrowInvalid(field + " (speed |p'| at tau = " + internal::FormatNumber(at) + ")", least,
                  "the path must have nonzero speed everywhere");
 }
 

@@ -16,6 +16,8 @@
 #include <variant>
 #include <vector>
 
+#include "check.h"
+#include "plateball/exact_arrival.h"
 #include "plateball/so3.h"
 
 namespace plateball {
@@ -25,13 +27,15 @@ using json = nlohmann::json;
 using ojson = nlohmann::ordered_json;
 
 // ------------------------------------------------------------------ limits of the schema
-// Upper bounds on counts keep a hostile file from asking for absurd work or memory.
-constexpr long long kMaxSamples = 1'000'000;          // simulate.samples, path sample points
-constexpr long long kMaxCount = 1'000'000;            // partition n, impulses, starts, indices
-constexpr long long kMaxListLength = 100'000;         // targets, pieces, energy changes, taus
-constexpr double kMaxHorizonPeriods = 10'000.0;
+// Upper bounds on counts keep a hostile file from asking for absurd work or memory; they are the
+// library's limits (check.h, README "Limits"), so what the reader accepts a solver accepts.
+constexpr long long kMaxSamples = internal::kMaxSamples;        // simulate.samples, path sample points
+constexpr long long kMaxCount = internal::kMaxPartitionSteps;   // partition n, impulses, indices
+constexpr long long kMaxListLength = 100'000;         // targets, pieces, energy changes
+constexpr double kMaxHorizonPeriods = 100.0;          // reach: x 256 candidates = the refinement budget
 constexpr int kMaxPieceDepth = 8;                     // nesting of piecewise paths
-constexpr std::size_t kMaxFileBytes = 64u << 20;      // 64 MiB
+constexpr std::size_t kMaxFileBytes = 16u << 20;      // 16 MiB
+constexpr int kMaxNestingDepth = 64;                  // open arrays and objects
 constexpr double kRotationTolerance = 1e-9;           // a "matrix" orientation must be a rotation to this
 constexpr double kDegenerateNorm = 1e-12;             // quaternion / axis norms below this are zero
 constexpr double kJoinTolerance = 1e-9;               // piecewise end points must match to this (relative)
@@ -138,7 +142,7 @@ class Reader {
   explicit Reader(std::string source) : source_(std::move(source)) {}
 
   [[noreturn]] void Fail(const std::string& path, const std::string& value, const std::string& what) const {
-    throw std::invalid_argument(source_ + ": " + path + ": value " + value + ": " + what);
+    throw std::invalid_argument(internal::InvalidValueMessage(source_ + ": " + path, value, what));
   }
   [[noreturn]] void Fail(const std::string& path, const char* value, const std::string& what) const {
     Fail(path, std::string(value), what);
@@ -197,6 +201,29 @@ class Reader {
     const double d = Number(v, path);
     if (!(d > lo_exclusive && d <= hi_inclusive))
       Fail(path, v, "must be in (" + NumberText(lo_exclusive) + ", " + NumberText(hi_inclusive) + "]");
+    return d;
+  }
+
+  // A coordinate or a length on the plate: |v| <= internal::kMaxCoordinate (README, "Limits").
+  double Coordinate(const json& v, const std::string& path) const {
+    const double d = Number(v, path);
+    if (!(std::abs(d) <= internal::kMaxCoordinate))
+      Fail(path, v, "|coordinate| must be <= " + internal::FormatNumber(internal::kMaxCoordinate) + " (precision limit)");
+    return d;
+  }
+  double PositiveLength(const json& v, const std::string& path) const {
+    Positive(v, path);
+    return Coordinate(v, path);
+  }
+  Eigen::Vector2d Point(const json& v, const std::string& path) const {
+    const Eigen::Vector2d p = Vector<2>(v, path);
+    for (std::size_t i = 0; i < 2; ++i) Coordinate(v[i], Index(path, i));
+    return p;
+  }
+  double InClosedRange(const json& v, const std::string& path, double lo, double hi) const {
+    const double d = Number(v, path);
+    if (!(d >= lo && d <= hi))
+      Fail(path, v, "must be in [" + internal::FormatNumber(lo) + ", " + internal::FormatNumber(hi) + "]");
     return d;
   }
 
@@ -262,7 +289,7 @@ class Reader {
     Array(v, path, min_size, max_size);
     std::vector<Eigen::Vector2d> out;
     out.reserve(v.size());
-    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(Vector<2>(v[i], Index(path, i)));
+    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(Point(v[i], Index(path, i)));
     return out;
   }
 
@@ -307,19 +334,15 @@ class Reader {
   // ---------------------------------------------------------------- sections
   void Integration(const json& j, const std::string& path, IntegrationOptions* o) const {
     Object(j, path, {"absolute_tolerance", "relative_tolerance", "max_steps"});
-    if (const json* v = Find(j, "absolute_tolerance"))
-      o->absolute_tolerance = InRangeOpen01(*v, Join(path, "absolute_tolerance"));
-    if (const json* v = Find(j, "relative_tolerance"))
-      o->relative_tolerance = InRangeOpen01(*v, Join(path, "relative_tolerance"));
+    if (const json* v = Find(j, "absolute_tolerance")) o->absolute_tolerance = Tolerance(*v, Join(path, "absolute_tolerance"));
+    if (const json* v = Find(j, "relative_tolerance")) o->relative_tolerance = Tolerance(*v, Join(path, "relative_tolerance"));
     if (const json* v = Find(j, "max_steps"))
       o->max_steps = static_cast<long>(Integer(*v, Join(path, "max_steps"), 1, std::numeric_limits<long>::max()));
-    if (o->absolute_tolerance < 1e-15 && o->relative_tolerance < 1e-15)
-      Fail(Join(path, "relative_tolerance"), NumberText(o->relative_tolerance),
-           "absolute and relative tolerance are both below 1e-15 (double precision)");
   }
-  double InRangeOpen01(const json& v, const std::string& path) const {
+  // A tolerance in [1e-15, 1): below, the step size underflows in double precision.
+  double Tolerance(const json& v, const std::string& path) const {
     const double d = Number(v, path);
-    if (!(d > 0 && d < 1)) Fail(path, v, "must be in (0, 1)");
+    if (!(d >= internal::kMinTolerance && d < 1)) Fail(path, v, "must be in [1e-15, 1)");
     return d;
   }
 
@@ -331,13 +354,15 @@ class Reader {
     if (forms != 1)
       Fail(path, j, "must give exactly one of {lambda}, {alpha, beta} or {physical}");
     if (has_lambda) {
-      p->model = BallModel::FromLambda(Positive(j["lambda"], Join(path, "lambda")));
+      Positive(j["lambda"], Join(path, "lambda"));
+      p->model = BallModel::FromLambda(InClosedRange(j["lambda"], Join(path, "lambda"), internal::kMinLambda, internal::kMaxLambda));
       p->physical.reset();
       return;
     }
     if (has_alpha || has_beta) {
       const double alpha = Positive(Require(j, path, "alpha"), Join(path, "alpha"));
       const double beta = NonNegative(Require(j, path, "beta"), Join(path, "beta"));
+      RequireLambdaOf(alpha, beta, Join(path, "alpha"), j["alpha"]);
       p->model = BallModel::FromAlphaBeta(alpha, beta);
       p->physical.reset();
       return;
@@ -354,6 +379,7 @@ class Reader {
     par.ball_mass = NonNegative(Require(ph, pp, "ball_mass"), Join(pp, "ball_mass"));
     par.radius = Positive(Require(ph, pp, "radius"), Join(pp, "radius"));
     par.plate_mass = NonNegative(Require(ph, pp, "plate_mass"), Join(pp, "plate_mass"));
+    RequireLambdaOf(par.inertia_3 / par.inertia_1, par.EffectiveMass() * par.radius * par.radius / par.inertia_1, pp, ph);
     try {
       p->model = BallModel::FromPhysical(par);
     } catch (const std::invalid_argument& e) {
@@ -362,14 +388,23 @@ class Reader {
     p->physical = par;
   }
 
+  // lambda = (alpha + beta) / (1 + beta) in [1e-3, 1e3] (check.h), named by the given field.
+  void RequireLambdaOf(double alpha, double beta, const std::string& path, const json& v) const {
+    const double lambda = (alpha + beta) / (1.0 + beta);
+    if (!(lambda >= internal::kMinLambda && lambda <= internal::kMaxLambda))
+      Fail(path, v, "gives lambda = " + NumberText(lambda) + ", outside [" + NumberText(internal::kMinLambda) + ", " +
+                        NumberText(internal::kMaxLambda) + "]");
+  }
+
   void Initial(const json& j, const std::string& path, Problem* p) const {
     Object(j, path, {"theta", "phi", "psi", "mu", "x0", "orientation"});
     p->initial_angles.theta = Number(Require(j, path, "theta"), Join(path, "theta"));
     p->initial_angles.phi = Number(Require(j, path, "phi"), Join(path, "phi"));
     p->initial_angles.psi = Number(Require(j, path, "psi"), Join(path, "psi"));
     p->mu = Positive(Require(j, path, "mu"), Join(path, "mu"));
+    InClosedRange(j["mu"], Join(path, "mu"), internal::kMinMu, internal::kMaxMu);
     p->x0 = Eigen::Vector2d::Zero();
-    if (const json* v = Find(j, "x0")) p->x0 = Vector<2>(*v, Join(path, "x0"));
+    if (const json* v = Find(j, "x0")) p->x0 = Point(*v, Join(path, "x0"));
     p->A0 = Eigen::Matrix3d::Identity();
     if (const json* v = Find(j, "orientation")) p->A0 = Orientation(*v, Join(path, "orientation"));
   }
@@ -442,26 +477,26 @@ class Reader {
     if (type == "line") {
       Object(j, path, {"type", "from", "to"});
       LineSpec s;
-      s.from = Vector<2>(Require(j, path, "from"), Join(path, "from"));
-      s.to = Vector<2>(Require(j, path, "to"), Join(path, "to"));
+      s.from = Point(Require(j, path, "from"), Join(path, "from"));
+      s.to = Point(Require(j, path, "to"), Join(path, "to"));
       if (s.from == s.to) Fail(Join(path, "to"), j["to"], "must differ from from (a line of length 0)");
       return {s};
     }
     if (type == "circle") {
       Object(j, path, {"type", "center", "radius", "tau_begin", "tau_end"});
       CircleSpec s;
-      s.center = Vector<2>(Require(j, path, "center"), Join(path, "center"));
-      s.radius = Positive(Require(j, path, "radius"), Join(path, "radius"));
+      s.center = Point(Require(j, path, "center"), Join(path, "center"));
+      s.radius = PositiveLength(Require(j, path, "radius"), Join(path, "radius"));
       TauRange(j, path, &s);
       return {s};
     }
     if (type == "ellipse") {
       Object(j, path, {"type", "center", "semi_axes", "rotation", "tau_begin", "tau_end"});
       EllipseSpec s;
-      s.center = Vector<2>(Require(j, path, "center"), Join(path, "center"));
+      s.center = Point(Require(j, path, "center"), Join(path, "center"));
       const std::string sp = Join(path, "semi_axes");
       s.semi_axes = Vector<2>(Require(j, path, "semi_axes"), sp);
-      for (std::size_t i = 0; i < 2; ++i) Positive(j["semi_axes"][i], Index(sp, i));
+      for (std::size_t i = 0; i < 2; ++i) PositiveLength(j["semi_axes"][i], Index(sp, i));
       s.rotation = OptionalRotation(j, path);
       TauRange(j, path, &s);
       return {s};
@@ -469,8 +504,8 @@ class Reader {
     if (type == "lemniscate") {
       Object(j, path, {"type", "center", "scale", "rotation", "tau_begin", "tau_end"});
       LemniscateSpec s;
-      s.center = Vector<2>(Require(j, path, "center"), Join(path, "center"));
-      s.scale = Positive(Require(j, path, "scale"), Join(path, "scale"));
+      s.center = Point(Require(j, path, "center"), Join(path, "center"));
+      s.scale = PositiveLength(Require(j, path, "scale"), Join(path, "scale"));
       s.rotation = OptionalRotation(j, path);
       TauRange(j, path, &s);
       return {s};
@@ -478,11 +513,11 @@ class Reader {
     if (type == "sine") {
       Object(j, path, {"type", "from", "rotation", "length", "amplitude", "wavelength"});
       SineSpec s;
-      s.from = Vector<2>(Require(j, path, "from"), Join(path, "from"));
+      s.from = Point(Require(j, path, "from"), Join(path, "from"));
       s.rotation = OptionalRotation(j, path);
-      s.length = Positive(Require(j, path, "length"), Join(path, "length"));
-      s.amplitude = Number(Require(j, path, "amplitude"), Join(path, "amplitude"));
-      s.wavelength = Positive(Require(j, path, "wavelength"), Join(path, "wavelength"));
+      s.length = PositiveLength(Require(j, path, "length"), Join(path, "length"));
+      s.amplitude = Coordinate(Require(j, path, "amplitude"), Join(path, "amplitude"));
+      s.wavelength = PositiveLength(Require(j, path, "wavelength"), Join(path, "wavelength"));
       return {s};
     }
     if (type == "samples") return {Samples(j, path)};
@@ -531,7 +566,7 @@ class Reader {
     if (type == "explicit") {
       if (const json* v = Find(j, "n")) Fail(Join(path, "n"), *v, "not allowed for an explicit partition (n = taus - 1)");
       const std::string tp = Join(path, "taus");
-      const json& taus = Array(Require(j, path, "taus"), tp, 2, kMaxListLength);
+      const json& taus = Array(Require(j, path, "taus"), tp, 2, kMaxCount + 1);
       ExplicitTaus s;
       for (std::size_t i = 0; i < taus.size(); ++i) {
         s.taus.push_back(Number(taus[i], Index(tp, i)));
@@ -578,8 +613,12 @@ class Reader {
   IsoparallelTask Isoparallel(const json& j, const std::string& path) const {
     Object(j, path, {"start", "goal", "start_orientation", "goal_orientation", "impulses", "solver"});
     IsoparallelTask t;
-    t.start = Vector<2>(Require(j, path, "start"), Join(path, "start"));
-    t.goal = Vector<2>(Require(j, path, "goal"), Join(path, "goal"));
+    t.start = Point(Require(j, path, "start"), Join(path, "start"));
+    t.goal = Point(Require(j, path, "goal"), Join(path, "goal"));
+    const double chord = (t.goal - t.start).norm();
+    if (!(chord <= internal::kMaxIsoparallelChord))  // the family search grows like chord^3
+      Fail(Join(path, "goal"), j["goal"], "|goal - start| = " + NumberText(chord) + " must be <= " +
+                                              NumberText(internal::kMaxIsoparallelChord));
     if (const json* v = Find(j, "start_orientation")) t.start_orientation = Orientation(*v, Join(path, "start_orientation"));
     if (const json* v = Find(j, "goal_orientation")) t.goal_orientation = Orientation(*v, Join(path, "goal_orientation"));
     if (const json* v = Find(j, "impulses")) t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 1, kMaxCount));
@@ -593,11 +632,11 @@ class Reader {
       if (const json* w = Find(*v, "length_cap_factor")) {
         s.length_cap_factor = Number(*w, Join(sp, "length_cap_factor"));
         if (!(s.length_cap_factor >= 1.0 && s.length_cap_factor <= O::kMaxLengthCapFactor))
-          Fail(Join(sp, "length_cap_factor"), *w, "must be in [1, " + NumberText(O::kMaxLengthCapFactor) + "]");
+          Fail(Join(sp, "length_cap_factor"), *w, "must be in [1, " + internal::FormatNumber(O::kMaxLengthCapFactor) + "]");
       }
       if (const json* w = Find(*v, "max_iterations"))
         s.max_iterations = static_cast<int>(Integer(*w, Join(sp, "max_iterations"), 1, O::kMaxIterations));
-      if (const json* w = Find(*v, "tolerance")) s.tolerance = InRangeOpen01(*w, Join(sp, "tolerance"));
+      if (const json* w = Find(*v, "tolerance")) s.tolerance = Tolerance(*w, Join(sp, "tolerance"));
       if (const json* w = Find(*v, "threads")) s.threads = static_cast<int>(Integer(*w, Join(sp, "threads"), 1, O::kMaxThreads));
       if (const json* w = Find(*v, "enumerate_families")) {
         if (!w->is_boolean()) Fail(Join(sp, "enumerate_families"), *w, "must be true or false");
@@ -610,9 +649,10 @@ class Reader {
   SteerTask Steer(const json& j, const std::string& path) const {
     Object(j, path, {"goal", "goal_orientation", "impulses"});
     SteerTask t;
-    t.goal = Vector<2>(Require(j, path, "goal"), Join(path, "goal"));
+    t.goal = Point(Require(j, path, "goal"), Join(path, "goal"));
     if (const json* v = Find(j, "goal_orientation")) t.goal_orientation = Orientation(*v, Join(path, "goal_orientation"));
-    if (const json* v = Find(j, "impulses")) t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 3, kMaxCount));
+    if (const json* v = Find(j, "impulses"))
+      t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 3, kMaxExactImpulses));
     return t;
   }
 
@@ -659,63 +699,104 @@ class Reader {
 };
 
 // ------------------------------------------------------------------ parsing with diagnostics
-// Tracks the path of the value being parsed so that a duplicate key can be named; JSON allows
-// duplicates but they silently drop data, so the reader rejects them.
-class DuplicateKeyDetector {
+// Builds the document through nlohmann's SAX interface in one pass (linear in the input: the
+// callback parser rescans the parent container after each object, quadratic for a file of many
+// small objects), rejects a key given twice in one object (JSON allows it, but it silently drops
+// data), caps the nesting depth, and names the path of the value being parsed.
+class DomBuilder {
  public:
-  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start: frames_.push_back({false, 0, {}, {}}); break;
-      case json::parse_event_t::array_start: frames_.push_back({true, 0, {}, {}}); break;
-      case json::parse_event_t::key:
-        if (!frames_.empty() && parsed.is_string()) {
-          Frame& f = frames_.back();
-          f.key = parsed.get<std::string>();
-          if (!f.keys.insert(f.key).second && duplicate_path_.empty()) duplicate_path_ = Path();
-        }
-        break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        if (!frames_.empty()) frames_.pop_back();
-        ChildDone();
-        break;
-      case json::parse_event_t::value: ChildDone(); break;
-    }
+  explicit DomBuilder(json* root) : root_(root) {}
+
+  bool null() { return Add(json(nullptr)) != nullptr; }
+  bool boolean(bool v) { return Add(json(v)) != nullptr; }
+  bool number_integer(json::number_integer_t v) { return Add(json(v)) != nullptr; }
+  bool number_unsigned(json::number_unsigned_t v) { return Add(json(v)) != nullptr; }
+  bool number_float(json::number_float_t v, const json::string_t& /*text*/) { return Add(json(v)) != nullptr; }
+  bool string(json::string_t& v) { return Add(json(std::move(v))) != nullptr; }
+  bool binary(json::binary_t& v) { return Add(json::binary(std::move(v))) != nullptr; }
+  bool start_object(std::size_t /*size*/) { return Open(json::object()); }
+  bool start_array(std::size_t /*size*/) { return Open(json::array()); }
+  bool key(json::string_t& k) {
+    Frame& f = frames_.back();
+    f.key = std::move(k);
+    if (f.value->contains(f.key) && duplicate_path_.empty()) duplicate_path_ = CurrentPath();
     return true;
   }
-  const std::string& duplicate_path() const { return duplicate_path_; }
-  /// Path of the value being parsed when the parser stopped (empty at the top level).
-  std::string CurrentPath() const { return Path(); }
-
- private:
-  struct Frame {
-    bool is_array;
-    std::size_t index;
-    std::string key;
-    std::set<std::string> keys;
-  };
-  void ChildDone() {
-    if (!frames_.empty() && frames_.back().is_array) ++frames_.back().index;
+  bool end_object() { return Close(); }
+  bool end_array() { return Close(); }
+  template <class Exception>
+  bool parse_error(std::size_t /*position*/, const std::string& /*last_token*/, const Exception& e) {
+    throw e;  // handled by ParseJson, as with json::parse
   }
-  std::string Path() const {
+
+  bool depth_exceeded() const { return depth_exceeded_; }
+  const std::string& duplicate_path() const { return duplicate_path_; }
+  /// Path of the value being parsed (empty at the top level).
+  std::string CurrentPath() const {
     std::string s;
-    for (const Frame& f : frames_) {
-      if (f.is_array)
-        s += "[" + std::to_string(f.index) + "]";
-      else
+    for (std::size_t i = 0; i < frames_.size(); ++i) {
+      const Frame& f = frames_[i];
+      if (f.value->is_array()) {
+        const std::size_t n = f.value->size();
+        s += "[" + std::to_string(i + 1 < frames_.size() && n > 0 ? n - 1 : n) + "]";
+      } else {
         s += (s.empty() ? "" : ".") + f.key;
+      }
     }
     return s;
   }
+
+ private:
+  struct Frame {
+    json* value;
+    std::string key;
+  };
+  // Stores v in the open container (or as the root); returns where it went.
+  json* Add(json v) {
+    if (frames_.empty()) {
+      *root_ = std::move(v);
+      return root_;
+    }
+    Frame& f = frames_.back();
+    if (f.value->is_array()) {
+      f.value->push_back(std::move(v));
+      return &f.value->back();
+    }
+    json& slot = (*f.value)[f.key];
+    slot = std::move(v);
+    return &slot;
+  }
+  bool Open(json container) {
+    if (frames_.size() >= static_cast<std::size_t>(kMaxNestingDepth)) {
+      depth_exceeded_ = true;
+      return false;  // stops the parser
+    }
+    json* slot = Add(std::move(container));
+    frames_.push_back({slot, {}});
+    return true;
+  }
+  bool Close() {
+    frames_.pop_back();
+    return true;
+  }
+
+  json* root_;
   std::vector<Frame> frames_;
   std::string duplicate_path_;
+  bool depth_exceeded_ = false;
 };
 
 json ParseJson(const std::string& text, const Reader& reader) {
-  DuplicateKeyDetector detector;
+  // nlohmann's lexer reads a NUL byte as the end of the input: anything after it would be
+  // ignored silently.
+  const std::size_t nul = text.find('\0');
+  if (nul != std::string::npos)
+    reader.Fail("(document)", "(NUL byte at offset " + std::to_string(nul) + ")",
+                "a problem file is JSON text; it must not contain a NUL byte");
   json root;
+  DomBuilder detector(&root);
   try {
-    root = json::parse(text, std::ref(detector), /*allow_exceptions=*/true, /*ignore_comments=*/false);
+    json::sax_parse(text, &detector, json::input_format_t::json, /*strict=*/true, /*ignore_comments=*/false);
   } catch (const json::parse_error& e) {
     // e.byte is the 1-based offset of the last character read (the offending token's end);
     // line and column are counted here (nlohmann's column is off after a newline).
@@ -753,6 +834,9 @@ json ParseJson(const std::string& text, const Reader& reader) {
     const std::string field = detector.CurrentPath();
     reader.Fail(field.empty() ? "(document)" : field, value, "malformed JSON: " + what);
   }
+  if (detector.depth_exceeded())
+    reader.Fail(detector.CurrentPath().empty() ? "(document)" : detector.CurrentPath(), "(nested arrays/objects)",
+                "nested deeper than " + std::to_string(kMaxNestingDepth) + " levels (the limit of a problem file)");
   if (!detector.duplicate_path().empty())
     reader.Fail(detector.duplicate_path(), "(duplicate)", "key given more than once in the same object");
   return root;
@@ -936,8 +1020,9 @@ Problem ReadProblemFile(const std::string& path) {
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
     text.append(buffer, static_cast<std::size_t>(in.gcount()));
     if (text.size() > kMaxFileBytes)
-      throw ProblemFileReadError(path + ": (file): value \"" + path + "\": larger than " +
-                                 std::to_string(kMaxFileBytes >> 20) + " MiB, not a problem file");
+      throw std::invalid_argument(path + ": (file): value (more than " + std::to_string(kMaxFileBytes) +
+                                  " bytes): larger than the " + std::to_string(kMaxFileBytes >> 20) +
+                                  " MiB limit of a problem file");
   }
   if (in.bad()) throw ProblemFileReadError(path + ": (file): value \"" + path + "\": read error");
   return ParseProblem(text, path);

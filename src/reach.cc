@@ -16,20 +16,19 @@
 namespace plateball {
 namespace {
 
-constexpr double kTwoPi = 2.0 * M_PI;
+using internal::CircularDistance;
+using internal::kTwoPi;
+using internal::WrapTwoPi;
 // Two refined solutions are the same when s (mod 2 pi) and t agree to this (the refinement
 // converges to ~1e-13; distinct transversal solutions are separated by far more).
 constexpr double kSameSolution = 1e-7;
 // Cells of the scan grid in each time block tested against the target together.
 constexpr int kBlockSteps = 16;
+// Work budgets of one Reach call (README, "Limits"), checked up front by ReachOptions::Validate.
+constexpr double kMaxReachScanNodes = 1e8;      // horizon_periods x scan_directions x scan_steps_per_period
+constexpr double kMaxReachRefinePeriods = 25600;  // horizon_periods x max_candidates
 
 double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-double WrapTwoPi(double s) {
-  double r = std::fmod(s, kTwoPi);
-  if (r < 0) r += kTwoPi;
-  return r >= kTwoPi ? 0.0 : r;
-}
 
 struct Box {
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
@@ -148,107 +147,120 @@ double CellDistance(const Eigen::Vector2d* c, const Eigen::Vector2d& q) {
                    SegmentDistance(c[3], c[0], q)});
 }
 
+// Corners of the scan cell (i, j): nodes (i, j), (i+1, j), (i+1, j+1), (i, j+1).
+void CellCorners(const Scan& scan, int i, int j, Eigen::Vector2d* c) {
+  c[0] = scan.Node(i, j);
+  c[1] = scan.Node(i + 1, j);
+  c[2] = scan.Node(i + 1, j + 1);
+  c[3] = scan.Node(i, j + 1);
+}
+
+// A hit: the cell's piecewise-linear image contains the target; (s, t) from its barycentric
+// coordinates. Triangle (a, b, c): (u, v) = l2 (1, 0) + l3 (1, 1); triangle (a, c, d): l2 (1, 1) + l3 (0, 1).
+bool CellHit(const Scan& scan, int i, int j, const Eigen::Vector2d* c, const Eigen::Vector2d& q, int sign,
+             Candidate* hit) {
+  constexpr double kBarySlack = 1e-9;
+  double l1, l2, l3;
+  auto inside = [&] { return l1 >= -kBarySlack && l2 >= -kBarySlack && l3 >= -kBarySlack; };
+  if (Barycentric(c[0], c[1], c[2], q, &l1, &l2, &l3) && inside()) {
+    *hit = {(i + l2 + l3) * scan.ds(), (j + l3) * scan.h(), sign};
+    return true;
+  }
+  if (Barycentric(c[0], c[2], c[3], q, &l1, &l2, &l3) && inside()) {
+    *hit = {(i + l2) * scan.ds(), (j + l2 + l3) * scan.h(), sign};
+    return true;
+  }
+  return false;
+}
+
+// Fold seeds of the cell (i, j) of orientation `sign`: the orientation changes to the next cell
+// in s or in t (the first row is degenerate: every direction starts at x0). Near a fold the true
+// map and its piecewise-linear image may cover the target a different number of times (a close
+// pair of solutions): when the target is within the linearisation error of either image and
+// neither cell caught it, both sides are seeded.
+void FoldSeeds(const Scan& scan, int i, int j, const Eigen::Vector2d* c, int sign, const Eigen::Vector2d& q,
+               std::vector<Candidate>* folds) {
+  if (j == 0 || sign == 0) return;
+  const double d_here = CellDistance(c, q);
+  // How far the true cell image may be from the piecewise-linear one: the midpoint deviation of
+  // a parabola, |second difference| / 8, in s and in t (safety factor 4).
+  const double pl_error = 0.5 * ((scan.Node(i + 2, j) - 2.0 * scan.Node(i + 1, j) + scan.Node(i, j)).norm() +
+                                 (scan.Node(i, j + 2) - 2.0 * scan.Node(i, j + 1) + scan.Node(i, j)).norm()) +
+                          1e-12;
+  for (const auto& [i2, j2] : {std::pair<int, int>{i + 1, j}, std::pair<int, int>{i, j + 1}}) {
+    if (j2 >= scan.m()) continue;
+    Eigen::Vector2d c2[4];
+    CellCorners(scan, i2, j2, c2);
+    const int sign2 = QuadSign(c2[0], c2[1], c2[2], c2[3]);
+    if (sign2 == 0 || sign2 == sign) continue;
+    const double d_there = CellDistance(c2, q);
+    if (d_here == 0.0 || d_there == 0.0 || std::min(d_here, d_there) > pl_error) continue;
+    const double dist_pair = std::min(d_here, d_there);
+    folds->push_back({(i + 0.5) * scan.ds(), (j + 0.5) * scan.h(), sign, true, dist_pair});
+    folds->push_back({(i2 + 0.5) * scan.ds(), (j2 + 0.5) * scan.h(), sign2, true, dist_pair});
+  }
+}
+
+// False when the block b of period k between directions i and i+1 cannot hold a seed: a fold
+// seed needs the target within one cell diameter of a cell, and a cell diameter is at most the
+// block's box diagonal.
+bool BlockMayHold(const Scan& scan, int i, int b, int k, const Eigen::Vector2d& q) {
+  Box box = scan.BlockBox(i, b, k);
+  const Box other = scan.BlockBox(i + 1, b, k);
+  box.Add(other.lo);
+  box.Add(other.hi);
+  const double margin = (box.hi - box.lo).norm() + 1e-12;
+  return !((q.array() < box.lo.array() - margin).any() || (q.array() > box.hi.array() + margin).any());
+}
+
+// Hits and fold seeds of the cells j0 .. j1-1 between directions i and i+1.
+void ScanCells(const Scan& scan, int i, int j0, int j1, const Eigen::Vector2d& q, std::vector<Candidate>* hits,
+               std::vector<Candidate>* folds) {
+  for (int j = j0; j < j1; ++j) {
+    Eigen::Vector2d c[4];
+    CellCorners(scan, i, j, c);
+    double diameter = 0.0;
+    const double dist = BoxDistance(c[0], c[1], c[2], c[3], q, &diameter);
+    if (dist > diameter) continue;
+    const int sign = QuadSign(c[0], c[1], c[2], c[3]);
+    Candidate hit;
+    if (dist == 0.0 && CellHit(scan, i, j, c, q, sign, &hit)) hits->push_back(hit);
+    FoldSeeds(scan, i, j, c, sign, q, folds);
+  }
+}
+
+// Keeps the candidates not within `cells` scan cells (in s and t, same sheet) of one kept before.
+std::vector<Candidate> Thin(const Scan& scan, const std::vector<Candidate>& in, double cells) {
+  std::vector<Candidate> kept;
+  for (const Candidate& c : in) {
+    bool dup = false;
+    for (const Candidate& o : kept)
+      dup = dup || (c.sign == o.sign && CircularDistance(c.s, o.s) <= cells * scan.ds() &&
+                    std::abs(c.t - o.t) <= cells * scan.h());
+    if (!dup) kept.push_back(c);
+  }
+  return kept;
+}
+
 // Collects refinement seeds: cells whose piecewise-linear image contains the target, and cells
 // next to a fold (orientation change) whose image is close to the target.
 std::vector<Candidate> FindCandidates(const Scan& scan, const Eigen::Vector2d& rel_target) {
   std::vector<Candidate> hits, folds;
-  const int ns = scan.ns(), n = scan.n(), m = scan.m();
+  const int n = scan.n(), m = scan.m();
   const int periods = (m + n - 1) / n;
-  const double bary_slack = 1e-9;
-  auto cell_corners = [&](int i, int j, Eigen::Vector2d* c) {
-    c[0] = scan.Node(i, j);
-    c[1] = scan.Node(i + 1, j);
-    c[2] = scan.Node(i + 1, j + 1);
-    c[3] = scan.Node(i, j + 1);
-  };
-  for (int i = 0; i < ns; ++i) {
-    for (int k = 0; k < periods; ++k) {
-      for (int b = 0; b < scan.blocks(); ++b) {
+  for (int i = 0; i < scan.ns(); ++i)
+    for (int k = 0; k < periods; ++k)
+      for (int b = 0; b < scan.blocks() && k * n + b * kBlockSteps < m; ++b) {
         const int j0 = k * n + b * kBlockSteps;
-        if (j0 >= m) break;
         const int j1 = std::min({j0 + kBlockSteps, k * n + n, m});  // cells j0 .. j1-1
-        Box box = scan.BlockBox(i, b, k);
-        const Box other = scan.BlockBox(i + 1, b, k);
-        box.Add(other.lo);
-        box.Add(other.hi);
-        // Margin: a fold seed needs the target within one cell diameter of a cell, and a cell
-        // diameter is at most the block's box diagonal.
-        const double margin = (box.hi - box.lo).norm() + 1e-12;
-        if ((rel_target.array() < box.lo.array() - margin).any() || (rel_target.array() > box.hi.array() + margin).any())
-          continue;
-        for (int j = j0; j < j1; ++j) {
-          Eigen::Vector2d c[4];
-          cell_corners(i, j, c);
-          double diameter = 0.0;
-          const double dist = BoxDistance(c[0], c[1], c[2], c[3], rel_target, &diameter);
-          if (dist > diameter) continue;
-          const int sign = QuadSign(c[0], c[1], c[2], c[3]);
-          if (dist == 0.0) {
-            double l1, l2, l3;
-            // Triangle (a, b, c): (u, v) = l2 (1, 0) + l3 (1, 1); triangle (a, c, d): l2 (1, 1) + l3 (0, 1).
-            if (Barycentric(c[0], c[1], c[2], rel_target, &l1, &l2, &l3) && l1 >= -bary_slack && l2 >= -bary_slack &&
-                l3 >= -bary_slack) {
-              hits.push_back({(i + l2 + l3) * scan.ds(), (j + l3) * scan.h(), sign});
-            } else if (Barycentric(c[0], c[2], c[3], rel_target, &l1, &l2, &l3) && l1 >= -bary_slack &&
-                       l2 >= -bary_slack && l3 >= -bary_slack) {
-              hits.push_back({(i + l2) * scan.ds(), (j + l2 + l3) * scan.h(), sign});
-            }
-          }
-          // Fold: the orientation changes to the next cell in s or in t (the first row is
-          // degenerate: every direction starts at x0). Near a fold the true map and its
-          // piecewise-linear image may cover the target a different number of times (a close
-          // pair of solutions): when the target is within the linearisation error of either
-          // image and neither cell caught it, seed both sides.
-          if (j == 0 || sign == 0) continue;
-          const double d_here = CellDistance(c, rel_target);
-          // How far the true cell image may be from the piecewise-linear one: the midpoint
-          // deviation of a parabola, |second difference| / 8, in s and in t (safety factor 4).
-          const double pl_error =
-              0.5 * ((scan.Node(i + 2, j) - 2.0 * scan.Node(i + 1, j) + scan.Node(i, j)).norm() +
-                     (scan.Node(i, j + 2) - 2.0 * scan.Node(i, j + 1) + scan.Node(i, j)).norm()) + 1e-12;
-          auto seed_if_fold = [&](int i2, int j2) {
-            if (j2 >= m) return;
-            Eigen::Vector2d c2[4];
-            cell_corners(i2, j2, c2);
-            const int sign2 = QuadSign(c2[0], c2[1], c2[2], c2[3]);
-            if (sign2 == 0 || sign2 == sign) return;
-            const double d_there = CellDistance(c2, rel_target);
-            if (d_here == 0.0 || d_there == 0.0 || std::min(d_here, d_there) > pl_error) return;
-            const double dist_pair = std::min(d_here, d_there);
-            folds.push_back({(i + 0.5) * scan.ds(), (j + 0.5) * scan.h(), sign, true, dist_pair});
-            folds.push_back({(i2 + 0.5) * scan.ds(), (j2 + 0.5) * scan.h(), sign2, true, dist_pair});
-          };
-          seed_if_fold(i + 1, j);
-          seed_if_fold(i, j + 1);
-        }
+        if (BlockMayHold(scan, i, b, k, rel_target)) ScanCells(scan, i, j0, j1, rel_target, &hits, &folds);
       }
-    }
-  }
   // Hits in neighbouring cells of the same sheet are the same solution (target on a shared edge).
-  std::vector<Candidate> out;
-  auto near = [&](const Candidate& a, const Candidate& b, double cells) {
-    double dsv = std::abs(a.s - b.s);
-    dsv = std::min(dsv, kTwoPi - dsv);
-    return a.sign == b.sign && dsv <= cells * scan.ds() && std::abs(a.t - b.t) <= cells * scan.h();
-  };
-  for (const Candidate& c : hits) {
-    bool dup = false;
-    for (const Candidate& o : out) dup = dup || near(c, o, 1.0);
-    if (!dup) out.push_back(c);
-  }
+  std::vector<Candidate> out = Thin(scan, hits, 1.0);
   // Along one fold many cell pairs may qualify; the pair nearest the target stands for the
   // others within a few cells (a close pair of solutions lies next to the nearest one).
   std::stable_sort(folds.begin(), folds.end(), [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
-  std::vector<Candidate> kept;
-  for (const Candidate& c : folds) {
-    bool dup = false;
-    for (const Candidate& o : kept) {
-      double dsv = std::abs(c.s - o.s);
-      dsv = std::min(dsv, kTwoPi - dsv);
-      dup = dup || (c.sign == o.sign && dsv <= 3.0 * scan.ds() && std::abs(c.t - o.t) <= 3.0 * scan.h());
-    }
-    if (!dup) kept.push_back(c);
-  }
+  const std::vector<Candidate> kept = Thin(scan, folds, 3.0);
   out.insert(out.end(), kept.begin(), kept.end());
   return out;
 }
@@ -303,6 +315,32 @@ class ReachResidual {
   mutable internal::TightPoint cache_;
 };
 
+// Golden-section search (40 steps) for the minimum of a unimodal f on [lo, hi]: the smaller of
+// the last two probes, and where it is.
+template <typename F>
+double GoldenSection(const F& f, double lo, double hi, double* x_min) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+  double fa = f(a), fb = f(b);
+  for (int it = 0; it < 40; ++it) {
+    if (fa < fb) {
+      hi = b;
+      b = a;
+      fb = fa;
+      a = hi - g * (hi - lo);
+      fa = f(a);
+    } else {
+      lo = a;
+      a = b;
+      fa = fb;
+      b = lo + g * (hi - lo);
+      fb = f(b);
+    }
+  }
+  *x_min = fa < fb ? a : b;
+  return std::min(fa, fb);
+}
+
 // Cheap closest approach along the direction s: min over t in [0, horizon] of |x_s(t) - target|
 // from the RK4 table, refined on the cubic Hermite interpolant around the best node.
 struct CheapDistance {
@@ -346,28 +384,12 @@ struct CheapDistance {
       }
     }
     // Golden-section search on the interpolant over the two neighbouring steps.
-    double lo = std::max(0.0, tb - h), hi = std::min(horizon, tb + h);
-    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-    double fa = (at(a) - rel).norm(), fb = (at(b) - rel).norm();
-    for (int it = 0; it < 40; ++it) {
-      if (fa < fb) {
-        hi = b;
-        b = a;
-        fb = fa;
-        a = hi - g * (hi - lo);
-        fa = (at(a) - rel).norm();
-      } else {
-        lo = a;
-        a = b;
-        fa = fb;
-        b = lo + g * (hi - lo);
-        fb = (at(b) - rel).norm();
-      }
-    }
-    if (std::min(fa, fb) < best) {
-      best = std::min(fa, fb);
-      tb = fa < fb ? a : b;
+    double t_min = 0.0;
+    const double f_min = GoldenSection([&](double t) { return (at(t) - rel).norm(); }, std::max(0.0, tb - h),
+                                       std::min(horizon, tb + h), &t_min);
+    if (f_min < best) {
+      best = f_min;
+      tb = t_min;
     }
     *t_best = tb;
     return best;
@@ -406,27 +428,35 @@ double Objective2d(unsigned /*n*/, const double* x, double* /*grad*/, void* data
 }  // namespace
 
 std::string ReachOptions::Validate() const {
-  std::ostringstream os;
-  os.precision(17);
-  if (!(std::isfinite(horizon_periods) && horizon_periods > 0 && horizon_periods <= 1e4))
-    os << "'horizon_periods' = " << horizon_periods << " is invalid: must be in (0, 1e4]";
-  else if (scan_directions < 8 || scan_directions > 100000)
-    os << "'scan_directions' = " << scan_directions << " is invalid: must be in [8, 100000]";
-  else if (scan_steps_per_period < 8 || scan_steps_per_period > 100000)
-    os << "'scan_steps_per_period' = " << scan_steps_per_period << " is invalid: must be in [8, 100000]";
-  else if (!(std::isfinite(tolerance) && tolerance > 0))
-    os << "'tolerance' = " << tolerance << " is invalid: must be finite and > 0";
-  else if (max_refine_iterations < 1)
-    os << "'max_refine_iterations' = " << max_refine_iterations << " is invalid: must be >= 1";
-  else if (max_candidates < 1)
-    os << "'max_candidates' = " << max_candidates << " is invalid: must be >= 1";
-  else if (global_max_evaluations < 1)
-    os << "'global_max_evaluations' = " << global_max_evaluations << " is invalid: must be >= 1";
-  else {
-    const std::string e = integration.Validate();
-    if (!e.empty()) os << "integration: " << e;
-  }
-  return os.str();
+  using internal::InvalidValueMessage;
+  if (!(horizon_periods > 0 && horizon_periods <= 1e4))
+    return InvalidValueMessage("horizon_periods", horizon_periods, "must be in (0, 1e4]");
+  if (scan_directions < 8 || scan_directions > 100000)
+    return InvalidValueMessage("scan_directions", scan_directions, "must be in [8, 100000]");
+  if (scan_steps_per_period < 8 || scan_steps_per_period > 100000)
+    return InvalidValueMessage("scan_steps_per_period", scan_steps_per_period, "must be in [8, 100000]");
+  if (!(std::isfinite(tolerance) && tolerance > 0))
+    return InvalidValueMessage("tolerance", tolerance, "must be finite and > 0");
+  if (max_refine_iterations < 1 || max_refine_iterations > 1000)
+    return InvalidValueMessage("max_refine_iterations", max_refine_iterations, "must be in [1, 1000]");
+  if (max_candidates < 1 || max_candidates > 100000)
+    return InvalidValueMessage("max_candidates", max_candidates, "must be in [1, 100000]");
+  if (global_max_evaluations < 1 || global_max_evaluations > 100000)
+    return InvalidValueMessage("global_max_evaluations", global_max_evaluations, "must be in [1, 100000]");
+  // Work budget (README, "Limits"): the scan visits directions x steps x periods nodes and each
+  // candidate is refined by integrations over up to the whole horizon.
+  const double scan_nodes = horizon_periods * scan_directions * scan_steps_per_period;
+  if (scan_nodes > kMaxReachScanNodes)
+    return InvalidValueMessage("horizon_periods", horizon_periods,
+                               "horizon_periods x scan_directions x scan_steps_per_period = " +
+                                   internal::FormatNumber(scan_nodes) + " exceeds the scan budget " +
+                                   internal::FormatNumber(kMaxReachScanNodes));
+  const double refine_periods = horizon_periods * max_candidates;
+  if (refine_periods > kMaxReachRefinePeriods)
+    return InvalidValueMessage("horizon_periods", horizon_periods,
+                               "horizon_periods x max_candidates = " + internal::FormatNumber(refine_periods) +
+                                   " exceeds the refinement budget " + internal::FormatNumber(kMaxReachRefinePeriods));
+  return integration.Validate();
 }
 
 std::string ToString(ReachStatus status) {
@@ -468,17 +498,182 @@ std::string ReachSummary::BriefReport() const {
   return os.str();
 }
 
-ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options) {
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument("ReachOptions: " + err);
-  internal::RequireFinite("problem.start.theta", problem.start.theta);
-  internal::RequireFinite("problem.start.phi", problem.start.phi);
-  internal::RequireFinite("problem.start.psi", problem.start.psi);
-  internal::RequirePositive("problem.mu", problem.mu);
-  internal::RequireFinite("problem.x0", problem.x0);
-  internal::RequireFinite("problem.target", problem.target);
-  internal::RequireFinite("problem.A0", problem.A0);
+namespace {
 
+// The public boundary: options and finite input, checked once; the angles come back reduced
+// (kinematics.h, ReduceAngles) so that a psi of 1e6 is answered like psi mod 2 pi.
+ReachProblem ValidateReach(const ReachProblem& problem, const ReachOptions& options) {
+  internal::ThrowIfInvalid(options.Validate());
+  ReachProblem p = problem;
+  p.start = internal::ReduceAngles("start", problem.start);
+  internal::RequireEnergy("mu", problem.mu);
+  internal::RequireCoordinates("x0", problem.x0);
+  internal::RequireCoordinates("target", problem.target);
+  internal::RequireFinite("A0", problem.A0);
+  return p;
+}
+
+struct GlobalMinimum {
+  double s = 0.0, t = 0.0, d = std::numeric_limits<double>::infinity();
+};
+
+// NLopt's global search (DIRECT-L, deterministic) over s in [0, 2 pi) of the closest approach
+// d(s) = min_t |x_s(t) - target|, t in [0, horizon], on the cheap one-period tables. Its minimiser
+// is refined by Ceres like every scan candidate (a solution when d reaches 0; the scan enumerates
+// the others, since a global optimiser returns one minimum), and when nothing reaches the target
+// it gives the closest approach.
+GlobalMinimum GlobalSearch(const CheapDistance& cheap, const ReachOptions& options, ReachSummary* summary) {
+  std::function<double(double)> d_of_s = [&](double s) {
+    ++summary->global_evaluations;
+    double t;
+    return cheap(s, &t);
+  };
+  nlopt::opt global(nlopt::GN_DIRECT_L, 1);
+  global.set_lower_bounds(std::vector<double>{0.0});
+  global.set_upper_bounds(std::vector<double>{kTwoPi});
+  global.set_min_objective(Objective1d, &d_of_s);
+  global.set_maxeval(options.global_max_evaluations);
+  global.set_xtol_abs(1e-10);
+  std::vector<double> sx{M_PI};
+  GlobalMinimum g;
+  try {
+    global.optimize(sx, g.d);
+  } catch (const nlopt::roundoff_limited&) {
+  } catch (const nlopt::forced_stop&) {
+  }
+  g.s = sx[0];
+  cheap(g.s, &g.t);
+  return g;
+}
+
+// The refinement seeds in order: the global minimiser, the scan's hits and folds, and (when there
+// are none) the paper's uniform drift towards the target; at most options.max_candidates.
+std::vector<Candidate> CollectCandidates(const Scan& scan, const ReachProblem& problem, const ReachOptions& options,
+                                         const GlobalMinimum& global, double period, double horizon,
+                                         ReachSummary* summary) {
+  const Eigen::Vector2d rel = problem.target - problem.x0;
+  const double lambda = problem.model.lambda();
+  std::vector<Candidate> candidates = FindCandidates(scan, rel);
+  if (std::isfinite(global.d) && global.t > 0.0) candidates.insert(candidates.begin(), {global.s, global.t, 0});
+  if (candidates.empty() && std::isfinite(summary->drift_guess_delta_psi)) {
+    const double s = summary->drift_guess_delta_psi;
+    internal::ScanPeriod tab;
+    internal::TabulatePeriod(internal::DirectionFor(problem.start, problem.mu, lambda, s), lambda, period,
+                             options.scan_steps_per_period, &tab);
+    ++summary->scan_periods_integrated;
+    const double t = rel.norm() / std::max(tab.drift.norm(), 1e-300) * period;
+    if (t <= horizon) candidates.push_back({s, t, 0});
+  }
+  if (static_cast<int>(candidates.size()) > options.max_candidates)
+    candidates.resize(static_cast<std::size_t>(options.max_candidates));
+  return candidates;
+}
+
+// True when a solution in `found` is the same as (s, t) to within (ds, dt) on the circle x line.
+bool NearSolution(const std::vector<ReachSolution>& found, double s, double t, double ds, double dt) {
+  for (const ReachSolution& o : found)
+    if (CircularDistance(o.delta_psi, s) <= ds && std::abs(o.t - t) <= dt) return true;
+  return false;
+}
+
+// Levenberg-Marquardt (Ceres TinySolver) from every candidate on the tight integration; the
+// distinct solutions with 0 < t <= horizon and residual <= tolerance, earliest first.
+void RefineCandidates(const Scan& scan, const ReachProblem& problem, const ReachOptions& options,
+                      const std::vector<Candidate>& candidates, double period, double horizon, ReachSummary* summary) {
+  ReachResidual residual(problem, period, options.integration, &summary->tight_evaluations);
+  ceres::TinySolver<ReachResidual> solver;
+  solver.options.max_num_iterations = options.max_refine_iterations;
+  solver.options.gradient_tolerance = 0.0;
+  solver.options.parameter_tolerance = 1e-15;
+  solver.options.function_tolerance = 0.0;
+  solver.options.cost_threshold = 0.5 * std::pow(0.1 * options.tolerance, 2);
+  for (const Candidate& c : candidates) {
+    // A fold seed next to a solution already found adds nothing.
+    if (c.fold && NearSolution(summary->solutions, WrapTwoPi(c.s), c.t, 2.0 * scan.ds(), 2.0 * scan.h())) continue;
+    Eigen::Vector2d x(c.s, c.t);
+    solver.Solve(residual, &x);
+    summary->refine_iterations += solver.summary.iterations;
+    const double t = x[1];
+    // t > 0: the target is not x0 (checked before), so t = 0 cannot have a residual this small.
+    if (!(t > 0.0 && t <= horizon)) continue;
+    const internal::TightPoint tp = residual.Evaluate(x[0], x[1]);
+    const double s = WrapTwoPi(x[0]);
+    const double res = (problem.x0 + tp.x - problem.target).norm();
+    if (!(res <= options.tolerance)) continue;
+    if (NearSolution(summary->solutions, s, t, kSameSolution, kSameSolution * std::max(1.0, t)))
+      continue;
+    ReachSolution sol;
+    sol.delta_psi = s;
+    sol.t = t;
+    sol.periods = t / period;
+    sol.residual = res;
+    sol.jacobian_determinant = Cross(tp.dx_ds, tp.velocity);
+    summary->solutions.push_back(sol);
+  }
+  std::sort(summary->solutions.begin(), summary->solutions.end(),
+            [](const ReachSolution& a, const ReachSolution& b) { return a.t < b.t; });
+}
+
+// The impulse and the end state (tight free motion with the orientation) of every solution.
+void FinishSolutions(const ReachProblem& problem, const ReachOptions& options, ReachSummary* summary) {
+  for (ReachSolution& sol : summary->solutions) {
+    sol.impulse = EnergyPreservingImpulse(problem.start, problem.mu, sol.delta_psi, problem.model);
+    AngleState after = problem.start;
+    after.psi += sol.delta_psi;
+    const FreeMotion motion = FreeMotion::FromAngles(problem.model, after, problem.mu, problem.x0, problem.A0, options.integration);
+    sol.end = motion.At(sol.t);
+  }
+  const ReachSolution& e = summary->solutions.front();
+  summary->closest_approach = {e.residual, e.delta_psi, e.t};
+}
+
+// Unreachable within the horizon: the closest approach. The global minimum competes with the scan
+// grid's best node (DIRECT may stop on its budget first), then a bounded polish of (s, t) on the
+// tight integration (NLopt BOBYQA, deterministic).
+ClosestApproach PolishClosestApproach(const Scan& scan, const CheapDistance& cheap, const ReachProblem& problem,
+                                      const ReachOptions& options, const GlobalMinimum& global, double period,
+                                      double horizon, ReachSummary* summary) {
+  const Eigen::Vector2d rel = problem.target - problem.x0;
+  const double lambda = problem.model.lambda();
+  double best_d = global.d;
+  double best_s = global.s;
+  for (int i = 0; i < scan.ns(); ++i)
+    for (int j = 0; j <= scan.m() && j * scan.h() <= horizon; ++j) {
+      const double dij = (scan.Node(i, j) - rel).norm();
+      if (dij < best_d) {
+        best_d = dij;
+        best_s = i * scan.ds();
+      }
+    }
+  double best_t = 0.0;
+  cheap(best_s, &best_t);
+  std::function<double(double, double)> dist2 = [&](double s, double t) {
+    const internal::TightPoint tp = internal::EvaluateTight(internal::DirectionFor(problem.start, problem.mu, lambda, s),
+                                                            lambda, period, t, false, options.integration);
+    ++summary->tight_evaluations;
+    return (problem.x0 + tp.x - problem.target).squaredNorm();
+  };
+  const double t_lo = std::max(0.0, best_t - scan.h()), t_hi = std::min(horizon, best_t + scan.h());
+  nlopt::opt local(nlopt::LN_BOBYQA, 2);
+  local.set_lower_bounds(std::vector<double>{best_s - scan.ds(), t_lo});
+  local.set_upper_bounds(std::vector<double>{best_s + scan.ds(), t_hi});
+  local.set_min_objective(Objective2d, &dist2);
+  local.set_maxeval(60);
+  local.set_xtol_abs(std::vector<double>{1e-10, 1e-10});
+  std::vector<double> st{best_s, std::clamp(best_t, t_lo, t_hi)};
+  double f2 = dist2(st[0], st[1]);
+  try {
+    local.optimize(st, f2);
+  } catch (const nlopt::roundoff_limited&) {
+  } catch (const nlopt::forced_stop&) {
+  }
+  return {std::sqrt(dist2(st[0], st[1])), WrapTwoPi(st[0]), st[1]};
+}
+
+}  // namespace
+
+ReachSummary Reach(const ReachProblem& problem_in, const ReachOptions& options) {
+  const ReachProblem problem = ValidateReach(problem_in, options);
   ReachSummary summary;
   summary.message.clear();  // filled only for kNumericalFailure
   summary.problem = problem;
@@ -486,161 +681,28 @@ ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options) {
   summary.horizon = options.horizon_periods * summary.period;
   const double period = summary.period, horizon = summary.horizon;
   const Eigen::Vector2d rel = problem.target - problem.x0;
-  const double lambda = problem.model.lambda();
   if (rel.norm() <= options.tolerance) {
     summary.status = ReachStatus::kTargetEqualsStart;
     summary.drift_guess_delta_psi = std::numeric_limits<double>::quiet_NaN();
     summary.closest_approach = {rel.norm(), 0.0, 0.0};
     return summary;
   }
-
   try {
     const Scan scan(problem, options, period, horizon);
     summary.scan_periods_integrated = scan.ns();
     summary.drift_guess_delta_psi = DriftGuess(scan, rel);
-
-    std::vector<Candidate> candidates = FindCandidates(scan, rel);
-
-    // NLopt's global search (DIRECT-L) over s in [0, 2 pi) of the closest approach
-    // d(s) = min_t |x_s(t) - target|, t in [0, horizon], on the cheap one-period tables. Its
-    // minimiser is refined by Ceres like every scan candidate (a solution when d reaches 0; the
-    // scan enumerates the others, since a global optimiser returns one minimum), and when nothing
-    // reaches the target it gives the closest approach.
-    CheapDistance cheap{&problem, period, horizon, options.scan_steps_per_period, &summary.scan_periods_integrated};
-    std::function<double(double)> d_of_s = [&](double s) {
-      ++summary.global_evaluations;
-      double t;
-      return cheap(s, &t);
-    };
-    nlopt::srand(static_cast<unsigned long>(options.seed));
-    nlopt::opt global(nlopt::GN_DIRECT_L, 1);
-    global.set_lower_bounds(std::vector<double>{0.0});
-    global.set_upper_bounds(std::vector<double>{kTwoPi});
-    global.set_min_objective(Objective1d, &d_of_s);
-    global.set_maxeval(options.global_max_evaluations);
-    global.set_xtol_abs(1e-10);
-    std::vector<double> sx{M_PI};
-    double global_d = std::numeric_limits<double>::infinity();
-    try {
-      global.optimize(sx, global_d);
-    } catch (const nlopt::roundoff_limited&) {
-    } catch (const nlopt::forced_stop&) {
-    }
-    const double global_s = sx[0];
-    double global_t = 0.0;
-    cheap(global_s, &global_t);
-    if (std::isfinite(global_d) && global_t > 0.0) candidates.insert(candidates.begin(), {global_s, global_t, 0});
-
-    if (candidates.empty() && std::isfinite(summary.drift_guess_delta_psi)) {
-      // The paper's method as a last resort: uniform drift towards the target.
-      const double s = summary.drift_guess_delta_psi;
-      internal::ScanPeriod tab;
-      internal::TabulatePeriod(internal::DirectionFor(problem.start, problem.mu, lambda, s), lambda, period,
-                               options.scan_steps_per_period, &tab);
-      ++summary.scan_periods_integrated;
-      const double t = rel.norm() / std::max(tab.drift.norm(), 1e-300) * period;
-      if (t <= horizon) candidates.push_back({s, t, 0});
-    }
-    if (static_cast<int>(candidates.size()) > options.max_candidates) candidates.resize(static_cast<std::size_t>(options.max_candidates));
+    const CheapDistance cheap{&problem, period, horizon, options.scan_steps_per_period, &summary.scan_periods_integrated};
+    const GlobalMinimum global = GlobalSearch(cheap, options, &summary);
+    const std::vector<Candidate> candidates = CollectCandidates(scan, problem, options, global, period, horizon, &summary);
     summary.candidates = static_cast<int>(candidates.size());
-
-    ReachResidual residual(problem, period, options.integration, &summary.tight_evaluations);
-    ceres::TinySolver<ReachResidual> solver;
-    solver.options.max_num_iterations = options.max_refine_iterations;
-    solver.options.gradient_tolerance = 0.0;
-    solver.options.parameter_tolerance = 1e-15;
-    solver.options.function_tolerance = 0.0;
-    solver.options.cost_threshold = 0.5 * std::pow(0.1 * options.tolerance, 2);
-    for (const Candidate& c : candidates) {
-      if (c.fold) {  // a fold seed next to a solution already found adds nothing
-        bool near_found = false;
-        for (const ReachSolution& o : summary.solutions) {
-          double dsv = std::abs(o.delta_psi - WrapTwoPi(c.s));
-          dsv = std::min(dsv, kTwoPi - dsv);
-          near_found = near_found || (dsv <= 2.0 * scan.ds() && std::abs(o.t - c.t) <= 2.0 * scan.h());
-        }
-        if (near_found) continue;
-      }
-      Eigen::Vector2d x(c.s, c.t);
-      solver.Solve(residual, &x);
-      summary.refine_iterations += solver.summary.iterations;
-      const double t = x[1];
-      // t > 0: the target is not x0 (checked above), so t = 0 cannot have a residual this small.
-      if (!(t > 0.0 && t <= horizon)) continue;
-      const internal::TightPoint tp = residual.Evaluate(x[0], x[1]);
-      const double s = WrapTwoPi(x[0]);
-      const double res = (problem.x0 + tp.x - problem.target).norm();
-      if (!(res <= options.tolerance)) continue;
-      bool dup = false;
-      for (const ReachSolution& o : summary.solutions) {
-        double dsv = std::abs(o.delta_psi - s);
-        dsv = std::min(dsv, kTwoPi - dsv);
-        dup = dup || (dsv < kSameSolution && std::abs(o.t - t) < kSameSolution * std::max(1.0, t));
-      }
-      if (dup) continue;
-      ReachSolution sol;
-      sol.delta_psi = s;
-      sol.t = t;
-      sol.periods = t / period;
-      sol.residual = res;
-      sol.jacobian_determinant = Cross(tp.dx_ds, tp.velocity);
-      summary.solutions.push_back(sol);
-    }
-    std::sort(summary.solutions.begin(), summary.solutions.end(),
-              [](const ReachSolution& a, const ReachSolution& b) { return a.t < b.t; });
-
+    RefineCandidates(scan, problem, options, candidates, period, horizon, &summary);
     if (!summary.solutions.empty()) {
       summary.status = ReachStatus::kSolved;
-      for (ReachSolution& sol : summary.solutions) {
-        sol.impulse = EnergyPreservingImpulse(problem.start, problem.mu, sol.delta_psi, problem.model);
-        AngleState after = problem.start;
-        after.psi += sol.delta_psi;
-        const FreeMotion motion = FreeMotion::FromAngles(problem.model, after, problem.mu, problem.x0, problem.A0, options.integration);
-        sol.end = motion.At(sol.t);
-      }
-      const ReachSolution& e = summary.solutions.front();
-      summary.closest_approach = {e.residual, e.delta_psi, e.t};
+      FinishSolutions(problem, options, &summary);
       return summary;
     }
-
-    // Unreachable within the horizon: the closest approach. Global search over s (NLopt
-    // DIRECT-L on the cheap d(s)), then a bounded polish of (s, t) on the tight integration.
     summary.status = ReachStatus::kUnreachableWithinHorizon;
-    // The scan grid's best node competes with the global search (DIRECT may stop on its budget first).
-    double best_d = global_d;
-    double best_s = global_s;
-    for (int i = 0; i < scan.ns(); ++i)
-      for (int j = 0; j <= scan.m() && j * scan.h() <= horizon; ++j) {
-        const double dij = (scan.Node(i, j) - rel).norm();
-        if (dij < best_d) {
-          best_d = dij;
-          best_s = i * scan.ds();
-        }
-      }
-    double best_t = 0.0;
-    cheap(best_s, &best_t);
-
-    std::function<double(double, double)> dist2 = [&](double s, double t) {
-      const internal::TightPoint tp = internal::EvaluateTight(internal::DirectionFor(problem.start, problem.mu, lambda, s),
-                                                              lambda, period, t, false, options.integration);
-      ++summary.tight_evaluations;
-      return (problem.x0 + tp.x - problem.target).squaredNorm();
-    };
-    nlopt::srand(static_cast<unsigned long>(options.seed));
-    nlopt::opt local(nlopt::LN_BOBYQA, 2);
-    local.set_lower_bounds(std::vector<double>{best_s - scan.ds(), std::max(0.0, best_t - scan.h())});
-    local.set_upper_bounds(std::vector<double>{best_s + scan.ds(), std::min(horizon, best_t + scan.h())});
-    local.set_min_objective(Objective2d, &dist2);
-    local.set_maxeval(60);
-    local.set_xtol_abs(std::vector<double>{1e-10, 1e-10});
-    std::vector<double> st{best_s, std::clamp(best_t, std::max(0.0, best_t - scan.h()), std::min(horizon, best_t + scan.h()))};
-    double f2 = dist2(st[0], st[1]);
-    try {
-      local.optimize(st, f2);
-    } catch (const nlopt::roundoff_limited&) {
-    } catch (const nlopt::forced_stop&) {
-    }
-    summary.closest_approach = {std::sqrt(dist2(st[0], st[1])), WrapTwoPi(st[0]), st[1]};
+    summary.closest_approach = PolishClosestApproach(scan, cheap, problem, options, global, period, horizon, &summary);
   } catch (const std::runtime_error& e) {
     summary.status = ReachStatus::kNumericalFailure;
     summary.message = e.what();

@@ -10,7 +10,6 @@
 namespace plateball::internal {
 namespace {
 
-using Jet1 = ceres::Jet<double, 1>;
 using ZxState = std::array<double, 5>;           // z[3], x[2]
 
 struct ZxOnlyRhs {
@@ -32,23 +31,6 @@ Eigen::Vector2d VelocityAt(const double* z, const Eigen::Vector2d& k, double lam
 }
 
 }  // namespace
-
-ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, double s) {
-  ReachDirection d;
-  d.s = s;
-  const double st = std::sin(start.theta), ct = std::cos(start.theta);
-  d.z0 = Eigen::Vector3d(st * std::cos(start.phi), st * std::sin(start.phi), ct);  // (12)-(14)
-  Jet1 psi(start.psi + s, 0);
-  Jet1 w[2];
-  OmegaHFromAngles(start.theta, start.phi, psi, mu, lambda, w);
-  // K = omega_h + (lambda - 1) v0 z_h with v0 = <omega, z> = <omega_h, z_h> (omega_3 = 0).
-  const Jet1 v0 = w[0] * d.z0.x() + w[1] * d.z0.y();
-  const Jet1 k0 = w[0] + (lambda - 1.0) * v0 * d.z0.x();
-  const Jet1 k1 = w[1] + (lambda - 1.0) * v0 * d.z0.y();
-  d.k = {k0.a, k1.a};
-  d.dk_ds = {k0.v[0], k1.v[0]};
-  return d;
-}
 
 void TabulatePeriod(const ReachDirection& d, double lambda, double period, int steps, ScanPeriod* out) {
   const ZxOnlyRhs rhs{lambda, {d.k.x(), d.k.y()}};

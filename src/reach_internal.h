@@ -7,36 +7,11 @@
 #include <cmath>
 #include <vector>
 
+#include "arc.h"
 #include "plateball/ball_state.h"
 #include "plateball/integration_options.h"
 
 namespace plateball::internal {
-
-/// Horizontal angular velocity just after the impulse psi -> psi (section 2.1):
-///   omega_1 = a(theta) cos(phi - psi) cos(phi) + b sin(phi - psi) sin(phi)
-///   omega_2 = a(theta) cos(phi - psi) sin(phi) - b sin(phi - psi) cos(phi)
-/// (a, b the semi-axes of SemiAxisA), so x' = (omega_2, -omega_1) is eqs. (25)-(26).
-/// Templated on the scalar of psi so that ceres::Jet gives d omega / d psi.
-template <typename T>
-inline void OmegaHFromAngles(double theta, double phi, const T& psi, double mu, double lambda, T* w) {
-  using std::cos;
-  using std::sin;
-  const double a = SemiAxisA(theta, mu, lambda);
-  const double b = std::sqrt(mu);
-  const T wv = phi - psi;
-  w[0] = a * cos(wv) * std::cos(phi) + b * sin(wv) * std::sin(phi);
-  w[1] = a * cos(wv) * std::sin(phi) - b * sin(wv) * std::cos(phi);
-}
-
-/// Everything the motion after the impulse s depends on: the axis z0 (unchanged by the impulse),
-/// the conserved vector K(s) (docs/paper_notes.md) and dK/ds.
-struct ReachDirection {
-  double s = 0.0;
-  Eigen::Vector3d z0 = Eigen::Vector3d::UnitZ();
-  Eigen::Vector2d k = Eigen::Vector2d::Zero();
-  Eigen::Vector2d dk_ds = Eigen::Vector2d::Zero();
-};
-ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, double s);
 
 /// One period tabulated by classical RK4 with `steps` equal steps: x[j] - x0 and the contact
 /// velocity v[j] at t = j T / steps, j = 0..steps; drift = x[steps]. Cheap (no orientation, no

@@ -11,30 +11,12 @@
 #include "plateball/so3.h"
 
 namespace plateball {
-namespace {
-using Mat9 = std::array<double, 9>;
-
-struct RollingRhs {
-  const PlanarVelocity* velocity;
-  void operator()(const Mat9& y, Mat9& dy, double tau) const {
-    const Eigen::Vector2d v = (*velocity)(tau);
-    const double w0 = -v.y(), w1 = v.x();  // omega = e3 x x', omega_3 = 0
-    for (int c = 0; c < 3; ++c) {
-      dy[0 + c] = w1 * y[6 + c];
-      dy[3 + c] = -w0 * y[6 + c];
-      dy[6 + c] = -w1 * y[0 + c] + w0 * y[3 + c];
-    }
-  }
-};
-}  // namespace
-
 Eigen::Matrix3d RollingReorientation(const PlanarVelocity& velocity, double a, double b,
                                      const std::vector<double>& breakpoints, const IntegrationOptions& options) {
   internal::RequireFinite("a", a);
   internal::RequireFinite("b", b);
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
-  if (!velocity) throw std::invalid_argument("velocity: an empty function was given");
+  internal::ThrowIfInvalid(options.Validate());
+  if (!velocity) internal::ThrowInvalid("velocity", "(empty function)", "a velocity function must be given");
   std::vector<double> knots{a};
   for (double t : breakpoints) {
     internal::RequireFinite("breakpoints", t);
@@ -43,16 +25,14 @@ Eigen::Matrix3d RollingReorientation(const PlanarVelocity& velocity, double a, d
   std::sort(knots.begin() + 1, knots.end());
   if (b < a) std::reverse(knots.begin() + 1, knots.end());
   knots.push_back(b);
-  Mat9 y{1, 0, 0, 0, 1, 0, 0, 0, 1};
-  RollingRhs rhs{&velocity};
+  internal::RowMajor3x3 y{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const internal::RollingRhs rhs{[&velocity](double tau) { return velocity(tau); }};
   for (std::size_t i = 0; i + 1 < knots.size(); ++i) {
     const double h = knots[i + 1] - knots[i];
     if (h == 0) continue;
     internal::IntegrateAdaptive(rhs, y, knots[i], knots[i + 1], h / 16.0, options);
   }
-  Eigen::Matrix3d r;
-  r << y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], y[8];
-  return ProjectToSO3(r);
+  return ProjectToSO3(internal::MatrixFromRowMajor(y.data()));
 }
 
 Eigen::Matrix3d RollAlongSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& q) {

@@ -5,6 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "check.h"
+#include "kinematics.h"
+
 namespace plateball {
 
 Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
@@ -87,13 +90,30 @@ Eigen::Matrix3d RotationZ(double a) {
   return r;
 }
 
+namespace internal {
+Eigen::Matrix3d RotateAxisOnto(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
+  RequireFinite("A0", A0);
+  if (!IsRotation(A0, 1e-9)) throw std::invalid_argument("'A0' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+  const Eigen::Vector3d e = A0.col(2);
+  const Eigen::Vector3d axis = e.cross(z);
+  const double angle = std::atan2(axis.norm(), e.dot(z));
+  if (axis.norm() > 1e-15) return ExpSO3(axis.normalized() * angle) * A0;
+  if (e.dot(z) < 0) return ExpSO3(A0.col(0) * M_PI) * A0;
+  return A0;
+}
+}  // namespace internal
+
+Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
+  return ProjectToSO3(internal::RotateAxisOnto(A0, z));
+}
+
 Eigen::Matrix3d QuaternionToRotation(const Eigen::Vector4d& wxyz, const std::string& field) {
   const double n = wxyz.norm();
   if (!wxyz.allFinite() || !(n > 1e-12)) {
-    std::ostringstream os;
-    os << field << ": quaternion (" << wxyz(0) << ", " << wxyz(1) << ", " << wxyz(2) << ", "
-       << wxyz(3) << ") is not a finite non-zero quaternion";
-    throw std::invalid_argument(os.str());
+    using internal::FormatNumber;
+    internal::ThrowInvalid(field, "[" + FormatNumber(wxyz(0)) + ", " + FormatNumber(wxyz(1)) + ", " + FormatNumber(wxyz(2)) +
+                                      ", " + FormatNumber(wxyz(3)) + "]",
+                           "not a finite non-zero quaternion [w, x, y, z]");
   }
   const Eigen::Quaterniond q(wxyz(0) / n, wxyz(1) / n, wxyz(2) / n, wxyz(3) / n);
   return q.toRotationMatrix();

@@ -10,11 +10,9 @@
 namespace plateball {
 namespace {
 
-// "'radius' = 0 is invalid..." -> "'path.radius' = 0 is invalid...".
-std::string Prefixed(const std::string& field, const std::string& message) {
-  if (!message.empty() && message[0] == '\'') return "'" + field + "." + message.substr(1);
-  return field + ": " + message;
-}
+// Every library message starts with its field (check.h, "FIELD: value V: ..."), so the caller's
+// field is a path prefix: "radius: value 0: ..." -> "plan.path.radius: value 0: ...".
+std::string Prefixed(const std::string& field, const std::string& message) { return field + "." + message; }
 
 template <class Make>
 auto Named(const std::string& field, Make make) {
@@ -26,7 +24,7 @@ auto Named(const std::string& field, Make make) {
 }
 
 [[noreturn]] void ThrowMissing(const Problem& problem, const std::string& section, const std::string& what) {
-  throw std::invalid_argument(problem.source + ": " + section + ": value (missing): " + what);
+  internal::ThrowInvalid(problem.source + ": " + section, "(missing)", what);
 }
 
 const PlanTask& RequirePlan(const Problem& problem) {
@@ -42,11 +40,10 @@ const IsoparallelTask& RequireIsoparallel(const Problem& problem) {
 void RequireStartOnPath(const Problem& problem, const Path& path) {
   const double size = std::max(1.0, path.Length());
   if ((problem.x0 - path.StartPoint()).norm() <= 1e-9 * size) return;
-  std::ostringstream os;
-  os.precision(17);
-  os << "'x0' = (" << problem.x0.x() << ", " << problem.x0.y() << ") is invalid: must equal the path start p(tau_0) = ("
-     << path.StartPoint().x() << ", " << path.StartPoint().y() << ")";
-  throw std::invalid_argument(os.str());
+  auto pair = [](const Eigen::Vector2d& v) {
+    return "(" + internal::FormatNumber(v.x()) + ", " + internal::FormatNumber(v.y()) + ")";
+  };
+  internal::ThrowInvalid("x0", pair(problem.x0), "must equal the path start p(tau_0) = " + pair(path.StartPoint()));
 }
 
 PlanOptions PlanOptionsFor(const Problem& problem) {
@@ -77,7 +74,7 @@ SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field) {
     SmoothCurve operator()(const PiecewiseSpec&) const { throw std::logic_error("not a smooth curve"); }
   };
   if (std::holds_alternative<PiecewiseSpec>(spec.shape))
-    throw std::invalid_argument("'" + field + ".type' = \"piecewise\" is not a single smooth curve here (pieces may not nest)");
+    internal::ThrowInvalid(field + ".type", "\"piecewise\"", "not a single smooth curve here (pieces may not nest)");
   return Named(field, [&] { return std::visit(Make{}, spec.shape); });
 }
 
@@ -210,7 +207,9 @@ ExactArrivalOptions ExactOptionsFor(const Problem& problem) {
 
 void SetImpulses(int impulses, const std::string& n_field, ExactArrivalProblem* p) {
   if (impulses == 0) return;
-  if (impulses < 3) internal::ThrowInvalid(n_field, impulses, "must be >= 3 (2n unknowns for the 5 arrival conditions)");
+  if (impulses < 3 || impulses > kMaxExactImpulses)
+    internal::ThrowInvalid(n_field, impulses, "must be in [3, " + std::to_string(kMaxExactImpulses) +
+                                                  "] (2n unknowns for the 5 arrival conditions)");
   p->impulses = impulses;
 }
 

@@ -81,7 +81,7 @@ TEST(BallModel, InvalidPhysicalParametersAreRejectedNamingTheField) {
   bad.push_back({"radius", with([&](PhysicalParameters& p) { p.radius = std::numeric_limits<double>::infinity(); })});
   for (const Bad& b : bad) {
     const std::string m = Message(b.p);
-    EXPECT_NE(m.find(std::string("'") + b.field + "'"), std::string::npos) << m;
+    EXPECT_NE(m.find(std::string("physical.") + b.field + ": value"), std::string::npos) << m;
     EXPECT_FALSE(b.p.Validate().empty());
   }
   EXPECT_TRUE(Example().Validate().empty());
@@ -90,11 +90,11 @@ TEST(BallModel, InvalidPhysicalParametersAreRejectedNamingTheField) {
 TEST(BallModel, InvalidDimensionlessValuesAreRejectedNamingTheField) {
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   for (double lambda : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()})
-    EXPECT_NE(message([&] { BallModel::FromLambda(lambda); }).find("'lambda'"), std::string::npos);
-  EXPECT_NE(message([] { BallModel::FromAlphaBeta(0.0, 1.0); }).find("'alpha'"), std::string::npos);
-  EXPECT_NE(message([] { BallModel::FromAlphaBeta(2.5, 1.0); }).find("'alpha'"), std::string::npos);
-  EXPECT_NE(message([] { BallModel::FromAlphaBeta(1.0, -0.5); }).find("'beta'"), std::string::npos);
-  EXPECT_NE(message([] { BallModel::EnergyToMu(Example(), -1.0); }).find("'kinetic_energy'"), std::string::npos);
+    EXPECT_NE(message([&] { BallModel::FromLambda(lambda); }).find("lambda: value"), std::string::npos);
+  EXPECT_NE(message([] { BallModel::FromAlphaBeta(0.0, 1.0); }).find("alpha: value"), std::string::npos);
+  EXPECT_NE(message([] { BallModel::FromAlphaBeta(2.5, 1.0); }).find("alpha: value"), std::string::npos);
+  EXPECT_NE(message([] { BallModel::FromAlphaBeta(1.0, -0.5); }).find("beta: value"), std::string::npos);
+  EXPECT_NE(message([] { BallModel::EnergyToMu(Example(), -1.0); }).find("kinetic_energy: value"), std::string::npos);
 }
 
 }  // namespace

@@ -112,8 +112,8 @@ TEST(BallState, VelocityEllipseMatchesEquations27And28) {
 TEST(BallState, InvalidStatesAreRejectedNamingTheField) {
   const BallModel model = BallModel::FromLambda(2.0);
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
-  EXPECT_NE(message([&] { StateFromAngles({1.0, 0.0, 0.0}, 0.0, model); }).find("'mu'"), std::string::npos);
-  EXPECT_NE(message([&] { StateFromAngles({1.0, NAN, 0.0}, 1.0, model); }).find("'phi'"), std::string::npos);
+  EXPECT_NE(message([&] { StateFromAngles({1.0, 0.0, 0.0}, 0.0, model); }).find("mu: value"), std::string::npos);
+  EXPECT_NE(message([&] { StateFromAngles({1.0, NAN, 0.0}, 1.0, model); }).find("phi: value"), std::string::npos);
   EXPECT_NE(message([&] { ValidateState({Eigen::Vector3d(0, 0, 2), Eigen::Vector3d::Zero()}); }).find("z norm"),
             std::string::npos);
   EXPECT_NE(message([&] { ValidateState({Eigen::Vector3d::UnitZ(), Eigen::Vector3d(1, 0, 1)}); }).find("omega[2]"),

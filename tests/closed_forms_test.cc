@@ -257,10 +257,10 @@ TEST(ClosedForms, ClosedFormIsPeriodicWithTwoPiOverSqrtMu) {
 TEST(ClosedForms, RejectsInvalidInputNamingTheField) {
   const BallModel model = BallModel::FromLambda(2.0);
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
-  EXPECT_NE(message([&] { AppendixSolution(model, {1.0, 0.0, 0.0}, 0.0); }).find("'mu'"), std::string::npos);
-  EXPECT_NE(message([&] { AppendixSolution(model, {1.0, NAN, 0.0}, 1.0); }).find("'phi'"), std::string::npos);
+  EXPECT_NE(message([&] { AppendixSolution(model, {1.0, 0.0, 0.0}, 0.0); }).find("mu: value"), std::string::npos);
+  EXPECT_NE(message([&] { AppendixSolution(model, {1.0, NAN, 0.0}, 1.0); }).find("phi: value"), std::string::npos);
   EXPECT_NE(message([&] { AppendixSolution(model, {1.0, 0.0, 0.0}, 1.0).At(std::numeric_limits<double>::infinity()); })
-                .find("'t'"),
+                .find("t: value"),
             std::string::npos);
   EXPECT_EQ(ToString(ClosedFormFamily::kThroughPoles), "through_poles");
 }

@@ -44,3 +44,15 @@ TEST(FuzzRegression, SolveEntriesInputsNeverCrash) {
   ASSERT_GE(inputs.size(), 3u);
   for (const auto& in : inputs) plateball::fuzz::SolveEntries(in.data(), in.size());
 }
+
+TEST(FuzzRegression, ReachInputsNeverCrash) {
+  const auto inputs = Inputs({"fuzz/regressions/reach_fuzzer", "fuzz/seeds/reach_fuzzer"});
+  ASSERT_GE(inputs.size(), 3u);
+  for (const auto& in : inputs) plateball::fuzz::ReachEntry(in.data(), in.size());
+}
+
+TEST(FuzzRegression, IsoparallelInputsNeverCrash) {
+  const auto inputs = Inputs({"fuzz/regressions/isoparallel_fuzzer", "fuzz/seeds/isoparallel_fuzzer"});
+  ASSERT_GE(inputs.size(), 3u);
+  for (const auto& in : inputs) plateball::fuzz::IsoparallelEntry(in.data(), in.size());
+}

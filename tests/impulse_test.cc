@@ -115,12 +115,12 @@ TEST(Impulse, InvalidInputIsRejectedNamingTheField) {
   const BallModel model = BallModel::FromLambda(2.0);
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   const AngleState a{1.0, 0.0, 0.0};
-  EXPECT_NE(message([&] { EnergyPreservingImpulse(a, 1.0, NAN, model); }).find("'delta_psi'"), std::string::npos);
-  EXPECT_NE(message([&] { EnergyPreservingImpulse(a, 0.0, 1.0, model); }).find("'mu'"), std::string::npos);
-  EXPECT_NE(message([&] { EnergyChangingImpulse(a, 1.0, 0.0, model); }).find("'factor'"), std::string::npos);
-  EXPECT_NE(message([&] { EnergyChangingImpulse(a, 1.0, -2.0, model); }).find("'factor'"), std::string::npos);
-  EXPECT_NE(message([&] { ImpulseToEnergy(a, 1.0, -1.0, model); }).find("'mu_after'"), std::string::npos);
-  EXPECT_NE(message([&] { EnergyPreservingImpulse({NAN, 0.0, 0.0}, 1.0, 1.0, model); }).find("'theta'"), std::string::npos);
+  EXPECT_NE(message([&] { EnergyPreservingImpulse(a, 1.0, NAN, model); }).find("delta_psi: value"), std::string::npos);
+  EXPECT_NE(message([&] { EnergyPreservingImpulse(a, 0.0, 1.0, model); }).find("mu: value"), std::string::npos);
+  EXPECT_NE(message([&] { EnergyChangingImpulse(a, 1.0, 0.0, model); }).find("factor: value"), std::string::npos);
+  EXPECT_NE(message([&] { EnergyChangingImpulse(a, 1.0, -2.0, model); }).find("factor: value"), std::string::npos);
+  EXPECT_NE(message([&] { ImpulseToEnergy(a, 1.0, -1.0, model); }).find("mu_after: value"), std::string::npos);
+  EXPECT_NE(message([&] { EnergyPreservingImpulse({NAN, 0.0, 0.0}, 1.0, 1.0, model); }).find("theta: value"), std::string::npos);
 }
 
 }  // namespace

@@ -168,6 +168,52 @@ TEST(Join, InvalidInputNamesTheField) {
   EXPECT_THROW(Join(JoinProblem{model, AngleState{INFINITY, 0, 0}, 1.0, {0, 0}, {0.1, 0}}), std::invalid_argument);
 }
 
+TEST(Join, HugePsiIsReducedOnceAndJoins) {
+  // Issue 16: psi = 1e6 said target_beyond_local_radius for a target 0.05 away. lambda = 1 rolls
+  // straight at speed sqrt(mu) (eq. (9)): t = 0.05 / sqrt(mu) exactly, whatever psi is.
+  const BallModel model = BallModel::FromLambda(1.0);
+  for (double psi : {0.1, 1e6, -2.5e12}) {
+    const JoinSummary j = Join(JoinProblem{model, AngleState{1.0, 0.4, psi}, 1.0, {0, 0}, {0.05, 0}});
+    ASSERT_EQ(j.status, JoinStatus::kConverged) << "psi = " << psi << ": " << j.BriefReport();
+    EXPECT_NEAR(j.t, 0.05, 1e-12) << psi;
+    EXPECT_LE(std::abs(j.start.psi), M_PI) << "the summary holds the reduced angle";
+    const MotionSample end = Arrive(model, j.start, 1.0, {0, 0}, j.delta_psi, j.t);
+    EXPECT_LT((end.x - Eigen::Vector2d(0.05, 0)).norm(), kReachTolerance) << psi;
+  }
+  try {
+    Join(JoinProblem{model, AngleState{1.0, 0.4, 1e16}, 1.0, {0, 0}, {0.05, 0}});
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("start.psi"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1e+16"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Join, ResidualToleranceOutsideItsRangeIsRejected) {
+  // Issue 16: 0.999 reported target_equals_start, 1e-300 target_beyond_local_radius.
+  const BallModel model = BallModel::FromLambda(2.0);
+  const AngleState start{M_PI / 3, 0.4, 0.1};
+  for (double tol : {0.999, 1e-300, 2e-3, 9e-16, 0.0, -1.0, double(NAN), double(INFINITY)}) {
+    JoinOptions o;
+    o.residual_tolerance = tol;
+    try {
+      Join(JoinProblem{model, start, 1.0, {0, 0}, {0.05, 0}}, o);
+      FAIL() << "expected std::invalid_argument for " << tol;
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("residual_tolerance"), std::string::npos) << what;
+      EXPECT_NE(what.find("[1e-15, 1e-3]"), std::string::npos) << what;
+    }
+  }
+  for (double tol : {1e-15, 1e-3}) {
+    JoinOptions o;
+    o.residual_tolerance = tol;
+    const JoinSummary j = Join(JoinProblem{model, start, 1.0, {0, 0}, {0.05, 0}}, o);
+    EXPECT_EQ(j.status, JoinStatus::kConverged) << tol << ": " << j.BriefReport();
+    EXPECT_LE(j.residual, tol);
+  }
+}
+
 TEST(Join, ChartFreeStateEntersThroughItsAngles) {
   const BallModel model = BallModel::FromLambda(2.0);
   const AngleState start{M_PI / 3, 0.4, 0.1};

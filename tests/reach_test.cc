@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlopt.hpp>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -13,6 +15,7 @@
 #include "plateball/partition.h"
 #include "plateball/path.h"
 #include "plateball/problem_io.h"
+#include "plateball/so3.h"
 #include "reach_internal.h"
 #include "support/test_support.h"
 
@@ -53,8 +56,7 @@ FreeMotionStart StartAfterImpulse(const ReachProblem& p, double s) {
   a.psi += s;
   st.state = StateFromAngles(a, p.mu, p.model);
   st.x0 = p.x0;
-  const FreeMotion m = FreeMotion::FromAngles(p.model, a, p.mu, p.x0, p.A0);
-  st.A0 = m.start().A0;
+  st.A0 = AlignOrientationToAxis(p.A0, st.state.z);
   return st;
 }
 
@@ -322,6 +324,93 @@ TEST(Reach, SameSeedGivesIdenticalResults) {
   }
 }
 
+// A stochastic NLopt run (CRS2 draws its population from NLopt's process-global generator):
+// its result depends on the generator's state, so it shows whether something reseeded it.
+std::vector<double> NloptRandomProbe() {
+  nlopt::opt probe(nlopt::GN_CRS2_LM, 2);
+  probe.set_lower_bounds(std::vector<double>{-1.0, -1.0});
+  probe.set_upper_bounds(std::vector<double>{1.0, 1.0});
+  probe.set_min_objective([](unsigned, const double* x, double*, void*) { return std::sin(7 * x[0]) + x[1] * x[1]; },
+                          nullptr);
+  probe.set_maxeval(40);
+  std::vector<double> x{0.3, 0.3};
+  double f = 0.0;
+  probe.optimize(x, f);
+  x.push_back(f);
+  return x;
+}
+
+TEST(Reach, LeavesNloptsGlobalRandomStateAloneAndIgnoresTheSeed) {
+  // DIRECT-L and BOBYQA are deterministic: Reach must not reseed the process-global generator
+  // (it did, with nlopt::srand(seed), on every call), and the seed changes nothing.
+  nlopt::srand(12345);
+  const std::vector<double> undisturbed = NloptRandomProbe();
+  nlopt::srand(12345);
+  const ReachSummary a = Reach(Figure8({-12, 5}));
+  const std::vector<double> after_reach = NloptRandomProbe();
+  EXPECT_EQ(undisturbed, after_reach) << "Reach touched NLopt's global random state";
+  // Unreachable target too (that path runs BOBYQA).
+  nlopt::srand(777);
+  const std::vector<double> undisturbed2 = NloptRandomProbe();
+  nlopt::srand(777);
+  ReachProblem far = Figure8({500, 0});
+  ReachOptions short_horizon;
+  short_horizon.horizon_periods = 0.5;
+  short_horizon.seed = 99;
+  const ReachSummary u = Reach(far, short_horizon);
+  ASSERT_EQ(u.status, ReachStatus::kUnreachableWithinHorizon);
+  EXPECT_EQ(undisturbed2, NloptRandomProbe()) << "Reach touched NLopt's global random state";
+  short_horizon.seed = 1;
+  nlopt::srand(4242);
+  const ReachSummary v = Reach(far, short_horizon);
+  EXPECT_EQ(u.closest_approach.distance, v.closest_approach.distance);
+  EXPECT_EQ(u.closest_approach.delta_psi, v.closest_approach.delta_psi);
+  ReachOptions other_seed;
+  other_seed.seed = 31337;
+  const ReachSummary b = Reach(Figure8({-12, 5}), other_seed);
+  ASSERT_EQ(a.status, ReachStatus::kSolved);
+  EXPECT_EQ(a.BriefReport(), b.BriefReport());
+}
+
+TEST(Reach, HugePsiIsReducedOnceAndReachesTheTarget) {
+  // Issue 16: psi = 1e6 said "unreachable" for (6, 0) while psi = 0.1 reaches it at t = 6. With
+  // lambda = 1, K = omega_h is constant and |x'|^2 = mu (eq. (9)): the ball rolls straight at
+  // speed sqrt(mu), so the earliest arrival at distance 6 is t = 6 / sqrt(mu) whatever psi is.
+  for (double psi : {0.1, 1e6, -3.7e9}) {
+    ReachProblem p;
+    p.model = BallModel::FromLambda(1.0);
+    p.start = {1.0, 0.4, psi};
+    p.mu = 1.0;
+    p.target = {6.0, 0.0};
+    const ReachSummary s = Reach(p);
+    ASSERT_EQ(s.status, ReachStatus::kSolved) << "psi = " << psi << ": " << s.BriefReport();
+    EXPECT_NEAR(s.Earliest().t, 6.0, 1e-9) << psi;
+    EXPECT_LT(s.Earliest().residual, 1e-11) << psi;
+    // The arrival, recomputed from the reduced angle by an independent direct integration.
+    ReachProblem reduced = p;
+    reduced.start.psi = std::remainder(psi, 2 * M_PI);
+    EXPECT_LT(DirectMiss(reduced, s.Earliest().delta_psi, s.Earliest().t), kReachTolerance) << psi;
+  }
+}
+
+TEST(Reach, AngleBeyond1e15IsRejectedNamingTheField) {
+  for (const char* field : {"theta", "phi", "psi"}) {
+    ReachProblem p = Figure8({-12, 5});
+    if (std::string(field) == "theta") p.start.theta = 2e15;
+    if (std::string(field) == "phi") p.start.phi = -1e16;
+    if (std::string(field) == "psi") p.start.psi = 1e300;
+    try {
+      Reach(p);
+      FAIL() << "expected std::invalid_argument for " << field;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("start.") + field + ": value"), std::string::npos) << e.what();
+    }
+  }
+  ReachProblem ok = Figure8({-12, 5});
+  ok.start.psi = 1e15;  // at the limit: accepted
+  EXPECT_NO_THROW(Reach(ok));
+}
+
 TEST(Reach, NegativeThetaIsTheSamePhysicalStateAsItsCanonicalForm) {
   // (theta, phi, psi) ~ (-theta, phi + pi, psi): Figure 8's theta0 = -pi/3, phi0 = pi/2 is the
   // state theta = pi/3, phi = 3 pi/2, and gives the same solutions.
@@ -347,13 +436,13 @@ TEST(Reach, InvalidInputNamesTheField) {
   };
   ReachProblem p = Figure8({6, 0});
   p.mu = -1;
-  EXPECT_NE(message_of(p, {}).find("problem.mu"), std::string::npos);
+  EXPECT_NE(message_of(p, {}).find("mu: value -1"), std::string::npos);
   p = Figure8({6, 0});
   p.target.x() = std::nan("");
-  EXPECT_NE(message_of(p, {}).find("problem.target"), std::string::npos);
+  EXPECT_NE(message_of(p, {}).find("target[0]: value nan"), std::string::npos);
   p = Figure8({6, 0});
   p.start.theta = INFINITY;
-  EXPECT_NE(message_of(p, {}).find("problem.start.theta"), std::string::npos);
+  EXPECT_NE(message_of(p, {}).find("start.theta: value inf"), std::string::npos);
   ReachOptions o;
   o.horizon_periods = 0;
   EXPECT_NE(message_of(Figure8({6, 0}), o).find("horizon_periods"), std::string::npos);

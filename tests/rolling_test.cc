@@ -125,7 +125,7 @@ TEST(Rolling, SamplesConvergeToTheExactCircle) {
 TEST(Rolling, InvalidInputIsRejectedNamingTheField) {
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   const PlanarVelocity v = [](double) { return Eigen::Vector2d(1.0, 0.0); };
-  EXPECT_NE(message([&] { RollingReorientation(v, NAN, 1.0); }).find("'a'"), std::string::npos);
+  EXPECT_NE(message([&] { RollingReorientation(v, NAN, 1.0); }).find("a: value"), std::string::npos);
   EXPECT_NE(message([&] { RollingReorientation(PlanarVelocity(), 0.0, 1.0); }).find("velocity"), std::string::npos);
   EXPECT_NE(message([&] { RollAlongSamples({{0, 0}}); }).find("samples"), std::string::npos);
   EXPECT_NE(message([&] { RollAlongPolyline({{0, 0}, {NAN, 1}}); }).find("points[1]"), std::string::npos);

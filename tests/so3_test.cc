@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -84,6 +85,38 @@ TEST(So3, ProjectionRotationZAndQuaternions) {
     ADD_FAILURE() << "no exception";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("start.orientation"), std::string::npos);
+  }
+}
+
+TEST(SO3, AlignOrientationToAxisIsTheMinimalRotationOntoZ) {
+  std::mt19937 gen(11);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int k = 0; k < 50; ++k) {
+    const Eigen::Matrix3d a0 = ExpSO3({n(gen), n(gen), n(gen)});
+    const Eigen::Vector3d z = Eigen::Vector3d(n(gen), n(gen), n(gen)).normalized();
+    const Eigen::Matrix3d a = AlignOrientationToAxis(a0, z);
+    EXPECT_TRUE(IsRotationMatrix(a, 1e-14));
+    EXPECT_LT((a.col(2) - z).norm(), 1e-14);
+    // Minimal: the geodesic angle from a0 equals the angle between a0 e3 and z (no rotation
+    // can move e3's image by that angle with less), and the rotation a a0^T fixes a0 e3 x z.
+    const double needed = std::acos(std::clamp(a0.col(2).dot(z), -1.0, 1.0));
+    EXPECT_NEAR(RotationAngle(a0, a), needed, 1e-9);
+    const Eigen::Vector3d axis = a0.col(2).cross(z);
+    if (axis.norm() > 1e-6) {
+      EXPECT_LT((a * a0.transpose() * axis - axis).norm(), 1e-12);
+    }
+  }
+  // Already aligned: unchanged. Reversed: a half turn about a0 e1.
+  const Eigen::Matrix3d r = ExpSO3({0.3, -0.2, 0.9});
+  EXPECT_LT((AlignOrientationToAxis(r, r.col(2)) - r).norm(), 1e-15);
+  const Eigen::Matrix3d flipped = AlignOrientationToAxis(r, -r.col(2));
+  EXPECT_LT((flipped.col(2) + r.col(2)).norm(), 1e-14);
+  EXPECT_LT((flipped.col(0) - r.col(0)).norm(), 1e-14);
+  try {
+    AlignOrientationToAxis(2.0 * r, r.col(2));
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("A0"), std::string::npos);
   }
 }
 

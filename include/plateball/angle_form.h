@@ -10,9 +10,10 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/export.h"
 #include "plateball/integration_options.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// How an angle-form integration ended.
 enum class AngleFormStatus {

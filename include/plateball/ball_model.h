@@ -4,7 +4,9 @@
 
 #include <string>
 
-namespace plateball {
+#include "plateball/export.h"
+
+namespace plateball PLATEBALL_EXPORT {
 
 /// Physical parameters of the plate-ball system (SI or any consistent units).
 /// The upper plate moves with twice the velocity of the ball centre, so for momentum it counts
@@ -28,7 +30,7 @@ class BallModel {
  public:
   /// Throws std::invalid_argument naming the field when a parameter is invalid.
   static BallModel FromPhysical(const PhysicalParameters& p);
-  /// lambda > 0 and finite; alpha and beta are then unknown (reported as 0 by has_inertia()).
+  /// lambda in [1e-3, 1e3] (README, "Limits"); alpha and beta are then unknown (reported as 0 by has_inertia()).
   static BallModel FromLambda(double lambda);
   /// 0 < alpha <= 2 (a rigid body has I3 <= 2 I1), beta >= 0.
   static BallModel FromAlphaBeta(double alpha, double beta);

@@ -5,8 +5,9 @@
 #include <Eigen/Core>
 
 #include "plateball/ball_model.h"
+#include "plateball/export.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// Coordinates (theta, phi, psi) of S^2 x S^1, eqs. (12)-(18). Any real theta is accepted:
 /// (theta, phi, psi) and (-theta, phi + pi, psi) give identical (z, u, v0) in (12)-(18), so the

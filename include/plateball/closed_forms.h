@@ -20,8 +20,9 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/export.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// The three families of the appendix, by the sign of c = sin(theta) cos(w), eq. (32).
 enum class ClosedFormFamily {

@@ -6,9 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "plateball/export.h"
 #include "plateball/impulse_planner.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// What is asked: the plan problem (its partition rules must be uniform; each n of `ns` replaces
 /// their n) and the distinct partition sizes.

@@ -4,7 +4,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace plateball {
+#include "plateball/export.h"
+
+namespace plateball PLATEBALL_EXPORT {
 
 /// Natural cubic spline through (s_i, p_i), s strictly increasing. By default the knots are the
 /// cumulative chord lengths (a good approximation of arc length).

@@ -14,23 +14,18 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 
-namespace plateball {
-namespace internal {
-struct ElasticaAccess;
+#include "plateball/export.h"
 
-/// The arithmetic-geometric mean sequence of the modulus k (depends on k only): computed once
-/// per elastica, it leaves the per-argument work of JacobiSnCnDn to one sincos and a short
-/// descending recursion.
-struct JacobiAgm {
-  explicit JacobiAgm(double k = 0.0);
-  double k = 0.0;
-  double c = 1.0;  // final AGM value
-  int levels = 0;  // index of the last level
-  double em[16] = {}, en[16] = {};
-};
-}  // namespace internal
+// Library-internal types (src/), declared outside the exported namespace so they stay hidden.
+namespace plateball::internal {
+struct ElasticaAccess;
+struct JacobiAgm;  // src/jacobi_elliptic.h
+}  // namespace plateball::internal
+
+namespace plateball PLATEBALL_EXPORT {
 
 enum class PendulumRegime { kOscillating, kRotating };
 std::string ToString(PendulumRegime regime);
@@ -96,7 +91,7 @@ class Elastica {
   double AmplitudeOf(double u) const;  // am(u), continuous
   ElasticaParameters p_;
   double k_ = 0.0;       // |modulus|
-  internal::JacobiAgm agm_;  // AGM sequence of k (jacobi_elliptic.h)
+  std::shared_ptr<const internal::JacobiAgm> agm_;  // AGM sequence of k (immutable, shared by copies)
   double kk_ = 0.0;      // complete K(k)
   double dk_ = 0.0;      // complete D(k) = int_0^K sn^2
   double g_ = 0.0;

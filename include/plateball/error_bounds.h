@@ -13,9 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "plateball/export.h"
 #include "plateball/path.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// The constants of Lemmas 2.1-2.4 and Theorems 2.5-2.6, estimated over one plan.
 struct ErrorBoundConstants {
@@ -61,5 +62,40 @@ CurveDerivativeBounds EstimateCurveDerivativeBounds(const SmoothCurve& curve, do
 inline double SegmentBound(double max_speed, double max_acceleration, double h) {
   return max_speed * max_acceleration * h * h * h / 12.0;
 }
+
+/// The paper's bound formulas, as pure functions of the constants (section 2.3).
+/// Lemma 2.4 / Theorem 2.5 constant: Kbar_p = K_p M'_p.
+double KBarP(double K_p, double M_prime_p);
+/// Theorem 2.6 constant: Ktilde = 2 K_(1,0) M' (= max|x''| max|x'|).
+double KTilde(double K_10, double M_prime);
+/// Theorem 2.6 constant Ktilde_p = Ktilde (K^1 D_p)^3 (the paper prints Ktilde K^1 D_p; the cube is
+/// right, docs/paper_notes.md).
+double KTildeP(double K_tilde, double K1, double D_p);
+/// Theorem 2.5: ||A(T) - A_n(polyline)|| <= Kbar_p sum_k |tau_k+1 - tau_k|^3.
+double Theorem25Bound(double K_bar_p, double sum_dtau_cubed);
+/// Corollary 2: ||A(T) - A_n(polyline)|| <= Kbar_p n ||P||^3.
+double Corollary2Bound(double K_bar_p, int n, double parameter_norm);
+/// Theorem 2.6: ||A(T) - A_n(impulsive)|| <= (Kbar_p + Ktilde_p) sum_k |tau_k+1 - tau_k|^3.
+double Theorem26Bound(double K_bar_p, double K_tilde_p, double sum_dtau_cubed);
+/// Corollary 3: ||A(T) - A_n(impulsive)|| <= (Kbar_p + Ktilde_p) n ||P||^3.
+double Corollary3Bound(double K_bar_p, double K_tilde_p, int n, double parameter_norm);
+
+/// What one segment of a plan contributes to the bounds: the parameter step h = tau_k+1 - tau_k,
+/// the chord |p(tau_k+1) - p(tau_k)|, the path's derivative maxima over the segment, and the
+/// free arc's duration and derivative maxima.
+struct SegmentMeasures {
+  double h = 0.0;
+  double chord = 0.0;
+  CurveDerivativeBounds path;
+  double arc_time = 0.0;
+  double arc_max_speed = 0.0;
+  double arc_max_acceleration = 0.0;
+};
+/// Adds one segment to the sums (sum h^3, the a-posteriori terms of Corollaries 2/3's
+/// per-segment form) and to the maxima (K_p, M'_p, C_p, M', K_(1,0), K^1, ||P||).
+void AccumulateSegment(const SegmentMeasures& m, ErrorBounds* b);
+/// The derived constants (Kbar_p, D_p = M'_p, Ktilde, Ktilde_p) and every bound of a plan of n
+/// segments from the accumulated sums and maxima.
+void CompleteBounds(int n, ErrorBounds* b);
 
 }  // namespace plateball

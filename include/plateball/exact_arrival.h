@@ -24,11 +24,12 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/export.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/integration_options.h"
 #include "plateball/path.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 enum class ExactArrivalStatus {
   kNotRun,               ///< default: nothing was solved
@@ -49,15 +50,19 @@ struct ExactArrivalProblem {
   Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();
   Eigen::Vector2d x0 = Eigen::Vector2d::Zero();  ///< start point (= reference start)
   Path reference = Path({SmoothCurve::Line(Eigen::Vector2d::Zero(), Eigen::Vector2d::UnitX())});
-  int impulses = 12;                               ///< n, >= 3 (2n unknowns >= 5 conditions)
+  int impulses = 12;  ///< n in [3, kMaxExactImpulses] (2n unknowns >= 5 conditions)
   Eigen::Vector2d x1 = Eigen::Vector2d::UnitX();   ///< goal position
   Eigen::Matrix3d A1 = Eigen::Matrix3d::Identity();  ///< goal orientation (a rotation)
 };
 
+/// Upper bound of ExactArrivalProblem::impulses: each Jacobian integrates about n^2 arcs.
+inline constexpr int kMaxExactImpulses = 1000;
+
 struct ExactArrivalOptions {
+  static constexpr int kMaxIterations = 10000;
   double position_tolerance = 1e-12;     ///< |x(T) - x1| to reach
   double orientation_tolerance = 1e-10;  ///< |LogSO3(A1^T A(T))| (rad) to reach
-  int max_iterations = 50;               ///< Gauss-Newton (KKT) iterations, >= 1
+  int max_iterations = 50;               ///< Gauss-Newton (KKT) iterations, in [1, kMaxIterations]
   /// Once arrived, the iteration stops when the deviation falls by less than this fraction.
   double deviation_tolerance = 1e-6;
   double difference_step = 1e-5;         ///< central-difference step of the Jacobian, in (0, 1)

@@ -6,8 +6,9 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/export.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// What an impulse does to the ball and what the upper plate must do to realise it.
 struct Impulse {

@@ -10,14 +10,16 @@
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/error_bounds.h"
+#include "plateball/export.h"
 #include "plateball/impulse.h"
 #include "plateball/integration_options.h"
 #include "plateball/join.h"
 #include "plateball/partition.h"
 #include "plateball/path.h"
 #include "plateball/reach.h"
+#include "plateball/so3.h"  // AlignOrientationToAxis
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 enum class PlanStatus {
   kNotRun,                    ///< default: no plan was run
@@ -127,8 +129,5 @@ struct PlanSummary {
 /// does). Throws std::invalid_argument naming the field for invalid input (partition, indices,
 /// factors, mu, A0, options); a join or an integration that fails is a status.
 PlanSummary PlanImpulses(const PlanProblem& problem, const PlanOptions& options = {});
-
-/// A0 rotated minimally so that its third column is z (the symmetry axis).
-Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z);
 
 }  // namespace plateball

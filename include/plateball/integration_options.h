@@ -3,7 +3,9 @@
 
 #include <string>
 
-namespace plateball {
+#include "plateball/export.h"
+
+namespace plateball PLATEBALL_EXPORT {
 
 struct IntegrationOptions {
   double absolute_tolerance = 1e-12;
@@ -11,7 +13,8 @@ struct IntegrationOptions {
   /// Upper bound on accepted + rejected steps of one integration; exceeding it is an error
   /// status (never a hang).
   long max_steps = 2'000'000;
-  /// Empty when valid, else a message naming the field, the value and the bound.
+  /// Empty when valid, else a message naming the field, the value and the bound. Each tolerance
+  /// must be in [1e-15, 1) (below, the step size underflows in double precision).
   std::string Validate() const;
 };
 

@@ -24,17 +24,19 @@
 #include <vector>
 
 #include "plateball/elastica.h"
+#include "plateball/export.h"
 #include "plateball/integration_options.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// Options of SolveIsoparallel. The problem reader fills them from the JSON "isoparallel.solver"
 /// section (plus the file's seed and integration section) with the same ranges as Validate().
 struct IsoparallelOptions {
-  static constexpr int kMaxStarts = 1000000;
+  // Work limits (README, "Limits"): 10^6 starts took 13 minutes, a length cap of 1000 past a minute.
+  static constexpr int kMaxStarts = 10000;
   static constexpr int kMaxIterations = 100000;
   static constexpr int kMaxThreads = 256;
-  static constexpr double kMaxLengthCapFactor = 1000.0;
+  static constexpr double kMaxLengthCapFactor = 10.0;
   /// Multi-start points (seeded Halton sequence) of the shooting. Fewer miss short solutions of
   /// general targets (64 starts miss the shortest path of problems/isoparallel_rotation.json).
   int starts = 1024;

@@ -27,8 +27,9 @@
 #include <vector>
 
 #include "plateball/elastica.h"
+#include "plateball/export.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// Options of EnumerateIdentityFamilies.
 struct FamilySearchOptions {

@@ -6,11 +6,12 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/export.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/isoparallel.h"
 #include "plateball/path.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// The optimal path as an analytic planned path: p(tau) = x(tau), tau = arc length in
 /// [0, length], with the closed-form tangent and x'' = kappa (e3 x x').

@@ -7,10 +7,11 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/export.h"
 #include "plateball/impulse.h"
 #include "plateball/integration_options.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// How a join ended.
 enum class JoinStatus {

@@ -6,13 +6,14 @@
 #include <variant>
 #include <vector>
 
+#include "plateball/export.h"
 #include "plateball/path.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// n equal steps of the parameter (n >= 1, i.e. at least 2 points).
 std::vector<double> UniformParameterPartition(const SmoothCurve& curve, int n);
-/// n steps of equal arc length (arc length by Gauss-Legendre, inverted by Newton to 1e-13).
+/// n steps of equal arc length (arc length by adaptive Gauss-Kronrod, inverted by Newton to 1e-14).
 std::vector<double> UniformArcLengthPartition(const SmoothCurve& curve, int n);
 /// Given parameter values: at least 2, finite, strictly increasing, the first and last at the
 /// ends of the curve's interval (to 1e-12, then snapped), consecutive points p(tau) distinct.

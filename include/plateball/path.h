@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
-namespace plateball {
+#include "plateball/export.h"
+
+namespace plateball PLATEBALL_EXPORT {
 
 class CubicSpline2d;
 
@@ -56,13 +58,16 @@ class SmoothCurve {
   Eigen::Vector2d SecondDerivative(double tau) const;
   Eigen::Vector2d StartPoint() const { return Value(tau_begin_); }
   Eigen::Vector2d EndPoint() const { return Value(tau_end_); }
-  /// Arc length between parameters a and b (Gauss-Legendre, accurate to ~1e-13 relative).
+  /// Arc length between parameters a and b (negative for b < a): adaptive Gauss-Kronrod (G15/K31)
+  /// with an error estimate on panels where |p'| is smooth, accurate to about 1e-12 relative.
   double ArcLength(double a, double b) const;
   double Length() const { return ArcLength(tau_begin_, tau_end_); }
 
  private:
   SmoothCurve() = default;
   void CheckSpeed(const std::string& field) const;
+  std::vector<double> PanelBreaks(double a, double b) const;  // ArcLength's panels, a to b
+  double PanelWidth() const;                                  // their width (infinite: none)
   void SetRange(double tau_begin, double tau_end);
   Eigen::Vector2d RawValue(double tau) const;
   Eigen::Vector2d RawDerivative(double tau) const;

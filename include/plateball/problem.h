@@ -14,12 +14,13 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/export.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/integration_options.h"
 #include "plateball/isoparallel.h"
 #include "plateball/partition.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// A planned planar path (JSON object "path"): a closed set of shapes, one struct per JSON
 /// "type". Each is turned into a library Path by PathFromSpec (task_adapters.h).

@@ -9,9 +9,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "plateball/export.h"
 #include "plateball/problem.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// Thrown by ReadProblemFile when the file cannot be opened or read. It is an invalid_argument
 /// like every other reader error; command-line tools catch it first to report an I/O failure.

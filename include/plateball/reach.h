@@ -10,11 +10,12 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/export.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/integration_options.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// What is asked: the ball just before the impulse and the point to reach.
 struct ReachProblem {
@@ -50,7 +51,8 @@ struct ReachOptions {
   /// approach d(s) = min_t |x_s(t) - target|). It runs on every call: its minimiser is refined
   /// like a scan candidate, and it gives the closest approach when nothing reaches the target.
   int global_max_evaluations = 80;
-  /// Seed of NLopt's generator (nlopt::srand) before each NLopt run: results are reproducible.
+  /// Unused: the searches (DIRECT-L, BOBYQA) are deterministic and Reach touches no global
+  /// random state. Kept so that problem files and callers that set it still compile.
   std::uint64_t seed = 1;
   /// Tolerances of the tight integrations (refinement, end states).
   IntegrationOptions integration;

@@ -6,9 +6,10 @@
 #include <functional>
 #include <vector>
 
+#include "plateball/export.h"
 #include "plateball/integration_options.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// x'(tau) of a planar C^1 path.
 using PlanarVelocity = std::function<Eigen::Vector2d(double)>;

@@ -4,7 +4,9 @@
 #include <Eigen/Core>
 #include <string>
 
-namespace plateball {
+#include "plateball/export.h"
+
+namespace plateball PLATEBALL_EXPORT {
 
 /// hat(w) v = w x v.
 Eigen::Matrix3d Hat(const Eigen::Vector3d& w);
@@ -24,6 +26,11 @@ Eigen::Matrix3d ProjectToSO3(const Eigen::Matrix3d& m);
 bool IsRotation(const Eigen::Matrix3d& m, double tol = 1e-9);
 /// Rotation about e3 by the angle a (the plane's rotations, the B of section 2.2).
 Eigen::Matrix3d RotationZ(double a);
+/// A0 rotated minimally (about A0 e3 x z) so that its third column is the unit vector z, then
+/// projected onto SO(3); a reversed axis is turned by pi about A0 e1. Throws
+/// std::invalid_argument naming A0 when A0 is not a finite rotation (to 1e-9). The angles
+/// (theta, phi) fix z = A e3; A0 fixes the rest of the frame.
+Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z);
 /// Unit quaternion (w, x, y, z) to rotation; throws std::invalid_argument naming `field` on a zero
 /// or non-finite quaternion.
 Eigen::Matrix3d QuaternionToRotation(const Eigen::Vector4d& wxyz, const std::string& field = "quaternion");

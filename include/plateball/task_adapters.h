@@ -11,6 +11,7 @@
 
 #include "plateball/convergence.h"
 #include "plateball/exact_arrival.h"
+#include "plateball/export.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/isoparallel.h"
@@ -21,7 +22,7 @@
 #include "plateball/problem.h"
 #include "plateball/reach.h"
 
-namespace plateball {
+namespace plateball PLATEBALL_EXPORT {
 
 /// The planned path of a PathSpec, validating every field; messages name `field`.key
 /// (e.g. "plan.path.radius").

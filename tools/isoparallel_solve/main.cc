@@ -40,6 +40,7 @@
 #include "plateball/task_adapters.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
+#include "plateball/version.h"
 
 namespace {
 

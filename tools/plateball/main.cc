@@ -9,6 +9,7 @@
 #include "common/command_registry.h"
 #include "common/errors.h"
 #include "common/exit_codes.h"
+#include "plateball/version.h"
 
 int main(int argc, char** argv) {
   using namespace plateball::tools;
