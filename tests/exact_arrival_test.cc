@@ -151,14 +151,6 @@ TEST(ExactArrival, GoalNotReachedIsAStatusWithTheClosestArrival) {
   EXPECT_FALSE(s.message.empty());
 }
 
-TEST(ExactArrival, DefaultSummarySaysNotRun) {
-  const ExactArrivalSummary s;
-  EXPECT_EQ(s.status, ExactArrivalStatus::kNotRun);
-  EXPECT_FALSE(s.IsSolutionUsable());
-  EXPECT_EQ(s.message, "not run");
-  EXPECT_NE(s.BriefReport().find("not_run"), std::string::npos);
-}
-
 }  // namespace
 }  // namespace plateball
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "plateball/convergence.h"
+#include "plateball/exact_arrival.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/isoparallel.h"
 #include "plateball/join.h"
@@ -19,7 +20,7 @@ namespace {
 template <class Summary>
 class SummaryShape : public ::testing::Test {};
 
-using Summaries = ::testing::Types<JoinSummary, ReachSummary, PlanSummary, IsoparallelSummary>;
+using Summaries = ::testing::Types<JoinSummary, ReachSummary, PlanSummary, IsoparallelSummary, ExactArrivalSummary>;
 TYPED_TEST_SUITE(SummaryShape, Summaries);
 
 TYPED_TEST(SummaryShape, DefaultSaysNotRun) {
