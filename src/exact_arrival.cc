@@ -232,10 +232,15 @@ Setup MakeSetup(const ExactArrivalProblem& p, const ExactArrivalOptions& o, cons
   return s;
 }
 
-// Backtracking: the full KKT step unless it lengthens a flight below zero or worsens the arrival.
+// Backtracking from the longest admissible step: at most kMaxStep long (a trust region for goals
+// far from the warm start) and keeping every flight time above half its value; shortened while
+// it worsens the arrival.
 bool TryStep(const Setup& s, const Eigen::VectorXd& u, const Eigen::VectorXd& du, double merit, Eigen::VectorXd* u_new,
              std::vector<Node>* nodes, Eigen::VectorXd* r_new, int* rollouts) {
-  double alpha = 1.0;
+  constexpr double kMaxStep = 1.0;
+  double alpha = std::min(1.0, kMaxStep / std::max(du.norm(), 1e-300));
+  for (int k = 0; k < s.n; ++k)
+    if (du[s.n + k] < 0) alpha = std::min(alpha, 0.5 * u[s.n + k] / -du[s.n + k]);
   for (int tries = 0; tries < 12; ++tries, alpha *= 0.5) {
     *u_new = u + alpha * du;
     if ((u_new->tail(s.n).array() <= 0).any()) continue;

@@ -201,3 +201,47 @@ TEST(ExactArrivalProblems, AdapterRejectsTooFewImpulsesNamingTheField) {
 
 }  // namespace
 }  // namespace plateball
+
+namespace plateball {
+namespace {
+
+// The plan section's path as the reference (what `plateball steer` runs for a file with a plan):
+// a straight line of length 2 rolled to its end with a half turn more than rolling gives.
+TEST(ExactArrivalProblems, PlanPathReferenceFromAFileArrives) {
+  const Problem p = ParseProblem(R"({"ball": {"lambda": 2},
+    "initial": {"theta": 1.0471975511965976, "phi": 0.4, "psi": 0.1, "mu": 1},
+    "plan": {"path": {"type": "line", "from": [0, 0], "to": [2, 0]}},
+    "steer": {"goal": [2, 0], "goal_orientation": {"axis_angle": {"axis": [0, 1, 0.5], "angle": 2.5}}, "impulses": 8}})",
+                                 "line_steer.json");
+  const ExactArrivalSetup setup = ExactArrivalSetupFor(p);
+  EXPECT_EQ(setup.problem.impulses, 8);
+  EXPECT_EQ(setup.problem.x1, Eigen::Vector2d(2, 0));
+  const ExactArrivalSummary s = SolveExactArrival(setup.problem, setup.options);
+  ExpectArrivesByReplay(setup.problem, s);
+  // The command line's count replaces the file's, and a bad one names the option.
+  EXPECT_EQ(ExactArrivalSetupFor(p, 5).problem.impulses, 5);
+  EXPECT_NE(plateball::testing::InvalidArgumentMessage([&] { ExactArrivalSetupFor(p, 1001, "--impulses"); })
+                .find("--impulses: value 1001"),
+            std::string::npos);
+}
+
+// Three impulses (6 unknowns) along the Figure 7 path: the warm start is 2.9 rad off and the
+// iteration does not reach the goal; the status says so and the closest arrival is reported.
+TEST(ExactArrival, Figure7WithThreeImpulsesReportsTheClosestArrival) {
+  ExactArrivalProblem p = Figure7();
+  p.impulses = 3;
+  const ExactArrivalSummary s = SolveExactArrival(p);
+  if (s.IsSolutionUsable()) {  // a better globalisation may reach it: then it must be exact
+    ExpectArrivesByReplay(p, s);
+    return;
+  }
+  EXPECT_EQ(s.status, ExactArrivalStatus::kNotReached) << s.BriefReport();
+  ASSERT_EQ(s.impulses.size(), 3u);
+  EXPECT_LT(s.orientation_error, s.planned_orientation_error);  // closer than the warm start
+  const ReplayResult replay = ReplayExactArrival(p, s.impulses);  // the reported arrival is real
+  EXPECT_NEAR(replay.position_error, s.position_error, 1e-9);
+  EXPECT_NEAR(replay.orientation_error, s.orientation_error, 1e-9);
+}
+
+}  // namespace
+}  // namespace plateball
