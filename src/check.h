@@ -103,7 +103,8 @@ inline void RequireCoordinate(const std::string& field, double v) {
 template <typename Derived>
 inline void RequireCoordinates(const std::string& field, const Eigen::MatrixBase<Derived>& m) {
   const auto e = m.eval();
-  for (Eigen::Index i = 0; i < e.size(); ++i) RequireCoordinate(field + "[" + std::to_string(i) + "]", e.data()[i]);
+  for (Eigen::Index i = 0; i < e.size(); ++i)  // the element name is built only for a bad value (hot path)
+    if (!(std::abs(e.data()[i]) <= kMaxCoordinate)) RequireCoordinate(field + "[" + std::to_string(i) + "]", e.data()[i]);
 }
 /// mu in [kMinMu, kMaxMu].
 inline void RequireEnergy(const std::string& field, double mu) {
