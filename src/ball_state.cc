@@ -95,13 +95,14 @@ Eigen::Vector4d ConstraintResiduals(const PhaseVariables& p, double mu, const Ba
 }
 
 void ValidateState(const BallState& s, const char* field) {
-  const std::string f(field);
-  internal::RequireFinite(f + ".z", s.z);
-  internal::RequireFinite(f + ".omega", s.omega);
+  // Field names are built only for a bad value (this runs on every join).
+  const auto f = [field](const char* member) { return std::string(field) + member; };
+  if (!s.z.allFinite()) internal::RequireFinite(f(".z"), s.z);
+  if (!s.omega.allFinite()) internal::RequireFinite(f(".omega"), s.omega);
   if (std::abs(s.z.norm() - 1.0) > 1e-9)
-    internal::ThrowInvalid(f + ".z norm", s.z.norm(), "the symmetry axis must be a unit vector");
+    internal::ThrowInvalid(f(".z norm"), s.z.norm(), "the symmetry axis must be a unit vector");
   if (std::abs(s.omega.z()) > 1e-9 * std::max(1.0, s.omega.norm()))
-    internal::ThrowInvalid(f + ".omega[2]", s.omega.z(), "no spin: omega_3 must be 0");
+    internal::ThrowInvalid(f(".omega[2]"), s.omega.z(), "no spin: omega_3 must be 0");
 }
 
 }  // namespace plateball

@@ -69,8 +69,8 @@ struct PlanInput {
   std::vector<std::vector<double>> factors;
 };
 
-// The public boundary, checked once: options, mu, angles (reduced mod 2 pi), the partition of
-// every piece, the energy-change indices and factors.
+// The public boundary, checked once: options, mu, angles (reduced mod 2 pi), the step count of
+// the partition (MakePartition validated each piece's points), the energy-change indices and factors.
 PlanInput ValidatePlan(const AngleState& initial, double mu, const Path& path,
                        const std::vector<std::vector<double>>& partition,
                        const std::vector<EnergyChange>& energy_changes, const PlanOptions& options) {
@@ -81,8 +81,7 @@ PlanInput ValidatePlan(const AngleState& initial, double mu, const Path& path,
   if (static_cast<int>(partition.size()) != path.PieceCount())
     internal::ThrowInvalid("partition (piece count)", static_cast<double>(partition.size()),
                            "must equal the number of path pieces " + std::to_string(path.PieceCount()));
-  for (int i = 0; i < path.PieceCount(); ++i) {
-    ValidatePartition(path.pieces()[i], partition[i], "partition[" + std::to_string(i) + "]");
+  for (int i = 0; i < path.PieceCount(); ++i) {  // each piece's partition validated by MakePartition
     in.n_total += static_cast<int>(partition[i].size()) - 1;
     if (in.n_total > internal::kMaxPartitionSteps)  // README, "Limits"
       internal::ThrowInvalid("partition (steps)", in.n_total, "must be <= " + std::to_string(internal::kMaxPartitionSteps));

@@ -35,11 +35,12 @@ void ValidatePartition(const SmoothCurve& curve, const std::vector<double>& taus
   if (taus.size() < 2)
     ThrowInvalid(field + " (point count)", static_cast<double>(taus.size()), "a partition needs at least 2 points");
   const double span = curve.End() - curve.Begin();
+  // Element names are built only for a bad value (a plan validates every partition point).
+  const auto element = [&field](std::size_t k) { return field + "[" + std::to_string(k) + "]"; };
   for (std::size_t k = 0; k < taus.size(); ++k) {
-    const std::string f = field + "[" + std::to_string(k) + "]";
-    internal::RequireFinite(f, taus[k]);
+    if (!std::isfinite(taus[k])) internal::RequireFinite(element(k), taus[k]);
     if (k > 0 && !(taus[k] > taus[k - 1]))
-      ThrowInvalid(f, taus[k], "partition values must increase strictly (previous " + internal::FormatNumber(taus[k - 1]) + ")");
+      ThrowInvalid(element(k), taus[k], "partition values must increase strictly (previous " + internal::FormatNumber(taus[k - 1]) + ")");
   }
   if (std::abs(taus.front() - curve.Begin()) > 1e-12 * std::max(1.0, std::abs(span)))
     ThrowInvalid(field + "[0]", taus.front(), "must equal the start of the parameter interval " + internal::FormatNumber(curve.Begin()));
@@ -47,8 +48,11 @@ void ValidatePartition(const SmoothCurve& curve, const std::vector<double>& taus
     ThrowInvalid(field + "[" + std::to_string(taus.size() - 1) + "]", taus.back(),
                  "must equal the end of the parameter interval " + internal::FormatNumber(curve.End()));
   const double size = std::max(1.0, curve.Length());
+  Eigen::Vector2d previous = curve.Value(taus.front());
   for (std::size_t k = 1; k < taus.size(); ++k) {
-    const double step = (curve.Value(taus[k]) - curve.Value(taus[k - 1])).norm();
+    const Eigen::Vector2d point = curve.Value(taus[k]);
+    const double step = (point - previous).norm();
+    previous = point;
     if (!(step > 1e-12 * size))
       ThrowInvalid(field + "[" + std::to_string(k) + "] (|p(tau_k) - p(tau_k-1)|)", step,
                    "consecutive partition points must be more than 1e-12 x the path length apart on the plate");
