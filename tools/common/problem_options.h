@@ -21,9 +21,13 @@ inline constexpr const char* kCommandLine = "command line";
 
 class ProblemOptions {
  public:
+  /// Whether the subcommand runs a randomised search (the isoparallel multi-start, e.g. as the
+  /// reference of steer) and so takes --seed; join, reach, plan, converge and simulate are
+  /// deterministic and do not accept it.
+  enum class Seed { kAccepted, kNone };
   /// Adds the positional PROBLEM.json and --lambda --theta --phi --psi --mu --x0 X,Y
-  /// --orientation JSON --atol --rtol --max-steps --seed to `app`.
-  void Add(CLI::App& app);
+  /// --orientation JSON --atol --rtol --max-steps (and --seed unless Seed::kNone) to `app`.
+  void Add(CLI::App& app, Seed seed = Seed::kAccepted);
 
   /// The problem file (or, without one, the defaults of problem.h: lambda = 1,
   /// (theta, phi, psi) = (pi/3, 0.4, 0.1), mu = 1, x0 = 0, identity orientation) with the given

@@ -126,7 +126,7 @@ int RunConverge(const ConvergeCliOptions& o) {
 
 std::function<int()> SetupConverge(CLI::App& sub) {
   auto o = std::make_shared<ConvergeCliOptions>();
-  o->problem.Add(sub);
+  o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
   sub.add_option("--n", o->ns,
                  "distinct partition sizes, e.g. --n 16,32,64 (default: plan.converge_n, else 16 ... 1024; a "
                  "uniform partition only)")

@@ -97,7 +97,7 @@ int RunPlan(const PlanCliOptions& o) {
 
 std::function<int()> SetupPlan(CLI::App& sub) {
   auto o = std::make_shared<PlanCliOptions>();
-  o->problem.Add(sub);
+  o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
   o->n_opt = sub.add_option("--n", o->n, "segments per smooth piece (overrides plan.partition.n)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   sub.add_option("--svg", o->svg, "draw the plate to this SVG file (planned path dashed, trajectory solid; \"-\": standard output, with --out FILE)");
