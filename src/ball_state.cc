@@ -19,9 +19,13 @@ AngleState AngleState::Canonicalize() const {
   return {th, WrapPi(ph), WrapPi(psi)};
 }
 
+namespace {
+// SemiAxisA from sin(theta) and cos(theta) already at hand (one sine and cosine less per call).
+double SemiAxisFromTrig(double s, double c, double mu, double lambda) { return std::sqrt(mu / (lambda * s * s + c * c)); }
+}  // namespace
+
 double SemiAxisA(double theta, double mu, double lambda) {
-  const double s = std::sin(theta), c = std::cos(theta);
-  return std::sqrt(mu / (lambda * s * s + c * c));
+  return SemiAxisFromTrig(std::sin(theta), std::cos(theta), mu, lambda);
 }
 
 PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& model) {
@@ -29,15 +33,15 @@ PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& 
   internal::RequireFinite("phi", s.phi);
   internal::RequireFinite("psi", s.psi);
   internal::RequireEnergy("mu", mu);
-  const double ct = std::cos(s.theta);
+  // Each sine and cosine once (the same values AxisFromAngles and SemiAxisA would compute).
+  const double ct = std::cos(s.theta), st = std::sin(s.theta);
   const double sp = std::sin(s.phi), cp = std::cos(s.phi);
   const double w = s.phi - s.psi;
   const double cw = std::cos(w), sw = std::sin(w);
-  const double a = SemiAxisA(s.theta, mu, model.lambda());
+  const double a = SemiAxisFromTrig(st, ct, mu, model.lambda());
   const double b = std::sqrt(mu);
   PhaseVariables p;
-  p.z = internal::AxisFromAngles(s.theta, s.phi);             // (12)-(14)
-  const double st = std::sin(s.theta);
+  p.z = {st * cp, st * sp, ct};                               // (12)-(14)
   p.u = {-a * cw * ct * ct * cp - b * sw * sp,                // (15)
          -a * cw * ct * ct * sp + b * sw * cp,                // (16)
          a * cw * ct * st};                                   // (17)
@@ -62,7 +66,8 @@ AngleState AnglesFromState(const BallState& s, const BallModel& model) {
   const double rho = std::hypot(s.z.x(), s.z.y());
   const double theta = std::atan2(rho, s.z.z());
   const double phi = rho > 0 ? std::atan2(s.z.y(), s.z.x()) : 0.0;
-  const Eigen::Vector2d er(std::cos(phi), std::sin(phi)), ephi(-std::sin(phi), std::cos(phi));
+  const double cp = std::cos(phi), sp = std::sin(phi);
+  const Eigen::Vector2d er(cp, sp), ephi(-sp, cp);
   const Eigen::Vector2d wh = s.omega.head<2>();
   const double a = SemiAxisA(theta, mu, model.lambda());
   const double b = std::sqrt(mu);
