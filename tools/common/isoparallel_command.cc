@@ -189,7 +189,7 @@ plateball::IsoparallelSetup LoadSetup(const IsoparallelCliOptions& cli, platebal
   CheckOutputPaths({{cli.json_to_stdout ? "standard output (the JSON)" : "standard output (the report)", "-"},
                     {"--out", out_file == "-" && cli.json_to_stdout ? "" : out_file},
                     {"--svg", cli.svg}},
-                   {{"PROBLEM.json", cli.problem.file()}});
+                   {{"problem file", cli.problem.file()}});
   *problem = cli.problem.Load();
   IsoparallelSetup setup = IsoparallelSetupFor(*problem);
   if (cli.shooting) setup.options.enumerate_families = false;
