@@ -211,11 +211,11 @@ int RunRoll(const RollOptions& o) {
 std::function<int()> SetupRoll(CLI::App& sub) {
   auto o = std::make_shared<RollOptions>();
   o->problem_opt = sub.add_option("problem", o->problem_file,
-                                  "a problem file whose plan.path is rolled along (each smooth piece exactly)");
+                                  "a problem file whose plan.path is rolled along (each smooth piece exactly; \"-\": standard input)");
   o->points_opt = sub.add_option("--points", o->points,
                                  "the path through the points \"X1,Y1;X2,Y2;...\" (or separated by spaces; >= 2; a natural C^2 spline unless --segment)");
   o->samples_file_opt = sub.add_option("--samples-file", o->samples_file,
-                                       "the path through the points of a JSON file {\"points\": [[x, y], ...]}");
+                                       "the path through the points of a JSON file {\"points\": [[x, y], ...]} (\"-\": standard input)");
   sub.add_flag("--segment", o->segment, "roll along the straight segments between the points (a polyline; exact)");
   o->orientation_opt = sub.add_option("--orientation", o->orientation,
                                       "initial orientation (JSON, as in problem files); adds the final orientation R A0");
@@ -223,8 +223,8 @@ std::function<int()> SetupRoll(CLI::App& sub) {
   o->rtol_opt = sub.add_option("--rtol", o->rtol, "relative tolerance of the rolling integration (spline paths and plan.path)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
   sub.footer(
-      "Prints JSON: the reorientation R = A(end) A(start)^-1 of the ball (radius 1) rolled along the path,\n"
-      "its rotation vector w (R = exp(hat w), |w| <= pi), angle |w| and axis. A straight segment of length L\n"
+      "Prints JSON (docs/output_contract.md): the reorientation R = A(end) A(start)^-1 of the ball (radius 1)\n"
+      "rolled along the path: matrix, rotation vector w (R = exp(hat w), |w| <= pi), angle |w| and axis. A straight segment of length L\n"
       "in the direction d gives the rotation by L about e3 x d.\n"
       "Example: plateball roll --segment --points \"0,0;1.2,1.6\"\n"
       "         plateball roll --points \"0,0;1,0.5;2,0;3,-0.5\"\n"
