@@ -19,7 +19,7 @@ Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> SampleArc(double lengt
   if (n < 1 || n > 1000000) throw std::invalid_argument("n: value " + std::to_string(n) + ": must be in [1, 1000000]");
   std::vector<int> i(static_cast<std::size_t>(n) + 1);
   for (std::size_t k = 0; k < i.size(); ++k) i[k] = static_cast<int>(k);
-  return Stack<2>(i, [&](int k) { return position(length * k / n).transpose(); });
+  return Stack<2>(i, [&](int k) { return Eigen::RowVector2d(position(length * k / n).transpose()); });
 }
 
 void BindElastica(py::module_& m) {

@@ -32,7 +32,7 @@ void BindCurves(py::module_& m) {
              std::vector<int> i(static_cast<std::size_t>(std::max(n, 2)));
              for (std::size_t k = 0; k < i.size(); ++k) i[k] = static_cast<int>(k);
              const double last = static_cast<double>(i.size() - 1);
-             return Stack<2>(i, [&](int k) { return c.Value(c.Begin() + (c.End() - c.Begin()) * k / last).transpose(); });
+             return Stack<2>(i, [&](int k) { return Eigen::RowVector2d(c.Value(c.Begin() + (c.End() - c.Begin()) * k / last).transpose()); });
            }, py::arg("n") = 200, "(n, 2) points at equally spaced tau");
   py::class_<Path>(m, "Path", "A chain of smooth pieces sharing end points.")
       .def(py::init<std::vector<SmoothCurve>>(), py::arg("pieces"))
