@@ -15,6 +15,8 @@ library's message (FIELD: value V: what). The solvers release the GIL.
     plan = pb.plan(*pb.plan_setup_for(problem))        # what `plateball plan` runs
 """
 
+import functools
+
 from ._plateball import *  # noqa: F401,F403
 from ._plateball import (__version__, _converge, _isoparallel, _join, _plan, _plan_optimal_path,  # noqa: F401
                          _reach, _steer, ConvergenceOptions, ConvergenceProblem, ExactArrivalOptions,
@@ -22,12 +24,18 @@ from ._plateball import (__version__, _converge, _isoparallel, _join, _plan, _pl
                          JoinOptions, JoinProblem, PlanOptions, PlanProblem, ReachOptions, ReachProblem)
 
 
+@functools.lru_cache(maxsize=None)
+def _fields(cls):
+    return frozenset(k for k in dir(cls) if not k.startswith("_"))
+
+
 def _solve(native, problem_type, options_type, problem, options, kwargs):
     """Builds the problem and options from objects and/or keywords, then calls the solver."""
+    if not kwargs and problem is not None and options is not None:
+        return native(problem, options)
     problem = problem_type() if problem is None else problem
     options = options_type() if options is None else options
-    problem_fields = {k for k in dir(problem_type) if not k.startswith("_")}
-    options_fields = {k for k in dir(options_type) if not k.startswith("_")}
+    problem_fields, options_fields = _fields(problem_type), _fields(options_type)
     for key, value in kwargs.items():
         if key in problem_fields:
             setattr(problem, key, value)

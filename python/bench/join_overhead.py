@@ -1,10 +1,10 @@
 """The binding's overhead per call on task T1 (docs/benchmarks.md): the same 64 joins as
 bench/join_benchmark (lambda = 2, mu = 1, (theta, phi, psi) = (pi/3, 0.4, 0.1), targets at distance
-0.05), timed from Python three ways: the keyword call pb.join(...), the object call
-pb._join(problem, options) with prebuilt objects, and the C++ figure from bench/join_benchmark
+0.05), timed from Python three ways: the keyword call pb.join(model=..., target=...), pb.join(problem,
+options) with prebuilt objects and the native pb._join(problem, options), and the C++ figure from bench/join_benchmark
 when its path is given. Prints medians of `--repetitions` runs of `--rounds` x 64 joins.
 
-    PYTHONPATH=build/python /usr/bin/python3 python/join_overhead.py [--cxx build/bench/join_benchmark]
+    PYTHONPATH=build/python /usr/bin/python3 python/bench/join_overhead.py [--cxx build/bench/join_benchmark]
 """
 import argparse
 import json
@@ -48,8 +48,14 @@ def main():
             for p in problems:
                 pb._join(p, options)
 
+    def wrapper_loop():
+        for _ in range(args.rounds):
+            for p in problems:
+                pb.join(p, options)
+
     ok = sum(pb._join(p, options).status == "converged" for p in problems)
     result = {"joins_converged": ok, "python_object_call_us": median_us(object_loop, calls, args.repetitions),
+              "python_join_objects_us": median_us(wrapper_loop, calls, args.repetitions),
               "python_keyword_call_us": median_us(keyword_loop, calls, args.repetitions)}
     if args.cxx:
         out = subprocess.run([args.cxx, "--benchmark_format=json", "--benchmark_repetitions=5",
@@ -58,6 +64,7 @@ def main():
         median = next(r for r in rows if r.get("aggregate_name") == "median")
         result["cxx_us"] = median["real_time"]
         result["overhead_object_call_us"] = result["python_object_call_us"] - result["cxx_us"]
+        result["overhead_join_objects_us"] = result["python_join_objects_us"] - result["cxx_us"]
         result["overhead_keyword_call_us"] = result["python_keyword_call_us"] - result["cxx_us"]
     print(json.dumps(result, indent=2))
 
