@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 
 #include <Eigen/Core>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,13 @@ py::class_<T, Extra...>& WithKeywordInit(py::class_<T, Extra...>& cls) {
           }),
           "Default values, then every keyword argument set as an attribute.");
   return cls;
+}
+
+// A count argument of the binding's own helpers (samples per arc, points): FIELD: value V: range.
+inline void RequireCount(const char* field, int value, int lo, int hi) {
+  if (value < lo || value > hi)
+    throw std::invalid_argument(std::string(field) + ": value " + std::to_string(value) + ": must be in [" +
+                                std::to_string(lo) + ", " + std::to_string(hi) + "]");
 }
 
 // Samples of a free motion (free_motion.h) as NumPy arrays: t (n), x (n, 2), z and omega (n, 3),

@@ -16,7 +16,7 @@ using Scalar1 = Eigen::Matrix<double, 1, 1>;
 // (n + 1, 2) points of a function of arc length s in [0, length].
 template <typename F>
 Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> SampleArc(double length, int n, F&& position) {
-  if (n < 1 || n > 1000000) throw std::invalid_argument("n: value " + std::to_string(n) + ": must be in [1, 1000000]");
+  RequireCount("n", n, 1, 1000000);
   std::vector<int> i(static_cast<std::size_t>(n) + 1);
   for (std::size_t k = 0; k < i.size(); ++k) i[k] = static_cast<int>(k);
   return Stack<2>(i, [&](int k) { return Eigen::RowVector2d(position(length * k / n).transpose()); });
@@ -160,8 +160,7 @@ void BindExactInputs(py::module_& m) {
 // Positions of the exact trajectory: each arc from its impulse (positions only).
 Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> ExactTrajectory(const ExactArrivalSummary& s,
                                                                           const ExactArrivalProblem& p, int per_arc) {
-  if (per_arc < 1 || per_arc > 100000)
-    throw std::invalid_argument("samples_per_arc: value " + std::to_string(per_arc) + ": must be in [1, 100000]");
+  RequireCount("samples_per_arc", per_arc, 1, 100000);
   std::vector<Eigen::Vector2d> points;
   for (const ExactImpulse& k : s.impulses) {
     const Impulse i = EnergyPreservingImpulse(k.angles_before, p.mu, k.delta_psi, p.model);

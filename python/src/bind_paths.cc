@@ -29,7 +29,8 @@ void BindCurves(py::module_& m) {
       .def("second_derivative", &SmoothCurve::SecondDerivative, py::arg("tau"))
       .def("arc_length", &SmoothCurve::ArcLength, py::arg("a"), py::arg("b"))
       .def("points", [](const SmoothCurve& c, int n) {
-             std::vector<int> i(static_cast<std::size_t>(std::max(n, 2)));
+             RequireCount("n", n, 2, 1000000);
+             std::vector<int> i(static_cast<std::size_t>(n));
              for (std::size_t k = 0; k < i.size(); ++k) i[k] = static_cast<int>(k);
              const double last = static_cast<double>(i.size() - 1);
              return Stack<2>(i, [&](int k) { return Eigen::RowVector2d(c.Value(c.Begin() + (c.End() - c.Begin()) * k / last).transpose()); });

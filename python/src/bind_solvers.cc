@@ -195,8 +195,7 @@ void BindPlanStep(py::module_& m) {
 // The impulsive trajectory of a plan: each free arc re-integrated from its impulse, chained in
 // position and orientation (as `plateball plan --svg` draws it).
 Trajectory PlanTrajectory(const PlanSummary& plan, const BallModel& model, int per_arc, const IntegrationOptions& integration) {
-  if (per_arc < 1 || per_arc > 100000)
-    throw std::invalid_argument("samples_per_arc: value " + std::to_string(per_arc) + ": must be in [1, 100000]");
+  RequireCount("samples_per_arc", per_arc, 1, 100000);
   Trajectory out;
   if (plan.steps.empty()) return out;
   Eigen::Vector2d x = plan.steps.front().p_begin;

@@ -91,3 +91,12 @@ def test_solves_release_the_gil(problems):
     worker.join()
     assert result["summary"].status == "solved"
     assert ticks > 1000
+
+
+def test_helper_counts_are_checked():
+    line = pb.SmoothCurve.line((0.0, 0.0), (2.0, 0.0))
+    assert np.array_equal(line.points(3), [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])
+    with pytest.raises(ValueError, match=r"^n: value 1: must be in \[2, 1000000\]$"):
+        line.points(1)
+    with pytest.raises(ValueError, match=r"^samples: value 1: must be in \[2, "):
+        pb.FreeMotion(pb.BallModel(1.0), (1.0, 0.0, 0.0), 1.0).sample(0.0, 1.0, 1)
