@@ -4,10 +4,10 @@ Both sides run the same task adapter (task_adapters.h) on the same problem file;
 every double in the shortest form that reads back to the same value, so the comparison is exact
 equality, with no tolerance.
 
-FIELDS is the one place that names the CLI's JSON fields (docs/output_contract.md): each entry is
-(JSON path, value of the Python result). In a JSON path, "a.b" descends into objects, "a[*]" maps
-over a list and "new|old" takes the first name the document has (the output contract renamed
-fields; both spellings are accepted so the test reads documents from before and after it).
+FIELDS is the one place that names the CLI's JSON fields, in the names of the output contract
+(docs/output_contract.md, schema_version 1): each entry is (JSON path, value of the Python
+result). In a JSON path "a.b" descends into objects and "a[*]" maps over a list. HEADER is the
+self-describing header every document starts with, checked against the problem file.
 """
 import numpy as np
 import pytest
@@ -16,13 +16,11 @@ import plateball as pb
 
 
 def json_get(doc, path):
-    """The value at `path` (see the module doc); raises KeyError naming the path when absent."""
-    for alternative in path.split("|"):
-        try:
-            return _get(doc, alternative.split("."))
-        except (KeyError, TypeError):
-            continue
-    raise KeyError(f"none of {path!r} in the CLI's document")
+    """The value at `path` (see the module doc); KeyError naming the path when it is absent."""
+    try:
+        return _get(doc, path.split("."))
+    except (KeyError, TypeError) as e:
+        raise KeyError(f"{path!r} is not in the CLI's document") from e
 
 
 def _get(node, keys):
@@ -47,9 +45,9 @@ FIELDS = {
         ("initial.omega", lambda r: r["motion"].start_state.omega),
         ("initial.orientation", lambda r: r["motion"].start_orientation),
         ("samples[*].t", lambda r: r["samples"].t),
-        ("samples[*].angles.theta|samples[*].theta", lambda r: r["samples"].angles[:, 0]),
-        ("samples[*].angles.phi|samples[*].phi", lambda r: r["samples"].angles[:, 1]),
-        ("samples[*].angles.psi|samples[*].psi", lambda r: r["samples"].angles[:, 2]),
+        ("samples[*].angles.theta", lambda r: r["samples"].angles[:, 0]),
+        ("samples[*].angles.phi", lambda r: r["samples"].angles[:, 1]),
+        ("samples[*].angles.psi", lambda r: r["samples"].angles[:, 2]),
         ("samples[*].z", lambda r: r["samples"].z),
         ("samples[*].x", lambda r: r["samples"].x),
         ("samples[*].orientation", lambda r: r["samples"].orientation),
@@ -59,6 +57,7 @@ FIELDS = {
     "join": [
         ("status", lambda r: r.status),
         ("usable", lambda r: r.usable),
+        ("message", lambda r: r.message),
         ("report", lambda r: r.report),
         ("delta_psi", lambda r: r.delta_psi),
         ("t", lambda r: r.t),
@@ -72,9 +71,13 @@ FIELDS = {
         ("arrival.z", lambda r: r.state_after.z),
         ("arrival.omega", lambda r: r.state_after.omega),
         ("arrival.angles.theta", lambda r: r.angles_after.theta),
+        ("arrival.angles.psi", lambda r: r.angles_after.psi),
+        ("impulse.angles_after.psi", lambda r: r.impulse.after.psi),
     ],
     "reach": [
         ("status", lambda r: r.status),
+        ("usable", lambda r: r.usable),
+        ("message", lambda r: r.message),
         ("report", lambda r: r.report),
         ("period", lambda r: r.period),
         ("horizon", lambda r: r.horizon),
@@ -100,8 +103,8 @@ FIELDS = {
         ("bounds.theorem_2_6", lambda r: r.bounds.theorem_2_6),
         ("bounds.corollary_3", lambda r: r.bounds.corollary_3),
         ("bounds.constants.K_tilde_p", lambda r: r.bounds.constants.K_tilde_p),
-        ("rotation_final.impulsive.matrix|orientation.impulsive.matrix", lambda r: r.orientation_impulsive),
-        ("rotation_final.planned.matrix|orientation.planned.matrix", lambda r: r.orientation_planned),
+        ("rotation_final.impulsive.matrix", lambda r: r.orientation_impulsive),
+        ("rotation_final.planned.matrix", lambda r: r.orientation_planned),
         ("final.omega", lambda r: r.final_state.omega),
         ("steps[*].p_begin", lambda r: r.pass_points),
         ("steps[*].t_impulse", lambda r: r.t_impulse),
@@ -117,10 +120,11 @@ FIELDS = {
     "converge": [
         ("rows[*].n", lambda r: r.column("n")),
         ("rows[*].status", lambda r: [row.status for row in r.rows]),
+        ("rows[*].message", lambda r: [row.message for row in r.rows]),
         ("rows[*].measured_error", lambda r: r.column("measured_error")),
         ("rows[*].polyline_error", lambda r: r.column("polyline_error")),
-        ("rows[*].bounds.a_posteriori|rows[*].bound", lambda r: r.column("bound")),
-        ("rows[*].bounds.theorem_2_6|rows[*].theorem_2_6", lambda r: r.column("theorem_2_6")),
+        ("rows[*].bounds.a_posteriori", lambda r: r.column("bound")),
+        ("rows[*].bounds.theorem_2_6", lambda r: r.column("theorem_2_6")),
         ("rows[*].max_pass_miss", lambda r: r.column("max_pass_miss")),
         ("error_slope", lambda r: r.error_slope),
         ("bound_slope", lambda r: r.bound_slope),
@@ -135,10 +139,10 @@ FIELDS = {
         ("solutions[*].G", lambda r: [s.G for s in r["summary"].solutions]),
         ("solutions[*].energy", lambda r: [s.energy for s in r["summary"].solutions]),
         ("solutions[*].orientation_residual", lambda r: [s.orientation_residual for s in r["summary"].solutions]),
-        ("solutions[*].orientation_distance|solutions[*].orientation_error",
-         lambda r: [s.orientation_error for s in r["summary"].solutions]),
+        ("solutions[*].orientation_distance", lambda r: [s.orientation_error for s in r["summary"].solutions]),
         ("optimal_path", lambda r: r["summary"].shortest().points(400)),
         ("plan.status", lambda r: r["plan"].status),
+        ("plan.report", lambda r: r["plan"].report),
         ("plan.measured_error", lambda r: r["plan"].measured_error),
         ("plan.bounds.a_posteriori", lambda r: r["plan"].bounds.a_posteriori),
         ("plan.steps[*].delta_psi", lambda r: r["plan"].delta_psi),
@@ -155,12 +159,35 @@ FIELDS = {
         ("arrival.position_error", lambda r: r.position_error),
         ("arrival.orientation_error", lambda r: r.orientation_error),
         ("deviation.value", lambda r: r.deviation),
-        ("impulses[*].x|impulses[*].position", lambda r: r.positions),
+        ("impulses[*].x", lambda r: r.positions),
         ("impulses[*].delta_psi", lambda r: r.delta_psi),
         ("impulses[*].duration", lambda r: r.durations),
         ("impulses[*].plate_velocity_change", lambda r: r.plate_velocity_changes),
+        ("impulses[*].p", lambda r: [i.planned_position for i in r.impulses]),
+        ("impulses[*].angles_before.theta", lambda r: [i.angles_before.theta for i in r.impulses]),
+        ("arrival.rotation.matrix", lambda r: r.orientation_final),
+        ("paper_plan.orientation_error", lambda r: r.planned_orientation_error),
     ],
 }
+
+
+# The header of every document (output contract, section 1) against the problem file.
+HEADER = [
+    ("schema_version", lambda p: 1),
+    ("version", lambda p: pb.__version__),
+    ("problem.name", lambda p: p.name),
+    ("model.lambda", lambda p: p.model.lambda_),
+    ("integration.absolute_tolerance", lambda p: p.integration.absolute_tolerance),
+    ("integration.relative_tolerance", lambda p: p.integration.relative_tolerance),
+    ("integration.max_steps", lambda p: p.integration.max_steps),
+    ("seed", lambda p: p.seed),
+]
+
+
+def assert_header(doc, problem, command):
+    assert doc["command"] == command
+    for path, python_value in HEADER:
+        assert json_get(doc, path) == python_value(problem), path
 
 
 def assert_same(doc, result, command):
@@ -186,6 +213,7 @@ def assert_same(doc, result, command):
 def test_simulate(problems, run_cli, name):
     doc = run_cli("plateball", "simulate", problems / f"{name}.json", "--samples", 9, "--t-end", 7.5)
     problem = pb.load_problem(problems / f"{name}.json")
+    assert_header(doc, problem, "simulate")
     motion = pb.free_motion_for(problem)
     assert_same(doc, {"motion": motion, "samples": motion.sample(0.0, 7.5, 9)}, "simulate")
 
@@ -194,6 +222,7 @@ def test_join(problems, run_cli):
     targets = [(0.05, 0.0), (0.0, 0.05), (-0.03, 0.04)]
     doc = run_cli("plateball", "join", problems / "circle.json", "--targets", ";".join(f"{x},{y}" for x, y in targets))
     problem = pb.load_problem(problems / "circle.json")
+    assert_header(doc, problem, "join")
     assert len(doc["joins"]) == len(targets)
     for target, entry in zip(targets, doc["joins"]):
         assert_same(entry, pb.join(*pb.join_setup_for(problem, target)), "join")
@@ -202,7 +231,8 @@ def test_join(problems, run_cli):
 def test_reach(problems, run_cli):
     doc = run_cli("plateball", "reach", problems / "figure8_reach.json")
     problem = pb.load_problem(problems / "figure8_reach.json")
-    entries = json_get(doc, "results|reaches")
+    assert_header(doc, problem, "reach")
+    entries = json_get(doc, "results")
     assert len(entries) == len(problem.reach.targets) == 3
     for target, entry in zip(problem.reach.targets, entries):
         assert_same(entry, pb.reach(*pb.reach_setup_for(problem, target)), "reach")
@@ -211,20 +241,25 @@ def test_reach(problems, run_cli):
 @pytest.mark.parametrize("name", ["circle", "ellipse", "lemniscate", "piecewise"])
 def test_plan(problems, run_cli, name):
     doc = run_cli("plateball", "plan", problems / f"{name}.json")
-    summary = pb.plan(*pb.plan_setup_for(pb.load_problem(problems / f"{name}.json")))
+    problem = pb.load_problem(problems / f"{name}.json")
+    assert_header(doc, problem, "plan")
+    summary = pb.plan(*pb.plan_setup_for(problem))
     assert summary.status == "success"
     assert_same(doc, summary, "plan")
 
 
 def test_converge(problems, run_cli):
     doc = run_cli("plateball", "converge", problems / "circle.json", "--n", "16,32,64")
-    setup = pb.convergence_setup_for(pb.load_problem(problems / "circle.json"), [16, 32, 64])
+    problem = pb.load_problem(problems / "circle.json")
+    assert_header(doc, problem, "converge")
+    setup = pb.convergence_setup_for(problem, [16, 32, 64])
     assert_same(doc, pb.converge(setup.problem, setup.options), "converge")
 
 
 def test_isoparallel(problems, run_cli):
     doc = run_cli("isoparallel_solve", problems / "figure7.json", out_file=True)
     problem = pb.load_problem(problems / "figure7.json")
+    assert_header(doc, problem, "isoparallel")
     summary = pb.isoparallel(*pb.isoparallel_setup_for(problem))
     plan = pb.plan_optimal_path(*pb.isoparallel_plan_setup_for(problem, summary.shortest()))
     assert_same(doc, {"summary": summary, "plan": plan}, "isoparallel")
@@ -233,15 +268,20 @@ def test_isoparallel(problems, run_cli):
 def test_steer(problems, run_cli):
     doc = run_cli("plateball", "steer", problems / "figure7_exact.json")
     problem = pb.load_problem(problems / "figure7_exact.json")
+    assert_header(doc, problem, "steer")
     if problem.plan is not None:
         setup = pb.exact_arrival_setup_for(problem)
     else:
         iso = pb.isoparallel(*pb.isoparallel_setup_for(problem))
         setup = pb.exact_arrival_setup_for(problem, iso.shortest())
-    assert_same(doc, pb.steer(setup.problem, setup.options), "steer")
+    summary = pb.steer(setup.problem, setup.options)
+    assert_same(doc, summary, "steer")
+    replay = pb.replay_exact_arrival(setup.problem, summary.impulses)
+    assert np.array_equal(np.asarray(json_get(doc, "replay.x"), dtype=float), replay.x)
+    assert json_get(doc, "replay.orientation_error") == replay.orientation_error
 
 
 def test_roll_segment(run_cli):
     doc = run_cli("plateball", "roll", "--segment", "--points", "0,0;1.2,1.6;2,0.5")
     r = pb.roll([(0, 0), (1.2, 1.6), (2, 0.5)], segment=True)
-    assert np.array_equal(np.asarray(json_get(doc, "reorientation.matrix|reorientation"), dtype=float), r)
+    assert np.array_equal(np.asarray(json_get(doc, "reorientation.matrix"), dtype=float), r)
