@@ -26,7 +26,7 @@ def make(out_dir):
     ax.set_ylabel("x2 (ball radii)")
     ax.set_title(f"Figure 7: isoparallel path and impulsive approximation\n"
                  f"||A(T) − Ã_n|| = {plan.measured_error:.3g} ≤ bound {plan.bounds.a_posteriori:.3g}")
-    ax.legend(loc="upper right", fontsize=8)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2, fontsize=8)
     return save(fig, out_dir, "figure7_isoparallel")
 
 
