@@ -25,7 +25,8 @@ std::string Decade(int d) {
 
 std::string Short(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
+  if (v == std::floor(v) && std::abs(v) < 1e7) std::snprintf(buf, sizeof buf, "%.0f", v);
+  else std::snprintf(buf, sizeof buf, "%.3g", v);
   return buf;
 }
 
@@ -119,6 +120,15 @@ std::string Color(const MonteCarloProblem& p, int scenario, ExecutionStrategy s)
   return kPalette[k % 8];
 }
 
+// Error against n: the colour names the scenario (the strategy when there is one scenario), the
+// dash the strategy (open loop dashed, feedback solid, exact re-solve dotted).
+SvgFigure::Style SweepStyle(const MonteCarloProblem& p, int scenario, ExecutionStrategy s) {
+  static const char* kPalette[] = {"#c0392b", "#1f5fbf", "#1e8449", "#8e44ad", "#d68910", "#17a589", "#7f8c8d", "#2c3e50"};
+  static const char* kDash[] = {"8,4", "", "2,3"};
+  const std::string color = p.scenarios.size() == 1 ? Color(p, scenario, s) : kPalette[scenario % 8];
+  return {color, 1.8, kDash[static_cast<int>(s)], "none"};
+}
+
 std::string CellName(const MonteCarloProblem& p, int scenario, ExecutionStrategy s) {
   return ToString(s) + (p.scenarios.size() > 1 ? " (" + p.scenarios[static_cast<std::size_t>(scenario)].name + ")" : "");
 }
@@ -172,7 +182,7 @@ std::string RenderErrorAgainstN(const MonteCarloProblem& problem, const MonteCar
   std::vector<double> ticks;
   for (const SweepSeries& w : summary.sweeps) {
     ChartSeries s{CellName(problem, w.scenario, w.strategy) + ": median, slope " + (w.slope ? Short(*w.slope) : "none"),
-                  {}, w.median_orientation_error, {Color(problem, w.scenario, w.strategy), 1.8, "", "none"}, true};
+                  {}, w.median_orientation_error, SweepStyle(problem, w.scenario, w.strategy), true};
     for (int n : w.n) s.x.push_back(n);
     ticks = s.x;
     series.push_back(s);
@@ -180,7 +190,7 @@ std::string RenderErrorAgainstN(const MonteCarloProblem& problem, const MonteCar
   if (!summary.sweeps.empty()) {
     const SweepSeries& w = summary.sweeps.front();
     series.push_back({"plan without errors (Theorem 2.6), slope " + (w.plan_slope ? Short(*w.plan_slope) : "none"),
-                      ticks, w.plan_orientation_error, {"black", 1.4, "6,4", "none"}, true});
+                      ticks, w.plan_orientation_error, {"black", 2.4, "1,3", "none"}, true});
   }
   return LogChart(series, ticks).Render("Final orientation error against the number of impulses n",
                                         "impulses n", "median final orientation error (rad)");
