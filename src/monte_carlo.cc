@@ -56,13 +56,16 @@ Distribution Distribute(std::vector<double> values) {
 std::string MonteCarloSummary::BriefReport() const {
   std::ostringstream os;
   os.precision(4);
-  os << "MonteCarlo: " << ToString(status) << ", " << records.size() << " trials in " << cells.size() << " cells";
+  os << "MonteCarlo: " << ToString(status) << ", " << records.size() << " trials";
+  if (!cells.empty()) os << ", n = " << cells.front().n;
   if (failed_trials > 0) os << ", " << failed_trials << " not completed";
+  const bool scenarios = !cells.empty() && cells.back().scenario > 0;
   for (const MonteCarloCell& c : cells) {
     if (c.n != cells.front().n) break;
-    os << "; n = " << c.n << " scenario " << c.scenario << " " << ToString(c.strategy)
-       << ": median orientation error " << c.orientation_error.median << " rad (p95 " << c.orientation_error.p95
-       << ")";
+    os << "; " << ToString(c.strategy);
+    if (scenarios) os << " (scenario " << c.scenario << ")";
+    os << ": orientation error median " << c.orientation_error.median << " rad, p95 " << c.orientation_error.p95
+       << ", position error median " << c.position_error.median;
   }
   if (!message.empty()) os << " (" << message << ")";
   return os.str();
