@@ -139,15 +139,5 @@ TEST(MonteCarlo, LimitsNameTheFieldAndTheValue) {
             "execution: exact_window: value 100: must be in [3, 64]");
 }
 
-TEST(MonteCarlo, DefaultSummarySaysNotRun) {
-  const MonteCarloSummary s;
-  EXPECT_EQ(s.status, MonteCarloStatus::kNotRun);
-  EXPECT_EQ(s.message, "not run");
-  EXPECT_FALSE(s.IsSolutionUsable());
-  const ExecutionSummary e;
-  EXPECT_EQ(ToString(e.status), "not_run");
-  EXPECT_FALSE(e.IsSolutionUsable());
-}
-
 }  // namespace
 }  // namespace plateball
