@@ -23,7 +23,6 @@
 #include "montecarlo_ranks.h"
 #include "plateball/monte_carlo.h"
 #include "plateball/task_adapters.h"
-#include "plateball/version.h"
 
 namespace plateball::tools {
 namespace {
@@ -48,8 +47,9 @@ std::string Option(const char* name) { return std::string(kCommandLine) + ": " +
 
 // The command line as the library's problem and options (every value checked, naming the option).
 std::pair<MonteCarloProblem, MonteCarloOptions> BuildStudy(const MonteCarloCliOptions& o, const Problem& p) {
-  const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--n", o.n, 1, 10'000));
-  const PlanSetup setup = PlanSetupFor(p, n, Option("--n"));
+  const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--impulses", o.n, 1, 10'000));
+  if (n > 0) RequirePartitionSteps("--impulses", n, p);
+  const PlanSetup setup = PlanSetupFor(p, n, Option("--impulses"));
   MonteCarloProblem mp;
   MonteCarloOptions mo;
   mp.plan = setup.problem;
@@ -107,22 +107,6 @@ Json DistributionJson(const Distribution& d) {
 
 Json NullableSlope(const std::optional<double>& s) { return s ? Json(*s) : Json(nullptr); }
 
-Json HeaderJson(const MonteCarloCliOptions& o, const Problem& p) {
-  Json doc;
-  doc["schema_version"] = 1;
-  doc["tool"] = "plateball";
-  doc["version"] = PLATEBALL_VERSION_STRING;
-  doc["command"] = "montecarlo";
-  doc["problem"] = Json{{"name", p.name.empty() ? p.source : p.name},
-                        {"file", o.problem.file().empty() ? Json(nullptr) : Json(o.problem.file())}};
-  doc["model"] = ToJson(p.model);
-  doc["integration"] = Json{{"absolute_tolerance", p.integration.absolute_tolerance},
-                            {"relative_tolerance", p.integration.relative_tolerance},
-                            {"max_steps", p.integration.max_steps}};
-  doc["seed"] = p.seed;
-  return doc;
-}
-
 Json OptionsJson(const MonteCarloProblem& mp, const MonteCarloOptions& mo, int main_n) {
   Json strategies = Json::array(), scenarios = Json::array();
   for (ExecutionStrategy s : mp.strategies) strategies.push_back(ToString(s));
@@ -133,7 +117,7 @@ Json OptionsJson(const MonteCarloProblem& mp, const MonteCarloOptions& mo, int m
                                              {"timing", e.timing}, {"energy_loss", e.energy_loss},
                                              {"lambda", e.lambda}, {"observation", e.observation}}}});
   }
-  return Json{{"trials", mp.trials}, {"n", main_n}, {"strategies", strategies}, {"scenarios", scenarios},
+  return Json{{"trials", mp.trials}, {"impulses", main_n}, {"strategies", strategies}, {"scenarios", scenarios},
               {"sweep_n", mp.sweep_n}, {"sweep_trials", mo.sweep_trials == 0 ? mp.trials : mo.sweep_trials},
               {"miss_tolerance", mo.execution.miss_tolerance}, {"exact_window", mo.execution.exact_window}};
 }
@@ -164,9 +148,9 @@ Json ResultsJson(const MonteCarloProblem& mp, const MonteCarloSummary& s) {
                           {"strategy", ToString(w.strategy)}, {"rows", rows}, {"slope", NullableSlope(w.slope)},
                           {"local_slopes", local}, {"plan_slope", NullableSlope(w.plan_slope)}});
   }
-  return Json{{"status", ToString(s.status)}, {"usable", s.IsSolutionUsable()}, {"message", s.message},
-              {"report", s.BriefReport()}, {"failed_trials", s.failed_trials}, {"nominal", nominal},
-              {"results", results}, {"sweep", sweeps}};
+  Json out = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
+  Append(out, Json{{"failed_trials", s.failed_trials}, {"nominal", nominal}, {"results", results}, {"sweep", sweeps}});
+  return out;
 }
 
 std::string TrialsCsv(const MonteCarloProblem& mp, const std::vector<TrialRecord>& records) {
@@ -199,12 +183,11 @@ int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
   if (ranks.rank() != 0) return kExitSuccess;
   const double seconds = progress.Seconds();
   const MonteCarloSummary s = work.Summarize(std::move(records));
-  Json doc = HeaderJson(o, p);
-  doc["initial"] = Json{{"angles", ToJson(p.initial_angles)}, {"mu", p.mu}, {"x0", ToJson(p.x0)},
-                        {"orientation", ToJson(work.MainPlan().plan.A0)}};
+  Json doc = HeaderJson("plateball", "montecarlo", p, o.problem.file());
+  doc["initial"] = InitialJson(p);
+  doc["initial"]["orientation"] = ToJson(work.MainPlan().plan.A0);
   doc["options"] = OptionsJson(mp, mo, work.Ns().front());
-  Json results = ResultsJson(mp, s);
-  for (auto it = results.begin(); it != results.end(); ++it) doc[it.key()] = std::move(it.value());
+  Append(doc, ResultsJson(mp, s));
   if (o.timings)
     doc["timing"] = Json{{"run_seconds", seconds}, {"seconds_per_trial", seconds / std::max(1.0, double(s.records.size()))},
                          {"ranks", ranks.size()}, {"threads", mo.threads}};
@@ -225,7 +208,7 @@ std::function<int()> SetupMonteCarlo(CLI::App& sub) {
                  "an error scenario KEY=VALUE[,KEY=VALUE] with keys impulse_magnitude, impulse_angle, timing, "
                  "energy_loss, lambda, observation (\"none\": no error); repeat for more scenarios (default "
                  "impulse_magnitude=1e-3)");
-  o->n_opt = sub.add_option("--n", o->n, "impulses (overrides plan.partition.n)");
+  o->n_opt = sub.add_option("--impulses,--n", o->n, "impulses of the main plan, overrides plan.partition.n (--n: alias)");
   sub.add_option("--sweep-n", o->sweep_n, "further n for the error against n, e.g. 16,32,128,256")->delimiter(',');
   sub.add_option("--sweep-trials", o->sweep_trials, "trials per cell at the sweep's other n (default: --trials)");
   sub.add_option("--miss-tolerance", o->miss_tolerance, "a pass point farther than this is missed (default 1e-3)");
