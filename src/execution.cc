@@ -265,6 +265,7 @@ void Trial::Finish() {
   out_.orientation_error = RotationAngle(nominal_.goal_orientation, out_.A_final);
   out_.total_time = time_;
   out_.mu_final = Energy(state_, nominal_.model);
+  if (!std::isfinite(out_.orientation_error)) out_.orientation_error = M_PI;  // never a NaN in a summary
   for (double m : out_.pass_misses) {
     out_.max_pass_miss = std::max(out_.max_pass_miss, m);
     if (m > options_.miss_tolerance) ++out_.missed_pass_points;
@@ -292,6 +293,11 @@ ExecutionSummary Trial::Run() {
   } catch (const std::runtime_error& e) {
     out_.status = ExecutionStatus::kIntegrationFailure;
     out_.message = e.what();
+  } catch (const std::invalid_argument& e) {
+    // The ball left what the controller can handle (e.g. its energy below the join's 1e-12
+    // after many lossy impulses): this trial is lost, the study goes on.
+    out_.status = ExecutionStatus::kLost;
+    out_.message = "impulse " + std::to_string(out_.impulses) + ": " + e.what();
   }
   Finish();
   return out_;

@@ -211,6 +211,16 @@ TEST(Execution, FeedbackBeatsOpenLoopOnTheCircleUnderEveryModel) {
   }
 }
 
+// Half the energy lost at each of 64 impulses leaves mu ~ 1e-19, below what a join accepts: the
+// trial is lost (a status), not an exception that would end the whole study.
+TEST(Execution, ABallTooSlowToJoinIsLostNotThrown) {
+  const ExecutionSummary r = RunTrial(ExecutionStrategy::kFeedback, Only(&ErrorModel::energy_loss, 0.5));
+  EXPECT_EQ(r.status, ExecutionStatus::kLost) << r.BriefReport();
+  EXPECT_NE(r.message.find("mu"), std::string::npos) << r.message;
+  EXPECT_TRUE(std::isfinite(r.position_error) && std::isfinite(r.orientation_error));
+  EXPECT_LT(r.impulses, 64);
+}
+
 TEST(Execution, BadInputNamesTheFieldAndTheValue) {
   using plateball::testing::InvalidArgumentMessage;
   EXPECT_EQ(InvalidArgumentMessage([] { ParseErrorModel("timing=0.5"); }),
