@@ -21,7 +21,8 @@ from ._plateball import *  # noqa: F401,F403
 from ._plateball import (__version__, _converge, _isoparallel, _join, _plan, _plan_optimal_path,  # noqa: F401
                          _reach, _steer, ConvergenceOptions, ConvergenceProblem, ExactArrivalOptions,
                          ExactArrivalProblem, IsoparallelOptions, IsoparallelPlanProblem, IsoparallelProblem,
-                         JoinOptions, JoinProblem, PlanOptions, PlanProblem, ReachOptions, ReachProblem)
+                         JoinOptions, JoinProblem, MonteCarloOptions, MonteCarloProblem, PlanOptions, PlanProblem,
+                         ReachOptions, ReachProblem, _montecarlo)
 
 
 @functools.lru_cache(maxsize=None)
@@ -80,6 +81,11 @@ def plan_optimal_path(problem=None, options=None, **kwargs):
 def steer(problem=None, options=None, **kwargs):
     """Exact arrival at (x1, A1) with n impulses closest to a reference path: an ExactArrivalSummary."""
     return _solve(_steer, ExactArrivalProblem, ExactArrivalOptions, problem, options, kwargs)
+
+
+def montecarlo(problem=None, options=None, **kwargs):
+    """A plan executed under errors by each strategy, many seeded trials (issue 12): a MonteCarloSummary."""
+    return _solve(_montecarlo, MonteCarloProblem, MonteCarloOptions, problem, options, kwargs)
 
 
 def simulate(model=None, angles=None, mu=1.0, x0=(0.0, 0.0), orientation=None, t_end=10.0, samples=101,

@@ -4,6 +4,10 @@
 #include "plateball/problem_io.h"
 #include "plateball/version.h"
 
+namespace plateball::python {
+void BindMonteCarlo(py::module_& m);  // bind_montecarlo.cc: error models, execution, Monte Carlo
+}  // namespace plateball::python
+
 PYBIND11_MODULE(_plateball, m) {
   namespace py = pybind11;
   m.doc() = "plateball: impulsive control of a symmetric ball rolling without sliding or spinning (C++ core)";
@@ -15,4 +19,5 @@ PYBIND11_MODULE(_plateball, m) {
   plateball::python::BindPaths(m);
   plateball::python::BindSolvers(m);
   plateball::python::BindProblem(m);
+  plateball::python::BindMonteCarlo(m);
 }

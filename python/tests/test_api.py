@@ -100,3 +100,13 @@ def test_helper_counts_are_checked():
         line.points(1)
     with pytest.raises(ValueError, match=r"^samples: value 1: must be in \[2, "):
         pb.FreeMotion(pb.BallModel(1.0), (1.0, 0.0, 0.0), 1.0).sample(0.0, 1.0, 1)
+
+
+def test_montecarlo_inputs_are_words_and_checked():
+    p = pb.MonteCarloProblem(strategies=["feedback_exact", "open_loop"])
+    assert p.strategies == ["feedback_exact", "open_loop"]
+    with pytest.raises(ValueError, match="strategies: value"):
+        pb.MonteCarloProblem(strategies=["bogus"])
+    with pytest.raises(ValueError, match="noise"):
+        pb.parse_error_model("impulse_magnitude=2")
+    assert str(pb.parse_error_model("timing=1e-4")).startswith("timing")

@@ -168,6 +168,21 @@ FIELDS = {
         ("arrival.rotation.matrix", lambda r: r.orientation_final),
         ("paper_plan.orientation_error", lambda r: r.planned_orientation_error),
     ],
+    "montecarlo": [
+        ("status", lambda r: r.status),
+        ("usable", lambda r: r.usable),
+        ("report", lambda r: r.report),
+        ("failed_trials", lambda r: r.failed_trials),
+        ("nominal[*].measured_error", lambda r: [i.measured_error for i in r.nominal]),
+        ("nominal[*].orientation_error", lambda r: [i.orientation_error for i in r.nominal]),
+        ("results[*].strategy", lambda r: [c.strategy for c in r.cells]),
+        ("results[*].completed", lambda r: [c.completed for c in r.cells]),
+        ("results[*].position_error.median", lambda r: [c.position_error.median for c in r.cells]),
+        ("results[*].position_error.max", lambda r: [c.position_error.max for c in r.cells]),
+        ("results[*].orientation_error.mean", lambda r: [c.orientation_error.mean for c in r.cells]),
+        ("results[*].orientation_error.p95", lambda r: [c.orientation_error.p95 for c in r.cells]),
+        ("results[*].total_time.median", lambda r: [c.total_time.median for c in r.cells]),
+    ],
 }
 
 
@@ -285,3 +300,19 @@ def test_roll_segment(run_cli):
     doc = run_cli("plateball", "roll", "--segment", "--points", "0,0;1.2,1.6;2,0.5")
     r = pb.roll([(0, 0), (1.2, 1.6), (2, 0.5)], segment=True)
     assert np.array_equal(np.asarray(json_get(doc, "reorientation.matrix"), dtype=float), r)
+
+
+def test_montecarlo(problems, run_cli):
+    """`plateball montecarlo` with its defaults (open_loop and feedback, impulse_magnitude=1e-3)."""
+    doc = run_cli("plateball", "montecarlo", problems / "circle.json", "--trials", 6, "--impulses", 16,
+                  "--threads", 2, "--quiet")
+    problem = pb.load_problem(problems / "circle.json")
+    assert_header(doc, problem, "montecarlo")
+    setup = pb.plan_setup_for(problem, 16)
+    errors = pb.parse_error_model("impulse_magnitude=1e-3")
+    study = pb.MonteCarloProblem(plan=setup.problem, trials=6, seed=problem.seed,
+                                 strategies=["open_loop", "feedback"],
+                                 scenarios=[pb.MonteCarloScenario(name=str(errors), errors=errors)])
+    summary = pb.montecarlo(study, pb.MonteCarloOptions(plan=setup.options, threads=1))
+    assert summary.trials("position_error").shape == (12,)
+    assert_same(doc, summary, "montecarlo")
