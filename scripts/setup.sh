@@ -5,6 +5,7 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev libboost-dev
           libboost-math-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev)
 packages+=(python3 python3-jsonschema)  # output contract: schema validation (tests/scripts/validate_schemas.py)
+packages+=(python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib)  # Python bindings, pytest, gallery (issue 13)
 packages+=(libopenmpi-dev openmpi-bin)  # montecarlo: optional MPI component (issue 12)
 missing=()
 for p in "${packages[@]}"; do
