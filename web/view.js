@@ -103,14 +103,14 @@
     new THREE.MeshBasicMaterial({ color: 0xefede6 }));
   lower.position.set(centre.x, centre.y, -0.001);
   scene.add(lower);
-  const grid = new THREE.GridHelper(Math.ceil(extent + 2), Math.ceil(extent + 2), 0xc4c0b4, 0xd6d3ca);
+  const grid = new THREE.GridHelper(Math.ceil(extent + 2), Math.ceil(extent + 2), 0xd6d3ca, 0xd6d3ca);
   grid.rotation.x = Math.PI / 2;
   grid.position.set(centre.x, centre.y, 0);
   scene.add(grid);
 
   // Upper plate at z = 2, translucent, its own grid so that its motion shows.
   const upper = new THREE.Group();
-  const upperSize = Math.max(6, 0.6 * extent);
+  const upperSize = Math.max(6, Math.ceil(extent));
   upper.add(new THREE.Mesh(new THREE.PlaneGeometry(upperSize, upperSize),
     new THREE.MeshBasicMaterial({ color: 0xd8c27a, transparent: true, opacity: 0.22, side: THREE.DoubleSide, depthWrite: false })));
   const upperGrid = new THREE.GridHelper(upperSize, Math.round(upperSize), 0xa08a3a, 0xa08a3a);
@@ -171,8 +171,30 @@
     ? line(D.planned, new THREE.LineDashedMaterial({ color: 0x1f5fbf, dashSize: 0.012 * extent, gapSize: 0.009 * extent }))
     : null;
   if (planned) planned.computeLineDistances();
-  const trace = line(D.x, new THREE.LineBasicMaterial({ color: 0xc0392b }));
-  trace.position.z = 0.002;
+  if (planned) planned.position.z = 0.006;
+  // The contact path as a flat ribbon (WebGL lines are one pixel wide), drawn up to the current
+  // sample: segment i is the indices 6i ... 6i + 5.
+  function ribbon(points, width, material) {
+    const m = points.length / 2;
+    const a = new Float32Array(6 * m);
+    for (let k = 0; k < m; ++k) {
+      const kb = Math.max(0, k - 1), kf = Math.min(m - 1, k + 1);
+      let dx = points[2 * kf] - points[2 * kb], dy = points[2 * kf + 1] - points[2 * kb + 1];
+      const len = Math.hypot(dx, dy) || 1;
+      dx = (-dy / len) * width / 2;
+      dy = ((points[2 * kf] - points[2 * kb]) / len) * width / 2;
+      a.set([points[2 * k] + dx, points[2 * k + 1] + dy, lift, points[2 * k] - dx, points[2 * k + 1] - dy, lift], 6 * k);
+    }
+    const index = new Uint32Array(6 * Math.max(0, m - 1));
+    for (let k = 0; k + 1 < m; ++k) index.set([2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 1, 2 * k + 3, 2 * k + 2], 6 * k);
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.BufferAttribute(a, 3));
+    geometry.setIndex(new THREE.BufferAttribute(index, 1));
+    const object = new THREE.Mesh(geometry, material);
+    scene.add(object);
+    return object;
+  }
+  const trace = ribbon(D.x, 0.006 * extent + 0.02, new THREE.MeshBasicMaterial({ color: 0xc0392b, side: THREE.DoubleSide }));
 
   // Impulses: a dot at the point, an arrow along the upper plate's velocity change.
   const arrows = new THREE.Group();
@@ -209,7 +231,7 @@
   // Camera: a three-quarter view of the whole extent; drag turns it about the centre, wheel zooms.
   const camera = new THREE.PerspectiveCamera(40, 1, 0.05, 1000);
   camera.up.set(0, 0, 1);
-  const orbit = { azimuth: -Math.PI / 2, elevation: 0.85, distance: 1.25 * extent + 4 };
+  const orbit = { azimuth: -2.1, elevation: 0.85, distance: 1.5 * extent + 5 };
   function placeCamera() {
     const c = Math.cos(orbit.elevation);
     camera.position.set(centre.x + orbit.distance * c * Math.cos(orbit.azimuth),
@@ -245,7 +267,9 @@
     g.font = "20px system-ui, sans-serif";
     g.textAlign = "center";
     g.fillText(xlabel, (w + pad.l - pad.r) / 2, h - 6);
+    g.textAlign = "left";
     g.fillText(xr[0].toPrecision(3), pad.l, h - pad.b + 22);
+    g.textAlign = "right";
     g.fillText(xr[1].toPrecision(3), w - pad.r, h - pad.b + 22);
     g.textAlign = "right";
     g.fillText(yr[1].toPrecision(3), pad.l - 4, pad.t + 14);
@@ -265,6 +289,7 @@
     const g = chart.getContext("2d");
     if (!D.ghost) {
       g.clearRect(0, 0, chart.width, chart.height);
+      chart.hidden = true;
       $("chart-note").textContent = "No planned path in this result (a free motion): no orientation error to show.";
       return;
     }
@@ -284,7 +309,7 @@
     g.stroke();
     chartImage = g.getImageData(0, 0, chart.width, chart.height);
     $("chart-note").textContent = "Geodesic angle between the ball's A(t) and the ghost's (rolling along the planned path, "
-      + "passing each planned point when the ball does); final " + D.ghost.error[n - 1].toPrecision(4) + " rad.";
+      + "passing each planned point when the ball does); final " + D.ghost.error[n - 1].toExponential(3) + " rad.";
   }
   function drawChartCursor(t) {
     if (!chartImage) return;
@@ -340,8 +365,8 @@
     current = stateAt(D.x, D.q, at);
     ball.position.set(current.x[0], current.x[1], 1);
     ball.quaternion.set(current.q[1], current.q[2], current.q[3], current.q[0]);
-    upper.position.set(centre.x + 2 * (current.x[0] - x0[0]), centre.y + 2 * (current.x[1] - x0[1]), 2);
-    trace.geometry.setDrawRange(0, at.i + 1);
+    upper.position.set(x0[0] + 2 * (current.x[0] - x0[0]), x0[1] + 2 * (current.x[1] - x0[1]), 2);
+    trace.geometry.setDrawRange(0, 6 * at.i);
     if (D.ghost) {
       const g = stateAt(D.ghost.x, D.ghost.q, at);
       ghost.position.set(g.x[0], g.x[1], 1);
