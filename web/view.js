@@ -110,9 +110,9 @@
 
   // Upper plate at z = 2, translucent, its own grid so that its motion shows.
   const upper = new THREE.Group();
-  const upperSize = Math.max(6, Math.ceil(extent));
+  const upperSize = Math.max(5, Math.ceil(0.6 * extent));
   upper.add(new THREE.Mesh(new THREE.PlaneGeometry(upperSize, upperSize),
-    new THREE.MeshBasicMaterial({ color: 0xd8c27a, transparent: true, opacity: 0.22, side: THREE.DoubleSide, depthWrite: false })));
+    new THREE.MeshBasicMaterial({ color: 0xd8c27a, transparent: true, opacity: 0.16, side: THREE.DoubleSide, depthWrite: false })));
   const upperGrid = new THREE.GridHelper(upperSize, Math.round(upperSize), 0xa08a3a, 0xa08a3a);
   upperGrid.rotation.x = Math.PI / 2;
   upperGrid.material.transparent = true;
@@ -470,6 +470,8 @@
     playing: () => playing,
     frames: () => frames,
     orientation: () => matrix(current.q),
+    // The times of the sample at fraction u of the samples and of the next one.
+    sampleTimes: (u) => { const i = Math.min(n - 2, Math.floor(u * (n - 1))); return [T[i], T[i + 1]]; },
     contactPoint: () => current.x.slice(),
     // The ball's bounding box on the screen (CSS pixels): the projections of its bounding cube.
     ballBox: () => {

@@ -2,8 +2,10 @@
 // `plateball simulate`, `plan`, `steer` or an isoparallel solution: the data (re-simulated by the
 // library, view_data.h), the page's script and three.js are all in the one HTML file, which opens
 // offline and makes no network request.
+#include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -27,17 +29,20 @@ struct ViewCliOptions {
   long long samples = 4000;
 };
 
+// A regular file of at most kMaxInputFileBytes (a device or a huge file is refused before reading).
 std::string ReadResultText(const std::string& file) {
+  std::error_code error;
+  const bool regular = std::filesystem::is_regular_file(file, error);
+  const std::uintmax_t size = regular ? std::filesystem::file_size(file, error) : 0;
+  if (!regular || error) throw IoError(file + ": cannot open the file for reading (not a readable regular file)");
+  if (size > kMaxInputFileBytes)
+    throw std::invalid_argument(file + ": (document): value (" + std::to_string(size) + " bytes): larger than the limit of " +
+                                std::to_string(kMaxInputFileBytes >> 20) + " MiB");
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw IoError(file + ": cannot open the file for reading");
-  std::string text(kMaxInputFileBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (in.bad()) throw IoError(file + ": read error");
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > kMaxInputFileBytes)
-    throw std::invalid_argument(file + ": (document): value (more than " + std::to_string(kMaxInputFileBytes >> 20) +
-                                " MiB): the file is larger than the limit");
-  return text;
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw IoError(file + ": read error");
+  return text.str();
 }
 
 nlohmann::json ParseResult(const std::string& file, const std::string& text) {

@@ -173,9 +173,22 @@ MotionSample AppendArc(const BallModel& model, const FreeMotionStart& start, dou
   return motion.At(duration);
 }
 
+// The sum of the arcs' durations (from the result itself, so that the samples per arc, which are
+// proportional to duration / total, add up to about `samples` whatever the file claims).
+double TotalDuration(const ResultReader& r, const json& list, const std::string& list_field) {
+  double total = 0.0;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string where = list_field + "[" + std::to_string(k) + "]";
+    const double duration = r.Number(list[k], where, "duration");
+    if (!(duration > 0)) r.Fail(where + ".duration", FormatNumber(duration), "must be > 0");
+    total += duration;
+  }
+  return total;
+}
+
 int ArcSamples(double duration, double total, int samples) {
   if (!(total > 0)) return 4;
-  return std::clamp(static_cast<int>(std::ceil(samples * duration / total)), 4, 100'000);
+  return std::clamp(static_cast<int>(std::ceil(samples * (duration / total))), 4, samples);
 }
 
 void AppendFinal(double t, const Eigen::Vector2d& x, const Eigen::Matrix3d& A, ViewData* out) {
@@ -239,16 +252,15 @@ PlanSteps BuildPlanTrajectory(const ResultReader& r, const json& steps, const st
   const AngleState angles0 = AnglesFrom(r, r.Get(doc, "", "initial_angles"), "initial");
   Eigen::Matrix3d A = AlignOrientationToAxis(r.Rotation(doc, "", "initial_orientation"),
                                              StateFromAngles(angles0, 1.0, model).z);
-  const double total = r.Number(doc, "", "total_time");
+  const double total = TotalDuration(r, steps, steps_field);
   PlanSteps plan;
   plan.A_planned.push_back(A);
   double t = 0.0;
   for (std::size_t k = 0; k < steps.size(); ++k) {
     const json& s = steps[k];
     const std::string where = steps_field + "[" + std::to_string(k) + "]";
-    t = r.Number(s, where, "t_impulse");
+    // t_impulse is the sum of the earlier durations (impulse_planner.h): summed here, so times increase.
     const double duration = r.Number(s, where, "duration");
-    if (!(duration > 0)) r.Fail(where + ".duration", FormatNumber(duration), "must be > 0");
     FreeMotionStart start;
     start.state.z = StateFromAngles(AnglesFrom(r, r.Get(s, where, "angles_before"), where), 1.0, model).z;
     start.state.omega = r.Vector3(s, where, "omega_after_impulse");
@@ -400,7 +412,7 @@ void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out
   const IntegrationOptions integration = ExactArrivalOptions{}.integration;  // as the solver's rollouts
   const double mu = r.Find(doc, "initial_mu") ? r.Number(doc, "", "initial_mu") : setup.problem.mu;
   const json& impulses = r.Array(doc, "", "impulses", 1, kMaxSteps);
-  const double total = r.Number(doc, "", "total_time");
+  const double total = TotalDuration(r, impulses, "impulses");
   Eigen::Matrix3d A = r.Find(doc, "initial_orientation") ? r.Rotation(doc, "", "initial_orientation") : setup.problem.A0;
   PlanSteps keys;
   double t = 0.0;
@@ -414,9 +426,8 @@ void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out
     start.state = StateFromAngles(a, mu, model);
     start.x0 = r.Vector2(e, where, "impulse_x");
     start.A0 = AlignOrientationToAxis(A, start.state.z);
-    t = r.Number(e, where, "t_impulse");
+    // t_impulse is the sum of the earlier durations (exact_arrival.h): summed here, so times increase.
     const double duration = r.Number(e, where, "duration");
-    if (!(duration > 0)) r.Fail(where + ".duration", FormatNumber(duration), "must be > 0");
     out->impulses.push_back({t, start.x0, r.Vector3(e, where, "plate_velocity_change")});
     keys.t.push_back(t);
     keys.p.push_back(r.Vector2(e, where, "impulse_p"));

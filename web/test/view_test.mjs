@@ -167,6 +167,30 @@ for (const name of ["simulate", "plan", "isoparallel", "steer"]) {
   await context.close();
 }
 
+// ------------------------------------------------------------ between samples: the geodesic
+// A quarter of the way between two samples the page's orientation is the rotation a quarter of the
+// way along the geodesic between theirs (slerp on SO(3); interpolating angles or matrix entries is
+// not, and leaves the geodesic).
+{
+  const { page, context } = await open("plan");
+  const times = await page.evaluate(() => [window.plateballView.range(), window.plateballView.sampleCount()]);
+  const mul = (a, b) => a.map((r, i) => [0, 1, 2].map((j) => r[0] * b[0][j] + r[1] * b[1][j] + r[2] * b[2][j]));
+  const tr = (a) => [0, 1, 2].map((i) => [0, 1, 2].map((j) => a[j][i]));
+  const angle = (a, b) => { const m = mul(tr(a), b); return Math.acos(Math.min(1, Math.max(-1, (m[0][0] + m[1][1] + m[2][2] - 1) / 2))); };
+  let worst = 0, orthogonality = 0;
+  for (const u of [0.13, 0.41, 0.77]) {
+    const t = await page.evaluate((u) => window.plateballView.sampleTimes(u), u);
+    const a = await orientationAt(page, t[0]), b = await orientationAt(page, t[1]);
+    const m = await orientationAt(page, 0.75 * t[0] + 0.25 * t[1]);
+    const whole = angle(a, b);
+    worst = Math.max(worst, Math.abs(angle(a, m) - whole / 4), Math.abs(angle(m, b) - 0.75 * whole));
+    orthogonality = Math.max(orthogonality, maxDiff(mul(tr(m), m), [[1, 0, 0], [0, 1, 0], [0, 0, 1]]));
+  }
+  check(worst < 1e-9 && orthogonality < 1e-12, "plan: between samples the orientation is on the geodesic at the time's fraction (slerp)",
+    `samples ${times[1]}, |angle to each end - fraction of the whole| <= ${worst.toExponential(2)}, |A^T A - I| <= ${orthogonality.toExponential(2)}`);
+  await context.close();
+}
+
 // ------------------------------------------------------------ screenshots at two times
 {
   const { page, context } = await open("plan");
