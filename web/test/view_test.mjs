@@ -28,8 +28,10 @@ const work = (name) => path.join(args.work, name);
 const problem = (name) => path.join(args.problems, name);
 
 let failures = 0;
+const begun = Date.now();
 function check(ok, name, detail = "") {
-  console.log((ok ? "ok - " : "not ok - ") + name + (detail ? ": " + detail : ""));
+  const at = " [" + ((Date.now() - begun) / 1000).toFixed(1) + " s]";
+  console.log((ok ? "ok - " : "not ok - ") + name + (detail ? ": " + detail : "") + at);
   if (!ok) ++failures;
 }
 
@@ -64,7 +66,7 @@ const pages = {
 for (const [name, [result, ...rest]] of Object.entries(pages))
   run(P, ["view", work(result), "--html", work(name + ".html"), ...rest]);
 const sizes = Object.keys(pages).map((k) => k + " " + (fs.statSync(work(k + ".html")).size / 1e6).toFixed(2) + " MB");
-console.log("# page sizes: " + sizes.join(", "));
+console.log("# page sizes: " + sizes.join(", ") + " [" + ((Date.now() - begun) / 1000).toFixed(1) + " s]");
 
 // ------------------------------------------------------------ bad results: exit 3 naming the field
 {
@@ -92,7 +94,7 @@ const browser = await chromium.launch({
     "--disable-background-networking", "--disable-component-update", "--disable-sync",
     "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
 });
-const viewport = { width: 1280, height: 760 };
+const viewport = { width: 1280, height: 760 };  // the docs/ screenshots' size
 
 async function open(name) {
   const context = await browser.newContext({ viewport });
@@ -117,9 +119,14 @@ async function seek(page, t) {
   }, t);
   await page.waitForFunction((f) => window.plateballView.frames() > f, frames);
 }
+// The ball's orientation right after the slider's input event (the state the next frame draws).
 async function orientationAt(page, t) {
-  await seek(page, t);
-  return page.evaluate(() => window.plateballView.orientation());
+  return page.evaluate((t) => {
+    const s = document.getElementById("time");
+    s.value = String(t);
+    s.dispatchEvent(new Event("input"));
+    return window.plateballView.orientation();
+  }, t);
 }
 
 // Orientation checks: [time, A(t) from a result JSON] pairs per page.
@@ -151,28 +158,11 @@ const checks = {
   steer: steerChecks(),
 };
 
-for (const name of ["simulate", "plan", "isoparallel", "steer"]) {
-  const { page, log, context } = await open(name);
-  let worst = 0;
-  for (const [t, A] of checks[name]) worst = Math.max(worst, maxDiff(await orientationAt(page, t), A));
-  check(worst <= 1e-9, name + ": orientation after seeking equals A(t) of the JSON to 1e-9",
-    checks[name].length + " times, max |entry difference| " + worst.toExponential(2));
-  if (args.screenshots) {
-    const [t0, t1] = await page.evaluate(() => window.plateballView.range());
-    await seek(page, t0 + 0.45 * (t1 - t0));
-    await page.screenshot({ path: path.join(args.screenshots, "view_" + name + ".png") });
-  }
-  check(log.errors.length === 0, name + ": no console errors", log.errors.join(" | "));
-  check(log.requests.length === 0, name + ": no network requests", log.requests.join(" "));
-  await context.close();
-}
-
 // ------------------------------------------------------------ between samples: the geodesic
 // A quarter of the way between two samples the page's orientation is the rotation a quarter of the
 // way along the geodesic between theirs (slerp on SO(3); interpolating angles or matrix entries is
 // not, and leaves the geodesic).
-{
-  const { page, context } = await open("plan");
+async function geodesicCheck(page) {
   const times = await page.evaluate(() => [window.plateballView.range(), window.plateballView.sampleCount()]);
   const mul = (a, b) => a.map((r, i) => [0, 1, 2].map((j) => r[0] * b[0][j] + r[1] * b[1][j] + r[2] * b[2][j]));
   const tr = (a) => [0, 1, 2].map((i) => [0, 1, 2].map((j) => a[j][i]));
@@ -188,12 +178,10 @@ for (const name of ["simulate", "plan", "isoparallel", "steer"]) {
   }
   check(worst < 1e-9 && orthogonality < 1e-12, "plan: between samples the orientation is on the geodesic at the time's fraction (slerp)",
     `samples ${times[1]}, |angle to each end - fraction of the whole| <= ${worst.toExponential(2)}, |A^T A - I| <= ${orthogonality.toExponential(2)}`);
-  await context.close();
 }
 
 // ------------------------------------------------------------ screenshots at two times
-{
-  const { page, context } = await open("plan");
+async function screenshotCheck(page) {
   for (const id of ["show-upper", "show-trace", "show-ghost", "show-arrows"]) await page.uncheck("#" + id);
   const clip = await page.evaluate(() => {
     const r = document.querySelector("#scene canvas").getBoundingClientRect();
@@ -234,6 +222,25 @@ for (const name of ["simulate", "plan", "isoparallel", "steer"]) {
   check(result.changedInside > 1000 && result.changedOutside === 0,
     "plan: screenshots at t = 2 and t = 9 differ where the ball is and nowhere else",
     result.changedInside + " pixels changed inside the ball's boxes, " + result.changedOutside + " outside");
+}
+
+for (const name of ["simulate", "plan", "isoparallel", "steer"]) {
+  const { page, log, context } = await open(name);
+  let worst = 0;
+  for (const [t, A] of checks[name]) worst = Math.max(worst, maxDiff(await orientationAt(page, t), A));
+  check(worst <= 1e-9, name + ": orientation after seeking equals A(t) of the JSON to 1e-9",
+    checks[name].length + " times, max |entry difference| " + worst.toExponential(2));
+  if (args.screenshots) {
+    const [t0, t1] = await page.evaluate(() => window.plateballView.range());
+    await seek(page, t0 + 0.45 * (t1 - t0));
+    await page.screenshot({ path: path.join(args.screenshots, "view_" + name + ".png") });
+  }
+  if (name === "plan") {
+    await geodesicCheck(page);
+    await screenshotCheck(page);
+  }
+  check(log.errors.length === 0, name + ": no console errors", log.errors.join(" | "));
+  check(log.requests.length === 0, name + ": no network requests", log.requests.join(" "));
   await context.close();
 }
 
@@ -247,17 +254,17 @@ for (const name of ["simulate", "plan", "isoparallel", "steer"]) {
   // the frame drawn (round trips included).
   let handlerMs = 0;
   const seekStart = Date.now();
-  for (let i = 0; i < 30; ++i) {
+  for (let i = 0; i < 10; ++i) {
     handlerMs = Math.max(handlerMs, await page.evaluate((t) => {
       const s = document.getElementById("time");
       const start = performance.now();
       s.value = String(t);
       s.dispatchEvent(new Event("input"));
       return performance.now() - start;
-    }, (100 * ((i * 37) % 30)) / 30));
-    await seek(page, (100 * ((i * 37 + 11) % 30)) / 30);
+    }, (100 * ((i * 37) % 10)) / 10));
+    await seek(page, (100 * ((i * 37 + 5) % 10)) / 10);
   }
-  const perSeekMs = (Date.now() - seekStart) / 30;
+  const perSeekMs = (Date.now() - seekStart) / 10;
   await page.evaluate(() => {
     window.__longest = 0;
     new PerformanceObserver((l) => { for (const e of l.getEntries()) window.__longest = Math.max(window.__longest, e.duration); })
