@@ -2,16 +2,14 @@
 // `plateball simulate`, `plan`, `steer` or an isoparallel solution: the data (re-simulated by the
 // library, view_data.h), the page's script and three.js are all in the one HTML file, which opens
 // offline and makes no network request.
-#include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "common/command_registry.h"
 #include "common/errors.h"
 #include "common/exit_codes.h"
+#include "common/input_file.h"
 #include "common/limits.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
@@ -28,22 +26,6 @@ struct ViewCliOptions {
   std::string problem;
   long long samples = 4000;
 };
-
-// A regular file of at most kMaxInputFileBytes (a device or a huge file is refused before reading).
-std::string ReadResultText(const std::string& file) {
-  std::error_code error;
-  const bool regular = std::filesystem::is_regular_file(file, error);
-  const std::uintmax_t size = regular ? std::filesystem::file_size(file, error) : 0;
-  if (!regular || error) throw IoError(file + ": cannot open the file for reading (not a readable regular file)");
-  if (size > kMaxInputFileBytes)
-    throw std::invalid_argument(file + ": (document): value (" + std::to_string(size) + " bytes): larger than the limit of " +
-                                std::to_string(kMaxInputFileBytes >> 20) + " MiB");
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw IoError(file + ": read error");
-  return text.str();
-}
 
 nlohmann::json ParseResult(const std::string& file, const std::string& text) {
   const nlohmann::json::parser_callback_t depth_limit = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
@@ -89,7 +71,7 @@ std::string HtmlEscape(const std::string& text) {
 int RunView(const ViewCliOptions& o) {
   CheckOutputPaths({{"--html", o.html}}, {{"RESULT.json", o.result}, {"--problem", o.problem}});
   const long long samples = RequireIntegerInRange("--samples", o.samples, 100, 100'000);
-  const nlohmann::json doc = ParseResult(o.result, ReadResultText(o.result));
+  const nlohmann::json doc = ParseResult(o.result, ReadInputText(o.result));
   const view::ResultFields fields(nlohmann::json::parse(view::kResultFields));
   const view::ResultReader reader(o.result, doc, fields);
   view::ViewOptions options;
@@ -109,7 +91,7 @@ int RunView(const ViewCliOptions& o) {
 
 std::function<int()> SetupView(CLI::App& sub) {
   auto o = std::make_shared<ViewCliOptions>();
-  sub.add_option("RESULT.json", o->result, "a result of plateball simulate, plan, steer or of isoparallel_solve --out")
+  sub.add_option("RESULT.json", o->result, "a result of plateball simulate, plan, steer, isoparallel or of isoparallel_solve --out (\"-\": standard input)")
       ->required();
   sub.add_option("--html", o->html, "write the page to this file (\"-\": standard output)")->required();
   sub.add_option("--problem", o->problem,

@@ -460,9 +460,9 @@ ViewData BuildView(const ResultReader& r, const ViewOptions& options) {
   if (!doc.is_object()) r.Fail("(document)", ValueText(doc), "a result is a JSON object");
   const json* command = r.Find(doc, "command");
   ViewData out;
-  if (command && command->is_string()) out.kind = command->get<std::string>();
-  else if (r.Find(doc, "optimal_path")) out.kind = "isoparallel";  // isoparallel_solve --out
-  else r.Fail("command", command ? ValueText(*command) : "(missing)", "not a result of plateball or isoparallel_solve");
+  if (!command || !command->is_string())
+    r.Fail("command", command ? ValueText(*command) : "(missing)", "not a result of plateball or isoparallel_solve");
+  out.kind = command->get<std::string>();
   out.title = TitleOf(r, out.kind);
   if (out.kind == "simulate") {
     BuildSimulate(r, options, &out);

@@ -58,8 +58,8 @@ run(P, ["steer", problem("figure7_exact.json"), "--out", work("steer.json")]);
 run(P, ["simulate", problem("simulate_example.json"), "--t-end", "100", "--samples", "10000", "--out", work("big.json")]);
 const pages = {
   simulate: ["simulate.json"],
-  plan: ["plan.json", "--problem", problem("circle.json")],
-  isoparallel: ["isoparallel.json", "--problem", problem("figure7.json")],
+  plan: ["plan.json"],  // the problem file named in the result's header
+  isoparallel: ["isoparallel.json"],
   steer: ["steer.json", "--problem", problem("figure7_exact.json")],
   big: ["big.json"],
 };
