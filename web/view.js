@@ -5,7 +5,7 @@
 //                        on SO(3) (never Euler angles), the contact point linear
 //   ghost {x, q, error}  the ghost ball on the planned path at the same times and the angle
 //                        |log(A_ghost^T A)| (rad) computed by the library; absent without a path
-//   planned[2m]          the planned path (polyline), impulses [{t, x, dv}], goal [2], spread[2k]
+//   planned[2m]          the planned path (polyline), impulses [{t, x, dv}], goal [2]
 //   kind, title, facts [[label, value]], generator
 // World frame as the library's: the plates are z = 0 and z = 2, the ball (radius 1) centred at
 // (x, y, 1).
@@ -91,7 +91,6 @@
   const addPoints = (a) => { for (let k = 0; k + 1 < a.length; k += 2) box.expandByPoint(new THREE.Vector2(a[k], a[k + 1])); };
   addPoints(D.x);
   addPoints(D.planned || []);
-  addPoints(D.spread || []);
   if (D.goal) addPoints(D.goal);
   box.expandByScalar(1.6);
   const centre = box.getCenter(new THREE.Vector2());
@@ -220,13 +219,6 @@
     ring.position.set(D.goal[0], D.goal[1], 2 * lift);
     scene.add(ring);
   }
-  if (D.spread && D.spread.length >= 2) {
-    const g = new THREE.BufferGeometry();
-    const a = new Float32Array((D.spread.length / 2) * 3);
-    for (let k = 0; 2 * k + 1 < D.spread.length; ++k) a.set([D.spread[2 * k], D.spread[2 * k + 1], 3 * lift], 3 * k);
-    g.setAttribute("position", new THREE.BufferAttribute(a, 3));
-    scene.add(new THREE.Points(g, new THREE.PointsMaterial({ color: 0x7b3fa0, size: 4, sizeAttenuation: false })));
-  }
 
   // Camera: a three-quarter view of the whole extent; drag turns it about the centre, wheel zooms.
   const camera = new THREE.PerspectiveCamera(40, 1, 0.05, 1000);
@@ -323,29 +315,6 @@
     g.moveTo(px, chartPad.t);
     g.lineTo(px, chart.height - chartPad.b);
     g.stroke();
-  }
-  function drawSpread() {
-    if (!D.spread || D.spread.length < 2) return;
-    $("spread-section").hidden = false;
-    const c = $("spread"), g = c.getContext("2d");
-    const b = new THREE.Box2();
-    for (let k = 0; k + 1 < D.spread.length; k += 2) b.expandByPoint(new THREE.Vector2(D.spread[k], D.spread[k + 1]));
-    if (D.goal) b.expandByPoint(new THREE.Vector2(D.goal[0], D.goal[1]));
-    const s = b.getSize(new THREE.Vector2()), m = Math.max(s.x, s.y, 1e-12) * 0.55, cc = b.getCenter(new THREE.Vector2());
-    const pad = { l: 92, r: 16, t: 12, b: 48 };
-    axes(g, c.width, c.height, pad, [cc.x - m, cc.x + m], [cc.y - m, cc.y + m], "x", "y");
-    const w = c.width - pad.l - pad.r, h = c.height - pad.t - pad.b;
-    const px = (x) => pad.l + (w * (x - cc.x + m)) / (2 * m), py = (y) => pad.t + h * (1 - (y - cc.y + m) / (2 * m));
-    g.fillStyle = "rgba(123,63,160,0.55)";
-    for (let k = 0; k + 1 < D.spread.length; k += 2) g.fillRect(px(D.spread[k]) - 2, py(D.spread[k + 1]) - 2, 4, 4);
-    if (D.goal) {
-      g.strokeStyle = "#2e8b57";
-      g.lineWidth = 3;
-      g.beginPath();
-      g.arc(px(D.goal[0]), py(D.goal[1]), 8, 0, 2 * Math.PI);
-      g.stroke();
-    }
-    $("spread-note").textContent = (D.spread.length / 2) + " runs; green circle: the goal.";
   }
 
   // ------------------------------------------------------------ state, controls
@@ -452,7 +421,6 @@
   $("generator").textContent = "Written by " + D.generator + ".";
 
   drawChartBase();
-  drawSpread();
   resize();
   seek(t0);
 

@@ -521,7 +521,7 @@ json Quaternions(const std::vector<Eigen::Matrix3d>& rotations) {
 
 json ViewDataToJson(const ViewData& d) {
   json j{{"kind", d.kind}, {"title", d.title}, {"t", d.t}, {"x", Flat(d.x)}, {"q", Quaternions(d.A)},
-         {"planned", Flat(d.planned)}, {"spread", Flat(d.spread)},
+         {"planned", Flat(d.planned)},
          {"resimulation_mismatch", d.resimulation_mismatch}};
   json facts = json::array();
   for (const auto& [label, value] : d.facts) facts.push_back(json::array({label, value}));

@@ -73,7 +73,6 @@ struct ViewData {
   std::vector<Eigen::Matrix3d> ghost_A;
   std::vector<Eigen::Vector2d> planned;  ///< the planned path, dense polyline
   std::vector<ViewImpulse> impulses;
-  std::vector<Eigen::Vector2d> spread;   ///< Monte Carlo: final contact points
   Eigen::Vector2d goal = Eigen::Vector2d::Zero();
   bool has_goal = false;
   /// Largest |A - A_result| (max entry) where the re-simulation meets an orientation the result
