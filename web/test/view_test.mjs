@@ -1,6 +1,6 @@
 // Browser tests of `plateball view` (issue 14), run by ctest (view.browser) when node, Debian's
 // chromium and web/node_modules/playwright-core are found:
-//   node web/test/view_test.mjs --plateball BIN --isoparallel-solve BIN --chromium /usr/bin/chromium
+//   node web/test/view_test.mjs --plateball BIN --chromium /usr/bin/chromium
 //                               --problems DIR --work DIR [--screenshots DIR]
 // For each example (simulate, plan, isoparallel, steer) the tools write a result, `plateball view`
 // writes the page, and headless chromium checks it: no console error, no request but the page
@@ -20,7 +20,7 @@ const fields = JSON.parse(fs.readFileSync(path.join(here, "..", "result_fields.j
 
 const args = {};
 for (let i = 2; i < process.argv.length; i += 2) args[process.argv[i].replace(/^--/, "")] = process.argv[i + 1];
-for (const need of ["plateball", "isoparallel-solve", "chromium", "problems", "work"])
+for (const need of ["plateball", "chromium", "problems", "work"])
   if (!args[need]) throw new Error("missing --" + need);
 fs.rmSync(args.work, { recursive: true, force: true });
 fs.mkdirSync(args.work, { recursive: true });
@@ -53,7 +53,7 @@ const P = args.plateball;
 run(P, ["simulate", problem("simulate_example.json"), "--out", work("simulate.json")]);
 run(P, ["simulate", problem("simulate_example.json"), "--samples", "4001", "--out", work("simulate_dense.json")]);
 run(P, ["plan", problem("circle.json"), "--out", work("plan.json")]);
-run(args["isoparallel-solve"], [problem("figure7.json"), "--out", work("isoparallel.json")]);
+run(P, ["isoparallel", problem("figure7.json"), "--out", work("isoparallel.json")]);
 run(P, ["steer", problem("figure7_exact.json"), "--out", work("steer.json")]);
 run(P, ["simulate", problem("simulate_example.json"), "--t-end", "100", "--samples", "10000", "--out", work("big.json")]);
 const pages = {
