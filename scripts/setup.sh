@@ -5,6 +5,7 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev libboost-dev
           libboost-math-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev)
 packages+=(python3 python3-jsonschema)  # output contract: schema validation (tests/scripts/validate_schemas.py)
+packages+=(libopenmpi-dev openmpi-bin)  # montecarlo: optional MPI component (issue 12)
 packages+=(chromium)  # view (issue 14): Debian's Chromium for the browser tests of `plateball view`
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)  # view (issue 14): npm ci in web/ (below)
 missing=()
