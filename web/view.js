@@ -6,6 +6,7 @@
 //   ghost {x, q, error}  the ghost ball on the planned path at the same times and the angle
 //                        |log(A_ghost^T A)| (rad) computed by the library; absent without a path
 //   planned[2m]          the planned path (polyline), impulses [{t, x, dv}], goal [2]
+//   spread [{label, x}]  Monte Carlo: final contact points of the trials, per (strategy, scenario)
 //   kind, title, facts [[label, value]], generator
 // World frame as the library's: the plates are z = 0 and z = 2, the ball (radius 1) centred at
 // (x, y, 1).
@@ -91,6 +92,7 @@
   const addPoints = (a) => { for (let k = 0; k + 1 < a.length; k += 2) box.expandByPoint(new THREE.Vector2(a[k], a[k + 1])); };
   addPoints(D.x);
   addPoints(D.planned || []);
+  for (const cell of D.spread) addPoints(cell.x);
   if (D.goal) addPoints(D.goal);
   box.expandByScalar(1.6);
   const centre = box.getCenter(new THREE.Vector2());
@@ -220,6 +222,15 @@
     scene.add(ring);
   }
 
+  const spreadColours = ["#7b3fa0", "#e07b00", "#1b9e77", "#d62728", "#17becf", "#8c564b"];
+  D.spread.forEach((cell, c) => {
+    const g = new THREE.BufferGeometry();
+    const a = new Float32Array((cell.x.length / 2) * 3);
+    for (let k = 0; 2 * k + 1 < cell.x.length; ++k) a.set([cell.x[2 * k], cell.x[2 * k + 1], 3 * lift], 3 * k);
+    g.setAttribute("position", new THREE.BufferAttribute(a, 3));
+    scene.add(new THREE.Points(g, new THREE.PointsMaterial({ color: spreadColours[c % 6], size: 4, sizeAttenuation: false })));
+  });
+
   // Camera: a three-quarter view of the whole extent; drag turns it about the centre, wheel zooms.
   const camera = new THREE.PerspectiveCamera(40, 1, 0.05, 1000);
   camera.up.set(0, 0, 1);
@@ -315,6 +326,38 @@
     g.moveTo(px, chartPad.t);
     g.lineTo(px, chart.height - chartPad.b);
     g.stroke();
+  }
+
+  // The final contact points around the goal, one colour per (strategy, scenario), equal scales.
+  function drawSpread() {
+    if (!D.spread.length) return;
+    $("spread-section").hidden = false;
+    const c = $("spread"), g = c.getContext("2d");
+    const b = new THREE.Box2();
+    for (const cell of D.spread) for (let k = 0; k + 1 < cell.x.length; k += 2) b.expandByPoint(new THREE.Vector2(cell.x[k], cell.x[k + 1]));
+    if (D.goal) b.expandByPoint(new THREE.Vector2(D.goal[0], D.goal[1]));
+    const pad = { l: 92, r: 16, t: 12, b: 48 };
+    const w = c.width - pad.l - pad.r, h = c.height - pad.t - pad.b;
+    const sz = b.getSize(new THREE.Vector2()), mid = b.getCenter(new THREE.Vector2());
+    const scale = Math.min(w / Math.max(sz.x, 1e-15), h / Math.max(sz.y, 1e-15)) * 0.9;
+    const px = (x) => pad.l + w / 2 + (x - mid.x) * scale, py = (y) => pad.t + h / 2 - (y - mid.y) * scale;
+    axes(g, c.width, c.height, pad, [mid.x - w / 2 / scale, mid.x + w / 2 / scale], [mid.y - h / 2 / scale, mid.y + h / 2 / scale], "x", "y");
+    D.spread.forEach((cell, i) => {
+      g.fillStyle = spreadColours[i % 6];
+      for (let k = 0; k + 1 < cell.x.length; k += 2) g.fillRect(px(cell.x[k]) - 2.5, py(cell.x[k + 1]) - 2.5, 5, 5);
+      const li = document.createElement("li");
+      li.innerHTML = '<span class="dot"></span>';
+      li.firstChild.style.background = spreadColours[i % 6];
+      li.append(cell.label + " (" + cell.x.length / 2 + " trials)");
+      $("spread-legend").append(li);
+    });
+    if (D.goal) {
+      g.strokeStyle = "#2e8b57";
+      g.lineWidth = 3;
+      g.beginPath();
+      g.arc(px(D.goal[0]), py(D.goal[1]), 9, 0, 2 * Math.PI);
+      g.stroke();
+    }
   }
 
   // ------------------------------------------------------------ state, controls
@@ -421,6 +464,7 @@
   $("generator").textContent = "Written by " + D.generator + ".";
 
   drawChartBase();
+  drawSpread();
   resize();
   seek(t0);
 
@@ -438,9 +482,18 @@
     playing: () => playing,
     frames: () => frames,
     orientation: () => matrix(current.q),
+    // The angle between the ball and the ghost now (linear between samples), or null.
+    orientationError: () => {
+      if (!D.ghost) return null;
+      const { i, u } = locate(time);
+      const j = Math.min(i + 1, n - 1);
+      return D.ghost.error[i] + u * (D.ghost.error[j] - D.ghost.error[i]);
+    },
     // The times of the sample at fraction u of the samples and of the next one.
     sampleTimes: (u) => { const i = Math.min(n - 2, Math.floor(u * (n - 1))); return [T[i], T[i + 1]]; },
     contactPoint: () => current.x.slice(),
+    spread: () => D.spread.map((cell) => ({ label: cell.label, x: cell.x.slice() })),
+    goal: () => (D.goal ? D.goal.slice() : null),
     // The ball's bounding box on the screen (CSS pixels): the projections of its bounding cube.
     ballBox: () => {
       const xs = [], ys = [];

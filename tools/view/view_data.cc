@@ -4,14 +4,18 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 #include "common/limits.h"
+#include "common/plan_json.h"
 #include "common/number_format.h"
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/free_motion.h"
+#include "plateball/execution.h"
 #include "plateball/isoparallel.h"
+#include "plateball/monte_carlo.h"
 #include "plateball/problem_io.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
@@ -448,6 +452,98 @@ void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out
   out->has_goal = true;
 }
 
+// ---------------------------------------------------------------- montecarlo
+
+constexpr long long kMaxSpreadTrials = 6000;  // trials re-run for the spread, over all cells
+
+// A cell's error model from the result's options.scenarios[i].errors.
+ErrorModel ErrorsFrom(const ResultReader& r, const json& errors, const std::string& where) {
+  ErrorModel e;
+  const std::pair<const char*, double ErrorModel::*> members[] = {
+      {"error_impulse_magnitude", &ErrorModel::impulse_magnitude}, {"error_impulse_angle", &ErrorModel::impulse_angle},
+      {"error_timing", &ErrorModel::timing}, {"error_energy_loss", &ErrorModel::energy_loss},
+      {"error_lambda", &ErrorModel::lambda}, {"error_observation", &ErrorModel::observation}};
+  for (const auto& [concept_name, member] : members) e.*member = r.Number(errors, where, concept_name);
+  return e;
+}
+
+// The result's median final position error of the cell (main n, scenario, strategy), or -1.
+double ResultMedian(const ResultReader& r, int n, const std::string& scenario, const std::string& strategy) {
+  const json* results = r.Find(r.doc(), "mc_results");
+  for (std::size_t i = 0; results && results->is_array() && i < results->size(); ++i) {
+    const json& c = (*results)[i];
+    const json *cn = r.Find(c, "cell_n"), *cs = r.Find(c, "cell_scenario"), *ct = r.Find(c, "cell_strategy");
+    if (cn && cs && ct && *cn == n && *cs == scenario && *ct == strategy)
+      return r.Number(c, "results[" + std::to_string(i) + "]", "cell_position_median");
+  }
+  return -1.0;
+}
+
+// The nominal plan as `plateball plan` would write it, read back like a plan result.
+PlanSteps NominalTrajectory(const ResultReader& r, const NominalPlan& nominal, const ViewOptions& options,
+                            ViewData* out) {
+  json plan_doc = PlanSummaryToJson(nominal.plan);
+  plan_doc["model"] = r.Get(r.doc(), "", "model");
+  if (const json* i = r.Find(r.doc(), "integration")) plan_doc["integration"] = *i;
+  plan_doc["initial"] = r.Get(r.doc(), "", "initial");
+  plan_doc["initial"]["orientation"] = ToJson(nominal.plan.A0);
+  const ResultReader plan_reader(r.file() + " (nominal plan)", plan_doc, r.fields());
+  return BuildPlanTrajectory(plan_reader, plan_reader.Get(plan_doc, "", "steps"), "steps", options, out);
+}
+
+// The nominal plan's motion, and the final contact points of the trials re-run with the library
+// (Execute of (nominal plan, strategy, errors, seed, trial): what `plateball montecarlo` ran).
+void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData* out) {
+  const Problem problem = LoadProblem(r, options);
+  const json& doc = r.doc();
+  const json& o = r.Get(doc, "", "mc_options");
+  const double n_value = r.Number(o, "options", "mc_impulses");
+  const int n = static_cast<int>(std::clamp(n_value, 1.0, 1e4));
+  const PlanSetup setup = PlanSetupFor(problem, n, "options.impulses");
+  const auto nominal = std::make_shared<const NominalPlan>(MakeNominalPlan(setup.problem, setup.options));
+  if (!nominal->plan.IsSolutionUsable()) r.Fail("options.impulses", FormatNumber(n_value), nominal->plan.BriefReport());
+  AddPlanned(SamplePath(setup.problem.path), NominalTrajectory(r, *nominal, options, out), out);
+  ExecutionOptions eo;
+  eo.miss_tolerance = r.Number(o, "options", "mc_miss_tolerance");
+  eo.exact_window = static_cast<int>(std::clamp(r.Number(o, "options", "mc_exact_window"), 3.0, 64.0));
+  const json& seed = r.Get(doc, "", "seed");
+  if (!seed.is_number_unsigned()) r.Fail("seed", ValueText(seed), "must be an integer in [0, 2^64 - 1]");
+  const json& scenarios = r.Array(o, "options", "mc_scenarios", 1, 64);
+  const json& strategies = r.Array(o, "options", "mc_strategies", 1, 3);
+  const long long cells = static_cast<long long>(scenarios.size() * strategies.size());
+  const long long trials =
+      std::min(std::max(1LL, kMaxSpreadTrials / cells), static_cast<long long>(std::min(r.Number(o, "options", "mc_trials"), 1e6)));
+  double mismatch = 0.0;
+  for (std::size_t i = 0; i < scenarios.size(); ++i) {
+    const std::string where = "options.scenarios[" + std::to_string(i) + "]";
+    const json& name_json = r.Get(scenarios[i], where, "scenario_name");
+    const std::string name = name_json.is_string() ? name_json.get<std::string>() : name_json.dump();
+    for (std::size_t j = 0; j < strategies.size(); ++j) {
+      ExecutionProblem ep;
+      ep.nominal = nominal;
+      ep.strategy = ParseExecutionStrategy(strategies[j].is_string() ? strategies[j].get<std::string>() : "",
+                                           "options.strategies[" + std::to_string(j) + "]");
+      ep.errors = ErrorsFrom(r, r.Get(scenarios[i], where, "scenario_errors"), where + ".errors");
+      ep.seed = seed.get<std::uint64_t>();
+      std::vector<Eigen::Vector2d> points;
+      std::vector<double> errors;
+      for (ep.trial = 0; static_cast<long long>(ep.trial) < trials; ++ep.trial) {
+        const ExecutionSummary s = Execute(ep, eo);
+        if (!s.IsSolutionUsable()) continue;
+        points.push_back(s.x_final);
+        errors.push_back(s.position_error);
+      }
+      const double median = ResultMedian(r, n, name, ToString(ep.strategy));
+      if (median >= 0 && !errors.empty()) mismatch = std::max(mismatch, std::abs(Distribute(errors).median - median));
+      out->spread.push_back({ToString(ep.strategy) + ", " + name, std::move(points)});
+    }
+  }
+  out->goal = nominal->goal;
+  out->has_goal = true;
+  out->facts.push_back({"trials re-run", std::to_string(trials) + " per cell (Execute, seed " + seed.dump() + ")"});
+  out->facts.push_back({"re-run vs file", "median final position errors agree to " + FormatNumber(mismatch)});
+}
+
 std::string TitleOf(const ResultReader& r, const std::string& kind) {
   const json* name = r.Find(r.doc(), "problem_name");
   return (name && name->is_string() ? name->get<std::string>() + ": " : std::string()) + "plateball " + kind;
@@ -487,8 +583,10 @@ ViewData BuildView(const ResultReader& r, const ViewOptions& options) {
     out.has_goal = true;
   } else if (out.kind == "steer") {
     BuildSteer(r, options, &out);
+  } else if (out.kind == "montecarlo") {
+    BuildMonteCarlo(r, options, &out);
   } else {
-    r.Fail("command", ValueText(*command), "the view shows simulate, plan, isoparallel and steer results");
+    r.Fail("command", ValueText(*command), "the view shows simulate, plan, isoparallel, steer and montecarlo results");
   }
   if (const json* report = r.Find(doc, "report"); report && report->is_string())
     out.facts.insert(out.facts.begin(), {"report", report->get<std::string>()});
@@ -531,6 +629,9 @@ json ViewDataToJson(const ViewData& d) {
     for (std::size_t i = 0; i < d.A.size(); ++i) err.push_back(RotationAngle(d.A[i], d.ghost_A[i]));
     j["ghost"] = json{{"x", Flat(d.ghost_x)}, {"q", Quaternions(d.ghost_A)}, {"error", err}};
   }
+  json spread = json::array();
+  for (const auto& [label, points] : d.spread) spread.push_back(json{{"label", label}, {"x", Flat(points)}});
+  j["spread"] = spread;
   json impulses = json::array();
   for (const ViewImpulse& i : d.impulses)
     impulses.push_back(json{{"t", i.t}, {"x", {i.x.x(), i.x.y()}},

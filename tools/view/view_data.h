@@ -35,6 +35,7 @@ class ResultReader {
  public:
   ResultReader(std::string file, const nlohmann::json& doc, const ResultFields& fields);
   const nlohmann::json& doc() const { return doc_; }
+  const ResultFields& fields() const { return fields_; }
   const std::string& file() const { return file_; }
   /// The value at concept's path below `at` (`where` names `at` in messages), or nullptr.
   const nlohmann::json* Find(const nlohmann::json& at, const std::string& concept_name) const;
@@ -63,7 +64,7 @@ struct ViewImpulse {
 
 /// Everything the page draws; times are the motion's own (normalised units).
 struct ViewData {
-  std::string kind;   ///< "simulate", "plan", "isoparallel", "steer"
+  std::string kind;   ///< "simulate", "plan", "isoparallel", "steer", "montecarlo"
   std::string title;  ///< problem name and command
   std::vector<std::pair<std::string, std::string>> facts;  ///< label, value (the info panel)
   std::vector<double> t;
@@ -73,6 +74,8 @@ struct ViewData {
   std::vector<Eigen::Matrix3d> ghost_A;
   std::vector<Eigen::Vector2d> planned;  ///< the planned path, dense polyline
   std::vector<ViewImpulse> impulses;
+  /// Monte Carlo: the final contact points of the trials re-run, per (scenario, strategy) cell.
+  std::vector<std::pair<std::string, std::vector<Eigen::Vector2d>>> spread;
   Eigen::Vector2d goal = Eigen::Vector2d::Zero();
   bool has_goal = false;
   /// Largest |A - A_result| (max entry) where the re-simulation meets an orientation the result

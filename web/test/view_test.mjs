@@ -2,7 +2,7 @@
 // chromium and web/node_modules/playwright-core are found:
 //   node web/test/view_test.mjs --plateball BIN --chromium /usr/bin/chromium
 //                               --problems DIR --work DIR [--screenshots DIR]
-// For each example (simulate, plan, isoparallel, steer) the tools write a result, `plateball view`
+// For each example (simulate, plan, isoparallel, steer, montecarlo) the tools write a result, `plateball view`
 // writes the page, and headless chromium checks it: no console error, no request but the page
 // itself; after seeking to time t the ball's orientation equals A(t) of the result JSON to 1e-9;
 // two screenshots differ where the ball is and nowhere else; a 10,000-sample page stays
@@ -56,12 +56,15 @@ run(P, ["plan", problem("circle.json"), "--out", work("plan.json")]);
 run(P, ["isoparallel", problem("figure7.json"), "--out", work("isoparallel.json")]);
 run(P, ["steer", problem("figure7_exact.json"), "--out", work("steer.json")]);
 run(P, ["simulate", problem("simulate_example.json"), "--t-end", "100", "--samples", "10000", "--out", work("big.json")]);
+run(P, ["montecarlo", problem("circle.json"), "--trials", "40", "--noise", "impulse_magnitude=1e-3", "--noise", "timing=1e-3",
+  "--threads", "1", "--quiet", "--out", work("montecarlo.json")]);
 const pages = {
   simulate: ["simulate.json"],
   plan: ["plan.json"],  // the problem file named in the result's header
   isoparallel: ["isoparallel.json"],
   steer: ["steer.json", "--problem", problem("figure7_exact.json")],
   big: ["big.json"],
+  montecarlo: ["montecarlo.json"],
 };
 for (const [name, [result, ...rest]] of Object.entries(pages))
   run(P, ["view", work(result), "--html", work(name + ".html"), ...rest]);
@@ -241,6 +244,52 @@ for (const name of ["simulate", "plan", "isoparallel", "steer"]) {
   }
   check(log.errors.length === 0, name + ": no console errors", log.errors.join(" | "));
   check(log.requests.length === 0, name + ": no network requests", log.requests.join(" "));
+  await context.close();
+}
+
+// ------------------------------------------------------------ Monte Carlo
+// The page's final contact points are the trials re-run by the library: per cell, their median
+// distance to the goal is the median final position error the result reports; the nominal plan's
+// final orientation error is the chart's last value.
+{
+  const context = await browser.newContext({ viewport: { width: 1280, height: 1000 } });
+  const page = await context.newPage();
+  const errors = [], requests = [];
+  const url = "file://" + work("montecarlo.html");
+  page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
+  page.on("pageerror", (e) => errors.push(e.message));
+  page.on("request", (r) => { if (r.url() !== url) requests.push(r.url()); });
+  await page.goto(url);
+  await page.waitForFunction(() => window.plateballView && window.plateballView.frames() > 0);
+  const doc = readJson(work("montecarlo.json"));
+  const spread = await page.evaluate(() => window.plateballView.spread());
+  const goal = await page.evaluate(() => window.plateballView.goal());
+  const median = (v) => { const s = [...v].sort((a, b) => a - b), m = s.length - 1; return s[Math.floor(m / 2)] + (s[Math.ceil(m / 2)] - s[Math.floor(m / 2)]) / 2; };
+  let worst = 0, cells = 0;
+  for (const cell of field(doc, "mc_results")) {
+    const label = field(cell, "cell_strategy") + ", " + field(cell, "cell_scenario");
+    const shown = spread.find((c) => c.label === label);
+    if (!shown) continue;
+    ++cells;
+    const d = [];
+    for (let k = 0; k + 1 < shown.x.length; k += 2) d.push(Math.hypot(shown.x[k] - goal[0], shown.x[k + 1] - goal[1]));
+    worst = Math.max(worst, Math.abs(median(d) - field(cell, "cell_position_median")));
+  }
+  check(cells === 4 && spread.every((c) => c.x.length === 80) && worst < 1e-9,
+    "montecarlo: the spread's median distance to the goal is the result's median position error, per cell",
+    `${cells} cells of ${spread.map((c) => c.x.length / 2).join(", ")} trials, max difference ${worst.toExponential(2)}`);
+  const [, t1] = await page.evaluate(() => window.plateballView.range());
+  await seek(page, t1);
+  const chartEnd = await page.evaluate(() => window.plateballView.orientationError());
+  const nominal = field(field(doc, "mc_nominal")[0], "nominal_orientation_error");
+  check(Math.abs(chartEnd - nominal) < 1e-9, "montecarlo: the error chart ends at the nominal plan's orientation error",
+    `${chartEnd} vs ${nominal}`);
+  if (args.screenshots) {
+    await seek(page, 0.45 * t1);
+    await page.screenshot({ path: path.join(args.screenshots, "view_montecarlo.png") });
+  }
+  check(errors.length === 0 && requests.length === 0, "montecarlo: no console errors, no network requests",
+    errors.concat(requests).join(" | "));
   await context.close();
 }
 
