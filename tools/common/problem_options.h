@@ -22,9 +22,9 @@ inline constexpr const char* kCommandLine = "command line";
 
 class ProblemOptions {
  public:
-  /// Whether the subcommand runs a randomised search (the isoparallel multi-start, also as the
-  /// reference of steer) and so takes --seed; join, reach, plan, converge and simulate are
-  /// deterministic and do not accept it (their header still names the problem's seed).
+  /// Whether the subcommand draws random numbers (the isoparallel multi-start, also as steer's
+  /// reference; the Monte Carlo errors) and so takes --seed; join, reach, plan, converge and
+  /// simulate are deterministic and do not accept it (their header still names the problem's seed).
   enum class Seed { kAccepted, kNone };
   /// Adds the positional PROBLEM.json ("-": standard input) and --lambda --theta --phi --psi --mu
   /// --x0 X,Y --orientation JSON --atol --rtol --max-steps (and --seed unless Seed::kNone) to `app`.
