@@ -129,9 +129,9 @@ TEST(ExactArrival, BadInputNamesTheField) {
   EXPECT_NE(InvalidArgumentMessage([&] { SolveExactArrival(p); }).find("mu"), std::string::npos);
   p.mu = 1;
   ExactArrivalOptions o;
-  o.difference_step = 0;
-  EXPECT_NE(o.Validate().find("difference_step"), std::string::npos);
-  EXPECT_NE(InvalidArgumentMessage([&] { SolveExactArrival(p, o); }).find("difference_step"), std::string::npos);
+  o.max_iterations = 0;
+  EXPECT_NE(o.Validate().find("max_iterations"), std::string::npos);
+  EXPECT_NE(InvalidArgumentMessage([&] { SolveExactArrival(p, o); }).find("max_iterations"), std::string::npos);
 }
 
 // A goal too far for the iteration budget is a status with the closest arrival, not a throw.
