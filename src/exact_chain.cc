@@ -87,7 +87,33 @@ FullState RollArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2
   return y;
 }
 
+// (z, length) with z' = omega x z, length' = |x'| = |omega_h|.
+struct LengthRhs {
+  double lambda;
+  double k[2];
+  void operator()(const std::array<double, 4>& y, std::array<double, 4>& dy, double /*t*/) const {
+    double w[2], dx[2];
+    OmegaFromZK(y.data(), k, lambda, w);
+    ZxRhs(y.data(), w, dy.data(), dx);
+    dy[3] = std::hypot(w[0], w[1]);
+  }
+};
+
 }  // namespace
+
+double ChainPathLength(double lambda, const std::vector<ChainNode>& nodes, const Eigen::VectorXd& u,
+                       const IntegrationOptions& integration) {
+  const int n = static_cast<int>(u.size() / 2);
+  double length = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const ChainNode& a = nodes[static_cast<std::size_t>(k)];
+    const Eigen::Vector2d& kk = nodes[static_cast<std::size_t>(k) + 1].k;  // the arc's K
+    std::array<double, 4> y{a.z.x(), a.z.y(), a.z.z(), 0.0};
+    if (u[n + k] > 0) IntegrateAdaptive(LengthRhs{lambda, {kk.x(), kk.y()}}, y, 0.0, u[n + k], u[n + k], integration);
+    length += y[3];
+  }
+  return length;
+}
 
 Eigen::Matrix3d LeftJacobianInverse(const Eigen::Vector3d& phi) {
   const double th = phi.norm();

@@ -89,6 +89,10 @@ std::vector<ExactImpulse> ReportImpulses(const BallModel& model, double mu, cons
 /// The impulse at the chain's end that brings omega to zero ("arrive and stop").
 ExactImpulse StopImpulse(const BallModel& model, double mu, const ChainNode& end, double total_time);
 
+/// The length of the contact point's path over the rolled chain (integral of |x'| per arc).
+double ChainPathLength(double lambda, const std::vector<ChainNode>& nodes, const Eigen::VectorXd& u,
+                       const IntegrationOptions& integration);
+
 /// The inverse left Jacobian of SO(3) at the rotation vector phi: Log(exp(hat e) exp(hat phi)) =
 /// phi + JlInv(phi) e + O(|e|^2).
 Eigen::Matrix3d LeftJacobianInverse(const Eigen::Vector3d& phi);
