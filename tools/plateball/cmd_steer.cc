@@ -32,15 +32,17 @@ struct SteerCliOptions {
   bool start_at_rest = false;
   long long max_impulses = 0;
   long long starts = 0;
+  CLI::Option* max_impulses_opt = nullptr;
+  CLI::Option* starts_opt = nullptr;
 };
 
 // The fewest-impulse search (steer.fewest in the file, or --fewest-impulses).
 int RunFewest(const SteerCliOptions& o, const Problem& p) {
   FewestImpulsesSetup setup = FewestImpulsesSetupFor(p);
   using O = FewestImpulsesOptions;
-  if (o.max_impulses != 0)
+  if (o.max_impulses_opt->count() > 0)
     setup.options.max_impulses = static_cast<int>(RequireIntegerInRange("--max-impulses", o.max_impulses, 1, O::kMaxImpulses));
-  if (o.starts != 0) setup.options.starts = static_cast<int>(RequireIntegerInRange("--starts", o.starts, 1, O::kMaxStarts));
+  if (o.starts_opt->count() > 0) setup.options.starts = static_cast<int>(RequireIntegerInRange("--starts", o.starts, 1, O::kMaxStarts));
   setup.problem.stop_at_goal = setup.problem.stop_at_goal || o.stop_at_goal;
   setup.problem.start_at_rest = setup.problem.start_at_rest || o.start_at_rest;
   const FewestImpulsesSummary s = SolveFewestImpulses(setup.problem, setup.options);
@@ -115,8 +117,8 @@ std::function<int()> SetupSteer(CLI::App& sub) {
   sub.add_option("--svg", o->svg, "draw the plate to this SVG file (reference dashed, trajectory solid)");
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
   sub.add_flag("--fewest-impulses", o->fewest, "search the fewest impulses that reach the goal exactly (Pareto table)");
-  sub.add_option("--max-impulses", o->max_impulses, "largest impulse count the search tries (overrides steer.fewest.max_impulses)");
-  sub.add_option("--starts", o->starts, "starts per impulse count of the search (overrides steer.fewest.starts)");
+  o->max_impulses_opt = sub.add_option("--max-impulses", o->max_impulses, "largest impulse count the search tries (overrides steer.fewest.max_impulses)");
+  o->starts_opt = sub.add_option("--starts", o->starts, "starts per impulse count of the search (overrides steer.fewest.starts)");
   sub.add_flag("--stop-at-goal", o->stop_at_goal, "arrive and stop: one more impulse brings omega to zero at the goal");
   sub.add_flag("--start-at-rest", o->start_at_rest, "the ball starts at rest (the first impulse sets it rolling)");
   sub.footer(
