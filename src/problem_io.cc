@@ -997,10 +997,19 @@ class Writer {
                            {"threads", t.solver.threads},
                            {"enumerate_families", t.solver.enumerate_families}}}};
     }
-    if (p.steer)
+    if (p.steer) {
       d["steer"] = ojson{{"goal", Vec("steer.goal", p.steer->goal)},
                          {"goal_orientation", Mat("steer.goal_orientation.matrix", p.steer->goal_orientation)},
-                         {"impulses", p.steer->impulses}};
+                         {"impulses", p.steer->impulses},
+                         {"start_at_rest", p.steer->start_at_rest},
+                         {"stop_at_goal", p.steer->stop_at_goal}};
+      if (const auto& f = p.steer->fewest)
+        d["steer"]["fewest"] = ojson{{"max_impulses", f->max_impulses},
+                                     {"starts", f->starts},
+                                     {"pareto_counts", f->pareto_counts},
+                                     {"max_total_time", Num("steer.fewest.max_total_time", f->max_total_time)},
+                                     {"orientation_only", f->orientation_only}};
+    }
     if (!p.expected.empty()) {
       ojson e = ojson::object();
       for (const auto& [name, v] : p.expected)
