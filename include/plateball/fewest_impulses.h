@@ -16,14 +16,17 @@
 // rolls and any position and orientation with three.
 //
 // The search, for n = 1, 2, ..., max_impulses in turn: `starts` deterministic starts per n (a
-// Halton sequence over the directions s_k in [-pi, pi) and the flight times, total time in the
-// window (0, max_total_time]), each refined by Levenberg-Marquardt on the arrival conditions in
+// Halton sequence over the directions s_k in [-pi, pi) and the flight times, total time in
+// [0.1, 0.9] of the window (0, max_total_time]), each refined by Levenberg-Marquardt on the arrival conditions in
 // (s_k, log t_k) with the exact Jacobian (src/exact_chain.h), then polished to the tolerances with
-// 1e-14 rollouts. The fewest count is the first n for which a start arrives within the window; a
+// 1e-14 rollouts (Newton steps with fresh exact Jacobians). The fewest count is the first n for which a start arrives within the window; a
 // smaller count is reported with the closest arrival its starts reached (for 2n below the number
 // of conditions no generic goal is reachable: the reachable set has lower dimension). For the
 // Pareto table the search continues `pareto_counts - 1` counts beyond the fewest and reports, per
-// count, the arrival of shortest total time among those found.
+// count, the arrival of shortest total time among those found, shortened further along the arrival
+// manifold (projected descent of T); count n + 1 is first seeded by count n's arrival with its
+// longest flight split by a zero impulse, so the times do not grow with the count. A count stops
+// after `arrivals_per_count` arrivals.
 #pragma once
 
 #include <Eigen/Core>
@@ -66,8 +69,9 @@ struct FewestImpulsesOptions {
   int pareto_counts = 3;   ///< rows of the Pareto table from the fewest count up, in [1, kMaxImpulses]
   int starts = 24;         ///< starts per count, in [1, kMaxStarts]
   int arrivals_per_count = 4;  ///< a count stops after this many arrivals, in [1, kMaxStarts]
-  /// Search window: total time T <= max_total_time (> 0); 0 chooses 3 (|x1 - x0| + angle(A0, A1) +
-  /// 2 pi) / sqrt(mu), the time to roll three times the distance plus the turn at the least speed.
+  /// Search window: total time T <= max_total_time (> 0); 0 chooses 1.5 (|x1 - x0| + angle(A0, A1) +
+  /// 2 pi) / sqrt(mu): one and a half times the time to roll the distance, the turn and a full turn
+  /// at the speed sqrt(mu). Starts take total times in [0.1, 0.9] of the window.
   double max_total_time = 0.0;
   int max_iterations = 15;                ///< Levenberg-Marquardt iterations per start, in [1, 10000]
   double position_tolerance = 1e-12;      ///< |x(T) - x1| to reach

@@ -132,7 +132,7 @@ struct SteerTask {
   /// impulses (`plateball steer` runs the search instead of the exact arrival along a reference).
   struct Fewest {
     int max_impulses = 6;
-    int starts = 16;
+    int starts = 24;
     int pareto_counts = 3;
     double max_total_time = 0.0;  ///< 0: automatic
     bool orientation_only = false;
