@@ -13,7 +13,7 @@ Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan) {
   Json j{{"k", k},
          {"kind", ToString(e.kind)},
          {"t_impulse", e.t_impulse},
-         {"position", ToJson(e.position)},
+         {"x", ToJson(e.position)},
          {"delta_psi", e.delta_psi},
          {"duration", e.duration},
          {"delta_omega", ToJson(e.delta_omega)},
@@ -22,7 +22,7 @@ Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan) {
          {"mu_before", e.mu_before},
          {"mu_after", e.mu_after}};
   if (with_plan) {
-    j["planned_position"] = ToJson(e.planned_position);
+    j["p"] = ToJson(e.planned_position);
     j["planned_delta_psi"] = e.planned_delta_psi;
     j["planned_duration"] = e.planned_duration;
   }
@@ -30,14 +30,13 @@ Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan) {
 }
 
 Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses) {
-  Json j{{"status", ToString(s.status)},
-         {"usable", s.IsSolutionUsable()},
-         {"impulse_count", s.impulses.size()},
+  Json j = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
+  Append(j, Json{{"impulse_count", s.impulses.size()},
          {"total_time", s.total_time},
          {"iterations", s.iterations},
          {"rollouts", s.rollouts},
          {"arrival", Json{{"x", ToJson(s.x_final)},
-                          {"orientation", RotationToJson(s.A_final)},
+                          {"rotation", RotationToJson(s.A_final)},
                           {"position_error", s.position_error},
                           {"orientation_error", s.orientation_error}}},
          {"replay", Json{{"x", ToJson(replay.x)},
@@ -49,9 +48,7 @@ Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay
          {"stop_at_goal", s.stop.has_value()},
          {"paper_plan", Json{{"position_error", s.planned_position_error},
                              {"orientation_error", s.planned_orientation_error},
-                             {"total_time", s.planned_total_time}}},
-         {"report", s.BriefReport()}};
-  if (!s.message.empty()) j["message"] = s.message;
+                             {"total_time", s.planned_total_time}}}});
   if (with_impulses) {
     Json list = Json::array();
     for (std::size_t k = 0; k < s.impulses.size(); ++k) list.push_back(ExactImpulseToJson(s.impulses[k], k, true));
@@ -75,18 +72,15 @@ Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpu
     }
     rows.push_back(row);
   }
-  Json j{{"status", ToString(s.status)},
-         {"usable", s.IsSolutionUsable()},
-         {"message", s.message},
-         {"report", s.BriefReport()},
-         {"fewest_impulses", s.fewest},
+  Json j = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
+  Append(j, Json{{"fewest_impulses", s.fewest},
          {"searched", s.searched},
          {"max_total_time", s.max_total_time},
          {"rollouts", s.rollouts},
          {"start_at_rest", problem.start_at_rest},
          {"stop_at_goal", problem.stop_at_goal},
          {"orientation_only", problem.orientation_only},
-         {"pareto", rows}};
+         {"pareto", rows}});
   const FewestImpulsesCount* f = s.Fewest();
   if (with_impulses && f) {
     Json list = Json::array();

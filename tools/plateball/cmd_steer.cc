@@ -46,13 +46,10 @@ int RunFewest(const SteerCliOptions& o, const Problem& p) {
   setup.problem.stop_at_goal = setup.problem.stop_at_goal || o.stop_at_goal;
   setup.problem.start_at_rest = setup.problem.start_at_rest || o.start_at_rest;
   const FewestImpulsesSummary s = SolveFewestImpulses(setup.problem, setup.options);
-  Json doc;
-  doc["command"] = "steer";
-  doc["problem"] = p.name.empty() ? p.source : p.name;
-  doc["model"] = ToJson(p.model);
-  doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"orientation", RotationToJson(setup.problem.A1)}};
-  Json result = FewestImpulsesToJson(setup.problem, s, !o.summary_only);
-  for (auto it = result.begin(); it != result.end(); ++it) doc[it.key()] = std::move(it.value());
+  Json doc = HeaderJson("plateball", "steer", p, o.problem.file());
+  doc["initial"] = InitialJson(p);
+  doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
+  Append(doc, FewestImpulsesToJson(setup.problem, s, !o.summary_only));
   WriteJson(doc, o.out);
   const FewestImpulsesCount* f = s.Fewest();
   if (!o.svg.empty() && f) {
@@ -90,14 +87,11 @@ int RunSteer(const SteerCliOptions& o) {
   const ExactArrivalSummary s = SolveExactArrival(setup.problem, setup.options);
   const ReplayResult replay = ReplayExactArrival(setup.problem, s.impulses);
 
-  Json doc;
-  doc["command"] = "steer";
-  doc["problem"] = p.name.empty() ? p.source : p.name;
-  doc["model"] = ToJson(p.model);
+  Json doc = HeaderJson("plateball", "steer", p, o.problem.file());
+  doc["initial"] = InitialJson(p);
   doc["reference"] = Json{{"source", reference}, {"length", setup.problem.reference.Length()}};
-  doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"orientation", RotationToJson(setup.problem.A1)}};
-  Json result = ExactArrivalToJson(s, replay, !o.summary_only);
-  for (auto it = result.begin(); it != result.end(); ++it) doc[it.key()] = std::move(it.value());
+  doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
+  Append(doc, ExactArrivalToJson(s, replay, !o.summary_only));
   WriteJson(doc, o.out);
   if (!o.svg.empty()) {
     std::ostringstream title;
