@@ -36,15 +36,13 @@ std::string ToString(ExactImpulseKind kind) {
 
 std::string ExactArrivalOptions::Validate() const {
   using internal::InvalidValueMessage;
-  if (!(std::isfinite(position_tolerance) && position_tolerance > 0))
-    return InvalidValueMessage("position_tolerance", position_tolerance, "must be finite and > 0");
-  if (!(std::isfinite(orientation_tolerance) && orientation_tolerance > 0))
-    return InvalidValueMessage("orientation_tolerance", orientation_tolerance, "must be finite and > 0");
+  std::string e = internal::ValidateArrivalTolerances(position_tolerance, orientation_tolerance);
+  if (!e.empty()) return e;
   if (max_iterations < 1 || max_iterations > kMaxIterations)
     return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, " + std::to_string(kMaxIterations) + "]");
   if (!(std::isfinite(deviation_tolerance) && deviation_tolerance >= 0))
     return InvalidValueMessage("deviation_tolerance", deviation_tolerance, "must be finite and >= 0");
-  std::string e = integration.Validate();
+  e = integration.Validate();
   if (!e.empty()) return "integration." + e;
   e = jacobian_integration.Validate();
   if (!e.empty()) return "jacobian_integration." + e;
@@ -136,13 +134,7 @@ void ValidateProblem(const ExactArrivalProblem& p) {
     internal::ThrowInvalid("impulses", p.impulses,
                            "must be in [3, " + std::to_string(kMaxExactImpulses) +
                                "] (2n unknowns for the 5 arrival conditions; the Jacobian costs n^2 arcs)");
-  internal::RequireEnergy("mu", p.mu);
-  internal::RequireCoordinates("x0", p.x0);
-  internal::RequireCoordinates("x1", p.x1);
-  internal::RequireFinite("A0", p.A0);
-  internal::RequireFinite("A1", p.A1);
-  if (!IsRotation(p.A0, 1e-9)) internal::ThrowInvalid("A0", "(matrix)", "not a rotation matrix (to 1e-9)");
-  if (!IsRotation(p.A1, 1e-9)) internal::ThrowInvalid("A1", "(matrix)", "not a rotation matrix (to 1e-9)");
+  internal::ValidateStartAndGoal(p.mu, p.x0, p.x1, p.A0, p.A1);
   const double miss = (p.reference.StartPoint() - p.x0).norm();
   if (!(miss <= 1e-9 * std::max(1.0, p.reference.Length())))
     internal::ThrowInvalid("x0", "(" + internal::FormatNumber(p.x0.x()) + ", " + internal::FormatNumber(p.x0.y()) + ")",
@@ -328,6 +320,25 @@ ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::v
 }
 
 namespace internal {
+
+void ValidateStartAndGoal(double mu, const Eigen::Vector2d& x0, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A0,
+                          const Eigen::Matrix3d& A1) {
+  RequireEnergy("mu", mu);
+  RequireCoordinates("x0", x0);
+  RequireCoordinates("x1", x1);
+  RequireFinite("A0", A0);
+  RequireFinite("A1", A1);
+  if (!IsRotation(A0, 1e-9)) ThrowInvalid("A0", "(matrix)", "not a rotation matrix (to 1e-9)");
+  if (!IsRotation(A1, 1e-9)) ThrowInvalid("A1", "(matrix)", "not a rotation matrix (to 1e-9)");
+}
+
+std::string ValidateArrivalTolerances(double position_tolerance, double orientation_tolerance) {
+  if (!(std::isfinite(position_tolerance) && position_tolerance > 0))
+    return InvalidValueMessage("position_tolerance", position_tolerance, "must be finite and > 0");
+  if (!(std::isfinite(orientation_tolerance) && orientation_tolerance > 0))
+    return InvalidValueMessage("orientation_tolerance", orientation_tolerance, "must be finite and > 0");
+  return "";
+}
 
 ChainNode StartNode(const BallModel& model, const AngleState& initial, double mu, const Eigen::Vector2d& x0,
                     const Eigen::Matrix3d& A0) {

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "kinematics.h"
@@ -78,6 +79,13 @@ void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions
 Eigen::Matrix<double, 5, 1> ArrivalResidual(const ChainNode& end, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A1);
 /// Their exact Jacobian (5 x 2n) from the chain's (the rotation rows through LeftJacobianInverse).
 Eigen::MatrixXd ArrivalJacobian(const ChainJacobian& jacobian, const ChainNode& end, const Eigen::Matrix3d& A1);
+
+/// The checks shared by exact arrival and the fewest-impulse search: mu, x0, x1 (fields named so),
+/// A0 and A1 rotations; throws std::invalid_argument naming the field.
+void ValidateStartAndGoal(double mu, const Eigen::Vector2d& x0, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A0,
+                          const Eigen::Matrix3d& A1);
+/// "" or the message naming position_tolerance / orientation_tolerance (finite, > 0).
+std::string ValidateArrivalTolerances(double position_tolerance, double orientation_tolerance);
 
 /// The start node: the state of `initial` at energy mu (its K), x0 and A0 turned onto its axis.
 ChainNode StartNode(const BallModel& model, const AngleState& initial, double mu, const Eigen::Vector2d& x0,

@@ -38,11 +38,9 @@ std::string FewestImpulsesOptions::Validate() const {
     return InvalidValueMessage("max_total_time", max_total_time, "must be in [0, 1e6] (0: automatic)");
   if (max_iterations < 1 || max_iterations > 10000)
     return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, 10000]");
-  if (!(std::isfinite(position_tolerance) && position_tolerance > 0))
-    return InvalidValueMessage("position_tolerance", position_tolerance, "must be finite and > 0");
-  if (!(std::isfinite(orientation_tolerance) && orientation_tolerance > 0))
-    return InvalidValueMessage("orientation_tolerance", orientation_tolerance, "must be finite and > 0");
-  std::string e = integration.Validate();
+  std::string e = internal::ValidateArrivalTolerances(position_tolerance, orientation_tolerance);
+  if (!e.empty()) return e;
+  e = integration.Validate();
   if (!e.empty()) return "integration." + e;
   e = search_integration.Validate();
   if (!e.empty()) return "search_integration." + e;
@@ -345,16 +343,10 @@ FewestImpulsesCount SearchCount(const Search& s, int n, const Eigen::VectorXd& p
 }
 
 void ValidateProblem(const FewestImpulsesProblem& p) {
-  internal::RequireEnergy("mu", p.mu);
   internal::RequireFinite("initial.theta", p.initial.theta);
   internal::RequireFinite("initial.phi", p.initial.phi);
   internal::RequireFinite("initial.psi", p.initial.psi);
-  internal::RequireCoordinates("x0", p.x0);
-  internal::RequireCoordinates("x1", p.x1);
-  internal::RequireFinite("A0", p.A0);
-  internal::RequireFinite("A1", p.A1);
-  if (!IsRotation(p.A0, 1e-9)) internal::ThrowInvalid("A0", "(matrix)", "not a rotation matrix (to 1e-9)");
-  if (!IsRotation(p.A1, 1e-9)) internal::ThrowInvalid("A1", "(matrix)", "not a rotation matrix (to 1e-9)");
+  internal::ValidateStartAndGoal(p.mu, p.x0, p.x1, p.A0, p.A1);
 }
 
 std::string Searched(const Search& s, int last) {

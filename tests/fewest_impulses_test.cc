@@ -157,13 +157,19 @@ TEST(FewestImpulses, ParetoTimesDoNotGrowWithTheCount) {
   EXPECT_EQ(rows, FewestImpulsesOptions{}.pareto_counts);
 }
 
-// The certified problem files (what `plateball steer` runs for them).
-void CheckFewestProblem(const std::string& file, int fewest) {
+// The certified problem files (what `plateball steer` runs for them); returns the setup and the
+// summary for the file's own checks.
+struct FewestRun {
+  FewestImpulsesSetup setup;
+  FewestImpulsesSummary summary;
+};
+FewestRun CheckFewestProblem(const std::string& file, int fewest) {
   const Problem f = ReadProblemFile(plateball::testing::SourcePath("problems/" + file));
   const FewestImpulsesSetup setup = FewestImpulsesSetupFor(f);
   const FewestImpulsesSummary s = SolveFewestImpulses(setup.problem, setup.options);
-  ASSERT_TRUE(s.IsSolutionUsable()) << file << ": " << s.BriefReport();
+  EXPECT_TRUE(s.IsSolutionUsable()) << file << ": " << s.BriefReport();
   EXPECT_EQ(s.fewest, fewest) << file;
+  if (!s.Fewest()) return {setup, s};
   const FewestImpulsesCount& row = *s.Fewest();
   ExpectRowArrives(setup.problem, row);
   const ReplayResult replay = ReplayExactArrival(ReplayProblemFor(setup.problem, row.impulses), row.plan);
@@ -179,14 +185,13 @@ void CheckFewestProblem(const std::string& file, int fewest) {
     ++checked;
   }
   EXPECT_GE(checked, 3) << file;
+  return {setup, s};
 }
 
 TEST(FewestImpulsesProblems, Figure7FewestIsTwoStraightRollsAndStops) {
-  CheckFewestProblem("figure7_fewest.json", 2);
-  const Problem f = ReadProblemFile(plateball::testing::SourcePath("problems/figure7_fewest.json"));
-  const FewestImpulsesSetup setup = FewestImpulsesSetupFor(f);
+  const auto [setup, s] = CheckFewestProblem("figure7_fewest.json", 2);
   ASSERT_TRUE(setup.problem.stop_at_goal);
-  const FewestImpulsesSummary s = SolveFewestImpulses(setup.problem, setup.options);
+  ASSERT_NE(s.Fewest(), nullptr);
   const FewestImpulsesCount& row = *s.Fewest();
   // From the vertical axis the ball rolls straight and turns by the length rolled: one roll
   // cannot end at (3, 3) with the identity (|(3, 3)| is no multiple of 2 pi); two rolls of 2 pi can.
@@ -206,11 +211,9 @@ TEST(FewestImpulsesProblems, Figure7FewestIsTwoStraightRollsAndStops) {
 }
 
 TEST(FewestImpulsesProblems, RotationFromRestNeedsThreeImpulses) {
-  CheckFewestProblem("isoparallel_rotation_fewest.json", 3);
-  const Problem f = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation_fewest.json"));
-  const FewestImpulsesSetup setup = FewestImpulsesSetupFor(f);
+  const auto [setup, s] = CheckFewestProblem("isoparallel_rotation_fewest.json", 3);
   ASSERT_TRUE(setup.problem.start_at_rest);
-  const FewestImpulsesSummary s = SolveFewestImpulses(setup.problem, setup.options);
+  ASSERT_NE(s.Fewest(), nullptr);
   const ExactImpulse& first = s.Fewest()->plan.front();
   EXPECT_EQ(first.kind, ExactImpulseKind::kStart);
   EXPECT_EQ(first.mu_before, 0.0);
