@@ -7,12 +7,18 @@
 // the iterations, the total time and the paper's plan's orientation error.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "plateball/exact_arrival.h"
+#include "plateball/fewest_impulses.h"
+#include "plateball/isoparallel_plan.h"
+#include "plateball/so3.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/isoparallel.h"
@@ -85,6 +91,62 @@ void BM_T5aExactArrivalFigure7(benchmark::State& state) {
   state.counters["paper_orientation_error"] = s.planned_orientation_error;
 }
 BENCHMARK(BM_T5aExactArrivalFigure7)->Arg(12)->Arg(24)->Unit(benchmark::kMillisecond);
+
+// T5(b): the fewest impulses for the Figure 7 goal (problems/figure7_fewest.json, rolling start,
+// stop at the goal) and for the rotation problem's goal (problems/isoparallel_rotation_fewest.json,
+// from rest). Timed: SolveFewestImpulses (the whole search with its Pareto rows). Counters: the
+// fewest count, its total time and path length, the arrival errors of the independent
+// re-integration, the rows of the Pareto table (time_n, length_n) and the rollouts.
+// The two problems as in their files (the benchmark does not read files).
+FewestImpulsesSetup FewestSetup(bool rotation) {
+  FewestImpulsesSetup setup;
+  FewestImpulsesProblem& p = setup.problem;
+  p.model = BallModel::FromLambda(2.0);
+  p.mu = 1.0;
+  if (rotation) {
+    p.A0 = ExpSO3(Eigen::Vector3d(M_PI / 2, 0.0, 0.0));
+    p.initial = InitialAnglesFromOrientation(p.A0, 0.0);
+    p.x1 = {2.0, 1.0};
+    p.A1 = Eigen::Quaterniond(0.409347959705932, 0.757852860408873, 0.435631125878677, -0.261378675527206)
+               .normalized()
+               .toRotationMatrix();
+    p.start_at_rest = true;
+  } else {
+    p.initial = {0.0, 0.0, 0.0};
+    p.x1 = {3.0, 3.0};
+    p.stop_at_goal = true;
+  }
+  setup.options.starts = 16;
+  return setup;
+}
+
+void BM_T5bFewestImpulses(benchmark::State& state, bool rotation) {
+  const FewestImpulsesSetup setup = FewestSetup(rotation);
+  FewestImpulsesSummary s;
+  for (auto _ : state) {
+    s = SolveFewestImpulses(setup.problem, setup.options);
+    benchmark::DoNotOptimize(s.counts.data());
+  }
+  const FewestImpulsesCount* f = s.Fewest();
+  if (!f) {
+    state.SkipWithError(s.BriefReport().c_str());
+    return;
+  }
+  const ReplayResult replay = ReplayExactArrival(ReplayProblemFor(setup.problem, f->impulses), f->plan);
+  state.counters["fewest"] = s.fewest;
+  state.counters["total_time"] = f->total_time;
+  state.counters["path_length"] = f->path_length;
+  state.counters["position_error"] = replay.position_error;
+  state.counters["orientation_error"] = replay.orientation_error;
+  state.counters["rollouts"] = s.rollouts;
+  for (const FewestImpulsesCount& c : s.counts) {
+    if (!c.reached) continue;
+    state.counters["time_" + std::to_string(c.impulses)] = c.total_time;
+    state.counters["length_" + std::to_string(c.impulses)] = c.path_length;
+  }
+}
+BENCHMARK_CAPTURE(BM_T5bFewestImpulses, figure7, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_T5bFewestImpulses, rotation, true)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "arc.h"
 #include "check.h"
+#include "exact_chain.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/so3.h"
@@ -25,19 +25,24 @@ std::string ToString(ExactArrivalStatus status) {
   return "unknown";
 }
 
+std::string ToString(ExactImpulseKind kind) {
+  switch (kind) {
+    case ExactImpulseKind::kEnergyPreserving: return "energy_preserving";
+    case ExactImpulseKind::kStart: return "start";
+    case ExactImpulseKind::kStop: return "stop";
+  }
+  return "unknown";
+}
+
 std::string ExactArrivalOptions::Validate() const {
   using internal::InvalidValueMessage;
-  if (!(std::isfinite(position_tolerance) && position_tolerance > 0))
-    return InvalidValueMessage("position_tolerance", position_tolerance, "must be finite and > 0");
-  if (!(std::isfinite(orientation_tolerance) && orientation_tolerance > 0))
-    return InvalidValueMessage("orientation_tolerance", orientation_tolerance, "must be finite and > 0");
+  std::string e = internal::ValidateArrivalTolerances(position_tolerance, orientation_tolerance);
+  if (!e.empty()) return e;
   if (max_iterations < 1 || max_iterations > kMaxIterations)
     return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, " + std::to_string(kMaxIterations) + "]");
   if (!(std::isfinite(deviation_tolerance) && deviation_tolerance >= 0))
     return InvalidValueMessage("deviation_tolerance", deviation_tolerance, "must be finite and >= 0");
-  if (!(std::isfinite(difference_step) && difference_step > 0 && difference_step < 1))
-    return InvalidValueMessage("difference_step", difference_step, "must be in (0, 1)");
-  std::string e = integration.Validate();
+  e = integration.Validate();
   if (!e.empty()) return "integration." + e;
   e = jacobian_integration.Validate();
   if (!e.empty()) return "jacobian_integration." + e;
@@ -56,18 +61,13 @@ std::string ExactArrivalSummary::BriefReport() const {
 
 namespace {
 
-// The ball just before impulse k: state, contact point, orientation.
-struct Node {
-  BallState state;
-  Eigen::Vector2d x = Eigen::Vector2d::Zero();
-  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
-};
+using internal::ChainNode;
 
 // The fixed data of one solve: the start, the goal, the reference pass points.
 struct Setup {
   const BallModel* model = nullptr;
   double mu = 1.0;
-  Node start;
+  ChainNode start;
   Eigen::Vector2d x1;
   Eigen::Matrix3d A1;
   std::vector<Eigen::Vector2d> planned;  // p(tau_k), k = 0..n
@@ -75,55 +75,32 @@ struct Setup {
   int n = 0;
 };
 
-// u = (delta psi_0..n-1, t_0..n-1). Rolls the trajectory from node k0 (nodes[k0] given) to the
-// end, filling nodes[k0+1..n].
-void RollOut(const Setup& s, const Eigen::VectorXd& u, int k0, std::vector<Node>& nodes) {
-  for (int k = k0; k < s.n; ++k) {
-    const Node& a = nodes[static_cast<std::size_t>(k)];
-    const Impulse imp = EnergyPreservingImpulse(AnglesFromState(a.state, *s.model), s.mu, u[k], *s.model);
-    const Eigen::Vector2d mom = ConservedMomentum(imp.state_after, *s.model);
-    const internal::ArcEnd arc = internal::IntegrateArc(s.model->lambda(), imp.state_after.z, mom, u[s.n + k],
-                                                        s.integration);
-    Node& b = nodes[static_cast<std::size_t>(k) + 1];
-    b.state = {arc.z, OmegaFromMomentum(arc.z, mom, *s.model)};
-    b.x = a.x + arc.dx;
-    b.A = ProjectToSO3(arc.phi * a.A);
-  }
+void RollOut(const Setup& s, const Eigen::VectorXd& u, std::vector<ChainNode>& nodes) {
+  nodes.resize(static_cast<std::size_t>(s.n) + 1);
+  nodes[0] = s.start;
+  internal::RollChain(s.model->lambda(), u, s.integration, &nodes);
 }
 
 // The five arrival conditions followed by the 2(n-1) pass-point displacements.
-Eigen::VectorXd Residuals(const Setup& s, const std::vector<Node>& nodes) {
+Eigen::VectorXd Residuals(const Setup& s, const std::vector<ChainNode>& nodes) {
   Eigen::VectorXd r(5 + 2 * (s.n - 1));
-  const Node& end = nodes.back();
-  r.head<2>() = end.x - s.x1;
-  r.segment<3>(2) = LogSO3(s.A1.transpose() * end.A);
+  r.head<5>() = internal::ArrivalResidual(nodes.back(), s.x1, s.A1);
   for (int k = 1; k < s.n; ++k)
     r.segment<2>(5 + 2 * (k - 1)) = nodes[static_cast<std::size_t>(k)].x - s.planned[static_cast<std::size_t>(k)];
   return r;
 }
 
-// Central differences; a parameter of segment k only changes the nodes after k, so each column
-// rolls out from node k.
-Eigen::MatrixXd Jacobian(Setup s, const Eigen::VectorXd& u, const std::vector<Node>& nodes, double h,
-                         const IntegrationOptions& integration, int* rollouts) {
-  s.integration = integration;
-  const int m = 5 + 2 * (s.n - 1);
-  Eigen::MatrixXd jac = Eigen::MatrixXd::Zero(m, 2 * s.n);
-  std::vector<Node> work = nodes;
-  for (int j = 0; j < 2 * s.n; ++j) {
-    const int k = j % s.n;
-    const double step = j < s.n ? h : h * std::max(1.0, std::abs(u[j]));
-    Eigen::VectorXd up = u, um = u;
-    up[j] += step;
-    um[j] -= step;
-    work[static_cast<std::size_t>(k)] = nodes[static_cast<std::size_t>(k)];  // the earlier columns moved it
-    RollOut(s, up, k, work);
-    const Eigen::VectorXd rp = Residuals(s, work);
-    RollOut(s, um, k, work);
-    const Eigen::VectorXd rm = Residuals(s, work);
-    jac.col(j) = (rp - rm) / (2 * step);
-    *rollouts += 2;
-  }
+// The exact Jacobian of Residuals (variational equations, src/exact_chain.h).
+Eigen::MatrixXd Jacobian(const Setup& s, const Eigen::VectorXd& u, const IntegrationOptions& integration,
+                         int* rollouts) {
+  std::vector<ChainNode> nodes(static_cast<std::size_t>(s.n) + 1);
+  nodes[0] = s.start;
+  internal::ChainJacobian cj;
+  internal::RollChain(s.model->lambda(), u, integration, &nodes, &integration, &cj);
+  ++*rollouts;
+  Eigen::MatrixXd jac(5 + 2 * (s.n - 1), 2 * s.n);
+  jac.topRows<5>() = internal::ArrivalJacobian(cj, nodes.back(), s.A1);
+  for (int k = 1; k < s.n; ++k) jac.middleRows<2>(5 + 2 * (k - 1)) = cj.dx[static_cast<std::size_t>(k)];
   return jac;
 }
 
@@ -157,13 +134,7 @@ void ValidateProblem(const ExactArrivalProblem& p) {
     internal::ThrowInvalid("impulses", p.impulses,
                            "must be in [3, " + std::to_string(kMaxExactImpulses) +
                                "] (2n unknowns for the 5 arrival conditions; the Jacobian costs n^2 arcs)");
-  internal::RequireEnergy("mu", p.mu);
-  internal::RequireCoordinates("x0", p.x0);
-  internal::RequireCoordinates("x1", p.x1);
-  internal::RequireFinite("A0", p.A0);
-  internal::RequireFinite("A1", p.A1);
-  if (!IsRotation(p.A0, 1e-9)) internal::ThrowInvalid("A0", "(matrix)", "not a rotation matrix (to 1e-9)");
-  if (!IsRotation(p.A1, 1e-9)) internal::ThrowInvalid("A1", "(matrix)", "not a rotation matrix (to 1e-9)");
+  internal::ValidateStartAndGoal(p.mu, p.x0, p.x1, p.A0, p.A1);
   const double miss = (p.reference.StartPoint() - p.x0).norm();
   if (!(miss <= 1e-9 * std::max(1.0, p.reference.Length())))
     internal::ThrowInvalid("x0", "(" + internal::FormatNumber(p.x0.x()) + ", " + internal::FormatNumber(p.x0.y()) + ")",
@@ -171,29 +142,17 @@ void ValidateProblem(const ExactArrivalProblem& p) {
 }
 
 // The summary's per-impulse report and errors from the final parameters.
-void Report(const Setup& s, const Eigen::VectorXd& u, const std::vector<Node>& nodes, const PlanSummary& plan,
-            ExactArrivalSummary& out) {
-  out.impulses.clear();
-  double t = 0.0;
+void Report(const Setup& s, const ExactArrivalProblem& p, const Eigen::VectorXd& u,
+            const std::vector<ChainNode>& nodes, const PlanSummary& plan, ExactArrivalSummary& out) {
+  out.impulses = internal::ReportImpulses(*s.model, s.mu, nodes, u, p.start_at_rest);
   for (int k = 0; k < s.n; ++k) {
-    const Node& a = nodes[static_cast<std::size_t>(k)];
-    ExactImpulse e;
-    e.t_impulse = t;
-    e.position = a.x;
-    e.delta_psi = u[k];
-    e.duration = u[s.n + k];
-    e.angles_before = AnglesFromState(a.state, *s.model);
-    const Impulse imp = EnergyPreservingImpulse(e.angles_before, s.mu, e.delta_psi, *s.model);
-    e.delta_omega = imp.delta_omega;
-    e.plate_velocity_change = imp.plate_velocity_change;
+    ExactImpulse& e = out.impulses[static_cast<std::size_t>(k)];
     e.planned_position = s.planned[static_cast<std::size_t>(k)];
     e.planned_delta_psi = plan.steps[static_cast<std::size_t>(k)].delta_psi;
     e.planned_duration = plan.steps[static_cast<std::size_t>(k)].duration;
-    out.impulses.push_back(e);
-    t += e.duration;
   }
   const Eigen::VectorXd r = Residuals(s, nodes);
-  out.total_time = t;
+  out.total_time = u.tail(s.n).sum();
   out.x_final = nodes.back().x;
   out.A_final = nodes.back().A;
   out.position_error = r.head<2>().norm();
@@ -202,6 +161,7 @@ void Report(const Setup& s, const Eigen::VectorXd& u, const std::vector<Node>& n
   out.max_pass_displacement = 0.0;
   for (int k = 1; k < s.n; ++k)
     out.max_pass_displacement = std::max(out.max_pass_displacement, r.segment<2>(5 + 2 * (k - 1)).norm());
+  if (p.stop_at_goal) out.stop = internal::StopImpulse(*s.model, s.mu, nodes.back(), out.total_time);
 }
 
 // The paper's plan along the reference with n uniform segments: the warm start.
@@ -221,9 +181,7 @@ Setup MakeSetup(const ExactArrivalProblem& p, const ExactArrivalOptions& o, cons
   s.model = &p.model;
   s.mu = p.mu;
   s.n = p.impulses;
-  s.start.state = StateFromAngles(p.initial, p.mu, p.model);
-  s.start.x = p.x0;
-  s.start.A = AlignOrientationToAxis(p.A0, s.start.state.z);
+  s.start = internal::StartNode(p.model, p.initial, p.mu, p.x0, p.A0);
   s.x1 = p.x1;
   s.A1 = p.A1;
   s.integration = o.integration;
@@ -236,7 +194,7 @@ Setup MakeSetup(const ExactArrivalProblem& p, const ExactArrivalOptions& o, cons
 // far from the warm start) and keeping every flight time above half its value; shortened while
 // it worsens the arrival.
 bool TryStep(const Setup& s, const Eigen::VectorXd& u, const Eigen::VectorXd& du, double merit, Eigen::VectorXd* u_new,
-             std::vector<Node>* nodes, Eigen::VectorXd* r_new, int* rollouts) {
+             std::vector<ChainNode>* nodes, Eigen::VectorXd* r_new, int* rollouts) {
   constexpr double kMaxStep = 1.0;
   double alpha = std::min(1.0, kMaxStep / std::max(du.norm(), 1e-300));
   for (int k = 0; k < s.n; ++k)
@@ -244,7 +202,7 @@ bool TryStep(const Setup& s, const Eigen::VectorXd& u, const Eigen::VectorXd& du
   for (int tries = 0; tries < 12; ++tries, alpha *= 0.5) {
     *u_new = u + alpha * du;
     if ((u_new->tail(s.n).array() <= 0).any()) continue;
-    RollOut(s, *u_new, 0, *nodes);
+    RollOut(s, *u_new, *nodes);
     ++*rollouts;
     *r_new = Residuals(s, *nodes);
     if (Merit(*r_new) <= std::max(merit, 1e-9) || Merit(*r_new) < 0.9 * merit) return true;
@@ -254,7 +212,7 @@ bool TryStep(const Setup& s, const Eigen::VectorXd& u, const Eigen::VectorXd& du
 
 // Polish with the last Jacobian (chord steps): the minimum-norm correction of the five arrival
 // conditions only, J^T (J J^T)^-1 r, while it reduces them; it moves the pass points by O(|r|).
-void Polish(const Setup& s, const Eigen::MatrixXd& jac, Eigen::VectorXd* u, std::vector<Node>* nodes,
+void Polish(const Setup& s, const Eigen::MatrixXd& jac, Eigen::VectorXd* u, std::vector<ChainNode>* nodes,
             Eigen::VectorXd* r, int* rollouts) {
   const Eigen::MatrixXd J = jac.topRows(5);
   const Eigen::MatrixXd jjt = J * J.transpose();
@@ -262,8 +220,8 @@ void Polish(const Setup& s, const Eigen::MatrixXd& jac, Eigen::VectorXd* u, std:
   for (int i = 0; i < 8 && Merit(*r) > 0.0; ++i) {
     const Eigen::VectorXd u_new = *u - J.transpose() * lu.solve(r->head<5>());
     if ((u_new.tail(s.n).array() <= 0).any()) return;
-    std::vector<Node> trial = *nodes;
-    RollOut(s, u_new, 0, trial);
+    std::vector<ChainNode> trial;
+    RollOut(s, u_new, trial);
     ++*rollouts;
     const Eigen::VectorXd r_new = Residuals(s, trial);
     if (!(Merit(r_new) < Merit(*r))) return;
@@ -292,10 +250,9 @@ ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const 
     u[k] = plan.steps[static_cast<std::size_t>(k)].delta_psi;
     u[s.n + k] = plan.steps[static_cast<std::size_t>(k)].duration;
   }
-  std::vector<Node> nodes(static_cast<std::size_t>(s.n) + 1);
-  nodes[0] = s.start;
+  std::vector<ChainNode> nodes;
   try {
-    RollOut(s, u, 0, nodes);
+    RollOut(s, u, nodes);
     out.rollouts = 1;
     Eigen::VectorXd r = Residuals(s, nodes);
     out.planned_position_error = r.head<2>().norm();
@@ -305,11 +262,11 @@ ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const 
     double deviation = 0.0;
     Eigen::MatrixXd jac;
     while (out.iterations < options.max_iterations) {
-      jac = Jacobian(s, u, nodes, options.difference_step, options.jacobian_integration, &out.rollouts);
+      jac = Jacobian(s, u, options.jacobian_integration, &out.rollouts);
       const Eigen::VectorXd du = KktStep(jac, r);
       ++out.iterations;
       Eigen::VectorXd u_new, r_new;
-      std::vector<Node> trial = nodes;
+      std::vector<ChainNode> trial;
       if (!TryStep(s, u, du, Merit(r), &u_new, &trial, &r_new, &out.rollouts)) {
         stalled = true;
         break;
@@ -326,7 +283,7 @@ ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const 
       if (settled || (Arrived(r, options) && du.norm() <= 1e-8 * (1.0 + u.norm()))) break;
     }
     if (jac.size() > 0) Polish(s, jac, &u, &nodes, &r, &out.rollouts);
-    Report(s, u, nodes, plan, out);
+    Report(s, problem, u, nodes, plan, out);
     if (Arrived(r, options)) {
       out.status = ExactArrivalStatus::kArrived;
       out.message.clear();
@@ -361,5 +318,82 @@ ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::v
   out.orientation_error = LogSO3(problem.A1.transpose() * out.A).norm();
   return out;
 }
+
+namespace internal {
+
+void ValidateStartAndGoal(double mu, const Eigen::Vector2d& x0, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A0,
+                          const Eigen::Matrix3d& A1) {
+  RequireEnergy("mu", mu);
+  RequireCoordinates("x0", x0);
+  RequireCoordinates("x1", x1);
+  RequireFinite("A0", A0);
+  RequireFinite("A1", A1);
+  if (!IsRotation(A0, 1e-9)) ThrowInvalid("A0", "(matrix)", "not a rotation matrix (to 1e-9)");
+  if (!IsRotation(A1, 1e-9)) ThrowInvalid("A1", "(matrix)", "not a rotation matrix (to 1e-9)");
+}
+
+std::string ValidateArrivalTolerances(double position_tolerance, double orientation_tolerance) {
+  if (!(std::isfinite(position_tolerance) && position_tolerance > 0))
+    return InvalidValueMessage("position_tolerance", position_tolerance, "must be finite and > 0");
+  if (!(std::isfinite(orientation_tolerance) && orientation_tolerance > 0))
+    return InvalidValueMessage("orientation_tolerance", orientation_tolerance, "must be finite and > 0");
+  return "";
+}
+
+ChainNode StartNode(const BallModel& model, const AngleState& initial, double mu, const Eigen::Vector2d& x0,
+                    const Eigen::Matrix3d& A0) {
+  const BallState state = StateFromAngles(initial, mu, model);
+  ChainNode start;
+  start.z = state.z;
+  start.k = ConservedMomentum(state, model);
+  start.x = x0;
+  start.A = AlignOrientationToAxis(A0, state.z);
+  return start;
+}
+
+std::vector<ExactImpulse> ReportImpulses(const BallModel& model, double mu, const std::vector<ChainNode>& nodes,
+                                         const Eigen::VectorXd& u, bool start_at_rest) {
+  const int n = static_cast<int>(u.size() / 2);
+  std::vector<ExactImpulse> out;
+  double t = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const ChainNode& a = nodes[static_cast<std::size_t>(k)];
+    ExactImpulse e;
+    e.t_impulse = t;
+    e.position = a.x;
+    e.delta_psi = u[k];
+    e.duration = u[n + k];
+    e.angles_before = AnglesFromState({a.z, OmegaFromMomentum(a.z, a.k, model)}, model);
+    const Impulse imp = EnergyPreservingImpulse(e.angles_before, mu, e.delta_psi, model);
+    e.delta_omega = imp.delta_omega;
+    e.plate_velocity_change = imp.plate_velocity_change;
+    e.mu_before = e.mu_after = mu;
+    if (k == 0 && start_at_rest) {  // from rest: the whole angular velocity is the change
+      e.kind = ExactImpulseKind::kStart;
+      e.mu_before = 0.0;
+      e.delta_omega = imp.state_after.omega;
+      e.plate_velocity_change = 2.0 * e.delta_omega.cross(Eigen::Vector3d::UnitZ());
+    }
+    out.push_back(e);
+    t += e.duration;
+  }
+  return out;
+}
+
+ExactImpulse StopImpulse(const BallModel& model, double mu, const ChainNode& end, double total_time) {
+  ExactImpulse e;
+  e.kind = ExactImpulseKind::kStop;
+  e.t_impulse = total_time;
+  e.position = end.x;
+  const BallState state{end.z, OmegaFromMomentum(end.z, end.k, model)};
+  e.angles_before = AnglesFromState(state, model);
+  e.delta_omega = -state.omega;
+  e.plate_velocity_change = 2.0 * e.delta_omega.cross(Eigen::Vector3d::UnitZ());
+  e.mu_before = mu;
+  e.mu_after = 0.0;
+  return e;
+}
+
+}  // namespace internal
 
 }  // namespace plateball

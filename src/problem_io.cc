@@ -18,6 +18,7 @@
 
 #include "check.h"
 #include "plateball/exact_arrival.h"
+#include "plateball/fewest_impulses.h"
 #include "plateball/so3.h"
 
 namespace plateball {
@@ -646,13 +647,36 @@ class Reader {
     return t;
   }
 
+  bool Boolean(const json& v, const std::string& path) const {
+    if (!v.is_boolean()) Fail(path, v, "must be true or false");
+    return v.get<bool>();
+  }
+
+  SteerTask::Fewest Fewest(const json& j, const std::string& path) const {
+    Object(j, path, {"max_impulses", "starts", "pareto_counts", "max_total_time", "orientation_only"});
+    SteerTask::Fewest f;
+    using O = FewestImpulsesOptions;
+    if (const json* v = Find(j, "max_impulses")) f.max_impulses = static_cast<int>(Integer(*v, Join(path, "max_impulses"), 1, O::kMaxImpulses));
+    if (const json* v = Find(j, "starts")) f.starts = static_cast<int>(Integer(*v, Join(path, "starts"), 1, O::kMaxStarts));
+    if (const json* v = Find(j, "pareto_counts")) f.pareto_counts = static_cast<int>(Integer(*v, Join(path, "pareto_counts"), 1, O::kMaxImpulses));
+    if (const json* v = Find(j, "max_total_time")) {
+      f.max_total_time = NonNegative(*v, Join(path, "max_total_time"));
+      if (f.max_total_time > 1e6) Fail(Join(path, "max_total_time"), *v, "must be in [0, 1e6] (0: automatic)");
+    }
+    if (const json* v = Find(j, "orientation_only")) f.orientation_only = Boolean(*v, Join(path, "orientation_only"));
+    return f;
+  }
+
   SteerTask Steer(const json& j, const std::string& path) const {
-    Object(j, path, {"goal", "goal_orientation", "impulses"});
+    Object(j, path, {"goal", "goal_orientation", "impulses", "start_at_rest", "stop_at_goal", "fewest"});
     SteerTask t;
     t.goal = Point(Require(j, path, "goal"), Join(path, "goal"));
     if (const json* v = Find(j, "goal_orientation")) t.goal_orientation = Orientation(*v, Join(path, "goal_orientation"));
     if (const json* v = Find(j, "impulses"))
       t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 3, kMaxExactImpulses));
+    if (const json* v = Find(j, "start_at_rest")) t.start_at_rest = Boolean(*v, Join(path, "start_at_rest"));
+    if (const json* v = Find(j, "stop_at_goal")) t.stop_at_goal = Boolean(*v, Join(path, "stop_at_goal"));
+    if (const json* v = Find(j, "fewest")) t.fewest = Fewest(*v, Join(path, "fewest"));
     return t;
   }
 
@@ -973,10 +997,19 @@ class Writer {
                            {"threads", t.solver.threads},
                            {"enumerate_families", t.solver.enumerate_families}}}};
     }
-    if (p.steer)
+    if (p.steer) {
       d["steer"] = ojson{{"goal", Vec("steer.goal", p.steer->goal)},
                          {"goal_orientation", Mat("steer.goal_orientation.matrix", p.steer->goal_orientation)},
-                         {"impulses", p.steer->impulses}};
+                         {"impulses", p.steer->impulses},
+                         {"start_at_rest", p.steer->start_at_rest},
+                         {"stop_at_goal", p.steer->stop_at_goal}};
+      if (const auto& f = p.steer->fewest)
+        d["steer"]["fewest"] = ojson{{"max_impulses", f->max_impulses},
+                                     {"starts", f->starts},
+                                     {"pareto_counts", f->pareto_counts},
+                                     {"max_total_time", Num("steer.fewest.max_total_time", f->max_total_time)},
+                                     {"orientation_only", f->orientation_only}};
+    }
     if (!p.expected.empty()) {
       ojson e = ojson::object();
       for (const auto& [name, v] : p.expected)

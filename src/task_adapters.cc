@@ -228,6 +228,8 @@ ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, int impulses, con
   s.problem.x1 = steer.goal;
   s.problem.A1 = steer.goal_orientation;
   s.problem.impulses = steer.impulses;
+  s.problem.start_at_rest = steer.start_at_rest;
+  s.problem.stop_at_goal = steer.stop_at_goal;
   SetImpulses(impulses, n_field, &s.problem);
   s.options = ExactOptionsFor(problem);
   return s;
@@ -247,8 +249,37 @@ ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, const Isoparallel
   s.problem.x1 = problem.steer ? problem.steer->goal : task.goal;
   s.problem.A1 = problem.steer ? problem.steer->goal_orientation : task.goal_orientation;
   s.problem.impulses = problem.steer ? problem.steer->impulses : std::max(3, task.impulses);
+  s.problem.start_at_rest = problem.steer && problem.steer->start_at_rest;
+  s.problem.stop_at_goal = problem.steer && problem.steer->stop_at_goal;
   SetImpulses(impulses, n_field, &s.problem);
   s.options = ExactOptionsFor(problem);
+  return s;
+}
+
+FewestImpulsesSetup FewestImpulsesSetupFor(const Problem& problem) {
+  const SteerTask& steer = RequireSteer(problem);
+  FewestImpulsesSetup s;
+  s.problem.model = problem.model;
+  s.problem.mu = problem.mu;
+  if (problem.isoparallel && !problem.plan) {
+    s.problem.A0 = problem.isoparallel->start_orientation;
+    s.problem.initial = InitialAnglesFromOrientation(s.problem.A0, problem.initial_angles.psi);
+    s.problem.x0 = problem.isoparallel->start;
+  } else {
+    s.problem.A0 = problem.A0;
+    s.problem.initial = problem.initial_angles;
+    s.problem.x0 = problem.x0;
+  }
+  s.problem.x1 = steer.goal;
+  s.problem.A1 = steer.goal_orientation;
+  s.problem.start_at_rest = steer.start_at_rest;
+  s.problem.stop_at_goal = steer.stop_at_goal;
+  const SteerTask::Fewest f = steer.fewest.value_or(SteerTask::Fewest{});
+  s.problem.orientation_only = f.orientation_only;
+  s.options.max_impulses = f.max_impulses;
+  s.options.starts = f.starts;
+  s.options.pareto_counts = f.pareto_counts;
+  s.options.max_total_time = f.max_total_time;
   return s;
 }
 

@@ -129,9 +129,9 @@ TEST(ExactArrival, BadInputNamesTheField) {
   EXPECT_NE(InvalidArgumentMessage([&] { SolveExactArrival(p); }).find("mu"), std::string::npos);
   p.mu = 1;
   ExactArrivalOptions o;
-  o.difference_step = 0;
-  EXPECT_NE(o.Validate().find("difference_step"), std::string::npos);
-  EXPECT_NE(InvalidArgumentMessage([&] { SolveExactArrival(p, o); }).find("difference_step"), std::string::npos);
+  o.max_iterations = 0;
+  EXPECT_NE(o.Validate().find("max_iterations"), std::string::npos);
+  EXPECT_NE(InvalidArgumentMessage([&] { SolveExactArrival(p, o); }).find("max_iterations"), std::string::npos);
 }
 
 // A goal too far for the iteration budget is a status with the closest arrival, not a throw.
@@ -241,6 +241,98 @@ TEST(ExactArrival, Figure7WithThreeImpulsesReportsTheClosestArrival) {
   const ReplayResult replay = ReplayExactArrival(p, s.impulses);  // the reported arrival is real
   EXPECT_NEAR(replay.position_error, s.position_error, 1e-9);
   EXPECT_NEAR(replay.orientation_error, s.orientation_error, 1e-9);
+}
+
+}  // namespace
+}  // namespace plateball
+
+#include "exact_chain.h"
+#include "plateball/free_motion.h"
+#include "plateball/impulse.h"
+
+namespace plateball {
+namespace {
+
+// The smooth impulse map of exact_chain.h equals the library's impulse through the angle chart
+// (AnglesFromState, EnergyPreservingImpulse, ConservedMomentum), also at a tilted axis.
+TEST(ExactChain, ImpulseMapEqualsTheLibrarysImpulse) {
+  for (double lambda : {0.5, 1.0, 2.0}) {
+    const BallModel model = BallModel::FromLambda(lambda);
+    for (const AngleState& a : {AngleState{0.9, 0.3, -0.2}, AngleState{2.1, -1.4, 0.7}, AngleState{1e-3, 0.2, 0.4}}) {
+      const BallState before = StateFromAngles(a, 1.3, model);
+      for (double s : {0.4, -2.5, 3.0}) {
+        const Impulse imp = EnergyPreservingImpulse(a, 1.3, s, model);
+        const Eigen::Vector2d k_lib = ConservedMomentum(imp.state_after, model);
+        const Eigen::Vector2d k_before = ConservedMomentum(before, model);
+        Eigen::Vector2d k;
+        internal::ImpulseMomentum(before.z.data(), k_before.data(), s, lambda, k.data());
+        EXPECT_LE((k - k_lib).norm(), 1e-13) << "lambda " << lambda << ", s " << s;
+      }
+    }
+  }
+}
+
+// The exact Jacobian of the chain (variational equations on ceres::Jet) against central
+// differences of the 1e-14 rollouts: agreement to the differences' own error (~h^2).
+TEST(ExactChain, JacobianMatchesCentralDifferences) {
+  const BallModel model = BallModel::FromLambda(1.7);
+  internal::ChainNode start = internal::StartNode(model, {0.9, 0.3, -0.2}, 1.3, {0.5, -0.25}, ExpSO3({0.2, -0.1, 0.4}));
+  Eigen::VectorXd u(8);
+  u << 0.4, -1.3, 2.25, 0.1, 1.35, 0.9, 1.3, 0.7;
+  const IntegrationOptions tight{1e-14, 1e-14, 2'000'000};
+  const Eigen::Matrix3d A1 = ExpSO3({0.5, 1.0, -0.3});
+  std::vector<internal::ChainNode> nodes(5, start);
+  internal::ChainJacobian jac;
+  internal::RollChain(model.lambda(), u, tight, &nodes, &tight, &jac);
+  const Eigen::MatrixXd arrival = internal::ArrivalJacobian(jac, nodes.back(), A1);
+  const double h = 1e-6;
+  for (int j = 0; j < 8; ++j) {
+    Eigen::VectorXd up = u, um = u;
+    up[j] += h;
+    um[j] -= h;
+    std::vector<internal::ChainNode> np(5, start), nm(5, start);
+    internal::RollChain(model.lambda(), up, tight, &np);
+    internal::RollChain(model.lambda(), um, tight, &nm);
+    const Eigen::Matrix<double, 5, 1> fd =
+        (internal::ArrivalResidual(np.back(), Eigen::Vector2d(1, 1), A1) - internal::ArrivalResidual(nm.back(), Eigen::Vector2d(1, 1), A1)) / (2 * h);
+    EXPECT_LE((fd - arrival.col(j)).norm(), 1e-7 * (1 + fd.norm())) << "column " << j;
+    for (int k = 1; k <= 4; ++k) {
+      const Eigen::Vector2d fdx = (np[static_cast<std::size_t>(k)].x - nm[static_cast<std::size_t>(k)].x) / (2 * h);
+      EXPECT_LE((fdx - jac.dx[static_cast<std::size_t>(k)].col(j)).norm(), 1e-7 * (1 + fdx.norm())) << "node " << k << ", column " << j;
+    }
+  }
+}
+
+// From rest and to rest: the first impulse sets the ball rolling (0 -> mu), the stop impulse
+// cancels omega at the goal; the arrival is the same as from a rolling start (same geometry).
+TEST(ExactArrival, StartAtRestAndStopAtTheGoal) {
+  ExactArrivalProblem p = Figure7();
+  p.start_at_rest = true;
+  p.stop_at_goal = true;
+  const ExactArrivalSummary s = SolveExactArrival(p);
+  ExpectArrivesByReplay(p, s);
+  const ExactImpulse& first = s.impulses.front();
+  EXPECT_EQ(first.kind, ExactImpulseKind::kStart);
+  EXPECT_EQ(first.mu_before, 0.0);
+  EXPECT_EQ(first.mu_after, p.mu);
+  const Impulse imp = EnergyPreservingImpulse(first.angles_before, p.mu, first.delta_psi, p.model);
+  EXPECT_LE((first.delta_omega - imp.state_after.omega).norm(), 1e-15);
+  for (std::size_t k = 1; k < s.impulses.size(); ++k) EXPECT_EQ(s.impulses[k].kind, ExactImpulseKind::kEnergyPreserving);
+  ASSERT_TRUE(s.stop.has_value());
+  EXPECT_EQ(s.stop->kind, ExactImpulseKind::kStop);
+  EXPECT_NEAR(s.stop->t_impulse, s.total_time, 1e-12);
+  EXPECT_LE((s.stop->position - p.x1).norm(), 1e-12);
+  // Independent: the last arc re-integrated by FreeMotion ends with omega = -delta omega of the stop.
+  const ExactImpulse& last = s.impulses.back();
+  const Impulse li = EnergyPreservingImpulse(last.angles_before, p.mu, last.delta_psi, p.model);
+  const MotionSample end = FreeMotion(p.model, FreeMotionStart{li.state_after, last.position, AlignOrientationToAxis(Eigen::Matrix3d::Identity(), li.state_after.z)})
+                               .At(last.duration);
+  EXPECT_LE((end.state.omega + s.stop->delta_omega).norm(), 1e-10);
+  // The rolling start gives the same trajectory.
+  ExactArrivalProblem rolling = Figure7();
+  const ExactArrivalSummary r = SolveExactArrival(rolling);
+  EXPECT_NEAR(r.deviation, s.deviation, 1e-12);
+  EXPECT_FALSE(r.stop.has_value());
 }
 
 }  // namespace

@@ -181,6 +181,16 @@ void ExpectSameProblem(const Problem& a, const Problem& b) {
     EXPECT_EQ(a.steer->goal, b.steer->goal);
     EXPECT_EQ(a.steer->goal_orientation, b.steer->goal_orientation);
     EXPECT_EQ(a.steer->impulses, b.steer->impulses);
+    EXPECT_EQ(a.steer->start_at_rest, b.steer->start_at_rest);
+    EXPECT_EQ(a.steer->stop_at_goal, b.steer->stop_at_goal);
+    ASSERT_EQ(a.steer->fewest.has_value(), b.steer->fewest.has_value());
+    if (a.steer->fewest) {
+      EXPECT_EQ(a.steer->fewest->max_impulses, b.steer->fewest->max_impulses);
+      EXPECT_EQ(a.steer->fewest->starts, b.steer->fewest->starts);
+      EXPECT_EQ(a.steer->fewest->pareto_counts, b.steer->fewest->pareto_counts);
+      EXPECT_EQ(a.steer->fewest->max_total_time, b.steer->fewest->max_total_time);
+      EXPECT_EQ(a.steer->fewest->orientation_only, b.steer->fewest->orientation_only);
+    }
   }
   ASSERT_EQ(a.expected.size(), b.expected.size());
   for (const auto& [name, v] : a.expected) {
@@ -550,4 +560,30 @@ TEST(ProblemIo, ArbitraryBytesEitherParseOrThrowInvalidArgument) {
   }
   EXPECT_GT(rejected, 0);
   EXPECT_EQ(parsed + rejected, static_cast<int>(inputs.size()));
+}
+
+// The steer section's fewest-impulse fields (issue 11): parsed, and a bad value names its field.
+TEST(ProblemIo, SteerFewestFieldsParseAndNameTheirField) {
+  const std::string base = R"({"ball": {"lambda": 2}, "initial": {"theta": 0, "phi": 0, "psi": 0, "mu": 1},
+    "steer": {"goal": [3, 3], "start_at_rest": true, "stop_at_goal": true, "fewest": )";
+  const Problem p = ParseProblem(base + R"({"max_impulses": 5, "starts": 8, "pareto_counts": 2, "max_total_time": 20, "orientation_only": true}}})", "f.json");
+  ASSERT_TRUE(p.steer && p.steer->fewest);
+  EXPECT_TRUE(p.steer->start_at_rest);
+  EXPECT_TRUE(p.steer->stop_at_goal);
+  EXPECT_EQ(p.steer->fewest->max_impulses, 5);
+  EXPECT_EQ(p.steer->fewest->starts, 8);
+  EXPECT_EQ(p.steer->fewest->pareto_counts, 2);
+  EXPECT_EQ(p.steer->fewest->max_total_time, 20.0);
+  EXPECT_TRUE(p.steer->fewest->orientation_only);
+  using plateball::testing::InvalidArgumentMessage;
+  EXPECT_NE(InvalidArgumentMessage([&] { ParseProblem(base + R"({"max_impulses": 0}}})", "f.json"); })
+                .find("steer.fewest.max_impulses"),
+            std::string::npos);
+  EXPECT_NE(InvalidArgumentMessage([&] { ParseProblem(base + R"({"starts": 1e9}}})", "f.json"); }).find("steer.fewest.starts"),
+            std::string::npos);
+  EXPECT_NE(InvalidArgumentMessage([&] { ParseProblem(base + R"({"max_total_time": -1}}})", "f.json"); })
+                .find("steer.fewest.max_total_time"),
+            std::string::npos);
+  EXPECT_NE(InvalidArgumentMessage([&] { ParseProblem(base + R"({"bogus": 1}}})", "f.json"); }).find("bogus"),
+            std::string::npos);
 }

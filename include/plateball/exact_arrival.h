@@ -13,12 +13,14 @@
 // moved least from the planned pass points p(tau_k) of the reference, in the sense of
 //   D(u) = sqrt( sum_{k=1}^{n-1} |x_k(u) - p(tau_k)|^2 )   subject to the five conditions.
 // The solver is a Gauss-Newton method for this equality-constrained least-squares problem (each
-// step solves the linearised KKT system: minimise |d + D du|^2 subject to r + J du = 0),
+// step solves the linearised KKT system: minimise |d + D du|^2 subject to r + J du = 0) with the
+// exact Jacobian (variational equations on ceres::Jet, src/exact_chain.h),
 // warm-started from the paper's plan (PlanImpulses on the reference, n uniform segments), whose
 // pass points are on the reference (D = 0) but whose arrival is only approximate.
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +55,13 @@ struct ExactArrivalProblem {
   int impulses = 12;  ///< n in [3, kMaxExactImpulses] (2n unknowns >= 5 conditions)
   Eigen::Vector2d x1 = Eigen::Vector2d::UnitX();   ///< goal position
   Eigen::Matrix3d A1 = Eigen::Matrix3d::Identity();  ///< goal orientation (a rotation)
+  /// The ball starts at rest at x0 with the axis of `initial`: the first impulse is then
+  /// energy-changing (0 -> mu) and sets the horizontal angular velocity to that of the angles
+  /// (theta, phi, psi + delta psi_0); the geometry of the motion is the same as from a rolling start.
+  bool start_at_rest = false;
+  /// Arrive and stop: after the last arc, one more (energy-changing) impulse brings omega to zero;
+  /// it is reported as ExactArrivalSummary::stop.
+  bool stop_at_goal = false;
 };
 
 /// Upper bound of ExactArrivalProblem::impulses: each Jacobian integrates about n^2 arcs.
@@ -65,17 +74,25 @@ struct ExactArrivalOptions {
   int max_iterations = 50;               ///< Gauss-Newton (KKT) iterations, in [1, kMaxIterations]
   /// Once arrived, the iteration stops when the deviation falls by less than this fraction.
   double deviation_tolerance = 1e-6;
-  double difference_step = 1e-5;         ///< central-difference step of the Jacobian, in (0, 1)
   /// Rollouts of the solver (tighter than the library default so that 1e-12 is meaningful).
   IntegrationOptions integration{1e-14, 1e-14, 2'000'000};
-  /// Rollouts of the Jacobian's central differences (looser: the derivatives need ~1e-7).
-  IntegrationOptions jacobian_integration{1e-11, 1e-11, 2'000'000};
+  /// The variational equations of the exact Jacobian (src/exact_chain.h): ceres::Jet through the
+  /// kinematics kernel, looser than the rollouts (Newton needs the derivatives to ~1e-8).
+  IntegrationOptions jacobian_integration{1e-10, 1e-10, 2'000'000};
   PlanOptions warm_start;                ///< options of the paper's plan (the warm start)
   std::string Validate() const;
 };
 
+enum class ExactImpulseKind {
+  kEnergyPreserving,  ///< psi -> psi + delta psi at fixed (theta, phi, mu)
+  kStart,             ///< from rest: omega 0 -> the angles' omega at mu (energy-changing)
+  kStop,              ///< at the goal: omega -> 0 (energy-changing, "arrive and stop")
+};
+std::string ToString(ExactImpulseKind kind);
+
 /// One impulse k at time t_impulse, then the free arc of duration t_k.
 struct ExactImpulse {
+  ExactImpulseKind kind = ExactImpulseKind::kEnergyPreserving;
   double t_impulse = 0.0;                             ///< since the start
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  ///< contact point at the impulse
   double delta_psi = 0.0;
@@ -83,6 +100,7 @@ struct ExactImpulse {
   Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();
   Eigen::Vector3d plate_velocity_change = Eigen::Vector3d::Zero();  ///< 2 delta_omega x e3
   AngleState angles_before;                           ///< (theta, phi, psi) before the impulse
+  double mu_before = 0.0, mu_after = 0.0;             ///< energies (equal unless kStart / kStop)
   Eigen::Vector2d planned_position = Eigen::Vector2d::Zero();  ///< p(tau_k) of the reference
   double planned_delta_psi = 0.0, planned_duration = 0.0;     ///< the paper's plan (warm start)
 };
@@ -92,6 +110,8 @@ struct ExactArrivalSummary {
   ExactArrivalStatus status = ExactArrivalStatus::kNotRun;
   std::string message = "not run";
   std::vector<ExactImpulse> impulses;
+  /// With ExactArrivalProblem::stop_at_goal: the impulse at the goal that brings omega to zero.
+  std::optional<ExactImpulse> stop;
   Eigen::Vector2d x_final = Eigen::Vector2d::Zero();
   Eigen::Matrix3d A_final = Eigen::Matrix3d::Identity();
   double position_error = 0.0;     ///< |x(T) - x1|
@@ -101,7 +121,7 @@ struct ExactArrivalSummary {
   double max_pass_displacement = 0.0;  ///< max_k |x_k - p(tau_k)|
   double total_time = 0.0;             ///< T = sum t_k
   int iterations = 0;                  ///< Gauss-Newton iterations
-  int rollouts = 0;                    ///< trajectories integrated (including the Jacobians')
+  int rollouts = 0;                    ///< trajectories integrated (with or without their Jacobian)
   // The paper's plan (warm start), for comparison.
   double planned_position_error = 0.0;
   double planned_orientation_error = 0.0;

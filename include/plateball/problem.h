@@ -126,6 +126,18 @@ struct SteerTask {
   Eigen::Vector2d goal = Eigen::Vector2d::Zero();
   Eigen::Matrix3d goal_orientation = Eigen::Matrix3d::Identity();
   int impulses = 12;  ///< n >= 3
+  bool start_at_rest = false;  ///< the ball starts at rest (first impulse energy-changing)
+  bool stop_at_goal = false;   ///< arrive and stop: one more impulse brings omega to zero
+  /// `fewest` (fewest_impulses.h): the search's settings; present = the file asks for the fewest
+  /// impulses (`plateball steer` runs the search instead of the exact arrival along a reference).
+  struct Fewest {
+    int max_impulses = 6;
+    int starts = 24;
+    int pareto_counts = 3;
+    double max_total_time = 0.0;  ///< 0: automatic
+    bool orientation_only = false;
+  };
+  std::optional<Fewest> fewest;
 };
 
 /// Golden values a problem file may carry ("expected"): name -> value, with a tolerance each.

@@ -12,6 +12,7 @@
 #include "plateball/convergence.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/export.h"
+#include "plateball/fewest_impulses.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/isoparallel.h"
@@ -98,5 +99,15 @@ ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, int impulses = 0,
 /// when present, else the isoparallel section's goal, goal orientation and impulses.
 ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, const IsoparallelSolution& solution,
                                        int impulses = 0, const std::string& n_field = "impulses");
+
+struct FewestImpulsesSetup {
+  FewestImpulsesProblem problem;
+  FewestImpulsesOptions options;
+};
+/// `plateball steer` on a file whose steer section asks for the fewest impulses: the ball, mu,
+/// start (the isoparallel section's start and start orientation when the file has one and no
+/// plan, else the initial section's x0 and orientation), the steer section's goal, start at rest,
+/// stop at the goal and `fewest` settings (defaults when absent).
+FewestImpulsesSetup FewestImpulsesSetupFor(const Problem& problem);
 
 }  // namespace plateball

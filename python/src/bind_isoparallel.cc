@@ -123,7 +123,6 @@ void BindExactInputs(py::module_& m) {
       .def_readwrite("orientation_tolerance", &ExactArrivalOptions::orientation_tolerance)
       .def_readwrite("max_iterations", &ExactArrivalOptions::max_iterations)
       .def_readwrite("deviation_tolerance", &ExactArrivalOptions::deviation_tolerance)
-      .def_readwrite("difference_step", &ExactArrivalOptions::difference_step)
       .def_readwrite("integration", &ExactArrivalOptions::integration)
       .def_readwrite("jacobian_integration", &ExactArrivalOptions::jacobian_integration)
       .def_readwrite("warm_start", &ExactArrivalOptions::warm_start)

@@ -21,6 +21,23 @@ plateball_cli_test(steer.too_few_impulses 3 REGEX "--impulses: value 2" -- steer
 plateball_cli_test(steer.needs_a_steer_task 3 REGEX "steer" -- steer problems/circle.json)
 plateball_cli_test(steer.missing_file 5 -- steer problems/no_such_problem.json)
 
+# Fewest impulses (T5b): the certified files; every arrival's replay error is checked by --number.
+plateball_cli_test(steer.figure7_fewest 0
+  --number fewest_impulses 2 0 --number total_time 12.566370614359172 1e-9
+  REGEX "\"status\": \"found\".*\"kind\": \"stop\""
+  -- steer problems/figure7_fewest.json --max-impulses 2)
+plateball_cli_test(steer.rotation_fewest_from_rest 0 --number fewest_impulses 3 0
+  REGEX "\"kind\": \"start\".*\"mu_before\": 0"
+  -- steer problems/isoparallel_rotation_fewest.json --max-impulses 3)
+plateball_cli_test(steer.fewest_not_found 4 --number fewest_impulses 0 0 REGEX "\"status\": \"not_found\""
+  -- steer problems/isoparallel_rotation_fewest.json --max-impulses 2 --starts 2 --summary-only)
+plateball_cli_test(steer.fewest_bad_starts 3 REGEX "--starts: value 0" -- steer problems/figure7_exact.json --fewest-impulses --starts 0)
+plateball_cli_test(steer.fewest_svg 0 REGEX "<svg.*stroke-dasharray.*straight line to the goal"
+  --cat ${CMAKE_CURRENT_BINARY_DIR}/cli_steer_fewest.svg
+  -- steer problems/figure7_fewest.json --max-impulses 2 --summary-only --svg ${CMAKE_CURRENT_BINARY_DIR}/cli_steer_fewest.svg)
+plateball_cli_test(steer.stop_at_goal 0 REGEX "\"kind\": \"stop\",[ \n]*\"t_impulse\""
+  -- steer problems/figure7_exact.json --stop-at-goal --impulses 6)
+
 # isoparallel_solve --exact: the built-in Figure 7 problem arrives exactly with its 12 impulses.
 if(TARGET isoparallel_solve)
   add_test(NAME IsoparallelCli.ExactArrivesWith12Impulses COMMAND isoparallel_solve --exact)

@@ -9,6 +9,26 @@
 
 namespace plateball::tools {
 
+Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan) {
+  Json j{{"k", k},
+         {"kind", ToString(e.kind)},
+         {"t_impulse", e.t_impulse},
+         {"x", ToJson(e.position)},
+         {"delta_psi", e.delta_psi},
+         {"duration", e.duration},
+         {"delta_omega", ToJson(e.delta_omega)},
+         {"plate_velocity_change", ToJson(e.plate_velocity_change)},
+         {"angles_before", ToJson(e.angles_before)},
+         {"mu_before", e.mu_before},
+         {"mu_after", e.mu_after}};
+  if (with_plan) {
+    j["p"] = ToJson(e.planned_position);
+    j["planned_delta_psi"] = e.planned_delta_psi;
+    j["planned_duration"] = e.planned_duration;
+  }
+  return j;
+}
+
 Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses) {
   Json j = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
   Append(j, Json{{"impulse_count", s.impulses.size()},
@@ -25,25 +45,47 @@ Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay
          {"deviation", Json{{"definition", "sqrt(sum_k |x_k - p(tau_k)|^2) over the interior pass points"},
                             {"value", s.deviation},
                             {"max_pass_displacement", s.max_pass_displacement}}},
+         {"stop_at_goal", s.stop.has_value()},
          {"paper_plan", Json{{"position_error", s.planned_position_error},
                              {"orientation_error", s.planned_orientation_error},
                              {"total_time", s.planned_total_time}}}});
   if (with_impulses) {
     Json list = Json::array();
-    for (std::size_t k = 0; k < s.impulses.size(); ++k) {
-      const ExactImpulse& e = s.impulses[k];
-      list.push_back(Json{{"k", k},
-                          {"t_impulse", e.t_impulse},
-                          {"x", ToJson(e.position)},
-                          {"p", ToJson(e.planned_position)},
-                          {"delta_psi", e.delta_psi},
-                          {"duration", e.duration},
-                          {"delta_omega", ToJson(e.delta_omega)},
-                          {"plate_velocity_change", ToJson(e.plate_velocity_change)},
-                          {"angles_before", ToJson(e.angles_before)},
-                          {"planned_delta_psi", e.planned_delta_psi},
-                          {"planned_duration", e.planned_duration}});
+    for (std::size_t k = 0; k < s.impulses.size(); ++k) list.push_back(ExactImpulseToJson(s.impulses[k], k, true));
+    if (s.stop) list.push_back(ExactImpulseToJson(*s.stop, s.impulses.size(), false));
+    j["impulses"] = list;
+  }
+  return j;
+}
+
+Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses) {
+  Json rows = Json::array();
+  for (const FewestImpulsesCount& c : s.counts) {
+    Json row{{"impulse_count", c.impulses}, {"reached", c.reached},   {"starts", c.starts},
+             {"arrived", c.arrived},        {"total_time", c.total_time}, {"path_length", c.path_length},
+             {"position_error", c.position_error}, {"orientation_error", c.orientation_error}};
+    if (!c.plan.empty()) {  // the independent re-integration of the row's impulses
+      const ReplayResult r = ReplayExactArrival(ReplayProblemFor(problem, c.impulses), c.plan);
+      row["replay"] = Json{{"x", ToJson(r.x)},
+                           {"position_error", problem.orientation_only ? 0.0 : r.position_error},
+                           {"orientation_error", r.orientation_error}};
     }
+    rows.push_back(row);
+  }
+  Json j = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
+  Append(j, Json{{"fewest_impulses", s.fewest},
+         {"searched", s.searched},
+         {"max_total_time", s.max_total_time},
+         {"rollouts", s.rollouts},
+         {"start_at_rest", problem.start_at_rest},
+         {"stop_at_goal", problem.stop_at_goal},
+         {"orientation_only", problem.orientation_only},
+         {"pareto", rows}});
+  const FewestImpulsesCount* f = s.Fewest();
+  if (with_impulses && f) {
+    Json list = Json::array();
+    for (std::size_t k = 0; k < f->plan.size(); ++k) list.push_back(ExactImpulseToJson(f->plan[k], k, false));
+    if (f->stop) list.push_back(ExactImpulseToJson(*f->stop, f->plan.size(), false));
     j["impulses"] = list;
   }
   return j;
@@ -51,6 +93,11 @@ Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay
 
 void DrawExactArrival(const ExactArrivalProblem& problem, const ExactArrivalSummary& s, const std::string& title,
                       const std::string& file) {
+  DrawExactArrival(problem, s.impulses, title, file, "reference path");
+}
+
+void DrawExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
+                      const std::string& title, const std::string& file, const std::string& reference_label) {
   SvgFigure fig;
   const SvgFigure::Style reference{"#1f5fbf", 1.6, "7,5", "none"};
   const SvgFigure::Style actual{"#c0392b", 1.4, "", "none"};
@@ -64,7 +111,7 @@ void DrawExactArrival(const ExactArrivalProblem& problem, const ExactArrivalSumm
   // Positions do not depend on the orientation: each arc starts from its impulse with the
   // identity turned minimally onto the symmetry axis.
   std::vector<Eigen::Vector2d> traj;
-  for (const ExactImpulse& e : s.impulses) {
+  for (const ExactImpulse& e : impulses) {
     const Impulse imp = EnergyPreservingImpulse(e.angles_before, problem.mu, e.delta_psi, problem.model);
     FreeMotionStart fs;
     fs.state = imp.state_after;
@@ -78,7 +125,7 @@ void DrawExactArrival(const ExactArrivalProblem& problem, const ExactArrivalSumm
   fig.Polyline(traj, actual);
   fig.Marker(problem.x1, 3.2, goal);
   fig.Title(title);
-  fig.Legend("reference path", reference);
+  fig.Legend(reference_label, reference);
   fig.Legend("exact impulsive trajectory", actual);
   fig.Legend("impulse points", impulse);
   fig.Legend("goal", goal);

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "common/json_output.h"
 #include "plateball/exact_arrival.h"
+#include "plateball/fewest_impulses.h"
 
 namespace plateball::tools {
 
@@ -18,9 +20,25 @@ namespace plateball::tools {
 ///  plate_velocity_change, angles_before, planned_delta_psi, planned_duration)}.
 Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses = true);
 
+/// One impulse record (k, kind, t_impulse, position, delta_psi, duration, delta_omega,
+/// plate_velocity_change, angles_before, mu_before, mu_after and with `with_plan` the paper's
+/// planned_position, planned_delta_psi, planned_duration).
+Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan);
+
+/// The fewest-impulse search: {"status", "usable", "message", "report", "fewest_impulses", "searched",
+/// "max_total_time", "rollouts", "start_at_rest", "stop_at_goal", "orientation_only", "pareto" (per
+/// count searched: impulse_count, reached, starts, arrived, total_time, path_length, position_error,
+/// orientation_error, replay (an independent re-integration)), with `with_impulses` "impulses" of the
+/// fewest count (the stop impulse last)}.
+Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses);
+
 /// The plate as SVG: the reference dashed, the exact impulsive trajectory solid (each free arc
 /// re-integrated from its reported impulse), the impulse points and the goal marked.
 void DrawExactArrival(const ExactArrivalProblem& problem, const ExactArrivalSummary& s, const std::string& title,
                       const std::string& file);
+/// The same for any impulse sequence from the problem's start (the fewest-impulse answer), the
+/// problem's reference dashed under `reference_label`.
+void DrawExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
+                      const std::string& title, const std::string& file, const std::string& reference_label);
 
 }  // namespace plateball::tools

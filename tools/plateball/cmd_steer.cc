@@ -13,6 +13,7 @@
 #include "common/output_file.h"
 #include "common/problem_options.h"
 #include "plateball/exact_arrival.h"
+#include "plateball/fewest_impulses.h"
 #include "plateball/isoparallel.h"
 #include "plateball/task_adapters.h"
 
@@ -26,11 +27,46 @@ struct SteerCliOptions {
   std::string out;
   std::string svg;
   bool summary_only = false;
+  bool fewest = false;
+  bool stop_at_goal = false;
+  bool start_at_rest = false;
+  long long max_impulses = 0;
+  long long starts = 0;
+  CLI::Option* max_impulses_opt = nullptr;
+  CLI::Option* starts_opt = nullptr;
 };
+
+// The fewest-impulse search (steer.fewest in the file, or --fewest-impulses).
+int RunFewest(const SteerCliOptions& o, const Problem& p) {
+  FewestImpulsesSetup setup = FewestImpulsesSetupFor(p);
+  using O = FewestImpulsesOptions;
+  if (o.max_impulses_opt->count() > 0)
+    setup.options.max_impulses = static_cast<int>(RequireIntegerInRange("--max-impulses", o.max_impulses, 1, O::kMaxImpulses));
+  if (o.starts_opt->count() > 0) setup.options.starts = static_cast<int>(RequireIntegerInRange("--starts", o.starts, 1, O::kMaxStarts));
+  setup.problem.stop_at_goal = setup.problem.stop_at_goal || o.stop_at_goal;
+  setup.problem.start_at_rest = setup.problem.start_at_rest || o.start_at_rest;
+  const FewestImpulsesSummary s = SolveFewestImpulses(setup.problem, setup.options);
+  Json doc = HeaderJson("plateball", "steer", p, o.problem.file());
+  doc["initial"] = InitialJson(p);
+  doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
+  Append(doc, FewestImpulsesToJson(setup.problem, s, !o.summary_only));
+  WriteJson(doc, o.out);
+  const FewestImpulsesCount* f = s.Fewest();
+  if (!o.svg.empty() && f) {
+    std::ostringstream title;
+    title.precision(3);
+    title << (p.name.empty() ? std::string("steer") : p.name) << ": fewest impulses n = " << f->impulses
+          << ", T = " << f->total_time << ", path length " << f->path_length;
+    DrawExactArrival(ReplayProblemFor(setup.problem, f->impulses), f->plan, title.str(), o.svg,
+                     "straight line to the goal");
+  }
+  return s.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
+}
 
 int RunSteer(const SteerCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
+  if (o.fewest || (p.steer && p.steer->fewest)) return RunFewest(o, p);
   const int n = o.impulses_opt->count() == 0
                     ? 0
                     : static_cast<int>(RequireIntegerInRange("--impulses", o.impulses, 3, 1'000'000));
@@ -46,6 +82,8 @@ int RunSteer(const SteerCliOptions& o) {
     setup = ExactArrivalSetupFor(p, solved.Shortest(), n, n_field);
     reference = "isoparallel shortest path";
   }
+  setup.problem.stop_at_goal = setup.problem.stop_at_goal || o.stop_at_goal;
+  setup.problem.start_at_rest = setup.problem.start_at_rest || o.start_at_rest;
   const ExactArrivalSummary s = SolveExactArrival(setup.problem, setup.options);
   const ReplayResult replay = ReplayExactArrival(setup.problem, s.impulses);
 
@@ -72,11 +110,19 @@ std::function<int()> SetupSteer(CLI::App& sub) {
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   sub.add_option("--svg", o->svg, "draw the plate to this SVG file (reference dashed, trajectory solid)");
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
+  sub.add_flag("--fewest-impulses", o->fewest, "search the fewest impulses that reach the goal exactly (Pareto table)");
+  o->max_impulses_opt = sub.add_option("--max-impulses", o->max_impulses, "largest impulse count the search tries (overrides steer.fewest.max_impulses)");
+  o->starts_opt = sub.add_option("--starts", o->starts, "starts per impulse count of the search (overrides steer.fewest.starts)");
+  sub.add_flag("--stop-at-goal", o->stop_at_goal, "arrive and stop: one more impulse brings omega to zero at the goal");
+  sub.add_flag("--start-at-rest", o->start_at_rest, "the ball starts at rest (the first impulse sets it rolling)");
   sub.footer(
       "Exact arrival (issue 11): corrects the paper's plan along the reference (the plan section's path,\n"
       "else the shortest isoparallel path) so that the ball reaches steer.goal with steer.goal_orientation:\n"
       "per impulse the time, position, delta psi, delta omega and the upper plate's velocity change; the\n"
       "arrival errors, those of an independent re-integration, the deviation from the reference.\n"
+      "With steer.fewest in the file or --fewest-impulses: the fewest impulses that reach the goal exactly\n"
+      "(a systematic multi-start search over n = 1, 2, ...; the JSON says what was searched) and a Pareto\n"
+      "table of impulse count against total time and path length.\n"
       "Example: plateball steer problems/figure7_exact.json --summary-only\n"
       "Exit codes: 0 arrived, 2 usage, 3 invalid input, 4 goal not reached (closest arrival reported),\n"
       "5 unreadable file.");

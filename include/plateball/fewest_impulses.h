@@ -1,0 +1,127 @@
+// Fewest impulses (issue 11, item 2): the smallest number n of impulses that brings the ball from
+// a start state (rolling, or at rest) to a goal position x1 and orientation A1 exactly, found by
+// a systematic search, with the trade-off between n and the total time / path length.
+//
+// The impulses are those of exact_arrival.h: impulse k at time t_0 + ... + t_{k-1} turns psi by
+// s_k (k = 0 at the start), then the ball rolls freely for t_k > 0. From rest the first impulse is
+// energy-changing (0 -> mu) and chooses the direction of the first arc in the same way. Energy-
+// changing impulses that scale omega do not change the path on the plate nor the reorientation
+// along it (impulse.h: the time is only rescaled), so they cannot lower the count: the search is
+// over (s_k, t_k) at the problem's mu, and energy-changing impulses appear where they do
+// something, at a start from rest and at the optional stop at the goal.
+//
+// Conditions: x(T) = x1 (two) and LogSO3(A1^T A(T)) = 0 (three) on 2n unknowns; with
+// `orientation_only` the position is free (three conditions). For lambda = 1 the arcs are
+// straight rolls and the classical constructions (Hammersley 1983) give any orientation with two
+// rolls and any position and orientation with three.
+//
+// The search, for n = 1, 2, ..., max_impulses in turn: `starts` deterministic starts per n (a
+// Halton sequence over the directions s_k in [-pi, pi) and the flight times, total time in
+// [0.1, 0.9] of the window (0, max_total_time]), each refined by Levenberg-Marquardt on the arrival conditions in
+// (s_k, log t_k) with the exact Jacobian (src/exact_chain.h), then polished to the tolerances with
+// 1e-14 rollouts (Newton steps with fresh exact Jacobians). The fewest count is the first n for which a start arrives within the window; a
+// smaller count is reported with the closest arrival its starts reached (for 2n below the number
+// of conditions no generic goal is reachable: the reachable set has lower dimension). For the
+// Pareto table the search continues `pareto_counts - 1` counts beyond the fewest and reports, per
+// count, the arrival of shortest total time among those found, shortened further along the arrival
+// manifold (projected descent of T); count n + 1 is first seeded by count n's arrival with its
+// longest flight split by a zero impulse, so the times do not grow with the count. A count stops
+// after `arrivals_per_count` arrivals.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plateball/ball_model.h"
+#include "plateball/ball_state.h"
+#include "plateball/exact_arrival.h"
+#include "plateball/export.h"
+#include "plateball/integration_options.h"
+
+namespace plateball PLATEBALL_EXPORT {
+
+enum class FewestImpulsesStatus {
+  kNotRun,    ///< default: nothing was solved
+  kFound,     ///< an exact arrival with `fewest` impulses (and none with fewer within the search)
+  kNotFound,  ///< no count up to max_impulses arrived within the search (closest arrival reported)
+};
+std::string ToString(FewestImpulsesStatus status);
+
+struct FewestImpulsesProblem {
+  BallModel model = BallModel::FromLambda(1.0);
+  AngleState initial{M_PI / 3, 0.4, 0.1};  ///< (theta, phi, psi) at the start (psi: reference of s_0 from rest)
+  double mu = 1.0;                          ///< energy of the motion, > 0
+  Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();  ///< start orientation (turned onto the axis)
+  Eigen::Vector2d x0 = Eigen::Vector2d::Zero();
+  bool start_at_rest = false;  ///< the ball is at rest at the start (first impulse 0 -> mu)
+  bool stop_at_goal = false;   ///< one more impulse at the goal brings omega to zero
+  Eigen::Vector2d x1 = Eigen::Vector2d::UnitX();     ///< goal position (ignored with orientation_only)
+  Eigen::Matrix3d A1 = Eigen::Matrix3d::Identity();  ///< goal orientation
+  bool orientation_only = false;  ///< only the orientation is prescribed (three conditions)
+};
+
+struct FewestImpulsesOptions {
+  static constexpr int kMaxImpulses = 20;
+  static constexpr int kMaxStarts = 10000;
+  int max_impulses = 6;    ///< largest count searched, in [1, kMaxImpulses]
+  int pareto_counts = 3;   ///< rows of the Pareto table from the fewest count up, in [1, kMaxImpulses]
+  int starts = 24;         ///< starts per count, in [1, kMaxStarts]
+  int arrivals_per_count = 4;  ///< a count stops after this many arrivals, in [1, kMaxStarts]
+  /// Search window: total time T <= max_total_time (> 0); 0 chooses 1.5 (|x1 - x0| + angle(A0, A1) +
+  /// 2 pi) / sqrt(mu): one and a half times the time to roll the distance, the turn and a full turn
+  /// at the speed sqrt(mu). Starts take total times in [0.1, 0.9] of the window.
+  double max_total_time = 0.0;
+  int max_iterations = 15;                ///< Levenberg-Marquardt iterations per start, in [1, 10000]
+  double position_tolerance = 1e-12;      ///< |x(T) - x1| to reach
+  double orientation_tolerance = 1e-10;   ///< rad
+  IntegrationOptions integration{1e-14, 1e-14, 2'000'000};         ///< final rollouts
+  IntegrationOptions search_integration{1e-8, 1e-8, 2'000'000};    ///< rollouts + Jacobians of the search
+  std::string Validate() const;
+};
+
+/// One count n of the search (a row of the Pareto table when it arrived).
+struct FewestImpulsesCount {
+  int impulses = 0;       ///< n
+  int starts = 0;         ///< starts tried
+  int arrived = 0;        ///< starts that arrived exactly within the window
+  bool reached = false;   ///< arrived > 0
+  /// The arrival of shortest total time found (when reached), else the closest arrival found.
+  std::vector<ExactImpulse> plan;
+  std::optional<ExactImpulse> stop;  ///< with stop_at_goal, when reached
+  double total_time = 0.0;           ///< T = sum t_k
+  double path_length = 0.0;          ///< length of the contact point's path on the plate
+  double position_error = 0.0;       ///< |x(T) - x1| (0 with orientation_only)
+  double orientation_error = 0.0;    ///< |LogSO3(A1^T A(T))|, rad
+  Eigen::Vector2d x_final = Eigen::Vector2d::Zero();
+  Eigen::Matrix3d A_final = Eigen::Matrix3d::Identity();
+  Eigen::VectorXd parameters;  ///< (delta psi_0..n-1, t_0..n-1) of `plan`
+};
+
+/// A default-constructed summary says "not run".
+struct FewestImpulsesSummary {
+  FewestImpulsesStatus status = FewestImpulsesStatus::kNotRun;
+  std::string message = "not run";
+  int fewest = 0;                           ///< the fewest count (0 when not found)
+  std::vector<FewestImpulsesCount> counts;  ///< every count searched, n = 1, 2, ... in order
+  double max_total_time = 0.0;              ///< the window used
+  std::string searched;                     ///< what was searched, in words
+  int rollouts = 0;                         ///< trajectories integrated
+
+  bool IsSolutionUsable() const { return status == FewestImpulsesStatus::kFound; }
+  /// The row of the fewest count (nullptr when not found).
+  const FewestImpulsesCount* Fewest() const;
+  std::string BriefReport() const;
+};
+
+/// Searches the fewest impulses. Throws std::invalid_argument naming the field for invalid input;
+/// a goal not reached within the search is the status kNotFound with the closest arrival per count.
+FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem,
+                                          const FewestImpulsesOptions& options = {});
+
+/// The same problem as an exact-arrival problem with the found impulses (for ReplayExactArrival):
+/// the reference is the straight line x0 -> x1 (x0 -> x0 + e1 when they coincide).
+ExactArrivalProblem ReplayProblemFor(const FewestImpulsesProblem& problem, int impulses);
+
+}  // namespace plateball

@@ -1,0 +1,190 @@
+#include "exact_chain.h"
+
+#include <ceres/jet.h>
+
+#include <array>
+
+#include "dynamics.h"
+#include "plateball/so3.h"
+
+namespace plateball::internal {
+namespace {
+
+// (z, x, Phi) = 14 values, then their derivatives with respect to p = (z0 (3), K (2)), 14 x 5
+// row by row: y[14 + 5 i + j] = d y_i / d p_j.
+constexpr int kValues = 14;
+constexpr int kParams = 5;
+using ArcSensState = std::array<double, kValues * (1 + kParams)>;
+
+struct ArcSensRhs {
+  double lambda;
+  double k[2];
+  void operator()(const ArcSensState& y, ArcSensState& dy, double /*t*/) const {
+    using Jet = ceres::Jet<double, kParams>;
+    Jet v[kValues], kk[2], w[2], d[kValues];
+    for (int i = 0; i < kValues; ++i) {
+      v[i].a = y[i];
+      for (int j = 0; j < kParams; ++j) v[i].v[j] = y[kValues + kParams * i + j];
+    }
+    for (int i = 0; i < 2; ++i) kk[i] = Jet(k[i], 3 + i);
+    OmegaFromZK(v, kk, lambda, w);
+    ZxRhs(v, w, d, d + 3);
+    RotationRhs(w[0], w[1], v + 5, d + 5);
+    for (int i = 0; i < kValues; ++i) {
+      dy[i] = d[i].a;
+      for (int j = 0; j < kParams; ++j) dy[kValues + kParams * i + j] = d[i].v[j];
+    }
+  }
+};
+
+// The arc's end and its 14 x 6 Jacobian with respect to (z0, K, t).
+struct ArcDerivative {
+  Eigen::Matrix<double, kValues, kParams + 1> d;
+};
+
+ArcDerivative DifferentiateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
+                               const IntegrationOptions& options) {
+  ArcSensState y{};
+  for (int i = 0; i < 3; ++i) {
+    y[i] = z0[i];
+    y[kValues + kParams * i + i] = 1.0;
+  }
+  y[5] = y[9] = y[13] = 1.0;
+  const ArcSensRhs rhs{lambda, {k.x(), k.y()}};
+  namespace odeint = boost::numeric::odeint;
+  if (t > 0) IntegrateAdaptive<odeint::runge_kutta_fehlberg78<ArcSensState>>(rhs, y, 0.0, t, t, options, [](double, const auto&) {});
+  ArcSensState f{};
+  rhs(y, f, t);
+  ArcDerivative out;
+  for (int i = 0; i < kValues; ++i) {
+    for (int j = 0; j < kParams; ++j) out.d(i, j) = y[kValues + kParams * i + j];
+    out.d(i, kParams) = f[i];
+  }
+  return out;
+}
+
+// dK_after / d(z (3), K_before (2), s) of the impulse.
+Eigen::Matrix<double, 2, 6> DifferentiateImpulse(const Eigen::Vector3d& z, const Eigen::Vector2d& k, double s,
+                                                 double lambda) {
+  using Jet = ceres::Jet<double, 6>;
+  const Jet zj[3] = {Jet(z.x(), 0), Jet(z.y(), 1), Jet(z.z(), 2)};
+  const Jet kj[2] = {Jet(k.x(), 3), Jet(k.y(), 4)};
+  Jet out[2];
+  ImpulseMomentum(zj, kj, Jet(s, 5), lambda, out);
+  Eigen::Matrix<double, 2, 6> g;
+  for (int i = 0; i < 2; ++i) g.row(i) = out[i].v.transpose();
+  return g;
+}
+
+// One free arc from (z0, K) over [0, t]: Fehlberg 7(8) (the rollouts run at 1e-14, where an
+// eighth-order method takes a fraction of dopri5's steps), no speed tracking.
+FullState RollArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
+                  const IntegrationOptions& options) {
+  namespace odeint = boost::numeric::odeint;
+  FullState y = InitialFullState(z0);
+  const FullRhs rhs{lambda, {k.x(), k.y()}};
+  if (t > 0) IntegrateAdaptive<odeint::runge_kutta_fehlberg78<FullState>>(rhs, y, 0.0, t, t, options, [](double, const auto&) {});
+  return y;
+}
+
+// (z, length) with z' = omega x z, length' = |x'| = |omega_h|.
+struct LengthRhs {
+  double lambda;
+  double k[2];
+  void operator()(const std::array<double, 4>& y, std::array<double, 4>& dy, double /*t*/) const {
+    double w[2], dx[2];
+    OmegaFromZK(y.data(), k, lambda, w);
+    ZxRhs(y.data(), w, dy.data(), dx);
+    dy[3] = std::hypot(w[0], w[1]);
+  }
+};
+
+}  // namespace
+
+double ChainPathLength(double lambda, const std::vector<ChainNode>& nodes, const Eigen::VectorXd& u,
+                       const IntegrationOptions& integration) {
+  const int n = static_cast<int>(u.size() / 2);
+  double length = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const ChainNode& a = nodes[static_cast<std::size_t>(k)];
+    const Eigen::Vector2d& kk = nodes[static_cast<std::size_t>(k) + 1].k;  // the arc's K
+    std::array<double, 4> y{a.z.x(), a.z.y(), a.z.z(), 0.0};
+    if (u[n + k] > 0) IntegrateAdaptive(LengthRhs{lambda, {kk.x(), kk.y()}}, y, 0.0, u[n + k], u[n + k], integration);
+    length += y[3];
+  }
+  return length;
+}
+
+Eigen::Matrix3d LeftJacobianInverse(const Eigen::Vector3d& phi) {
+  const double th = phi.norm();
+  const Eigen::Matrix3d h = Hat(phi);
+  // 1/th^2 - (1 + cos th)/(2 th sin th) -> 1/12 as th -> 0.
+  const double c = th < 1e-4 ? 1.0 / 12.0 + th * th / 720.0
+                             : 1.0 / (th * th) - (1.0 + std::cos(th)) / (2.0 * th * std::sin(th));
+  return Eigen::Matrix3d::Identity() - 0.5 * h + c * h * h;
+}
+
+Eigen::Matrix<double, 5, 1> ArrivalResidual(const ChainNode& end, const Eigen::Vector2d& x1,
+                                            const Eigen::Matrix3d& A1) {
+  Eigen::Matrix<double, 5, 1> r;
+  r.head<2>() = end.x - x1;
+  r.tail<3>() = LogSO3(A1.transpose() * end.A);
+  return r;
+}
+
+Eigen::MatrixXd ArrivalJacobian(const ChainJacobian& jacobian, const ChainNode& end, const Eigen::Matrix3d& A1) {
+  Eigen::MatrixXd j(5, jacobian.rotation.cols());
+  j.topRows<2>() = jacobian.dx.back();
+  // A_n -> exp(hat d) A_n turns A1^T A_n into exp(hat(A1^T d)) A1^T A_n.
+  j.bottomRows<3>() = LeftJacobianInverse(LogSO3(A1.transpose() * end.A)) * A1.transpose() * jacobian.rotation;
+  return j;
+}
+
+void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions& integration,
+               std::vector<ChainNode>* nodes, const IntegrationOptions* jacobian_integration,
+               ChainJacobian* jacobian) {
+  const int n = static_cast<int>(u.size() / 2);
+  nodes->resize(static_cast<std::size_t>(n) + 1);
+  // Derivatives of the node state: z (3), K before (2), x (2), A row-major (9).
+  Eigen::MatrixXd dz = Eigen::MatrixXd::Zero(3, 2 * n), dk = Eigen::MatrixXd::Zero(2, 2 * n);
+  Eigen::MatrixXd dxk = Eigen::MatrixXd::Zero(2, 2 * n), da = Eigen::MatrixXd::Zero(9, 2 * n);
+  if (jacobian) jacobian->dx.assign(1, dxk);
+  for (int k = 0; k < n; ++k) {
+    ChainNode& a = (*nodes)[static_cast<std::size_t>(k)];
+    Eigen::Vector2d k_after;
+    ImpulseMomentum(a.z.data(), a.k.data(), u[k], lambda, k_after.data());
+    const FullState arc = RollArc(lambda, a.z, k_after, u[n + k], integration);
+    const Eigen::Matrix3d phi = MatrixFromRowMajor(arc.data() + 5);
+    ChainNode& b = (*nodes)[static_cast<std::size_t>(k) + 1];
+    b.z = Eigen::Vector3d(arc[0], arc[1], arc[2]).normalized();
+    b.k = k_after;
+    b.x = a.x + Eigen::Vector2d(arc[3], arc[4]);
+    b.A = ProjectToSO3(phi * a.A);
+    if (!jacobian) continue;
+    const Eigen::Matrix<double, 2, 6> g = DifferentiateImpulse(a.z, a.k, u[k], lambda);
+    Eigen::MatrixXd dk_after = g.leftCols<3>() * dz + g.middleCols<2>(3) * dk;
+    dk_after.col(k) += g.col(5);
+    const ArcDerivative arc_d = DifferentiateArc(lambda, a.z, k_after, u[n + k], *jacobian_integration);
+    Eigen::MatrixXd dy = arc_d.d.leftCols<3>() * dz + arc_d.d.middleCols<2>(3) * dk_after;  // 14 x 2n
+    dy.col(n + k) += arc_d.d.col(kParams);
+    // A_{k+1} = Phi A_k: dA = dPhi A_k + Phi dA_k, row-major.
+    Eigen::MatrixXd da_next(9, 2 * n);
+    for (int j = 0; j < 2 * n; ++j) {
+      const Eigen::Matrix3d dphi = MatrixFromRowMajor(dy.col(j).data() + 5);
+      const Eigen::Matrix3d dak = MatrixFromRowMajor(da.col(j).data());
+      RowMajorFromMatrix(dphi * a.A + phi * dak, da_next.col(j).data());
+    }
+    dz = dy.topRows<3>();
+    dxk += dy.middleRows<2>(3);
+    dk = dk_after;
+    da = da_next;
+    jacobian->dx.push_back(dxk);
+  }
+  if (!jacobian) return;
+  const Eigen::Matrix3d& an = nodes->back().A;
+  jacobian->rotation.resize(3, 2 * n);
+  for (int j = 0; j < 2 * n; ++j)
+    jacobian->rotation.col(j) = Vee(MatrixFromRowMajor(da.col(j).data()) * an.transpose());
+}
+
+}  // namespace plateball::internal

@@ -1,0 +1,418 @@
+#include "plateball/fewest_impulses.h"
+
+#include <ceres/tiny_solver.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "check.h"
+#include "exact_chain.h"
+#include "plateball/so3.h"
+
+namespace plateball {
+
+std::string ToString(FewestImpulsesStatus status) {
+  switch (status) {
+    case FewestImpulsesStatus::kNotRun: return "not_run";
+    case FewestImpulsesStatus::kFound: return "found";
+    case FewestImpulsesStatus::kNotFound: return "not_found";
+  }
+  return "unknown";
+}
+
+std::string FewestImpulsesOptions::Validate() const {
+  using internal::InvalidValueMessage;
+  const std::string n_range = "must be in [1, " + std::to_string(kMaxImpulses) + "]";
+  if (max_impulses < 1 || max_impulses > kMaxImpulses) return InvalidValueMessage("max_impulses", max_impulses, n_range);
+  if (pareto_counts < 1 || pareto_counts > kMaxImpulses)
+    return InvalidValueMessage("pareto_counts", pareto_counts, n_range);
+  if (starts < 1 || starts > kMaxStarts)
+    return InvalidValueMessage("starts", starts, "must be in [1, " + std::to_string(kMaxStarts) + "]");
+  if (arrivals_per_count < 1 || arrivals_per_count > kMaxStarts)
+    return InvalidValueMessage("arrivals_per_count", arrivals_per_count, "must be in [1, " + std::to_string(kMaxStarts) + "]");
+  if (!(std::isfinite(max_total_time) && max_total_time >= 0 && max_total_time <= 1e6))
+    return InvalidValueMessage("max_total_time", max_total_time, "must be in [0, 1e6] (0: automatic)");
+  if (max_iterations < 1 || max_iterations > 10000)
+    return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, 10000]");
+  std::string e = internal::ValidateArrivalTolerances(position_tolerance, orientation_tolerance);
+  if (!e.empty()) return e;
+  e = integration.Validate();
+  if (!e.empty()) return "integration." + e;
+  e = search_integration.Validate();
+  if (!e.empty()) return "search_integration." + e;
+  return "";
+}
+
+const FewestImpulsesCount* FewestImpulsesSummary::Fewest() const {
+  for (const FewestImpulsesCount& c : counts)
+    if (c.reached && c.impulses == fewest) return &c;
+  return nullptr;
+}
+
+std::string FewestImpulsesSummary::BriefReport() const {
+  std::ostringstream os;
+  os.precision(3);
+  os << "FewestImpulses: " << ToString(status);
+  if (const FewestImpulsesCount* f = Fewest())
+    os << ", fewest n = " << fewest << ", T = " << f->total_time << ", length = " << f->path_length
+       << ", position error = " << f->position_error << ", orientation error = " << f->orientation_error << " rad";
+  os << ", counts searched = " << counts.size() << ", window T <= " << max_total_time;
+  if (!message.empty()) os << " (" << message << ")";
+  return os.str();
+}
+
+namespace {
+
+using internal::ChainNode;
+
+// The fixed data of the search.
+struct Search {
+  const FewestImpulsesProblem* problem = nullptr;
+  const FewestImpulsesOptions* options = nullptr;
+  ChainNode start;
+  double max_total_time = 0.0;
+  int conditions = 5;  // 3 with orientation_only
+  int* rollouts = nullptr;
+};
+
+// The arrival conditions (the orientation's three first with orientation_only) at the chain's end.
+Eigen::VectorXd Conditions(const Search& s, const ChainNode& end) {
+  const Eigen::Matrix<double, 5, 1> r = internal::ArrivalResidual(end, s.problem->x1, s.problem->A1);
+  return s.conditions == 5 ? Eigen::VectorXd(r) : Eigen::VectorXd(r.tail<3>());
+}
+
+// Rolls u at `integration`; with `jac` also the Jacobian of the conditions (m x 2n).
+Eigen::VectorXd Evaluate(const Search& s, const Eigen::VectorXd& u, const IntegrationOptions& integration,
+                         std::vector<ChainNode>* nodes, Eigen::MatrixXd* jac) {
+  nodes->assign(static_cast<std::size_t>(u.size() / 2) + 1, s.start);
+  internal::ChainJacobian cj;
+  internal::RollChain(s.problem->model.lambda(), u, integration, nodes, jac ? &integration : nullptr,
+                      jac ? &cj : nullptr);
+  ++*s.rollouts;
+  if (jac) {
+    const Eigen::MatrixXd full = internal::ArrivalJacobian(cj, nodes->back(), s.problem->A1);
+    *jac = s.conditions == 5 ? full : Eigen::MatrixXd(full.bottomRows<3>());
+  }
+  return Conditions(s, nodes->back());
+}
+
+// The arrival conditions in v = (s_k, log t_k) for ceres::TinySolver, exact Jacobian. A point
+// outside the window (a flight longer than the window, a failed integration) gives NaN, which
+// TinySolver rejects as a step.
+class ArrivalFunctor {
+ public:
+  using Scalar = double;
+  enum { NUM_RESIDUALS = Eigen::Dynamic, NUM_PARAMETERS = Eigen::Dynamic };
+  ArrivalFunctor(const Search& s, int n) : s_(s), n_(n) {}
+  int NumResiduals() const { return s_.conditions; }
+  int NumParameters() const { return 2 * n_; }
+
+  bool operator()(const double* v, double* r, double* jacobian) const {
+    Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(v, 2 * n_);
+    u.tail(n_) = u.tail(n_).array().exp();
+    Eigen::Map<Eigen::VectorXd> res(r, s_.conditions);
+    if (!u.allFinite() || u.tail(n_).sum() > s_.max_total_time) {
+      res.setConstant(std::numeric_limits<double>::quiet_NaN());
+      return false;
+    }
+    std::vector<ChainNode> nodes;
+    Eigen::MatrixXd jac;
+    try {
+      res = Evaluate(s_, u, s_.options->search_integration, &nodes, jacobian ? &jac : nullptr);
+    } catch (const std::runtime_error&) {
+      res.setConstant(std::numeric_limits<double>::quiet_NaN());
+      return false;
+    }
+    if (jacobian) {
+      jac.rightCols(n_) = jac.rightCols(n_) * u.tail(n_).asDiagonal();  // d/d log t = t d/dt
+      Eigen::Map<Eigen::MatrixXd>(jacobian, s_.conditions, 2 * n_) = jac;
+    }
+    return true;
+  }
+
+ private:
+  const Search& s_;
+  int n_;
+};
+
+// Radical inverse of i in `base` (the Halton sequence's coordinate).
+double RadicalInverse(int i, int base) {
+  double f = 1.0, r = 0.0;
+  for (; i > 0; i /= base) {
+    f /= base;
+    r += f * (i % base);
+  }
+  return r;
+}
+
+// Start i for n impulses: directions s_k in [-pi, pi), total time in the window's (0.1, 1]
+// scaled by the i-th point, split by weights in [0.25, 1.25).
+Eigen::VectorXd StartPoint(const Search& s, int n, int i) {
+  static constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71,
+                                    73, 79, 83, 89, 97, 101, 103, 107, 109, 113, 127, 131, 137, 139, 149, 151,
+                                    157, 163, 167, 173, 179};
+  Eigen::VectorXd v(2 * n);
+  Eigen::VectorXd w(n);
+  for (int k = 0; k < n; ++k) {
+    v[k] = 2.0 * M_PI * RadicalInverse(i + 1, kPrimes[k]) - M_PI;
+    w[k] = 0.25 + RadicalInverse(i + 1, kPrimes[n + k]);
+  }
+  const double total = s.max_total_time * (0.1 + 0.8 * RadicalInverse(i + 1, kPrimes[2 * n]));
+  v.tail(n) = (total * w / w.sum()).array().log();
+  return v;
+}
+
+bool MeetsTolerances(const Search& s, const Eigen::VectorXd& r, double position_tol, double orientation_tol) {
+  return s.conditions == 3 ? r.norm() <= orientation_tol
+                           : r.head<2>().norm() <= position_tol && r.tail<3>().norm() <= orientation_tol;
+}
+
+// Newton steps (minimum-norm, fresh exact Jacobians at the search tolerance, halved while they do
+// not reduce |r|) on the values rolled at `values` until |r| meets (position_tol, orientation_tol).
+bool Restore(const Search& s, const IntegrationOptions& values, double position_tol, double orientation_tol,
+             Eigen::VectorXd* u, std::vector<ChainNode>* nodes, Eigen::VectorXd* r) {
+  const int n = static_cast<int>(u->size() / 2);
+  *r = Evaluate(s, *u, values, nodes, nullptr);
+  for (int i = 0; i < 8 && !MeetsTolerances(s, *r, position_tol, orientation_tol); ++i) {
+    Eigen::MatrixXd jac;
+    std::vector<ChainNode> trial;
+    Evaluate(s, *u, s.options->search_integration, &trial, &jac);
+    const Eigen::VectorXd du = -jac.completeOrthogonalDecomposition().solve(*r);
+    bool reduced = false;
+    for (double alpha = 1.0; alpha > 0.05 && !reduced; alpha *= 0.5) {
+      const Eigen::VectorXd u_new = *u + alpha * du;
+      if ((u_new.tail(n).array() <= 0).any()) continue;
+      const Eigen::VectorXd r_new = Evaluate(s, u_new, values, &trial, nullptr);
+      if (!(r_new.norm() < r->norm())) continue;
+      *u = u_new;
+      *nodes = trial;
+      *r = r_new;
+      reduced = true;
+    }
+    if (!reduced) return false;
+  }
+  return MeetsTolerances(s, *r, position_tol, orientation_tol) && u->tail(n).sum() <= s.max_total_time;
+}
+
+// To the final tolerances with the 1e-14 rollouts.
+bool Polish(const Search& s, Eigen::VectorXd* u, std::vector<ChainNode>* nodes, Eigen::VectorXd* r) {
+  return Restore(s, s.options->integration, s.options->position_tolerance, s.options->orientation_tolerance, u, nodes,
+                 r);
+}
+
+// Shortens the total time of an arrival along the arrival manifold (2n > conditions): steps
+// along the projection of -grad T onto the null space of the conditions' Jacobian in
+// (s_k, log t_k), each followed by Restore at the search tolerance; a step is kept when T falls.
+void Shorten(const Search& s, Eigen::VectorXd* u) {
+  const int n = static_cast<int>(u->size() / 2);
+  if (2 * n <= s.conditions) return;
+  double step = 0.5;
+  for (int it = 0; it < 12 && step > 1e-3; ++it) {
+    Eigen::MatrixXd jac;
+    std::vector<ChainNode> nodes;
+    Evaluate(s, *u, s.options->search_integration, &nodes, &jac);
+    const Eigen::VectorXd t = u->tail(n);
+    jac.rightCols(n) = jac.rightCols(n) * t.asDiagonal();
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * n);
+    g.tail(n) = t;  // dT/d log t_k
+    Eigen::VectorXd d = -(g - jac.completeOrthogonalDecomposition().solve(jac * g));
+    if (d.norm() < 1e-9) return;
+    d *= step / d.norm();
+    Eigen::VectorXd trial = *u;
+    trial.head(n) += d.head(n);
+    trial.tail(n) = (t.array().log() + d.tail(n).array()).exp();
+    Eigen::VectorXd r;
+    if (Restore(s, s.options->search_integration, 1e-9, 1e-9, &trial, &nodes, &r) &&
+        trial.tail(n).sum() < t.sum() - 1e-9) {
+      *u = trial;
+      step = std::min(1.0, 2.0 * step);
+    } else {
+      step *= 0.25;
+    }
+  }
+}
+
+// The arrival of count n - 1 with its longest flight split in two by a zero impulse: an arrival
+// of count n with the same total time (so that the Pareto table's times do not increase).
+Eigen::VectorXd Split(const Eigen::VectorXd& u) {
+  const int n = static_cast<int>(u.size() / 2);
+  int longest = 0;
+  u.tail(n).maxCoeff(&longest);
+  Eigen::VectorXd v(2 * n + 2);
+  for (int k = 0, j = 0; k < n; ++k, ++j) {
+    v[j] = u[k];
+    v[n + 1 + j] = u[n + k];
+    if (k == longest) {
+      v[n + 1 + j] *= 0.5;
+      ++j;
+      v[j] = 0.0;
+      v[n + 1 + j] = 0.5 * u[n + k];
+    }
+  }
+  return v;
+}
+
+// The row of count n from its best parameters.
+void Describe(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes,
+              FewestImpulsesCount* row) {
+  const FewestImpulsesProblem& p = *s.problem;
+  const int n = static_cast<int>(u.size() / 2);
+  row->plan = internal::ReportImpulses(p.model, p.mu, nodes, u, p.start_at_rest);
+  row->total_time = u.tail(n).sum();
+  row->path_length = internal::ChainPathLength(p.model.lambda(), nodes, u, s.options->integration);
+  const Eigen::Matrix<double, 5, 1> r = internal::ArrivalResidual(nodes.back(), p.x1, p.A1);
+  row->position_error = s.conditions == 5 ? r.head<2>().norm() : 0.0;
+  row->orientation_error = r.tail<3>().norm();
+  row->x_final = nodes.back().x;
+  row->A_final = nodes.back().A;
+  row->stop.reset();
+  if (row->reached && p.stop_at_goal) row->stop = internal::StopImpulse(p.model, p.mu, nodes.back(), row->total_time);
+}
+
+// Keeps the arrival u if it is the shortest of the count so far.
+void Consider(const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, double* best_time, Eigen::VectorXd* best_u,
+              std::vector<ChainNode>* best_nodes) {
+  const double t = u.tail(u.size() / 2).sum();
+  if (t >= *best_time) return;
+  *best_time = t;
+  *best_u = u;
+  *best_nodes = nodes;
+}
+
+// All starts of count n (the first the previous count's arrival split, when there is one): the
+// arrival of shortest total time, shortened along the arrival manifold, else the closest arrival.
+FewestImpulsesCount SearchCount(const Search& s, int n, const Eigen::VectorXd& previous) {
+  FewestImpulsesCount row;
+  row.impulses = n;
+  ArrivalFunctor f(s, n);
+  ceres::TinySolver<ArrivalFunctor> solver;
+  solver.options.max_num_iterations = s.options->max_iterations;
+  solver.options.cost_threshold = 0.5 * 1e-14;  // |r| < 1e-7: Newton's Restore takes over
+  solver.options.function_tolerance = 1e-14;
+  solver.options.gradient_tolerance = 1e-16;
+  solver.options.parameter_tolerance = 1e-12;
+  double best_time = std::numeric_limits<double>::infinity(), closest = best_time;
+  Eigen::VectorXd best_u;
+  std::vector<ChainNode> best_nodes;
+  for (int i = 0; i < s.options->starts && row.arrived < s.options->arrivals_per_count; ++i) {
+    Eigen::VectorXd u;
+    if (i == 0 && previous.size() > 0) {
+      u = Split(previous);
+    } else {
+      Eigen::VectorXd v = StartPoint(s, n, i - (previous.size() > 0 ? 1 : 0));
+      solver.Solve(f, &v);
+      u = v;
+      u.tail(n) = v.tail(n).array().exp();
+    }
+    ++row.starts;
+    std::vector<ChainNode> nodes;
+    Eigen::VectorXd r;
+    try {
+      r = Evaluate(s, u, s.options->search_integration, &nodes, nullptr);
+      if (r.norm() < 1e-2 && Polish(s, &u, &nodes, &r)) {
+        ++row.arrived;
+        Consider(u, nodes, &best_time, &best_u, &best_nodes);
+      } else if (!std::isfinite(best_time) && r.allFinite() && r.norm() < closest) {
+        closest = r.norm();
+        best_u = u;
+        best_nodes = nodes;
+      }
+    } catch (const std::runtime_error&) {
+      continue;  // a start whose flights cannot be integrated is not a candidate
+    }
+  }
+  row.reached = row.arrived > 0;
+  if (row.reached) {
+    Eigen::VectorXd u = best_u;
+    std::vector<ChainNode> nodes;
+    Eigen::VectorXd r;
+    try {
+      Shorten(s, &u);
+      if (Polish(s, &u, &nodes, &r)) Consider(u, nodes, &best_time, &best_u, &best_nodes);
+    } catch (const std::runtime_error&) {
+      // keep the arrival found before shortening
+    }
+  }
+  if (best_u.size() > 0) Describe(s, best_u, best_nodes, &row);
+  row.parameters = best_u;
+  return row;
+}
+
+void ValidateProblem(const FewestImpulsesProblem& p) {
+  internal::RequireFinite("initial.theta", p.initial.theta);
+  internal::RequireFinite("initial.phi", p.initial.phi);
+  internal::RequireFinite("initial.psi", p.initial.psi);
+  internal::ValidateStartAndGoal(p.mu, p.x0, p.x1, p.A0, p.A1);
+}
+
+std::string Searched(const Search& s, int last) {
+  std::ostringstream os;
+  os << "n = 1.." << last << ", " << s.options->starts << " Halton starts per n (directions in [-pi, pi), total time in ["
+     << 0.1 * s.max_total_time << ", " << 0.9 * s.max_total_time << "]), Levenberg-Marquardt (ceres::TinySolver, exact"
+     << " Jacobian) in (delta psi, log t), window T <= " << s.max_total_time << "; " << s.conditions
+     << " conditions on 2n unknowns";
+  return os.str();
+}
+
+}  // namespace
+
+constexpr double kWindowFactor = 1.5;
+
+FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem, const FewestImpulsesOptions& options) {
+  internal::ThrowIfInvalid(options.Validate());
+  ValidateProblem(problem);
+  FewestImpulsesSummary out;
+  Search s;
+  s.problem = &problem;
+  s.options = &options;
+  s.start = internal::StartNode(problem.model, problem.initial, problem.mu, problem.x0, problem.A0);
+  s.conditions = problem.orientation_only ? 3 : 5;
+  s.rollouts = &out.rollouts;
+  const double turn = LogSO3(problem.A1.transpose() * s.start.A).norm();
+  const double distance = problem.orientation_only ? 0.0 : (problem.x1 - problem.x0).norm();
+  s.max_total_time = options.max_total_time > 0 ? options.max_total_time
+                                                : kWindowFactor * (distance + turn + 2.0 * M_PI) / std::sqrt(problem.mu);
+  out.max_total_time = s.max_total_time;
+  int last = 0;
+  for (int n = 1; n <= options.max_impulses; ++n) {
+    if (out.fewest > 0 && n >= out.fewest + options.pareto_counts) break;
+    const Eigen::VectorXd previous =
+        !out.counts.empty() && out.counts.back().reached ? out.counts.back().parameters : Eigen::VectorXd();
+    out.counts.push_back(SearchCount(s, n, previous));
+    last = n;
+    if (out.fewest == 0 && out.counts.back().reached) out.fewest = n;
+  }
+  out.searched = Searched(s, last);
+  if (out.fewest > 0) {
+    out.status = FewestImpulsesStatus::kFound;
+    out.message.clear();
+  } else {
+    out.status = FewestImpulsesStatus::kNotFound;
+    out.message = "no count up to max_impulses = " + std::to_string(options.max_impulses) +
+                  " arrived within the search (closest arrival per count reported)";
+  }
+  return out;
+}
+
+ExactArrivalProblem ReplayProblemFor(const FewestImpulsesProblem& problem, int impulses) {
+  ExactArrivalProblem p;
+  p.model = problem.model;
+  p.initial = problem.initial;
+  p.mu = problem.mu;
+  p.A0 = problem.A0;
+  p.x0 = problem.x0;
+  const bool apart = (problem.x1 - problem.x0).norm() > 1e-9;
+  p.reference = Path({SmoothCurve::Line(problem.x0, apart ? problem.x1 : problem.x0 + Eigen::Vector2d::UnitX())});
+  p.impulses = impulses;
+  p.x1 = problem.x1;
+  p.A1 = problem.A1;
+  p.start_at_rest = problem.start_at_rest;
+  p.stop_at_goal = problem.stop_at_goal;
+  return p;
+}
+
+}  // namespace plateball
