@@ -148,7 +148,7 @@ Json PlanFileJson(const plateball::Problem& problem, const plateball::Isoparalle
 }
 
 // The plate as in Figure 7: optimal path dashed, impulsive trajectory solid, impulse points as dots,
-// start x0 and goal x1 circled.
+// start x0 and goal x1 with the direction of motion (svg.h).
 plateball::tools::SvgFigure Figure(const std::string& name, const plateball::IsoparallelProblem& prob,
                                    const plateball::IsoparallelSolution& best,
                                    const std::vector<Eigen::Vector2d>& path,
@@ -158,26 +158,18 @@ plateball::tools::SvgFigure Figure(const std::string& name, const plateball::Iso
   const SvgFigure::Style optimal{"#555", 2.0, "8,6", "none"};
   const SvgFigure::Style impulsive{"#c03", 1.5, "", "none"};
   const SvgFigure::Style dot{"#c03", 1.0, "", "#c03"};
-  const SvgFigure::Style end_point{"black", 2.0, "", "none"};
   SvgFigure fig;
   fig.Polyline(path, optimal);
   for (const auto& a : arcs) fig.Polyline(a, impulsive);
   for (const plateball::PlanStep& st : plan.steps) fig.Marker(st.p_begin, 4, dot);
-  // Labels a little above and right of their points (1.5% of the drawing's extent).
-  Eigen::Vector2d lo = path.front(), hi = path.front();
-  for (const auto& p : path) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  for (const auto& a : arcs)
-    for (const auto& p : a) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const Eigen::Vector2d label_offset = Eigen::Vector2d::Constant(0.015 * (hi - lo).maxCoeff());
-  for (const auto& [p, label] : {std::pair{prob.start, "x0"}, std::pair{prob.goal, "x1"}}) {
-    fig.Marker(p, 6, end_point);
-    fig.Text(p + label_offset, label, 14);
-  }
-  // The caption goes in the title: a legend in the corner would cover the path.
+  fig.Start(prob.start, plateball::tools::CurveDirection(path, false), "x0");
+  fig.Goal(prob.goal, plateball::tools::CurveDirection(path, true), "x1");
+  fig.Legend("optimal isoparallel path", optimal);
+  fig.Legend("impulsive trajectory", impulsive);
+  fig.Legend("impulse points", dot);
   std::ostringstream title;
   title.precision(3);
-  title << name << ": optimal path dashed (length " << best.length << "); " << plan.steps.size()
-        << " impulses solid, dots";
+  title << name << ": optimal path length " << best.length << ", " << plan.steps.size() << " impulses";
   fig.Title(title.str());
   return fig;
 }
@@ -370,6 +362,7 @@ int main(int argc, char** argv) {
   app.add_option("problem", cli.problem_file, "problem JSON file (default: the built-in Figure 7 problem)");
   app.add_option("--out", cli.out_file, "write the full plan as JSON");
   app.add_option("--svg", cli.svg_file, "write an SVG figure of the plate (as Figure 7)");
+  AddFigureSizeOption(app);
   app.add_option("--impulses", cli.impulses, "number of impulses (overrides isoparallel.impulses)")->check(CLI::Range(1, 100000));
   app.add_option("--seed", cli.seed, "seed of the multi-start, 0 ... 2^64 - 1 (overrides the problem's seed)")
       ->type_name(kSeedTypeName);

@@ -60,6 +60,10 @@ void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const
   fig.Polyline(traj, actual);
   for (const PlanStep& s : plan.steps) fig.Marker(s.p_begin, 2.6, impulse);
   if (!plan.steps.empty()) fig.Marker(plan.steps.back().p_end, 2.6, impulse);
+  const SmoothCurve& first = path.pieces().front();
+  const SmoothCurve& last = path.pieces().back();
+  fig.Start(path.StartPoint(), first.Derivative(first.Begin()), "p(0)");
+  fig.Goal(path.EndPoint(), last.Derivative(last.End()), "p(T)");
   std::ostringstream title;
   title.precision(3);
   title << (p.name.empty() ? std::string("plan") : p.name) << ": n = " << plan.segments << ", error "
@@ -101,6 +105,7 @@ std::function<int()> SetupPlan(CLI::App& sub) {
   o->n_opt = sub.add_option("--n", o->n, "segments per smooth piece (overrides plan.partition.n)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   sub.add_option("--svg", o->svg, "draw the plate to this SVG file (planned path dashed, trajectory solid; \"-\": standard output, with --out FILE)");
+  AddFigureSizeOption(sub);
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
   sub.footer(
       "Plans one energy-preserving impulse per partition point of plan.path (section 2.3): per impulse the\n"

@@ -12,6 +12,7 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/svg.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/isoparallel.h"
 #include "plateball/task_adapters.h"
@@ -74,6 +75,7 @@ std::function<int()> SetupSteer(CLI::App& sub) {
   o->impulses_opt = sub.add_option("--impulses", o->impulses, "impulse count n >= 3 (overrides steer.impulses)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   sub.add_option("--svg", o->svg, "draw the plate to this SVG file (reference dashed, trajectory solid)");
+  AddFigureSizeOption(sub);
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
   sub.footer(
       "Exact arrival (issue 11): corrects the paper's plan along the reference (the plan section's path,\n"
