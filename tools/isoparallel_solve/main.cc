@@ -11,19 +11,15 @@
 // reported as by the `plateball` subcommands (tools/common/errors.h), the plan file is written
 // with tools/common/json_output.h and the figure with tools/common/svg.h.
 #include <CLI/CLI.hpp>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <exception>
 #include <iomanip>
 #include <iostream>
-#include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "common/command_line.h"
@@ -33,6 +29,7 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/plan_json.h"
+#include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/isoparallel.h"
@@ -200,44 +197,14 @@ plateball::IsoparallelSetup LoadSetup(const CliOptions& cli, plateball::Problem*
   return setup;
 }
 
-// Solves; a progress line on stderr when it takes longer than a second.
+// Solves with a progress line on stderr (progress.h): starts done of all for the multi-start,
+// the elapsed time for the family enumeration.
 plateball::IsoparallelSummary SolveWithProgress(plateball::IsoparallelSetup setup) {
-  std::atomic<int> done{0}, total{0};
-  setup.options.progress = [&](int d, int t) {
-    done = d;
-    total = t;
+  plateball::tools::Progress progress("isoparallel_solve", 0);
+  setup.options.progress = [&](int done, int total) {
+    if (total > 0) progress.SetTotal(total), progress.Update(done);
   };
-  std::mutex mu;
-  std::condition_variable cv;
-  bool finished = false;
-  std::thread monitor([&]() {
-    std::unique_lock<std::mutex> lock(mu);
-    int seconds = 0;
-    while (!cv.wait_for(lock, std::chrono::seconds(1), [&] { return finished; })) {
-      ++seconds;
-      if (total.load() > 0)
-        std::cerr << "isoparallel_solve: solving, " << seconds << " s, start " << done.load() << " of "
-                  << total.load() << "\n";
-      else
-        std::cerr << "isoparallel_solve: solving, " << seconds << " s, families over 1.." << done.load()
-                  << " curvature periods examined\n";
-    }
-  });
-  plateball::IsoparallelSummary summary;
-  std::exception_ptr failure;
-  try {
-    summary = plateball::SolveIsoparallel(setup.problem, setup.options);
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  {
-    std::lock_guard<std::mutex> lock(mu);
-    finished = true;
-  }
-  cv.notify_all();
-  monitor.join();
-  if (failure) std::rethrow_exception(failure);  // reported by RunWithExitCodes
-  return summary;
+  return plateball::SolveIsoparallel(setup.problem, setup.options);
 }
 
 void PrintNoSolution(const plateball::IsoparallelSummary& summary, const plateball::IsoparallelOptions& opt) {
@@ -363,6 +330,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", cli.out_file, "write the full plan as JSON");
   app.add_option("--svg", cli.svg_file, "write an SVG figure of the plate (as Figure 7)");
   AddFigureSizeOption(app);
+  AddProgressOptions(app);
   app.add_option("--impulses", cli.impulses, "number of impulses (overrides isoparallel.impulses)")->check(CLI::Range(1, 100000));
   app.add_option("--seed", cli.seed, "seed of the multi-start, 0 ... 2^64 - 1 (overrides the problem's seed)")
       ->type_name(kSeedTypeName);

@@ -14,6 +14,7 @@
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/convergence.h"
 #include "plateball/task_adapters.h"
@@ -104,7 +105,12 @@ int RunConverge(const ConvergeCliOptions& o) {
     throw std::invalid_argument(std::string(kCommandLine) + ": --format: value " + o.format + ": must be json or csv");
   std::vector<int> ns;
   for (long long n : o.ns) ns.push_back(static_cast<int>(RequireIntegerInRange("--n", n, 1, 1'000'000)));
-  const ConvergenceSetup setup = ConvergenceSetupFor(p, ns, std::string(kCommandLine) + ": --n", o.timings);
+  ConvergenceSetup setup = ConvergenceSetupFor(p, ns, std::string(kCommandLine) + ": --n", o.timings);
+  // A plan's cost grows like n: the progress counts impulses, so the ETA weighs the large n.
+  std::vector<double> work{0.0};
+  for (int n : setup.problem.ns) work.push_back(work.back() + n);
+  Progress progress("plateball converge", work.back());
+  setup.options.progress = [&](int done, int) { progress.Update(work[static_cast<std::size_t>(done)]); };
   const ConvergenceStudy s = RunConvergenceStudy(setup.problem, setup.options);
   if (o.format == "csv") {
     WriteOutput(o.out, Csv(s, o.timings));

@@ -9,6 +9,7 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/progress.h"
 #include "plateball/join.h"
 #include "plateball/task_adapters.h"
 
@@ -78,10 +79,12 @@ int RunJoin(const JoinCliOptions& o) {
   doc["minimum_contact_speed"] = MinimumContactSpeed(p.mu, p.model);
   Json list = Json::array();
   bool all = true;
+  Progress progress("plateball join", static_cast<double>(targets.size()));
   for (const auto& target : targets) {
     const JoinSummary j = Join(JoinSetupFor(p, target).problem, options);
     all = all && j.IsSolutionUsable();
     list.push_back(JoinToJson(j));
+    progress.Update(static_cast<double>(list.size()));
   }
   doc["joins"] = std::move(list);
   WriteJson(doc, o.out);

@@ -12,6 +12,7 @@
 #include "common/output_file.h"
 #include "common/plan_json.h"
 #include "common/problem_options.h"
+#include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
@@ -80,7 +81,10 @@ int RunPlan(const PlanCliOptions& o) {
   const Problem p = o.problem.Load();
   const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--n", o.n, 1, 1'000'000));
   const PlanSetup setup = PlanSetupFor(p, n, std::string(kCommandLine) + ": --n");
-  const PlanSummary plan = PlanImpulses(setup.problem, setup.options);
+  const PlanSummary plan = [&] {
+    Progress progress("plateball plan", 0);  // one solve: the elapsed time
+    return PlanImpulses(setup.problem, setup.options);
+  }();
   const Path& path = setup.problem.path;
 
   Json doc;

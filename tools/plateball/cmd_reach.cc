@@ -18,6 +18,7 @@
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/reach.h"
@@ -154,6 +155,7 @@ int RunReach(const ReachCliOptions& o) {
   std::vector<ReachSummary> summaries;
   json results = json::array();
   bool all_solved = true;
+  Progress progress("plateball reach", static_cast<double>(task.targets.size()));
   for (const Eigen::Vector2d& target : task.targets) {
     ReachSetup setup = ReachSetupFor(problem, target);
     setup.options.horizon_periods = task.horizon_periods;
@@ -161,6 +163,7 @@ int RunReach(const ReachCliOptions& o) {
     if (summaries.back().status == ReachStatus::kNumericalFailure) throw std::runtime_error(summaries.back().BriefReport());
     results.push_back(SummaryJson(summaries.back()));
     all_solved = all_solved && summaries.back().IsSolutionUsable();
+    progress.Update(static_cast<double>(summaries.size()));
   }
   json doc;
   doc["command"] = "reach";
@@ -176,7 +179,8 @@ int RunReach(const ReachCliOptions& o) {
   doc["results"] = std::move(results);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) Figure(problem, summaries, o.svg_all).Write(o.svg);
-  for (const ReachSummary& s : summaries) std::cerr << s.BriefReport() << "\n";
+  if (Verbose())
+    for (const ReachSummary& s : summaries) std::cerr << s.BriefReport() << "\n";
   return all_solved ? kExitSuccess : kExitNoSolution;
 }
 

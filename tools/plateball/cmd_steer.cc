@@ -12,6 +12,7 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/isoparallel.h"
@@ -47,7 +48,10 @@ int RunSteer(const SteerCliOptions& o) {
     setup = ExactArrivalSetupFor(p, solved.Shortest(), n, n_field);
     reference = "isoparallel shortest path";
   }
-  const ExactArrivalSummary s = SolveExactArrival(setup.problem, setup.options);
+  const ExactArrivalSummary s = [&] {
+    Progress progress("plateball steer", 0);  // one solve: the elapsed time
+    return SolveExactArrival(setup.problem, setup.options);
+  }();
   const ReplayResult replay = ReplayExactArrival(setup.problem, s.impulses);
 
   Json doc;
