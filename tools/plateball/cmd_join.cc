@@ -9,6 +9,7 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/units.h"
 #include "common/progress.h"
 #include "plateball/join.h"
 #include "plateball/task_adapters.h"
@@ -87,6 +88,7 @@ int RunJoin(const JoinCliOptions& o) {
     progress.Update(static_cast<double>(list.size()));
   }
   doc["joins"] = std::move(list);
+  AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   return all ? kExitSuccess : kExitNoSolution;
 }

@@ -12,6 +12,7 @@
 #include "common/output_file.h"
 #include "common/plan_json.h"
 #include "common/problem_options.h"
+#include "common/units.h"
 #include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
@@ -98,6 +99,7 @@ int RunPlan(const PlanCliOptions& o) {
   doc["partition"] = Json{{"type", ToString(p.plan->partition)}, {"segments", plan.segments}};
   Json plan_json = PlanSummaryToJson(plan, !o.summary_only);
   for (auto it = plan_json.begin(); it != plan_json.end(); ++it) doc[it.key()] = std::move(it.value());
+  AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) DrawPlan(p, path, plan, o.svg);
   return plan.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;

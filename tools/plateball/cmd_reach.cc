@@ -18,6 +18,7 @@
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/units.h"
 #include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
@@ -177,6 +178,7 @@ int RunReach(const ReachCliOptions& o) {
   doc["horizon_periods"] = task.horizon_periods;
   doc["seed"] = problem.seed;
   doc["results"] = std::move(results);
+  AddPhysicalUnits(problem, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) Figure(problem, summaries, o.svg_all).Write(o.svg);
   if (Verbose())

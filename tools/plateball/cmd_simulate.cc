@@ -12,6 +12,7 @@
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/units.h"
 #include "common/progress.h"
 #include "common/sample_table.h"
 #include "plateball/free_motion.h"
@@ -69,6 +70,7 @@ int RunSimulate(const SimulateOptions& o) {
                             {"relative_tolerance", p.integration.relative_tolerance},
                             {"stored_steps_per_period", motion.StoredSteps()}};
   doc["t_end"] = task.t_end;
+  AddPhysicalUnits(p, &doc);
   // Streamed (sample_table.h): sample i at t_end i/(n-1), as FreeMotion::Sample, one at a time.
   const auto n = static_cast<std::size_t>(task.samples);
   const SampleSource sample = [&](std::size_t i) { return ToJson(motion.At(task.t_end * static_cast<double>(i) / static_cast<double>(n - 1))); };

@@ -12,6 +12,7 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/units.h"
 #include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/exact_arrival.h"
@@ -62,6 +63,7 @@ int RunSteer(const SteerCliOptions& o) {
   doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"orientation", RotationToJson(setup.problem.A1)}};
   Json result = ExactArrivalToJson(s, replay, !o.summary_only);
   for (auto it = result.begin(); it != result.end(); ++it) doc[it.key()] = std::move(it.value());
+  AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) {
     std::ostringstream title;
