@@ -4,6 +4,8 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev libboost-dev
           libboost-math-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev)
+packages+=(python3 python3-jsonschema)  # output contract: schema validation (tests/scripts/validate_schemas.py)
+packages+=(libopenmpi-dev openmpi-bin)  # montecarlo: optional MPI component (issue 12)
 packages+=(help2man)  # man pages of the tools (issue 13: tools/man/make_man.sh)
 missing=()
 for p in "${packages[@]}"; do

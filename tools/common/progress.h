@@ -26,7 +26,8 @@ namespace plateball::tools {
 
 enum class ProgressMode { kAuto, kAlways, kQuiet };
 
-/// Adds --quiet and --progress (mutually exclusive) to `app`; they set ProgressSetting().
+/// Adds --quiet and --progress (mutually exclusive) to `app`; they set ProgressSetting(). Nothing
+/// when `app` already has a --quiet of its own (a command that reports its progress itself).
 void AddProgressOptions(CLI::App& app);
 ProgressMode ProgressSetting();
 void SetProgressSetting(ProgressMode mode);

@@ -299,9 +299,21 @@ SvgFigure::Frame SvgFigure::Layout(const std::vector<LegendItem>& legend) const 
       if (it.points[i].allFinite()) f.lo = f.lo.cwiseMin(it.points[i]), f.hi = f.hi.cwiseMax(it.points[i]);
   if (!(f.lo.allFinite() && f.hi.allFinite())) f.lo = {-1, -1}, f.hi = {1, 1};
   Eigen::Vector2d span = (f.hi - f.lo).cwiseMax(1e-9 * std::max(1.0, (f.hi - f.lo).maxCoeff()));
-  f.lo -= 0.08 * span;
-  f.hi += 0.08 * span;
+  const double pad = axes_ ? 0.08 : 0.06;
+  f.lo -= pad * span;
+  f.hi += pad * span;
   span = f.hi - f.lo;
+  if (!axes_) {  // the caller's own chart: the box fills the canvas less the margins
+    if (!title_.empty()) f.title = {title_};
+    f.left = f.right = 40;
+    f.top = title_.empty() ? 20 : 50;
+    f.w = width_ - 80;
+    f.h = (height_ > 0 ? height_ : 0.75 * width_) - 40 - f.top;
+    f.sx = f.w / span.x(), f.sy = f.h / span.y();
+    if (equal_aspect_) f.sx = f.sy = std::min(f.sx, f.sy);
+    f.height = f.top + f.h + 40;
+    return f;
+  }
   // Title lines, plot box, tick labels and axis labels, legend rows.
   if (!title_.empty()) f.title = WrapTitle(title_, width_ - 20, 15);
   f.top = 16 + 20.0 * static_cast<double>(f.title.size());
@@ -352,7 +364,7 @@ std::string SvgFigure::ItemTag(const Item& it, const Frame& f) const {
   os.precision(6);
   const Eigen::Vector2d q = f.Map(it.points[0]);
   if (it.kind == Kind::kPolyline) {
-    os << "<polyline clip-path=\"url(#plot)\" " << StyleAttr(it.style) << " stroke-linejoin=\"round\" points=\"";
+    os << "<polyline " << (axes_ ? "clip-path=\"url(#plot)\" " : "") << StyleAttr(it.style) << " stroke-linejoin=\"round\" points=\"";
     for (const auto& p : it.points)
       if (p.allFinite()) os << f.Map(p).x() << "," << f.Map(p).y() << " ";
     os << "\"/>\n";
@@ -360,7 +372,8 @@ std::string SvgFigure::ItemTag(const Item& it, const Frame& f) const {
     os << "<circle cx=\"" << q.x() << "\" cy=\"" << q.y() << "\" r=\"" << it.size << "\" " << StyleAttr(it.style) << "/>\n";
   } else if (it.kind == Kind::kText) {
     const bool flip = q.x() + 4 + TextWidth(it.text, it.size) > width_ - 2;
-    os << TextTag(flip ? q.x() - 4 : q.x() + 4, q.y() - 4, it.size, flip ? "end" : "start", it.text,
+    const double dx = axes_ ? 4 : 0, dy = axes_ ? 4 : 0;  // without axes: at the point, as the caller placed it
+    os << TextTag(flip ? q.x() - dx : q.x() + dx, q.y() - dy, it.size, flip ? "end" : "start", it.text,
                   " fill=\"" + it.style.stroke + "\"");
   } else {
     os << EndItem(it, f);
@@ -375,6 +388,10 @@ std::string SvgFigure::Render() const {
   std::ostringstream os;
   os.precision(6);
   os << SvgOpen(width_, f.height) << TitleLines(f.title, width_);
+  if (!axes_) {
+    for (const Item& it : items_) os << ItemTag(it, f);
+    return os.str() + "</svg>\n";
+  }
   const double tick_count = std::max(3.0, std::min(f.w, f.h) / 70.0);
   const Eigen::Vector2d span = f.hi - f.lo;
   const double step_x =

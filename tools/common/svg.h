@@ -65,6 +65,9 @@ class SvgFigure {
   void AxisLabels(const std::string& x_label, const std::string& y_label) { x_label_ = x_label, y_label_ = y_label; }
   /// Keep the aspect ratio 1:1 (plate figures); false for charts.
   void EqualAspect(bool equal) { equal_aspect_ = equal; }
+  /// false: no axes, ticks or clipping; the world box (padded by 6%) fills the canvas less a 40 px
+  /// margin (50 px on top with a title), for a caller that draws its own chart in pixel units.
+  void Axes(bool axes) { axes_ = axes; }
 
   std::string Render() const;
   /// Writes Render() to `path` ("-": standard output) atomically (output_file.h); throws IoError
@@ -93,6 +96,7 @@ class SvgFigure {
   void AddEnd(Kind kind, const Eigen::Vector2d& p, const Eigen::Vector2d& direction, const std::string& label);
   double width_, height_;
   bool equal_aspect_ = true;
+  bool axes_ = true;
   std::string title_;
   std::string x_label_ = "x (ball radii)", y_label_ = "y (ball radii)";
   std::vector<Item> items_;

@@ -46,10 +46,9 @@ json SolutionJson(const ReachSolution& s) {
 json SummaryJson(const ReachSummary& s) {
   json sols = json::array();
   for (const ReachSolution& sol : s.solutions) sols.push_back(SolutionJson(sol));
-  json out{{"target", Vec(s.problem.target)},
-           {"status", ToString(s.status)},
-           {"report", s.BriefReport()},
-           {"period", s.period},
+  json out{{"target", Vec(s.problem.target)}};
+  Append(out, ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport()));
+  Append(out, json{{"period", s.period},
            {"horizon", s.horizon},
            {"solutions", sols},
            {"closest_approach",
@@ -61,10 +60,9 @@ json SummaryJson(const ReachSummary& s) {
              {"refine_iterations", s.refine_iterations},
              {"tight_evaluations", s.tight_evaluations},
              {"scan_periods_integrated", s.scan_periods_integrated},
-             {"global_evaluations", s.global_evaluations}}}};
+             {"global_evaluations", s.global_evaluations}}}});
   // The paper's first guess (absent when the target is x0: no direction).
   if (std::isfinite(s.drift_guess_delta_psi)) out["drift_guess_delta_psi"] = s.drift_guess_delta_psi;
-  if (!s.message.empty()) out["message"] = s.message;
   return out;
 }
 
@@ -166,17 +164,9 @@ int RunReach(const ReachCliOptions& o) {
     all_solved = all_solved && summaries.back().IsSolutionUsable();
     progress.Update(static_cast<double>(summaries.size()));
   }
-  json doc;
-  doc["command"] = "reach";
-  doc["problem"] = problem.name.empty() ? problem.source : problem.name;
-  doc["model"] = ToJson(problem.model);
-  doc["initial"] = json{{"theta", problem.initial_angles.theta},
-                        {"phi", problem.initial_angles.phi},
-                        {"psi", problem.initial_angles.psi},
-                        {"mu", problem.mu},
-                        {"x0", ToJson(problem.x0)}};
-  doc["horizon_periods"] = task.horizon_periods;
-  doc["seed"] = problem.seed;
+  json doc = HeaderJson("plateball", "reach", problem, o.problem.file());
+  doc["initial"] = InitialJson(problem);
+  doc["options"] = json{{"horizon_periods", task.horizon_periods}};
   doc["results"] = std::move(results);
   AddPhysicalUnits(problem, &doc);
   WriteJson(doc, o.out);
