@@ -116,6 +116,7 @@ ConvergenceStudy RunConvergenceStudy(const ConvergenceProblem& problem, const Co
       ++out.failed_rows;
     }
     out.rows.push_back(r);
+    if (options.progress) options.progress(static_cast<int>(i + 1), static_cast<int>(plans.size()));
   }
   out.error_slope = LogLogSlope(xn, err_y);
   out.bound_slope = LogLogSlope(xn, bound_y);

@@ -2,6 +2,7 @@
 // sequence of partition sizes n and fit the log-log slope of the error against n (about -2).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +24,9 @@ struct ConvergenceOptions {
   /// Measure the wall time of every plan (ConvergenceRow::plan_seconds, time_slope). Off by
   /// default: a study is then a deterministic function of its problem (reproducible files).
   bool timings = false;
+  /// Called after each partition size with (sizes done, sizes in all), for a tool's progress
+  /// line. The library never prints.
+  std::function<void(int, int)> progress;
   std::string Validate() const { return plan.Validate(); }
 };
 

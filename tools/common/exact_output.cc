@@ -102,7 +102,6 @@ void DrawExactArrival(const ExactArrivalProblem& problem, const std::vector<Exac
   const SvgFigure::Style reference{"#1f5fbf", 1.6, "7,5", "none"};
   const SvgFigure::Style actual{"#c0392b", 1.4, "", "none"};
   const SvgFigure::Style impulse{"black", 1.0, "", "black"};
-  const SvgFigure::Style goal{"#2e8b57", 1.0, "", "#2e8b57"};
   for (const SmoothCurve& c : problem.reference.pieces()) {
     std::vector<Eigen::Vector2d> pts;
     for (int i = 0; i <= 400; ++i) pts.push_back(c.Value(c.Begin() + (c.End() - c.Begin()) * i / 400.0));
@@ -123,12 +122,14 @@ void DrawExactArrival(const ExactArrivalProblem& problem, const std::vector<Exac
     fig.Marker(e.position, 2.6, impulse);
   }
   fig.Polyline(traj, actual);
-  fig.Marker(problem.x1, 3.2, goal);
+  const SmoothCurve& first = problem.reference.pieces().front();
+  const SmoothCurve& last = problem.reference.pieces().back();
+  fig.Start(first.StartPoint(), first.Derivative(first.Begin()), "x0");
+  fig.Goal(problem.x1, last.Derivative(last.End()), "x1");
   fig.Title(title);
   fig.Legend(reference_label, reference);
   fig.Legend("exact impulsive trajectory", actual);
   fig.Legend("impulse points", impulse);
-  fig.Legend("goal", goal);
   fig.Write(file);
 }
 

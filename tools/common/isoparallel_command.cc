@@ -7,19 +7,15 @@
 #include "common/isoparallel_command.h"
 
 #include <CLI/CLI.hpp>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <exception>
 #include <iomanip>
 #include <iostream>
-#include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "common/command_line.h"
@@ -28,6 +24,7 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/plan_json.h"
+#include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/isoparallel.h"
@@ -145,7 +142,7 @@ Json PlanFileJson(const IsoparallelCliOptions& cli, const plateball::Problem& pr
 }
 
 // The plate as in Figure 7: optimal path dashed, impulsive trajectory solid, impulse points as dots,
-// start x0 and goal x1 circled.
+// start x0 and goal x1 with the direction of motion (svg.h).
 plateball::tools::SvgFigure Figure(const std::string& name, const plateball::IsoparallelProblem& prob,
                                    const plateball::IsoparallelSolution& best,
                                    const std::vector<Eigen::Vector2d>& path,
@@ -155,26 +152,18 @@ plateball::tools::SvgFigure Figure(const std::string& name, const plateball::Iso
   const SvgFigure::Style optimal{"#555", 2.0, "8,6", "none"};
   const SvgFigure::Style impulsive{"#c03", 1.5, "", "none"};
   const SvgFigure::Style dot{"#c03", 1.0, "", "#c03"};
-  const SvgFigure::Style end_point{"black", 2.0, "", "none"};
   SvgFigure fig;
   fig.Polyline(path, optimal);
   for (const auto& a : arcs) fig.Polyline(a, impulsive);
   for (const plateball::PlanStep& st : plan.steps) fig.Marker(st.p_begin, 4, dot);
-  // Labels a little above and right of their points (1.5% of the drawing's extent).
-  Eigen::Vector2d lo = path.front(), hi = path.front();
-  for (const auto& p : path) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  for (const auto& a : arcs)
-    for (const auto& p : a) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const Eigen::Vector2d label_offset = Eigen::Vector2d::Constant(0.015 * (hi - lo).maxCoeff());
-  for (const auto& [p, label] : {std::pair{prob.start, "x0"}, std::pair{prob.goal, "x1"}}) {
-    fig.Marker(p, 6, end_point);
-    fig.Text(p + label_offset, label, 14);
-  }
-  // The caption goes in the title: a legend in the corner would cover the path.
+  fig.Start(prob.start, plateball::tools::CurveDirection(path, false), "x0");
+  fig.Goal(prob.goal, plateball::tools::CurveDirection(path, true), "x1");
+  fig.Legend("optimal isoparallel path", optimal);
+  fig.Legend("impulsive trajectory", impulsive);
+  fig.Legend("impulse points", dot);
   std::ostringstream title;
   title.precision(3);
-  title << name << ": optimal path dashed (length " << best.length << "); " << plan.steps.size()
-        << " impulses solid, dots";
+  title << name << ": optimal path length " << best.length << ", " << plan.steps.size() << " impulses";
   fig.Title(title.str());
   return fig;
 }
@@ -196,44 +185,14 @@ plateball::IsoparallelSetup LoadSetup(const IsoparallelCliOptions& cli, platebal
   return setup;
 }
 
-// Solves; a progress line on stderr when it takes longer than a second.
+// Solves with a progress line on stderr (progress.h): starts done of all for the multi-start,
+// the elapsed time for the family enumeration.
 plateball::IsoparallelSummary SolveWithProgress(plateball::IsoparallelSetup setup, const std::string& program) {
-  std::atomic<int> done{0}, total{0};
-  setup.options.progress = [&](int d, int t) {
-    done = d;
-    total = t;
+  plateball::tools::Progress progress(program, 0);
+  setup.options.progress = [&](int done, int total) {
+    if (total > 0) progress.SetTotal(total), progress.Update(done);
   };
-  std::mutex mu;
-  std::condition_variable cv;
-  bool finished = false;
-  std::thread monitor([&]() {
-    std::unique_lock<std::mutex> lock(mu);
-    int seconds = 0;
-    while (!cv.wait_for(lock, std::chrono::seconds(1), [&] { return finished; })) {
-      ++seconds;
-      if (total.load() > 0)
-        std::cerr << program << ": solving, " << seconds << " s, start " << done.load() << " of "
-                  << total.load() << "\n";
-      else
-        std::cerr << program << ": solving, " << seconds << " s, families over 1.." << done.load()
-                  << " curvature periods examined\n";
-    }
-  });
-  plateball::IsoparallelSummary summary;
-  std::exception_ptr failure;
-  try {
-    summary = plateball::SolveIsoparallel(setup.problem, setup.options);
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  {
-    std::lock_guard<std::mutex> lock(mu);
-    finished = true;
-  }
-  cv.notify_all();
-  monitor.join();
-  if (failure) std::rethrow_exception(failure);  // reported by RunWithExitCodes
-  return summary;
+  return plateball::SolveIsoparallel(setup.problem, setup.options);
 }
 
 void PrintNoSolution(const plateball::IsoparallelSummary& summary, const plateball::IsoparallelOptions& opt,
@@ -363,6 +322,7 @@ void AddIsoparallelOptions(CLI::App& app, IsoparallelCliOptions& cli) {
   app.add_option("--out", cli.out, cli.json_to_stdout ? "write the JSON to this file instead of standard output"
                                                       : "write the full plan as JSON");
   app.add_option("--svg", cli.svg, "write an SVG figure of the plate (as Figure 7)");
+  AddFigureSizeOption(app);
   app.add_flag("--shooting", cli.shooting,
                "identity targets: use the multi-start shooting instead of the family enumeration");
   app.add_flag("--exact", cli.exact,

@@ -169,6 +169,13 @@ std::string DumpJson(const Json& doc) {
   return out + "\n";
 }
 
+std::string DumpJsonAt(const Json& value, int indent) {
+  CheckFinite(value, "");
+  std::string out;
+  Write(value, indent, &out);
+  return out;
+}
+
 void WriteJson(const Json& doc, const std::string& out_path) { WriteOutput(out_path, DumpJson(doc)); }
 
 }  // namespace plateball::tools

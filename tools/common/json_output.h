@@ -61,6 +61,10 @@ void Append(Json& doc, Json part);
 /// prints NaN, infinity or a null in place of a number.
 std::string DumpJson(const Json& doc);
 
+/// DumpJson of a value nested `indent` spaces deep (its lines after the first indented to match),
+/// without the final newline: a streamed document's elements (sample_table.h).
+std::string DumpJsonAt(const Json& value, int indent);
+
 /// Writes DumpJson(doc) to stdout when `out_path` is empty or "-", else to the file `out_path`
 /// (replaced atomically, output_file.h). Throws IoError (exit code 5) when it cannot be written.
 void WriteJson(const Json& doc, const std::string& out_path);

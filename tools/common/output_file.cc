@@ -31,7 +31,7 @@ bool IsExistingNonRegular(const std::string& path) {
 }
 
 // Writes all of `text` to `fd`; returns 0 or the errno of the failure.
-int WriteAll(int fd, const std::string& text) {
+int WriteAll(int fd, std::string_view text) {
   std::size_t done = 0;
   while (done < text.size()) {
     const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
@@ -44,14 +44,6 @@ int WriteAll(int fd, const std::string& text) {
   return 0;
 }
 
-void WriteInPlace(const std::string& path, const std::string& text) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
-  if (fd < 0) throw IoError(path + ": cannot open for writing: " + ErrnoText(errno));
-  const int err = WriteAll(fd, text);
-  const int close_err = ::close(fd) == 0 ? 0 : errno;
-  if (err != 0 || close_err != 0) throw IoError(path + ": write failed: " + ErrnoText(err != 0 ? err : close_err));
-}
-
 // The mode a new file gets (0666 less the umask), or the existing file's mode.
 mode_t TargetMode(const std::string& path) {
   struct stat st {};
@@ -59,21 +51,6 @@ mode_t TargetMode(const std::string& path) {
   const mode_t mask = ::umask(0);
   ::umask(mask);
   return 0666 & ~mask;
-}
-
-void WriteAtomically(const std::string& path, const std::string& text) {
-  std::string temp = (fs::path(DirectoryOf(path)) / ("." + fs::path(path).filename().string() + ".tmpXXXXXX")).string();
-  const int fd = ::mkstemp(temp.data());
-  if (fd < 0) throw IoError(path + ": cannot create a temporary file in " + DirectoryOf(path) + ": " + ErrnoText(errno));
-  int err = WriteAll(fd, text);
-  if (err == 0 && ::fchmod(fd, TargetMode(path)) != 0) err = errno;
-  if (err == 0 && ::fsync(fd) != 0) err = errno;
-  if (::close(fd) != 0 && err == 0) err = errno;
-  if (err == 0 && ::rename(temp.c_str(), path.c_str()) != 0) err = errno;
-  if (err != 0) {
-    ::unlink(temp.c_str());
-    throw IoError(path + ": write failed (the previous file, if any, is unchanged): " + ErrnoText(err));
-  }
 }
 
 // Two paths name the same file (both existing and equivalent, or the same normalised path).
@@ -103,13 +80,80 @@ void CheckWritable(const PathArgument& out) {
 bool IsStandardOutput(const std::string& path) { return path.empty() || path == "-"; }
 
 void WriteOutput(const std::string& path, const std::string& text) {
+  WriteOutputStreamed(path, [&text](const OutputSink& sink) { sink(text); });
+}
+
+namespace {
+
+// Buffers the sink's text and writes it to `fd` a MiB at a time; the first failure is kept.
+class BufferedFd {
+ public:
+  explicit BufferedFd(int fd) : fd_(fd) { buffer_.reserve(kChunk); }
+  void Append(std::string_view text) {
+    if (buffer_.empty() && text.size() >= kChunk) {  // a whole document: no copy
+      if (err_ == 0) err_ = WriteAll(fd_, text);
+      return;
+    }
+    buffer_.append(text);
+    if (buffer_.size() >= kChunk) Flush();
+  }
+  int Flush() {
+    if (err_ == 0) err_ = WriteAll(fd_, buffer_);
+    buffer_.clear();
+    return err_;
+  }
+
+ private:
+  static constexpr std::size_t kChunk = std::size_t{1} << 20;
+  int fd_;
+  int err_ = 0;
+  std::string buffer_;
+};
+
+void WriteStreamedAtomically(const std::string& path, const std::function<void(const OutputSink&)>& produce) {
+  std::string temp = (fs::path(DirectoryOf(path)) / ("." + fs::path(path).filename().string() + ".tmpXXXXXX")).string();
+  const int fd = ::mkstemp(temp.data());
+  if (fd < 0) throw IoError(path + ": cannot create a temporary file in " + DirectoryOf(path) + ": " + ErrnoText(errno));
+  BufferedFd out(fd);
+  try {
+    produce([&out](std::string_view text) { out.Append(text); });
+  } catch (...) {
+    ::close(fd);
+    ::unlink(temp.c_str());
+    throw;
+  }
+  int err = out.Flush();
+  if (err == 0 && ::fchmod(fd, TargetMode(path)) != 0) err = errno;
+  if (err == 0 && ::fsync(fd) != 0) err = errno;
+  if (::close(fd) != 0 && err == 0) err = errno;
+  if (err == 0 && ::rename(temp.c_str(), path.c_str()) != 0) err = errno;
+  if (err != 0) {
+    ::unlink(temp.c_str());
+    throw IoError(path + ": write failed (the previous file, if any, is unchanged): " + ErrnoText(err));
+  }
+}
+
+}  // namespace
+
+void WriteOutputStreamed(const std::string& path, const std::function<void(const OutputSink&)>& produce) {
   if (IsStandardOutput(path)) {
-    std::cout << text;
+    produce([](std::string_view text) { std::cout.write(text.data(), static_cast<std::streamsize>(text.size())); });
     FlushStandardOutput();
   } else if (IsExistingNonRegular(path)) {
-    WriteInPlace(path, text);
+    const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+    if (fd < 0) throw IoError(path + ": cannot open for writing: " + ErrnoText(errno));
+    BufferedFd out(fd);
+    try {
+      produce([&out](std::string_view text) { out.Append(text); });
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
+    const int err = out.Flush();
+    const int close_err = ::close(fd) == 0 ? 0 : errno;
+    if (err != 0 || close_err != 0) throw IoError(path + ": write failed: " + ErrnoText(err != 0 ? err : close_err));
   } else {
-    WriteAtomically(path, text);
+    WriteStreamedAtomically(path, produce);
   }
 }
 

@@ -2,7 +2,9 @@
 // atomically. Output paths are checked before any work is done.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace plateball::tools {
@@ -16,6 +18,16 @@ bool IsStandardOutput(const std::string& path);
 /// file is left. A path that exists and is not a regular file (/dev/null, a FIFO) is written in
 /// place. Throws IoError (exit code 5) naming the path, or "standard output".
 void WriteOutput(const std::string& path, const std::string& text);
+
+/// Appends text to an output being written (WriteOutputStreamed).
+using OutputSink = std::function<void(std::string_view)>;
+
+/// WriteOutput for a large output produced piece by piece (streamed sample tables): `produce`
+/// writes through the sink, which buffers 1 MiB at a time, so memory stays flat in the output's
+/// size. A file is still written to a temporary file and renamed only when `produce` returns and
+/// every byte is written; when `produce` throws, the temporary file is removed and the exception
+/// passes on (the previous file is untouched).
+void WriteOutputStreamed(const std::string& path, const std::function<void(const OutputSink&)>& produce);
 
 /// Flushes standard output; throws IoError("standard output: write failed") when any write to it
 /// failed (a full disk, a closed pipe). RunWithExitCodes calls it after every run.

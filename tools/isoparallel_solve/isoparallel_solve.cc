@@ -14,6 +14,7 @@
 #include "common/command_line.h"
 #include "common/errors.h"
 #include "common/isoparallel_command.h"
+#include "common/progress.h"
 #include "plateball/version.h"
 
 int main(int argc, char** argv) {
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   cli.program = "isoparallel_solve";
   cli.tool = "isoparallel_solve";
   AddIsoparallelOptions(app, cli);
+  AddProgressOptions(app);  // --quiet, --progress (progress.h; `plateball isoparallel` gets them in main.cc)
   if (const auto code = ParseCommandLine(app, argc, argv, "isoparallel_solve")) return *code;
   // Failures read as in the `plateball` CLI (errors.h): 3 bad input, 4 computation failed,
   // 5 unreadable/unwritable file, 6 internal error.

@@ -14,6 +14,7 @@
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/convergence.h"
 #include "plateball/task_adapters.h"
@@ -59,13 +60,26 @@ void DrawStudy(const Problem& p, const ConvergenceStudy& s, const std::string& f
   LogLogSeries err{"measured error ||A(T) - A_n||", {}, {}, {"#c0392b", 1.8, "", "none"}, true};
   LogLogSeries poly{"polyline error ||A(T) - Abar_n||", {}, {}, {"#7f8c8d", 1.2, "3,3", "none"}, true};
   LogLogSeries bound{"reported bound (a-posteriori)", {}, {}, {"#1f5fbf", 1.6, "7,5", "none"}, true};
+  // The a-priori bounds (Theorem 2.6 and its n^-2 form, Corollary 3): the paper's guarantee.
+  LogLogSeries theorem{"a-priori bound, Theorem 2.6", {}, {}, {"#8e44ad", 1.4, "10,3,2,3", "none"}, true};
+  LogLogSeries corollary{"a-priori bound, Corollary 3 (~ n^-2)", {}, {}, {"#d35400", 1.4, "2,3", "none"}, true};
   for (const auto& r : s.rows) {
     if (r.status != PlanStatus::kSuccess) continue;
     err.x.push_back(r.n), err.y.push_back(r.measured_error);
     poly.x.push_back(r.n), poly.y.push_back(r.polyline_error);
     bound.x.push_back(r.n), bound.y.push_back(r.bound);
+    theorem.x.push_back(r.n), theorem.y.push_back(r.theorem_2_6);
+    corollary.x.push_back(r.n), corollary.y.push_back(r.corollary_3);
   }
-  std::vector<LogLogSeries> series{err, poly, bound};
+  std::vector<LogLogSeries> series{err, poly, bound, theorem, corollary};
+  // Uniform partitions: Corollary 3 is Theorem 2.6 evaluated (equal to rounding): one curve.
+  bool same = theorem.y.size() == corollary.y.size();
+  for (std::size_t i = 0; same && i < theorem.y.size(); ++i)
+    same = std::abs(theorem.y[i] - corollary.y[i]) <= 1e-9 * std::abs(theorem.y[i]);
+  if (same) {
+    series.pop_back();
+    series.back().label = "a-priori bound, Theorem 2.6 = Corollary 3 (~ n^-2)";
+  }
   std::ostringstream title;
   title.precision(3);
   title << (p.name.empty() ? std::string("convergence") : p.name);
@@ -93,7 +107,12 @@ int RunConverge(const ConvergeCliOptions& o) {
   std::vector<int> ns;
   for (long long n : o.ns) ns.push_back(static_cast<int>(RequireIntegerInRange("--impulses", n, 1, 1'000'000)));
   for (int n : ns) RequirePartitionSteps("--impulses", n, p);
-  const ConvergenceSetup setup = ConvergenceSetupFor(p, ns, std::string(kCommandLine) + ": --impulses", o.timings);
+  ConvergenceSetup setup = ConvergenceSetupFor(p, ns, std::string(kCommandLine) + ": --impulses", o.timings);
+  // A plan's cost grows like n: the progress counts impulses, so the ETA weighs the large n.
+  std::vector<double> work{0.0};
+  for (int n : setup.problem.ns) work.push_back(work.back() + n);
+  Progress progress("plateball converge", work.back());
+  setup.options.progress = [&](int done, int) { progress.Update(work[static_cast<std::size_t>(done)]); };
   const ConvergenceStudy s = RunConvergenceStudy(setup.problem, setup.options);
   if (o.format == "csv") {
     WriteOutput(o.out, Csv(s, o.timings));
@@ -136,6 +155,7 @@ std::function<int()> SetupConverge(CLI::App& sub) {
   sub.add_option("--format", o->format, "json (default) or csv");
   sub.add_option("--out", o->out, "write the table to this file instead of standard output (\"-\": standard output)");
   sub.add_option("--svg", o->svg, "draw the log-log chart (error, bound, fitted slope) to this SVG file (\"-\": standard output, with --out FILE)");
+  AddFigureSizeOption(sub);
   sub.add_flag("--timings", o->timings,
                "also report the wall time of every plan (plan_seconds, time_slope); without it the output is "
                "reproducible byte for byte");

@@ -9,6 +9,8 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/units.h"
+#include "common/progress.h"
 #include "plateball/join.h"
 #include "plateball/task_adapters.h"
 
@@ -72,12 +74,15 @@ int RunJoin(const JoinCliOptions& o) {
   doc["minimum_contact_speed"] = MinimumContactSpeed(p.mu, p.model);
   Json list = Json::array();
   bool all = true;
+  Progress progress("plateball join", static_cast<double>(targets.size()));
   for (const auto& target : targets) {
     const JoinSummary j = Join(JoinSetupFor(p, target).problem, options);
     all = all && j.IsSolutionUsable();
     list.push_back(JoinToJson(j));
+    progress.Update(static_cast<double>(list.size()));
   }
   doc["joins"] = std::move(list);
+  AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   return all ? kExitSuccess : kExitNoSolution;
 }

@@ -12,6 +12,8 @@
 #include "common/output_file.h"
 #include "common/plan_json.h"
 #include "common/problem_options.h"
+#include "common/units.h"
+#include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
@@ -60,6 +62,10 @@ void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const
   fig.Polyline(traj, actual);
   for (const PlanStep& s : plan.steps) fig.Marker(s.p_begin, 2.6, impulse);
   if (!plan.steps.empty()) fig.Marker(plan.steps.back().p_end, 2.6, impulse);
+  const SmoothCurve& first = path.pieces().front();
+  const SmoothCurve& last = path.pieces().back();
+  fig.Start(path.StartPoint(), first.Derivative(first.Begin()), "p(0)");
+  fig.Goal(path.EndPoint(), last.Derivative(last.End()), "p(T)");
   std::ostringstream title;
   title.precision(3);
   title << (p.name.empty() ? std::string("plan") : p.name) << ": n = " << plan.segments << ", error "
@@ -77,7 +83,10 @@ int RunPlan(const PlanCliOptions& o) {
   const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--impulses", o.n, 1, 1'000'000));
   if (n > 0) RequirePartitionSteps("--impulses", n, p);
   const PlanSetup setup = PlanSetupFor(p, n, std::string(kCommandLine) + ": --impulses");
-  const PlanSummary plan = PlanImpulses(setup.problem, setup.options);
+  const PlanSummary plan = [&] {
+    Progress progress("plateball plan", 0);  // one solve: the elapsed time
+    return PlanImpulses(setup.problem, setup.options);
+  }();
   const Path& path = setup.problem.path;
 
   Json doc = HeaderJson("plateball", "plan", p, o.problem.file());
@@ -87,6 +96,7 @@ int RunPlan(const PlanCliOptions& o) {
   doc["path"] = Json{{"type", ToString(p.plan->path)}, {"pieces", path.PieceCount()}, {"length", path.Length()}};
   doc["partition"] = Json{{"type", ToString(p.plan->partition)}, {"segments", plan.segments}};
   Append(doc, PlanSummaryToJson(plan, !o.summary_only));
+  AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) DrawPlan(p, path, plan, o.svg);
   return plan.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
@@ -99,6 +109,7 @@ std::function<int()> SetupPlan(CLI::App& sub) {
                             "impulses (partition segments) per smooth piece, overrides plan.partition.n (--n: deprecated alias)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   sub.add_option("--svg", o->svg, "draw the plate to this SVG file (planned path dashed, trajectory solid; \"-\": standard output, with --out FILE)");
+  AddFigureSizeOption(sub);
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
   sub.footer(
       "Plans one energy-preserving impulse per partition point of plan.path (section 2.3): per impulse the\n"

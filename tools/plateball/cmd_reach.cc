@@ -18,6 +18,8 @@
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/units.h"
+#include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/reach.h"
@@ -64,36 +66,57 @@ json SummaryJson(const ReachSummary& s) {
   return out;
 }
 
+// Four significant digits for a figure's legend.
+std::string Short(double v) {
+  std::ostringstream os;
+  os.precision(4);
+  os << v;
+  return os.str();
+}
+
+// The contact-point path of the free motion after the impulse delta_psi = s, on [0, t].
+std::vector<Eigen::Vector2d> ReachPath(const Problem& problem, double s, double t) {
+  AngleState a = problem.initial_angles;
+  a.psi += s;
+  const FreeMotion m = FreeMotion::FromAngles(problem.model, a, problem.mu, problem.x0, problem.A0, problem.integration);
+  const int n = std::clamp(static_cast<int>(t / m.Period() * 200.0), 50, 5000);
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i <= n; ++i) points.push_back(m.PositionAt(t * i / n));
+  return points;
+}
+
 // Figure 8 style drawing: the contact-point paths from x0 to every target (one colour per
-// target, later solutions dashed; dashed grey: the closest approach of an unreachable target).
+// target, later solutions dashed; dashed grey: the closest approach of an unreachable target),
+// each tagged with a number on the curve and its delta psi and t in the legend.
 SvgFigure Figure(const Problem& problem, const std::vector<ReachSummary>& summaries, bool all_solutions) {
   static const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2"};
   SvgFigure fig;
-  auto add_path = [&](double s, double t, const std::string& colour, bool dashed) {
-    AngleState a = problem.initial_angles;
-    a.psi += s;
-    const FreeMotion m = FreeMotion::FromAngles(problem.model, a, problem.mu, problem.x0, problem.A0, problem.integration);
-    const int n = std::clamp(static_cast<int>(t / m.Period() * 200.0), 50, 5000);
-    std::vector<Eigen::Vector2d> points;
-    for (int i = 0; i <= n; ++i) points.push_back(m.PositionAt(t * i / n));
-    fig.Polyline(points, {colour, 1.5, dashed ? "6,4" : "", "none"});
+  int tag = 0;
+  auto add_path = [&](const Eigen::Vector2d& target, double s, double t, const std::string& colour, bool dashed,
+                      const std::string& what) {
+    const std::vector<Eigen::Vector2d> points = ReachPath(problem, s, t);
+    const SvgFigure::Style style{colour, 1.5, dashed ? "6,4" : "", "none"};
+    fig.Polyline(points, style);
+    fig.Text(points[points.size() * 11 / 20], std::to_string(++tag), 12, colour);
+    fig.Legend(std::to_string(tag) + ": (" + FormatNumber(target.x()) + ", " + FormatNumber(target.y()) + ") " + what +
+                   ": Δψ = " + Short(s) + ", t = " + Short(t),
+               style, SvgFigure::Swatch::kLine);
+    return CurveDirection(points, true);
   };
   for (std::size_t k = 0; k < summaries.size(); ++k) {
     const ReachSummary& s = summaries[k];
+    const Eigen::Vector2d& target = s.problem.target;
+    Eigen::Vector2d arrival = Eigen::Vector2d::Zero();
     if (s.IsSolutionUsable()) {
       const std::size_t count = all_solutions ? s.solutions.size() : 1;
-      for (std::size_t i = 0; i < count; ++i) add_path(s.solutions[i].delta_psi, s.solutions[i].t, kColours[k % 8], i > 0);
+      for (std::size_t i = count; i-- > 0;)
+        arrival = add_path(target, s.solutions[i].delta_psi, s.solutions[i].t, kColours[k % 8], i > 0, "reached");
     } else if (s.status == ReachStatus::kUnreachableWithinHorizon) {
-      add_path(s.closest_approach.delta_psi, s.closest_approach.t, "#7f7f7f", true);
+      add_path(target, s.closest_approach.delta_psi, s.closest_approach.t, "#7f7f7f", true, "closest approach");
     }
+    fig.Goal(target, arrival, "(" + FormatNumber(target.x()) + ", " + FormatNumber(target.y()) + ")");
   }
-  fig.Marker(problem.x0, 4, {"black", 1.0, "", "black"});
-  fig.Text(problem.x0, "x0", 12);
-  for (std::size_t k = 0; k < summaries.size(); ++k) {
-    const Eigen::Vector2d& target = summaries[k].problem.target;
-    fig.Marker(target, 5, {kColours[k % 8], 2.0, "", "none"});
-    fig.Text(target, "(" + FormatNumber(target.x()) + ", " + FormatNumber(target.y()) + ")", 12);
-  }
+  fig.Start(problem.x0, Eigen::Vector2d::Zero(), "x0");
   std::ostringstream title;
   title.precision(4);
   title << (problem.name.empty() ? std::string("reach") : problem.name) << ": lambda = " << problem.model.lambda()
@@ -131,6 +154,7 @@ int RunReach(const ReachCliOptions& o) {
   std::vector<ReachSummary> summaries;
   json results = json::array();
   bool all_solved = true;
+  Progress progress("plateball reach", static_cast<double>(task.targets.size()));
   for (const Eigen::Vector2d& target : task.targets) {
     ReachSetup setup = ReachSetupFor(problem, target);
     setup.options.horizon_periods = task.horizon_periods;
@@ -138,14 +162,17 @@ int RunReach(const ReachCliOptions& o) {
     if (summaries.back().status == ReachStatus::kNumericalFailure) throw std::runtime_error(summaries.back().BriefReport());
     results.push_back(SummaryJson(summaries.back()));
     all_solved = all_solved && summaries.back().IsSolutionUsable();
+    progress.Update(static_cast<double>(summaries.size()));
   }
   json doc = HeaderJson("plateball", "reach", problem, o.problem.file());
   doc["initial"] = InitialJson(problem);
   doc["options"] = json{{"horizon_periods", task.horizon_periods}};
   doc["results"] = std::move(results);
+  AddPhysicalUnits(problem, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) Figure(problem, summaries, o.svg_all).Write(o.svg);
-  for (const ReachSummary& s : summaries) std::cerr << s.BriefReport() << "\n";
+  if (Verbose())
+    for (const ReachSummary& s : summaries) std::cerr << s.BriefReport() << "\n";
   return all_solved ? kExitSuccess : kExitNoSolution;
 }
 
@@ -157,6 +184,7 @@ std::function<int()> SetupReach(CLI::App& sub) {
                                   "enumerate solutions with t up to this many periods, (0, 1e4] (default: the file's, else 5)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   sub.add_option("--svg", o->svg, "draw the trajectories reaching the targets (like Figure 8) into this SVG file (\"-\": standard output, with --out FILE)");
+  AddFigureSizeOption(sub);
   sub.add_flag("--svg-all", o->svg_all, "draw every solution, not only the earliest (later ones dashed)");
   sub.footer(
       "Prints JSON: per target the status, every solution (delta_psi, t, periods, residual, Jacobian\n"

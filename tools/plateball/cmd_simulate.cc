@@ -12,6 +12,9 @@
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/units.h"
+#include "common/progress.h"
+#include "common/sample_table.h"
 #include "plateball/free_motion.h"
 #include "plateball/task_adapters.h"
 
@@ -23,12 +26,15 @@ struct SimulateOptions {
   double t_end = 0.0;
   long long samples = 0;
   std::string out;
+  std::string csv;
   CLI::Option* t_end_opt = nullptr;
   CLI::Option* samples_opt = nullptr;
 };
 
 int RunSimulate(const SimulateOptions& o) {
-  CheckOutputPaths({{"--out", o.out}}, {{"PROBLEM.json", o.problem.file()}});
+  // With --csv only, the JSON document is not written (unless --out names a file).
+  CheckOutputPaths({{"--out", o.out}, {"--csv", o.csv}},
+                   {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   SimulateTask task = p.simulate.value_or(SimulateTask{});
   if (o.t_end_opt->count() > 0) task.t_end = RequirePositiveOption("--t-end", o.t_end);
@@ -42,7 +48,6 @@ int RunSimulate(const SimulateOptions& o) {
                                 FormatNumber(kMaxPeriods * period) + " at mu = " + FormatNumber(p.mu) + ")");
 
   const FreeMotion motion = FreeMotionFor(p);
-  const std::vector<MotionSample> samples = motion.Sample(0.0, task.t_end, task.samples);
 
   Json doc = HeaderJson("plateball", "simulate", p, o.problem.file());
   const MotionSample start = motion.At(0.0);
@@ -57,10 +62,19 @@ int RunSimulate(const SimulateOptions& o) {
   doc["mean_velocity"] = ToJson(motion.MeanVelocity());
   doc["stored_steps_per_period"] = motion.StoredSteps();
   doc["t_end"] = task.t_end;
-  Json list = Json::array();
-  for (const MotionSample& s : samples) list.push_back(ToJson(s));
-  doc["samples"] = std::move(list);
-  WriteJson(doc, o.out);
+  AddPhysicalUnits(p, &doc);
+  // Streamed (sample_table.h): sample i at t_end i/(n-1), as FreeMotion::Sample, one at a time.
+  const auto n = static_cast<std::size_t>(task.samples);
+  const SampleSource sample = [&](std::size_t i) { return ToJson(motion.At(task.t_end * static_cast<double>(i) / static_cast<double>(n - 1))); };
+  const bool json = o.csv.empty() || !IsStandardOutput(o.out);
+  if (!o.csv.empty()) {
+    Progress progress(json ? "plateball simulate (CSV)" : "plateball simulate", static_cast<double>(n));
+    WriteSampleCsv(o.csv, n, sample, &progress);
+  }
+  if (json) {
+    Progress progress(o.csv.empty() ? "plateball simulate" : "plateball simulate (JSON)", static_cast<double>(n));
+    WriteSampleDocument(o.out, std::move(doc), n, sample, &progress);
+  }
   return kExitSuccess;
 }
 
@@ -71,6 +85,9 @@ std::function<int()> SetupSimulate(CLI::App& sub) {
   o->samples_opt = sub.add_option("--samples", o->samples,
                                   "number of equally spaced samples on [0, t-end], 2 ... 1e6 (default: the file's, else 101)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
+  sub.add_option("--csv", o->csv,
+                 "write the samples as CSV to this file (\"-\": standard output); the JSON is then written only "
+                 "with --out FILE");
   sub.footer(
       "Prints JSON (docs/output_contract.md): the header (model, tolerances, seed, problem), the initial state,\n"
       "period T = 2 pi/sqrt(mu), drift of the contact point per period, and per sample t, angles (theta, phi,\n"

@@ -12,6 +12,9 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/units.h"
+#include "common/progress.h"
+#include "common/svg.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/fewest_impulses.h"
 #include "plateball/isoparallel.h"
@@ -84,7 +87,10 @@ int RunSteer(const SteerCliOptions& o) {
   }
   setup.problem.stop_at_goal = setup.problem.stop_at_goal || o.stop_at_goal;
   setup.problem.start_at_rest = setup.problem.start_at_rest || o.start_at_rest;
-  const ExactArrivalSummary s = SolveExactArrival(setup.problem, setup.options);
+  const ExactArrivalSummary s = [&] {
+    Progress progress("plateball steer", 0);  // one solve: the elapsed time
+    return SolveExactArrival(setup.problem, setup.options);
+  }();
   const ReplayResult replay = ReplayExactArrival(setup.problem, s.impulses);
 
   Json doc = HeaderJson("plateball", "steer", p, o.problem.file());
@@ -92,6 +98,7 @@ int RunSteer(const SteerCliOptions& o) {
   doc["reference"] = Json{{"source", reference}, {"length", setup.problem.reference.Length()}};
   doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
   Append(doc, ExactArrivalToJson(s, replay, !o.summary_only));
+  AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) {
     std::ostringstream title;
@@ -109,6 +116,7 @@ std::function<int()> SetupSteer(CLI::App& sub) {
   o->impulses_opt = sub.add_option("--impulses", o->impulses, "impulse count n >= 3 (overrides steer.impulses)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   sub.add_option("--svg", o->svg, "draw the plate to this SVG file (reference dashed, trajectory solid)");
+  AddFigureSizeOption(sub);
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
   sub.add_flag("--fewest-impulses", o->fewest, "search the fewest impulses that reach the goal exactly (Pareto table)");
   o->max_impulses_opt = sub.add_option("--max-impulses", o->max_impulses, "largest impulse count the search tries (overrides steer.fewest.max_impulses)");

@@ -9,6 +9,7 @@
 #include "common/command_registry.h"
 #include "common/errors.h"
 #include "common/exit_codes.h"
+#include "common/progress.h"
 #include "plateball/version.h"
 
 int main(int argc, char** argv) {
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   for (const Command& c : Commands()) {
     CLI::App* sub = app.add_subcommand(c.name, c.description);
     runners[sub] = c.setup(*sub);
+    AddProgressOptions(*sub);  // --quiet, --progress on every subcommand (progress.h)
   }
   if (const auto code = ParseCommandLine(app, argc, argv, "plateball")) return *code;
   for (const auto& [sub, run] : runners) {

@@ -55,6 +55,7 @@ class LogChart {
     const double width_px = 760, height_px = 470 + bottom_;
     SvgFigure fig(width_px, height_px);
     fig.EqualAspect(false);
+    fig.Axes(false);  // this chart draws its own axes in pixel units (svg.h)
     fig.Title(title);
     const double W = (width_px - 80) / 1.12, H = (height_px - 90) / 1.12;  // world = pixels (svg.cc's fit)
     fig.Polyline({{0, 0}, {W, 0}, {W, H}, {0, H}, {0, 0}}, {"white", 0.1, "", "none"});
