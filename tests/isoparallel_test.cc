@@ -192,6 +192,24 @@ TEST(Isoparallel, RotationProblemDenserIndependentSearchFindsNothingShorter) {
   EXPECT_NEAR(d.Shortest().length, shortest, kLengthTol);
 }
 
+// The default run lists the five shortest solutions of the rotation problem found by an
+// independent search: the earlier crossing-number shooting with 2 x 8192 starts (seeds 7919 and
+// 15838). Its default (1024 starts, search on the crossing number) missed the second-shortest,
+// 8.705293372, and 12 others; the free-length search stage finds them.
+TEST(Isoparallel, RotationProblemDefaultFindsTheShortestSolutionsOfADenseSearch) {
+  const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
+  const IsoparallelSetup setup = IsoparallelSetupFor(p);
+  const IsoparallelSummary s = SolveIsoparallel(setup.problem, setup.options);
+  ASSERT_TRUE(s.IsSolutionUsable());
+  EXPECT_FALSE(s.complete) << "the shooting is a sample";
+  for (double length : {5.990983080, 8.705293372, 9.449219088, 9.813332959, 10.479002443}) {
+    bool found = false;
+    for (const IsoparallelSolution& sol : s.solutions) found = found || std::abs(sol.length - length) < 1e-6;
+    EXPECT_TRUE(found) << length << "\n" << s.FullReport();
+  }
+  EXPECT_GE(s.solutions.size(), 27u) << s.FullReport();
+}
+
 TEST(Isoparallel, NonTrivialTargetIsSolvedAndVerified) {
   IsoparallelProblem p;
   p.start = {0.5, -1.0};
