@@ -4,6 +4,11 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev libboost-dev
           libboost-math-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev)
+packages+=(python3 python3-jsonschema)  # output contract: schema validation (tests/scripts/validate_schemas.py)
+packages+=(python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib)  # Python bindings, pytest, gallery (issue 13)
+packages+=(libopenmpi-dev openmpi-bin)  # montecarlo: optional MPI component (issue 12)
+packages+=(chromium)  # view (issue 14): Debian's Chromium for the browser tests of `plateball view`
+command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)  # view (issue 14): npm ci in web/ (below)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -16,4 +21,13 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 else
   echo "setup: all dependencies present"
+fi
+
+# view (issue 14): three.js (embedded into `plateball view`'s pages at build time) and playwright-core
+# (the browser tests), exactly as web/package-lock.json pins them; skipped when already installed.
+web_dir="$(cd "$(dirname "$0")/../web" && pwd)"
+if ! cmp -s "$web_dir/package-lock.json" "$web_dir/node_modules/.plateball-package-lock.json"; then
+  echo "setup: npm ci in web/"
+  (cd "$web_dir" && npm ci --no-audit --no-fund --loglevel=error)
+  cp "$web_dir/package-lock.json" "$web_dir/node_modules/.plateball-package-lock.json"
 fi

@@ -8,9 +8,11 @@
 
 #include "plateball/convergence.h"
 #include "plateball/exact_arrival.h"
+#include "plateball/execution.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/isoparallel.h"
 #include "plateball/join.h"
+#include "plateball/monte_carlo.h"
 #include "plateball/reach.h"
 
 using namespace plateball;
@@ -20,7 +22,8 @@ namespace {
 template <class Summary>
 class SummaryShape : public ::testing::Test {};
 
-using Summaries = ::testing::Types<JoinSummary, ReachSummary, PlanSummary, IsoparallelSummary, ExactArrivalSummary>;
+using Summaries = ::testing::Types<JoinSummary, ReachSummary, PlanSummary, IsoparallelSummary, ExactArrivalSummary,
+                                   ExecutionSummary, MonteCarloSummary>;
 TYPED_TEST_SUITE(SummaryShape, Summaries);
 
 TYPED_TEST(SummaryShape, DefaultSaysNotRun) {

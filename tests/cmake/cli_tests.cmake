@@ -92,7 +92,7 @@ plateball_cli_test(roll.problem_without_plan 3 REGEX "simulate_example.json: pla
 # Final orientation R A0 with A0 = rotation by pi/2 about e3 and R = rotation by 2 about e2
 # (segment (0,0)-(2,0)): R A0 = [[0, -cos 2, sin 2], [1, 0, 0], [0, sin 2, cos 2]]; its second row
 # is printed as [1.0, 0.0, 0.0] up to round-off.
-plateball_cli_test(roll.final_orientation 0 REGEX "\"final_orientation\": \\[\\[[-0-9.e]+, 0.41614683654714[0-9]*, 0.90929742682568[0-9]*\\]"
+plateball_cli_test(roll.final_orientation 0 REGEX "\"orientation_final\": \\[\\[[-0-9.e]+, 0.41614683654714[0-9]*, 0.90929742682568[0-9]*\\]"
   -- roll --segment --points "0,0 2,0" --orientation "{\"axis_angle\": {\"axis\": [0, 0, 1], \"angle\": 1.5707963267948966}}")
 
 # ---------------------------------------------------------------- bad input: exact exit codes
@@ -100,7 +100,7 @@ plateball_cli_test(roll.final_orientation 0 REGEX "\"final_orientation\": \\[\\[
 # 5 = unreadable or unwritable file.
 plateball_cli_test(simulate.negative_mu 3 REGEX "--mu: value -1: must be" -- simulate --mu -1)
 plateball_cli_test(simulate.nan_mu 3 REGEX "--mu: value nan" -- simulate --mu nan)
-plateball_cli_test(simulate.non_numeric_mu 3 REGEX "--mu = abc" -- simulate --mu abc)
+plateball_cli_test(simulate.non_numeric_mu 3 REGEX "plateball simulate: invalid input: command line: --mu: value \"abc\": must be a number" -- simulate --mu abc)
 plateball_cli_test(simulate.zero_samples 3 REGEX "--samples: value 0: must be >= 2" -- simulate --samples 0)
 plateball_cli_test(simulate.negative_t_end 3 REGEX "--t-end: value -1" -- simulate --t-end -1)
 plateball_cli_test(simulate.bad_x0 3 REGEX "--x0: value \"1\": must be two finite numbers" -- simulate --x0 1)

@@ -32,7 +32,7 @@ plateball_cli_test(plan.circle_svg 0 REGEX "<svg.*stroke-dasharray.*<circle"
   -- plan problems/circle.json --n 16 --summary-only --svg ${CMAKE_CURRENT_BINARY_DIR}/cli_plan_circle.svg)
 plateball_cli_test(plan.steps_are_recorded 0 REGEX "\"plate_velocity_change\".*\"orientation_impulsive\""
   -- plan problems/piecewise.json --n 2)
-plateball_cli_test(plan.n_must_be_positive 3 REGEX "--n" -- plan problems/circle.json --n 0)
+plateball_cli_test(plan.n_must_be_positive 3 REGEX "--impulses: value 0" -- plan problems/circle.json --n 0)
 plateball_cli_test(plan.needs_a_plan_task 3 REGEX "plan" -- plan problems/simulate_example.json)
 plateball_cli_test(plan.missing_file 5 -- plan problems/no_such_problem.json)
 
@@ -46,7 +46,7 @@ plateball_cli_test(converge.csv 0 REGEX "n,segments,measured_error"
 plateball_cli_test(converge.csv_timings 0 REGEX "n,segments,plan_seconds,measured_error"
   -- converge problems/ellipse.json --n 16,32 --format csv --timings)
 # Issue 16: a repeated n, an n for an explicit partition: input errors naming --n; one n: no slope.
-plateball_cli_test(converge.repeated_n 3 REGEX "--n.*repeated"
+plateball_cli_test(converge.repeated_n 3 REGEX "--impulses.*repeated"
   -- converge problems/circle.json --n 16,16,16)
 plateball_cli_test(converge.one_n 0 REGEX "no slope" -- converge problems/circle.json --n 16)
 plateball_cli_test(converge.svg 0 REGEX "fit: slope -[12]\\."

@@ -15,7 +15,7 @@ plateball_cli_test(steer.figure7_exact 0
 plateball_cli_test(steer.figure7_exact_svg 0 REGEX "<svg.*stroke-dasharray"
   --cat ${CMAKE_CURRENT_BINARY_DIR}/cli_steer_figure7.svg
   -- steer problems/figure7_exact.json --summary-only --svg ${CMAKE_CURRENT_BINARY_DIR}/cli_steer_figure7.svg)
-plateball_cli_test(steer.impulses_are_recorded 0 REGEX "\"plate_velocity_change\".*\"planned_position\""
+plateball_cli_test(steer.impulses_are_recorded 0 REGEX "\"x\": \\[.*\"p\": \\[.*\"plate_velocity_change\".*\"planned_delta_psi\""
   -- steer problems/figure7_exact.json --impulses 6)
 plateball_cli_test(steer.too_few_impulses 3 REGEX "--impulses: value 2" -- steer problems/figure7_exact.json --impulses 2)
 plateball_cli_test(steer.needs_a_steer_task 3 REGEX "steer" -- steer problems/circle.json)

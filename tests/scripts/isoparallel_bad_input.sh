@@ -82,13 +82,13 @@ for entry in "${cases[@]}"; do
 done
 
 # Reproducibility: the same problem and seed give a byte-identical plan file, across runs and
-# across 1 and 2 solver threads.
-sed 's/"threads": 1/"threads": 2/' "$(dirname "$0")/../../problems/figure7.json" > "$work/figure7_two_threads.json"
+# across 1 and 2 solver threads (--threads; the file names itself in the output's header, so the
+# same file is used).
 fig7="$(dirname "$0")/../../problems/figure7.json"
 "$tool" "$fig7" --out "$work/plan_a.json" > /dev/null 2>&1
 "$tool" "$fig7" --out "$work/plan_b.json" > /dev/null 2>&1
-"$tool" "$work/figure7_two_threads.json" --out "$work/plan_c.json" > /dev/null 2>&1
-if grep -q '"threads": 2' "$work/figure7_two_threads.json" && [[ -s "$work/plan_a.json" ]] &&
+"$tool" "$fig7" --threads 2 --out "$work/plan_c.json" > /dev/null 2>&1
+if [[ -s "$work/plan_a.json" ]] &&
    cmp -s "$work/plan_a.json" "$work/plan_b.json" && cmp -s "$work/plan_a.json" "$work/plan_c.json"; then
   passed=$((passed + 1))
 else

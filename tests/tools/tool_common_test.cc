@@ -242,15 +242,43 @@ TEST(PlanJson, OneLayoutWithOrWithoutSteps) {
   const Json brief = PlanSummaryToJson(plan, false);
   std::vector<std::string> keys;
   for (auto it = brief.begin(); it != brief.end(); ++it) keys.push_back(it.key());
-  const std::vector<std::string> expected{"status", "usable", "message", "total_time", "max_pass_miss",
+  // docs/output_contract.md: the four result fields first, "message" always present.
+  const std::vector<std::string> expected{"status", "usable", "message", "report", "total_time", "max_pass_miss",
                                           "max_join_residual", "measured_error", "polyline_error", "bounds",
-                                          "orientation", "final", "report"};
-  std::vector<std::string> expected_present;
-  for (const std::string& k : expected)
-    if (k != "message" || !plan.message.empty()) expected_present.push_back(k);
-  EXPECT_EQ(keys, expected_present);
+                                          "rotation_final", "final"};
+  EXPECT_EQ(keys, expected);
   ASSERT_TRUE(full.contains("steps"));
   EXPECT_EQ(full["steps"].size(), 2u);
   EXPECT_FALSE(brief.contains("steps"));
   EXPECT_EQ(full["usable"].get<bool>(), plan.IsSolutionUsable());
+}
+
+TEST(OutputContract, EveryDocumentStartsWithTheHeader) {
+  Problem p;
+  p.source = "problems/some_problem.json";
+  p.seed = 18446744073709551615ULL;
+  const Json h = HeaderJson("plateball", "simulate", p, "problems/some_problem.json");
+  std::vector<std::string> keys;
+  for (auto it = h.begin(); it != h.end(); ++it) keys.push_back(it.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"schema_version", "tool", "version", "command", "problem", "model",
+                                            "integration", "seed"}));
+  EXPECT_EQ(h["schema_version"].get<int>(), kSchemaVersion);
+  EXPECT_EQ(h["problem"]["name"].get<std::string>(), "some_problem");  // no name: the file's stem
+  EXPECT_EQ(h["seed"].get<std::uint64_t>(), 18446744073709551615ULL);
+  EXPECT_EQ(h["integration"]["max_steps"].get<long>(), p.integration.max_steps);
+  p.name = "named";
+  const Json without = HeaderJson("plateball", "roll", p, "", false);
+  EXPECT_TRUE(without["problem"]["file"].is_null());
+  EXPECT_EQ(without["problem"]["name"].get<std::string>(), "named");
+  EXPECT_FALSE(without.contains("model"));
+}
+
+TEST(OutputContract, ResultsHaveStatusUsableMessageReport) {
+  const Json r = ResultJson("success", true, "", "Plan: success");
+  std::vector<std::string> keys;
+  for (auto it = r.begin(); it != r.end(); ++it) keys.push_back(it.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"status", "usable", "message", "report"}));
+  Json doc{{"a", 1}};
+  Append(doc, Json{{"b", 2}, {"c", 3}});
+  EXPECT_EQ(DumpJson(doc), "{\n  \"a\": 1,\n  \"b\": 2,\n  \"c\": 3\n}\n");
 }

@@ -10,14 +10,13 @@
 namespace plateball::tools {
 
 Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses) {
-  Json j{{"status", ToString(s.status)},
-         {"usable", s.IsSolutionUsable()},
-         {"impulse_count", s.impulses.size()},
+  Json j = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
+  Append(j, Json{{"impulse_count", s.impulses.size()},
          {"total_time", s.total_time},
          {"iterations", s.iterations},
          {"rollouts", s.rollouts},
          {"arrival", Json{{"x", ToJson(s.x_final)},
-                          {"orientation", RotationToJson(s.A_final)},
+                          {"rotation", RotationToJson(s.A_final)},
                           {"position_error", s.position_error},
                           {"orientation_error", s.orientation_error}}},
          {"replay", Json{{"x", ToJson(replay.x)},
@@ -28,17 +27,15 @@ Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay
                             {"max_pass_displacement", s.max_pass_displacement}}},
          {"paper_plan", Json{{"position_error", s.planned_position_error},
                              {"orientation_error", s.planned_orientation_error},
-                             {"total_time", s.planned_total_time}}},
-         {"report", s.BriefReport()}};
-  if (!s.message.empty()) j["message"] = s.message;
+                             {"total_time", s.planned_total_time}}}});
   if (with_impulses) {
     Json list = Json::array();
     for (std::size_t k = 0; k < s.impulses.size(); ++k) {
       const ExactImpulse& e = s.impulses[k];
       list.push_back(Json{{"k", k},
                           {"t_impulse", e.t_impulse},
-                          {"position", ToJson(e.position)},
-                          {"planned_position", ToJson(e.planned_position)},
+                          {"x", ToJson(e.position)},
+                          {"p", ToJson(e.planned_position)},
                           {"delta_psi", e.delta_psi},
                           {"duration", e.duration},
                           {"delta_omega", ToJson(e.delta_omega)},

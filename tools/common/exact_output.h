@@ -9,12 +9,12 @@
 
 namespace plateball::tools {
 
-/// {"status", "usable", "message" (when not empty), "impulse_count", "total_time", "iterations",
-///  "rollouts", "arrival" ({"x", "orientation", "position_error", "orientation_error"}),
+/// {"status", "usable", "message", "report", "impulse_count", "total_time", "iterations",
+///  "rollouts", "arrival" ({"x", "rotation", "position_error", "orientation_error"}),
 ///  "replay" (the independent re-integration: {"x", "position_error", "orientation_error"}),
 ///  "deviation" ({"definition", "value", "max_pass_displacement"}), "paper_plan" ({"position_error",
-///  "orientation_error", "total_time"}), "report" and with `with_impulses` "impulses" (per
-///  impulse: k, t_impulse, position, planned_position, delta_psi, duration, delta_omega,
+///  "orientation_error", "total_time"}) and with `with_impulses` "impulses" (per
+///  impulse: k, t_impulse, x, p, delta_psi, duration, delta_omega,
 ///  plate_velocity_change, angles_before, planned_delta_psi, planned_duration)}.
 Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses = true);
 

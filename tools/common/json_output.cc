@@ -5,6 +5,7 @@
 
 #include "common/output_file.h"
 #include "plateball/so3.h"
+#include "plateball/version.h"
 
 namespace plateball::tools {
 
@@ -31,9 +32,7 @@ Json ToJson(const BallModel& m) {
 }
 Json ToJson(const MotionSample& s) {
   return Json{{"t", s.t},
-              {"theta", s.angles.theta},
-              {"phi", s.angles.phi},
-              {"psi", s.angles.psi},
+              {"angles", ToJson(s.angles)},
               {"z", ToJson(s.state.z)},
               {"x", ToJson(s.x)},
               {"orientation", ToJson(s.A)},
@@ -45,6 +44,40 @@ Json RotationToJson(const Eigen::Matrix3d& r) {
   Json j{{"matrix", ToJson(r)}, {"rotation_vector", ToJson(w)}, {"angle", w.norm()}};
   if (w.norm() > 0) j["axis"] = ToJson(Eigen::Vector3d(w / w.norm()));
   return j;
+}
+
+std::string ProblemName(const Problem& p) {
+  if (!p.name.empty()) return p.name;
+  std::string base = p.source.substr(p.source.find_last_of('/') == std::string::npos ? 0 : p.source.find_last_of('/') + 1);
+  if (base.size() > 5 && base.compare(base.size() - 5, 5, ".json") == 0) base.resize(base.size() - 5);
+  return base.empty() ? p.source : base;
+}
+
+Json HeaderJson(const std::string& tool, const std::string& command, const Problem& p, const std::string& file,
+                bool with_model) {
+  Json j{{"schema_version", kSchemaVersion},
+         {"tool", tool},
+         {"version", PLATEBALL_VERSION_STRING},
+         {"command", command},
+         {"problem", Json{{"name", ProblemName(p)}, {"file", file.empty() ? Json(nullptr) : Json(file)}}}};
+  if (with_model) j["model"] = ToJson(p.model);
+  j["integration"] = Json{{"absolute_tolerance", p.integration.absolute_tolerance},
+                          {"relative_tolerance", p.integration.relative_tolerance},
+                          {"max_steps", p.integration.max_steps}};
+  j["seed"] = p.seed;
+  return j;
+}
+
+Json InitialJson(const Problem& p) {
+  return Json{{"angles", ToJson(p.initial_angles)}, {"mu", p.mu}, {"x0", ToJson(p.x0)}};
+}
+
+Json ResultJson(const std::string& status, bool usable, const std::string& message, const std::string& report) {
+  return Json{{"status", status}, {"usable", usable}, {"message", message}, {"report", report}};
+}
+
+void Append(Json& doc, Json part) {
+  for (auto it = part.begin(); it != part.end(); ++it) doc[it.key()] = std::move(it.value());
 }
 
 namespace {

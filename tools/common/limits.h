@@ -18,6 +18,8 @@ inline constexpr std::size_t kMaxValueTextChars = 80;
 /// `plateball simulate` (as the problem-file reader).
 inline constexpr std::size_t kMaxPoints = 1'000'000;
 inline constexpr long long kMaxSamples = 1'000'000;
+/// Impulses of a plan over all smooth pieces (n x pieces; the reader's and MakePartition's limit).
+inline constexpr long long kMaxPartitionSteps = 10'000;
 /// |t_end| / period below which a free motion is evaluated (free_motion.h: "|t| <= 1e12 periods").
 inline constexpr double kMaxPeriods = 1e12;
 

@@ -132,7 +132,7 @@ void CheckOutputPaths(const std::vector<PathArgument>& outputs, const std::vecto
     }
     if (a.path == "-") continue;
     for (const PathArgument& in : inputs)
-      if (!in.path.empty() && SameFile(a.path, in.path))
+      if (!in.path.empty() && in.path != "-" && SameFile(a.path, in.path))
         throw std::invalid_argument("command line: " + a.option + " and " + in.option + ": value " + a.path +
                                     ": the output would overwrite the input file");
   }

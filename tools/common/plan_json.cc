@@ -59,21 +59,17 @@ Json StepToJson(const PlanStep& s) {
 }  // namespace
 
 Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps) {
-  Json doc;
-  doc["status"] = ToString(plan.status);
-  doc["usable"] = plan.IsSolutionUsable();
-  if (!plan.message.empty()) doc["message"] = plan.message;
+  Json doc = ResultJson(ToString(plan.status), plan.IsSolutionUsable(), plan.message, plan.BriefReport());
   doc["total_time"] = plan.total_time;
   doc["max_pass_miss"] = plan.max_pass_miss;
   doc["max_join_residual"] = plan.max_join_residual;
   doc["measured_error"] = plan.measured_error;
   doc["polyline_error"] = plan.polyline_error;
   doc["bounds"] = BoundsToJson(plan.bounds);
-  doc["orientation"] = Json{{"planned", RotationToJson(plan.A_planned)},
-                           {"polyline", RotationToJson(plan.A_polyline)},
-                           {"impulsive", RotationToJson(plan.A_impulsive)}};
+  doc["rotation_final"] = Json{{"planned", RotationToJson(plan.A_planned)},
+                              {"polyline", RotationToJson(plan.A_polyline)},
+                              {"impulsive", RotationToJson(plan.A_impulsive)}};
   doc["final"] = Json{{"mu", plan.mu_final}, {"z", ToJson(plan.final_state.z)}, {"omega", ToJson(plan.final_state.omega)}};
-  doc["report"] = plan.BriefReport();
   if (with_steps) {
     Json steps = Json::array();
     for (const PlanStep& s : plan.steps) steps.push_back(StepToJson(s));

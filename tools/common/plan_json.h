@@ -7,10 +7,10 @@
 
 namespace plateball::tools {
 
-/// {"status", "usable", "message" (when not empty), "total_time", "max_pass_miss",
+/// {"status", "usable", "message", "report", "total_time", "max_pass_miss",
 ///  "max_join_residual", "measured_error", "polyline_error", "bounds" (a-posteriori, Theorems 2.5,
-///  2.6, Corollaries 2, 3 and their constants), "orientation" ({"planned", "polyline",
-///  "impulsive"}, each RotationToJson), "final" ({"mu", "z", "omega"}), "report", and with
+///  2.6, Corollaries 2, 3 and their constants), "rotation_final" ({"planned", "polyline",
+///  "impulsive"}, each RotationToJson), "final" ({"mu", "z", "omega"}), and with
 ///  `with_steps` "steps" (per impulse: k, piece, tau, p_begin, p_end, t_impulse, duration,
 ///  delta_psi, delta_omega, plate_velocity_change, mu, states and orientations, pass_miss, join,
 ///  path_bound, arc_bound, energy_changes)}.

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "plateball/problem.h"
@@ -21,14 +22,23 @@ inline constexpr const char* kCommandLine = "command line";
 
 class ProblemOptions {
  public:
-  /// Adds the positional PROBLEM.json and --lambda --theta --phi --psi --mu --x0 X,Y
-  /// --orientation JSON --atol --rtol --max-steps --seed to `app`.
+  /// Adds the positional PROBLEM.json ("-": standard input) and --lambda --theta --phi --psi --mu
+  /// --x0 X,Y --orientation JSON --atol --rtol --max-steps --seed to `app`.
   void Add(CLI::App& app);
+
+  /// Adds the overrides of the problem's isoparallel section: --start X,Y, --goal X,Y,
+  /// --start-orientation JSON, --goal-orientation JSON, --starts N, --threads N.
+  void AddIsoparallel(CLI::App& app);
+
+  /// The problem used without a file (a problem file's text, e.g. the built-in Figure 7 problem)
+  /// and its name in messages, instead of problem.h's defaults.
+  void SetDefault(std::string json_text, std::string source_name);
 
   /// The problem file (or, without one, the defaults of problem.h: lambda = 1,
   /// (theta, phi, psi) = (pi/3, 0.4, 0.1), mu = 1, x0 = 0, identity orientation) with the given
   /// options applied. Throws ProblemFileReadError for an unreadable file and std::invalid_argument
-  /// ("command line: --OPTION: value V: reason", or the reader's message) for bad values.
+  /// ("command line: --OPTION: value V: reason", or the reader's message) for bad values: a value
+  /// the reader rejects is named by the option that gave it.
   Problem Load() const;
 
   /// The file given, or empty.
@@ -36,6 +46,11 @@ class ProblemOptions {
 
  private:
   std::string file_;
+  std::string default_text_, default_source_;
+  std::string start_, goal_, start_orientation_, goal_orientation_;
+  long long starts_ = 0, threads_ = 0;
+  std::vector<std::pair<std::string, CLI::Option*>> fields_;  ///< problem-file field -> option
+  void ApplyIsoparallel(Problem* p) const;
   double lambda_ = 0, theta_ = 0, phi_ = 0, psi_ = 0, mu_ = 0, atol_ = 0, rtol_ = 0;
   long max_steps_ = 0;
   std::string seed_, x0_, orientation_;
@@ -49,6 +64,10 @@ class ProblemOptions {
 double RequireFiniteOption(const std::string& option, double v);
 double RequirePositiveOption(const std::string& option, double v);
 long long RequireIntegerInRange(const std::string& option, long long v, long long lo, long long hi);
+/// A number n of impulses per smooth piece of the problem's plan.path (--impulses of plan and
+/// converge): n x pieces must be <= 10^4, the reader's limit (README, "Limits"). Nothing is checked
+/// without a plan section (the task adapter names it).
+void RequirePartitionSteps(const std::string& option, long long n, const Problem& p);
 /// "X,Y" (two finite numbers separated by a comma).
 Eigen::Vector2d ParsePointOption(const std::string& option, const std::string& text);
 /// "X1,Y1;X2,Y2;..." or "X1,Y1 X2,Y2 ..." (separated by ';' or white space; at least

@@ -33,8 +33,9 @@ struct ConvergeCliOptions {
 // plan_seconds only with --timings: without it the output is a deterministic function of the input.
 std::string Csv(const ConvergenceStudy& s, bool timings) {
   std::ostringstream os;
+  // The JSON row's keys, nested ones joined by '.' (docs/output_contract.md).
   os << "n,segments," << (timings ? "plan_seconds," : "")
-     << "measured_error,polyline_error,bound,theorem_2_6,corollary_3,max_pass_miss,status\n";
+     << "measured_error,polyline_error,bounds.a_posteriori,bounds.theorem_2_6,bounds.corollary_3,max_pass_miss,status\n";
   for (const auto& r : s.rows) {
     os << r.n << "," << r.segments << ",";
     if (timings) os << FormatNumber(r.plan_seconds) << ",";
@@ -90,24 +91,25 @@ int RunConverge(const ConvergeCliOptions& o) {
   if (o.format != "json" && o.format != "csv")
     throw std::invalid_argument(std::string(kCommandLine) + ": --format: value " + o.format + ": must be json or csv");
   std::vector<int> ns;
-  for (long long n : o.ns) ns.push_back(static_cast<int>(RequireIntegerInRange("--n", n, 1, 1'000'000)));
-  const ConvergenceSetup setup = ConvergenceSetupFor(p, ns, std::string(kCommandLine) + ": --n", o.timings);
+  for (long long n : o.ns) ns.push_back(static_cast<int>(RequireIntegerInRange("--impulses", n, 1, 1'000'000)));
+  for (int n : ns) RequirePartitionSteps("--impulses", n, p);
+  const ConvergenceSetup setup = ConvergenceSetupFor(p, ns, std::string(kCommandLine) + ": --impulses", o.timings);
   const ConvergenceStudy s = RunConvergenceStudy(setup.problem, setup.options);
   if (o.format == "csv") {
     WriteOutput(o.out, Csv(s, o.timings));
   } else {
-    Json doc;
-    doc["command"] = "converge";
-    doc["problem"] = p.name.empty() ? p.source : p.name;
-    doc["path"] = ToString(p.plan->path);
-    doc["partition"] = ToString(p.plan->partition);
+    Json doc = HeaderJson("plateball", "converge", p, o.problem.file());
+    const Path& path = setup.problem.plan.path;
+    doc["path"] = Json{{"type", ToString(p.plan->path)}, {"pieces", path.PieceCount()}, {"length", path.Length()}};
+    doc["partition"] = Json{{"type", ToString(p.plan->partition)}};
     Json rows = Json::array();
     for (const auto& r : s.rows) {
-      Json j{{"n", r.n}, {"segments", r.segments}, {"measured_error", r.measured_error}, {"polyline_error", r.polyline_error}, {"bound", r.bound},
-             {"theorem_2_6", r.theorem_2_6}, {"corollary_3", r.corollary_3}, {"max_pass_miss", r.max_pass_miss},
-             {"status", ToString(r.status)}};
+      Json j{{"n", r.n}, {"segments", r.segments}};
       if (o.timings) j["plan_seconds"] = r.plan_seconds;
-      if (!r.message.empty()) j["message"] = r.message;
+      Append(j, Json{{"status", ToString(r.status)}, {"usable", r.status == PlanStatus::kSuccess}, {"message", r.message},
+                     {"measured_error", r.measured_error}, {"polyline_error", r.polyline_error},
+                     {"bounds", Json{{"a_posteriori", r.bound}, {"theorem_2_6", r.theorem_2_6}, {"corollary_3", r.corollary_3}}},
+                     {"max_pass_miss", r.max_pass_miss}});
       rows.push_back(std::move(j));
     }
     doc["rows"] = std::move(rows);
@@ -127,9 +129,9 @@ int RunConverge(const ConvergeCliOptions& o) {
 std::function<int()> SetupConverge(CLI::App& sub) {
   auto o = std::make_shared<ConvergeCliOptions>();
   o->problem.Add(sub);
-  sub.add_option("--n", o->ns,
-                 "distinct partition sizes, e.g. --n 16,32,64 (default: plan.converge_n, else 16 ... 1024; a "
-                 "uniform partition only)")
+  sub.add_option("--impulses,--n", o->ns,
+                 "distinct numbers of impulses per smooth piece (partition sizes n), e.g. --impulses 16,32,64 "
+                 "(default: plan.converge_n, else 16 ... 1024; a uniform partition only; --n: deprecated alias)")
       ->delimiter(',');
   sub.add_option("--format", o->format, "json (default) or csv");
   sub.add_option("--out", o->out, "write the table to this file instead of standard output (\"-\": standard output)");
@@ -141,7 +143,7 @@ std::function<int()> SetupConverge(CLI::App& sub) {
       "Plans plan.path for each n and reports n, plan time, measured error ||A(T) - A_n||, the polyline's\n"
       "error, the reported bound and Theorem 2.6 / Corollary 3, with the least-squares log-log slopes\n"
       "(Corollary 3: error ~ n^-2).\n"
-      "Example: plateball converge problems/circle.json --n 16,32,64,128 --svg circle_convergence.svg\n"
+      "Example: plateball converge problems/circle.json --impulses 16,32,64,128 --svg circle_convergence.svg\n"
       "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 some plan failed, 5 unreadable file.");
   return [o] { return RunConverge(*o); };
 }

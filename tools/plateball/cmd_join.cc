@@ -36,23 +36,20 @@ Json ImpulseToJson(const Impulse& i) {
 }
 
 Json JoinToJson(const JoinSummary& j) {
-  Json out{{"target", ToJson(j.target)},
-           {"status", ToString(j.status)},
-           {"usable", j.IsSolutionUsable()},
-           {"delta_psi", j.delta_psi},
+  Json out{{"target", ToJson(j.target)}};
+  Append(out, ResultJson(ToString(j.status), j.IsSolutionUsable(), j.message, j.BriefReport()));
+  Append(out, Json{{"delta_psi", j.delta_psi},
            {"t", j.t},
            {"residual", j.residual},
            {"iterations", j.iterations},
            {"initial_guess_residual", j.initial_guess_residual},
            {"time_limit_K1_distance", j.time_limit},
-           {"jacobian_conditioning", j.jacobian_conditioning}};
-  if (!j.message.empty()) out["message"] = j.message;
+           {"jacobian_conditioning", j.jacobian_conditioning}});
   out["impulse"] = ImpulseToJson(j.impulse);
   out["arrival"] = Json{{"x", ToJson(j.x_after)},
                         {"angles", ToJson(j.angles_after)},
                         {"z", ToJson(j.state_after.z)},
                         {"omega", ToJson(j.state_after.omega)}};
-  out["report"] = j.BriefReport();
   return out;
 }
 
@@ -69,12 +66,9 @@ int RunJoin(const JoinCliOptions& o) {
   options.max_iterations = static_cast<int>(RequireIntegerInRange("--max-iterations", o.max_iterations, 1, 10000));
   options.residual_tolerance = RequirePositiveOption("--residual-tolerance", o.residual_tolerance);
 
-  Json doc;
-  doc["command"] = "join";
-  doc["problem"] = p.name.empty() ? p.source : p.name;
-  doc["model"] = ToJson(p.model);
-  doc["initial"] = Json{{"theta", p.initial_angles.theta}, {"phi", p.initial_angles.phi},
-                        {"psi", p.initial_angles.psi}, {"mu", p.mu}, {"x0", ToJson(p.x0)}};
+  Json doc = HeaderJson("plateball", "join", p, o.problem.file());
+  doc["initial"] = InitialJson(p);
+  doc["options"] = Json{{"max_iterations", options.max_iterations}, {"residual_tolerance", options.residual_tolerance}};
   doc["minimum_contact_speed"] = MinimumContactSpeed(p.mu, p.model);
   Json list = Json::array();
   bool all = true;

@@ -74,22 +74,19 @@ void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const
 int RunPlan(const PlanCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
-  const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--n", o.n, 1, 1'000'000));
-  const PlanSetup setup = PlanSetupFor(p, n, std::string(kCommandLine) + ": --n");
+  const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--impulses", o.n, 1, 1'000'000));
+  if (n > 0) RequirePartitionSteps("--impulses", n, p);
+  const PlanSetup setup = PlanSetupFor(p, n, std::string(kCommandLine) + ": --impulses");
   const PlanSummary plan = PlanImpulses(setup.problem, setup.options);
   const Path& path = setup.problem.path;
 
-  Json doc;
-  doc["command"] = "plan";
-  doc["problem"] = p.name.empty() ? p.source : p.name;
-  doc["model"] = ToJson(p.model);
-  doc["initial"] = Json{{"theta", p.initial_angles.theta}, {"phi", p.initial_angles.phi},
-                        {"psi", p.initial_angles.psi}, {"mu", p.mu}, {"x0", ToJson(p.x0)},
-                        {"orientation", ToJson(plan.A0)}};
+  Json doc = HeaderJson("plateball", "plan", p, o.problem.file());
+  Json initial = InitialJson(p);
+  initial["orientation"] = ToJson(plan.A0);
+  doc["initial"] = std::move(initial);
   doc["path"] = Json{{"type", ToString(p.plan->path)}, {"pieces", path.PieceCount()}, {"length", path.Length()}};
   doc["partition"] = Json{{"type", ToString(p.plan->partition)}, {"segments", plan.segments}};
-  Json plan_json = PlanSummaryToJson(plan, !o.summary_only);
-  for (auto it = plan_json.begin(); it != plan_json.end(); ++it) doc[it.key()] = std::move(it.value());
+  Append(doc, PlanSummaryToJson(plan, !o.summary_only));
   WriteJson(doc, o.out);
   if (!o.svg.empty()) DrawPlan(p, path, plan, o.svg);
   return plan.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
@@ -98,7 +95,8 @@ int RunPlan(const PlanCliOptions& o) {
 std::function<int()> SetupPlan(CLI::App& sub) {
   auto o = std::make_shared<PlanCliOptions>();
   o->problem.Add(sub);
-  o->n_opt = sub.add_option("--n", o->n, "segments per smooth piece (overrides plan.partition.n)");
+  o->n_opt = sub.add_option("--impulses,--n", o->n,
+                            "impulses (partition segments) per smooth piece, overrides plan.partition.n (--n: deprecated alias)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   sub.add_option("--svg", o->svg, "draw the plate to this SVG file (planned path dashed, trajectory solid; \"-\": standard output, with --out FILE)");
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");

@@ -44,10 +44,9 @@ json SolutionJson(const ReachSolution& s) {
 json SummaryJson(const ReachSummary& s) {
   json sols = json::array();
   for (const ReachSolution& sol : s.solutions) sols.push_back(SolutionJson(sol));
-  json out{{"target", Vec(s.problem.target)},
-           {"status", ToString(s.status)},
-           {"report", s.BriefReport()},
-           {"period", s.period},
+  json out{{"target", Vec(s.problem.target)}};
+  Append(out, ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport()));
+  Append(out, json{{"period", s.period},
            {"horizon", s.horizon},
            {"solutions", sols},
            {"closest_approach",
@@ -59,10 +58,9 @@ json SummaryJson(const ReachSummary& s) {
              {"refine_iterations", s.refine_iterations},
              {"tight_evaluations", s.tight_evaluations},
              {"scan_periods_integrated", s.scan_periods_integrated},
-             {"global_evaluations", s.global_evaluations}}}};
+             {"global_evaluations", s.global_evaluations}}}});
   // The paper's first guess (absent when the target is x0: no direction).
   if (std::isfinite(s.drift_guess_delta_psi)) out["drift_guess_delta_psi"] = s.drift_guess_delta_psi;
-  if (!s.message.empty()) out["message"] = s.message;
   return out;
 }
 
@@ -141,17 +139,9 @@ int RunReach(const ReachCliOptions& o) {
     results.push_back(SummaryJson(summaries.back()));
     all_solved = all_solved && summaries.back().IsSolutionUsable();
   }
-  json doc;
-  doc["command"] = "reach";
-  doc["problem"] = problem.name.empty() ? problem.source : problem.name;
-  doc["model"] = ToJson(problem.model);
-  doc["initial"] = json{{"theta", problem.initial_angles.theta},
-                        {"phi", problem.initial_angles.phi},
-                        {"psi", problem.initial_angles.psi},
-                        {"mu", problem.mu},
-                        {"x0", ToJson(problem.x0)}};
-  doc["horizon_periods"] = task.horizon_periods;
-  doc["seed"] = problem.seed;
+  json doc = HeaderJson("plateball", "reach", problem, o.problem.file());
+  doc["initial"] = InitialJson(problem);
+  doc["options"] = json{{"horizon_periods", task.horizon_periods}};
   doc["results"] = std::move(results);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) Figure(problem, summaries, o.svg_all).Write(o.svg);

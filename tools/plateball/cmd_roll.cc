@@ -12,6 +12,7 @@
 #include "common/command_registry.h"
 #include "common/errors.h"
 #include "common/exit_codes.h"
+#include "common/input_file.h"
 #include "common/json_output.h"
 #include "common/limits.h"
 #include "common/number_format.h"
@@ -47,20 +48,6 @@ struct RollOptions {
   throw std::invalid_argument(file + ": " + field + ": value " + value + ": " + what);
 }
 
-// At most kMaxInputFileBytes of the file (so that /dev/zero or a huge file ends at once).
-std::string ReadBoundedFile(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw IoError(file + ": cannot open the file for reading");
-  std::string text(kMaxInputFileBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (in.bad()) throw IoError(file + ": read error");
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > kMaxInputFileBytes)
-    FileError(file, "(document)", "(more than " + std::to_string(kMaxInputFileBytes >> 20) + " MiB)",
-              "the file is larger than the limit of " + std::to_string(kMaxInputFileBytes >> 20) + " MiB");
-  return text;
-}
-
 // A value as text for a message: compact and at most kMaxValueTextChars characters.
 std::string ValueText(const nlohmann::json& j) {
   std::string text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
@@ -92,7 +79,7 @@ nlohmann::json ParseSamplesJson(const std::string& file, const std::string& text
 // A samples file: {"points": [[x, y], ...]} or a bare array [[x, y], ...].
 std::vector<Eigen::Vector2d> ReadSamplesFile(const std::string& file) {
   using nlohmann::json;
-  const json doc = ParseSamplesJson(file, ReadBoundedFile(file));
+  const json doc = ParseSamplesJson(file, ReadInputText(file));
   std::string field = "(document)";
   const json* points = &doc;
   if (doc.is_object()) {
@@ -144,8 +131,7 @@ IntegrationOptions RollIntegration(const RollOptions& o, IntegrationOptions inte
 
 // The planned path of a problem file: each smooth piece integrated on its own (the velocity
 // may jump between pieces), R = R_n ... R_1.
-Json RollAlongProblemPath(const RollOptions& o, Eigen::Matrix3d* r) {
-  const Problem p = ReadProblemFile(o.problem_file);
+Json RollAlongProblemPath(const RollOptions& o, const Problem& p, Eigen::Matrix3d* r) {
   if (!p.plan)
     throw std::invalid_argument(o.problem_file + ": plan.path: value (missing): roll needs a problem with a plan.path");
   const IntegrationOptions integration = RollIntegration(o, p.integration);
@@ -203,18 +189,20 @@ int RunRoll(const RollOptions& o) {
     throw std::invalid_argument(std::string(kCommandLine) +
                                 ": --segment: value (set): only for --points or --samples-file, not a problem's plan.path");
   Eigen::Matrix3d r;
-  Json doc;
-  doc["command"] = "roll";
-  doc["path"] = o.problem_opt->count() > 0 ? RollAlongProblemPath(o, &r) : RollThroughPoints(o, &r);
-  const Json rotation = RotationToJson(r);
-  doc["reorientation"] = rotation["matrix"];
-  doc["rotation_vector"] = rotation["rotation_vector"];
-  doc["angle"] = rotation["angle"];
-  if (rotation.contains("axis")) doc["axis"] = rotation["axis"];
+  const bool from_problem = o.problem_opt->count() > 0;
+  Problem p;
+  if (from_problem) p = ReadProblemInput(o.problem_file);
+  else p.source = "(command line)";
+  const Json path = from_problem ? RollAlongProblemPath(o, p, &r) : RollThroughPoints(o, &r);
+  p.integration = RollIntegration(o, from_problem ? p.integration : IntegrationOptions{});
+  // The reorientation does not depend on the ball: the header has no model.
+  Json doc = HeaderJson("plateball", "roll", p, o.problem_file, false);
+  doc["path"] = path;
+  doc["reorientation"] = RotationToJson(r);
   if (o.orientation_opt->count() > 0) {
     const Eigen::Matrix3d a0 = ParseOrientation(o.orientation, "--orientation", kCommandLine);
-    doc["initial_orientation"] = ToJson(a0);
-    doc["final_orientation"] = ToJson(Eigen::Matrix3d(r * a0));
+    doc["orientation_initial"] = ToJson(a0);
+    doc["orientation_final"] = ToJson(Eigen::Matrix3d(r * a0));
   }
   WriteJson(doc, o.out);
   return kExitSuccess;
@@ -223,11 +211,11 @@ int RunRoll(const RollOptions& o) {
 std::function<int()> SetupRoll(CLI::App& sub) {
   auto o = std::make_shared<RollOptions>();
   o->problem_opt = sub.add_option("problem", o->problem_file,
-                                  "a problem file whose plan.path is rolled along (each smooth piece exactly)");
+                                  "a problem file whose plan.path is rolled along (each smooth piece exactly; \"-\": standard input)");
   o->points_opt = sub.add_option("--points", o->points,
                                  "the path through the points \"X1,Y1;X2,Y2;...\" (or separated by spaces; >= 2; a natural C^2 spline unless --segment)");
   o->samples_file_opt = sub.add_option("--samples-file", o->samples_file,
-                                       "the path through the points of a JSON file {\"points\": [[x, y], ...]}");
+                                       "the path through the points of a JSON file {\"points\": [[x, y], ...]} (\"-\": standard input)");
   sub.add_flag("--segment", o->segment, "roll along the straight segments between the points (a polyline; exact)");
   o->orientation_opt = sub.add_option("--orientation", o->orientation,
                                       "initial orientation (JSON, as in problem files); adds the final orientation R A0");
@@ -235,8 +223,8 @@ std::function<int()> SetupRoll(CLI::App& sub) {
   o->rtol_opt = sub.add_option("--rtol", o->rtol, "relative tolerance of the rolling integration (spline paths and plan.path)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
   sub.footer(
-      "Prints JSON: the reorientation R = A(end) A(start)^-1 of the ball (radius 1) rolled along the path,\n"
-      "its rotation vector w (R = exp(hat w), |w| <= pi), angle |w| and axis. A straight segment of length L\n"
+      "Prints JSON (docs/output_contract.md): the reorientation R = A(end) A(start)^-1 of the ball (radius 1)\n"
+      "rolled along the path: matrix, rotation vector w (R = exp(hat w), |w| <= pi), angle |w| and axis. A straight segment of length L\n"
       "in the direction d gives the rotation by L about e3 x d.\n"
       "Example: plateball roll --segment --points \"0,0;1.2,1.6\"\n"
       "         plateball roll --points \"0,0;1,0.5;2,0;3,-0.5\"\n"

@@ -44,26 +44,18 @@ int RunSimulate(const SimulateOptions& o) {
   const FreeMotion motion = FreeMotionFor(p);
   const std::vector<MotionSample> samples = motion.Sample(0.0, task.t_end, task.samples);
 
-  Json doc;
-  doc["command"] = "simulate";
-  doc["problem"] = p.name.empty() ? p.source : p.name;
-  doc["model"] = ToJson(p.model);
+  Json doc = HeaderJson("plateball", "simulate", p, o.problem.file());
   const MotionSample start = motion.At(0.0);
-  doc["initial"] = Json{{"theta", p.initial_angles.theta},
-                        {"phi", p.initial_angles.phi},
-                        {"psi", p.initial_angles.psi},
-                        {"mu", p.mu},
-                        {"x0", ToJson(p.x0)},
-                        {"orientation", ToJson(motion.start().A0)},
-                        {"z", ToJson(motion.start().state.z)},
-                        {"omega", ToJson(motion.start().state.omega)},
-                        {"energy", start.energy}};
+  Json initial = InitialJson(p);
+  Append(initial, Json{{"orientation", ToJson(motion.start().A0)},
+                       {"z", ToJson(motion.start().state.z)},
+                       {"omega", ToJson(motion.start().state.omega)},
+                       {"energy", start.energy}});
+  doc["initial"] = std::move(initial);
   doc["period"] = motion.Period();
   doc["drift_per_period"] = ToJson(motion.DriftPerPeriod());
   doc["mean_velocity"] = ToJson(motion.MeanVelocity());
-  doc["integration"] = Json{{"absolute_tolerance", p.integration.absolute_tolerance},
-                            {"relative_tolerance", p.integration.relative_tolerance},
-                            {"stored_steps_per_period", motion.StoredSteps()}};
+  doc["stored_steps_per_period"] = motion.StoredSteps();
   doc["t_end"] = task.t_end;
   Json list = Json::array();
   for (const MotionSample& s : samples) list.push_back(ToJson(s));
@@ -80,8 +72,9 @@ std::function<int()> SetupSimulate(CLI::App& sub) {
                                   "number of equally spaced samples on [0, t-end], 2 ... 1e6 (default: the file's, else 101)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
   sub.footer(
-      "Prints JSON: model (lambda), initial state, period T = 2 pi/sqrt(mu), drift of the contact point per\n"
-      "period, and per sample t, theta, phi, psi, z, x, orientation (3x3, rows), omega, energy.\n"
+      "Prints JSON (docs/output_contract.md): the header (model, tolerances, seed, problem), the initial state,\n"
+      "period T = 2 pi/sqrt(mu), drift of the contact point per period, and per sample t, angles (theta, phi,\n"
+      "psi), z, x, orientation (3x3, rows), omega, energy.\n"
       "Example: plateball simulate problems/simulate_example.json --samples 3\n"
       "         plateball simulate --lambda 2 --theta 1.0472 --phi 0 --psi 0 --mu 4 --t-end 3.14159 --samples 2\n"
       "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 computation failed, 5 unreadable file.");

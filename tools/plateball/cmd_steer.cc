@@ -49,14 +49,11 @@ int RunSteer(const SteerCliOptions& o) {
   const ExactArrivalSummary s = SolveExactArrival(setup.problem, setup.options);
   const ReplayResult replay = ReplayExactArrival(setup.problem, s.impulses);
 
-  Json doc;
-  doc["command"] = "steer";
-  doc["problem"] = p.name.empty() ? p.source : p.name;
-  doc["model"] = ToJson(p.model);
+  Json doc = HeaderJson("plateball", "steer", p, o.problem.file());
+  doc["initial"] = InitialJson(p);
   doc["reference"] = Json{{"source", reference}, {"length", setup.problem.reference.Length()}};
-  doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"orientation", RotationToJson(setup.problem.A1)}};
-  Json result = ExactArrivalToJson(s, replay, !o.summary_only);
-  for (auto it = result.begin(); it != result.end(); ++it) doc[it.key()] = std::move(it.value());
+  doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
+  Append(doc, ExactArrivalToJson(s, replay, !o.summary_only));
   WriteJson(doc, o.out);
   if (!o.svg.empty()) {
     std::ostringstream title;

@@ -1,0 +1,157 @@
+// Monte Carlo of plan execution under errors (issue 12): N seeded trials per strategy
+// (execution.h) and error scenario (error_model.h), the distributions of the final errors, the
+// missed pass points and the total time, and the final error against the number of impulses n
+// with its fitted log-log slope (the paper's conclusion: errors of a more realistic model may
+// slow Theorem 2.6's O(1/n^2) to about O(1/n)).
+//
+// Trial i of a (n, scenario, strategy) cell draws its errors from (seed, i) alone (a
+// counter-based stream), so every strategy meets the same realisations and the results do not
+// depend on the number of threads or processes: MonteCarloWork splits the flat task list
+// [0, TaskCount()) in any way (threads here, MPI ranks in `plateball montecarlo`) and
+// Summarize() of the gathered records is the same for any split.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plateball/error_model.h"
+#include "plateball/execution.h"
+#include "plateball/export.h"
+#include "plateball/impulse_planner.h"
+
+namespace plateball PLATEBALL_EXPORT {
+
+struct MonteCarloScenario {
+  std::string name;  ///< for reports (e.g. ToString(errors))
+  ErrorModel errors;
+};
+
+/// What is asked.
+struct MonteCarloProblem {
+  PlanProblem plan;  ///< the planned path; its (single, uniform) partition gives the main n
+  std::vector<ExecutionStrategy> strategies{ExecutionStrategy::kOpenLoop, ExecutionStrategy::kFeedback};
+  std::vector<MonteCarloScenario> scenarios;  ///< at least one
+  int trials = 100;                           ///< per cell at the main n, 1 ... kMaxTrials
+  std::uint64_t seed = 1;
+  /// Further n for the error-against-n study (uniform partitions, distinct, 3 ... 10^4); empty: none.
+  std::vector<int> sweep_n;
+};
+
+struct MonteCarloOptions {
+  static constexpr int kMaxTrials = 1'000'000;
+  static constexpr long long kMaxTasks = 2'000'000;  ///< trials over all cells and n (memory: ~60 bytes each)
+  PlanOptions plan;
+  ExecutionOptions execution;
+  int threads = 1;       ///< 1 ... 256; the results do not depend on it
+  int sweep_trials = 0;  ///< trials per cell at the sweep's other n (0: `trials`), 0 ... kMaxTrials
+  bool keep_trials = true;  ///< keep every trial's record in the summary
+  /// Called now and then with (tasks done, tasks to do) from the calling thread.
+  std::function<void(long long, long long)> progress;
+  std::string Validate() const;
+};
+
+/// One trial's result (what the per-trial CSV holds).
+struct TrialRecord {
+  int n = 0;
+  int scenario = 0;  ///< index into MonteCarloProblem::scenarios
+  ExecutionStrategy strategy = ExecutionStrategy::kFeedback;
+  std::int64_t trial = 0;
+  ExecutionStatus status = ExecutionStatus::kNotRun;
+  double position_error = 0.0, orientation_error = 0.0, max_pass_miss = 0.0, total_time = 0.0;
+  int missed_pass_points = 0;
+};
+
+/// Order statistics of one quantity over the completed trials of a cell (median and 95th
+/// percentile by linear interpolation between order statistics, Hyndman-Fan type 7).
+struct Distribution {
+  double median = 0.0, p95 = 0.0, max = 0.0, mean = 0.0;
+};
+Distribution Distribute(std::vector<double> values);
+
+struct MonteCarloCell {
+  int n = 0;
+  int scenario = 0;
+  ExecutionStrategy strategy = ExecutionStrategy::kFeedback;
+  int trials = 0, completed = 0;
+  Distribution position_error, orientation_error, max_pass_miss, missed_pass_points, total_time;
+};
+
+/// Median final errors of one (scenario, strategy) against n, with the plan's own error.
+struct SweepSeries {
+  int scenario = 0;
+  ExecutionStrategy strategy = ExecutionStrategy::kFeedback;
+  std::vector<int> n;
+  std::vector<double> median_orientation_error, median_position_error, plan_orientation_error;
+  /// Least-squares slope of log(median orientation error) against log(n) over every n (none when
+  /// fewer than two n have a positive median), and between neighbouring n.
+  std::optional<double> slope;
+  std::vector<std::optional<double>> local_slopes;
+  std::optional<double> plan_slope;  ///< the same fit of plan_orientation_error (Theorem 2.6: -2)
+};
+
+/// The nominal plan of one n.
+struct NominalInfo {
+  int n = 0;
+  PlanStatus status = PlanStatus::kNotRun;
+  std::string message;
+  double orientation_error = 0.0;  ///< |LogSO3(A(T)^T Atilde_n)|, rad
+  double measured_error = 0.0;     ///< ||A(T) - Atilde_n||, operator norm (Theorem 2.6)
+  double total_time = 0.0;
+};
+
+enum class MonteCarloStatus {
+  kNotRun,             ///< default
+  kCompleted,          ///< every trial ran (some may have lost the ball: see the cells)
+  kNominalPlanFailed,  ///< the deterministic plan of some n failed: nothing was executed
+};
+std::string ToString(MonteCarloStatus status);
+
+/// A default-constructed summary says "not run".
+struct MonteCarloSummary {
+  MonteCarloStatus status = MonteCarloStatus::kNotRun;
+  std::string message = "not run";
+  std::vector<NominalInfo> nominal;   ///< per n, ascending
+  std::vector<MonteCarloCell> cells;  ///< per (n, scenario, strategy), in that order
+  std::vector<SweepSeries> sweeps;    ///< per (scenario, strategy) when more than one n
+  std::vector<TrialRecord> records;   ///< every trial (keep_trials), in task order
+  long long failed_trials = 0;        ///< trials that did not complete (lost or integration failure)
+
+  bool IsSolutionUsable() const { return status == MonteCarloStatus::kCompleted; }
+  std::string BriefReport() const;
+};
+
+/// The work of a study as a flat list of tasks (n, scenario, strategy, trial), for splitting over
+/// threads or processes. The constructor validates and plans every n once.
+class MonteCarloWork {
+ public:
+  /// Throws std::invalid_argument naming the field and value for invalid input.
+  MonteCarloWork(const MonteCarloProblem& problem, const MonteCarloOptions& options);
+  long long TaskCount() const { return total_; }
+  /// Runs tasks [begin, end) on options.threads threads; the records in task order.
+  std::vector<TrialRecord> Run(long long begin, long long end) const;
+  /// The summary of the records of all tasks, in task order (as Run gives them).
+  MonteCarloSummary Summarize(std::vector<TrialRecord> records) const;
+  /// The nominal plan of the main n.
+  const NominalPlan& MainPlan() const { return *nominals_.front(); }
+  const std::vector<int>& Ns() const { return ns_; }
+
+ private:
+  TrialRecord RunTask(long long task) const;
+  std::vector<SweepSeries> MakeSweeps(const MonteCarloSummary& summary) const;
+  MonteCarloProblem problem_;
+  MonteCarloOptions options_;
+  std::vector<int> ns_;                                   // main n first, then the sweep's others
+  std::vector<std::shared_ptr<const NominalPlan>> nominals_;
+  std::vector<long long> offsets_;                        // first task of each n
+  long long total_ = 0;
+  bool planned_ = true;
+};
+
+/// Runs every task on this process: MonteCarloWork(problem, options).Summarize(Run(0, TaskCount())).
+MonteCarloSummary RunMonteCarlo(const MonteCarloProblem& problem, const MonteCarloOptions& options = {});
+
+}  // namespace plateball

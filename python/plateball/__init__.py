@@ -1,0 +1,121 @@
+"""plateball: impulsive control of a symmetric ball rolling without sliding or spinning.
+
+A thin Python binding of the C++ library (pybind11). Every solver is one call that takes its
+problem and options either as objects or as keyword arguments (a keyword names a field of the
+problem or of the options; unknown keywords are a TypeError), and returns the library's summary
+with NumPy arrays for trajectories, orientations and impulses, the same status words
+("converged", "success", ...) and messages as the tools. Invalid input raises ValueError with the
+library's message (FIELD: value V: what). The solvers release the GIL.
+
+    import plateball as pb
+    s = pb.join(model=pb.BallModel(2.0), start=(1.0471975511965976, 0.4, 0.1), target=(0.05, 0))
+    s.status, s.delta_psi, s.t
+
+    problem = pb.read_problem_file("problems/circle.json")
+    plan = pb.plan(*pb.plan_setup_for(problem))        # what `plateball plan` runs
+"""
+
+import functools
+
+from ._plateball import *  # noqa: F401,F403
+from ._plateball import (__version__, _converge, _isoparallel, _join, _plan, _plan_optimal_path,  # noqa: F401
+                         _reach, _steer, ConvergenceOptions, ConvergenceProblem, ExactArrivalOptions,
+                         ExactArrivalProblem, IsoparallelOptions, IsoparallelPlanProblem, IsoparallelProblem,
+                         JoinOptions, JoinProblem, MonteCarloOptions, MonteCarloProblem, PlanOptions, PlanProblem,
+                         ReachOptions, ReachProblem, _montecarlo)
+
+
+@functools.lru_cache(maxsize=None)
+def _fields(cls):
+    return frozenset(k for k in dir(cls) if not k.startswith("_"))
+
+
+def _solve(native, problem_type, options_type, problem, options, kwargs):
+    """Builds the problem and options from objects and/or keywords, then calls the solver."""
+    if not kwargs and problem is not None and options is not None:
+        return native(problem, options)
+    problem = problem_type() if problem is None else problem
+    options = options_type() if options is None else options
+    problem_fields, options_fields = _fields(problem_type), _fields(options_type)
+    for key, value in kwargs.items():
+        if key in problem_fields:
+            setattr(problem, key, value)
+        elif key in options_fields:
+            setattr(options, key, value)
+        else:
+            raise TypeError(f"{native.__name__.lstrip('_')}(): unexpected keyword argument '{key}' "
+                            f"(not a field of {problem_type.__name__} or {options_type.__name__})")
+    return native(problem, options)
+
+
+def join(problem=None, options=None, **kwargs):
+    """Join x0 to a close target with one energy-preserving impulse (Lemma 2.1): a JoinSummary."""
+    return _solve(_join, JoinProblem, JoinOptions, problem, options, kwargs)
+
+
+def reach(problem=None, options=None, **kwargs):
+    """Every (delta_psi, t) reaching a distant target within the horizon (section 2.3): a ReachSummary."""
+    return _solve(_reach, ReachProblem, ReachOptions, problem, options, kwargs)
+
+
+def plan(problem=None, options=None, **kwargs):
+    """Follow a planned path with impulses (section 2.3, Theorems 2.5/2.6): a PlanSummary."""
+    return _solve(_plan, PlanProblem, PlanOptions, problem, options, kwargs)
+
+
+def converge(problem=None, options=None, **kwargs):
+    """Plans for several partition sizes and the log-log slopes (Corollary 3): a ConvergenceStudy."""
+    return _solve(_converge, ConvergenceProblem, ConvergenceOptions, problem, options, kwargs)
+
+
+def isoparallel(problem=None, options=None, **kwargs):
+    """Shortest paths with a given reorientation (section 2.2): an IsoparallelSummary."""
+    return _solve(_isoparallel, IsoparallelProblem, IsoparallelOptions, problem, options, kwargs)
+
+
+def plan_optimal_path(problem=None, options=None, **kwargs):
+    """The impulsive approximation of an isoparallel solution (Figure 7): a PlanSummary."""
+    return _solve(_plan_optimal_path, IsoparallelPlanProblem, PlanOptions, problem, options, kwargs)
+
+
+def steer(problem=None, options=None, **kwargs):
+    """Exact arrival at (x1, A1) with n impulses closest to a reference path: an ExactArrivalSummary."""
+    return _solve(_steer, ExactArrivalProblem, ExactArrivalOptions, problem, options, kwargs)
+
+
+def montecarlo(problem=None, options=None, **kwargs):
+    """A plan executed under errors by each strategy, many seeded trials (issue 12): a MonteCarloSummary."""
+    return _solve(_montecarlo, MonteCarloProblem, MonteCarloOptions, problem, options, kwargs)
+
+
+def simulate(model=None, angles=None, mu=1.0, x0=(0.0, 0.0), orientation=None, t_end=10.0, samples=101,
+             integration=None, problem=None):
+    """The free rolling sampled at `samples` equal steps on [0, t_end] (what `plateball simulate` prints):
+    returns (FreeMotion, Trajectory). With `problem` (a Problem), its ball, initial state, integration
+    and simulate section are used, as the tool does."""
+    if problem is not None:
+        motion = free_motion_for(problem)
+        task = problem.simulate if problem.simulate is not None else SimulateTask()
+        return motion, motion.sample(0.0, task.t_end, task.samples)
+    import numpy as np
+    motion = FreeMotion(model if model is not None else BallModel(1.0),
+                        AngleState(*angles) if angles is not None else AngleState(1.0471975511965976, 0.4, 0.1),
+                        mu, np.asarray(x0, dtype=float),
+                        np.eye(3) if orientation is None else np.asarray(orientation, dtype=float),
+                        integration if integration is not None else IntegrationOptions())
+    return motion, motion.sample(0.0, t_end, samples)
+
+
+def roll(points, segment=False, integration=None):
+    """The reorientation R = A(end) A(start)^-1 of rolling along planar points: the polyline
+    (segment=True, exact) or their natural cubic spline (`plateball roll --points`)."""
+    import numpy as np
+    pts = [np.asarray(p, dtype=float) for p in points]
+    if segment:
+        return roll_along_polyline(pts)
+    return roll_along_samples(pts, integration if integration is not None else IntegrationOptions())
+
+
+def load_problem(path):
+    """Reads a problem file with the library's reader (same checks and messages as the tools)."""
+    return read_problem_file(str(path))

@@ -1,0 +1,96 @@
+// Shared helpers of the plateball Python binding: keyword-argument constructors and the
+// registration functions of each part. The binding is thin: it converts types (Eigen <-> NumPy,
+// std::vector <-> list, status enums <-> their ToString words) and calls the library.
+#pragma once
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <Eigen/Core>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "plateball/free_motion.h"
+
+namespace plateball::python {
+
+namespace py = pybind11;
+
+// Adds `T(**kwargs)`: a default value whose attributes are set from the keywords, so that
+// `JoinOptions(max_iterations=50)` works; an unknown keyword is a TypeError naming it.
+template <typename T, typename... Extra>
+py::class_<T, Extra...>& WithKeywordInit(py::class_<T, Extra...>& cls) {
+  cls.def(py::init([](const py::kwargs& kwargs) {
+            T value{};
+            {
+              py::object view = py::cast(&value, py::return_value_policy::reference);
+              for (const auto& item : kwargs) {
+                const std::string key = py::str(item.first);
+                if (key.rfind("_", 0) == 0 || !py::hasattr(py::type::of(view), key.c_str()))
+                  throw py::type_error(std::string(py::str(py::type::of(view).attr("__name__"))) +
+                                       "(): unexpected keyword argument '" + key + "'");
+                py::setattr(view, item.first, item.second);
+              }
+            }
+            return value;
+          }),
+          "Default values, then every keyword argument set as an attribute.");
+  return cls;
+}
+
+// A count argument of the binding's own helpers (samples per arc, points): FIELD: value V: range.
+inline void RequireCount(const char* field, int value, int lo, int hi) {
+  if (value < lo || value > hi)
+    throw std::invalid_argument(std::string(field) + ": value " + std::to_string(value) + ": must be in [" +
+                                std::to_string(lo) + ", " + std::to_string(hi) + "]");
+}
+
+// Samples of a free motion (free_motion.h) as NumPy arrays: t (n), x (n, 2), z and omega (n, 3),
+// orientation (n, 3, 3), theta/phi/psi (n, canonical), energy (n).
+struct Trajectory {
+  std::vector<MotionSample> samples;
+};
+
+// Rows of a matrix built from one vector per element.
+template <int Cols, typename Seq, typename F>
+Eigen::Matrix<double, Eigen::Dynamic, Cols, (Cols == 1 ? Eigen::ColMajor : Eigen::RowMajor)> Stack(const Seq& seq, F&& f) {
+  Eigen::Matrix<double, Eigen::Dynamic, Cols, (Cols == 1 ? Eigen::ColMajor : Eigen::RowMajor)> m(
+      static_cast<Eigen::Index>(seq.size()), Cols);
+  Eigen::Index i = 0;
+  for (const auto& e : seq) m.row(i++) = f(e);
+  return m;
+}
+// An (n, 3, 3) array of rotation matrices (rows as in the tools' JSON).
+template <typename Seq, typename F>
+py::array_t<double> StackMatrices(const Seq& seq, F&& f) {
+  py::array_t<double> a({static_cast<py::ssize_t>(seq.size()), py::ssize_t{3}, py::ssize_t{3}});
+  auto r = a.mutable_unchecked<3>();
+  py::ssize_t i = 0;
+  for (const auto& e : seq) {
+    const Eigen::Matrix3d m = f(e);
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) r(i, j, k) = m(j, k);
+    ++i;
+  }
+  return a;
+}
+
+// status (word), usable, message, report: the shape every summary shares.
+template <typename S>
+void AddSummaryShape(py::class_<S>& cls) {
+  cls.def_property_readonly("status", [](const S& s) { return ToString(s.status); })
+      .def_readonly("message", &S::message)
+      .def_property_readonly("usable", &S::IsSolutionUsable)
+      .def_property_readonly("report", &S::BriefReport)
+      .def("__repr__", &S::BriefReport);
+}
+
+void BindModel(py::module_& m);     // model, states, impulses, free motion, rolling, SO(3)
+void BindPaths(py::module_& m);     // curves, paths, partitions
+void BindSolvers(py::module_& m);   // join, reach, plan, converge, isoparallel, exact arrival
+void BindProblem(py::module_& m);   // problem files and task adapters
+
+}  // namespace plateball::python

@@ -1,0 +1,209 @@
+// Python binding: the isoparallel problem (section 2.2), its impulsive approximation and the exact
+// arrival (exact_arrival.h).
+#include "bind_common.h"
+#include "plateball/elastica.h"
+#include "plateball/exact_arrival.h"
+#include "plateball/impulse.h"
+#include "plateball/isoparallel.h"
+#include "plateball/isoparallel_plan.h"
+#include "plateball/so3.h"
+
+namespace plateball::python {
+namespace {
+
+using Scalar1 = Eigen::Matrix<double, 1, 1>;
+
+// (n + 1, 2) points of a function of arc length s in [0, length].
+template <typename F>
+Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> SampleArc(double length, int n, F&& position) {
+  RequireCount("n", n, 1, 1000000);
+  std::vector<int> i(static_cast<std::size_t>(n) + 1);
+  for (std::size_t k = 0; k < i.size(); ++k) i[k] = static_cast<int>(k);
+  return Stack<2>(i, [&](int k) { return Eigen::RowVector2d(position(length * k / n).transpose()); });
+}
+
+void BindElastica(py::module_& m) {
+  py::class_<ElasticaParameters>(m, "ElasticaParameters")
+      .def_property_readonly("regime", [](const ElasticaParameters& p) { return ToString(p.regime); })
+      .def_readonly("rate", &ElasticaParameters::rate)
+      .def_readonly("modulus", &ElasticaParameters::modulus)
+      .def_readonly("phase", &ElasticaParameters::phase)
+      .def_readonly("heading_w", &ElasticaParameters::heading_w);
+  py::class_<Elastica>(m, "Elastica", "An optimal path: the heading obeys the pendulum g'' = -G cos(g - g_W) (Figure 6).")
+      .def(py::init<const ElasticaParameters&>(), py::arg("parameters"))
+      .def_static("from_initial_state", &Elastica::FromInitialState, py::arg("G"), py::arg("heading_w"),
+                  py::arg("heading0"), py::arg("curvature0"))
+      .def_property_readonly("parameters", &Elastica::parameters)
+      .def_property_readonly("G", &Elastica::G)
+      .def_property_readonly("energy", &Elastica::Energy)
+      .def_property_readonly("period", &Elastica::Period)
+      .def_property_readonly("drift_per_period", &Elastica::DriftPerPeriod)
+      .def("pendulum_angle", py::vectorize(&Elastica::PendulumAngle), py::arg("s"))
+      .def("heading", py::vectorize(&Elastica::Heading), py::arg("s"))
+      .def("curvature", py::vectorize(&Elastica::Curvature), py::arg("s"))
+      .def("tangent", &Elastica::Tangent, py::arg("s"))
+      .def("position", &Elastica::Position, py::arg("s"));
+}
+
+void BindIsoparallelInputs(py::module_& m) {
+  py::class_<IsoparallelOptions> options(m, "IsoparallelOptions");
+  WithKeywordInit(options)
+      .def_readwrite("starts", &IsoparallelOptions::starts)
+      .def_readwrite("length_cap_factor", &IsoparallelOptions::length_cap_factor)
+      .def_readwrite("max_iterations", &IsoparallelOptions::max_iterations)
+      .def_readwrite("tolerance", &IsoparallelOptions::tolerance)
+      .def_readwrite("threads", &IsoparallelOptions::threads)
+      .def_readwrite("seed", &IsoparallelOptions::seed)
+      .def_readwrite("max_length", &IsoparallelOptions::max_length)
+      .def_readwrite("enumerate_families", &IsoparallelOptions::enumerate_families)
+      .def_readwrite("integration", &IsoparallelOptions::integration)
+      .def("validate", &IsoparallelOptions::Validate);
+  py::class_<IsoparallelProblem> problem(m, "IsoparallelProblem", "Shortest path from (start, A0) to (goal, A1) (section 2.2).");
+  WithKeywordInit(problem)
+      .def_readwrite("start", &IsoparallelProblem::start)
+      .def_readwrite("goal", &IsoparallelProblem::goal)
+      .def_readwrite("start_orientation", &IsoparallelProblem::start_orientation)
+      .def_readwrite("goal_orientation", &IsoparallelProblem::goal_orientation);
+  py::class_<IsoparallelSolution>(m, "IsoparallelSolution")
+      .def_readonly("parameters", &IsoparallelSolution::parameters)
+      .def_readonly("start", &IsoparallelSolution::start)
+      .def_readonly("length", &IsoparallelSolution::length)
+      .def_readonly("crossing", &IsoparallelSolution::crossing)
+      .def_readonly("G", &IsoparallelSolution::G)
+      .def_readonly("energy", &IsoparallelSolution::energy)
+      .def_readonly("periods", &IsoparallelSolution::periods)
+      .def_readonly("family", &IsoparallelSolution::family)
+      .def_readonly("shooting_residual", &IsoparallelSolution::shooting_residual)
+      .def_readonly("orientation_residual", &IsoparallelSolution::orientation_residual)
+      .def_readonly("orientation_error", &IsoparallelSolution::orientation_error)
+      .def_readonly("endpoint_error", &IsoparallelSolution::endpoint_error)
+      .def("elastica", &IsoparallelSolution::Path, "The path as an Elastica (from the origin, before the shift to start).")
+      .def("position_at", &IsoparallelSolution::PositionAt, py::arg("s"))
+      .def("points", [](const IsoparallelSolution& s, int n) { return SampleArc(s.length, n, [&](double a) { return s.PositionAt(a); }); },
+           py::arg("n") = 400, "(n + 1, 2) points at equal arc length");
+}
+
+void BindIsoparallelSolve(py::module_& m) {
+  py::class_<IsoparallelSummary> summary(m, "IsoparallelSummary");
+  AddSummaryShape(summary);
+  summary.def_readonly("problem", &IsoparallelSummary::problem)
+      .def_readonly("options", &IsoparallelSummary::options)
+      .def_property_readonly("method", [](const IsoparallelSummary& s) { return ToString(s.method); })
+      .def_readonly("complete", &IsoparallelSummary::complete)
+      .def_readonly("periods_searched", &IsoparallelSummary::periods_searched)
+      .def_readonly("solutions", &IsoparallelSummary::solutions)
+      .def_readonly("local_solves", &IsoparallelSummary::local_solves)
+      .def_readonly("converged_solves", &IsoparallelSummary::converged_solves)
+      .def_readonly("evaluations", &IsoparallelSummary::evaluations)
+      .def_readonly("searched_length", &IsoparallelSummary::searched_length)
+      .def_readonly("time_seconds", &IsoparallelSummary::time_seconds)
+      .def("shortest", &IsoparallelSummary::Shortest, "The shortest solution (RuntimeError when there is none).")
+      .def_property_readonly("full_report", &IsoparallelSummary::FullReport)
+      .def_property_readonly("lengths", [](const IsoparallelSummary& s) { return Stack<1>(s.solutions, [](const IsoparallelSolution& q) { return Scalar1(q.length); }); });
+  m.def("_isoparallel", &SolveIsoparallel, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
+  m.def("verify_rolling", &VerifyRolling, py::arg("solution"), py::arg("integration") = IntegrationOptions{},
+        py::call_guard<py::gil_scoped_release>(), "The reorientation of rolling along the solution (Runge-Kutta-Fehlberg 7(8), independent of the solver).");
+  m.def("optimal_path", &OptimalPath, py::arg("solution"));
+  m.def("initial_angles_from_orientation", &InitialAnglesFromOrientation, py::arg("orientation"), py::arg("psi"));
+  py::class_<IsoparallelPlanProblem> plan(m, "IsoparallelPlanProblem", "The impulsive approximation of an optimal path (Figure 7).");
+  WithKeywordInit(plan)
+      .def_readwrite("model", &IsoparallelPlanProblem::model)
+      .def_readwrite("psi", &IsoparallelPlanProblem::psi)
+      .def_readwrite("mu", &IsoparallelPlanProblem::mu)
+      .def_readwrite("orientation", &IsoparallelPlanProblem::A0)
+      .def_readwrite("solution", &IsoparallelPlanProblem::solution)
+      .def_readwrite("impulses", &IsoparallelPlanProblem::impulses);
+  m.def("_plan_optimal_path", &PlanOptimalPath, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
+}
+
+void BindExactInputs(py::module_& m) {
+  py::class_<ExactArrivalOptions> options(m, "ExactArrivalOptions");
+  WithKeywordInit(options)
+      .def_readwrite("position_tolerance", &ExactArrivalOptions::position_tolerance)
+      .def_readwrite("orientation_tolerance", &ExactArrivalOptions::orientation_tolerance)
+      .def_readwrite("max_iterations", &ExactArrivalOptions::max_iterations)
+      .def_readwrite("deviation_tolerance", &ExactArrivalOptions::deviation_tolerance)
+      .def_readwrite("difference_step", &ExactArrivalOptions::difference_step)
+      .def_readwrite("integration", &ExactArrivalOptions::integration)
+      .def_readwrite("jacobian_integration", &ExactArrivalOptions::jacobian_integration)
+      .def_readwrite("warm_start", &ExactArrivalOptions::warm_start)
+      .def("validate", &ExactArrivalOptions::Validate);
+  py::class_<ExactArrivalProblem> problem(m, "ExactArrivalProblem", "Arrive at (x1, A1) exactly with n impulses near a reference path.");
+  WithKeywordInit(problem)
+      .def_readwrite("model", &ExactArrivalProblem::model)
+      .def_readwrite("initial", &ExactArrivalProblem::initial)
+      .def_readwrite("mu", &ExactArrivalProblem::mu)
+      .def_readwrite("orientation", &ExactArrivalProblem::A0)
+      .def_readwrite("x0", &ExactArrivalProblem::x0)
+      .def_readwrite("reference", &ExactArrivalProblem::reference)
+      .def_readwrite("impulses", &ExactArrivalProblem::impulses)
+      .def_readwrite("x1", &ExactArrivalProblem::x1)
+      .def_readwrite("goal_orientation", &ExactArrivalProblem::A1);
+  py::class_<ExactImpulse>(m, "ExactImpulse")
+      .def_readonly("t_impulse", &ExactImpulse::t_impulse)
+      .def_readonly("position", &ExactImpulse::position)
+      .def_readonly("delta_psi", &ExactImpulse::delta_psi)
+      .def_readonly("duration", &ExactImpulse::duration)
+      .def_readonly("delta_omega", &ExactImpulse::delta_omega)
+      .def_readonly("plate_velocity_change", &ExactImpulse::plate_velocity_change)
+      .def_readonly("angles_before", &ExactImpulse::angles_before)
+      .def_readonly("planned_position", &ExactImpulse::planned_position)
+      .def_readonly("planned_delta_psi", &ExactImpulse::planned_delta_psi)
+      .def_readonly("planned_duration", &ExactImpulse::planned_duration);
+  py::class_<ReplayResult>(m, "ReplayResult")
+      .def_readonly("x", &ReplayResult::x)
+      .def_readonly("orientation", &ReplayResult::A)
+      .def_readonly("position_error", &ReplayResult::position_error)
+      .def_readonly("orientation_error", &ReplayResult::orientation_error);
+}
+
+// Positions of the exact trajectory: each arc from its impulse (positions only).
+Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> ExactTrajectory(const ExactArrivalSummary& s,
+                                                                          const ExactArrivalProblem& p, int per_arc) {
+  RequireCount("samples_per_arc", per_arc, 1, 100000);
+  std::vector<Eigen::Vector2d> points;
+  for (const ExactImpulse& k : s.impulses) {
+    const Impulse i = EnergyPreservingImpulse(k.angles_before, p.mu, k.delta_psi, p.model);
+    const FreeMotion f(p.model, FreeMotionStart{i.state_after, k.position, AlignOrientationToAxis(Eigen::Matrix3d::Identity(), i.state_after.z)});
+    for (int j = (points.empty() ? 0 : 1); j <= per_arc; ++j) points.push_back(f.PositionAt(k.duration * j / per_arc));
+  }
+  return Stack<2>(points, [](const Eigen::Vector2d& q) { return q.transpose(); });
+}
+
+}  // namespace
+
+void BindIsoparallel(py::module_& m) {
+  BindElastica(m);
+  BindIsoparallelInputs(m);
+  BindIsoparallelSolve(m);
+}
+
+void BindExactArrival(py::module_& m) {
+  BindExactInputs(m);
+  py::class_<ExactArrivalSummary> summary(m, "ExactArrivalSummary");
+  AddSummaryShape(summary);
+  summary.def_readonly("impulses", &ExactArrivalSummary::impulses)
+      .def_readonly("x_final", &ExactArrivalSummary::x_final)
+      .def_readonly("orientation_final", &ExactArrivalSummary::A_final)
+      .def_readonly("position_error", &ExactArrivalSummary::position_error)
+      .def_readonly("orientation_error", &ExactArrivalSummary::orientation_error)
+      .def_readonly("deviation", &ExactArrivalSummary::deviation)
+      .def_readonly("max_pass_displacement", &ExactArrivalSummary::max_pass_displacement)
+      .def_readonly("total_time", &ExactArrivalSummary::total_time)
+      .def_readonly("iterations", &ExactArrivalSummary::iterations)
+      .def_readonly("rollouts", &ExactArrivalSummary::rollouts)
+      .def_readonly("planned_position_error", &ExactArrivalSummary::planned_position_error)
+      .def_readonly("planned_orientation_error", &ExactArrivalSummary::planned_orientation_error)
+      .def_readonly("planned_total_time", &ExactArrivalSummary::planned_total_time)
+      .def_property_readonly("positions", [](const ExactArrivalSummary& s) { return Stack<2>(s.impulses, [](const ExactImpulse& q) { return q.position.transpose(); }); })
+      .def_property_readonly("delta_psi", [](const ExactArrivalSummary& s) { return Stack<1>(s.impulses, [](const ExactImpulse& q) { return Scalar1(q.delta_psi); }); })
+      .def_property_readonly("durations", [](const ExactArrivalSummary& s) { return Stack<1>(s.impulses, [](const ExactImpulse& q) { return Scalar1(q.duration); }); })
+      .def_property_readonly("plate_velocity_changes", [](const ExactArrivalSummary& s) { return Stack<3>(s.impulses, [](const ExactImpulse& q) { return q.plate_velocity_change.transpose(); }); })
+      .def("trajectory", &ExactTrajectory, py::arg("problem"), py::arg("samples_per_arc") = 24,
+           py::call_guard<py::gil_scoped_release>(), "(m, 2) contact points of the exact trajectory");
+  m.def("_steer", &SolveExactArrival, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
+  m.def("replay_exact_arrival", &ReplayExactArrival, py::arg("problem"), py::arg("impulses"),
+        py::arg("integration") = IntegrationOptions{1e-14, 1e-14, 2'000'000}, py::call_guard<py::gil_scoped_release>());
+}
+
+}  // namespace plateball::python

@@ -1,0 +1,196 @@
+// Python binding: the ball model, its states, impulses, the free motion and the rolling.
+#include <array>
+
+#include "bind_common.h"
+#include "plateball/angle_form.h"
+#include "plateball/ball_model.h"
+#include "plateball/ball_state.h"
+#include "plateball/closed_forms.h"
+#include "plateball/free_motion.h"
+#include "plateball/impulse.h"
+#include "plateball/integration_options.h"
+#include "plateball/join.h"
+#include "plateball/rolling.h"
+#include "plateball/so3.h"
+
+namespace plateball::python {
+namespace {
+
+void BindStates(py::module_& m) {
+  py::class_<PhysicalParameters> physical(m, "PhysicalParameters", "Physical parameters of the ball (section 2.1).");
+  WithKeywordInit(physical)
+      .def_readwrite("inertia_1", &PhysicalParameters::inertia_1)
+      .def_readwrite("inertia_3", &PhysicalParameters::inertia_3)
+      .def_readwrite("ball_mass", &PhysicalParameters::ball_mass)
+      .def_readwrite("radius", &PhysicalParameters::radius)
+      .def_readwrite("plate_mass", &PhysicalParameters::plate_mass)
+      .def("validate", &PhysicalParameters::Validate);
+  py::class_<BallModel>(m, "BallModel", "The ball parameter lambda = (alpha + beta)/(1 + beta), eq. (9).")
+      .def(py::init(&BallModel::FromLambda), py::arg("lambda_"))
+      .def_static("from_lambda", &BallModel::FromLambda, py::arg("lambda_"))
+      .def_static("from_alpha_beta", &BallModel::FromAlphaBeta, py::arg("alpha"), py::arg("beta"))
+      .def_static("from_physical", &BallModel::FromPhysical, py::arg("physical"))
+      .def_property_readonly("lambda_", &BallModel::lambda)
+      .def_property_readonly("has_inertia", &BallModel::has_inertia)
+      .def_property_readonly("alpha", &BallModel::alpha)
+      .def_property_readonly("beta", &BallModel::beta)
+      .def("__repr__", [](const BallModel& b) { return "BallModel(lambda_=" + std::string(py::repr(py::float_(b.lambda()))) + ")"; });
+  py::class_<AngleState> angles(m, "AngleState", "The angles (theta, phi, psi) of eqs. (12)-(18).");
+  WithKeywordInit(angles)
+      .def(py::init([](double theta, double phi, double psi) { return AngleState{theta, phi, psi}; }),
+           py::arg("theta"), py::arg("phi"), py::arg("psi"))
+      .def_readwrite("theta", &AngleState::theta)
+      .def_readwrite("phi", &AngleState::phi)
+      .def_readwrite("psi", &AngleState::psi)
+      .def("canonicalize", &AngleState::Canonicalize)
+      .def("__iter__", [](const AngleState& a) { return py::iter(py::make_tuple(a.theta, a.phi, a.psi)); })
+      .def("__repr__", [](const AngleState& a) {
+        return "AngleState(theta=" + std::string(py::repr(py::float_(a.theta))) + ", phi=" +
+               std::string(py::repr(py::float_(a.phi))) + ", psi=" + std::string(py::repr(py::float_(a.psi))) + ")";
+      });
+  angles.def(py::init([](const std::array<double, 3>& a) { return AngleState{a[0], a[1], a[2]}; }), py::arg("angles"));
+  py::implicitly_convertible<py::tuple, AngleState>();
+  py::implicitly_convertible<py::list, AngleState>();
+  py::class_<BallState> state(m, "BallState", "(z, omega): symmetry axis and spatial angular velocity.");
+  WithKeywordInit(state).def_readwrite("z", &BallState::z).def_readwrite("omega", &BallState::omega);
+  py::class_<IntegrationOptions> integration(m, "IntegrationOptions", "Tolerances and step bound of the ODE integrations.");
+  WithKeywordInit(integration)
+      .def_readwrite("absolute_tolerance", &IntegrationOptions::absolute_tolerance)
+      .def_readwrite("relative_tolerance", &IntegrationOptions::relative_tolerance)
+      .def_readwrite("max_steps", &IntegrationOptions::max_steps)
+      .def("validate", &IntegrationOptions::Validate);
+  m.def("state_from_angles", &StateFromAngles, py::arg("angles"), py::arg("mu"), py::arg("model"));
+  m.def("angles_from_state", &AnglesFromState, py::arg("state"), py::arg("model"));
+  m.def("energy", &Energy, py::arg("state"), py::arg("model"), "mu = |omega x z|^2 + lambda v0^2, eq. (9).");
+  m.def("conserved_momentum", &ConservedMomentum, py::arg("state"), py::arg("model"));
+  m.def("minimum_contact_speed", &MinimumContactSpeed, py::arg("mu"), py::arg("model"));
+}
+
+void BindImpulses(py::module_& m) {
+  py::class_<Impulse>(m, "Impulse", "An impulse at the contact point (section 2.1).")
+      .def_readonly("before", &Impulse::before)
+      .def_readonly("after", &Impulse::after)
+      .def_readonly("mu_before", &Impulse::mu_before)
+      .def_readonly("mu_after", &Impulse::mu_after)
+      .def_readonly("delta_u", &Impulse::delta_u)
+      .def_readonly("delta_v0", &Impulse::delta_v0)
+      .def_readonly("delta_omega", &Impulse::delta_omega)
+      .def_readonly("plate_velocity_change", &Impulse::plate_velocity_change)
+      .def_readonly("state_before", &Impulse::state_before)
+      .def_readonly("state_after", &Impulse::state_after);
+  m.def("energy_preserving_impulse", &EnergyPreservingImpulse, py::arg("angles"), py::arg("mu"),
+        py::arg("delta_psi"), py::arg("model"));
+  m.def("energy_changing_impulse", &EnergyChangingImpulse, py::arg("angles"), py::arg("mu"), py::arg("factor"),
+        py::arg("model"));
+}
+
+void BindTrajectory(py::module_& m) {
+  py::class_<Trajectory>(m, "Trajectory", "Samples of a motion as NumPy arrays.")
+      .def_property_readonly("t", [](const Trajectory& s) { return Stack<1>(s.samples, [](const MotionSample& q) { return Eigen::Matrix<double, 1, 1>(q.t); }); })
+      .def_property_readonly("x", [](const Trajectory& s) { return Stack<2>(s.samples, [](const MotionSample& q) { return q.x.transpose(); }); })
+      .def_property_readonly("z", [](const Trajectory& s) { return Stack<3>(s.samples, [](const MotionSample& q) { return q.state.z.transpose(); }); })
+      .def_property_readonly("omega", [](const Trajectory& s) { return Stack<3>(s.samples, [](const MotionSample& q) { return q.state.omega.transpose(); }); })
+      .def_property_readonly("angles", [](const Trajectory& s) {
+        return Stack<3>(s.samples, [](const MotionSample& q) { return Eigen::RowVector3d(q.angles.theta, q.angles.phi, q.angles.psi); });
+      }, "(n, 3): canonical (theta, phi, psi)")
+      .def_property_readonly("energy", [](const Trajectory& s) { return Stack<1>(s.samples, [](const MotionSample& q) { return Eigen::Matrix<double, 1, 1>(q.energy); }); })
+      .def_property_readonly("orientation", [](const Trajectory& s) { return StackMatrices(s.samples, [](const MotionSample& q) { return q.A; }); })
+      .def("__len__", [](const Trajectory& s) { return s.samples.size(); });
+}
+
+void BindFreeMotion(py::module_& m) {
+  py::class_<MotionSample>(m, "MotionSample")
+      .def_readonly("t", &MotionSample::t)
+      .def_readonly("state", &MotionSample::state)
+      .def_readonly("x", &MotionSample::x)
+      .def_readonly("orientation", &MotionSample::A)
+      .def_readonly("angles", &MotionSample::angles)
+      .def_readonly("energy", &MotionSample::energy);
+  py::class_<FreeMotion>(m, "FreeMotion", "The free rolling: one period integrated, any time evaluated from it.")
+      .def(py::init([](const BallModel& model, const AngleState& angles, double mu, const Eigen::Vector2d& x0,
+                       const Eigen::Matrix3d& A0, const IntegrationOptions& integration) {
+             return FreeMotion::FromAngles(model, angles, mu, x0, A0, integration);
+           }),
+           py::arg("model"), py::arg("angles"), py::arg("mu"), py::arg("x0") = Eigen::Vector2d::Zero(),
+           py::arg("orientation") = Eigen::Matrix3d::Identity(), py::arg("integration") = IntegrationOptions{},
+           py::call_guard<py::gil_scoped_release>())
+      .def_static("from_state", [](const BallModel& model, const BallState& state, const Eigen::Vector2d& x0,
+                                   const Eigen::Matrix3d& A0, const IntegrationOptions& integration) {
+             return FreeMotion(model, FreeMotionStart{state, x0, A0}, integration);
+           },
+           py::arg("model"), py::arg("state"), py::arg("x0") = Eigen::Vector2d::Zero(),
+           py::arg("orientation") = Eigen::Matrix3d::Identity(), py::arg("integration") = IntegrationOptions{},
+           py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("mu", &FreeMotion::mu)
+      .def_property_readonly("period", &FreeMotion::Period)
+      .def_property_readonly("drift_per_period", &FreeMotion::DriftPerPeriod)
+      .def_property_readonly("mean_velocity", &FreeMotion::MeanVelocity)
+      .def_property_readonly("momentum", &FreeMotion::Momentum)
+      .def_property_readonly("start_state", [](const FreeMotion& f) { return f.start().state; })
+      .def_property_readonly("start_orientation", [](const FreeMotion& f) { return f.start().A0; })
+      .def_property_readonly("stored_steps", &FreeMotion::StoredSteps)
+      .def("at", &FreeMotion::At, py::arg("t"))
+      .def("position_at", &FreeMotion::PositionAt, py::arg("t"))
+      .def("sample", [](const FreeMotion& f, double t0, double t1, int n) { return Trajectory{f.Sample(t0, t1, n)}; },
+           py::arg("t0"), py::arg("t1"), py::arg("n"), py::call_guard<py::gil_scoped_release>())
+      .def("sample_times", [](const FreeMotion& f, const std::vector<double>& times) {
+             std::vector<MotionSample> s;
+             for (double t : times) s.push_back(f.At(t));
+             return Trajectory{s};
+           }, py::arg("times"), py::call_guard<py::gil_scoped_release>());
+}
+
+void BindAngleForm(py::module_& m) {
+  py::class_<AngleFormOptions> options(m, "AngleFormOptions");
+  WithKeywordInit(options)
+      .def_readwrite("integration", &AngleFormOptions::integration)
+      .def_readwrite("pole_threshold", &AngleFormOptions::pole_threshold);
+  py::class_<AngleFormResult>(m, "AngleFormResult", "Eqs. (19)-(21) integrated in the angles (not canonicalised).")
+      .def_property_readonly("status", [](const AngleFormResult& r) { return ToString(r.status); })
+      .def_readonly("message", &AngleFormResult::message)
+      .def_readonly("t_reached", &AngleFormResult::t_reached)
+      .def_readonly("steps", &AngleFormResult::steps)
+      .def_property_readonly("t", [](const AngleFormResult& r) { return Stack<1>(r.samples, [](const AngleFormSample& q) { return Eigen::Matrix<double, 1, 1>(q.t); }); })
+      .def_property_readonly("angles", [](const AngleFormResult& r) {
+        return Stack<3>(r.samples, [](const AngleFormSample& q) { return Eigen::RowVector3d(q.angles.theta, q.angles.phi, q.angles.psi); });
+      })
+      .def_property_readonly("x", [](const AngleFormResult& r) { return Stack<2>(r.samples, [](const AngleFormSample& q) { return q.x.transpose(); }); });
+  m.def("integrate_angle_form", &IntegrateAngleForm, py::arg("model"), py::arg("angles"), py::arg("mu"),
+        py::arg("x0"), py::arg("times"), py::arg("options") = AngleFormOptions{}, py::call_guard<py::gil_scoped_release>(),
+        "Eqs. (19)-(21) and x' = (omega_2, -omega_1), sampled at `times` (stops at a pole).");
+  py::class_<AppendixSolution>(m, "AppendixSolution", "The closed form of the appendix, eqs. (30)-(34) (corrected).")
+      .def(py::init<const BallModel&, const AngleState&, double>(), py::arg("model"), py::arg("angles"), py::arg("mu"))
+      .def_property_readonly("period", &AppendixSolution::Period)
+      .def_property_readonly("c", [](const AppendixSolution& a) { return a.constants().c; })
+      .def("theta", &AppendixSolution::Theta, py::arg("t"))
+      .def("w", &AppendixSolution::W, py::arg("t"))
+      .def("phi", &AppendixSolution::Phi, py::arg("t"))
+      .def("psi", &AppendixSolution::Psi, py::arg("t"));
+}
+
+void BindRolling(py::module_& m) {
+  m.def("roll_along_segment", &RollAlongSegment, py::arg("p"), py::arg("q"));
+  m.def("roll_along_polyline", &RollAlongPolyline, py::arg("points"));
+  m.def("roll_along_samples", &RollAlongSamples, py::arg("points"), py::arg("integration") = IntegrationOptions{},
+        py::call_guard<py::gil_scoped_release>());
+  m.def("hat", &Hat);
+  m.def("exp_so3", &ExpSO3);
+  m.def("log_so3", &LogSO3);
+  m.def("operator_norm_distance", &OperatorNormDistance);
+  m.def("rotation_angle", &RotationAngle);
+  m.def("rotation_z", &RotationZ);
+  m.def("align_orientation_to_axis", &AlignOrientationToAxis, py::arg("orientation"), py::arg("z"));
+}
+
+}  // namespace
+
+void BindModel(py::module_& m) {
+  BindStates(m);
+  BindImpulses(m);
+  BindTrajectory(m);
+  BindFreeMotion(m);
+  BindAngleForm(m);
+  BindRolling(m);
+}
+
+}  // namespace plateball::python

@@ -1,0 +1,114 @@
+// Python binding: problem files (problem.h, problem_io.h) and the task adapters (task_adapters.h),
+// so that Python runs exactly what the tools run for a file.
+#include "bind_common.h"
+#include "plateball/problem.h"
+#include "plateball/problem_io.h"
+#include "plateball/task_adapters.h"
+
+namespace plateball::python {
+namespace {
+
+void BindTasks(py::module_& m) {
+  py::class_<SimulateTask> simulate(m, "SimulateTask");
+  WithKeywordInit(simulate).def_readwrite("t_end", &SimulateTask::t_end).def_readwrite("samples", &SimulateTask::samples);
+  py::class_<ReachTask> reach(m, "ReachTask");
+  WithKeywordInit(reach).def_readwrite("targets", &ReachTask::targets).def_readwrite("horizon_periods", &ReachTask::horizon_periods);
+  py::class_<PathSpec>(m, "PathSpec", "A path of a problem file (JSON \"path\"); PathSpec.to_path() builds it.")
+      .def_property_readonly("type", [](const PathSpec& s) { return ToString(s); })
+      .def("to_path", [](const PathSpec& s) { return PathFromSpec(s); });
+  py::class_<PlanTask> plan(m, "PlanTask");
+  WithKeywordInit(plan)
+      .def_readwrite("path", &PlanTask::path)
+      .def_readwrite("partition", &PlanTask::partition)
+      .def_readwrite("energy_changes", &PlanTask::energy_changes)
+      .def_readwrite("converge_n", &PlanTask::converge_n);
+  py::class_<IsoparallelTask> iso(m, "IsoparallelTask");
+  WithKeywordInit(iso)
+      .def_readwrite("start", &IsoparallelTask::start)
+      .def_readwrite("goal", &IsoparallelTask::goal)
+      .def_readwrite("start_orientation", &IsoparallelTask::start_orientation)
+      .def_readwrite("goal_orientation", &IsoparallelTask::goal_orientation)
+      .def_readwrite("impulses", &IsoparallelTask::impulses)
+      .def_readwrite("solver", &IsoparallelTask::solver);
+  py::class_<SteerTask> steer(m, "SteerTask");
+  WithKeywordInit(steer)
+      .def_readwrite("goal", &SteerTask::goal)
+      .def_readwrite("goal_orientation", &SteerTask::goal_orientation)
+      .def_readwrite("impulses", &SteerTask::impulses);
+  py::class_<ExpectedValue>(m, "ExpectedValue")
+      .def_readonly("value", &ExpectedValue::value)
+      .def_readonly("tolerance", &ExpectedValue::tolerance);
+}
+
+void BindProblemValue(py::module_& m) {
+  py::class_<Problem> problem(m, "Problem", "A problem file's content (README: \"Problem files\").");
+  WithKeywordInit(problem)
+      .def_readwrite("source", &Problem::source)
+      .def_readwrite("name", &Problem::name)
+      .def_readwrite("description", &Problem::description)
+      .def_readwrite("model", &Problem::model)
+      .def_readwrite("physical", &Problem::physical)
+      .def_readwrite("initial_angles", &Problem::initial_angles)
+      .def_readwrite("mu", &Problem::mu)
+      .def_readwrite("x0", &Problem::x0)
+      .def_readwrite("orientation", &Problem::A0)
+      .def_readwrite("seed", &Problem::seed)
+      .def_readwrite("integration", &Problem::integration)
+      .def_readwrite("simulate", &Problem::simulate)
+      .def_readwrite("reach", &Problem::reach)
+      .def_readwrite("plan", &Problem::plan)
+      .def_readwrite("isoparallel", &Problem::isoparallel)
+      .def_readwrite("steer", &Problem::steer)
+      .def_readwrite("expected", &Problem::expected)
+      .def("__repr__", [](const Problem& p) { return "<plateball.Problem " + (p.name.empty() ? p.source : p.name) + ">"; });
+  m.def("read_problem_file", &ReadProblemFile, py::arg("path"),
+        "Read a problem file (ValueError naming the field and value; ProblemFileReadError when unreadable).");
+  m.def("parse_problem", &ParseProblem, py::arg("json_text"), py::arg("source_name") = "<memory>");
+  m.def("write_problem_json", &WriteProblemJson, py::arg("problem"), "The canonical JSON form of a problem.");
+  m.def("parse_orientation", &ParseOrientation, py::arg("json_text"), py::arg("field") = "orientation",
+        py::arg("source_name") = "<python>");
+}
+
+// One setup per task: problem and options, ready for the solver call (what the tools run).
+template <typename Setup>
+void BindSetup(py::module_& m, const char* name) {
+  py::class_<Setup>(m, name)
+      .def_readwrite("problem", &Setup::problem)
+      .def_readwrite("options", &Setup::options)
+      .def("__iter__", [](const Setup& s) { return py::iter(py::make_tuple(s.problem, s.options)); });
+}
+
+void BindAdapters(py::module_& m) {
+  BindSetup<JoinSetup>(m, "JoinSetup");
+  BindSetup<ReachSetup>(m, "ReachSetup");
+  BindSetup<PlanSetup>(m, "PlanSetup");
+  BindSetup<ConvergenceSetup>(m, "ConvergenceSetup");
+  BindSetup<IsoparallelSetup>(m, "IsoparallelSetup");
+  BindSetup<IsoparallelPlanSetup>(m, "IsoparallelPlanSetup");
+  BindSetup<ExactArrivalSetup>(m, "ExactArrivalSetup");
+  m.def("path_from_spec", &PathFromSpec, py::arg("spec"), py::arg("field") = "path");
+  m.def("free_motion_for", &FreeMotionFor, py::arg("problem"), py::call_guard<py::gil_scoped_release>());
+  m.def("join_setup_for", &JoinSetupFor, py::arg("problem"), py::arg("target"));
+  m.def("reach_setup_for", &ReachSetupFor, py::arg("problem"), py::arg("target"));
+  m.def("plan_setup_for", &PlanSetupFor, py::arg("problem"), py::arg("n") = 0, py::arg("n_field") = "n");
+  m.def("convergence_setup_for", &ConvergenceSetupFor, py::arg("problem"), py::arg("ns") = std::vector<int>{},
+        py::arg("ns_field") = "ns", py::arg("timings") = false);
+  m.def("isoparallel_setup_for", &IsoparallelSetupFor, py::arg("problem"));
+  m.def("isoparallel_plan_setup_for", &IsoparallelPlanSetupFor, py::arg("problem"), py::arg("solution"),
+        py::arg("impulses") = 0);
+  m.def("exact_arrival_setup_for", py::overload_cast<const Problem&, int, const std::string&>(&ExactArrivalSetupFor),
+        py::arg("problem"), py::arg("impulses") = 0, py::arg("n_field") = "impulses");
+  m.def("exact_arrival_setup_for",
+        py::overload_cast<const Problem&, const IsoparallelSolution&, int, const std::string&>(&ExactArrivalSetupFor),
+        py::arg("problem"), py::arg("solution"), py::arg("impulses") = 0, py::arg("n_field") = "impulses");
+}
+
+}  // namespace
+
+void BindProblem(py::module_& m) {
+  BindTasks(m);
+  BindProblemValue(m);
+  BindAdapters(m);
+}
+
+}  // namespace plateball::python

@@ -1,0 +1,112 @@
+"""The binding's shape: keywords and objects, errors as ValueError with the library's message,
+status words, NumPy results, the GIL released during solves."""
+import math
+import threading
+
+import numpy as np
+import pytest
+
+import plateball as pb
+
+
+def test_keywords_and_objects_give_the_same_join():
+    problem = pb.JoinProblem(model=pb.BallModel(2.0), start=(math.pi / 3, 0.4, 0.1), target=(0.05, 0.0))
+    a = pb.join(problem, pb.JoinOptions(max_iterations=30))
+    b = pb.join(model=pb.BallModel(2.0), start=(math.pi / 3, 0.4, 0.1), target=(0.05, 0.0), max_iterations=30)
+    assert (a.delta_psi, a.t, a.status) == (b.delta_psi, b.t, b.status)
+    assert a.report == "Join: converged, delta_psi = 1.35775, t = 0.0527666, residual = 1.33693e-15, iterations = 2"
+
+
+def test_invalid_values_raise_value_error_with_the_library_message():
+    with pytest.raises(ValueError, match=r"^mu: value -1: must be finite and > 0$"):
+        pb.join(mu=-1.0, target=(0.05, 0.0))
+    with pytest.raises(ValueError, match=r"max_iterations: value 0"):
+        pb.join(target=(0.05, 0.0), max_iterations=0)
+    with pytest.raises(ValueError, match=r"^x.json: initial.mu: value -1: must be > 0"):
+        pb.parse_problem('{"ball": {"lambda": 1}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": -1}}', "x.json")
+    with pytest.raises(ValueError, match=r"radius: value 0"):
+        pb.plan(path=pb.SmoothCurve.circle((0, 0), 0.0, 0.0, 1.0))
+
+
+def test_unreadable_file_and_unknown_keyword():
+    with pytest.raises(pb.ProblemFileReadError, match="cannot open"):
+        pb.load_problem("/nonexistent/problem.json")
+    assert issubclass(pb.ProblemFileReadError, OSError)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'targte'"):
+        pb.join(targte=(1, 0))
+    with pytest.raises(TypeError, match="unexpected keyword argument 'n'"):
+        pb.JoinOptions(n=3)
+
+
+def test_status_words_and_summary_shape():
+    s = pb.join(target=(0.0, 0.0))
+    assert s.status == "target_equals_start" and not s.usable
+    far = pb.join(model=pb.BallModel(2.0), start=(math.pi / 3, 0.4, 0.1), target=(5.0, 0.0))
+    assert far.status == "target_beyond_local_radius" and far.message
+    unreachable = pb.reach(model=pb.BallModel(2.0), start=(math.pi / 2, 0.0, 0.0), target=(1e3, 0.0),
+                           horizon_periods=0.5)
+    assert unreachable.status == "unreachable_within_horizon"
+    with pytest.raises(RuntimeError):
+        unreachable.earliest()
+    starved = pb.plan(path=pb.SmoothCurve.line((0, 0), (1, 0)), integration=pb.IntegrationOptions(max_steps=1))
+    assert starved.status == "integration_failure" and not starved.usable and starved.message
+
+
+def test_plan_arrays(problems):
+    problem = pb.load_problem(problems / "circle.json")
+    s = pb.plan(*pb.plan_setup_for(problem, 16))
+    assert s.pass_points.shape == (16, 2) and s.delta_omega.shape == (16, 3)
+    assert s.orientations_impulsive.shape == (16, 3, 3)
+    traj = s.trajectory(problem.model, samples_per_arc=10)
+    assert traj.x.shape == (161, 2) and traj.orientation.shape == (161, 3, 3)
+    assert traj.t[-1] == pytest.approx(s.total_time, rel=1e-14)
+    assert np.allclose(traj.orientation[-1], s.orientation_impulsive, atol=1e-10)
+    with pytest.raises(ValueError, match="samples_per_arc: value 0"):
+        s.trajectory(problem.model, samples_per_arc=0)
+
+
+def test_problem_round_trip(problems):
+    problem = pb.load_problem(problems / "figure7.json")
+    text = pb.write_problem_json(problem)
+    again = pb.parse_problem(text, "again.json")
+    assert pb.write_problem_json(again) == text
+    assert problem.isoparallel.impulses == 12 and problem.plan is None
+
+
+def test_solves_release_the_gil(problems):
+    """A Python thread keeps running while another thread is inside a solve."""
+    setup = pb.isoparallel_setup_for(pb.load_problem(problems / "figure7.json"))
+    done = threading.Event()
+    result = {}
+
+    def solve():
+        result["summary"] = pb.isoparallel(setup.problem, setup.options)
+        done.set()
+
+    worker = threading.Thread(target=solve)
+    worker.start()
+    ticks = 0
+    while not done.is_set():
+        ticks += 1
+    worker.join()
+    assert result["summary"].status == "solved"
+    assert ticks > 1000
+
+
+def test_helper_counts_are_checked():
+    line = pb.SmoothCurve.line((0.0, 0.0), (2.0, 0.0))
+    assert np.array_equal(line.points(3), [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])
+    with pytest.raises(ValueError, match=r"^n: value 1: must be in \[2, 1000000\]$"):
+        line.points(1)
+    with pytest.raises(ValueError, match=r"^samples: value 1: must be in \[2, "):
+        pb.FreeMotion(pb.BallModel(1.0), (1.0, 0.0, 0.0), 1.0).sample(0.0, 1.0, 1)
+
+
+def test_montecarlo_inputs_are_words_and_checked():
+    p = pb.MonteCarloProblem(strategies=["feedback_exact", "open_loop"])
+    assert p.strategies == ["feedback_exact", "open_loop"]
+    with pytest.raises(ValueError, match="strategies: value"):
+        pb.MonteCarloProblem(strategies=["bogus"])
+    with pytest.raises(ValueError, match="noise"):
+        pb.parse_error_model("impulse_magnitude=2")
+    assert str(pb.parse_error_model("timing=1e-4")).startswith("timing")

@@ -1,0 +1,118 @@
+"""Results through the bindings checked against independent sources: conservation laws and closed
+forms computed here in NumPy, not by the library."""
+import math
+
+import numpy as np
+import pytest
+
+import plateball as pb
+
+
+def hat(w):
+    return np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]], dtype=float)
+
+
+def expm_so3(w):
+    """Rodrigues' formula."""
+    a = np.linalg.norm(w)
+    if a == 0:
+        return np.eye(3)
+    k = hat(np.asarray(w) / a)
+    return np.eye(3) + math.sin(a) * k + (1 - math.cos(a)) * k @ k
+
+
+def test_energy_is_conserved_eq9():
+    """mu = |omega x z|^2 + lambda v0^2 (eq. (9)) evaluated here from the sampled z and omega."""
+    lam, mu = 0.5, 1.7
+    _, traj = pb.simulate(model=pb.BallModel(lam), angles=(math.pi / 5, 0.3, 0.7), mu=mu, t_end=20.0, samples=401)
+    z, omega = traj.z, traj.omega
+    v0 = np.einsum("ij,ij->i", omega, z)
+    energy = np.sum(np.cross(omega, z) ** 2, axis=1) + lam * v0 ** 2
+    assert np.max(np.abs(energy - mu)) < 1e-9
+    assert np.max(np.abs(np.linalg.norm(z, axis=1) - 1)) < 1e-12
+    assert np.max(np.abs(omega[:, 2])) < 1e-12          # no spinning: omega_3 = 0
+    # rolling without sliding: x' = (omega_2, -omega_1); checked by finite differences of x
+    dt = traj.t[1] - traj.t[0]
+    xdot = (traj.x[2:] - traj.x[:-2]) / (2 * dt)
+    assert np.max(np.abs(xdot - np.stack([omega[1:-1, 1], -omega[1:-1, 0]], axis=1))) < 2e-3
+
+
+def test_simulate_example_closed_form(problems):
+    """theta = pi/3, phi = pi/2, psi = 0, lambda = 2: omega = (1, 0, 0) constant, x(t) = (0, -t)."""
+    motion, traj = pb.simulate(problem=pb.load_problem(problems / "simulate_example.json"))
+    assert motion.period == pytest.approx(2 * math.pi, abs=1e-12)
+    assert np.max(np.abs(traj.omega - [1.0, 0.0, 0.0])) < 1e-12
+    assert np.max(np.abs(traj.x - np.stack([0 * traj.t, -traj.t], axis=1))) < 1e-11
+    # the axis turns about e1: A(t) = exp(t hat(e1)) A0
+    a0 = traj.orientation[0]
+    for t, a in zip(traj.t[::10], traj.orientation[::10]):
+        assert np.max(np.abs(a - expm_so3([t, 0, 0]) @ a0)) < 1e-11
+
+
+def test_angle_form_first_integral_eq24():
+    """(22)-(23) give d theta/dw = tan(theta) tan(w), so sin(theta) cos(w) is constant (eq. (32))."""
+    model = pb.BallModel(0.5)
+    times = np.linspace(0.0, 6.0, 121)
+    r = pb.integrate_angle_form(model, (math.pi / 3, 0.0, 0.0), 1.0, (0.0, 0.0), times)
+    assert r.status == "completed"
+    theta, w = r.angles[:, 0], r.angles[:, 1] - r.angles[:, 2]
+    c = np.sin(theta) * np.cos(w)
+    assert np.max(np.abs(c - c[0])) < 1e-10
+    # eq. (22): theta' = -b sin(w), b = sqrt(mu) = 1
+    dtheta = np.gradient(theta, times)
+    assert np.max(np.abs(dtheta[2:-2] + np.sin(w[2:-2]))) < 5e-3
+
+
+def test_roll_segment_closed_form():
+    """A segment of length L in direction d rolls the ball by L about e3 x d."""
+    r = pb.roll([(0.0, 0.0), (1.2, 1.6)], segment=True)
+    assert np.max(np.abs(r - expm_so3([-1.6, 1.2, 0.0]))) < 1e-14
+
+
+def test_reach_closed_form(problems):
+    """Figure 8's ball: delta_psi = pi leaves omega = (-1, 0, 0), the ball reaches (0, 10) at t = 10."""
+    problem = pb.load_problem(problems / "figure8_reach.json")
+    s = pb.reach(*pb.reach_setup_for(problem, (0.0, 10.0)))
+    assert s.status == "solved" and s.usable
+    e = s.earliest()
+    assert e.delta_psi == pytest.approx(math.pi, abs=1e-10)
+    assert e.t == pytest.approx(10.0, abs=1e-10)
+    assert np.max(np.abs(e.end.state.omega - [-1.0, 0.0, 0.0])) < 1e-10
+
+
+def test_circle_rolling_closed_form(problems):
+    """Rolling along the circle of radius 2: a rotation by 2 pi sqrt(5), folded into [0, pi]."""
+    problem = pb.load_problem(problems / "circle.json")
+    s = pb.plan(*pb.plan_setup_for(problem))
+    angle = math.fmod(2 * math.pi * math.sqrt(5), 2 * math.pi)
+    angle = 2 * math.pi - angle if angle > math.pi else angle
+    r = s.orientation_planned @ s.initial_orientation.T
+    assert math.acos((np.trace(r) - 1) / 2) == pytest.approx(angle, abs=1e-9)
+    assert s.measured_error <= s.bounds.a_posteriori
+
+
+def test_isoparallel_shortest_rolls_to_identity(problems):
+    """Rolling (dopri5) along Figure 7's shortest path returns the ball to its start orientation."""
+    problem = pb.load_problem(problems / "figure7.json")
+    s = pb.isoparallel(*pb.isoparallel_setup_for(problem))
+    best = s.shortest()
+    assert np.max(np.abs(pb.verify_rolling(best) - np.eye(3))) < 1e-10
+    assert np.max(np.abs(best.points(200)[-1] - [3.0, 3.0])) < 1e-10
+    # the heading is a pendulum: g'' = -G cos(g - g_W), checked by finite differences
+    el = best.elastica()
+    s_ = np.linspace(0.0, best.length, 2001)
+    g = el.heading(s_)
+    h = s_[1] - s_[0]
+    gdd = (g[2:] - 2 * g[1:-1] + g[:-2]) / h ** 2
+    assert np.max(np.abs(gdd + el.G * np.cos(g[1:-1] - best.parameters.heading_w))) < 1e-4
+
+
+def test_join_arrives_by_independent_free_motion():
+    """The join's (delta psi, t) replayed by FreeMotion (periodic storage, not the join's integrator)."""
+    model = pb.BallModel(2.0)
+    start = (math.pi / 3, 0.4, 0.1)
+    s = pb.join(model=model, start=start, mu=1.0, target=(0.05, 0.0))
+    assert s.status == "converged"
+    after = pb.energy_preserving_impulse(start, 1.0, s.delta_psi, model).after
+    motion = pb.FreeMotion(model, after, 1.0)
+    assert np.max(np.abs(motion.position_at(s.t) - [0.05, 0.0])) < 1e-11

@@ -1,0 +1,318 @@
+#include "plateball/execution.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "arc.h"
+#include "check.h"
+#include "connect.h"
+#include "counter_random.h"
+#include "kinematics.h"
+#include "plateball/impulse.h"
+#include "plateball/path.h"
+#include "plateball/so3.h"
+
+namespace plateball {
+
+std::string ToString(ExecutionStrategy strategy) {
+  switch (strategy) {
+    case ExecutionStrategy::kOpenLoop: return "open_loop";
+    case ExecutionStrategy::kFeedback: return "feedback";
+    case ExecutionStrategy::kFeedbackExact: return "feedback_exact";
+  }
+  return "unknown";
+}
+
+ExecutionStrategy ParseExecutionStrategy(const std::string& text, const std::string& field) {
+  for (ExecutionStrategy s :
+       {ExecutionStrategy::kOpenLoop, ExecutionStrategy::kFeedback, ExecutionStrategy::kFeedbackExact})
+    if (text == ToString(s)) return s;
+  internal::ThrowInvalid(field, "'" + text + "'", "unknown strategy (open_loop, feedback, feedback_exact)");
+}
+
+std::string ToString(ExecutionStatus status) {
+  switch (status) {
+    case ExecutionStatus::kNotRun: return "not_run";
+    case ExecutionStatus::kCompleted: return "completed";
+    case ExecutionStatus::kLost: return "lost";
+    case ExecutionStatus::kIntegrationFailure: return "integration_failure";
+  }
+  return "unknown";
+}
+
+ExactArrivalOptions ExecutionOptions::DefaultExactOptions() {
+  ExactArrivalOptions o;
+  o.position_tolerance = 1e-10;
+  o.orientation_tolerance = 1e-9;
+  o.max_iterations = 20;
+  o.integration = {1e-12, 1e-12, 2'000'000};
+  o.jacobian_integration = {1e-10, 1e-10, 2'000'000};
+  return o;
+}
+
+std::string ExecutionOptions::Validate() const {
+  if (!(miss_tolerance > 0 && miss_tolerance <= 1e6))
+    return internal::InvalidValueMessage("miss_tolerance", miss_tolerance, "must be in (0, 1e6]");
+  if (exact_window < 3 || exact_window > kMaxExactWindow)
+    return internal::InvalidValueMessage("exact_window", exact_window,
+                                         "must be in [3, " + std::to_string(kMaxExactWindow) + "]");
+  const std::string e = exact.Validate();
+  return e.empty() ? "" : "exact: " + e;
+}
+
+std::string ExecutionSummary::BriefReport() const {
+  std::ostringstream os;
+  os.precision(4);
+  os << "Execution (" << ToString(strategy) << "): " << ToString(status) << ", " << impulses
+     << " impulses, position error " << position_error << ", orientation error " << orientation_error
+     << " rad, max pass miss " << max_pass_miss << " (" << missed_pass_points << " missed), time " << total_time;
+  if (!message.empty()) os << " (" << message << ")";
+  return os.str();
+}
+
+NominalPlan MakeNominalPlan(const PlanProblem& problem, const PlanOptions& options) {
+  NominalPlan n;
+  n.model = problem.model;
+  n.initial = problem.initial;
+  n.mu = problem.mu;
+  n.options = options;
+  n.plan = PlanImpulses(problem, options);
+  if (n.plan.steps.empty()) return n;
+  for (const PlanStep& s : n.plan.steps) n.pass_points.push_back(s.p_begin);
+  n.pass_points.push_back(n.plan.steps.back().p_end);
+  n.goal = n.pass_points.back();
+  n.goal_orientation = n.plan.A_planned;
+  n.plan_orientation_error = RotationAngle(n.plan.A_planned, n.plan.A_impulsive);
+  return n;
+}
+
+namespace {
+
+// The normal draws of impulse k use the counters k * kSlots + slot; the trial's lambda one more.
+enum Slot { kMagnitude, kAngle, kTiming, kObsX, kObsY, kObsTheta, kObsPhi, kObsPsi, kObsMu, kObsRot, kSlots = 16 };
+constexpr std::uint64_t kLambdaCounter = 0xffffffffULL;
+
+// What the controller commands at one impulse.
+struct Command {
+  Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();
+  double duration = 0.0;
+};
+
+// What the controller sees before an impulse (nominal lambda).
+struct Observation {
+  AngleState angles;
+  double mu = 0.0;
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+};
+
+class Trial {
+ public:
+  Trial(const ExecutionProblem& p, const ExecutionOptions& o)
+      : nominal_(*p.nominal), strategy_(p.strategy), errors_(p.errors), options_(o), random_(p.seed, p.trial),
+        ball_model_(BallModel::FromLambda(nominal_.model.lambda() *
+                                          (1.0 + errors_.lambda * random_.Normal(kLambdaCounter)))) {}
+
+  ExecutionSummary Run();
+
+ private:
+  double Draw(int k, int slot, double sigma) const {
+    return sigma == 0.0 ? 0.0 : sigma * random_.Normal(static_cast<std::uint64_t>(k) * kSlots + slot);
+  }
+  Observation Observe(int k) const;
+  Command Decide(int k);
+  Command Join(int k, const Observation& obs);
+  bool SolveExact(int k, const Observation& obs, Command* c);
+  void ApplyImpulse(int k, const Eigen::Vector3d& delta_omega);
+  double ArcDuration(int k, const Command& c) const;
+  void Fly(double duration);
+  void Finish();
+
+  const NominalPlan& nominal_;
+  ExecutionStrategy strategy_;
+  ErrorModel errors_;
+  const ExecutionOptions& options_;
+  internal::CounterRandom random_;
+  BallModel ball_model_;  // the true ball
+  BallState state_;
+  Eigen::Vector2d x_ = Eigen::Vector2d::Zero();
+  Eigen::Matrix3d A_ = Eigen::Matrix3d::Identity();
+  double time_ = 0.0;
+  std::vector<ExactImpulse> tail_;  // the last exact solution, from impulse tail_start_ on
+  int tail_start_ = 0;
+  ExecutionSummary out_;
+};
+
+Observation Trial::Observe(int k) const {
+  Observation o;
+  o.angles = AnglesFromState(state_, nominal_.model);
+  o.mu = Energy(state_, nominal_.model);
+  o.x = x_;
+  o.A = A_;
+  const double s = errors_.observation;
+  if (s == 0.0) return o;
+  o.x += Eigen::Vector2d(Draw(k, kObsX, s), Draw(k, kObsY, s));
+  o.angles = internal::ReduceAngles("observed", {o.angles.theta + Draw(k, kObsTheta, s),
+                                                 o.angles.phi + Draw(k, kObsPhi, s), o.angles.psi + Draw(k, kObsPsi, s)});
+  o.mu *= 1.0 + Draw(k, kObsMu, s);
+  const Eigen::Vector3d w(Draw(k, kObsRot, s), Draw(k, kObsRot + 1, s), Draw(k, kObsRot + 2, s));
+  o.A = ExpSO3(w) * o.A;
+  return o;
+}
+
+// Feedback: join the observed state to the next pass point (the planner's connection).
+Command Trial::Join(int k, const Observation& obs) {
+  const PlanOptions& po = nominal_.options;
+  const JoinSummary j = internal::ConnectPoints(nominal_.model, obs.angles, obs.mu, obs.x,
+                                                nominal_.pass_points[static_cast<std::size_t>(k) + 1], po.join,
+                                                po.reach_fallback ? &po.reach : nullptr);
+  if (!j.IsSolutionUsable()) {
+    out_.status = j.status == JoinStatus::kIntegrationFailure ? ExecutionStatus::kIntegrationFailure
+                                                              : ExecutionStatus::kLost;
+    out_.message = "impulse " + std::to_string(k) + ": " + j.BriefReport();
+  }
+  return {j.impulse.delta_omega, j.t};
+}
+
+// Exact re-plan of the remaining impulses from the observed state; false when it did not arrive.
+bool Trial::SolveExact(int k, const Observation& obs, Command* c) {
+  const int n = static_cast<int>(nominal_.pass_points.size()) - 1;
+  ExactArrivalProblem ep;
+  ep.model = nominal_.model;
+  ep.initial = obs.angles;
+  ep.mu = obs.mu;
+  ep.A0 = ProjectToSO3(obs.A);
+  ep.x0 = obs.x;
+  std::vector<Eigen::Vector2d> points{obs.x};
+  points.insert(points.end(), nominal_.pass_points.begin() + k + 1, nominal_.pass_points.end());
+  ExactArrivalSummary sol;
+  try {
+    ep.reference = Path({SmoothCurve::Samples(points)});
+    ep.impulses = n - k;
+    ep.x1 = nominal_.goal;
+    ep.A1 = nominal_.goal_orientation;
+    sol = SolveExactArrival(ep, options_.exact);
+  } catch (const std::exception&) {
+    return false;  // e.g. the observed point on top of the next pass point: no reference
+  }
+  if (!sol.IsSolutionUsable()) return false;
+  tail_ = sol.impulses;
+  tail_start_ = k;
+  *c = {tail_.front().delta_omega, tail_.front().duration};
+  return true;
+}
+
+Command Trial::Decide(int k) {
+  if (strategy_ == ExecutionStrategy::kOpenLoop) {
+    const PlanStep& s = nominal_.plan.steps[static_cast<std::size_t>(k)];
+    return {s.delta_omega, s.duration};
+  }
+  const Observation obs = Observe(k);
+  const int remaining = static_cast<int>(nominal_.pass_points.size()) - 1 - k;
+  if (strategy_ == ExecutionStrategy::kFeedbackExact && remaining >= 3 && remaining <= options_.exact_window) {
+    Command c;
+    if (SolveExact(k, obs, &c)) {
+      ++out_.exact_solves;
+      return c;
+    }
+    ++out_.exact_failures;  // go on with the last exact plan, if any, else join
+  }
+  if (strategy_ == ExecutionStrategy::kFeedbackExact && remaining <= options_.exact_window && !tail_.empty()) {
+    const ExactImpulse& e = tail_[static_cast<std::size_t>(k - tail_start_)];
+    return {e.delta_omega, e.duration};
+  }
+  return Join(k, obs);
+}
+
+// The plate adds the commanded delta_omega, turned and scaled by the impulse errors, to the true
+// horizontal angular velocity; the restitution then scales the speed.
+void Trial::ApplyImpulse(int k, const Eigen::Vector3d& delta_omega) {
+  Eigen::Vector3d d = delta_omega;
+  if (errors_.impulse_angle != 0.0) d = RotationZ(Draw(k, kAngle, errors_.impulse_angle)) * d;
+  if (errors_.impulse_magnitude != 0.0) d *= 1.0 + Draw(k, kMagnitude, errors_.impulse_magnitude);
+  state_.omega += d;
+  if (errors_.energy_loss != 0.0) state_.omega *= std::sqrt(1.0 - errors_.energy_loss);
+  ++out_.impulses;
+}
+
+// Open loop fires at the planned absolute times (plus jitter); feedback after the commanded
+// flight time (plus jitter). The end is measured without jitter.
+double Trial::ArcDuration(int k, const Command& c) const {
+  const int n = static_cast<int>(nominal_.pass_points.size()) - 1;
+  const double jitter = k + 1 < n ? Draw(k + 1, kTiming, errors_.timing) : 0.0;
+  if (strategy_ != ExecutionStrategy::kOpenLoop) return std::max(0.0, c.duration + jitter);
+  const auto& steps = nominal_.plan.steps;
+  const double next = k + 1 < n ? steps[static_cast<std::size_t>(k) + 1].t_impulse : nominal_.plan.total_time;
+  return std::max(0.0, next + jitter - time_);
+}
+
+void Trial::Fly(double duration) {
+  const Eigen::Vector2d k_mom = ConservedMomentum(state_, ball_model_);
+  const internal::ArcEnd arc =
+      internal::IntegrateArc(ball_model_.lambda(), state_.z, k_mom, duration, nominal_.options.integration);
+  x_ += arc.dx;
+  A_ = arc.phi * A_;
+  state_ = {arc.z, OmegaFromMomentum(arc.z, k_mom, ball_model_)};
+  time_ += duration;
+}
+
+void Trial::Finish() {
+  out_.x_final = x_;
+  out_.A_final = ProjectToSO3(A_);
+  out_.position_error = (x_ - nominal_.goal).norm();
+  out_.orientation_error = RotationAngle(nominal_.goal_orientation, out_.A_final);
+  out_.total_time = time_;
+  out_.mu_final = Energy(state_, nominal_.model);
+  if (!std::isfinite(out_.orientation_error)) out_.orientation_error = M_PI;  // never a NaN in a summary
+  for (double m : out_.pass_misses) {
+    out_.max_pass_miss = std::max(out_.max_pass_miss, m);
+    if (m > options_.miss_tolerance) ++out_.missed_pass_points;
+  }
+}
+
+ExecutionSummary Trial::Run() {
+  out_.strategy = strategy_;
+  out_.lambda = ball_model_.lambda();
+  out_.status = ExecutionStatus::kCompleted;
+  out_.message.clear();
+  state_ = StateFromAngles(internal::ReduceAngles("initial", nominal_.initial), nominal_.mu, nominal_.model);
+  x_ = nominal_.pass_points.front();
+  A_ = nominal_.plan.A0;
+  const int n = static_cast<int>(nominal_.pass_points.size()) - 1;
+  try {
+    for (int k = 0; k < n && out_.status == ExecutionStatus::kCompleted; ++k) {
+      const Command c = Decide(k);
+      if (out_.status != ExecutionStatus::kCompleted) break;
+      ApplyImpulse(k, c.delta_omega);
+      Fly(ArcDuration(k, c));
+      out_.pass_misses.push_back((x_ - nominal_.pass_points[static_cast<std::size_t>(k) + 1]).norm());
+      out_.pass_speeds.push_back(state_.omega.head<2>().norm());
+    }
+  } catch (const std::runtime_error& e) {
+    out_.status = ExecutionStatus::kIntegrationFailure;
+    out_.message = e.what();
+  } catch (const std::invalid_argument& e) {
+    // The ball left what the controller can handle (e.g. its energy below the join's 1e-12
+    // after many lossy impulses): this trial is lost, the study goes on.
+    out_.status = ExecutionStatus::kLost;
+    out_.message = "impulse " + std::to_string(out_.impulses) + ": " + e.what();
+  }
+  Finish();
+  return out_;
+}
+
+}  // namespace
+
+ExecutionSummary Execute(const ExecutionProblem& problem, const ExecutionOptions& options) {
+  if (!problem.nominal) internal::ThrowInvalid("nominal", "null", "a nominal plan is required (MakeNominalPlan)");
+  if (!problem.nominal->plan.IsSolutionUsable())
+    internal::ThrowInvalid("nominal.plan.status", "'" + ToString(problem.nominal->plan.status) + "'",
+                           "the nominal plan must be usable: " + problem.nominal->plan.message);
+  internal::ThrowIfInvalid(problem.errors.Validate());
+  internal::ThrowIfInvalid(options.Validate());
+  return Trial(problem, options).Run();
+}
+
+}  // namespace plateball

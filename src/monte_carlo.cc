@@ -1,0 +1,283 @@
+#include "plateball/monte_carlo.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <variant>
+
+#include "check.h"
+#include "parallel_for.h"
+#include "plateball/convergence.h"
+
+namespace plateball {
+
+std::string ToString(MonteCarloStatus status) {
+  switch (status) {
+    case MonteCarloStatus::kNotRun: return "not_run";
+    case MonteCarloStatus::kCompleted: return "completed";
+    case MonteCarloStatus::kNominalPlanFailed: return "nominal_plan_failed";
+  }
+  return "unknown";
+}
+
+std::string MonteCarloOptions::Validate() const {
+  if (threads < 1 || threads > 256) return internal::InvalidValueMessage("threads", threads, "must be in [1, 256]");
+  if (sweep_trials < 0 || sweep_trials > kMaxTrials)
+    return internal::InvalidValueMessage("sweep_trials", sweep_trials,
+                                         "must be in [0, " + std::to_string(kMaxTrials) + "] (0: trials)");
+  std::string e = plan.Validate();
+  if (!e.empty()) return "plan: " + e;
+  e = execution.Validate();
+  return e.empty() ? "" : "execution: " + e;
+}
+
+Distribution Distribute(std::vector<double> values) {
+  Distribution d;
+  if (values.empty()) return d;
+  std::sort(values.begin(), values.end());
+  auto quantile = [&values](double p) {
+    const double h = p * static_cast<double>(values.size() - 1);
+    const std::size_t lo = static_cast<std::size_t>(std::floor(h));
+    const std::size_t hi = std::min(lo + 1, values.size() - 1);
+    return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
+  };
+  d.median = quantile(0.5);
+  d.p95 = quantile(0.95);
+  d.max = values.back();
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  d.mean = sum / static_cast<double>(values.size());
+  return d;
+}
+
+std::string MonteCarloSummary::BriefReport() const {
+  std::ostringstream os;
+  os.precision(4);
+  os << "MonteCarlo: " << ToString(status) << ", " << records.size() << " trials";
+  if (!cells.empty()) os << ", n = " << cells.front().n;
+  if (failed_trials > 0) os << ", " << failed_trials << " not completed";
+  const bool scenarios = !cells.empty() && cells.back().scenario > 0;
+  for (const MonteCarloCell& c : cells) {
+    if (c.n != cells.front().n) break;
+    os << "; " << ToString(c.strategy);
+    if (scenarios) os << " (scenario " << c.scenario << ")";
+    os << ": orientation error median " << c.orientation_error.median << " rad, p95 " << c.orientation_error.p95
+       << ", position error median " << c.position_error.median;
+  }
+  if (!message.empty()) os << " (" << message << ")";
+  return os.str();
+}
+
+namespace {
+
+// The partition of `plan` with n segments (a single uniform rule), for the sweep.
+PlanProblem WithN(const PlanProblem& plan, int n) {
+  PlanProblem p = plan;
+  if (std::holds_alternative<UniformParameter>(p.partition.front())) p.partition = {UniformParameter{n}};
+  else p.partition = {UniformArcLength{n}};
+  return p;
+}
+
+void ValidateProblem(const MonteCarloProblem& p, const MonteCarloOptions& o) {
+  internal::ThrowIfInvalid(o.Validate());
+  if (p.trials < 1 || p.trials > MonteCarloOptions::kMaxTrials)
+    internal::ThrowInvalid("trials", p.trials, "must be in [1, " + std::to_string(MonteCarloOptions::kMaxTrials) + "]");
+  if (p.strategies.empty() || p.strategies.size() > 3)
+    internal::ThrowInvalid("strategies (count)", static_cast<int>(p.strategies.size()), "must be 1 ... 3");
+  if (std::set<ExecutionStrategy>(p.strategies.begin(), p.strategies.end()).size() != p.strategies.size())
+    internal::ThrowInvalid("strategies", "(repeated)", "give each strategy once");
+  if (p.scenarios.empty() || p.scenarios.size() > 64)
+    internal::ThrowInvalid("scenarios (count)", static_cast<int>(p.scenarios.size()), "must be 1 ... 64");
+  for (std::size_t i = 0; i < p.scenarios.size(); ++i) {
+    const std::string e = p.scenarios[i].errors.Validate();
+    if (!e.empty()) throw std::invalid_argument("scenarios[" + std::to_string(i) + "]." + e);
+  }
+  if (p.sweep_n.empty()) return;
+  ValidatePartitionSizes(p.sweep_n, "sweep_n");
+  const bool uniform = p.plan.partition.size() == 1 && !std::holds_alternative<ExplicitTaus>(p.plan.partition.front());
+  if (!uniform)
+    internal::ThrowInvalid("sweep_n", p.sweep_n.front(), "needs a single uniform partition rule to vary n");
+}
+
+// Main n: the partition's (for a sweep a single uniform rule), else the nominal plan's segments.
+int MainN(const PlanProblem& plan) {
+  if (plan.partition.size() == 1) {
+    if (const auto* u = std::get_if<UniformParameter>(&plan.partition.front())) return u->n;
+    if (const auto* a = std::get_if<UniformArcLength>(&plan.partition.front())) return a->n;
+  }
+  return 0;
+}
+
+}  // namespace
+
+MonteCarloWork::MonteCarloWork(const MonteCarloProblem& problem, const MonteCarloOptions& options)
+    : problem_(problem), options_(options) {
+  ValidateProblem(problem, options);
+  options_.progress = nullptr;  // Run takes it from `options` each time
+  auto main = std::make_shared<NominalPlan>(MakeNominalPlan(problem.plan, options.plan));
+  ns_.push_back(main->plan.segments);
+  nominals_.push_back(main);
+  std::vector<int> others;
+  for (int n : problem.sweep_n)
+    if (n != MainN(problem.plan)) others.push_back(n);
+  std::sort(others.begin(), others.end());
+  for (int n : others) {
+    ns_.push_back(n);
+    nominals_.push_back(std::make_shared<NominalPlan>(MakeNominalPlan(WithN(problem.plan, n), options.plan)));
+  }
+  const long long cells = static_cast<long long>(problem.scenarios.size() * problem.strategies.size());
+  for (std::size_t i = 0; i < ns_.size(); ++i) {
+    planned_ = planned_ && nominals_[i]->plan.IsSolutionUsable();
+    const int t = i == 0 || options.sweep_trials == 0 ? problem.trials : options.sweep_trials;
+    offsets_.push_back(total_);
+    total_ += cells * t;
+  }
+  if (total_ > MonteCarloOptions::kMaxTasks)
+    internal::ThrowInvalid("trials", problem.trials,
+                           "the study would run " + std::to_string(total_) + " trials (cells x trials over all n), more than " +
+                               std::to_string(MonteCarloOptions::kMaxTasks));
+  if (!planned_) total_ = 0;
+  options_.progress = options.progress;
+}
+
+TrialRecord MonteCarloWork::RunTask(long long task) const {
+  const std::size_t i = static_cast<std::size_t>(
+      std::upper_bound(offsets_.begin(), offsets_.end(), task) - offsets_.begin() - 1);
+  const long long trials = i == 0 || options_.sweep_trials == 0 ? problem_.trials : options_.sweep_trials;
+  const long long local = task - offsets_[i];
+  const long long cell = local / trials;
+  const int strategies = static_cast<int>(problem_.strategies.size());
+  ExecutionProblem ep;
+  ep.nominal = nominals_[i];
+  ep.strategy = problem_.strategies[static_cast<std::size_t>(cell % strategies)];
+  const int scenario = static_cast<int>(cell / strategies);
+  ep.errors = problem_.scenarios[static_cast<std::size_t>(scenario)].errors;
+  ep.seed = problem_.seed;
+  ep.trial = static_cast<std::uint64_t>(local % trials);
+  const ExecutionSummary s = Execute(ep, options_.execution);
+  TrialRecord r;
+  r.n = ns_[i];
+  r.scenario = scenario;
+  r.strategy = ep.strategy;
+  r.trial = static_cast<std::int64_t>(ep.trial);
+  r.status = s.status;
+  r.position_error = s.position_error;
+  r.orientation_error = s.orientation_error;
+  r.max_pass_miss = s.max_pass_miss;
+  r.total_time = s.total_time;
+  r.missed_pass_points = s.missed_pass_points;
+  return r;
+}
+
+std::vector<TrialRecord> MonteCarloWork::Run(long long begin, long long end) const {
+  begin = std::clamp(begin, 0LL, total_);
+  end = std::clamp(end, begin, total_);
+  const int count = static_cast<int>(end - begin);
+  std::vector<TrialRecord> out(static_cast<std::size_t>(count));
+  const int threads = std::max(1, std::min(options_.threads, count));
+  std::atomic<long long> done{0};
+  internal::ParallelFor(count, threads, [&](int j) {
+    out[static_cast<std::size_t>(j)] = RunTask(begin + j);
+    const long long d = ++done;
+    if (options_.progress && j % threads == 0) options_.progress(d, count);
+  });
+  if (options_.progress) options_.progress(count, count);
+  return out;
+}
+
+namespace {
+
+MonteCarloCell MakeCell(const std::vector<TrialRecord>& records, std::size_t first, std::size_t count) {
+  MonteCarloCell c;
+  const TrialRecord& r0 = records[first];
+  c.n = r0.n;
+  c.scenario = r0.scenario;
+  c.strategy = r0.strategy;
+  c.trials = static_cast<int>(count);
+  std::vector<double> pos, ori, miss, missed, time;
+  for (std::size_t i = first; i < first + count; ++i) {
+    const TrialRecord& r = records[i];
+    if (r.status != ExecutionStatus::kCompleted) continue;
+    ++c.completed;
+    pos.push_back(r.position_error);
+    ori.push_back(r.orientation_error);
+    miss.push_back(r.max_pass_miss);
+    missed.push_back(r.missed_pass_points);
+    time.push_back(r.total_time);
+  }
+  c.position_error = Distribute(pos);
+  c.orientation_error = Distribute(ori);
+  c.max_pass_miss = Distribute(miss);
+  c.missed_pass_points = Distribute(missed);
+  c.total_time = Distribute(time);
+  return c;
+}
+
+}  // namespace
+
+MonteCarloSummary MonteCarloWork::Summarize(std::vector<TrialRecord> records) const {
+  if (static_cast<long long>(records.size()) != total_)
+    throw std::logic_error("MonteCarloWork::Summarize: " + std::to_string(records.size()) + " records for " +
+                           std::to_string(total_) + " tasks");
+  MonteCarloSummary s;
+  s.status = planned_ ? MonteCarloStatus::kCompleted : MonteCarloStatus::kNominalPlanFailed;
+  s.message.clear();
+  for (std::size_t i = 0; i < ns_.size(); ++i) {
+    const NominalPlan& p = *nominals_[i];
+    s.nominal.push_back({ns_[i], p.plan.status, p.plan.message, p.plan_orientation_error, p.plan.measured_error,
+                         p.plan.total_time});
+    if (!p.plan.IsSolutionUsable() && s.message.empty())
+      s.message = "the nominal plan with n = " + std::to_string(ns_[i]) + " failed: " + p.plan.message;
+  }
+  std::sort(s.nominal.begin(), s.nominal.end(), [](const NominalInfo& a, const NominalInfo& b) { return a.n < b.n; });
+  const std::size_t per_n = problem_.scenarios.size() * problem_.strategies.size();
+  for (std::size_t i = 0; planned_ && i < ns_.size(); ++i) {
+    const long long end = i + 1 < ns_.size() ? offsets_[i + 1] : total_;
+    const std::size_t trials = static_cast<std::size_t>(end - offsets_[i]) / per_n;
+    for (std::size_t c = 0; c < per_n; ++c)
+      s.cells.push_back(MakeCell(records, static_cast<std::size_t>(offsets_[i]) + c * trials, trials));
+  }
+  for (const TrialRecord& r : records) s.failed_trials += r.status != ExecutionStatus::kCompleted;
+  if (planned_ && ns_.size() > 1) s.sweeps = MakeSweeps(s);
+  if (options_.keep_trials) s.records = std::move(records);
+  return s;
+}
+
+std::vector<SweepSeries> MonteCarloWork::MakeSweeps(const MonteCarloSummary& s) const {
+  std::vector<SweepSeries> out;
+  const std::size_t per_n = problem_.scenarios.size() * problem_.strategies.size();
+  std::vector<std::size_t> order(ns_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [this](std::size_t a, std::size_t b) { return ns_[a] < ns_[b]; });
+  for (std::size_t c = 0; c < per_n; ++c) {
+    SweepSeries series;
+    series.scenario = s.cells[c].scenario;
+    series.strategy = s.cells[c].strategy;
+    std::vector<double> xn;
+    for (std::size_t i : order) {
+      const MonteCarloCell& cell = s.cells[i * per_n + c];
+      series.n.push_back(ns_[i]);
+      xn.push_back(ns_[i]);
+      series.median_orientation_error.push_back(cell.orientation_error.median);
+      series.median_position_error.push_back(cell.position_error.median);
+      series.plan_orientation_error.push_back(nominals_[i]->plan_orientation_error);
+    }
+    series.slope = LogLogSlope(xn, series.median_orientation_error);
+    series.plan_slope = LogLogSlope(xn, series.plan_orientation_error);
+    for (std::size_t i = 0; i + 1 < xn.size(); ++i)
+      series.local_slopes.push_back(LogLogSlope({xn[i], xn[i + 1]}, {series.median_orientation_error[i],
+                                                                     series.median_orientation_error[i + 1]}));
+    out.push_back(std::move(series));
+  }
+  return out;
+}
+
+MonteCarloSummary RunMonteCarlo(const MonteCarloProblem& problem, const MonteCarloOptions& options) {
+  const MonteCarloWork work(problem, options);
+  return work.Summarize(work.Run(0, work.TaskCount()));
+}
+
+}  // namespace plateball

@@ -1,0 +1,39 @@
+# `plateball montecarlo` (issue 12): byte-identical output across thread counts and, in a build
+# with MPI, across 1, 2 and 3 ranks (tests/scripts/montecarlo_ranks.sh); bad options are exit 3
+# naming the option and the value.
+if(NOT TARGET plateball_cli)
+  return()
+endif()
+if(PLATEBALL_WITH_MPI)
+  set(montecarlo_mpiexec ${MPIEXEC_EXECUTABLE})
+else()
+  set(montecarlo_mpiexec "")
+endif()
+add_test(NAME cli.montecarlo.identical_across_threads_and_ranks
+         COMMAND bash ${PROJECT_SOURCE_DIR}/tests/scripts/montecarlo_ranks.sh $<TARGET_FILE:plateball_cli> ${montecarlo_mpiexec}
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(cli.montecarlo.identical_across_threads_and_ranks PROPERTIES TIMEOUT 120 LABELS cli)
+
+plateball_cli_test(montecarlo.help 0 REGEX "--trials.*--strategy.*--noise" -- montecarlo --help)
+plateball_cli_test(montecarlo.bad_trials 3 REGEX "--trials: value 0" -- montecarlo problems/circle.json --trials 0)
+plateball_cli_test(montecarlo.too_many_trials 3 REGEX "--trials: value 2000000"
+  -- montecarlo problems/circle.json --trials 2000000)
+plateball_cli_test(montecarlo.bad_strategy 3 REGEX "--strategy: value 'closed_loop': unknown strategy"
+  -- montecarlo problems/circle.json --strategy closed_loop)
+plateball_cli_test(montecarlo.noise_out_of_range 3 REGEX "--noise.timing: value 0.5: must be a number in \\[0, 0.1\\]"
+  -- montecarlo problems/circle.json --noise timing=0.5)
+plateball_cli_test(montecarlo.noise_not_a_number 3 REGEX "--noise.impulse_angle: value 'x'"
+  -- montecarlo problems/circle.json --noise impulse_angle=x)
+plateball_cli_test(montecarlo.noise_unknown 3 REGEX "--noise: value 'spin': unknown error model"
+  -- montecarlo problems/circle.json --noise spin=1)
+plateball_cli_test(montecarlo.bad_window 3 REGEX "--exact-window: value 2"
+  -- montecarlo problems/circle.json --exact-window 2)
+plateball_cli_test(montecarlo.bad_miss_tolerance 3 REGEX "--miss-tolerance: value -1"
+  -- montecarlo problems/circle.json --miss-tolerance -1)
+plateball_cli_test(montecarlo.sweep_chart_needs_sweep 3 REGEX "--svg-sweep: value x.svg: needs --sweep-n"
+  -- montecarlo problems/circle.json --svg-sweep x.svg)
+plateball_cli_test(montecarlo.no_plan_section 3 REGEX "plan"
+  -- montecarlo problems/simulate_example.json)
+# Zero noise: every trial is the plan (the circle's n = 64 error 0.0149 rad, Theorem 2.6).
+plateball_cli_test(montecarlo.zero_noise_is_the_plan 0 REGEX "\"orientation_error\": 0.01490297432"
+  -- montecarlo problems/circle.json --trials 2 --noise none --strategy feedback --quiet)

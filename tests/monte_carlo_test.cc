@@ -1,0 +1,143 @@
+// Monte Carlo of plan execution (monte_carlo.h): results independent of threads and of how the
+// task list is split (as the MPI ranks split it), order statistics, the error-against-n fit,
+// limits with messages naming the field and the value.
+#include "plateball/monte_carlo.h"
+
+#include <gtest/gtest.h>
+
+#include "plateball/problem_io.h"
+#include "plateball/task_adapters.h"
+#include "support/test_support.h"
+
+namespace plateball {
+namespace {
+
+MonteCarloProblem CircleStudy(int n = 32, int trials = 6) {
+  const Problem problem = ReadProblemFile(plateball::testing::SourcePath("problems/circle.json"));
+  MonteCarloProblem p;
+  p.plan = PlanSetupFor(problem, n).problem;
+  ErrorModel a, b;
+  a.impulse_magnitude = 1e-3;
+  b.timing = 1e-3;
+  b.observation = 1e-5;
+  p.scenarios = {{"a", a}, {"b", b}};
+  p.trials = trials;
+  p.seed = 11;
+  return p;
+}
+
+void ExpectSameRecords(const std::vector<TrialRecord>& a, const std::vector<TrialRecord>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].n, b[i].n);
+    EXPECT_EQ(a[i].scenario, b[i].scenario);
+    EXPECT_EQ(a[i].strategy, b[i].strategy);
+    EXPECT_EQ(a[i].trial, b[i].trial);
+    EXPECT_EQ(a[i].position_error, b[i].position_error) << i;  // bit for bit
+    EXPECT_EQ(a[i].orientation_error, b[i].orientation_error) << i;
+    EXPECT_EQ(a[i].total_time, b[i].total_time) << i;
+    EXPECT_EQ(a[i].missed_pass_points, b[i].missed_pass_points) << i;
+  }
+}
+
+TEST(MonteCarlo, ThreadCountDoesNotChangeAnyResult) {
+  const MonteCarloProblem p = CircleStudy();
+  MonteCarloOptions one, three;
+  three.threads = 3;
+  const MonteCarloSummary a = RunMonteCarlo(p, one), b = RunMonteCarlo(p, three);
+  ASSERT_TRUE(a.IsSolutionUsable()) << a.BriefReport();
+  ExpectSameRecords(a.records, b.records);
+  EXPECT_EQ(a.BriefReport(), b.BriefReport());
+  ASSERT_EQ(a.cells.size(), 4u);  // 2 scenarios x 2 strategies
+  EXPECT_EQ(a.cells[1].orientation_error.p95, b.cells[1].orientation_error.p95);
+}
+
+// The split of the ranks: any partition of [0, TaskCount()) gathered in order is the whole run.
+TEST(MonteCarlo, AnySplitOfTheTasksGivesTheSameSummary) {
+  const MonteCarloProblem p = CircleStudy();
+  const MonteCarloWork work(p, {});
+  const long long total = work.TaskCount();
+  ASSERT_EQ(total, 2 * 2 * 6);
+  const std::vector<TrialRecord> whole = work.Run(0, total);
+  for (int ranks : {2, 3, 5}) {
+    std::vector<TrialRecord> gathered;
+    for (int r = 0; r < ranks; ++r) {
+      const std::vector<TrialRecord> part = work.Run(total * r / ranks, total * (r + 1) / ranks);
+      gathered.insert(gathered.end(), part.begin(), part.end());
+    }
+    ExpectSameRecords(whole, gathered);
+    EXPECT_EQ(work.Summarize(gathered).BriefReport(), work.Summarize(whole).BriefReport());
+  }
+  // Trial i meets the same draws in every cell: the strategies are compared on one realisation.
+  EXPECT_EQ(whole[0].trial, whole[6].trial);
+  EXPECT_EQ(whole[0].strategy, ExecutionStrategy::kOpenLoop);
+  EXPECT_EQ(whole[6].strategy, ExecutionStrategy::kFeedback);
+}
+
+TEST(MonteCarlo, DistributionIsTypeSevenQuantiles) {
+  const Distribution d = Distribute({5, 1, 4, 2, 3});
+  EXPECT_EQ(d.median, 3);
+  EXPECT_DOUBLE_EQ(d.p95, 4.8);  // h = 0.95 * 4 = 3.8: 4 + 0.8 (5 - 4)
+  EXPECT_EQ(d.max, 5);
+  EXPECT_EQ(d.mean, 3);
+  const Distribution e = Distribute({});
+  EXPECT_EQ(e.median, 0);
+  EXPECT_EQ(Distribute({2, 4}).median, 3);
+}
+
+// Without errors every trial is the plan: the median error against n has Theorem 2.6's slope -2
+// (Corollary 3) for both strategies and equals the plan's own error.
+TEST(MonteCarlo, ZeroNoiseSweepHasThePlansSlopeMinusTwo) {
+  MonteCarloProblem p = CircleStudy(16, 2);
+  p.scenarios = {{"none", {}}};
+  p.sweep_n = {32, 64};
+  const MonteCarloSummary s = RunMonteCarlo(p, {});
+  ASSERT_TRUE(s.IsSolutionUsable()) << s.BriefReport();
+  ASSERT_EQ(s.sweeps.size(), 2u);
+  for (const SweepSeries& w : s.sweeps) {
+    ASSERT_EQ(w.n, (std::vector<int>{16, 32, 64}));
+    ASSERT_TRUE(w.slope && w.plan_slope);
+    EXPECT_NEAR(*w.slope, -2.0, 0.02) << ToString(w.strategy);
+    EXPECT_NEAR(*w.slope, *w.plan_slope, 1e-6);
+    for (std::size_t i = 0; i < w.n.size(); ++i)
+      EXPECT_NEAR(w.median_orientation_error[i], w.plan_orientation_error[i], 1e-10);
+  }
+  EXPECT_EQ(s.nominal.size(), 3u);
+  EXPECT_EQ(s.nominal.front().n, 16);
+}
+
+TEST(MonteCarlo, LimitsNameTheFieldAndTheValue) {
+  using plateball::testing::InvalidArgumentMessage;
+  MonteCarloProblem p = CircleStudy();
+  p.trials = 0;
+  EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }), "trials: value 0: must be in [1, 1000000]");
+  p = CircleStudy();
+  p.trials = 1'000'000;
+  EXPECT_NE(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }).find("trials: value 1000000: the study would run 4000000"),
+            std::string::npos);
+  p = CircleStudy();
+  p.scenarios[1].errors.timing = 1;
+  EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }),
+            "scenarios[1].timing: value 1: must be a number in [0, 0.1]");
+  p = CircleStudy();
+  p.strategies = {ExecutionStrategy::kFeedback, ExecutionStrategy::kFeedback};
+  EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }), "strategies: value (repeated): give each strategy once");
+  p = CircleStudy();
+  p.sweep_n = {16, 0};
+  EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }), "sweep_n[1]: value 0: must be in [1, 10000]");
+  p = CircleStudy();
+  p.plan.partition = {ExplicitTaus{{0, 1, 2, 6.283185307179586}}};
+  p.sweep_n = {16};
+  EXPECT_NE(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }).find("sweep_n: value 16: needs a single uniform"),
+            std::string::npos);
+  MonteCarloOptions o;
+  o.threads = 0;
+  EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(CircleStudy(), o); }), "threads: value 0: must be in [1, 256]");
+  o = {};
+  o.execution.exact_window = 100;
+  EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(CircleStudy(), o); }),
+            "execution: exact_window: value 100: must be in [3, 64]");
+}
+
+}  // namespace
+}  // namespace plateball

@@ -1,0 +1,644 @@
+#include "view/view_data.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "common/limits.h"
+#include "common/plan_json.h"
+#include "common/number_format.h"
+#include "plateball/ball_model.h"
+#include "plateball/ball_state.h"
+#include "plateball/free_motion.h"
+#include "plateball/execution.h"
+#include "plateball/isoparallel.h"
+#include "plateball/monte_carlo.h"
+#include "plateball/problem_io.h"
+#include "plateball/rolling.h"
+#include "plateball/so3.h"
+#include "plateball/task_adapters.h"
+
+namespace plateball::tools::view {
+
+using nlohmann::json;
+
+ResultFields::ResultFields(const json& mapping) : mapping_(mapping) {}
+
+const json& ResultFields::Paths(const std::string& concept_name) const {
+  const auto it = mapping_.find(concept_name);
+  if (it == mapping_.end() || !it->is_array()) throw std::logic_error("result_fields.json lacks " + concept_name);
+  return *it;
+}
+
+ResultReader::ResultReader(std::string file, const json& doc, const ResultFields& fields)
+    : file_(std::move(file)), doc_(doc), fields_(fields) {}
+
+namespace {
+
+const json* Walk(const json& at, const std::string& path) {
+  const json* node = &at;
+  std::size_t begin = 0;
+  while (begin <= path.size() && !path.empty()) {
+    const std::size_t end = std::min(path.find('.', begin), path.size());
+    if (!node->is_object()) return nullptr;
+    const auto it = node->find(path.substr(begin, end - begin));
+    if (it == node->end()) return nullptr;
+    node = &*it;
+    begin = end + 1;
+  }
+  return node;
+}
+
+std::string ValueText(const json& j) {
+  std::string text = j.dump(-1, ' ', false, json::error_handler_t::replace);
+  return text.size() > kMaxValueTextChars ? text.substr(0, kMaxValueTextChars) + "..." : text;
+}
+
+std::string Join(const std::string& where, const std::string& field) {
+  return where.empty() ? field : where + "." + field;
+}
+
+}  // namespace
+
+const json* ResultReader::Find(const json& at, const std::string& concept_name) const {
+  for (const json& path : fields_.Paths(concept_name))
+    if (const json* found = Walk(at, path.get<std::string>())) return found;
+  return nullptr;
+}
+
+void ResultReader::Fail(const std::string& field, const std::string& value, const std::string& what) const {
+  throw std::invalid_argument(file_ + ": " + field + ": value " + value + ": " + what);
+}
+
+const json& ResultReader::Get(const json& at, const std::string& where, const std::string& concept_name) const {
+  if (const json* found = Find(at, concept_name)) return *found;
+  Fail(Join(where, fields_.Paths(concept_name).front().get<std::string>()), "(missing)", "required field is missing");
+}
+
+double ResultReader::Number(const json& at, const std::string& where, const std::string& concept_name) const {
+  const json& j = Get(at, where, concept_name);
+  if (!j.is_number() || !std::isfinite(j.get<double>()))
+    Fail(Join(where, fields_.Paths(concept_name).front().get<std::string>()), ValueText(j), "must be a finite number");
+  return j.get<double>();
+}
+
+namespace {
+template <int N>
+Eigen::Matrix<double, N, 1> VectorFrom(const ResultReader& r, const json& j, const std::string& field) {
+  Eigen::Matrix<double, N, 1> v;
+  if (!j.is_array() || j.size() != N) r.Fail(field, ValueText(j), "must be an array of " + std::to_string(N) + " numbers");
+  for (int i = 0; i < N; ++i) {
+    if (!j[i].is_number() || !std::isfinite(j[i].get<double>()))
+      r.Fail(field, ValueText(j), "must be an array of " + std::to_string(N) + " finite numbers");
+    v(i) = j[i].get<double>();
+  }
+  return v;
+}
+}  // namespace
+
+Eigen::Vector2d ResultReader::Vector2(const json& at, const std::string& where, const std::string& concept_name) const {
+  return VectorFrom<2>(*this, Get(at, where, concept_name), Join(where, fields_.Paths(concept_name).front()));
+}
+
+Eigen::Vector3d ResultReader::Vector3(const json& at, const std::string& where, const std::string& concept_name) const {
+  return VectorFrom<3>(*this, Get(at, where, concept_name), Join(where, fields_.Paths(concept_name).front()));
+}
+
+Eigen::Matrix3d ResultReader::Rotation(const json& at, const std::string& where, const std::string& concept_name) const {
+  const json& j = Get(at, where, concept_name);
+  const std::string field = Join(where, fields_.Paths(concept_name).front());
+  Eigen::Matrix3d m;
+  if (!j.is_array() || j.size() != 3) Fail(field, ValueText(j), "must be a 3x3 matrix (rows)");
+  for (int i = 0; i < 3; ++i) m.row(i) = VectorFrom<3>(*this, j[i], field).transpose();
+  if (!IsRotation(m, 1e-9)) Fail(field, ValueText(j), "not a rotation matrix to 1e-9");
+  return m;
+}
+
+const json& ResultReader::Array(const json& at, const std::string& where, const std::string& concept_name,
+                                std::size_t min_size, std::size_t max_size) const {
+  const json& j = Get(at, where, concept_name);
+  if (!j.is_array() || j.size() < min_size || j.size() > max_size)
+    Fail(Join(where, fields_.Paths(concept_name).front()),
+         j.is_array() ? "[array of " + std::to_string(j.size()) + "]" : ValueText(j),
+         "must be an array of " + std::to_string(min_size) + " ... " + std::to_string(max_size) + " elements");
+  return j;
+}
+
+namespace {
+
+constexpr std::size_t kMaxViewSamples = 200'000;  // page samples (a 10^6-sample simulate is thinned)
+constexpr std::size_t kMaxSteps = 10'000;         // plan steps, steer impulses (the planner's limit)
+constexpr int kPathPoints = 4000;                 // dense polyline of a planned path
+
+Problem LoadProblem(const ResultReader& r, const ViewOptions& options);
+
+// The result's model; a result without one (isoparallel_solve before the output contract) takes
+// the problem file's.
+BallModel ModelFrom(const ResultReader& r, const ViewOptions& options) {
+  if (!r.Find(r.doc(), "model") && (!options.problem_file.empty() || r.Find(r.doc(), "problem_file")))
+    return LoadProblem(r, options).model;
+  const json& m = r.Get(r.doc(), "", "model");
+  if (r.Find(m, "alpha") && r.Find(m, "beta"))
+    return BallModel::FromAlphaBeta(r.Number(m, "model", "alpha"), r.Number(m, "model", "beta"));
+  return BallModel::FromLambda(r.Number(m, "model", "lambda"));
+}
+
+IntegrationOptions IntegrationFrom(const ResultReader& r) {
+  IntegrationOptions o;
+  if (const json* i = r.Find(r.doc(), "integration")) {
+    if (r.Find(*i, "absolute_tolerance")) o.absolute_tolerance = r.Number(*i, "integration", "absolute_tolerance");
+    if (r.Find(*i, "relative_tolerance")) o.relative_tolerance = r.Number(*i, "integration", "relative_tolerance");
+  }
+  const std::string bad = o.Validate();
+  if (!bad.empty()) r.Fail("integration", "(see message)", bad);
+  return o;
+}
+
+AngleState AnglesFrom(const ResultReader& r, const json& at, const std::string& where) {
+  return {r.Number(at, where, "theta"), r.Number(at, where, "phi"), r.Number(at, where, "psi")};
+}
+
+double MaxEntry(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) { return (a - b).cwiseAbs().maxCoeff(); }
+
+// One free arc from `start` over [0, duration]: `m` samples at duration * i / m, i < m, appended
+// to `out`; returns the state at the end of the arc.
+MotionSample AppendArc(const BallModel& model, const FreeMotionStart& start, double t0, double duration, int m,
+                       const IntegrationOptions& integration, ViewData* out) {
+  const FreeMotion motion(model, start, integration);
+  for (int i = 0; i < m; ++i) {
+    const MotionSample s = motion.At(duration * i / m);
+    out->t.push_back(t0 + s.t);
+    out->x.push_back(s.x);
+    out->A.push_back(s.A);
+  }
+  return motion.At(duration);
+}
+
+// The sum of the arcs' durations (from the result itself, so that the samples per arc, which are
+// proportional to duration / total, add up to about `samples` whatever the file claims).
+double TotalDuration(const ResultReader& r, const json& list, const std::string& list_field) {
+  double total = 0.0;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string where = list_field + "[" + std::to_string(k) + "]";
+    const double duration = r.Number(list[k], where, "duration");
+    if (!(duration > 0)) r.Fail(where + ".duration", FormatNumber(duration), "must be > 0");
+    total += duration;
+  }
+  return total;
+}
+
+int ArcSamples(double duration, double total, int samples) {
+  if (!(total > 0)) return 4;
+  return std::clamp(static_cast<int>(std::ceil(samples * (duration / total))), 4, samples);
+}
+
+void AppendFinal(double t, const Eigen::Vector2d& x, const Eigen::Matrix3d& A, ViewData* out) {
+  out->t.push_back(t);
+  out->x.push_back(x);
+  out->A.push_back(A);
+}
+
+// ---------------------------------------------------------------- simulate
+
+// The result's samples as they are (their A(t) is the library's), with re-simulated samples
+// inserted between them (FreeMotion from the result's initial state) so that there are at least
+// options.samples of them.
+void BuildSimulate(const ResultReader& r, const ViewOptions& options, ViewData* out) {
+  const json& doc = r.doc();
+  const json& samples = r.Array(doc, "", "samples", 2, kMaxSamples);
+  const AngleState angles = AnglesFrom(r, r.Get(doc, "", "initial_angles"), "initial");
+  const FreeMotion motion = FreeMotion::FromAngles(ModelFrom(r, options), angles, r.Number(doc, "", "initial_mu"),
+                                                   r.Vector2(doc, "", "initial_x0"),
+                                                   r.Rotation(doc, "", "initial_orientation"), IntegrationFrom(r));
+  const std::size_t n = samples.size();
+  const std::size_t stride = (n + kMaxViewSamples - 1) / kMaxViewSamples;  // thin a huge result
+  const int insert = n >= static_cast<std::size_t>(options.samples)
+                         ? 0
+                         : static_cast<int>((static_cast<std::size_t>(options.samples) + n - 2) / (n - 1)) - 1;
+  double previous_t = 0.0;
+  for (std::size_t i = 0; i < n; i += stride) {
+    const std::string where = "samples[" + std::to_string(i) + "]";
+    const double t = r.Number(samples[i], where, "sample_t");
+    if (i > 0 && !(t > previous_t)) r.Fail(where + ".t", FormatNumber(t), "sample times must increase");
+    for (int j = 1; i > 0 && j <= insert; ++j) {
+      const MotionSample s = motion.At(previous_t + (t - previous_t) * j / (insert + 1));
+      AppendFinal(s.t, s.x, s.A, out);
+    }
+    const Eigen::Matrix3d A = r.Rotation(samples[i], where, "sample_orientation");
+    out->resimulation_mismatch = std::max(out->resimulation_mismatch, MaxEntry(motion.At(t).A, A));
+    AppendFinal(t, r.Vector2(samples[i], where, "sample_x"), A, out);
+    previous_t = t;
+  }
+  out->facts.push_back({"period T", FormatNumber(motion.Period())});
+  out->facts.push_back({"drift per period", FormatNumber(motion.DriftPerPeriod().norm())});
+}
+
+// ---------------------------------------------------------------- plan, isoparallel
+
+// The impulsive trajectory of a plan (the steps of `plateball plan` or of an isoparallel plan):
+// each free arc re-integrated from its impulse, starting where the result says the previous arc
+// ended (x_end, orientation_impulsive), so the page's A at every impulse is the result's.
+struct PlanSteps {
+  std::vector<double> t;               // impulse times, then the end time
+  std::vector<Eigen::Vector2d> p;      // p(tau_k), then the path's end point
+  std::vector<Eigen::Matrix3d> A_planned;  // A(tau_k) rolling along the path, k = 0..n
+};
+
+PlanSteps BuildPlanTrajectory(const ResultReader& r, const json& steps, const std::string& steps_field,
+                              const ViewOptions& options, ViewData* out) {
+  const BallModel model = ModelFrom(r, options);
+  const IntegrationOptions integration = IntegrationFrom(r);
+  const json& doc = r.doc();
+  Eigen::Vector2d x = r.Vector2(doc, "", "initial_x0");
+  const AngleState angles0 = AnglesFrom(r, r.Get(doc, "", "initial_angles"), "initial");
+  Eigen::Matrix3d A = AlignOrientationToAxis(r.Rotation(doc, "", "initial_orientation"),
+                                             StateFromAngles(angles0, 1.0, model).z);
+  const double total = TotalDuration(r, steps, steps_field);
+  PlanSteps plan;
+  plan.A_planned.push_back(A);
+  double t = 0.0;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const json& s = steps[k];
+    const std::string where = steps_field + "[" + std::to_string(k) + "]";
+    // t_impulse is the sum of the earlier durations (impulse_planner.h): summed here, so times increase.
+    const double duration = r.Number(s, where, "duration");
+    FreeMotionStart start;
+    start.state.z = StateFromAngles(AnglesFrom(r, r.Get(s, where, "angles_before"), where), 1.0, model).z;
+    start.state.omega = r.Vector3(s, where, "omega_after_impulse");
+    start.x0 = x;
+    start.A0 = AlignOrientationToAxis(A, start.state.z);
+    out->impulses.push_back({t, x, r.Vector3(s, where, "plate_velocity_change")});
+    plan.t.push_back(t);
+    plan.p.push_back(r.Vector2(s, where, "p_begin"));
+    const MotionSample end = AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples),
+                                       integration, out);
+    x = r.Vector2(s, where, "x_end");
+    A = r.Rotation(s, where, "orientation_impulsive");
+    plan.A_planned.push_back(r.Rotation(s, where, "orientation_planned"));
+    out->resimulation_mismatch = std::max(out->resimulation_mismatch, MaxEntry(end.A, A));
+    t += duration;
+  }
+  AppendFinal(t, x, A, out);
+  plan.t.push_back(t);
+  plan.p.push_back(x);
+  return plan;
+}
+
+// ---------------------------------------------------------------- the ghost on the planned path
+
+// The planned path as a dense polyline with its cumulative arc length.
+struct Polyline {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<double> s;
+  explicit Polyline(std::vector<Eigen::Vector2d> pts) : points(std::move(pts)), s(points.size(), 0.0) {
+    for (std::size_t i = 1; i < points.size(); ++i) s[i] = s[i - 1] + (points[i] - points[i - 1]).norm();
+  }
+  // Arc length of the point of segments [from, end) nearest to p (the first one within 1e-6).
+  double Locate(const Eigen::Vector2d& p, std::size_t* from) const {
+    double best = INFINITY, best_s = s[*from];
+    std::size_t best_i = *from;
+    for (std::size_t i = *from; i + 1 < points.size(); ++i) {
+      const Eigen::Vector2d d = points[i + 1] - points[i];
+      const double len2 = d.squaredNorm();
+      const double u = len2 > 0 ? std::clamp((p - points[i]).dot(d) / len2, 0.0, 1.0) : 0.0;
+      const double dist = (points[i] + u * d - p).norm();
+      if (dist < best) {
+        best = dist;
+        best_s = s[i] + u * (s[i + 1] - s[i]);
+        best_i = i;
+      }
+      if (dist <= 1e-6) break;
+    }
+    *from = best_i;
+    return best_s;
+  }
+  // Point at arc length `arc`; `segment` is a hint moved forward.
+  Eigen::Vector2d At(double arc, std::size_t* segment) const {
+    while (*segment + 2 < points.size() && s[*segment + 1] < arc) ++*segment;
+    const std::size_t i = *segment;
+    const double len = s[i + 1] - s[i];
+    const double u = len > 0 ? std::clamp((arc - s[i]) / len, 0.0, 1.0) : 0.0;
+    return points[i] + u * (points[i + 1] - points[i]);
+  }
+};
+
+// The ghost ball: rolls along the planned path, passing the planned point p_k at the ball's
+// impulse time t_k (arc length linear in time between them); its orientation is the rolling
+// along the dense polyline (exact per chord, rolling.h), reset to the result's A(tau_k) where
+// the result reports it.
+void BuildGhost(const Polyline& path, const std::vector<double>& key_t, const std::vector<Eigen::Vector2d>& key_p,
+                const std::vector<Eigen::Matrix3d>& key_A, ViewData* out) {
+  std::vector<double> key_s;
+  std::size_t from = 0;
+  for (const Eigen::Vector2d& p : key_p) key_s.push_back(path.Locate(p, &from));
+  std::size_t key = 0, segment = 0;
+  Eigen::Matrix3d A = key_A.front();
+  Eigen::Vector2d prev = path.At(key_s.front(), &segment);
+  for (const double t : out->t) {
+    while (key + 2 < key_t.size() && t >= key_t[key + 1]) {
+      ++key;
+      if (key < key_A.size()) {  // the result's A(tau_k) at the planned point p_k
+        A = key_A[key];
+        prev = path.At(key_s[key], &segment);
+      }
+    }
+    const double span = key_t[key + 1] - key_t[key];
+    const double u = span > 0 ? std::clamp((t - key_t[key]) / span, 0.0, 1.0) : 0.0;
+    const double arc = key_s[key] + u * (key_s[key + 1] - key_s[key]);
+    std::size_t walk = segment;
+    const Eigen::Vector2d x = path.At(arc, &walk);
+    for (std::size_t i = segment + 1; i <= walk; ++i) {  // through the polyline's vertices
+      A = RollAlongSegment(prev, path.points[i]) * A;
+      prev = path.points[i];
+    }
+    A = RollAlongSegment(prev, x) * A;
+    prev = x;
+    segment = walk;
+    out->ghost_x.push_back(x);
+    out->ghost_A.push_back(A);
+  }
+  if (key + 2 == key_t.size() && key + 1 < key_A.size()) {  // the last arc ends at the result's A(T)
+    out->ghost_A.back() = key_A[key + 1];
+  }
+}
+
+std::vector<Eigen::Vector2d> SamplePath(const Path& path) {
+  std::vector<Eigen::Vector2d> pts;
+  const int per_piece = std::max(64, kPathPoints / path.PieceCount());
+  for (const SmoothCurve& c : path.pieces())
+    for (int i = pts.empty() ? 0 : 1; i <= per_piece; ++i)
+      pts.push_back(c.Value(c.Begin() + (c.End() - c.Begin()) * i / per_piece));
+  return pts;
+}
+
+// ---------------------------------------------------------------- the problem file
+
+Problem LoadProblem(const ResultReader& r, const ViewOptions& options) {
+  std::string file = options.problem_file;
+  if (file.empty()) {
+    const json* f = r.Find(r.doc(), "problem_file");
+    if (!f || !f->is_string())
+      r.Fail("problem.file", f ? ValueText(*f) : "(missing)",
+             "the planned path is not in the result: give the problem file with --problem FILE");
+    file = f->get<std::string>();
+    const std::filesystem::path beside = std::filesystem::path(r.file()).parent_path() / file;
+    if (!std::filesystem::exists(file) && std::filesystem::exists(beside)) file = beside.string();
+  }
+  return ReadProblemFile(file);
+}
+
+// `steer`'s setup as the tool makes it: along the plan section's path, else along the shortest
+// isoparallel path (solved again: the result does not carry it).
+ExactArrivalSetup SteerSetup(const Problem& p) {
+  if (p.plan || !p.isoparallel) return ExactArrivalSetupFor(p);
+  const IsoparallelSetup iso = IsoparallelSetupFor(p);
+  const IsoparallelSummary solved = SolveIsoparallel(iso.problem, iso.options);
+  if (!solved.IsSolutionUsable()) throw std::runtime_error("isoparallel reference: " + solved.BriefReport());
+  return ExactArrivalSetupFor(p, solved.Shortest());
+}
+
+void AddPlanned(std::vector<Eigen::Vector2d> polyline, const PlanSteps& plan, ViewData* out) {
+  const Polyline path(std::move(polyline));
+  BuildGhost(path, plan.t, plan.p, plan.A_planned, out);
+  out->planned = path.points;
+}
+
+// ---------------------------------------------------------------- steer
+
+void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out) {
+  const Problem problem = LoadProblem(r, options);
+  const ExactArrivalSetup setup = SteerSetup(problem);  // reference; start state when the result lacks it
+  const json& doc = r.doc();
+  const BallModel model = ModelFrom(r, options);
+  const IntegrationOptions integration = ExactArrivalOptions{}.integration;  // as the solver's rollouts
+  const double mu = r.Find(doc, "initial_mu") ? r.Number(doc, "", "initial_mu") : setup.problem.mu;
+  const json& impulses = r.Array(doc, "", "impulses", 1, kMaxSteps);
+  const double total = TotalDuration(r, impulses, "impulses");
+  Eigen::Matrix3d A = r.Find(doc, "initial_orientation") ? r.Rotation(doc, "", "initial_orientation") : setup.problem.A0;
+  PlanSteps keys;
+  double t = 0.0;
+  Eigen::Vector2d x = setup.problem.x0;
+  for (std::size_t k = 0; k < impulses.size(); ++k) {
+    const json& e = impulses[k];
+    const std::string where = "impulses[" + std::to_string(k) + "]";
+    AngleState a = AnglesFrom(r, r.Get(e, where, "angles_before"), where);
+    a.psi += r.Number(e, where, "delta_psi");
+    FreeMotionStart start;
+    start.state = StateFromAngles(a, mu, model);
+    start.x0 = r.Vector2(e, where, "impulse_x");
+    start.A0 = AlignOrientationToAxis(A, start.state.z);
+    // t_impulse is the sum of the earlier durations (exact_arrival.h): summed here, so times increase.
+    const double duration = r.Number(e, where, "duration");
+    out->impulses.push_back({t, start.x0, r.Vector3(e, where, "plate_velocity_change")});
+    keys.t.push_back(t);
+    keys.p.push_back(r.Vector2(e, where, "impulse_p"));
+    const MotionSample end = AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples),
+                                       integration, out);
+    A = end.A;
+    x = end.x;
+    t += duration;
+  }
+  AppendFinal(t, x, A, out);
+  out->resimulation_mismatch = MaxEntry(A, r.Rotation(doc, "", "arrival_orientation"));
+  const Path& reference = setup.problem.reference;
+  keys.t.push_back(t);
+  keys.p.push_back(reference.EndPoint());
+  keys.A_planned.push_back(setup.problem.A0);
+  AddPlanned(SamplePath(reference), keys, out);
+  out->goal = r.Vector2(doc, "", "goal");
+  out->has_goal = true;
+}
+
+// ---------------------------------------------------------------- montecarlo
+
+constexpr long long kMaxSpreadTrials = 6000;  // trials re-run for the spread, over all cells
+
+// A cell's error model from the result's options.scenarios[i].errors.
+ErrorModel ErrorsFrom(const ResultReader& r, const json& errors, const std::string& where) {
+  ErrorModel e;
+  const std::pair<const char*, double ErrorModel::*> members[] = {
+      {"error_impulse_magnitude", &ErrorModel::impulse_magnitude}, {"error_impulse_angle", &ErrorModel::impulse_angle},
+      {"error_timing", &ErrorModel::timing}, {"error_energy_loss", &ErrorModel::energy_loss},
+      {"error_lambda", &ErrorModel::lambda}, {"error_observation", &ErrorModel::observation}};
+  for (const auto& [concept_name, member] : members) e.*member = r.Number(errors, where, concept_name);
+  return e;
+}
+
+// The result's median final position error of the cell (main n, scenario, strategy), or -1.
+double ResultMedian(const ResultReader& r, int n, const std::string& scenario, const std::string& strategy) {
+  const json* results = r.Find(r.doc(), "mc_results");
+  for (std::size_t i = 0; results && results->is_array() && i < results->size(); ++i) {
+    const json& c = (*results)[i];
+    const json *cn = r.Find(c, "cell_n"), *cs = r.Find(c, "cell_scenario"), *ct = r.Find(c, "cell_strategy");
+    if (cn && cs && ct && *cn == n && *cs == scenario && *ct == strategy)
+      return r.Number(c, "results[" + std::to_string(i) + "]", "cell_position_median");
+  }
+  return -1.0;
+}
+
+// The nominal plan as `plateball plan` would write it, read back like a plan result.
+PlanSteps NominalTrajectory(const ResultReader& r, const NominalPlan& nominal, const ViewOptions& options,
+                            ViewData* out) {
+  json plan_doc = PlanSummaryToJson(nominal.plan);
+  plan_doc["model"] = r.Get(r.doc(), "", "model");
+  if (const json* i = r.Find(r.doc(), "integration")) plan_doc["integration"] = *i;
+  plan_doc["initial"] = r.Get(r.doc(), "", "initial");
+  plan_doc["initial"]["orientation"] = ToJson(nominal.plan.A0);
+  const ResultReader plan_reader(r.file() + " (nominal plan)", plan_doc, r.fields());
+  return BuildPlanTrajectory(plan_reader, plan_reader.Get(plan_doc, "", "steps"), "steps", options, out);
+}
+
+// The nominal plan's motion, and the final contact points of the trials re-run with the library
+// (Execute of (nominal plan, strategy, errors, seed, trial): what `plateball montecarlo` ran).
+void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData* out) {
+  const Problem problem = LoadProblem(r, options);
+  const json& doc = r.doc();
+  const json& o = r.Get(doc, "", "mc_options");
+  const double n_value = r.Number(o, "options", "mc_impulses");
+  const int n = static_cast<int>(std::clamp(n_value, 1.0, 1e4));
+  const PlanSetup setup = PlanSetupFor(problem, n, "options.impulses");
+  const auto nominal = std::make_shared<const NominalPlan>(MakeNominalPlan(setup.problem, setup.options));
+  if (!nominal->plan.IsSolutionUsable()) r.Fail("options.impulses", FormatNumber(n_value), nominal->plan.BriefReport());
+  AddPlanned(SamplePath(setup.problem.path), NominalTrajectory(r, *nominal, options, out), out);
+  ExecutionOptions eo;
+  eo.miss_tolerance = r.Number(o, "options", "mc_miss_tolerance");
+  eo.exact_window = static_cast<int>(std::clamp(r.Number(o, "options", "mc_exact_window"), 3.0, 64.0));
+  const json& seed = r.Get(doc, "", "seed");
+  if (!seed.is_number_unsigned()) r.Fail("seed", ValueText(seed), "must be an integer in [0, 2^64 - 1]");
+  const json& scenarios = r.Array(o, "options", "mc_scenarios", 1, 64);
+  const json& strategies = r.Array(o, "options", "mc_strategies", 1, 3);
+  const long long cells = static_cast<long long>(scenarios.size() * strategies.size());
+  const long long trials =
+      std::min(std::max(1LL, kMaxSpreadTrials / cells), static_cast<long long>(std::min(r.Number(o, "options", "mc_trials"), 1e6)));
+  double mismatch = 0.0;
+  for (std::size_t i = 0; i < scenarios.size(); ++i) {
+    const std::string where = "options.scenarios[" + std::to_string(i) + "]";
+    const json& name_json = r.Get(scenarios[i], where, "scenario_name");
+    const std::string name = name_json.is_string() ? name_json.get<std::string>() : name_json.dump();
+    for (std::size_t j = 0; j < strategies.size(); ++j) {
+      ExecutionProblem ep;
+      ep.nominal = nominal;
+      ep.strategy = ParseExecutionStrategy(strategies[j].is_string() ? strategies[j].get<std::string>() : "",
+                                           "options.strategies[" + std::to_string(j) + "]");
+      ep.errors = ErrorsFrom(r, r.Get(scenarios[i], where, "scenario_errors"), where + ".errors");
+      ep.seed = seed.get<std::uint64_t>();
+      std::vector<Eigen::Vector2d> points;
+      std::vector<double> errors;
+      for (ep.trial = 0; static_cast<long long>(ep.trial) < trials; ++ep.trial) {
+        const ExecutionSummary s = Execute(ep, eo);
+        if (!s.IsSolutionUsable()) continue;
+        points.push_back(s.x_final);
+        errors.push_back(s.position_error);
+      }
+      const double median = ResultMedian(r, n, name, ToString(ep.strategy));
+      if (median >= 0 && !errors.empty()) mismatch = std::max(mismatch, std::abs(Distribute(errors).median - median));
+      out->spread.push_back({ToString(ep.strategy) + ", " + name, std::move(points)});
+    }
+  }
+  out->goal = nominal->goal;
+  out->has_goal = true;
+  out->facts.push_back({"trials re-run", std::to_string(trials) + " per cell (Execute, seed " + seed.dump() + ")"});
+  out->facts.push_back({"re-run vs file", "median final position errors agree to " + FormatNumber(mismatch)});
+}
+
+std::string TitleOf(const ResultReader& r, const std::string& kind) {
+  const json* name = r.Find(r.doc(), "problem_name");
+  return (name && name->is_string() ? name->get<std::string>() + ": " : std::string()) + "plateball " + kind;
+}
+
+}  // namespace
+
+ViewData BuildView(const ResultReader& r, const ViewOptions& options) {
+  const json& doc = r.doc();
+  if (!doc.is_object()) r.Fail("(document)", ValueText(doc), "a result is a JSON object");
+  const json* command = r.Find(doc, "command");
+  ViewData out;
+  if (!command || !command->is_string())
+    r.Fail("command", command ? ValueText(*command) : "(missing)", "not a result of plateball or isoparallel_solve");
+  out.kind = command->get<std::string>();
+  out.title = TitleOf(r, out.kind);
+  if (out.kind == "simulate") {
+    BuildSimulate(r, options, &out);
+  } else if (out.kind == "plan") {
+    const json& steps = r.Array(doc, "", "steps", 1, kMaxSteps);
+    const PlanSteps plan = BuildPlanTrajectory(r, steps, "steps", options, &out);
+    AddPlanned(SamplePath(PlanSetupFor(LoadProblem(r, options)).problem.path), plan, &out);
+  } else if (out.kind == "isoparallel") {
+    const json& steps = r.Array(doc, "", "steps", 1, kMaxSteps);
+    const PlanSteps plan = BuildPlanTrajectory(r, steps, "plan.steps", options, &out);
+    std::vector<Eigen::Vector2d> path;
+    const json& pts = r.Array(doc, "", "optimal_path", 2, kMaxPoints);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      Eigen::Vector2d p;
+      if (!pts[i].is_array() || pts[i].size() != 2 || !pts[i][0].is_number() || !pts[i][1].is_number())
+        r.Fail("optimal_path[" + std::to_string(i) + "]", ValueText(pts[i]), "must be [x, y]");
+      path.push_back({pts[i][0].get<double>(), pts[i][1].get<double>()});
+    }
+    // The optimal path's samples through a C^2 spline, sampled densely for the ghost's rolling.
+    AddPlanned(SamplePath(Path({SmoothCurve::Samples(path)})), plan, &out);
+    out.goal = r.Vector2(doc, "", "goal");
+    out.has_goal = true;
+  } else if (out.kind == "steer") {
+    BuildSteer(r, options, &out);
+  } else if (out.kind == "montecarlo") {
+    BuildMonteCarlo(r, options, &out);
+  } else {
+    r.Fail("command", ValueText(*command), "the view shows simulate, plan, isoparallel, steer and montecarlo results");
+  }
+  if (const json* report = r.Find(doc, "report"); report && report->is_string())
+    out.facts.insert(out.facts.begin(), {"report", report->get<std::string>()});
+  return out;
+}
+
+namespace {
+json Flat(const std::vector<Eigen::Vector2d>& v) {
+  json a = json::array();
+  for (const auto& p : v) {
+    a.push_back(p.x());
+    a.push_back(p.y());
+  }
+  return a;
+}
+// Unit quaternions (w, x, y, z), consecutive ones in the same hemisphere (shortest slerp).
+json Quaternions(const std::vector<Eigen::Matrix3d>& rotations) {
+  json a = json::array();
+  Eigen::Quaterniond previous(1, 0, 0, 0);
+  for (const Eigen::Matrix3d& m : rotations) {
+    Eigen::Quaterniond q(m);
+    q.normalize();
+    if (q.coeffs().dot(previous.coeffs()) < 0) q.coeffs() = -q.coeffs();
+    for (const double c : {q.w(), q.x(), q.y(), q.z()}) a.push_back(c);
+    previous = q;
+  }
+  return a;
+}
+}  // namespace
+
+json ViewDataToJson(const ViewData& d) {
+  json j{{"kind", d.kind}, {"title", d.title}, {"t", d.t}, {"x", Flat(d.x)}, {"q", Quaternions(d.A)},
+         {"planned", Flat(d.planned)},
+         {"resimulation_mismatch", d.resimulation_mismatch}};
+  json facts = json::array();
+  for (const auto& [label, value] : d.facts) facts.push_back(json::array({label, value}));
+  j["facts"] = facts;
+  if (!d.ghost_x.empty()) {
+    json err = json::array();
+    for (std::size_t i = 0; i < d.A.size(); ++i) err.push_back(RotationAngle(d.A[i], d.ghost_A[i]));
+    j["ghost"] = json{{"x", Flat(d.ghost_x)}, {"q", Quaternions(d.ghost_A)}, {"error", err}};
+  }
+  json spread = json::array();
+  for (const auto& [label, points] : d.spread) spread.push_back(json{{"label", label}, {"x", Flat(points)}});
+  j["spread"] = spread;
+  json impulses = json::array();
+  for (const ViewImpulse& i : d.impulses)
+    impulses.push_back(json{{"t", i.t}, {"x", {i.x.x(), i.x.y()}},
+                            {"dv", {i.plate_velocity_change.x(), i.plate_velocity_change.y(), i.plate_velocity_change.z()}}});
+  j["impulses"] = impulses;
+  if (d.has_goal) j["goal"] = {d.goal.x(), d.goal.y()};
+  return j;
+}
+
+}  // namespace plateball::tools::view

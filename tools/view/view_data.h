@@ -1,0 +1,99 @@
+// `plateball view` (issue 14): what the 3-D page shows, built from a tool's result JSON (plan,
+// simulate, isoparallel, steer) by re-simulating the motion with the library: dense samples of
+// the contact point x(t) and the orientation A(t) (FreeMotion, arc by arc from the result's
+// impulses), the planned path, a ghost ball rolling along it, the impulses and the orientation
+// error between the ball and the ghost.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/json_output.h"
+
+namespace plateball::tools::view {
+
+/// The one mapping from the concepts the view reads to the result JSON's field paths (dotted,
+/// relative to the object they are read from; several paths: the first one present), loaded
+/// from web/result_fields.json (embedded at build time): a renamed output field is a one-line
+/// change there.
+class ResultFields {
+ public:
+  explicit ResultFields(const nlohmann::json& mapping);
+  /// The dotted paths of `concept_name`; throws std::logic_error for a concept the mapping lacks.
+  const nlohmann::json& Paths(const std::string& concept_name) const;
+
+ private:
+  nlohmann::json mapping_;
+};
+
+/// Reads fields of one result document, naming the file and the field path in every error
+/// (std::invalid_argument, exit code 3).
+class ResultReader {
+ public:
+  ResultReader(std::string file, const nlohmann::json& doc, const ResultFields& fields);
+  const nlohmann::json& doc() const { return doc_; }
+  const ResultFields& fields() const { return fields_; }
+  const std::string& file() const { return file_; }
+  /// The value at concept's path below `at` (`where` names `at` in messages), or nullptr.
+  const nlohmann::json* Find(const nlohmann::json& at, const std::string& concept_name) const;
+  const nlohmann::json& Get(const nlohmann::json& at, const std::string& where, const std::string& concept_name) const;
+  double Number(const nlohmann::json& at, const std::string& where, const std::string& concept_name) const;
+  Eigen::Vector2d Vector2(const nlohmann::json& at, const std::string& where, const std::string& concept_name) const;
+  Eigen::Vector3d Vector3(const nlohmann::json& at, const std::string& where, const std::string& concept_name) const;
+  /// A rotation matrix (rows), checked to 1e-9.
+  Eigen::Matrix3d Rotation(const nlohmann::json& at, const std::string& where, const std::string& concept_name) const;
+  /// An array with at least `min_size` and at most `max_size` elements.
+  const nlohmann::json& Array(const nlohmann::json& at, const std::string& where, const std::string& concept_name,
+                              std::size_t min_size, std::size_t max_size) const;
+  [[noreturn]] void Fail(const std::string& field, const std::string& value, const std::string& what) const;
+
+ private:
+  std::string file_;
+  const nlohmann::json& doc_;
+  const ResultFields& fields_;
+};
+
+struct ViewImpulse {
+  double t = 0.0;
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  Eigen::Vector3d plate_velocity_change = Eigen::Vector3d::Zero();
+};
+
+/// Everything the page draws; times are the motion's own (normalised units).
+struct ViewData {
+  std::string kind;   ///< "simulate", "plan", "isoparallel", "steer", "montecarlo"
+  std::string title;  ///< problem name and command
+  std::vector<std::pair<std::string, std::string>> facts;  ///< label, value (the info panel)
+  std::vector<double> t;
+  std::vector<Eigen::Vector2d> x;
+  std::vector<Eigen::Matrix3d> A;        ///< the library's A(t) at t[i]
+  std::vector<Eigen::Vector2d> ghost_x;  ///< empty without a planned path
+  std::vector<Eigen::Matrix3d> ghost_A;
+  std::vector<Eigen::Vector2d> planned;  ///< the planned path, dense polyline
+  std::vector<ViewImpulse> impulses;
+  /// Monte Carlo: the final contact points of the trials re-run, per (scenario, strategy) cell.
+  std::vector<std::pair<std::string, std::vector<Eigen::Vector2d>>> spread;
+  Eigen::Vector2d goal = Eigen::Vector2d::Zero();
+  bool has_goal = false;
+  /// Largest |A - A_result| (max entry) where the re-simulation meets an orientation the result
+  /// reports (arc ends, samples): how well the view reproduces the file.
+  double resimulation_mismatch = 0.0;
+};
+
+/// Options of the view: a problem file for results whose planned path is not in the JSON
+/// (plan, steer); empty: the header's problem.file.
+struct ViewOptions {
+  std::string problem_file;
+  int samples = 4000;  ///< target number of samples of the ball's motion (at least)
+};
+
+/// Builds the view of a result document; throws std::invalid_argument naming the file and field.
+ViewData BuildView(const ResultReader& reader, const ViewOptions& options);
+
+/// The page data as JSON (the page's own format, see web/view.js).
+nlohmann::json ViewDataToJson(const ViewData& data);
+
+}  // namespace plateball::tools::view
