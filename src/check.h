@@ -51,17 +51,23 @@ inline void ThrowIfInvalid(const std::string& message) {
   if (!message.empty()) throw std::invalid_argument(message);
 }
 
-inline void RequireFinite(const std::string& field, double v) {
+// The checks below take the field name as given (a literal stays a `const char*`), so that the
+// std::string of the message is built only for a bad value: they run on every join and impulse.
+template <typename Field>
+inline void RequireFinite(const Field& field, double v) {
   if (!std::isfinite(v)) ThrowInvalid(field, v, "must be finite");
 }
-inline void RequirePositive(const std::string& field, double v) {
+template <typename Field>
+inline void RequirePositive(const Field& field, double v) {
   if (!(std::isfinite(v) && v > 0)) ThrowInvalid(field, v, "must be finite and > 0");
 }
-inline void RequireNonNegative(const std::string& field, double v) {
+template <typename Field>
+inline void RequireNonNegative(const Field& field, double v) {
   if (!(std::isfinite(v) && v >= 0)) ThrowInvalid(field, v, "must be finite and >= 0");
 }
 /// lo <= v <= hi (both finite), with the range named in the message.
-inline void RequireInRange(const std::string& field, double v, double lo, double hi) {
+template <typename Field>
+inline void RequireInRange(const Field& field, double v, double lo, double hi) {
   if (!(v >= lo && v <= hi))
     ThrowInvalid(field, v, "must be in [" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
 }
@@ -107,7 +113,8 @@ inline void RequireCoordinates(const std::string& field, const Eigen::MatrixBase
     if (!(std::abs(e.data()[i]) <= kMaxCoordinate)) RequireCoordinate(field + "[" + std::to_string(i) + "]", e.data()[i]);
 }
 /// mu in [kMinMu, kMaxMu].
-inline void RequireEnergy(const std::string& field, double mu) {
+template <typename Field>
+inline void RequireEnergy(const Field& field, double mu) {
   RequirePositive(field, mu);
   RequireInRange(field, mu, kMinMu, kMaxMu);
 }

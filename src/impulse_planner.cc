@@ -69,8 +69,8 @@ struct PlanInput {
   std::vector<std::vector<double>> factors;
 };
 
-// The public boundary, checked once: options, mu, angles (reduced mod 2 pi), the partition of
-// every piece, the energy-change indices and factors.
+// The public boundary, checked once: options, mu, angles (reduced mod 2 pi), the step count of
+// the partition (MakePartition validated each piece's points), the energy-change indices and factors.
 PlanInput ValidatePlan(const AngleState& initial, double mu, const Path& path,
                        const std::vector<std::vector<double>>& partition,
                        const std::vector<EnergyChange>& energy_changes, const PlanOptions& options) {
@@ -81,8 +81,7 @@ PlanInput ValidatePlan(const AngleState& initial, double mu, const Path& path,
   if (static_cast<int>(partition.size()) != path.PieceCount())
     internal::ThrowInvalid("partition (piece count)", static_cast<double>(partition.size()),
                            "must equal the number of path pieces " + std::to_string(path.PieceCount()));
-  for (int i = 0; i < path.PieceCount(); ++i) {
-    ValidatePartition(path.pieces()[i], partition[i], "partition[" + std::to_string(i) + "]");
+  for (int i = 0; i < path.PieceCount(); ++i) {  // each piece's partition validated by MakePartition
     in.n_total += static_cast<int>(partition[i].size()) - 1;
     if (in.n_total > internal::kMaxPartitionSteps)  // README, "Limits"
       internal::ThrowInvalid("partition (steps)", in.n_total, "must be <= " + std::to_string(internal::kMaxPartitionSteps));
@@ -157,16 +156,54 @@ internal::ArcEnd FlyArc(const BallModel& model, const JoinSummary& j, const Plan
   return arc;
 }
 
-// The planned A(tau_k+1) (rolling along the curve, one integration carried through the partition
-// points so that each costs about one step) and the polyline's Abar_k+1.
-void AdvanceReferences(const SmoothCurve& curve, const PlanOptions& options, PlanCursor* cur, PlanStep* s) {
+// Rolling along a circle or a line piece in closed form (exact up to rounding; the derivation is in
+// tests/rolling_test.cc): on p = c + rho (cos tau, sin tau), omega = e3 x p' = Rz(tau) w0 with
+// w0 = (-rho, 0, 0), so A = Rz(tau) B with B' = hat(w0 - e3) B and
+//   A(tau_b) = Rz(tau_b) exp((tau_b - tau_a) hat(w0 - e3)) Rz(tau_a)^T A(tau_a);
+// a line rolls as RollAlongSegment. False for the other curves (and a reversed circle): integrated.
+bool RollInClosedForm(const SmoothCurve& curve, const PlanStep& s, internal::RowMajor3x3* ref) {
+  const Eigen::Matrix3d a = internal::MatrixFromRowMajor(ref->data());
+  if (curve.kind() == CurveKind::kLine) {
+    internal::RowMajorFromMatrix(RollAlongSegment(s.p_begin, s.p_end) * a, ref->data());
+    return true;
+  }
+  if (curve.kind() != CurveKind::kCircle || curve.reversed()) return false;
+  const double rho = curve.Derivative(s.tau_begin).norm();
+  const Eigen::Matrix3d rz_a = Eigen::AngleAxisd(s.tau_begin, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d rz_b = Eigen::AngleAxisd(s.tau_end, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d b = ExpSO3((s.tau_end - s.tau_begin) * Eigen::Vector3d(-rho, 0.0, -1.0));
+  internal::RowMajorFromMatrix(rz_b * b * rz_a.transpose() * a, ref->data());
+  return true;
+}
+
+// Segments longer than this on the plate (chord, in ball radii) roll the reference with Fehlberg
+// 7(8), shorter ones with Dormand-Prince 5(4): at tolerance 1e-12 a dopri5 step covers about 0.02,
+// so a short segment is one dopri5 step (7 evaluations), while a long one takes several and
+// rkf78 needs fewer evaluations (T2 before the circle's closed form: n = 16 6.5M -> 5.1M
+// instructions, n = 128 8.6M -> 7.4M; n >= 512 has chords below 0.025 and keeps dopri5).
+constexpr double kLongReferenceSegment = 0.035;
+
+// The reference over the segment by integration (one integration carried through the partition
+// points, its step size with it, so that each costs about one step).
+void IntegrateReference(const SmoothCurve& curve, const PlanOptions& options, const PlanStep& s, PlanCursor* cur) {
+  namespace odeint = boost::numeric::odeint;
   const internal::RollingRhs rhs{[&curve](double tau) { return curve.Derivative(tau); }};
-  double last = s->tau_begin;
-  internal::IntegrateAdaptive(rhs, cur->ref, s->tau_begin, s->tau_end, cur->ref_dt, options.integration,
-                              [&](double tau, const internal::RowMajor3x3&) {
-                                if (tau < s->tau_end) cur->ref_dt = tau - last;
-                                last = tau;
-                              });
+  double last = s.tau_begin;
+  const auto observe = [&](double tau, const internal::RowMajor3x3&) {
+    if (tau < s.tau_end) cur->ref_dt = tau - last;
+    last = tau;
+  };
+  if ((s.p_end - s.p_begin).norm() > kLongReferenceSegment)
+    internal::IntegrateAdaptive<odeint::runge_kutta_fehlberg78<internal::RowMajor3x3>>(
+        rhs, cur->ref, s.tau_begin, s.tau_end, cur->ref_dt, options.integration, observe);
+  else
+    internal::IntegrateAdaptive(rhs, cur->ref, s.tau_begin, s.tau_end, cur->ref_dt, options.integration, observe);
+}
+
+// The planned A(tau_k+1) (rolling along the curve: in closed form on circles and lines, else
+// integrated) and the polyline's Abar_k+1.
+void AdvanceReferences(const SmoothCurve& curve, const PlanOptions& options, PlanCursor* cur, PlanStep* s) {
+  if (!RollInClosedForm(curve, *s, &cur->ref)) IntegrateReference(curve, options, *s, cur);
   cur->a_ref = Reorthonormalize(internal::MatrixFromRowMajor(cur->ref.data()));
   cur->a_poly = Reorthonormalize(RollAlongSegment(s->p_begin, s->p_end) * cur->a_poly);
   s->A_planned = cur->a_ref;

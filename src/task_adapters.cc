@@ -117,7 +117,6 @@ ReachSetup ReachSetupFor(const Problem& problem, const Eigen::Vector2d& target) 
   s.problem.A0 = problem.A0;
   s.problem.target = target;
   if (problem.reach) s.options.horizon_periods = problem.reach->horizon_periods;
-  s.options.seed = problem.seed;
   s.options.integration = problem.integration;
   return s;
 }

@@ -51,9 +51,6 @@ struct ReachOptions {
   /// approach d(s) = min_t |x_s(t) - target|). It runs on every call: its minimiser is refined
   /// like a scan candidate, and it gives the closest approach when nothing reaches the target.
   int global_max_evaluations = 80;
-  /// Unused: the searches (DIRECT-L, BOBYQA) are deterministic and Reach touches no global
-  /// random state. Kept so that problem files and callers that set it still compile.
-  std::uint64_t seed = 1;
   /// Tolerances of the tight integrations (refinement, end states).
   IntegrationOptions integration;
 

@@ -63,7 +63,6 @@ void BindReachTypes(py::module_& m) {
       .def_readwrite("max_refine_iterations", &ReachOptions::max_refine_iterations)
       .def_readwrite("max_candidates", &ReachOptions::max_candidates)
       .def_readwrite("global_max_evaluations", &ReachOptions::global_max_evaluations)
-      .def_readwrite("seed", &ReachOptions::seed)
       .def_readwrite("integration", &ReachOptions::integration)
       .def("validate", &ReachOptions::Validate);
   py::class_<ReachProblem> problem(m, "ReachProblem", "Reach a distant target with one impulse (section 2.3, Figure 8).");

@@ -104,7 +104,10 @@ plateball_cli_test(simulate.non_numeric_mu 3 REGEX "plateball simulate: invalid 
 plateball_cli_test(simulate.zero_samples 3 REGEX "--samples: value 0: must be >= 2" -- simulate --samples 0)
 plateball_cli_test(simulate.negative_t_end 3 REGEX "--t-end: value -1" -- simulate --t-end -1)
 plateball_cli_test(simulate.bad_x0 3 REGEX "--x0: value \"1\": must be two finite numbers" -- simulate --x0 1)
-plateball_cli_test(simulate.negative_seed 3 REGEX "--seed: value \"-1\"" -- simulate --seed -1)
+plateball_cli_test(steer.negative_seed 3 REGEX "--seed: value \"-1\"" -- steer --seed -1)
+# Deterministic subcommands take no --seed (it would mean nothing: Reach runs DIRECT-L and BOBYQA).
+plateball_cli_test(simulate.no_seed 2 REGEX "not expected: --seed" -- simulate --seed 1)
+plateball_cli_test(reach.no_seed 2 REGEX "not expected: --seed" -- reach --targets 6,0 --seed 1)
 plateball_cli_test(simulate.zero_tolerance 3 REGEX "--atol: value 0: must be in" -- simulate --atol 0)
 plateball_cli_test(simulate.non_rotation_orientation 3
   REGEX "--orientation.matrix: value \\[\\[1, 0, 0\\], \\[0, 1, 0\\], \\[0, 0, 2\\]\\]: not a rotation"

@@ -57,7 +57,7 @@ plateball_cli_test(contract.converge_integer_option 3 REGEX "plateball converge:
   -- converge problems/circle.json --impulses 16,1.5)
 
 # "-" reads the problem from standard input.
-contract_shell_test(plan_from_stdin "\"file\": \"-\".*\"measured_error\": 0\\.01490283641079"
+contract_shell_test(plan_from_stdin "\"file\": \"-\".*\"measured_error\": 0\\.0149028364"
   "${pb} plan - --summary-only < problems/circle.json")
 contract_shell_test(isoparallel_solve_from_stdin "shortest length: 9\\.41277243"
   "${iso} - < problems/figure7.json")

@@ -94,7 +94,7 @@ std::vector<Eigen::Vector2d> ParsePointsOption(const std::string& option, const 
   return points;
 }
 
-void ProblemOptions::Add(CLI::App& app) {
+void ProblemOptions::Add(CLI::App& app, Seed seed) {
   app.add_option("problem", file_, "problem file (JSON, see README \"Problem files\"; \"-\": standard input); options below override it");
   lambda_opt_ = app.add_option("--lambda", lambda_, "ball parameter lambda = (alpha+beta)/(1+beta) > 0");
   theta_opt_ = app.add_option("--theta", theta_, "initial theta (rad)");
@@ -108,7 +108,8 @@ void ProblemOptions::Add(CLI::App& app) {
   atol_opt_ = app.add_option("--atol", atol_, "absolute tolerance of the integration, in (0, 1)");
   rtol_opt_ = app.add_option("--rtol", rtol_, "relative tolerance of the integration, in (0, 1)");
   max_steps_opt_ = app.add_option("--max-steps", max_steps_, "step limit of one integration (>= 1)");
-  seed_opt_ = app.add_option("--seed", seed_, "seed of randomised searches, 0 ... 2^64 - 1")->type_name(kSeedTypeName);
+  if (seed == Seed::kAccepted)
+    seed_opt_ = app.add_option("--seed", seed_, "seed of randomised searches, 0 ... 2^64 - 1")->type_name(kSeedTypeName);
   fields_ = {{"ball.lambda", lambda_opt_},  {"ball", lambda_opt_}, {"lambda", lambda_opt_},
              {"initial.theta", theta_opt_}, {"initial.phi", phi_opt_},
              {"initial.psi", psi_opt_},     {"initial.mu", mu_opt_},

@@ -22,9 +22,13 @@ inline constexpr const char* kCommandLine = "command line";
 
 class ProblemOptions {
  public:
+  /// Whether the subcommand draws random numbers (the isoparallel multi-start, also as steer's
+  /// reference; the Monte Carlo errors) and so takes --seed; join, reach, plan, converge and
+  /// simulate are deterministic and do not accept it (their header still names the problem's seed).
+  enum class Seed { kAccepted, kNone };
   /// Adds the positional PROBLEM.json ("-": standard input) and --lambda --theta --phi --psi --mu
-  /// --x0 X,Y --orientation JSON --atol --rtol --max-steps --seed to `app`.
-  void Add(CLI::App& app);
+  /// --x0 X,Y --orientation JSON --atol --rtol --max-steps (and --seed unless Seed::kNone) to `app`.
+  void Add(CLI::App& app, Seed seed = Seed::kAccepted);
 
   /// Adds the overrides of the problem's isoparallel section: --start X,Y, --goal X,Y,
   /// --start-orientation JSON, --goal-orientation JSON, --starts N, --threads N.

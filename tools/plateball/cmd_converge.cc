@@ -128,7 +128,7 @@ int RunConverge(const ConvergeCliOptions& o) {
 
 std::function<int()> SetupConverge(CLI::App& sub) {
   auto o = std::make_shared<ConvergeCliOptions>();
-  o->problem.Add(sub);
+  o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
   sub.add_option("--impulses,--n", o->ns,
                  "distinct numbers of impulses per smooth piece (partition sizes n), e.g. --impulses 16,32,64 "
                  "(default: plan.converge_n, else 16 ... 1024; a uniform partition only; --n: deprecated alias)")

@@ -84,7 +84,7 @@ int RunJoin(const JoinCliOptions& o) {
 
 std::function<int()> SetupJoin(CLI::App& sub) {
   auto o = std::make_shared<JoinCliOptions>();
-  o->problem.Add(sub);
+  o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
   sub.add_option("--targets", o->targets, "targets \"X1,Y1;X2,Y2;...\" (default: the file's reach.targets)");
   sub.add_option("--max-iterations", o->max_iterations, "Levenberg-Marquardt iterations per join (default 30)");
   sub.add_option("--residual-tolerance", o->residual_tolerance, "accepted |x(t) - target| (default 1e-12)");

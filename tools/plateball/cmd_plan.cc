@@ -94,7 +94,7 @@ int RunPlan(const PlanCliOptions& o) {
 
 std::function<int()> SetupPlan(CLI::App& sub) {
   auto o = std::make_shared<PlanCliOptions>();
-  o->problem.Add(sub);
+  o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
   o->n_opt = sub.add_option("--impulses,--n", o->n,
                             "impulses (partition segments) per smooth piece, overrides plan.partition.n (--n: deprecated alias)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");

@@ -151,7 +151,7 @@ int RunReach(const ReachCliOptions& o) {
 
 std::function<int()> SetupReach(CLI::App& sub) {
   auto o = std::make_shared<ReachCliOptions>();
-  o->problem.Add(sub);
+  o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
   o->targets_opt = sub.add_option("--targets", o->targets, "reach these points \"X1,Y1;X2,Y2;...\" instead of the file's reach.targets");
   o->horizon_opt = sub.add_option("--horizon-periods", o->horizon_periods,
                                   "enumerate solutions with t up to this many periods, (0, 1e4] (default: the file's, else 5)");

@@ -66,7 +66,7 @@ int RunSimulate(const SimulateOptions& o) {
 
 std::function<int()> SetupSimulate(CLI::App& sub) {
   auto o = std::make_shared<SimulateOptions>();
-  o->problem.Add(sub);
+  o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
   o->t_end_opt = sub.add_option("--t-end", o->t_end, "end time > 0 (default: the file's simulate.t_end, else 10)");
   o->samples_opt = sub.add_option("--samples", o->samples,
                                   "number of equally spaced samples on [0, t-end], 2 ... 1e6 (default: the file's, else 101)");
