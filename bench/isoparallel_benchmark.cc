@@ -2,7 +2,7 @@
 // Figure 7, from (0, 0) to (3, 3) with final reorientation equal to the identity.
 // Figures (counters): the length of the shortest path found, the number of distinct solutions
 // (all up to 3x the shortest), the final orientation residual of the shortest one (verified by
-// RollingReorientation, dopri5 at 1e-12, independent of the solver) and the wall time of the
+// VerifyRolling, Runge-Kutta-Fehlberg 7(8) at 1e-13, independent of the solver) and the wall time of the
 // whole solve (the benchmark's time), with the seed and the number of starts stated.
 // Tolerances: shooting residual 1e-12 (options.tolerance).
 // The identity target is solved by the family enumeration (isoparallel_families.h: complete up

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "dynamics.h"
 #include "elastica_rolling.h"
 #include "parallel_for.h"
 #include "plateball/isoparallel_families.h"
@@ -38,8 +39,6 @@ constexpr Accuracy kPolish{160, 0.02};
 constexpr double kSearchStop = 3e-6;
 constexpr double kSearchAccept = 1e-4;
 constexpr int kSearchIterations = 40;
-constexpr int kSearchChunk = 8;
-constexpr double kSearchProgress = 0.95;
 constexpr int kPolishIterations = 12;
 // Relative tolerance for "the same solution" between a search result and a polished one.
 constexpr double kSearchSameTol = 1e-4;
@@ -95,6 +94,27 @@ bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, con
   return out->residual.allFinite();
 }
 
+// TinySolver's functor call for a residual f.Residual(x, r) of N unknowns and N residuals:
+// forward differences; a trial point without a residual (no n-th crossing, an invalid modulus)
+// gets NaN, which makes TinySolver reject the step.
+template <int N, class F>
+bool ForwardDifferences(const F& f, const double* x, double* r, double* jacobian) {
+  if (!f.Residual(x, r)) {
+    for (int i = 0; i < N; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
+    return jacobian == nullptr;
+  }
+  if (jacobian == nullptr) return true;
+  for (int j = 0; j < N; ++j) {
+    const double h = 1e-6 * (1.0 + std::abs(x[j]));
+    double xp[N], rp[N];
+    std::copy(x, x + N, xp);
+    xp[j] += h;
+    if (!f.Residual(xp, rp)) return false;
+    for (int i = 0; i < N; ++i) jacobian[j * N + i] = (rp[i] - r[i]) / h;  // column-major
+  }
+  return true;
+}
+
 struct ShootingFunctor {
   using Scalar = double;
   enum { NUM_RESIDUALS = 3, NUM_PARAMETERS = 3 };
@@ -102,7 +122,6 @@ struct ShootingFunctor {
   PendulumRegime regime;
   int crossing;
   Accuracy acc;
-  bool central = false;  // central differences (polish) or forward (search)
   mutable long evaluations = 0;
 
   bool Residual(const double* x, double* r) const {
@@ -114,29 +133,7 @@ struct ShootingFunctor {
   }
 
   bool operator()(const double* x, double* r, double* jacobian) const {
-    if (!Residual(x, r)) {
-      // A trial step without the n-th crossing: NaN makes TinySolver reject the step.
-      for (int i = 0; i < 3; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
-      return jacobian == nullptr;
-    }
-    if (jacobian == nullptr) return true;
-    for (int j = 0; j < 3; ++j) {
-      const double h = 1e-6 * (1.0 + std::abs(x[j]));
-      double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]};
-      xp[j] += h;
-      xm[j] -= h;
-      double rp[3] = {0, 0, 0}, rm[3] = {0, 0, 0};
-      const bool okp = Residual(xp, rp), okm = central && Residual(xm, rm);
-      for (int i = 0; i < 3; ++i) {
-        double d;
-        if (okp && okm) d = (rp[i] - rm[i]) / (2 * h);
-        else if (okp) d = (rp[i] - r[i]) / h;
-        else if (okm) d = (r[i] - rm[i]) / h;
-        else return false;
-        jacobian[j * 3 + i] = d;  // column-major 3x3
-      }
-    }
-    return true;
+    return ForwardDifferences<3>(*this, x, r, jacobian);
   }
 };
 
@@ -166,33 +163,72 @@ bool RunLm(ShootingFunctor& f, double* x, int max_iterations, double cost_thresh
   return v.allFinite();
 }
 
-// Search stage (cheap accuracy): LM from a start; `searched` tells whether it got close.
-LocalResult SearchLocal(const Context& ctx, PendulumRegime regime, const double* x0, int crossing,
-                        const IsoparallelOptions& options) {
+// The rotation trick without the crossing: the length L is a fourth unknown and |x(L)| - |x1 - x0|
+// a fourth residual. Smooth where the crossing formulation jumps (a tangency adding or removing a
+// pair of crossings, near which solutions often lie).
+struct FreeLengthFunctor {
+  using Scalar = double;
+  enum { NUM_RESIDUALS = 4, NUM_PARAMETERS = 4 };
+  const Context* ctx;
+  PendulumRegime regime;
+  mutable long evaluations = 0;
+
+  bool Residual(const double* x, double* r) const {
+    ++evaluations;
+    const ElasticaParameters p = ToParameters(regime, x);
+    const double length = x[3];
+    if (!(std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::isfinite(length)) ||
+        std::abs(p.modulus) >= 1.0 || !(length > 0) || length > 2.0 * ctx->s_limit)
+      return false;
+    const Elastica e(p);
+    const internal::ElasticaRollingTable table(e, length, kSearch.steps_per_period, kSearch.max_step);
+    if (!table.Valid()) return false;
+    const Eigen::Vector2d xs = e.Position(length);
+    if (xs.norm() == 0.0) return false;
+    const Eigen::Matrix3d b = RotationZ(ctx->goal_angle - std::atan2(xs.y(), xs.x()));
+    const Eigen::Vector3d rot = LogSO3(ctx->target.transpose() * b * table.Rolling(length) * b.transpose());
+    r[0] = xs.norm() - ctx->radius;
+    for (int i = 0; i < 3; ++i) r[i + 1] = rot[i];
+    return rot.allFinite();
+  }
+
+  bool operator()(const double* x, double* r, double* jacobian) const {
+    return ForwardDifferences<4>(*this, x, r, jacobian);
+  }
+};
+
+// Search stage on the free-length formulation from a start and one of its crossings; the result
+// is handed to the crossing formulation (its crossing number counted) for the polish.
+LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
+                                  const IsoparallelOptions& options) {
   LocalResult out;
   out.regime = regime;
-  out.crossing = crossing;
-  std::copy(x0, x0 + 3, out.x);
-  ShootingFunctor search{&ctx, regime, crossing, kSearch, false};
-  // LM in chunks of kSearchChunk iterations; a run whose residual does not at least shrink by
-  // kSearchProgress per chunk is abandoned (most starts lead nowhere; this halves their cost).
-  const int budget = std::min(options.max_iterations, kSearchIterations);
-  double previous = std::numeric_limits<double>::infinity();
-  for (int used = 0; used < budget; used += kSearchChunk) {
-    const bool ok = RunLm(search, out.x, std::min(kSearchChunk, budget - used), 0.5 * kSearchStop * kSearchStop);
-    if (!ok || !Evaluate(ctx, ToParameters(regime, out.x), crossing, kSearch, &out.ev)) break;
-    const double r = out.ev.residual.norm();
-    if (r <= kSearchStop || r > kSearchProgress * previous) break;
-    previous = r;
-  }
-  out.evaluations += search.evaluations;
-  out.searched = out.ev.residual.allFinite() && out.ev.s > 0 && out.ev.residual.norm() <= kSearchAccept;
+  FreeLengthFunctor f{&ctx, regime};
+  Eigen::Vector4d v(x0[0], x0[1], x0[2], length0);
+  ceres::TinySolver<FreeLengthFunctor> solver;
+  solver.options.max_num_iterations = std::min(options.max_iterations, kSearchIterations);
+  solver.options.gradient_tolerance = 0.0;
+  solver.options.parameter_tolerance = 1e-15;
+  solver.options.function_tolerance = 0.0;
+  solver.options.cost_threshold = 0.5 * kSearchStop * kSearchStop;
+  double r0[4];
+  if (f.Residual(v.data(), r0)) solver.Solve(f, &v);
+  out.evaluations = f.evaluations;
+  std::copy(v.data(), v.data() + 3, out.x);
+  if (!v.allFinite() || !(v[3] > 0) || std::abs(std::tanh(v[1])) >= 1.0) return out;
+  const Elastica e(ToParameters(regime, out.x));
+  const internal::ElasticaRollingTable table(e, v[3] * (1 + 1e-6), kSearch.steps_per_period, kSearch.max_step);
+  const std::vector<double> crossings = table.Crossings(ctx.radius, kMaxCrossingsPerStart * 4);
+  if (crossings.empty()) return out;
+  out.crossing = static_cast<int>(crossings.size());
+  out.searched = Evaluate(ctx, ToParameters(regime, out.x), out.crossing, kSearch, &out.ev) &&
+                 out.ev.residual.norm() <= kSearchAccept;
   return out;
 }
 
 // Polish stage: LM (in effect Newton) with the accurate tables, to options.tolerance.
 void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalResult* r) {
-  ShootingFunctor polish{&ctx, r->regime, r->crossing, kPolish, false};  // forward differences suffice from 1e-4
+  ShootingFunctor polish{&ctx, r->regime, r->crossing, kPolish};  // forward differences suffice from 1e-4
   const double thr = 0.5 * std::pow(0.1 * options.tolerance, 2);
   RunLm(polish, r->x, std::min(options.max_iterations, kPolishIterations), thr);
   r->evaluations += polish.evaluations;
@@ -436,7 +472,7 @@ std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const Iso
     const std::vector<double> crossings = table.Crossings(ctx.radius, kMaxCrossingsPerStart);
     for (std::size_t n = 0; n < crossings.size(); ++n) {
       if (crossings[n] <= covered) continue;
-      per_start[i].push_back(SearchLocal(ctx, st.regime, st.x, static_cast<int>(n) + 1, options));
+      per_start[i].push_back(SearchLocalFreeLength(ctx, st.regime, st.x, crossings[n], options));
     }
     if (options.progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
@@ -497,6 +533,27 @@ void SolveByShooting(Context* ctx, const IsoparallelProblem& problem, const Isop
   }
 }
 
+// For an identity target, the index of the solution of which each solution is the mirror image
+// (a rotating family with rate -> -rate), else -1. The mirror path is the reflection S of the
+// path in a vertical plane; rolling along it gives S Q S^-1 (hat(e3 x S t) = S hat(e3 x t) S^-1
+// for a reflection S with S e3 = e3), as far from the identity as Q in angle and in every
+// orthogonally invariant norm: verifying one of the two verifies both (docs/paper_notes.md).
+std::vector<int> MirrorImages(const std::vector<IsoparallelSolution>& sols, IsoparallelMethod method) {
+  std::vector<int> mirror(sols.size(), -1);
+  if (method != IsoparallelMethod::kFamilyEnumeration) return mirror;
+  for (std::size_t i = 0; i < sols.size(); ++i) {
+    const ElasticaParameters& p = sols[i].parameters;
+    if (!sols[i].family || p.regime != PendulumRegime::kRotating || p.rate >= 0) continue;
+    for (std::size_t j = 0; j < sols.size() && mirror[i] < 0; ++j) {
+      const ElasticaParameters& q = sols[j].parameters;
+      if (sols[j].family && q.regime == PendulumRegime::kRotating && q.rate == -p.rate && q.modulus == p.modulus &&
+          sols[j].length == sols[i].length)
+        mirror[i] = static_cast<int>(j);
+    }
+  }
+  return mirror;
+}
+
 // The solutions up to the length cap, sorted, each verified independently by rolling (dopri5
 // along the path, spread over the threads; a failed integration is rethrown here).
 void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
@@ -509,16 +566,34 @@ void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const
     if (c.solution.length > cap) break;
     summary->solutions.push_back(c.solution);
   }
-  internal::ParallelFor(static_cast<int>(summary->solutions.size()), options.threads, [&](int i) {
-    IsoparallelSolution& sol = summary->solutions[i];
+  std::vector<IsoparallelSolution>& sols = summary->solutions;
+  const std::vector<int> mirror = MirrorImages(sols, summary->method);
+  internal::ParallelFor(static_cast<int>(sols.size()), options.threads, [&](int i) {
+    IsoparallelSolution& sol = sols[i];
+    sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
+    if (mirror[i] >= 0) return;
     const Eigen::Matrix3d r = VerifyRolling(sol, options.integration);
     sol.orientation_residual = LogSO3(ctx.target.transpose() * r).norm();
     sol.orientation_error = OperatorNormDistance(problem.goal_orientation, r * problem.start_orientation);
-    sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
   });
+  for (std::size_t i = 0; i < sols.size(); ++i) {
+    if (mirror[i] < 0) continue;
+    sols[i].orientation_residual = sols[mirror[i]].orientation_residual;
+    sols[i].orientation_error = sols[mirror[i]].orientation_error;
+  }
 }
 
 }  // namespace
+
+// The verification runs at a tenth of the integration tolerances (clamped to 1e-15): the
+// Runge-Kutta-Fehlberg 7(8) pair, controlled by its local error estimate, accumulates ~10x the
+// tolerance over these lengths (Figure 7's shortest: 1.2e-12 rad at 1e-12, 1.4e-13 at 1e-13).
+IntegrationOptions VerifyTolerances(const IntegrationOptions& integration) {
+  IntegrationOptions o = integration;
+  o.absolute_tolerance = std::max(internal::kMinTolerance, 0.1 * o.absolute_tolerance);
+  o.relative_tolerance = std::max(internal::kMinTolerance, 0.1 * o.relative_tolerance);
+  return o;
+}
 
 std::string IsoparallelOptions::Validate() const {
   using internal::InvalidValueMessage;
@@ -569,9 +644,26 @@ const IsoparallelSolution& IsoparallelSummary::Shortest() const {
 }
 
 Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution, const IntegrationOptions& integration) {
+  internal::ThrowIfInvalid(integration.Validate());
   const Elastica e = solution.Path();
-  const PlanarVelocity v = [&e](double s) { return e.Tangent(s); };
-  return RollingReorientation(v, 0.0, solution.length, {}, integration);
+  const internal::RollingRhs rhs{[&e](double s) { return e.Tangent(s); }};
+  // A family covers m whole curvature periods of a T-periodic tangent: Q(0, m T) = P^m with the
+  // one-period rolling P, integrated once (errors grow like m, as over the whole length).
+  // (Only when the length is m T to round-off: the enumerated families; a shooting solution is a
+  // whole number of periods only to its own tolerance and is integrated over its whole length.)
+  const long whole = solution.family && !e.IsStraight() ? std::lround(solution.length / e.Period()) : 1;
+  const int m = whole >= 2 && std::abs(solution.length - whole * e.Period()) <= 1e-13 * solution.length
+                    ? static_cast<int>(whole) : 1;
+  const double span = solution.length / m;
+  internal::RowMajor3x3 y{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  using Stepper = boost::numeric::odeint::runge_kutta_fehlberg78<internal::RowMajor3x3>;
+  if (span > 0)
+    internal::IntegrateAdaptive<Stepper>(rhs, y, 0.0, span, span / 16.0, VerifyTolerances(integration),
+                                         [](double, const internal::RowMajor3x3&) {});
+  const Eigen::Matrix3d p = ProjectToSO3(internal::MatrixFromRowMajor(y.data()));
+  Eigen::Matrix3d q = p;
+  for (int i = 1; i < std::max(m, 1); ++i) q = p * q;
+  return ProjectToSO3(q);
 }
 
 IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const IsoparallelOptions& options) {

@@ -7,9 +7,21 @@
 // from x0 runs until its n-th crossing of the circle |x - x0| = |x1 - x0| (n = 1, 2, ...: paths
 // that leave and re-enter the circle count), the plane is rotated by the B about e3 taking the
 // crossing point to x1, and B A B^-1 is compared with A1 A0^-1 (residual: LogSO3 of the mismatch).
+// The search stage (from each start and each of its crossings) also frees the length: 4 unknowns
+// (G, energy, phase, L), 4 residuals (|x(L) - x0| - |x1 - x0| and the mismatch with B taken from
+// the direction of x(L)). That residual is smooth where the crossing number jumps (a tangency adds
+// or removes a pair of crossings, and solutions often lie near one): 1024 starts find 27
+// solutions of problems/isoparallel_rotation.json instead of 18. The polish (to the tolerance)
+// runs on the crossing formulation above.
 // Seeded multi-start over both pendulum regimes; every distinct solution up to
 // length_cap_factor times the shortest is reported, sorted by length. Each reported solution is
-// verified independently of the shooting by RollingReorientation (rolling.h) along the path.
+// verified independently of the solver by VerifyRolling (a second integrator along the path).
+//
+// Completeness. General targets: the shooting is a sample of the three-parameter space and is
+// NOT complete (`complete` stays false): problems/isoparallel_rotation.json has at least 30
+// solutions up to 3x the shortest (31 by issue 15's independent search); 1024 starts (seed 1)
+// find 27. No certified method exists for them yet (docs/paper_notes.md, "General targets: why
+// the shooting is not complete").
 //
 // Identity targets (A1 = A0, Figure 7) are solved by direct enumeration instead
 // (isoparallel_families.h): there every solution covers a whole number of curvature periods and
@@ -83,7 +95,7 @@ struct IsoparallelSolution {
   /// reported is the canonical one, parameters.phase = 0.
   bool family = false;
   double shooting_residual = 0.0;     ///< |LogSO3| in the shooting's own integrator
-  double orientation_residual = 0.0;  ///< |LogSO3(A1 A0^-1)^-1 R)|, R by RollingReorientation
+  double orientation_residual = 0.0;  ///< |LogSO3(A1 A0^-1)^-1 R)|, R by VerifyRolling
   double orientation_error = 0.0;     ///< operator 2-norm ||A1 - R A0|| (verification)
   double endpoint_error = 0.0;        ///< |x(length) - x1|
   Elastica Path() const { return Elastica(parameters); }
@@ -132,9 +144,14 @@ struct IsoparallelSummary {
 /// non-rotation orientations or invalid options. Non-convergence is a status.
 IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const IsoparallelOptions& options = {});
 
-/// Reorientation R = A(length) A(0)^-1 of rolling along the path, by RollingReorientation of
-/// rolling.h (dopri5, by default at 1e-12, independent of the solver's Magnus tables). Throws
-/// std::runtime_error when the integration exceeds integration.max_steps.
+/// Reorientation R = A(length) A(0)^-1 of rolling along the path: A' = hat(e3 x x') A with the
+/// closed-form tangent, integrated by the Runge-Kutta-Fehlberg 7(8) pair (Boost.Odeint) at a
+/// tenth of the integration tolerances (clamped to 1e-15), independent of the solver's Magnus
+/// tables. An enumerated family of m >= 2 periods (length m T to round-off) is integrated over
+/// one period P and reported as P^m (the tangent is T-periodic). SolveIsoparallel checks a
+/// rotating family's mirror image through its partner (the rolling along a path reflected in a
+/// vertical plane S is S R S^-1: same residual). Throws std::runtime_error when the integration
+/// exceeds integration.max_steps.
 Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution, const IntegrationOptions& integration = {});
 
 }  // namespace plateball

@@ -102,7 +102,7 @@ void BindIsoparallelSolve(py::module_& m) {
       .def_property_readonly("lengths", [](const IsoparallelSummary& s) { return Stack<1>(s.solutions, [](const IsoparallelSolution& q) { return Scalar1(q.length); }); });
   m.def("_isoparallel", &SolveIsoparallel, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
   m.def("verify_rolling", &VerifyRolling, py::arg("solution"), py::arg("integration") = IntegrationOptions{},
-        py::call_guard<py::gil_scoped_release>(), "The reorientation of rolling along the solution (dopri5).");
+        py::call_guard<py::gil_scoped_release>(), "The reorientation of rolling along the solution (Runge-Kutta-Fehlberg 7(8), independent of the solver).");
   m.def("optimal_path", &OptimalPath, py::arg("solution"));
   m.def("initial_angles_from_orientation", &InitialAnglesFromOrientation, py::arg("orientation"), py::arg("psi"));
   py::class_<IsoparallelPlanProblem> plan(m, "IsoparallelPlanProblem", "The impulsive approximation of an optimal path (Figure 7).");

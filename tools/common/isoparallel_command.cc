@@ -218,12 +218,12 @@ void PrintSolutions(const plateball::IsoparallelSummary& summary, const platebal
     out << "identity target: one-parameter families enumerated over 1.." << summary.periods_searched
               << " curvature periods, " << (summary.complete ? "certified complete" : "NOT certified complete") << ")\n";
   else
-    out << opt.starts << " starts, seed " << opt.seed << ")\n";
+    out << opt.starts << " starts, seed " << opt.seed << ": a sample, NOT certified complete)\n";
   out << std::setprecision(10) << "shortest length: " << best.length << std::setprecision(6) << "  ("
             << ToString(best.parameters.regime) << " pendulum, G = " << best.G << ", energy = " << best.energy
             << ", " << best.periods << " curvature period(s)"
             << (best.family ? ", a one-parameter family: phase free, phase 0 reported" : "") << ")\n";
-  out << std::setprecision(3) << "verified by rolling (dopri5): orientation residual " << best.orientation_residual
+  out << std::setprecision(3) << "verified by rolling (Runge-Kutta-Fehlberg 7(8)): orientation residual " << best.orientation_residual
             << " rad, endpoint error " << best.endpoint_error << "\n";
 }
 
