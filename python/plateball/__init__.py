@@ -19,8 +19,9 @@ import functools
 
 from ._plateball import *  # noqa: F401,F403
 from ._plateball import (__version__, _converge, _isoparallel, _join, _plan, _plan_optimal_path,  # noqa: F401
-                         _reach, _steer, ConvergenceOptions, ConvergenceProblem, ExactArrivalOptions,
-                         ExactArrivalProblem, IsoparallelOptions, IsoparallelPlanProblem, IsoparallelProblem,
+                         _reach, _steer, _fewest_impulses, ConvergenceOptions, ConvergenceProblem,
+                         ExactArrivalOptions, ExactArrivalProblem, FewestImpulsesOptions, FewestImpulsesProblem,
+                         IsoparallelOptions, IsoparallelPlanProblem, IsoparallelProblem,
                          JoinOptions, JoinProblem, MonteCarloOptions, MonteCarloProblem, PlanOptions, PlanProblem,
                          ReachOptions, ReachProblem, _montecarlo)
 
@@ -81,6 +82,12 @@ def plan_optimal_path(problem=None, options=None, **kwargs):
 def steer(problem=None, options=None, **kwargs):
     """Exact arrival at (x1, A1) with n impulses closest to a reference path: an ExactArrivalSummary."""
     return _solve(_steer, ExactArrivalProblem, ExactArrivalOptions, problem, options, kwargs)
+
+
+def fewest_impulses(problem=None, options=None, **kwargs):
+    """The fewest impulses that reach (x1, A1) exactly, with the Pareto table of impulse count
+    against total time (issue 11): a FewestImpulsesSummary."""
+    return _solve(_fewest_impulses, FewestImpulsesProblem, FewestImpulsesOptions, problem, options, kwargs)
 
 
 def montecarlo(problem=None, options=None, **kwargs):

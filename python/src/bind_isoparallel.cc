@@ -137,8 +137,12 @@ void BindExactInputs(py::module_& m) {
       .def_readwrite("reference", &ExactArrivalProblem::reference)
       .def_readwrite("impulses", &ExactArrivalProblem::impulses)
       .def_readwrite("x1", &ExactArrivalProblem::x1)
-      .def_readwrite("goal_orientation", &ExactArrivalProblem::A1);
+      .def_readwrite("goal_orientation", &ExactArrivalProblem::A1)
+      .def_readwrite("start_at_rest", &ExactArrivalProblem::start_at_rest)
+      .def_readwrite("stop_at_goal", &ExactArrivalProblem::stop_at_goal);
   py::class_<ExactImpulse>(m, "ExactImpulse")
+      .def_property_readonly("kind", [](const ExactImpulse& q) { return ToString(q.kind); },
+                             "energy_preserving, start (0 -> mu) or stop (-> 0), as the tool writes it")
       .def_readonly("t_impulse", &ExactImpulse::t_impulse)
       .def_readonly("position", &ExactImpulse::position)
       .def_readonly("delta_psi", &ExactImpulse::delta_psi)
@@ -146,6 +150,8 @@ void BindExactInputs(py::module_& m) {
       .def_readonly("delta_omega", &ExactImpulse::delta_omega)
       .def_readonly("plate_velocity_change", &ExactImpulse::plate_velocity_change)
       .def_readonly("angles_before", &ExactImpulse::angles_before)
+      .def_readonly("mu_before", &ExactImpulse::mu_before)
+      .def_readonly("mu_after", &ExactImpulse::mu_after)
       .def_readonly("planned_position", &ExactImpulse::planned_position)
       .def_readonly("planned_delta_psi", &ExactImpulse::planned_delta_psi)
       .def_readonly("planned_duration", &ExactImpulse::planned_duration);
@@ -182,6 +188,7 @@ void BindExactArrival(py::module_& m) {
   py::class_<ExactArrivalSummary> summary(m, "ExactArrivalSummary");
   AddSummaryShape(summary);
   summary.def_readonly("impulses", &ExactArrivalSummary::impulses)
+      .def_readonly("stop", &ExactArrivalSummary::stop, "the impulse at the goal with stop_at_goal, else None")
       .def_readonly("x_final", &ExactArrivalSummary::x_final)
       .def_readonly("orientation_final", &ExactArrivalSummary::A_final)
       .def_readonly("position_error", &ExactArrivalSummary::position_error)

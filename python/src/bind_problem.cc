@@ -86,6 +86,7 @@ void BindAdapters(py::module_& m) {
   BindSetup<IsoparallelSetup>(m, "IsoparallelSetup");
   BindSetup<IsoparallelPlanSetup>(m, "IsoparallelPlanSetup");
   BindSetup<ExactArrivalSetup>(m, "ExactArrivalSetup");
+  BindSetup<FewestImpulsesSetup>(m, "FewestImpulsesSetup");
   m.def("path_from_spec", &PathFromSpec, py::arg("spec"), py::arg("field") = "path");
   m.def("free_motion_for", &FreeMotionFor, py::arg("problem"), py::call_guard<py::gil_scoped_release>());
   m.def("join_setup_for", &JoinSetupFor, py::arg("problem"), py::arg("target"));
@@ -101,6 +102,8 @@ void BindAdapters(py::module_& m) {
   m.def("exact_arrival_setup_for",
         py::overload_cast<const Problem&, const IsoparallelSolution&, int, const std::string&>(&ExactArrivalSetupFor),
         py::arg("problem"), py::arg("solution"), py::arg("impulses") = 0, py::arg("n_field") = "impulses");
+  m.def("fewest_impulses_setup_for", &FewestImpulsesSetupFor, py::arg("problem"),
+        "What `plateball steer` runs on a file whose steer section asks for the fewest impulses.");
 }
 
 }  // namespace

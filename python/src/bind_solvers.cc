@@ -294,6 +294,7 @@ void BindConvergence(py::module_& m) {
 
 void BindIsoparallel(py::module_& m);    // bind_isoparallel.cc
 void BindExactArrival(py::module_& m);   // bind_isoparallel.cc
+void BindFewestImpulses(py::module_& m);  // bind_fewest.cc
 
 void BindSolvers(py::module_& m) {
   BindJoin(m);
@@ -305,6 +306,7 @@ void BindSolvers(py::module_& m) {
   BindConvergence(m);
   BindIsoparallel(m);
   BindExactArrival(m);
+  BindFewestImpulses(m);
 }
 
 }  // namespace plateball::python

@@ -110,3 +110,34 @@ def test_montecarlo_inputs_are_words_and_checked():
     with pytest.raises(ValueError, match="noise"):
         pb.parse_error_model("impulse_magnitude=2")
     assert str(pb.parse_error_model("timing=1e-4")).startswith("timing")
+
+
+def test_fewest_impulses_keywords_errors_and_words():
+    with pytest.raises(ValueError, match=r"max_impulses: value 0"):
+        pb.fewest_impulses(max_impulses=0)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'goal'"):
+        pb.fewest_impulses(goal=(1, 0))
+    # One impulse from the vertical axis rolls straight and turns the ball by the length rolled:
+    # (3, 3) with the identity is out of reach, the closest arrival is reported.
+    miss = pb.fewest_impulses(model=pb.BallModel(2.0), initial=pb.AngleState(0.0, 0.0, 0.0), x1=(3.0, 3.0),
+                              max_impulses=1, pareto_counts=1, starts=4)
+    assert (miss.status, miss.usable, miss.fewest, miss.fewest_count) == ("not_found", False, 0, None)
+    assert len(miss.counts) == 1 and not miss.counts[0].reached and miss.counts[0].position_error > 0.1
+    p = pb.FewestImpulsesProblem(x1=(1.5, 0.0), start_at_rest=True, stop_at_goal=True)
+    assert (p.start_at_rest, p.stop_at_goal, list(p.x1)) == (True, True, [1.5, 0.0])
+
+
+def test_steer_from_rest_and_stop_at_goal():
+    """The exact arrival's start from rest and stop at the goal: impulse kinds and energies as the tool
+    writes them (0 -> mu at the start, mu -> 0 at the goal), replayed independently to the goal."""
+    p = pb.ExactArrivalProblem(start_at_rest=True, stop_at_goal=True, impulses=4)
+    assert (p.start_at_rest, p.stop_at_goal) == (True, True)
+    s = pb.steer(p, pb.ExactArrivalOptions())
+    assert s.status == "arrived"
+    assert [i.kind for i in s.impulses] == ["start"] + ["energy_preserving"] * 3
+    assert [(i.mu_before, i.mu_after) for i in s.impulses] == [(0.0, 1.0)] + [(1.0, 1.0)] * 3
+    assert (s.stop.kind, s.stop.mu_before, s.stop.mu_after) == ("stop", 1.0, 0.0)
+    replay = pb.replay_exact_arrival(p, s.impulses)
+    assert np.allclose(replay.x, [1.0, 0.0], atol=1e-12, rtol=0) and replay.orientation_error < 1e-10
+    assert np.allclose(s.stop.position, [1.0, 0.0], atol=1e-12, rtol=0)
+    assert pb.steer(impulses=4).stop is None

@@ -165,8 +165,41 @@ FIELDS = {
         ("impulses[*].plate_velocity_change", lambda r: r.plate_velocity_changes),
         ("impulses[*].p", lambda r: [i.planned_position for i in r.impulses]),
         ("impulses[*].angles_before.theta", lambda r: [i.angles_before.theta for i in r.impulses]),
+        ("impulses[*].kind", lambda r: [i.kind for i in r.impulses]),
+        ("impulses[*].mu_before", lambda r: [i.mu_before for i in r.impulses]),
+        ("impulses[*].mu_after", lambda r: [i.mu_after for i in r.impulses]),
         ("arrival.rotation.matrix", lambda r: r.orientation_final),
         ("paper_plan.orientation_error", lambda r: r.planned_orientation_error),
+    ],
+    "steer_fewest": [
+        ("status", lambda r: r["summary"].status),
+        ("usable", lambda r: r["summary"].usable),
+        ("message", lambda r: r["summary"].message),
+        ("report", lambda r: r["summary"].report),
+        ("fewest_impulses", lambda r: r["summary"].fewest),
+        ("searched", lambda r: r["summary"].searched),
+        ("max_total_time", lambda r: r["summary"].max_total_time),
+        ("rollouts", lambda r: r["summary"].rollouts),
+        ("start_at_rest", lambda r: r["problem"].start_at_rest),
+        ("stop_at_goal", lambda r: r["problem"].stop_at_goal),
+        ("goal.x", lambda r: r["problem"].x1),
+        ("pareto[*].impulse_count", lambda r: [c.impulses for c in r["summary"].counts]),
+        ("pareto[*].reached", lambda r: [c.reached for c in r["summary"].counts]),
+        ("pareto[*].starts", lambda r: [c.starts for c in r["summary"].counts]),
+        ("pareto[*].arrived", lambda r: [c.arrived for c in r["summary"].counts]),
+        ("pareto[*].total_time", lambda r: [c.total_time for c in r["summary"].counts]),
+        ("pareto[*].path_length", lambda r: [c.path_length for c in r["summary"].counts]),
+        ("pareto[*].position_error", lambda r: [c.position_error for c in r["summary"].counts]),
+        ("pareto[*].orientation_error", lambda r: [c.orientation_error for c in r["summary"].counts]),
+        ("pareto[*].replay.x", lambda r: [x for x, _ in r["replays"]]),
+        ("pareto[*].replay.orientation_error", lambda r: [e for _, e in r["replays"]]),
+        ("impulses[*].kind", lambda r: [i.kind for i in r["impulses"]]),
+        ("impulses[*].x", lambda r: [i.position for i in r["impulses"]]),
+        ("impulses[*].delta_psi", lambda r: [i.delta_psi for i in r["impulses"]]),
+        ("impulses[*].duration", lambda r: [i.duration for i in r["impulses"]]),
+        ("impulses[*].plate_velocity_change", lambda r: [i.plate_velocity_change for i in r["impulses"]]),
+        ("impulses[*].mu_before", lambda r: [i.mu_before for i in r["impulses"]]),
+        ("impulses[*].mu_after", lambda r: [i.mu_after for i in r["impulses"]]),
     ],
     "montecarlo": [
         ("status", lambda r: r.status),
@@ -294,6 +327,23 @@ def test_steer(problems, run_cli):
     replay = pb.replay_exact_arrival(setup.problem, summary.impulses)
     assert np.array_equal(np.asarray(json_get(doc, "replay.x"), dtype=float), replay.x)
     assert json_get(doc, "replay.orientation_error") == replay.orientation_error
+
+
+def test_steer_fewest(problems, run_cli):
+    """`plateball steer` on a file asking for the fewest impulses: the Pareto table and the impulses."""
+    doc = run_cli("plateball", "steer", problems / "figure7_fewest.json")
+    problem = pb.load_problem(problems / "figure7_fewest.json")
+    assert_header(doc, problem, "steer")
+    setup = pb.fewest_impulses_setup_for(problem)
+    summary = pb.fewest_impulses(*setup)
+    replays = []
+    for c in summary.counts:
+        r = pb.replay_exact_arrival(pb.replay_problem_for(setup.problem, c.impulses), c.plan)
+        replays.append((r.x, r.orientation_error))
+    fewest = summary.fewest_count
+    impulses = list(fewest.plan) + ([fewest.stop] if fewest.stop is not None else [])
+    assert_same(doc, {"summary": summary, "problem": setup.problem, "replays": replays, "impulses": impulses},
+                "steer_fewest")
 
 
 def test_roll_segment(run_cli):

@@ -116,3 +116,27 @@ def test_join_arrives_by_independent_free_motion():
     after = pb.energy_preserving_impulse(start, 1.0, s.delta_psi, model).after
     motion = pb.FreeMotion(model, after, 1.0)
     assert np.max(np.abs(motion.position_at(s.t) - [0.05, 0.0])) < 1e-11
+
+
+def test_fewest_impulses_figure7_two_straight_rolls(problems):
+    """Figure 7 ball (lambda = 2, axis vertical) to (3, 3) with the identity reorientation: one impulse
+    cannot (a straight roll turns the ball by its length, and |(3, 3)| is no multiple of 2 pi), two
+    straight rolls of 2 pi each can (T = 4 pi at unit speed). The reported impulses are replayed by an
+    independent FreeMotion integration, and the polyline through the impulse points rolls to the
+    identity by the closed form of rolling along segments."""
+    setup = pb.fewest_impulses_setup_for(pb.load_problem(problems / "figure7_fewest.json"))
+    s = pb.fewest_impulses(*setup)
+    assert (s.status, s.usable, s.fewest) == ("found", True, 2)
+    assert [c.reached for c in s.counts[:2]] == [False, True]
+    f = s.fewest_count
+    assert f.impulses == 2 and len(f.plan) == 2
+    assert f.total_time == pytest.approx(4 * math.pi, abs=1e-9)
+    assert [i.duration for i in f.plan] == pytest.approx([2 * math.pi, 2 * math.pi], abs=1e-9)
+    assert [i.kind for i in f.plan] == ["energy_preserving", "energy_preserving"]
+    assert (f.stop.kind, f.stop.mu_before, f.stop.mu_after) == ("stop", 1.0, 0.0)
+    replay = pb.replay_exact_arrival(pb.replay_problem_for(setup.problem, 2), f.plan)
+    assert np.allclose(replay.x, [3.0, 3.0], atol=1e-12, rtol=0)
+    assert np.allclose(replay.orientation, np.eye(3), atol=1e-10, rtol=0)
+    corners = [f.plan[0].position, f.plan[1].position, f.stop.position]
+    assert [np.linalg.norm(b - a) for a, b in zip(corners, corners[1:])] == pytest.approx([2 * math.pi] * 2, abs=1e-9)
+    assert np.allclose(pb.roll(corners, segment=True), np.eye(3), atol=1e-9, rtol=0)

@@ -1,0 +1,80 @@
+// Python binding: the fewest-impulse search (fewest_impulses.h, issue 11): its problem, options,
+// summary with the Pareto table, and the exact-arrival problem that replays a row's impulses.
+#include "bind_common.h"
+#include <optional>
+
+#include "plateball/fewest_impulses.h"
+
+namespace plateball::python {
+
+namespace {
+
+void BindFewestInputs(py::module_& m) {
+  py::class_<FewestImpulsesOptions> options(m, "FewestImpulsesOptions");
+  WithKeywordInit(options)
+      .def_readwrite("max_impulses", &FewestImpulsesOptions::max_impulses)
+      .def_readwrite("pareto_counts", &FewestImpulsesOptions::pareto_counts)
+      .def_readwrite("starts", &FewestImpulsesOptions::starts)
+      .def_readwrite("arrivals_per_count", &FewestImpulsesOptions::arrivals_per_count)
+      .def_readwrite("max_total_time", &FewestImpulsesOptions::max_total_time)
+      .def_readwrite("max_iterations", &FewestImpulsesOptions::max_iterations)
+      .def_readwrite("position_tolerance", &FewestImpulsesOptions::position_tolerance)
+      .def_readwrite("orientation_tolerance", &FewestImpulsesOptions::orientation_tolerance)
+      .def_readwrite("integration", &FewestImpulsesOptions::integration)
+      .def_readwrite("search_integration", &FewestImpulsesOptions::search_integration)
+      .def("validate", &FewestImpulsesOptions::Validate);
+  py::class_<FewestImpulsesProblem> problem(m, "FewestImpulsesProblem",
+                                            "The fewest impulses that bring the ball to (x1, A1) exactly.");
+  WithKeywordInit(problem)
+      .def_readwrite("model", &FewestImpulsesProblem::model)
+      .def_readwrite("initial", &FewestImpulsesProblem::initial)
+      .def_readwrite("mu", &FewestImpulsesProblem::mu)
+      .def_readwrite("orientation", &FewestImpulsesProblem::A0)
+      .def_readwrite("x0", &FewestImpulsesProblem::x0)
+      .def_readwrite("start_at_rest", &FewestImpulsesProblem::start_at_rest)
+      .def_readwrite("stop_at_goal", &FewestImpulsesProblem::stop_at_goal)
+      .def_readwrite("x1", &FewestImpulsesProblem::x1)
+      .def_readwrite("goal_orientation", &FewestImpulsesProblem::A1)
+      .def_readwrite("orientation_only", &FewestImpulsesProblem::orientation_only);
+}
+
+void BindFewestCount(py::module_& m) {
+  py::class_<FewestImpulsesCount>(m, "FewestImpulsesCount", "One impulse count of the search (a Pareto row when reached).")
+      .def_readonly("impulses", &FewestImpulsesCount::impulses)
+      .def_readonly("starts", &FewestImpulsesCount::starts)
+      .def_readonly("arrived", &FewestImpulsesCount::arrived)
+      .def_readonly("reached", &FewestImpulsesCount::reached)
+      .def_readonly("plan", &FewestImpulsesCount::plan)
+      .def_readonly("stop", &FewestImpulsesCount::stop)
+      .def_readonly("total_time", &FewestImpulsesCount::total_time)
+      .def_readonly("path_length", &FewestImpulsesCount::path_length)
+      .def_readonly("position_error", &FewestImpulsesCount::position_error)
+      .def_readonly("orientation_error", &FewestImpulsesCount::orientation_error)
+      .def_readonly("x_final", &FewestImpulsesCount::x_final)
+      .def_readonly("orientation_final", &FewestImpulsesCount::A_final)
+      .def_readonly("parameters", &FewestImpulsesCount::parameters);
+}
+
+}  // namespace
+
+void BindFewestImpulses(py::module_& m) {
+  BindFewestInputs(m);
+  BindFewestCount(m);
+  py::class_<FewestImpulsesSummary> summary(m, "FewestImpulsesSummary");
+  AddSummaryShape(summary);
+  summary.def_readonly("fewest", &FewestImpulsesSummary::fewest)
+      .def_readonly("counts", &FewestImpulsesSummary::counts)
+      .def_readonly("max_total_time", &FewestImpulsesSummary::max_total_time)
+      .def_readonly("searched", &FewestImpulsesSummary::searched)
+      .def_readonly("rollouts", &FewestImpulsesSummary::rollouts)
+      .def_property_readonly("fewest_count", [](const FewestImpulsesSummary& s) -> std::optional<FewestImpulsesCount> {
+            const FewestImpulsesCount* f = s.Fewest();
+            return f ? std::optional<FewestImpulsesCount>(*f) : std::nullopt;
+          }, "The row of the fewest count (None when not found).");
+  m.def("_fewest_impulses", &SolveFewestImpulses, py::arg("problem"), py::arg("options"),
+        py::call_guard<py::gil_scoped_release>());
+  m.def("replay_problem_for", &ReplayProblemFor, py::arg("problem"), py::arg("impulses"),
+        "The exact-arrival problem that replays a count's impulses (for replay_exact_arrival).");
+}
+
+}  // namespace plateball::python
