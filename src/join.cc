@@ -12,7 +12,9 @@
 #include "arc.h"
 #include "check.h"
 #include "connect.h"
+#include "contact_series.h"
 #include "dynamics.h"
+#include "fehlberg78.h"
 
 namespace plateball {
 namespace {
@@ -23,6 +25,8 @@ using SensState = internal::SensitivityState;  // z[3], x[2], dz/ds[3], dx/ds[2]
 // fewer right-hand-side evaluations there (T1, |x - x0| = 0.05: 52 instead of 88 per join; 0.2:
 // 113 instead of 369).
 constexpr double kShortArc = 0.02;
+// Up to this many equal steps a rollout tries the hand-written Fehlberg 7(8) kernel first.
+constexpr double kMaxEqualSteps = 16;
 
 using internal::SensitivityRhs;
 
@@ -110,8 +114,17 @@ class JoinFunction {
     };
     namespace odeint = boost::numeric::odeint;
     const double dt0 = EvenStep(std::abs(t), dt_hint_);
+    const bool short_arc = std::abs(t) * std::sqrt(mu_) <= kShortArc;
+    // Equal Fehlberg 7(8) steps of the last rollout's length (fehlberg78.h), each within the
+    // tolerances; the adaptive loop only when one is not (or the arc needs many steps).
+    const double steps = std::ceil(std::abs(t) / dt0 - 1e-9);
+    if (!short_arc && steps <= kMaxEqualSteps &&
+        internal::IntegrateEqualSteps(rhs, *y, 0.0, t, static_cast<int>(steps), options_)) {
+      dt_hint_ = std::abs(t) / steps;
+      return true;
+    }
     try {
-      if (std::abs(t) * std::sqrt(mu_) <= kShortArc)
+      if (short_arc)
         internal::IntegrateAdaptive<odeint::runge_kutta_dopri5<SensState>>(rhs, *y, 0.0, t, dt0, options_, observe);
       else
         internal::IntegrateAdaptive<odeint::runge_kutta_fehlberg78<SensState>>(rhs, *y, 0.0, t, dt0, options_, observe);
@@ -131,6 +144,7 @@ class JoinFunction {
     return scale > 0 ? std::abs(det) / scale : 0.0;
   }
   bool failed() const { return failed_; }
+  const internal::ImpulseBasis& basis() const { return basis_; }
   void set_max_abs_t(double t) { max_abs_t_ = t; }
   const std::string& failure() const { return failure_; }
   const Eigen::Vector3d& z_end() const { return z_end_; }
@@ -176,6 +190,54 @@ Eigen::Vector2d EllipseGuess(const AngleState& start, double mu, double lambda, 
   const double w = std::atan2(-d.dot(er) / b, -d.dot(ephi) / a);
   const double speed = std::hypot(b * std::sin(w), a * std::cos(w));
   return {WrapPi(start.phi - start.psi - w), d.norm() / speed};
+}
+
+// One Newton step on the Taylor model of order M of x(s, t) (contact_series.h, dx/ds in forward
+// mode): the correction delta with x(p - delta) ~ x0 + d to the model's accuracy; false when the
+// model's Jacobian is singular.
+template <int M>
+bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d& d, const Eigen::Vector2d& p,
+                      Eigen::Vector2d* delta) {
+  using Dual = internal::SeriesDual;
+  const double z0[3] = {basis.z0.x(), basis.z0.y(), basis.z0.z()};
+  const internal::ReachDirection dir = internal::DirectionFor(basis, p[0]);
+  const Dual k[2] = {Dual(dir.k.x(), dir.dk_ds.x()), Dual(dir.k.y(), dir.dk_ds.y())};
+  std::array<std::array<Dual, 2>, M + 1> x;
+  internal::ContactSeries<M>(z0, k, basis.lambda, &x);
+  // Horner: X = sum x_m t^m and dX/dt = sum m x_m t^(m-1).
+  const double t = p[1];
+  Dual xs[2] = {x[M][0], x[M][1]};
+  double xt[2] = {M * xs[0].a, M * xs[1].a};
+  for (int m = M - 1; m >= 1; --m) {
+    for (int i = 0; i < 2; ++i) {
+      xs[i] = t * xs[i] + x[m][i];
+      xt[i] = xt[i] * t + m * x[m][i].a;
+    }
+  }
+  Eigen::Matrix2d jac;
+  jac << xs[0].d * t, xt[0], xs[1].d * t, xt[1];
+  if (!(std::abs(jac.determinant()) > 1e-12 * jac.squaredNorm())) return false;
+  *delta = jac.inverse() * Eigen::Vector2d(xs[0].a * t - d.x(), xs[1].a * t - d.y());
+  return delta->allFinite();
+}
+
+// The guess refined by two Newton steps on Taylor models of x(s, t) on arcs with
+// t sqrt(mu) <= kSeriesArc. The ellipse guess is the model's first-order solution (T1: residual
+// up to 5e-4); a step on the order-4 model brings it to ~1e-6, one on the order-7 model to the
+// model's truncation error (T1: ~1e-13), so that the rollout there (the check) is mostly already
+// within 1e-12 and at most one Newton step on rollouts follows. The guess comes back unchanged
+// when the arc is not short or the model steps do not settle; either way the rollouts decide
+// convergence, the model only saves them.
+constexpr double kSeriesArc = 0.2;
+Eigen::Vector2d RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d,
+                               const Eigen::Vector2d& guess) {
+  const auto short_arc = [&](const Eigen::Vector2d& p) { return p[1] > 0 && p[1] * std::sqrt(mu) <= kSeriesArc; };
+  Eigen::Vector2d delta;
+  if (!short_arc(guess) || !SeriesNewtonStep<4>(basis, d, guess, &delta)) return guess;
+  const Eigen::Vector2d p = guess - delta;
+  if (!short_arc(p) || !SeriesNewtonStep<7>(basis, d, p, &delta)) return guess;
+  // The second step is the model's quadratic convergence; a large one means the model is no guide.
+  return delta.norm() <= 1e-4 * (1.0 + std::abs(p[1])) ? Eigen::Vector2d(p - delta) : guess;
 }
 
 // Levenberg-Marquardt (Ceres TinySolver) on (s, t) from the guess; leaves fn's cache at the
@@ -326,6 +388,7 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
   }
 
   JoinFunction fn(out.start, mu, lambda, d, options.integration);
+  params = RefineOnSeries(fn.basis(), mu, d, params);
   fn.set_max_abs_t(period);
   fn.set_dt_hint(params[1]);
   double r0[2];
