@@ -34,11 +34,16 @@ PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& 
   internal::RequireFinite("psi", s.psi);
   internal::RequireEnergy("mu", mu);
   // Each sine and cosine once (the same values AxisFromAngles and SemiAxisA would compute).
-  const double ct = std::cos(s.theta), st = std::sin(s.theta);
-  const double sp = std::sin(s.phi), cp = std::cos(s.phi);
   const double w = s.phi - s.psi;
-  const double cw = std::cos(w), sw = std::sin(w);
-  const double a = SemiAxisFromTrig(st, ct, mu, model.lambda());
+  return internal::PhaseFromTrig({std::sin(s.theta), std::cos(s.theta), std::sin(s.phi), std::cos(s.phi),
+                                  std::sin(w), std::cos(w)},
+                                 mu, model.lambda());
+}
+
+namespace internal {
+PhaseVariables PhaseFromTrig(const AngleTrig& g, double mu, double lambda) {
+  const double st = g.sin_theta, ct = g.cos_theta, sp = g.sin_phi, cp = g.cos_phi, sw = g.sin_w, cw = g.cos_w;
+  const double a = SemiAxisFromTrig(st, ct, mu, lambda);
   const double b = std::sqrt(mu);
   PhaseVariables p;
   p.z = {st * cp, st * sp, ct};                               // (12)-(14)
@@ -50,6 +55,7 @@ PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& 
   p.omega.z() = 0.0;  // exactly zero in exact arithmetic (eq. (8)); remove round-off
   return p;
 }
+}  // namespace internal
 
 BallState StateFromAngles(const AngleState& s, double mu, const BallModel& model) {
   const PhaseVariables p = PhaseFromAngles(s, mu, model);

@@ -287,7 +287,20 @@ std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, dou
 // The impulse s and the state on arrival (z, K at the end of the arc, the contact point x).
 void FinishState(const BallModel& model, double s, const Eigen::Vector3d& z, const Eigen::Vector2d& k,
                  const Eigen::Vector2d& x, JoinSummary* out) {
-  out->impulse = EnergyPreservingImpulse(out->start, out->mu, s, model);
+  // EnergyPreservingImpulse (impulse.h) with each sine and cosine once: theta and phi are those of
+  // the start, only w = phi - psi changes.
+  internal::RequireEnergy("mu", out->mu);  // as EnergyPreservingImpulse would (a ball too slow to join)
+  const AngleState& a = out->start;
+  AngleState after = a;
+  after.psi += s;
+  const double w0 = a.phi - a.psi, w1 = after.phi - after.psi;
+  internal::AngleTrig trig{std::sin(a.theta), std::cos(a.theta), std::sin(a.phi), std::cos(a.phi), std::sin(w0),
+                           std::cos(w0)};
+  const PhaseVariables p0 = internal::PhaseFromTrig(trig, out->mu, model.lambda());
+  trig.sin_w = std::sin(w1);
+  trig.cos_w = std::cos(w1);
+  out->impulse = internal::ImpulseFromPhases(a, out->mu, after, out->mu, p0,
+                                             internal::PhaseFromTrig(trig, out->mu, model.lambda()));
   out->state_after.z = z.normalized();
   out->state_after.omega = OmegaFromMomentum(out->state_after.z, k, model);
   out->angles_after = AnglesFromState(out->state_after, model);
