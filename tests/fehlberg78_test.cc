@@ -94,8 +94,10 @@ TEST(Fehlberg78, OneStepOnAnExponentialIsEighthOrder) {
     std::array<double, 1> y{1.0};
     plateball::internal::Fehlberg78Step(rhs, y, 0.0, h, 1e-12, 1e-12);
     const double err = std::abs(y[0] - std::exp(h));
-    EXPECT_LT(err, 1e-9);
-    if (previous > 0) EXPECT_GT(previous / err, 200.0) << "h = " << h;
+    EXPECT_LT(err, 1e-7 * std::pow(h / 0.8, 9)) << "h = " << h;
+    if (previous > 0) {
+      EXPECT_GT(previous / err, 200.0) << "h = " << h;
+    }
     previous = err;
   }
 }
@@ -110,10 +112,10 @@ TEST(Fehlberg78, ShortAndLongArcsAgreeWithAdaptiveDopri5) {
   };
   const Case cases[] = {
       {2.0, {M_PI / 3, 0.4, 0.1}, 1.0, 1.36, 0.0528, 1},    // T1
-      {2.0, {M_PI / 3, 0.4, 0.1}, 1.0, -2.0, 0.2, 1},       // a longer arc in one step
+      {2.0, {M_PI / 3, 0.4, 0.1}, 1.0, -2.0, 0.2, 2},       // a longer arc in two steps
       {0.5, {2.5, -1.2, 0.7}, 4.0, 0.3, -0.15, 2},          // backwards in time, lambda < 1
-      {7.0, {0.05, 2.0, -0.4}, 0.25, 1.0, 3.0, 16},         // near the pole, a long arc
-      {1.0, {M_PI / 2, 0.0, 0.0}, 1.0, 0.5, 1.5, 8},        // homogeneous ball
+      {7.0, {0.05, 2.0, -0.4}, 0.25, 1.0, 3.0, 48},         // near the pole, a long arc
+      {1.0, {M_PI / 2, 0.0, 0.0}, 1.0, 0.5, 1.5, 16},       // homogeneous ball
   };
   for (const Case& c : cases) {
     const Arc a = MakeArc(c.lambda, c.angles, c.mu, c.s);
