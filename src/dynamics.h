@@ -59,6 +59,18 @@ struct SensitivityRhs {
   }
 };
 
+/// The motion alone, y = (z[3], x[2]): the join's check of a point whose Jacobian is known.
+using MotionState = std::array<double, 5>;
+struct MotionRhs {
+  double lambda;
+  double k[2];
+  void operator()(const MotionState& y, MotionState& dy, double /*t*/) const {
+    double w[2];
+    OmegaFromZK(y.data(), k, lambda, w);
+    ZxRhs(y.data(), w, dy.data(), dy.data() + 3);
+  }
+};
+
 /// Full state y = (z[3], x[2], Phi[9] row-major) with Phi' = hat(omega) Phi.
 using FullState = std::array<double, 14>;
 

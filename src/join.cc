@@ -20,7 +20,8 @@ namespace plateball {
 namespace {
 
 using SensState = internal::SensitivityState;  // z[3], x[2], dz/ds[3], dx/ds[2]
-// Arcs shorter than this (t sqrt(mu), about the distance rolled) use Dormand-Prince 5(4), which
+// When the equal steps of the hand-written Fehlberg 7(8) kernel are refused, arcs shorter than
+// this (t sqrt(mu), about the distance rolled) use odeint's adaptive Dormand-Prince 5(4), which
 // covers them in about one step at tolerance 1e-12; longer ones Fehlberg 7(8), which needs far
 // fewer right-hand-side evaluations there (T1, |x - x0| = 0.05: 52 instead of 88 per join; 0.2:
 // 113 instead of 369).
@@ -66,38 +67,32 @@ class JoinFunction {
 
   // One rollout over [0, t] (t may be negative during the iteration) with dx/ds.
   void Evaluate(double s, double t) const {
-    ++evaluations_;
-    has_cache_ = true;
-    cache_p_[0] = s;
-    cache_p_[1] = t;
-    const internal::ReachDirection dir = internal::DirectionFor(basis_, s);
-    k_ = dir.k;
+    const internal::ReachDirection dir = BeginEvaluation(s, t);
     SensState y{};
     y[0] = dir.z0.x();
     y[1] = dir.z0.y();
     y[2] = dir.z0.z();
-    failed_ = !Rollout(dir, s, t, &y);
-    if (failed_) {
-      // A huge residual makes TinySolver reject the step.
-      cache_r_[0] = cache_r_[1] = 1e100;
-      for (double& v : cache_j_) v = 0.0;
-      return;
-    }
-    z_end_ = Eigen::Vector3d(y[0], y[1], y[2]);
-    double wt[2];
-    const double kd[2] = {k_.x(), k_.y()};
-    internal::OmegaFromZK(y.data(), kd, lambda_, wt);
-    cache_r_[0] = y[3] - d_.x();
-    cache_r_[1] = y[4] - d_.y();
-    cache_j_[0] = y[8];  // column-major: d r / d s
-    cache_j_[1] = y[9];
-    cache_j_[2] = wt[1];  // d r / d t = x'(t) = (omega_2, -omega_1)
-    cache_j_[3] = -wt[0];
+    const SensitivityRhs rhs{lambda_, {k_.x(), k_.y()}, {dir.dk_ds.x(), dir.dk_ds.y()}};
+    if (!Rollout(rhs, s, t, &y)) return Fail();
+    FinishEvaluation(y.data(), y[8], y[9]);
   }
 
-  // Integrates (z, x, dz/ds, dx/ds) over [0, t]; false (failure_ says why) when the point is not
-  // finite, leaves the local range or the integration fails.
-  bool Rollout(const internal::ReachDirection& dir, double s, double t, SensState* y) const {
+  // The check of a point whose dx/ds is known to good accuracy (the Taylor model's): a rollout of
+  // (z, x) alone, half the work of one with the variational equations. The cache then holds the
+  // residual, x'(t) and the given dx/ds; Invalidate() before an iteration that needs exact ones.
+  void EvaluateWithSColumn(double s, double t, const Eigen::Vector2d& dx_ds) const {
+    const internal::ReachDirection dir = BeginEvaluation(s, t);
+    internal::MotionState y{dir.z0.x(), dir.z0.y(), dir.z0.z(), 0.0, 0.0};
+    const internal::MotionRhs rhs{lambda_, {k_.x(), k_.y()}};
+    if (!Rollout(rhs, s, t, &y)) return Fail();
+    FinishEvaluation(y.data(), dx_ds.x(), dx_ds.y());
+  }
+  void Invalidate() const { has_cache_ = false; }
+
+  // Integrates a state starting with (z, x) over [0, t]; false (failure_ says why) when the point
+  // is not finite, leaves the local range or the integration fails.
+  template <typename State, typename Rhs>
+  bool Rollout(const Rhs& rhs, double s, double t, State* y) const {
     if (!std::isfinite(s) || !std::isfinite(t)) return false;
     if (std::abs(t) > max_abs_t_) {
       // Lemma 2.1 is local: its branch has t well below a period. Rolling out further only costs
@@ -106,28 +101,25 @@ class JoinFunction {
       return false;
     }
     if (t == 0.0) return true;
-    const SensitivityRhs rhs{lambda_, {k_.x(), k_.y()}, {dir.dk_ds.x(), dir.dk_ds.y()}};
     double last = 0.0, largest = 0.0;
-    auto observe = [&](double tt, const SensState&) {
+    auto observe = [&](double tt, const State&) {
       largest = std::max(largest, std::abs(tt - last));
       last = tt;
     };
     namespace odeint = boost::numeric::odeint;
     const double dt0 = EvenStep(std::abs(t), dt_hint_);
-    const bool short_arc = std::abs(t) * std::sqrt(mu_) <= kShortArc;
     // Equal Fehlberg 7(8) steps of the last rollout's length (fehlberg78.h), each within the
     // tolerances; the adaptive loop only when one is not (or the arc needs many steps).
     const double steps = std::ceil(std::abs(t) / dt0 - 1e-9);
-    if (!short_arc && steps <= kMaxEqualSteps &&
-        internal::IntegrateEqualSteps(rhs, *y, 0.0, t, static_cast<int>(steps), options_)) {
+    if (steps <= kMaxEqualSteps && internal::IntegrateEqualSteps(rhs, *y, 0.0, t, static_cast<int>(steps), options_)) {
       dt_hint_ = std::abs(t) / steps;
       return true;
     }
     try {
-      if (short_arc)
-        internal::IntegrateAdaptive<odeint::runge_kutta_dopri5<SensState>>(rhs, *y, 0.0, t, dt0, options_, observe);
+      if (std::abs(t) * std::sqrt(mu_) <= kShortArc)
+        internal::IntegrateAdaptive<odeint::runge_kutta_dopri5<State>>(rhs, *y, 0.0, t, dt0, options_, observe);
       else
-        internal::IntegrateAdaptive<odeint::runge_kutta_fehlberg78<SensState>>(rhs, *y, 0.0, t, dt0, options_, observe);
+        internal::IntegrateAdaptive<odeint::runge_kutta_fehlberg78<State>>(rhs, *y, 0.0, t, dt0, options_, observe);
     } catch (const std::runtime_error& e) {
       failure_ = e.what();
       return false;
@@ -153,6 +145,36 @@ class JoinFunction {
   void set_dt_hint(double h) const { dt_hint_ = h; }
 
  private:
+  internal::ReachDirection BeginEvaluation(double s, double t) const {
+    ++evaluations_;
+    has_cache_ = true;
+    cache_p_[0] = s;
+    cache_p_[1] = t;
+    const internal::ReachDirection dir = internal::DirectionFor(basis_, s);
+    k_ = dir.k;
+    failed_ = false;
+    return dir;
+  }
+  void Fail() const {
+    failed_ = true;
+    // A huge residual makes TinySolver reject the step.
+    cache_r_[0] = cache_r_[1] = 1e100;
+    for (double& v : cache_j_) v = 0.0;
+  }
+  // y starts with (z, x) at the end of the arc.
+  void FinishEvaluation(const double* y, double dx_ds0, double dx_ds1) const {
+    z_end_ = Eigen::Vector3d(y[0], y[1], y[2]);
+    double wt[2];
+    const double kd[2] = {k_.x(), k_.y()};
+    internal::OmegaFromZK(y, kd, lambda_, wt);
+    cache_r_[0] = y[3] - d_.x();
+    cache_r_[1] = y[4] - d_.y();
+    cache_j_[0] = dx_ds0;  // column-major: d r / d s
+    cache_j_[1] = dx_ds1;
+    cache_j_[2] = wt[1];  // d r / d t = x'(t) = (omega_2, -omega_1)
+    cache_j_[3] = -wt[0];
+  }
+
   internal::ImpulseBasis basis_;
   double mu_, lambda_;
   Eigen::Vector2d d_;
@@ -197,7 +219,7 @@ Eigen::Vector2d EllipseGuess(const AngleState& start, double mu, double lambda, 
 // model's Jacobian is singular.
 template <int M>
 bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d& d, const Eigen::Vector2d& p,
-                      Eigen::Vector2d* delta) {
+                      Eigen::Vector2d* delta, Eigen::Vector2d* dx_ds) {
   using Dual = internal::SeriesDual;
   const double z0[3] = {basis.z0.x(), basis.z0.y(), basis.z0.z()};
   const internal::ReachDirection dir = internal::DirectionFor(basis, p[0]);
@@ -216,6 +238,7 @@ bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d
   }
   Eigen::Matrix2d jac;
   jac << xs[0].d * t, xt[0], xs[1].d * t, xt[1];
+  *dx_ds = jac.col(0);
   if (!(std::abs(jac.determinant()) > 1e-12 * jac.squaredNorm())) return false;
   *delta = jac.inverse() * Eigen::Vector2d(xs[0].a * t - d.x(), xs[1].a * t - d.y());
   return delta->allFinite();
@@ -225,19 +248,21 @@ bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d
 // t sqrt(mu) <= kSeriesArc. The ellipse guess is the model's first-order solution (T1: residual
 // up to 5e-4); a step on the order-4 model brings it to ~1e-6, one on the order-7 model to the
 // model's truncation error (T1: ~1e-13), so that the rollout there (the check) is mostly already
-// within 1e-12 and at most one Newton step on rollouts follows. The guess comes back unchanged
-// when the arc is not short or the model steps do not settle; either way the rollouts decide
-// convergence, the model only saves them.
+// within 1e-12 and the iteration on rollouts is not needed. False (the guess unchanged) when the
+// arc is not short or the model steps do not settle; either way a rollout decides convergence,
+// the model only saves rollouts. *dx_ds: the model's d x / d s (to ~1e-7 relative).
 constexpr double kSeriesArc = 0.2;
-Eigen::Vector2d RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d,
-                               const Eigen::Vector2d& guess) {
+bool RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Eigen::Vector2d* guess,
+                    Eigen::Vector2d* dx_ds) {
   const auto short_arc = [&](const Eigen::Vector2d& p) { return p[1] > 0 && p[1] * std::sqrt(mu) <= kSeriesArc; };
   Eigen::Vector2d delta;
-  if (!short_arc(guess) || !SeriesNewtonStep<4>(basis, d, guess, &delta)) return guess;
-  const Eigen::Vector2d p = guess - delta;
-  if (!short_arc(p) || !SeriesNewtonStep<7>(basis, d, p, &delta)) return guess;
+  if (!short_arc(*guess) || !SeriesNewtonStep<4>(basis, d, *guess, &delta, dx_ds)) return false;
+  const Eigen::Vector2d p = *guess - delta;
+  if (!short_arc(p) || !SeriesNewtonStep<7>(basis, d, p, &delta, dx_ds)) return false;
   // The second step is the model's quadratic convergence; a large one means the model is no guide.
-  return delta.norm() <= 1e-4 * (1.0 + std::abs(p[1])) ? Eigen::Vector2d(p - delta) : guess;
+  if (!(delta.norm() <= 1e-4 * (1.0 + std::abs(p[1])))) return false;
+  *guess = p - delta;
+  return true;
 }
 
 // Levenberg-Marquardt (Ceres TinySolver) on (s, t) from the guess; leaves fn's cache at the
@@ -401,13 +426,23 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
   }
 
   JoinFunction fn(out.start, mu, lambda, d, options.integration);
-  params = RefineOnSeries(fn.basis(), mu, d, params);
   fn.set_max_abs_t(period);
+  Eigen::Vector2d dx_ds;
+  const bool modelled = RefineOnSeries(fn.basis(), mu, d, &params, &dx_ds);
   fn.set_dt_hint(params[1]);
-  double r0[2];
-  fn(params.data(), r0, nullptr);
-  out.initial_guess_residual = std::hypot(r0[0], r0[1]);
-  out.iterations = SolveLocal(fn, options, &params);
+  if (modelled) {
+    fn.EvaluateWithSColumn(params[0], params[1], dx_ds);  // the check: (z, x) rolled out at the model's answer
+  } else {
+    double r0[2];
+    fn(params.data(), r0, nullptr);
+  }
+  out.initial_guess_residual = fn.Residual();
+  if (modelled && !fn.failed() && fn.Residual() <= options.residual_tolerance) {
+    out.iterations = 0;  // the check rollout is within the tolerance: it is the answer
+  } else {
+    if (modelled) fn.Invalidate();  // the iteration needs the exact dx/ds
+    out.iterations = SolveLocal(fn, options, &params);
+  }
   out.delta_psi = WrapPi(params[0]);
   out.t = params[1];
   out.residual = fn.Residual();
