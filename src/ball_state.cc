@@ -19,13 +19,8 @@ AngleState AngleState::Canonicalize() const {
   return {th, WrapPi(ph), WrapPi(psi)};
 }
 
-namespace {
-// SemiAxisA from sin(theta) and cos(theta) already at hand (one sine and cosine less per call).
-double SemiAxisFromTrig(double s, double c, double mu, double lambda) { return std::sqrt(mu / (lambda * s * s + c * c)); }
-}  // namespace
-
 double SemiAxisA(double theta, double mu, double lambda) {
-  return SemiAxisFromTrig(std::sin(theta), std::cos(theta), mu, lambda);
+  return internal::SemiAxisFromTrig(std::sin(theta), std::cos(theta), mu, lambda);
 }
 
 PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& model) {
@@ -34,16 +29,13 @@ PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& 
   internal::RequireFinite("psi", s.psi);
   internal::RequireEnergy("mu", mu);
   // Each sine and cosine once (the same values AxisFromAngles and SemiAxisA would compute).
-  const double w = s.phi - s.psi;
-  return internal::PhaseFromTrig({std::sin(s.theta), std::cos(s.theta), std::sin(s.phi), std::cos(s.phi),
-                                  std::sin(w), std::cos(w)},
-                                 mu, model.lambda());
+  return internal::PhaseFromTrig(internal::TrigFromAngles(s), mu, model.lambda());
 }
 
 namespace internal {
 PhaseVariables PhaseFromTrig(const AngleTrig& g, double mu, double lambda) {
   const double st = g.sin_theta, ct = g.cos_theta, sp = g.sin_phi, cp = g.cos_phi, sw = g.sin_w, cw = g.cos_w;
-  const double a = SemiAxisFromTrig(st, ct, mu, lambda);
+  const double a = internal::SemiAxisFromTrig(st, ct, mu, lambda);
   const double b = std::sqrt(mu);
   PhaseVariables p;
   p.z = {st * cp, st * sp, ct};                               // (12)-(14)

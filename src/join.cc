@@ -51,9 +51,9 @@ class JoinFunction {
   using Scalar = double;
   enum { NUM_RESIDUALS = 2, NUM_PARAMETERS = 2 };
 
-  JoinFunction(const AngleState& start, double mu, double lambda, const Eigen::Vector2d& d,
+  JoinFunction(const internal::ImpulseBasis& basis, double mu, double lambda, const Eigen::Vector2d& d,
                const IntegrationOptions& options)
-      : basis_(internal::MakeImpulseBasis(start, mu, lambda)), mu_(mu), lambda_(lambda), d_(d), options_(options) {}
+      : basis_(basis), mu_(mu), lambda_(lambda), d_(d), options_(options) {}
 
   bool operator()(const double* p, double* r, double* jac) const {
     if (!(has_cache_ && p[0] == cache_p_[0] && p[1] == cache_p_[1])) Evaluate(p[0], p[1]);
@@ -205,13 +205,28 @@ AngleState ValidateJoinInput(const AngleState& start, double mu, const Eigen::Ve
 }
 
 // Velocity-ellipse guess (27)-(28): x'_s(0) = -b sin(w) e_r - a cos(w) e_phi with w = phi - psi - s
-// pointing at the target; t = distance / speed. Returns (s, t).
-Eigen::Vector2d EllipseGuess(const AngleState& start, double mu, double lambda, const Eigen::Vector2d& d) {
-  const double a = SemiAxisA(start.theta, mu, lambda), b = std::sqrt(mu);
-  const Eigen::Vector2d er(std::cos(start.phi), std::sin(start.phi)), ephi(-er.y(), er.x());
+// pointing at the target; t = distance / speed. Returns (s, t). g: the start's trig.
+Eigen::Vector2d EllipseGuess(const AngleState& start, const internal::AngleTrig& g, double mu, double lambda,
+                             const Eigen::Vector2d& d) {
+  const double a = internal::SemiAxisFromTrig(g.sin_theta, g.cos_theta, mu, lambda), b = std::sqrt(mu);
+  const Eigen::Vector2d er(g.cos_phi, g.sin_phi), ephi(-er.y(), er.x());
   const double w = std::atan2(-d.dot(er) / b, -d.dot(ephi) / a);
   const double speed = std::hypot(b * std::sin(w), a * std::cos(w));
   return {WrapPi(start.phi - start.psi - w), d.norm() / speed};
+}
+
+// MakeImpulseBasis (arc.h) from the start's trig at hand (the same values, no sine computed again).
+internal::ImpulseBasis BasisFromTrig(const AngleState& start, const internal::AngleTrig& g, double mu, double lambda) {
+  internal::ImpulseBasis e;
+  e.z0 = {g.sin_theta * g.cos_phi, g.sin_theta * g.sin_phi, g.cos_theta};
+  e.a = internal::SemiAxisFromTrig(g.sin_theta, g.cos_theta, mu, lambda);
+  e.b = std::sqrt(mu);
+  e.cos_phi = g.cos_phi;
+  e.sin_phi = g.sin_phi;
+  e.phi = start.phi;
+  e.psi = start.psi;
+  e.lambda = lambda;
+  return e;
 }
 
 // One Newton step on the Taylor model of order M of x(s, t) (contact_series.h, dx/ds in forward
@@ -309,19 +324,19 @@ std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, dou
   return os.str();
 }
 
-// The impulse s and the state on arrival (z, K at the end of the arc, the contact point x).
-void FinishState(const BallModel& model, double s, const Eigen::Vector3d& z, const Eigen::Vector2d& k,
-                 const Eigen::Vector2d& x, JoinSummary* out) {
+// The impulse s and the state on arrival (z, K at the end of the arc, the contact point x). g: the
+// start's trig.
+void FinishState(const BallModel& model, const internal::AngleTrig& g, double s, const Eigen::Vector3d& z,
+                 const Eigen::Vector2d& k, const Eigen::Vector2d& x, JoinSummary* out) {
   // EnergyPreservingImpulse (impulse.h) with each sine and cosine once: theta and phi are those of
   // the start, only w = phi - psi changes.
   internal::RequireEnergy("mu", out->mu);  // as EnergyPreservingImpulse would (a ball too slow to join)
   const AngleState& a = out->start;
   AngleState after = a;
   after.psi += s;
-  const double w0 = a.phi - a.psi, w1 = after.phi - after.psi;
-  internal::AngleTrig trig{std::sin(a.theta), std::cos(a.theta), std::sin(a.phi), std::cos(a.phi), std::sin(w0),
-                           std::cos(w0)};
+  internal::AngleTrig trig = g;
   const PhaseVariables p0 = internal::PhaseFromTrig(trig, out->mu, model.lambda());
+  const double w1 = after.phi - after.psi;
   trig.sin_w = std::sin(w1);
   trig.cos_w = std::cos(w1);
   out->impulse = internal::ImpulseFromPhases(a, out->mu, after, out->mu, p0,
@@ -333,9 +348,9 @@ void FinishState(const BallModel& model, double s, const Eigen::Vector3d& z, con
 }
 
 // The start itself as the end state (no impulse, no motion): the answer of the early exits.
-void FinishAtStart(const BallModel& model, JoinSummary* out) {
-  const BallState s0 = StateFromAngles(out->start, out->mu, model);
-  FinishState(model, 0.0, s0.z, ConservedMomentum(s0, model), out->x0, out);
+void FinishAtStart(const BallModel& model, const internal::AngleTrig& g, JoinSummary* out) {
+  const PhaseVariables p0 = internal::PhaseFromTrig(g, out->mu, model.lambda());  // StateFromAngles
+  FinishState(model, g, 0.0, p0.z, ConservedMomentum({p0.z, p0.omega}, model), out->x0, out);
 }
 
 }  // namespace
@@ -398,6 +413,7 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
   out.mu = mu;
   out.x0 = x0;
   out.target = target;
+  const internal::AngleTrig trig = internal::TrigFromAngles(out.start);  // each sine and cosine of the start once
   const Eigen::Vector2d d = target - x0;
   const double dist = d.norm();
   out.time_limit = options.local_time_factor / internal::MinimumContactSpeed(mu, lambda) * dist;
@@ -406,13 +422,13 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
     out.status = JoinStatus::kTargetEqualsStart;
     out.message = "target equals the start point x0 (|target - x0| = " + std::to_string(dist) + ")";
     out.residual = dist;
-    FinishAtStart(model, &out);
+    FinishAtStart(model, trig, &out);
     return out;
   }
 
   // Lemma 2.1's branch needs much less than a period; a target whose first-guess time is above
   // half a period is beyond the local radius (Reach handles it), and is answered without rolling out.
-  Eigen::Vector2d params = EllipseGuess(out.start, mu, lambda, d);
+  Eigen::Vector2d params = EllipseGuess(out.start, trig, mu, lambda, d);
   const double period = 2.0 * M_PI / std::sqrt(mu);
   if (!(params[1] <= 0.5 * period)) {
     out.delta_psi = params[0];
@@ -421,11 +437,11 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
     out.status = JoinStatus::kTargetBeyondLocalRadius;
     out.message = "target at distance " + std::to_string(dist) + " needs t ~ " + std::to_string(params[1]) +
                   " > half a period (" + std::to_string(0.5 * period) + "): beyond the local radius of Lemma 2.1";
-    FinishAtStart(model, &out);
+    FinishAtStart(model, trig, &out);
     return out;
   }
 
-  JoinFunction fn(out.start, mu, lambda, d, options.integration);
+  JoinFunction fn(BasisFromTrig(out.start, trig, mu, lambda), mu, lambda, d, options.integration);
   fn.set_max_abs_t(period);
   Eigen::Vector2d dx_ds;
   const bool modelled = RefineOnSeries(fn.basis(), mu, d, &params, &dx_ds);
@@ -452,7 +468,7 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
     out.message = fn.failure();
     return out;
   }
-  FinishState(model, out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector(), &out);
+  FinishState(model, trig, out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector(), &out);
   out.message = LocalFailure(out, options, dist);
   out.status = out.message.empty() ? JoinStatus::kConverged : JoinStatus::kTargetBeyondLocalRadius;
   return out;

@@ -78,6 +78,15 @@ inline Eigen::Vector3d AxisFromAngles(double theta, double phi) {
 struct AngleTrig {
   double sin_theta, cos_theta, sin_phi, cos_phi, sin_w, cos_w;
 };
+/// The trig of the chart at (theta, phi, psi), each sine and cosine once.
+inline AngleTrig TrigFromAngles(const AngleState& s) {
+  const double w = s.phi - s.psi;
+  return {std::sin(s.theta), std::cos(s.theta), std::sin(s.phi), std::cos(s.phi), std::sin(w), std::cos(w)};
+}
+/// SemiAxisA (ball_state.h) from sin(theta) and cos(theta) already at hand.
+inline double SemiAxisFromTrig(double sin_theta, double cos_theta, double mu, double lambda) {
+  return std::sqrt(mu / (lambda * sin_theta * sin_theta + cos_theta * cos_theta));
+}
 /// PhaseFromAngles (ball_state.h, eqs. (12)-(18)) from the trig already at hand, unchecked: a
 /// caller that has it (the join: the start's and, after the impulse, that of w) saves the sines
 /// and cosines and the boundary checks.
