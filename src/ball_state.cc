@@ -64,10 +64,12 @@ AngleState AnglesFromState(const BallState& s, const BallModel& model) {
   const double rho = std::hypot(s.z.x(), s.z.y());
   const double theta = std::atan2(rho, s.z.z());
   const double phi = rho > 0 ? std::atan2(s.z.y(), s.z.x()) : 0.0;
-  const double cp = std::cos(phi), sp = std::sin(phi);
+  // The sines and cosines of theta and phi from z itself (theta in [0, pi]: sin theta = rho / |z|).
+  const double cp = rho > 0 ? s.z.x() / rho : 1.0, sp = rho > 0 ? s.z.y() / rho : 0.0;
   const Eigen::Vector2d er(cp, sp), ephi(-sp, cp);
   const Eigen::Vector2d wh = s.omega.head<2>();
-  const double a = SemiAxisA(theta, mu, model.lambda());
+  const double r = s.z.norm();
+  const double a = internal::SemiAxisFromTrig(rho / r, s.z.z() / r, mu, model.lambda());
   const double b = std::sqrt(mu);
   const double w = std::atan2(-wh.dot(ephi) / b, wh.dot(er) / a);
   return AngleState{theta, phi, phi - w}.Canonicalize();

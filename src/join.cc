@@ -128,7 +128,8 @@ class JoinFunction {
     return true;
   }
 
-  double Residual() const { return std::hypot(cache_r_[0], cache_r_[1]); }
+  // |r| without hypot's care for overflow: the residual is below 1e100 (a failed rollout's value).
+  double Residual() const { return std::sqrt(cache_r_[0] * cache_r_[0] + cache_r_[1] * cache_r_[1]); }
   Eigen::Vector2d residual_vector() const { return {cache_r_[0], cache_r_[1]}; }
   double Conditioning() const {
     const double det = cache_j_[0] * cache_j_[3] - cache_j_[1] * cache_j_[2];
@@ -210,9 +211,10 @@ Eigen::Vector2d EllipseGuess(const AngleState& start, const internal::AngleTrig&
                              const Eigen::Vector2d& d) {
   const double a = internal::SemiAxisFromTrig(g.sin_theta, g.cos_theta, mu, lambda), b = std::sqrt(mu);
   const Eigen::Vector2d er(g.cos_phi, g.sin_phi), ephi(-er.y(), er.x());
-  const double w = std::atan2(-d.dot(er) / b, -d.dot(ephi) / a);
-  const double speed = std::hypot(b * std::sin(w), a * std::cos(w));
-  return {WrapPi(start.phi - start.psi - w), d.norm() / speed};
+  // w = atan2(y, x) and the speed from (cos w, sin w) = (x, y) / |(x, y)| without their libm calls.
+  const double y = -d.dot(er) / b, x = -d.dot(ephi) / a, r = std::sqrt(x * x + y * y);
+  const double speed = std::sqrt(b * b * y * y + a * a * x * x) / r;
+  return {WrapPi(start.phi - start.psi - std::atan2(y, x)), d.norm() / speed};
 }
 
 // MakeImpulseBasis (arc.h) from the start's trig at hand (the same values, no sine computed again).
@@ -232,7 +234,7 @@ internal::ImpulseBasis BasisFromTrig(const AngleState& start, const internal::An
 // One Newton step on the Taylor model of order M of x(s, t) (contact_series.h, dx/ds in forward
 // mode): the correction delta with x(p - delta) ~ x0 + d to the model's accuracy; false when the
 // model's Jacobian is singular.
-template <int M>
+template <int M, int D>
 bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d& d, const Eigen::Vector2d& p,
                       Eigen::Vector2d* delta, Eigen::Vector2d* dx_ds) {
   using Dual = internal::SeriesDual;
@@ -240,7 +242,7 @@ bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d
   const internal::ReachDirection dir = internal::DirectionFor(basis, p[0]);
   const Dual k[2] = {Dual(dir.k.x(), dir.dk_ds.x()), Dual(dir.k.y(), dir.dk_ds.y())};
   std::array<std::array<Dual, 2>, M + 1> x;
-  internal::ContactSeries<M>(z0, k, basis.lambda, &x);
+  internal::ContactSeries<M, D>(z0, k, basis.lambda, &x);
   // Horner: X = sum x_m t^m and dX/dt = sum m x_m t^(m-1).
   const double t = p[1];
   Dual xs[2] = {x[M][0], x[M][1]};
@@ -261,19 +263,21 @@ bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d
 
 // The guess refined by two Newton steps on Taylor models of x(s, t) on arcs with
 // t sqrt(mu) <= kSeriesArc. The ellipse guess is the model's first-order solution (T1: residual
-// up to 5e-4); a step on the order-4 model brings it to ~1e-6, one on the order-7 model to the
-// model's truncation error (T1: ~1e-13), so that the rollout there (the check) is mostly already
-// within 1e-12 and the iteration on rollouts is not needed. False (the guess unchanged) when the
-// arc is not short or the model steps do not settle; either way a rollout decides convergence,
-// the model only saves rollouts. *dx_ds: the model's d x / d s (to ~1e-7 relative).
+// up to 5e-4); a step on the order-4 model brings it to ~2e-6, one on the order-7 model (its
+// Jacobian from the order-4 terms: the step is ~1e-6, so a Jacobian good to ~1e-6 suffices) to
+// the model's truncation error (T1: below the check rollout's own ~3e-13), so that the rollout
+// there (the check) is within 1e-12 and the iteration on rollouts is not needed. False (the guess
+// unchanged) when the arc is not short or the model steps do not settle; either way a rollout
+// decides convergence, the model only saves rollouts. *dx_ds: the model's d x / d s (to ~1e-6
+// relative: the reported conditioning's s column).
 constexpr double kSeriesArc = 0.2;
 bool RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Eigen::Vector2d* guess,
                     Eigen::Vector2d* dx_ds) {
   const auto short_arc = [&](const Eigen::Vector2d& p) { return p[1] > 0 && p[1] * std::sqrt(mu) <= kSeriesArc; };
   Eigen::Vector2d delta;
-  if (!short_arc(*guess) || !SeriesNewtonStep<4>(basis, d, *guess, &delta, dx_ds)) return false;
+  if (!short_arc(*guess) || !SeriesNewtonStep<4, 4>(basis, d, *guess, &delta, dx_ds)) return false;
   const Eigen::Vector2d p = *guess - delta;
-  if (!short_arc(p) || !SeriesNewtonStep<7>(basis, d, p, &delta, dx_ds)) return false;
+  if (!short_arc(p) || !SeriesNewtonStep<7, 4>(basis, d, p, &delta, dx_ds)) return false;
   // The second step is the model's quadratic convergence; a large one means the model is no guide.
   if (!(delta.norm() <= 1e-4 * (1.0 + std::abs(p[1])))) return false;
   *guess = p - delta;

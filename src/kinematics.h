@@ -29,6 +29,7 @@ constexpr double kTwoPi = 2.0 * M_PI;
 
 /// a reduced to (-pi, pi].
 inline double WrapPi(double a) {
+  if (a > -M_PI && a <= M_PI) return a;  // what remainder returns there, without its cost
   a = std::remainder(a, kTwoPi);  // [-pi, pi]
   return a <= -M_PI ? a + kTwoPi : a;
 }
