@@ -275,7 +275,7 @@ bool RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen:
                     Eigen::Vector2d* dx_ds) {
   const auto short_arc = [&](const Eigen::Vector2d& p) { return p[1] > 0 && p[1] * std::sqrt(mu) <= kSeriesArc; };
   Eigen::Vector2d delta;
-  if (!short_arc(*guess) || !SeriesNewtonStep<4, 4>(basis, d, *guess, &delta, dx_ds)) return false;
+  if (!short_arc(*guess) || !SeriesNewtonStep<4, 3>(basis, d, *guess, &delta, dx_ds)) return false;
   const Eigen::Vector2d p = *guess - delta;
   if (!short_arc(p) || !SeriesNewtonStep<7, 4>(basis, d, p, &delta, dx_ds)) return false;
   // The second step is the model's quadratic convergence; a large one means the model is no guide.
