@@ -80,8 +80,8 @@ class JoinFunction {
   // The check of a point whose dx/ds is known to good accuracy (the Taylor model's): a rollout of
   // (z, x) alone, half the work of one with the variational equations. The cache then holds the
   // residual, x'(t) and the given dx/ds; Invalidate() before an iteration that needs exact ones.
-  void EvaluateWithSColumn(double s, double t, const Eigen::Vector2d& dx_ds) const {
-    const internal::ReachDirection dir = BeginEvaluation(s, t);
+  void EvaluateWithSColumn(double s, double t, double cos_w, double sin_w, const Eigen::Vector2d& dx_ds) const {
+    const internal::ReachDirection dir = BeginEvaluation(s, t, cos_w, sin_w);
     internal::MotionState y{dir.z0.x(), dir.z0.y(), dir.z0.z(), 0.0, 0.0};
     const internal::MotionRhs rhs{lambda_, {k_.x(), k_.y()}};
     if (!Rollout(rhs, s, t, &y)) return Fail();
@@ -138,6 +138,7 @@ class JoinFunction {
   }
   bool failed() const { return failed_; }
   const internal::ImpulseBasis& basis() const { return basis_; }
+  const Eigen::Vector2d& d() const { return d_; }
   void set_max_abs_t(double t) { max_abs_t_ = t; }
   const std::string& failure() const { return failure_; }
   const Eigen::Vector3d& z_end() const { return z_end_; }
@@ -146,12 +147,14 @@ class JoinFunction {
   void set_dt_hint(double h) const { dt_hint_ = h; }
 
  private:
-  internal::ReachDirection BeginEvaluation(double s, double t) const {
+  // cos_w, sin_w: of w = phi - (psi + s) when at hand (else NaN: computed here).
+  internal::ReachDirection BeginEvaluation(double s, double t, double cos_w = NAN, double sin_w = NAN) const {
     ++evaluations_;
     has_cache_ = true;
     cache_p_[0] = s;
     cache_p_[1] = t;
-    const internal::ReachDirection dir = internal::DirectionFor(basis_, s);
+    const internal::ReachDirection dir = std::isnan(cos_w) ? internal::DirectionFor(basis_, s)
+                                                           : internal::DirectionFromTrig(basis_, s, cos_w, sin_w);
     k_ = dir.k;
     failed_ = false;
     return dir;
@@ -206,15 +209,27 @@ AngleState ValidateJoinInput(const AngleState& start, double mu, const Eigen::Ve
 }
 
 // Velocity-ellipse guess (27)-(28): x'_s(0) = -b sin(w) e_r - a cos(w) e_phi with w = phi - psi - s
-// pointing at the target; t = distance / speed. Returns (s, t). g: the start's trig.
-Eigen::Vector2d EllipseGuess(const AngleState& start, const internal::AngleTrig& g, double mu, double lambda,
-                             const Eigen::Vector2d& d) {
+// pointing at the target; t = distance / speed. g: the start's trig. The guess (s, t) with
+// cos w, sin w of its w = phi - (psi + s) (the impulse direction, arc.h).
+struct Guess {
+  Eigen::Vector2d p;  ///< (s, t)
+  double cos_w = 1.0, sin_w = 0.0;
+};
+Guess EllipseGuess(const AngleState& start, const internal::AngleTrig& g, double mu, double lambda,
+                   const Eigen::Vector2d& d) {
   const double a = internal::SemiAxisFromTrig(g.sin_theta, g.cos_theta, mu, lambda), b = std::sqrt(mu);
   const Eigen::Vector2d er(g.cos_phi, g.sin_phi), ephi(-er.y(), er.x());
   // w = atan2(y, x) and the speed from (cos w, sin w) = (x, y) / |(x, y)| without their libm calls.
   const double y = -d.dot(er) / b, x = -d.dot(ephi) / a, r = std::sqrt(x * x + y * y);
   const double speed = std::sqrt(b * b * y * y + a * a * x * x) / r;
-  return {WrapPi(start.phi - start.psi - std::atan2(y, x)), d.norm() / speed};
+  return {{WrapPi(start.phi - start.psi - std::atan2(y, x)), d.norm() / speed}, x / r, y / r};
+}
+
+// The guess moved by delta: s - delta[0] turns w = phi - (psi + s) by +delta[0] (one sine and
+// cosine of a small angle instead of those of w).
+Guess Moved(const Guess& g, const Eigen::Vector2d& delta) {
+  const double c = std::cos(delta[0]), s = std::sin(delta[0]);
+  return {g.p - delta, g.cos_w * c - g.sin_w * s, g.sin_w * c + g.cos_w * s};
 }
 
 // MakeImpulseBasis (arc.h) from the start's trig at hand (the same values, no sine computed again).
@@ -235,11 +250,12 @@ internal::ImpulseBasis BasisFromTrig(const AngleState& start, const internal::An
 // mode): the correction delta with x(p - delta) ~ x0 + d to the model's accuracy; false when the
 // model's Jacobian is singular.
 template <int M, int D>
-bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d& d, const Eigen::Vector2d& p,
+bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d& d, const Guess& g,
                       Eigen::Vector2d* delta, Eigen::Vector2d* dx_ds) {
   using Dual = internal::SeriesDual;
   const double z0[3] = {basis.z0.x(), basis.z0.y(), basis.z0.z()};
-  const internal::ReachDirection dir = internal::DirectionFor(basis, p[0]);
+  const Eigen::Vector2d& p = g.p;
+  const internal::ReachDirection dir = internal::DirectionFromTrig(basis, p[0], g.cos_w, g.sin_w);
   const Dual k[2] = {Dual(dir.k.x(), dir.dk_ds.x()), Dual(dir.k.y(), dir.dk_ds.y())};
   std::array<std::array<Dual, 2>, M + 1> x;
   internal::ContactSeries<M, D>(z0, k, basis.lambda, &x);
@@ -271,16 +287,16 @@ bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d
 // decides convergence, the model only saves rollouts. *dx_ds: the model's d x / d s (to ~1e-6
 // relative: the reported conditioning's s column).
 constexpr double kSeriesArc = 0.2;
-bool RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Eigen::Vector2d* guess,
+bool RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Guess* guess,
                     Eigen::Vector2d* dx_ds) {
   const auto short_arc = [&](const Eigen::Vector2d& p) { return p[1] > 0 && p[1] * std::sqrt(mu) <= kSeriesArc; };
   Eigen::Vector2d delta;
-  if (!short_arc(*guess) || !SeriesNewtonStep<4, 3>(basis, d, *guess, &delta, dx_ds)) return false;
-  const Eigen::Vector2d p = *guess - delta;
-  if (!short_arc(p) || !SeriesNewtonStep<7, 4>(basis, d, p, &delta, dx_ds)) return false;
+  if (!short_arc(guess->p) || !SeriesNewtonStep<4, 3>(basis, d, *guess, &delta, dx_ds)) return false;
+  const Guess g = Moved(*guess, delta);
+  if (!short_arc(g.p) || !SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds)) return false;
   // The second step is the model's quadratic convergence; a large one means the model is no guide.
-  if (!(delta.norm() <= 1e-4 * (1.0 + std::abs(p[1])))) return false;
-  *guess = p - delta;
+  if (!(delta.norm() <= 1e-4 * (1.0 + std::abs(g.p[1])))) return false;
+  *guess = Moved(g, delta);
   return true;
 }
 
@@ -309,6 +325,37 @@ int SolveLocal(JoinFunction& fn, const JoinOptions& options, Eigen::Vector2d* pa
 }
 #pragma GCC diagnostic pop
 
+// From the ellipse guess to the answer: on a short arc the guess refined on the Taylor model and
+// checked by one rollout of (z, x); when that check is not within the tolerance (or the arc is not
+// short), Levenberg-Marquardt on rollouts. Fills delta_psi, t, residual, conditioning, iterations
+// and the residual at the first point rolled out; leaves fn's cache at the answer. True when the
+// check was the answer (guess then holds it, with the trig of its w).
+bool SolveFromGuess(JoinFunction& fn, double mu, const JoinOptions& options, Guess* guess, JoinSummary* out) {
+  Eigen::Vector2d dx_ds;
+  const bool modelled = RefineOnSeries(fn.basis(), mu, fn.d(), guess, &dx_ds);
+  Eigen::Vector2d params = guess->p;
+  fn.set_dt_hint(params[1]);
+  if (modelled) {
+    fn.EvaluateWithSColumn(params[0], params[1], guess->cos_w, guess->sin_w, dx_ds);  // the check
+  } else {
+    double r0[2];
+    fn(params.data(), r0, nullptr);
+  }
+  out->initial_guess_residual = fn.Residual();
+  const bool checked = modelled && !fn.failed() && fn.Residual() <= options.residual_tolerance;
+  if (checked) {
+    out->iterations = 0;  // the check rollout is within the tolerance: it is the answer
+  } else {
+    if (modelled) fn.Invalidate();  // the iteration needs the exact dx/ds
+    out->iterations = SolveLocal(fn, options, &params);
+  }
+  out->delta_psi = WrapPi(params[0]);
+  out->t = params[1];
+  out->residual = fn.Residual();
+  out->jacobian_conditioning = fn.Conditioning();
+  return checked;
+}
+
 // Why a finished iteration is not the local solution of Lemma 2.1 (empty when it is). Messages
 // are built only on failure (a string stream costs more than a short rollout).
 std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, double dist) {
@@ -330,8 +377,10 @@ std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, dou
 
 // The impulse s and the state on arrival (z, K at the end of the arc, the contact point x). g: the
 // start's trig.
+// cos_w, sin_w: of w = phi - (psi + s) after the impulse when at hand (else NaN: computed here).
 void FinishState(const BallModel& model, const internal::AngleTrig& g, double s, const Eigen::Vector3d& z,
-                 const Eigen::Vector2d& k, const Eigen::Vector2d& x, JoinSummary* out) {
+                 const Eigen::Vector2d& k, const Eigen::Vector2d& x, JoinSummary* out, double cos_w = NAN,
+                 double sin_w = NAN) {
   // EnergyPreservingImpulse (impulse.h) with each sine and cosine once: theta and phi are those of
   // the start, only w = phi - psi changes.
   internal::RequireEnergy("mu", out->mu);  // as EnergyPreservingImpulse would (a ball too slow to join)
@@ -341,8 +390,8 @@ void FinishState(const BallModel& model, const internal::AngleTrig& g, double s,
   internal::AngleTrig trig = g;
   const PhaseVariables p0 = internal::PhaseFromTrig(trig, out->mu, model.lambda());
   const double w1 = after.phi - after.psi;
-  trig.sin_w = std::sin(w1);
-  trig.cos_w = std::cos(w1);
+  trig.sin_w = std::isnan(sin_w) ? std::sin(w1) : sin_w;
+  trig.cos_w = std::isnan(cos_w) ? std::cos(w1) : cos_w;
   out->impulse = internal::ImpulseFromPhases(a, out->mu, after, out->mu, p0,
                                              internal::PhaseFromTrig(trig, out->mu, model.lambda()));
   out->state_after.z = z.normalized();
@@ -354,7 +403,7 @@ void FinishState(const BallModel& model, const internal::AngleTrig& g, double s,
 // The start itself as the end state (no impulse, no motion): the answer of the early exits.
 void FinishAtStart(const BallModel& model, const internal::AngleTrig& g, JoinSummary* out) {
   const PhaseVariables p0 = internal::PhaseFromTrig(g, out->mu, model.lambda());  // StateFromAngles
-  FinishState(model, g, 0.0, p0.z, ConservedMomentum({p0.z, p0.omega}, model), out->x0, out);
+  FinishState(model, g, 0.0, p0.z, ConservedMomentum({p0.z, p0.omega}, model), out->x0, out, g.cos_w, g.sin_w);
 }
 
 }  // namespace
@@ -432,14 +481,14 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
 
   // Lemma 2.1's branch needs much less than a period; a target whose first-guess time is above
   // half a period is beyond the local radius (Reach handles it), and is answered without rolling out.
-  Eigen::Vector2d params = EllipseGuess(out.start, trig, mu, lambda, d);
+  Guess guess = EllipseGuess(out.start, trig, mu, lambda, d);
   const double period = 2.0 * M_PI / std::sqrt(mu);
-  if (!(params[1] <= 0.5 * period)) {
-    out.delta_psi = params[0];
-    out.t = params[1];
+  if (!(guess.p[1] <= 0.5 * period)) {
+    out.delta_psi = guess.p[0];
+    out.t = guess.p[1];
     out.residual = dist;
     out.status = JoinStatus::kTargetBeyondLocalRadius;
-    out.message = "target at distance " + std::to_string(dist) + " needs t ~ " + std::to_string(params[1]) +
+    out.message = "target at distance " + std::to_string(dist) + " needs t ~ " + std::to_string(guess.p[1]) +
                   " > half a period (" + std::to_string(0.5 * period) + "): beyond the local radius of Lemma 2.1";
     FinishAtStart(model, trig, &out);
     return out;
@@ -447,32 +496,15 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
 
   JoinFunction fn(BasisFromTrig(out.start, trig, mu, lambda), mu, lambda, d, options.integration);
   fn.set_max_abs_t(period);
-  Eigen::Vector2d dx_ds;
-  const bool modelled = RefineOnSeries(fn.basis(), mu, d, &params, &dx_ds);
-  fn.set_dt_hint(params[1]);
-  if (modelled) {
-    fn.EvaluateWithSColumn(params[0], params[1], dx_ds);  // the check: (z, x) rolled out at the model's answer
-  } else {
-    double r0[2];
-    fn(params.data(), r0, nullptr);
-  }
-  out.initial_guess_residual = fn.Residual();
-  if (modelled && !fn.failed() && fn.Residual() <= options.residual_tolerance) {
-    out.iterations = 0;  // the check rollout is within the tolerance: it is the answer
-  } else {
-    if (modelled) fn.Invalidate();  // the iteration needs the exact dx/ds
-    out.iterations = SolveLocal(fn, options, &params);
-  }
-  out.delta_psi = WrapPi(params[0]);
-  out.t = params[1];
-  out.residual = fn.Residual();
-  out.jacobian_conditioning = fn.Conditioning();
+  const bool checked = SolveFromGuess(fn, mu, options, &guess, &out);
   if (fn.failed()) {
     out.status = JoinStatus::kIntegrationFailure;
     out.message = fn.failure();
     return out;
   }
-  FinishState(model, trig, out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector(), &out);
+  // After a check within the tolerance, the trig of the impulse is the check's (guess.p unchanged).
+  FinishState(model, trig, out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector(), &out,
+              checked ? guess.cos_w : NAN, checked ? guess.sin_w : NAN);
   out.message = LocalFailure(out, options, dist);
   out.status = out.message.empty() ? JoinStatus::kConverged : JoinStatus::kTargetBeyondLocalRadius;
   return out;
