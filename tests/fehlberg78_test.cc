@@ -126,6 +126,29 @@ TEST(Fehlberg78, ShortAndLongArcsAgreeWithAdaptiveDopri5) {
   }
 }
 
+TEST(Fehlberg78, OneStepEqualsOdeintsFehlberg78StepAndErrorMeasure) {
+  // The same tableau as boost::numeric::odeint::runge_kutta_fehlberg78: one step agrees to
+  // round-off, and the error measure is odeint's controller's (its try_step accepts exactly when
+  // ours is <= 1, up to the round-off of the estimate).
+  namespace odeint = boost::numeric::odeint;
+  const Arc a = MakeArc(2.0, {M_PI / 3, 0.4, 0.1}, 1.0, 1.36);
+  for (double h : {0.01, 0.05, 0.2, -0.1}) {
+    SensitivityState ours = a.y0, theirs = a.y0, err{};
+    const double measure = plateball::internal::Fehlberg78Step(a.rhs, ours, 0.0, h, 1e-12, 1e-12);
+    odeint::runge_kutta_fehlberg78<SensitivityState> stepper;
+    stepper.do_step(a.rhs, theirs, 0.0, h, err);
+    EXPECT_LT(MaxDifference(ours, theirs), 1e-15) << "h = " << h;
+    SensitivityState dydt{};
+    a.rhs(a.y0, dydt, 0.0);
+    double expected = 0.0;
+    for (std::size_t i = 0; i < err.size(); ++i)
+      expected = std::max(expected, std::abs(err[i]) / (1e-12 + 1e-12 * (std::abs(a.y0[i]) + std::abs(h) * std::abs(dydt[i]))));
+    // The error is a difference of stages that cancel to ~1e-14: the two sums agree to its
+    // round-off, 4 eps max|k| |h| 41/840 / 1e-12 ~ 1e-4 |h| in units of the tolerance.
+    EXPECT_NEAR(measure, expected, 1e-3 * expected + 1e-4 * std::abs(h)) << "h = " << h;
+  }
+}
+
 TEST(Fehlberg78, ATooLongStepIsRefusedAndLeavesTheStateUnchanged) {
   const Arc a = MakeArc(2.0, {M_PI / 3, 0.4, 0.1}, 1.0, 1.0);
   IntegrationOptions options;
