@@ -1,5 +1,6 @@
 // Internal: the chart-free equations of motion (docs/paper_notes.md) and an odeint driver with a
-// step bound. Templated on the scalar so that ceres::Jet gives exact sensitivities.
+// step bound. The join's sensitivities (SensitivityRhs) are the variational equations written out
+// by hand (tests/fehlberg78_test.cc checks them against ceres::Jet on the kinematics kernel).
 #pragma once
 
 #include <array>
