@@ -54,6 +54,9 @@ struct Context {
   double radius;           // |x1 - x0|
   double goal_angle;       // direction of x1 - x0
   double s_limit;
+  // Identity target (the shooting there is only a comparison with the enumeration): the starts
+  // are shifted by the seed. Any other target: unshifted, the same for every seed.
+  bool identity = false;
 };
 
 ElasticaParameters ToParameters(PendulumRegime regime, const double* x) {
@@ -236,7 +239,7 @@ void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalRes
                  r->ev.residual.norm() <= options.tolerance;
 }
 
-// Radical-inverse (Halton) with a seeded Cranley-Patterson shift: deterministic, portable.
+// Radical-inverse (Halton): deterministic, portable.
 double Halton(long index, int base) {
   double f = 1.0, r = 0.0;
   for (long i = index; i > 0; i /= base) {
@@ -251,11 +254,15 @@ struct Start {
   double x[3];
 };
 
-std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit, double radius) {
+// The first options.starts points of the Halton sequence (bases 2, 3, 5, 7). General targets:
+// unshifted, so the solution list does not depend on the seed; identity target (shooting only
+// as a comparison with the enumeration): a Cranley-Patterson shift drawn from the seed.
+std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit, double radius, bool seeded) {
   std::mt19937_64 rng(options.seed);
   auto unit = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
-  double shift[4];
-  for (double& v : shift) v = unit();
+  double shift[4] = {0, 0, 0, 0};
+  if (seeded)
+    for (double& v : shift) v = unit();
   std::vector<Start> starts;
   // Curvature periods from a tenth of the chord to twice the longest path searched.
   const double t_min = std::max(0.25, 0.1 * radius), t_max = 2.0 * s_limit;
@@ -461,7 +468,7 @@ Context MakeContext(const IsoparallelProblem& problem, const IsoparallelOptions&
 // results per start do not depend on the thread count).
 std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const IsoparallelOptions& options,
                                                    double covered) {
-  const std::vector<Start> starts = MakeStarts(options, ctx.s_limit, ctx.radius);
+  const std::vector<Start> starts = MakeStarts(options, ctx.s_limit, ctx.radius, ctx.identity);
   std::vector<std::vector<LocalResult>> per_start(starts.size());
   std::mutex progress_mutex;
   int starts_done = 0;
@@ -682,6 +689,8 @@ IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const Iso
   Context ctx = MakeContext(problem, options);
   std::vector<Candidate> found;
   const bool identity = LogSO3(ctx.target).norm() <= options.tolerance;
+  ctx.identity = identity;
+  summary.seeded = identity;
   if (identity && options.enumerate_families) found = SolveByFamilies(&ctx, problem, options, &summary);
   if (summary.method == IsoparallelMethod::kShooting) SolveByShooting(&ctx, problem, options, &found, &summary);
   summary.searched_length = ctx.s_limit;
@@ -715,7 +724,8 @@ std::string IsoparallelSummary::FullReport() const {
   os << "  start (" << problem.start.transpose() << "), goal (" << problem.goal.transpose() << "), method "
      << ToString(method);
   if (method == IsoparallelMethod::kShooting)
-    os << ", starts " << options.starts << ", seed " << options.seed;
+    os << ", starts " << options.starts
+       << (seeded ? ", seed " + std::to_string(options.seed) : std::string(", deterministic (no seed)"));
   else
     os << ", periods searched " << periods_searched << (complete ? ", complete" : ", NOT certified complete");
   os << ", searched length " << searched_length << "\n";
