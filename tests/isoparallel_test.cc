@@ -174,9 +174,9 @@ TEST(Isoparallel, Figure7DenserIndependentSearchFindsNothingShorter) {
 }
 
 TEST(Isoparallel, RotationProblemDenserIndependentSearchFindsNothingShorter) {
-  // A general target (shooting): the golden problem's shortest path, then 4x the starts with
-  // another seed over paths up to 1.5x that length: nothing shorter. (64 starts used to report
-  // 9.449 here: the multi-start covers the parameter space only statistically.)
+  // A general target (shooting): the golden problem's shortest path, then the most starts allowed
+  // (the same Halton sequence continued: 10,000 points) over paths up to 1.5x that length: nothing
+  // shorter. (64 starts used to report 9.449 here: the multi-start is a sample.)
   const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
   const IsoparallelProblem q = IsoparallelSetupFor(p).problem;
   const IsoparallelSummary s = SolveIsoparallel(IsoparallelSetupFor(p).problem);
@@ -184,8 +184,7 @@ TEST(Isoparallel, RotationProblemDenserIndependentSearchFindsNothingShorter) {
   ASSERT_EQ(s.method, IsoparallelMethod::kShooting);
   const double shortest = s.Shortest().length;
   IsoparallelOptions dense;
-  dense.starts = 4 * IsoparallelOptions{}.starts;
-  dense.seed = 987654321;
+  dense.starts = IsoparallelOptions::kMaxStarts;
   dense.max_length = 1.5 * shortest;
   dense.length_cap_factor = 1.0;
   const IsoparallelSummary d = SolveIsoparallel(q, dense);
@@ -208,7 +207,7 @@ TEST(Isoparallel, RotationProblemDefaultFindsTheShortestSolutionsOfADenseSearch)
     for (const IsoparallelSolution& sol : s.solutions) found = found || std::abs(sol.length - length) < 1e-6;
     EXPECT_TRUE(found) << length << "\n" << s.FullReport();
   }
-  EXPECT_GE(s.solutions.size(), 27u) << s.FullReport();
+  EXPECT_GE(s.solutions.size(), 29u) << s.FullReport();  // 30 known (docs/paper_notes.md)
 }
 
 TEST(Isoparallel, NonTrivialTargetIsSolvedAndVerified) {
@@ -248,7 +247,9 @@ TEST(Isoparallel, StraightSegmentTargetGivesTheSegment) {
   IsoparallelProblem p;
   p.goal = {1.2, -0.7};
   p.goal_orientation = RollAlongSegment(p.start, p.goal);
-  const IsoparallelSummary s = SolveIsoparallel(p);
+  IsoparallelOptions o;
+  o.starts = 1024;  // the shortest only
+  const IsoparallelSummary s = SolveIsoparallel(p, o);
   ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
   EXPECT_NEAR(s.Shortest().length, p.goal.norm(), kLengthTol);
 }
