@@ -23,11 +23,14 @@ ImpulseBasis MakeImpulseBasis(const AngleState& start, double mu, double lambda)
 }
 
 ReachDirection DirectionFor(const ImpulseBasis& e, double s) {
+  const double w = e.phi - (e.psi + s);
+  return DirectionFromTrig(e, s, std::cos(w), std::sin(w));
+}
+
+ReachDirection DirectionFromTrig(const ImpulseBasis& e, double s, double cw, double sw) {
   ReachDirection d;
   d.s = s;
   d.z0 = e.z0;
-  const double w = e.phi - (e.psi + s);
-  const double cw = std::cos(w), sw = std::sin(w);
   double omega[2], domega[2];
   OmegaHOnEllipse(e.a, e.b, e.cos_phi, e.sin_phi, cw, sw, omega);
   OmegaHOnEllipse(e.a, e.b, e.cos_phi, e.sin_phi, sw, -cw, domega);  // d/dpsi = -d/dw

@@ -29,6 +29,8 @@ struct ImpulseBasis {
 ImpulseBasis MakeImpulseBasis(const AngleState& start, double mu, double lambda);
 /// The direction of the impulse s: K(s) = K(omega_h(theta, phi, psi + s)) and dK/ds.
 ReachDirection DirectionFor(const ImpulseBasis& basis, double s);
+/// The same with cos w, sin w of w = phi - (psi + s) already at hand (no sine computed).
+ReachDirection DirectionFromTrig(const ImpulseBasis& basis, double s, double cos_w, double sin_w);
 /// The same from the angles (angles already reduced).
 ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, double s);
 

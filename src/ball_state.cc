@@ -19,13 +19,8 @@ AngleState AngleState::Canonicalize() const {
   return {th, WrapPi(ph), WrapPi(psi)};
 }
 
-namespace {
-// SemiAxisA from sin(theta) and cos(theta) already at hand (one sine and cosine less per call).
-double SemiAxisFromTrig(double s, double c, double mu, double lambda) { return std::sqrt(mu / (lambda * s * s + c * c)); }
-}  // namespace
-
 double SemiAxisA(double theta, double mu, double lambda) {
-  return SemiAxisFromTrig(std::sin(theta), std::cos(theta), mu, lambda);
+  return internal::SemiAxisFromTrig(std::sin(theta), std::cos(theta), mu, lambda);
 }
 
 PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& model) {
@@ -34,11 +29,13 @@ PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& 
   internal::RequireFinite("psi", s.psi);
   internal::RequireEnergy("mu", mu);
   // Each sine and cosine once (the same values AxisFromAngles and SemiAxisA would compute).
-  const double ct = std::cos(s.theta), st = std::sin(s.theta);
-  const double sp = std::sin(s.phi), cp = std::cos(s.phi);
-  const double w = s.phi - s.psi;
-  const double cw = std::cos(w), sw = std::sin(w);
-  const double a = SemiAxisFromTrig(st, ct, mu, model.lambda());
+  return internal::PhaseFromTrig(internal::TrigFromAngles(s), mu, model.lambda());
+}
+
+namespace internal {
+PhaseVariables PhaseFromTrig(const AngleTrig& g, double mu, double lambda) {
+  const double st = g.sin_theta, ct = g.cos_theta, sp = g.sin_phi, cp = g.cos_phi, sw = g.sin_w, cw = g.cos_w;
+  const double a = internal::SemiAxisFromTrig(st, ct, mu, lambda);
   const double b = std::sqrt(mu);
   PhaseVariables p;
   p.z = {st * cp, st * sp, ct};                               // (12)-(14)
@@ -50,6 +47,7 @@ PhaseVariables PhaseFromAngles(const AngleState& s, double mu, const BallModel& 
   p.omega.z() = 0.0;  // exactly zero in exact arithmetic (eq. (8)); remove round-off
   return p;
 }
+}  // namespace internal
 
 BallState StateFromAngles(const AngleState& s, double mu, const BallModel& model) {
   const PhaseVariables p = PhaseFromAngles(s, mu, model);
@@ -66,10 +64,12 @@ AngleState AnglesFromState(const BallState& s, const BallModel& model) {
   const double rho = std::hypot(s.z.x(), s.z.y());
   const double theta = std::atan2(rho, s.z.z());
   const double phi = rho > 0 ? std::atan2(s.z.y(), s.z.x()) : 0.0;
-  const double cp = std::cos(phi), sp = std::sin(phi);
+  // The sines and cosines of theta and phi from z itself (theta in [0, pi]: sin theta = rho / |z|).
+  const double cp = rho > 0 ? s.z.x() / rho : 1.0, sp = rho > 0 ? s.z.y() / rho : 0.0;
   const Eigen::Vector2d er(cp, sp), ephi(-sp, cp);
   const Eigen::Vector2d wh = s.omega.head<2>();
-  const double a = SemiAxisA(theta, mu, model.lambda());
+  const double r = s.z.norm();
+  const double a = internal::SemiAxisFromTrig(rho / r, s.z.z() / r, mu, model.lambda());
   const double b = std::sqrt(mu);
   const double w = std::atan2(-wh.dot(ephi) / b, wh.dot(er) / a);
   return AngleState{theta, phi, phi - w}.Canonicalize();

@@ -1,5 +1,6 @@
 // Internal: the chart-free equations of motion (docs/paper_notes.md) and an odeint driver with a
-// step bound. Templated on the scalar so that ceres::Jet gives exact sensitivities.
+// step bound. The join's sensitivities (SensitivityRhs) are the variational equations written out
+// by hand (tests/fehlberg78_test.cc checks them against ceres::Jet on the kinematics kernel).
 #pragma once
 
 #include <array>
@@ -21,35 +22,53 @@ struct StepLimitError : std::runtime_error {
 };
 
 /// (z, x) together with their derivatives with respect to s = delta psi:
-/// y = (z[3], x[2], dz/ds[3], dx/ds[2]). K depends on s, z(0) and x(0) do not; the variational
-/// equations come exactly from evaluating OmegaFromZK and ZxRhs on ceres::Jet (forward mode).
+/// y = (z[3], x[2], dz/ds[3], dx/ds[2]). K depends on s, z(0) and x(0) do not.
 using SensitivityState = std::array<double, 10>;
 
+/// The right-hand side of OmegaFromZK and ZxRhs with its variational equations written out by
+/// hand (forward mode, the derivative d/ds of every line; one division). The same values as
+/// evaluating OmegaFromZK and ZxRhs on ceres::Jet<double, 1> (tests/fehlberg78_test.cc checks it)
+/// at a third of the instructions: this is the inner loop of every join.
 struct SensitivityRhs {
   double lambda;
   double k[2];   ///< K(s)
   double dk[2];  ///< dK/ds
   void operator()(const SensitivityState& y, SensitivityState& dy, double /*t*/) const {
-    using Jet = ceres::Jet<double, 1>;
-    Jet z[3], kk[2], w[2], dz[3], dx[2];
-    for (int i = 0; i < 3; ++i) {
-      z[i].a = y[i];
-      z[i].v[0] = y[5 + i];
-    }
-    for (int i = 0; i < 2; ++i) {
-      kk[i].a = k[i];
-      kk[i].v[0] = dk[i];
-    }
-    OmegaFromZK(z, kk, lambda, w);
-    ZxRhs(z, w, dz, dx);
-    for (int i = 0; i < 3; ++i) {
-      dy[i] = dz[i].a;
-      dy[5 + i] = dz[i].v[0];
-    }
-    for (int i = 0; i < 2; ++i) {
-      dy[3 + i] = dx[i].a;
-      dy[8 + i] = dx[i].v[0];
-    }
+    const double z0 = y[0], z1 = y[1], z2 = y[2], d0 = y[5], d1 = y[6], d2 = y[7];
+    // v0 = p / q with p = <K, z_h>, q = z3^2 + lambda |z_h|^2 (OmegaFromZK).
+    const double p = k[0] * z0 + k[1] * z1;
+    const double dp = dk[0] * z0 + k[0] * d0 + dk[1] * z1 + k[1] * d1;
+    const double q = z2 * z2 + lambda * (z0 * z0 + z1 * z1);
+    const double dq = 2.0 * (z2 * d2 + lambda * (z0 * d0 + z1 * d1));
+    const double inv_q = 1.0 / q;
+    const double v0 = p * inv_q;
+    const double dv0 = (dp - v0 * dq) * inv_q;
+    const double c = lambda - 1.0;
+    const double w0 = k[0] - c * v0 * z0, w1 = k[1] - c * v0 * z1;
+    const double dw0 = dk[0] - c * (dv0 * z0 + v0 * d0), dw1 = dk[1] - c * (dv0 * z1 + v0 * d1);
+    // z' = omega x z, x' = (omega_2, -omega_1) (ZxRhs) and their derivatives.
+    dy[0] = w1 * z2;
+    dy[1] = -w0 * z2;
+    dy[2] = w0 * z1 - w1 * z0;
+    dy[3] = w1;
+    dy[4] = -w0;
+    dy[5] = dw1 * z2 + w1 * d2;
+    dy[6] = -(dw0 * z2 + w0 * d2);
+    dy[7] = dw0 * z1 + w0 * d1 - (dw1 * z0 + w1 * d0);
+    dy[8] = dw1;
+    dy[9] = -dw0;
+  }
+};
+
+/// The motion alone, y = (z[3], x[2]): the join's check of a point whose Jacobian is known.
+using MotionState = std::array<double, 5>;
+struct MotionRhs {
+  double lambda;
+  double k[2];
+  void operator()(const MotionState& y, MotionState& dy, double /*t*/) const {
+    double w[2];
+    OmegaFromZK(y.data(), k, lambda, w);
+    ZxRhs(y.data(), w, dy.data(), dy.data() + 3);
   }
 };
 

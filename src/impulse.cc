@@ -4,12 +4,12 @@
 #include <cmath>
 
 #include "check.h"
+#include "kinematics.h"
 
 namespace plateball {
-namespace {
-Impulse Make(const AngleState& before, double mu, const AngleState& after, double mu_after, const BallModel& model) {
-  const PhaseVariables p0 = PhaseFromAngles(before, mu, model);
-  const PhaseVariables p1 = PhaseFromAngles(after, mu_after, model);
+namespace internal {
+Impulse ImpulseFromPhases(const AngleState& before, double mu, const AngleState& after, double mu_after,
+                          const PhaseVariables& p0, const PhaseVariables& p1) {
   Impulse imp;
   imp.before = before;
   imp.after = after;
@@ -23,6 +23,13 @@ Impulse Make(const AngleState& before, double mu, const AngleState& after, doubl
   imp.state_before = {p0.z, p0.omega};
   imp.state_after = {p1.z, p1.omega};
   return imp;
+}
+}  // namespace internal
+
+namespace {
+Impulse Make(const AngleState& before, double mu, const AngleState& after, double mu_after, const BallModel& model) {
+  return internal::ImpulseFromPhases(before, mu, after, mu_after, PhaseFromAngles(before, mu, model),
+                                     PhaseFromAngles(after, mu_after, model));
 }
 }  // namespace
 

@@ -12,17 +12,22 @@
 #include "arc.h"
 #include "check.h"
 #include "connect.h"
+#include "contact_series.h"
 #include "dynamics.h"
+#include "fehlberg78.h"
 
 namespace plateball {
 namespace {
 
 using SensState = internal::SensitivityState;  // z[3], x[2], dz/ds[3], dx/ds[2]
-// Arcs shorter than this (t sqrt(mu), about the distance rolled) use Dormand-Prince 5(4), which
+// When the equal steps of the hand-written Fehlberg 7(8) kernel are refused, arcs shorter than
+// this (t sqrt(mu), about the distance rolled) use odeint's adaptive Dormand-Prince 5(4), which
 // covers them in about one step at tolerance 1e-12; longer ones Fehlberg 7(8), which needs far
 // fewer right-hand-side evaluations there (T1, |x - x0| = 0.05: 52 instead of 88 per join; 0.2:
 // 113 instead of 369).
 constexpr double kShortArc = 0.02;
+// Up to this many equal steps a rollout tries the hand-written Fehlberg 7(8) kernel first.
+constexpr double kMaxEqualSteps = 16;
 
 using internal::SensitivityRhs;
 
@@ -46,9 +51,9 @@ class JoinFunction {
   using Scalar = double;
   enum { NUM_RESIDUALS = 2, NUM_PARAMETERS = 2 };
 
-  JoinFunction(const AngleState& start, double mu, double lambda, const Eigen::Vector2d& d,
+  JoinFunction(const internal::ImpulseBasis& basis, double mu, double lambda, const Eigen::Vector2d& d,
                const IntegrationOptions& options)
-      : basis_(internal::MakeImpulseBasis(start, mu, lambda)), mu_(mu), lambda_(lambda), d_(d), options_(options) {}
+      : basis_(basis), mu_(mu), lambda_(lambda), d_(d), options_(options) {}
 
   bool operator()(const double* p, double* r, double* jac) const {
     if (!(has_cache_ && p[0] == cache_p_[0] && p[1] == cache_p_[1])) Evaluate(p[0], p[1]);
@@ -62,38 +67,32 @@ class JoinFunction {
 
   // One rollout over [0, t] (t may be negative during the iteration) with dx/ds.
   void Evaluate(double s, double t) const {
-    ++evaluations_;
-    has_cache_ = true;
-    cache_p_[0] = s;
-    cache_p_[1] = t;
-    const internal::ReachDirection dir = internal::DirectionFor(basis_, s);
-    k_ = dir.k;
+    const internal::ReachDirection dir = BeginEvaluation(s, t);
     SensState y{};
     y[0] = dir.z0.x();
     y[1] = dir.z0.y();
     y[2] = dir.z0.z();
-    failed_ = !Rollout(dir, s, t, &y);
-    if (failed_) {
-      // A huge residual makes TinySolver reject the step.
-      cache_r_[0] = cache_r_[1] = 1e100;
-      for (double& v : cache_j_) v = 0.0;
-      return;
-    }
-    z_end_ = Eigen::Vector3d(y[0], y[1], y[2]);
-    double wt[2];
-    const double kd[2] = {k_.x(), k_.y()};
-    internal::OmegaFromZK(y.data(), kd, lambda_, wt);
-    cache_r_[0] = y[3] - d_.x();
-    cache_r_[1] = y[4] - d_.y();
-    cache_j_[0] = y[8];  // column-major: d r / d s
-    cache_j_[1] = y[9];
-    cache_j_[2] = wt[1];  // d r / d t = x'(t) = (omega_2, -omega_1)
-    cache_j_[3] = -wt[0];
+    const SensitivityRhs rhs{lambda_, {k_.x(), k_.y()}, {dir.dk_ds.x(), dir.dk_ds.y()}};
+    if (!Rollout(rhs, s, t, &y)) return Fail();
+    FinishEvaluation(y.data(), y[8], y[9]);
   }
 
-  // Integrates (z, x, dz/ds, dx/ds) over [0, t]; false (failure_ says why) when the point is not
-  // finite, leaves the local range or the integration fails.
-  bool Rollout(const internal::ReachDirection& dir, double s, double t, SensState* y) const {
+  // The check of a point whose dx/ds is known to good accuracy (the Taylor model's): a rollout of
+  // (z, x) alone, half the work of one with the variational equations. The cache then holds the
+  // residual, x'(t) and the given dx/ds; Invalidate() before an iteration that needs exact ones.
+  void EvaluateWithSColumn(double s, double t, double cos_w, double sin_w, const Eigen::Vector2d& dx_ds) const {
+    const internal::ReachDirection dir = BeginEvaluation(s, t, cos_w, sin_w);
+    internal::MotionState y{dir.z0.x(), dir.z0.y(), dir.z0.z(), 0.0, 0.0};
+    const internal::MotionRhs rhs{lambda_, {k_.x(), k_.y()}};
+    if (!Rollout(rhs, s, t, &y)) return Fail();
+    FinishEvaluation(y.data(), dx_ds.x(), dx_ds.y());
+  }
+  void Invalidate() const { has_cache_ = false; }
+
+  // Integrates a state starting with (z, x) over [0, t]; false (failure_ says why) when the point
+  // is not finite, leaves the local range or the integration fails.
+  template <typename State, typename Rhs>
+  bool Rollout(const Rhs& rhs, double s, double t, State* y) const {
     if (!std::isfinite(s) || !std::isfinite(t)) return false;
     if (std::abs(t) > max_abs_t_) {
       // Lemma 2.1 is local: its branch has t well below a period. Rolling out further only costs
@@ -102,19 +101,25 @@ class JoinFunction {
       return false;
     }
     if (t == 0.0) return true;
-    const SensitivityRhs rhs{lambda_, {k_.x(), k_.y()}, {dir.dk_ds.x(), dir.dk_ds.y()}};
     double last = 0.0, largest = 0.0;
-    auto observe = [&](double tt, const SensState&) {
+    auto observe = [&](double tt, const State&) {
       largest = std::max(largest, std::abs(tt - last));
       last = tt;
     };
     namespace odeint = boost::numeric::odeint;
     const double dt0 = EvenStep(std::abs(t), dt_hint_);
+    // Equal Fehlberg 7(8) steps of the last rollout's length (fehlberg78.h), each within the
+    // tolerances; the adaptive loop only when one is not (or the arc needs many steps).
+    const double steps = std::ceil(std::abs(t) / dt0 - 1e-9);
+    if (steps <= kMaxEqualSteps && internal::IntegrateEqualSteps(rhs, *y, 0.0, t, static_cast<int>(steps), options_)) {
+      dt_hint_ = std::abs(t) / steps;
+      return true;
+    }
     try {
       if (std::abs(t) * std::sqrt(mu_) <= kShortArc)
-        internal::IntegrateAdaptive<odeint::runge_kutta_dopri5<SensState>>(rhs, *y, 0.0, t, dt0, options_, observe);
+        internal::IntegrateAdaptive<odeint::runge_kutta_dopri5<State>>(rhs, *y, 0.0, t, dt0, options_, observe);
       else
-        internal::IntegrateAdaptive<odeint::runge_kutta_fehlberg78<SensState>>(rhs, *y, 0.0, t, dt0, options_, observe);
+        internal::IntegrateAdaptive<odeint::runge_kutta_fehlberg78<State>>(rhs, *y, 0.0, t, dt0, options_, observe);
     } catch (const std::runtime_error& e) {
       failure_ = e.what();
       return false;
@@ -123,7 +128,8 @@ class JoinFunction {
     return true;
   }
 
-  double Residual() const { return std::hypot(cache_r_[0], cache_r_[1]); }
+  // |r| without hypot's care for overflow: the residual is below 1e100 (a failed rollout's value).
+  double Residual() const { return std::sqrt(cache_r_[0] * cache_r_[0] + cache_r_[1] * cache_r_[1]); }
   Eigen::Vector2d residual_vector() const { return {cache_r_[0], cache_r_[1]}; }
   double Conditioning() const {
     const double det = cache_j_[0] * cache_j_[3] - cache_j_[1] * cache_j_[2];
@@ -131,6 +137,8 @@ class JoinFunction {
     return scale > 0 ? std::abs(det) / scale : 0.0;
   }
   bool failed() const { return failed_; }
+  const internal::ImpulseBasis& basis() const { return basis_; }
+  const Eigen::Vector2d& d() const { return d_; }
   void set_max_abs_t(double t) { max_abs_t_ = t; }
   const std::string& failure() const { return failure_; }
   const Eigen::Vector3d& z_end() const { return z_end_; }
@@ -139,6 +147,38 @@ class JoinFunction {
   void set_dt_hint(double h) const { dt_hint_ = h; }
 
  private:
+  // cos_w, sin_w: of w = phi - (psi + s) when at hand (else NaN: computed here).
+  internal::ReachDirection BeginEvaluation(double s, double t, double cos_w = NAN, double sin_w = NAN) const {
+    ++evaluations_;
+    has_cache_ = true;
+    cache_p_[0] = s;
+    cache_p_[1] = t;
+    const internal::ReachDirection dir = std::isnan(cos_w) ? internal::DirectionFor(basis_, s)
+                                                           : internal::DirectionFromTrig(basis_, s, cos_w, sin_w);
+    k_ = dir.k;
+    failed_ = false;
+    return dir;
+  }
+  void Fail() const {
+    failed_ = true;
+    // A huge residual makes TinySolver reject the step.
+    cache_r_[0] = cache_r_[1] = 1e100;
+    for (double& v : cache_j_) v = 0.0;
+  }
+  // y starts with (z, x) at the end of the arc.
+  void FinishEvaluation(const double* y, double dx_ds0, double dx_ds1) const {
+    z_end_ = Eigen::Vector3d(y[0], y[1], y[2]);
+    double wt[2];
+    const double kd[2] = {k_.x(), k_.y()};
+    internal::OmegaFromZK(y, kd, lambda_, wt);
+    cache_r_[0] = y[3] - d_.x();
+    cache_r_[1] = y[4] - d_.y();
+    cache_j_[0] = dx_ds0;  // column-major: d r / d s
+    cache_j_[1] = dx_ds1;
+    cache_j_[2] = wt[1];  // d r / d t = x'(t) = (omega_2, -omega_1)
+    cache_j_[3] = -wt[0];
+  }
+
   internal::ImpulseBasis basis_;
   double mu_, lambda_;
   Eigen::Vector2d d_;
@@ -169,13 +209,95 @@ AngleState ValidateJoinInput(const AngleState& start, double mu, const Eigen::Ve
 }
 
 // Velocity-ellipse guess (27)-(28): x'_s(0) = -b sin(w) e_r - a cos(w) e_phi with w = phi - psi - s
-// pointing at the target; t = distance / speed. Returns (s, t).
-Eigen::Vector2d EllipseGuess(const AngleState& start, double mu, double lambda, const Eigen::Vector2d& d) {
-  const double a = SemiAxisA(start.theta, mu, lambda), b = std::sqrt(mu);
-  const Eigen::Vector2d er(std::cos(start.phi), std::sin(start.phi)), ephi(-er.y(), er.x());
-  const double w = std::atan2(-d.dot(er) / b, -d.dot(ephi) / a);
-  const double speed = std::hypot(b * std::sin(w), a * std::cos(w));
-  return {WrapPi(start.phi - start.psi - w), d.norm() / speed};
+// pointing at the target; t = distance / speed. g: the start's trig. The guess (s, t) with
+// cos w, sin w of its w = phi - (psi + s) (the impulse direction, arc.h).
+struct Guess {
+  Eigen::Vector2d p;  ///< (s, t)
+  double cos_w = 1.0, sin_w = 0.0;
+};
+Guess EllipseGuess(const AngleState& start, const internal::AngleTrig& g, double mu, double lambda,
+                   const Eigen::Vector2d& d) {
+  const double a = internal::SemiAxisFromTrig(g.sin_theta, g.cos_theta, mu, lambda), b = std::sqrt(mu);
+  const Eigen::Vector2d er(g.cos_phi, g.sin_phi), ephi(-er.y(), er.x());
+  // w = atan2(y, x) and the speed from (cos w, sin w) = (x, y) / |(x, y)| without their libm calls.
+  const double y = -d.dot(er) / b, x = -d.dot(ephi) / a, r = std::sqrt(x * x + y * y);
+  const double speed = std::sqrt(b * b * y * y + a * a * x * x) / r;
+  return {{WrapPi(start.phi - start.psi - std::atan2(y, x)), d.norm() / speed}, x / r, y / r};
+}
+
+// The guess moved by delta: s - delta[0] turns w = phi - (psi + s) by +delta[0] (one sine and
+// cosine of a small angle instead of those of w).
+Guess Moved(const Guess& g, const Eigen::Vector2d& delta) {
+  const double c = std::cos(delta[0]), s = std::sin(delta[0]);
+  return {g.p - delta, g.cos_w * c - g.sin_w * s, g.sin_w * c + g.cos_w * s};
+}
+
+// MakeImpulseBasis (arc.h) from the start's trig at hand (the same values, no sine computed again).
+internal::ImpulseBasis BasisFromTrig(const AngleState& start, const internal::AngleTrig& g, double mu, double lambda) {
+  internal::ImpulseBasis e;
+  e.z0 = {g.sin_theta * g.cos_phi, g.sin_theta * g.sin_phi, g.cos_theta};
+  e.a = internal::SemiAxisFromTrig(g.sin_theta, g.cos_theta, mu, lambda);
+  e.b = std::sqrt(mu);
+  e.cos_phi = g.cos_phi;
+  e.sin_phi = g.sin_phi;
+  e.phi = start.phi;
+  e.psi = start.psi;
+  e.lambda = lambda;
+  return e;
+}
+
+// One Newton step on the Taylor model of order M of x(s, t) (contact_series.h, dx/ds in forward
+// mode): the correction delta with x(p - delta) ~ x0 + d to the model's accuracy; false when the
+// model's Jacobian is singular.
+template <int M, int D>
+bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d& d, const Guess& g,
+                      Eigen::Vector2d* delta, Eigen::Vector2d* dx_ds) {
+  using Dual = internal::SeriesDual;
+  const double z0[3] = {basis.z0.x(), basis.z0.y(), basis.z0.z()};
+  const Eigen::Vector2d& p = g.p;
+  const internal::ReachDirection dir = internal::DirectionFromTrig(basis, p[0], g.cos_w, g.sin_w);
+  const Dual k[2] = {Dual(dir.k.x(), dir.dk_ds.x()), Dual(dir.k.y(), dir.dk_ds.y())};
+  std::array<std::array<Dual, 2>, M + 1> x;
+  internal::ContactSeries<M, D>(z0, k, basis.lambda, &x);
+  // Horner: X = sum x_m t^m and dX/dt = sum m x_m t^(m-1).
+  const double t = p[1];
+  Dual xs[2] = {x[M][0], x[M][1]};
+  double xt[2] = {M * xs[0].a, M * xs[1].a};
+  for (int m = M - 1; m >= 1; --m) {
+    for (int i = 0; i < 2; ++i) {
+      xs[i] = t * xs[i] + x[m][i];
+      xt[i] = xt[i] * t + m * x[m][i].a;
+    }
+  }
+  Eigen::Matrix2d jac;
+  jac << xs[0].d * t, xt[0], xs[1].d * t, xt[1];
+  *dx_ds = jac.col(0);
+  if (!(std::abs(jac.determinant()) > 1e-12 * jac.squaredNorm())) return false;
+  *delta = jac.inverse() * Eigen::Vector2d(xs[0].a * t - d.x(), xs[1].a * t - d.y());
+  return delta->allFinite();
+}
+
+// The guess refined by two Newton steps on Taylor models of x(s, t) on arcs with
+// t sqrt(mu) <= kSeriesArc. The ellipse guess is the model's first-order solution (T1: residual
+// up to 5e-4); a step on the order-4 model brings it to ~2e-6, one on the order-7 model (its
+// Jacobian from the order-4 terms: the step is ~1e-6, so a Jacobian good to ~1e-6 suffices) to
+// the model's truncation error (T1: below the check rollout's own ~3e-13), so that the rollout
+// there (the check) is within 1e-12 and the iteration on rollouts is not needed. False (the guess
+// unchanged) when the arc is not short or the model steps do not settle; either way a rollout
+// decides convergence, the model only saves rollouts. *dx_ds: the model's d x / d s (to ~1e-6
+// relative: the reported conditioning's s column).
+constexpr double kSeriesArc = 0.2;
+bool RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Guess* guess,
+                    Eigen::Vector2d* dx_ds) {
+  const auto short_arc = [&](const Eigen::Vector2d& p) { return p[1] > 0 && p[1] * std::sqrt(mu) <= kSeriesArc; };
+  Eigen::Vector2d delta;
+  if (!short_arc(guess->p) || !SeriesNewtonStep<4, 3>(basis, d, *guess, &delta, dx_ds)) return false;
+  const Guess g = Moved(*guess, delta);
+  if (!short_arc(g.p) || !SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds)) return false;
+  // The second step is the model's quadratic convergence; a large one means the model is no guide.
+  if (!(delta.norm() <= 1e-4 * (1.0 + std::abs(g.p[1])))) return false;
+  *guess = Moved(g, delta);
+  return true;
 }
 
 // Levenberg-Marquardt (Ceres TinySolver) on (s, t) from the guess; leaves fn's cache at the
@@ -203,6 +325,37 @@ int SolveLocal(JoinFunction& fn, const JoinOptions& options, Eigen::Vector2d* pa
 }
 #pragma GCC diagnostic pop
 
+// From the ellipse guess to the answer: on a short arc the guess refined on the Taylor model and
+// checked by one rollout of (z, x); when that check is not within the tolerance (or the arc is not
+// short), Levenberg-Marquardt on rollouts. Fills delta_psi, t, residual, conditioning, iterations
+// and the residual at the first point rolled out; leaves fn's cache at the answer. True when the
+// check was the answer (guess then holds it, with the trig of its w).
+bool SolveFromGuess(JoinFunction& fn, double mu, const JoinOptions& options, Guess* guess, JoinSummary* out) {
+  Eigen::Vector2d dx_ds;
+  const bool modelled = RefineOnSeries(fn.basis(), mu, fn.d(), guess, &dx_ds);
+  Eigen::Vector2d params = guess->p;
+  fn.set_dt_hint(params[1]);
+  if (modelled) {
+    fn.EvaluateWithSColumn(params[0], params[1], guess->cos_w, guess->sin_w, dx_ds);  // the check
+  } else {
+    double r0[2];
+    fn(params.data(), r0, nullptr);
+  }
+  out->initial_guess_residual = fn.Residual();
+  const bool checked = modelled && !fn.failed() && fn.Residual() <= options.residual_tolerance;
+  if (checked) {
+    out->iterations = 0;  // the check rollout is within the tolerance: it is the answer
+  } else {
+    if (modelled) fn.Invalidate();  // the iteration needs the exact dx/ds
+    out->iterations = SolveLocal(fn, options, &params);
+  }
+  out->delta_psi = WrapPi(params[0]);
+  out->t = params[1];
+  out->residual = fn.Residual();
+  out->jacobian_conditioning = fn.Conditioning();
+  return checked;
+}
+
 // Why a finished iteration is not the local solution of Lemma 2.1 (empty when it is). Messages
 // are built only on failure (a string stream costs more than a short rollout).
 std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, double dist) {
@@ -222,10 +375,25 @@ std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, dou
   return os.str();
 }
 
-// The impulse s and the state on arrival (z, K at the end of the arc, the contact point x).
-void FinishState(const BallModel& model, double s, const Eigen::Vector3d& z, const Eigen::Vector2d& k,
-                 const Eigen::Vector2d& x, JoinSummary* out) {
-  out->impulse = EnergyPreservingImpulse(out->start, out->mu, s, model);
+// The impulse s and the state on arrival (z, K at the end of the arc, the contact point x). g: the
+// start's trig.
+// cos_w, sin_w: of w = phi - (psi + s) after the impulse when at hand (else NaN: computed here).
+void FinishState(const BallModel& model, const internal::AngleTrig& g, double s, const Eigen::Vector3d& z,
+                 const Eigen::Vector2d& k, const Eigen::Vector2d& x, JoinSummary* out, double cos_w = NAN,
+                 double sin_w = NAN) {
+  // EnergyPreservingImpulse (impulse.h) with each sine and cosine once: theta and phi are those of
+  // the start, only w = phi - psi changes.
+  internal::RequireEnergy("mu", out->mu);  // as EnergyPreservingImpulse would (a ball too slow to join)
+  const AngleState& a = out->start;
+  AngleState after = a;
+  after.psi += s;
+  internal::AngleTrig trig = g;
+  const PhaseVariables p0 = internal::PhaseFromTrig(trig, out->mu, model.lambda());
+  const double w1 = after.phi - after.psi;
+  trig.sin_w = std::isnan(sin_w) ? std::sin(w1) : sin_w;
+  trig.cos_w = std::isnan(cos_w) ? std::cos(w1) : cos_w;
+  out->impulse = internal::ImpulseFromPhases(a, out->mu, after, out->mu, p0,
+                                             internal::PhaseFromTrig(trig, out->mu, model.lambda()));
   out->state_after.z = z.normalized();
   out->state_after.omega = OmegaFromMomentum(out->state_after.z, k, model);
   out->angles_after = AnglesFromState(out->state_after, model);
@@ -233,9 +401,9 @@ void FinishState(const BallModel& model, double s, const Eigen::Vector3d& z, con
 }
 
 // The start itself as the end state (no impulse, no motion): the answer of the early exits.
-void FinishAtStart(const BallModel& model, JoinSummary* out) {
-  const BallState s0 = StateFromAngles(out->start, out->mu, model);
-  FinishState(model, 0.0, s0.z, ConservedMomentum(s0, model), out->x0, out);
+void FinishAtStart(const BallModel& model, const internal::AngleTrig& g, JoinSummary* out) {
+  const PhaseVariables p0 = internal::PhaseFromTrig(g, out->mu, model.lambda());  // StateFromAngles
+  FinishState(model, g, 0.0, p0.z, ConservedMomentum({p0.z, p0.omega}, model), out->x0, out, g.cos_w, g.sin_w);
 }
 
 }  // namespace
@@ -298,6 +466,7 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
   out.mu = mu;
   out.x0 = x0;
   out.target = target;
+  const internal::AngleTrig trig = internal::TrigFromAngles(out.start);  // each sine and cosine of the start once
   const Eigen::Vector2d d = target - x0;
   const double dist = d.norm();
   out.time_limit = options.local_time_factor / internal::MinimumContactSpeed(mu, lambda) * dist;
@@ -306,42 +475,36 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
     out.status = JoinStatus::kTargetEqualsStart;
     out.message = "target equals the start point x0 (|target - x0| = " + std::to_string(dist) + ")";
     out.residual = dist;
-    FinishAtStart(model, &out);
+    FinishAtStart(model, trig, &out);
     return out;
   }
 
   // Lemma 2.1's branch needs much less than a period; a target whose first-guess time is above
   // half a period is beyond the local radius (Reach handles it), and is answered without rolling out.
-  Eigen::Vector2d params = EllipseGuess(out.start, mu, lambda, d);
+  Guess guess = EllipseGuess(out.start, trig, mu, lambda, d);
   const double period = 2.0 * M_PI / std::sqrt(mu);
-  if (!(params[1] <= 0.5 * period)) {
-    out.delta_psi = params[0];
-    out.t = params[1];
+  if (!(guess.p[1] <= 0.5 * period)) {
+    out.delta_psi = guess.p[0];
+    out.t = guess.p[1];
     out.residual = dist;
     out.status = JoinStatus::kTargetBeyondLocalRadius;
-    out.message = "target at distance " + std::to_string(dist) + " needs t ~ " + std::to_string(params[1]) +
+    out.message = "target at distance " + std::to_string(dist) + " needs t ~ " + std::to_string(guess.p[1]) +
                   " > half a period (" + std::to_string(0.5 * period) + "): beyond the local radius of Lemma 2.1";
-    FinishAtStart(model, &out);
+    FinishAtStart(model, trig, &out);
     return out;
   }
 
-  JoinFunction fn(out.start, mu, lambda, d, options.integration);
+  JoinFunction fn(BasisFromTrig(out.start, trig, mu, lambda), mu, lambda, d, options.integration);
   fn.set_max_abs_t(period);
-  fn.set_dt_hint(params[1]);
-  double r0[2];
-  fn(params.data(), r0, nullptr);
-  out.initial_guess_residual = std::hypot(r0[0], r0[1]);
-  out.iterations = SolveLocal(fn, options, &params);
-  out.delta_psi = WrapPi(params[0]);
-  out.t = params[1];
-  out.residual = fn.Residual();
-  out.jacobian_conditioning = fn.Conditioning();
+  const bool checked = SolveFromGuess(fn, mu, options, &guess, &out);
   if (fn.failed()) {
     out.status = JoinStatus::kIntegrationFailure;
     out.message = fn.failure();
     return out;
   }
-  FinishState(model, out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector(), &out);
+  // After a check within the tolerance, the trig of the impulse is the check's (guess.p unchanged).
+  FinishState(model, trig, out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector(), &out,
+              checked ? guess.cos_w : NAN, checked ? guess.sin_w : NAN);
   out.message = LocalFailure(out, options, dist);
   out.status = out.message.empty() ? JoinStatus::kConverged : JoinStatus::kTargetBeyondLocalRadius;
   return out;

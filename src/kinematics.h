@@ -18,6 +18,7 @@
 
 #include "check.h"
 #include "plateball/ball_state.h"
+#include "plateball/impulse.h"
 
 namespace plateball::internal {
 
@@ -28,6 +29,7 @@ constexpr double kTwoPi = 2.0 * M_PI;
 
 /// a reduced to (-pi, pi].
 inline double WrapPi(double a) {
+  if (a > -M_PI && a <= M_PI) return a;  // what remainder returns there, without its cost
   a = std::remainder(a, kTwoPi);  // [-pi, pi]
   return a <= -M_PI ? a + kTwoPi : a;
 }
@@ -72,6 +74,27 @@ inline Eigen::Vector3d AxisFromAngles(double theta, double phi) {
   const double st = std::sin(theta);
   return {st * std::cos(phi), st * std::sin(phi), std::cos(theta)};
 }
+
+/// The sines and cosines of theta, phi and w = phi - psi: what the angle chart (12)-(18) needs.
+struct AngleTrig {
+  double sin_theta, cos_theta, sin_phi, cos_phi, sin_w, cos_w;
+};
+/// The trig of the chart at (theta, phi, psi), each sine and cosine once.
+inline AngleTrig TrigFromAngles(const AngleState& s) {
+  const double w = s.phi - s.psi;
+  return {std::sin(s.theta), std::cos(s.theta), std::sin(s.phi), std::cos(s.phi), std::sin(w), std::cos(w)};
+}
+/// SemiAxisA (ball_state.h) from sin(theta) and cos(theta) already at hand.
+inline double SemiAxisFromTrig(double sin_theta, double cos_theta, double mu, double lambda) {
+  return std::sqrt(mu / (lambda * sin_theta * sin_theta + cos_theta * cos_theta));
+}
+/// PhaseFromAngles (ball_state.h, eqs. (12)-(18)) from the trig already at hand, unchecked: a
+/// caller that has it (the join: the start's and, after the impulse, that of w) saves the sines
+/// and cosines and the boundary checks.
+PhaseVariables PhaseFromTrig(const AngleTrig& trig, double mu, double lambda);
+/// The impulse (impulse.h) between two states of the same axis given by their phase variables.
+Impulse ImpulseFromPhases(const AngleState& before, double mu, const AngleState& after, double mu_after,
+                          const PhaseVariables& p0, const PhaseVariables& p1);
 
 /// Horizontal angular velocity on the velocity ellipse of semi-axes (a, b) at the azimuth phi
 /// (cp = cos phi, sp = sin phi) and the phase w = phi - psi (cw = cos w, sw = sin w), section 2.1:

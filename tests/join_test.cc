@@ -57,6 +57,42 @@ TEST(Join, ReachesEveryT1TargetCheckedByIndependentIntegration) {
   }
 }
 
+// The three ways a join ends: the check rollout at the guess refined on the Taylor model is the
+// answer (a short arc: 0 iterations); the check misses the tolerance and Levenberg-Marquardt goes
+// on from it (the model's truncation error grows with the arc); no model (t sqrt(mu) > 0.2).
+// Each lands on its target, checked by an independent integration, with a Jacobian conditioning
+// that agrees with the one of the exact rollouts.
+TEST(Join, ModelCheckAndIterationPathsAllReachTheTarget) {
+  const BallModel model = BallModel::FromLambda(2.0);
+  const AngleState start{M_PI / 3, 0.4, 0.1};
+  const Eigen::Vector2d x0(0.3, -0.2);
+  struct Case {
+    double distance;
+    bool zero_iterations;
+  };
+  for (const Case c : {Case{0.05, true}, Case{0.15, false}, Case{0.35, false}}) {
+    for (int k = 0; k < 8; ++k) {
+      const double b = 2 * M_PI * k / 8 + 0.1;
+      const Eigen::Vector2d target = x0 + c.distance * Eigen::Vector2d(std::cos(b), std::sin(b));
+      const JoinSummary j = Join(JoinProblem{model, start, 1.0, x0, target});
+      ASSERT_EQ(j.status, JoinStatus::kConverged) << j.BriefReport();
+      EXPECT_EQ(j.iterations == 0, c.zero_iterations) << "distance " << c.distance << ": " << j.BriefReport();
+      EXPECT_LE(j.residual, 1e-12);
+      const MotionSample end = Arrive(model, start, 1.0, x0, j.delta_psi, j.t);
+      EXPECT_LT((end.x - target).norm(), 1e-12) << "distance " << c.distance << ", k = " << k;
+      // The same join with a tolerance no check reaches: the iteration on exact rollouts to
+      // round-off. Both answers are within 1e-12 of the target, so (s, t) agree to ~1e-12 / |J|.
+      JoinOptions tight;
+      tight.residual_tolerance = 1e-15;
+      const JoinSummary e = Join(JoinProblem{model, start, 1.0, x0, target}, tight);
+      EXPECT_GE(e.iterations, 1);
+      EXPECT_NEAR(e.delta_psi, j.delta_psi, 1e-9) << "distance " << c.distance << ", k = " << k;
+      EXPECT_NEAR(e.t, j.t, 1e-9);
+      EXPECT_NEAR(e.jacobian_conditioning, j.jacobian_conditioning, 1e-5);
+    }
+  }
+}
+
 TEST(Join, HomogeneousBallMovesStraightAtSpeedSqrtMu) {
   // lambda = 1: K = omega_h is constant, so x' is constant with |x'|^2 = mu (eq. (9)):
   // t = |target - x0| / sqrt(mu) exactly.

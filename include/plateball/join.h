@@ -61,11 +61,15 @@ struct JoinSummary {
   double delta_psi = 0.0;  ///< s of Lemma 2.1, in (-pi, pi]
   double t = 0.0;          ///< time of flight, >= 0
   double residual = 0.0;   ///< |x_s(t) - target|
-  int iterations = 0;      ///< solver iterations (each one rollout with sensitivities)
-  double initial_guess_residual = 0.0;  ///< |x - target| at the velocity-ellipse guess (27)-(28)
+  /// Levenberg-Marquardt iterations on rollouts with sensitivities; 0 when the first rollout (at
+  /// the guess refined on the Taylor model of a short arc) was already within the tolerance.
+  int iterations = 0;
+  /// |x - target| at the first point rolled out: the velocity-ellipse guess (27)-(28), refined on
+  /// a Taylor model of x(s, t) when the arc is short (t sqrt(mu) <= 0.2).
+  double initial_guess_residual = 0.0;
   double time_limit = 0.0;              ///< K1 |target - x0|: the local branch has t <= this
   /// |det J| / (|J_s| |J_t|) at the solution: sine of the angle between dx/ds and dx/dt
-  /// (0 = degenerate polar coordinates).
+  /// (0 = degenerate polar coordinates). dx/ds is the Taylor model's (to ~1e-6) when iterations = 0.
   double jacobian_conditioning = 0.0;
 
   Impulse impulse;             ///< the impulse at x0 (delta omega, plate velocity change)
