@@ -1,7 +1,5 @@
 #include "arc.h"
 
-#include <ceres/jet.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -45,19 +43,24 @@ ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, d
   return DirectionFor(MakeImpulseBasis(start, mu, lambda), s);
 }
 
+void ContactVelocityAndAcceleration(double lambda, const double* z, const double* k, double* w, double* acc) {
+  OmegaFromZK(z, k, lambda, w);
+  // d/dt of omega_h = K - (lambda - 1) v0 z_h along z' = omega x z (K is constant), with
+  // v0 = N / D, N = <K, z_h>, D = z3^2 + lambda |z_h|^2 (kinematics.h, OmegaFromZK).
+  const double dz[3] = {w[1] * z[2], -w[0] * z[2], w[0] * z[1] - w[1] * z[0]};
+  const double n = k[0] * z[0] + k[1] * z[1], d = z[2] * z[2] + lambda * (z[0] * z[0] + z[1] * z[1]);
+  const double dn = k[0] * dz[0] + k[1] * dz[1], dd = 2.0 * (z[2] * dz[2] + lambda * (z[0] * dz[0] + z[1] * dz[1]));
+  const double v0 = n / d, dv0 = (dn - v0 * dd) / d;
+  const double dw[2] = {-(lambda - 1.0) * (dv0 * z[0] + v0 * dz[0]), -(lambda - 1.0) * (dv0 * z[1] + v0 * dz[1])};
+  acc[0] = dw[1];  // x' = (omega_2, -omega_1)
+  acc[1] = -dw[0];
+}
+
 Eigen::Vector2d ContactAcceleration(double lambda, const Eigen::Vector3d& z, const Eigen::Vector2d& k) {
-  using J = ceres::Jet<double, 1>;
-  double wd[2];
-  const double zd[3] = {z.x(), z.y(), z.z()};
-  const double kd[2] = {k.x(), k.y()};
-  OmegaFromZK(zd, kd, lambda, wd);
-  // Directional derivative of omega(z, K) along z' = omega x z (K is constant).
-  J zj[3], kj[2], wj[2];
-  const double dz[3] = {wd[1] * zd[2], -wd[0] * zd[2], wd[0] * zd[1] - wd[1] * zd[0]};
-  for (int i = 0; i < 3; ++i) zj[i] = J(zd[i], 0), zj[i].v[0] = dz[i];
-  for (int i = 0; i < 2; ++i) kj[i] = J(kd[i]);
-  OmegaFromZK(zj, kj, lambda, wj);
-  return {wj[1].v[0], -wj[0].v[0]};
+  double w[2];
+  Eigen::Vector2d acc;
+  ContactVelocityAndAcceleration(lambda, z.data(), k.data(), w, acc.data());
+  return acc;
 }
 
 ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
@@ -69,12 +72,10 @@ ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vecto
   // maximum between two steps of a smooth arc is covered.
   double prev_v = -1.0, prev_a = -1.0, jump_v = 0.0, jump_a = 0.0;
   auto track = [&](const double* yy) {
-    const Eigen::Vector3d z(yy[0], yy[1], yy[2]);
-    double w[2];
-    const double kd[2] = {k.x(), k.y()};
-    OmegaFromZK(yy, kd, lambda, w);
+    double w[2], dw[2];
+    ContactVelocityAndAcceleration(lambda, yy, k.data(), w, dw);
     const double v = std::hypot(w[0], w[1]);
-    const double acc = ContactAcceleration(lambda, z, k).norm();
+    const double acc = std::sqrt(dw[0] * dw[0] + dw[1] * dw[1]);
     if (prev_v >= 0) {
       jump_v = std::max(jump_v, std::abs(v - prev_v));
       jump_a = std::max(jump_a, std::abs(acc - prev_a));

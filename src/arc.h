@@ -52,5 +52,8 @@ ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vecto
 
 /// x'' = d/dt (omega_2, -omega_1) at (z, K): the contact-point acceleration.
 Eigen::Vector2d ContactAcceleration(double lambda, const Eigen::Vector3d& z, const Eigen::Vector2d& k);
+/// omega_h (= (-x'_2, x'_1)) and x'' at (z[3], k[2]) together, x'' by differentiating OmegaFromZK by
+/// hand along z' = omega x z (one evaluation of omega_h for the speed and the acceleration).
+void ContactVelocityAndAcceleration(double lambda, const double* z, const double* k, double* w, double* acc);
 
 }  // namespace plateball::internal

@@ -14,8 +14,7 @@ CurveDerivativeBounds EstimateCurveDerivativeBounds(const SmoothCurve& curve, do
   double prev_v = 0.0, prev_a = 0.0, jump_v = 0.0, jump_a = 0.0;
   for (int i = 0; i < samples; ++i) {
     const double tau = a + (b - a) * i / (samples - 1);
-    const double v = curve.Derivative(tau).norm();
-    const double acc = curve.SecondDerivative(tau).norm();
+    const auto [v, acc] = curve.DerivativeNorms(tau);
     if (i > 0) {
       jump_v = std::max(jump_v, std::abs(v - prev_v));
       jump_a = std::max(jump_a, std::abs(acc - prev_a));

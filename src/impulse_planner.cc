@@ -110,6 +110,11 @@ struct PlanCursor {
   Eigen::Matrix3d a_ref, a_poly, a_imp;
   internal::RowMajor3x3 ref{};  // A(tau) integrated along the current piece
   double ref_dt = 0.0;          // its step size, carried from segment to segment
+  Eigen::Vector2d p = Eigen::Vector2d::Zero();  // p(tau_k): the last segment's end on this piece
+  // On a circle piece rolled in closed form: its radius |p'| and Rz(tau_k) (the last segment's
+  // Rz(tau_k+1)), each computed once instead of once per segment.
+  double circle_radius = 0.0;
+  Eigen::Matrix3d rz = Eigen::Matrix3d::Identity();
 };
 
 // "segment g (piece p, k = k): " and the like, for the failure messages.
@@ -161,18 +166,36 @@ internal::ArcEnd FlyArc(const BallModel& model, const JoinSummary& j, const Plan
 // w0 = (-rho, 0, 0), so A = Rz(tau) B with B' = hat(w0 - e3) B and
 //   A(tau_b) = Rz(tau_b) exp((tau_b - tau_a) hat(w0 - e3)) Rz(tau_a)^T A(tau_a);
 // a line rolls as RollAlongSegment. False for the other curves (and a reversed circle): integrated.
-bool RollInClosedForm(const SmoothCurve& curve, const PlanStep& s, internal::RowMajor3x3* ref) {
-  const Eigen::Matrix3d a = internal::MatrixFromRowMajor(ref->data());
+bool RollsInClosedForm(const SmoothCurve& curve) {
+  return curve.kind() == CurveKind::kLine || (curve.kind() == CurveKind::kCircle && !curve.reversed());
+}
+
+// The rotation by angle about e3.
+Eigen::Matrix3d RotationZ(double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  Eigen::Matrix3d r;
+  r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
+  return r;
+}
+
+// Rz(tau_k) and the radius for the closed form on a circle piece (RollInClosedForm carries Rz).
+void StartClosedFormPiece(const SmoothCurve& curve, double tau_begin, PlanCursor* cur) {
+  if (curve.kind() != CurveKind::kCircle) return;
+  cur->circle_radius = curve.DerivativeNorms(tau_begin)[0];
+  cur->rz = RotationZ(tau_begin);
+}
+
+bool RollInClosedForm(const SmoothCurve& curve, const PlanStep& s, PlanCursor* cur) {
+  if (!RollsInClosedForm(curve)) return false;
+  const Eigen::Matrix3d a = internal::MatrixFromRowMajor(cur->ref.data());
   if (curve.kind() == CurveKind::kLine) {
-    internal::RowMajorFromMatrix(RollAlongSegment(s.p_begin, s.p_end) * a, ref->data());
+    internal::RowMajorFromMatrix(RollAlongSegment(s.p_begin, s.p_end) * a, cur->ref.data());
     return true;
   }
-  if (curve.kind() != CurveKind::kCircle || curve.reversed()) return false;
-  const double rho = curve.Derivative(s.tau_begin).norm();
-  const Eigen::Matrix3d rz_a = Eigen::AngleAxisd(s.tau_begin, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Matrix3d rz_b = Eigen::AngleAxisd(s.tau_end, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Matrix3d b = ExpSO3((s.tau_end - s.tau_begin) * Eigen::Vector3d(-rho, 0.0, -1.0));
-  internal::RowMajorFromMatrix(rz_b * b * rz_a.transpose() * a, ref->data());
+  const Eigen::Matrix3d rz_b = RotationZ(s.tau_end);
+  const Eigen::Matrix3d b = ExpSO3((s.tau_end - s.tau_begin) * Eigen::Vector3d(-cur->circle_radius, 0.0, -1.0));
+  internal::RowMajorFromMatrix(rz_b * b * cur->rz.transpose() * a, cur->ref.data());
+  cur->rz = rz_b;
   return true;
 }
 
@@ -203,12 +226,24 @@ void IntegrateReference(const SmoothCurve& curve, const PlanOptions& options, co
 // The planned A(tau_k+1) (rolling along the curve: in closed form on circles and lines, else
 // integrated) and the polyline's Abar_k+1.
 void AdvanceReferences(const SmoothCurve& curve, const PlanOptions& options, PlanCursor* cur, PlanStep* s) {
-  if (!RollInClosedForm(curve, *s, &cur->ref)) IntegrateReference(curve, options, *s, cur);
+  if (!RollInClosedForm(curve, *s, cur)) IntegrateReference(curve, options, *s, cur);
   cur->a_ref = Reorthonormalize(internal::MatrixFromRowMajor(cur->ref.data()));
   cur->a_poly = Reorthonormalize(RollAlongSegment(s->p_begin, s->p_end) * cur->a_poly);
   s->A_planned = cur->a_ref;
   s->A_polyline = cur->a_poly;
   s->A_impulsive = cur->a_imp;
+}
+
+// max|p'| and max|p''| over [a, b]: constant on a line (|v|, 0) and a circle (rho, rho), so one
+// evaluation gives them (equal to the samples' estimate up to rounding, which these constants
+// only carry); sampled on the other curves.
+CurveDerivativeBounds PathDerivativeBounds(const SmoothCurve& curve, double a, double b, int samples) {
+  if (curve.kind() != CurveKind::kLine && curve.kind() != CurveKind::kCircle)
+    return EstimateCurveDerivativeBounds(curve, a, b, samples);
+  CurveDerivativeBounds out;
+  out.max_speed = curve.Derivative(a).norm();
+  out.max_acceleration = curve.kind() == CurveKind::kCircle ? out.max_speed : 0.0;
+  return out;
 }
 
 // The measured derivative maxima of the segment and its terms of the bounds.
@@ -217,7 +252,7 @@ void AddBounds(const SmoothCurve& curve, const internal::ArcEnd& arc, const Join
   SegmentMeasures m;
   m.h = s->tau_end - s->tau_begin;
   m.chord = (s->p_end - s->p_begin).norm();
-  m.path = EstimateCurveDerivativeBounds(curve, s->tau_begin, s->tau_end, options.bound_samples);
+  m.path = PathDerivativeBounds(curve, s->tau_begin, s->tau_end, options.bound_samples);
   m.arc_time = j.t;
   m.arc_max_speed = arc.max_speed;
   m.arc_max_acceleration = arc.max_acceleration;
@@ -232,8 +267,8 @@ void AddBounds(const SmoothCurve& curve, const internal::ArcEnd& arc, const Join
 // the bounds. False (with out->status and out->message set) when the plan cannot go on.
 bool PlanSegment(const BallModel& model, const SmoothCurve& curve, const std::vector<double>& factors,
                  const PlanOptions& options, PlanCursor* cur, PlanStep* s, PlanSummary* out) {
-  s->p_begin = curve.Value(s->tau_begin);
-  s->p_end = curve.Value(s->tau_end);
+  s->p_begin = cur->p;
+  s->p_end = cur->p = curve.Value(s->tau_end);
   s->t_impulse = cur->time;
   s->state_before = cur->state;
   s->angles_before = cur->angles;
@@ -310,6 +345,8 @@ PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, d
     const std::vector<double>& taus = partition[piece];
     internal::RowMajorFromMatrix(cur.a_ref, cur.ref.data());
     cur.ref_dt = taus[1] - taus[0];
+    cur.p = curve.Value(taus[0]);
+    StartClosedFormPiece(curve, taus[0], &cur);
     for (std::size_t k = 0; k + 1 < taus.size(); ++k, ++g) {
       PlanStep s;
       s.piece = piece;

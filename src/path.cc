@@ -269,6 +269,17 @@ Eigen::Vector2d SmoothCurve::Derivative(double s) const {
 }
 Eigen::Vector2d SmoothCurve::SecondDerivative(double s) const { return RawSecondDerivative(reversed_ ? -s : s); }
 
+std::array<double, 2> SmoothCurve::DerivativeNorms(double s) const {
+  const double tau = reversed_ ? -s : s;  // reversal flips p' only: the norms are those at tau
+  if (kind_ != CurveKind::kCircle && kind_ != CurveKind::kEllipse)
+    return {RawDerivative(tau).norm(), RawSecondDerivative(tau).norm()};
+  const double sn = std::sin(tau), cs = std::cos(tau);  // RawDerivative's and RawSecondDerivative's formulas
+  if (kind_ == CurveKind::kCircle)
+    return {(scale_ * Eigen::Vector2d(-sn, cs)).norm(), (-scale_ * Eigen::Vector2d(cs, sn)).norm()};
+  return {(rot_ * Eigen::Vector2d(-vec_.x() * sn, vec_.y() * cs)).norm(),
+          (rot_ * Eigen::Vector2d(-vec_.x() * cs, -vec_.y() * sn)).norm()};
+}
+
 double SmoothCurve::ArcLength(double a, double b) const {
   RequireFinite("a", a);
   RequireFinite("b", b);

@@ -81,6 +81,27 @@ TEST(ImpulsePlanner, PlannedOrientationOnACircleMatchesTheClosedForm) {
   }
 }
 
+TEST(ImpulsePlanner, PathMaximaPerStepMatchTheSampledEstimate) {
+  // Lines and circles take max|p'|, max|p''| in closed form (constants), the other curves are
+  // sampled: every step agrees with EstimateCurveDerivativeBounds to rounding, and p_begin (carried
+  // from the previous step) is p(tau_begin).
+  const std::vector<Path> paths{T2Circle(),
+                                Path({SmoothCurve::Circle({1, 0}, 1.5, M_PI, 0.0)}),  // reversed
+                                Path({SmoothCurve::Line({0, 0}, {1.2, -0.7})}),
+                                Path({SmoothCurve::Ellipse({0, 0}, {2, 1}, 0.3, 0, 2 * M_PI)})};
+  for (const Path& path : paths) {
+    const PlanSummary plan = PlanUniform(path, 24);
+    ASSERT_TRUE(plan.IsSolutionUsable()) << plan.message;
+    const SmoothCurve& curve = path.pieces()[0];
+    for (const PlanStep& s : plan.steps) {
+      const CurveDerivativeBounds m = EstimateCurveDerivativeBounds(curve, s.tau_begin, s.tau_end, 5);
+      EXPECT_NEAR(s.path_max_speed, m.max_speed, 1e-13 * m.max_speed);
+      EXPECT_NEAR(s.path_max_acceleration, m.max_acceleration, 1e-13 * (1 + m.max_acceleration));
+      EXPECT_EQ(s.p_begin, curve.Value(s.tau_begin));
+    }
+  }
+}
+
 TEST(ImpulsePlanner, PolylineOrientationIsTheProductOfSegmentRolls) {
   const Path path({SmoothCurve::Lemniscate({0, 0}, 2, 0, 0, 2 * M_PI)});
   const PlanSummary plan = PlanUniform(path, 20);

@@ -42,6 +42,22 @@ TEST(Path, DerivativesAgreeWithFiniteDifferences) {
   }
 }
 
+TEST(Path, DerivativeNormsEqualTheNormsOfTheDerivatives) {
+  // DerivativeNorms shares one sine and cosine on circles and ellipses (the plan's bound samples);
+  // it must give Derivative(tau).norm() and SecondDerivative(tau).norm() on every kind, reversed too.
+  std::vector<SmoothCurve> curves = AllKinds();
+  curves.push_back(SmoothCurve::Circle({1, -1}, 2.5, 4.0, 0.3));
+  curves.push_back(SmoothCurve::Ellipse({0.5, 0}, {2, 1}, 0.7, 2 * M_PI, 0));
+  for (const SmoothCurve& c : curves) {
+    for (int i = 0; i <= 10; ++i) {
+      const double tau = c.Begin() + (c.End() - c.Begin()) * i / 10.0;
+      const std::array<double, 2> norms = c.DerivativeNorms(tau);
+      EXPECT_DOUBLE_EQ(norms[0], c.Derivative(tau).norm()) << ToString(c.kind()) << " tau " << tau;
+      EXPECT_DOUBLE_EQ(norms[1], c.SecondDerivative(tau).norm()) << ToString(c.kind()) << " tau " << tau;
+    }
+  }
+}
+
 TEST(Path, LengthsMatchClosedForms) {
   // Circle arc: radius * angle. Ellipse: 4 a E(e) (complete elliptic integral, Boost.Math).
   // Lemniscate of Bernoulli of half-width s: 2 varpi s, varpi = 2.622057554292119810464839589891.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -56,6 +57,9 @@ class SmoothCurve {
   Eigen::Vector2d Value(double tau) const;
   Eigen::Vector2d Derivative(double tau) const;
   Eigen::Vector2d SecondDerivative(double tau) const;
+  /// {|p'(tau)|, |p''(tau)|}, equal to Derivative(tau).norm() and SecondDerivative(tau).norm()
+  /// but with one sine and cosine on a circle or an ellipse (the bounds sample them per segment).
+  std::array<double, 2> DerivativeNorms(double tau) const;
   Eigen::Vector2d StartPoint() const { return Value(tau_begin_); }
   Eigen::Vector2d EndPoint() const { return Value(tau_end_); }
   /// Arc length between parameters a and b (negative for b < a): adaptive Gauss-Kronrod (G15/K31)
