@@ -92,7 +92,7 @@ constexpr double kMinTolerance = 1e-15;   ///< integration tolerances
 constexpr int kMaxPartitionSteps = 10000;   ///< partition n (steps of a plan), impulses of a plan
 constexpr int kMaxSamples = 100000;         ///< samples of a simulation, sample points of a path
 constexpr double kMaxIsoparallelChord = 40;  ///< |goal - start| of the isoparallel problem
-constexpr double kMaxStartsTimesChord = 1e5;  ///< multi-start: starts x |goal - start|
+constexpr double kMaxStartsTimesChord = 3.5e5;  ///< multi-start: starts x |goal - start| (default 8192 x chord 40 fits)
 constexpr double kMaxLengthCapFactor = 10;   ///< family search (= IsoparallelOptions::kMaxLengthCapFactor)
 
 /// 1 <= n <= hi for a count.

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -173,9 +174,9 @@ TEST(Isoparallel, Figure7DenserIndependentSearchFindsNothingShorter) {
 }
 
 TEST(Isoparallel, RotationProblemDenserIndependentSearchFindsNothingShorter) {
-  // A general target (shooting): the golden problem's shortest path, then 4x the starts with
-  // another seed over paths up to 1.5x that length: nothing shorter. (64 starts used to report
-  // 9.449 here: the multi-start covers the parameter space only statistically.)
+  // A general target (shooting): the golden problem's shortest path, then the most starts allowed
+  // (the same Halton sequence continued: 10,000 points) over paths up to 1.5x that length: nothing
+  // shorter. (64 starts used to report 9.449 here: the multi-start is a sample.)
   const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
   const IsoparallelProblem q = IsoparallelSetupFor(p).problem;
   const IsoparallelSummary s = SolveIsoparallel(IsoparallelSetupFor(p).problem);
@@ -183,8 +184,7 @@ TEST(Isoparallel, RotationProblemDenserIndependentSearchFindsNothingShorter) {
   ASSERT_EQ(s.method, IsoparallelMethod::kShooting);
   const double shortest = s.Shortest().length;
   IsoparallelOptions dense;
-  dense.starts = 4 * IsoparallelOptions{}.starts;
-  dense.seed = 987654321;
+  dense.starts = IsoparallelOptions::kMaxStarts;
   dense.max_length = 1.5 * shortest;
   dense.length_cap_factor = 1.0;
   const IsoparallelSummary d = SolveIsoparallel(q, dense);
@@ -207,7 +207,7 @@ TEST(Isoparallel, RotationProblemDefaultFindsTheShortestSolutionsOfADenseSearch)
     for (const IsoparallelSolution& sol : s.solutions) found = found || std::abs(sol.length - length) < 1e-6;
     EXPECT_TRUE(found) << length << "\n" << s.FullReport();
   }
-  EXPECT_GE(s.solutions.size(), 27u) << s.FullReport();
+  EXPECT_GE(s.solutions.size(), 29u) << s.FullReport();  // 30 known (docs/paper_notes.md)
 }
 
 TEST(Isoparallel, NonTrivialTargetIsSolvedAndVerified) {
@@ -247,7 +247,9 @@ TEST(Isoparallel, StraightSegmentTargetGivesTheSegment) {
   IsoparallelProblem p;
   p.goal = {1.2, -0.7};
   p.goal_orientation = RollAlongSegment(p.start, p.goal);
-  const IsoparallelSummary s = SolveIsoparallel(p);
+  IsoparallelOptions o;
+  o.starts = 1024;  // the shortest only
+  const IsoparallelSummary s = SolveIsoparallel(p, o);
   ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
   EXPECT_NEAR(s.Shortest().length, p.goal.norm(), kLengthTol);
 }
@@ -269,6 +271,44 @@ TEST(Isoparallel, SameSeedGivesIdenticalResultsWithAnyThreadCount) {
       EXPECT_EQ(a.solutions[i].orientation_residual, b.solutions[i].orientation_residual);
     }
   }
+}
+
+// General targets: the starts are the unshifted Halton points, so every seed gives the same
+// solutions, bit for bit (issue 15). At the identity target the shooting (a comparison with the
+// enumeration) still shifts its starts by the seed: there seeds 1 and 2 differ, so the check on
+// the general target is not vacuous.
+TEST(Isoparallel, GeneralTargetSolutionsDoNotDependOnTheSeed) {
+  const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
+  const IsoparallelSetup setup = IsoparallelSetupFor(p);
+  IsoparallelOptions o = setup.options;
+  o.starts = 96;
+  o.seed = 1;
+  const IsoparallelSummary a = SolveIsoparallel(setup.problem, o);
+  ASSERT_TRUE(a.IsSolutionUsable());
+  EXPECT_FALSE(a.seeded);
+  for (std::uint64_t seed = 2; seed <= 8; ++seed) {
+    o.seed = seed;
+    const IsoparallelSummary b = SolveIsoparallel(setup.problem, o);
+    ASSERT_EQ(a.solutions.size(), b.solutions.size()) << "seed " << seed;
+    EXPECT_EQ(a.local_solves, b.local_solves) << "seed " << seed;
+    for (std::size_t i = 0; i < a.solutions.size(); ++i) {
+      const IsoparallelSolution &x = a.solutions[i], &y = b.solutions[i];
+      EXPECT_EQ(x.length, y.length) << "seed " << seed;
+      EXPECT_EQ(x.parameters.rate, y.parameters.rate) << "seed " << seed;
+      EXPECT_EQ(x.parameters.modulus, y.parameters.modulus) << "seed " << seed;
+      EXPECT_EQ(x.parameters.phase, y.parameters.phase) << "seed " << seed;
+      EXPECT_EQ(x.parameters.heading_w, y.parameters.heading_w) << "seed " << seed;
+      EXPECT_EQ(x.orientation_residual, y.orientation_residual) << "seed " << seed;
+    }
+  }
+  IsoparallelOptions identity;
+  identity.enumerate_families = false;
+  identity.starts = 24;
+  const IsoparallelSummary c = SolveIsoparallel(Figure7(), identity);
+  identity.seed = 2;
+  const IsoparallelSummary d = SolveIsoparallel(Figure7(), identity);
+  EXPECT_TRUE(c.seeded);
+  EXPECT_NE(c.local_solves, d.local_solves) << "identity-target shooting: the seed shifts the starts";
 }
 
 TEST(Isoparallel, InvalidInputNamesTheField) {
