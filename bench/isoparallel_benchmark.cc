@@ -10,7 +10,11 @@
 // comparison (its solution count grows with the number of starts).
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
+
 #include "plateball/isoparallel.h"
+#include "plateball/so3.h"
 
 namespace {
 
@@ -65,7 +69,32 @@ void BM_T4IsoparallelFigure7Shooting(benchmark::State& state) {
   Report(state, options, summary);
 }
 
+// T4b: the problem of problems/isoparallel_rotation.json as in the file (the benchmark does not
+// read files): (0, 0) to (2, 1), start orientation a quarter turn about e1, the goal orientation's
+// quaternion; the default options (deterministic starts for a target other than the identity).
+void BM_T4bIsoparallelRotation(benchmark::State& state) {
+  IsoparallelProblem problem;
+  problem.goal = {2.0, 1.0};
+  problem.start_orientation = ExpSO3(Eigen::Vector3d(M_PI / 2, 0.0, 0.0));
+  problem.goal_orientation =
+      Eigen::Quaterniond(0.409347959705932, 0.757852860408873, 0.435631125878677, -0.261378675527206)
+          .normalized()
+          .toRotationMatrix();
+  IsoparallelOptions options;
+  options.threads = 1;
+  IsoparallelSummary summary;
+  for (auto _ : state) {
+    summary = SolveIsoparallel(problem, options);
+    benchmark::DoNotOptimize(summary.solutions.data());
+  }
+  Report(state, options, summary);
+  state.counters["starts"] = options.starts;  // shooting, not the family enumeration
+  state.counters["seed"] = 0;                 // not used for this target
+}
+
 }  // namespace
+
+BENCHMARK(BM_T4bIsoparallelRotation)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 BENCHMARK(BM_T4IsoparallelFigure7)
     ->ArgNames({"threads"})
