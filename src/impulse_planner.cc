@@ -170,14 +170,6 @@ bool RollsInClosedForm(const SmoothCurve& curve) {
   return curve.kind() == CurveKind::kLine || (curve.kind() == CurveKind::kCircle && !curve.reversed());
 }
 
-// The rotation by angle about e3.
-Eigen::Matrix3d RotationZ(double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  Eigen::Matrix3d r;
-  r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
-  return r;
-}
-
 // Rz(tau_k) and the radius for the closed form on a circle piece (RollInClosedForm carries Rz).
 void StartClosedFormPiece(const SmoothCurve& curve, double tau_begin, PlanCursor* cur) {
   if (curve.kind() != CurveKind::kCircle) return;
