@@ -39,16 +39,35 @@ struct ArcEnd {
   Eigen::Vector3d z;                              ///< axis at t (renormalised)
   Eigen::Vector2d dx = Eigen::Vector2d::Zero();   ///< x(t) - x(0)
   Eigen::Matrix3d phi = Eigen::Matrix3d::Identity();  ///< A(t) A(0)^-1 (when asked)
-  /// max |x'| over the arc: at the accepted steps plus the largest change between neighbours.
+  /// max |x'| over the arc (ArcDerivativeMaxima: exact up to rounding).
   double max_speed = 0.0;
-  /// max |x''| = |omega_h'| over the arc, estimated the same way.
+  /// max |x''| = |omega_h'| over the arc (ArcDerivativeMaxima: sampled, plus the largest change).
   double max_acceleration = 0.0;
   int steps = 0;
 };
 
-/// Integrates (z, x, Phi) over [0, t] (t >= 0) with dopri5. Throws std::runtime_error on failure.
+/// Integrates (z, x, Phi) over [0, t] (t >= 0). Without `step`: odeint's adaptive dopri5. With it
+/// (the planner, whose consecutive arcs are alike): equal Fehlberg 7(8) steps of about *step
+/// (fehlberg78.h, each within the tolerances; lengthened when their error allows), adaptive
+/// Fehlberg 7(8) when a step is refused or *step <= 0; *step becomes the step to try next.
+/// Throws std::runtime_error on failure.
 ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
-                    const IntegrationOptions& options);
+                    const IntegrationOptions& options, double* step = nullptr);
+
+/// The largest |x'| and |x''| over a free arc of length t >= 0 from (z0, K), without integrating:
+/// with omega_3 = 0, v0^2 (z3^2 + lambda |z_h|^2) is conserved and z3(t) = z3(0) cos(b t) +
+/// z3'(0) / b sin(b t) (b = sqrt(mu)), so |x'|^2 = mu - (lambda - 1) v0^2 and |x''|^2 are
+/// functions of z3^2 (docs/paper_notes.md, "Constants of Lemmas 2.3-2.4"). |x'|^2 decreases in
+/// z3^2, so max |x'| is exact (at the least z3^2 of the arc); max |x''| is the largest of N + 1
+/// equally spaced samples plus the largest change between neighbours, N = b t / kArcSamplePhase
+/// rounded up, at least 2 and at most kArcAccelerationSamples.
+struct ArcMaxima {
+  double speed = 0.0, acceleration = 0.0;
+  double mu = 0.0;  ///< the arc's energy, |omega x z|^2 + lambda v0^2
+};
+constexpr int kArcAccelerationSamples = 16;
+constexpr double kArcSamplePhase = 0.05;
+ArcMaxima ArcDerivativeMaxima(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t);
 
 /// x'' = d/dt (omega_2, -omega_1) at (z, K): the contact-point acceleration.
 Eigen::Vector2d ContactAcceleration(double lambda, const Eigen::Vector3d& z, const Eigen::Vector2d& k);

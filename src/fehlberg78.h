@@ -9,6 +9,7 @@
 // tolerances given.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -70,19 +71,24 @@ double Fehlberg78Step(const Rhs& rhs, std::array<double, N>& y, double t, double
 /// Integrates y from t0 to t1 in n >= 1 equal Fehlberg 7(8) steps. Returns true when every step
 /// met the tolerances of `options` and the state stayed finite; otherwise false with y unchanged
 /// (the caller integrates adaptively instead).
+/// *largest_error (when given): the largest error measure of the steps (<= 1 on success), from
+/// which a caller may lengthen its next steps.
 template <std::size_t N, typename Rhs>
 bool IntegrateEqualSteps(const Rhs& rhs, std::array<double, N>& y, double t0, double t1, int n,
-                         const IntegrationOptions& options) {
+                         const IntegrationOptions& options, double* largest_error = nullptr) {
   std::array<double, N> w = y;
   const double h = (t1 - t0) / n;
+  double largest = 0.0;
   for (int i = 0; i < n; ++i) {
     const double err =
         Fehlberg78Step(rhs, w, t0 + i * h, h, options.absolute_tolerance, options.relative_tolerance);
     if (!(err <= 1.0)) return false;  // also false for a NaN error
+    largest = std::max(largest, err);
   }
   for (double v : w)
     if (!std::isfinite(v)) return false;
   y = w;
+  if (largest_error != nullptr) *largest_error = largest;
   return true;
 }
 

@@ -378,9 +378,10 @@ std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, dou
 // The impulse s and the state on arrival (z, K at the end of the arc, the contact point x). g: the
 // start's trig.
 // cos_w, sin_w: of w = phi - (psi + s) after the impulse when at hand (else NaN: computed here).
+// end_angles: false leaves angles_after unset (the planner takes them from its own arc).
 void FinishState(const BallModel& model, const internal::AngleTrig& g, double s, const Eigen::Vector3d& z,
                  const Eigen::Vector2d& k, const Eigen::Vector2d& x, JoinSummary* out, double cos_w = NAN,
-                 double sin_w = NAN) {
+                 double sin_w = NAN, bool end_angles = true) {
   // EnergyPreservingImpulse (impulse.h) with each sine and cosine once: theta and phi are those of
   // the start, only w = phi - psi changes.
   internal::RequireEnergy("mu", out->mu);  // as EnergyPreservingImpulse would (a ball too slow to join)
@@ -396,7 +397,7 @@ void FinishState(const BallModel& model, const internal::AngleTrig& g, double s,
                                              internal::PhaseFromTrig(trig, out->mu, model.lambda()));
   out->state_after.z = z.normalized();
   out->state_after.omega = OmegaFromMomentum(out->state_after.z, k, model);
-  out->angles_after = AnglesFromState(out->state_after, model);
+  if (end_angles) out->angles_after = AnglesFromState(out->state_after, model);
   out->x_after = x;
 }
 
@@ -458,7 +459,8 @@ JoinSummary Join(const JoinProblem& problem, const JoinOptions& options) {
 namespace internal {
 
 JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduced, double mu,
-                          const Eigen::Vector2d& x0, const Eigen::Vector2d& target, const JoinOptions& options) {
+                          const Eigen::Vector2d& x0, const Eigen::Vector2d& target, const JoinOptions& options,
+                          bool end_angles) {
   const double lambda = model.lambda();
   JoinSummary out;
   out.message.clear();  // filled only when the join does not converge
@@ -504,7 +506,7 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
   }
   // After a check within the tolerance, the trig of the impulse is the check's (guess.p unchanged).
   FinishState(model, trig, out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector(), &out,
-              checked ? guess.cos_w : NAN, checked ? guess.sin_w : NAN);
+              checked ? guess.cos_w : NAN, checked ? guess.sin_w : NAN, end_angles);
   out.message = LocalFailure(out, options, dist);
   out.status = out.message.empty() ? JoinStatus::kConverged : JoinStatus::kTargetBeyondLocalRadius;
   return out;
