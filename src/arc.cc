@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dopri5.h"
 #include "dynamics.h"
 #include "fehlberg78.h"
 
@@ -97,25 +98,65 @@ Z3Motion MotionOfZ3(double lambda, const Eigen::Vector3d& z, const Eigen::Vector
   return m;
 }
 
-// Arcs shorter than this (t sqrt(mu), about the distance rolled) take one or two Dormand-Prince
+// Arcs shorter than this (t sqrt(mu), about the distance rolled) take one or a few Dormand-Prince
 // 5(4) steps at tolerance 1e-12, cheaper than one Fehlberg 7(8) step (13 evaluations); longer
 // ones fewer evaluations with Fehlberg 7(8) (T2 n = 16: 61 dopri5 steps per arc, 4 rkf78 ones).
 constexpr double kShortArc = 0.05;
+constexpr int kMaxEqualArcSteps = 64;
+// The error measure the equal steps aim at: close to 1 on short arcs (consecutive arcs are near
+// identical there and a refused dopri5 step costs little), with a margin on long ones (the state
+// changes more from arc to arc, and a refused step costs its Fehlberg 7(8) stages and the arc's
+// adaptive integration).
+constexpr double kShortTarget = 0.97, kLongTarget = 0.5;
 
-// Equal Fehlberg 7(8) steps of about *step over [0, t]; false (y unchanged) when a step is
-// refused or more than kMaxEqualArcSteps (or options.max_steps) would be needed. On success *step is the step for the
-// next arc: this one's, lengthened as far as its error allows (error ~ h^8, with a margin).
-constexpr double kMaxEqualArcSteps = 64;
-bool EqualArcSteps(const FullRhs& rhs, FullState* y, double t, const IntegrationOptions& options, double* step,
-                   int* steps) {
-  if (!(*step > 0)) return false;
-  const double n = std::ceil(t / *step - 1e-9);
+// The fewest equal steps of a method of order `order` (error ~ h^(order + 1)) over t whose
+// error, predicted from the last arc's (steps of h with the largest error measure err), is at
+// most `target`; 0 when none up to kMaxEqualArcSteps.
+int PredictedSteps(const EqualStepHint& last, double t, int order, double target) {
+  const double err = std::max(last.err, 1e-6);
+  for (int n = 1; n <= kMaxEqualArcSteps; ++n) {
+    const double r = t / (n * last.h);
+    double power = r;
+    for (int i = 0; i < order; ++i) power *= r;
+    if (err * power <= target) return n;
+  }
+  return 0;
+}
+
+// The arc in equal steps (Fehlberg 7(8), or on a short arc hand-written Dormand-Prince 5(4),
+// dopri5.h: odeint's tableau and error measure without its stepper's overhead), as few as the
+// last arc's error predicts; false (y unchanged) when a step is refused, no hint is at hand or too
+// many steps (or more than options.max_steps) would be needed. On success *hint is this arc's.
+bool EqualArcSteps(const FullRhs& rhs, FullState* y, double t, bool short_arc, const IntegrationOptions& options,
+                   EqualStepHint* hint, int* steps) {
+  const int n = !(hint->h > 0) ? (short_arc ? 1 : 0) : PredictedSteps(*hint, t, short_arc ? 4 : 7, short_arc ? kShortTarget : kLongTarget);
+  if (n == 0 || n > options.max_steps) return false;
   double err = 0.0;
-  if (!(n <= kMaxEqualArcSteps && n <= options.max_steps) || !IntegrateEqualSteps(rhs, *y, 0.0, t, static_cast<int>(n), options, &err))
+  if (short_arc) {
+    const auto dopri5 = [&](FullState& w, double t0, double dt) {
+      return DormandPrince5Step(rhs, w, t0, dt, options.absolute_tolerance, options.relative_tolerance);
+    };
+    if (!EqualSteps(dopri5, *y, 0.0, t, n, &err)) return false;
+  } else if (!IntegrateEqualSteps(rhs, *y, 0.0, t, n, options, &err)) {
     return false;
-  *steps = static_cast<int>(n);
-  *step = t / n * (err > 0 ? std::min(1.5, 0.9 * std::pow(err, -0.125)) : 1.5);
+  }
+  *hint = {t / n, err};
+  *steps = n;
   return true;
+}
+
+// The arc adaptively (odeint's dopri5 or Fehlberg 7(8)) from the step dt0; returns the largest
+// step taken.
+template <typename Stepper>
+double AdaptiveArc(const FullRhs& rhs, FullState* y, double t, double dt0, const IntegrationOptions& options,
+                   int* steps) {
+  double last = 0.0, largest = 0.0;
+  IntegrateAdaptive<Stepper>(rhs, *y, 0.0, t, dt0, options, [&](double tt, const FullState&) {
+    largest = std::max(largest, tt - last);
+    last = tt;
+    ++*steps;
+  });
+  return largest;
 }
 
 }  // namespace
@@ -148,7 +189,7 @@ ArcMaxima ArcDerivativeMaxima(double lambda, const Eigen::Vector3d& z0, const Ei
 }
 
 ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
-                    const IntegrationOptions& options, double* step) {
+                    const IntegrationOptions& options, ArcStepHints* hints) {
   namespace odeint = boost::numeric::odeint;
   const FullRhs rhs{lambda, {k.x(), k.y()}};
   FullState y = InitialFullState(z0);
@@ -156,17 +197,19 @@ ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vecto
   const ArcMaxima maxima = ArcDerivativeMaxima(lambda, z0, k, t);
   out.max_speed = maxima.speed;
   out.max_acceleration = maxima.acceleration;
-  if (t > 0 && (step == nullptr || t * std::sqrt(maxima.mu) <= kShortArc)) {
-    IntegrateAdaptive(rhs, y, 0.0, t, t, options, [&](double, const FullState&) { ++out.steps; });
-  } else if (t > 0 && !EqualArcSteps(rhs, &y, t, options, step, &out.steps)) {
-    double last = 0.0, largest = 0.0;
-    IntegrateAdaptive<odeint::runge_kutta_fehlberg78<FullState>>(
-        rhs, y, 0.0, t, *step > 0 ? std::min(*step, t) : t, options, [&](double tt, const FullState&) {
-          largest = std::max(largest, tt - last);
-          last = tt;
-          ++out.steps;
-        });
-    *step = largest;
+  const bool short_arc = t * std::sqrt(maxima.mu) <= kShortArc;
+  if (t > 0 && hints == nullptr) {
+    AdaptiveArc<odeint::runge_kutta_dopri5<FullState>>(rhs, &y, t, t, options, &out.steps);
+  } else if (t > 0) {
+    EqualStepHint& hint = short_arc ? hints->dopri5 : hints->fehlberg78;
+    if (!EqualArcSteps(rhs, &y, t, short_arc, options, &hint, &out.steps)) {
+      // Adaptively from the hinted step; its largest step is the next hint (error taken as 1).
+      const double dt0 = hint.h > 0 ? std::min(hint.h, t) : t;
+      const double largest =
+          short_arc ? AdaptiveArc<odeint::runge_kutta_dopri5<FullState>>(rhs, &y, t, dt0, options, &out.steps)
+                    : AdaptiveArc<odeint::runge_kutta_fehlberg78<FullState>>(rhs, &y, t, dt0, options, &out.steps);
+      hint = {largest, 1.0};
+    }
   }
   out.z = Eigen::Vector3d(y[0], y[1], y[2]).normalized();
   out.dx = {y[3], y[4]};

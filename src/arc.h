@@ -46,13 +46,24 @@ struct ArcEnd {
   int steps = 0;
 };
 
-/// Integrates (z, x, Phi) over [0, t] (t >= 0). Without `step`: odeint's adaptive dopri5. With it
-/// (the planner, whose consecutive arcs are alike): equal Fehlberg 7(8) steps of about *step
-/// (fehlberg78.h, each within the tolerances; lengthened when their error allows), adaptive
-/// Fehlberg 7(8) when a step is refused or *step <= 0; *step becomes the step to try next.
+/// The steps a caller integrating many similar arcs (the planner) carries from arc to arc.
+struct EqualStepHint {
+  double h = 0.0;    ///< the last arc's step (0: none yet)
+  double err = 0.0;  ///< its largest error measure (<= 1)
+};
+struct ArcStepHints {
+  EqualStepHint fehlberg78;  ///< long arcs' equal Fehlberg 7(8) steps
+  EqualStepHint dopri5;      ///< short arcs' equal Dormand-Prince 5(4) steps
+};
+
+/// Integrates (z, x, Phi) over [0, t] (t >= 0). Without `hints`: odeint's adaptive dopri5. With
+/// them (the planner, whose consecutive arcs are alike): as few equal steps as the last arc's
+/// error predicts (arc.cc: hand-written Fehlberg 7(8) on long arcs, Dormand-Prince 5(4) on short
+/// ones, each step within the tolerances), odeint's adaptive stepper of the same method when a
+/// step is refused; the hints become this arc's steps.
 /// Throws std::runtime_error on failure.
 ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
-                    const IntegrationOptions& options, double* step = nullptr);
+                    const IntegrationOptions& options, ArcStepHints* hints = nullptr);
 
 /// The largest |x'| and |x''| over a free arc of length t >= 0 from (z0, K), without integrating:
 /// with omega_3 = 0, v0^2 (z3^2 + lambda |z_h|^2) is conserved and z3(t) = z3(0) cos(b t) +

@@ -110,7 +110,8 @@ struct PlanCursor {
   Eigen::Matrix3d a_ref, a_poly, a_imp;
   internal::RowMajor3x3 ref{};  // A(tau) integrated along the current piece
   double ref_dt = 0.0;          // its step size, carried from segment to segment
-  double arc_step = 0.0;        // the free arcs' Fehlberg 7(8) step, carried from arc to arc
+  internal::ArcStepHints arc_steps;  // the free arcs' integration steps, carried from arc to arc
+  internal::JoinCarry join_carry{false, 0.0};  // the joins' step; no arrival angles (FlyArc's)
   Eigen::Vector2d p = Eigen::Vector2d::Zero();  // p(tau_k): the last segment's end on this piece
   // On a circle piece rolled in closed form: its radius |p'| and Rz(tau_k) (the last segment's
   // Rz(tau_k+1)), each computed once instead of once per segment.
@@ -149,7 +150,7 @@ internal::ArcEnd FlyArc(const BallModel& model, const JoinSummary& j, const Plan
   const BallState after_impulse = j.impulse.state_after;
   const Eigen::Vector2d k_mom = ConservedMomentum(after_impulse, model);
   const internal::ArcEnd arc =
-      internal::IntegrateArc(model.lambda(), after_impulse.z, k_mom, j.t, options.integration, &cur->arc_step);
+      internal::IntegrateArc(model.lambda(), after_impulse.z, k_mom, j.t, options.integration, &cur->arc_steps);
   cur->x += arc.dx;
   cur->a_imp = Reorthonormalize(arc.phi * cur->a_imp);
   cur->state = {arc.z, OmegaFromMomentum(arc.z, k_mom, model)};
@@ -269,7 +270,7 @@ bool PlanSegment(const BallModel& model, const SmoothCurve& curve, const std::ve
   ApplyEnergyChanges(model, factors, cur, s);
   const JoinSummary j = internal::ConnectPoints(model, s->angles_before, cur->mu, cur->x, s->p_end, options.join,
                                                 options.reach_fallback ? &options.reach : nullptr,
-                                                &s->reached_globally, /*end_angles=*/false);
+                                                &s->reached_globally, &cur->join_carry);
   s->join_status = j.status;
   s->join_residual = j.residual;
   s->join_iterations = j.iterations;

@@ -97,8 +97,8 @@ TEST(ArcDerivativeMaxima, NeverBelowADenseIndependentSampling) {
         // 16 samples are coarser).
         EXPECT_LE(m.acceleration, (t < 3 ? 1.5 : 3.0) * a + 1e-12);
         // The planner's arcs (equal Fehlberg 7(8) steps) report the same maxima.
-        double step = 0.1;
-        const plateball::internal::ArcEnd arc = plateball::internal::IntegrateArc(lambda, z0, k, t, {}, &step);
+        plateball::internal::ArcStepHints hints{{0.1, 0.5}, {0.1, 0.5}};
+        const plateball::internal::ArcEnd arc = plateball::internal::IntegrateArc(lambda, z0, k, t, {}, &hints);
         EXPECT_EQ(arc.max_speed, m.speed);
         EXPECT_EQ(arc.max_acceleration, m.acceleration);
       }
@@ -115,15 +115,13 @@ TEST(IntegrateArc, EqualFehlbergStepsAgreeWithAdaptiveDopri5) {
   const Eigen::Vector2d k(0.6, 0.45);
   for (double hint : {0.0, 5.0, 1e-3, 0.2}) {
     for (double t : {0.01, 0.3, 1.1, 4.0}) {
-      double step = hint;
-      const plateball::internal::ArcEnd a = plateball::internal::IntegrateArc(lambda, z0, k, t, {}, &step);
+      plateball::internal::ArcStepHints hints{{hint, 0.5}, {hint, 0.5}};
+      const plateball::internal::ArcEnd a = plateball::internal::IntegrateArc(lambda, z0, k, t, {}, &hints);
       const plateball::internal::ArcEnd b = plateball::internal::IntegrateArc(lambda, z0, k, t, {});
       EXPECT_LT((a.z - b.z).norm(), 1e-11);
       EXPECT_LT((a.dx - b.dx).norm(), 1e-11);
       EXPECT_LT((a.phi - b.phi).norm(), 1e-11);
-      if (t >= 0.3) {  // shorter arcs: dopri5, the step is left as it was
-        EXPECT_GT(step, 0.0);
-      }
+      EXPECT_GT(t >= 0.3 ? hints.fehlberg78.h : hints.dopri5.h, 0.0);
     }
   }
 }
