@@ -229,25 +229,13 @@ void AdvanceReferences(const SmoothCurve& curve, const PlanOptions& options, Pla
   s->A_impulsive = cur->a_imp;
 }
 
-// max|p'| and max|p''| over [a, b]: constant on a line (|v|, 0) and a circle (rho, rho), so one
-// evaluation gives them (equal to the samples' estimate up to rounding, which these constants
-// only carry); sampled on the other curves.
-CurveDerivativeBounds PathDerivativeBounds(const SmoothCurve& curve, double a, double b, int samples) {
-  if (curve.kind() != CurveKind::kLine && curve.kind() != CurveKind::kCircle)
-    return EstimateCurveDerivativeBounds(curve, a, b, samples);
-  CurveDerivativeBounds out;
-  out.max_speed = curve.Derivative(a).norm();
-  out.max_acceleration = curve.kind() == CurveKind::kCircle ? out.max_speed : 0.0;
-  return out;
-}
-
 // The measured derivative maxima of the segment and its terms of the bounds.
 void AddBounds(const SmoothCurve& curve, const internal::ArcEnd& arc, const JoinSummary& j, const PlanOptions& options,
                PlanStep* s, ErrorBounds* b) {
   SegmentMeasures m;
   m.h = s->tau_end - s->tau_begin;
   m.chord = (s->p_end - s->p_begin).norm();
-  m.path = PathDerivativeBounds(curve, s->tau_begin, s->tau_end, options.bound_samples);
+  m.path = EstimateCurveDerivativeBounds(curve, s->tau_begin, s->tau_end, options.bound_samples);
   m.arc_time = j.t;
   m.arc_max_speed = arc.max_speed;
   m.arc_max_acceleration = arc.max_acceleration;
