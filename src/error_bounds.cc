@@ -11,6 +11,13 @@ namespace plateball {
 CurveDerivativeBounds EstimateCurveDerivativeBounds(const SmoothCurve& curve, double a, double b, int samples) {
   if (samples < 2) internal::ThrowInvalid("samples", samples, "must be >= 2");
   CurveDerivativeBounds out;
+  if (curve.kind() == CurveKind::kLine || curve.kind() == CurveKind::kCircle) {
+    // Constant on a line (|v|, 0) and a circle (rho, rho, either direction): one evaluation is the
+    // maximum (no sampling, no neighbour term).
+    out.max_speed = curve.Derivative(a).norm();
+    out.max_acceleration = curve.kind() == CurveKind::kCircle ? out.max_speed : 0.0;
+    return out;
+  }
   double prev_v = 0.0, prev_a = 0.0, jump_v = 0.0, jump_a = 0.0;
   for (int i = 0; i < samples; ++i) {
     const double tau = a + (b - a) * i / (samples - 1);

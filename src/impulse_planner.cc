@@ -110,6 +110,8 @@ struct PlanCursor {
   Eigen::Matrix3d a_ref, a_poly, a_imp;
   internal::RowMajor3x3 ref{};  // A(tau) integrated along the current piece
   double ref_dt = 0.0;          // its step size, carried from segment to segment
+  internal::ArcStepHints arc_steps;  // the free arcs' integration steps, carried from arc to arc
+  internal::JoinCarry join_carry{false, 0.0};  // the joins' step; no arrival angles (FlyArc's)
   Eigen::Vector2d p = Eigen::Vector2d::Zero();  // p(tau_k): the last segment's end on this piece
   // On a circle piece rolled in closed form: its radius |p'| and Rz(tau_k) (the last segment's
   // Rz(tau_k+1)), each computed once instead of once per segment.
@@ -147,7 +149,8 @@ internal::ArcEnd FlyArc(const BallModel& model, const JoinSummary& j, const Plan
   s->plate_velocity_change = j.impulse.plate_velocity_change;
   const BallState after_impulse = j.impulse.state_after;
   const Eigen::Vector2d k_mom = ConservedMomentum(after_impulse, model);
-  const internal::ArcEnd arc = internal::IntegrateArc(model.lambda(), after_impulse.z, k_mom, j.t, options.integration);
+  const internal::ArcEnd arc =
+      internal::IntegrateArc(model.lambda(), after_impulse.z, k_mom, j.t, options.integration, &cur->arc_steps);
   cur->x += arc.dx;
   cur->a_imp = Reorthonormalize(arc.phi * cur->a_imp);
   cur->state = {arc.z, OmegaFromMomentum(arc.z, k_mom, model)};
@@ -226,25 +229,13 @@ void AdvanceReferences(const SmoothCurve& curve, const PlanOptions& options, Pla
   s->A_impulsive = cur->a_imp;
 }
 
-// max|p'| and max|p''| over [a, b]: constant on a line (|v|, 0) and a circle (rho, rho), so one
-// evaluation gives them (equal to the samples' estimate up to rounding, which these constants
-// only carry); sampled on the other curves.
-CurveDerivativeBounds PathDerivativeBounds(const SmoothCurve& curve, double a, double b, int samples) {
-  if (curve.kind() != CurveKind::kLine && curve.kind() != CurveKind::kCircle)
-    return EstimateCurveDerivativeBounds(curve, a, b, samples);
-  CurveDerivativeBounds out;
-  out.max_speed = curve.Derivative(a).norm();
-  out.max_acceleration = curve.kind() == CurveKind::kCircle ? out.max_speed : 0.0;
-  return out;
-}
-
 // The measured derivative maxima of the segment and its terms of the bounds.
 void AddBounds(const SmoothCurve& curve, const internal::ArcEnd& arc, const JoinSummary& j, const PlanOptions& options,
                PlanStep* s, ErrorBounds* b) {
   SegmentMeasures m;
   m.h = s->tau_end - s->tau_begin;
   m.chord = (s->p_end - s->p_begin).norm();
-  m.path = PathDerivativeBounds(curve, s->tau_begin, s->tau_end, options.bound_samples);
+  m.path = EstimateCurveDerivativeBounds(curve, s->tau_begin, s->tau_end, options.bound_samples);
   m.arc_time = j.t;
   m.arc_max_speed = arc.max_speed;
   m.arc_max_acceleration = arc.max_acceleration;
@@ -267,7 +258,7 @@ bool PlanSegment(const BallModel& model, const SmoothCurve& curve, const std::ve
   ApplyEnergyChanges(model, factors, cur, s);
   const JoinSummary j = internal::ConnectPoints(model, s->angles_before, cur->mu, cur->x, s->p_end, options.join,
                                                 options.reach_fallback ? &options.reach : nullptr,
-                                                &s->reached_globally);
+                                                &s->reached_globally, &cur->join_carry);
   s->join_status = j.status;
   s->join_residual = j.residual;
   s->join_iterations = j.iterations;

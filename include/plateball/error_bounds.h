@@ -49,9 +49,10 @@ struct ErrorBounds {
   std::string BriefReport() const;
 };
 
-/// max |p'| and max |p''| of a curve over [a, b], from `samples` >= 2 equally spaced values plus
-/// the largest difference between neighbouring samples (so that a maximum between samples is
-/// covered for smooth data).
+/// max |p'| and max |p''| of a curve over [a, b]: on lines (|v|, 0) and circles (rho, rho) the
+/// constants themselves; on the other curves from `samples` >= 2 equally spaced values plus the
+/// largest difference between neighbouring samples (so that a maximum between samples is covered
+/// for smooth data).
 struct CurveDerivativeBounds {
   double max_speed = 0.0;
   double max_acceleration = 0.0;

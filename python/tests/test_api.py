@@ -48,7 +48,8 @@ def test_status_words_and_summary_shape():
     assert unreachable.status == "unreachable_within_horizon"
     with pytest.raises(RuntimeError):
         unreachable.earliest()
-    starved = pb.plan(path=pb.SmoothCurve.line((0, 0), (1, 0)), integration=pb.IntegrationOptions(max_steps=1))
+    # Arcs of length ~0.6: more than the one integration step allowed.
+    starved = pb.plan(path=pb.SmoothCurve.line((0, 0), (8, 0)), integration=pb.IntegrationOptions(max_steps=1))
     assert starved.status == "integration_failure" and not starved.usable and starved.message
 
 

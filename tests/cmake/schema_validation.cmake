@@ -7,5 +7,6 @@ if(TARGET plateball_cli AND TARGET isoparallel_solve)
                    --plateball $<TARGET_FILE:plateball_cli> --isoparallel-solve $<TARGET_FILE:isoparallel_solve>
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   set_tests_properties(schemas.validate PROPERTIES TIMEOUT 300 LABELS "cli;schemas"
-                       PASS_REGULAR_EXPRESSION "broken documents rejected: [1-9]")
+                       PASS_REGULAR_EXPRESSION "broken documents rejected: [1-9]"
+                       FAIL_REGULAR_EXPRESSION "FAIL: ")  # the pass pattern alone hid every failure
 endif()
