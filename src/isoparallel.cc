@@ -748,8 +748,9 @@ double CapLength(const IsoparallelOptions& options, const std::vector<Candidate>
 
 // General targets: the shapes are the first options.starts Halton points (regime and sense, log
 // period, modulus; the phase is scanned), unshifted: the same for every seed. They are searched
-// in batches (kFirstShapeBatch, then kShapeBatch); after each batch the search length shrinks to the cap of the
-// solutions found so far (nothing longer is reported), deterministically for any thread count.
+// in batches (kFirstShapeBatch, then kShapeBatch); after each batch the search length shrinks to
+// the cap of the solutions found so far (nothing longer is reported), deterministically for any
+// thread count.
 void SearchShapes(Context* ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options, double covered,
                   std::vector<Candidate>* found, IsoparallelSummary* summary) {
   const std::vector<Start> shapes = MakeStarts(options, ctx->s_limit, ctx->radius, false, true);
