@@ -71,7 +71,8 @@ void BM_T4IsoparallelFigure7Shooting(benchmark::State& state) {
 
 // T4b: the problem of problems/isoparallel_rotation.json as in the file (the benchmark does not
 // read files): (0, 0) to (2, 1), start orientation a quarter turn about e1, the goal orientation's
-// quaternion; the default options (deterministic starts for a target other than the identity).
+// quaternion; the default options (4096 deterministic shapes, each with its (phase, length)
+// plane scanned, for a target other than the identity).
 void BM_T4bIsoparallelRotation(benchmark::State& state) {
   IsoparallelProblem problem;
   problem.goal = {2.0, 1.0};
@@ -88,7 +89,7 @@ void BM_T4bIsoparallelRotation(benchmark::State& state) {
     benchmark::DoNotOptimize(summary.solutions.data());
   }
   Report(state, options, summary);
-  state.counters["starts"] = options.starts;  // shooting, not the family enumeration
+  state.counters["starts"] = options.starts;  // shapes of the two-stage search, not the enumeration
   state.counters["seed"] = 0;                 // not used for this target
 }
 

@@ -215,6 +215,27 @@ bool ElasticaRollingTable::Refine(double radius, double sa, double sb, double* s
   return true;
 }
 
+long ElasticaRollingTable::NodeCount() const {
+  if (!valid_) return 0;
+  return straight_ ? 1 : static_cast<long>(std::ceil(s_limit_ / h_));
+}
+
+void ElasticaRollingTable::Nodes(std::vector<Eigen::Matrix3d>* rolling, std::vector<Eigen::Vector2d>* position) const {
+  const long count = NodeCount();
+  rolling->resize(count + 1);
+  position->resize(count + 1);
+  Eigen::Matrix3d power = Eigen::Matrix3d::Identity();  // P^n for the nodes of period n
+  for (long i = 0; i <= count; ++i) {
+    if (straight_ || !std::isfinite(period_)) {
+      (*rolling)[i] = rot_[std::min<long>(i, steps_)];
+    } else {
+      if (i > 0 && i % steps_ == 0) power = monodromy_ * power;
+      (*rolling)[i] = rot_[i % steps_] * power;
+    }
+    (*position)[i] = straight_ ? pos_[std::min<long>(i, 1)] : NodePosition(i);
+  }
+}
+
 std::vector<double> ElasticaRollingTable::Crossings(double radius, int max_count) const {
   std::vector<double> out;
   ScanCrossings(radius, max_count, false, &out);
@@ -228,7 +249,7 @@ int ElasticaRollingTable::ScanCrossings(double radius, int max_count, bool refin
   double prev_f = -r2;  // x(0) = 0
   double prev_s = 0.0;
   int count = 0;
-  const long total = straight_ ? 1 : static_cast<long>(std::ceil(s_limit_ / h_));
+  const long total = NodeCount();
   for (long i = 1; i <= total && count < max_count; ++i) {
     double s = i * h_;
     Eigen::Vector2d x;

@@ -37,6 +37,13 @@ class ElasticaRollingTable {
   bool FindCrossing(double radius, int n, double* s) const;
   /// All crossings in (0, s_limit] (node brackets, refined).
   std::vector<double> Crossings(double radius, int max_count) const;
+  /// Node spacing h: the table's nodes are s = i h, i = 0 .. NodeCount() (the last one may lie
+  /// past s_limit by less than h).
+  double Step() const { return h_; }
+  long NodeCount() const;
+  /// Q(0, i h) and x(i h) at every node i = 0 .. NodeCount(), from the one-period table and the
+  /// monodromy (no Magnus step, no closed form): for scans over many (s0, s0 + L) node pairs.
+  void Nodes(std::vector<Eigen::Matrix3d>* rolling, std::vector<Eigen::Vector2d>* position) const;
 
  private:
   void Build(int steps);

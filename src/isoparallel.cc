@@ -3,6 +3,7 @@
 #include <ceres/tiny_solver.h>
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <chrono>
@@ -38,12 +39,17 @@ constexpr Accuracy kPolish{160, 0.02};
 // kSearchAccept; runs that do not get there in kSearchIterations are abandoned.
 constexpr double kSearchStop = 3e-6;
 constexpr double kSearchAccept = 1e-4;
-constexpr int kSearchIterations = 40;
+// 20 instead of 40: runs still searching after 20 iterations rarely converge (the ten targets of
+// docs/paper_notes.md lose nothing; 14 lose one solution); 28% fewer evaluations on the rotation
+// problem, 2x fewer for short chords.
+constexpr int kSearchIterations = 20;
 // Triage: a search run whose residual is still above kHopelessResidual after kTriageIterations
 // is dropped (8192 starts on problems/isoparallel_rotation.json: 1.5 s instead of 7.5 s CPU, 29
-// of the 30 solutions; docs/paper_notes.md, "General targets").
+// of the 30 solutions; docs/paper_notes.md, "General targets"). 0.5 instead of 1 since the shape
+// scan: 14% fewer evaluations on the rotation problem, 2-4x fewer for short chords, nothing lost
+// on the ten targets.
 constexpr int kTriageIterations = 8;
-constexpr double kHopelessResidual = 1.0;
+constexpr double kHopelessResidual = 0.5;
 constexpr int kPolishIterations = 12;
 // Relative tolerance for "the same solution" between a search result and a polished one.
 constexpr double kSearchSameTol = 1e-4;
@@ -53,6 +59,20 @@ constexpr double kWholePeriodTol = 1e-6;
 // Residual bound under which a phase-shifted path still counts as a solution (family test).
 constexpr double kFamilyTol = 1e-8;
 constexpr int kMaxCrossingsPerStart = 12;
+// Shape scan (SearchShape): scan points with a rotation residual up to kScanResidual (rad) start
+// a search; near-tangencies count when the chord misses the radius by less than kTangencyMiss.
+constexpr double kScanResidual = 1.0;
+constexpr double kTangencyMiss = 0.3;
+// Shapes are searched in batches of kShapeBatch (the first one kFirstShapeBatch: the cap is
+// unknown until then); between batches the search length shrinks to the cap (times
+// 1 + kCapMargin) of the solutions found so far.
+constexpr int kFirstShapeBatch = 32;
+constexpr int kShapeBatch = 256;
+constexpr double kCapMargin = 1e-6;
+
+// TwinSearch: the probe along the near-null direction and the longest step to a twin.
+constexpr double kTwinProbe = 1e-3;
+constexpr double kTwinMaxStep = 0.5;
 
 struct Context {
   Eigen::Matrix3d target;  // A1 A0^-1
@@ -240,6 +260,22 @@ struct FreeLengthFunctor {
   }
 };
 
+// Hands a free-length result (length L) to the crossing formulation: the crossing of the circle
+// nearest to L on a table of the given accuracy over the search length, if within
+// kSearchSameTol, and the residual there (at most kSearchAccept).
+bool HandOff(const Context& ctx, double length, const Accuracy& acc, LocalResult* r) {
+  const ElasticaParameters p = ToParameters(r->regime, r->x);
+  const Elastica e(p);
+  const internal::ElasticaRollingTable table(e, ctx.s_limit, acc.steps_per_period, acc.max_step);
+  const std::vector<double> crossings = table.Crossings(ctx.radius, kMaxCrossingsPerStart * 4);
+  int nearest = -1;
+  for (int n = 0; n < static_cast<int>(crossings.size()); ++n)
+    if (nearest < 0 || std::abs(crossings[n] - length) < std::abs(crossings[nearest] - length)) nearest = n;
+  if (nearest < 0 || std::abs(crossings[nearest] - length) > kSearchSameTol * (1 + length)) return false;
+  r->crossing = nearest + 1;
+  return Evaluate(ctx, p, r->crossing, acc, &r->ev) && r->ev.residual.norm() <= kSearchAccept;
+}
+
 // Search stage on the free-length formulation from a start and one of its crossings; the result
 // is handed to the crossing formulation (its crossing number counted) for the polish.
 LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
@@ -272,13 +308,9 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   out.evaluations = f.evaluations;
   std::copy(v.data(), v.data() + 3, out.x);
   if (!v.allFinite() || !(v[3] > 0) || std::abs(std::tanh(v[1])) >= 1.0) return out;
-  const Elastica e(ToParameters(regime, out.x));
-  const internal::ElasticaRollingTable table(e, v[3] * (1 + 1e-6), kSearch.steps_per_period, kSearch.max_step);
-  const std::vector<double> crossings = table.Crossings(ctx.radius, kMaxCrossingsPerStart * 4);
-  if (crossings.empty()) return out;
-  out.crossing = static_cast<int>(crossings.size());
-  out.searched = Evaluate(ctx, ToParameters(regime, out.x), out.crossing, kSearch, &out.ev) &&
-                 out.ev.residual.norm() <= kSearchAccept;
+  // The crossing formulation's n: the crossing nearest to L on the search table, else on the
+  // polish table (a near-tangency, the chord just reaching the radius between two coarse nodes).
+  out.searched = HandOff(ctx, v[3], kSearch, &out) || HandOff(ctx, v[3], kPolish, &out);
   return out;
 }
 
@@ -308,9 +340,11 @@ struct Start {
 };
 
 // The first options.starts points of the Halton sequence (bases 2, 3, 5, 7). General targets:
-// unshifted, so the solution list does not depend on the seed; identity target (shooting only
-// as a comparison with the enumeration): a Cranley-Patterson shift drawn from the seed.
-std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit, double radius, bool seeded) {
+// unshifted shapes (phase 0: SearchShape scans the phase), so the solution list does not depend
+// on the seed; identity target (shooting only as a comparison with the enumeration): starts with
+// a Cranley-Patterson shift drawn from the seed.
+std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit, double radius, bool seeded,
+                              bool shapes) {
   std::mt19937_64 rng(options.seed);
   auto unit = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   double shift[4] = {0, 0, 0, 0};
@@ -327,13 +361,15 @@ std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit,
     // u0: regime and sense (two quarters each).
     s.regime = u[0] < 0.5 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
     const double sign = std::fmod(2.0 * u[0], 1.0) < 0.5 ? 1.0 : -1.0;
-    const double k = 0.97 * u[2];
+    // Shapes: denser towards the separatrix (k = 0.97 sin(pi u / 2)), where long solutions have
+    // narrow basins in atanh k; starts: uniform in k.
+    const double k = shapes ? 0.97 * std::sin(0.5 * M_PI * u[2]) : 0.97 * u[2];
     const double kk = boost::math::ellint_1(k);
     const double period = t_min * std::pow(t_max / t_min, u[1]);
     const double u_period = s.regime == PendulumRegime::kOscillating ? 4.0 * kk : 2.0 * kk;
     s.x[0] = sign * u_period / period;
     s.x[1] = std::atanh(k);
-    s.x[2] = u[3] * u_period;
+    s.x[2] = shapes ? 0.0 : u[3] * u_period;
     starts.push_back(s);
   }
   return starts;
@@ -517,29 +553,122 @@ Context MakeContext(const IsoparallelProblem& problem, const IsoparallelOptions&
   return ctx;
 }
 
-// Local searches from every start, over the crossings beyond `covered` (one ParallelFor; the
-// results per start do not depend on the thread count).
+// Runs search(i) for the starts or shapes i in [first, first + count) of `total` on the option's
+// threads (results per index do not depend on the thread count) and reports progress.
+template <class Search>
+std::vector<std::vector<LocalResult>> SearchAll(int first, int count, int total, const IsoparallelOptions& options,
+                                                Search&& search) {
+  std::vector<std::vector<LocalResult>> results(count);
+  std::mutex progress_mutex;
+  int done = first;
+  internal::ParallelFor(count, options.threads, [&](int i) {
+    results[i] = search(first + i);
+    if (options.progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      options.progress(++done, total);
+    }
+  });
+  return results;
+}
+
+// Local searches from every start, over the crossings beyond `covered` (the identity target's
+// comparison shooting).
 std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const IsoparallelOptions& options,
                                                    double covered) {
-  const std::vector<Start> starts = MakeStarts(options, ctx.s_limit, ctx.radius, ctx.identity);
-  std::vector<std::vector<LocalResult>> per_start(starts.size());
-  std::mutex progress_mutex;
-  int starts_done = 0;
-  internal::ParallelFor(static_cast<int>(starts.size()), options.threads, [&](int i) {
+  const std::vector<Start> starts = MakeStarts(options, ctx.s_limit, ctx.radius, ctx.identity, false);
+  const int n = static_cast<int>(starts.size());
+  return SearchAll(0, n, n, options, [&](int i) {
     const Start& st = starts[i];
     const Elastica e(ToParameters(st.regime, st.x));
     const internal::ElasticaRollingTable table(e, ctx.s_limit, kSearch.steps_per_period, kSearch.max_step);
-    const std::vector<double> crossings = table.Crossings(ctx.radius, kMaxCrossingsPerStart);
-    for (std::size_t n = 0; n < crossings.size(); ++n) {
-      if (crossings[n] <= covered) continue;
-      per_start[i].push_back(SearchLocalFreeLength(ctx, st.regime, st.x, crossings[n], options));
-    }
-    if (options.progress) {
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      options.progress(++starts_done, static_cast<int>(starts.size()));
-    }
+    std::vector<LocalResult> out;
+    for (double crossing : table.Crossings(ctx.radius, kMaxCrossingsPerStart))
+      if (crossing > covered) out.push_back(SearchLocalFreeLength(ctx, st.regime, st.x, crossing, options));
+    return out;
   });
-  return per_start;
+}
+
+// The rotation residual of the path from node i0 to node i of a shape's table (the rotation trick
+// with B from the chord's direction).
+Eigen::Vector3d NodeResidual(const Context& ctx, const std::vector<Eigen::Matrix3d>& rolling,
+                             const std::vector<Eigen::Vector2d>& position, long i0, long i) {
+  const Eigen::Vector2d c = position[i] - position[i0];
+  const Eigen::Matrix3d b = RotationZ(ctx.goal_angle - std::atan2(c.y(), c.x()));
+  return LogSO3(ctx.target.transpose() * b * rolling[i] * rolling[i0].transpose() * b.transpose());
+}
+
+// A point of a shape's (s0, L) scan where the chord |x(s0 + L) - x(s0)| crosses the radius
+// |x1 - x0| (or comes within kTangencyMiss of it at a node, a near-tangency).
+struct ScanPoint {
+  double length = 0.0;
+  double residual = 0.0;  // |rotation residual| (interpolated between nodes), with the chord miss
+};
+
+// The (s0, L) scan of one shape (rate, k; phase 0): ONE rolling table over [0, T + s_limit], and
+// for every start node s0 = i0 h of one period (a whole-period shift gives the same path) the
+// crossings and near-tangencies of the chord along L <= s_limit, from the table's nodes only
+// (Q(s0, s0 + L) = Q(0, s0 + L) Q(0, s0)^-1): rows[i0] lists them in order of L.
+std::vector<std::vector<ScanPoint>> ScanShape(const Context& ctx, const Elastica& e, double* step) {
+  std::vector<std::vector<ScanPoint>> rows;
+  if (e.IsStraight() || !std::isfinite(e.Period())) return rows;
+  const internal::ElasticaRollingTable table(e, ctx.s_limit + e.Period(), kSearch.steps_per_period, kSearch.max_step);
+  if (!table.Valid()) return rows;
+  std::vector<Eigen::Matrix3d> q;
+  std::vector<Eigen::Vector2d> x;
+  table.Nodes(&q, &x);
+  const double h = table.Step(), r2 = ctx.radius * ctx.radius;
+  *step = h;
+  const long last = static_cast<long>(x.size()) - 1;
+  for (long i0 = 0; i0 < table.Steps(); ++i0) {
+    std::vector<ScanPoint> row;
+    double f_prev = -r2, f_prev2 = -r2;  // |chord|^2 - radius^2 at the two previous nodes
+    for (long l = 1; i0 + l <= last && (l - 1) * h < ctx.s_limit; ++l) {
+      const double f = (x[i0 + l] - x[i0]).squaredNorm() - r2;
+      const bool extremum = l >= 2 && ((f_prev > f_prev2 && f_prev >= f && f_prev < 0) ||
+                                       (f_prev < f_prev2 && f_prev <= f && f_prev > 0));
+      const double miss = extremum ? std::sqrt(f_prev + r2) - ctx.radius : 0.0;
+      if (extremum && std::abs(miss) < kTangencyMiss)
+        row.push_back({(l - 1) * h, std::hypot(miss, NodeResidual(ctx, q, x, i0, i0 + l - 1).norm())});
+      if ((f > 0) != (f_prev > 0)) {
+        const double t = f_prev / (f_prev - f);  // linear interpolation between the nodes
+        Eigen::Vector3d r = NodeResidual(ctx, q, x, i0, i0 + l);
+        if (l > 1) r = t * r + (1 - t) * NodeResidual(ctx, q, x, i0, i0 + l - 1);
+        if ((l - 1 + t) * h > ctx.s_limit) break;
+        row.push_back({(l - 1 + t) * h, r.norm()});
+        if (static_cast<int>(row.size()) >= kMaxCrossingsPerStart) break;
+      }
+      f_prev2 = f_prev;
+      f_prev = f;
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Search from one shape: every scan point with a residual below kScanResidual that is a local
+// minimum over s0 (against the point of the same index in the two neighbouring rows, cyclic)
+// starts the free-length search with phase rate s0 and length L.
+std::vector<LocalResult> SearchShape(const Context& ctx, const Start& shape, const IsoparallelOptions& options,
+                                     double covered) {
+  std::vector<LocalResult> out;
+  double h = 0.0;
+  const std::vector<std::vector<ScanPoint>> rows = ScanShape(ctx, Elastica(ToParameters(shape.regime, shape.x)), &h);
+  const long n_rows = static_cast<long>(rows.size());
+  for (long i0 = 0; i0 < n_rows; ++i0) {
+    for (std::size_t n = 0; n < rows[i0].size(); ++n) {
+      const ScanPoint& p = rows[i0][n];
+      if (p.residual > kScanResidual || p.length <= covered) continue;
+      bool minimum = true;
+      for (long d : {-1L, 1L}) {
+        const std::vector<ScanPoint>& nb = rows[(i0 + d + n_rows) % n_rows];
+        if (n < nb.size() && nb[n].residual < p.residual) minimum = false;
+      }
+      if (!minimum) continue;
+      const double x[3] = {shape.x[0], shape.x[1], shape.x[0] * i0 * h};
+      out.push_back(SearchLocalFreeLength(ctx, shape.regime, x, p.length, options));
+    }
+  }
+  return out;
 }
 
 bool Known(const std::vector<Candidate>& found, const Candidate& c, double tol) {
@@ -549,27 +678,89 @@ bool Known(const std::vector<Candidate>& found, const Candidate& c, double tol) 
 }
 
 // Polishes the searched results that are not known yet and adds the new distinct solutions.
+// Solutions of a general target often come in close pairs born at a fold (the free-length
+// Jacobian nearly singular there), and a start near the pair converges to one of them. From a
+// solution x* with the smallest singular value s of the 4x4 free-length Jacobian J (left and
+// right singular vectors u, v), the twin lies near x* + t v with u.F(x* + t v) ~ s t + c t^2 / 2 = 0,
+// t = -2 s / c, c from u.F(x* +- e v) by central differences: one search from there.
+bool TwinSearch(const Context& ctx, const LocalResult& r, const IsoparallelOptions& options, LocalResult* twin) {
+  const FreeLengthFunctor f{&ctx, r.regime};
+  const Eigen::Vector4d x(r.x[0], r.x[1], r.x[2], r.ev.s);
+  Eigen::Vector4d res;
+  Eigen::Matrix4d jac;
+  if (!f(x.data(), res.data(), jac.data())) return false;
+  const Eigen::JacobiSVD<Eigen::Matrix4d> svd(jac, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Vector4d u = svd.matrixU().col(3), v = svd.matrixV().col(3);
+  const double sigma = svd.singularValues()[3], e = kTwinProbe;
+  Eigen::Vector4d rp, rm;
+  const Eigen::Vector4d xp = x + e * v, xm = x - e * v;
+  if (!f.Residual(xp.data(), rp.data()) || !f.Residual(xm.data(), rm.data())) return false;
+  const double curvature = (u.dot(rp) + u.dot(rm)) / (e * e);
+  const double t = -2.0 * sigma / curvature;
+  if (!std::isfinite(t) || std::abs(t) > kTwinMaxStep || std::abs(t) < 2 * e) return false;
+  const Eigen::Vector4d y = x + t * v;
+  *twin = SearchLocalFreeLength(ctx, r.regime, y.data(), y[3], options);
+  return true;
+}
+
+// Adds a search result to `found` when it polishes to a new solution; true if it did.
+bool MergeResult(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
+                 LocalResult* r, std::vector<Candidate>* found, IsoparallelSummary* summary) {
+  ++summary->local_solves;
+  summary->evaluations += r->evaluations;
+  if (!r->searched) return false;
+  // Polish only what is not already known (compared at the search accuracy).
+  if (Known(*found, MakeRoughCandidate(ctx, problem, *r), kSearchSameTol)) {
+    ++summary->converged_solves;
+    return false;
+  }
+  const long before = r->evaluations;
+  PolishLocal(ctx, options, r);
+  summary->evaluations += r->evaluations - before;
+  if (!r->converged) return false;
+  ++summary->converged_solves;
+  const Candidate c = MakeCandidate(ctx, problem, *r);
+  if (Known(*found, c, kSameTol)) return false;
+  found->push_back(c);
+  return true;
+}
+
+// Polishes the searched results that are not known yet and adds the new distinct solutions; for
+// a general target, each new solution's twin across a fold (TwinSearch) is tried at once.
 void MergeResults(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
                   std::vector<std::vector<LocalResult>> per_start, std::vector<Candidate>* found,
                   IsoparallelSummary* summary) {
   for (auto& results : per_start) {
     for (LocalResult& r : results) {
-      ++summary->local_solves;
-      summary->evaluations += r.evaluations;
-      if (!r.searched) continue;
-      // Polish only what is not already known (compared at the search accuracy).
-      if (Known(*found, MakeRoughCandidate(ctx, problem, r), kSearchSameTol)) {
-        ++summary->converged_solves;
-        continue;
-      }
-      const long before = r.evaluations;
-      PolishLocal(ctx, options, &r);
-      summary->evaluations += r.evaluations - before;
-      if (!r.converged) continue;
-      ++summary->converged_solves;
-      const Candidate c = MakeCandidate(ctx, problem, r);
-      if (!Known(*found, c, kSameTol)) found->push_back(c);
+      if (!MergeResult(ctx, problem, options, &r, found, summary) || ctx.identity) continue;
+      LocalResult twin;
+      if (TwinSearch(ctx, r, options, &twin)) MergeResult(ctx, problem, options, &twin, found, summary);
     }
+  }
+}
+
+// The longest length reported: length_cap_factor times the shortest solution found.
+double CapLength(const IsoparallelOptions& options, const std::vector<Candidate>& found) {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (const Candidate& c : found) shortest = std::min(shortest, c.solution.length);
+  return options.length_cap_factor * shortest;
+}
+
+// General targets: the shapes are the first options.starts Halton points (regime and sense, log
+// period, modulus; the phase is scanned), unshifted: the same for every seed. They are searched
+// in batches (kFirstShapeBatch, then kShapeBatch); after each batch the search length shrinks to
+// the cap of the solutions found so far (nothing longer is reported), deterministically for any
+// thread count.
+void SearchShapes(Context* ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options, double covered,
+                  std::vector<Candidate>* found, IsoparallelSummary* summary) {
+  const std::vector<Start> shapes = MakeStarts(options, ctx->s_limit, ctx->radius, false, true);
+  const int total = static_cast<int>(shapes.size());
+  for (int first = 0, count = 0; first < total; first += count) {
+    count = std::min(first == 0 ? kFirstShapeBatch : kShapeBatch, total - first);
+    MergeResults(*ctx, problem, options, SearchAll(first, count, total, options, [&](int i) {
+                   return SearchShape(*ctx, shapes[i], options, covered);
+                 }), found, summary);
+    if (!found->empty()) ctx->s_limit = std::min(ctx->s_limit, CapLength(options, *found) * (1 + kCapMargin));
   }
 }
 
@@ -578,16 +769,17 @@ void SolveByShooting(Context* ctx, const IsoparallelProblem& problem, const Isop
                      std::vector<Candidate>* found, IsoparallelSummary* summary) {
   double covered = 0.0;  // crossings up to this length were already searched
   for (int pass = 0; pass < 3; ++pass) {
-    MergeResults(*ctx, problem, options, SearchStarts(*ctx, options, covered), found, summary);
+    if (ctx->identity)
+      MergeResults(*ctx, problem, options, SearchStarts(*ctx, options, covered), found, summary);
+    else
+      SearchShapes(ctx, problem, options, covered, found, summary);
     covered = ctx->s_limit;
     if (found->empty()) {
       if (options.max_length > 0) break;
       ctx->s_limit *= 2.0;
       continue;
     }
-    double shortest = std::numeric_limits<double>::infinity();
-    for (const Candidate& c : *found) shortest = std::min(shortest, c.solution.length);
-    const double needed = options.length_cap_factor * shortest;
+    const double needed = CapLength(options, *found);
     if (needed <= ctx->s_limit * (1 + 1e-12)) break;
     ctx->s_limit = needed;
   }

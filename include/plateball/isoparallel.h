@@ -7,21 +7,25 @@
 // from x0 runs until its n-th crossing of the circle |x - x0| = |x1 - x0| (n = 1, 2, ...: paths
 // that leave and re-enter the circle count), the plane is rotated by the B about e3 taking the
 // crossing point to x1, and B A B^-1 is compared with A1 A0^-1 (residual: LogSO3 of the mismatch).
-// The search stage (from each start and each of its crossings) also frees the length: 4 unknowns
-// (G, energy, phase, L), 4 residuals (|x(L) - x0| - |x1 - x0| and the mismatch with B taken from
-// the direction of x(L)). That residual is smooth where the crossing number jumps (a tangency adds
-// or removes a pair of crossings, and solutions often lie near one): 1024 starts find 27
-// solutions of problems/isoparallel_rotation.json instead of 18. The polish (to the tolerance)
-// runs on the crossing formulation above.
-// Deterministic multi-start (the first `starts` Halton points, no seed) over both pendulum regimes; every distinct solution up to
-// length_cap_factor times the shortest is reported, sorted by length. Each reported solution is
-// verified independently of the solver by VerifyRolling (a second integrator along the path).
+// The search stage frees the length: 4 unknowns (G, energy, phase, L), 4 residuals
+// (|x(L) - x0| - |x1 - x0| and the mismatch with B taken from the direction of x(L)), smooth where
+// the crossing number jumps (a tangency adds or removes a pair of crossings, and solutions often
+// lie near one). The polish (to the tolerance) runs on the crossing formulation above.
+// General targets, two stages: the shapes (rate, modulus) are the first `starts` Halton points
+// (no seed); for each shape ONE rolling table over [0, T + s_max] serves the whole (phase,
+// length) plane (Q(s0, s0 + L) = Q(0, s0 + L) Q(0, s0)^-1, every start node s0 of one period,
+// every crossing or near-tangency of the chord along L), and only the local minima of the
+// rotation residual there below 1 rad start the 4-unknown search. A solution found next to a fold
+// (nearly singular Jacobian) is followed by one search for its twin across the fold. Every
+// distinct solution up to length_cap_factor times the shortest is reported, sorted by length.
+// Each reported solution is verified independently of the solver by VerifyRolling (a second
+// integrator along the path).
 //
-// Completeness. General targets: the shooting is a sample of the three-parameter space and is
-// NOT complete (`complete` stays false): problems/isoparallel_rotation.json has at least 30
-// solutions up to 3x the shortest (31 by issue 15's independent search); 1024 starts (seed 1)
-// find 27. No certified method exists for them yet (docs/paper_notes.md, "General targets: why
-// the shooting is not complete").
+// Completeness. General targets: the shapes are a sample of the (rate, modulus) plane and the
+// (phase, length) scan is at node resolution, so the method is NOT complete (`complete` stays
+// false). On problems/isoparallel_rotation.json it finds 31 solutions up to 3x the shortest (the
+// 8192-start shooting it replaces found 29), and on ten test targets nothing that a 16,384-start
+// shooting finds is missed (docs/paper_notes.md, "General targets").
 //
 // Identity targets (A1 = A0, Figure 7) are solved by direct enumeration instead
 // (isoparallel_families.h): there every solution covers a whole number of curvature periods and
@@ -49,9 +53,12 @@ struct IsoparallelOptions {
   static constexpr int kMaxIterations = 100000;
   static constexpr int kMaxThreads = 256;
   static constexpr double kMaxLengthCapFactor = 10.0;
-  /// Multi-start points (the first `starts` Halton points) of the shooting. Fewer miss solutions
-  /// of general targets (1024 find 23 of the 30 of problems/isoparallel_rotation.json, 8192 all).
-  int starts = 8192;
+  /// General targets: the shapes (rate, modulus; the first `starts` Halton points) whose
+  /// (phase, length) plane is scanned on one rolling table each; identity target with
+  /// enumerate_families = false: the multi-start points of the comparison shooting. 2048 shapes
+  /// miss one of the solutions a 16,384-start shooting finds on ten test targets, 4096 none
+  /// (docs/paper_notes.md, "General targets").
+  int starts = 4096;
   double length_cap_factor = 3.0;  ///< report solutions up to this times the shortest length (>= 1)
   int max_iterations = 100;        ///< Levenberg-Marquardt iterations per local solve
   double tolerance = 1e-12;        ///< accepted |LogSO3| orientation residual (radians)

@@ -205,7 +205,7 @@ void PrintNoSolution(const plateball::IsoparallelSummary& summary, const plateba
               << " curvature periods, paths up to length " << summary.searched_length << ")\n";
   else
     out << "no solution found (" << summary.local_solves << " local solves from " << opt.starts
-              << " starts, " << (summary.seeded ? "seed " + std::to_string(opt.seed) : "deterministic")
+              << (summary.seeded ? " starts, " : " shapes, ") << (summary.seeded ? "seed " + std::to_string(opt.seed) : "deterministic")
               << ", paths up to length " << summary.searched_length << ")\n";
 }
 
@@ -219,7 +219,7 @@ void PrintSolutions(const plateball::IsoparallelSummary& summary, const platebal
     out << "identity target: one-parameter families enumerated over 1.." << summary.periods_searched
               << " curvature periods, " << (summary.complete ? "certified complete" : "NOT certified complete") << ")\n";
   else
-    out << opt.starts << " starts, " << (summary.seeded ? "seed " + std::to_string(opt.seed) : "deterministic")
+    out << opt.starts << (summary.seeded ? " starts, " : " shapes, ") << (summary.seeded ? "seed " + std::to_string(opt.seed) : "deterministic")
         << ": a sample, NOT certified complete)\n";
   out << std::setprecision(10) << "shortest length: " << best.length << std::setprecision(6) << "  ("
             << ToString(best.parameters.regime) << " pendulum, G = " << best.G << ", energy = " << best.energy
