@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <boost/math/special_functions/ellint_1.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -303,12 +305,16 @@ TEST(IsoparallelCertify, DISABLED_MeasureRotationProblem) {
   }
   const CertifyTarget t = RotationProblemTarget();
   const long budget = std::getenv("CERTIFY_BUDGET") ? std::atol(std::getenv("CERTIFY_BUDGET")) : 2000000;
+  const double only = std::getenv("CERTIFY_FACTOR") ? std::atof(std::getenv("CERTIFY_FACTOR")) : 0.0;
   for (double factor : {1.0, 1.2, 1.5}) {
+    if (only > 0.0 && factor != only) continue;
     for (int r = 0; r < 2; ++r) {
       CertifyWindowOptions o;
       o.regime = kRegimes[r];
       o.max_boxes = budget;
-      const double k_max = 0.95, kk = 2.1537874050945296;  // K(0.95)
+      o.stop_at_unaccounted = false;
+      const double k_max = std::getenv("CERTIFY_KMAX") ? std::atof(std::getenv("CERTIFY_KMAX")) : 0.95;
+      const double kk = boost::math::ellint_1(k_max);
       o.window.lo = {r == 0 ? 0.0 : -2.0, 0.0, 0.0, t.radius};
       o.window.hi = {2.0, k_max, r == 0 ? 4 * kk : 2 * kk, factor * 5.99098308};
       const CertifyWindowResult w = CertifyWindow(t, known[r], o);
