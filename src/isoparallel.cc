@@ -56,6 +56,8 @@ constexpr double kSearchSameTol = 1e-4;
 // Relative tolerances for "same solution" (lengths, G, E) and for "whole number of periods".
 constexpr double kSameTol = 1e-7;
 constexpr double kWholePeriodTol = 1e-6;
+// A path whose length is within kStraightTol (relative) of its chord is the straight segment.
+constexpr double kStraightTol = 1e-9;
 // Residual bound under which a phase-shifted path still counts as a solution (family test).
 constexpr double kFamilyTol = 1e-8;
 constexpr int kMaxCrossingsPerStart = 12;
@@ -402,8 +404,35 @@ Candidate MakeRoughCandidate(const Context&, const IsoparallelProblem& problem, 
   return c;
 }
 
-// Builds the reported solution from a converged local result: world frame, family test.
-Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, const LocalResult& r) {
+// The straight segment from start to goal (p with rate 0, heading along the chord), as a solution
+// of the given length (the chord) and residual.
+Candidate StraightCandidate(const Context& ctx, const IsoparallelProblem& problem, ElasticaParameters p, double length,
+                            double residual) {
+  Candidate c;
+  IsoparallelSolution& sol = c.solution;
+  p.rate = 0.0;
+  p.modulus = 0.0;
+  p.heading_w = ctx.goal_angle + M_PI / 2;
+  sol.parameters = p;
+  sol.length = length;
+  sol.shooting_residual = residual;
+  sol.start = problem.start;
+  c.signature = {sol.PositionAt(sol.length / 3), sol.PositionAt(2 * sol.length / 3)};
+  return c;
+}
+
+// Builds the reported solution from a converged local result: world frame, family test. A result
+// as long as the chord (to kStraightTol) is the straight segment: only a straight path is as
+// short as its chord, and the shooting's parameters degenerate there (modulus -> 0 with any rate
+// and phase: every such run polishes to a slightly different near-straight path, once listed
+// several times). When the segment itself solves the target to `tolerance`, it is reported
+// instead, the same candidate for every such run.
+Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, const LocalResult& r, double tolerance) {
+  if (std::abs(r.ev.s - ctx.radius) <= kStraightTol * (1 + ctx.radius)) {
+    const double residual =
+        LogSO3(ctx.target.transpose() * RollAlongSegment(problem.start, problem.goal)).norm();
+    if (residual <= tolerance) return StraightCandidate(ctx, problem, ElasticaParameters{}, ctx.radius, residual);
+  }
   Candidate c;
   IsoparallelSolution& sol = c.solution;
   ElasticaParameters p = ToParameters(r.regime, r.x);
@@ -489,14 +518,7 @@ Candidate FamilyCandidate(const Context& ctx, const IsoparallelProblem& problem,
   sol.length = f.length;
   sol.shooting_residual = f.residual;
   sol.start = problem.start;
-  if (f.periods == 0) {  // the straight segment (chord a multiple of 2 pi)
-    p.rate = 0.0;
-    p.modulus = 0.0;
-    p.heading_w = ctx.goal_angle + M_PI / 2;
-    sol.parameters = p;
-    c.signature = {sol.PositionAt(sol.length / 3), sol.PositionAt(2 * sol.length / 3)};
-    return c;
-  }
+  if (f.periods == 0) return StraightCandidate(ctx, problem, p, f.length, f.residual);  // chord a multiple of 2 pi
   const Elastica e(p);
   sol.G = e.G();
   sol.energy = e.Energy();
@@ -719,7 +741,7 @@ bool MergeResult(const Context& ctx, const IsoparallelProblem& problem, const Is
   summary->evaluations += r->evaluations - before;
   if (!r->converged) return false;
   ++summary->converged_solves;
-  const Candidate c = MakeCandidate(ctx, problem, *r);
+  const Candidate c = MakeCandidate(ctx, problem, *r, options.tolerance);
   if (Known(*found, c, kSameTol)) return false;
   found->push_back(c);
   return true;
