@@ -226,7 +226,8 @@ struct FreeLengthFunctor {
   bool ResidualOnTable(const Elastica& e, const internal::ElasticaRollingTable& table, double s0, double length,
                        double* r) const {
     ++evaluations;
-    const Eigen::Vector2d xs = e.Position(s0 + length) - e.Position(s0);
+    // x(0) = 0 (Position(0) would still evaluate its 8-point short-arc quadrature).
+    const Eigen::Vector2d xs = s0 == 0.0 ? e.Position(length) : e.Position(s0 + length) - e.Position(s0);
     if (xs.norm() == 0.0) return false;
     const Eigen::Matrix3d q = s0 == 0.0 ? table.Rolling(length) : table.Rolling(s0 + length) * table.Rolling(s0).transpose();
     const Eigen::Matrix3d b = RotationZ(ctx->goal_angle - std::atan2(xs.y(), xs.x()));
