@@ -1,7 +1,8 @@
-// The join's integration kernel (src/fehlberg78.h), the planner's one-step Dormand-Prince 5(4) (src/dopri5.h), its hand-written variational right-hand side
-// (SensitivityRhs, src/dynamics.h) and the Taylor model of its first guess (src/contact_series.h),
-// each against an independent computation: ceres::Jet forward mode, odeint's adaptive dopri5 at a
-// tolerance 100 times tighter, a closed form.
+// The join's integration kernel (src/fehlberg78.h), the planner's one-step Dormand-Prince 5(4)
+// (src/dopri5.h), the hand-written variational right-hand side (SensitivityRhs, src/dynamics.h)
+// and the Taylor model of the join's first guess (src/contact_series.h), each against an
+// independent computation: ceres::Jet forward mode, odeint's steppers, odeint's adaptive dopri5 at
+// a tolerance 100 times tighter, a closed form.
 #include <gtest/gtest.h>
 
 #include <ceres/jet.h>
