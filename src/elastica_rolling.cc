@@ -236,14 +236,9 @@ void ElasticaRollingTable::Nodes(std::vector<Eigen::Matrix3d>* rolling, std::vec
   }
 }
 
-std::vector<double> ElasticaRollingTable::Crossings(double radius, int max_count) const {
-  std::vector<double> out;
-  ScanCrossings(radius, max_count, false, &out);
-  return out;
-}
-
-int ElasticaRollingTable::ScanCrossings(double radius, int max_count, bool refine_last_only,
-                                        std::vector<double>* out) const {
+template <class Pred>
+int ElasticaRollingTable::ScanCrossings(double radius, int max_count, Pred&& refine,
+                                        std::vector<std::pair<int, double>>* out) const {
   if (!valid_) return 0;
   const double r2 = radius * radius;
   double prev_f = -r2;  // x(0) = 0
@@ -262,10 +257,10 @@ int ElasticaRollingTable::ScanCrossings(double radius, int max_count, bool refin
     const double f = x.squaredNorm() - r2;
     if ((f > 0) != (prev_f > 0)) {
       ++count;
-      if (!refine_last_only || count == max_count) {
+      if (refine(count, prev_s, s)) {
         double root;
         if (Refine(radius, prev_s, s, &root) && root <= s_limit_ && root > 0) {
-          out->push_back(root);
+          out->push_back({count, root});
         } else {
           return -1;  // a bracket that does not refine: treat as missing
         }
@@ -278,11 +273,36 @@ int ElasticaRollingTable::ScanCrossings(double radius, int max_count, bool refin
   return count;
 }
 
+std::vector<double> ElasticaRollingTable::Crossings(double radius, int max_count) const {
+  std::vector<std::pair<int, double>> found;
+  ScanCrossings(radius, max_count, [](int, double, double) { return true; }, &found);
+  std::vector<double> out;
+  for (const auto& c : found) out.push_back(c.second);
+  return out;
+}
+
 bool ElasticaRollingTable::FindCrossing(double radius, int n, double* s) const {
-  std::vector<double> c;
-  if (ScanCrossings(radius, n, true, &c) != n || c.empty()) return false;
-  *s = c.back();
+  std::vector<std::pair<int, double>> c;
+  if (ScanCrossings(radius, n, [n](int count, double, double) { return count == n; }, &c) != n || c.empty())
+    return false;
+  *s = c.back().second;
   return true;
+}
+
+bool ElasticaRollingTable::NearestCrossing(double radius, double s, double tol, int max_count, int* n,
+                                           double* root) const {
+  std::vector<std::pair<int, double>> c;
+  // A root within tol of s lies in a bracket that reaches into [s - tol, s + tol].
+  const auto near = [s, tol](int, double sa, double sb) { return sb >= s - tol && sa <= s + tol; };
+  ScanCrossings(radius, max_count, near, &c);
+  bool found = false;
+  for (const auto& [count, r] : c) {
+    if (std::abs(r - s) > tol || (found && std::abs(r - s) >= std::abs(*root - s))) continue;
+    *n = count;
+    *root = r;
+    found = true;
+  }
+  return found;
 }
 
 }  // namespace plateball::internal

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "plateball/elastica.h"
@@ -37,6 +38,9 @@ class ElasticaRollingTable {
   bool FindCrossing(double radius, int n, double* s) const;
   /// All crossings in (0, s_limit] (node brackets, refined).
   std::vector<double> Crossings(double radius, int max_count) const;
+  /// The crossing nearest to s among those within tol of it (only their node brackets are
+  /// refined) and its number n (1 .. max_count) counted from s = 0; false if there is none.
+  bool NearestCrossing(double radius, double s, double tol, int max_count, int* n, double* root) const;
   /// Node spacing h: the table's nodes are s = i h, i = 0 .. NodeCount() (the last one may lie
   /// past s_limit by less than h).
   double Step() const { return h_; }
@@ -47,8 +51,10 @@ class ElasticaRollingTable {
 
  private:
   void Build(int steps);
-  // Counts node brackets up to max_count, refining all of them or only the last; -1 on failure.
-  int ScanCrossings(double radius, int max_count, bool refine_last_only, std::vector<double>* out) const;
+  // Counts node brackets up to max_count and refines those for which refine(count, sa, sb) holds
+  // (count from 1; bracket [sa, sb]), appending (count, root) to out; -1 on failure.
+  template <class Pred>
+  int ScanCrossings(double radius, int max_count, Pred&& refine, std::vector<std::pair<int, double>>* out) const;
   Eigen::Vector2d NodePosition(long global_index) const;
   bool Refine(double radius, double sa, double sb, double* s) const;
   const Elastica* e_;

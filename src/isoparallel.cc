@@ -51,11 +51,17 @@ constexpr int kSearchIterations = 20;
 constexpr int kTriageIterations = 8;
 constexpr double kHopelessResidual = 0.5;
 constexpr int kPolishIterations = 12;
+// A free-length search run is handed to the crossing formulation only when its residual is below
+// kHandOffResidual (100x kSearchAccept: the crossing residual differs from the free-length one by
+// the chord miss times the rolling's Lipschitz constant).
+constexpr double kHandOffResidual = 1e-2;
 // Relative tolerance for "the same solution" between a search result and a polished one.
 constexpr double kSearchSameTol = 1e-4;
 // Relative tolerances for "same solution" (lengths, G, E) and for "whole number of periods".
 constexpr double kSameTol = 1e-7;
 constexpr double kWholePeriodTol = 1e-6;
+// A path whose length is within kStraightTol (relative) of its chord is the straight segment.
+constexpr double kStraightTol = 1e-9;
 // Residual bound under which a phase-shifted path still counts as a solution (family test).
 constexpr double kFamilyTol = 1e-8;
 constexpr int kMaxCrossingsPerStart = 12;
@@ -100,17 +106,9 @@ struct Evaluation {
   Eigen::Vector3d residual = Eigen::Vector3d::Zero();
 };
 
-// The rotation trick of section 2.2 on the n-th crossing of the circle.
-bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, const Accuracy& acc, Evaluation* out,
-              double fixed_length = -1.0) {
-  if (!(std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase)) || std::abs(p.modulus) >= 1.0)
-    return false;
-  const Elastica e(p);
-  const double limit = fixed_length > 0 ? fixed_length : ctx.s_limit;
-  const internal::ElasticaRollingTable table(e, limit, acc.steps_per_period, acc.max_step);
-  if (!table.Valid()) return false;
-  double s = fixed_length;
-  if (fixed_length <= 0 && !table.FindCrossing(ctx.radius, crossing, &s)) return false;
+// The rotation trick of section 2.2 at arc length s of a table of e.
+bool EvaluateOnTable(const Context& ctx, const Elastica& e, const internal::ElasticaRollingTable& table, double s,
+                     Evaluation* out) {
   const Eigen::Vector2d xs = e.Position(s);
   if (xs.norm() == 0.0) return false;
   const double beta = ctx.goal_angle - std::atan2(xs.y(), xs.x());
@@ -120,6 +118,23 @@ bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, con
   out->beta = beta;
   out->residual = LogSO3(ctx.target.transpose() * b * q * b.transpose());
   return out->residual.allFinite();
+}
+
+bool Admissible(const ElasticaParameters& p) {
+  return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::abs(p.modulus) < 1.0;
+}
+
+// The rotation trick of section 2.2 on the n-th crossing of the circle.
+bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, const Accuracy& acc, Evaluation* out,
+              double fixed_length = -1.0) {
+  if (!Admissible(p)) return false;
+  const Elastica e(p);
+  const double limit = fixed_length > 0 ? fixed_length : ctx.s_limit;
+  const internal::ElasticaRollingTable table(e, limit, acc.steps_per_period, acc.max_step);
+  if (!table.Valid()) return false;
+  double s = fixed_length;
+  if (fixed_length <= 0 && !table.FindCrossing(ctx.radius, crossing, &s)) return false;
+  return EvaluateOnTable(ctx, e, table, s, out);
 }
 
 // TinySolver's functor call for a residual f.Residual(x, r) of N unknowns and N residuals:
@@ -211,7 +226,8 @@ struct FreeLengthFunctor {
   bool ResidualOnTable(const Elastica& e, const internal::ElasticaRollingTable& table, double s0, double length,
                        double* r) const {
     ++evaluations;
-    const Eigen::Vector2d xs = e.Position(s0 + length) - e.Position(s0);
+    // x(0) = 0 (Position(0) would still evaluate its 8-point short-arc quadrature).
+    const Eigen::Vector2d xs = s0 == 0.0 ? e.Position(length) : e.Position(s0 + length) - e.Position(s0);
     if (xs.norm() == 0.0) return false;
     const Eigen::Matrix3d q = s0 == 0.0 ? table.Rolling(length) : table.Rolling(s0 + length) * table.Rolling(s0).transpose();
     const Eigen::Matrix3d b = RotationZ(ctx->goal_angle - std::atan2(xs.y(), xs.x()));
@@ -265,15 +281,14 @@ struct FreeLengthFunctor {
 // kSearchSameTol, and the residual there (at most kSearchAccept).
 bool HandOff(const Context& ctx, double length, const Accuracy& acc, LocalResult* r) {
   const ElasticaParameters p = ToParameters(r->regime, r->x);
+  if (!Admissible(p)) return false;
   const Elastica e(p);
   const internal::ElasticaRollingTable table(e, ctx.s_limit, acc.steps_per_period, acc.max_step);
-  const std::vector<double> crossings = table.Crossings(ctx.radius, kMaxCrossingsPerStart * 4);
-  int nearest = -1;
-  for (int n = 0; n < static_cast<int>(crossings.size()); ++n)
-    if (nearest < 0 || std::abs(crossings[n] - length) < std::abs(crossings[nearest] - length)) nearest = n;
-  if (nearest < 0 || std::abs(crossings[nearest] - length) > kSearchSameTol * (1 + length)) return false;
-  r->crossing = nearest + 1;
-  return Evaluate(ctx, p, r->crossing, acc, &r->ev) && r->ev.residual.norm() <= kSearchAccept;
+  double s = 0.0;
+  if (!table.Valid() ||
+      !table.NearestCrossing(ctx.radius, length, kSearchSameTol * (1 + length), kMaxCrossingsPerStart * 4, &r->crossing, &s))
+    return false;
+  return EvaluateOnTable(ctx, e, table, s, &r->ev) && r->ev.residual.norm() <= kSearchAccept;
 }
 
 // Search stage on the free-length formulation from a start and one of its crossings; the result
@@ -308,6 +323,10 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   out.evaluations = f.evaluations;
   std::copy(v.data(), v.data() + 3, out.x);
   if (!v.allFinite() || !(v[3] > 0) || std::abs(std::tanh(v[1])) >= 1.0) return out;
+  // Runs that stopped far from a root are not handed off (the hand-off's tables over the whole
+  // search length were a fifth of the time on the rotation problem, mostly spent on such runs).
+  const double cost = solver.summary.final_cost;
+  if (!(cost >= 0 && cost <= 0.5 * kHandOffResidual * kHandOffResidual)) return out;
   // The crossing formulation's n: the crossing nearest to L on the search table, else on the
   // polish table (a near-tangency, the chord just reaching the radius between two coarse nodes).
   out.searched = HandOff(ctx, v[3], kSearch, &out) || HandOff(ctx, v[3], kPolish, &out);
@@ -402,8 +421,35 @@ Candidate MakeRoughCandidate(const Context&, const IsoparallelProblem& problem, 
   return c;
 }
 
-// Builds the reported solution from a converged local result: world frame, family test.
-Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, const LocalResult& r) {
+// The straight segment from start to goal (p with rate 0, heading along the chord), as a solution
+// of the given length (the chord) and residual.
+Candidate StraightCandidate(const Context& ctx, const IsoparallelProblem& problem, ElasticaParameters p, double length,
+                            double residual) {
+  Candidate c;
+  IsoparallelSolution& sol = c.solution;
+  p.rate = 0.0;
+  p.modulus = 0.0;
+  p.heading_w = ctx.goal_angle + M_PI / 2;
+  sol.parameters = p;
+  sol.length = length;
+  sol.shooting_residual = residual;
+  sol.start = problem.start;
+  c.signature = {sol.PositionAt(sol.length / 3), sol.PositionAt(2 * sol.length / 3)};
+  return c;
+}
+
+// Builds the reported solution from a converged local result: world frame, family test. A result
+// as long as the chord (to kStraightTol) is the straight segment: only a straight path is as
+// short as its chord, and the shooting's parameters degenerate there (modulus -> 0 with any rate
+// and phase: every such run polishes to a slightly different near-straight path, once listed
+// several times). When the segment itself solves the target to `tolerance`, it is reported
+// instead, the same candidate for every such run.
+Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, const LocalResult& r, double tolerance) {
+  if (std::abs(r.ev.s - ctx.radius) <= kStraightTol * (1 + ctx.radius)) {
+    const double residual =
+        LogSO3(ctx.target.transpose() * RollAlongSegment(problem.start, problem.goal)).norm();
+    if (residual <= tolerance) return StraightCandidate(ctx, problem, ElasticaParameters{}, ctx.radius, residual);
+  }
   Candidate c;
   IsoparallelSolution& sol = c.solution;
   ElasticaParameters p = ToParameters(r.regime, r.x);
@@ -489,14 +535,7 @@ Candidate FamilyCandidate(const Context& ctx, const IsoparallelProblem& problem,
   sol.length = f.length;
   sol.shooting_residual = f.residual;
   sol.start = problem.start;
-  if (f.periods == 0) {  // the straight segment (chord a multiple of 2 pi)
-    p.rate = 0.0;
-    p.modulus = 0.0;
-    p.heading_w = ctx.goal_angle + M_PI / 2;
-    sol.parameters = p;
-    c.signature = {sol.PositionAt(sol.length / 3), sol.PositionAt(2 * sol.length / 3)};
-    return c;
-  }
+  if (f.periods == 0) return StraightCandidate(ctx, problem, p, f.length, f.residual);  // chord a multiple of 2 pi
   const Elastica e(p);
   sol.G = e.G();
   sol.energy = e.Energy();
@@ -719,7 +758,7 @@ bool MergeResult(const Context& ctx, const IsoparallelProblem& problem, const Is
   summary->evaluations += r->evaluations - before;
   if (!r->converged) return false;
   ++summary->converged_solves;
-  const Candidate c = MakeCandidate(ctx, problem, *r);
+  const Candidate c = MakeCandidate(ctx, problem, *r, options.tolerance);
   if (Known(*found, c, kSameTol)) return false;
   found->push_back(c);
   return true;

@@ -1,7 +1,8 @@
-// The join's integration kernel (src/fehlberg78.h), its hand-written variational right-hand side
-// (SensitivityRhs, src/dynamics.h) and the Taylor model of its first guess (src/contact_series.h),
-// each against an independent computation: ceres::Jet forward mode, odeint's adaptive dopri5 at a
-// tolerance 100 times tighter, a closed form.
+// The join's integration kernel (src/fehlberg78.h), the planner's one-step Dormand-Prince 5(4)
+// (src/dopri5.h), the hand-written variational right-hand side (SensitivityRhs, src/dynamics.h)
+// and the Taylor model of the join's first guess (src/contact_series.h), each against an
+// independent computation: ceres::Jet forward mode, odeint's steppers, odeint's adaptive dopri5 at
+// a tolerance 100 times tighter, a closed form.
 #include <gtest/gtest.h>
 
 #include <ceres/jet.h>
@@ -11,6 +12,7 @@
 
 #include "arc.h"
 #include "contact_series.h"
+#include "dopri5.h"
 #include "dynamics.h"
 #include "fehlberg78.h"
 
@@ -164,6 +166,44 @@ TEST(Fehlberg78, ATooLongStepIsRefusedAndLeavesTheStateUnchanged) {
   std::array<double, 1> u{1.0};
   EXPECT_FALSE(plateball::internal::IntegrateEqualSteps(nan_rhs, u, 0.0, 0.1, 1, options));
   EXPECT_EQ(u[0], 1.0);
+}
+
+TEST(DormandPrince5, OneStepEqualsOdeintsDopri5StepAndErrorMeasure) {
+  // The planner's short rollouts and arcs take one hand-written step (dopri5.h): the same tableau
+  // as boost::numeric::odeint::runge_kutta_dopri5 (one step agrees to round-off) and the error
+  // measure of odeint's controller, computed here from odeint's own error estimate.
+  namespace odeint = boost::numeric::odeint;
+  const Arc a = MakeArc(2.0, {M_PI / 3, 0.4, 0.1}, 1.0, 1.36);
+  for (double h : {0.01, 0.05, 0.2, -0.1}) {
+    SensitivityState ours = a.y0, theirs = a.y0, err{};
+    const double measure = plateball::internal::DormandPrince5Step(a.rhs, ours, 0.0, h, 1e-12, 1e-12);
+    odeint::runge_kutta_dopri5<SensitivityState> stepper;
+    stepper.do_step(a.rhs, theirs, 0.0, h, err);
+    EXPECT_LT(MaxDifference(ours, theirs), 1e-15) << "h = " << h;
+    SensitivityState dydt{};
+    a.rhs(a.y0, dydt, 0.0);
+    double expected = 0.0;
+    for (std::size_t i = 0; i < err.size(); ++i)
+      expected = std::max(expected, std::abs(err[i]) / (1e-12 + 1e-12 * (std::abs(a.y0[i]) + std::abs(h) * std::abs(dydt[i]))));
+    EXPECT_NEAR(measure, expected, 1e-3 * expected + 1e-4 * std::abs(h)) << "h = " << h;
+  }
+}
+
+TEST(DormandPrince5, OneStepOnAnExponentialIsFifthOrder) {
+  // y' = y: one step of length h leaves exp(h) to O(h^6); halving h divides the error by ~2^6.
+  const auto rhs = [](const std::array<double, 1>& y, std::array<double, 1>& dy, double) { dy[0] = y[0]; };
+  double previous = 0.0;
+  for (double h : {0.4, 0.2, 0.1}) {
+    std::array<double, 1> y{1.0};
+    plateball::internal::DormandPrince5Step(rhs, y, 0.0, h, 1e-12, 1e-12);
+    const double err = std::abs(y[0] - std::exp(h));
+    EXPECT_GT(err, 0.0) << "h = " << h;
+    if (previous > 0) {
+      EXPECT_GT(previous / err, 40.0) << "h = " << h;
+      EXPECT_LT(previous / err, 90.0) << "h = " << h;
+    }
+    previous = err;
+  }
 }
 
 TEST(ContactSeries, TaylorModelMatchesTheRolloutAndItsSensitivity) {

@@ -289,6 +289,17 @@ TEST(Isoparallel, StraightSegmentTargetGivesTheSegment) {
   const IsoparallelSummary s = SolveIsoparallel(p, o);
   ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
   EXPECT_NEAR(s.Shortest().length, p.goal.norm(), kLengthTol);
+  // Listed once: only a straight path is as short as its chord, but the shooting reaches it from
+  // many starts as near-straight paths (modulus ~1e-6, any rate and phase; 12 copies with the
+  // default starts before they were recognised as the segment).
+  int copies = 0;
+  for (const IsoparallelSolution& sol : s.solutions) {
+    if (std::abs(sol.length - p.goal.norm()) > 1e-6) continue;
+    ++copies;
+    EXPECT_EQ(sol.parameters.rate, 0.0);  // reported as the segment itself
+    EXPECT_LT(sol.orientation_residual, kVerifiedTol);
+  }
+  EXPECT_EQ(copies, 1) << s.FullReport();
 }
 
 TEST(Isoparallel, SameSeedGivesIdenticalResultsWithAnyThreadCount) {
