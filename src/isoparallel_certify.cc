@@ -112,19 +112,23 @@ double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, Certi
   return std::min(by_heading, by_shift) + hl;
 }
 
-bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
-                             double max_step, CertifyResidual* out) {
-  const double length = x[kCertifyLength];
-  if (!(std::abs(x[kCertifyModulus]) < 1.0) || !(length > 0.0) || !std::isfinite(x[kCertifyRate]) ||
-      !std::isfinite(x[kCertifyPhase]) || !std::isfinite(length))
-    return false;
+Elastica CertifyElastica(PendulumRegime regime, const CertifyPoint& x) {
   ElasticaParameters p;
   p.regime = regime;
   p.rate = x[kCertifyRate];
   p.modulus = x[kCertifyModulus];
   p.phase = x[kCertifyPhase];
   p.heading_w = M_PI / 2;
-  const Elastica e(p);
+  return Elastica(p);
+}
+
+bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
+                             double max_step, CertifyResidual* out) {
+  const double length = x[kCertifyLength];
+  if (!(std::abs(x[kCertifyModulus]) < 1.0) || !(length > 0.0) || !std::isfinite(x[kCertifyRate]) ||
+      !std::isfinite(x[kCertifyPhase]) || !std::isfinite(length))
+    return false;
+  const Elastica e = CertifyElastica(regime, x);
   const ElasticaRollingTable table(e, length, 32, max_step);
   if (!table.Valid()) return false;
   const Eigen::Vector2d chord = e.Position(length);

@@ -62,6 +62,10 @@ struct CertifyResidual {
   double rotation = 0.0;    // rotation residual angle (rad)
 };
 
+/// The elastica of a parameter point (heading_w = pi/2; the residual does not depend on it).
+/// Throws std::invalid_argument like Elastica for |k| >= 1 or non-finite values.
+Elastica CertifyElastica(PendulumRegime regime, const CertifyPoint& x);
+
 /// The free-length residual at one parameter point (closed-form chord, sixth-order Magnus
 /// rolling with steps no longer than max_step). False for an inadmissible point (k >= 1, L <= 0).
 bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,

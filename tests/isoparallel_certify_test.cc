@@ -39,15 +39,7 @@ double Theta(PendulumRegime regime, double k, double v) {
   return Elastica(p).PendulumAngle(v);
 }
 
-Elastica PathAt(PendulumRegime regime, const CertifyPoint& x) {
-  ElasticaParameters p;
-  p.regime = regime;
-  p.rate = x[kCertifyRate];
-  p.modulus = x[kCertifyModulus];
-  p.phase = x[kCertifyPhase];
-  p.heading_w = M_PI / 2;
-  return Elastica(p);
-}
+Elastica PathAt(PendulumRegime regime, const CertifyPoint& x) { return CertifyElastica(regime, x); }
 
 Eigen::Matrix3d Dopri(const Elastica& e, double length) {
   IntegrationOptions o;
