@@ -79,6 +79,11 @@ constexpr double kCapMargin = 1e-6;
 // TwinSearch: the probe along the near-null direction and the longest step to a twin.
 constexpr double kTwinProbe = 1e-3;
 constexpr double kTwinMaxStep = 0.5;
+// A search run whose residual is below kDuplicateResidual and whose Gauss-Newton root estimate
+// lies within kDuplicateTol (relative) of a solution known before its batch is stopped there: it
+// would converge to that solution (docs/paper_notes.md, "General targets", point 8).
+constexpr double kDuplicateResidual = 0.1;
+constexpr double kDuplicateTol = 3e-3;
 
 struct Context {
   Eigen::Matrix3d target;  // A1 A0^-1
@@ -186,6 +191,7 @@ struct LocalResult {
   double x[3] = {0, 0, 0};
   int crossing = 1;
   bool searched = false;  // the search stage got within kSearchAccept
+  bool duplicate = false;  // the search stopped at a solution known before its batch
   Evaluation ev;
   long evaluations = 0;
 };
@@ -206,6 +212,24 @@ bool RunLm(ShootingFunctor& f, double* x, int max_iterations, double cost_thresh
   return v.allFinite();
 }
 
+// A known solution in the free-length search's unknowns (rate, atanh k, phase, L).
+struct SearchRoot {
+  PendulumRegime regime;
+  Eigen::Vector4d x;
+};
+
+// Whether y (free-length unknowns) is the root `root` to kDuplicateTol: the same regime and
+// modulus sign, rate, atanh k and length, the phase modulo the curvature period in u (the path
+// from phase u0 and from u0 plus a period is the same).
+bool SameRoot(PendulumRegime regime, const Eigen::Vector4d& y, const SearchRoot& root) {
+  if (regime != root.regime) return false;
+  for (int i : {0, 1, 3})
+    if (!(std::abs(y[i] - root.x[i]) <= kDuplicateTol * (1 + std::abs(root.x[i])))) return false;
+  const double u_period = (regime == PendulumRegime::kOscillating ? 4.0 : 2.0) *
+                          boost::math::ellint_1(std::abs(std::tanh(root.x[1])));
+  return std::abs(std::remainder(y[2] - root.x[2], u_period)) <= kDuplicateTol * (1 + u_period);
+}
+
 // The rotation trick without the crossing: the length L is a fourth unknown and |x(L)| - |x1 - x0|
 // a fourth residual. Smooth where the crossing formulation jumps (a tangency adding or removing a
 // pair of crossings, near which solutions often lie).
@@ -215,6 +239,9 @@ struct FreeLengthFunctor {
   const Context* ctx;
   PendulumRegime regime;
   mutable long evaluations = 0;
+  // Solutions known before this run (nullptr: none checked) and whether the run reached one.
+  const std::vector<SearchRoot>* known = nullptr;
+  mutable bool duplicate = false;
 
   bool Admissible(const ElasticaParameters& p, double length) const {
     return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::isfinite(length) &&
@@ -248,6 +275,37 @@ struct FreeLengthFunctor {
   // Forward differences, but one table (one per (rate, k)) serves the residual and the phase
   // and length columns: only the rate and modulus columns build new tables.
   bool operator()(const double* x, double* r, double* jacobian) const {
+    if (duplicate) return StopRun(r, jacobian);
+    if (!Evaluate(x, r, jacobian)) return false;
+    if (jacobian != nullptr && ReachesKnown(x, r, jacobian)) {
+      duplicate = true;
+      return StopRun(r, jacobian);
+    }
+    return true;
+  }
+
+  // A run that reached a known solution: a zero residual and Jacobian end TinySolver's loop at
+  // once (cost below its threshold); the caller drops the run by `duplicate`.
+  static bool StopRun(double* r, double* jacobian) {
+    std::fill(r, r + 4, 0.0);
+    if (jacobian != nullptr) std::fill(jacobian, jacobian + 16, 0.0);
+    return true;
+  }
+
+  // Whether the Gauss-Newton step from x lands on a known solution (only near a root).
+  bool ReachesKnown(const double* x, const double* r, const double* jacobian) const {
+    if (known == nullptr || known->empty()) return false;
+    const Eigen::Map<const Eigen::Vector4d> res(r);
+    if (!(res.norm() <= kDuplicateResidual)) return false;
+    const Eigen::Map<const Eigen::Matrix4d> jac(jacobian);
+    const Eigen::Vector4d y = Eigen::Map<const Eigen::Vector4d>(x) - jac.fullPivLu().solve(res);
+    if (!y.allFinite()) return false;
+    for (const SearchRoot& root : *known)
+      if (SameRoot(regime, y, root)) return true;
+    return false;
+  }
+
+  bool Evaluate(const double* x, double* r, double* jacobian) const {
     const ElasticaParameters p = ToParameters(regime, x);
     if (jacobian == nullptr || p.rate == 0.0 || !Admissible(p, x[3])) return ForwardDifferences<4>(*this, x, r, jacobian);
     const double h_phase = 1e-6 * (1.0 + std::abs(x[2])), h_length = 1e-6 * (1.0 + std::abs(x[3]));
@@ -292,12 +350,14 @@ bool HandOff(const Context& ctx, double length, const Accuracy& acc, LocalResult
 }
 
 // Search stage on the free-length formulation from a start and one of its crossings; the result
-// is handed to the crossing formulation (its crossing number counted) for the polish.
+// is handed to the crossing formulation (its crossing number counted) for the polish. A run that
+// reaches one of the `known` solutions stops there (LocalResult::duplicate).
 LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
-                                  const IsoparallelOptions& options) {
+                                  const IsoparallelOptions& options, const std::vector<SearchRoot>* known = nullptr) {
   LocalResult out;
   out.regime = regime;
   FreeLengthFunctor f{&ctx, regime};
+  f.known = known;
   Eigen::Vector4d v(x0[0], x0[1], x0[2], length0);
   ceres::TinySolver<FreeLengthFunctor> solver;
   solver.options.max_num_iterations = std::min(options.max_iterations, kSearchIterations);
@@ -321,7 +381,9 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
     }
   }
   out.evaluations = f.evaluations;
+  out.duplicate = f.duplicate;
   std::copy(v.data(), v.data() + 3, out.x);
+  if (out.duplicate) return out;
   if (!v.allFinite() || !(v[3] > 0) || std::abs(std::tanh(v[1])) >= 1.0) return out;
   // Runs that stopped far from a root are not handed off (the hand-off's tables over the whole
   // search length were a fifth of the time on the rotation problem, mostly spent on such runs).
@@ -688,7 +750,7 @@ std::vector<std::vector<ScanPoint>> ScanShape(const Context& ctx, const Elastica
 // minimum over s0 (against the point of the same index in the two neighbouring rows, cyclic)
 // starts the free-length search with phase rate s0 and length L.
 std::vector<LocalResult> SearchShape(const Context& ctx, const Start& shape, const IsoparallelOptions& options,
-                                     double covered) {
+                                     double covered, const std::vector<SearchRoot>& known) {
   std::vector<LocalResult> out;
   double h = 0.0;
   const std::vector<std::vector<ScanPoint>> rows = ScanShape(ctx, Elastica(ToParameters(shape.regime, shape.x)), &h);
@@ -704,7 +766,7 @@ std::vector<LocalResult> SearchShape(const Context& ctx, const Start& shape, con
       }
       if (!minimum) continue;
       const double x[3] = {shape.x[0], shape.x[1], shape.x[0] * i0 * h};
-      out.push_back(SearchLocalFreeLength(ctx, shape.regime, x, p.length, options));
+      out.push_back(SearchLocalFreeLength(ctx, shape.regime, x, p.length, options, &known));
     }
   }
   return out;
@@ -747,6 +809,7 @@ bool MergeResult(const Context& ctx, const IsoparallelProblem& problem, const Is
                  LocalResult* r, std::vector<Candidate>* found, IsoparallelSummary* summary) {
   ++summary->local_solves;
   summary->evaluations += r->evaluations;
+  if (r->duplicate) ++summary->converged_solves;
   if (!r->searched) return false;
   // Polish only what is not already known (compared at the search accuracy).
   if (Known(*found, MakeRoughCandidate(ctx, problem, *r), kSearchSameTol)) {
@@ -785,6 +848,18 @@ double CapLength(const IsoparallelOptions& options, const std::vector<Candidate>
   return options.length_cap_factor * shortest;
 }
 
+// The found solutions as roots of the free-length search (the straight segment, rate 0, is not
+// one: the search cannot stop at it).
+std::vector<SearchRoot> SearchRoots(const std::vector<Candidate>& found) {
+  std::vector<SearchRoot> roots;
+  for (const Candidate& c : found) {
+    const ElasticaParameters& p = c.solution.parameters;
+    if (p.rate == 0.0) continue;
+    roots.push_back({p.regime, Eigen::Vector4d(p.rate, std::atanh(p.modulus), p.phase, c.solution.length)});
+  }
+  return roots;
+}
+
 // General targets: the shapes are the first options.starts Halton points (regime and sense, log
 // period, modulus; the phase is scanned), unshifted: the same for every seed. They are searched
 // in batches (kFirstShapeBatch, then kShapeBatch); after each batch the search length shrinks to
@@ -796,8 +871,9 @@ void SearchShapes(Context* ctx, const IsoparallelProblem& problem, const Isopara
   const int total = static_cast<int>(shapes.size());
   for (int first = 0, count = 0; first < total; first += count) {
     count = std::min(first == 0 ? kFirstShapeBatch : kShapeBatch, total - first);
+    const std::vector<SearchRoot> known = SearchRoots(*found);  // fixed for the batch: any thread count
     MergeResults(*ctx, problem, options, SearchAll(first, count, total, options, [&](int i) {
-                   return SearchShape(*ctx, shapes[i], options, covered);
+                   return SearchShape(*ctx, shapes[i], options, covered, known);
                  }), found, summary);
     if (!found->empty()) ctx->s_limit = std::min(ctx->s_limit, CapLength(options, *found) * (1 + kCapMargin));
   }
