@@ -1,0 +1,273 @@
+#include "isoparallel_certify.h"
+
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <algorithm>
+#include <cmath>
+
+#include "check.h"
+#include "elastica_rolling.h"
+#include "plateball/so3.h"
+
+namespace plateball::internal {
+
+namespace {
+
+double MaxAbs(double a, double b) { return std::max(std::abs(a), std::abs(b)); }
+
+// The period of v = rate s + u0 after which the path repeats up to a rotation of the plane.
+double PhasePeriod(PendulumRegime regime, double k) {
+  const double kk = boost::math::ellint_1(k);
+  return regime == PendulumRegime::kOscillating ? 4.0 * kk : 2.0 * kk;
+}
+
+// int_0^length min(alpha + beta s, cap) ds for alpha, beta >= 0.
+double IntegralOfCappedLine(double alpha, double beta, double cap, double length) {
+  if (alpha >= cap) return cap * length;
+  const double s_cap = beta > 0.0 ? (cap - alpha) / beta : length;
+  if (s_cap >= length) return alpha * length + 0.5 * beta * length * length;
+  return alpha * s_cap + 0.5 * beta * s_cap * s_cap + cap * (length - s_cap);
+}
+
+// Whether the box meets (inside = false) or lies inside (inside = true) the neighbourhood
+// |x_i - known_i| <= match_i of a known solution, the phase taken modulo its period.
+bool InNeighbourhood(const CertifyBox& box, PendulumRegime regime, const CertifyPoint& known,
+                     const CertifyPoint& match, bool inside) {
+  const auto fits = [&](int axis, double centre) {
+    const double lo = centre - match[axis], hi = centre + match[axis];
+    return inside ? box.lo[axis] >= lo && box.hi[axis] <= hi : box.hi[axis] >= lo && box.lo[axis] <= hi;
+  };
+  for (int axis : {kCertifyRate, kCertifyModulus, kCertifyLength})
+    if (!fits(axis, known[axis])) return false;
+  const double period = PhasePeriod(regime, known[kCertifyModulus]);
+  for (int j = -2; j <= 2; ++j)
+    if (fits(kCertifyPhase, known[kCertifyPhase] + j * period)) return true;
+  return false;
+}
+
+// Volume of a box (degenerate axes count as width 1).
+double BoxVolume(const CertifyBox& box) {
+  double v = 1.0;
+  for (int i = 0; i < 4; ++i) v *= box.hi[i] > box.lo[i] ? box.hi[i] - box.lo[i] : 1.0;
+  return v;
+}
+
+// Index of the known solution whose neighbourhood holds (inside) or meets the box, or -1.
+int MatchKnown(const CertifyBox& box, const CertifyWindowOptions& options, const std::vector<CertifyPoint>& known,
+               bool inside) {
+  for (size_t i = 0; i < known.size(); ++i)
+    if (InNeighbourhood(box, options.regime, known[i], options.match, inside)) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace
+
+CertifyPoint CertifyBox::Centre() const {
+  CertifyPoint c;
+  for (int i = 0; i < 4; ++i) c[i] = 0.5 * (lo[i] + hi[i]);
+  return c;
+}
+
+double HeadingRateBound(PendulumRegime regime, double k_max) {
+  return regime == PendulumRegime::kOscillating ? 2.0 * k_max : 2.0;
+}
+
+double HeadingModulusBound(PendulumRegime regime, double k_max, double v_max) {
+  const double kp2 = (1.0 - k_max) * (1.0 + k_max);  // k'^2, decreasing in k: the sup is at k_max
+  const double am_k = k_max * (0.5 + v_max) / kp2;    // sup |d am / dk|
+  if (regime == PendulumRegime::kRotating) return 2.0 * am_k;  // theta = 2 am
+  // theta = 2 asin(k sn): d theta/dk = 2 (sn + k cn d am/dk) / dn, dn >= k'.
+  return 2.0 * (1.0 + k_max * am_k) / std::sqrt(kp2);
+}
+
+double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, CertifyPoint* contributions) {
+  const double k_max = box.hi[kCertifyModulus];
+  const double rate_max = MaxAbs(box.lo[kCertifyRate], box.hi[kCertifyRate]);
+  const double phase_max = MaxAbs(box.lo[kCertifyPhase], box.hi[kCertifyPhase]);
+  const double length_max = box.hi[kCertifyLength];
+  const double mv = HeadingRateBound(regime, k_max);
+  // d theta/dk is bounded by c1 + c2 |v| with |v| <= rate_max s + phase_max: split it into a part
+  // constant in s and a part linear in s (the bound is affine in v_max).
+  const double mk0 = HeadingModulusBound(regime, k_max, phase_max);
+  const double mk_slope = HeadingModulusBound(regime, k_max, phase_max + 1.0) - mk0;
+  const double hr = box.HalfWidth(kCertifyRate), hk = box.HalfWidth(kCertifyModulus);
+  const double hu = box.HalfWidth(kCertifyPhase), hl = box.HalfWidth(kCertifyLength);
+  // Mean value theorem on the segment from the centre: |g(s; p) - g(s; centre)| <= alpha + beta s.
+  const double alpha = hk * mk0, beta = hr * mv + hk * mk_slope * rate_max;
+  // The phase either enters the heading bound (hu |d theta/dv|, over the whole length) or, at a
+  // fixed rate, shifts the path along itself by du / rate: one rolling at each end, at most
+  // 2 |du| / |rate| in rotation and in chord (rate_min = 0 when the box meets rate 0).
+  const double rate_min = box.lo[kCertifyRate] > 0.0   ? box.lo[kCertifyRate]
+                          : box.hi[kCertifyRate] < 0.0 ? -box.hi[kCertifyRate]
+                                                       : 0.0;
+  const double by_heading = IntegralOfCappedLine(alpha + hu * mv, beta, 2.0, length_max);
+  const double by_shift = rate_min > 0.0 ? 2.0 * hu / rate_min + IntegralOfCappedLine(alpha, beta, 2.0, length_max)
+                                         : by_heading;
+  if (contributions != nullptr) {
+    (*contributions)[kCertifyRate] = 0.5 * hr * mv * length_max * length_max;
+    (*contributions)[kCertifyModulus] = hk * (mk0 * length_max + 0.5 * mk_slope * rate_max * length_max * length_max);
+    (*contributions)[kCertifyPhase] = hu * (rate_min > 0.0 ? std::min(mv * length_max, 2.0 / rate_min) : mv * length_max);
+    (*contributions)[kCertifyLength] = hl;
+  }
+  // |w1 - w2| = 2 |sin(dg / 2)| <= min(|dg|, 2); the extra length rolls at unit speed.
+  return std::min(by_heading, by_shift) + hl;
+}
+
+Elastica CertifyElastica(PendulumRegime regime, const CertifyPoint& x) {
+  ElasticaParameters p;
+  p.regime = regime;
+  p.rate = x[kCertifyRate];
+  p.modulus = x[kCertifyModulus];
+  p.phase = x[kCertifyPhase];
+  p.heading_w = M_PI / 2;
+  return Elastica(p);
+}
+
+bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
+                             double max_step, CertifyResidual* out) {
+  const double length = x[kCertifyLength];
+  if (!(std::abs(x[kCertifyModulus]) < 1.0) || !(length > 0.0) || !std::isfinite(x[kCertifyRate]) ||
+      !std::isfinite(x[kCertifyPhase]) || !std::isfinite(length))
+    return false;
+  const Elastica e = CertifyElastica(regime, x);
+  const ElasticaRollingTable table(e, length, 32, max_step);
+  if (!table.Valid()) return false;
+  const Eigen::Vector2d chord = e.Position(length);
+  const Eigen::Matrix3d b = RotationZ(target.goal_angle - std::atan2(chord.y(), chord.x()));
+  out->chord_norm = chord.norm();
+  out->chord_miss = out->chord_norm - target.radius;
+  out->rotation = LogSO3(target.target.transpose() * b * table.Rolling(length) * b.transpose()).norm();
+  return std::isfinite(out->rotation) && std::isfinite(out->chord_norm);
+}
+
+std::string ToString(BoxVerdict verdict) {
+  switch (verdict) {
+    case BoxVerdict::kNotRun: return "not run";
+    case BoxVerdict::kExcludedByChord: return "excluded by chord";
+    case BoxVerdict::kExcludedByRotation: return "excluded by rotation";
+    case BoxVerdict::kUndecided: return "undecided";
+  }
+  return "unknown";
+}
+
+BoxVerdict TestBox(PendulumRegime /*regime*/, const CertifyResidual& centre, double deviation, double margin) {
+  // Every point of the box has | |chord| - |chord_c| | <= D, so | chord miss | >= |miss_c| - D.
+  if (std::abs(centre.chord_miss) > deviation + margin) return BoxVerdict::kExcludedByChord;
+  // Its chord lies within D of the centre's: the direction turns by at most asin(D / |chord_c|),
+  // B by as much, the conjugation B Q B^T by twice that, Q itself by at most D.
+  if (deviation + margin < centre.chord_norm) {
+    const double turn = std::asin((deviation + margin) / centre.chord_norm);
+    if (centre.rotation > deviation + 2.0 * turn + 3.0 * margin) return BoxVerdict::kExcludedByRotation;
+  }
+  return BoxVerdict::kUndecided;
+}
+
+std::string ToString(CertifyStatus status) {
+  switch (status) {
+    case CertifyStatus::kNotRun: return "not run";
+    case CertifyStatus::kCertified: return "certified";
+    case CertifyStatus::kUnaccounted: return "unaccounted box";
+    case CertifyStatus::kBudgetExhausted: return "budget exhausted";
+    case CertifyStatus::kInvalidInput: return "invalid input";
+  }
+  return "unknown";
+}
+
+std::string CertifyWindowOptions::Validate() const {
+  static const char* kNames[4] = {"window.rate", "window.modulus", "window.phase", "window.length"};
+  for (int i = 0; i < 4; ++i) {
+    if (!(match[i] >= 0.0 && match[i] <= 1e3)) return InvalidValueMessage("match", match[i], "must be in [0, 1e3]");
+    if (!std::isfinite(window.lo[i]) || !std::isfinite(window.hi[i]) || !(window.lo[i] <= window.hi[i]))
+      return InvalidValueMessage(kNames[i], window.lo[i], "needs finite lo <= hi");
+    if (std::abs(window.lo[i]) > 1e6 || std::abs(window.hi[i]) > 1e6)
+      return InvalidValueMessage(kNames[i], MaxAbs(window.lo[i], window.hi[i]), "must be within [-1e6, 1e6]");
+  }
+  if (window.lo[kCertifyModulus] < 0.0 || window.hi[kCertifyModulus] > 0.999)
+    return InvalidValueMessage("window.modulus", window.hi[kCertifyModulus], "must lie in [0, 0.999]");
+  if (window.lo[kCertifyLength] <= 0.0) return InvalidValueMessage("window.length", window.lo[kCertifyLength], "must be > 0");
+  if (window.hi[kCertifyLength] > 1000.0) return InvalidValueMessage("window.length", window.hi[kCertifyLength], "must be <= 1000");
+  if (!(max_boxes >= 1 && max_boxes <= 2000000000L)) return InvalidValueMessage("max_boxes", max_boxes, "must be in [1, 2e9]");
+  if (!(accept_deviation > 0.0 && accept_deviation <= 1.0))
+    return InvalidValueMessage("accept_deviation", accept_deviation, "must be in (0, 1]");
+  if (!(margin >= 0.0 && margin <= 1e-2)) return InvalidValueMessage("margin", margin, "must be in [0, 1e-2]");
+  if (!(max_step >= 1e-4 && max_step <= 0.5)) return InvalidValueMessage("max_step", max_step, "must be in [1e-4, 0.5]");
+  return "";
+}
+
+CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double length) {
+  const PendulumRegime regime = parameters.regime;
+  const double k = std::abs(parameters.modulus);
+  const double half = 0.5 * PhasePeriod(PendulumRegime::kOscillating, k);  // 2K
+  double rate = parameters.rate, phase = parameters.phase;
+  if (regime == PendulumRegime::kOscillating) {
+    if (parameters.modulus < 0.0) phase += half;  // -k sn(v) = k sn(v + 2K)
+    if (rate < 0.0) {                             // k sn(-b s + u) = k sn(b s - u + 2K)
+      rate = -rate;
+      phase = half - phase;
+    }
+  }
+  const double period = PhasePeriod(regime, k);
+  phase = std::fmod(phase, period);
+  if (phase < 0.0) phase += period;
+  return {rate, k, phase, length};
+}
+
+CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector<CertifyPoint>& known,
+                                  const CertifyWindowOptions& options) {
+  CertifyWindowResult result;
+  result.matched.assign(known.size(), 0);
+  if (const std::string error = options.Validate(); !error.empty()) {
+    result.status = CertifyStatus::kInvalidInput;
+    result.message = error;
+    return result;
+  }
+  std::vector<CertifyBox> stack{options.window};  // depth first: memory ~ depth
+  const double window_volume = BoxVolume(options.window);
+  while (!stack.empty()) {
+    if (result.boxes >= options.max_boxes) break;
+    const CertifyBox box = stack.back();
+    stack.pop_back();
+    ++result.boxes;
+    int hit = MatchKnown(box, options, known, true);
+    CertifyPoint share;
+    const double deviation = RollingDeviationBound(options.regime, box, &share);
+    BoxVerdict verdict = BoxVerdict::kUndecided;
+    CertifyResidual centre;
+    if (hit < 0 && EvaluateCertifyResidual(target, options.regime, box.Centre(), options.max_step, &centre))
+      verdict = TestBox(options.regime, centre, deviation, options.margin);
+    if (verdict != BoxVerdict::kUndecided) {
+      ++(verdict == BoxVerdict::kExcludedByChord ? result.excluded_by_chord : result.excluded_by_rotation);
+      result.resolved_volume += BoxVolume(box) / window_volume;
+      continue;
+    }
+    if (hit < 0 && deviation <= options.accept_deviation) hit = MatchKnown(box, options, known, false);
+    if (hit >= 0) {
+      ++result.matched[hit];
+      ++result.accounted;
+      result.resolved_volume += BoxVolume(box) / window_volume;
+      continue;
+    }
+    if (deviation <= options.accept_deviation) {
+      if (result.unaccounted++ == 0) result.first_unaccounted = box;
+      if (options.stop_at_unaccounted) break;
+      continue;
+    }
+    const int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
+    CertifyBox left = box, right = box;
+    const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);
+    left.hi[axis] = mid;
+    right.lo[axis] = mid;
+    stack.push_back(right);
+    stack.push_back(left);
+  }
+  result.status = result.unaccounted > 0 ? CertifyStatus::kUnaccounted
+                  : stack.empty()        ? CertifyStatus::kCertified
+                                         : CertifyStatus::kBudgetExhausted;
+  result.message = ToString(result.status) + ": " + std::to_string(result.boxes) + " boxes, " +
+                   std::to_string(result.excluded_by_chord) + " excluded by the chord, " +
+                   std::to_string(result.excluded_by_rotation) + " by the rotation, " +
+                   std::to_string(result.accounted) + " next to known solutions, " +
+                   std::to_string(result.unaccounted) + " unaccounted";
+  return result;
+}
+
+}  // namespace plateball::internal

@@ -1,0 +1,126 @@
+// Internal: rigorous exclusion bounds for the isoparallel residual over boxes of ALL shape
+// parameters (rate, modulus k, phase u0, length L) and a branch-and-bound certificate over a
+// bounded window of one regime (issue 15, "General targets: certified, not statistical";
+// docs/paper_notes.md, "General targets: certified exclusion over parameter boxes").
+//
+// The residual is the rotation trick of section 2.2 with a free length: roll the ball along the
+// elastica (heading_w = pi/2, path from s = 0 to L), B = RotationZ(goal_angle - arg chord),
+//   chord residual    |chord| - |x1 - x0|,
+//   rotation residual angle of target^T B Q(0, L) B^T   (target = A1 A0^-1).
+// Both are invariant under a common rotation of the plane, so the heading_w of the parameters
+// does not matter. The bounds (derived in the notes):
+//   - rolling comparison: two paths with headings g1, g2 roll to rotations at most
+//     int_0^L 2 |sin((g1 - g2) / 2)| ds apart, and their chords differ by at most the same;
+//   - heading derivatives: |d theta/dv| <= 2k (oscillating), 2 (rotating), v = rate s + u0, and
+//     |d am/dk| <= k (1/2 + |v|) / k'^2 (from d am/dk = [k sn cn - dn (E(am v) - k'^2 v) / k] / k'^2
+//     and E(am v) - k'^2 v = k^2 int_0^v cn^2);
+//   - the chord's direction moves by at most asin(D / |chord|), and the conjugation by B moves
+//     the rotation by at most twice that.
+// The box test is rigorous up to the floating-point error of the centre's residual (a Magnus
+// rolling table, ~1e-10), covered by a stated margin.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "plateball/elastica.h"
+
+namespace plateball::internal {
+
+/// Coordinates of a parameter box: rate, modulus k (>= 0), phase u0, length L.
+enum CertifyAxis { kCertifyRate = 0, kCertifyModulus = 1, kCertifyPhase = 2, kCertifyLength = 3 };
+using CertifyPoint = std::array<double, 4>;
+
+struct CertifyBox {
+  CertifyPoint lo{}, hi{};
+  CertifyPoint Centre() const;
+  double HalfWidth(int axis) const { return 0.5 * (hi[axis] - lo[axis]); }
+};
+
+/// sup |d theta / dv| over moduli in [0, k_max] (theta the pendulum angle, v = rate s + u0).
+double HeadingRateBound(PendulumRegime regime, double k_max);
+/// sup |d theta / dk| at fixed v over moduli in [0, k_max] and |v| <= v_max (k_max < 1).
+double HeadingModulusBound(PendulumRegime regime, double k_max, double v_max);
+
+/// Bound D on both the rotation distance between Q(0, L) of any point of the box and Q(0, Lc) of
+/// its centre, and on the distance between their chords. `contributions` (optional) receives the
+/// uncapped share of each axis (for choosing the axis to split).
+double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, CertifyPoint* contributions = nullptr);
+
+/// The target of a general isoparallel problem, in the form the residual uses.
+struct CertifyTarget {
+  Eigen::Matrix3d target = Eigen::Matrix3d::Identity();  // A1 A0^-1
+  double radius = 1.0;                                  // |x1 - x0|
+  double goal_angle = 0.0;                              // direction of x1 - x0
+};
+
+struct CertifyResidual {
+  double chord_norm = 0.0;  // |chord|
+  double chord_miss = 0.0;  // |chord| - radius
+  double rotation = 0.0;    // rotation residual angle (rad)
+};
+
+/// The elastica of a parameter point (heading_w = pi/2; the residual does not depend on it).
+/// Throws std::invalid_argument like Elastica for |k| >= 1 or non-finite values.
+Elastica CertifyElastica(PendulumRegime regime, const CertifyPoint& x);
+
+/// The free-length residual at one parameter point (closed-form chord, sixth-order Magnus
+/// rolling with steps no longer than max_step). False for an inadmissible point (k >= 1, L <= 0).
+bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
+                             double max_step, CertifyResidual* out);
+
+enum class BoxVerdict { kNotRun, kExcludedByChord, kExcludedByRotation, kUndecided };
+std::string ToString(BoxVerdict verdict);
+
+/// The exclusion test: the centre's residual against the deviation bound D (plus `margin` for the
+/// centre's floating-point error). kExcluded* means no solution lies in the box.
+BoxVerdict TestBox(PendulumRegime regime, const CertifyResidual& centre, double deviation, double margin);
+
+struct CertifyWindowOptions {
+  PendulumRegime regime = PendulumRegime::kOscillating;
+  CertifyBox window;             // rate, k in [0, 1), phase, L > 0
+  long max_boxes = 1000000;      // budget of examined boxes
+  double accept_deviation = 1e-3;  // an undecided box with D below this must meet a neighbourhood
+  /// Half-widths (rate, k, phase, length) of the neighbourhood of each known solution that is not
+  /// searched: the certificate states that every solution of the window lies in one of them.
+  CertifyPoint match = {0.01, 0.005, 0.02, 0.02};
+  bool stop_at_unaccounted = true;  // a failed certificate needs no further boxes
+  double margin = 1e-7;          // floating-point margin on the centre's residual (rad, length)
+  double max_step = 0.05;        // Magnus step of the centre's rolling
+  std::string Validate() const;
+};
+
+enum class CertifyStatus { kNotRun, kCertified, kUnaccounted, kBudgetExhausted, kInvalidInput };
+std::string ToString(CertifyStatus status);
+
+struct CertifyWindowResult {
+  CertifyStatus status = CertifyStatus::kNotRun;
+  long boxes = 0;  // examined
+  long excluded_by_chord = 0;
+  long excluded_by_rotation = 0;
+  long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
+  long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
+  std::vector<int> matched;  // per known solution: how many accounted boxes it explains
+  double resolved_volume = 0.0;  // fraction of the window's volume excluded or accounted
+  CertifyBox first_unaccounted;
+  std::string message;
+  bool Certified() const { return status == CertifyStatus::kCertified; }
+};
+
+/// A solution (rate, modulus, phase, length) in the window's canonical form: k >= 0, the phase
+/// in [0, period) of v (4K oscillating, 2K rotating), an oscillating path with a negative rate
+/// written with a positive one (same heading up to sign conventions: the same path).
+CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double length);
+
+/// Branch and bound over the window: every box lies inside the `match` neighbourhood of a known
+/// solution, or is excluded (TestBox), or is split along the axis with the largest share of D,
+/// until D <= accept_deviation; such a small undecided box must meet a known neighbourhood (phase
+/// modulo the period). kCertified: every solution of the window lies within `match` of a known
+/// one (rigorous up to `margin` on the centre residuals; uniqueness inside a neighbourhood is not
+/// proved).
+CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector<CertifyPoint>& known,
+                                  const CertifyWindowOptions& options);
+
+}  // namespace plateball::internal
