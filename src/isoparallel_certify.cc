@@ -112,6 +112,15 @@ double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, Certi
   return std::min(by_heading, by_shift) + hl;
 }
 
+CertifyTarget CertifyTargetOf(const IsoparallelProblem& problem) {
+  CertifyTarget t;
+  t.target = problem.goal_orientation * problem.start_orientation.transpose();
+  const Eigen::Vector2d d = problem.goal - problem.start;
+  t.radius = d.norm();
+  t.goal_angle = std::atan2(d.y(), d.x());
+  return t;
+}
+
 Elastica CertifyElastica(PendulumRegime regime, const CertifyPoint& x) {
   ElasticaParameters p;
   p.regime = regime;

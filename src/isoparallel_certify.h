@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "plateball/elastica.h"
+#include "plateball/isoparallel.h"
 
 namespace plateball::internal {
 
@@ -55,6 +56,9 @@ struct CertifyTarget {
   double radius = 1.0;                                  // |x1 - x0|
   double goal_angle = 0.0;                              // direction of x1 - x0
 };
+
+/// The certificate's form of an isoparallel problem (target A1 A0^-1, |x1 - x0|, arg(x1 - x0)).
+CertifyTarget CertifyTargetOf(const IsoparallelProblem& problem);
 
 struct CertifyResidual {
   double chord_norm = 0.0;  // |chord|

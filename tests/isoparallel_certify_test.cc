@@ -7,12 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include <boost/math/special_functions/ellint_1.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <random>
 #include <vector>
 
@@ -50,17 +47,11 @@ Eigen::Matrix3d Dopri(const Elastica& e, double length) {
 
 CertifyTarget RotationProblemTarget() {
   const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
-  const IsoparallelProblem q = IsoparallelSetupFor(p).problem;
-  CertifyTarget t;
-  t.target = q.goal_orientation * q.start_orientation.transpose();
-  const Eigen::Vector2d d = q.goal - q.start;
-  t.radius = d.norm();
-  t.goal_angle = std::atan2(d.y(), d.x());
-  return t;
+  return CertifyTargetOf(IsoparallelSetupFor(p).problem);
 }
 
 // The shortest solution of the rotation problem (5.99098308, oscillating), in canonical form, as
-// SolveIsoparallel reports it (printed by DISABLED_MeasureRotationProblem below).
+// SolveIsoparallel reports it (printed by bench/certify_measure).
 const CertifyPoint kShortest = {1.1321176940954867, 0.79235739683313566, 1.8150570651798479, 5.9909830797493848};
 
 // A target made from a chosen path (rotating, rate 0.6, k 0.6, phase 0.7, length 3): that path
@@ -279,40 +270,3 @@ TEST(IsoparallelCertify, InvalidWindowIsRejectedByName) {
   EXPECT_EQ(r.boxes, 10);
 }
 
-// Measurement (not a unit test: run with --gtest_also_run_disabled_tests; issue 15's numbers in
-// docs/paper_notes.md): the solver's solutions of the rotation problem in canonical form, then the
-// branch and bound over the window rate [0, 2], k [0, 0.95], phase [0, 4K(0.95)) (oscillating) or
-// [0, 2K(0.95)) (rotating, both senses), L in [|x1 - x0|, cap] for caps 1.0, 1.2, 1.5 x shortest.
-TEST(IsoparallelCertify, DISABLED_MeasureRotationProblem) {
-  const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
-  const IsoparallelSetup setup = IsoparallelSetupFor(p);
-  const IsoparallelSummary s = SolveIsoparallel(setup.problem, setup.options);
-  ASSERT_TRUE(s.IsSolutionUsable());
-  std::vector<CertifyPoint> known[2];
-  for (const IsoparallelSolution& sol : s.solutions) {
-    const CertifyPoint c = CanonicalSolution(sol.parameters, sol.length);
-    const int r = sol.parameters.regime == PendulumRegime::kOscillating ? 0 : 1;
-    known[r].push_back(c);
-    std::printf("%s {%.17g, %.17g, %.17g, %.17g}\n", ToString(sol.parameters.regime).c_str(), c[0], c[1], c[2], c[3]);
-  }
-  const CertifyTarget t = RotationProblemTarget();
-  const long budget = std::getenv("CERTIFY_BUDGET") ? std::atol(std::getenv("CERTIFY_BUDGET")) : 2000000;
-  const double only = std::getenv("CERTIFY_FACTOR") ? std::atof(std::getenv("CERTIFY_FACTOR")) : 0.0;
-  for (double factor : {1.0, 1.2, 1.5}) {
-    if (only > 0.0 && factor != only) continue;
-    for (int r = 0; r < 2; ++r) {
-      if (std::getenv("CERTIFY_REGIME") && std::atoi(std::getenv("CERTIFY_REGIME")) != r) continue;
-      CertifyWindowOptions o;
-      o.regime = kRegimes[r];
-      o.max_boxes = budget;
-      o.stop_at_unaccounted = false;
-      const double k_max = std::getenv("CERTIFY_KMAX") ? std::atof(std::getenv("CERTIFY_KMAX")) : 0.95;
-      const double kk = boost::math::ellint_1(k_max);
-      o.window.lo = {r == 0 ? 0.0 : -2.0, 0.0, 0.0, t.radius};
-      o.window.hi = {2.0, k_max, r == 0 ? 4 * kk : 2 * kk, factor * 5.99098308};
-      const CertifyWindowResult w = CertifyWindow(t, known[r], o);
-      std::printf("cap %.1fx %s: %s; resolved volume %.6f\n", factor, ToString(o.regime).c_str(), w.message.c_str(),
-                  w.resolved_volume);
-    }
-  }
-}

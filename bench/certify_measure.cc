@@ -1,0 +1,139 @@
+// What a certified branch and bound over the shape parameters costs (issue 15; docs/paper_notes.md,
+// "General targets: certified exclusion over parameter boxes"). Not a timing benchmark: it solves
+// an isoparallel problem file with the default solver, then runs CertifyWindow over the window
+//   rate [0, rate_max] (oscillating) or [-rate_max, rate_max] (rotating), k [0, k_max],
+//   phase [0, one period of the Jacobi argument at k_max), length [|x1 - x0|, cap x shortest]
+// for each cap factor and regime, and prints the solver's solutions (canonical form), the box
+// counts and the verdicts.
+//
+//   certify_measure [PROBLEM.json] [--caps 1.0,1.2,1.5] [--regime oscillating|rotating|both]
+//                   [--budget BOXES] [--k-max K] [--rate-max A]
+//
+// Default: problems/isoparallel_rotation.json (relative to the working directory), caps 1.0, 1.2,
+// 1.5, both regimes, 2,000,000 boxes, k_max 0.95, rate_max 2.
+#include <boost/math/special_functions/ellint_1.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "isoparallel_certify.h"
+#include "plateball/problem_io.h"
+#include "plateball/task_adapters.h"
+
+namespace {
+
+using namespace plateball;
+using namespace plateball::internal;
+
+struct Settings {
+  std::string file = "problems/isoparallel_rotation.json";
+  std::vector<double> caps = {1.0, 1.2, 1.5};
+  std::vector<PendulumRegime> regimes = {PendulumRegime::kOscillating, PendulumRegime::kRotating};
+  long budget = 2000000;
+  double k_max = 0.95, rate_max = 2.0;
+};
+
+double Number(const std::string& option, const std::string& text, double lo, double hi) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !(v >= lo && v <= hi)) {
+    std::ostringstream m;
+    m << option << ": value " << text << ": expected a number in [" << lo << ", " << hi << "]";
+    throw std::invalid_argument(m.str());
+  }
+  return v;
+}
+
+std::vector<PendulumRegime> Regimes(const std::string& text) {
+  if (text == "oscillating") return {PendulumRegime::kOscillating};
+  if (text == "rotating") return {PendulumRegime::kRotating};
+  if (text == "both") return {PendulumRegime::kOscillating, PendulumRegime::kRotating};
+  throw std::invalid_argument("--regime: value " + text + ": expected oscillating, rotating or both");
+}
+
+Settings Parse(int argc, char** argv) {
+  Settings s;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind("--", 0) != 0) {
+      s.file = a;
+      continue;
+    }
+    if (i + 1 >= argc) throw std::invalid_argument(a + ": a value is missing");
+    const std::string v = argv[++i];
+    if (a == "--caps") {
+      s.caps.clear();
+      std::stringstream list(v);
+      for (std::string item; std::getline(list, item, ',');) s.caps.push_back(Number(a, item, 1.0, 10.0));
+    } else if (a == "--regime") {
+      s.regimes = Regimes(v);
+    } else if (a == "--budget") {
+      s.budget = static_cast<long>(Number(a, v, 1.0, 1e10));
+    } else if (a == "--k-max") {
+      s.k_max = Number(a, v, 0.0, 0.999);
+    } else if (a == "--rate-max") {
+      s.rate_max = Number(a, v, 1e-6, 1e3);
+    } else {
+      throw std::invalid_argument(a + ": unknown option");
+    }
+  }
+  return s;
+}
+
+CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, double radius, double cap) {
+  const double quarter = boost::math::ellint_1(s.k_max);  // K(k_max)
+  const bool oscillating = regime == PendulumRegime::kOscillating;
+  CertifyWindowOptions o;
+  o.regime = regime;
+  o.max_boxes = s.budget;
+  o.stop_at_unaccounted = false;
+  o.window.lo = {oscillating ? 0.0 : -s.rate_max, 0.0, 0.0, radius};
+  o.window.hi = {s.rate_max, s.k_max, oscillating ? 4 * quarter : 2 * quarter, cap};
+  return o;
+}
+
+int Run(const Settings& s) {
+  const IsoparallelSetup setup = IsoparallelSetupFor(ReadProblemFile(s.file));
+  const IsoparallelSummary solved = SolveIsoparallel(setup.problem, setup.options);
+  if (!solved.IsSolutionUsable()) {
+    std::fprintf(stderr, "certify_measure: the solver found no solution: %s\n", solved.message.c_str());
+    return 1;
+  }
+  const CertifyTarget target = CertifyTargetOf(setup.problem);
+  const double shortest = solved.Shortest().length;
+  for (PendulumRegime regime : s.regimes) {
+    std::vector<CertifyPoint> known;
+    for (const IsoparallelSolution& sol : solved.solutions) {
+      if (sol.parameters.regime != regime) continue;
+      known.push_back(CanonicalSolution(sol.parameters, sol.length));
+      const CertifyPoint& c = known.back();
+      std::printf("%s solution {%.17g, %.17g, %.17g, %.17g}\n", ToString(regime).c_str(), c[0], c[1], c[2], c[3]);
+    }
+    for (double factor : s.caps) {
+      const CertifyWindowResult w = CertifyWindow(target, known, WindowFor(s, regime, target.radius, factor * shortest));
+      std::printf("cap %.2fx %s: %s; resolved volume %.6f\n", factor, ToString(regime).c_str(), w.message.c_str(),
+                  w.resolved_volume);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Run(Parse(argc, argv));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "certify_measure: %s\n", e.what());
+    return 2;
+  }
+}
