@@ -22,6 +22,7 @@
 #include "plateball/isoparallel_families.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
+#include "rotation_trick.h"
 
 namespace plateball {
 namespace {
@@ -116,12 +117,9 @@ bool EvaluateOnTable(const Context& ctx, const Elastica& e, const internal::Elas
                      Evaluation* out) {
   const Eigen::Vector2d xs = e.Position(s);
   if (xs.norm() == 0.0) return false;
-  const double beta = ctx.goal_angle - std::atan2(xs.y(), xs.x());
-  const Eigen::Matrix3d b = RotationZ(beta);
-  const Eigen::Matrix3d q = table.Rolling(s);
   out->s = s;
-  out->beta = beta;
-  out->residual = LogSO3(ctx.target.transpose() * b * q * b.transpose());
+  out->beta = internal::ChordTurn(ctx.goal_angle, xs);
+  out->residual = internal::RotationTrickResidual(ctx.target, out->beta, table.Rolling(s));
   return out->residual.allFinite();
 }
 
@@ -257,8 +255,7 @@ struct FreeLengthFunctor {
     const Eigen::Vector2d xs = s0 == 0.0 ? e.Position(length) : e.Position(s0 + length) - e.Position(s0);
     if (xs.norm() == 0.0) return false;
     const Eigen::Matrix3d q = s0 == 0.0 ? table.Rolling(length) : table.Rolling(s0 + length) * table.Rolling(s0).transpose();
-    const Eigen::Matrix3d b = RotationZ(ctx->goal_angle - std::atan2(xs.y(), xs.x()));
-    const Eigen::Vector3d rot = LogSO3(ctx->target.transpose() * b * q * b.transpose());
+    const Eigen::Vector3d rot = internal::RotationTrickResidual(ctx->target, internal::ChordTurn(ctx->goal_angle, xs), q);
     r[0] = xs.norm() - ctx->radius;
     for (int i = 0; i < 3; ++i) r[i + 1] = rot[i];
     return rot.allFinite();
@@ -604,7 +601,7 @@ Candidate FamilyCandidate(const Context& ctx, const IsoparallelProblem& problem,
   sol.periods = f.periods;
   sol.family = true;
   const Eigen::Vector2d drift = e.DriftPerPeriod();
-  p.heading_w += ctx.goal_angle - std::atan2(drift.y(), drift.x());
+  p.heading_w += internal::ChordTurn(ctx.goal_angle, drift);
   sol.parameters = p;
   sol.crossing = CrossingCount(ctx, e, f.length);
   c.signature = {sol.PositionAt(sol.length / 3), sol.PositionAt(2 * sol.length / 3)};
@@ -694,7 +691,9 @@ std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const Iso
 Eigen::Vector3d NodeResidual(const Context& ctx, const std::vector<Eigen::Matrix3d>& rolling,
                              const std::vector<Eigen::Vector2d>& position, long i0, long i) {
   const Eigen::Vector2d c = position[i] - position[i0];
-  const Eigen::Matrix3d b = RotationZ(ctx.goal_angle - std::atan2(c.y(), c.x()));
+  // The two node rollings are multiplied in this order (not through RotationTrickResidual's one q),
+  // so that the scan's residuals stay bit for bit those its thresholds were measured with.
+  const Eigen::Matrix3d b = RotationZ(internal::ChordTurn(ctx.goal_angle, c));
   return LogSO3(ctx.target.transpose() * b * rolling[i] * rolling[i0].transpose() * b.transpose());
 }
 

@@ -7,6 +7,7 @@
 #include "check.h"
 #include "elastica_rolling.h"
 #include "plateball/so3.h"
+#include "rotation_trick.h"
 
 namespace plateball::internal {
 
@@ -141,10 +142,9 @@ bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime,
   const ElasticaRollingTable table(e, length, 32, max_step);
   if (!table.Valid()) return false;
   const Eigen::Vector2d chord = e.Position(length);
-  const Eigen::Matrix3d b = RotationZ(target.goal_angle - std::atan2(chord.y(), chord.x()));
   out->chord_norm = chord.norm();
   out->chord_miss = out->chord_norm - target.radius;
-  out->rotation = LogSO3(target.target.transpose() * b * table.Rolling(length) * b.transpose()).norm();
+  out->rotation = RotationTrickResidual(target.target, ChordTurn(target.goal_angle, chord), table.Rolling(length)).norm();
   return std::isfinite(out->rotation) && std::isfinite(out->chord_norm);
 }
 
@@ -158,7 +158,7 @@ std::string ToString(BoxVerdict verdict) {
   return "unknown";
 }
 
-BoxVerdict TestBox(PendulumRegime /*regime*/, const CertifyResidual& centre, double deviation, double margin) {
+BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double margin) {
   // Every point of the box has | |chord| - |chord_c| | <= D, so | chord miss | >= |miss_c| - D.
   if (std::abs(centre.chord_miss) > deviation + margin) return BoxVerdict::kExcludedByChord;
   // Its chord lies within D of the centre's: the direction turns by at most asin(D / |chord_c|),
@@ -242,7 +242,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     BoxVerdict verdict = BoxVerdict::kUndecided;
     CertifyResidual centre;
     if (hit < 0 && EvaluateCertifyResidual(target, options.regime, box.Centre(), options.max_step, &centre))
-      verdict = TestBox(options.regime, centre, deviation, options.margin);
+      verdict = TestBox(centre, deviation, options.margin);
     if (verdict != BoxVerdict::kUndecided) {
       ++(verdict == BoxVerdict::kExcludedByChord ? result.excluded_by_chord : result.excluded_by_rotation);
       result.resolved_volume += BoxVolume(box) / window_volume;

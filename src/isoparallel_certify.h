@@ -80,7 +80,7 @@ std::string ToString(BoxVerdict verdict);
 
 /// The exclusion test: the centre's residual against the deviation bound D (plus `margin` for the
 /// centre's floating-point error). kExcluded* means no solution lies in the box.
-BoxVerdict TestBox(PendulumRegime regime, const CertifyResidual& centre, double deviation, double margin);
+BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double margin);
 
 struct CertifyWindowOptions {
   PendulumRegime regime = PendulumRegime::kOscillating;
