@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 
 #include "isoparallel_certify.h"
 
@@ -28,6 +29,7 @@ HeadingDerivatives HeadingDerivativesAt(PendulumRegime regime, double k, double 
 struct CertifyJacobian {
   Eigen::Vector4d residual = Eigen::Vector4d::Zero();  // (chord miss, rotation vector)
   Eigen::Matrix4d jacobian = Eigen::Matrix4d::Zero();
+  double chord_norm = 0.0;  // |chord| at the point
 };
 
 /// The residual by a sixth-order Magnus table (steps <= max_step, as EvaluateCertifyResidual) and
@@ -43,5 +45,34 @@ bool EvaluateCertifyJacobian(const CertifyTarget& target, PendulumRegime regime,
 /// norm) drops below tolerance. x receives the last iterate.
 bool NewtonRefineCertify(const CertifyTarget& target, PendulumRegime regime, double max_step, double tolerance,
                          int max_iterations, CertifyPoint* x);
+
+/// Bounds on |d2 theta/dv2|, |d2 theta/dv dk|, |d2 theta/dk2| (k at fixed v) over moduli in
+/// [0, k_max] and |v| <= v_max (k_max < 1); each increasing in k_max and v_max (derived in the
+/// notes from d am/dk = k (sn cn - dn int cn^2) / k'^2).
+struct HeadingSecondBounds {
+  double vv = 0.0, vk = 0.0, kk = 0.0;
+};
+HeadingSecondBounds HeadingSecondDerivativeBounds(PendulumRegime regime, double k_max, double v_max);
+
+/// Relative floating-point error allowed on a column of the centre's Jacobian: the enclosure adds
+/// kJacobianMargin (1 + |column|_max) to every entry (tests: measured error ~3e-9).
+inline constexpr double kJacobianMargin = 1e-6;
+
+/// Entrywise radius E with |J(x) - J_centre| <= E for every x of the box, J_centre the Jacobian
+/// EvaluateCertifyJacobian computed at box.Centre() (its floating-point error included). False
+/// when no enclosure is available: the chord may vanish in the box, the rotation residual may
+/// exceed 2.5 rad, or k_max >= 1.
+bool CertifyJacobianEnclosure(PendulumRegime regime, const CertifyBox& box, const CertifyJacobian& centre,
+                              double margin, Eigen::Matrix4d* radius);
+
+enum class FirstOrderVerdict { kNotRun, kExcluded, kUnique, kUndecided };
+std::string ToString(FirstOrderVerdict verdict);
+
+/// First-order tests of a box from its centre's residual and Jacobian (residual error <= margin
+/// per component) and the enclosure `radius`: kExcluded when 0 is outside F(c) + J(X)(X - c)
+/// componentwise or the Krawczyk image K(X) = c - A F(c) + (I - A J(X))(X - c) (A = J_c^-1) is
+/// disjoint from X; kUnique when K(X) lies inside the interior of X (exactly one solution in X).
+FirstOrderVerdict FirstOrderTest(const CertifyBox& box, const CertifyJacobian& centre, const Eigen::Matrix4d& radius,
+                                 double margin);
 
 }  // namespace plateball::internal

@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include "plateball/elastica.h"
 #include "plateball/rolling.h"
@@ -138,5 +140,88 @@ TEST(IsoparallelCertifyJacobian, NewtonRecoversMadeSolutions) {
     std::printf("%s made solution: singular values %.3g %.3g %.3g %.3g\n", ToString(regime).c_str(), sv[0], sv[1],
                 sv[2], sv[3]);
     EXPECT_GT(sv[3], 1e-3);
+  }
+}
+
+// The second-derivative bounds never undershoot central differences (step 1e-6) of the tested
+// closed-form first derivatives, k in [0.02, 0.96], |v| <= 30 (both taken at the sample's own k
+// and |v|: the bounds increase in both).
+TEST(IsoparallelCertifyJacobian, HeadingSecondDerivativeBoundsNeverUndershoot) {
+  const double h = 1e-6;
+  for (PendulumRegime regime : kBothRegimes) {
+    double tightest = 1e300;
+    for (double k = 0.02; k <= 0.961; k += 0.04) {
+      for (double v = -30.0; v <= 30.0; v += 0.0531) {
+        const HeadingSecondBounds b = HeadingSecondDerivativeBounds(regime, k, std::abs(v));
+        const HeadingDerivatives vp = HeadingDerivativesAt(regime, k, v + h), vm = HeadingDerivativesAt(regime, k, v - h);
+        const HeadingDerivatives kp = HeadingDerivativesAt(regime, k + h, v), km = HeadingDerivativesAt(regime, k - h, v);
+        const double vv = (vp.dv - vm.dv) / (2 * h), vk = (kp.dv - km.dv) / (2 * h), kk = (kp.dk - km.dk) / (2 * h);
+        ASSERT_LE(std::abs(vv), b.vv * (1 + 1e-6) + 1e-6) << ToString(regime) << " k " << k << " v " << v;
+        ASSERT_LE(std::abs(vk), b.vk * (1 + 1e-6) + 1e-6) << ToString(regime) << " k " << k << " v " << v;
+        ASSERT_LE(std::abs(kk), b.kk * (1 + 1e-6) + 1e-5) << ToString(regime) << " k " << k << " v " << v;
+        tightest = std::min(tightest, b.kk / std::max(std::abs(kk), 1e-300));
+      }
+    }
+    std::printf("%s: smallest bound / |d2 theta/dk2| sampled = %.3g\n", ToString(regime).c_str(), tightest);
+  }
+}
+
+namespace {
+
+// A random box of half-widths in [1e-4, scale] around a random point of the usual window.
+CertifyBox RandomBox(std::mt19937& rng, double scale) {
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const CertifyPoint c = {-1.2 + 2.4 * uni(rng), 0.05 + 0.8 * uni(rng), 4 * uni(rng), 1.0 + 6.0 * uni(rng)};
+  CertifyBox box;
+  for (int i = 0; i < 4; ++i) {
+    const double half = 1e-4 * std::pow(scale / 1e-4, uni(rng));
+    box.lo[i] = c[i] - half;
+    box.hi[i] = c[i] + half;
+  }
+  box.lo[kCertifyModulus] = std::max(box.lo[kCertifyModulus], 0.0);
+  return box;
+}
+
+}  // namespace
+
+// The enclosure never undershoots: at 16 corners and 8 random points of random boxes (both
+// regimes, half-widths 1e-4 .. 0.02), |J(x) - J(centre)| <= radius entrywise; the Jacobians are
+// the tested ones (steps 0.02). Also prints how tight it is (radius / largest sampled deviation).
+TEST(IsoparallelCertifyJacobian, EnclosureNeverUndershootsSampledJacobians) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (PendulumRegime regime : kBothRegimes) {
+    const CertifyTarget target = MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
+    int boxes = 0;
+    std::vector<double> ratios;
+    for (int trial = 0; trial < 400 && boxes < 40; ++trial) {
+      const CertifyBox box = RandomBox(rng, 0.02);
+      CertifyJacobian centre;
+      Eigen::Matrix4d radius;
+      if (!EvaluateCertifyJacobian(target, regime, box.Centre(), 0.02, &centre) ||
+          !CertifyJacobianEnclosure(regime, box, centre, 1e-7, &radius))
+        continue;
+      ++boxes;
+      double sampled = 0.0;
+      for (int m = 0; m < 24; ++m) {
+        CertifyPoint x;
+        for (int i = 0; i < 4; ++i) {
+          const double t = m < 16 ? ((m >> i) & 1) : uni(rng);
+          x[i] = box.lo[i] + t * (box.hi[i] - box.lo[i]);
+        }
+        CertifyJacobian j;
+        if (!EvaluateCertifyJacobian(target, regime, x, 0.02, &j)) continue;
+        const Eigen::Matrix4d dev = (j.jacobian - centre.jacobian).cwiseAbs();
+        for (int r = 0; r < 4; ++r)
+          for (int c = 0; c < 4; ++c)
+            ASSERT_LE(dev(r, c), radius(r, c)) << ToString(regime) << " entry " << r << "," << c;
+        sampled = std::max(sampled, (dev.array() / radius.array()).maxCoeff());
+      }
+      ratios.push_back(1.0 / std::max(sampled, 1e-300));
+    }
+    EXPECT_GE(boxes, 20) << ToString(regime);
+    std::sort(ratios.begin(), ratios.end());
+    std::printf("%s: %d boxes, radius / largest sampled deviation (entrywise worst): median %.3g, min %.3g\n",
+                ToString(regime).c_str(), boxes, ratios[ratios.size() / 2], ratios.front());
   }
 }
