@@ -13,6 +13,9 @@
 
 namespace plateball::internal {
 
+// HeadingDerivativesAt with the modulus' AGM sequence and K(k) computed once per path.
+HeadingDerivatives HeadingDerivativesWith(PendulumRegime regime, const JacobiAgm& agm, double kk, double v);
+
 namespace {
 
 // 4-point Gauss-Legendre on [-1, 1].
@@ -40,11 +43,12 @@ void IntegrateVariations(PendulumRegime regime, const CertifyPoint& x, const Ela
   const double length = x[kCertifyLength];
   const int steps = std::max(1, static_cast<int>(std::ceil(length / max_step)));
   const double h = length / steps;
+  const JacobiAgm agm(x[kCertifyModulus]);
+  const double kk = boost::math::ellint_1(x[kCertifyModulus]);
   for (int i = 0; i < steps; ++i) {
     for (int j = 0; j < 4; ++j) {
       const double s = h * (i + 0.5 * (1.0 + kNodes[j])), w = 0.5 * h * kWeights[j];
-      const HeadingDerivatives d =
-          HeadingDerivativesAt(regime, x[kCertifyModulus], x[kCertifyRate] * s + x[kCertifyPhase]);
+      const HeadingDerivatives d = HeadingDerivativesWith(regime, agm, kk, x[kCertifyRate] * s + x[kCertifyPhase]);
       const Eigen::Vector2d t = e.Tangent(s);
       const Eigen::Vector2d n(-t.y(), t.x());
       const Eigen::Vector3d qt = table.Rolling(s).transpose() * Eigen::Vector3d(t.x(), t.y(), 0.0);
@@ -111,11 +115,15 @@ ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
 }  // namespace
 
 HeadingDerivatives HeadingDerivativesAt(PendulumRegime regime, double k, double v) {
-  const double kk = boost::math::ellint_1(k);
+  return HeadingDerivativesWith(regime, JacobiAgm(k), boost::math::ellint_1(k), v);
+}
+
+HeadingDerivatives HeadingDerivativesWith(PendulumRegime regime, const JacobiAgm& agm, double kk, double v) {
+  const double k = agm.k;
   const double m = std::round(v / (2.0 * kk));
   const double r = v - 2.0 * kk * m;  // |r| <= K; sn, cn change sign with each 2K, dn does not
   double sn = 0, cn = 0, dn = 0;
-  JacobiSnCnDn(r, k, &sn, &cn, &dn);
+  JacobiSnCnDn(r, agm, &sn, &cn, &dn);
   const double amp = m * M_PI + std::atan2(sn, cn);
   const double sign = std::fmod(m, 2.0) == 0.0 ? 1.0 : -1.0;
   sn *= sign;
