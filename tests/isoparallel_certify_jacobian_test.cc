@@ -4,6 +4,8 @@
 // (dopri5 rollings of the closed-form tangent), and Newton's method recovering a made solution.
 #include "isoparallel_certify_jacobian.h"
 
+#include "isoparallel_certify.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/SVD>
@@ -150,8 +152,8 @@ TEST(IsoparallelCertifyJacobian, HeadingSecondDerivativeBoundsNeverUndershoot) {
   const double h = 1e-6;
   for (PendulumRegime regime : kBothRegimes) {
     double tightest = 1e300;
-    for (double k = 0.02; k <= 0.961; k += 0.04) {
-      for (double v = -30.0; v <= 30.0; v += 0.0531) {
+    for (double k = 0.02; k <= 0.961; k += 0.06) {
+      for (double v = -30.0; v <= 30.0; v += 0.0931) {
         const HeadingSecondBounds b = HeadingSecondDerivativeBounds(regime, k, std::abs(v));
         const HeadingDerivatives vp = HeadingDerivativesAt(regime, k, v + h), vm = HeadingDerivativesAt(regime, k, v - h);
         const HeadingDerivatives kp = HeadingDerivativesAt(regime, k + h, v), km = HeadingDerivativesAt(regime, k - h, v);
@@ -279,4 +281,29 @@ TEST(IsoparallelCertifyJacobian, KrawczykProvesUniquenessAndRefusesTwinsAndEmpty
       continue;
     EXPECT_NE(FirstOrderTest(box, j, radius, 1e-8), FirstOrderVerdict::kUnique) << half;
   }
+}
+
+// A small window (0.0017 wide around the made oscillating solution, off-centre) certified
+// with NO known solution: the first-order tests exclude the rest and prove exactly one solution,
+// the made one (to 1e-8); without the first-order tests the same window stays undecided next to it.
+TEST(IsoparallelCertifyJacobian, SmallWindowIsCertifiedWithoutKnownSolutions) {
+  const PendulumRegime regime = PendulumRegime::kOscillating;
+  const CertifyTarget target = MadeTarget(regime, kMadeOscillating);
+  CertifyWindowOptions o;
+  o.regime = regime;
+  for (int i = 0; i < 4; ++i) {
+    o.window.lo[i] = kMadeOscillating[i] - 0.001;
+    o.window.hi[i] = kMadeOscillating[i] + 0.0007;
+  }
+  o.max_boxes = 200000;
+  o.first_order = true;
+  const CertifyWindowResult r = CertifyWindow(target, {}, o);
+  std::printf("%s\n", r.message.c_str());
+  ASSERT_EQ(r.status, CertifyStatus::kCertified) << r.message;
+  ASSERT_EQ(r.found.size(), 1u);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(r.found[0][i], kMadeOscillating[i], 1e-8) << i;
+  EXPECT_EQ(r.found_known[0], -1);
+  o.first_order = false;
+  o.max_boxes = 5000;
+  EXPECT_NE(CertifyWindow(target, {}, o).status, CertifyStatus::kCertified);
 }
