@@ -306,6 +306,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
     if (hit < 0 && options.first_order && deviation <= options.first_order_deviation) {
       const FirstOrderOutcome first = FirstOrderBox(target, options, box);
+      if (first.verdict != FirstOrderVerdict::kNotRun) ++result.first_order_tried;
       if (first.verdict == FirstOrderVerdict::kExcluded || first.verdict == FirstOrderVerdict::kUnique) {
         if (first.verdict == FirstOrderVerdict::kExcluded) ++result.excluded_first_order;
         if (first.verdict == FirstOrderVerdict::kUnique) RecordFound(first.solution, options, known, &result);
@@ -343,7 +344,8 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
                    std::to_string(result.accounted) + " next to known solutions, " +
                    std::to_string(result.unaccounted) + " unaccounted";
   if (options.first_order)
-    result.message += ", " + std::to_string(result.excluded_first_order) + " excluded to first order, " +
+    result.message += ", " + std::to_string(result.first_order_tried) + " given the first-order tests, " +
+                      std::to_string(result.excluded_first_order) + " excluded by them, " +
                       std::to_string(result.found.size()) + " proved unique";
   return result;
 }

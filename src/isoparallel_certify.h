@@ -115,6 +115,7 @@ struct CertifyWindowResult {
   long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
   long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
   std::vector<int> matched;  // per known solution: how many accounted boxes it explains
+  long first_order_tried = 0;       // boxes given the first-order tests (with an enclosure)
   long excluded_first_order = 0;    // by the mean-value form or a Krawczyk image disjoint from the box
   std::vector<CertifyPoint> found;  // one per box proved (Krawczyk) to hold exactly one solution
   std::vector<int> found_known;     // per found solution: the known one whose neighbourhood holds it, or -1
