@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "plateball/elastica.h"
@@ -283,7 +284,7 @@ TEST(IsoparallelCertifyJacobian, KrawczykProvesUniquenessAndRefusesTwinsAndEmpty
   }
 }
 
-// A small window (0.0017 wide around the made oscillating solution, off-centre) certified
+// A small window (0.0009 wide around the made oscillating solution, off-centre) certified
 // with NO known solution: the first-order tests exclude the rest and prove exactly one solution,
 // the made one (to 1e-8); without the first-order tests the same window stays undecided next to it.
 TEST(IsoparallelCertifyJacobian, SmallWindowIsCertifiedWithoutKnownSolutions) {
@@ -292,8 +293,8 @@ TEST(IsoparallelCertifyJacobian, SmallWindowIsCertifiedWithoutKnownSolutions) {
   CertifyWindowOptions o;
   o.regime = regime;
   for (int i = 0; i < 4; ++i) {
-    o.window.lo[i] = kMadeOscillating[i] - 0.001;
-    o.window.hi[i] = kMadeOscillating[i] + 0.0007;
+    o.window.lo[i] = kMadeOscillating[i] - 0.0005;
+    o.window.hi[i] = kMadeOscillating[i] + 0.0004;
   }
   o.max_boxes = 200000;
   o.first_order = true;
@@ -306,4 +307,20 @@ TEST(IsoparallelCertifyJacobian, SmallWindowIsCertifiedWithoutKnownSolutions) {
   o.first_order = false;
   o.max_boxes = 5000;
   EXPECT_NE(CertifyWindow(target, {}, o).status, CertifyStatus::kCertified);
+}
+
+// The first-order options are range-checked by name.
+TEST(IsoparallelCertifyJacobian, FirstOrderOptionsAreValidatedByName) {
+  CertifyWindowOptions o;
+  o.window.lo = {0.0, 0.0, 0.0, 1.0};
+  o.window.hi = {1.0, 0.5, 1.0, 2.0};
+  EXPECT_EQ(o.Validate(), "");
+  o.first_order_deviation = -1.0;
+  EXPECT_NE(o.Validate().find("first_order_deviation"), std::string::npos);
+  o.first_order_deviation = 0.5;
+  o.first_order_min_deviation = 0.0;
+  EXPECT_NE(o.Validate().find("first_order_min_deviation"), std::string::npos);
+  o.first_order_min_deviation = 1e-9;
+  o.first_order_margin = std::nan("");
+  EXPECT_NE(o.Validate().find("first_order_margin"), std::string::npos);
 }
