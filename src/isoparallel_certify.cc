@@ -109,6 +109,20 @@ FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindow
   return out;
 }
 
+// The one-line account of a window's branch and bound.
+std::string CertifyMessage(const CertifyWindowResult& result, bool first_order) {
+  std::string message = ToString(result.status) + ": " + std::to_string(result.boxes) + " boxes, " +
+                        std::to_string(result.excluded_by_chord) + " excluded by the chord, " +
+                        std::to_string(result.excluded_by_rotation) + " by the rotation, " +
+                        std::to_string(result.accounted) + " next to known solutions, " +
+                        std::to_string(result.unaccounted) + " unaccounted";
+  if (first_order)
+    message += ", " + std::to_string(result.first_order_tried) + " given the first-order tests, " +
+               std::to_string(result.excluded_first_order) + " excluded by them, " +
+               std::to_string(result.found.size()) + " proved unique";
+  return message;
+}
+
 }  // namespace
 
 CertifyPoint CertifyBox::Centre() const {
@@ -338,15 +352,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
   result.status = result.unaccounted > 0 ? CertifyStatus::kUnaccounted
                   : stack.empty()        ? CertifyStatus::kCertified
                                          : CertifyStatus::kBudgetExhausted;
-  result.message = ToString(result.status) + ": " + std::to_string(result.boxes) + " boxes, " +
-                   std::to_string(result.excluded_by_chord) + " excluded by the chord, " +
-                   std::to_string(result.excluded_by_rotation) + " by the rotation, " +
-                   std::to_string(result.accounted) + " next to known solutions, " +
-                   std::to_string(result.unaccounted) + " unaccounted";
-  if (options.first_order)
-    result.message += ", " + std::to_string(result.first_order_tried) + " given the first-order tests, " +
-                      std::to_string(result.excluded_first_order) + " excluded by them, " +
-                      std::to_string(result.found.size()) + " proved unique";
+  result.message = CertifyMessage(result, options.first_order);
   return result;
 }
 
