@@ -790,11 +790,28 @@ std::vector<std::vector<ScanPoint>> ScanShape(const Context& ctx, const Elastica
   const double h = table.Step(), r2 = ctx.radius * ctx.radius;
   *step = h;
   const long last = static_cast<long>(x.size()) - 1;
+  long l_limit = 1;  // the rows' last node: the first l with (l - 1) h >= s_limit, less one
+  while ((l_limit - 1) * h < ctx.s_limit) ++l_limit;
+  --l_limit;
+  // The chord moves by at most h per node (unit speed): while |chord| - radius exceeds
+  // kTangencyMiss + (k + 2) h, the next k nodes hold no crossing and no near-tangency.
+  const double far = ctx.radius + kTangencyMiss;
   for (long i0 = 0; i0 < table.Steps(); ++i0) {
     std::vector<ScanPoint> row;
     double f_prev = -r2, f_prev2 = -r2;  // |chord|^2 - radius^2 at the two previous nodes
-    for (long l = 1; i0 + l <= last && (l - 1) * h < ctx.s_limit; ++l) {
-      const double f = (x[i0 + l] - x[i0]).squaredNorm() - r2;
+    const long l_end = std::min(last - i0, l_limit);
+    for (long l = 1; l <= l_end; ++l) {
+      double f = (x[i0 + l] - x[i0]).squaredNorm() - r2;
+      if (f > 0 && f_prev > 0 && f + r2 > far * far) {
+        const long skip = static_cast<long>((std::sqrt(f + r2) - far) / h) - 2;
+        if (skip > 0 && l + skip + 2 <= l_end) {  // resume with the two nodes before the next one
+          l += skip;
+          f_prev2 = (x[i0 + l - 1] - x[i0]).squaredNorm() - r2;
+          f_prev = (x[i0 + l] - x[i0]).squaredNorm() - r2;
+          ++l;
+          f = (x[i0 + l] - x[i0]).squaredNorm() - r2;
+        }
+      }
       const bool extremum = l >= 2 && ((f_prev > f_prev2 && f_prev >= f && f_prev < 0) ||
                                        (f_prev < f_prev2 && f_prev <= f && f_prev > 0));
       const double miss = extremum ? std::sqrt(f_prev + r2) - ctx.radius : 0.0;
