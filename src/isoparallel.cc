@@ -333,13 +333,33 @@ struct FreeLengthFunctor {
   // and length columns: only the rate and modulus columns build new tables.
   bool operator()(const double* x, double* r, double* jacobian) const {
     if (duplicate) return StopRun(r, jacobian);
+    if (jacobian != nullptr && kept.valid && std::equal(x, x + 4, kept.x)) {  // the triage's last point
+      std::copy(kept.r, kept.r + 4, r);
+      std::copy(kept.jacobian, kept.jacobian + 16, jacobian);
+      return true;
+    }
     if (!Evaluate(x, r, jacobian)) return false;
     if (jacobian != nullptr && ReachesKnown(x, r, jacobian)) {
       duplicate = true;
       return StopRun(r, jacobian);
     }
+    if (jacobian != nullptr) {
+      kept.valid = true;
+      std::copy(x, x + 4, kept.x);
+      std::copy(r, r + 4, kept.r);
+      std::copy(jacobian, jacobian + 16, kept.jacobian);
+    }
     return true;
   }
+
+  // The last Jacobian evaluated (a run resumed after the triage starts at its point).
+  struct KeptJacobian {
+    bool valid = false;
+    double x[4] = {0, 0, 0, 0};
+    double r[4] = {0, 0, 0, 0};
+    double jacobian[16] = {};
+  };
+  mutable KeptJacobian kept;
 
   // A run that reached a known solution: a zero residual and Jacobian end TinySolver's loop at
   // once (cost below its threshold); the caller drops the run by `duplicate`.
