@@ -319,7 +319,7 @@ struct FreeLengthFunctor {
                                                                   kSearch.max_step);
     last.ok = last.table->Valid() && ResidualOnTable(*last.path, *last.table, 0.0, x[3], r);
     std::copy(x, x + 4, last.x);
-    std::copy(r, r + 4, last.r);
+    if (last.ok) std::copy(r, r + 4, last.r);
     return last.ok;
   }
 
