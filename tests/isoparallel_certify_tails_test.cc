@@ -1,0 +1,229 @@
+// The tails of the certified exclusion (src/isoparallel_certify_tails.h): the averaging bound
+// against rollings by dopri5 at sampled (rate, k, phase, length), the drift deficit against the
+// closed-form chord per period, the rate bound a_max(k) against the known solutions and against
+// dopri5 rollings of fast paths ending on the circle |x| = |x1 - x0|, and the coverage statement.
+#include "isoparallel_certify_tails.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "elastica_rolling.h"
+#include "plateball/elastica.h"
+#include "plateball/isoparallel.h"
+#include "plateball/problem_io.h"
+#include "plateball/rolling.h"
+#include "plateball/so3.h"
+#include "plateball/task_adapters.h"
+#include "rotation_trick.h"
+#include "support/test_support.h"
+
+using namespace plateball;
+using namespace plateball::internal;
+
+namespace {
+
+const PendulumRegime kRegimes[] = {PendulumRegime::kOscillating, PendulumRegime::kRotating};
+
+Eigen::Matrix3d Dopri(const Elastica& e, double length) {
+  IntegrationOptions o;
+  o.absolute_tolerance = 1e-12;
+  o.relative_tolerance = 1e-12;
+  return RollingReorientation([&e](double s) { return e.Tangent(s); }, 0.0, length, {}, o);
+}
+
+Eigen::Matrix3d StraightRolling(const Eigen::Vector2d& chord) {
+  return ExpSO3(Eigen::Vector3d(-chord.y(), chord.x(), 0.0));  // exp(hat(e3 x c))
+}
+
+CertifyTarget RotationProblemTarget() {
+  const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
+  return CertifyTargetOf(IsoparallelSetupFor(p).problem);
+}
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+TEST(IsoparallelCertifyTails, AveragingBoundNeverUndershootsDopriRollings) {
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (PendulumRegime regime : kRegimes) {
+    std::vector<double> ratios;
+    for (int i = 0; i < 400; ++i) {
+      ElasticaParameters p;
+      p.regime = regime;
+      p.rate = (regime == PendulumRegime::kRotating && i % 2 ? -1.0 : 1.0) * (0.3 + 25.0 * unit(rng) * unit(rng));
+      p.modulus = 0.97 * unit(rng);
+      p.phase = 8.0 * unit(rng);
+      p.heading_w = 6.0 * unit(rng);
+      const double length = 0.3 + 7.7 * unit(rng);
+      const Elastica e(p);
+      const Eigen::Vector2d chord = e.Position(length);
+      const double actual = RotationAngle(Dopri(e, length), StraightRolling(chord));
+      const double bound = AveragingDeviationBound(e.Period(), DriftDeficit(regime, p.modulus), length, chord.norm());
+      ASSERT_LE(actual, bound + 1e-9) << ToString(regime) << " rate " << p.rate << " k " << p.modulus << " phase "
+                                      << p.phase << " L " << length;
+      if (bound < 1.0 && actual > 1e-9) ratios.push_back(bound / actual);
+    }
+    ASSERT_GE(ratios.size(), 80u);
+    std::printf("%s: bound / dopri5 deviation over %zu points with bound < 1: median %.2f, best %.2f, worst %.2f\n",
+                ToString(regime).c_str(), ratios.size(), Median(ratios), *std::min_element(ratios.begin(), ratios.end()),
+                *std::max_element(ratios.begin(), ratios.end()));
+    // The bound is an order-correct estimate (second-order Magnus: ~ L P), not a loose cap.
+    EXPECT_LT(Median(ratios), 40.0);
+  }
+}
+
+// Oscillating paths have |theta| <= 2 asin(k): a heading within eta = 2 asin(k) of g_W - pi/2.
+TEST(IsoparallelCertifyTails, StraightRunBoundNeverUndershootsDopriRollings) {
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> ratios;
+  for (int i = 0; i < 150; ++i) {
+    ElasticaParameters p;
+    p.rate = 0.2 + 6.0 * unit(rng);
+    p.modulus = 0.3 * unit(rng) * unit(rng);
+    p.phase = 8.0 * unit(rng);
+    p.heading_w = 6.0 * unit(rng);
+    const double length = 0.2 + 5.0 * unit(rng);
+    const Elastica e(p);
+    const Eigen::Vector2d chord = e.Position(length);
+    const double actual = RotationAngle(Dopri(e, length), StraightRolling(chord));
+    const double bound = StraightRunDeviationBound(2.0 * std::asin(p.modulus), length, chord.norm());
+    ASSERT_LE(actual, bound + 1e-9) << "rate " << p.rate << " k " << p.modulus << " L " << length;
+    if (bound < 1.0 && actual > 1e-9) ratios.push_back(bound / actual);
+  }
+  ASSERT_GE(ratios.size(), 50u);
+  std::printf("straight runs: bound / dopri5 deviation over %zu points: median %.2f, best %.2f\n", ratios.size(),
+              Median(ratios), *std::min_element(ratios.begin(), ratios.end()));
+}
+
+TEST(IsoparallelCertifyTails, DriftDeficitMatchesTheClosedFormChordPerPeriod) {
+  for (PendulumRegime regime : kRegimes) {
+    for (double k : {0.0, 0.05, 0.3, 0.6, 0.9, 0.95, 0.99}) {
+      ElasticaParameters p;
+      p.regime = regime;
+      p.rate = 1.3;
+      p.modulus = k;
+      const Elastica e(p);
+      // Oscillating k = 0 is a straight line for the closed form too (drift = period): deficit 0.
+      const double rho = e.DriftPerPeriod().norm() / e.Period();
+      const double expected = std::sqrt(std::max(0.0, 1.0 - rho * rho));
+      EXPECT_NEAR(DriftDeficit(regime, k), expected, 1e-7) << ToString(regime) << " k " << k;
+    }
+  }
+}
+
+TEST(IsoparallelCertifyTails, RateBoundIsWhereTheAveragingBoundMeetsTheStraightResidual) {
+  const CertifyTarget target = RotationProblemTarget();
+  const double delta0 = StraightResidual(target), cap = 3.0 * 5.99098308, margin = 1e-7;
+  // delta0 by rolling straight along x1 - x0 with dopri5 and applying the rotation trick.
+  ElasticaParameters straight;
+  straight.heading_w = target.goal_angle + M_PI / 2;  // heading g = theta + g_W - pi/2 = goal
+  const Elastica line(straight);
+  EXPECT_NEAR(delta0, RotationTrickResidual(target.target, 0.0, Dopri(line, target.radius)).norm(), 1e-9);
+  for (PendulumRegime regime : kRegimes) {
+    for (double k : {0.1, 0.5, 0.9, 0.95}) {
+      const double a_max = MaxSolutionRate(target, regime, k, cap, margin);
+      ElasticaParameters p;
+      p.regime = regime;
+      p.rate = a_max;
+      p.modulus = k;
+      const double eps = AveragingDeviationBound(Elastica(p).Period(), DriftDeficit(regime, k), cap, target.radius);
+      EXPECT_NEAR(eps, delta0 - margin, 1e-9) << ToString(regime) << " k " << k;
+      // The interval sup is at least every sampled value.
+      for (double kk = 0.0; kk <= k; kk += k / 16)
+        EXPECT_LE(MaxSolutionRate(target, regime, kk, cap, margin),
+                  MaxSolutionRateOver(target, regime, 0.0, k, cap, margin) * (1 + 1e-12));
+    }
+  }
+}
+
+// The rotation problem's shortest solution (oscillating, canonical form) and a made target's
+// exact rotating solution lie below a_max(k) at their caps (a bound that excluded them is wrong).
+TEST(IsoparallelCertifyTails, KnownSolutionsLieBelowTheRateBound) {
+  const CertifyTarget target = RotationProblemTarget();
+  const double shortest_rate = 1.1321176940954867, shortest_k = 0.79235739683313566, shortest_l = 5.9909830797493848;
+  EXPECT_LE(shortest_rate, MaxSolutionRate(target, PendulumRegime::kOscillating, shortest_k, shortest_l, 1e-7));
+  ElasticaParameters p;
+  p.regime = PendulumRegime::kRotating;
+  p.rate = 0.6;
+  p.modulus = 0.6;
+  p.phase = 0.7;
+  p.heading_w = M_PI / 2;
+  const Elastica e(p);
+  CertifyTarget made;
+  made.target = Dopri(e, 3.0);
+  made.radius = e.Position(3.0).norm();
+  made.goal_angle = std::atan2(e.Position(3.0).y(), e.Position(3.0).x());
+  EXPECT_GT(StraightResidual(made), 0.1);
+  EXPECT_LE(0.6, MaxSolutionRate(made, PendulumRegime::kRotating, 0.6, 3.0, 1e-7));
+}
+
+// Paths faster than a_max(k) that end on the circle |x| = |x1 - x0| before the cap: their
+// rotation-trick residual (dopri5) never comes near zero, and stays above delta0 - eps.
+TEST(IsoparallelCertifyTails, FastPathsOnTheCircleHaveNoSmallResidual) {
+  const CertifyTarget target = RotationProblemTarget();
+  const double cap = 3.0 * 5.99098308, delta0 = StraightResidual(target);
+  int crossings = 0;
+  for (PendulumRegime regime : kRegimes) {
+    for (double k : {0.3, 0.5, 0.7, 0.9}) {
+      const double a_max = MaxSolutionRate(target, regime, k, cap, 1e-7);
+      for (double factor : {1.05, 1.5}) {
+        ElasticaParameters p;
+        p.regime = regime;
+        p.rate = factor * a_max;
+        p.modulus = k;
+        p.phase = 0.37 * factor;
+        p.heading_w = M_PI / 2;
+        const Elastica e(p);
+        const ElasticaRollingTable table(e, cap, 32, 0.01);
+        ASSERT_TRUE(table.Valid());
+        for (double s : table.Crossings(target.radius, 8)) {
+          const Eigen::Vector2d chord = e.Position(s);
+          const double residual =
+              RotationTrickResidual(target.target, ChordTurn(target.goal_angle, chord), Dopri(e, s)).norm();
+          const double eps = AveragingDeviationBound(e.Period(), DriftDeficit(regime, k), s, chord.norm());
+          EXPECT_GE(residual, delta0 - eps - 1e-9);
+          EXPECT_GT(residual, 1e-3);
+          ++crossings;
+        }
+      }
+    }
+  }
+  EXPECT_GE(crossings, 10);
+  std::printf("%d crossings of |x| = |x1 - x0| checked\n", crossings);
+}
+
+TEST(IsoparallelCertifyTails, CoverageStatesTheWindowsAndTheUncoveredTail) {
+  const CertifyTarget target = RotationProblemTarget();
+  const CoverageStatement c = CoverageUpTo(target, 3.0 * 5.99098308, 0.95, 4);
+  ASSERT_EQ(c.message, "");
+  EXPECT_TRUE(c.rate_tail_excluded);
+  ASSERT_EQ(c.windows.size(), 8u);
+  for (const CoverageWindow& w : c.windows) {
+    EXPECT_GE(w.rate_hi * (1 + 1e-12), MaxSolutionRate(target, w.regime, w.k_hi, 3.0 * 5.99098308, 1e-7));
+    EXPECT_EQ(w.rate_lo, w.regime == PendulumRegime::kOscillating ? 0.0 : -w.rate_hi);
+  }
+  EXPECT_NE(c.uncovered.find("separatrix"), std::string::npos);
+  // The straight rolling as target: delta0 = 0, the lemma excludes nothing and says so.
+  CertifyTarget straight = target;
+  straight.target = StraightRolling(Eigen::Vector2d(2.0, 1.0));
+  const CoverageStatement s = CoverageUpTo(straight, 10.0, 0.95, 1);
+  EXPECT_LT(s.straight_residual, 1e-12);
+  EXPECT_FALSE(s.rate_tail_excluded);
+  EXPECT_TRUE(std::isinf(s.windows[0].rate_hi));
+  EXPECT_NE(s.uncovered.find("excludes nothing"), std::string::npos);
+  // Invalid input is named.
+  EXPECT_NE(CoverageUpTo(target, 1.0, 0.95, 4).message.find("cap"), std::string::npos);
+  EXPECT_NE(CoverageUpTo(target, 10.0, 1.0, 4).message.find("k_max"), std::string::npos);
+  EXPECT_NE(CoverageUpTo(target, 10.0, 0.9, 0).message.find("pieces"), std::string::npos);
+}
+
+}  // namespace
