@@ -44,6 +44,10 @@ struct CertifyBox {
 double HeadingRateBound(PendulumRegime regime, double k_max);
 /// sup |d theta / dk| at fixed v over moduli in [0, k_max] and |v| <= v_max (k_max < 1).
 double HeadingModulusBound(PendulumRegime regime, double k_max, double v_max);
+/// A second bound on the same sup over moduli in [k_min, k_max], from d am/dk at a fixed number of
+/// periods (Jacobi's zeta, |Z| <= k^2 K / 2) plus the period's change: a larger constant, a
+/// secular slope smaller by the factor 1 - D/K <= 1/2 (D = (K - E) / k^2, taken at k_min).
+double HeadingModulusBoundByZeta(PendulumRegime regime, double k_min, double k_max, double v_max);
 
 /// Bound D on both the rotation distance between Q(0, L) of any point of the box and Q(0, Lc) of
 /// its centre, and on the distance between their chords. `contributions` (optional) receives the

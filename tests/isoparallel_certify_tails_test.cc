@@ -104,6 +104,42 @@ TEST(IsoparallelCertifyTails, StraightRunBoundNeverUndershootsDopriRollings) {
               Median(ratios), *std::min_element(ratios.begin(), ratios.end()));
 }
 
+double Theta(PendulumRegime regime, double k, double v) {
+  ElasticaParameters p;
+  p.regime = regime;
+  p.rate = 1.0;
+  p.modulus = k;
+  return Elastica(p).PendulumAngle(v);
+}
+
+// The zeta form of the modulus bound (sup over [k_min, k_max]) never undershoots central
+// differences of the closed forms; and its secular slope is at most half the fixed-v bound's.
+TEST(IsoparallelCertifyTails, ZetaModulusBoundNeverUndershootsFiniteDifferences) {
+  const double h = 1e-6;
+  for (PendulumRegime regime : kRegimes) {
+    double worst_ratio = 0.0, best_gain = 0.0;
+    for (double k = 0.02; k <= 0.97; k += 0.03) {
+      double sup_k = 0.0;
+      const double v_max = 40.0, k_min = std::max(0.0, k - 0.015);
+      for (double v = -v_max; v <= v_max; v += 0.0173) {
+        const double dk = (Theta(regime, k + h, v) - Theta(regime, k - h, v)) / (2 * h);
+        ASSERT_LE(std::abs(dk), HeadingModulusBoundByZeta(regime, k_min, k, std::abs(v)) * (1 + 1e-6) + 1e-6)
+            << ToString(regime) << " k " << k << " v " << v;
+        sup_k = std::max(sup_k, std::abs(dk));
+      }
+      const double zeta = HeadingModulusBoundByZeta(regime, k_min, k, v_max);
+      worst_ratio = std::max(worst_ratio, zeta / sup_k);
+      best_gain = std::max(best_gain, HeadingModulusBound(regime, k, v_max) / zeta);
+      const double slope_z = HeadingModulusBoundByZeta(regime, 0.0, k, 1.0) - HeadingModulusBoundByZeta(regime, 0.0, k, 0.0);
+      const double slope_v = HeadingModulusBound(regime, k, 1.0) - HeadingModulusBound(regime, k, 0.0);
+      EXPECT_LE(slope_z, 0.5 * slope_v * (1 + 1e-9));
+    }
+    std::printf("%s: zeta bound / sampled sup of |d theta/dk| over |v| <= 40: worst %.2f; fixed-v bound / zeta bound "
+                "up to %.2f\n", ToString(regime).c_str(), worst_ratio, best_gain);
+    EXPECT_GT(best_gain, 1.5);
+  }
+}
+
 TEST(IsoparallelCertifyTails, DriftDeficitMatchesTheClosedFormChordPerPeriod) {
   for (PendulumRegime regime : kRegimes) {
     for (double k : {0.0, 0.05, 0.3, 0.6, 0.9, 0.95, 0.99}) {
