@@ -73,6 +73,16 @@ double StraightRunDeviationBound(double eta, double length, double chord) {
   return DeviationAngle(0.5 * mu * length * length * (2.0 * mu + r));
 }
 
+double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, double v_max) {
+  const double ch = std::cosh(std::min(std::abs(v_max), 700.0));
+  const double am_k = k_max * (ch - 1.0);  // increasing in k: the sup is at k_max
+  if (regime == PendulumRegime::kRotating) return 2.0 * am_k;
+  // 1 / dn <= min(cosh v, 1 / k'): the oscillation is slower than the separatrix at equal angle.
+  const double kp = std::sqrt(std::max(0.0, (1.0 - k_max) * (1.0 + k_max)));
+  const double inv_dn = kp > 0.0 ? std::min(ch, 1.0 / kp) : ch;
+  return 2.0 * (1.0 + k_max * am_k) * inv_dn;
+}
+
 double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin) {
   const double scale = RateScale(target, cap, margin);
   if (scale == 0.0) return kInf;

@@ -46,6 +46,12 @@ double AveragingDeviationBound(double period, double deficit, double length, dou
 /// mu = 2 sin(eta / 2). (Near the separatrix the runs between loops are such paths.)
 double StraightRunDeviationBound(double eta, double length, double chord);
 
+/// sup |d theta/dk| at fixed v over moduli in [0, k_max] (k_max <= 1: uniform up to the
+/// separatrix) and |v| <= v_max, v measured from a loop centre (theta(0) = 0):
+/// |d am/dk| <= k (cosh v - 1) (the bracket of d am/dk solves J' = sn M, M' = k^2 sn J - k'^2 cn),
+/// rotating 2 k (cosh v - 1); oscillating 2 (1 + k^2 (cosh v - 1)) / dn with dn >= max(k', sech v).
+double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, double v_max);
+
 /// a_max(k): no solution of length <= cap (chord |x1 - x0|) has |rate| > a_max at modulus k.
 /// +inf when StraightResidual(target) <= margin (the lemma excludes nothing then).
 double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin);

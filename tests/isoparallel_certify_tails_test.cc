@@ -140,6 +140,33 @@ TEST(IsoparallelCertifyTails, ZetaModulusBoundNeverUndershootsFiniteDifferences)
   }
 }
 
+// Near the separatrix (k up to 0.99999) the bound uniform in k never undershoots central
+// differences on |v| <= 8 from the loop centre, while the fixed-v bound of isoparallel_certify.h
+// (growing like 1/k'^2, 1/k'^3) does not stay bounded; and dn = cos(theta/2) >= sech v.
+TEST(IsoparallelCertifyTails, SeparatrixModulusBoundNeverUndershootsFiniteDifferences) {
+  for (PendulumRegime regime : kRegimes) {
+    double worst_ratio = 0.0, last_ratio = 0.0;
+    for (double k : {0.3, 0.7, 0.9, 0.99, 0.999, 0.9999, 0.99999}) {
+      const double h = 1e-3 * std::min(0.01, 1.0 - k);
+      double sup_k = 0.0;
+      for (double v = -8.0; v <= 8.0; v += 0.0191) {
+        const double dk = (Theta(regime, k + h, v) - Theta(regime, k - h, v)) / (2 * h);
+        const double bound = HeadingModulusBoundNearSeparatrix(regime, k, std::abs(v));
+        ASSERT_LE(std::abs(dk), bound * (1 + 1e-5) + 1e-5) << ToString(regime) << " k " << k << " v " << v;
+        sup_k = std::max(sup_k, std::abs(dk));
+        if (regime == PendulumRegime::kOscillating) {
+          ASSERT_GE(std::cos(0.5 * Theta(regime, k, v)), 1.0 / std::cosh(v) - 1e-12) << "k " << k << " v " << v;
+        }
+      }
+      worst_ratio = std::max(worst_ratio, HeadingModulusBoundNearSeparatrix(regime, k, 8.0) / sup_k);
+      last_ratio = HeadingModulusBoundNearSeparatrix(regime, k, 8.0) / sup_k;
+    }
+    std::printf("%s: separatrix bound / sampled sup of |d theta/dk| over |v| <= 8: worst %.1f, at k = 0.99999 %.2f\n",
+                ToString(regime).c_str(), worst_ratio, last_ratio);
+    EXPECT_GT(HeadingModulusBound(regime, 0.99999, 4.0), 1e3 * HeadingModulusBoundNearSeparatrix(regime, 0.99999, 4.0));
+  }
+}
+
 TEST(IsoparallelCertifyTails, DriftDeficitMatchesTheClosedFormChordPerPeriod) {
   for (PendulumRegime regime : kRegimes) {
     for (double k : {0.0, 0.05, 0.3, 0.6, 0.9, 0.95, 0.99}) {
