@@ -31,8 +31,7 @@ const PendulumRegime kRegimes[] = {PendulumRegime::kOscillating, PendulumRegime:
 
 Eigen::Matrix3d Dopri(const Elastica& e, double length) {
   IntegrationOptions o;
-  o.absolute_tolerance = 1e-12;
-  o.relative_tolerance = 1e-12;
+  o.absolute_tolerance = o.relative_tolerance = 1e-12;
   return RollingReorientation([&e](double s) { return e.Tangent(s); }, 0.0, length, {}, o);
 }
 
@@ -45,6 +44,19 @@ CertifyTarget RotationProblemTarget() {
   return CertifyTargetOf(IsoparallelSetupFor(p).problem);
 }
 
+// A path of the given regime, rate, modulus and length with a random phase and heading_w, rolled
+// by dopri5 and compared with the straight rolling along its chord.
+struct ChordDeviation {
+  double period = 0.0, length = 0.0, chord = 0.0, actual = 0.0;
+};
+ChordDeviation RollAgainstChord(std::mt19937* rng, PendulumRegime regime, double rate, double k, double length) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double phase = 8.0 * unit(*rng), heading_w = 6.0 * unit(*rng);
+  const Elastica e(ElasticaParameters{regime, rate, k, phase, heading_w});
+  const Eigen::Vector2d chord = e.Position(length);
+  return {e.Period(), length, chord.norm(), RotationAngle(Dopri(e, length), StraightRolling(chord))};
+}
+
 double Median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -53,24 +65,18 @@ double Median(std::vector<double> v) {
 TEST(IsoparallelCertifyTails, AveragingBoundNeverUndershootsDopriRollings) {
   std::mt19937 rng(15);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> by_regime[2];
+  for (int i = 0; i < 800; ++i) {  // alternating regimes; rotating rates of both signs
+    const PendulumRegime regime = kRegimes[i % 2];
+    const double sign = i % 4 == 3 ? -1.0 : 1.0;
+    const double rate = sign * (0.3 + 25.0 * unit(rng) * unit(rng)), k = 0.97 * unit(rng);
+    const ChordDeviation d = RollAgainstChord(&rng, regime, rate, k, 0.3 + 7.7 * unit(rng));
+    const double bound = AveragingDeviationBound(d.period, DriftDeficit(regime, k), d.length, d.chord);
+    ASSERT_LE(d.actual, bound + 1e-9) << ToString(regime) << " rate " << rate << " k " << k << " L " << d.length;
+    if (bound < 1.0 && d.actual > 1e-9) by_regime[i % 2].push_back(bound / d.actual);
+  }
   for (PendulumRegime regime : kRegimes) {
-    std::vector<double> ratios;
-    for (int i = 0; i < 400; ++i) {
-      ElasticaParameters p;
-      p.regime = regime;
-      p.rate = (regime == PendulumRegime::kRotating && i % 2 ? -1.0 : 1.0) * (0.3 + 25.0 * unit(rng) * unit(rng));
-      p.modulus = 0.97 * unit(rng);
-      p.phase = 8.0 * unit(rng);
-      p.heading_w = 6.0 * unit(rng);
-      const double length = 0.3 + 7.7 * unit(rng);
-      const Elastica e(p);
-      const Eigen::Vector2d chord = e.Position(length);
-      const double actual = RotationAngle(Dopri(e, length), StraightRolling(chord));
-      const double bound = AveragingDeviationBound(e.Period(), DriftDeficit(regime, p.modulus), length, chord.norm());
-      ASSERT_LE(actual, bound + 1e-9) << ToString(regime) << " rate " << p.rate << " k " << p.modulus << " phase "
-                                      << p.phase << " L " << length;
-      if (bound < 1.0 && actual > 1e-9) ratios.push_back(bound / actual);
-    }
+    const std::vector<double>& ratios = by_regime[regime == PendulumRegime::kOscillating ? 0 : 1];
     ASSERT_GE(ratios.size(), 80u);
     std::printf("%s: bound / dopri5 deviation over %zu points with bound < 1: median %.2f, best %.2f, worst %.2f\n",
                 ToString(regime).c_str(), ratios.size(), Median(ratios), *std::min_element(ratios.begin(), ratios.end()),
@@ -86,18 +92,11 @@ TEST(IsoparallelCertifyTails, StraightRunBoundNeverUndershootsDopriRollings) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<double> ratios;
   for (int i = 0; i < 150; ++i) {
-    ElasticaParameters p;
-    p.rate = 0.2 + 6.0 * unit(rng);
-    p.modulus = 0.3 * unit(rng) * unit(rng);
-    p.phase = 8.0 * unit(rng);
-    p.heading_w = 6.0 * unit(rng);
-    const double length = 0.2 + 5.0 * unit(rng);
-    const Elastica e(p);
-    const Eigen::Vector2d chord = e.Position(length);
-    const double actual = RotationAngle(Dopri(e, length), StraightRolling(chord));
-    const double bound = StraightRunDeviationBound(2.0 * std::asin(p.modulus), length, chord.norm());
-    ASSERT_LE(actual, bound + 1e-9) << "rate " << p.rate << " k " << p.modulus << " L " << length;
-    if (bound < 1.0 && actual > 1e-9) ratios.push_back(bound / actual);
+    const double rate = 0.2 + 6.0 * unit(rng), k = 0.3 * unit(rng) * unit(rng);
+    const ChordDeviation d = RollAgainstChord(&rng, PendulumRegime::kOscillating, rate, k, 0.2 + 5.0 * unit(rng));
+    const double bound = StraightRunDeviationBound(2.0 * std::asin(k), d.length, d.chord);
+    ASSERT_LE(d.actual, bound + 1e-9) << "rate " << rate << " k " << k << " L " << d.length;
+    if (bound < 1.0 && d.actual > 1e-9) ratios.push_back(bound / d.actual);
   }
   ASSERT_GE(ratios.size(), 50u);
   std::printf("straight runs: bound / dopri5 deviation over %zu points: median %.2f, best %.2f\n", ratios.size(),
@@ -105,11 +104,7 @@ TEST(IsoparallelCertifyTails, StraightRunBoundNeverUndershootsDopriRollings) {
 }
 
 double Theta(PendulumRegime regime, double k, double v) {
-  ElasticaParameters p;
-  p.regime = regime;
-  p.rate = 1.0;
-  p.modulus = k;
-  return Elastica(p).PendulumAngle(v);
+  return Elastica(ElasticaParameters{regime, 1.0, k, 0.0, 0.0}).PendulumAngle(v);
 }
 
 // The zeta form of the modulus bound (sup over [k_min, k_max]) never undershoots central
