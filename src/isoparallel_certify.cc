@@ -4,6 +4,7 @@
 #include <boost/math/special_functions/ellint_d.hpp>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "check.h"
 #include "elastica_rolling.h"
@@ -93,6 +94,7 @@ double HeadingModulusBound(PendulumRegime regime, double k_max, double v_max) {
 double HeadingModulusBoundByZeta(PendulumRegime regime, double k_min, double k_max, double v_max) {
   // d am/dk = [k sn cn - dn Z(v) / k] / k'^2 - dn v K'/K with K'/K = k (1 - D/K) / k'^2: k / k'^2
   // and K grow with k, 1 - D/K = <cos^2> under the weight (1 - k^2 sin^2)^(-1/2) decreases.
+  if (!(k_max < 1.0)) return std::numeric_limits<double>::infinity();  // K(1) is infinite
   const double kp2 = (1.0 - k_max) * (1.0 + k_max);
   const double kk = boost::math::ellint_1(k_max);
   const double secular = 1.0 - boost::math::ellint_d(k_min) / boost::math::ellint_1(k_min);

@@ -52,6 +52,7 @@ double StraightResidual(const CertifyTarget& target) {
 
 double DriftDeficit(PendulumRegime regime, double k) {
   if (k <= 0.0) return regime == PendulumRegime::kOscillating ? 0.0 : 1.0;
+  if (!(k < 1.0)) return 0.0;  // the limit k -> 1 (like 2 / sqrt(K)): the separatrix has rho = 1
   const double kk = boost::math::ellint_1(k), d = boost::math::ellint_d(k);
   // 1 - rho^2 = (1 - rho)(1 + rho) without cancellation: oscillating 1 - rho = 2 k^2 D / K,
   // 1 + rho = 2E / K; rotating 1 - rho = 2 (K - D) / K, 1 + rho = 2D / K.
@@ -85,7 +86,7 @@ double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, do
 
 double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin) {
   const double scale = RateScale(target, cap, margin);
-  if (scale == 0.0) return kInf;
+  if (scale == 0.0 || !(k < 1.0)) return kInf;  // K(1) is infinite: no bound at the separatrix
   // a = n K / P and P >= P* = 4 sin(delta / 2) / (deficit h): a_max = n K deficit h / (4 sin).
   return QuarterPeriods(regime) * boost::math::ellint_1(k) * DriftDeficit(regime, k) * scale;
 }
@@ -93,7 +94,7 @@ double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, doubl
 double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
                            double margin) {
   const double scale = RateScale(target, cap, margin);
-  if (scale == 0.0) return kInf;
+  if (scale == 0.0 || !(k_hi < 1.0)) return kInf;
   // rho is decreasing in k: the smallest |rho| on [k_lo, k_hi] is 0 if it changes sign there,
   // else the smaller end value; K is increasing.
   const double r_lo = DriftRatio(regime, k_lo), r_hi = DriftRatio(regime, k_hi);

@@ -278,6 +278,10 @@ TEST(IsoparallelCertifyTails, CoverageStatesTheWindowsAndTheUncoveredTail) {
   EXPECT_FALSE(s.rate_tail_excluded);
   EXPECT_TRUE(std::isinf(s.windows[0].rate_hi));
   EXPECT_NE(s.uncovered.find("excludes nothing"), std::string::npos);
+  // No rate bound at the separatrix (K(1) is infinite), and no throw.
+  EXPECT_TRUE(std::isinf(MaxSolutionRate(target, PendulumRegime::kRotating, 1.0, 10.0, 1e-7)));
+  EXPECT_TRUE(std::isinf(MaxSolutionRateOver(target, PendulumRegime::kOscillating, 0.9, 1.0, 10.0, 1e-7)));
+  EXPECT_TRUE(std::isinf(HeadingModulusBoundByZeta(PendulumRegime::kRotating, 0.5, 1.0, 1.0)));
   // Invalid input is named.
   EXPECT_NE(CoverageUpTo(target, 1.0, 0.95, 4).message.find("cap"), std::string::npos);
   EXPECT_NE(CoverageUpTo(target, 10.0, 1.0, 4).message.find("k_max"), std::string::npos);
