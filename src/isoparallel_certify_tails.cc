@@ -52,10 +52,10 @@ double StraightResidual(const CertifyTarget& target) {
 
 double DriftDeficit(PendulumRegime regime, double k) {
   if (k <= 0.0) return regime == PendulumRegime::kOscillating ? 0.0 : 1.0;
-  if (!(k < 1.0)) return 0.0;  // the limit k -> 1 (like 2 / sqrt(K)): the separatrix has rho = 1
+  if (!(k < 1.0)) return 0.0;  // the limit k -> 1 (like 2 / sqrt(K)): |rho| -> 1 at the separatrix
   const double kk = boost::math::ellint_1(k), d = boost::math::ellint_d(k);
   // 1 - rho^2 = (1 - rho)(1 + rho) without cancellation: oscillating 1 - rho = 2 k^2 D / K,
-  // 1 + rho = 2E / K; rotating 1 - rho = 2 (K - D) / K, 1 + rho = 2D / K.
+  // 1 + rho = 2E / K; rotating 1 - rho = 2D / K, 1 + rho = 2 (K - D) / K.
   if (regime == PendulumRegime::kOscillating) return 2.0 * k * std::sqrt(d * boost::math::ellint_2(k)) / kk;
   return 2.0 * std::sqrt(d * (kk - d)) / kk;
 }
