@@ -84,6 +84,29 @@ double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, do
   return 2.0 * (1.0 + k_max * am_k) * inv_dn;
 }
 
+double SeparatrixHeadingGap(double k, double v) {
+  const double a = std::min(std::abs(v), 700.0);
+  return std::min((1.0 - k) * (1.0 + k) * (std::cosh(a) - 1.0), 2.0 * std::asin(1.0 / std::cosh(a)));
+}
+
+double SeparatrixHeadingGapSup(double k) {
+  // min(A, B) with A = k'^2 (cosh v - 1) increasing and B = 2 asin(sech v) decreasing: for a
+  // bracket [lo, hi] of their crossing every v has min <= A(hi) (v <= hi) or <= B(lo) (v >= lo).
+  const double kp2 = (1.0 - k) * (1.0 + k);
+  const auto a = [kp2](double v) { return kp2 * (std::cosh(v) - 1.0); };
+  const auto b = [](double v) { return 2.0 * std::asin(1.0 / std::cosh(v)); };
+  // The sup over every v >= 0 (not only [0, K(k)]): then it also bounds every modulus in [k, 1),
+  // whose A is smaller, and tends to 0 with k'.
+  if (!(kp2 > 0.0)) return 0.0;
+  double lo = 0.0, hi = 1.0;
+  while (a(hi) < b(hi)) hi *= 2.0;  // A grows without bound, B tends to 0
+  for (int i = 0; i < 200 && hi - lo > 1e-13 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (a(mid) < b(mid) ? lo : hi) = mid;
+  }
+  return std::max(a(hi), b(lo));
+}
+
 double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin) {
   const double scale = RateScale(target, cap, margin);
   if (scale == 0.0 || !(k < 1.0)) return kInf;  // K(1) is infinite: no bound at the separatrix

@@ -52,6 +52,14 @@ double StraightRunDeviationBound(double eta, double length, double chord);
 /// rotating 2 k (cosh v - 1); oscillating 2 (1 + k^2 (cosh v - 1)) / dn with dn >= max(k', sech v).
 double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, double v_max);
 
+/// Rotating regime near the separatrix: for 0 <= v <= K(k), theta_k(v) - theta_1(v) lies in
+/// [0, min(k'^2 (cosh v - 1), 2 asin(sech v))], theta_1 = 2 gd(v) the separatrix (a rotation is
+/// faster than the separatrix at equal angle, and theta_k <= pi there; odd in v). The sup over all
+/// v >= 0, ~sqrt(2) k', bounds the gap for every modulus in [k, 1): one loop of a rotating
+/// elastica is the separatrix loop within O(k') in heading.
+double SeparatrixHeadingGap(double k, double v);
+double SeparatrixHeadingGapSup(double k);
+
 /// a_max(k): no solution of length <= cap (chord |x1 - x0|) has |rate| > a_max at modulus k.
 /// +inf when StraightResidual(target) <= margin (the lemma excludes nothing then).
 double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin);
