@@ -84,22 +84,35 @@ double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, do
   return 2.0 * (1.0 + k_max * am_k) * inv_dn;
 }
 
-double SeparatrixHeadingGap(double k, double v) {
-  const double a = std::min(std::abs(v), 700.0);
-  return std::min((1.0 - k) * (1.0 + k) * (std::cosh(a) - 1.0), 2.0 * std::asin(1.0 / std::cosh(a)));
+namespace {
+
+// The two sides of the gap: the growing bound (the modulus integral of the separatrix bound) and
+// the decreasing one (the loop's distance to pi).
+double GapGrowing(PendulumRegime regime, double k, double v) {
+  const double ch = std::cosh(std::min(std::abs(v), 350.0));
+  return regime == PendulumRegime::kRotating ? (1.0 - k) * (1.0 + k) * (ch - 1.0) : 2.0 * (1.0 - k) * ch * ch;
 }
 
-double SeparatrixHeadingGapSup(double k) {
-  // min(A, B) with A = k'^2 (cosh v - 1) increasing and B = 2 asin(sech v) decreasing: for a
-  // bracket [lo, hi] of their crossing every v has min <= A(hi) (v <= hi) or <= B(lo) (v >= lo).
-  const double kp2 = (1.0 - k) * (1.0 + k);
-  const auto a = [kp2](double v) { return kp2 * (std::cosh(v) - 1.0); };
-  const auto b = [](double v) { return 2.0 * std::asin(1.0 / std::cosh(v)); };
-  // The sup over every v >= 0 (not only [0, K(k)]): then it also bounds every modulus in [k, 1),
-  // whose A is smaller, and tends to 0 with k'.
-  if (!(kp2 > 0.0)) return 0.0;
+double GapDecreasing(PendulumRegime regime, double k, double v) {
+  const double a = std::min(std::abs(v), 350.0);
+  return regime == PendulumRegime::kRotating ? 2.0 * std::asin(1.0 / std::cosh(a)) : 2.0 * std::acos(k * std::tanh(a));
+}
+
+}  // namespace
+
+double SeparatrixHeadingGap(PendulumRegime regime, double k, double v) {
+  return std::min(GapGrowing(regime, k, v), GapDecreasing(regime, k, v));
+}
+
+double SeparatrixHeadingGapSup(PendulumRegime regime, double k) {
+  // min(A, B), A increasing and B decreasing in |v|: for a bracket [lo, hi] of their crossing
+  // every v has min <= A(hi) (v <= hi) or <= B(lo) (v >= lo). Over every v >= 0 (not only
+  // [0, K(k)]), so that it also bounds every modulus in [k, 1), whose A and B are smaller.
+  if (!(k < 1.0)) return 0.0;
+  const auto a = [&](double v) { return GapGrowing(regime, k, v); };
+  const auto b = [&](double v) { return GapDecreasing(regime, k, v); };
   double lo = 0.0, hi = 1.0;
-  while (a(hi) < b(hi)) hi *= 2.0;  // A grows without bound, B tends to 0
+  while (a(hi) < b(hi)) hi *= 2.0;  // A grows without bound, B stays bounded
   for (int i = 0; i < 200 && hi - lo > 1e-13 * hi; ++i) {
     const double mid = 0.5 * (lo + hi);
     (a(mid) < b(mid) ? lo : hi) = mid;

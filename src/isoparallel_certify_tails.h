@@ -52,13 +52,16 @@ double StraightRunDeviationBound(double eta, double length, double chord);
 /// rotating 2 k (cosh v - 1); oscillating 2 (1 + k^2 (cosh v - 1)) / dn with dn >= max(k', sech v).
 double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, double v_max);
 
-/// Rotating regime near the separatrix: for 0 <= v <= K(k), theta_k(v) - theta_1(v) lies in
-/// [0, min(k'^2 (cosh v - 1), 2 asin(sech v))], theta_1 = 2 gd(v) the separatrix (a rotation is
-/// faster than the separatrix at equal angle, and theta_k <= pi there; odd in v). The sup over all
-/// v >= 0, ~sqrt(2) k', bounds the gap for every modulus in [k, 1): one loop of a rotating
-/// elastica is the separatrix loop within O(k') in heading.
-double SeparatrixHeadingGap(double k, double v);
-double SeparatrixHeadingGapSup(double k);
+/// One loop near the separatrix: for 0 <= v <= K(k), |theta_k(v) - theta_1(v)| <= the gap,
+/// theta_1 = 2 gd(v) the separatrix (odd in v).
+///   rotating:    0 <= theta_k - theta_1 <= min(k'^2 (cosh v - 1), 2 asin(sech v)) (a rotation is
+///                faster than the separatrix at equal angle, and theta_k <= pi on [0, K]);
+///   oscillating: 0 <= theta_1 - theta_k <= min(2 (1 - k) cosh^2 v, 2 acos(k tanh v)) (slower;
+///                sn >= tanh v).
+/// The sup over all v >= 0 (rotating ~sqrt(2) k', oscillating ~k'^(2/3)) bounds the gap for every
+/// modulus in [k, 1): one loop of an elastica is the separatrix loop within it in heading.
+double SeparatrixHeadingGap(PendulumRegime regime, double k, double v);
+double SeparatrixHeadingGapSup(PendulumRegime regime, double k);
 
 /// a_max(k): no solution of length <= cap (chord |x1 - x0|) has |rate| > a_max at modulus k.
 /// +inf when StraightResidual(target) <= margin (the lemma excludes nothing then).
