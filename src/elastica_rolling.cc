@@ -74,7 +74,7 @@ Eigen::Matrix3d MagnusRollingStep(const Elastica& e, double s0, double s1, Eigen
 
 ElasticaRollingTable::ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
                                            int max_total_steps)
-    : e_(&e), s_limit_(s_limit) {
+    : e_(&e), s_limit_(s_limit), max_total_steps_(max_total_steps) {
   steps_per_period = std::max(4, steps_per_period);
   straight_ = e.IsStraight();
   if (straight_) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -30,6 +31,13 @@ class ElasticaRollingTable {
   ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
                        int max_total_steps = 200000);
   bool Valid() const { return valid_; }
+  /// Whether a table of the same elastica and accuracy over [0, s_limit] (s_limit >= this one's)
+  /// would be this one: a periodic table (one period tabulated) is the same for every length, so
+  /// it serves Rolling(s) for any s up to s_limit as it stands.
+  bool ServesLength(double s_limit) const {
+    return valid_ && !straight_ && std::isfinite(period_) && s_limit >= s_limit_ &&
+           s_limit / period_ <= max_total_steps_;
+  }
   int Steps() const { return steps_; }
   /// Q(0, s) = A(s) A(0)^-1 for s in [0, s_limit].
   Eigen::Matrix3d Rolling(double s) const;
@@ -59,6 +67,7 @@ class ElasticaRollingTable {
   bool Refine(double radius, double sa, double sb, double* s) const;
   const Elastica* e_;
   double s_limit_;
+  int max_total_steps_;
   bool valid_ = true;
   bool straight_ = false;
   double period_ = 0.0;

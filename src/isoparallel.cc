@@ -10,6 +10,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <random>
 #include <sstream>
@@ -32,8 +33,10 @@ struct Accuracy {
   int steps_per_period;
   double max_step;
 };
-// Search: ~1e-8 in the residual, cheap. Polish: ~1e-14 (sixth order, checked against dopri5 by
-// tests/isoparallel_test.cc).
+// Search: cheap and coarse, rolling errors ~2e-5 rad median, up to 3e-4 (60 random elastica of
+// 1-4 periods against dopri5 at 1e-14); a search run converges to the root of its own tables,
+// within that of the true one, and the polish takes it the rest of the way. Polish: ~1e-14
+// (sixth order, checked against dopri5 by tests/isoparallel_test.cc).
 constexpr Accuracy kSearch{12, 0.5};
 constexpr Accuracy kPolish{160, 0.02};
 // A search run stops below kSearchStop (the search accuracy) and is polished when below
@@ -141,11 +144,11 @@ bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, con
 }
 
 // TinySolver's functor call for a residual f.Residual(x, r) of N unknowns and N residuals:
-// forward differences; a trial point without a residual (no n-th crossing, an invalid modulus)
-// gets NaN, which makes TinySolver reject the step.
+// forward differences (the shifted points by f.Shifted(x, r)); a trial point without a residual
+// (no n-th crossing, an invalid modulus) gets NaN, which makes TinySolver reject the step.
 template <int N, class F>
 bool ForwardDifferences(const F& f, const double* x, double* r, double* jacobian) {
-  if (!f.Residual(x, r)) {
+  if (!f.Residual(x, r, jacobian != nullptr)) {
     for (int i = 0; i < N; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
     return jacobian == nullptr;
   }
@@ -155,7 +158,7 @@ bool ForwardDifferences(const F& f, const double* x, double* r, double* jacobian
     double xp[N], rp[N];
     std::copy(x, x + N, xp);
     xp[j] += h;
-    if (!f.Residual(xp, rp)) return false;
+    if (!f.Shifted(xp, rp)) return false;
     for (int i = 0; i < N; ++i) jacobian[j * N + i] = (rp[i] - r[i]) / h;  // column-major
   }
   return true;
@@ -164,13 +167,47 @@ bool ForwardDifferences(const F& f, const double* x, double* r, double* jacobian
 struct ShootingFunctor {
   using Scalar = double;
   enum { NUM_RESIDUALS = 3, NUM_PARAMETERS = 3 };
+  ShootingFunctor(const Context* c, PendulumRegime r, int n, const Accuracy& a) : ctx(c), regime(r), crossing(n), acc(a) {}
   const Context* ctx;
   PendulumRegime regime;
   int crossing;
   Accuracy acc;
   mutable long evaluations = 0;
+  // TinySolver evaluates every accepted point twice (a trial, then with the Jacobian), and
+  // PolishLocal once more at the end: the evaluations of the last point taken with a Jacobian
+  // (slot 0) and of the last trial (slot 1) are kept.
+  struct Memo {
+    bool valid = false, ok = false;
+    double x[3] = {0, 0, 0};
+    Evaluation ev;
+  };
+  mutable Memo memo[2];
 
-  bool Residual(const double* x, double* r) const {
+  // The evaluation at x (a kept one if x is one of the last two points).
+  bool At(const double* x, Evaluation* ev, int slot = 1) const {
+    for (Memo& m : memo) {
+      if (!m.valid || !std::equal(x, x + 3, m.x)) continue;
+      *ev = m.ev;
+      if (&m != &memo[slot]) memo[slot] = m;
+      return m.ok;
+    }
+    Memo& m = memo[slot];
+    ++evaluations;
+    m.ok = Evaluate(*ctx, ToParameters(regime, x), crossing, acc, &m.ev);
+    m.valid = true;
+    std::copy(x, x + 3, m.x);
+    *ev = m.ev;
+    return m.ok;
+  }
+
+  bool Residual(const double* x, double* r, bool with_jacobian = false) const {
+    Evaluation ev;
+    if (!At(x, &ev, with_jacobian ? 0 : 1)) return false;
+    for (int i = 0; i < 3; ++i) r[i] = ev.residual[i];
+    return true;
+  }
+
+  bool Shifted(const double* x, double* r) const {
     ++evaluations;
     Evaluation ev;
     if (!Evaluate(*ctx, ToParameters(regime, x), crossing, acc, &ev)) return false;
@@ -234,6 +271,7 @@ bool SameRoot(PendulumRegime regime, const Eigen::Vector4d& y, const SearchRoot&
 struct FreeLengthFunctor {
   using Scalar = double;
   enum { NUM_RESIDUALS = 4, NUM_PARAMETERS = 4 };
+  FreeLengthFunctor(const Context* c, PendulumRegime r) : ctx(c), regime(r) {}
   const Context* ctx;
   PendulumRegime regime;
   mutable long evaluations = 0;
@@ -261,25 +299,69 @@ struct FreeLengthFunctor {
     return rot.allFinite();
   }
 
-  bool Residual(const double* x, double* r) const {
+  // The last residual evaluated (TinySolver evaluates every accepted point twice: as a trial
+  // without Jacobian, then again with it): its point, path, table and residual.
+  struct LastResidual {
+    bool ok = false;
+    double x[4] = {0, 0, 0, 0};
+    double r[4] = {0, 0, 0, 0};
+    std::unique_ptr<Elastica> path;
+    std::unique_ptr<internal::ElasticaRollingTable> table;
+  };
+  mutable LastResidual last;
+
+  bool Shifted(const double* x, double* r) const { return Residual(x, r); }
+
+  bool Residual(const double* x, double* r, bool = false) const {
     const ElasticaParameters p = ToParameters(regime, x);
+    last.table.reset();
     if (!Admissible(p, x[3])) return false;
-    const Elastica e(p);
-    const internal::ElasticaRollingTable table(e, x[3], kSearch.steps_per_period, kSearch.max_step);
-    return table.Valid() && ResidualOnTable(e, table, 0.0, x[3], r);
+    last.path = std::make_unique<Elastica>(p);
+    last.table = std::make_unique<internal::ElasticaRollingTable>(*last.path, x[3], kSearch.steps_per_period,
+                                                                  kSearch.max_step);
+    last.ok = last.table->Valid() && ResidualOnTable(*last.path, *last.table, 0.0, x[3], r);
+    std::copy(x, x + 4, last.x);
+    if (last.ok) std::copy(r, r + 4, last.r);
+    return last.ok;
+  }
+
+  // Whether the last residual was evaluated at x on a table that serves lengths up to s_limit
+  // (a table over s_limit would be the same one, so the residual would be the same bit for bit).
+  bool LastServes(const double* x, double s_limit) const {
+    return last.table != nullptr && last.ok && std::equal(x, x + 4, last.x) && last.table->ServesLength(s_limit);
   }
 
   // Forward differences, but one table (one per (rate, k)) serves the residual and the phase
   // and length columns: only the rate and modulus columns build new tables.
   bool operator()(const double* x, double* r, double* jacobian) const {
     if (duplicate) return StopRun(r, jacobian);
+    if (jacobian != nullptr && kept.valid && std::equal(x, x + 4, kept.x)) {  // the triage's last point
+      std::copy(kept.r, kept.r + 4, r);
+      std::copy(kept.jacobian, kept.jacobian + 16, jacobian);
+      return true;
+    }
     if (!Evaluate(x, r, jacobian)) return false;
     if (jacobian != nullptr && ReachesKnown(x, r, jacobian)) {
       duplicate = true;
       return StopRun(r, jacobian);
     }
+    if (jacobian != nullptr) {
+      kept.valid = true;
+      std::copy(x, x + 4, kept.x);
+      std::copy(r, r + 4, kept.r);
+      std::copy(jacobian, jacobian + 16, kept.jacobian);
+    }
     return true;
   }
+
+  // The last Jacobian evaluated (a run resumed after the triage starts at its point).
+  struct KeptJacobian {
+    bool valid = false;
+    double x[4] = {0, 0, 0, 0};
+    double r[4] = {0, 0, 0, 0};
+    double jacobian[16] = {};
+  };
+  mutable KeptJacobian kept;
 
   // A run that reached a known solution: a zero residual and Jacobian end TinySolver's loop at
   // once (cost below its threshold); the caller drops the run by `duplicate`.
@@ -307,13 +389,25 @@ struct FreeLengthFunctor {
     if (jacobian == nullptr || p.rate == 0.0 || !Admissible(p, x[3])) return ForwardDifferences<4>(*this, x, r, jacobian);
     const double h_phase = 1e-6 * (1.0 + std::abs(x[2])), h_length = 1e-6 * (1.0 + std::abs(x[3]));
     const double s0 = h_phase / std::abs(p.rate);  // phase + sign(rate) h_phase
-    const Elastica e(p);
-    const internal::ElasticaRollingTable table(e, x[3] + s0 + h_length, kSearch.steps_per_period, kSearch.max_step);
-    double rp[4], rl[4];
-    if (!table.Valid() || !ResidualOnTable(e, table, 0.0, x[3], r)) {
-      for (int i = 0; i < 4; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
-      return false;
+    const double s_limit = x[3] + s0 + h_length;
+    std::unique_ptr<Elastica> own_path;
+    std::unique_ptr<internal::ElasticaRollingTable> own_table;
+    if (LastServes(x, s_limit)) {  // the trial's table and residual at this point
+      own_path = std::move(last.path);
+      own_table = std::move(last.table);
+      std::copy(last.r, last.r + 4, r);
+    } else {
+      own_path = std::make_unique<Elastica>(p);
+      own_table = std::make_unique<internal::ElasticaRollingTable>(*own_path, s_limit, kSearch.steps_per_period,
+                                                                   kSearch.max_step);
+      if (!own_table->Valid() || !ResidualOnTable(*own_path, *own_table, 0.0, x[3], r)) {
+        for (int i = 0; i < 4; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
+        return false;
+      }
     }
+    const Elastica& e = *own_path;
+    const internal::ElasticaRollingTable& table = *own_table;
+    double rp[4], rl[4];
     if (!ResidualOnTable(e, table, s0, x[3], rp) || !ResidualOnTable(e, table, 0.0, x[3] + h_length, rl)) return false;
     const double signed_phase_step = p.rate > 0 ? h_phase : -h_phase;
     for (int i = 0; i < 4; ++i) {
@@ -398,8 +492,7 @@ void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalRes
   const double thr = 0.5 * std::pow(0.1 * options.tolerance, 2);
   RunLm(polish, r->x, std::min(options.max_iterations, kPolishIterations), thr);
   r->evaluations += polish.evaluations;
-  r->converged = Evaluate(ctx, ToParameters(r->regime, r->x), r->crossing, kPolish, &r->ev) &&
-                 r->ev.residual.norm() <= options.tolerance;
+  r->converged = polish.At(r->x, &r->ev) && r->ev.residual.norm() <= options.tolerance;
 }
 
 // Radical-inverse (Halton): deterministic, portable.
@@ -719,11 +812,28 @@ std::vector<std::vector<ScanPoint>> ScanShape(const Context& ctx, const Elastica
   const double h = table.Step(), r2 = ctx.radius * ctx.radius;
   *step = h;
   const long last = static_cast<long>(x.size()) - 1;
+  long l_limit = 1;  // the rows' last node: the first l with (l - 1) h >= s_limit, less one
+  while ((l_limit - 1) * h < ctx.s_limit) ++l_limit;
+  --l_limit;
+  // The chord moves by at most h per node (unit speed): while |chord| - radius exceeds
+  // kTangencyMiss + (k + 2) h, the next k nodes hold no crossing and no near-tangency.
+  const double far = ctx.radius + kTangencyMiss;
   for (long i0 = 0; i0 < table.Steps(); ++i0) {
     std::vector<ScanPoint> row;
     double f_prev = -r2, f_prev2 = -r2;  // |chord|^2 - radius^2 at the two previous nodes
-    for (long l = 1; i0 + l <= last && (l - 1) * h < ctx.s_limit; ++l) {
-      const double f = (x[i0 + l] - x[i0]).squaredNorm() - r2;
+    const long l_end = std::min(last - i0, l_limit);
+    for (long l = 1; l <= l_end; ++l) {
+      double f = (x[i0 + l] - x[i0]).squaredNorm() - r2;
+      if (f > 0 && f_prev > 0 && f + r2 > far * far) {
+        const long skip = static_cast<long>((std::sqrt(f + r2) - far) / h) - 2;
+        if (skip > 0 && l + skip + 2 <= l_end) {  // resume with the two nodes before the next one
+          l += skip;
+          f_prev2 = (x[i0 + l - 1] - x[i0]).squaredNorm() - r2;
+          f_prev = (x[i0 + l] - x[i0]).squaredNorm() - r2;
+          ++l;
+          f = (x[i0 + l] - x[i0]).squaredNorm() - r2;
+        }
+      }
       const bool extremum = l >= 2 && ((f_prev > f_prev2 && f_prev >= f && f_prev < 0) ||
                                        (f_prev < f_prev2 && f_prev <= f && f_prev > 0));
       const double miss = extremum ? std::sqrt(f_prev + r2) - ctx.radius : 0.0;

@@ -1,9 +1,11 @@
 #include "isoparallel_certify.h"
 
 #include <boost/math/special_functions/ellint_1.hpp>
+#include <boost/math/special_functions/ellint_d.hpp>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "check.h"
 #include "elastica_rolling.h"
@@ -135,24 +137,44 @@ double HeadingRateBound(PendulumRegime regime, double k_max) {
   return regime == PendulumRegime::kOscillating ? 2.0 * k_max : 2.0;
 }
 
+namespace {
+
+// sup |d theta/dk| from a bound am_k on |d am/dk| at modulus k_max (both increasing in k).
+double HeadingModulusFromAmplitude(PendulumRegime regime, double k_max, double am_k) {
+  if (regime == PendulumRegime::kRotating) return 2.0 * am_k;  // theta = 2 am
+  // theta = 2 asin(k sn): d theta/dk = 2 (sn + k cn d am/dk) / dn, dn >= k'.
+  return 2.0 * (1.0 + k_max * am_k) / std::sqrt((1.0 - k_max) * (1.0 + k_max));
+}
+
+}  // namespace
+
 double HeadingModulusBound(PendulumRegime regime, double k_max, double v_max) {
   const double kp2 = (1.0 - k_max) * (1.0 + k_max);  // k'^2, decreasing in k: the sup is at k_max
   const double am_k = k_max * (0.5 + v_max) / kp2;    // sup |d am / dk|
-  if (regime == PendulumRegime::kRotating) return 2.0 * am_k;  // theta = 2 am
-  // theta = 2 asin(k sn): d theta/dk = 2 (sn + k cn d am/dk) / dn, dn >= k'.
-  return 2.0 * (1.0 + k_max * am_k) / std::sqrt(kp2);
+  return HeadingModulusFromAmplitude(regime, k_max, am_k);
 }
 
-double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, CertifyPoint* contributions) {
+double HeadingModulusBoundByZeta(PendulumRegime regime, double k_min, double k_max, double v_max) {
+  // d am/dk = [k sn cn - dn Z(v) / k] / k'^2 - dn v K'/K with K'/K = k (1 - D/K) / k'^2: k / k'^2
+  // and K grow with k, 1 - D/K = <cos^2> under the weight (1 - k^2 sin^2)^(-1/2) decreases.
+  if (!(k_max < 1.0)) return std::numeric_limits<double>::infinity();  // K(1) is infinite
+  const double kp2 = (1.0 - k_max) * (1.0 + k_max);
+  const double kk = boost::math::ellint_1(k_max);
+  const double secular = 1.0 - boost::math::ellint_d(k_min) / boost::math::ellint_1(k_min);
+  const double am_k = k_max * (0.5 * (1.0 + kk) + secular * v_max) / kp2;
+  return HeadingModulusFromAmplitude(regime, k_max, am_k);
+}
+
+namespace {
+
+// The deviation bound of a box for a bound mk0 + mk_slope (|v| - |u0|_max) on |d theta/dk| (the
+// bounds are affine in v_max), and each axis' uncapped share (optional).
+double DeviationForModulusBound(PendulumRegime regime, const CertifyBox& box, double mk0, double mk_slope,
+                                CertifyPoint* contributions) {
   const double k_max = box.hi[kCertifyModulus];
   const double rate_max = MaxAbs(box.lo[kCertifyRate], box.hi[kCertifyRate]);
-  const double phase_max = MaxAbs(box.lo[kCertifyPhase], box.hi[kCertifyPhase]);
   const double length_max = box.hi[kCertifyLength];
   const double mv = HeadingRateBound(regime, k_max);
-  // d theta/dk is bounded by c1 + c2 |v| with |v| <= rate_max s + phase_max: split it into a part
-  // constant in s and a part linear in s (the bound is affine in v_max).
-  const double mk0 = HeadingModulusBound(regime, k_max, phase_max);
-  const double mk_slope = HeadingModulusBound(regime, k_max, phase_max + 1.0) - mk0;
   const double hr = box.HalfWidth(kCertifyRate), hk = box.HalfWidth(kCertifyModulus);
   const double hu = box.HalfWidth(kCertifyPhase), hl = box.HalfWidth(kCertifyLength);
   // Mean value theorem on the segment from the centre: |g(s; p) - g(s; centre)| <= alpha + beta s.
@@ -174,6 +196,24 @@ double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, Certi
   }
   // |w1 - w2| = 2 |sin(dg / 2)| <= min(|dg|, 2); the extra length rolls at unit speed.
   return std::min(by_heading, by_shift) + hl;
+}
+
+}  // namespace
+
+double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, CertifyPoint* contributions) {
+  const double k_min = std::max(0.0, box.lo[kCertifyModulus]), k_max = box.hi[kCertifyModulus];
+  const double phase_max = MaxAbs(box.lo[kCertifyPhase], box.hi[kCertifyPhase]);
+  // d theta/dk is bounded by c1 + c2 |v| with |v| <= rate_max s + phase_max (two such bounds: at
+  // fixed v, and through a fixed number of periods; both rigorous, the smaller D is kept).
+  const double mk0 = HeadingModulusBound(regime, k_max, phase_max);
+  const double mk_slope = HeadingModulusBound(regime, k_max, phase_max + 1.0) - mk0;
+  const double zk0 = HeadingModulusBoundByZeta(regime, k_min, k_max, phase_max);
+  const double zk_slope = HeadingModulusBoundByZeta(regime, k_min, k_max, phase_max + 1.0) - zk0;
+  CertifyPoint share_v, share_z;
+  const double by_v = DeviationForModulusBound(regime, box, mk0, mk_slope, &share_v);
+  const double by_z = DeviationForModulusBound(regime, box, zk0, zk_slope, &share_z);
+  if (contributions != nullptr) *contributions = by_v <= by_z ? share_v : share_z;
+  return std::min(by_v, by_z);
 }
 
 CertifyTarget CertifyTargetOf(const IsoparallelProblem& problem) {

@@ -13,7 +13,8 @@
 //     int_0^L 2 |sin((g1 - g2) / 2)| ds apart, and their chords differ by at most the same;
 //   - heading derivatives: |d theta/dv| <= 2k (oscillating), 2 (rotating), v = rate s + u0, and
 //     |d am/dk| <= k (1/2 + |v|) / k'^2 (from d am/dk = [k sn cn - dn (E(am v) - k'^2 v) / k] / k'^2
-//     and E(am v) - k'^2 v = k^2 int_0^v cn^2);
+//     and E(am v) - k'^2 v = k^2 int_0^v cn^2), or through a fixed number of periods (Jacobi's
+//     zeta) k ((1 + K)/2 + (1 - D/K) |v|) / k'^2, D = (K - E)/k^2: D of a box takes the smaller;
 //   - the chord's direction moves by at most asin(D / |chord|), and the conjugation by B moves
 //     the rotation by at most twice that.
 // The box test is rigorous up to the floating-point error of the centre's residual (a Magnus
@@ -44,6 +45,10 @@ struct CertifyBox {
 double HeadingRateBound(PendulumRegime regime, double k_max);
 /// sup |d theta / dk| at fixed v over moduli in [0, k_max] and |v| <= v_max (k_max < 1).
 double HeadingModulusBound(PendulumRegime regime, double k_max, double v_max);
+/// A second bound on the same sup over moduli in [k_min, k_max], from d am/dk at a fixed number of
+/// periods (Jacobi's zeta, |Z| <= k^2 K / 2) plus the period's change: a larger constant, a
+/// secular slope smaller by the factor 1 - D/K <= 1/2 (D = (K - E) / k^2, taken at k_min).
+double HeadingModulusBoundByZeta(PendulumRegime regime, double k_min, double k_max, double v_max);
 
 /// Bound D on both the rotation distance between Q(0, L) of any point of the box and Q(0, Lc) of
 /// its centre, and on the distance between their chords. `contributions` (optional) receives the

@@ -85,6 +85,25 @@ TEST(ElasticaRolling, NodesMatchDopriAndTheClosedForm) {
   EXPECT_LT(RotationAngle(q[i1] * q[i0].transpose(), ReferenceRolling(from_s0, (i1 - i0) * h)), 1e-11);
 }
 
+// The search reuses a trial's table for longer lengths only where ServesLength says a table over
+// that length would be the same one: a periodic table (the rolling there bit for bit that of a
+// table built over the longer length, and near dopri5 at the search accuracy), not a table
+// shorter than one period (it tabulates its own length only), nor a shorter length.
+TEST(ElasticaRolling, ServesLengthOnlyWhereALongerTableIsTheSame) {
+  const Elastica e = Elastica::FromInitialState(0.6, 0.2, 0.9, 0.4);
+  const double length = 2.2 * e.Period(), longer = length + 1e-3;
+  const internal::ElasticaRollingTable table(e, length, 12, 0.5), rebuilt(e, longer, 12, 0.5);
+  ASSERT_TRUE(table.ServesLength(longer));
+  EXPECT_FALSE(table.ServesLength(0.5 * length));
+  for (double s : {length, longer}) {
+    const Eigen::Matrix3d a = table.Rolling(s), b = rebuilt.Rolling(s);
+    EXPECT_EQ(a, b) << s;
+    EXPECT_LT(RotationAngle(a, ReferenceRolling(e, s)), 1e-3) << s;  // search accuracy (12 steps per period)
+  }
+  const internal::ElasticaRollingTable part(e, 0.6 * e.Period(), 12, 0.5);
+  EXPECT_FALSE(part.ServesLength(0.6 * e.Period() + 1e-3)) << "a table within one period tabulates its own length";
+}
+
 TEST(ElasticaRolling, CrossingsLieOnTheCircle) {
   const Elastica e = Elastica::FromInitialState(0.6, 0.2, 0.9, 0.4);
   const internal::ElasticaRollingTable table(e, 40.0, 12, 0.5);

@@ -1,0 +1,186 @@
+#include "isoparallel_certify_tails.h"
+
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <boost/math/special_functions/ellint_2.hpp>
+#include <boost/math/special_functions/ellint_d.hpp>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "check.h"
+#include "plateball/so3.h"
+#include "rotation_trick.h"
+
+namespace plateball::internal {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The drift ratio rho (signed): oscillating 2E/K - 1 (mean of cos theta), rotating 1 - 2D/K.
+// Both are decreasing in k (E/K and D/K are means of decreasing resp. increasing functions of
+// sin^2 under a weight (1 - k^2 sin^2)^(-1/2) whose likelihood ratio grows with k).
+double DriftRatio(PendulumRegime regime, double k) {
+  const double kk = boost::math::ellint_1(k);
+  if (regime == PendulumRegime::kOscillating) return 2.0 * boost::math::ellint_2(k) / kk - 1.0;
+  return 1.0 - 2.0 * boost::math::ellint_d(k) / kk;
+}
+
+// Periods of v per heading period: 4 (oscillating) or 2 (rotating) quarter periods K.
+double QuarterPeriods(PendulumRegime regime) { return regime == PendulumRegime::kOscillating ? 4.0 : 2.0; }
+
+// h(cap) = sqrt(cap^2 - l^2) + l, l = |x1 - x0| (the bound's factor at the largest length), over
+// 4 sin(delta / 2); 0 when the straight residual does not exceed the margin.
+double RateScale(const CertifyTarget& target, double cap, double margin) {
+  const double delta = StraightResidual(target) - margin;
+  if (!(delta > 0.0)) return 0.0;
+  const double l = target.radius;
+  const double h = std::sqrt(std::max(0.0, (cap - l) * (cap + l))) + l;
+  return h / (4.0 * std::sin(0.5 * delta));
+}
+
+// ||E - I|| <= b for a rotation E means its angle is at most 2 asin(b / 2) (||E - I|| = 2 sin(angle / 2)).
+double DeviationAngle(double b) { return b >= 2.0 ? M_PI : 2.0 * std::asin(0.5 * b); }
+
+}  // namespace
+
+double StraightResidual(const CertifyTarget& target) {
+  // e3 x (x1 - x0) with x1 - x0 = radius (cos goal, sin goal).
+  const Eigen::Vector3d w(-target.radius * std::sin(target.goal_angle), target.radius * std::cos(target.goal_angle), 0.0);
+  return RotationTrickResidual(target.target, 0.0, ExpSO3(w)).norm();
+}
+
+double DriftDeficit(PendulumRegime regime, double k) {
+  if (k <= 0.0) return regime == PendulumRegime::kOscillating ? 0.0 : 1.0;
+  if (!(k < 1.0)) return 0.0;  // the limit k -> 1 (like 2 / sqrt(K)): |rho| -> 1 at the separatrix
+  const double kk = boost::math::ellint_1(k), d = boost::math::ellint_d(k);
+  // 1 - rho^2 = (1 - rho)(1 + rho) without cancellation: oscillating 1 - rho = 2 k^2 D / K,
+  // 1 + rho = 2E / K; rotating 1 - rho = 2D / K, 1 + rho = 2 (K - D) / K.
+  if (regime == PendulumRegime::kOscillating) return 2.0 * k * std::sqrt(d * boost::math::ellint_2(k)) / kk;
+  return 2.0 * std::sqrt(d * (kk - d)) / kk;
+}
+
+double AveragingDeviationBound(double period, double deficit, double length, double chord) {
+  if (!std::isfinite(period)) return kInf;
+  const double c = std::min(std::abs(chord), length);
+  return DeviationAngle(0.5 * period * deficit * (std::sqrt((length - c) * (length + c)) + c));
+}
+
+double StraightRunDeviationBound(double eta, double length, double chord) {
+  // |x' - t*| <= mu, so |c / L - t*| <= mu, |x' - c / L| <= 2 mu and the deviation F from the
+  // uniformly run chord has |F(s)| <= 2 mu min(s, L - s): int |F| <= mu L^2 / 2.
+  const double mu = 2.0 * std::sin(0.5 * std::min(std::abs(eta), M_PI / 2));
+  const double r = std::min(std::abs(chord), length) / length;
+  return DeviationAngle(0.5 * mu * length * length * (2.0 * mu + r));
+}
+
+double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, double v_max) {
+  const double ch = std::cosh(std::min(std::abs(v_max), 700.0));
+  const double am_k = k_max * (ch - 1.0);  // increasing in k: the sup is at k_max
+  if (regime == PendulumRegime::kRotating) return 2.0 * am_k;
+  // 1 / dn <= min(cosh v, 1 / k'): the oscillation is slower than the separatrix at equal angle.
+  const double kp = std::sqrt(std::max(0.0, (1.0 - k_max) * (1.0 + k_max)));
+  const double inv_dn = kp > 0.0 ? std::min(ch, 1.0 / kp) : ch;
+  return 2.0 * (1.0 + k_max * am_k) * inv_dn;
+}
+
+namespace {
+
+// The two sides of the gap: the growing bound (the modulus integral of the separatrix bound) and
+// the decreasing one (the loop's distance to pi).
+double GapGrowing(PendulumRegime regime, double k, double v) {
+  const double ch = std::cosh(std::min(std::abs(v), 350.0));
+  return regime == PendulumRegime::kRotating ? (1.0 - k) * (1.0 + k) * (ch - 1.0) : 2.0 * (1.0 - k) * ch * ch;
+}
+
+double GapDecreasing(PendulumRegime regime, double k, double v) {
+  const double a = std::min(std::abs(v), 350.0);
+  return regime == PendulumRegime::kRotating ? 2.0 * std::asin(1.0 / std::cosh(a)) : 2.0 * std::acos(k * std::tanh(a));
+}
+
+}  // namespace
+
+double SeparatrixHeadingGap(PendulumRegime regime, double k, double v) {
+  return std::min(GapGrowing(regime, k, v), GapDecreasing(regime, k, v));
+}
+
+double SeparatrixHeadingGapSup(PendulumRegime regime, double k) {
+  // min(A, B), A increasing and B decreasing in |v|: for a bracket [lo, hi] of their crossing
+  // every v has min <= A(hi) (v <= hi) or <= B(lo) (v >= lo). Over every v >= 0 (not only
+  // [0, K(k)]), so that it also bounds every modulus in [k, 1), whose A and B are smaller.
+  if (!(k < 1.0)) return 0.0;
+  const auto a = [&](double v) { return GapGrowing(regime, k, v); };
+  const auto b = [&](double v) { return GapDecreasing(regime, k, v); };
+  double lo = 0.0, hi = 1.0;
+  while (a(hi) < b(hi)) hi *= 2.0;  // A grows without bound, B stays bounded
+  for (int i = 0; i < 200 && hi - lo > 1e-13 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (a(mid) < b(mid) ? lo : hi) = mid;
+  }
+  return std::max(a(hi), b(lo));
+}
+
+double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin) {
+  const double scale = RateScale(target, cap, margin);
+  if (scale == 0.0 || !(k < 1.0)) return kInf;  // K(1) is infinite: no bound at the separatrix
+  // a = n K / P and P >= P* = 4 sin(delta / 2) / (deficit h): a_max = n K deficit h / (4 sin).
+  return QuarterPeriods(regime) * boost::math::ellint_1(k) * DriftDeficit(regime, k) * scale;
+}
+
+double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
+                           double margin) {
+  const double scale = RateScale(target, cap, margin);
+  if (scale == 0.0 || !(k_hi < 1.0)) return kInf;
+  // rho is decreasing in k: the smallest |rho| on [k_lo, k_hi] is 0 if it changes sign there,
+  // else the smaller end value; K is increasing.
+  const double r_lo = DriftRatio(regime, k_lo), r_hi = DriftRatio(regime, k_hi);
+  const double m = (r_lo >= 0.0 && r_hi <= 0.0) ? 0.0 : std::min(std::abs(r_lo), std::abs(r_hi));
+  const double deficit = std::sqrt(std::max(0.0, (1.0 - m) * (1.0 + m)));
+  return QuarterPeriods(regime) * boost::math::ellint_1(k_hi) * deficit * scale;
+}
+
+CertifyBox CoverageWindow::Box() const {
+  CertifyBox b;
+  b.lo = {rate_lo, k_lo, 0.0, length_lo};
+  b.hi = {rate_hi, k_hi, phase_hi, length_hi};
+  return b;
+}
+
+CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k_max, int pieces, double margin) {
+  CoverageStatement out;
+  if (!(target.radius > 0.0 && target.radius <= 1e3))
+    out.message = InvalidValueMessage("target.radius", target.radius, "must be in (0, 1e3]");
+  else if (!(cap >= target.radius && cap <= 1e3))
+    out.message = InvalidValueMessage("cap", cap, "must lie in [|x1 - x0|, 1e3]");
+  else if (!(k_max >= 0.0 && k_max <= 0.999))
+    out.message = InvalidValueMessage("k_max", k_max, "must lie in [0, 0.999]");
+  else if (!(pieces >= 1 && pieces <= 10000))
+    out.message = InvalidValueMessage("pieces", pieces, "must be in [1, 10000]");
+  else if (!(margin >= 0.0 && margin <= 1e-2))
+    out.message = InvalidValueMessage("margin", margin, "must be in [0, 1e-2]");
+  if (!out.message.empty()) return out;
+  out.straight_residual = StraightResidual(target);
+  out.rate_tail_excluded = out.straight_residual > margin;
+  for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
+    for (int i = 0; i < pieces; ++i) {
+      CoverageWindow w;
+      w.regime = regime;
+      w.k_lo = k_max * i / pieces;
+      w.k_hi = k_max * (i + 1) / pieces;
+      w.rate_hi = MaxSolutionRateOver(target, regime, w.k_lo, w.k_hi, cap, margin);
+      // An oscillating path with a negative rate is the same path with a positive one.
+      w.rate_lo = regime == PendulumRegime::kOscillating ? 0.0 : -w.rate_hi;
+      w.phase_hi = QuarterPeriods(regime) * boost::math::ellint_1(w.k_hi);
+      w.length_lo = target.radius;
+      w.length_hi = cap;
+      out.windows.push_back(w);
+    }
+  }
+  out.uncovered = "k in (" + std::to_string(k_max) + ", 1] in both regimes (the separatrix tail, k = 1 included)";
+  if (!out.rate_tail_excluded)
+    out.uncovered += "; every rate: the straight residual " + std::to_string(out.straight_residual) +
+                     " does not exceed the margin, so the averaging lemma excludes nothing";
+  return out;
+}
+
+}  // namespace plateball::internal

@@ -1,0 +1,99 @@
+// Internal: the tails of the certified exclusion for general isoparallel targets (issue 15;
+// docs/paper_notes.md, "General targets: the tails of the certificate window").
+//
+// The branch and bound of isoparallel_certify.h covers a BOUNDED window of elastica parameters.
+// This file bounds the large-rate tail rigorously (an averaging lemma):
+//
+//   for an elastica with heading period P in arc length (x(s + P) = x(s) + c_P) and drift ratio
+//   rho = |c_P| / P, rolled over [0, L] with chord c = x(L) - x(0),
+//     angle(Q(0, L), exp(hat(e3 x c))) <= 2 asin(min(1, B / 2)),
+//     B = (P / 2) sqrt(1 - rho^2) (sqrt(L^2 - |c|^2) + |c|).
+//
+// A solution of the rotation trick has |c| = |x1 - x0|, so its residual differs from the straight
+// segment's residual delta0 = angle(target^T exp(hat(e3 x (x1 - x0)))) by at most that bound:
+// no solution of length <= cap has a heading period below P*, i.e. a rate above
+//   a_max(k) = 2 k sqrt(D E) h / sin(delta / 2)   (oscillating; P = 4K / |a|),
+//   a_max(k) = sqrt(D (K - D)) h / sin(delta / 2) (rotating;    P = 2K / |a|),
+// h = sqrt(cap^2 - |x1 - x0|^2) + |x1 - x0|, delta = delta0 - margin, D = (K - E) / k^2.
+// When delta0 <= margin (the target is the straight rolling, or nearly) nothing is excluded.
+// The modulus tail k -> 1 is NOT covered here (the notes say what is and is not proved).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "isoparallel_certify.h"
+#include "plateball/elastica.h"
+
+namespace plateball::internal {
+
+/// The straight segment's residual delta0 = angle(target^T exp(hat(e3 x (x1 - x0)))): the
+/// rotation trick applied to rolling straight along x1 - x0.
+double StraightResidual(const CertifyTarget& target);
+
+/// sqrt(1 - rho^2) for the drift ratio rho = |chord over one heading period| / period length of
+/// an elastica of modulus k in [0, 1): oscillating 2 k sqrt(D E) / K, rotating 2 sqrt(D (K - D)) / K
+/// (D = (K - E) / k^2). 0 for the straight line (oscillating, k = 0).
+double DriftDeficit(PendulumRegime regime, double k);
+
+/// The averaging bound: the rotation angle between Q(0, L) and the straight rolling
+/// exp(hat(e3 x c)) along the chord, for a path of heading period `period` (arc length),
+/// DriftDeficit `deficit`, length L and chord length |c| <= L. +inf for an infinite period.
+double AveragingDeviationBound(double period, double deficit, double length, double chord);
+
+/// The straight-run bound: a path whose heading stays within eta (<= pi/2) of one direction over
+/// [0, L] rolls to within 2 asin(min(1, B / 2)) of exp(hat(e3 x c)), B = (mu L^2 / 2)(2 mu + |c| / L),
+/// mu = 2 sin(eta / 2). (Near the separatrix the runs between loops are such paths.)
+double StraightRunDeviationBound(double eta, double length, double chord);
+
+/// sup |d theta/dk| at fixed v over moduli in [0, k_max] (k_max <= 1: uniform up to the
+/// separatrix) and |v| <= v_max, v measured from a loop centre (theta(0) = 0):
+/// |d am/dk| <= k (cosh v - 1) (the bracket of d am/dk solves J' = sn M, M' = k^2 sn J - k'^2 cn),
+/// rotating 2 k (cosh v - 1); oscillating 2 (1 + k^2 (cosh v - 1)) / dn with dn >= max(k', sech v).
+double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, double v_max);
+
+/// One loop near the separatrix: for 0 <= v <= K(k), |theta_k(v) - theta_1(v)| <= the gap,
+/// theta_1 = 2 gd(v) the separatrix (odd in v).
+///   rotating:    0 <= theta_k - theta_1 <= min(k'^2 (cosh v - 1), 2 asin(sech v)) (a rotation is
+///                faster than the separatrix at equal angle, and theta_k <= pi on [0, K]);
+///   oscillating: 0 <= theta_1 - theta_k <= min(2 (1 - k) cosh^2 v, 2 acos(k tanh v)) (slower;
+///                sn >= tanh v).
+/// The sup over all v >= 0 (rotating ~sqrt(2) k', oscillating ~k'^(2/3)) bounds the gap for every
+/// modulus in [k, 1): one loop of an elastica is the separatrix loop within it in heading.
+double SeparatrixHeadingGap(PendulumRegime regime, double k, double v);
+double SeparatrixHeadingGapSup(PendulumRegime regime, double k);
+
+/// a_max(k): no solution of length <= cap (chord |x1 - x0|) has |rate| > a_max at modulus k.
+/// +inf when StraightResidual(target) <= margin (the lemma excludes nothing then).
+double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin);
+/// A rigorous sup of MaxSolutionRate over moduli in [k_lo, k_hi] (K and D/K are monotone in k,
+/// so is rho: the sup uses K(k_hi) and the smallest |rho| of the interval).
+double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
+                           double margin);
+
+/// One window the branch and bound must certify: regime, k in [k_lo, k_hi], rate in
+/// [rate_lo, rate_hi] (a rigorous sup over the k range), phase in [0, phase_hi) (one period of v
+/// at k_hi), L in [length_lo, length_hi].
+struct CoverageWindow {
+  PendulumRegime regime = PendulumRegime::kOscillating;
+  double k_lo = 0.0, k_hi = 0.0;
+  double rate_lo = 0.0, rate_hi = 0.0;
+  double phase_hi = 0.0;
+  double length_lo = 0.0, length_hi = 0.0;
+  CertifyBox Box() const;
+};
+
+/// What `complete` up to a length cap needs: the windows (both regimes, k in [0, k_max] split in
+/// `pieces` intervals each) and the parts of parameter space no argument covers.
+struct CoverageStatement {
+  std::string message;            // empty when valid, else the invalid-value message
+  double straight_residual = 0.0;  // delta0
+  bool rate_tail_excluded = false;  // delta0 > margin: every rate above the windows is excluded
+  std::vector<CoverageWindow> windows;
+  std::string uncovered;  // the parameter sets outside every window and not excluded
+};
+
+CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k_max, int pieces,
+                               double margin = 1e-7);
+
+}  // namespace plateball::internal

@@ -1,0 +1,318 @@
+// The tails of the certified exclusion (src/isoparallel_certify_tails.h): the averaging bound
+// against rollings by dopri5 at sampled (rate, k, phase, length), the drift deficit against the
+// closed-form chord per period, the rate bound a_max(k) against the known solutions and against
+// dopri5 rollings of fast paths ending on the circle |x| = |x1 - x0|, and the coverage statement.
+#include "isoparallel_certify_tails.h"
+
+#include <gtest/gtest.h>
+
+#include <boost/math/special_functions/ellint_1.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "elastica_rolling.h"
+#include "plateball/elastica.h"
+#include "plateball/isoparallel.h"
+#include "plateball/problem_io.h"
+#include "plateball/rolling.h"
+#include "plateball/so3.h"
+#include "plateball/task_adapters.h"
+#include "rotation_trick.h"
+#include "support/test_support.h"
+
+using namespace plateball;
+using namespace plateball::internal;
+
+namespace {
+
+const PendulumRegime kRegimes[] = {PendulumRegime::kOscillating, PendulumRegime::kRotating};
+
+Eigen::Matrix3d Dopri(const Elastica& e, double length) {
+  IntegrationOptions o;
+  o.absolute_tolerance = o.relative_tolerance = 1e-12;
+  return RollingReorientation([&e](double s) { return e.Tangent(s); }, 0.0, length, {}, o);
+}
+
+Eigen::Matrix3d StraightRolling(const Eigen::Vector2d& chord) {
+  return ExpSO3(Eigen::Vector3d(-chord.y(), chord.x(), 0.0));  // exp(hat(e3 x c))
+}
+
+CertifyTarget RotationProblemTarget() {
+  const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
+  return CertifyTargetOf(IsoparallelSetupFor(p).problem);
+}
+
+// A path of the given regime, rate, modulus and length with a random phase and heading_w, rolled
+// by dopri5 and compared with the straight rolling along its chord.
+struct ChordDeviation {
+  double period = 0.0, length = 0.0, chord = 0.0, actual = 0.0;
+};
+ChordDeviation RollAgainstChord(std::mt19937* rng, PendulumRegime regime, double rate, double k, double length) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double phase = 8.0 * unit(*rng), heading_w = 6.0 * unit(*rng);
+  const Elastica e(ElasticaParameters{regime, rate, k, phase, heading_w});
+  const Eigen::Vector2d chord = e.Position(length);
+  return {e.Period(), length, chord.norm(), RotationAngle(Dopri(e, length), StraightRolling(chord))};
+}
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+TEST(IsoparallelCertifyTails, AveragingBoundNeverUndershootsDopriRollings) {
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> by_regime[2];
+  for (int i = 0; i < 800; ++i) {  // alternating regimes; rotating rates of both signs
+    const PendulumRegime regime = kRegimes[i % 2];
+    const double sign = i % 4 == 3 ? -1.0 : 1.0;
+    const double rate = sign * (0.3 + 25.0 * unit(rng) * unit(rng)), k = 0.97 * unit(rng);
+    const ChordDeviation d = RollAgainstChord(&rng, regime, rate, k, 0.3 + 7.7 * unit(rng));
+    const double bound = AveragingDeviationBound(d.period, DriftDeficit(regime, k), d.length, d.chord);
+    ASSERT_LE(d.actual, bound + 1e-9) << ToString(regime) << " rate " << rate << " k " << k << " L " << d.length;
+    if (bound < 1.0 && d.actual > 1e-9) by_regime[i % 2].push_back(bound / d.actual);
+  }
+  for (PendulumRegime regime : kRegimes) {
+    const std::vector<double>& ratios = by_regime[regime == PendulumRegime::kOscillating ? 0 : 1];
+    ASSERT_GE(ratios.size(), 80u);
+    std::printf("%s: bound / dopri5 deviation over %zu points with bound < 1: median %.2f, best %.2f, worst %.2f\n",
+                ToString(regime).c_str(), ratios.size(), Median(ratios), *std::min_element(ratios.begin(), ratios.end()),
+                *std::max_element(ratios.begin(), ratios.end()));
+    // The bound is an order-correct estimate (second-order Magnus: ~ L P), not a loose cap.
+    EXPECT_LT(Median(ratios), 40.0);
+  }
+}
+
+// Oscillating paths have |theta| <= 2 asin(k): a heading within eta = 2 asin(k) of g_W - pi/2.
+TEST(IsoparallelCertifyTails, StraightRunBoundNeverUndershootsDopriRollings) {
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> ratios;
+  for (int i = 0; i < 150; ++i) {
+    const double rate = 0.2 + 6.0 * unit(rng), k = 0.3 * unit(rng) * unit(rng);
+    const ChordDeviation d = RollAgainstChord(&rng, PendulumRegime::kOscillating, rate, k, 0.2 + 5.0 * unit(rng));
+    const double bound = StraightRunDeviationBound(2.0 * std::asin(k), d.length, d.chord);
+    ASSERT_LE(d.actual, bound + 1e-9) << "rate " << rate << " k " << k << " L " << d.length;
+    if (bound < 1.0 && d.actual > 1e-9) ratios.push_back(bound / d.actual);
+  }
+  ASSERT_GE(ratios.size(), 50u);
+  std::printf("straight runs: bound / dopri5 deviation over %zu points: median %.2f, best %.2f\n", ratios.size(),
+              Median(ratios), *std::min_element(ratios.begin(), ratios.end()));
+}
+
+double Theta(PendulumRegime regime, double k, double v) {
+  return Elastica(ElasticaParameters{regime, 1.0, k, 0.0, 0.0}).PendulumAngle(v);
+}
+
+// The zeta form of the modulus bound (sup over [k_min, k_max]) never undershoots central
+// differences of the closed forms; and its secular slope is at most half the fixed-v bound's.
+TEST(IsoparallelCertifyTails, ZetaModulusBoundNeverUndershootsFiniteDifferences) {
+  const double h = 1e-6;
+  for (PendulumRegime regime : kRegimes) {
+    double worst_ratio = 0.0, best_gain = 0.0;
+    for (double k = 0.02; k <= 0.97; k += 0.03) {
+      double sup_k = 0.0;
+      const double v_max = 40.0, k_min = std::max(0.0, k - 0.015);
+      for (double v = -v_max; v <= v_max; v += 0.0173) {
+        const double dk = (Theta(regime, k + h, v) - Theta(regime, k - h, v)) / (2 * h);
+        ASSERT_LE(std::abs(dk), HeadingModulusBoundByZeta(regime, k_min, k, std::abs(v)) * (1 + 1e-6) + 1e-6)
+            << ToString(regime) << " k " << k << " v " << v;
+        sup_k = std::max(sup_k, std::abs(dk));
+      }
+      const double zeta = HeadingModulusBoundByZeta(regime, k_min, k, v_max);
+      worst_ratio = std::max(worst_ratio, zeta / sup_k);
+      best_gain = std::max(best_gain, HeadingModulusBound(regime, k, v_max) / zeta);
+      const double slope_z = HeadingModulusBoundByZeta(regime, 0.0, k, 1.0) - HeadingModulusBoundByZeta(regime, 0.0, k, 0.0);
+      const double slope_v = HeadingModulusBound(regime, k, 1.0) - HeadingModulusBound(regime, k, 0.0);
+      EXPECT_LE(slope_z, 0.5 * slope_v * (1 + 1e-9));
+    }
+    std::printf("%s: zeta bound / sampled sup of |d theta/dk| over |v| <= 40: worst %.2f; fixed-v bound / zeta bound "
+                "up to %.2f\n", ToString(regime).c_str(), worst_ratio, best_gain);
+    EXPECT_GT(best_gain, 1.5);
+  }
+}
+
+// Near the separatrix (k up to 0.99999) the bound uniform in k never undershoots central
+// differences on |v| <= 8 from the loop centre, while the fixed-v bound of isoparallel_certify.h
+// (growing like 1/k'^2, 1/k'^3) does not stay bounded; and dn = cos(theta/2) >= sech v.
+TEST(IsoparallelCertifyTails, SeparatrixModulusBoundNeverUndershootsFiniteDifferences) {
+  for (PendulumRegime regime : kRegimes) {
+    double worst_ratio = 0.0, last_ratio = 0.0;
+    for (double k : {0.3, 0.7, 0.9, 0.99, 0.999, 0.9999, 0.99999}) {
+      const double h = 1e-3 * std::min(0.01, 1.0 - k);
+      double sup_k = 0.0;
+      for (double v = -8.0; v <= 8.0; v += 0.0191) {
+        const double dk = (Theta(regime, k + h, v) - Theta(regime, k - h, v)) / (2 * h);
+        const double bound = HeadingModulusBoundNearSeparatrix(regime, k, std::abs(v));
+        ASSERT_LE(std::abs(dk), bound * (1 + 1e-5) + 1e-5) << ToString(regime) << " k " << k << " v " << v;
+        sup_k = std::max(sup_k, std::abs(dk));
+        if (regime == PendulumRegime::kOscillating) {
+          ASSERT_GE(std::cos(0.5 * Theta(regime, k, v)), 1.0 / std::cosh(v) - 1e-12) << "k " << k << " v " << v;
+        }
+      }
+      worst_ratio = std::max(worst_ratio, HeadingModulusBoundNearSeparatrix(regime, k, 8.0) / sup_k);
+      last_ratio = HeadingModulusBoundNearSeparatrix(regime, k, 8.0) / sup_k;
+    }
+    std::printf("%s: separatrix bound / sampled sup of |d theta/dk| over |v| <= 8: worst %.1f, at k = 0.99999 %.2f\n",
+                ToString(regime).c_str(), worst_ratio, last_ratio);
+    EXPECT_GT(HeadingModulusBound(regime, 0.99999, 4.0), 1e3 * HeadingModulusBoundNearSeparatrix(regime, 0.99999, 4.0));
+  }
+}
+
+// One loop against the separatrix loop theta_1 = 2 gd(v) = 2 atan(sinh v), on [0, K]: the gap has
+// the stated sign and never exceeds its bound, and the sup bound is above every sampled gap and
+// every larger modulus' sup.
+TEST(IsoparallelCertifyTails, LoopStaysWithinTheGapOfTheSeparatrixLoop) {
+  for (PendulumRegime regime : kRegimes) {
+    const double sign = regime == PendulumRegime::kRotating ? 1.0 : -1.0;
+    for (double k : {0.9, 0.99, 0.999, 0.9999, 0.999999}) {
+      const double quarter = boost::math::ellint_1(k), sup = SeparatrixHeadingGapSup(regime, k);
+      double seen = 0.0;
+      for (double v = 0.0; v <= quarter; v += quarter / 4000) {
+        const double gap = sign * (Theta(regime, k, v) - 2.0 * std::atan(std::sinh(v)));
+        ASSERT_GE(gap, -1e-12) << ToString(regime) << " k " << k << " v " << v;
+        ASSERT_LE(gap, SeparatrixHeadingGap(regime, k, v) + 1e-12) << ToString(regime) << " k " << k << " v " << v;
+        seen = std::max(seen, gap);
+      }
+      ASSERT_LE(seen, sup + 1e-12) << ToString(regime) << " k " << k;
+      const double kp = std::sqrt((1 - k) * (1 + k));
+      std::printf("%s k' %.2e: sup gap bound %.3e = %.2f k', sampled sup %.3e (%.2fx)\n", ToString(regime).c_str(), kp,
+                  sup, sup / kp, seen, sup / seen);
+      EXPECT_LE(SeparatrixHeadingGapSup(regime, 1.0 - 0.5 * (1.0 - k)), sup);  // uniform on [k, 1)
+    }
+    EXPECT_LT(SeparatrixHeadingGapSup(regime, 0.999999), regime == PendulumRegime::kRotating ? 2e-3 : 0.1);
+  }
+}
+
+TEST(IsoparallelCertifyTails, DriftDeficitMatchesTheClosedFormChordPerPeriod) {
+  for (PendulumRegime regime : kRegimes) {
+    for (double k : {0.0, 0.05, 0.3, 0.6, 0.9, 0.95, 0.99}) {
+      ElasticaParameters p;
+      p.regime = regime;
+      p.rate = 1.3;
+      p.modulus = k;
+      const Elastica e(p);
+      // Oscillating k = 0 is a straight line for the closed form too (drift = period): deficit 0.
+      const double rho = e.DriftPerPeriod().norm() / e.Period();
+      const double expected = std::sqrt(std::max(0.0, 1.0 - rho * rho));
+      EXPECT_NEAR(DriftDeficit(regime, k), expected, 1e-7) << ToString(regime) << " k " << k;
+    }
+  }
+}
+
+TEST(IsoparallelCertifyTails, RateBoundIsWhereTheAveragingBoundMeetsTheStraightResidual) {
+  const CertifyTarget target = RotationProblemTarget();
+  const double delta0 = StraightResidual(target), cap = 3.0 * 5.99098308, margin = 1e-7;
+  // delta0 by rolling straight along x1 - x0 with dopri5 and applying the rotation trick.
+  ElasticaParameters straight;
+  straight.heading_w = target.goal_angle + M_PI / 2;  // heading g = theta + g_W - pi/2 = goal
+  const Elastica line(straight);
+  EXPECT_NEAR(delta0, RotationTrickResidual(target.target, 0.0, Dopri(line, target.radius)).norm(), 1e-9);
+  for (PendulumRegime regime : kRegimes) {
+    for (double k : {0.1, 0.5, 0.9, 0.95}) {
+      const double a_max = MaxSolutionRate(target, regime, k, cap, margin);
+      ElasticaParameters p;
+      p.regime = regime;
+      p.rate = a_max;
+      p.modulus = k;
+      const double eps = AveragingDeviationBound(Elastica(p).Period(), DriftDeficit(regime, k), cap, target.radius);
+      EXPECT_NEAR(eps, delta0 - margin, 1e-9) << ToString(regime) << " k " << k;
+      // The interval sup is at least every sampled value.
+      for (double kk = 0.0; kk <= k; kk += k / 16)
+        EXPECT_LE(MaxSolutionRate(target, regime, kk, cap, margin),
+                  MaxSolutionRateOver(target, regime, 0.0, k, cap, margin) * (1 + 1e-12));
+    }
+  }
+}
+
+// The rotation problem's shortest solution (oscillating, canonical form) and a made target's
+// exact rotating solution lie below a_max(k) at their caps (a bound that excluded them is wrong).
+TEST(IsoparallelCertifyTails, KnownSolutionsLieBelowTheRateBound) {
+  const CertifyTarget target = RotationProblemTarget();
+  const double shortest_rate = 1.1321176940954867, shortest_k = 0.79235739683313566, shortest_l = 5.9909830797493848;
+  EXPECT_LE(shortest_rate, MaxSolutionRate(target, PendulumRegime::kOscillating, shortest_k, shortest_l, 1e-7));
+  ElasticaParameters p;
+  p.regime = PendulumRegime::kRotating;
+  p.rate = 0.6;
+  p.modulus = 0.6;
+  p.phase = 0.7;
+  p.heading_w = M_PI / 2;
+  const Elastica e(p);
+  CertifyTarget made;
+  made.target = Dopri(e, 3.0);
+  made.radius = e.Position(3.0).norm();
+  made.goal_angle = std::atan2(e.Position(3.0).y(), e.Position(3.0).x());
+  EXPECT_GT(StraightResidual(made), 0.1);
+  EXPECT_LE(0.6, MaxSolutionRate(made, PendulumRegime::kRotating, 0.6, 3.0, 1e-7));
+}
+
+// Paths faster than a_max(k) that end on the circle |x| = |x1 - x0| before the cap: their
+// rotation-trick residual (dopri5) never comes near zero, and stays above delta0 - eps.
+TEST(IsoparallelCertifyTails, FastPathsOnTheCircleHaveNoSmallResidual) {
+  const CertifyTarget target = RotationProblemTarget();
+  const double cap = 3.0 * 5.99098308, delta0 = StraightResidual(target);
+  int crossings = 0;
+  for (PendulumRegime regime : kRegimes) {
+    for (double k : {0.3, 0.5, 0.7, 0.9}) {
+      const double a_max = MaxSolutionRate(target, regime, k, cap, 1e-7);
+      for (double factor : {1.05, 1.5}) {
+        ElasticaParameters p;
+        p.regime = regime;
+        p.rate = factor * a_max;
+        p.modulus = k;
+        p.phase = 0.37 * factor;
+        p.heading_w = M_PI / 2;
+        const Elastica e(p);
+        const ElasticaRollingTable table(e, cap, 32, 0.01);
+        ASSERT_TRUE(table.Valid());
+        for (double s : table.Crossings(target.radius, 8)) {
+          const Eigen::Vector2d chord = e.Position(s);
+          const double residual =
+              RotationTrickResidual(target.target, ChordTurn(target.goal_angle, chord), Dopri(e, s)).norm();
+          const double eps = AveragingDeviationBound(e.Period(), DriftDeficit(regime, k), s, chord.norm());
+          EXPECT_GE(residual, delta0 - eps - 1e-9);
+          EXPECT_GT(residual, 1e-3);
+          ++crossings;
+        }
+      }
+    }
+  }
+  EXPECT_GE(crossings, 10);
+  std::printf("%d crossings of |x| = |x1 - x0| checked\n", crossings);
+}
+
+TEST(IsoparallelCertifyTails, CoverageStatesTheWindowsAndTheUncoveredTail) {
+  const CertifyTarget target = RotationProblemTarget();
+  const CoverageStatement c = CoverageUpTo(target, 3.0 * 5.99098308, 0.95, 4);
+  ASSERT_EQ(c.message, "");
+  EXPECT_TRUE(c.rate_tail_excluded);
+  ASSERT_EQ(c.windows.size(), 8u);
+  for (const CoverageWindow& w : c.windows) {
+    EXPECT_GE(w.rate_hi * (1 + 1e-12), MaxSolutionRate(target, w.regime, w.k_hi, 3.0 * 5.99098308, 1e-7));
+    EXPECT_EQ(w.rate_lo, w.regime == PendulumRegime::kOscillating ? 0.0 : -w.rate_hi);
+  }
+  EXPECT_NE(c.uncovered.find("separatrix"), std::string::npos);
+  // The straight rolling as target: delta0 = 0, the lemma excludes nothing and says so.
+  CertifyTarget straight = target;
+  straight.target = StraightRolling(Eigen::Vector2d(2.0, 1.0));
+  const CoverageStatement s = CoverageUpTo(straight, 10.0, 0.95, 1);
+  EXPECT_LT(s.straight_residual, 1e-12);
+  EXPECT_FALSE(s.rate_tail_excluded);
+  EXPECT_TRUE(std::isinf(s.windows[0].rate_hi));
+  EXPECT_NE(s.uncovered.find("excludes nothing"), std::string::npos);
+  // No rate bound at the separatrix (K(1) is infinite), and no throw.
+  EXPECT_TRUE(std::isinf(MaxSolutionRate(target, PendulumRegime::kRotating, 1.0, 10.0, 1e-7)));
+  EXPECT_TRUE(std::isinf(MaxSolutionRateOver(target, PendulumRegime::kOscillating, 0.9, 1.0, 10.0, 1e-7)));
+  EXPECT_TRUE(std::isinf(HeadingModulusBoundByZeta(PendulumRegime::kRotating, 0.5, 1.0, 1.0)));
+  // Invalid input is named.
+  EXPECT_NE(CoverageUpTo(target, 1.0, 0.95, 4).message.find("cap"), std::string::npos);
+  EXPECT_NE(CoverageUpTo(target, 10.0, 1.0, 4).message.find("k_max"), std::string::npos);
+  EXPECT_NE(CoverageUpTo(target, 10.0, 0.9, 0).message.find("pieces"), std::string::npos);
+}
+
+}  // namespace
