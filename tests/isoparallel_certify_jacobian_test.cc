@@ -20,6 +20,7 @@
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
+#include "support/dopri_rolling.h"
 
 using namespace plateball;
 using namespace plateball::internal;
@@ -30,10 +31,7 @@ const PendulumRegime kBothRegimes[] = {PendulumRegime::kOscillating, PendulumReg
 
 // Q(0, L) of the parameter point by dopri5 at 1e-13 of the closed-form tangent.
 Eigen::Matrix3d DopriRolling(const Elastica& e, double length) {
-  IntegrationOptions o;
-  o.absolute_tolerance = 1e-13;
-  o.relative_tolerance = 1e-13;
-  return RollingReorientation([&e](double s) { return e.Tangent(s); }, 0.0, length, {}, o);
+  return plateball::testing::DopriElasticaRolling(e, length, 1e-13);
 }
 
 // F at x from the independent rolling.
