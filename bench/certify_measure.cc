@@ -7,12 +7,18 @@
 // counts and the verdicts.
 //
 //   certify_measure [PROBLEM.json] [--caps 1.0,1.2,1.5] [--regime oscillating|rotating|both]
-//                   [--budget BOXES] [--k-max K] [--rate-max A]
+//                   [--budget BOXES] [--k-max K] [--rate-max A] [--first-order 0|1] [--known 0|1]
+//                   [--first-order-deviation D]
+//
+// --first-order 1 adds the first-order tests (mean-value exclusion, Krawczyk) and prints the
+// solutions they prove unique, each with the solver's solution it matches (or "new");
+// --known 0 runs without the solver's solutions (then only the first-order tests can finish).
 //
 // Default: problems/isoparallel_rotation.json (relative to the working directory), caps 1.0, 1.2,
 // 1.5, both regimes, 2,000,000 boxes, k_max 0.95, rate_max 2.
 #include <boost/math/special_functions/ellint_1.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -35,6 +41,8 @@ struct Settings {
   std::vector<PendulumRegime> regimes = {PendulumRegime::kOscillating, PendulumRegime::kRotating};
   long budget = 2000000;
   double k_max = 0.95, rate_max = 2.0;
+  bool first_order = false, known = true;
+  double first_order_deviation = 0.5;
 };
 
 double Number(const std::string& option, const std::string& text, double lo, double hi) {
@@ -82,6 +90,12 @@ Settings Parse(int argc, char** argv) {
       s.k_max = Number(a, v, 0.0, 0.999);
     } else if (a == "--rate-max") {
       s.rate_max = Number(a, v, 1e-6, 1e3);
+    } else if (a == "--first-order") {
+      s.first_order = Number(a, v, 0.0, 1.0) != 0.0;
+    } else if (a == "--first-order-deviation") {
+      s.first_order_deviation = Number(a, v, 0.0, 10.0);
+    } else if (a == "--known") {
+      s.known = Number(a, v, 0.0, 1.0) != 0.0;
     } else {
       throw std::invalid_argument(a + ": unknown option");
     }
@@ -96,8 +110,13 @@ CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, double 
   o.regime = regime;
   o.max_boxes = s.budget;
   o.stop_at_unaccounted = false;
+  o.first_order = s.first_order;
+  o.first_order_deviation = s.first_order_deviation;
   o.window.lo = {oscillating ? 0.0 : -s.rate_max, 0.0, 0.0, radius};
-  o.window.hi = {s.rate_max, s.k_max, oscillating ? 4 * quarter : 2 * quarter, cap};
+  // With the first-order tests the length reaches 1e-4 past the cap: a solution exactly at the
+  // cap (the shortest at 1.0x) would lie on the window's face, where Krawczyk cannot prove it.
+  const double length_hi = s.first_order ? cap * (1.0 + 1e-4) : cap;
+  o.window.hi = {s.rate_max, s.k_max, oscillating ? 4 * quarter : 2 * quarter, length_hi};
   return o;
 }
 
@@ -118,10 +137,18 @@ int Run(const Settings& s) {
       const CertifyPoint& c = known.back();
       std::printf("%s solution {%.17g, %.17g, %.17g, %.17g}\n", ToString(regime).c_str(), c[0], c[1], c[2], c[3]);
     }
+    if (!s.known) known.clear();
     for (double factor : s.caps) {
+      const auto start = std::chrono::steady_clock::now();
       const CertifyWindowResult w = CertifyWindow(target, known, WindowFor(s, regime, target.radius, factor * shortest));
-      std::printf("cap %.2fx %s: %s; resolved volume %.6f\n", factor, ToString(regime).c_str(), w.message.c_str(),
-                  w.resolved_volume);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::printf("cap %.2fx %s: %s; resolved volume %.6f; %.1f s\n", factor, ToString(regime).c_str(), w.message.c_str(),
+                  w.resolved_volume, seconds);
+      for (size_t i = 0; i < w.found.size(); ++i) {
+        const CertifyPoint& f = w.found[i];
+        std::printf("  proved unique {%.12g, %.12g, %.12g, %.12g}: %s\n", f[0], f[1], f[2], f[3],
+                    w.found_known[i] >= 0 ? ("solver's solution " + std::to_string(w.found_known[i])).c_str() : "new");
+      }
     }
   }
   return 0;

@@ -2,12 +2,14 @@
 
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/ellint_d.hpp>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "check.h"
 #include "elastica_rolling.h"
+#include "isoparallel_certify_jacobian.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
 
@@ -60,6 +62,67 @@ int MatchKnown(const CertifyBox& box, const CertifyWindowOptions& options, const
   for (size_t i = 0; i < known.size(); ++i)
     if (InNeighbourhood(box, options.regime, known[i], options.match, inside)) return static_cast<int>(i);
   return -1;
+}
+
+// A solution proved unique in its box: recorded with the known one whose neighbourhood holds it.
+void RecordFound(const CertifyPoint& x, const CertifyWindowOptions& options, const std::vector<CertifyPoint>& known,
+                 CertifyWindowResult* result) {
+  CertifyBox point;
+  point.lo = point.hi = x;
+  result->found.push_back(x);
+  result->found_known.push_back(MatchKnown(point, options, known, false));
+}
+
+// The first-order verdict of a box the zeroth-order test left undecided, the axis to split when
+// it stays undecided (the largest column of the Krawczyk contraction times the half-widths, or
+// -1), and for a proved unique solution its Newton refinement (the box centre if Newton fails).
+struct FirstOrderOutcome {
+  FirstOrderVerdict verdict = FirstOrderVerdict::kNotRun;
+  int split_axis = -1;
+  CertifyPoint solution{};
+};
+
+FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindowOptions& options, const CertifyBox& box) {
+  FirstOrderOutcome out;
+  CertifyJacobian centre;
+  Eigen::Matrix4d radius;
+  if (!EvaluateCertifyJacobian(target, options.regime, box.Centre(), options.max_step, &centre) ||
+      !CertifyJacobianEnclosure(options.regime, box, centre, options.first_order_margin, &radius))
+    return out;
+  out.verdict = FirstOrderTest(box, centre, radius, options.first_order_margin);
+  if (out.verdict == FirstOrderVerdict::kUnique) {
+    out.solution = box.Centre();
+    CertifyPoint x = out.solution;
+    if (NewtonRefineCertify(target, options.regime, options.max_step, 1e-11, 30, &x)) {
+      bool inside = true;
+      for (int i = 0; i < 4; ++i) inside = inside && x[i] >= box.lo[i] && x[i] <= box.hi[i];
+      if (inside) out.solution = x;
+    }
+  } else if (out.verdict == FirstOrderVerdict::kUndecided) {
+    const Eigen::FullPivLU<Eigen::Matrix4d> lu(centre.jacobian);
+    const Eigen::Matrix4d a = lu.isInvertible() ? Eigen::Matrix4d(lu.inverse()) : Eigen::Matrix4d::Identity();
+    const Eigen::Matrix4d spread = (Eigen::Matrix4d::Identity() - a * centre.jacobian).cwiseAbs() + a.cwiseAbs() * radius;
+    double best = -1.0;
+    for (int j = 0; j < 4; ++j) {
+      const double share = spread.col(j).sum() * box.HalfWidth(j);
+      if (share > best) best = share, out.split_axis = j;
+    }
+  }
+  return out;
+}
+
+// The one-line account of a window's branch and bound.
+std::string CertifyMessage(const CertifyWindowResult& result, bool first_order) {
+  std::string message = ToString(result.status) + ": " + std::to_string(result.boxes) + " boxes, " +
+                        std::to_string(result.excluded_by_chord) + " excluded by the chord, " +
+                        std::to_string(result.excluded_by_rotation) + " by the rotation, " +
+                        std::to_string(result.accounted) + " next to known solutions, " +
+                        std::to_string(result.unaccounted) + " unaccounted";
+  if (first_order)
+    message += ", " + std::to_string(result.first_order_tried) + " given the first-order tests, " +
+               std::to_string(result.excluded_first_order) + " excluded by them, " +
+               std::to_string(result.found.size()) + " proved unique";
+  return message;
 }
 
 }  // namespace
@@ -239,6 +302,12 @@ std::string CertifyWindowOptions::Validate() const {
     return InvalidValueMessage("accept_deviation", accept_deviation, "must be in (0, 1]");
   if (!(margin >= 0.0 && margin <= 1e-2)) return InvalidValueMessage("margin", margin, "must be in [0, 1e-2]");
   if (!(max_step >= 1e-4 && max_step <= 0.5)) return InvalidValueMessage("max_step", max_step, "must be in [1e-4, 0.5]");
+  if (!(first_order_deviation >= 0.0 && first_order_deviation <= 10.0))
+    return InvalidValueMessage("first_order_deviation", first_order_deviation, "must be in [0, 10]");
+  if (!(first_order_min_deviation >= 1e-14 && first_order_min_deviation <= 1.0))
+    return InvalidValueMessage("first_order_min_deviation", first_order_min_deviation, "must be in [1e-14, 1]");
+  if (!(first_order_margin >= 0.0 && first_order_margin <= 1e-2))
+    return InvalidValueMessage("first_order_margin", first_order_margin, "must be in [0, 1e-2]");
   return "";
 }
 
@@ -288,19 +357,31 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
       result.resolved_volume += BoxVolume(box) / window_volume;
       continue;
     }
-    if (hit < 0 && deviation <= options.accept_deviation) hit = MatchKnown(box, options, known, false);
+    int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
+    if (hit < 0 && options.first_order && deviation <= options.first_order_deviation) {
+      const FirstOrderOutcome first = FirstOrderBox(target, options, box);
+      if (first.verdict != FirstOrderVerdict::kNotRun) ++result.first_order_tried;
+      if (first.verdict == FirstOrderVerdict::kExcluded || first.verdict == FirstOrderVerdict::kUnique) {
+        if (first.verdict == FirstOrderVerdict::kExcluded) ++result.excluded_first_order;
+        if (first.verdict == FirstOrderVerdict::kUnique) RecordFound(first.solution, options, known, &result);
+        result.resolved_volume += BoxVolume(box) / window_volume;
+        continue;
+      }
+      if (first.split_axis >= 0) axis = first.split_axis;
+    }
+    const double smallest = options.first_order ? options.first_order_min_deviation : options.accept_deviation;
+    if (hit < 0 && deviation <= smallest) hit = MatchKnown(box, options, known, false);
     if (hit >= 0) {
       ++result.matched[hit];
       ++result.accounted;
       result.resolved_volume += BoxVolume(box) / window_volume;
       continue;
     }
-    if (deviation <= options.accept_deviation) {
+    if (deviation <= smallest) {
       if (result.unaccounted++ == 0) result.first_unaccounted = box;
       if (options.stop_at_unaccounted) break;
       continue;
     }
-    const int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
     CertifyBox left = box, right = box;
     const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);
     left.hi[axis] = mid;
@@ -311,11 +392,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
   result.status = result.unaccounted > 0 ? CertifyStatus::kUnaccounted
                   : stack.empty()        ? CertifyStatus::kCertified
                                          : CertifyStatus::kBudgetExhausted;
-  result.message = ToString(result.status) + ": " + std::to_string(result.boxes) + " boxes, " +
-                   std::to_string(result.excluded_by_chord) + " excluded by the chord, " +
-                   std::to_string(result.excluded_by_rotation) + " by the rotation, " +
-                   std::to_string(result.accounted) + " next to known solutions, " +
-                   std::to_string(result.unaccounted) + " unaccounted";
+  result.message = CertifyMessage(result, options.first_order);
   return result;
 }
 

@@ -98,6 +98,14 @@ struct CertifyWindowOptions {
   bool stop_at_unaccounted = true;  // a failed certificate needs no further boxes
   double margin = 1e-7;          // floating-point margin on the centre's residual (rad, length)
   double max_step = 0.05;        // Magnus step of the centre's rolling
+  /// First-order tests (isoparallel_certify_jacobian.h) on boxes the zeroth-order test leaves
+  /// undecided once D <= first_order_deviation: mean-value exclusion and Krawczyk. A box with
+  /// exactly one solution is a found solution (refined by Newton, reported in `found`); boxes
+  /// are then split down to D <= first_order_min_deviation before they count as undecided.
+  bool first_order = false;
+  double first_order_deviation = 0.5;
+  double first_order_min_deviation = 1e-9;
+  double first_order_margin = 1e-8;  // on the centre's residual components (tested error ~1e-9)
   std::string Validate() const;
 };
 
@@ -112,6 +120,10 @@ struct CertifyWindowResult {
   long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
   long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
   std::vector<int> matched;  // per known solution: how many accounted boxes it explains
+  long first_order_tried = 0;       // boxes given the first-order tests (with an enclosure)
+  long excluded_first_order = 0;    // by the mean-value form or a Krawczyk image disjoint from the box
+  std::vector<CertifyPoint> found;  // one per box proved (Krawczyk) to hold exactly one solution
+  std::vector<int> found_known;     // per found solution: the known one whose neighbourhood holds it, or -1
   double resolved_volume = 0.0;  // fraction of the window's volume excluded or accounted
   CertifyBox first_unaccounted;
   std::string message;
@@ -128,7 +140,9 @@ CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double leng
 /// until D <= accept_deviation; such a small undecided box must meet a known neighbourhood (phase
 /// modulo the period). kCertified: every solution of the window lies within `match` of a known
 /// one (rigorous up to `margin` on the centre residuals; uniqueness inside a neighbourhood is not
-/// proved).
+/// proved). With first_order, kCertified means: every solution of the window lies within `match`
+/// of a known one or is one of `found`, each the only solution in its box (an empty known list
+/// is then allowed).
 CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector<CertifyPoint>& known,
                                   const CertifyWindowOptions& options);
 

@@ -1,0 +1,78 @@
+// Internal: the first-order part of the window certificate (issue 15; docs/paper_notes.md,
+// "General targets: the residual's Jacobian for a first-order certificate"): the free-length
+// residual as a smooth 4-vector
+//   F(rate, k, phase, L) = ( |chord| - |x1 - x0|,  Log(target^T B Q(0, L) B^T) ),
+// B = RotationZ(goal_angle - arg chord) the chord turn of rotation_trick.h, its Jacobian at a
+// point from the variation of the rolling (closed-form heading derivatives, one quadrature along
+// the path), and a Newton refinement. The residual's NORM is the one of isoparallel_certify.h.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "isoparallel_certify.h"
+
+namespace plateball::internal {
+
+/// The pendulum angle theta (= the heading at heading_w = pi/2) and its derivatives in
+/// v = rate s + u0 and in the modulus k at fixed v: oscillating sin(theta / 2) = k sn(v),
+/// d theta/dv = 2 k cn, d theta/dk = 2 (sn + k cn d am/dk) / dn; rotating theta = 2 am(v),
+/// d theta/dv = 2 dn, d theta/dk = 2 d am/dk; d am/dk = k (sn cn - dn int_0^v cn^2) / k'^2.
+struct HeadingDerivatives {
+  double theta = 0.0, dv = 0.0, dk = 0.0;
+};
+/// For 0 <= k < 1 and finite v. Accurate to ~1e-13 (1 + |v|) / k'^3 (below k = 1e-3 a series
+/// for int cn^2 adds k^3 |v|).
+HeadingDerivatives HeadingDerivativesAt(PendulumRegime regime, double k, double v);
+
+/// F and dF/dx at one parameter point x = (rate, k, phase, L) (columns in CertifyAxis order).
+struct CertifyJacobian {
+  Eigen::Vector4d residual = Eigen::Vector4d::Zero();  // (chord miss, rotation vector)
+  Eigen::Matrix4d jacobian = Eigen::Matrix4d::Zero();
+  double chord_norm = 0.0;  // |chord| at the point
+};
+
+/// The residual by a sixth-order Magnus table (steps <= max_step, as EvaluateCertifyResidual) and
+/// its Jacobian: the length column in closed form (dQ/dL = hat(w(L)) Q), the rate, modulus and
+/// phase columns from dQ(L) = Q(L) hat(-int_0^L theta_p(s) Q(s)^T t(s) ds) and
+/// d chord = int theta_p(s) n(s) ds by 4-point Gauss-Legendre on steps <= max_step; the Log map
+/// by the inverse right Jacobian of SO(3). False for an inadmissible point (k outside [0, 1),
+/// L <= 0, a degenerate chord, non-finite values, a rotation residual within 1e-6 of pi).
+bool EvaluateCertifyJacobian(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
+                             double max_step, CertifyJacobian* out);
+
+/// Newton's method on F from x (at most max_iterations steps, k kept >= 0); true when |F| (max
+/// norm) drops below tolerance. x receives the last iterate.
+bool NewtonRefineCertify(const CertifyTarget& target, PendulumRegime regime, double max_step, double tolerance,
+                         int max_iterations, CertifyPoint* x);
+
+/// Bounds on |d2 theta/dv2|, |d2 theta/dv dk|, |d2 theta/dk2| (k at fixed v) over moduli in
+/// [0, k_max] and |v| <= v_max (k_max < 1); each increasing in k_max and v_max (derived in the
+/// notes from d am/dk = k (sn cn - dn int cn^2) / k'^2).
+struct HeadingSecondBounds {
+  double vv = 0.0, vk = 0.0, kk = 0.0;
+};
+HeadingSecondBounds HeadingSecondDerivativeBounds(PendulumRegime regime, double k_max, double v_max);
+
+/// Relative floating-point error allowed on a column of the centre's Jacobian: the enclosure adds
+/// kJacobianMargin (1 + |column|_max) to every entry (tests: measured error ~3e-9).
+inline constexpr double kJacobianMargin = 1e-6;
+
+/// Entrywise radius E with |J(x) - J_centre| <= E for every x of the box, J_centre the Jacobian
+/// EvaluateCertifyJacobian computed at box.Centre() (its floating-point error included). False
+/// when no enclosure is available: the chord may vanish in the box, the rotation residual may
+/// exceed 2.5 rad, or k_max >= 1.
+bool CertifyJacobianEnclosure(PendulumRegime regime, const CertifyBox& box, const CertifyJacobian& centre,
+                              double margin, Eigen::Matrix4d* radius);
+
+enum class FirstOrderVerdict { kNotRun, kExcluded, kUnique, kUndecided };
+std::string ToString(FirstOrderVerdict verdict);
+
+/// First-order tests of a box from its centre's residual and Jacobian (residual error <= margin
+/// per component) and the enclosure `radius`: kExcluded when 0 is outside F(c) + J(X)(X - c)
+/// componentwise or the Krawczyk image K(X) = c - A F(c) + (I - A J(X))(X - c) (A = J_c^-1) is
+/// disjoint from X; kUnique when K(X) lies inside the interior of X (exactly one solution in X).
+FirstOrderVerdict FirstOrderTest(const CertifyBox& box, const CertifyJacobian& centre, const Eigen::Matrix4d& radius,
+                                 double margin);
+
+}  // namespace plateball::internal

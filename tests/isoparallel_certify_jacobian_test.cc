@@ -1,0 +1,324 @@
+// The first-order part of the window certificate (src/isoparallel_certify_jacobian.h): the
+// closed-form heading derivatives against central differences of the elastica's pendulum angle,
+// the residual's Jacobian against central differences of the residual computed independently
+// (dopri5 rollings of the closed-form tangent), and Newton's method recovering a made solution.
+#include "isoparallel_certify_jacobian.h"
+
+#include "isoparallel_certify.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "plateball/elastica.h"
+#include "plateball/rolling.h"
+#include "plateball/so3.h"
+#include "rotation_trick.h"
+#include "support/dopri_rolling.h"
+
+using namespace plateball;
+using namespace plateball::internal;
+
+namespace {
+
+const PendulumRegime kBothRegimes[] = {PendulumRegime::kOscillating, PendulumRegime::kRotating};
+
+// Q(0, L) of the parameter point by dopri5 at 1e-13 of the closed-form tangent.
+Eigen::Matrix3d DopriRolling(const Elastica& e, double length) {
+  return plateball::testing::DopriElasticaRolling(e, length, 1e-13);
+}
+
+// F at x from the independent rolling.
+Eigen::Vector4d DopriResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x) {
+  const Elastica e = CertifyElastica(regime, x);
+  const Eigen::Vector2d chord = e.Position(x[kCertifyLength]);
+  Eigen::Vector4d f;
+  f << chord.norm() - target.radius,
+      RotationTrickResidual(target.target, ChordTurn(target.goal_angle, chord), DopriRolling(e, x[kCertifyLength]));
+  return f;
+}
+
+// A target made from a chosen path, its goal turned by 0.3 from the path's chord: the path solves it.
+CertifyTarget MadeTarget(PendulumRegime regime, const CertifyPoint& made) {
+  const Elastica e = CertifyElastica(regime, made);
+  const Eigen::Vector2d chord = e.Position(made[kCertifyLength]);
+  CertifyTarget t;
+  t.radius = chord.norm();
+  t.goal_angle = std::atan2(chord.y(), chord.x()) + 0.3;
+  const Eigen::Matrix3d b = RotationZ(0.3);
+  t.target = b * DopriRolling(e, made[kCertifyLength]) * b.transpose();
+  return t;
+}
+
+const CertifyPoint kMadeRotating = {0.6, 0.6, 0.7, 3.0};
+const CertifyPoint kMadeOscillating = {1.1, 0.8, 1.8, 5.0};
+
+}  // namespace
+
+// theta, d theta/dv and d theta/dk at fixed v against the elastica's own pendulum angle and its
+// central differences (step 1e-5 in v, 1e-6 in k), k from 0.0005 (the small-k series) to 0.95,
+// |v| <= 30.
+TEST(IsoparallelCertifyJacobian, HeadingDerivativesMatchCentralDifferences) {
+  const auto theta = [](PendulumRegime regime, double k, double v) {
+    ElasticaParameters p;
+    p.regime = regime;
+    p.rate = 1.0;
+    p.modulus = k;
+    return Elastica(p).PendulumAngle(v);
+  };
+  for (PendulumRegime regime : kBothRegimes) {
+    double worst = 0.0;
+    for (double k : {0.0005, 0.01, 0.1, 0.35, 0.6, 0.8, 0.9, 0.95}) {
+      const double kp = std::sqrt(1 - k * k), scale = 1.0 / (kp * kp * kp);
+      for (double v = -30.0; v <= 30.0; v += 0.0731) {
+        const HeadingDerivatives d = HeadingDerivativesAt(regime, k, v);
+        ASSERT_NEAR(d.theta, theta(regime, k, v), 1e-12 * (1 + std::abs(v))) << k << " " << v;
+        const double dv = (theta(regime, k, v + 1e-5) - theta(regime, k, v - 1e-5)) / 2e-5;
+        const double hk = std::min(1e-6, 0.5 * k);
+        const double dk = (theta(regime, k + hk, v) - theta(regime, k - hk, v)) / (2 * hk);
+        ASSERT_NEAR(d.dv, dv, 1e-8) << ToString(regime) << " k " << k << " v " << v;
+        const double err = std::abs(d.dk - dk) / (scale * (1 + std::abs(v)));
+        ASSERT_LT(err, 2e-8) << ToString(regime) << " k " << k << " v " << v << " " << d.dk << " " << dk;
+        worst = std::max(worst, err);
+      }
+    }
+    std::printf("%s: worst |d theta/dk - central difference| / ((1 + |v|) / k'^3) = %.2e\n", ToString(regime).c_str(),
+                worst);
+  }
+}
+
+// The Jacobian (Magnus table + quadrature, steps 0.05) against central differences (step 1e-5)
+// of the residual from dopri5 rollings, at the made solutions and at random points of both
+// regimes (rate [-1.5, 1.5], k [0.05, 0.9], phase [0, 4], L [0.5, 8]); the residual itself too.
+TEST(IsoparallelCertifyJacobian, JacobianMatchesCentralDifferencesOfDopriResiduals) {
+  std::mt19937 rng(20261123);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const double h = 1e-5;
+  double worst = 0.0;
+  for (PendulumRegime regime : kBothRegimes) {
+    const CertifyTarget target = MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
+    for (int trial = 0; trial < 7; ++trial) {
+      CertifyPoint x = regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating;
+      if (trial > 0) x = {-1.5 + 3 * uni(rng), 0.05 + 0.85 * uni(rng), 4 * uni(rng), 0.5 + 7.5 * uni(rng)};
+      CertifyJacobian j;
+      if (!EvaluateCertifyJacobian(target, regime, x, 0.05, &j)) continue;  // e.g. a residual near pi
+      const Eigen::Vector4d f = DopriResidual(target, regime, x);
+      EXPECT_LT((j.residual - f).lpNorm<Eigen::Infinity>(), 1e-9) << ToString(regime) << " trial " << trial;
+      for (int c = 0; c < 4; ++c) {
+        CertifyPoint xp = x, xm = x;
+        xp[c] += h;
+        xm[c] -= h;
+        const Eigen::Vector4d fd = (DopriResidual(target, regime, xp) - DopriResidual(target, regime, xm)) / (2 * h);
+        const double err = (j.jacobian.col(c) - fd).lpNorm<Eigen::Infinity>() / (1 + fd.lpNorm<Eigen::Infinity>());
+        EXPECT_LT(err, 2e-6) << ToString(regime) << " trial " << trial << " column " << c << "\n"
+                             << j.jacobian.col(c).transpose() << "\n" << fd.transpose();
+        worst = std::max(worst, err);
+      }
+    }
+  }
+  std::printf("worst relative |J - central difference of dopri5 residuals| = %.2e\n", worst);
+}
+
+// Newton's method from a start 0.02 off in every coordinate recovers the made solution to 1e-9,
+// and the Jacobian there is well conditioned enough to be inverted (a regular root).
+TEST(IsoparallelCertifyJacobian, NewtonRecoversMadeSolutions) {
+  for (PendulumRegime regime : kBothRegimes) {
+    const CertifyPoint made = regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating;
+    const CertifyTarget target = MadeTarget(regime, made);
+    CertifyPoint x = made;
+    for (int i = 0; i < 4; ++i) x[i] += (i % 2 == 0 ? 0.02 : -0.02);
+    ASSERT_TRUE(NewtonRefineCertify(target, regime, 0.02, 1e-11, 12, &x)) << ToString(regime);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(x[i], made[i], 1e-9) << ToString(regime) << " axis " << i;
+    CertifyJacobian j;
+    ASSERT_TRUE(EvaluateCertifyJacobian(target, regime, x, 0.02, &j));
+    const Eigen::Vector4d sv = Eigen::JacobiSVD<Eigen::Matrix4d>(j.jacobian).singularValues();
+    std::printf("%s made solution: singular values %.3g %.3g %.3g %.3g\n", ToString(regime).c_str(), sv[0], sv[1],
+                sv[2], sv[3]);
+    EXPECT_GT(sv[3], 1e-3);
+  }
+}
+
+// The second-derivative bounds never undershoot central differences (step 1e-6) of the tested
+// closed-form first derivatives, k in [0.02, 0.96], |v| <= 30 (both taken at the sample's own k
+// and |v|: the bounds increase in both).
+TEST(IsoparallelCertifyJacobian, HeadingSecondDerivativeBoundsNeverUndershoot) {
+  const double h = 1e-6;
+  for (PendulumRegime regime : kBothRegimes) {
+    double tightest = 1e300;
+    for (double k = 0.02; k <= 0.961; k += 0.06) {
+      for (double v = -30.0; v <= 30.0; v += 0.0931) {
+        const HeadingSecondBounds b = HeadingSecondDerivativeBounds(regime, k, std::abs(v));
+        const HeadingDerivatives vp = HeadingDerivativesAt(regime, k, v + h), vm = HeadingDerivativesAt(regime, k, v - h);
+        const HeadingDerivatives kp = HeadingDerivativesAt(regime, k + h, v), km = HeadingDerivativesAt(regime, k - h, v);
+        const double vv = (vp.dv - vm.dv) / (2 * h), vk = (kp.dv - km.dv) / (2 * h), kk = (kp.dk - km.dk) / (2 * h);
+        ASSERT_LE(std::abs(vv), b.vv * (1 + 1e-6) + 1e-6) << ToString(regime) << " k " << k << " v " << v;
+        ASSERT_LE(std::abs(vk), b.vk * (1 + 1e-6) + 1e-6) << ToString(regime) << " k " << k << " v " << v;
+        ASSERT_LE(std::abs(kk), b.kk * (1 + 1e-6) + 1e-5) << ToString(regime) << " k " << k << " v " << v;
+        tightest = std::min(tightest, b.kk / std::max(std::abs(kk), 1e-300));
+      }
+    }
+    std::printf("%s: smallest bound / |d2 theta/dk2| sampled = %.3g\n", ToString(regime).c_str(), tightest);
+  }
+}
+
+namespace {
+
+// A random box of half-widths in [1e-4, scale] around a random point of the usual window.
+CertifyBox RandomBox(std::mt19937& rng, double scale) {
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const CertifyPoint c = {-1.2 + 2.4 * uni(rng), 0.05 + 0.8 * uni(rng), 4 * uni(rng), 1.0 + 6.0 * uni(rng)};
+  CertifyBox box;
+  for (int i = 0; i < 4; ++i) {
+    const double half = 1e-4 * std::pow(scale / 1e-4, uni(rng));
+    box.lo[i] = c[i] - half;
+    box.hi[i] = c[i] + half;
+  }
+  box.lo[kCertifyModulus] = std::max(box.lo[kCertifyModulus], 0.0);
+  return box;
+}
+
+}  // namespace
+
+// The enclosure never undershoots: at 8 random corners and 4 random points of random boxes (both
+// regimes, half-widths 1e-4 .. 0.02), |J(x) - J(centre)| <= radius entrywise; the Jacobians are
+// the tested ones (steps 0.02). Also prints how tight it is (radius / largest sampled deviation).
+TEST(IsoparallelCertifyJacobian, EnclosureNeverUndershootsSampledJacobians) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (PendulumRegime regime : kBothRegimes) {
+    const CertifyTarget target = MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
+    int boxes = 0;
+    std::vector<double> ratios;
+    for (int trial = 0; trial < 100 && boxes < 12; ++trial) {
+      const CertifyBox box = RandomBox(rng, 0.02);
+      CertifyJacobian centre;
+      Eigen::Matrix4d radius;
+      if (!EvaluateCertifyJacobian(target, regime, box.Centre(), 0.02, &centre) ||
+          !CertifyJacobianEnclosure(regime, box, centre, 1e-7, &radius))
+        continue;
+      ++boxes;
+      double sampled = 0.0;
+      for (int m = 0; m < 12; ++m) {  // 8 random corners, 4 random interior points
+        CertifyPoint x;
+        const int corner = static_cast<int>(16 * uni(rng));
+        for (int i = 0; i < 4; ++i) {
+          const double t = m < 8 ? ((corner >> i) & 1) : uni(rng);
+          x[i] = box.lo[i] + t * (box.hi[i] - box.lo[i]);
+        }
+        CertifyJacobian j;
+        if (!EvaluateCertifyJacobian(target, regime, x, 0.02, &j)) continue;
+        const Eigen::Matrix4d dev = (j.jacobian - centre.jacobian).cwiseAbs();
+        for (int r = 0; r < 4; ++r)
+          for (int c = 0; c < 4; ++c)
+            ASSERT_LE(dev(r, c), radius(r, c)) << ToString(regime) << " entry " << r << "," << c;
+        sampled = std::max(sampled, (dev.array() / radius.array()).maxCoeff());
+      }
+      ratios.push_back(1.0 / std::max(sampled, 1e-300));
+    }
+    EXPECT_GE(boxes, 10) << ToString(regime);
+    std::sort(ratios.begin(), ratios.end());
+    std::printf("%s: %d boxes, radius / largest sampled deviation (entrywise worst): median %.3g, min %.3g\n",
+                ToString(regime).c_str(), boxes, ratios[ratios.size() / 2], ratios.front());
+  }
+}
+
+namespace {
+
+// The first-order verdict of the box of half-width `half` (every axis) centred at `centre`.
+FirstOrderVerdict VerdictAround(PendulumRegime regime, const CertifyTarget& target, const CertifyPoint& centre,
+                                double half) {
+  CertifyBox box;
+  for (int i = 0; i < 4; ++i) {
+    box.lo[i] = centre[i] - half;
+    box.hi[i] = centre[i] + half;
+  }
+  CertifyJacobian j;
+  Eigen::Matrix4d radius;
+  if (!EvaluateCertifyJacobian(target, regime, box.Centre(), 0.02, &j) ||
+      !CertifyJacobianEnclosure(regime, box, j, 1e-8, &radius))
+    return FirstOrderVerdict::kNotRun;
+  return FirstOrderTest(box, j, radius, 1e-8);
+}
+
+}  // namespace
+
+// Krawczyk around the made oscillating solution (residual margin 1e-8): a box of half-width 2e-7
+// whose centre is off the solution by 6e-8 per axis is proved to hold exactly one solution (the
+// modulus column varies fast: sup |d2 F/dk2| ~ 1e5 here, so the contraction needs tiny boxes); a
+// box of half-width 1e-6 centred 4e-6 away per axis (no solution inside) is excluded; a box
+// around it spanning a whole phase period (the same path
+// twice: two solutions) is never called unique at any width from 1e-4 to 0.5.
+TEST(IsoparallelCertifyJacobian, KrawczykProvesUniquenessAndRefusesTwinsAndEmptyBoxes) {
+  const PendulumRegime regime = PendulumRegime::kOscillating;
+  const CertifyTarget target = MadeTarget(regime, kMadeOscillating);
+  CertifyPoint off = kMadeOscillating;
+  for (int i = 0; i < 4; ++i) off[i] += 6e-8;
+  EXPECT_EQ(VerdictAround(regime, target, off, 2e-7), FirstOrderVerdict::kUnique);
+  CertifyPoint away = kMadeOscillating;
+  for (int i = 0; i < 4; ++i) away[i] += 4e-6;
+  EXPECT_EQ(VerdictAround(regime, target, away, 1e-6), FirstOrderVerdict::kExcluded);
+  // Phase period 4K(0.8) = 8.63: the box [u0 - 0.3, u0 + 8.93] holds u0 and u0 + 4K.
+  const double period = 4.0 * 2.2572053268208538;
+  for (double half : {1e-4, 1e-3, 1e-2, 0.1, 0.5}) {
+    CertifyBox box;
+    for (int i = 0; i < 4; ++i) {
+      box.lo[i] = kMadeOscillating[i] - half;
+      box.hi[i] = kMadeOscillating[i] + half;
+    }
+    box.lo[kCertifyPhase] = kMadeOscillating[kCertifyPhase] - 0.3;
+    box.hi[kCertifyPhase] = kMadeOscillating[kCertifyPhase] + period + 0.3;
+    CertifyJacobian j;
+    Eigen::Matrix4d radius;
+    if (!EvaluateCertifyJacobian(target, regime, box.Centre(), 0.02, &j) ||
+        !CertifyJacobianEnclosure(regime, box, j, 1e-8, &radius))
+      continue;
+    EXPECT_NE(FirstOrderTest(box, j, radius, 1e-8), FirstOrderVerdict::kUnique) << half;
+  }
+}
+
+// A small window (0.0009 wide around the made oscillating solution, off-centre) certified
+// with NO known solution: the first-order tests exclude the rest and prove exactly one solution,
+// the made one (to 1e-8); without the first-order tests the same window stays undecided next to it.
+TEST(IsoparallelCertifyJacobian, SmallWindowIsCertifiedWithoutKnownSolutions) {
+  const PendulumRegime regime = PendulumRegime::kOscillating;
+  const CertifyTarget target = MadeTarget(regime, kMadeOscillating);
+  CertifyWindowOptions o;
+  o.regime = regime;
+  for (int i = 0; i < 4; ++i) {
+    o.window.lo[i] = kMadeOscillating[i] - 0.0005;
+    o.window.hi[i] = kMadeOscillating[i] + 0.0004;
+  }
+  o.max_boxes = 200000;
+  o.first_order = true;
+  const CertifyWindowResult r = CertifyWindow(target, {}, o);
+  std::printf("%s\n", r.message.c_str());
+  ASSERT_EQ(r.status, CertifyStatus::kCertified) << r.message;
+  ASSERT_EQ(r.found.size(), 1u);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(r.found[0][i], kMadeOscillating[i], 1e-8) << i;
+  EXPECT_EQ(r.found_known[0], -1);
+  o.first_order = false;
+  o.max_boxes = 5000;
+  EXPECT_NE(CertifyWindow(target, {}, o).status, CertifyStatus::kCertified);
+}
+
+// The first-order options are range-checked by name.
+TEST(IsoparallelCertifyJacobian, FirstOrderOptionsAreValidatedByName) {
+  CertifyWindowOptions o;
+  o.window.lo = {0.0, 0.0, 0.0, 1.0};
+  o.window.hi = {1.0, 0.5, 1.0, 2.0};
+  EXPECT_EQ(o.Validate(), "");
+  o.first_order_deviation = -1.0;
+  EXPECT_NE(o.Validate().find("first_order_deviation"), std::string::npos);
+  o.first_order_deviation = 0.5;
+  o.first_order_min_deviation = 0.0;
+  EXPECT_NE(o.Validate().find("first_order_min_deviation"), std::string::npos);
+  o.first_order_min_deviation = 1e-9;
+  o.first_order_margin = std::nan("");
+  EXPECT_NE(o.Validate().find("first_order_margin"), std::string::npos);
+}
