@@ -80,6 +80,7 @@ struct FirstOrderOutcome {
   FirstOrderVerdict verdict = FirstOrderVerdict::kNotRun;
   int split_axis = -1;
   CertifyPoint solution{};
+  CertifyPoint contraction{};  // per axis: the column of the contraction times the half-width
 };
 
 FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindowOptions& options, const CertifyBox& box) {
@@ -105,6 +106,7 @@ FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindow
     double best = -1.0;
     for (int j = 0; j < 4; ++j) {
       const double share = spread.col(j).sum() * box.HalfWidth(j);
+      out.contraction[j] = share;
       if (share > best) best = share, out.split_axis = j;
     }
   }
@@ -358,6 +360,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
       continue;
     }
     int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
+    CertifyPoint contraction{};
     if (hit < 0 && options.first_order && deviation <= options.first_order_deviation) {
       const FirstOrderOutcome first = FirstOrderBox(target, options, box);
       if (first.verdict != FirstOrderVerdict::kNotRun) ++result.first_order_tried;
@@ -368,6 +371,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
         continue;
       }
       if (first.split_axis >= 0) axis = first.split_axis;
+      contraction = first.contraction;
     }
     const double smallest = options.first_order ? options.first_order_min_deviation : options.accept_deviation;
     if (hit < 0 && deviation <= smallest) hit = MatchKnown(box, options, known, false);
@@ -382,6 +386,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
       if (options.stop_at_unaccounted) break;
       continue;
     }
+    if (options.trace) options.trace({box, deviation, share, contraction, axis});
     CertifyBox left = box, right = box;
     const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);
     left.hi[axis] = mid;

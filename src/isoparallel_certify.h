@@ -23,6 +23,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,17 @@ std::string ToString(BoxVerdict verdict);
 /// centre's floating-point error). kExcluded* means no solution lies in the box.
 BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double margin);
 
+/// One box the branch and bound splits (left undecided by every test), for diagnostics: its
+/// deviation bound D and the per-axis shares of D, and when the first-order tests ran, the
+/// per-axis columns of the Krawczyk contraction times the half-widths (zero otherwise).
+struct CertifyBoxTrace {
+  CertifyBox box;
+  double deviation = 0.0;
+  CertifyPoint share{};
+  CertifyPoint contraction{};
+  int split_axis = -1;
+};
+
 struct CertifyWindowOptions {
   PendulumRegime regime = PendulumRegime::kOscillating;
   CertifyBox window;             // rate, k in [0, 1), phase, L > 0
@@ -106,6 +118,7 @@ struct CertifyWindowOptions {
   double first_order_deviation = 0.5;
   double first_order_min_deviation = 1e-9;
   double first_order_margin = 1e-8;  // on the centre's residual components (tested error ~1e-9)
+  std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
   std::string Validate() const;
 };
 

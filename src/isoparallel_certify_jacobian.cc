@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "elastica_rolling.h"
 #include "jacobi_elliptic.h"
@@ -12,9 +13,6 @@
 #include "rotation_trick.h"
 
 namespace plateball::internal {
-
-// HeadingDerivativesAt with the modulus' AGM sequence and K(k) computed once per path.
-HeadingDerivatives HeadingDerivativesWith(PendulumRegime regime, const JacobiAgm& agm, double kk, double v);
 
 namespace {
 
@@ -40,27 +38,61 @@ struct PathVariation {
 // The rate, modulus and phase columns of the path's variation (quadrature along [0, L]).
 void IntegrateVariations(PendulumRegime regime, const CertifyPoint& x, const Elastica& e,
                          const ElasticaRollingTable& table, double max_step, PathVariation* var) {
-  const double length = x[kCertifyLength];
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / max_step)));
-  const double h = length / steps;
-  const JacobiAgm agm(x[kCertifyModulus]);
-  const double kk = boost::math::ellint_1(x[kCertifyModulus]);
-  for (int i = 0; i < steps; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      const double s = h * (i + 0.5 * (1.0 + kNodes[j])), w = 0.5 * h * kWeights[j];
-      const HeadingDerivatives d = HeadingDerivativesWith(regime, agm, kk, x[kCertifyRate] * s + x[kCertifyPhase]);
-      const Eigen::Vector2d t = e.Tangent(s);
-      const Eigen::Vector2d n(-t.y(), t.x());
-      const Eigen::Vector3d qt = table.Rolling(s).transpose() * Eigen::Vector3d(t.x(), t.y(), 0.0);
-      const double dtheta[3] = {s * d.dv, d.dk, d.dv};  // rate, modulus, phase
-      for (int p = 0; p < 3; ++p) {
-        var[p].chord += w * dtheta[p] * n;  // d t = d theta n
-        var[p].xi -= w * dtheta[p] * qt;    // d w = e3 x d t = -d theta t
-      }
+  const CertifyQuadrature quad = CertifyQuadratureAlong(x[kCertifyLength], max_step);
+  const std::vector<HeadingDerivatives> heading =
+      HeadingDerivativesAtNodes(regime, x[kCertifyModulus], x[kCertifyRate], x[kCertifyPhase], quad);
+  for (size_t i = 0; i < quad.nodes.size(); ++i) {
+    const double s = quad.nodes[i], w = quad.weights[i];
+    const HeadingDerivatives& d = heading[i];
+    const Eigen::Vector2d t = e.Tangent(s);
+    const Eigen::Vector2d n(-t.y(), t.x());
+    const Eigen::Vector3d qt = table.Rolling(s).transpose() * Eigen::Vector3d(t.x(), t.y(), 0.0);
+    const double dtheta[3] = {s * d.dv, d.dk, d.dv};  // rate, modulus, phase
+    for (int p = 0; p < 3; ++p) {
+      var[p].chord += w * dtheta[p] * n;  // d t = d theta n
+      var[p].xi -= w * dtheta[p] * qt;    // d w = e3 x d t = -d theta t
     }
   }
 }
 
+// sn, cn, dn at v and the unwrapped amplitude am v (reduced modulo 2K: sn, cn change sign).
+struct JacobiPoint {
+  double sn = 0.0, cn = 1.0, dn = 1.0, amp = 0.0;
+};
+
+JacobiPoint JacobiUnwrapped(const JacobiAgm& agm, double kk, double v) {
+  const double m = std::round(v / (2.0 * kk));
+  const double r = v - 2.0 * kk * m;  // |r| <= K; sn, cn change sign with each 2K, dn does not
+  JacobiPoint j;
+  JacobiSnCnDn(r, agm, &j.sn, &j.cn, &j.dn);
+  j.amp = m * M_PI + std::atan2(j.sn, j.cn);
+  const double sign = std::fmod(m, 2.0) == 0.0 ? 1.0 : -1.0;
+  j.sn *= sign;
+  j.cn *= sign;
+  return j;
+}
+
+// The heading and its derivatives from sn, cn, dn, am at v and Jacobi's epsilon E(am v) (used
+// for k >= 1e-3; below, int_0^v cn^2 takes its k = 0 value v/2 + sin(2 am)/4).
+HeadingDerivatives HeadingFrom(PendulumRegime regime, double k, double v, const JacobiPoint& j, double epsilon) {
+  const double kp2 = (1.0 - k) * (1.0 + k);
+  // int_0^v cn^2 = (E(am v) - k'^2 v) / k^2.
+  const double cn2 = k < 1e-3 ? 0.5 * v + 0.25 * std::sin(2.0 * j.amp) : (epsilon - kp2 * v) / (k * k);
+  const double am_k = k * (j.sn * j.cn - j.dn * cn2) / kp2;
+  HeadingDerivatives out;
+  if (regime == PendulumRegime::kRotating) {
+    out.theta = 2.0 * j.amp;
+    out.dv = 2.0 * j.dn;
+    out.dk = 2.0 * am_k;
+  } else {
+    out.theta = 2.0 * std::asin(std::clamp(k * j.sn, -1.0, 1.0));
+    out.dv = 2.0 * k * j.cn;
+    out.dk = 2.0 * (j.sn + k * j.cn * am_k) / j.dn;
+  }
+  return out;
+}
+
+double EpsilonAt(double k, const JacobiPoint& j) { return k < 1e-3 ? 0.0 : boost::math::ellint_2(k, j.amp); }
 
 // c(a) of JrInv = I + hat/2 + c hat^2: c = (1 - (a/2) cot(a/2)) / a^2 = 1/12 + a^2/720 + ..., a
 // series with positive coefficients: c and c' increase on [0, pi).
@@ -115,33 +147,47 @@ ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
 }  // namespace
 
 HeadingDerivatives HeadingDerivativesAt(PendulumRegime regime, double k, double v) {
-  return HeadingDerivativesWith(regime, JacobiAgm(k), boost::math::ellint_1(k), v);
+  const JacobiPoint j = JacobiUnwrapped(JacobiAgm(k), boost::math::ellint_1(k), v);
+  return HeadingFrom(regime, k, v, j, EpsilonAt(k, j));
 }
 
-HeadingDerivatives HeadingDerivativesWith(PendulumRegime regime, const JacobiAgm& agm, double kk, double v) {
-  const double k = agm.k;
-  const double m = std::round(v / (2.0 * kk));
-  const double r = v - 2.0 * kk * m;  // |r| <= K; sn, cn change sign with each 2K, dn does not
-  double sn = 0, cn = 0, dn = 0;
-  JacobiSnCnDn(r, agm, &sn, &cn, &dn);
-  const double amp = m * M_PI + std::atan2(sn, cn);
-  const double sign = std::fmod(m, 2.0) == 0.0 ? 1.0 : -1.0;
-  sn *= sign;
-  cn *= sign;
-  const double kp2 = (1.0 - k) * (1.0 + k);
-  // int_0^v cn^2 = (E(am v) - k'^2 v) / k^2; below k = 1e-3 its k = 0 value v/2 + sin(2 am)/4.
-  const double cn2 = k < 1e-3 ? 0.5 * v + 0.25 * std::sin(2.0 * amp)
-                              : (boost::math::ellint_2(k, amp) - kp2 * v) / (k * k);
-  const double am_k = k * (sn * cn - dn * cn2) / kp2;
-  HeadingDerivatives out;
-  if (regime == PendulumRegime::kRotating) {
-    out.theta = 2.0 * amp;
-    out.dv = 2.0 * dn;
-    out.dk = 2.0 * am_k;
-  } else {
-    out.theta = 2.0 * std::asin(std::clamp(k * sn, -1.0, 1.0));
-    out.dv = 2.0 * k * cn;
-    out.dk = 2.0 * (sn + k * cn * am_k) / dn;
+CertifyQuadrature CertifyQuadratureAlong(double length, double max_step) {
+  CertifyQuadrature q;
+  q.steps = std::max(1, static_cast<int>(std::ceil(length / max_step)));
+  q.step = length / q.steps;
+  for (int i = 0; i < q.steps; ++i)
+    for (int j = 0; j < 4; ++j) {
+      q.nodes.push_back(q.step * (i + 0.5 * (1.0 + kNodes[j])));
+      q.weights.push_back(0.5 * q.step * kWeights[j]);
+    }
+  return q;
+}
+
+std::vector<HeadingDerivatives> HeadingDerivativesAtNodes(PendulumRegime regime, double k, double rate, double phase,
+                                                          const CertifyQuadrature& quad) {
+  const JacobiAgm agm(k);
+  const double kk = boost::math::ellint_1(k);
+  // The four gaps between consecutive nodes (the first across a step's end), their sn and E(am).
+  JacobiPoint gap[4];
+  double gap_epsilon[4];
+  for (int j = 0; j < 4; ++j) {
+    const double ds = j == 0 ? quad.step * (1.0 + 0.5 * (kNodes[0] - kNodes[3])) : 0.5 * quad.step * (kNodes[j] - kNodes[j - 1]);
+    gap[j] = JacobiUnwrapped(agm, kk, rate * ds);
+    gap_epsilon[j] = EpsilonAt(k, gap[j]);
+  }
+  std::vector<HeadingDerivatives> out;
+  out.reserve(quad.nodes.size());
+  JacobiPoint previous;
+  double epsilon = 0.0;
+  for (size_t i = 0; i < quad.nodes.size(); ++i) {
+    const double v = rate * quad.nodes[i] + phase;
+    const JacobiPoint j = JacobiUnwrapped(agm, kk, v);
+    const int g = static_cast<int>(i % 4);
+    // Addition theorem E(u + w) = E(u) + E(w) - k^2 sn u sn w sn(u + w) (E = E(am .)); restarted
+    // from Boost's integral every 64 nodes so that rounding cannot accumulate along long paths.
+    epsilon = i % 64 == 0 ? EpsilonAt(k, j) : epsilon + gap_epsilon[g] - k * k * previous.sn * gap[g].sn * j.sn;
+    out.push_back(HeadingFrom(regime, k, v, j, epsilon));
+    previous = j;
   }
   return out;
 }

@@ -322,3 +322,45 @@ TEST(IsoparallelCertifyJacobian, FirstOrderOptionsAreValidatedByName) {
   o.first_order_margin = std::nan("");
   EXPECT_NE(o.Validate().find("first_order_margin"), std::string::npos);
 }
+
+namespace {
+
+// The epsilon function carried along the quadrature nodes by the addition theorem against
+// Boost's incomplete integral at every node (HeadingDerivativesAt), both regimes, random moduli,
+// rates (negative ones too), phases and lengths up to 40 (several restarts of the carried sum).
+TEST(IsoparallelCertifyJacobian, HeadingAlongNodesMatchesBoostAtEveryNode) {
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worst = 0.0;
+  for (PendulumRegime regime : kBothRegimes)
+    for (int trial = 0; trial < 12; ++trial) {
+      const double k = trial == 0 ? 0.0005 : 0.95 * unit(rng), rate = 4.0 * unit(rng) - 1.0;
+      const double phase = 6.0 * unit(rng) - 3.0, length = 1.0 + 39.0 * unit(rng);
+      const CertifyQuadrature quad = CertifyQuadratureAlong(length, 0.05);
+      ASSERT_EQ(quad.nodes.size(), 4u * static_cast<size_t>(quad.steps));
+      const std::vector<HeadingDerivatives> along = HeadingDerivativesAtNodes(regime, k, rate, phase, quad);
+      ASSERT_EQ(along.size(), quad.nodes.size());
+      const double kp = std::sqrt(1.0 - k * k);
+      for (size_t i = 0; i < quad.nodes.size(); ++i) {
+        const double v = rate * quad.nodes[i] + phase;
+        const HeadingDerivatives d = HeadingDerivativesAt(regime, k, v);
+        const double scale = (1.0 + std::abs(v)) / (kp * kp * kp);
+        const double err = std::max({std::abs(along[i].theta - d.theta), std::abs(along[i].dv - d.dv),
+                                     std::abs(along[i].dk - d.dk)}) / scale;
+        worst = std::max(worst, err);
+      }
+    }
+  std::printf("carried epsilon vs Boost: worst error / ((1 + |v|) / k'^3) = %.3g\n", worst);
+  EXPECT_LT(worst, 1e-13);
+}
+
+// The quadrature integrates polynomials of degree 7 exactly on every step.
+TEST(IsoparallelCertifyJacobian, QuadratureIsGaussLegendreOnEqualSteps) {
+  const CertifyQuadrature quad = CertifyQuadratureAlong(1.3, 0.05);
+  EXPECT_EQ(quad.steps, 26);
+  double sum = 0.0;
+  for (size_t i = 0; i < quad.nodes.size(); ++i) sum += quad.weights[i] * std::pow(quad.nodes[i], 7);
+  EXPECT_NEAR(sum, std::pow(1.3, 8) / 8.0, 1e-13);
+}
+
+}  // namespace
