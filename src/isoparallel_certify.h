@@ -125,6 +125,10 @@ struct CertifyWindowOptions {
 enum class CertifyStatus { kNotRun, kCertified, kUnaccounted, kBudgetExhausted, kInvalidInput };
 std::string ToString(CertifyStatus status);
 
+/// Two proved solutions closer than this in every canonical coordinate (the phase modulo its
+/// period) are one path (Newton refines them to |F| < 1e-11).
+inline constexpr double kSamePathTolerance = 1e-6;
+
 struct CertifyWindowResult {
   CertifyStatus status = CertifyStatus::kNotRun;
   long boxes = 0;  // examined
@@ -135,8 +139,15 @@ struct CertifyWindowResult {
   std::vector<int> matched;  // per known solution: how many accounted boxes it explains
   long first_order_tried = 0;       // boxes given the first-order tests (with an enclosure)
   long excluded_first_order = 0;    // by the mean-value form or a Krawczyk image disjoint from the box
-  std::vector<CertifyPoint> found;  // one per box proved (Krawczyk) to hold exactly one solution
+  /// One per path proved (Krawczyk) to be the only solution of its box (a box of the subdivision,
+/// or, for a solution on a face of the subdivision, a box of the same size centred at its Newton
+/// point: boxes inside it are then resolved), in canonical form
+  /// (CanonicalSolution); a path proved again in a box one phase period away (the same path, or
+  /// within kSamePathTolerance of it) is counted in found_repeated instead.
+  std::vector<CertifyPoint> found;
   std::vector<int> found_known;     // per found solution: the known one whose neighbourhood holds it, or -1
+  long found_repeated = 0;
+  long inside_found = 0;  // boxes inside a box proved to hold exactly one found solution
   double resolved_volume = 0.0;  // fraction of the window's volume excluded or accounted
   CertifyBox first_unaccounted;
   std::string message;

@@ -344,4 +344,35 @@ FirstOrderVerdict FirstOrderTest(const CertifyBox& box, const CertifyJacobian& c
   return inside ? FirstOrderVerdict::kUnique : FirstOrderVerdict::kUndecided;
 }
 
+bool ProveAroundNewtonPoint(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
+                            const CertifyJacobian& centre, double max_step, double margin, CertifyBox* proved,
+                            CertifyPoint* solution) {
+  const Eigen::FullPivLU<Eigen::Matrix4d> lu(centre.jacobian);
+  if (!lu.isInvertible()) return false;
+  const Eigen::Vector4d step = lu.solve(centre.residual);
+  const CertifyPoint c = box.Centre();
+  CertifyPoint x = c;
+  // Near the box: within twice its half-widths of its centre (Newton may stop just outside a face).
+  const auto near = [&](const CertifyPoint& y) {
+    for (int i = 0; i < 4; ++i)
+      if (!(std::abs(y[i] - c[i]) <= 2.0 * box.HalfWidth(i))) return false;
+    return true;
+  };
+  CertifyPoint newton;
+  for (int i = 0; i < 4; ++i) newton[i] = c[i] - step[i];
+  if (!near(newton) || !NewtonRefineCertify(target, regime, max_step, 1e-11, 8, &x) || !near(x)) return false;
+  for (int i = 0; i < 4; ++i) {
+    proved->lo[i] = x[i] - box.HalfWidth(i);
+    proved->hi[i] = x[i] + box.HalfWidth(i);
+  }
+  CertifyJacobian at;
+  Eigen::Matrix4d radius;
+  if (!EvaluateCertifyJacobian(target, regime, proved->Centre(), max_step, &at) ||
+      !CertifyJacobianEnclosure(regime, *proved, at, margin, &radius) ||
+      FirstOrderTest(*proved, at, radius, margin) != FirstOrderVerdict::kUnique)
+    return false;
+  *solution = x;
+  return true;
+}
+
 }  // namespace plateball::internal

@@ -93,4 +93,14 @@ std::string ToString(FirstOrderVerdict verdict);
 FirstOrderVerdict FirstOrderTest(const CertifyBox& box, const CertifyJacobian& centre, const Eigen::Matrix4d& radius,
                                  double margin);
 
+/// The standard remedy for a solution on a face shared by two boxes of a subdivision (it lies in
+/// the interior of neither, so Krawczyk proves it in neither): when the Newton step from the
+/// centre lands near `box` (within twice its half-widths of its centre), Newton's method (at most 8
+/// steps, |F| < 1e-11); if it converges to a point near the box, the first-order tests on the box of the same half-widths
+/// centred at that point (the solution now in its interior). True when that box is proved to hold
+/// exactly one solution: *proved receives the box, *solution the Newton point.
+bool ProveAroundNewtonPoint(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
+                            const CertifyJacobian& centre, double max_step, double margin, CertifyBox* proved,
+                            CertifyPoint* solution);
+
 }  // namespace plateball::internal

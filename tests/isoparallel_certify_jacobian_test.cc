@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <boost/math/special_functions/ellint_1.hpp>
+
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -361,6 +363,76 @@ TEST(IsoparallelCertifyJacobian, QuadratureIsGaussLegendreOnEqualSteps) {
   double sum = 0.0;
   for (size_t i = 0; i < quad.nodes.size(); ++i) sum += quad.weights[i] * std::pow(quad.nodes[i], 7);
   EXPECT_NEAR(sum, std::pow(1.3, 8) / 8.0, 1e-13);
+}
+
+}  // namespace
+
+namespace {
+
+// The made oscillating solution refined by Newton to |F| < 1e-12 (the target is made with dopri5
+// rollings, so the zero of the Magnus residual is ~1e-9 away from kMadeOscillating).
+CertifyPoint RefinedOscillating(const CertifyTarget& target) {
+  CertifyPoint x = kMadeOscillating;
+  EXPECT_TRUE(NewtonRefineCertify(target, PendulumRegime::kOscillating, 0.05, 1e-12, 30, &x));
+  return x;
+}
+
+// A solution exactly on a face shared by two boxes lies in the interior of neither, so Krawczyk
+// cannot prove it in either; the box of the same half-widths around its Newton point holds it
+// inside and is proved.
+TEST(IsoparallelCertifyJacobian, SolutionOnAFaceIsProvedAroundItsNewtonPoint) {
+  const PendulumRegime regime = PendulumRegime::kOscillating;
+  const CertifyTarget target = MadeTarget(regime, kMadeOscillating);
+  const CertifyPoint x = RefinedOscillating(target);
+  for (int axis = 0; axis < 4; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      CertifyBox box;
+      for (int i = 0; i < 4; ++i) box.lo[i] = x[i] - 2e-7, box.hi[i] = x[i] + 2e-7;
+      (side == 0 ? box.hi[axis] : box.lo[axis]) = x[axis];  // the solution on this face
+      CertifyJacobian centre;
+      ASSERT_TRUE(EvaluateCertifyJacobian(target, regime, box.Centre(), 0.05, &centre));
+      Eigen::Matrix4d radius;
+      ASSERT_TRUE(CertifyJacobianEnclosure(regime, box, centre, 1e-8, &radius));
+      EXPECT_EQ(FirstOrderTest(box, centre, radius, 1e-8), FirstOrderVerdict::kUndecided) << axis << side;
+      CertifyBox proved;
+      CertifyPoint solution{};
+      ASSERT_TRUE(ProveAroundNewtonPoint(target, regime, box, centre, 0.05, 1e-8, &proved, &solution)) << axis << side;
+      for (int i = 0; i < 4; ++i) {
+        EXPECT_NEAR(solution[i], x[i], 1e-10);
+        EXPECT_NEAR(proved.HalfWidth(i), box.HalfWidth(i), 1e-15);
+        EXPECT_LT(proved.lo[i], x[i]);
+        EXPECT_GT(proved.hi[i], x[i]);
+      }
+    }
+  // A box the Newton step leaves (no solution near) proves nothing.
+  CertifyBox away;
+  for (int i = 0; i < 4; ++i) away.lo[i] = x[i] + 3e-6, away.hi[i] = x[i] + 4e-6;
+  CertifyJacobian centre;
+  ASSERT_TRUE(EvaluateCertifyJacobian(target, regime, away.Centre(), 0.05, &centre));
+  CertifyBox proved;
+  CertifyPoint solution{};
+  EXPECT_FALSE(ProveAroundNewtonPoint(target, regime, away, centre, 0.05, 1e-8, &proved, &solution));
+}
+
+// A phase window longer than the period 4K(k) holds the made path twice (phases one period
+// apart): both copies are proved, and `found` lists the path once, in canonical form.
+TEST(IsoparallelCertifyJacobian, FoundListsAPathOnceAcrossPhasePeriods) {
+  const PendulumRegime regime = PendulumRegime::kOscillating;
+  const CertifyTarget target = MadeTarget(regime, kMadeOscillating);
+  const CertifyPoint x = RefinedOscillating(target);
+  const double period = 4.0 * boost::math::ellint_1(x[kCertifyModulus]);
+  CertifyWindowOptions o;
+  o.regime = regime;
+  for (int i = 0; i < 4; ++i) o.window.lo[i] = x[i] - 0.0002, o.window.hi[i] = x[i] + 0.00015;
+  o.window.hi[kCertifyPhase] += period;
+  o.max_boxes = 200000;
+  o.first_order = true;
+  const CertifyWindowResult r = CertifyWindow(target, {}, o);
+  std::printf("%s\n", r.message.c_str());
+  ASSERT_EQ(r.status, CertifyStatus::kCertified) << r.message;
+  ASSERT_EQ(r.found.size(), 1u);
+  EXPECT_GE(r.found_repeated, 1);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(r.found[0][i], x[i], 1e-9) << i;
 }
 
 }  // namespace
