@@ -287,19 +287,28 @@ TEST(IsoparallelCertifyJacobian, KrawczykProvesUniquenessAndRefusesTwinsAndEmpty
 // A small window (0.0009 wide around the made oscillating solution, off-centre) certified
 // with NO known solution: the first-order tests exclude the rest and prove exactly one solution,
 // the made one (to 1e-8); without the first-order tests the same window stays undecided next to it.
-TEST(IsoparallelCertifyJacobian, SmallWindowIsCertifiedWithoutKnownSolutions) {
-  const PendulumRegime regime = PendulumRegime::kOscillating;
-  const CertifyTarget target = MadeTarget(regime, kMadeOscillating);
+// The first-order window options (no known list) over [centre - below, centre + above] on each
+// axis, the phase's upper end `extra_phase` further; the window's result printed.
+CertifyWindowOptions WindowAround(const CertifyPoint& centre, double below, double above, double extra_phase) {
   CertifyWindowOptions o;
-  o.regime = regime;
-  for (int i = 0; i < 4; ++i) {
-    o.window.lo[i] = kMadeOscillating[i] - 0.0005;
-    o.window.hi[i] = kMadeOscillating[i] + 0.0004;
-  }
+  o.regime = PendulumRegime::kOscillating;
+  for (int i = 0; i < 4; ++i) o.window.lo[i] = centre[i] - below, o.window.hi[i] = centre[i] + above;
+  o.window.hi[kCertifyPhase] += extra_phase;
   o.max_boxes = 200000;
   o.first_order = true;
+  return o;
+}
+
+CertifyWindowResult CertifyAndPrint(const CertifyTarget& target, const CertifyWindowOptions& o) {
   const CertifyWindowResult r = CertifyWindow(target, {}, o);
   std::printf("%s\n", r.message.c_str());
+  return r;
+}
+
+TEST(IsoparallelCertifyJacobian, SmallWindowIsCertifiedWithoutKnownSolutions) {
+  const CertifyTarget target = MadeTarget(PendulumRegime::kOscillating, kMadeOscillating);
+  CertifyWindowOptions o = WindowAround(kMadeOscillating, 0.0005, 0.0004, 0.0);
+  const CertifyWindowResult r = CertifyAndPrint(target, o);
   ASSERT_EQ(r.status, CertifyStatus::kCertified) << r.message;
   ASSERT_EQ(r.found.size(), 1u);
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(r.found[0][i], kMadeOscillating[i], 1e-8) << i;
@@ -417,18 +426,10 @@ TEST(IsoparallelCertifyJacobian, SolutionOnAFaceIsProvedAroundItsNewtonPoint) {
 // A phase window longer than the period 4K(k) holds the made path twice (phases one period
 // apart): both copies are proved, and `found` lists the path once, in canonical form.
 TEST(IsoparallelCertifyJacobian, FoundListsAPathOnceAcrossPhasePeriods) {
-  const PendulumRegime regime = PendulumRegime::kOscillating;
-  const CertifyTarget target = MadeTarget(regime, kMadeOscillating);
+  const CertifyTarget target = MadeTarget(PendulumRegime::kOscillating, kMadeOscillating);
   const CertifyPoint x = RefinedOscillating(target);
   const double period = 4.0 * boost::math::ellint_1(x[kCertifyModulus]);
-  CertifyWindowOptions o;
-  o.regime = regime;
-  for (int i = 0; i < 4; ++i) o.window.lo[i] = x[i] - 0.0002, o.window.hi[i] = x[i] + 0.00015;
-  o.window.hi[kCertifyPhase] += period;
-  o.max_boxes = 200000;
-  o.first_order = true;
-  const CertifyWindowResult r = CertifyWindow(target, {}, o);
-  std::printf("%s\n", r.message.c_str());
+  const CertifyWindowResult r = CertifyAndPrint(target, WindowAround(x, 0.0002, 0.00015, period));
   ASSERT_EQ(r.status, CertifyStatus::kCertified) << r.message;
   ASSERT_EQ(r.found.size(), 1u);
   EXPECT_GE(r.found_repeated, 1);
