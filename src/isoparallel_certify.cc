@@ -160,6 +160,20 @@ FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindow
   return out;
 }
 
+// Counts a first-order outcome and records its proved solution and box; true when the box is
+// resolved (excluded, or proved to hold exactly one solution).
+bool RecordFirstOrder(const FirstOrderOutcome& first, const CertifyWindowOptions& options,
+                      const std::vector<CertifyPoint>& known, std::vector<CertifyBox>* proved,
+                      CertifyWindowResult* result) {
+  if (first.verdict != FirstOrderVerdict::kNotRun) ++result->first_order_tried;
+  if (first.verdict == FirstOrderVerdict::kUnique || first.proved_nearby) {
+    RecordFound(first.solution, options, known, result);
+    proved->push_back(first.proved);
+  }
+  if (first.verdict == FirstOrderVerdict::kExcluded) ++result->excluded_first_order;
+  return first.verdict == FirstOrderVerdict::kExcluded || first.verdict == FirstOrderVerdict::kUnique;
+}
+
 // The one-line account of a window's branch and bound.
 std::string CertifyMessage(const CertifyWindowResult& result, bool first_order) {
   std::string message = ToString(result.status) + ": " + std::to_string(result.boxes) + " boxes, " +
@@ -415,21 +429,14 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
       continue;
     }
     int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
-    CertifyPoint contraction{};
+    FirstOrderOutcome first;
     if (hit < 0 && options.first_order && deviation <= options.first_order_deviation) {
-      const FirstOrderOutcome first = FirstOrderBox(target, options, box, proved);
-      if (first.verdict != FirstOrderVerdict::kNotRun) ++result.first_order_tried;
-      if (first.verdict == FirstOrderVerdict::kUnique || first.proved_nearby) {
-        RecordFound(first.solution, options, known, &result);
-        proved.push_back(first.proved);
-      }
-      if (first.verdict == FirstOrderVerdict::kExcluded || first.verdict == FirstOrderVerdict::kUnique) {
-        if (first.verdict == FirstOrderVerdict::kExcluded) ++result.excluded_first_order;
+      first = FirstOrderBox(target, options, box, proved);
+      if (RecordFirstOrder(first, options, known, &proved, &result)) {
         result.resolved_volume += BoxVolume(box) / window_volume;
         continue;
       }
       if (first.split_axis >= 0) axis = first.split_axis;
-      contraction = first.contraction;
     }
     const double smallest = options.first_order ? options.first_order_min_deviation : options.accept_deviation;
     if (hit < 0 && deviation <= smallest) hit = MatchKnown(box, options, known, false);
@@ -444,7 +451,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
       if (options.stop_at_unaccounted) break;
       continue;
     }
-    if (options.trace) options.trace({box, deviation, share, contraction, axis});
+    if (options.trace) options.trace({box, deviation, share, first.contraction, axis});
     CertifyBox left = box, right = box;
     const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);
     left.hi[axis] = mid;
