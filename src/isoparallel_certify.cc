@@ -430,7 +430,8 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     }
     int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
     FirstOrderOutcome first;
-    if (hit < 0 && options.first_order && deviation <= options.first_order_deviation) {
+    if (hit < 0 && options.first_order && deviation <= options.first_order_deviation &&
+        CertifyEnclosureAvailable(options.regime, box, centre.chord_norm, centre.rotation, options.first_order_margin)) {
       first = FirstOrderBox(target, options, box, proved);
       if (RecordFirstOrder(first, options, known, &proved, &result)) {
         result.resolved_volume += BoxVolume(box) / window_volume;

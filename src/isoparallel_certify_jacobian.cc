@@ -144,7 +144,38 @@ ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
   return out;
 }
 
+// How far the chord and the rolling move over a box, and what that leaves of the chord and of the
+// rotation residual's distance from pi (the enclosure's two requirements).
+struct EnclosureGeometry {
+  double deviation = 0.0, chord_lo = 0.0, turn = 0.0, chord_min = 0.0, rho = 0.0, r_c = 0.0, r_max = 0.0;
+};
+
+bool EnclosureGeometryOf(double rolling, double hl, double chord_norm, double rotation, double margin,
+                         EnclosureGeometry* g) {
+  g->deviation = rolling + hl;  // chord and rolling at the end, lengths included
+  g->chord_lo = chord_norm - margin;
+  if (!(g->deviation < g->chord_lo)) return false;
+  g->turn = std::asin(g->deviation / g->chord_lo);
+  g->chord_min = g->chord_lo - g->deviation;
+  g->rho = g->deviation + 2.0 * g->turn;  // angle(P_x, P_c), P = B Q B^T; the same for M
+  g->r_c = rotation + margin;
+  g->r_max = g->r_c + g->rho;
+  return g->r_max <= 2.5;
+}
+
+bool AdmissibleForEnclosure(const CertifyBox& box) {
+  return box.hi[kCertifyModulus] < 1.0 && box.lo[kCertifyModulus] >= 0.0 && box.lo[kCertifyLength] > 0.0;
+}
+
 }  // namespace
+
+bool CertifyEnclosureAvailable(PendulumRegime regime, const CertifyBox& box, double chord_norm, double rotation,
+                               double margin) {
+  if (!AdmissibleForEnclosure(box)) return false;
+  EnclosureGeometry g;
+  return EnclosureGeometryOf(SumColumnBounds(regime, box).rolling, box.HalfWidth(kCertifyLength), chord_norm, rotation,
+                             margin - 1e-9, &g);
+}
 
 HeadingDerivatives HeadingDerivativesAt(PendulumRegime regime, double k, double v) {
   const JacobiPoint j = JacobiUnwrapped(JacobiAgm(k), boost::math::ellint_1(k), v);
@@ -268,17 +299,14 @@ HeadingSecondBounds HeadingSecondDerivativeBounds(PendulumRegime regime, double 
 
 bool CertifyJacobianEnclosure(PendulumRegime regime, const CertifyBox& box, const CertifyJacobian& centre,
                               double margin, Eigen::Matrix4d* radius) {
-  if (!(box.hi[kCertifyModulus] < 1.0) || !(box.lo[kCertifyModulus] >= 0.0) || !(box.lo[kCertifyLength] > 0.0))
-    return false;
+  if (!AdmissibleForEnclosure(box)) return false;
   const ColumnSums sums = SumColumnBounds(regime, box);
   const double hl = box.HalfWidth(kCertifyLength);
-  const double deviation = sums.rolling + hl;  // chord and rolling at the end, lengths included
-  const double chord_lo = centre.chord_norm - margin;
-  if (!(deviation < chord_lo)) return false;
-  const double turn = std::asin(deviation / chord_lo), chord_min = chord_lo - deviation;
-  const double rho = deviation + 2.0 * turn;  // angle(P_x, P_c), P = B Q B^T; the same for M
-  const double r_c = centre.residual.tail<3>().norm() + margin, r_max = r_c + rho;
-  if (!(r_max <= 2.5)) return false;
+  EnclosureGeometry g;
+  if (!EnclosureGeometryOf(sums.rolling, hl, centre.chord_norm, centre.residual.tail<3>().norm(), margin, &g))
+    return false;
+  const double deviation = g.deviation, chord_lo = g.chord_lo, turn = g.turn, chord_min = g.chord_min;
+  const double rho = g.rho, r_c = g.r_c, r_max = g.r_max;
   // JrInv is Lipschitz on |phi| <= r_max: 1/2 + c'(r) r^2 + 2 c(r) r, c' <= its slope to r + 0.01.
   const double slope = (JrInvCoefficient(r_max + 0.01) - JrInvCoefficient(r_max)) / 0.01;
   const double lipschitz = 0.5 + slope * r_max * r_max + 2.0 * JrInvCoefficient(r_max) * r_max;

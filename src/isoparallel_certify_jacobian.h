@@ -83,6 +83,13 @@ inline constexpr double kJacobianMargin = 1e-6;
 bool CertifyJacobianEnclosure(PendulumRegime regime, const CertifyBox& box, const CertifyJacobian& centre,
                               double margin, Eigen::Matrix4d* radius);
 
+/// Whether CertifyJacobianEnclosure can succeed over `box` for a centre with this chord length
+/// and rotation residual angle (its requirements Dev < |chord| - margin and r_max <= 2.5, with
+/// 1e-9 of slack so that it never refuses a box the enclosure accepts): a cheap check before the
+/// centre's Jacobian is computed (the zeroth-order residual gives both numbers).
+bool CertifyEnclosureAvailable(PendulumRegime regime, const CertifyBox& box, double chord_norm, double rotation,
+                               double margin);
+
 enum class FirstOrderVerdict { kNotRun, kExcluded, kUnique, kUndecided };
 std::string ToString(FirstOrderVerdict verdict);
 

@@ -437,3 +437,43 @@ TEST(IsoparallelCertifyJacobian, FoundListsAPathOnceAcrossPhasePeriods) {
 }
 
 }  // namespace
+
+namespace {
+
+// The cheap check before the centre's Jacobian never refuses a box the enclosure accepts, and
+// refuses the large boxes the enclosure refuses (random boxes of half-widths 1e-4..0.3 around
+// points of both regimes; the chord and rotation from the zeroth-order residual).
+TEST(IsoparallelCertifyJacobian, EnclosureAvailabilityAgreesWithTheEnclosure) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int accepted = 0, refused = 0;
+  for (PendulumRegime regime : kBothRegimes) {
+    const CertifyPoint made = regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating;
+    const CertifyTarget target = MadeTarget(regime, made);
+    for (int trial = 0; trial < 40; ++trial) {
+      const double h = 1e-4 * std::pow(3000.0, unit(rng));
+      CertifyBox box;
+      for (int i = 0; i < 4; ++i) {
+        const double c = made[i] + 4.0 * h * (unit(rng) - 0.5);
+        box.lo[i] = c - h * (0.5 + unit(rng));
+        box.hi[i] = c + h * (0.5 + unit(rng));
+      }
+      box.lo[kCertifyModulus] = std::max(box.lo[kCertifyModulus], 0.0);
+      CertifyResidual zeroth;
+      CertifyJacobian centre;
+      if (!EvaluateCertifyResidual(target, regime, box.Centre(), 0.05, &zeroth) ||
+          !EvaluateCertifyJacobian(target, regime, box.Centre(), 0.05, &centre))
+        continue;  // an inadmissible centre (rotation residual near pi): no first-order tests at all
+      Eigen::Matrix4d radius;
+      const bool enclosure = CertifyJacobianEnclosure(regime, box, centre, 1e-8, &radius);
+      const bool available = CertifyEnclosureAvailable(regime, box, zeroth.chord_norm, zeroth.rotation, 1e-8);
+      EXPECT_TRUE(available || !enclosure) << trial;
+      ++(enclosure ? accepted : refused);
+    }
+  }
+  std::printf("enclosure available for %d boxes, refused for %d\n", accepted, refused);
+  EXPECT_GT(accepted, 10);
+  EXPECT_GT(refused, 10);
+}
+
+}  // namespace
