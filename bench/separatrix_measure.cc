@@ -7,7 +7,10 @@
 // Defaults: problems/isoparallel_rotation.json, cap 1.0 x the solver's shortest length,
 // rate_max 0.5, k_lo 0.95, budget 2,000,000 boxes, both regimes (REGIME: oscillating, rotating,
 // both). Prints W (the run distance), the near-loop window, the box counts and the undecided boxes.
+#include <boost/math/special_functions/ellint_1.hpp>
+
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -63,6 +66,15 @@ int Run(int argc, char** argv) {
   const std::string which = argc > 6 ? argv[6] : "both";
   std::printf("%s: cap %.9g, |x1 - x0| %.9g, delta0 %.9g\n", file.c_str(), o.cap, target.radius,
               StraightResidual(target));
+  for (const IsoparallelSolution& sol : solved.solutions) {
+    const CertifyPoint c = CanonicalSolution(sol.parameters, sol.length);
+    if (c[kCertifyModulus] < o.k_lo || sol.length > o.cap) continue;
+    // The phase from the nearest loop centre (rotating: period 2K; oscillating: loops at 0, 2K).
+    const double half = 2.0 * boost::math::ellint_1(c[kCertifyModulus]);
+    const double from_loop = c[kCertifyPhase] - half * std::round(c[kCertifyPhase] / half);
+    std::printf("tail solution (%s) {rate %.9g, k %.9g, phase %.9g (%.9g from a loop), L %.9g}\n",
+                ToString(sol.parameters.regime).c_str(), c[0], c[1], c[2], from_loop, c[3]);
+  }
   for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
     if (which != "both" && which != ToString(regime)) continue;
     o.regime = regime;
