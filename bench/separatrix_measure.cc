@@ -88,6 +88,7 @@ int Run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // a run cut by `timeout` keeps its finished lines
   try {
     return Run(argc, argv);
   } catch (const std::exception& e) {
