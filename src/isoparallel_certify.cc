@@ -281,6 +281,11 @@ double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, Certi
   return std::min(by_v, by_z);
 }
 
+double RollingDeviationBoundFor(PendulumRegime regime, const CertifyBox& box, double modulus_bound,
+                                CertifyPoint* contributions) {
+  return DeviationForModulusBound(regime, box, modulus_bound, 0.0, contributions);
+}
+
 CertifyTarget CertifyTargetOf(const IsoparallelProblem& problem) {
   CertifyTarget t;
   t.target = problem.goal_orientation * problem.start_orientation.transpose();

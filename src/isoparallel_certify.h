@@ -55,6 +55,10 @@ double HeadingModulusBoundByZeta(PendulumRegime regime, double k_min, double k_m
 /// its centre, and on the distance between their chords. `contributions` (optional) receives the
 /// uncapped share of each axis (for choosing the axis to split).
 double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, CertifyPoint* contributions = nullptr);
+/// The same bound D for a given constant bound `modulus_bound` on |d theta/dk| over the box (the
+/// separatrix tail uses HeadingModulusBoundNearSeparatrix, valid for moduli up to k = 1).
+double RollingDeviationBoundFor(PendulumRegime regime, const CertifyBox& box, double modulus_bound,
+                                CertifyPoint* contributions = nullptr);
 
 /// The target of a general isoparallel problem, in the form the residual uses.
 struct CertifyTarget {

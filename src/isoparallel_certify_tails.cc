@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "check.h"
+#include "isoparallel_certify_separatrix.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
 
@@ -146,7 +147,33 @@ CertifyBox CoverageWindow::Box() const {
   return b;
 }
 
-CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k_max, int pieces, double margin) {
+namespace {
+
+// The separatrix tail's windows for rates |rate| <= A and the words for what stays uncovered.
+std::string AddTailWindows(const CertifyTarget& target, double cap, double k_max, double margin, double a,
+                           CoverageStatement* out) {
+  const std::string tail = "k in [" + std::to_string(k_max) + ", 1) in both regimes";
+  if (!(a > 0.0)) return tail + " (the separatrix tail)";
+  for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
+    TailWindow w;
+    w.regime = regime;
+    w.run_distance = SeparatrixRunDistance(target, regime, cap, margin);
+    if (!std::isfinite(w.run_distance)) {
+      out->tail_windows.clear();
+      return tail + " (the separatrix tail: its runs are not excluded)";
+    }
+    const double phase = w.run_distance + a * cap;
+    w.box.lo = {-a, k_max, -phase, target.radius};
+    w.box.hi = {a, 1.0, phase, cap};
+    out->tail_windows.push_back(w);
+  }
+  return tail + " with |rate| > " + std::to_string(a) + " (the separatrix tail's fast paths)";
+}
+
+}  // namespace
+
+CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k_max, int pieces, double margin,
+                               double tail_rate_max) {
   CoverageStatement out;
   if (!(target.radius > 0.0 && target.radius <= 1e3))
     out.message = InvalidValueMessage("target.radius", target.radius, "must be in (0, 1e3]");
@@ -158,6 +185,8 @@ CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k
     out.message = InvalidValueMessage("pieces", pieces, "must be in [1, 10000]");
   else if (!(margin >= 0.0 && margin <= 1e-2))
     out.message = InvalidValueMessage("margin", margin, "must be in [0, 1e-2]");
+  else if (!(tail_rate_max >= 0.0 && tail_rate_max <= 1e3))
+    out.message = InvalidValueMessage("tail_rate_max", tail_rate_max, "must be in [0, 1e3]");
   if (!out.message.empty()) return out;
   out.straight_residual = StraightResidual(target);
   out.rate_tail_excluded = out.straight_residual > margin;
@@ -176,7 +205,7 @@ CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k
       out.windows.push_back(w);
     }
   }
-  out.uncovered = "k in (" + std::to_string(k_max) + ", 1] in both regimes (the separatrix tail, k = 1 included)";
+  out.uncovered = AddTailWindows(target, cap, k_max, margin, tail_rate_max, &out);
   if (!out.rate_tail_excluded)
     out.uncovered += "; every rate: the straight residual " + std::to_string(out.straight_residual) +
                      " does not exceed the margin, so the averaging lemma excludes nothing";

@@ -16,7 +16,8 @@
 //   a_max(k) = sqrt(D (K - D)) h / sin(delta / 2) (rotating;    P = 2K / |a|),
 // h = sqrt(cap^2 - |x1 - x0|^2) + |x1 - x0|, delta = delta0 - margin, D = (K - E) / k^2.
 // When delta0 <= margin (the target is the straight rolling, or nearly) nothing is excluded.
-// The modulus tail k -> 1 is NOT covered here (the notes say what is and is not proved).
+// The modulus tail k -> 1: isoparallel_certify_separatrix.h covers its rates |a| <= A (the windows
+// CoverageUpTo lists with tail_rate_max = A); faster tail paths are not covered.
 #pragma once
 
 #include <string>
@@ -83,17 +84,29 @@ struct CoverageWindow {
   CertifyBox Box() const;
 };
 
+/// A window of the separatrix tail (isoparallel_certify_separatrix.h): k in [k_max, 1] (the
+/// separatrix itself as a limit), rate in [-A, A], phase from a loop centre in
+/// [-W - A cap, W + A cap], L in [|x1 - x0|, cap]; every tail path with |rate| <= A starting
+/// outside it is a run at distance >= W from every loop, excluded by the straight-run lemma.
+struct TailWindow {
+  PendulumRegime regime = PendulumRegime::kRotating;
+  double run_distance = 0.0;  // W
+  CertifyBox box;
+};
+
 /// What `complete` up to a length cap needs: the windows (both regimes, k in [0, k_max] split in
-/// `pieces` intervals each) and the parts of parameter space no argument covers.
+/// `pieces` intervals each), with tail_rate_max = A > 0 the separatrix tail windows for rates
+/// |rate| <= A, and the parts of parameter space no argument covers.
 struct CoverageStatement {
   std::string message;            // empty when valid, else the invalid-value message
   double straight_residual = 0.0;  // delta0
   bool rate_tail_excluded = false;  // delta0 > margin: every rate above the windows is excluded
   std::vector<CoverageWindow> windows;
+  std::vector<TailWindow> tail_windows;  // empty unless tail_rate_max > 0 and the runs are excluded
   std::string uncovered;  // the parameter sets outside every window and not excluded
 };
 
 CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k_max, int pieces,
-                               double margin = 1e-7);
+                               double margin = 1e-7, double tail_rate_max = 0.0);
 
 }  // namespace plateball::internal

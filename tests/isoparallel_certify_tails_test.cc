@@ -3,6 +3,7 @@
 // closed-form chord per period, the rate bound a_max(k) against the known solutions and against
 // dopri5 rollings of fast paths ending on the circle |x| = |x1 - x0|, and the coverage statement.
 #include "isoparallel_certify_tails.h"
+#include "isoparallel_certify_separatrix.h"
 
 #include <gtest/gtest.h>
 
@@ -313,6 +314,30 @@ TEST(IsoparallelCertifyTails, CoverageStatesTheWindowsAndTheUncoveredTail) {
   EXPECT_NE(CoverageUpTo(target, 1.0, 0.95, 4).message.find("cap"), std::string::npos);
   EXPECT_NE(CoverageUpTo(target, 10.0, 1.0, 4).message.find("k_max"), std::string::npos);
   EXPECT_NE(CoverageUpTo(target, 10.0, 0.9, 0).message.find("pieces"), std::string::npos);
+  EXPECT_NE(CoverageUpTo(target, 10.0, 0.9, 4, 1e-7, -1.0).message.find("tail_rate_max"), std::string::npos);
+  EXPECT_TRUE(c.tail_windows.empty());
+}
+
+TEST(IsoparallelCertifyTails, CoverageListsTheSeparatrixTailWindows) {
+  const CertifyTarget target = RotationProblemTarget();
+  const double cap = 5.99098308;
+  const CoverageStatement c = CoverageUpTo(target, cap, 0.95, 2, 1e-7, 0.25);
+  ASSERT_EQ(c.message, "");
+  ASSERT_EQ(c.tail_windows.size(), 2u);
+  for (const TailWindow& w : c.tail_windows) {
+    EXPECT_EQ(w.run_distance, SeparatrixRunDistance(target, w.regime, cap, 1e-7));
+    EXPECT_EQ(w.box.lo[kCertifyModulus], 0.95);
+    EXPECT_EQ(w.box.hi[kCertifyModulus], 1.0);
+    EXPECT_DOUBLE_EQ(w.box.hi[kCertifyPhase], w.run_distance + 0.25 * cap);
+    EXPECT_EQ(w.box.lo[kCertifyRate], -0.25);
+  }
+  EXPECT_NE(c.uncovered.find("|rate| > 0.25"), std::string::npos);
+  // The straight target: no run is excluded, so no tail window is claimed.
+  CertifyTarget straight = target;
+  straight.target = StraightRolling(Eigen::Vector2d(2.0, 1.0));
+  const CoverageStatement s = CoverageUpTo(straight, 10.0, 0.95, 1, 1e-7, 0.25);
+  EXPECT_TRUE(s.tail_windows.empty());
+  EXPECT_NE(s.uncovered.find("runs are not excluded"), std::string::npos);
 }
 
 }  // namespace

@@ -1,0 +1,141 @@
+#include "isoparallel_certify_separatrix.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "check.h"
+#include "isoparallel_certify_tails.h"
+
+namespace plateball::internal {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double Volume(const CertifyBox& box) {
+  double v = 1.0;
+  for (int i = 0; i < 4; ++i) v *= box.hi[i] - box.lo[i];
+  return v;
+}
+
+// The largest |v| a box reaches: its start phase plus rate times length.
+double MaxAbsV(const CertifyBox& box) {
+  const double phase = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
+  const double rate = std::max(std::abs(box.lo[kCertifyRate]), std::abs(box.hi[kCertifyRate]));
+  return phase + rate * box.hi[kCertifyLength];
+}
+
+void Split(const CertifyBox& box, int axis, std::vector<CertifyBox>* stack) {
+  const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);
+  CertifyBox left = box, right = box;
+  left.hi[axis] = mid;
+  right.lo[axis] = mid;
+  stack->push_back(right);
+  stack->push_back(left);
+}
+
+}  // namespace
+
+double SeparatrixRunHeadingSpread(PendulumRegime regime, double w) {
+  const double spread = std::asin(1.0 / std::cosh(std::min(std::abs(w), 350.0)));
+  return regime == PendulumRegime::kRotating ? 2.0 * spread : spread;
+}
+
+double SeparatrixRunDistance(const CertifyTarget& target, PendulumRegime regime, double cap, double margin) {
+  const double delta = StraightResidual(target) - margin;
+  if (!(delta > 0.0)) return kInf;
+  const auto excluded = [&](double w) {
+    return StraightRunDeviationBound(SeparatrixRunHeadingSpread(regime, w), cap, target.radius) < delta;
+  };
+  double lo = 0.0, hi = 1.0;
+  while (!excluded(hi)) {
+    hi *= 2.0;
+    if (hi > 700.0) return kInf;  // sech underflows: the bound cannot get below delta
+  }
+  for (int i = 0; i < 200 && hi - lo > 1e-9 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (excluded(mid) ? hi : lo) = mid;
+  }
+  return hi;  // excluded(hi) holds, and the spread decreases in w: every w >= hi is excluded
+}
+
+double SeparatrixDeviationBound(PendulumRegime regime, const CertifyBox& box, CertifyPoint* contributions) {
+  const double mk = HeadingModulusBoundNearSeparatrix(regime, box.hi[kCertifyModulus], MaxAbsV(box));
+  return RollingDeviationBoundFor(regime, box, mk, contributions);
+}
+
+std::string SeparatrixTailOptions::Validate() const {
+  if (!(k_lo >= 0.5 && k_lo < 1.0)) return InvalidValueMessage("k_lo", k_lo, "expected a modulus in [0.5, 1)");
+  if (!(rate_max > 0.0 && rate_max <= 1e3)) return InvalidValueMessage("rate_max", rate_max, "expected (0, 1000]");
+  if (!(cap > 0.0 && cap <= 1e3)) return InvalidValueMessage("cap", cap, "expected a length in (0, 1000]");
+  if (!(length_lo >= 0.0 && length_lo < cap))
+    return InvalidValueMessage("length_lo", length_lo, "expected a length in [0, cap)");
+  if (!(max_boxes >= 1 && max_boxes <= 1000000000L))
+    return InvalidValueMessage("max_boxes", static_cast<double>(max_boxes), "expected [1, 1e9]");
+  if (!(accept_deviation > 0.0 && accept_deviation <= 1.0))
+    return InvalidValueMessage("accept_deviation", accept_deviation, "expected (0, 1]");
+  if (!(keep_undecided >= 0 && keep_undecided <= 100000))
+    return InvalidValueMessage("keep_undecided", keep_undecided, "expected [0, 100000]");
+  if (!(margin >= 0.0 && margin <= 1e-2)) return InvalidValueMessage("margin", margin, "expected [0, 0.01]");
+  if (!(max_step > 0.0 && max_step <= 1.0)) return InvalidValueMessage("max_step", max_step, "expected (0, 1]");
+  return "";
+}
+
+std::string ToString(SeparatrixTailStatus status) {
+  switch (status) {
+    case SeparatrixTailStatus::kNotRun: return "not run";
+    case SeparatrixTailStatus::kExcluded: return "excluded";
+    case SeparatrixTailStatus::kUndecided: return "undecided boxes remain";
+    case SeparatrixTailStatus::kBudgetExhausted: return "budget exhausted";
+    case SeparatrixTailStatus::kInvalidInput: return "invalid input";
+  }
+  return "unknown";
+}
+
+SeparatrixTailResult CertifySeparatrixTail(const CertifyTarget& target, const SeparatrixTailOptions& options) {
+  SeparatrixTailResult result;
+  result.message = options.Validate();
+  if (!result.message.empty()) {
+    result.status = SeparatrixTailStatus::kInvalidInput;
+    return result;
+  }
+  result.run_distance = SeparatrixRunDistance(target, options.regime, options.cap, options.margin);
+  if (!std::isfinite(result.run_distance)) {
+    result.status = SeparatrixTailStatus::kUndecided;
+    result.message = "the straight residual is not above the margin: runs are not excluded";
+    return result;
+  }
+  const double phase = result.run_distance + options.rate_max * options.cap;
+  result.window.lo = {-options.rate_max, options.k_lo, -phase, options.length_lo};
+  result.window.hi = {options.rate_max, 1.0, phase, options.cap};
+  const double window_volume = Volume(result.window);
+  std::vector<CertifyBox> stack = {result.window};
+  while (!stack.empty() && result.boxes < options.max_boxes) {
+    const CertifyBox box = stack.back();
+    stack.pop_back();
+    ++result.boxes;
+    CertifyPoint share;
+    const double deviation = SeparatrixDeviationBound(options.regime, box, &share);
+    CertifyResidual centre;
+    BoxVerdict verdict = BoxVerdict::kUndecided;
+    if (EvaluateCertifyResidual(target, options.regime, box.Centre(), options.max_step, &centre))
+      verdict = TestBox(centre, deviation, options.margin);
+    if (verdict != BoxVerdict::kUndecided) {
+      ++(verdict == BoxVerdict::kExcludedByChord ? result.excluded_by_chord : result.excluded_by_rotation);
+      result.resolved_volume += Volume(box) / window_volume;
+    } else if (deviation <= options.accept_deviation) {
+      ++result.undecided;
+      if (static_cast<int>(result.undecided_boxes.size()) < options.keep_undecided)
+        result.undecided_boxes.push_back(box);
+    } else {
+      Split(box, static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin()), &stack);
+    }
+  }
+  result.status = !stack.empty()           ? SeparatrixTailStatus::kBudgetExhausted
+                  : result.undecided > 0 ? SeparatrixTailStatus::kUndecided
+                                         : SeparatrixTailStatus::kExcluded;
+  return result;
+}
+
+}  // namespace plateball::internal
