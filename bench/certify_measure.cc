@@ -8,10 +8,13 @@
 //
 //   certify_measure [PROBLEM.json] [--caps 1.0,1.2,1.5] [--regime oscillating|rotating|both]
 //                   [--budget BOXES] [--k-max K] [--rate-max A] [--first-order 0|1] [--known 0|1]
-//                   [--first-order-deviation D]
+//                   [--first-order-deviation D] [--trace FILE]
 //
 // --first-order 1 adds the first-order tests (mean-value exclusion, Krawczyk) and prints the
 // solutions they prove unique, each with the solver's solution it matches (or "new");
+// --trace FILE writes one line per box split (left undecided): centre (4), half-widths (4), D,
+// the per-axis shares of D (4), the per-axis Krawczyk contraction columns (4, zero without the
+// first-order tests) and the split axis (diagnostics of where a window stalls);
 // --known 0 runs without the solver's solutions (then only the first-order tests can finish).
 //
 // Default: problems/isoparallel_rotation.json (relative to the working directory), caps 1.0, 1.2,
@@ -43,6 +46,7 @@ struct Settings {
   double k_max = 0.95, rate_max = 2.0;
   bool first_order = false, known = true;
   double first_order_deviation = 0.5;
+  std::string trace;  // file of split boxes, or empty
 };
 
 double Number(const std::string& option, const std::string& text, double lo, double hi) {
@@ -94,6 +98,8 @@ Settings Parse(int argc, char** argv) {
       s.first_order = Number(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--first-order-deviation") {
       s.first_order_deviation = Number(a, v, 0.0, 10.0);
+    } else if (a == "--trace") {
+      s.trace = v;
     } else if (a == "--known") {
       s.known = Number(a, v, 0.0, 1.0) != 0.0;
     } else {
@@ -120,6 +126,16 @@ CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, double 
   return o;
 }
 
+void WriteTrace(std::FILE* f, const CertifyBoxTrace& t) {
+  const CertifyPoint c = t.box.Centre();
+  for (int i = 0; i < 4; ++i) std::fprintf(f, "%.10g ", c[i]);
+  for (int i = 0; i < 4; ++i) std::fprintf(f, "%.4g ", t.box.HalfWidth(i));
+  std::fprintf(f, "%.4g", t.deviation);
+  for (double x : t.share) std::fprintf(f, " %.4g", x);
+  for (double x : t.contraction) std::fprintf(f, " %.4g", x);
+  std::fprintf(f, " %d\n", t.split_axis);
+}
+
 int Run(const Settings& s) {
   const IsoparallelSetup setup = IsoparallelSetupFor(ReadProblemFile(s.file));
   const IsoparallelSummary solved = SolveIsoparallel(setup.problem, setup.options);
@@ -139,8 +155,13 @@ int Run(const Settings& s) {
     }
     if (!s.known) known.clear();
     for (double factor : s.caps) {
+      CertifyWindowOptions options = WindowFor(s, regime, target.radius, factor * shortest);
+      std::FILE* trace = s.trace.empty() ? nullptr : std::fopen(s.trace.c_str(), "w");
+      if (!s.trace.empty() && !trace) throw std::invalid_argument("--trace: value " + s.trace + ": cannot write");
+      if (trace) options.trace = [trace](const CertifyBoxTrace& t) { WriteTrace(trace, t); };
       const auto start = std::chrono::steady_clock::now();
-      const CertifyWindowResult w = CertifyWindow(target, known, WindowFor(s, regime, target.radius, factor * shortest));
+      const CertifyWindowResult w = CertifyWindow(target, known, options);
+      if (trace) std::fclose(trace);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::printf("cap %.2fx %s: %s; resolved volume %.6f; %.1f s\n", factor, ToString(regime).c_str(), w.message.c_str(),
                   w.resolved_volume, seconds);

@@ -64,12 +64,45 @@ int MatchKnown(const CertifyBox& box, const CertifyWindowOptions& options, const
   return -1;
 }
 
-// A solution proved unique in its box: recorded with the known one whose neighbourhood holds it.
+// Whether two canonical solutions are the same path: every coordinate within `tolerance`, the
+// phase compared modulo its period (a path near the end of the period is also near its start).
+bool SamePath(PendulumRegime regime, const CertifyPoint& a, const CertifyPoint& b, double tolerance) {
+  for (int axis : {kCertifyRate, kCertifyModulus, kCertifyLength})
+    if (std::abs(a[axis] - b[axis]) > tolerance) return false;
+  const double period = PhasePeriod(regime, a[kCertifyModulus]);
+  const double d = std::abs(a[kCertifyPhase] - b[kCertifyPhase]);
+  return std::min(d, std::abs(period - d)) <= tolerance;
+}
+
+// Whether the box lies inside one of `boxes`.
+bool InsideAny(const CertifyBox& box, const std::vector<CertifyBox>& boxes) {
+  for (const CertifyBox& b : boxes) {
+    bool inside = true;
+    for (int i = 0; i < 4; ++i) inside = inside && box.lo[i] >= b.lo[i] && box.hi[i] <= b.hi[i];
+    if (inside) return true;
+  }
+  return false;
+}
+
+// A solution proved unique in its box, in canonical form: recorded with the known one whose
+// neighbourhood holds it, unless the same path is already found (the phase window of one period
+// at k_max holds a path twice for smaller k: boxes one period apart).
 void RecordFound(const CertifyPoint& x, const CertifyWindowOptions& options, const std::vector<CertifyPoint>& known,
                  CertifyWindowResult* result) {
+  ElasticaParameters parameters;
+  parameters.regime = options.regime;
+  parameters.rate = x[kCertifyRate];
+  parameters.modulus = x[kCertifyModulus];
+  parameters.phase = x[kCertifyPhase];
+  const CertifyPoint canonical = CanonicalSolution(parameters, x[kCertifyLength]);
+  for (const CertifyPoint& f : result->found)
+    if (SamePath(options.regime, f, canonical, kSamePathTolerance)) {
+      ++result->found_repeated;
+      return;
+    }
   CertifyBox point;
-  point.lo = point.hi = x;
-  result->found.push_back(x);
+  point.lo = point.hi = canonical;
+  result->found.push_back(canonical);
   result->found_known.push_back(MatchKnown(point, options, known, false));
 }
 
@@ -80,9 +113,13 @@ struct FirstOrderOutcome {
   FirstOrderVerdict verdict = FirstOrderVerdict::kNotRun;
   int split_axis = -1;
   CertifyPoint solution{};
+  CertifyPoint contraction{};  // per axis: the column of the contraction times the half-width
+  CertifyBox proved;           // the box proved to hold exactly one solution (kUnique, proved_nearby)
+  bool proved_nearby = false;  // undecided, but a box around a Newton point in it is proved
 };
 
-FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindowOptions& options, const CertifyBox& box) {
+FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindowOptions& options, const CertifyBox& box,
+                                const std::vector<CertifyBox>& proved) {
   FirstOrderOutcome out;
   CertifyJacobian centre;
   Eigen::Matrix4d radius;
@@ -98,6 +135,7 @@ FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindow
       for (int i = 0; i < 4; ++i) inside = inside && x[i] >= box.lo[i] && x[i] <= box.hi[i];
       if (inside) out.solution = x;
     }
+    out.proved = box;
   } else if (out.verdict == FirstOrderVerdict::kUndecided) {
     const Eigen::FullPivLU<Eigen::Matrix4d> lu(centre.jacobian);
     const Eigen::Matrix4d a = lu.isInvertible() ? Eigen::Matrix4d(lu.inverse()) : Eigen::Matrix4d::Identity();
@@ -105,10 +143,35 @@ FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindow
     double best = -1.0;
     for (int j = 0; j < 4; ++j) {
       const double share = spread.col(j).sum() * box.HalfWidth(j);
+      out.contraction[j] = share;
       if (share > best) best = share, out.split_axis = j;
     }
+    // A box of this size around a solution is proved only where the contraction is below one;
+    // a Newton point inside a proved box is a found solution already.
+    Eigen::Vector4d h;
+    for (int i = 0; i < 4; ++i) h[i] = box.HalfWidth(i);
+    const Eigen::Vector4d newton = a * centre.residual;
+    CertifyBox target_point;
+    for (int i = 0; i < 4; ++i) target_point.lo[i] = target_point.hi[i] = box.Centre()[i] - newton[i];
+    if (((spread * h).array() < h.array()).all() && !InsideAny(target_point, proved))
+      out.proved_nearby = ProveAroundNewtonPoint(target, options.regime, box, centre, options.max_step,
+                                                 options.first_order_margin, &out.proved, &out.solution);
   }
   return out;
+}
+
+// Counts a first-order outcome and records its proved solution and box; true when the box is
+// resolved (excluded, or proved to hold exactly one solution).
+bool RecordFirstOrder(const FirstOrderOutcome& first, const CertifyWindowOptions& options,
+                      const std::vector<CertifyPoint>& known, std::vector<CertifyBox>* proved,
+                      CertifyWindowResult* result) {
+  if (first.verdict != FirstOrderVerdict::kNotRun) ++result->first_order_tried;
+  if (first.verdict == FirstOrderVerdict::kUnique || first.proved_nearby) {
+    RecordFound(first.solution, options, known, result);
+    proved->push_back(first.proved);
+  }
+  if (first.verdict == FirstOrderVerdict::kExcluded) ++result->excluded_first_order;
+  return first.verdict == FirstOrderVerdict::kExcluded || first.verdict == FirstOrderVerdict::kUnique;
 }
 
 // The one-line account of a window's branch and bound.
@@ -121,7 +184,9 @@ std::string CertifyMessage(const CertifyWindowResult& result, bool first_order) 
   if (first_order)
     message += ", " + std::to_string(result.first_order_tried) + " given the first-order tests, " +
                std::to_string(result.excluded_first_order) + " excluded by them, " +
-               std::to_string(result.found.size()) + " proved unique";
+               std::to_string(result.found.size()) + " proved unique" +
+               (result.found_repeated > 0 ? " (" + std::to_string(result.found_repeated) + " proved again)" : "") +
+               (result.inside_found > 0 ? ", " + std::to_string(result.inside_found) + " inside their boxes" : "");
   return message;
 }
 
@@ -344,6 +409,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     return result;
   }
   std::vector<CertifyBox> stack{options.window};  // depth first: memory ~ depth
+  std::vector<CertifyBox> proved;                 // boxes proved to hold exactly one (found) solution
   const double window_volume = BoxVolume(options.window);
   while (!stack.empty()) {
     if (result.boxes >= options.max_boxes) break;
@@ -351,6 +417,11 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     stack.pop_back();
     ++result.boxes;
     int hit = MatchKnown(box, options, known, true);
+    if (hit < 0 && InsideAny(box, proved)) {  // its only solution is a found one
+      ++result.inside_found;
+      result.resolved_volume += BoxVolume(box) / window_volume;
+      continue;
+    }
     CertifyPoint share;
     const double deviation = RollingDeviationBound(options.regime, box, &share);
     BoxVerdict verdict = BoxVerdict::kUndecided;
@@ -363,12 +434,11 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
       continue;
     }
     int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
-    if (hit < 0 && options.first_order && deviation <= options.first_order_deviation) {
-      const FirstOrderOutcome first = FirstOrderBox(target, options, box);
-      if (first.verdict != FirstOrderVerdict::kNotRun) ++result.first_order_tried;
-      if (first.verdict == FirstOrderVerdict::kExcluded || first.verdict == FirstOrderVerdict::kUnique) {
-        if (first.verdict == FirstOrderVerdict::kExcluded) ++result.excluded_first_order;
-        if (first.verdict == FirstOrderVerdict::kUnique) RecordFound(first.solution, options, known, &result);
+    FirstOrderOutcome first;
+    if (hit < 0 && options.first_order && deviation <= options.first_order_deviation &&
+        CertifyEnclosureAvailable(options.regime, box, centre.chord_norm, centre.rotation, options.first_order_margin)) {
+      first = FirstOrderBox(target, options, box, proved);
+      if (RecordFirstOrder(first, options, known, &proved, &result)) {
         result.resolved_volume += BoxVolume(box) / window_volume;
         continue;
       }
@@ -387,6 +457,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
       if (options.stop_at_unaccounted) break;
       continue;
     }
+    if (options.trace) options.trace({box, deviation, share, first.contraction, axis});
     CertifyBox left = box, right = box;
     const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);
     left.hi[axis] = mid;

@@ -23,6 +23,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,17 @@ std::string ToString(BoxVerdict verdict);
 /// centre's floating-point error). kExcluded* means no solution lies in the box.
 BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double margin);
 
+/// One box the branch and bound splits (left undecided by every test), for diagnostics: its
+/// deviation bound D and the per-axis shares of D, and when the first-order tests ran, the
+/// per-axis columns of the Krawczyk contraction times the half-widths (zero otherwise).
+struct CertifyBoxTrace {
+  CertifyBox box;
+  double deviation = 0.0;
+  CertifyPoint share{};
+  CertifyPoint contraction{};
+  int split_axis = -1;
+};
+
 struct CertifyWindowOptions {
   PendulumRegime regime = PendulumRegime::kOscillating;
   CertifyBox window;             // rate, k in [0, 1), phase, L > 0
@@ -110,11 +122,16 @@ struct CertifyWindowOptions {
   double first_order_deviation = 0.5;
   double first_order_min_deviation = 1e-9;
   double first_order_margin = 1e-8;  // on the centre's residual components (tested error ~1e-9)
+  std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
   std::string Validate() const;
 };
 
 enum class CertifyStatus { kNotRun, kCertified, kUnaccounted, kBudgetExhausted, kInvalidInput };
 std::string ToString(CertifyStatus status);
+
+/// Two proved solutions closer than this in every canonical coordinate (the phase modulo its
+/// period) are one path (Newton refines them to |F| < 1e-11).
+inline constexpr double kSamePathTolerance = 1e-6;
 
 struct CertifyWindowResult {
   CertifyStatus status = CertifyStatus::kNotRun;
@@ -126,8 +143,15 @@ struct CertifyWindowResult {
   std::vector<int> matched;  // per known solution: how many accounted boxes it explains
   long first_order_tried = 0;       // boxes given the first-order tests (with an enclosure)
   long excluded_first_order = 0;    // by the mean-value form or a Krawczyk image disjoint from the box
-  std::vector<CertifyPoint> found;  // one per box proved (Krawczyk) to hold exactly one solution
+  /// One per path proved (Krawczyk) to be the only solution of its box (a box of the subdivision,
+/// or, for a solution on a face of the subdivision, a box of the same size centred at its Newton
+/// point: boxes inside it are then resolved), in canonical form
+  /// (CanonicalSolution); a path proved again in a box one phase period away (the same path, or
+  /// within kSamePathTolerance of it) is counted in found_repeated instead.
+  std::vector<CertifyPoint> found;
   std::vector<int> found_known;     // per found solution: the known one whose neighbourhood holds it, or -1
+  long found_repeated = 0;
+  long inside_found = 0;  // boxes inside a box proved to hold exactly one found solution
   double resolved_volume = 0.0;  // fraction of the window's volume excluded or accounted
   CertifyBox first_unaccounted;
   std::string message;

@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "elastica_rolling.h"
 #include "jacobi_elliptic.h"
@@ -12,9 +13,6 @@
 #include "rotation_trick.h"
 
 namespace plateball::internal {
-
-// HeadingDerivativesAt with the modulus' AGM sequence and K(k) computed once per path.
-HeadingDerivatives HeadingDerivativesWith(PendulumRegime regime, const JacobiAgm& agm, double kk, double v);
 
 namespace {
 
@@ -40,27 +38,61 @@ struct PathVariation {
 // The rate, modulus and phase columns of the path's variation (quadrature along [0, L]).
 void IntegrateVariations(PendulumRegime regime, const CertifyPoint& x, const Elastica& e,
                          const ElasticaRollingTable& table, double max_step, PathVariation* var) {
-  const double length = x[kCertifyLength];
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / max_step)));
-  const double h = length / steps;
-  const JacobiAgm agm(x[kCertifyModulus]);
-  const double kk = boost::math::ellint_1(x[kCertifyModulus]);
-  for (int i = 0; i < steps; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      const double s = h * (i + 0.5 * (1.0 + kNodes[j])), w = 0.5 * h * kWeights[j];
-      const HeadingDerivatives d = HeadingDerivativesWith(regime, agm, kk, x[kCertifyRate] * s + x[kCertifyPhase]);
-      const Eigen::Vector2d t = e.Tangent(s);
-      const Eigen::Vector2d n(-t.y(), t.x());
-      const Eigen::Vector3d qt = table.Rolling(s).transpose() * Eigen::Vector3d(t.x(), t.y(), 0.0);
-      const double dtheta[3] = {s * d.dv, d.dk, d.dv};  // rate, modulus, phase
-      for (int p = 0; p < 3; ++p) {
-        var[p].chord += w * dtheta[p] * n;  // d t = d theta n
-        var[p].xi -= w * dtheta[p] * qt;    // d w = e3 x d t = -d theta t
-      }
+  const CertifyQuadrature quad = CertifyQuadratureAlong(x[kCertifyLength], max_step);
+  const std::vector<HeadingDerivatives> heading =
+      HeadingDerivativesAtNodes(regime, x[kCertifyModulus], x[kCertifyRate], x[kCertifyPhase], quad);
+  for (size_t i = 0; i < quad.nodes.size(); ++i) {
+    const double s = quad.nodes[i], w = quad.weights[i];
+    const HeadingDerivatives& d = heading[i];
+    const Eigen::Vector2d t = e.Tangent(s);
+    const Eigen::Vector2d n(-t.y(), t.x());
+    const Eigen::Vector3d qt = table.Rolling(s).transpose() * Eigen::Vector3d(t.x(), t.y(), 0.0);
+    const double dtheta[3] = {s * d.dv, d.dk, d.dv};  // rate, modulus, phase
+    for (int p = 0; p < 3; ++p) {
+      var[p].chord += w * dtheta[p] * n;  // d t = d theta n
+      var[p].xi -= w * dtheta[p] * qt;    // d w = e3 x d t = -d theta t
     }
   }
 }
 
+// sn, cn, dn at v and the unwrapped amplitude am v (reduced modulo 2K: sn, cn change sign).
+struct JacobiPoint {
+  double sn = 0.0, cn = 1.0, dn = 1.0, amp = 0.0;
+};
+
+JacobiPoint JacobiUnwrapped(const JacobiAgm& agm, double kk, double v) {
+  const double m = std::round(v / (2.0 * kk));
+  const double r = v - 2.0 * kk * m;  // |r| <= K; sn, cn change sign with each 2K, dn does not
+  JacobiPoint j;
+  JacobiSnCnDn(r, agm, &j.sn, &j.cn, &j.dn);
+  j.amp = m * M_PI + std::atan2(j.sn, j.cn);
+  const double sign = std::fmod(m, 2.0) == 0.0 ? 1.0 : -1.0;
+  j.sn *= sign;
+  j.cn *= sign;
+  return j;
+}
+
+// The heading and its derivatives from sn, cn, dn, am at v and Jacobi's epsilon E(am v) (used
+// for k >= 1e-3; below, int_0^v cn^2 takes its k = 0 value v/2 + sin(2 am)/4).
+HeadingDerivatives HeadingFrom(PendulumRegime regime, double k, double v, const JacobiPoint& j, double epsilon) {
+  const double kp2 = (1.0 - k) * (1.0 + k);
+  // int_0^v cn^2 = (E(am v) - k'^2 v) / k^2.
+  const double cn2 = k < 1e-3 ? 0.5 * v + 0.25 * std::sin(2.0 * j.amp) : (epsilon - kp2 * v) / (k * k);
+  const double am_k = k * (j.sn * j.cn - j.dn * cn2) / kp2;
+  HeadingDerivatives out;
+  if (regime == PendulumRegime::kRotating) {
+    out.theta = 2.0 * j.amp;
+    out.dv = 2.0 * j.dn;
+    out.dk = 2.0 * am_k;
+  } else {
+    out.theta = 2.0 * std::asin(std::clamp(k * j.sn, -1.0, 1.0));
+    out.dv = 2.0 * k * j.cn;
+    out.dk = 2.0 * (j.sn + k * j.cn * am_k) / j.dn;
+  }
+  return out;
+}
+
+double EpsilonAt(double k, const JacobiPoint& j) { return k < 1e-3 ? 0.0 : boost::math::ellint_2(k, j.amp); }
 
 // c(a) of JrInv = I + hat/2 + c hat^2: c = (1 - (a/2) cot(a/2)) / a^2 = 1/12 + a^2/720 + ..., a
 // series with positive coefficients: c and c' increase on [0, pi).
@@ -112,36 +144,81 @@ ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
   return out;
 }
 
-}  // namespace
+// How far the chord and the rolling move over a box, and what that leaves of the chord and of the
+// rotation residual's distance from pi (the enclosure's two requirements).
+struct EnclosureGeometry {
+  double deviation = 0.0, chord_lo = 0.0, turn = 0.0, chord_min = 0.0, rho = 0.0, r_c = 0.0, r_max = 0.0;
+};
 
-HeadingDerivatives HeadingDerivativesAt(PendulumRegime regime, double k, double v) {
-  return HeadingDerivativesWith(regime, JacobiAgm(k), boost::math::ellint_1(k), v);
+bool EnclosureGeometryOf(double rolling, double hl, double chord_norm, double rotation, double margin,
+                         EnclosureGeometry* g) {
+  g->deviation = rolling + hl;  // chord and rolling at the end, lengths included
+  g->chord_lo = chord_norm - margin;
+  if (!(g->deviation < g->chord_lo)) return false;
+  g->turn = std::asin(g->deviation / g->chord_lo);
+  g->chord_min = g->chord_lo - g->deviation;
+  g->rho = g->deviation + 2.0 * g->turn;  // angle(P_x, P_c), P = B Q B^T; the same for M
+  g->r_c = rotation + margin;
+  g->r_max = g->r_c + g->rho;
+  return g->r_max <= 2.5;
 }
 
-HeadingDerivatives HeadingDerivativesWith(PendulumRegime regime, const JacobiAgm& agm, double kk, double v) {
-  const double k = agm.k;
-  const double m = std::round(v / (2.0 * kk));
-  const double r = v - 2.0 * kk * m;  // |r| <= K; sn, cn change sign with each 2K, dn does not
-  double sn = 0, cn = 0, dn = 0;
-  JacobiSnCnDn(r, agm, &sn, &cn, &dn);
-  const double amp = m * M_PI + std::atan2(sn, cn);
-  const double sign = std::fmod(m, 2.0) == 0.0 ? 1.0 : -1.0;
-  sn *= sign;
-  cn *= sign;
-  const double kp2 = (1.0 - k) * (1.0 + k);
-  // int_0^v cn^2 = (E(am v) - k'^2 v) / k^2; below k = 1e-3 its k = 0 value v/2 + sin(2 am)/4.
-  const double cn2 = k < 1e-3 ? 0.5 * v + 0.25 * std::sin(2.0 * amp)
-                              : (boost::math::ellint_2(k, amp) - kp2 * v) / (k * k);
-  const double am_k = k * (sn * cn - dn * cn2) / kp2;
-  HeadingDerivatives out;
-  if (regime == PendulumRegime::kRotating) {
-    out.theta = 2.0 * amp;
-    out.dv = 2.0 * dn;
-    out.dk = 2.0 * am_k;
-  } else {
-    out.theta = 2.0 * std::asin(std::clamp(k * sn, -1.0, 1.0));
-    out.dv = 2.0 * k * cn;
-    out.dk = 2.0 * (sn + k * cn * am_k) / dn;
+bool AdmissibleForEnclosure(const CertifyBox& box) {
+  return box.hi[kCertifyModulus] < 1.0 && box.lo[kCertifyModulus] >= 0.0 && box.lo[kCertifyLength] > 0.0;
+}
+
+}  // namespace
+
+bool CertifyEnclosureAvailable(PendulumRegime regime, const CertifyBox& box, double chord_norm, double rotation,
+                               double margin) {
+  if (!AdmissibleForEnclosure(box)) return false;
+  EnclosureGeometry g;
+  return EnclosureGeometryOf(SumColumnBounds(regime, box).rolling, box.HalfWidth(kCertifyLength), chord_norm, rotation,
+                             margin - 1e-9, &g);
+}
+
+HeadingDerivatives HeadingDerivativesAt(PendulumRegime regime, double k, double v) {
+  const JacobiPoint j = JacobiUnwrapped(JacobiAgm(k), boost::math::ellint_1(k), v);
+  return HeadingFrom(regime, k, v, j, EpsilonAt(k, j));
+}
+
+CertifyQuadrature CertifyQuadratureAlong(double length, double max_step) {
+  CertifyQuadrature q;
+  q.steps = std::max(1, static_cast<int>(std::ceil(length / max_step)));
+  q.step = length / q.steps;
+  for (int i = 0; i < q.steps; ++i)
+    for (int j = 0; j < 4; ++j) {
+      q.nodes.push_back(q.step * (i + 0.5 * (1.0 + kNodes[j])));
+      q.weights.push_back(0.5 * q.step * kWeights[j]);
+    }
+  return q;
+}
+
+std::vector<HeadingDerivatives> HeadingDerivativesAtNodes(PendulumRegime regime, double k, double rate, double phase,
+                                                          const CertifyQuadrature& quad) {
+  const JacobiAgm agm(k);
+  const double kk = boost::math::ellint_1(k);
+  // The four gaps between consecutive nodes (the first across a step's end), their sn and E(am).
+  JacobiPoint gap[4];
+  double gap_epsilon[4];
+  for (int j = 0; j < 4; ++j) {
+    const double ds = j == 0 ? quad.step * (1.0 + 0.5 * (kNodes[0] - kNodes[3])) : 0.5 * quad.step * (kNodes[j] - kNodes[j - 1]);
+    gap[j] = JacobiUnwrapped(agm, kk, rate * ds);
+    gap_epsilon[j] = EpsilonAt(k, gap[j]);
+  }
+  std::vector<HeadingDerivatives> out;
+  out.reserve(quad.nodes.size());
+  JacobiPoint previous;
+  double epsilon = 0.0;
+  for (size_t i = 0; i < quad.nodes.size(); ++i) {
+    const double v = rate * quad.nodes[i] + phase;
+    const JacobiPoint j = JacobiUnwrapped(agm, kk, v);
+    const int g = static_cast<int>(i % 4);
+    // Addition theorem E(u + w) = E(u) + E(w) - k^2 sn u sn w sn(u + w) (E = E(am .)); restarted
+    // from Boost's integral every 64 nodes so that rounding cannot accumulate along long paths.
+    epsilon = i % 64 == 0 ? EpsilonAt(k, j) : epsilon + gap_epsilon[g] - k * k * previous.sn * gap[g].sn * j.sn;
+    out.push_back(HeadingFrom(regime, k, v, j, epsilon));
+    previous = j;
   }
   return out;
 }
@@ -222,17 +299,14 @@ HeadingSecondBounds HeadingSecondDerivativeBounds(PendulumRegime regime, double 
 
 bool CertifyJacobianEnclosure(PendulumRegime regime, const CertifyBox& box, const CertifyJacobian& centre,
                               double margin, Eigen::Matrix4d* radius) {
-  if (!(box.hi[kCertifyModulus] < 1.0) || !(box.lo[kCertifyModulus] >= 0.0) || !(box.lo[kCertifyLength] > 0.0))
-    return false;
+  if (!AdmissibleForEnclosure(box)) return false;
   const ColumnSums sums = SumColumnBounds(regime, box);
   const double hl = box.HalfWidth(kCertifyLength);
-  const double deviation = sums.rolling + hl;  // chord and rolling at the end, lengths included
-  const double chord_lo = centre.chord_norm - margin;
-  if (!(deviation < chord_lo)) return false;
-  const double turn = std::asin(deviation / chord_lo), chord_min = chord_lo - deviation;
-  const double rho = deviation + 2.0 * turn;  // angle(P_x, P_c), P = B Q B^T; the same for M
-  const double r_c = centre.residual.tail<3>().norm() + margin, r_max = r_c + rho;
-  if (!(r_max <= 2.5)) return false;
+  EnclosureGeometry g;
+  if (!EnclosureGeometryOf(sums.rolling, hl, centre.chord_norm, centre.residual.tail<3>().norm(), margin, &g))
+    return false;
+  const double deviation = g.deviation, chord_lo = g.chord_lo, turn = g.turn, chord_min = g.chord_min;
+  const double rho = g.rho, r_c = g.r_c, r_max = g.r_max;
   // JrInv is Lipschitz on |phi| <= r_max: 1/2 + c'(r) r^2 + 2 c(r) r, c' <= its slope to r + 0.01.
   const double slope = (JrInvCoefficient(r_max + 0.01) - JrInvCoefficient(r_max)) / 0.01;
   const double lipschitz = 0.5 + slope * r_max * r_max + 2.0 * JrInvCoefficient(r_max) * r_max;
@@ -296,6 +370,37 @@ FirstOrderVerdict FirstOrderTest(const CertifyBox& box, const CertifyJacobian& c
     inside = inside && mid - rad > box.lo[i] && mid + rad < box.hi[i];
   }
   return inside ? FirstOrderVerdict::kUnique : FirstOrderVerdict::kUndecided;
+}
+
+bool ProveAroundNewtonPoint(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
+                            const CertifyJacobian& centre, double max_step, double margin, CertifyBox* proved,
+                            CertifyPoint* solution) {
+  const Eigen::FullPivLU<Eigen::Matrix4d> lu(centre.jacobian);
+  if (!lu.isInvertible()) return false;
+  const Eigen::Vector4d step = lu.solve(centre.residual);
+  const CertifyPoint c = box.Centre();
+  CertifyPoint x = c;
+  // Near the box: within twice its half-widths of its centre (Newton may stop just outside a face).
+  const auto near = [&](const CertifyPoint& y) {
+    for (int i = 0; i < 4; ++i)
+      if (!(std::abs(y[i] - c[i]) <= 2.0 * box.HalfWidth(i))) return false;
+    return true;
+  };
+  CertifyPoint newton;
+  for (int i = 0; i < 4; ++i) newton[i] = c[i] - step[i];
+  if (!near(newton) || !NewtonRefineCertify(target, regime, max_step, 1e-11, 8, &x) || !near(x)) return false;
+  for (int i = 0; i < 4; ++i) {
+    proved->lo[i] = x[i] - box.HalfWidth(i);
+    proved->hi[i] = x[i] + box.HalfWidth(i);
+  }
+  CertifyJacobian at;
+  Eigen::Matrix4d radius;
+  if (!EvaluateCertifyJacobian(target, regime, proved->Centre(), max_step, &at) ||
+      !CertifyJacobianEnclosure(regime, *proved, at, margin, &radius) ||
+      FirstOrderTest(*proved, at, radius, margin) != FirstOrderVerdict::kUnique)
+    return false;
+  *solution = x;
+  return true;
 }
 
 }  // namespace plateball::internal

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "isoparallel_certify.h"
 
@@ -24,6 +25,23 @@ struct HeadingDerivatives {
 /// For 0 <= k < 1 and finite v. Accurate to ~1e-13 (1 + |v|) / k'^3 (below k = 1e-3 a series
 /// for int cn^2 adds k^3 |v|).
 HeadingDerivatives HeadingDerivativesAt(PendulumRegime regime, double k, double v);
+
+/// The quadrature of the Jacobian's path integrals: 4-point Gauss-Legendre on `steps` equal
+/// steps <= max_step of [0, length]; nodes in increasing order.
+struct CertifyQuadrature {
+  int steps = 0;
+  double step = 0.0;
+  std::vector<double> nodes, weights;
+};
+CertifyQuadrature CertifyQuadratureAlong(double length, double max_step);
+
+/// HeadingDerivativesAt at v = rate s + phase for every node s of `quad`, with Jacobi's epsilon
+/// E(am v) carried from node to node by the addition theorem
+/// E(u + w) = E(u) + E(w) - k^2 sn(u) sn(w) sn(u + w): one incomplete integral per gap length
+/// (four in all) and a restart every 64 nodes, instead of one per node. Agrees with
+/// HeadingDerivativesAt to ~1e-13 (1 + |v|) / k'^3.
+std::vector<HeadingDerivatives> HeadingDerivativesAtNodes(PendulumRegime regime, double k, double rate, double phase,
+                                                          const CertifyQuadrature& quad);
 
 /// F and dF/dx at one parameter point x = (rate, k, phase, L) (columns in CertifyAxis order).
 struct CertifyJacobian {
@@ -65,6 +83,13 @@ inline constexpr double kJacobianMargin = 1e-6;
 bool CertifyJacobianEnclosure(PendulumRegime regime, const CertifyBox& box, const CertifyJacobian& centre,
                               double margin, Eigen::Matrix4d* radius);
 
+/// Whether CertifyJacobianEnclosure can succeed over `box` for a centre with this chord length
+/// and rotation residual angle (its requirements Dev < |chord| - margin and r_max <= 2.5, with
+/// 1e-9 of slack so that it never refuses a box the enclosure accepts): a cheap check before the
+/// centre's Jacobian is computed (the zeroth-order residual gives both numbers).
+bool CertifyEnclosureAvailable(PendulumRegime regime, const CertifyBox& box, double chord_norm, double rotation,
+                               double margin);
+
 enum class FirstOrderVerdict { kNotRun, kExcluded, kUnique, kUndecided };
 std::string ToString(FirstOrderVerdict verdict);
 
@@ -74,5 +99,15 @@ std::string ToString(FirstOrderVerdict verdict);
 /// disjoint from X; kUnique when K(X) lies inside the interior of X (exactly one solution in X).
 FirstOrderVerdict FirstOrderTest(const CertifyBox& box, const CertifyJacobian& centre, const Eigen::Matrix4d& radius,
                                  double margin);
+
+/// The standard remedy for a solution on a face shared by two boxes of a subdivision (it lies in
+/// the interior of neither, so Krawczyk proves it in neither): when the Newton step from the
+/// centre lands near `box` (within twice its half-widths of its centre), Newton's method (at most 8
+/// steps, |F| < 1e-11); if it converges to a point near the box, the first-order tests on the box of the same half-widths
+/// centred at that point (the solution now in its interior). True when that box is proved to hold
+/// exactly one solution: *proved receives the box, *solution the Newton point.
+bool ProveAroundNewtonPoint(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
+                            const CertifyJacobian& centre, double max_step, double margin, CertifyBox* proved,
+                            CertifyPoint* solution);
 
 }  // namespace plateball::internal

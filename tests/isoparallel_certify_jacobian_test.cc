@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <boost/math/special_functions/ellint_1.hpp>
+
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -285,19 +287,28 @@ TEST(IsoparallelCertifyJacobian, KrawczykProvesUniquenessAndRefusesTwinsAndEmpty
 // A small window (0.0009 wide around the made oscillating solution, off-centre) certified
 // with NO known solution: the first-order tests exclude the rest and prove exactly one solution,
 // the made one (to 1e-8); without the first-order tests the same window stays undecided next to it.
-TEST(IsoparallelCertifyJacobian, SmallWindowIsCertifiedWithoutKnownSolutions) {
-  const PendulumRegime regime = PendulumRegime::kOscillating;
-  const CertifyTarget target = MadeTarget(regime, kMadeOscillating);
+// The first-order window options (no known list) over [centre - below, centre + above] on each
+// axis, the phase's upper end `extra_phase` further; the window's result printed.
+CertifyWindowOptions WindowAround(const CertifyPoint& centre, double below, double above, double extra_phase) {
   CertifyWindowOptions o;
-  o.regime = regime;
-  for (int i = 0; i < 4; ++i) {
-    o.window.lo[i] = kMadeOscillating[i] - 0.0005;
-    o.window.hi[i] = kMadeOscillating[i] + 0.0004;
-  }
+  o.regime = PendulumRegime::kOscillating;
+  for (int i = 0; i < 4; ++i) o.window.lo[i] = centre[i] - below, o.window.hi[i] = centre[i] + above;
+  o.window.hi[kCertifyPhase] += extra_phase;
   o.max_boxes = 200000;
   o.first_order = true;
+  return o;
+}
+
+CertifyWindowResult CertifyAndPrint(const CertifyTarget& target, const CertifyWindowOptions& o) {
   const CertifyWindowResult r = CertifyWindow(target, {}, o);
   std::printf("%s\n", r.message.c_str());
+  return r;
+}
+
+TEST(IsoparallelCertifyJacobian, SmallWindowIsCertifiedWithoutKnownSolutions) {
+  const CertifyTarget target = MadeTarget(PendulumRegime::kOscillating, kMadeOscillating);
+  CertifyWindowOptions o = WindowAround(kMadeOscillating, 0.0005, 0.0004, 0.0);
+  const CertifyWindowResult r = CertifyAndPrint(target, o);
   ASSERT_EQ(r.status, CertifyStatus::kCertified) << r.message;
   ASSERT_EQ(r.found.size(), 1u);
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(r.found[0][i], kMadeOscillating[i], 1e-8) << i;
@@ -322,3 +333,147 @@ TEST(IsoparallelCertifyJacobian, FirstOrderOptionsAreValidatedByName) {
   o.first_order_margin = std::nan("");
   EXPECT_NE(o.Validate().find("first_order_margin"), std::string::npos);
 }
+
+namespace {
+
+// The epsilon function carried along the quadrature nodes by the addition theorem against
+// Boost's incomplete integral at every node (HeadingDerivativesAt), both regimes, random moduli,
+// rates (negative ones too), phases and lengths up to 40 (several restarts of the carried sum).
+TEST(IsoparallelCertifyJacobian, HeadingAlongNodesMatchesBoostAtEveryNode) {
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worst = 0.0;
+  for (PendulumRegime regime : kBothRegimes)
+    for (int trial = 0; trial < 12; ++trial) {
+      const double k = trial == 0 ? 0.0005 : 0.95 * unit(rng), rate = 4.0 * unit(rng) - 1.0;
+      const double phase = 6.0 * unit(rng) - 3.0, length = 1.0 + 39.0 * unit(rng);
+      const CertifyQuadrature quad = CertifyQuadratureAlong(length, 0.05);
+      ASSERT_EQ(quad.nodes.size(), 4u * static_cast<size_t>(quad.steps));
+      const std::vector<HeadingDerivatives> along = HeadingDerivativesAtNodes(regime, k, rate, phase, quad);
+      ASSERT_EQ(along.size(), quad.nodes.size());
+      const double kp = std::sqrt(1.0 - k * k);
+      for (size_t i = 0; i < quad.nodes.size(); ++i) {
+        const double v = rate * quad.nodes[i] + phase;
+        const HeadingDerivatives d = HeadingDerivativesAt(regime, k, v);
+        const double scale = (1.0 + std::abs(v)) / (kp * kp * kp);
+        const double err = std::max({std::abs(along[i].theta - d.theta), std::abs(along[i].dv - d.dv),
+                                     std::abs(along[i].dk - d.dk)}) / scale;
+        worst = std::max(worst, err);
+      }
+    }
+  std::printf("carried epsilon vs Boost: worst error / ((1 + |v|) / k'^3) = %.3g\n", worst);
+  EXPECT_LT(worst, 1e-13);
+}
+
+// The quadrature integrates polynomials of degree 7 exactly on every step.
+TEST(IsoparallelCertifyJacobian, QuadratureIsGaussLegendreOnEqualSteps) {
+  const CertifyQuadrature quad = CertifyQuadratureAlong(1.3, 0.05);
+  EXPECT_EQ(quad.steps, 26);
+  double sum = 0.0;
+  for (size_t i = 0; i < quad.nodes.size(); ++i) sum += quad.weights[i] * std::pow(quad.nodes[i], 7);
+  EXPECT_NEAR(sum, std::pow(1.3, 8) / 8.0, 1e-13);
+}
+
+}  // namespace
+
+namespace {
+
+// The made oscillating solution refined by Newton to |F| < 1e-12 (the target is made with dopri5
+// rollings, so the zero of the Magnus residual is ~1e-9 away from kMadeOscillating).
+CertifyPoint RefinedOscillating(const CertifyTarget& target) {
+  CertifyPoint x = kMadeOscillating;
+  EXPECT_TRUE(NewtonRefineCertify(target, PendulumRegime::kOscillating, 0.05, 1e-12, 30, &x));
+  return x;
+}
+
+// A solution exactly on a face shared by two boxes lies in the interior of neither, so Krawczyk
+// cannot prove it in either; the box of the same half-widths around its Newton point holds it
+// inside and is proved.
+TEST(IsoparallelCertifyJacobian, SolutionOnAFaceIsProvedAroundItsNewtonPoint) {
+  const PendulumRegime regime = PendulumRegime::kOscillating;
+  const CertifyTarget target = MadeTarget(regime, kMadeOscillating);
+  const CertifyPoint x = RefinedOscillating(target);
+  for (int axis = 0; axis < 4; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      CertifyBox box;
+      for (int i = 0; i < 4; ++i) box.lo[i] = x[i] - 2e-7, box.hi[i] = x[i] + 2e-7;
+      (side == 0 ? box.hi[axis] : box.lo[axis]) = x[axis];  // the solution on this face
+      CertifyJacobian centre;
+      ASSERT_TRUE(EvaluateCertifyJacobian(target, regime, box.Centre(), 0.05, &centre));
+      Eigen::Matrix4d radius;
+      ASSERT_TRUE(CertifyJacobianEnclosure(regime, box, centre, 1e-8, &radius));
+      EXPECT_EQ(FirstOrderTest(box, centre, radius, 1e-8), FirstOrderVerdict::kUndecided) << axis << side;
+      CertifyBox proved;
+      CertifyPoint solution{};
+      ASSERT_TRUE(ProveAroundNewtonPoint(target, regime, box, centre, 0.05, 1e-8, &proved, &solution)) << axis << side;
+      for (int i = 0; i < 4; ++i) {
+        EXPECT_NEAR(solution[i], x[i], 1e-10);
+        EXPECT_NEAR(proved.HalfWidth(i), box.HalfWidth(i), 1e-15);
+        EXPECT_LT(proved.lo[i], x[i]);
+        EXPECT_GT(proved.hi[i], x[i]);
+      }
+    }
+  // A box the Newton step leaves (no solution near) proves nothing.
+  CertifyBox away;
+  for (int i = 0; i < 4; ++i) away.lo[i] = x[i] + 3e-6, away.hi[i] = x[i] + 4e-6;
+  CertifyJacobian centre;
+  ASSERT_TRUE(EvaluateCertifyJacobian(target, regime, away.Centre(), 0.05, &centre));
+  CertifyBox proved;
+  CertifyPoint solution{};
+  EXPECT_FALSE(ProveAroundNewtonPoint(target, regime, away, centre, 0.05, 1e-8, &proved, &solution));
+}
+
+// A phase window longer than the period 4K(k) holds the made path twice (phases one period
+// apart): both copies are proved, and `found` lists the path once, in canonical form.
+TEST(IsoparallelCertifyJacobian, FoundListsAPathOnceAcrossPhasePeriods) {
+  const CertifyTarget target = MadeTarget(PendulumRegime::kOscillating, kMadeOscillating);
+  const CertifyPoint x = RefinedOscillating(target);
+  const double period = 4.0 * boost::math::ellint_1(x[kCertifyModulus]);
+  const CertifyWindowResult r = CertifyAndPrint(target, WindowAround(x, 0.0002, 0.00015, period));
+  ASSERT_EQ(r.status, CertifyStatus::kCertified) << r.message;
+  ASSERT_EQ(r.found.size(), 1u);
+  EXPECT_GE(r.found_repeated, 1);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(r.found[0][i], x[i], 1e-9) << i;
+}
+
+}  // namespace
+
+namespace {
+
+// The cheap check before the centre's Jacobian never refuses a box the enclosure accepts, and
+// refuses the large boxes the enclosure refuses (random boxes of half-widths 1e-4..0.3 around
+// points of both regimes; the chord and rotation from the zeroth-order residual).
+TEST(IsoparallelCertifyJacobian, EnclosureAvailabilityAgreesWithTheEnclosure) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int accepted = 0, refused = 0;
+  for (PendulumRegime regime : kBothRegimes) {
+    const CertifyPoint made = regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating;
+    const CertifyTarget target = MadeTarget(regime, made);
+    for (int trial = 0; trial < 40; ++trial) {
+      const double h = 1e-4 * std::pow(3000.0, unit(rng));
+      CertifyBox box;
+      for (int i = 0; i < 4; ++i) {
+        const double c = made[i] + 4.0 * h * (unit(rng) - 0.5);
+        box.lo[i] = c - h * (0.5 + unit(rng));
+        box.hi[i] = c + h * (0.5 + unit(rng));
+      }
+      box.lo[kCertifyModulus] = std::max(box.lo[kCertifyModulus], 0.0);
+      CertifyResidual zeroth;
+      CertifyJacobian centre;
+      if (!EvaluateCertifyResidual(target, regime, box.Centre(), 0.05, &zeroth) ||
+          !EvaluateCertifyJacobian(target, regime, box.Centre(), 0.05, &centre))
+        continue;  // an inadmissible centre (rotation residual near pi): no first-order tests at all
+      Eigen::Matrix4d radius;
+      const bool enclosure = CertifyJacobianEnclosure(regime, box, centre, 1e-8, &radius);
+      const bool available = CertifyEnclosureAvailable(regime, box, zeroth.chord_norm, zeroth.rotation, 1e-8);
+      EXPECT_TRUE(available || !enclosure) << trial;
+      ++(enclosure ? accepted : refused);
+    }
+  }
+  std::printf("enclosure available for %d boxes, refused for %d\n", accepted, refused);
+  EXPECT_GT(accepted, 10);
+  EXPECT_GT(refused, 10);
+}
+
+}  // namespace
