@@ -19,7 +19,6 @@
 //
 // Default: problems/isoparallel_rotation.json (relative to the working directory), caps 1.0, 1.2,
 // 1.5, both regimes, 2,000,000 boxes, k_max 0.95, rate_max 2.
-#include <boost/math/special_functions/ellint_1.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -110,7 +109,6 @@ Settings Parse(int argc, char** argv) {
 }
 
 CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, double radius, double cap) {
-  const double quarter = boost::math::ellint_1(s.k_max);  // K(k_max)
   const bool oscillating = regime == PendulumRegime::kOscillating;
   CertifyWindowOptions o;
   o.regime = regime;
@@ -122,7 +120,7 @@ CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, double 
   // With the first-order tests the length reaches 1e-4 past the cap: a solution exactly at the
   // cap (the shortest at 1.0x) would lie on the window's face, where Krawczyk cannot prove it.
   const double length_hi = s.first_order ? cap * (1.0 + 1e-4) : cap;
-  o.window.hi = {s.rate_max, s.k_max, oscillating ? 4 * quarter : 2 * quarter, length_hi};
+  o.window.hi = {s.rate_max, s.k_max, PhasePeriod(regime, s.k_max), length_hi};
   return o;
 }
 

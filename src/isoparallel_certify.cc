@@ -19,12 +19,6 @@ namespace {
 
 double MaxAbs(double a, double b) { return std::max(std::abs(a), std::abs(b)); }
 
-// The period of v = rate s + u0 after which the path repeats up to a rotation of the plane.
-double PhasePeriod(PendulumRegime regime, double k) {
-  const double kk = boost::math::ellint_1(k);
-  return regime == PendulumRegime::kOscillating ? 4.0 * kk : 2.0 * kk;
-}
-
 // int_0^length min(alpha + beta s, cap) ds for alpha, beta >= 0.
 double IntegralOfCappedLine(double alpha, double beta, double cap, double length) {
   if (alpha >= cap) return cap * length;
@@ -191,6 +185,11 @@ std::string CertifyMessage(const CertifyWindowResult& result, bool first_order) 
 }
 
 }  // namespace
+
+double PhasePeriod(PendulumRegime regime, double k) {
+  const double kk = boost::math::ellint_1(k);
+  return regime == PendulumRegime::kOscillating ? 4.0 * kk : 2.0 * kk;
+}
 
 CertifyPoint CertifyBox::Centre() const {
   CertifyPoint c;

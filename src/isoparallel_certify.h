@@ -42,6 +42,10 @@ struct CertifyBox {
   double HalfWidth(int axis) const { return 0.5 * (hi[axis] - lo[axis]); }
 };
 
+/// The period of v = rate s + u0 after which the path repeats up to a rotation of the plane:
+/// 4 K(k) oscillating, 2 K(k) rotating.
+double PhasePeriod(PendulumRegime regime, double k);
+
 /// sup |d theta / dv| over moduli in [0, k_max] (theta the pendulum angle, v = rate s + u0).
 double HeadingRateBound(PendulumRegime regime, double k_max);
 /// sup |d theta / dk| at fixed v over moduli in [0, k_max] and |v| <= v_max (k_max < 1).

@@ -27,9 +27,6 @@ double DriftRatio(PendulumRegime regime, double k) {
   return 1.0 - 2.0 * boost::math::ellint_d(k) / kk;
 }
 
-// Periods of v per heading period: 4 (oscillating) or 2 (rotating) quarter periods K.
-double QuarterPeriods(PendulumRegime regime) { return regime == PendulumRegime::kOscillating ? 4.0 : 2.0; }
-
 // h(cap) = sqrt(cap^2 - l^2) + l, l = |x1 - x0| (the bound's factor at the largest length), over
 // 4 sin(delta / 2); 0 when the straight residual does not exceed the margin.
 double RateScale(const CertifyTarget& target, double cap, double margin) {
@@ -125,7 +122,7 @@ double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, doubl
   const double scale = RateScale(target, cap, margin);
   if (scale == 0.0 || !(k < 1.0)) return kInf;  // K(1) is infinite: no bound at the separatrix
   // a = n K / P and P >= P* = 4 sin(delta / 2) / (deficit h): a_max = n K deficit h / (4 sin).
-  return QuarterPeriods(regime) * boost::math::ellint_1(k) * DriftDeficit(regime, k) * scale;
+  return PhasePeriod(regime, k) * DriftDeficit(regime, k) * scale;
 }
 
 double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
@@ -137,7 +134,7 @@ double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, d
   const double r_lo = DriftRatio(regime, k_lo), r_hi = DriftRatio(regime, k_hi);
   const double m = (r_lo >= 0.0 && r_hi <= 0.0) ? 0.0 : std::min(std::abs(r_lo), std::abs(r_hi));
   const double deficit = std::sqrt(std::max(0.0, (1.0 - m) * (1.0 + m)));
-  return QuarterPeriods(regime) * boost::math::ellint_1(k_hi) * deficit * scale;
+  return PhasePeriod(regime, k_hi) * deficit * scale;
 }
 
 CertifyBox CoverageWindow::Box() const {
@@ -199,7 +196,7 @@ CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k
       w.rate_hi = MaxSolutionRateOver(target, regime, w.k_lo, w.k_hi, cap, margin);
       // An oscillating path with a negative rate is the same path with a positive one.
       w.rate_lo = regime == PendulumRegime::kOscillating ? 0.0 : -w.rate_hi;
-      w.phase_hi = QuarterPeriods(regime) * boost::math::ellint_1(w.k_hi);
+      w.phase_hi = PhasePeriod(regime, w.k_hi);
       w.length_lo = target.radius;
       w.length_hi = cap;
       out.windows.push_back(w);
