@@ -933,13 +933,21 @@ Eigen::Vector4d CurveTangent(const CurveFrame& w, const Eigen::Matrix4d& jac, co
 }
 
 // Corrector: minimum-norm Newton steps on H from y (false: |H| still above kTwinCurveTol after
-// kTwinCorrections steps). The Jacobian is evaluated at every step: next to a tangency of the
-// chord with the circle (where fold pairs sit) it changes quickly along L.
-bool CorrectOntoCurve(const FreeLengthFunctor& f, const CurveFrame& w, Eigen::Vector4d y, CurvePoint* out) {
+// kTwinCorrections steps), the first with the Jacobian `previous` of the last curve point (one
+// residual), the others with the Jacobian where they start: next to a tangency of the chord with
+// the circle (where fold pairs sit) it changes quickly along L. `out` gets the Jacobian at the end.
+bool CorrectOntoCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eigen::Matrix4d& previous,
+                      Eigen::Vector4d y, CurvePoint* out) {
+  out->jac = previous;
   for (int i = 0;; ++i) {
-    if (!f(y.data(), out->r.data(), out->jac.data()) || !out->r.allFinite() || !out->jac.allFinite()) return false;
+    const bool fresh = i > 0;
+    if (!(fresh ? f(y.data(), out->r.data(), out->jac.data()) : f.Residual(y.data(), out->r.data()))) return false;
+    if (!out->r.allFinite() || !out->jac.allFinite()) return false;
     const Eigen::Vector3d h = w.transpose() * out->r;
-    if (h.norm() <= kTwinCurveTol) break;
+    if (h.norm() <= kTwinCurveTol) {
+      if (!fresh && (!f(y.data(), out->r.data(), out->jac.data()) || !out->jac.allFinite())) return false;
+      break;
+    }
     if (i == kTwinCorrections) return false;
     const Eigen::Matrix<double, 3, 4> a = w.transpose() * out->jac;
     y -= a.transpose() * (a * a.transpose()).ldlt().solve(h);
@@ -961,7 +969,7 @@ bool FollowCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eigen::V
     tangent = CurveTangent(w, p.jac, tangent);
     CurvePoint q;
     double h = kTwinStep;  // halved (at most twice) where the corrector fails: the curve bends
-    while (!CorrectOntoCurve(f, w, p.x + h * tangent, &q))
+    while (!CorrectOntoCurve(f, w, p.jac, p.x + h * tangent, &q))
       if ((h *= 0.5) < 0.2 * kTwinStep) return false;
     const double g = u.dot(q.r);
     if (g * g_prev <= 0) {
