@@ -1,0 +1,131 @@
+#include "elastica_closed_rolling.h"
+
+#include <Eigen/Geometry>
+#include <boost/math/policies/policy.hpp>
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <boost/math/special_functions/ellint_3.hpp>
+#include <cmath>
+
+#include "check.h"
+#include "plateball/so3.h"
+
+namespace plateball::internal {
+namespace {
+
+using FastPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+
+// (1 - x)(1 + x) = 1 - x^2 without cancellation near |x| = 1.
+double OneMinusSquare(double x) { return (1.0 - std::abs(x)) * (1.0 + std::abs(x)); }
+
+}  // namespace
+
+ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
+    : regime_(e.parameters().regime),
+      rate_(e.parameters().rate),
+      modulus_(e.parameters().modulus),
+      phase_(e.parameters().phase),
+      big_g_(e.G()),
+      cos_w_(std::sin(e.parameters().heading_w)),
+      sin_w_(-std::cos(e.parameters().heading_w)),
+      agm_(std::abs(e.parameters().modulus)) {
+  const bool oscillating = regime_ == PendulumRegime::kOscillating;
+  const double k = std::abs(modulus_);
+  // G = b^2 (oscillating) or (a k)^2 (rotating); 1 - G as a product, exact near G = 1.
+  one_minus_g_ = OneMinusSquare(oscillating ? rate_ : rate_ * k);
+  // V^2 = 1 + G^2 + 2E = (1 - G)^2 + 4 b^2 k^2 (oscillating), (1 - G)^2 + 4 a^2 (rotating).
+  const double curvature_scale = oscillating ? 2.0 * rate_ * k : 2.0 * rate_;
+  norm_v_ = std::hypot(one_minus_g_, curvature_scale);
+  straight_ = rate_ == 0.0 || (oscillating && k == 0.0);
+  unit_chart_ = std::abs(one_minus_g_) < kUnitChart;
+  straight_omega_ = Eigen::Vector3d::Zero();
+  const Eigen::Vector2d t = e.Tangent(0.0);
+  if (straight_) straight_omega_ = Eigen::Vector3d(-t.y(), t.x(), 0.0);
+  complete_k_ = boost::math::ellint_1(k, FastPolicy());
+  if (straight_ || unit_chart_) return;
+  const double kappa2 = oscillating ? k * k : 1.0;
+  n_ = -4.0 * big_g_ * kappa2 / (one_minus_g_ * one_minus_g_);
+  complete_pi_ = n_ == 0.0 ? complete_k_ : boost::math::ellint_3(k, n_, FastPolicy());
+  twist_factor_ = (1.0 + big_g_) / (one_minus_g_ * rate_);
+}
+
+ElasticaClosedRolling::Node ElasticaClosedRolling::At(double s, const char* field) const {
+  RequireFinite(field, s);
+  const double w = rate_ * s + phase_;
+  if (!std::isfinite(w)) ThrowInvalid(field, s, "rate * s + phase must be finite");
+  Node j;
+  j.m = std::round(w / (2.0 * complete_k_));
+  const double r = w - 2.0 * complete_k_ * j.m;  // |r| <= K: cn(r) >= 0
+  JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);
+  j.phi = std::atan2(j.sn, j.cn);
+  if (std::fmod(j.m, 2.0) != 0.0) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r)
+    j.sn = -j.sn;
+    j.cn = -j.cn;
+  }
+  return j;
+}
+
+// v = (sin theta, G - cos theta, theta') in the pendulum frame (W along its second axis).
+Eigen::Vector3d ElasticaClosedRolling::PendulumCostate(const Node& j) const {
+  if (regime_ == PendulumRegime::kOscillating) {  // sin(theta/2) = k sn, cos(theta/2) = dn
+    const double h = modulus_ * j.sn;
+    return {2.0 * h * j.dn, 2.0 * h * h - one_minus_g_, 2.0 * modulus_ * rate_ * j.cn};
+  }
+  // theta / 2 = am: sin(theta/2) = sn, cos(theta/2) = cn.
+  return {2.0 * j.sn * j.cn, 2.0 * j.sn * j.sn - one_minus_g_, 2.0 * rate_ * j.dn};
+}
+
+Eigen::Vector3d ElasticaClosedRolling::Costate(double s) const {
+  const Eigen::Vector3d v = PendulumCostate(At(s, "s"));
+  return {cos_w_ * v.x() - sin_w_ * v.y(), sin_w_ * v.x() + cos_w_ * v.y(), v.z()};
+}
+
+Eigen::Matrix3d ElasticaClosedRolling::FrameAt(const Node& j) const {
+  const Eigen::Vector3d v = PendulumCostate(j);
+  const double norm = v.norm();
+  if (!(norm > 0.0))
+    ThrowInvalid("rate", rate_, "the costate vanishes (straight line with G = 1): no costate frame");
+  const Eigen::Vector3d u = v / norm;
+  Eigen::Vector2d f;  // f1, horizontal
+  if (unit_chart_) {
+    // v_h = 2 sin(theta/2) (cos(theta/2), sin(theta/2)): f1 follows theta/2 through v_h = 0.
+    f = regime_ == PendulumRegime::kOscillating ? Eigen::Vector2d(-modulus_ * j.sn, j.dn)
+                                                : Eigen::Vector2d(-j.sn, j.cn);
+  } else {
+    f = Eigen::Vector2d(-v.y(), v.x());
+  }
+  f.normalize();
+  const Eigen::Vector3d f1(cos_w_ * f.x() - sin_w_ * f.y(), sin_w_ * f.x() + cos_w_ * f.y(), 0.0);
+  const Eigen::Vector3d up(cos_w_ * u.x() - sin_w_ * u.y(), sin_w_ * u.x() + cos_w_ * u.y(), u.z());
+  Eigen::Matrix3d frame;
+  frame << f1, up.cross(f1), up;
+  return frame;
+}
+
+Eigen::Matrix3d ElasticaClosedRolling::Frame(double s) const { return FrameAt(At(s, "s")); }
+
+double ElasticaClosedRolling::TwistBetween(const Node& a, const Node& b, double ds) const {
+  if (norm_v_ == 0.0) ThrowInvalid("rate", rate_, "the costate vanishes (straight line with G = 1): no twist");
+  // (1 - G^2) J: zero on the G = 1 chart; (1 + G) / (1 - G) ds when n = 0 (Pi(0; am w) = w).
+  double weighted_j = 0.0;
+  if (!unit_chart_) {
+    if (n_ == 0.0 || straight_) {
+      weighted_j = (1.0 + big_g_) / one_minus_g_ * ds;
+    } else {
+      const double k = std::abs(modulus_);
+      const double pi_a = a.phi == 0.0 ? 0.0 : boost::math::ellint_3(k, n_, a.phi, FastPolicy());
+      const double pi_b = b.phi == 0.0 ? 0.0 : boost::math::ellint_3(k, n_, b.phi, FastPolicy());
+      weighted_j = twist_factor_ * (2.0 * (b.m - a.m) * complete_pi_ + (pi_b - pi_a));
+    }
+  }
+  return -0.5 * norm_v_ * (ds + weighted_j);
+}
+
+double ElasticaClosedRolling::Twist(double s) const { return TwistBetween(At(0.0, "s"), At(s, "s"), s); }
+
+Eigen::Matrix3d ElasticaClosedRolling::Rolling(double s0, double s1) const {
+  const Node a = At(s0, "s0"), b = At(s1, "s1");
+  if (straight_) return ExpSO3((s1 - s0) * straight_omega_);
+  return FrameAt(b) * RotationZ(TwistBetween(a, b, s1 - s0)) * FrameAt(a).transpose();
+}
+
+}  // namespace plateball::internal
