@@ -14,6 +14,10 @@ namespace {
 
 using FastPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
 
+// Below this |r| the Jacobi functions are r, 1, 1 to double precision; JacobiSnCnDn's descending
+// recursion divides by sin(r) and overflows for |r| < ~1e-154.
+constexpr double kTinyArgument = 1e-20;
+
 // (1 - x)(1 + x) = 1 - x^2 without cancellation near |x| = 1.
 double OneMinusSquare(double x) { return (1.0 - std::abs(x)) * (1.0 + std::abs(x)); }
 
@@ -55,7 +59,11 @@ ElasticaClosedRolling::Node ElasticaClosedRolling::At(double s, const char* fiel
   Node j;
   j.m = std::round(w / (2.0 * complete_k_));
   const double r = w - 2.0 * complete_k_ * j.m;  // |r| <= K: cn(r) >= 0
-  JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);
+  if (std::abs(r) < kTinyArgument) {
+    j.sn = r;  // sn = r + O(r^3), cn, dn = 1 - O(r^2): exact in double
+  } else {
+    JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);
+  }
   j.phi = std::atan2(j.sn, j.cn);
   if (std::fmod(j.m, 2.0) != 0.0) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r)
     j.sn = -j.sn;

@@ -126,6 +126,17 @@ TEST(ElasticaClosedRollingTest, MatchesDopri5NearAndAtUnitG) {
       }
     }
   }
+  // One ulp from G = 1 (n ~ -1e31, the general chart): the frame turns by pi across |w| ~ 1e-16
+  // around the zeros of theta; s0 at one (v_h = (0, G - 1)), inside that layer and outside.
+  for (double b : {std::nextafter(1.0, 2.0), std::nextafter(1.0, 0.0)}) {
+    const Elastica e(Params(PendulumRegime::kOscillating, b, 0.6, 0.0, 0.3));
+    const ElasticaClosedRolling closed(e);
+    ASSERT_FALSE(closed.UnitChart());
+    for (double s0 : {0.0, 1e-16, -3e-16, 1e-6}) {
+      const double s1 = s0 + 1.3 * e.Period();
+      EXPECT_LT(MaxAbs(closed.Rolling(s0, s1), DopriRolling(e, s0, s1)), kTol) << b << " s0 " << s0;
+    }
+  }
   // Exactly G = 1 uses the chart theta / 2; these parameters give 1 - G == 0 in floating point.
   for (const ElasticaParameters& p : {Params(PendulumRegime::kOscillating, 1.0, 0.7, 0.2, 0.0),
                                       Params(PendulumRegime::kRotating, 2.0, 0.5, -0.4, 1.0),
@@ -297,6 +308,13 @@ TEST(ElasticaClosedRollingTest, BadInputNamesTheField) {
   EXPECT_THROW(line.Frame(0.5), std::invalid_argument);
   EXPECT_THROW(line.Twist(0.5), std::invalid_argument);
   EXPECT_TRUE(IsRotation(line.Rolling(0.0, 0.5), 1e-15));
+  // Arguments below ~1e-154 (where JacobiSnCnDn's recursion overflows): continuous, no NaN.
+  for (const ElasticaParameters& p : {Params(PendulumRegime::kOscillating, 0.9, 0.5, 0.0, 0.0),
+                                      Params(PendulumRegime::kRotating, 2.0, 0.5, 0.0, 0.0)}) {
+    const ElasticaClosedRolling c(Elastica{p});
+    EXPECT_LT(MaxAbs(c.Rolling(1e-300, 2.0), c.Rolling(0.0, 2.0)), 1e-15);
+    EXPECT_LT(MaxAbs(c.Frame(-1e-300), c.Frame(0.0)), 1e-15);
+  }
   // Large but finite arguments: a rotation, never NaN.
   EXPECT_TRUE(IsRotation(closed.Rolling(-1e12, 1e12), 1e-12));
 }
