@@ -63,13 +63,7 @@ Eigen::Matrix3d DopriRolling(const Elastica& e, double s0, double s1) {
 double MaxAbs(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) { return (a - b).cwiseAbs().maxCoeff(); }
 
 ElasticaParameters Params(PendulumRegime regime, double rate, double k, double phase, double heading_w) {
-  ElasticaParameters p;
-  p.regime = regime;
-  p.rate = rate;
-  p.modulus = k;
-  p.phase = phase;
-  p.heading_w = heading_w;
-  return p;
+  return {regime, rate, k, phase, heading_w};
 }
 
 // Random shapes of both regimes, k up to 0.999, rates of both signs.
