@@ -1,10 +1,11 @@
 // The rolling along an elastica (issue 15): the closed form of elastica_closed_rolling.h (costate
 // frame and twist, Legendre's Pi) against the sixth-order Magnus tables of elastica_rolling.h,
 // at k = 0.8, rate 0.9 (oscillating G = 0.81, rotating G = 0.5184), lengths L = 6 and L = 20.
-//  - BM_ClosedRollingBuildAndRoll: construct ElasticaClosedRolling (K, the complete Pi) and
-//    evaluate Rolling(0, L): the cost of one rolling of a new elastica.
+//  - BM_ClosedRollingBuildAndRoll: construct ElasticaClosedRolling (K, the complete Pi, the frame
+//    and Pi at s = 0) and evaluate Rolling(L): the cost of one rolling of a new elastica.
 //  - BM_ClosedRollingRoll: Rolling(0.3, L) on a constructed object (two incomplete Pi, two
-//    Jacobi evaluations).
+//    Jacobi evaluations); BM_ClosedRollingRollFromZero: Rolling(L) = Q(0, L), the frame and Pi at
+//    s = 0 kept from the construction (one incomplete Pi, one Jacobi evaluation).
 //  - BM_TableSearchBuildAndRoll: ElasticaRollingTable at the search's setting (12 steps per
 //    period, max_step 0.5) + Rolling(L); BM_TableFineBuildAndRoll: the polish's setting (160,
 //    0.02). Both count the table's construction, as the search builds one per candidate.
@@ -71,7 +72,7 @@ void BM_ClosedRollingBuildAndRoll(benchmark::State& state) {
   Eigen::Matrix3d q;
   for (auto _ : state) {
     const internal::ElasticaClosedRolling closed(e);
-    q = closed.Rolling(0.0, length);
+    q = closed.Rolling(length);
     benchmark::DoNotOptimize(q.data());
   }
   ReportError(state, e, length, q);
@@ -84,6 +85,18 @@ void BM_ClosedRollingRoll(benchmark::State& state) {
   Eigen::Matrix3d q;
   for (auto _ : state) {
     q = closed.Rolling(0.3, length);
+    benchmark::DoNotOptimize(q.data());
+  }
+  state.counters["periods"] = length / e.Period();
+}
+
+void BM_ClosedRollingRollFromZero(benchmark::State& state) {
+  const Elastica e = Shape(static_cast<int>(state.range(0)));
+  const double length = static_cast<double>(state.range(1));
+  const internal::ElasticaClosedRolling closed(e);
+  Eigen::Matrix3d q;
+  for (auto _ : state) {
+    q = closed.Rolling(length);
     benchmark::DoNotOptimize(q.data());
   }
   state.counters["periods"] = length / e.Period();
@@ -108,6 +121,7 @@ void BM_TableFineBuildAndRoll(benchmark::State& state) { TableBuildAndRoll(state
 void Args(benchmark::internal::Benchmark* b) { b->ArgsProduct({{0, 1}, {6, 20}}); }
 BENCHMARK(BM_ClosedRollingBuildAndRoll)->Apply(Args);
 BENCHMARK(BM_ClosedRollingRoll)->Apply(Args);
+BENCHMARK(BM_ClosedRollingRollFromZero)->Apply(Args);
 BENCHMARK(BM_TableSearchBuildAndRoll)->Apply(Args);
 BENCHMARK(BM_TableFineBuildAndRoll)->Apply(Args);
 

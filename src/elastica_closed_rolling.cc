@@ -32,6 +32,8 @@ ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
       cos_w_(std::sin(e.parameters().heading_w)),
       sin_w_(-std::cos(e.parameters().heading_w)),
       agm_(std::abs(e.parameters().modulus)) {
+  if (!(std::abs(rate_) <= kMaxRate))
+    ThrowInvalid("rate", rate_, "|rate| must be <= " + FormatNumber(kMaxRate) + " for the closed-form rolling (G, V^2 finite)");
   const bool oscillating = regime_ == PendulumRegime::kOscillating;
   const double k = std::abs(modulus_);
   // G = b^2 (oscillating) or (a k)^2 (rotating); 1 - G as a product, exact near G = 1.
@@ -45,14 +47,21 @@ ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
   const Eigen::Vector2d t = e.Tangent(0.0);
   if (straight_) straight_omega_ = Eigen::Vector3d(-t.y(), t.x(), 0.0);
   complete_k_ = boost::math::ellint_1(k, FastPolicy());
-  if (straight_ || unit_chart_) return;
-  const double kappa2 = oscillating ? k * k : 1.0;
-  n_ = -4.0 * big_g_ * kappa2 / (one_minus_g_ * one_minus_g_);
-  complete_pi_ = n_ == 0.0 ? complete_k_ : boost::math::ellint_3(k, n_, FastPolicy());
-  twist_factor_ = (1.0 + big_g_) / (one_minus_g_ * rate_);
+  if (!straight_ && !unit_chart_) {
+    const double kappa2 = oscillating ? k * k : 1.0;
+    n_ = -4.0 * big_g_ * kappa2 / (one_minus_g_ * one_minus_g_);
+    complete_pi_ = n_ == 0.0 ? complete_k_ : boost::math::ellint_3(k, n_, FastPolicy());
+    twist_factor_ = (1.0 + big_g_) / (one_minus_g_ * rate_);
+  }
+  CacheOrigin();
 }
 
-ElasticaClosedRolling::Node ElasticaClosedRolling::At(double s, const char* field) const {
+void ElasticaClosedRolling::CacheOrigin() {
+  origin_ = At(0.0, "s0", true);
+  if (!straight_) origin_frame_t_ = FrameAt(origin_).transpose();
+}
+
+ElasticaClosedRolling::Node ElasticaClosedRolling::At(double s, const char* field, bool with_pi) const {
   RequireFinite(field, s);
   const double w = rate_ * s + phase_;
   if (!std::isfinite(w)) ThrowInvalid(field, s, "rate * s + phase must be finite");
@@ -64,7 +73,9 @@ ElasticaClosedRolling::Node ElasticaClosedRolling::At(double s, const char* fiel
   } else {
     JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);
   }
-  j.phi = std::atan2(j.sn, j.cn);
+  const double phi = std::atan2(j.sn, j.cn);  // am(r) in [-pi/2, pi/2]
+  // Pi(n; am(r), k), needed by the twist when n != 0.
+  if (with_pi && n_ != 0.0 && phi != 0.0) j.pi = boost::math::ellint_3(std::abs(modulus_), n_, phi, FastPolicy());
   if (std::fmod(j.m, 2.0) != 0.0) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r)
     j.sn = -j.sn;
     j.cn = -j.cn;
@@ -83,13 +94,13 @@ Eigen::Vector3d ElasticaClosedRolling::PendulumCostate(const Node& j) const {
 }
 
 Eigen::Vector3d ElasticaClosedRolling::Costate(double s) const {
-  const Eigen::Vector3d v = PendulumCostate(At(s, "s"));
+  const Eigen::Vector3d v = PendulumCostate(At(s, "s", false));
   return {cos_w_ * v.x() - sin_w_ * v.y(), sin_w_ * v.x() + cos_w_ * v.y(), v.z()};
 }
 
 Eigen::Matrix3d ElasticaClosedRolling::FrameAt(const Node& j) const {
   const Eigen::Vector3d v = PendulumCostate(j);
-  const double norm = v.norm();
+  const double norm = v.stableNorm();  // no overflow for |rate| up to kMaxRate
   if (!(norm > 0.0))
     ThrowInvalid("rate", rate_, "the costate vanishes (straight line with G = 1): no costate frame");
   const Eigen::Vector3d u = v / norm;
@@ -101,7 +112,7 @@ Eigen::Matrix3d ElasticaClosedRolling::FrameAt(const Node& j) const {
   } else {
     f = Eigen::Vector2d(-v.y(), v.x());
   }
-  f.normalize();
+  f.stableNormalize();
   const Eigen::Vector3d f1(cos_w_ * f.x() - sin_w_ * f.y(), sin_w_ * f.x() + cos_w_ * f.y(), 0.0);
   const Eigen::Vector3d up(cos_w_ * u.x() - sin_w_ * u.y(), sin_w_ * u.x() + cos_w_ * u.y(), u.z());
   Eigen::Matrix3d frame;
@@ -109,7 +120,7 @@ Eigen::Matrix3d ElasticaClosedRolling::FrameAt(const Node& j) const {
   return frame;
 }
 
-Eigen::Matrix3d ElasticaClosedRolling::Frame(double s) const { return FrameAt(At(s, "s")); }
+Eigen::Matrix3d ElasticaClosedRolling::Frame(double s) const { return FrameAt(At(s, "s", false)); }
 
 double ElasticaClosedRolling::TwistBetween(const Node& a, const Node& b, double ds) const {
   if (norm_v_ == 0.0) ThrowInvalid("rate", rate_, "the costate vanishes (straight line with G = 1): no twist");
@@ -119,21 +130,24 @@ double ElasticaClosedRolling::TwistBetween(const Node& a, const Node& b, double 
     if (n_ == 0.0 || straight_) {
       weighted_j = (1.0 + big_g_) / one_minus_g_ * ds;
     } else {
-      const double k = std::abs(modulus_);
-      const double pi_a = a.phi == 0.0 ? 0.0 : boost::math::ellint_3(k, n_, a.phi, FastPolicy());
-      const double pi_b = b.phi == 0.0 ? 0.0 : boost::math::ellint_3(k, n_, b.phi, FastPolicy());
-      weighted_j = twist_factor_ * (2.0 * (b.m - a.m) * complete_pi_ + (pi_b - pi_a));
+      weighted_j = twist_factor_ * (2.0 * (b.m - a.m) * complete_pi_ + (b.pi - a.pi));
     }
   }
   return -0.5 * norm_v_ * (ds + weighted_j);
 }
 
-double ElasticaClosedRolling::Twist(double s) const { return TwistBetween(At(0.0, "s"), At(s, "s"), s); }
+double ElasticaClosedRolling::Twist(double s) const { return TwistBetween(origin_, At(s, "s", true), s); }
 
 Eigen::Matrix3d ElasticaClosedRolling::Rolling(double s0, double s1) const {
-  const Node a = At(s0, "s0"), b = At(s1, "s1");
+  const Node a = At(s0, "s0", true), b = At(s1, "s1", true);
   if (straight_) return ExpSO3((s1 - s0) * straight_omega_);
   return FrameAt(b) * RotationZ(TwistBetween(a, b, s1 - s0)) * FrameAt(a).transpose();
+}
+
+Eigen::Matrix3d ElasticaClosedRolling::Rolling(double s) const {
+  const Node b = At(s, "s", true);
+  if (straight_) return ExpSO3(s * straight_omega_);
+  return FrameAt(b) * RotationZ(TwistBetween(origin_, b, s)) * origin_frame_t_;
 }
 
 }  // namespace plateball::internal

@@ -25,12 +25,17 @@ namespace plateball::internal {
 /// any s0, s1: O(1) work whatever the number of periods between them.
 class ElasticaClosedRolling {
  public:
-  /// Keeps the elastica's parameters (not a reference to it); any valid Elastica is accepted.
+  /// Keeps the elastica's parameters (not a reference to it). Throws std::invalid_argument naming
+  /// the rate when |rate| > kMaxRate (G and V^2 would overflow).
   explicit ElasticaClosedRolling(const Elastica& e);
+  static constexpr double kMaxRate = 1e150;
 
   /// Q(s0, s1) (a rotation; Q(s1, s0) = Q(s0, s1)^T). Throws std::invalid_argument naming s0 or
   /// s1 when it is not finite or when rate * s overflows.
   Eigen::Matrix3d Rolling(double s0, double s1) const;
+  /// Q(0, s) = Rolling(0, s) with the frame and Pi at s = 0 kept from the construction (half the
+  /// work): ElasticaRollingTable::Rolling(s) in closed form.
+  Eigen::Matrix3d Rolling(double s) const;
   /// The costate v(s) = (W - e3 x x'(s), g'(s)) in the plane's coordinates.
   Eigen::Vector3d Costate(double s) const;
   /// The costate frame F(s) = [f1 f2 u] (a rotation). On the chart G = 1 (|1 - G| < 1e-150,
@@ -55,9 +60,10 @@ class ElasticaClosedRolling {
   struct Node {
     double m = 0.0;                  // number of half periods 2K (an integer)
     double sn = 0.0, cn = 1.0, dn = 1.0;  // at w
-    double phi = 0.0;                // am(r) in [-pi/2, pi/2]
+    double pi = 0.0;                 // Pi(n; am(r), k), when asked for and n != 0
   };
-  Node At(double s, const char* field) const;
+  Node At(double s, const char* field, bool with_pi) const;
+  void CacheOrigin();
   Eigen::Vector3d PendulumCostate(const Node& j) const;
   Eigen::Matrix3d FrameAt(const Node& j) const;
   // psi(s1) - psi(s0) from the nodes (s1 - s0 passed exactly).
@@ -75,6 +81,8 @@ class ElasticaClosedRolling {
   bool straight_, unit_chart_;
   JacobiAgm agm_;
   Eigen::Vector3d straight_omega_;  // e3 x x' on a straight line
+  Node origin_;                     // at s = 0, with Pi
+  Eigen::Matrix3d origin_frame_t_ = Eigen::Matrix3d::Identity();  // F(0)^T (not for straight lines)
 };
 
 }  // namespace plateball::internal

@@ -181,8 +181,10 @@ TEST(ElasticaClosedRollingTest, MatchesFineMagnusTable) {
     const double length = 6.3 * e.Period();
     const internal::ElasticaRollingTable table(e, length, 400, 0.01);
     ASSERT_TRUE(table.Valid());
-    for (double s : {0.37 * e.Period(), 2.0 * e.Period(), length})
+    for (double s : {0.37 * e.Period(), 2.0 * e.Period(), length}) {
       EXPECT_LT(MaxAbs(closed.Rolling(0.0, s), table.Rolling(s)), 1e-9) << Describe(p) << " s " << s;
+      EXPECT_LT(MaxAbs(closed.Rolling(s), closed.Rolling(0.0, s)), 1e-15) << Describe(p) << " s " << s;
+    }
   }
 }
 
@@ -297,6 +299,17 @@ TEST(ElasticaClosedRollingTest, BadInputNamesTheField) {
   } catch (const std::invalid_argument& ex) {
     EXPECT_NE(std::string(ex.what()).find("s1"), std::string::npos) << ex.what();
   }
+  try {  // G = rate^2 would overflow
+    ElasticaClosedRolling(Elastica(Params(PendulumRegime::kOscillating, -1e200, 0.5, 0.0, 0.0)));
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& ex) {
+    EXPECT_NE(std::string(ex.what()).find("rate: value -1e+200"), std::string::npos) << ex.what();
+  }
+  // Extreme but accepted rates: rotations, never NaN.
+  for (double rate : {1e-300, 1e150, -1e150})
+    for (auto regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating})
+      EXPECT_TRUE(IsRotation(ElasticaClosedRolling(Elastica(Params(regime, rate, 0.9, 0.1, 0.0))).Rolling(0.0, 3e-150), 1e-12))
+          << rate;
   // The straight line with G = 1 has no costate frame (v = 0), but a rolling.
   const ElasticaClosedRolling line(Elastica(Params(PendulumRegime::kOscillating, 1.0, 0.0, 0.0, 0.0)));
   EXPECT_THROW(line.Frame(0.5), std::invalid_argument);
