@@ -78,29 +78,20 @@ void BM_ClosedRollingBuildAndRoll(benchmark::State& state) {
   ReportError(state, e, length, q);
 }
 
-void BM_ClosedRollingRoll(benchmark::State& state) {
+void TimeClosedRolling(benchmark::State& state, bool from_zero) {
   const Elastica e = Shape(static_cast<int>(state.range(0)));
   const double length = static_cast<double>(state.range(1));
   const internal::ElasticaClosedRolling closed(e);
   Eigen::Matrix3d q;
   for (auto _ : state) {
-    q = closed.Rolling(0.3, length);
+    q = from_zero ? closed.Rolling(length) : closed.Rolling(0.3, length);
     benchmark::DoNotOptimize(q.data());
   }
   state.counters["periods"] = length / e.Period();
 }
 
-void BM_ClosedRollingRollFromZero(benchmark::State& state) {
-  const Elastica e = Shape(static_cast<int>(state.range(0)));
-  const double length = static_cast<double>(state.range(1));
-  const internal::ElasticaClosedRolling closed(e);
-  Eigen::Matrix3d q;
-  for (auto _ : state) {
-    q = closed.Rolling(length);
-    benchmark::DoNotOptimize(q.data());
-  }
-  state.counters["periods"] = length / e.Period();
-}
+void BM_ClosedRollingRoll(benchmark::State& state) { TimeClosedRolling(state, false); }
+void BM_ClosedRollingRollFromZero(benchmark::State& state) { TimeClosedRolling(state, true); }
 
 void TableBuildAndRoll(benchmark::State& state, int steps_per_period, double max_step) {
   const Elastica e = Shape(static_cast<int>(state.range(0)));
