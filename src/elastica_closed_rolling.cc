@@ -2,8 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <boost/math/policies/policy.hpp>
-#include <boost/math/special_functions/ellint_1.hpp>
-#include <boost/math/special_functions/ellint_3.hpp>
+#include <boost/math/special_functions/ellint_rf.hpp>
+#include <boost/math/special_functions/ellint_rj.hpp>
 #include <cmath>
 
 #include "check.h"
@@ -46,14 +46,42 @@ ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
   straight_omega_ = Eigen::Vector3d::Zero();
   const Eigen::Vector2d t = e.Tangent(0.0);
   if (straight_) straight_omega_ = Eigen::Vector3d(-t.y(), t.x(), 0.0);
-  complete_k_ = boost::math::ellint_1(k, FastPolicy());
+  // k'^2 = (1 - k)(1 + k), exact near k = 1 (Boost's ellint_1(k) forms 1 - k^2 and loses
+  // ~1e-10 of K at k = 1 - 1e-8); K = R_F(0, k'^2, 1).
+  const double kc2 = OneMinusSquare(k);
+  complete_k_ = boost::math::ellint_rf(0.0, kc2, 1.0, FastPolicy());
   if (!straight_ && !unit_chart_) {
     const double kappa2 = oscillating ? k * k : 1.0;
     n_ = -4.0 * big_g_ * kappa2 / (one_minus_g_ * one_minus_g_);
-    complete_pi_ = n_ == 0.0 ? complete_k_ : boost::math::ellint_3(k, n_, FastPolicy());
+    if (n_ != 0.0) SetUpThirdKind(k * k, kc2);
     twist_factor_ = (1.0 + big_g_) / (one_minus_g_ * rate_);
   }
   CacheOrigin();
+}
+
+// A&S 17.7.15 (Boost's form of it): for n < 0, N = (k^2 - n)/(1 - n) in (k^2, 1) and
+//   Pi(n; phi) = c1 Pi(N; phi) + c2 F(phi) + c3 atan(p2 sin(phi) cos(phi) / Delta(phi)),
+//   c1 = (-n/(1 - n)) (k'^2/(k^2 - n)), c2 = k^2/(k^2 - n), c3 = sqrt(-n/((k^2 - n)(1 - n))),
+//   p2 = sqrt(-n N): every term >= 0 on [0, pi/2], no cancellation however large -n is.
+void ElasticaClosedRolling::SetUpThirdKind(double k2, double kc2) {
+  third_.one_minus_n_big = kc2 / (1.0 - n_);
+  third_.n_big = 1.0 - third_.one_minus_n_big;
+  third_.c1 = (-n_ / (1.0 - n_)) * (kc2 / (k2 - n_));
+  third_.c2 = k2 / (k2 - n_);
+  third_.c3 = std::sqrt(-n_ / (k2 - n_)) * std::sqrt(1.0 / (1.0 - n_));
+  third_.p2 = std::sqrt(-n_) * std::sqrt(third_.n_big);
+  complete_pi_ = ThirdKind(1.0, 0.0, std::sqrt(kc2));
+}
+
+// Pi(n; phi, k) from sin(phi), cos(phi) >= 0 and Delta = sqrt(1 - k^2 sin^2 phi) (the Jacobi
+// sn, cn, dn of the reduced argument: no 1 - k^2 sin^2 formed), by Carlson's R_F and R_J:
+// F = sn R_F(cn^2, dn^2, 1), Pi(N) = F + (N/3) sn^3 R_J(cn^2, dn^2, 1, cn^2 + (1 - N) sn^2).
+double ElasticaClosedRolling::ThirdKind(double sn, double cn, double dn) const {
+  const double x = cn * cn, y = dn * dn;
+  const double f = sn * boost::math::ellint_rf(x, y, 1.0, FastPolicy());
+  const double p = x + third_.one_minus_n_big * sn * sn;
+  const double pi_big = f + (third_.n_big / 3.0) * sn * sn * sn * boost::math::ellint_rj(x, y, 1.0, p, FastPolicy());
+  return third_.c1 * pi_big + third_.c2 * f + third_.c3 * std::atan(third_.p2 * sn * cn / dn);
 }
 
 void ElasticaClosedRolling::CacheOrigin() {
@@ -73,9 +101,8 @@ ElasticaClosedRolling::Node ElasticaClosedRolling::At(double s, const char* fiel
   } else {
     JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);
   }
-  const double phi = std::atan2(j.sn, j.cn);  // am(r) in [-pi/2, pi/2]
-  // Pi(n; am(r), k), needed by the twist when n != 0.
-  if (with_pi && n_ != 0.0 && phi != 0.0) j.pi = boost::math::ellint_3(std::abs(modulus_), n_, phi, FastPolicy());
+  // Pi(n; am(r), k), am(r) in [-pi/2, pi/2], needed by the twist when n != 0.
+  if (with_pi && n_ != 0.0 && j.sn != 0.0) j.pi = ThirdKind(j.sn, j.cn, j.dn);
   if (std::fmod(j.m, 2.0) != 0.0) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r)
     j.sn = -j.sn;
     j.cn = -j.cn;

@@ -63,6 +63,8 @@ class ElasticaClosedRolling {
     double pi = 0.0;                 // Pi(n; am(r), k), when asked for and n != 0
   };
   Node At(double s, const char* field, bool with_pi) const;
+  void SetUpThirdKind(double k2, double kc2);
+  double ThirdKind(double sn, double cn, double dn) const;
   void CacheOrigin();
   Eigen::Vector3d PendulumCostate(const Node& j) const;
   Eigen::Matrix3d FrameAt(const Node& j) const;
@@ -77,6 +79,9 @@ class ElasticaClosedRolling {
   double n_ = 0.0;                 // characteristic of Pi
   double complete_k_ = 0.0;        // K(k)
   double complete_pi_ = 0.0;       // Pi(n; pi/2, k)
+  struct {
+    double n_big = 0.0, one_minus_n_big = 0.0, c1 = 0.0, c2 = 0.0, c3 = 0.0, p2 = 0.0;
+  } third_;                        // Pi(n) through Pi(N), 0 < N < 1 (ThirdKind)
   double twist_factor_ = 0.0;      // (1 + G) / ((1 - G) rate): (1 - G^2) J = twist_factor_ Delta Pi
   bool straight_, unit_chart_;
   JacobiAgm agm_;

@@ -278,6 +278,47 @@ TEST(ElasticaClosedRollingTest, StraightLinesAndCircles) {
   }
 }
 
+// k to within 1e-12 of the separatrix, both regimes, against dopri5, over w = rate s + u0 in
+// [-1.9 K, 1.9 K] (through both turning points w = +-K, where dn = k' is tiny and am is near
+// +-pi/2). The range stays inside |w| < 2K, where Elastica::Tangent does not reduce w by its
+// K(k) (Boost's ellint_1, which forms 1 - k^2: K is off by ~3e-10 at k = 1 - 1e-8).
+TEST(ElasticaClosedRollingTest, MatchesDopri5NearTheSeparatrix) {
+  for (double k : {1.0 - 1e-4, 1.0 - 1e-8, 1.0 - 1e-12}) {
+    for (const ElasticaParameters& p : {Params(PendulumRegime::kOscillating, 0.7, k, 0.4, 0.0),
+                                        Params(PendulumRegime::kRotating, -0.8, k, 1.0, 1.0)}) {
+      const Elastica e(p);
+      const ElasticaClosedRolling closed(e);
+      const double quarter = p.regime == PendulumRegime::kOscillating ? e.Period() / 4 : e.Period() / 2;  // K / |rate|
+      const double s0 = (-1.9 * quarter * std::abs(p.rate) - p.phase) / p.rate;
+      const double s1 = (1.9 * quarter * std::abs(p.rate) - p.phase) / p.rate;
+      EXPECT_LT(MaxAbs(closed.Rolling(s0, s1), DopriRolling(e, s0, s1)), kTol) << Describe(p);
+    }
+  }
+}
+
+// Parameters over many decades (rates 1e-12 to 1e12, k = 0 to one ulp below 1, G = 1 exactly,
+// phases and arc lengths up to 1e6): always a rotation, never NaN, never an exception.
+TEST(ElasticaClosedRollingTest, RotationOverManyDecades) {
+  std::mt19937 gen(1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto sign = [&] { return unit(gen) < 0.5 ? -1.0 : 1.0; };
+  for (int i = 0; i < 3000; ++i) {
+    ElasticaParameters p;
+    p.regime = unit(gen) < 0.5 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
+    p.modulus = i % 7 == 0 ? 0.0 : i % 3 == 0 ? std::max(0.0, 1.0 - std::pow(10.0, -16.0 * unit(gen))) : unit(gen);
+    p.modulus = std::min(p.modulus, std::nextafter(1.0, 0.0));
+    p.rate = sign() * std::pow(10.0, 24.0 * unit(gen) - 12.0);
+    if (i % 10 == 0) p.rate = p.regime == PendulumRegime::kRotating && p.modulus > 0.0 ? 1.0 / p.modulus : 1.0;
+    p.phase = sign() * std::pow(10.0, 8.0 * unit(gen) - 4.0);
+    p.heading_w = 7.0 * unit(gen);
+    const double s0 = sign() * std::pow(10.0, 12.0 * unit(gen) - 6.0);
+    const double s1 = sign() * std::pow(10.0, 12.0 * unit(gen) - 6.0);
+    const ElasticaClosedRolling closed{Elastica(p)};
+    ASSERT_TRUE(IsRotation(closed.Rolling(s0, s1), 1e-9)) << Describe(p) << " " << s0 << " " << s1;
+    ASSERT_TRUE(IsRotation(closed.Rolling(s1), 1e-9)) << Describe(p) << " " << s1;
+  }
+}
+
 TEST(ElasticaClosedRollingTest, BadInputNamesTheField) {
   const Elastica e(Params(PendulumRegime::kOscillating, 0.9, 0.5, 0.0, 0.0));
   const ElasticaClosedRolling closed(e);
