@@ -33,7 +33,8 @@ ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
       sin_w_(-std::cos(e.parameters().heading_w)),
       agm_(std::abs(e.parameters().modulus)) {
   if (!(std::abs(rate_) <= kMaxRate))
-    ThrowInvalid("rate", rate_, "|rate| must be <= " + FormatNumber(kMaxRate) + " for the closed-form rolling (G, V^2 finite)");
+    ThrowInvalid("rate", rate_,
+                 "|rate| must be <= " + FormatNumber(kMaxRate) + " for the closed-form rolling (G, V^2 finite)");
   const bool oscillating = regime_ == PendulumRegime::kOscillating;
   const double k = std::abs(modulus_);
   // G = b^2 (oscillating) or (a k)^2 (rotating); 1 - G as a product, exact near G = 1.
