@@ -397,8 +397,10 @@ struct FreeLengthFunctor {
 
   // Far from a root (|r| > kSecantResidual), the rate and modulus columns by a Broyden update of
   // the last Jacobian of the run (its phase and length columns already replaced by this point's).
+  // Not at an identity target: its comparison shooting (random starts, no shape scan) then misses
+  // Figure 7's shortest path with 512 starts.
   bool SecantColumns(const double* x, const double* r, double* jacobian) const {
-    if (!secant || !kept.valid || !(Eigen::Map<const Eigen::Vector4d>(r).norm() > kSecantResidual)) return false;
+    if (!secant || ctx->identity || !kept.valid || !(Eigen::Map<const Eigen::Vector4d>(r).norm() > kSecantResidual)) return false;
     const Eigen::Map<const Eigen::Matrix4d> old(kept.jacobian);
     const Eigen::Vector4d dx = Eigen::Map<const Eigen::Vector4d>(x) - Eigen::Map<const Eigen::Vector4d>(kept.x);
     const Eigen::Vector4d dr = Eigen::Map<const Eigen::Vector4d>(r) - Eigen::Map<const Eigen::Vector4d>(kept.r);
