@@ -1,8 +1,8 @@
 #include "plateball/elastica.h"
 
-#include <boost/math/special_functions/ellint_1.hpp>
-#include <boost/math/special_functions/ellint_d.hpp>
 #include <boost/math/policies/policy.hpp>
+#include <boost/math/special_functions/ellint_rd.hpp>
+#include <boost/math/special_functions/ellint_rf.hpp>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,6 +14,9 @@
 
 namespace plateball {
 namespace internal {
+namespace {
+using FastPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+}  // namespace
 
 // sn, cn, dn by the descending Landen / arithmetic-geometric mean scheme (Abramowitz and Stegun
 // 16.4; the iteration of Numerical Recipes' sncndn), 0 <= k < 1. About 6x faster than
@@ -35,6 +38,12 @@ JacobiAgm::JacobiAgm(double modulus) : k(modulus) {
 }
 
 void JacobiSnCnDn(double u, const JacobiAgm& agm, double* sn, double* cn, double* dn) {
+  if (std::abs(u) < kJacobiTinyArgument) {  // sn = u + O(u^3), cn, dn = 1 - O(u^2): exact in double
+    *sn = u;
+    *cn = 1.0;
+    *dn = 1.0;
+    return;
+  }
   if (agm.k == 0.0) {
     *sn = std::sin(u);
     *cn = std::cos(u);
@@ -65,15 +74,31 @@ void JacobiSnCnDn(double u, const JacobiAgm& agm, double* sn, double* cn, double
 
 void JacobiSnCnDn(double u, double k, double* sn, double* cn, double* dn) { JacobiSnCnDn(u, JacobiAgm(k), sn, cn, dn); }
 
+double CompleteEllipticK(double k) { return boost::math::ellint_rf(0.0, OneMinusSquare(k), 1.0, FastPolicy()); }
+
+double CompleteEllipticD(double k) { return boost::math::ellint_rd(0.0, OneMinusSquare(k), 1.0, FastPolicy()) / 3.0; }
+
+double EllipticFSinCos(double sin_phi, double cos_phi, double kc2) {
+  if (sin_phi == 0.0) return 0.0;
+  const double c2 = cos_phi * cos_phi;
+  return sin_phi * boost::math::ellint_rf(c2, c2 + kc2 * sin_phi * sin_phi, 1.0, FastPolicy());
+}
+
+double EllipticDSinCos(double sin_phi, double cos_phi, double kc2) {
+  if (sin_phi == 0.0) return 0.0;
+  const double c2 = cos_phi * cos_phi, s2 = sin_phi * sin_phi;
+  return sin_phi * s2 * boost::math::ellint_rd(c2, c2 + kc2 * s2, 1.0, FastPolicy()) / 3.0;
+}
+
 }  // namespace internal
 
 namespace {
-using FastPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
 
 // Incomplete F(phi, k) for any real phi: F(phi + m pi) = F(phi) + 2 m K.
 double FullEllipticF(double k, double phi, double complete_k) {
   const double m = std::round(phi / M_PI);
-  return 2.0 * m * complete_k + boost::math::ellint_1(k, phi - m * M_PI, FastPolicy());
+  const double r = phi - m * M_PI;  // |r| <= pi/2
+  return 2.0 * m * complete_k + internal::EllipticFSinCos(std::sin(r), std::cos(r), internal::OneMinusSquare(k));
 }
 
 // 8-point Gauss-Legendre nodes/weights on [-1, 1] (for short arcs where the closed form loses
@@ -106,8 +131,8 @@ Elastica::Elastica(const ElasticaParameters& parameters) : p_(parameters) {
     internal::ThrowInvalid("modulus", p_.modulus, "|modulus| must be < 1 (the separatrix k = 1 has an infinite period)");
   k_ = std::abs(p_.modulus);
   agm_ = std::make_shared<const internal::JacobiAgm>(k_);
-  kk_ = boost::math::ellint_1(k_, FastPolicy());
-  dk_ = boost::math::ellint_d(k_, FastPolicy());
+  kk_ = internal::CompleteEllipticK(k_);
+  dk_ = internal::CompleteEllipticD(k_);
   const double r = p_.rate;
   if (p_.regime == PendulumRegime::kOscillating) {
     g_ = r * r;
@@ -159,7 +184,7 @@ Elastica Elastica::FromInitialState(double G, double heading_w, double heading0,
     if (k == 0.0) {
       p.phase = 0.0;
     } else {
-      const double kk = boost::math::ellint_1(k, FastPolicy());
+      const double kk = internal::CompleteEllipticK(k);
       const double phi0 = std::atan2(std::sin(0.5 * theta0) / k, curvature0 / (2.0 * k * b));
       p.phase = FullEllipticF(k, phi0, kk);
     }
@@ -168,7 +193,7 @@ Elastica Elastica::FromInitialState(double G, double heading_w, double heading0,
     const double k = std::sqrt(2.0 * G / (energy + G));
     p.modulus = k;
     p.rate = (curvature0 > 0 ? 1.0 : -1.0) * std::sqrt(0.5 * (energy + G));
-    p.phase = FullEllipticF(k, 0.5 * theta0, boost::math::ellint_1(k, FastPolicy()));
+    p.phase = FullEllipticF(k, 0.5 * theta0, internal::CompleteEllipticK(k));
   }
   return Elastica(p);
 }
@@ -186,7 +211,8 @@ double Elastica::IntegralSn2(double u) const {
   const double r = u - 2.0 * kk_ * m;  // |r| <= K: cn(r) >= 0
   double sn = 0, cn = 0, dn = 0;
   internal::JacobiSnCnDn(r, *agm_, &sn, &cn, &dn);
-  return 2.0 * m * dk_ + boost::math::ellint_d(k_, std::atan2(sn, cn), FastPolicy());
+  // D(am r) with sin(am r) = sn, cos(am r) = cn (no atan2, no 1 - k^2 sin^2 formed).
+  return 2.0 * m * dk_ + internal::EllipticDSinCos(sn, cn, internal::OneMinusSquare(k_));
 }
 
 double Elastica::AmplitudeOf(double u) const {

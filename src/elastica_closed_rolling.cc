@@ -2,7 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <boost/math/policies/policy.hpp>
-#include <boost/math/special_functions/ellint_rf.hpp>
+#include <boost/math/special_functions/ellint_rf.hpp>  // Pi by Carlson (ThirdKind)
 #include <boost/math/special_functions/ellint_rj.hpp>
 #include <cmath>
 
@@ -13,13 +13,6 @@ namespace plateball::internal {
 namespace {
 
 using FastPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
-
-// Below this |r| the Jacobi functions are r, 1, 1 to double precision; JacobiSnCnDn's descending
-// recursion divides by sin(r) and overflows for |r| < ~1e-154.
-constexpr double kTinyArgument = 1e-20;
-
-// (1 - x)(1 + x) = 1 - x^2 without cancellation near |x| = 1.
-double OneMinusSquare(double x) { return (1.0 - std::abs(x)) * (1.0 + std::abs(x)); }
 
 }  // namespace
 
@@ -47,10 +40,10 @@ ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
   straight_omega_ = Eigen::Vector3d::Zero();
   const Eigen::Vector2d t = e.Tangent(0.0);
   if (straight_) straight_omega_ = Eigen::Vector3d(-t.y(), t.x(), 0.0);
-  // k'^2 = (1 - k)(1 + k), exact near k = 1 (Boost's ellint_1(k) forms 1 - k^2 and loses
-  // ~1e-10 of K at k = 1 - 1e-8); K = R_F(0, k'^2, 1).
+  // k'^2 = (1 - k)(1 + k) and K = R_F(0, k'^2, 1), accurate near the separatrix
+  // (jacobi_elliptic.h), the same K as the Elastica's period.
   const double kc2 = OneMinusSquare(k);
-  complete_k_ = boost::math::ellint_rf(0.0, kc2, 1.0, FastPolicy());
+  complete_k_ = CompleteEllipticK(k);
   if (!straight_ && !unit_chart_) {
     const double kappa2 = oscillating ? k * k : 1.0;
     n_ = -4.0 * big_g_ * kappa2 / (one_minus_g_ * one_minus_g_);
@@ -97,11 +90,7 @@ ElasticaClosedRolling::Node ElasticaClosedRolling::At(double s, const char* fiel
   Node j;
   j.m = std::round(w / (2.0 * complete_k_));
   const double r = w - 2.0 * complete_k_ * j.m;  // |r| <= K: cn(r) >= 0
-  if (std::abs(r) < kTinyArgument) {
-    j.sn = r;  // sn = r + O(r^3), cn, dn = 1 - O(r^2): exact in double
-  } else {
-    JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);
-  }
+  JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);  // finite for every r (sn = r, cn = dn = 1 when tiny)
   // Pi(n; am(r), k), am(r) in [-pi/2, pi/2], needed by the twist when n != 0.
   if (with_pi && n_ != 0.0 && j.sn != 0.0) j.pi = ThirdKind(j.sn, j.cn, j.dn);
   if (std::fmod(j.m, 2.0) != 0.0) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r)

@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "check.h"
-#include "elastica_rolling.h"
+#include "elastica_closed_rolling.h"
 #include "isoparallel_certify_jacobian.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
@@ -305,18 +305,21 @@ Elastica CertifyElastica(PendulumRegime regime, const CertifyPoint& x) {
 }
 
 bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
-                             double max_step, CertifyResidual* out) {
+                             double /*max_step: the rolling is in closed form*/, CertifyResidual* out) {
   const double length = x[kCertifyLength];
   if (!(std::abs(x[kCertifyModulus]) < 1.0) || !(length > 0.0) || !std::isfinite(x[kCertifyRate]) ||
-      !std::isfinite(x[kCertifyPhase]) || !std::isfinite(length))
+      !std::isfinite(x[kCertifyPhase]) || !std::isfinite(length) ||
+      !(std::abs(x[kCertifyRate]) <= ElasticaClosedRolling::kMaxRate) ||
+      !std::isfinite(x[kCertifyRate] * length + x[kCertifyPhase]))
     return false;
   const Elastica e = CertifyElastica(regime, x);
-  const ElasticaRollingTable table(e, length, 32, max_step);
-  if (!table.Valid()) return false;
+  // The rolling in closed form (elastica_closed_rolling.h: ~1e-13, O(1) work at any length)
+  // instead of a Magnus table with steps <= max_step (~1e-10, O(length / max_step)).
+  const Eigen::Matrix3d rolling = ElasticaClosedRolling(e).Rolling(length);
   const Eigen::Vector2d chord = e.Position(length);
   out->chord_norm = chord.norm();
   out->chord_miss = out->chord_norm - target.radius;
-  out->rotation = RotationTrickResidual(target.target, ChordTurn(target.goal_angle, chord), table.Rolling(length)).norm();
+  out->rotation = RotationTrickResidual(target.target, ChordTurn(target.goal_angle, chord), rolling).norm();
   return std::isfinite(out->rotation) && std::isfinite(out->chord_norm);
 }
 

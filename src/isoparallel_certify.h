@@ -17,8 +17,8 @@
 //     zeta) k ((1 + K)/2 + (1 - D/K) |v|) / k'^2, D = (K - E)/k^2: D of a box takes the smaller;
 //   - the chord's direction moves by at most asin(D / |chord|), and the conjugation by B moves
 //     the rotation by at most twice that.
-// The box test is rigorous up to the floating-point error of the centre's residual (a Magnus
-// rolling table, ~1e-10), covered by a stated margin.
+// The box test is rigorous up to the floating-point error of the centre's residual (the rolling
+// in closed form, ~1e-13; a Magnus table of ~1e-10 before issue 15), covered by a stated margin.
 #pragma once
 
 #include <Eigen/Core>
@@ -84,8 +84,9 @@ struct CertifyResidual {
 /// Throws std::invalid_argument like Elastica for |k| >= 1 or non-finite values.
 Elastica CertifyElastica(PendulumRegime regime, const CertifyPoint& x);
 
-/// The free-length residual at one parameter point (closed-form chord, sixth-order Magnus
-/// rolling with steps no longer than max_step). False for an inadmissible point (k >= 1, L <= 0).
+/// The free-length residual at one parameter point (closed-form chord, closed-form rolling:
+/// ElasticaClosedRolling; max_step is no longer used here and kept for the callers). False for an
+/// inadmissible point (k >= 1, L <= 0, rate * L overflowing).
 bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
                              double max_step, CertifyResidual* out);
 

@@ -167,9 +167,12 @@ TEST(ElasticaClosedRollingTest, LongLengthsMatchMonodromyPowers) {
     Eigen::Matrix3d power = Eigen::Matrix3d::Identity();
     for (int i = 0; i < 50; ++i) power = monodromy * power;
     const Eigen::Matrix3d expected = rest * power;
-    EXPECT_LT(MaxAbs(closed.Rolling(s0, s0 + 50.37 * t), expected), 5e-12) << Describe(p);
+    // 1e-11: the closed form and the dopri monodromy each carry ~1e-13 per period (k = 0.999:
+    // closed 1.2e-13, dopri 3.7e-14 against a Magnus table with steps 0.002, a few ulps of a
+    // per-period twist of ~20 rad over a period of ~37); 50 periods give up to 6e-12.
+    EXPECT_LT(MaxAbs(closed.Rolling(s0, s0 + 50.37 * t), expected), 1e-11) << Describe(p);
     // Backwards: Q(s1, s0) = Q(s0, s1)^T.
-    EXPECT_LT(MaxAbs(closed.Rolling(s0 + 50.37 * t, s0), expected.transpose()), 5e-12) << Describe(p);
+    EXPECT_LT(MaxAbs(closed.Rolling(s0 + 50.37 * t, s0), expected.transpose()), 1e-11) << Describe(p);
   }
 }
 

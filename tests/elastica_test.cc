@@ -180,3 +180,130 @@ TEST(Elastica, FastJacobiFunctionsMatchBoost) {
     }
   }
 }
+
+// Issue 15: the elastica at tiny arguments and near the separatrix.
+
+TEST(Elastica, JacobiFunctionsAreFiniteAndRightAtTinyArguments) {
+  // The descending recursion divides by sin(c u) and used to overflow (NaN) below |u| ~ 1e-154.
+  // Reference: the Maclaurin series sn = u - (1 + k^2) u^3 / 6, cn = 1 - u^2 / 2,
+  // dn = 1 - k^2 u^2 / 2 (+ O(u^4)), on both sides of kJacobiTinyArgument.
+  for (double k : {0.0, 0.6, 1.0 - 1e-8}) {
+    for (double u : {5e-324, 1e-300, -1e-300, 1e-200, 1e-155, -1e-100, 1e-21, 1e-19, -1e-12, 1e-8}) {
+      double sn, cn, dn;
+      internal::JacobiSnCnDn(u, k, &sn, &cn, &dn);
+      EXPECT_NEAR(sn / u, 1.0 - (1.0 + k * k) * u * u / 6.0, 5e-16) << k << " " << u;
+      EXPECT_NEAR(cn, 1.0 - u * u / 2.0, 5e-16) << k << " " << u;
+      EXPECT_NEAR(dn, 1.0 - k * k * u * u / 2.0, 5e-16) << k << " " << u;
+    }
+  }
+}
+
+TEST(Elastica, TangentCurvaturePositionAreFiniteAndRightAtTinyArcLengths) {
+  // With phase 0 the Jacobi argument is rate * s itself: at |s| ~ 1e-300 Tangent and Curvature
+  // were NaN. Position(s) = s Tangent(0) + O(s^2 curvature).
+  for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
+    for (double k : {0.0, 0.6, 1.0 - 1e-8}) {
+      ElasticaParameters p;
+      p.regime = regime;
+      p.rate = regime == PendulumRegime::kOscillating ? 1.3 : -0.9;
+      p.modulus = k;
+      p.heading_w = 0.4;
+      const Elastica e(p);
+      const Eigen::Vector2d t0 = e.Tangent(0.0);
+      const double kappa0 = e.Curvature(0.0);
+      for (double s : {1e-300, -1e-300, 4e-310, -1e-160, 1e-30}) {
+        const std::string what = ToString(regime) + " k " + std::to_string(k) + " s " + std::to_string(std::log10(std::abs(s)));
+        EXPECT_LT((e.Tangent(s) - t0).norm(), 1e-15) << what;
+        EXPECT_NEAR(e.Curvature(s), kappa0, 1e-15) << what;
+        EXPECT_NEAR(e.Heading(s), e.Heading(0.0), 1e-15) << what;
+        // A subnormal s keeps ~14 significant digits of s times the quadrature weights.
+        EXPECT_LT((e.Position(s) / s - t0).norm(), std::abs(s) < 1e-300 ? 1e-12 : 1e-15) << what;
+      }
+    }
+  }
+}
+
+namespace {
+
+// K(k) and E(k) in long double (64-bit mantissa) by the arithmetic-geometric mean, independent of
+// Carlson's forms: K = pi / (2 AGM(1, k')), E = K (1 - sum_n 2^(n-1) c_n^2), c_0 = k,
+// c_(n+1) = (a_n - b_n) / 2 (Abramowitz and Stegun 17.6.3-4), with k'^2 = (1 - k)(1 + k) (exact
+// in long double for a double k near 1).
+struct LongDoubleKE {
+  long double kk, ee;
+};
+
+LongDoubleKE AgmKE(long double k, long double kc) {
+  long double a = 1.0L, b = kc, c = k, sum = 0.5L * k * k, weight = 0.5L;
+  for (int i = 0; i < 40 && c != 0.0L; ++i) {
+    c = 0.5L * (a - b);
+    const long double next = 0.5L * (a + b);
+    b = std::sqrt(a * b);
+    a = next;
+    weight *= 2.0L;
+    sum += weight * c * c;
+  }
+  const long double kk = 3.14159265358979323846264338327950288L / (2.0L * a);
+  return {kk, kk * (1.0L - sum)};
+}
+
+}  // namespace
+
+TEST(Elastica, PeriodAndDriftAreAccurateNearTheSeparatrix) {
+  // Boost's ellint_1(k) / ellint_d(k) form 1 - k^2 and put K off by ~3e-10 at k = 1 - 1e-8 (and
+  // by ~1e-5 relative at k = 1 - 1e-12); the Carlson forms with k'^2 = (1 - k)(1 + k) do not.
+  // Reference: the long double AGM above, itself checked by Legendre's relation
+  // E K' + E' K - K K' = pi / 2 (K', E' at the complementary modulus k').
+  const long double pi = 3.14159265358979323846264338327950288L;
+  for (double k : {1.0 - 1e-8, 1.0 - 1e-12, 0.999, 0.5}) {
+    const long double kd = k, kc2 = (1.0L - kd) * (1.0L + kd), kc = std::sqrt(kc2);
+    const LongDoubleKE ref = AgmKE(kd, kc), comp = AgmKE(kc, kd);
+    ASSERT_LT(std::abs(ref.ee * comp.kk + comp.ee * ref.kk - ref.kk * comp.kk - pi / 2), 1e-16L) << k;
+    const long double dd = (ref.kk - ref.ee) / (kd * kd);  // D = (K - E) / k^2
+    for (double rate : {0.7, -2.3}) {
+      ElasticaParameters p;
+      p.rate = rate;
+      p.modulus = k;
+      p.phase = 0.2;
+      p.heading_w = M_PI / 2;  // pendulum frame = plane: the drift is along x
+      p.regime = PendulumRegime::kOscillating;
+      const Elastica osc(p);
+      const long double b = std::abs(rate);
+      const double period_osc = static_cast<double>(4.0L * ref.kk / b);
+      const double drift_osc = static_cast<double>((8.0L * ref.ee - 4.0L * ref.kk) / b);  // Love, section 263
+      EXPECT_NEAR(osc.Period(), period_osc, 4e-15 * period_osc) << k << " " << rate;
+      EXPECT_NEAR(osc.DriftPerPeriod().x(), drift_osc, 4e-15 * period_osc) << k << " " << rate;
+      EXPECT_NEAR(osc.DriftPerPeriod().y(), 0.0, 1e-15 * period_osc);  // cos(pi/2) = 6e-17
+      p.regime = PendulumRegime::kRotating;
+      const Elastica rot(p);
+      const double period_rot = static_cast<double>(2.0L * ref.kk / b);
+      const double drift_rot = static_cast<double>((2.0L * ref.kk - 4.0L * dd) / b);
+      EXPECT_NEAR(rot.Period(), period_rot, 4e-15 * period_rot) << k << " " << rate;
+      EXPECT_NEAR(rot.DriftPerPeriod().x(), drift_rot, 4e-15 * period_rot) << k << " " << rate;
+      // The closed-form position over whole periods agrees with the drift (same K in the
+      // argument reduction modulo 4K and in D).
+      EXPECT_LT((osc.Position(3.0 * osc.Period()) - 3.0 * osc.DriftPerPeriod()).norm(), 1e-13 * period_osc) << k;
+      EXPECT_LT((rot.Position(3.0 * rot.Period()) - 3.0 * rot.DriftPerPeriod()).norm(), 1e-13 * period_rot) << k;
+    }
+  }
+}
+
+TEST(Elastica, IncompleteIntegralsAreAccurateNearTheSeparatrix) {
+  // F(phi, k) and D(phi, k) at k = 1 - 1e-12 against their complete values at phi = pi/2 and
+  // against F(phi, 1) = atanh(sin phi), D(phi, 1) = atanh(sin phi) - sin phi (k'^2 = 2e-12 moves
+  // them by O(k'^2 log) only far from pi/2), and the complete values against the long double AGM.
+  const double k = 1.0 - 1e-12;
+  const double kc2 = internal::OneMinusSquare(k);
+  const long double kd = k;
+  const LongDoubleKE ref = AgmKE(kd, std::sqrt((1.0L - kd) * (1.0L + kd)));
+  EXPECT_NEAR(internal::CompleteEllipticK(k), static_cast<double>(ref.kk), 4e-15 * static_cast<double>(ref.kk));
+  const double dd = static_cast<double>((ref.kk - ref.ee) / (kd * kd));
+  EXPECT_NEAR(internal::CompleteEllipticD(k), dd, 4e-15 * dd);
+  EXPECT_NEAR(internal::EllipticFSinCos(1.0, 0.0, kc2), static_cast<double>(ref.kk), 4e-15 * static_cast<double>(ref.kk));
+  EXPECT_NEAR(internal::EllipticDSinCos(1.0, 0.0, kc2), dd, 4e-15 * dd);
+  for (double phi : {0.3, 1.0, 1.4}) {
+    EXPECT_NEAR(internal::EllipticFSinCos(std::sin(phi), std::cos(phi), kc2), std::atanh(std::sin(phi)), 1e-10) << phi;
+    EXPECT_NEAR(internal::EllipticDSinCos(std::sin(phi), std::cos(phi), kc2), std::atanh(std::sin(phi)) - std::sin(phi), 1e-10)
+        << phi;
+  }
+}

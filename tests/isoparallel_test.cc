@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
 #include "isoparallel_twin.h"
 #include "support/test_support.h"
@@ -56,8 +57,11 @@ TEST(ElasticaRolling, MagnusTableMatchesDopriAndIsSixthOrder) {
     const double err_fine = RotationAngle(fine.Rolling(length), ref);
     EXPECT_GT(err_coarse / err_fine, 40.0) << "order 6 gives 64";
     const internal::ElasticaRollingTable polish(e, length, 160, 0.02);
-    // The solver's polish accuracy must be below its 1e-12 tolerance.
-    EXPECT_LT(RotationAngle(polish.Rolling(length), ref), 1e-12);
+    // The solver's polish accuracy must be below its 1e-12 tolerance: checked against the
+    // closed-form rolling (~3e-14 from a Magnus table with steps 0.002), since the adaptive
+    // reference's own round-off reaches 1.5e-12 at this length (issue 15, eighth round).
+    EXPECT_LT(RotationAngle(polish.Rolling(length), internal::ElasticaClosedRolling(e).Rolling(length)), 1e-12);
+    EXPECT_LT(RotationAngle(polish.Rolling(length), ref), 3e-12);
   }
 }
 
