@@ -926,12 +926,23 @@ struct CurvePoint {
 };
 using CurveFrame = Eigen::Matrix<double, 4, 3>;
 
-// The unit tangent of the curve at a point (the null vector of W^T J), oriented along `previous`.
-Eigen::Vector4d CurveTangent(const CurveFrame& w, const Eigen::Matrix4d& jac, const Eigen::Vector4d& previous) {
+// det [W^T J; t^T]: its sign orients a tangent t of the curve.
+double TangentOrientation(const CurveFrame& w, const Eigen::Matrix4d& jac, const Eigen::Vector4d& t) {
+  Eigen::Matrix4d m;
+  m.topRows<3>() = w.transpose() * jac;
+  m.row(3) = t.transpose();
+  return m.determinant();
+}
+
+// The unit tangent of the curve at a point (the null vector of W^T J), oriented so that
+// det [W^T J; t^T] has the sign `orientation`: the same orientation all along the branch, also
+// through a turning point in one of the unknowns, where the tangent turns by more than a right
+// angle within a step and its dot product with the previous tangent is no guide (T4's pair).
+Eigen::Vector4d CurveTangent(const CurveFrame& w, const Eigen::Matrix4d& jac, double orientation) {
   const Eigen::Matrix<double, 3, 4> a = w.transpose() * jac;
   const Eigen::JacobiSVD<Eigen::Matrix<double, 3, 4>> svd(a, Eigen::ComputeFullV);
   const Eigen::Vector4d t = svd.matrixV().col(3);
-  return t.dot(previous) < 0 ? -t : t;
+  return TangentOrientation(w, jac, t) * orientation < 0 ? -t : t;
 }
 
 // Corrector: minimum-norm Newton steps on H from y (false: |H| still above kTwinCurveTol after
@@ -964,11 +975,11 @@ bool CorrectOntoCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eig
 bool FollowCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eigen::Vector4d& u, const CurvePoint& start,
                  const Eigen::Vector4d& direction, Eigen::Vector4d* twin_start) {
   CurvePoint p = start;
-  Eigen::Vector4d tangent = direction;
+  const double orientation = TangentOrientation(w, start.jac, direction);
   // Next to x*, g grows like s t along +v (J v = s u): a first point of the other sign has passed a root.
   double g_prev = u.dot(start.jac * direction);
   for (int step = 0; step < kTwinSteps; ++step) {
-    tangent = CurveTangent(w, p.jac, tangent);
+    const Eigen::Vector4d tangent = CurveTangent(w, p.jac, orientation);
     CurvePoint q;
     double h = kTwinStep;  // halved (at most twice) where the corrector fails: the curve bends
     while (!CorrectOntoCurve(f, w, p.jac, p.x + h * tangent, &q))
