@@ -18,8 +18,8 @@
 #include "plateball/isoparallel.h"
 #include "plateball/isoparallel_families.h"
 #include "plateball/problem_io.h"
-#include "plateball/rolling.h"
 #include "plateball/task_adapters.h"
+#include "support/dopri_rolling.h"
 #include "support/test_support.h"
 
 using namespace plateball;
@@ -84,12 +84,7 @@ CertifyPoint CentralDifferenceNorms(const CertifyPoint& x, F&& f) {
   return d;
 }
 
-Eigen::Matrix3d Dopri(const Elastica& e, double length) {
-  IntegrationOptions o;
-  o.absolute_tolerance = 1e-12;
-  o.relative_tolerance = 1e-12;
-  return RollingReorientation([&e](double s) { return e.Tangent(s); }, 0.0, length, {}, o);
-}
+Eigen::Matrix3d Dopri(const Elastica& e, double length) { return plateball::testing::DopriElasticaRolling(e, length, 1e-12); }
 
 // A target made from a chosen path: the path is an exact solution by construction.
 CertifyTarget MadeTarget(PendulumRegime regime, const CertifyPoint& x) {
@@ -138,7 +133,8 @@ TEST(IsoparallelCertifyCostate, ChordBoundsNeverUndershootSampledMaxima) {
       for (int j = 0; j < 8; ++j) worst = std::max(worst, (Chord(regime, RandomPointIn(box, &rng)) - centre).norm());
       ASSERT_LE(worst, bound * (1.0 + 1e-9) + 1e-12) << ToString(regime) << " box " << b;
       for (int j = 0; j < 2; ++j) {
-        const CertifyPoint fd = CentralDifferenceNorms(RandomPointIn(box, &rng), [&](const CertifyPoint& x) { return Chord(regime, x); });
+        const CertifyPoint fd =
+            CentralDifferenceNorms(RandomPointIn(box, &rng), [&](const CertifyPoint& x) { return Chord(regime, x); });
         for (int i = 0; i < 4; ++i) ASSERT_LE(fd[i], d[i] * (1.0 + 1e-6) + 1e-6) << ToString(regime) << " axis " << i;
       }
       if (worst > 1e-12) ratios.push_back(bound / worst);
