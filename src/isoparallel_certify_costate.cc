@@ -5,7 +5,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "plateball/isoparallel_families.h"
 #include "plateball/so3.h"
@@ -126,35 +125,51 @@ bool EvaluateCostateAngle(const CertifyTarget& target, PendulumRegime regime, co
   if (!(std::abs(x[kCertifyModulus]) < 1.0) || !(length > 0.0)) return false;
   const Elastica path = CertifyElastica(regime, x);
   out->chord = path.Position(length);
-  const Eigen::Vector3d v0 = ElasticaCostate(path, 0.0), v1 = ElasticaCostate(path, length);
-  const Eigen::Matrix3d b = RotationZ(target.goal_angle - std::atan2(out->chord.y(), out->chord.x()));
-  const Eigen::Vector3d p = target.target * b * v0, q = b * v1;
-  out->costate_norm = v0.norm();
-  out->end_norm = v1.norm();
-  out->angle = std::atan2(p.cross(q).norm(), p.dot(q));
+  out->start = ElasticaCostate(path, 0.0);
+  out->end = ElasticaCostate(path, length);
+  out->beta = target.goal_angle - std::atan2(out->chord.y(), out->chord.x());
+  out->angle = CostateAngleAt(target, *out, out->beta);
   return std::isfinite(out->angle) && std::isfinite(out->chord.norm());
 }
 
-double CostateAngleDeviationBound(PendulumRegime regime, const CertifyBox& box, const CostateAngle& centre,
-                                  double chord_deviation, double margin) {
-  const double chord_norm = centre.chord.norm();
-  if (!(chord_deviation + margin < chord_norm)) return std::numeric_limits<double>::infinity();
-  const double turn = std::asin((chord_deviation + margin) / chord_norm);
-  // A vector within delta of w (|w| > delta) makes an angle of at most asin(delta / |w|) with it.
+double CostateAngleAt(const CertifyTarget& target, const CostateAngle& centre, double beta) {
+  const Eigen::Matrix3d b = RotationZ(beta);
+  const Eigen::Vector3d p = target.target * b * centre.start, q = b * centre.end;
+  return std::atan2(p.cross(q).norm(), p.dot(q));
+}
+
+double MinCostateAngleOverTurn(const CertifyTarget& target, const CostateAngle& centre, double turn) {
+  const auto flat = [](const Eigen::Vector3d& w) { return w.head<2>().norm() / w.norm(); };
+  const double lipschitz = flat(centre.start) + flat(centre.end);
+  const double width = 2.0 * std::min(turn, M_PI);
+  const int samples = static_cast<int>(std::clamp(std::ceil(lipschitz * width / 0.02), 1.0, 128.0));
+  const double spacing = width / samples;  // sample midpoints: every beta within spacing/2 of one
+  double least = M_PI;
+  for (int i = 0; i < samples; ++i)
+    least = std::min(least, CostateAngleAt(target, centre, centre.beta - 0.5 * width + (i + 0.5) * spacing));
+  return least - 0.5 * lipschitz * spacing;
+}
+
+double CostateEndsDeviationBound(PendulumRegime regime, const CertifyBox& box, const CostateAngle& centre,
+                                 double margin) {
   const auto end_angle = [&](bool at_end, double norm) {
     const CertifyPoint d = CostateDerivativeBounds(regime, box, at_end);
     double delta = margin;
     for (int i = 0; i < 4; ++i) delta += box.HalfWidth(i) * d[i];
     return delta < norm ? std::asin(delta / norm) : M_PI;
   };
-  return end_angle(false, centre.costate_norm) + end_angle(true, centre.end_norm) + 2.0 * turn;
+  return end_angle(false, centre.start.norm()) + end_angle(true, centre.end.norm());
 }
 
 bool CostateExcludes(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
                      double chord_deviation, double margin) {
   CostateAngle centre;
   if (!EvaluateCostateAngle(target, regime, box.Centre(), &centre)) return false;
-  return centre.angle > CostateAngleDeviationBound(regime, box, centre, chord_deviation, margin) + 3.0 * margin;
+  const double ends = CostateEndsDeviationBound(regime, box, centre, margin);
+  if (!(centre.angle > ends + 3.0 * margin)) return false;  // no beta does better than the centre's
+  const double chord_norm = centre.chord.norm();
+  const double turn = chord_deviation + margin < chord_norm ? std::asin((chord_deviation + margin) / chord_norm) : M_PI;
+  return MinCostateAngleOverTurn(target, centre, turn) > ends + 3.0 * margin;
 }
 
 }  // namespace plateball::internal

@@ -14,9 +14,10 @@
 // 2. Costate test. The costate v(s) = (sin theta, G - cos theta, theta') (W = (0, G)) is carried
 //    by the rolling, v(s) = Q(0, s) v(0). At a solution B Q(0, L) B^T = target, hence
 //    target B v(0) = B v(L): the angle e_c between target B vhat(0) and B vhat(L) is zero.
-//    Over a box e_c moves by at most the angles through which vhat(0) and vhat(L) move (closed-form
-//    derivatives of v in (rate, k, u) at each end, u1 = u0 + rate L) plus twice the chord's turn:
-//    a box whose centre has a larger e_c holds no solution. No rolling is needed.
+//    Over a box vhat(0) and vhat(L) move by bounded angles (closed-form derivatives of v in
+//    (rate, k, u) at each end, u1 = u0 + rate L), and beta = arg of B by at most the chord's turn:
+//    a box where the centre's angle, minimised over that range of beta, exceeds the ends' angles
+//    holds no solution. No rolling is needed.
 #pragma once
 
 #include <Eigen/Core>
@@ -35,25 +36,37 @@ double ChordDeviationBound(PendulumRegime regime, const CertifyBox& box);
 CertifyPoint CostateDerivativeBounds(PendulumRegime regime, const CertifyBox& box, bool at_end);
 
 /// The costate angle e_c at a parameter point: the angle between target B vhat(0) and B vhat(L),
-/// B = RotationZ(goal_angle - arg c), v = ElasticaCostate (isoparallel_families.h; with heading_w
-/// = pi/2 it is (sin theta, G - cos theta, theta')); zero at every solution. Also the chord and |v| (optional).
+/// B = RotationZ(beta), beta = goal_angle - arg c, v = ElasticaCostate (isoparallel_families.h;
+/// with heading_w = pi/2 it is (sin theta, G - cos theta, theta')); zero at every solution.
 /// False for an inadmissible point (|k| >= 1, L <= 0, non-finite values).
 struct CostateAngle {
   double angle = 0.0;
-  double costate_norm = 0.0;  // |v(0)| (= |v(L)| along the path)
-  double end_norm = 0.0;      // |v(L)| as evaluated
+  double beta = 0.0;
+  Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();  // v(0), v(L)
   Eigen::Vector2d chord = Eigen::Vector2d::Zero();
 };
 bool EvaluateCostateAngle(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x, CostateAngle* out);
 
-/// The bound on |e_c(x) - e_c(centre)| over the box given the centre's values and a bound
-/// chord_deviation on |c(x) - c(centre)| (margin added to it); +infinity when the chord's turn
-/// cannot be bounded (chord_deviation + margin >= |c(centre)|).
-double CostateAngleDeviationBound(PendulumRegime regime, const CertifyBox& box, const CostateAngle& centre,
-                                  double chord_deviation, double margin);
+/// f(beta) = angle(target R(beta) v(0), R(beta) v(L)) at the centre's costates, R = RotationZ.
+double CostateAngleAt(const CertifyTarget& target, const CostateAngle& centre, double beta);
 
-/// The costate test: true when no point of the box can be a solution (e_c(centre) exceeds its
-/// deviation bound plus 3 margin). chord_deviation bounds |c(x) - c(centre)| over the box.
+/// A lower bound on min f(beta) over |beta - centre.beta| <= turn (turn >= pi: every beta):
+/// samples of f on the interval minus Lambda times half their spacing, Lambda = |v_h(0)|/|v(0)| +
+/// |v_h(L)|/|v(L)| >= f's Lipschitz constant (a rotation by d about e3 turns a vector w by at most
+/// d |w_h|/|w|). At most 128 samples.
+double MinCostateAngleOverTurn(const CertifyTarget& target, const CostateAngle& centre, double turn);
+
+/// The bound on the angles through which vhat(0) and vhat(L) move over the box (their sum), from
+/// CostateDerivativeBounds and the centre's |v| (a vector within delta of w, delta < |w|, makes an
+/// angle of at most asin(delta/|w|) with it; pi otherwise); margin added to each delta.
+double CostateEndsDeviationBound(PendulumRegime regime, const CertifyBox& box, const CostateAngle& centre,
+                                 double margin);
+
+/// The costate test: true when no point x of the box can be a solution. For every x,
+/// e_c(x) >= f_centre(beta_x) - (the ends' deviation), and beta_x lies within
+/// turn = asin((chord_deviation + margin)/|c(centre)|) of the centre's (every beta when
+/// chord_deviation + margin >= |c(centre)|): excluded when MinCostateAngleOverTurn exceeds the
+/// ends' deviation bound plus 3 margin. chord_deviation bounds |c(x) - c(centre)| over the box.
 bool CostateExcludes(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
                      double chord_deviation, double margin);
 
