@@ -1,0 +1,181 @@
+#include "elastica_closed_rolling.h"
+
+#include <Eigen/Geometry>
+#include <boost/math/policies/policy.hpp>
+#include <boost/math/special_functions/ellint_rf.hpp>
+#include <boost/math/special_functions/ellint_rj.hpp>
+#include <cmath>
+
+#include "check.h"
+#include "plateball/so3.h"
+
+namespace plateball::internal {
+namespace {
+
+using FastPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+
+// Below this |r| the Jacobi functions are r, 1, 1 to double precision; JacobiSnCnDn's descending
+// recursion divides by sin(r) and overflows for |r| < ~1e-154.
+constexpr double kTinyArgument = 1e-20;
+
+// (1 - x)(1 + x) = 1 - x^2 without cancellation near |x| = 1.
+double OneMinusSquare(double x) { return (1.0 - std::abs(x)) * (1.0 + std::abs(x)); }
+
+}  // namespace
+
+ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
+    : regime_(e.parameters().regime),
+      rate_(e.parameters().rate),
+      modulus_(e.parameters().modulus),
+      phase_(e.parameters().phase),
+      big_g_(e.G()),
+      cos_w_(std::sin(e.parameters().heading_w)),
+      sin_w_(-std::cos(e.parameters().heading_w)),
+      agm_(std::abs(e.parameters().modulus)) {
+  if (!(std::abs(rate_) <= kMaxRate))
+    ThrowInvalid("rate", rate_,
+                 "|rate| must be <= " + FormatNumber(kMaxRate) + " for the closed-form rolling (G, V^2 finite)");
+  const bool oscillating = regime_ == PendulumRegime::kOscillating;
+  const double k = std::abs(modulus_);
+  // G = b^2 (oscillating) or (a k)^2 (rotating); 1 - G as a product, exact near G = 1.
+  one_minus_g_ = OneMinusSquare(oscillating ? rate_ : rate_ * k);
+  // V^2 = 1 + G^2 + 2E = (1 - G)^2 + 4 b^2 k^2 (oscillating), (1 - G)^2 + 4 a^2 (rotating).
+  const double curvature_scale = oscillating ? 2.0 * rate_ * k : 2.0 * rate_;
+  norm_v_ = std::hypot(one_minus_g_, curvature_scale);
+  straight_ = rate_ == 0.0 || (oscillating && k == 0.0);
+  unit_chart_ = std::abs(one_minus_g_) < kUnitChart;
+  straight_omega_ = Eigen::Vector3d::Zero();
+  const Eigen::Vector2d t = e.Tangent(0.0);
+  if (straight_) straight_omega_ = Eigen::Vector3d(-t.y(), t.x(), 0.0);
+  // k'^2 = (1 - k)(1 + k), exact near k = 1 (Boost's ellint_1(k) forms 1 - k^2 and loses
+  // ~1e-10 of K at k = 1 - 1e-8); K = R_F(0, k'^2, 1).
+  const double kc2 = OneMinusSquare(k);
+  complete_k_ = boost::math::ellint_rf(0.0, kc2, 1.0, FastPolicy());
+  if (!straight_ && !unit_chart_) {
+    const double kappa2 = oscillating ? k * k : 1.0;
+    n_ = -4.0 * big_g_ * kappa2 / (one_minus_g_ * one_minus_g_);
+    if (n_ != 0.0) SetUpThirdKind(k * k, kc2);
+    twist_factor_ = (1.0 + big_g_) / (one_minus_g_ * rate_);
+  }
+  CacheOrigin();
+}
+
+// A&S 17.7.15 (Boost's form of it): for n < 0, N = (k^2 - n)/(1 - n) in (k^2, 1) and
+//   Pi(n; phi) = c1 Pi(N; phi) + c2 F(phi) + c3 atan(p2 sin(phi) cos(phi) / Delta(phi)),
+//   c1 = (-n/(1 - n)) (k'^2/(k^2 - n)), c2 = k^2/(k^2 - n), c3 = sqrt(-n/((k^2 - n)(1 - n))),
+//   p2 = sqrt(-n N): every term >= 0 on [0, pi/2], no cancellation however large -n is.
+void ElasticaClosedRolling::SetUpThirdKind(double k2, double kc2) {
+  third_.one_minus_n_big = kc2 / (1.0 - n_);
+  third_.n_big = 1.0 - third_.one_minus_n_big;
+  third_.c1 = (-n_ / (1.0 - n_)) * (kc2 / (k2 - n_));
+  third_.c2 = k2 / (k2 - n_);
+  third_.c3 = std::sqrt(-n_ / (k2 - n_)) * std::sqrt(1.0 / (1.0 - n_));
+  third_.p2 = std::sqrt(-n_) * std::sqrt(third_.n_big);
+  complete_pi_ = ThirdKind(1.0, 0.0, std::sqrt(kc2));
+}
+
+// Pi(n; phi, k) from sin(phi), cos(phi) >= 0 and Delta = sqrt(1 - k^2 sin^2 phi) (the Jacobi
+// sn, cn, dn of the reduced argument: no 1 - k^2 sin^2 formed), by Carlson's R_F and R_J:
+// F = sn R_F(cn^2, dn^2, 1), Pi(N) = F + (N/3) sn^3 R_J(cn^2, dn^2, 1, cn^2 + (1 - N) sn^2).
+double ElasticaClosedRolling::ThirdKind(double sn, double cn, double dn) const {
+  const double x = cn * cn, y = dn * dn;
+  const double f = sn * boost::math::ellint_rf(x, y, 1.0, FastPolicy());
+  const double p = x + third_.one_minus_n_big * sn * sn;
+  const double pi_big = f + (third_.n_big / 3.0) * sn * sn * sn * boost::math::ellint_rj(x, y, 1.0, p, FastPolicy());
+  return third_.c1 * pi_big + third_.c2 * f + third_.c3 * std::atan(third_.p2 * sn * cn / dn);
+}
+
+void ElasticaClosedRolling::CacheOrigin() {
+  origin_ = At(0.0, "s0", true);
+  if (!straight_) origin_frame_t_ = FrameAt(origin_).transpose();
+}
+
+ElasticaClosedRolling::Node ElasticaClosedRolling::At(double s, const char* field, bool with_pi) const {
+  RequireFinite(field, s);
+  const double w = rate_ * s + phase_;
+  if (!std::isfinite(w)) ThrowInvalid(field, s, "rate * s + phase must be finite");
+  Node j;
+  j.m = std::round(w / (2.0 * complete_k_));
+  const double r = w - 2.0 * complete_k_ * j.m;  // |r| <= K: cn(r) >= 0
+  if (std::abs(r) < kTinyArgument) {
+    j.sn = r;  // sn = r + O(r^3), cn, dn = 1 - O(r^2): exact in double
+  } else {
+    JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);
+  }
+  // Pi(n; am(r), k), am(r) in [-pi/2, pi/2], needed by the twist when n != 0.
+  if (with_pi && n_ != 0.0 && j.sn != 0.0) j.pi = ThirdKind(j.sn, j.cn, j.dn);
+  if (std::fmod(j.m, 2.0) != 0.0) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r)
+    j.sn = -j.sn;
+    j.cn = -j.cn;
+  }
+  return j;
+}
+
+// v = (sin theta, G - cos theta, theta') in the pendulum frame (W along its second axis).
+Eigen::Vector3d ElasticaClosedRolling::PendulumCostate(const Node& j) const {
+  if (regime_ == PendulumRegime::kOscillating) {  // sin(theta/2) = k sn, cos(theta/2) = dn
+    const double h = modulus_ * j.sn;
+    return {2.0 * h * j.dn, 2.0 * h * h - one_minus_g_, 2.0 * modulus_ * rate_ * j.cn};
+  }
+  // theta / 2 = am: sin(theta/2) = sn, cos(theta/2) = cn.
+  return {2.0 * j.sn * j.cn, 2.0 * j.sn * j.sn - one_minus_g_, 2.0 * rate_ * j.dn};
+}
+
+Eigen::Vector3d ElasticaClosedRolling::Costate(double s) const {
+  const Eigen::Vector3d v = PendulumCostate(At(s, "s", false));
+  return {cos_w_ * v.x() - sin_w_ * v.y(), sin_w_ * v.x() + cos_w_ * v.y(), v.z()};
+}
+
+Eigen::Matrix3d ElasticaClosedRolling::FrameAt(const Node& j) const {
+  const Eigen::Vector3d v = PendulumCostate(j);
+  const double norm = v.stableNorm();  // no overflow for |rate| up to kMaxRate
+  if (!(norm > 0.0))
+    ThrowInvalid("rate", rate_, "the costate vanishes (straight line with G = 1): no costate frame");
+  const Eigen::Vector3d u = v / norm;
+  Eigen::Vector2d f;  // f1, horizontal
+  if (unit_chart_) {
+    // v_h = 2 sin(theta/2) (cos(theta/2), sin(theta/2)): f1 follows theta/2 through v_h = 0.
+    f = regime_ == PendulumRegime::kOscillating ? Eigen::Vector2d(-modulus_ * j.sn, j.dn)
+                                                : Eigen::Vector2d(-j.sn, j.cn);
+  } else {
+    f = Eigen::Vector2d(-v.y(), v.x());
+  }
+  f.stableNormalize();
+  const Eigen::Vector3d f1(cos_w_ * f.x() - sin_w_ * f.y(), sin_w_ * f.x() + cos_w_ * f.y(), 0.0);
+  const Eigen::Vector3d up(cos_w_ * u.x() - sin_w_ * u.y(), sin_w_ * u.x() + cos_w_ * u.y(), u.z());
+  Eigen::Matrix3d frame;
+  frame << f1, up.cross(f1), up;
+  return frame;
+}
+
+Eigen::Matrix3d ElasticaClosedRolling::Frame(double s) const { return FrameAt(At(s, "s", false)); }
+
+double ElasticaClosedRolling::TwistBetween(const Node& a, const Node& b, double ds) const {
+  if (norm_v_ == 0.0) ThrowInvalid("rate", rate_, "the costate vanishes (straight line with G = 1): no twist");
+  // (1 - G^2) J: zero on the G = 1 chart; (1 + G) / (1 - G) ds when n = 0 (Pi(0; am w) = w).
+  double weighted_j = 0.0;
+  if (!unit_chart_) {
+    if (n_ == 0.0 || straight_) {
+      weighted_j = (1.0 + big_g_) / one_minus_g_ * ds;
+    } else {
+      weighted_j = twist_factor_ * (2.0 * (b.m - a.m) * complete_pi_ + (b.pi - a.pi));
+    }
+  }
+  return -0.5 * norm_v_ * (ds + weighted_j);
+}
+
+double ElasticaClosedRolling::Twist(double s) const { return TwistBetween(origin_, At(s, "s", true), s); }
+
+Eigen::Matrix3d ElasticaClosedRolling::Rolling(double s0, double s1) const {
+  const Node a = At(s0, "s0", true), b = At(s1, "s1", true);
+  if (straight_) return ExpSO3((s1 - s0) * straight_omega_);
+  return FrameAt(b) * RotationZ(TwistBetween(a, b, s1 - s0)) * FrameAt(a).transpose();
+}
+
+Eigen::Matrix3d ElasticaClosedRolling::Rolling(double s) const {
+  const Node b = At(s, "s", true);
+  if (straight_) return ExpSO3(s * straight_omega_);
+  return FrameAt(b) * RotationZ(TwistBetween(origin_, b, s)) * origin_frame_t_;
+}
+
+}  // namespace plateball::internal
