@@ -176,7 +176,8 @@ struct CertifyWindowResult {
 CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double length);
 
 /// Branch and bound over the window: every box lies inside the `match` neighbourhood of a known
-/// solution, or is excluded (TestBox), or is split along the axis with the largest share of D,
+/// solution, or is excluded (TestBox, the chord part with the smaller of D and the closed-form
+/// chord bound; then the costate test, isoparallel_certify_costate.h), or is split along the axis with the largest share of D,
 /// until D <= accept_deviation; such a small undecided box must meet a known neighbourhood (phase
 /// modulo the period). kCertified: every solution of the window lies within `match` of a known
 /// one (rigorous up to `margin` on the centre residuals; uniqueness inside a neighbourhood is not
