@@ -8,19 +8,21 @@
 //
 //   certify_measure [PROBLEM.json] [--caps 1.0,1.2,1.5] [--regime oscillating|rotating|both]
 //                   [--budget BOXES] [--k-max K] [--rate-max A] [--first-order 0|1] [--known 0|1]
-//                   [--first-order-deviation D] [--trace FILE]
+//                   [--first-order-deviation D] [--costate 0|1] [--trace FILE]
 //
 // --first-order 1 adds the first-order tests (mean-value exclusion, Krawczyk) and prints the
 // solutions they prove unique, each with the solver's solution it matches (or "new");
 // --trace FILE writes one line per box split (left undecided): centre (4), half-widths (4), D,
 // the per-axis shares of D (4), the per-axis Krawczyk contraction columns (4, zero without the
 // first-order tests) and the split axis (diagnostics of where a window stalls);
+// --costate 0 turns off the costate test (isoparallel_certify_costate.h; on by default);
 // --known 0 runs without the solver's solutions (then only the first-order tests can finish).
 //
 // Default: problems/isoparallel_rotation.json (relative to the working directory), caps 1.0, 1.2,
 // 1.5, both regimes, 2,000,000 boxes, k_max 0.95, rate_max 2.
 
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -43,7 +45,7 @@ struct Settings {
   std::vector<PendulumRegime> regimes = {PendulumRegime::kOscillating, PendulumRegime::kRotating};
   long budget = 2000000;
   double k_max = 0.95, rate_max = 2.0;
-  bool first_order = false, known = true;
+  bool first_order = false, known = true, costate = true;
   double first_order_deviation = 0.5;
   std::string trace;  // file of split boxes, or empty
 };
@@ -99,6 +101,8 @@ Settings Parse(int argc, char** argv) {
       s.first_order_deviation = Number(a, v, 0.0, 10.0);
     } else if (a == "--trace") {
       s.trace = v;
+    } else if (a == "--costate") {
+      s.costate = Number(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--known") {
       s.known = Number(a, v, 0.0, 1.0) != 0.0;
     } else {
@@ -115,6 +119,7 @@ CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, double 
   o.max_boxes = s.budget;
   o.stop_at_unaccounted = false;
   o.first_order = s.first_order;
+  o.costate = s.costate;
   o.first_order_deviation = s.first_order_deviation;
   o.window.lo = {oscillating ? 0.0 : -s.rate_max, 0.0, 0.0, radius};
   // With the first-order tests the length reaches 1e-4 past the cap: a solution exactly at the
@@ -158,11 +163,13 @@ int Run(const Settings& s) {
       if (!s.trace.empty() && !trace) throw std::invalid_argument("--trace: value " + s.trace + ": cannot write");
       if (trace) options.trace = [trace](const CertifyBoxTrace& t) { WriteTrace(trace, t); };
       const auto start = std::chrono::steady_clock::now();
+      const std::clock_t cpu_start = std::clock();
       const CertifyWindowResult w = CertifyWindow(target, known, options);
       if (trace) std::fclose(trace);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::printf("cap %.2fx %s: %s; resolved volume %.6f; %.1f s\n", factor, ToString(regime).c_str(), w.message.c_str(),
-                  w.resolved_volume, seconds);
+      const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+      std::printf("cap %.2fx %s: %s; resolved volume %.6f; %.1f s (%.1f s CPU)\n", factor, ToString(regime).c_str(),
+                  w.message.c_str(), w.resolved_volume, seconds, cpu);
       for (size_t i = 0; i < w.found.size(); ++i) {
         const CertifyPoint& f = w.found[i];
         std::printf("  proved unique {%.12g, %.12g, %.12g, %.12g}: %s\n", f[0], f[1], f[2], f[3],

@@ -9,6 +9,7 @@
 
 #include "check.h"
 #include "elastica_closed_rolling.h"
+#include "isoparallel_certify_costate.h"
 #include "isoparallel_certify_jacobian.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
@@ -173,6 +174,7 @@ std::string CertifyMessage(const CertifyWindowResult& result, bool first_order) 
   std::string message = ToString(result.status) + ": " + std::to_string(result.boxes) + " boxes, " +
                         std::to_string(result.excluded_by_chord) + " excluded by the chord, " +
                         std::to_string(result.excluded_by_rotation) + " by the rotation, " +
+                        std::to_string(result.excluded_by_costate) + " by the costate, " +
                         std::to_string(result.accounted) + " next to known solutions, " +
                         std::to_string(result.unaccounted) + " unaccounted";
   if (first_order)
@@ -328,18 +330,23 @@ std::string ToString(BoxVerdict verdict) {
     case BoxVerdict::kNotRun: return "not run";
     case BoxVerdict::kExcludedByChord: return "excluded by chord";
     case BoxVerdict::kExcludedByRotation: return "excluded by rotation";
+    case BoxVerdict::kExcludedByCostate: return "excluded by costate";
     case BoxVerdict::kUndecided: return "undecided";
   }
   return "unknown";
 }
 
 BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double margin) {
-  // Every point of the box has | |chord| - |chord_c| | <= D, so | chord miss | >= |miss_c| - D.
-  if (std::abs(centre.chord_miss) > deviation + margin) return BoxVerdict::kExcludedByChord;
-  // Its chord lies within D of the centre's: the direction turns by at most asin(D / |chord_c|),
+  return TestBox(centre, deviation, deviation, margin);
+}
+
+BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double chord_deviation, double margin) {
+  // Every point of the box has | |chord| - |chord_c| | <= Dc, so | chord miss | >= |miss_c| - Dc.
+  if (std::abs(centre.chord_miss) > chord_deviation + margin) return BoxVerdict::kExcludedByChord;
+  // Its chord lies within Dc of the centre's: the direction turns by at most asin(Dc / |chord_c|),
   // B by as much, the conjugation B Q B^T by twice that, Q itself by at most D.
-  if (deviation + margin < centre.chord_norm) {
-    const double turn = std::asin((deviation + margin) / centre.chord_norm);
+  if (chord_deviation + margin < centre.chord_norm) {
+    const double turn = std::asin((chord_deviation + margin) / centre.chord_norm);
     if (centre.rotation > deviation + 2.0 * turn + 3.0 * margin) return BoxVerdict::kExcludedByRotation;
   }
   return BoxVerdict::kUndecided;
@@ -428,10 +435,17 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     const double deviation = RollingDeviationBound(options.regime, box, &share);
     BoxVerdict verdict = BoxVerdict::kUndecided;
     CertifyResidual centre;
-    if (hit < 0 && EvaluateCertifyResidual(target, options.regime, box.Centre(), options.max_step, &centre))
-      verdict = TestBox(centre, deviation, options.margin);
+    if (hit < 0 && EvaluateCertifyResidual(target, options.regime, box.Centre(), options.max_step, &centre)) {
+      const double chord_deviation = std::min(deviation, ChordDeviationBound(options.regime, box));
+      verdict = TestBox(centre, deviation, chord_deviation, options.margin);
+      if (verdict == BoxVerdict::kUndecided && options.costate &&
+          CostateExcludes(target, options.regime, box, chord_deviation, options.margin))
+        verdict = BoxVerdict::kExcludedByCostate;
+    }
     if (verdict != BoxVerdict::kUndecided) {
-      ++(verdict == BoxVerdict::kExcludedByChord ? result.excluded_by_chord : result.excluded_by_rotation);
+      ++(verdict == BoxVerdict::kExcludedByChord      ? result.excluded_by_chord
+         : verdict == BoxVerdict::kExcludedByRotation ? result.excluded_by_rotation
+                                                      : result.excluded_by_costate);
       result.resolved_volume += BoxVolume(box) / window_volume;
       continue;
     }

@@ -90,12 +90,16 @@ Elastica CertifyElastica(PendulumRegime regime, const CertifyPoint& x);
 bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
                              double max_step, CertifyResidual* out);
 
-enum class BoxVerdict { kNotRun, kExcludedByChord, kExcludedByRotation, kUndecided };
+enum class BoxVerdict { kNotRun, kExcludedByChord, kExcludedByRotation, kExcludedByCostate, kUndecided };
 std::string ToString(BoxVerdict verdict);
 
 /// The exclusion test: the centre's residual against the deviation bound D (plus `margin` for the
 /// centre's floating-point error). kExcluded* means no solution lies in the box.
 BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double margin);
+/// The same test with separate bounds: `deviation` on the rotation distance of Q(0, L) to the
+/// centre's, `chord_deviation` on the distance of the chord to the centre's (the smaller of D and
+/// ChordDeviationBound, isoparallel_certify_costate.h), used for the chord miss and its turn.
+BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double chord_deviation, double margin);
 
 /// One box the branch and bound splits (left undecided by every test), for diagnostics: its
 /// deviation bound D and the per-axis shares of D, and when the first-order tests ran, the
@@ -127,6 +131,9 @@ struct CertifyWindowOptions {
   double first_order_deviation = 0.5;
   double first_order_min_deviation = 1e-9;
   double first_order_margin = 1e-8;  // on the centre's residual components (tested error ~1e-9)
+  /// The costate test (isoparallel_certify_costate.h) on boxes the chord and rotation tests leave
+  /// undecided: rigorous, no rolling (~ a closed-form chord and two costates per box).
+  bool costate = true;
   std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
   std::string Validate() const;
 };
@@ -143,6 +150,7 @@ struct CertifyWindowResult {
   long boxes = 0;  // examined
   long excluded_by_chord = 0;
   long excluded_by_rotation = 0;
+  long excluded_by_costate = 0;
   long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
   long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
   std::vector<int> matched;  // per known solution: how many accounted boxes it explains
@@ -169,7 +177,8 @@ struct CertifyWindowResult {
 CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double length);
 
 /// Branch and bound over the window: every box lies inside the `match` neighbourhood of a known
-/// solution, or is excluded (TestBox), or is split along the axis with the largest share of D,
+/// solution, or is excluded (TestBox, the chord part with the smaller of D and the closed-form
+/// chord bound; then the costate test, isoparallel_certify_costate.h), or is split along the axis with the largest share of D,
 /// until D <= accept_deviation; such a small undecided box must meet a known neighbourhood (phase
 /// modulo the period). kCertified: every solution of the window lies within `match` of a known
 /// one (rigorous up to `margin` on the centre residuals; uniqueness inside a neighbourhood is not
