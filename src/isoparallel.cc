@@ -18,6 +18,7 @@
 
 #include "check.h"
 #include "dynamics.h"
+#include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
 #include "isoparallel_twin.h"
 #include "parallel_for.h"
@@ -29,17 +30,21 @@
 namespace plateball {
 namespace {
 
-// Accuracy of one evaluation of a candidate: Magnus steps per curvature period and longest step.
+// Accuracy of one evaluation of a candidate: Magnus steps per curvature period and longest step
+// (of the tables, and of the node spacing on which crossings are found), and whether the rolling
+// is the closed form (ElasticaClosedRolling, ~1e-13) instead of the table's Magnus steps.
 struct Accuracy {
   int steps_per_period;
   double max_step;
+  bool closed_form;
 };
 // Search: cheap and coarse, rolling errors ~2e-5 rad median, up to 3e-4 (60 random elastica of
 // 1-4 periods against dopri5 at 1e-14); a search run converges to the root of its own tables,
-// within that of the true one, and the polish takes it the rest of the way. Polish: ~1e-14
-// (sixth order, checked against dopri5 by tests/isoparallel_test.cc).
-constexpr Accuracy kSearch{12, 0.5};
-constexpr Accuracy kPolish{160, 0.02};
+// within that of the true one, and the polish takes it the rest of the way. Polish: the closed
+// form (~1e-13 at any length, ~1 us, where its Magnus table took 17-33 us), the crossings on the
+// nodes of the former polish tables (positions only: the same crossing numbers).
+constexpr Accuracy kSearch{12, 0.5, false};
+constexpr Accuracy kPolish{160, 0.02, true};
 // A search run stops below kSearchStop (the search accuracy) and is polished when below
 // kSearchAccept; runs that do not get there in kSearchIterations are abandoned.
 constexpr double kSearchStop = 3e-6;
@@ -125,15 +130,29 @@ struct Evaluation {
   Eigen::Vector3d residual = Eigen::Vector3d::Zero();
 };
 
-// The rotation trick of section 2.2 at arc length s of a table of e.
-bool EvaluateOnTable(const Context& ctx, const Elastica& e, const internal::ElasticaRollingTable& table, double s,
+// Whether the closed-form rolling takes e's parameters (finite G and V^2).
+bool ClosedFormApplies(const Elastica& e) {
+  return std::abs(e.parameters().rate) <= internal::ElasticaClosedRolling::kMaxRate;
+}
+
+// The rotation trick of section 2.2 at arc length s of e, Q(0, s) from the table, or in closed
+// form when the table holds positions only (or there is none).
+bool EvaluateOnTable(const Context& ctx, const Elastica& e, const internal::ElasticaRollingTable* table, double s,
                      Evaluation* out) {
   const Eigen::Vector2d xs = e.Position(s);
   if (xs.norm() == 0.0) return false;
+  const bool closed = table == nullptr || table->PositionsOnly();
+  if (closed && !ClosedFormApplies(e)) return false;
   out->s = s;
   out->beta = internal::ChordTurn(ctx.goal_angle, xs);
-  out->residual = internal::RotationTrickResidual(ctx.target, out->beta, table.Rolling(s));
+  const Eigen::Matrix3d q = closed ? internal::ElasticaClosedRolling(e).Rolling(s) : table->Rolling(s);
+  out->residual = internal::RotationTrickResidual(ctx.target, out->beta, q);
   return out->residual.allFinite();
+}
+
+// A table for crossings and, unless acc.closed_form, the rolling.
+internal::ElasticaRollingTable MakeTable(const Elastica& e, double s_limit, const Accuracy& acc) {
+  return internal::ElasticaRollingTable(e, s_limit, acc.steps_per_period, acc.max_step, 200000, acc.closed_form);
 }
 
 bool Admissible(const ElasticaParameters& p) {
@@ -145,12 +164,13 @@ bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, con
               double fixed_length = -1.0) {
   if (!Admissible(p)) return false;
   const Elastica e(p);
+  if (fixed_length > 0 && acc.closed_form) return EvaluateOnTable(ctx, e, nullptr, fixed_length, out);
   const double limit = fixed_length > 0 ? fixed_length : ctx.s_limit;
-  const internal::ElasticaRollingTable table(e, limit, acc.steps_per_period, acc.max_step);
+  const internal::ElasticaRollingTable table = MakeTable(e, limit, acc);
   if (!table.Valid()) return false;
   double s = fixed_length;
   if (fixed_length <= 0 && !table.FindCrossing(ctx.radius, crossing, &s)) return false;
-  return EvaluateOnTable(ctx, e, table, s, out);
+  return EvaluateOnTable(ctx, e, &table, s, out);
 }
 
 // TinySolver's functor call for a residual f.Residual(x, r) of N unknowns and N residuals:
@@ -275,6 +295,30 @@ bool SameRoot(PendulumRegime regime, const Eigen::Vector4d& y, const SearchRoot&
   return std::abs(std::remainder(y[2] - root.x[2], u_period)) <= kDuplicateTol * (1 + u_period);
 }
 
+// The rolling along one elastica for the free-length residuals: a table over [0, s_limit] of the
+// given accuracy, or the closed form (acc.closed_form: any s, no table).
+class PathRolling {
+ public:
+  PathRolling(const Elastica& e, double s_limit, const Accuracy& acc) {
+    if (acc.closed_form)
+      closed_ = ClosedFormApplies(e) ? std::make_unique<internal::ElasticaClosedRolling>(e) : nullptr;
+    else
+      table_ = std::make_unique<internal::ElasticaRollingTable>(MakeTable(e, s_limit, acc));
+  }
+  bool Valid() const { return closed_ != nullptr || (table_ != nullptr && table_->Valid()); }
+  // Whether it would be the same for s_limit (see ElasticaRollingTable::ServesLength).
+  bool ServesLength(double s_limit) const { return closed_ != nullptr || (table_ != nullptr && table_->ServesLength(s_limit)); }
+  // Q(s0, s0 + length) (= Q(0, s0 + L) Q(0, s0)^-1 on a table).
+  Eigen::Matrix3d Rolling(double s0, double length) const {
+    if (closed_ != nullptr) return s0 == 0.0 ? closed_->Rolling(length) : closed_->Rolling(s0, s0 + length);
+    return s0 == 0.0 ? table_->Rolling(length) : table_->Rolling(s0 + length) * table_->Rolling(s0).transpose();
+  }
+
+ private:
+  std::unique_ptr<internal::ElasticaRollingTable> table_;
+  std::unique_ptr<internal::ElasticaClosedRolling> closed_;
+};
+
 // The rotation trick without the crossing: the length L is a fourth unknown and |x(L)| - |x1 - x0|
 // a fourth residual. Smooth where the crossing formulation jumps (a tangency adding or removing a
 // pair of crossings, near which solutions often lie).
@@ -296,15 +340,14 @@ struct FreeLengthFunctor {
            std::abs(p.modulus) < 1.0 && length > 0 && length <= 2.0 * ctx->s_limit;
   }
 
-  // The residual of the path from arc length s0 to s0 + length of the table's elastica: the
-  // phase shifted by rate s0 (u = rate s + phase), Q(s0, s0 + L) = Q(0, s0 + L) Q(0, s0)^-1.
-  bool ResidualOnTable(const Elastica& e, const internal::ElasticaRollingTable& table, double s0, double length,
-                       double* r) const {
+  // The residual of the path from arc length s0 to s0 + length of the rolling's elastica: the
+  // phase shifted by rate s0 (u = rate s + phase).
+  bool ResidualOnTable(const Elastica& e, const PathRolling& rolling, double s0, double length, double* r) const {
     ++evaluations;
     // x(0) = 0 (Position(0) would still evaluate its 8-point short-arc quadrature).
     const Eigen::Vector2d xs = s0 == 0.0 ? e.Position(length) : e.Position(s0 + length) - e.Position(s0);
     if (xs.norm() == 0.0) return false;
-    const Eigen::Matrix3d q = s0 == 0.0 ? table.Rolling(length) : table.Rolling(s0 + length) * table.Rolling(s0).transpose();
+    const Eigen::Matrix3d q = rolling.Rolling(s0, length);
     const Eigen::Vector3d rot = internal::RotationTrickResidual(ctx->target, internal::ChordTurn(ctx->goal_angle, xs), q);
     r[0] = xs.norm() - ctx->radius;
     for (int i = 0; i < 3; ++i) r[i + 1] = rot[i];
@@ -318,7 +361,7 @@ struct FreeLengthFunctor {
     double x[4] = {0, 0, 0, 0};
     double r[4] = {0, 0, 0, 0};
     std::unique_ptr<Elastica> path;
-    std::unique_ptr<internal::ElasticaRollingTable> table;
+    std::unique_ptr<PathRolling> table;
   };
   mutable LastResidual last;
 
@@ -329,7 +372,7 @@ struct FreeLengthFunctor {
     last.table.reset();
     if (!Admissible(p, x[3])) return false;
     last.path = std::make_unique<Elastica>(p);
-    last.table = std::make_unique<internal::ElasticaRollingTable>(*last.path, x[3], acc.steps_per_period, acc.max_step);
+    last.table = std::make_unique<PathRolling>(*last.path, x[3], acc);
     last.ok = last.table->Valid() && ResidualOnTable(*last.path, *last.table, 0.0, x[3], r);
     std::copy(x, x + 4, last.x);
     if (last.ok) std::copy(r, r + 4, last.r);
@@ -419,21 +462,21 @@ struct FreeLengthFunctor {
     const double s0 = h_phase / std::abs(p.rate);  // phase + sign(rate) h_phase
     const double s_limit = x[3] + s0 + h_length;
     std::unique_ptr<Elastica> own_path;
-    std::unique_ptr<internal::ElasticaRollingTable> own_table;
+    std::unique_ptr<PathRolling> own_table;
     if (LastServes(x, s_limit)) {  // the trial's table and residual at this point
       own_path = std::move(last.path);
       own_table = std::move(last.table);
       std::copy(last.r, last.r + 4, r);
     } else {
       own_path = std::make_unique<Elastica>(p);
-      own_table = std::make_unique<internal::ElasticaRollingTable>(*own_path, s_limit, acc.steps_per_period, acc.max_step);
+      own_table = std::make_unique<PathRolling>(*own_path, s_limit, acc);
       if (!own_table->Valid() || !ResidualOnTable(*own_path, *own_table, 0.0, x[3], r)) {
         for (int i = 0; i < 4; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
         return false;
       }
     }
     const Elastica& e = *own_path;
-    const internal::ElasticaRollingTable& table = *own_table;
+    const PathRolling& table = *own_table;
     double rp[4], rl[4];
     if (!ResidualOnTable(e, table, s0, x[3], rp) || !ResidualOnTable(e, table, 0.0, x[3] + h_length, rl)) return false;
     const double signed_phase_step = p.rate > 0 ? h_phase : -h_phase;
@@ -460,12 +503,12 @@ bool HandOff(const Context& ctx, double length, const Accuracy& acc, LocalResult
   const ElasticaParameters p = ToParameters(r->regime, r->x);
   if (!Admissible(p)) return false;
   const Elastica e(p);
-  const internal::ElasticaRollingTable table(e, ctx.s_limit, acc.steps_per_period, acc.max_step);
+  const internal::ElasticaRollingTable table = MakeTable(e, ctx.s_limit, acc);
   double s = 0.0;
   if (!table.Valid() ||
       !table.NearestCrossing(ctx.radius, length, kSearchSameTol * (1 + length), kMaxCrossingsPerStart * 4, &r->crossing, &s))
     return false;
-  return EvaluateOnTable(ctx, e, table, s, &r->ev) && r->ev.residual.norm() <= kSearchAccept;
+  return EvaluateOnTable(ctx, e, &table, s, &r->ev) && r->ev.residual.norm() <= kSearchAccept;
 }
 
 // Search stage on the free-length formulation from a start and one of its crossings; the result
@@ -583,7 +626,8 @@ struct Candidate {
 // How many times a family member crosses the circle |x - x0| = |x1 - x0| up to its end (which
 // lies on the circle): the `crossing` reported for a family.
 int CrossingCount(const Context& ctx, const Elastica& e, double length) {
-  const internal::ElasticaRollingTable table(e, length * (1 + 1e-9), kSearch.steps_per_period, kSearch.max_step);
+  const internal::ElasticaRollingTable table(e, length * (1 + 1e-9), kSearch.steps_per_period, kSearch.max_step,
+                                             200000, true);  // crossings only
   return std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 100000).size()));
 }
 
@@ -800,7 +844,8 @@ std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const Iso
   return SearchAll(0, n, n, options, [&](int i) {
     const Start& st = starts[i];
     const Elastica e(ToParameters(st.regime, st.x));
-    const internal::ElasticaRollingTable table(e, ctx.s_limit, kSearch.steps_per_period, kSearch.max_step);
+    const internal::ElasticaRollingTable table(e, ctx.s_limit, kSearch.steps_per_period, kSearch.max_step, 200000,
+                                               true);  // crossings only
     std::vector<LocalResult> out;
     for (double crossing : table.Crossings(ctx.radius, kMaxCrossingsPerStart))
       if (crossing > covered) out.push_back(SearchLocalFreeLength(ctx, st.regime, st.x, crossing, options));
