@@ -1048,7 +1048,7 @@ bool FollowCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eigen::V
 std::vector<LocalResult> TwinSearches(const Context& ctx, const LocalResult& r, const IsoparallelOptions& options,
                                       long* evaluations) {
   std::vector<LocalResult> twins;
-  FreeLengthFunctor f{&ctx, r.regime};
+  FreeLengthFunctor f{&ctx, r.regime, kPolish};  // the closed-form rolling
   f.secant = false;
   CurvePoint start;
   start.x = Eigen::Vector4d(r.x[0], r.x[1], r.x[2], r.ev.s);
