@@ -30,21 +30,19 @@
 namespace plateball {
 namespace {
 
-// Accuracy of one evaluation of a candidate: Magnus steps per curvature period and longest step
-// (of the tables, and of the node spacing on which crossings are found), and whether the rolling
-// is the closed form (ElasticaClosedRolling, ~1e-13) instead of the table's Magnus steps.
+// The nodes of a table: Magnus steps per curvature period and longest step. The rolling along a
+// candidate is the closed form (ElasticaClosedRolling, ~1e-13 at any length, ~1 us) everywhere
+// but in the shape scan (ScanShape: one Magnus table at kSearch over all its nodes); the
+// crossings of the circle are found on the nodes of a table of positions only.
 struct Accuracy {
   int steps_per_period;
   double max_step;
-  bool closed_form;
 };
-// Search: cheap and coarse, rolling errors ~2e-5 rad median, up to 3e-4 (60 random elastica of
-// 1-4 periods against dopri5 at 1e-14); a search run converges to the root of its own tables,
-// within that of the true one, and the polish takes it the rest of the way. Polish: the closed
-// form (~1e-13 at any length, ~1 us, where its Magnus table took 17-33 us), the crossings on the
-// nodes of the former polish tables (positions only: the same crossing numbers).
-constexpr Accuracy kSearch{12, 0.5, false};
-constexpr Accuracy kPolish{160, 0.02, true};
+// Search: the shape scan's table, rolling errors ~2e-5 rad median, up to 3e-4 (60 random elastica
+// of 1-4 periods against dopri5 at 1e-14), and the coarse crossing nodes. Polish: the crossing
+// nodes of the polish (those of its former Magnus tables: the same crossing numbers).
+constexpr Accuracy kSearch{12, 0.5};
+constexpr Accuracy kPolish{160, 0.02};
 // A search run stops below kSearchStop (the search accuracy) and is polished when below
 // kSearchAccept; runs that do not get there in kSearchIterations are abandoned.
 constexpr double kSearchStop = 3e-6;
@@ -99,11 +97,6 @@ constexpr double kTwinGiveUp = 1.0;
 // would converge to that solution (docs/paper_notes.md, "General targets", point 8).
 constexpr double kDuplicateResidual = 0.1;
 constexpr double kDuplicateTol = 3e-3;
-// The search's rate and modulus columns are Broyden (secant) updates while the residual is above
-// kSecantResidual (two rolling tables fewer per Jacobian; docs/paper_notes.md, "General targets",
-// point 9).
-constexpr double kSecantResidual = 0.1;
-
 struct Context {
   Eigen::Matrix3d target;  // A1 A0^-1
   double radius;           // |x1 - x0|
@@ -135,24 +128,19 @@ bool ClosedFormApplies(const Elastica& e) {
   return std::abs(e.parameters().rate) <= internal::ElasticaClosedRolling::kMaxRate;
 }
 
-// The rotation trick of section 2.2 at arc length s of e, Q(0, s) from the table, or in closed
-// form when the table holds positions only (or there is none).
-bool EvaluateOnTable(const Context& ctx, const Elastica& e, const internal::ElasticaRollingTable* table, double s,
-                     Evaluation* out) {
+// The rotation trick of section 2.2 at arc length s of e (the rolling in closed form).
+bool EvaluateAt(const Context& ctx, const Elastica& e, double s, Evaluation* out) {
   const Eigen::Vector2d xs = e.Position(s);
-  if (xs.norm() == 0.0) return false;
-  const bool closed = table == nullptr || table->PositionsOnly();
-  if (closed && !ClosedFormApplies(e)) return false;
+  if (xs.norm() == 0.0 || !ClosedFormApplies(e)) return false;
   out->s = s;
   out->beta = internal::ChordTurn(ctx.goal_angle, xs);
-  const Eigen::Matrix3d q = closed ? internal::ElasticaClosedRolling(e).Rolling(s) : table->Rolling(s);
-  out->residual = internal::RotationTrickResidual(ctx.target, out->beta, q);
+  out->residual = internal::RotationTrickResidual(ctx.target, out->beta, internal::ElasticaClosedRolling(e).Rolling(s));
   return out->residual.allFinite();
 }
 
-// A table for crossings and, unless acc.closed_form, the rolling.
-internal::ElasticaRollingTable MakeTable(const Elastica& e, double s_limit, const Accuracy& acc) {
-  return internal::ElasticaRollingTable(e, s_limit, acc.steps_per_period, acc.max_step, 200000, acc.closed_form);
+// A table of positions only over [0, s_limit] with acc's nodes: the crossings of the circle.
+internal::ElasticaRollingTable CrossingTable(const Elastica& e, double s_limit, const Accuracy& acc) {
+  return internal::ElasticaRollingTable(e, s_limit, acc.steps_per_period, acc.max_step, 200000, true);
 }
 
 bool Admissible(const ElasticaParameters& p) {
@@ -164,13 +152,11 @@ bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, con
               double fixed_length = -1.0) {
   if (!Admissible(p)) return false;
   const Elastica e(p);
-  if (fixed_length > 0 && acc.closed_form) return EvaluateOnTable(ctx, e, nullptr, fixed_length, out);
-  const double limit = fixed_length > 0 ? fixed_length : ctx.s_limit;
-  const internal::ElasticaRollingTable table = MakeTable(e, limit, acc);
-  if (!table.Valid()) return false;
-  double s = fixed_length;
-  if (fixed_length <= 0 && !table.FindCrossing(ctx.radius, crossing, &s)) return false;
-  return EvaluateOnTable(ctx, e, &table, s, out);
+  if (fixed_length > 0) return EvaluateAt(ctx, e, fixed_length, out);
+  const internal::ElasticaRollingTable table = CrossingTable(e, ctx.s_limit, acc);
+  double s = 0.0;
+  if (!table.Valid() || !table.FindCrossing(ctx.radius, crossing, &s)) return false;
+  return EvaluateAt(ctx, e, s, out);
 }
 
 // TinySolver's functor call for a residual f.Residual(x, r) of N unknowns and N residuals:
@@ -295,45 +281,19 @@ bool SameRoot(PendulumRegime regime, const Eigen::Vector4d& y, const SearchRoot&
   return std::abs(std::remainder(y[2] - root.x[2], u_period)) <= kDuplicateTol * (1 + u_period);
 }
 
-// The rolling along one elastica for the free-length residuals: a table over [0, s_limit] of the
-// given accuracy, or the closed form (acc.closed_form: any s, no table).
-class PathRolling {
- public:
-  PathRolling(const Elastica& e, double s_limit, const Accuracy& acc) {
-    if (acc.closed_form)
-      closed_ = ClosedFormApplies(e) ? std::make_unique<internal::ElasticaClosedRolling>(e) : nullptr;
-    else
-      table_ = std::make_unique<internal::ElasticaRollingTable>(MakeTable(e, s_limit, acc));
-  }
-  bool Valid() const { return closed_ != nullptr || (table_ != nullptr && table_->Valid()); }
-  // Whether it would be the same for s_limit (see ElasticaRollingTable::ServesLength).
-  bool ServesLength(double s_limit) const { return closed_ != nullptr || (table_ != nullptr && table_->ServesLength(s_limit)); }
-  // Q(s0, s0 + length) (= Q(0, s0 + L) Q(0, s0)^-1 on a table).
-  Eigen::Matrix3d Rolling(double s0, double length) const {
-    if (closed_ != nullptr) return s0 == 0.0 ? closed_->Rolling(length) : closed_->Rolling(s0, s0 + length);
-    return s0 == 0.0 ? table_->Rolling(length) : table_->Rolling(s0 + length) * table_->Rolling(s0).transpose();
-  }
-
- private:
-  std::unique_ptr<internal::ElasticaRollingTable> table_;
-  std::unique_ptr<internal::ElasticaClosedRolling> closed_;
-};
-
 // The rotation trick without the crossing: the length L is a fourth unknown and |x(L)| - |x1 - x0|
 // a fourth residual. Smooth where the crossing formulation jumps (a tangency adding or removing a
 // pair of crossings, near which solutions often lie).
 struct FreeLengthFunctor {
   using Scalar = double;
   enum { NUM_RESIDUALS = 4, NUM_PARAMETERS = 4 };
-  FreeLengthFunctor(const Context* c, PendulumRegime r, const Accuracy& a = kSearch) : ctx(c), regime(r), acc(a) {}
+  FreeLengthFunctor(const Context* c, PendulumRegime r) : ctx(c), regime(r) {}
   const Context* ctx;
   PendulumRegime regime;
-  Accuracy acc;  // of the rolling tables (the shape search: kSearch; the twin search: kPolish)
   mutable long evaluations = 0;
   // Solutions known before this run (nullptr: none checked) and whether the run reached one.
   const std::vector<SearchRoot>* known = nullptr;
   mutable bool duplicate = false;
-  bool secant = true;  // SecantColumns allowed (the twin continuation needs the exact columns)
 
   bool Admissible(const ElasticaParameters& p, double length) const {
     return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::isfinite(length) &&
@@ -341,13 +301,14 @@ struct FreeLengthFunctor {
   }
 
   // The residual of the path from arc length s0 to s0 + length of the rolling's elastica: the
-  // phase shifted by rate s0 (u = rate s + phase).
-  bool ResidualOnTable(const Elastica& e, const PathRolling& rolling, double s0, double length, double* r) const {
+  // phase shifted by rate s0 (u = rate s + phase), Q(s0, s0 + L) in closed form.
+  bool ResidualFrom(const Elastica& e, const internal::ElasticaClosedRolling& rolling, double s0, double length,
+                    double* r) const {
     ++evaluations;
     // x(0) = 0 (Position(0) would still evaluate its 8-point short-arc quadrature).
     const Eigen::Vector2d xs = s0 == 0.0 ? e.Position(length) : e.Position(s0 + length) - e.Position(s0);
     if (xs.norm() == 0.0) return false;
-    const Eigen::Matrix3d q = rolling.Rolling(s0, length);
+    const Eigen::Matrix3d q = s0 == 0.0 ? rolling.Rolling(length) : rolling.Rolling(s0, s0 + length);
     const Eigen::Vector3d rot = internal::RotationTrickResidual(ctx->target, internal::ChordTurn(ctx->goal_angle, xs), q);
     r[0] = xs.norm() - ctx->radius;
     for (int i = 0; i < 3; ++i) r[i + 1] = rot[i];
@@ -355,13 +316,13 @@ struct FreeLengthFunctor {
   }
 
   // The last residual evaluated (TinySolver evaluates every accepted point twice: as a trial
-  // without Jacobian, then again with it): its point, path, table and residual.
+  // without Jacobian, then again with it): its point, path, rolling and residual.
   struct LastResidual {
     bool ok = false;
     double x[4] = {0, 0, 0, 0};
     double r[4] = {0, 0, 0, 0};
     std::unique_ptr<Elastica> path;
-    std::unique_ptr<PathRolling> table;
+    std::unique_ptr<internal::ElasticaClosedRolling> rolling;
   };
   mutable LastResidual last;
 
@@ -369,24 +330,22 @@ struct FreeLengthFunctor {
 
   bool Residual(const double* x, double* r, bool = false) const {
     const ElasticaParameters p = ToParameters(regime, x);
-    last.table.reset();
+    last.rolling.reset();
     if (!Admissible(p, x[3])) return false;
     last.path = std::make_unique<Elastica>(p);
-    last.table = std::make_unique<PathRolling>(*last.path, x[3], acc);
-    last.ok = last.table->Valid() && ResidualOnTable(*last.path, *last.table, 0.0, x[3], r);
+    if (!ClosedFormApplies(*last.path)) return false;
+    last.rolling = std::make_unique<internal::ElasticaClosedRolling>(*last.path);
+    last.ok = ResidualFrom(*last.path, *last.rolling, 0.0, x[3], r);
     std::copy(x, x + 4, last.x);
     if (last.ok) std::copy(r, r + 4, last.r);
     return last.ok;
   }
 
-  // Whether the last residual was evaluated at x on a table that serves lengths up to s_limit
-  // (a table over s_limit would be the same one, so the residual would be the same bit for bit).
-  bool LastServes(const double* x, double s_limit) const {
-    return last.table != nullptr && last.ok && std::equal(x, x + 4, last.x) && last.table->ServesLength(s_limit);
-  }
+  // Whether the last residual was evaluated at x.
+  bool LastAt(const double* x) const { return last.rolling != nullptr && last.ok && std::equal(x, x + 4, last.x); }
 
-  // Forward differences, but one table (one per (rate, k)) serves the residual and the phase
-  // and length columns: only the rate and modulus columns build new tables.
+  // Forward differences, but one closed-form rolling (one per (rate, k)) serves the residual and
+  // the phase and length columns: only the rate and modulus columns build new ones.
   bool operator()(const double* x, double* r, double* jacobian) const {
     if (duplicate) return StopRun(r, jacobian);
     if (jacobian != nullptr && kept.valid && std::equal(x, x + 4, kept.x)) {  // the triage's last point
@@ -438,53 +397,26 @@ struct FreeLengthFunctor {
     return false;
   }
 
-  // Far from a root (|r| > kSecantResidual), the rate and modulus columns by a Broyden update of
-  // the last Jacobian of the run (its phase and length columns already replaced by this point's).
-  // Not at an identity target: its comparison shooting (random starts, no shape scan) then misses
-  // Figure 7's shortest path with 512 starts.
-  bool SecantColumns(const double* x, const double* r, double* jacobian) const {
-    if (!secant || ctx->identity || !kept.valid || !(Eigen::Map<const Eigen::Vector4d>(r).norm() > kSecantResidual)) return false;
-    const Eigen::Map<const Eigen::Matrix4d> old(kept.jacobian);
-    const Eigen::Vector4d dx = Eigen::Map<const Eigen::Vector4d>(x) - Eigen::Map<const Eigen::Vector4d>(kept.x);
-    const Eigen::Vector4d dr = Eigen::Map<const Eigen::Vector4d>(r) - Eigen::Map<const Eigen::Vector4d>(kept.r);
-    const double dx2 = dx.squaredNorm();
-    if (!(dx2 > 0)) return false;
-    const Eigen::Matrix4d updated = old + (dr - old * dx) * dx.transpose() / dx2;
-    Eigen::Map<Eigen::Matrix4d> jac(jacobian);
-    jac.leftCols<2>() = updated.leftCols<2>();
-    return jac.allFinite();
-  }
-
   bool Evaluate(const double* x, double* r, double* jacobian) const {
     const ElasticaParameters p = ToParameters(regime, x);
     if (jacobian == nullptr || p.rate == 0.0 || !Admissible(p, x[3])) return ForwardDifferences<4>(*this, x, r, jacobian);
     const double h_phase = 1e-6 * (1.0 + std::abs(x[2])), h_length = 1e-6 * (1.0 + std::abs(x[3]));
     const double s0 = h_phase / std::abs(p.rate);  // phase + sign(rate) h_phase
-    const double s_limit = x[3] + s0 + h_length;
-    std::unique_ptr<Elastica> own_path;
-    std::unique_ptr<PathRolling> own_table;
-    if (LastServes(x, s_limit)) {  // the trial's table and residual at this point
-      own_path = std::move(last.path);
-      own_table = std::move(last.table);
-      std::copy(last.r, last.r + 4, r);
-    } else {
-      own_path = std::make_unique<Elastica>(p);
-      own_table = std::make_unique<PathRolling>(*own_path, s_limit, acc);
-      if (!own_table->Valid() || !ResidualOnTable(*own_path, *own_table, 0.0, x[3], r)) {
-        for (int i = 0; i < 4; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
-        return false;
-      }
+    if (!LastAt(x) && !Residual(x, r)) {  // else the trial's rolling and residual at this point
+      for (int i = 0; i < 4; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
+      return false;
     }
-    const Elastica& e = *own_path;
-    const PathRolling& table = *own_table;
+    std::copy(last.r, last.r + 4, r);
+    const std::unique_ptr<Elastica> path = std::move(last.path);  // the rate and modulus columns reuse `last`
+    const std::unique_ptr<internal::ElasticaClosedRolling> rolling = std::move(last.rolling);
     double rp[4], rl[4];
-    if (!ResidualOnTable(e, table, s0, x[3], rp) || !ResidualOnTable(e, table, 0.0, x[3] + h_length, rl)) return false;
+    if (!ResidualFrom(*path, *rolling, s0, x[3], rp) || !ResidualFrom(*path, *rolling, 0.0, x[3] + h_length, rl))
+      return false;
     const double signed_phase_step = p.rate > 0 ? h_phase : -h_phase;
     for (int i = 0; i < 4; ++i) {
       jacobian[2 * 4 + i] = (rp[i] - r[i]) / signed_phase_step;
       jacobian[3 * 4 + i] = (rl[i] - r[i]) / h_length;
     }
-    if (SecantColumns(x, r, jacobian)) return true;
     for (int j = 0; j < 2; ++j) {
       const double h = 1e-6 * (1.0 + std::abs(x[j]));
       double xp[4] = {x[0], x[1], x[2], x[3]}, rj[4];
@@ -497,29 +429,28 @@ struct FreeLengthFunctor {
 };
 
 // Hands a free-length result (length L) to the crossing formulation: the crossing of the circle
-// nearest to L on a table of the given accuracy over the search length, if within
+// nearest to L on the nodes of the given accuracy over the search length, if within
 // kSearchSameTol, and the residual there (at most kSearchAccept).
 bool HandOff(const Context& ctx, double length, const Accuracy& acc, LocalResult* r) {
   const ElasticaParameters p = ToParameters(r->regime, r->x);
   if (!Admissible(p)) return false;
   const Elastica e(p);
-  const internal::ElasticaRollingTable table = MakeTable(e, ctx.s_limit, acc);
+  const internal::ElasticaRollingTable table = CrossingTable(e, ctx.s_limit, acc);
   double s = 0.0;
   if (!table.Valid() ||
       !table.NearestCrossing(ctx.radius, length, kSearchSameTol * (1 + length), kMaxCrossingsPerStart * 4, &r->crossing, &s))
     return false;
-  return EvaluateOnTable(ctx, e, &table, s, &r->ev) && r->ev.residual.norm() <= kSearchAccept;
+  return EvaluateAt(ctx, e, s, &r->ev) && r->ev.residual.norm() <= kSearchAccept;
 }
 
 // Search stage on the free-length formulation from a start and one of its crossings; the result
 // is handed to the crossing formulation (its crossing number counted) for the polish. A run that
 // reaches one of the `known` solutions stops there (LocalResult::duplicate).
 LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
-                                  const IsoparallelOptions& options, const std::vector<SearchRoot>* known = nullptr,
-                                  const Accuracy& acc = kSearch) {
+                                  const IsoparallelOptions& options, const std::vector<SearchRoot>* known = nullptr) {
   LocalResult out;
   out.regime = regime;
-  FreeLengthFunctor f{&ctx, regime, acc};
+  FreeLengthFunctor f{&ctx, regime};
   f.known = known;
   Eigen::Vector4d v(x0[0], x0[1], x0[2], length0);
   ceres::TinySolver<FreeLengthFunctor> solver;
@@ -626,8 +557,7 @@ struct Candidate {
 // How many times a family member crosses the circle |x - x0| = |x1 - x0| up to its end (which
 // lies on the circle): the `crossing` reported for a family.
 int CrossingCount(const Context& ctx, const Elastica& e, double length) {
-  const internal::ElasticaRollingTable table(e, length * (1 + 1e-9), kSearch.steps_per_period, kSearch.max_step,
-                                             200000, true);  // crossings only
+  const internal::ElasticaRollingTable table = CrossingTable(e, length * (1 + 1e-9), kSearch);
   return std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 100000).size()));
 }
 
@@ -844,8 +774,7 @@ std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const Iso
   return SearchAll(0, n, n, options, [&](int i) {
     const Start& st = starts[i];
     const Elastica e(ToParameters(st.regime, st.x));
-    const internal::ElasticaRollingTable table(e, ctx.s_limit, kSearch.steps_per_period, kSearch.max_step, 200000,
-                                               true);  // crossings only
+    const internal::ElasticaRollingTable table = CrossingTable(e, ctx.s_limit, kSearch);
     std::vector<LocalResult> out;
     for (double crossing : table.Crossings(ctx.radius, kMaxCrossingsPerStart))
       if (crossing > covered) out.push_back(SearchLocalFreeLength(ctx, st.regime, st.x, crossing, options));
@@ -1048,8 +977,7 @@ bool FollowCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eigen::V
 std::vector<LocalResult> TwinSearches(const Context& ctx, const LocalResult& r, const IsoparallelOptions& options,
                                       long* evaluations) {
   std::vector<LocalResult> twins;
-  FreeLengthFunctor f{&ctx, r.regime, kPolish};  // the closed-form rolling
-  f.secant = false;
+  FreeLengthFunctor f{&ctx, r.regime};
   CurvePoint start;
   start.x = Eigen::Vector4d(r.x[0], r.x[1], r.x[2], r.ev.s);
   if (!f(start.x.data(), start.r.data(), start.jac.data()) || !start.jac.allFinite()) return twins;
@@ -1059,7 +987,7 @@ std::vector<LocalResult> TwinSearches(const Context& ctx, const LocalResult& r, 
   for (double sign : {1.0, -1.0}) {
     Eigen::Vector4d y;
     if (!FollowCurve(f, w, u, start, sign * v, &y)) continue;
-    twins.push_back(SearchLocalFreeLength(ctx, r.regime, y.data(), y[3], options, nullptr, kPolish));
+    twins.push_back(SearchLocalFreeLength(ctx, r.regime, y.data(), y[3], options, nullptr));
   }
   *evaluations += f.evaluations;
   return twins;
