@@ -11,6 +11,7 @@
 #include "elastica_closed_rolling.h"
 #include "isoparallel_certify_costate.h"
 #include "isoparallel_certify_jacobian.h"
+#include "isoparallel_certify_rolling.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
 
@@ -438,6 +439,12 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     if (hit < 0 && EvaluateCertifyResidual(target, options.regime, box.Centre(), options.max_step, &centre)) {
       const double chord_deviation = std::min(deviation, ChordDeviationBound(options.regime, box));
       verdict = TestBox(centre, deviation, chord_deviation, options.margin);
+      if (verdict == BoxVerdict::kUndecided && options.closed_rolling &&
+          TestBox(centre, std::min(deviation, ClosedRollingDeviationBound(options.regime, box, options.margin, deviation)),
+                  chord_deviation, options.margin) == BoxVerdict::kExcludedByRotation) {
+        verdict = BoxVerdict::kExcludedByRotation;
+        ++result.excluded_by_closed_rolling;
+      }
       if (verdict == BoxVerdict::kUndecided && options.costate &&
           CostateExcludes(target, options.regime, box, chord_deviation, options.margin))
         verdict = BoxVerdict::kExcludedByCostate;

@@ -134,6 +134,10 @@ struct CertifyWindowOptions {
   /// The costate test (isoparallel_certify_costate.h) on boxes the chord and rotation tests leave
   /// undecided: rigorous, no rolling (~ a closed-form chord and two costates per box).
   bool costate = true;
+  /// The rotation test's bound on the rolling is min(D, ClosedRollingDeviationBound)
+  /// (isoparallel_certify_rolling.h: from the closed-form rolling, linear in L) on boxes D leaves
+  /// undecided: rigorous, ~ two costates per box.
+  bool closed_rolling = true;
   std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
   std::string Validate() const;
 };
@@ -151,6 +155,7 @@ struct CertifyWindowResult {
   long excluded_by_chord = 0;
   long excluded_by_rotation = 0;
   long excluded_by_costate = 0;
+  long excluded_by_closed_rolling = 0;  // of excluded_by_rotation: only with the closed-form bound
   long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
   long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
   std::vector<int> matched;  // per known solution: how many accounted boxes it explains
