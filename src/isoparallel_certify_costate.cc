@@ -13,23 +13,6 @@ namespace plateball::internal {
 
 namespace {
 
-// The box's extremes of |rate| (rate_min = 0 when the box meets rate 0), k, |u0| and L.
-struct BoxExtremes {
-  double rate_min, rate_max, k_min, k_max, phase_max, length_max;
-};
-
-BoxExtremes ExtremesOf(const CertifyBox& box) {
-  const double rlo = box.lo[kCertifyRate], rhi = box.hi[kCertifyRate];
-  BoxExtremes b;
-  b.rate_min = rlo > 0.0 ? rlo : rhi < 0.0 ? -rhi : 0.0;
-  b.rate_max = std::max(std::abs(rlo), std::abs(rhi));
-  b.k_min = std::max(0.0, box.lo[kCertifyModulus]);
-  b.k_max = box.hi[kCertifyModulus];
-  b.phase_max = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
-  b.length_max = box.hi[kCertifyLength];
-  return b;
-}
-
 // int_0^length min(2, slope sigma) d sigma: a bound on |length t(length) - c| when the heading
 // moves by at most slope per unit length (|t(L) - t(s)| = 2 |sin(dtheta / 2)| <= min(2, |dtheta|)).
 double CappedTurn(double slope, double length) {
@@ -56,6 +39,18 @@ double PhaseShiftBound(const BoxExtremes& b, double mv) {
 }
 
 }  // namespace
+
+BoxExtremes ExtremesOf(const CertifyBox& box) {
+  const double rlo = box.lo[kCertifyRate], rhi = box.hi[kCertifyRate];
+  BoxExtremes b;
+  b.rate_min = rlo > 0.0 ? rlo : rhi < 0.0 ? -rhi : 0.0;
+  b.rate_max = std::max(std::abs(rlo), std::abs(rhi));
+  b.k_min = std::max(0.0, box.lo[kCertifyModulus]);
+  b.k_max = box.hi[kCertifyModulus];
+  b.phase_max = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
+  b.length_max = box.hi[kCertifyLength];
+  return b;
+}
 
 // sup K_k / K over [k_min, k_max]: k/k'^2 increases, 1 - D/K decreases.
 double PeriodLogSlope(double k_min, double k_max) {

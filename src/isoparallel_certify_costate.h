@@ -26,6 +26,12 @@
 
 namespace plateball::internal {
 
+/// The box's extremes of |rate| (rate_min = 0 when the box meets rate 0), k, |u0| and L.
+struct BoxExtremes {
+  double rate_min, rate_max, k_min, k_max, phase_max, length_max;
+};
+BoxExtremes ExtremesOf(const CertifyBox& box);
+
 /// Sup over the box of |dc/dx_i| for x = (rate, k, u0, L) (derived above; k_max < 1).
 CertifyPoint ChordDerivativeBounds(PendulumRegime regime, const CertifyBox& box);
 /// Bound on |c(x) - c(centre)| over the box: sum of half-width x ChordDerivativeBounds.

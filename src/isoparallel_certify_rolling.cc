@@ -13,32 +13,23 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// The box's extremes and the suprema over it that the twist's derivatives use (notes).
+// The suprema over the box that the twist's derivatives use (notes), besides its extremes.
 struct TwistScales {
-  double rate_min, rate_max, k_min, k_max, phase_max, length;
-  double gap;    // min |1 - G|
+  double gap;           // min |1 - G|
   double g_min, g_max;  // min G, max G
-  double v_max;  // max V
+  double v_max;         // max V
 };
 
-TwistScales ScalesOf(PendulumRegime regime, const CertifyBox& box) {
+TwistScales ScalesOf(PendulumRegime regime, const BoxExtremes& e) {
   const bool oscillating = regime == PendulumRegime::kOscillating;
-  const double rlo = box.lo[kCertifyRate], rhi = box.hi[kCertifyRate];
   TwistScales t;
-  t.rate_min = rlo > 0.0 ? rlo : rhi < 0.0 ? -rhi : 0.0;
-  t.rate_max = std::max(std::abs(rlo), std::abs(rhi));
-  t.k_min = std::max(0.0, box.lo[kCertifyModulus]);
-  t.k_max = box.hi[kCertifyModulus];
-  t.phase_max = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
-  t.length = box.hi[kCertifyLength];
   // G = rate^2 (oscillating) or (rate k)^2 (rotating) ranges over [g_min, g_max].
-  const double g_min = oscillating ? t.rate_min * t.rate_min : std::pow(t.rate_min * t.k_min, 2);
-  t.g_min = g_min;
-  t.g_max = oscillating ? t.rate_max * t.rate_max : std::pow(t.rate_max * t.k_max, 2);
-  t.gap = t.g_max < 1.0 ? 1.0 - t.g_max : g_min > 1.0 ? g_min - 1.0 : 0.0;
+  t.g_min = oscillating ? e.rate_min * e.rate_min : std::pow(e.rate_min * e.k_min, 2);
+  t.g_max = oscillating ? e.rate_max * e.rate_max : std::pow(e.rate_max * e.k_max, 2);
+  t.gap = t.g_max < 1.0 ? 1.0 - t.g_max : t.g_min > 1.0 ? t.g_min - 1.0 : 0.0;
   // V^2 = (1 - G)^2 + (2 rate k)^2 (oscillating), (1 - G)^2 + (2 rate)^2 (rotating).
-  const double far = std::max(std::abs(1.0 - g_min), std::abs(1.0 - t.g_max));
-  t.v_max = std::hypot(far, 2.0 * t.rate_max * (oscillating ? t.k_max : 1.0));
+  const double far = std::max(std::abs(1.0 - t.g_min), std::abs(1.0 - t.g_max));
+  t.v_max = std::hypot(far, 2.0 * e.rate_max * (oscillating ? e.k_max : 1.0));
   return t;
 }
 
@@ -50,10 +41,11 @@ double UnitChord(double delta, double norm) {
 }  // namespace
 
 CertifyPoint TwistDerivativeBounds(PendulumRegime regime, const CertifyBox& box) {
-  const TwistScales t = ScalesOf(regime, box);
-  if (!(t.gap >= kMinUnitGap) || !(t.k_max < 1.0)) return {kInfinity, kInfinity, kInfinity, kInfinity};
+  const BoxExtremes e = ExtremesOf(box);
+  const TwistScales t = ScalesOf(regime, e);
+  if (!(t.gap >= kMinUnitGap) || !(e.k_max < 1.0)) return {kInfinity, kInfinity, kInfinity, kInfinity};
   const bool oscillating = regime == PendulumRegime::kOscillating;
-  const double r = t.rate_max, k = t.k_max, len = t.length, g = t.g_max, g_lo = t.g_min, gap2 = t.gap * t.gap;
+  const double r = e.rate_max, k = e.k_max, len = e.length_max, g = t.g_max, g_lo = t.g_min, gap2 = t.gap * t.gap;
   // Suprema over the box (pointwise in G, D >= (1 - G)^2, |sin theta| <= min(1, |v_h|)):
   // (1 - G^2)/D lies between (1 - G)/(1 + G) and (1 + G)/(1 - G), a spread of 4G / |1 - G^2|;
   const double spread = std::min((1.0 + g) / t.gap, 4.0 * g / (t.gap * (1.0 + g_lo)));
@@ -64,10 +56,10 @@ CertifyPoint TwistDerivativeBounds(PendulumRegime regime, const CertifyBox& box)
   // at most 2/(1 - G)^2 when positive, 2 (1 + G^2) min(2/D^2, x/D^2 <= 1/(8 G (1 - G)^2)) otherwise.
   const double c = 2.0 * std::max(1.0 / gap2, (1.0 + g * g) * std::min(2.0 / (gap2 * gap2), 1.0 / (8.0 * g_lo * gap2)));
   // |(1 - G^2)(1/D(u1) - 1/D(u0))| / |rate| (by parts) or L sup |(1 - G^2) d(1/D)/dv|.
-  const double shift = t.rate_min > 0.0 ? std::min(spread / t.rate_min, len * b) : len * b;
+  const double shift = e.rate_min > 0.0 ? std::min(spread / e.rate_min, len * b) : len * b;
   // |(1 - G^2) int_0^L s d(1/D)/dv ds| = |(1 - G^2)(L/D(u1) - J)| / |rate|, or L^2 b / 2.
   const double weighted =
-      t.rate_min > 0.0 ? std::min(len * spread / t.rate_min, 0.5 * len * len * b) : 0.5 * len * len * b;
+      e.rate_min > 0.0 ? std::min(len * spread / e.rate_min, 0.5 * len * len * b) : 0.5 * len * len * b;
   // Psi = -(V/2) L [1 + <(1 - G^2)/D>], 1 + (1 - G^2)/D = 2 (1 - G cos theta)/D in
   // [2/(1 + G), 2/(1 - G)] (G < 1) or [-2/(G - 1), 2/(G + 1)] (G > 1): |dPsi/dV| <= L / |1 - G|,
   // |dPsi/dG| <= V L c / 2.
@@ -78,8 +70,8 @@ CertifyPoint TwistDerivativeBounds(PendulumRegime regime, const CertifyBox& box)
   const double dg_dk = oscillating ? 0.0 : 2.0 * r * r * k;
   // theta_k = Theta_k - (K_k/K) v theta_v: Theta_k bounded (zeta form at v = 0), the secular part
   // int (1 - G^2) v d(1/D)/dv ds = (1 - G^2)[u0 (1/D(u1) - 1/D(u0)) / rate + L/D(u1) - J].
-  const double theta_k = HeadingModulusBoundByZeta(regime, t.k_min, k, 0.0);
-  const double secular = PeriodLogSlope(t.k_min, k) * (t.phase_max * shift + len * spread);
+  const double theta_k = HeadingModulusBoundByZeta(regime, e.k_min, k, 0.0);
+  const double secular = PeriodLogSlope(e.k_min, k) * (e.phase_max * shift + len * spread);
   CertifyPoint d;
   d[kCertifyRate] = dv_dr * per_v + dg_dr * per_g + 0.5 * t.v_max * weighted;
   d[kCertifyModulus] = dv_dk * per_v + dg_dk * per_g + 0.5 * t.v_max * (len * b_theta * theta_k + secular);
