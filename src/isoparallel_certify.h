@@ -100,6 +100,10 @@ BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double margi
 /// centre's, `chord_deviation` on the distance of the chord to the centre's (the smaller of D and
 /// ChordDeviationBound, isoparallel_certify_costate.h), used for the chord miss and its turn.
 BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double chord_deviation, double margin);
+/// The rotation test's slack: the box is excluded by rotation when the bound on Q's move is below
+/// it (the centre's rotation residual minus twice the chord's turn and 3 margin; -infinity when
+/// chord_deviation + margin reaches |chord_c|).
+double RotationSlack(const CertifyResidual& centre, double chord_deviation, double margin);
 
 /// One box the branch and bound splits (left undecided by every test), for diagnostics: its
 /// deviation bound D and the per-axis shares of D, and when the first-order tests ran, the

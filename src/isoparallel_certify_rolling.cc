@@ -95,6 +95,25 @@ double FrameDeviationAngle(double delta, double norm, double norm_h) {
   return 2.0 * std::asin(std::min(1.0, frobenius / (2.0 * std::sqrt(2.0))));
 }
 
+namespace {
+
+// `start` plus the closed-form terms (twist, then each frame) on a box whose length is collapsed
+// to the centre's (and maybe its phase), +infinity as soon as the partial sum reaches stop_above.
+double CollapsedBound(PendulumRegime regime, const CertifyBox& fixed, double start, double margin,
+                      double stop_above) {
+  const CertifyPoint x = fixed.Centre();
+  double bound = start + TwistDeviationBound(regime, fixed);
+  const Elastica path = CertifyElastica(regime, x);
+  for (bool at_end : {false, true}) {
+    if (!(bound < stop_above)) return kInfinity;
+    const Eigen::Vector3d v = ElasticaCostate(path, at_end ? x[kCertifyLength] : 0.0);
+    bound += FrameDeviationAngle(margin + CostateDeviationBound(regime, fixed, at_end), v.norm(), v.head<2>().norm());
+  }
+  return bound < stop_above ? bound : kInfinity;
+}
+
+}  // namespace
+
 double ClosedRollingDeviationBound(PendulumRegime regime, const CertifyBox& box, double margin, double stop_above) {
   const CertifyPoint x = box.Centre();
   if (!(x[kCertifyModulus] < 1.0) || !(x[kCertifyLength] > 0.0)) return kInfinity;
@@ -102,14 +121,14 @@ double ClosedRollingDeviationBound(PendulumRegime regime, const CertifyBox& box,
   // which the closed form compares with the centre over the box collapsed to L = L_centre.
   CertifyBox fixed = box;
   fixed.lo[kCertifyLength] = fixed.hi[kCertifyLength] = x[kCertifyLength];
-  double bound = box.HalfWidth(kCertifyLength) + TwistDeviationBound(regime, fixed);
-  const Elastica path = CertifyElastica(regime, x);
-  for (bool at_end : {false, true}) {  // the frames, each after a check of the partial sum
-    if (!(bound < stop_above)) return kInfinity;
-    const Eigen::Vector3d v = ElasticaCostate(path, at_end ? x[kCertifyLength] : 0.0);
-    bound += FrameDeviationAngle(margin + CostateDeviationBound(regime, fixed, at_end), v.norm(), v.head<2>().norm());
-  }
-  return bound < stop_above ? bound : kInfinity;
+  const double by_length = CollapsedBound(regime, fixed, box.HalfWidth(kCertifyLength), margin, stop_above);
+  // At a fixed rate a phase change du shifts the path by du/rate along itself, which moves Q(0, L)
+  // by at most 2 |du| / |rate| (a rolling at unit speed at each end): collapse the phase too.
+  const BoxExtremes e = ExtremesOf(box);
+  if (!(e.rate_min > 0.0)) return by_length;
+  fixed.lo[kCertifyPhase] = fixed.hi[kCertifyPhase] = x[kCertifyPhase];
+  const double start = box.HalfWidth(kCertifyLength) + 2.0 * box.HalfWidth(kCertifyPhase) / e.rate_min;
+  return std::min(by_length, CollapsedBound(regime, fixed, start, margin, std::min(by_length, stop_above)));
 }
 
 }  // namespace plateball::internal
