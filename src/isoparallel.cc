@@ -19,6 +19,7 @@
 #include "check.h"
 #include "dynamics.h"
 #include "elastica_rolling.h"
+#include "isoparallel_twin.h"
 #include "parallel_for.h"
 #include "plateball/isoparallel_families.h"
 #include "plateball/rolling.h"
@@ -80,14 +81,23 @@ constexpr int kFirstShapeBatch = 32;
 constexpr int kShapeBatch = 256;
 constexpr double kCapMargin = 1e-6;
 
-// TwinSearch: the probe along the near-null direction and the longest step to a twin.
-constexpr double kTwinProbe = 1e-3;
-constexpr double kTwinMaxStep = 0.5;
+// TwinSearches: the continuation's step (in the unknowns rate, atanh k, phase, L), its number of
+// steps each way, the corrector's tolerance on |H| and its number of steps, and the |g| at which
+// a branch is given up.
+constexpr double kTwinStep = 0.15;
+constexpr int kTwinSteps = 8;
+constexpr double kTwinCurveTol = 1e-3;
+constexpr int kTwinCorrections = 4;
+constexpr double kTwinGiveUp = 1.0;
 // A search run whose residual is below kDuplicateResidual and whose Gauss-Newton root estimate
 // lies within kDuplicateTol (relative) of a solution known before its batch is stopped there: it
 // would converge to that solution (docs/paper_notes.md, "General targets", point 8).
 constexpr double kDuplicateResidual = 0.1;
 constexpr double kDuplicateTol = 3e-3;
+// The search's rate and modulus columns are Broyden (secant) updates while the residual is above
+// kSecantResidual (two rolling tables fewer per Jacobian; docs/paper_notes.md, "General targets",
+// point 9).
+constexpr double kSecantResidual = 0.1;
 
 struct Context {
   Eigen::Matrix3d target;  // A1 A0^-1
@@ -271,13 +281,15 @@ bool SameRoot(PendulumRegime regime, const Eigen::Vector4d& y, const SearchRoot&
 struct FreeLengthFunctor {
   using Scalar = double;
   enum { NUM_RESIDUALS = 4, NUM_PARAMETERS = 4 };
-  FreeLengthFunctor(const Context* c, PendulumRegime r) : ctx(c), regime(r) {}
+  FreeLengthFunctor(const Context* c, PendulumRegime r, const Accuracy& a = kSearch) : ctx(c), regime(r), acc(a) {}
   const Context* ctx;
   PendulumRegime regime;
+  Accuracy acc;  // of the rolling tables (the shape search: kSearch; the twin search: kPolish)
   mutable long evaluations = 0;
   // Solutions known before this run (nullptr: none checked) and whether the run reached one.
   const std::vector<SearchRoot>* known = nullptr;
   mutable bool duplicate = false;
+  bool secant = true;  // SecantColumns allowed (the twin continuation needs the exact columns)
 
   bool Admissible(const ElasticaParameters& p, double length) const {
     return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::isfinite(length) &&
@@ -317,8 +329,7 @@ struct FreeLengthFunctor {
     last.table.reset();
     if (!Admissible(p, x[3])) return false;
     last.path = std::make_unique<Elastica>(p);
-    last.table = std::make_unique<internal::ElasticaRollingTable>(*last.path, x[3], kSearch.steps_per_period,
-                                                                  kSearch.max_step);
+    last.table = std::make_unique<internal::ElasticaRollingTable>(*last.path, x[3], acc.steps_per_period, acc.max_step);
     last.ok = last.table->Valid() && ResidualOnTable(*last.path, *last.table, 0.0, x[3], r);
     std::copy(x, x + 4, last.x);
     if (last.ok) std::copy(r, r + 4, last.r);
@@ -384,6 +395,23 @@ struct FreeLengthFunctor {
     return false;
   }
 
+  // Far from a root (|r| > kSecantResidual), the rate and modulus columns by a Broyden update of
+  // the last Jacobian of the run (its phase and length columns already replaced by this point's).
+  // Not at an identity target: its comparison shooting (random starts, no shape scan) then misses
+  // Figure 7's shortest path with 512 starts.
+  bool SecantColumns(const double* x, const double* r, double* jacobian) const {
+    if (!secant || ctx->identity || !kept.valid || !(Eigen::Map<const Eigen::Vector4d>(r).norm() > kSecantResidual)) return false;
+    const Eigen::Map<const Eigen::Matrix4d> old(kept.jacobian);
+    const Eigen::Vector4d dx = Eigen::Map<const Eigen::Vector4d>(x) - Eigen::Map<const Eigen::Vector4d>(kept.x);
+    const Eigen::Vector4d dr = Eigen::Map<const Eigen::Vector4d>(r) - Eigen::Map<const Eigen::Vector4d>(kept.r);
+    const double dx2 = dx.squaredNorm();
+    if (!(dx2 > 0)) return false;
+    const Eigen::Matrix4d updated = old + (dr - old * dx) * dx.transpose() / dx2;
+    Eigen::Map<Eigen::Matrix4d> jac(jacobian);
+    jac.leftCols<2>() = updated.leftCols<2>();
+    return jac.allFinite();
+  }
+
   bool Evaluate(const double* x, double* r, double* jacobian) const {
     const ElasticaParameters p = ToParameters(regime, x);
     if (jacobian == nullptr || p.rate == 0.0 || !Admissible(p, x[3])) return ForwardDifferences<4>(*this, x, r, jacobian);
@@ -398,8 +426,7 @@ struct FreeLengthFunctor {
       std::copy(last.r, last.r + 4, r);
     } else {
       own_path = std::make_unique<Elastica>(p);
-      own_table = std::make_unique<internal::ElasticaRollingTable>(*own_path, s_limit, kSearch.steps_per_period,
-                                                                   kSearch.max_step);
+      own_table = std::make_unique<internal::ElasticaRollingTable>(*own_path, s_limit, acc.steps_per_period, acc.max_step);
       if (!own_table->Valid() || !ResidualOnTable(*own_path, *own_table, 0.0, x[3], r)) {
         for (int i = 0; i < 4; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
         return false;
@@ -414,6 +441,7 @@ struct FreeLengthFunctor {
       jacobian[2 * 4 + i] = (rp[i] - r[i]) / signed_phase_step;
       jacobian[3 * 4 + i] = (rl[i] - r[i]) / h_length;
     }
+    if (SecantColumns(x, r, jacobian)) return true;
     for (int j = 0; j < 2; ++j) {
       const double h = 1e-6 * (1.0 + std::abs(x[j]));
       double xp[4] = {x[0], x[1], x[2], x[3]}, rj[4];
@@ -444,10 +472,11 @@ bool HandOff(const Context& ctx, double length, const Accuracy& acc, LocalResult
 // is handed to the crossing formulation (its crossing number counted) for the polish. A run that
 // reaches one of the `known` solutions stops there (LocalResult::duplicate).
 LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
-                                  const IsoparallelOptions& options, const std::vector<SearchRoot>* known = nullptr) {
+                                  const IsoparallelOptions& options, const std::vector<SearchRoot>* known = nullptr,
+                                  const Accuracy& acc = kSearch) {
   LocalResult out;
   out.regime = regime;
-  FreeLengthFunctor f{&ctx, regime};
+  FreeLengthFunctor f{&ctx, regime, acc};
   f.known = known;
   Eigen::Vector4d v(x0[0], x0[1], x0[2], length0);
   ceres::TinySolver<FreeLengthFunctor> solver;
@@ -887,30 +916,108 @@ bool Known(const std::vector<Candidate>& found, const Candidate& c, double tol) 
   return false;
 }
 
-// Polishes the searched results that are not known yet and adds the new distinct solutions.
-// Solutions of a general target often come in close pairs born at a fold (the free-length
-// Jacobian nearly singular there), and a start near the pair converges to one of them. From a
-// solution x* with the smallest singular value s of the 4x4 free-length Jacobian J (left and
-// right singular vectors u, v), the twin lies near x* + t v with u.F(x* + t v) ~ s t + c t^2 / 2 = 0,
-// t = -2 s / c, c from u.F(x* +- e v) by central differences: one search from there.
-bool TwinSearch(const Context& ctx, const LocalResult& r, const IsoparallelOptions& options, LocalResult* twin) {
-  const FreeLengthFunctor f{&ctx, r.regime};
-  const Eigen::Vector4d x(r.x[0], r.x[1], r.x[2], r.ev.s);
-  Eigen::Vector4d res;
+// The twin continuation (TwinSearches): from a solution x*, the curve H(x) = W^T F(x) = 0 (the
+// free-length residual F without its component along u, the left singular vector of the smallest
+// singular value of J(x*); W the other three) is followed through x* in both directions, and a root
+// of F is where g = u.F changes sign along it.
+struct CurvePoint {
+  Eigen::Vector4d x, r;
   Eigen::Matrix4d jac;
-  if (!f(x.data(), res.data(), jac.data())) return false;
-  const Eigen::JacobiSVD<Eigen::Matrix4d> svd(jac, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Vector4d u = svd.matrixU().col(3), v = svd.matrixV().col(3);
-  const double sigma = svd.singularValues()[3], e = kTwinProbe;
-  Eigen::Vector4d rp, rm;
-  const Eigen::Vector4d xp = x + e * v, xm = x - e * v;
-  if (!f.Residual(xp.data(), rp.data()) || !f.Residual(xm.data(), rm.data())) return false;
-  const double curvature = (u.dot(rp) + u.dot(rm)) / (e * e);
-  const double t = -2.0 * sigma / curvature;
-  if (!std::isfinite(t) || std::abs(t) > kTwinMaxStep || std::abs(t) < 2 * e) return false;
-  const Eigen::Vector4d y = x + t * v;
-  *twin = SearchLocalFreeLength(ctx, r.regime, y.data(), y[3], options);
+};
+using CurveFrame = Eigen::Matrix<double, 4, 3>;
+
+// det [W^T J; t^T]: its sign orients a tangent t of the curve.
+double TangentOrientation(const CurveFrame& w, const Eigen::Matrix4d& jac, const Eigen::Vector4d& t) {
+  Eigen::Matrix4d m;
+  m.topRows<3>() = w.transpose() * jac;
+  m.row(3) = t.transpose();
+  return m.determinant();
+}
+
+// The unit tangent of the curve at a point (the null vector of W^T J), oriented so that
+// det [W^T J; t^T] has the sign `orientation`: the same orientation all along the branch, also
+// through a turning point in one of the unknowns, where the tangent turns by more than a right
+// angle within a step and its dot product with the previous tangent is no guide (T4's pair).
+Eigen::Vector4d CurveTangent(const CurveFrame& w, const Eigen::Matrix4d& jac, double orientation) {
+  const Eigen::Matrix<double, 3, 4> a = w.transpose() * jac;
+  const Eigen::JacobiSVD<Eigen::Matrix<double, 3, 4>> svd(a, Eigen::ComputeFullV);
+  const Eigen::Vector4d t = svd.matrixV().col(3);
+  return TangentOrientation(w, jac, t) * orientation < 0 ? -t : t;
+}
+
+// Corrector: minimum-norm Newton steps on H from y (false: |H| still above kTwinCurveTol after
+// kTwinCorrections steps), the first with the Jacobian `previous` of the last curve point (one
+// residual), the others with the Jacobian where they start: next to a tangency of the chord with
+// the circle (where fold pairs sit) it changes quickly along L. `out` gets the Jacobian at the end.
+bool CorrectOntoCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eigen::Matrix4d& previous,
+                      Eigen::Vector4d y, CurvePoint* out) {
+  out->jac = previous;
+  for (int i = 0;; ++i) {
+    const bool fresh = i > 0;
+    if (!(fresh ? f(y.data(), out->r.data(), out->jac.data()) : f.Residual(y.data(), out->r.data()))) return false;
+    if (!out->r.allFinite() || !out->jac.allFinite()) return false;
+    const Eigen::Vector3d h = w.transpose() * out->r;
+    if (h.norm() <= kTwinCurveTol) {
+      if (!fresh && (!f(y.data(), out->r.data(), out->jac.data()) || !out->jac.allFinite())) return false;
+      break;
+    }
+    if (i == kTwinCorrections) return false;
+    const Eigen::Matrix<double, 3, 4> a = w.transpose() * out->jac;
+    y -= a.transpose() * (a * a.transpose()).ldlt().solve(h);
+  }
+  out->x = y;
   return true;
+}
+
+// Follows the curve from x* (`start`) along `direction` (+-v) for up to kTwinSteps steps; where
+// g = u.F changes sign, the point interpolated between the two curve points is a start for the
+// twin's search (true).
+bool FollowCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eigen::Vector4d& u, const CurvePoint& start,
+                 const Eigen::Vector4d& direction, Eigen::Vector4d* twin_start) {
+  CurvePoint p = start;
+  const double orientation = TangentOrientation(w, start.jac, direction);
+  // Next to x*, g grows like s t along +v (J v = s u): a first point of the other sign has passed a root.
+  double g_prev = u.dot(start.jac * direction);
+  for (int step = 0; step < kTwinSteps; ++step) {
+    const Eigen::Vector4d tangent = CurveTangent(w, p.jac, orientation);
+    CurvePoint q;
+    double h = kTwinStep;  // halved (at most twice) where the corrector fails: the curve bends
+    while (!CorrectOntoCurve(f, w, p.jac, p.x + h * tangent, &q))
+      if ((h *= 0.5) < 0.2 * kTwinStep) return false;
+    const double g = u.dot(q.r);
+    if (g * g_prev <= 0) {
+      *twin_start = step == 0 ? q.x : (p.x + (g_prev / (g_prev - g)) * (q.x - p.x)).eval();
+      return true;
+    }
+    if (std::abs(g) > kTwinGiveUp) return false;
+    p = q;
+    g_prev = g;
+  }
+  return false;
+}
+
+// Solutions of a general target often come in close pairs born at a fold (T4 of
+// docs/paper_notes.md: 22.73757780 and 22.75708870), and a start near the pair converges to one of
+// them. From each new solution x* the curve of FollowCurve is followed both ways; a sign change of
+// g starts a search (at most two: `twins`).
+std::vector<LocalResult> TwinSearches(const Context& ctx, const LocalResult& r, const IsoparallelOptions& options,
+                                      long* evaluations) {
+  std::vector<LocalResult> twins;
+  FreeLengthFunctor f{&ctx, r.regime};
+  f.secant = false;
+  CurvePoint start;
+  start.x = Eigen::Vector4d(r.x[0], r.x[1], r.x[2], r.ev.s);
+  if (!f(start.x.data(), start.r.data(), start.jac.data()) || !start.jac.allFinite()) return twins;
+  const Eigen::JacobiSVD<Eigen::Matrix4d> svd(start.jac, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Vector4d u = svd.matrixU().col(3), v = svd.matrixV().col(3);
+  const CurveFrame w = svd.matrixU().leftCols<3>();
+  for (double sign : {1.0, -1.0}) {
+    Eigen::Vector4d y;
+    if (!FollowCurve(f, w, u, start, sign * v, &y)) continue;
+    twins.push_back(SearchLocalFreeLength(ctx, r.regime, y.data(), y[3], options, nullptr, kPolish));
+  }
+  *evaluations += f.evaluations;
+  return twins;
 }
 
 // Adds a search result to `found` when it polishes to a new solution; true if it did.
@@ -944,8 +1051,13 @@ void MergeResults(const Context& ctx, const IsoparallelProblem& problem, const I
   for (auto& results : per_start) {
     for (LocalResult& r : results) {
       if (!MergeResult(ctx, problem, options, &r, found, summary) || ctx.identity) continue;
-      LocalResult twin;
-      if (TwinSearch(ctx, r, options, &twin)) MergeResult(ctx, problem, options, &twin, found, summary);
+      std::vector<LocalResult> pending{r};  // new solutions whose twins are still to be searched
+      while (!pending.empty()) {
+        const LocalResult from = pending.back();
+        pending.pop_back();
+        for (LocalResult& twin : TwinSearches(ctx, from, options, &summary->evaluations))
+          if (MergeResult(ctx, problem, options, &twin, found, summary)) pending.push_back(twin);
+      }
     }
   }
 }
@@ -1060,6 +1172,35 @@ void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const
 }
 
 }  // namespace
+
+namespace internal {
+
+std::vector<IsoparallelSolution> IsoparallelTwins(const IsoparallelProblem& problem, const IsoparallelSolution& solution,
+                                                  const IsoparallelOptions& options) {
+  ValidateProblem(problem);
+  ThrowIfInvalid(options.Validate());
+  Context ctx = MakeContext(problem, options);
+  ctx.s_limit = std::max(ctx.s_limit, 2.0 * solution.length);
+  const ElasticaParameters& p = solution.parameters;
+  LocalResult r;
+  r.regime = p.regime;
+  r.x[0] = p.rate;
+  r.x[1] = std::atanh(p.modulus);
+  r.x[2] = p.phase;
+  r.ev.s = solution.length;
+  Candidate given;
+  given.solution = solution;
+  given.signature = {solution.PositionAt(solution.length / 3), solution.PositionAt(2 * solution.length / 3)};
+  std::vector<Candidate> found{given};
+  IsoparallelSummary summary;
+  for (LocalResult& twin : TwinSearches(ctx, r, options, &summary.evaluations))
+    MergeResult(ctx, problem, options, &twin, &found, &summary);
+  std::vector<IsoparallelSolution> twins;
+  for (std::size_t i = 1; i < found.size(); ++i) twins.push_back(found[i].solution);
+  return twins;
+}
+
+}  // namespace internal
 
 // The verification runs at a tenth of the integration tolerances (clamped to 1e-15): the
 // Runge-Kutta-Fehlberg 7(8) pair, controlled by its local error estimate, accumulates ~10x the

@@ -13,6 +13,7 @@
 
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
+#include "isoparallel_twin.h"
 #include "support/test_support.h"
 #include "plateball/elastica.h"
 #include "plateball/isoparallel_plan.h"
@@ -285,6 +286,44 @@ TEST(Isoparallel, NonTrivialTargetIsSolvedAndVerified) {
     // Independent: roll along the path with dopri5 and compare the final orientation.
     const Eigen::Matrix3d a1 = ReferenceRolling(sol.Path(), sol.length) * p.start_orientation;
     EXPECT_LT(OperatorNormDistance(a1, p.goal_orientation), kVerifiedTol);
+  }
+}
+
+// T4 of docs/paper_notes.md ("General targets", x1 = (3, 0), A1 = exp(hat(0.3, 0, 0))): 22.73757780
+// and 22.75708870 are a pair born at a fold (k 0.8590 and 0.8617, starting phases 0.85 apart in u),
+// each found by single search runs. The twin search from either member finds the other, verified
+// by dopri5 (the members as SolveIsoparallel reports them, to 17 digits). Main's twin search (one
+// start at x* - (2 s / c) v) found neither: its quadratic model along v predicts a step of -7.35
+// from the first (the twin lies at +0.85) and -0.63 from the second, past its 0.5 step limit.
+TEST(Isoparallel, TwinSearchCrossesAFoldFromEitherMemberOfThePair) {
+  IsoparallelProblem p;
+  p.goal = {3.0, 0.0};
+  p.goal_orientation = ExpSO3({0.3, 0.0, 0.0});
+  auto member = [](double length, double rate, double modulus, double phase, double heading_w) {
+    IsoparallelSolution s;
+    s.parameters.regime = PendulumRegime::kOscillating;
+    s.parameters.rate = rate;
+    s.parameters.modulus = modulus;
+    s.parameters.phase = phase;
+    s.parameters.heading_w = heading_w;
+    s.length = length;
+    return s;
+  };
+  const IsoparallelSolution pair[2] = {
+      member(22.737577798620237, -1.5286829366546559, 0.85899531125445905, -1.8387075034296196, 1.6856087346221791),
+      member(22.757088695348607, -1.5273138595051401, 0.86166377442390474, -9.5657745109515204, 1.6712142418525553)};
+  for (int i = 0; i < 2; ++i) {
+    const IsoparallelSolution &from = pair[i], &to = pair[1 - i];
+    ASSERT_LT(OperatorNormDistance(ReferenceRolling(from.Path(), from.length), p.goal_orientation), kVerifiedTol);
+    ASSERT_LT((from.PositionAt(from.length) - p.goal).norm(), kVerifiedTol);
+    bool found = false;
+    for (const IsoparallelSolution& twin : internal::IsoparallelTwins(p, from)) {
+      if (std::abs(twin.length - to.length) > kLengthTol) continue;
+      found = true;
+      EXPECT_LT(OperatorNormDistance(ReferenceRolling(twin.Path(), twin.length), p.goal_orientation), kVerifiedTol);
+      EXPECT_LT((twin.PositionAt(twin.length) - p.goal).norm(), kVerifiedTol);
+    }
+    EXPECT_TRUE(found) << "from " << from.length;
   }
 }
 

@@ -15,8 +15,9 @@
 // (no seed); for each shape ONE rolling table over [0, T + s_max] serves the whole (phase,
 // length) plane (Q(s0, s0 + L) = Q(0, s0 + L) Q(0, s0)^-1, every start node s0 of one period,
 // every crossing or near-tangency of the chord along L), and only the local minima of the
-// rotation residual there below 1 rad start the 4-unknown search. A solution found next to a fold
-// (nearly singular Jacobian) is followed by one search for its twin across the fold. Every
+// rotation residual there below 1 rad start the 4-unknown search. From each new solution the curve
+// on which three of the four residuals vanish is followed both ways, and where the fourth changes
+// sign a search starts (the twin across a fold, found from either member of the pair). Every
 // distinct solution up to length_cap_factor times the shortest is reported, sorted by length.
 // Each reported solution is verified independently of the solver by VerifyRolling (a second
 // integrator along the path).
