@@ -11,6 +11,7 @@
 #include "elastica_closed_rolling.h"
 #include "isoparallel_certify_costate.h"
 #include "isoparallel_certify_jacobian.h"
+#include "isoparallel_certify_rolling.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
 
@@ -340,15 +341,19 @@ BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double margi
   return TestBox(centre, deviation, deviation, margin);
 }
 
+double RotationSlack(const CertifyResidual& centre, double chord_deviation, double margin) {
+  // The chord lies within Dc of the centre's: its direction turns by at most asin(Dc / |chord_c|),
+  // B by as much, the conjugation B Q B^T by twice that; what is left bounds Q's own move.
+  if (!(chord_deviation + margin < centre.chord_norm)) return -std::numeric_limits<double>::infinity();
+  const double turn = std::asin((chord_deviation + margin) / centre.chord_norm);
+  return centre.rotation - 2.0 * turn - 3.0 * margin;
+}
+
 BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double chord_deviation, double margin) {
   // Every point of the box has | |chord| - |chord_c| | <= Dc, so | chord miss | >= |miss_c| - Dc.
   if (std::abs(centre.chord_miss) > chord_deviation + margin) return BoxVerdict::kExcludedByChord;
-  // Its chord lies within Dc of the centre's: the direction turns by at most asin(Dc / |chord_c|),
-  // B by as much, the conjugation B Q B^T by twice that, Q itself by at most D.
-  if (chord_deviation + margin < centre.chord_norm) {
-    const double turn = std::asin((chord_deviation + margin) / centre.chord_norm);
-    if (centre.rotation > deviation + 2.0 * turn + 3.0 * margin) return BoxVerdict::kExcludedByRotation;
-  }
+  // Q itself moves by at most D.
+  if (deviation < RotationSlack(centre, chord_deviation, margin)) return BoxVerdict::kExcludedByRotation;
   return BoxVerdict::kUndecided;
 }
 
@@ -438,6 +443,12 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     if (hit < 0 && EvaluateCertifyResidual(target, options.regime, box.Centre(), options.max_step, &centre)) {
       const double chord_deviation = std::min(deviation, ChordDeviationBound(options.regime, box));
       verdict = TestBox(centre, deviation, chord_deviation, options.margin);
+      const double slack = RotationSlack(centre, chord_deviation, options.margin);
+      if (verdict == BoxVerdict::kUndecided && options.closed_rolling && slack > box.HalfWidth(kCertifyLength) &&
+          ClosedRollingDeviationBound(options.regime, box, options.margin, std::min(deviation, slack)) < slack) {
+        verdict = BoxVerdict::kExcludedByRotation;  // the rotation test with min(D, R)
+        ++result.excluded_by_closed_rolling;
+      }
       if (verdict == BoxVerdict::kUndecided && options.costate &&
           CostateExcludes(target, options.regime, box, chord_deviation, options.margin))
         verdict = BoxVerdict::kExcludedByCostate;

@@ -100,6 +100,10 @@ BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double margi
 /// centre's, `chord_deviation` on the distance of the chord to the centre's (the smaller of D and
 /// ChordDeviationBound, isoparallel_certify_costate.h), used for the chord miss and its turn.
 BoxVerdict TestBox(const CertifyResidual& centre, double deviation, double chord_deviation, double margin);
+/// The rotation test's slack: the box is excluded by rotation when the bound on Q's move is below
+/// it (the centre's rotation residual minus twice the chord's turn and 3 margin; -infinity when
+/// chord_deviation + margin reaches |chord_c|).
+double RotationSlack(const CertifyResidual& centre, double chord_deviation, double margin);
 
 /// One box the branch and bound splits (left undecided by every test), for diagnostics: its
 /// deviation bound D and the per-axis shares of D, and when the first-order tests ran, the
@@ -134,6 +138,10 @@ struct CertifyWindowOptions {
   /// The costate test (isoparallel_certify_costate.h) on boxes the chord and rotation tests leave
   /// undecided: rigorous, no rolling (~ a closed-form chord and two costates per box).
   bool costate = true;
+  /// The rotation test's bound on the rolling is min(D, ClosedRollingDeviationBound)
+  /// (isoparallel_certify_rolling.h: from the closed-form rolling, linear in L) on boxes D leaves
+  /// undecided: rigorous, ~ two costates per box.
+  bool closed_rolling = true;
   std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
   std::string Validate() const;
 };
@@ -151,6 +159,7 @@ struct CertifyWindowResult {
   long excluded_by_chord = 0;
   long excluded_by_rotation = 0;
   long excluded_by_costate = 0;
+  long excluded_by_closed_rolling = 0;  // of excluded_by_rotation: only with the closed-form bound
   long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
   long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
   std::vector<int> matched;  // per known solution: how many accounted boxes it explains

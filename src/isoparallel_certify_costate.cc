@@ -13,23 +13,6 @@ namespace plateball::internal {
 
 namespace {
 
-// The box's extremes of |rate| (rate_min = 0 when the box meets rate 0), k, |u0| and L.
-struct BoxExtremes {
-  double rate_min, rate_max, k_min, k_max, phase_max, length_max;
-};
-
-BoxExtremes ExtremesOf(const CertifyBox& box) {
-  const double rlo = box.lo[kCertifyRate], rhi = box.hi[kCertifyRate];
-  BoxExtremes b;
-  b.rate_min = rlo > 0.0 ? rlo : rhi < 0.0 ? -rhi : 0.0;
-  b.rate_max = std::max(std::abs(rlo), std::abs(rhi));
-  b.k_min = std::max(0.0, box.lo[kCertifyModulus]);
-  b.k_max = box.hi[kCertifyModulus];
-  b.phase_max = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
-  b.length_max = box.hi[kCertifyLength];
-  return b;
-}
-
 // int_0^length min(2, slope sigma) d sigma: a bound on |length t(length) - c| when the heading
 // moves by at most slope per unit length (|t(L) - t(s)| = 2 |sin(dtheta / 2)| <= min(2, |dtheta|)).
 double CappedTurn(double slope, double length) {
@@ -39,11 +22,6 @@ double CappedTurn(double slope, double length) {
 
 // 1 - D/K at k (D = (K - E)/k^2): the secular factor of K_k/K = k (1 - D/K)/k'^2, decreasing in k.
 double SecularFactor(double k) { return 1.0 - boost::math::ellint_d(k) / boost::math::ellint_1(k); }
-
-// sup K_k / K over [k_min, k_max]: k/k'^2 increases, 1 - D/K decreases.
-double PeriodLogSlope(double k_min, double k_max) {
-  return k_max * SecularFactor(k_min) / ((1.0 - k_max) * (1.0 + k_max));
-}
 
 // sup |d am/dk| at fixed v over [k_min, k_max] and |v| <= v_max: the smaller of the fixed-v form
 // k (1/2 + |v|)/k'^2 and the zeta form k ((1 + K)/2 + (1 - D/K) |v|)/k'^2 (isoparallel_certify.h).
@@ -61,6 +39,23 @@ double PhaseShiftBound(const BoxExtremes& b, double mv) {
 }
 
 }  // namespace
+
+BoxExtremes ExtremesOf(const CertifyBox& box) {
+  const double rlo = box.lo[kCertifyRate], rhi = box.hi[kCertifyRate];
+  BoxExtremes b;
+  b.rate_min = rlo > 0.0 ? rlo : rhi < 0.0 ? -rhi : 0.0;
+  b.rate_max = std::max(std::abs(rlo), std::abs(rhi));
+  b.k_min = std::max(0.0, box.lo[kCertifyModulus]);
+  b.k_max = box.hi[kCertifyModulus];
+  b.phase_max = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
+  b.length_max = box.hi[kCertifyLength];
+  return b;
+}
+
+// sup K_k / K over [k_min, k_max]: k/k'^2 increases, 1 - D/K decreases.
+double PeriodLogSlope(double k_min, double k_max) {
+  return k_max * SecularFactor(k_min) / ((1.0 - k_max) * (1.0 + k_max));
+}
 
 CertifyPoint ChordDerivativeBounds(PendulumRegime regime, const CertifyBox& box) {
   const BoxExtremes b = ExtremesOf(box);
@@ -118,6 +113,13 @@ CertifyPoint CostateDerivativeBounds(PendulumRegime regime, const CertifyBox& bo
   return d;
 }
 
+double CostateDeviationBound(PendulumRegime regime, const CertifyBox& box, bool at_end) {
+  const CertifyPoint d = CostateDerivativeBounds(regime, box, at_end);
+  double sum = 0.0;
+  for (int i = 0; i < 4; ++i) sum += box.HalfWidth(i) * d[i];
+  return sum;
+}
+
 bool EvaluateCostateAngle(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x, CostateAngle* out) {
   const double length = x[kCertifyLength];
   for (double value : x)
@@ -153,9 +155,7 @@ double MinCostateAngleOverTurn(const CertifyTarget& target, const CostateAngle& 
 double CostateEndsDeviationBound(PendulumRegime regime, const CertifyBox& box, const CostateAngle& centre,
                                  double margin) {
   const auto end_angle = [&](bool at_end, double norm) {
-    const CertifyPoint d = CostateDerivativeBounds(regime, box, at_end);
-    double delta = margin;
-    for (int i = 0; i < 4; ++i) delta += box.HalfWidth(i) * d[i];
+    const double delta = margin + CostateDeviationBound(regime, box, at_end);
     return delta < norm ? std::asin(delta / norm) : M_PI;
   };
   return end_angle(false, centre.start.norm()) + end_angle(true, centre.end.norm());

@@ -26,6 +26,12 @@
 
 namespace plateball::internal {
 
+/// The box's extremes of |rate| (rate_min = 0 when the box meets rate 0), k, |u0| and L.
+struct BoxExtremes {
+  double rate_min, rate_max, k_min, k_max, phase_max, length_max;
+};
+BoxExtremes ExtremesOf(const CertifyBox& box);
+
 /// Sup over the box of |dc/dx_i| for x = (rate, k, u0, L) (derived above; k_max < 1).
 CertifyPoint ChordDerivativeBounds(PendulumRegime regime, const CertifyBox& box);
 /// Bound on |c(x) - c(centre)| over the box: sum of half-width x ChordDerivativeBounds.
@@ -34,6 +40,12 @@ double ChordDeviationBound(PendulumRegime regime, const CertifyBox& box);
 /// Sup over the box of |dv/dx_i| for v at the start (at_end = false: v(u0)) or at the end
 /// (v(u0 + rate L)) of the path (derived in the notes; k_max < 1).
 CertifyPoint CostateDerivativeBounds(PendulumRegime regime, const CertifyBox& box, bool at_end);
+/// Bound on |v(x) - v(centre)| over the box at one end: sum of half-width x CostateDerivativeBounds.
+double CostateDeviationBound(PendulumRegime regime, const CertifyBox& box, bool at_end);
+
+/// sup K_k / K over moduli in [k_min, k_max] (k_max < 1): the period's logarithmic change, the
+/// factor of the secular part of d theta/dk = Theta_k - (K_k/K) v theta_v.
+double PeriodLogSlope(double k_min, double k_max);
 
 /// The costate angle e_c at a parameter point: the angle between target B vhat(0) and B vhat(L),
 /// B = RotationZ(beta), beta = goal_angle - arg c, v = ElasticaCostate (isoparallel_families.h;

@@ -1,0 +1,48 @@
+// Internal: a bound on the rolling's deviation over a parameter box from the closed-form rolling,
+// linear in the path length (issue 15, "General targets: certified"; docs/paper_notes.md,
+// "General targets: the rolling's deviation from the closed form (issue 15, eighth round)").
+//
+// Q(0, L) = F(L) Rz(Psi) F(0)^T (elastica_closed_rolling.h), F = [f1 f2 u] the costate frame,
+// u = v/V, f1 = e3 x u / |e3 x u|, Psi = psi(L) - psi(0) = -(V/2) [L + (1 - G^2) J],
+// J = int_0^L ds / D, D = |v_h|^2 = 1 + G^2 - 2 G cos theta >= (1 - G)^2. The geodesic distance
+// is bi-invariant, so between a point p of the box and its centre c
+//   dist(Q(p), Q(c)) <= dist(F(L; p), F(L; c)) + |Psi(p) - Psi(c)| + dist(F(0; p), F(0; c)).
+// - Each frame moves with v and v_h: |v(p) - v(c)| <= delta (CostateDeviationBound), so u turns
+//   by at most asin(delta / |v(c)|) and f1 (v_h turned by -pi/2) by asin(delta / |v_h(c)|); f2 =
+//   u x f1 moves by at most |du| + |df1|; a rotation whose columns move by d (Frobenius norm of the
+//   difference) turns by 2 asin(d / (2 sqrt 2)), since |R - I|_F^2 = 8 sin^2(angle / 2).
+// - |Psi(p) - Psi(c)| <= sum_i h_i sup |dPsi/dx_i| (TwistDerivativeBounds), each linear in L: the
+//   phase and the periodic part of d/dk by differences of 1/D at the two ends, the rate's
+//   s-weighted part by parts, the k's secular part through K_k/K, G and V by their derivatives.
+// Near G = 1 the factor (1 + G)/|1 - G| blows up while Q stays smooth: the bound is +infinity when
+// min |1 - G| over the box is below kMinUnitGap, and the certificate takes min(D, this bound).
+#pragma once
+
+#include <limits>
+
+#include "isoparallel_certify.h"
+
+namespace plateball::internal {
+
+/// min over the box of |1 - G| below which the closed-form bounds are +infinity (G = rate^2
+/// oscillating, (rate k)^2 rotating; 1/D <= 1/(1 - G)^2 enters them squared and cubed).
+inline constexpr double kMinUnitGap = 1e-6;
+
+/// Sup over the box of |dPsi/dx_i| for Psi = psi(L) - psi(0) (k_max < 1); every entry +infinity
+/// when min |1 - G| over the box < kMinUnitGap.
+CertifyPoint TwistDerivativeBounds(PendulumRegime regime, const CertifyBox& box);
+/// Bound on |Psi(x) - Psi(centre)| over the box: sum of half-width x TwistDerivativeBounds.
+double TwistDeviationBound(PendulumRegime regime, const CertifyBox& box);
+
+/// Bound on the angle between the costate frames F(x) and F(centre) at one end when
+/// |v(x) - v(centre)| <= delta, |v(centre)| = norm and |v_h(centre)| = norm_h (pi when it fails).
+double FrameDeviationAngle(double delta, double norm, double norm_h);
+
+/// Bound on the rotation distance between Q(0, L) of any point of the box and Q(0, Lc) of its
+/// centre, from the closed form (above); margin added to each end's costate deviation. +infinity
+/// when min |1 - G| over the box < kMinUnitGap, the centre is inadmissible, or the bound is not
+/// below stop_above (then it stops as soon as a partial sum reaches it: the caller's D).
+double ClosedRollingDeviationBound(PendulumRegime regime, const CertifyBox& box, double margin,
+                                   double stop_above = std::numeric_limits<double>::infinity());
+
+}  // namespace plateball::internal
