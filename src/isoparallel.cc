@@ -97,6 +97,12 @@ constexpr double kTwinGiveUp = 1.0;
 // would converge to that solution (docs/paper_notes.md, "General targets", point 8).
 constexpr double kDuplicateResidual = 0.1;
 constexpr double kDuplicateTol = 3e-3;
+// The search's rate and modulus columns are Broyden (secant) updates while the residual is above
+// kSecantResidual (two closed-form rollings fewer per Jacobian; docs/paper_notes.md, "General
+// targets", points 9 and 10: 0.1 with the search tables; with the closed form 0.1 loses T7's
+// 14.27603954, 0.2 and 0.3 keep every solution of the ten targets).
+constexpr double kSecantResidual = 0.3;
+
 struct Context {
   Eigen::Matrix3d target;  // A1 A0^-1
   double radius;           // |x1 - x0|
@@ -294,6 +300,7 @@ struct FreeLengthFunctor {
   // Solutions known before this run (nullptr: none checked) and whether the run reached one.
   const std::vector<SearchRoot>* known = nullptr;
   mutable bool duplicate = false;
+  bool secant = true;  // SecantColumns allowed (the twin continuation needs the exact columns)
 
   bool Admissible(const ElasticaParameters& p, double length) const {
     return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::isfinite(length) &&
@@ -397,6 +404,23 @@ struct FreeLengthFunctor {
     return false;
   }
 
+  // Far from a root (|r| > kSecantResidual), the rate and modulus columns by a Broyden update of
+  // the last Jacobian of the run (its phase and length columns already replaced by this point's).
+  // Not at an identity target: its comparison shooting (random starts, no shape scan) then misses
+  // Figure 7's shortest path with 512 starts.
+  bool SecantColumns(const double* x, const double* r, double* jacobian) const {
+    if (!secant || ctx->identity || !kept.valid || !(Eigen::Map<const Eigen::Vector4d>(r).norm() > kSecantResidual)) return false;
+    const Eigen::Map<const Eigen::Matrix4d> old(kept.jacobian);
+    const Eigen::Vector4d dx = Eigen::Map<const Eigen::Vector4d>(x) - Eigen::Map<const Eigen::Vector4d>(kept.x);
+    const Eigen::Vector4d dr = Eigen::Map<const Eigen::Vector4d>(r) - Eigen::Map<const Eigen::Vector4d>(kept.r);
+    const double dx2 = dx.squaredNorm();
+    if (!(dx2 > 0)) return false;
+    const Eigen::Matrix4d updated = old + (dr - old * dx) * dx.transpose() / dx2;
+    Eigen::Map<Eigen::Matrix4d> jac(jacobian);
+    jac.leftCols<2>() = updated.leftCols<2>();
+    return jac.allFinite();
+  }
+
   bool Evaluate(const double* x, double* r, double* jacobian) const {
     const ElasticaParameters p = ToParameters(regime, x);
     if (jacobian == nullptr || p.rate == 0.0 || !Admissible(p, x[3])) return ForwardDifferences<4>(*this, x, r, jacobian);
@@ -417,6 +441,7 @@ struct FreeLengthFunctor {
       jacobian[2 * 4 + i] = (rp[i] - r[i]) / signed_phase_step;
       jacobian[3 * 4 + i] = (rl[i] - r[i]) / h_length;
     }
+    if (SecantColumns(x, r, jacobian)) return true;
     for (int j = 0; j < 2; ++j) {
       const double h = 1e-6 * (1.0 + std::abs(x[j]));
       double xp[4] = {x[0], x[1], x[2], x[3]}, rj[4];
@@ -978,6 +1003,7 @@ std::vector<LocalResult> TwinSearches(const Context& ctx, const LocalResult& r, 
                                       long* evaluations) {
   std::vector<LocalResult> twins;
   FreeLengthFunctor f{&ctx, r.regime};
+  f.secant = false;
   CurvePoint start;
   start.x = Eigen::Vector4d(r.x[0], r.x[1], r.x[2], r.ev.s);
   if (!f(start.x.data(), start.r.data(), start.jac.data()) || !start.jac.allFinite()) return twins;
