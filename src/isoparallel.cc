@@ -129,15 +129,18 @@ struct Evaluation {
   Eigen::Vector3d residual = Eigen::Vector3d::Zero();
 };
 
-// Whether the closed-form rolling takes e's parameters (finite G and V^2).
-bool ClosedFormApplies(const Elastica& e) {
-  return std::abs(e.parameters().rate) <= internal::ElasticaClosedRolling::kMaxRate;
+// Whether the closed-form rolling takes e's parameters (finite G and V^2) and arc lengths up to
+// s_max (rate s + phase finite): else ElasticaClosedRolling would throw.
+bool ClosedFormApplies(const Elastica& e, double s_max) {
+  const ElasticaParameters& p = e.parameters();
+  return std::abs(p.rate) <= internal::ElasticaClosedRolling::kMaxRate &&
+         std::isfinite(std::abs(p.rate) * (std::abs(s_max) + 1.0) + std::abs(p.phase));
 }
 
 // The rotation trick of section 2.2 at arc length s of e (the rolling in closed form).
 bool EvaluateAt(const Context& ctx, const Elastica& e, double s, Evaluation* out) {
   const Eigen::Vector2d xs = e.Position(s);
-  if (xs.norm() == 0.0 || !ClosedFormApplies(e)) return false;
+  if (xs.norm() == 0.0 || !ClosedFormApplies(e, s)) return false;
   out->s = s;
   out->beta = internal::ChordTurn(ctx.goal_angle, xs);
   out->residual = internal::RotationTrickResidual(ctx.target, out->beta, internal::ElasticaClosedRolling(e).Rolling(s));
@@ -340,7 +343,7 @@ struct FreeLengthFunctor {
     last.rolling.reset();
     if (!Admissible(p, x[3])) return false;
     last.path = std::make_unique<Elastica>(p);
-    if (!ClosedFormApplies(*last.path)) return false;
+    if (!ClosedFormApplies(*last.path, 2.0 * ctx->s_limit)) return false;  // every length Admissible takes, and L + h
     last.rolling = std::make_unique<internal::ElasticaClosedRolling>(*last.path);
     last.ok = ResidualFrom(*last.path, *last.rolling, 0.0, x[3], r);
     std::copy(x, x + 4, last.x);
@@ -423,9 +426,10 @@ struct FreeLengthFunctor {
 
   bool Evaluate(const double* x, double* r, double* jacobian) const {
     const ElasticaParameters p = ToParameters(regime, x);
-    if (jacobian == nullptr || p.rate == 0.0 || !Admissible(p, x[3])) return ForwardDifferences<4>(*this, x, r, jacobian);
     const double h_phase = 1e-6 * (1.0 + std::abs(x[2])), h_length = 1e-6 * (1.0 + std::abs(x[3]));
-    const double s0 = h_phase / std::abs(p.rate);  // phase + sign(rate) h_phase
+    const double s0 = h_phase / std::abs(p.rate);  // phase + sign(rate) h_phase (infinite at rate 0)
+    if (jacobian == nullptr || !std::isfinite(s0 + x[3] + h_length) || !Admissible(p, x[3]))
+      return ForwardDifferences<4>(*this, x, r, jacobian);
     if (!LastAt(x) && !Residual(x, r)) {  // else the trial's rolling and residual at this point
       for (int i = 0; i < 4; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
       return false;

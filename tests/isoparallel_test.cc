@@ -404,6 +404,25 @@ TEST(Isoparallel, TwinSearchCrossesAFoldFromEitherMemberOfThePair) {
   }
 }
 
+// The closed-form rolling takes |rate| <= 1e150 and finite rate s + phase (else it throws): the
+// searches treat parameters beyond that as a failed evaluation, like an invalid table before it
+// (a twin search from such a "solution" finds nothing and does not throw).
+TEST(Isoparallel, ParametersBeyondTheClosedFormFailTheEvaluationWithoutThrowing) {
+  IsoparallelProblem p;
+  p.goal = {3.0, 0.0};
+  p.goal_orientation = ExpSO3({0.3, 0.0, 0.0});
+  for (const auto& [rate, length] : {std::pair{1e200, 5.0}, std::pair{1e100, 1e200}}) {
+    IsoparallelSolution s;
+    s.parameters.regime = PendulumRegime::kOscillating;
+    s.parameters.rate = rate;
+    s.parameters.modulus = 0.5;
+    s.length = length;
+    std::vector<IsoparallelSolution> twins;
+    EXPECT_NO_THROW(twins = internal::IsoparallelTwins(p, s)) << rate;
+    EXPECT_TRUE(twins.empty()) << rate;
+  }
+}
+
 TEST(Isoparallel, ConstructedProblemFindsThePathOrAShorterOne) {
   // Pose the problem from a known elastica: its end point and its dopri5 reorientation. That path
   // is admissible, so the shortest solution can be no longer.
