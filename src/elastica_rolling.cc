@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "plateball/so3.h"
 
@@ -45,11 +47,17 @@ struct ElasticaAccess {
 static Sncndn ElasticaJacobi(const Elastica& e, double u) { return ElasticaAccess::Jacobi(e, u); }
 static Eigen::Vector2d ElasticaTangentOf(const Elastica& e, const Sncndn& s) { return ElasticaAccess::TangentOf(e, s); }
 
+// x(s0 + h) - x(s0) from the tangents at the step's three Gauss nodes: three-point
+// Gauss-Legendre quadrature of x' (order 6).
+static Eigen::Vector2d GaussDisplacement(const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3,
+                                         double h) {
+  return (h / 18.0) * (5.0 * t1 + 8.0 * t2 + 5.0 * t3);
+}
+
 // The Magnus step from the tangents at the three Gauss nodes.
 static Eigen::Matrix3d MagnusFromTangents(const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3,
                                    double h, Eigen::Vector2d* displacement) {
-  // Same Gauss nodes: three-point Gauss-Legendre quadrature of x' (order 6).
-  if (displacement) *displacement = (h / 18.0) * (5.0 * t1 + 8.0 * t2 + 5.0 * t3);
+  if (displacement) *displacement = GaussDisplacement(t1, t2, t3, h);  // same Gauss nodes
   const Eigen::Vector3d w1 = Omega(t1), w2 = Omega(t2), w3 = Omega(t3);
   // Blanes, Casas, Ros (2000), order 6 with Gauss-Legendre nodes; [hat a, hat b] = hat(a x b).
   const Eigen::Vector3d a1 = h * w2;
@@ -73,8 +81,8 @@ Eigen::Matrix3d MagnusRollingStep(const Elastica& e, double s0, double s1, Eigen
 }
 
 ElasticaRollingTable::ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
-                                           int max_total_steps)
-    : e_(&e), s_limit_(s_limit), max_total_steps_(max_total_steps) {
+                                           int max_total_steps, bool positions_only)
+    : e_(&e), s_limit_(s_limit), max_total_steps_(max_total_steps), positions_only_(positions_only) {
   steps_per_period = std::max(4, steps_per_period);
   straight_ = e.IsStraight();
   if (straight_) {
@@ -106,7 +114,7 @@ ElasticaRollingTable::ElasticaRollingTable(const Elastica& e, double s_limit, in
     monodromy_.setIdentity();
     drift_.setZero();
   } else {
-    monodromy_ = rot_[steps_];
+    monodromy_ = positions_only_ ? Eigen::Matrix3d::Identity() : rot_[steps_];
     drift_ = e.DriftPerPeriod();
   }
 }
@@ -133,10 +141,17 @@ static void MarchGaussTangents(const Elastica& e, double h, int steps, OnStep&& 
 }
 
 void ElasticaRollingTable::Build(int steps) {
-  rot_.resize(steps + 1);
   pos_.resize(steps + 1);
-  rot_[0].setIdentity();
   pos_[0].setZero();
+  if (positions_only_) {  // the displacement of MagnusFromTangents, without the rotation
+    MarchGaussTangents(*e_, h_, steps,
+                       [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
+                         pos_[j + 1] = pos_[j] + GaussDisplacement(t1, t2, t3, h_);
+                       });
+    return;
+  }
+  rot_.resize(steps + 1);
+  rot_[0].setIdentity();
   MarchGaussTangents(*e_, h_, steps,
                      [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
                        Eigen::Vector2d dx;
@@ -156,7 +171,12 @@ Eigen::Matrix3d PeriodRolling(const Elastica& e, int steps) {
   return q;
 }
 
+void ElasticaRollingTable::RequireRotations(const char* what) const {
+  if (positions_only_) throw std::logic_error(std::string("ElasticaRollingTable::") + what + ": a table of positions only");
+}
+
 Eigen::Matrix3d ElasticaRollingTable::Rolling(double s) const {
+  RequireRotations("Rolling");
   if (straight_) return ExpSO3(s * Omega(e_->Tangent(0.0)));
   double n = 0.0, r = s;
   if (std::isfinite(period_)) {
@@ -221,6 +241,7 @@ long ElasticaRollingTable::NodeCount() const {
 }
 
 void ElasticaRollingTable::Nodes(std::vector<Eigen::Matrix3d>* rolling, std::vector<Eigen::Vector2d>* position) const {
+  RequireRotations("Nodes");
   const long count = NodeCount();
   rolling->resize(count + 1);
   position->resize(count + 1);

@@ -27,10 +27,14 @@ Eigen::Matrix3d PeriodRolling(const Elastica& e, int steps);
 class ElasticaRollingTable {
  public:
   /// steps_per_period >= 4 Magnus steps per period, and no step longer than max_step.
-  /// Valid() is false when the table would need more than max_total_steps steps.
+  /// Valid() is false when the table would need more than max_total_steps steps. A table of
+  /// positions only (positions_only) has the same nodes and positions (bit for bit: the crossings
+  /// are the same) without the Magnus rotations: Rolling and Nodes throw std::logic_error on it
+  /// (the rolling then comes from ElasticaClosedRolling, elastica_closed_rolling.h).
   ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
-                       int max_total_steps = 200000);
+                       int max_total_steps = 200000, bool positions_only = false);
   bool Valid() const { return valid_; }
+  bool PositionsOnly() const { return positions_only_; }
   /// Whether a table of the same elastica and accuracy over [0, s_limit] (s_limit >= this one's)
   /// would be this one: a periodic table (one period tabulated) is the same for every length, so
   /// it serves Rolling(s) for any s up to s_limit as it stands.
@@ -59,6 +63,7 @@ class ElasticaRollingTable {
 
  private:
   void Build(int steps);
+  void RequireRotations(const char* what) const;
   // Counts node brackets up to max_count and refines those for which refine(count, sa, sb) holds
   // (count from 1; bracket [sa, sb]), appending (count, root) to out; -1 on failure.
   template <class Pred>
@@ -69,6 +74,7 @@ class ElasticaRollingTable {
   double s_limit_;
   int max_total_steps_;
   bool valid_ = true;
+  bool positions_only_ = false;
   bool straight_ = false;
   double period_ = 0.0;
   double h_ = 0.0;

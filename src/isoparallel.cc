@@ -18,6 +18,7 @@
 
 #include "check.h"
 #include "dynamics.h"
+#include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
 #include "isoparallel_twin.h"
 #include "parallel_for.h"
@@ -29,15 +30,17 @@
 namespace plateball {
 namespace {
 
-// Accuracy of one evaluation of a candidate: Magnus steps per curvature period and longest step.
+// The nodes of a table: Magnus steps per curvature period and longest step. The rolling along a
+// candidate is the closed form (ElasticaClosedRolling, ~1e-13 at any length, ~1 us) everywhere
+// but in the shape scan (ScanShape: one Magnus table at kSearch over all its nodes); the
+// crossings of the circle are found on the nodes of a table of positions only.
 struct Accuracy {
   int steps_per_period;
   double max_step;
 };
-// Search: cheap and coarse, rolling errors ~2e-5 rad median, up to 3e-4 (60 random elastica of
-// 1-4 periods against dopri5 at 1e-14); a search run converges to the root of its own tables,
-// within that of the true one, and the polish takes it the rest of the way. Polish: ~1e-14
-// (sixth order, checked against dopri5 by tests/isoparallel_test.cc).
+// Search: the shape scan's table, rolling errors ~2e-5 rad median, up to 3e-4 (60 random elastica
+// of 1-4 periods against dopri5 at 1e-14), and the coarse crossing nodes. Polish: the crossing
+// nodes of the polish (those of its former Magnus tables: the same crossing numbers).
 constexpr Accuracy kSearch{12, 0.5};
 constexpr Accuracy kPolish{160, 0.02};
 // A search run stops below kSearchStop (the search accuracy) and is polished when below
@@ -95,9 +98,10 @@ constexpr double kTwinGiveUp = 1.0;
 constexpr double kDuplicateResidual = 0.1;
 constexpr double kDuplicateTol = 3e-3;
 // The search's rate and modulus columns are Broyden (secant) updates while the residual is above
-// kSecantResidual (two rolling tables fewer per Jacobian; docs/paper_notes.md, "General targets",
-// point 9).
-constexpr double kSecantResidual = 0.1;
+// kSecantResidual (two closed-form rollings fewer per Jacobian; docs/paper_notes.md, "General
+// targets", points 9 and 10: 0.1 with the search tables; with the closed form 0.1 loses T7's
+// 14.27603954, 0.2 and 0.3 keep every solution of the ten targets).
+constexpr double kSecantResidual = 0.3;
 
 struct Context {
   Eigen::Matrix3d target;  // A1 A0^-1
@@ -125,15 +129,27 @@ struct Evaluation {
   Eigen::Vector3d residual = Eigen::Vector3d::Zero();
 };
 
-// The rotation trick of section 2.2 at arc length s of a table of e.
-bool EvaluateOnTable(const Context& ctx, const Elastica& e, const internal::ElasticaRollingTable& table, double s,
-                     Evaluation* out) {
+// Whether the closed-form rolling takes e's parameters (finite G and V^2) and arc lengths up to
+// s_max (rate s + phase finite): else ElasticaClosedRolling would throw.
+bool ClosedFormApplies(const Elastica& e, double s_max) {
+  const ElasticaParameters& p = e.parameters();
+  return std::abs(p.rate) <= internal::ElasticaClosedRolling::kMaxRate &&
+         std::isfinite(std::abs(p.rate) * (std::abs(s_max) + 1.0) + std::abs(p.phase));
+}
+
+// The rotation trick of section 2.2 at arc length s of e (the rolling in closed form).
+bool EvaluateAt(const Context& ctx, const Elastica& e, double s, Evaluation* out) {
   const Eigen::Vector2d xs = e.Position(s);
-  if (xs.norm() == 0.0) return false;
+  if (xs.norm() == 0.0 || !ClosedFormApplies(e, s)) return false;
   out->s = s;
   out->beta = internal::ChordTurn(ctx.goal_angle, xs);
-  out->residual = internal::RotationTrickResidual(ctx.target, out->beta, table.Rolling(s));
+  out->residual = internal::RotationTrickResidual(ctx.target, out->beta, internal::ElasticaClosedRolling(e).Rolling(s));
   return out->residual.allFinite();
+}
+
+// A table of positions only over [0, s_limit] with acc's nodes: the crossings of the circle.
+internal::ElasticaRollingTable CrossingTable(const Elastica& e, double s_limit, const Accuracy& acc) {
+  return internal::ElasticaRollingTable(e, s_limit, acc.steps_per_period, acc.max_step, 200000, true);
 }
 
 bool Admissible(const ElasticaParameters& p) {
@@ -145,12 +161,11 @@ bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, con
               double fixed_length = -1.0) {
   if (!Admissible(p)) return false;
   const Elastica e(p);
-  const double limit = fixed_length > 0 ? fixed_length : ctx.s_limit;
-  const internal::ElasticaRollingTable table(e, limit, acc.steps_per_period, acc.max_step);
-  if (!table.Valid()) return false;
-  double s = fixed_length;
-  if (fixed_length <= 0 && !table.FindCrossing(ctx.radius, crossing, &s)) return false;
-  return EvaluateOnTable(ctx, e, table, s, out);
+  if (fixed_length > 0) return EvaluateAt(ctx, e, fixed_length, out);
+  const internal::ElasticaRollingTable table = CrossingTable(e, ctx.s_limit, acc);
+  double s = 0.0;
+  if (!table.Valid() || !table.FindCrossing(ctx.radius, crossing, &s)) return false;
+  return EvaluateAt(ctx, e, s, out);
 }
 
 // TinySolver's functor call for a residual f.Residual(x, r) of N unknowns and N residuals:
@@ -281,10 +296,9 @@ bool SameRoot(PendulumRegime regime, const Eigen::Vector4d& y, const SearchRoot&
 struct FreeLengthFunctor {
   using Scalar = double;
   enum { NUM_RESIDUALS = 4, NUM_PARAMETERS = 4 };
-  FreeLengthFunctor(const Context* c, PendulumRegime r, const Accuracy& a = kSearch) : ctx(c), regime(r), acc(a) {}
+  FreeLengthFunctor(const Context* c, PendulumRegime r) : ctx(c), regime(r) {}
   const Context* ctx;
   PendulumRegime regime;
-  Accuracy acc;  // of the rolling tables (the shape search: kSearch; the twin search: kPolish)
   mutable long evaluations = 0;
   // Solutions known before this run (nullptr: none checked) and whether the run reached one.
   const std::vector<SearchRoot>* known = nullptr;
@@ -296,15 +310,15 @@ struct FreeLengthFunctor {
            std::abs(p.modulus) < 1.0 && length > 0 && length <= 2.0 * ctx->s_limit;
   }
 
-  // The residual of the path from arc length s0 to s0 + length of the table's elastica: the
-  // phase shifted by rate s0 (u = rate s + phase), Q(s0, s0 + L) = Q(0, s0 + L) Q(0, s0)^-1.
-  bool ResidualOnTable(const Elastica& e, const internal::ElasticaRollingTable& table, double s0, double length,
-                       double* r) const {
+  // The residual of the path from arc length s0 to s0 + length of the rolling's elastica: the
+  // phase shifted by rate s0 (u = rate s + phase), Q(s0, s0 + L) in closed form.
+  bool ResidualFrom(const Elastica& e, const internal::ElasticaClosedRolling& rolling, double s0, double length,
+                    double* r) const {
     ++evaluations;
     // x(0) = 0 (Position(0) would still evaluate its 8-point short-arc quadrature).
     const Eigen::Vector2d xs = s0 == 0.0 ? e.Position(length) : e.Position(s0 + length) - e.Position(s0);
     if (xs.norm() == 0.0) return false;
-    const Eigen::Matrix3d q = s0 == 0.0 ? table.Rolling(length) : table.Rolling(s0 + length) * table.Rolling(s0).transpose();
+    const Eigen::Matrix3d q = s0 == 0.0 ? rolling.Rolling(length) : rolling.Rolling(s0, s0 + length);
     const Eigen::Vector3d rot = internal::RotationTrickResidual(ctx->target, internal::ChordTurn(ctx->goal_angle, xs), q);
     r[0] = xs.norm() - ctx->radius;
     for (int i = 0; i < 3; ++i) r[i + 1] = rot[i];
@@ -312,13 +326,13 @@ struct FreeLengthFunctor {
   }
 
   // The last residual evaluated (TinySolver evaluates every accepted point twice: as a trial
-  // without Jacobian, then again with it): its point, path, table and residual.
+  // without Jacobian, then again with it): its point, path, rolling and residual.
   struct LastResidual {
     bool ok = false;
     double x[4] = {0, 0, 0, 0};
     double r[4] = {0, 0, 0, 0};
     std::unique_ptr<Elastica> path;
-    std::unique_ptr<internal::ElasticaRollingTable> table;
+    std::unique_ptr<internal::ElasticaClosedRolling> rolling;
   };
   mutable LastResidual last;
 
@@ -326,24 +340,22 @@ struct FreeLengthFunctor {
 
   bool Residual(const double* x, double* r, bool = false) const {
     const ElasticaParameters p = ToParameters(regime, x);
-    last.table.reset();
+    last.rolling.reset();
     if (!Admissible(p, x[3])) return false;
     last.path = std::make_unique<Elastica>(p);
-    last.table = std::make_unique<internal::ElasticaRollingTable>(*last.path, x[3], acc.steps_per_period, acc.max_step);
-    last.ok = last.table->Valid() && ResidualOnTable(*last.path, *last.table, 0.0, x[3], r);
+    if (!ClosedFormApplies(*last.path, 2.0 * ctx->s_limit)) return false;  // every length Admissible takes, and L + h
+    last.rolling = std::make_unique<internal::ElasticaClosedRolling>(*last.path);
+    last.ok = ResidualFrom(*last.path, *last.rolling, 0.0, x[3], r);
     std::copy(x, x + 4, last.x);
     if (last.ok) std::copy(r, r + 4, last.r);
     return last.ok;
   }
 
-  // Whether the last residual was evaluated at x on a table that serves lengths up to s_limit
-  // (a table over s_limit would be the same one, so the residual would be the same bit for bit).
-  bool LastServes(const double* x, double s_limit) const {
-    return last.table != nullptr && last.ok && std::equal(x, x + 4, last.x) && last.table->ServesLength(s_limit);
-  }
+  // Whether the last residual was evaluated at x.
+  bool LastAt(const double* x) const { return last.rolling != nullptr && last.ok && std::equal(x, x + 4, last.x); }
 
-  // Forward differences, but one table (one per (rate, k)) serves the residual and the phase
-  // and length columns: only the rate and modulus columns build new tables.
+  // Forward differences, but one closed-form rolling (one per (rate, k)) serves the residual and
+  // the phase and length columns: only the rate and modulus columns build new ones.
   bool operator()(const double* x, double* r, double* jacobian) const {
     if (duplicate) return StopRun(r, jacobian);
     if (jacobian != nullptr && kept.valid && std::equal(x, x + 4, kept.x)) {  // the triage's last point
@@ -414,28 +426,20 @@ struct FreeLengthFunctor {
 
   bool Evaluate(const double* x, double* r, double* jacobian) const {
     const ElasticaParameters p = ToParameters(regime, x);
-    if (jacobian == nullptr || p.rate == 0.0 || !Admissible(p, x[3])) return ForwardDifferences<4>(*this, x, r, jacobian);
     const double h_phase = 1e-6 * (1.0 + std::abs(x[2])), h_length = 1e-6 * (1.0 + std::abs(x[3]));
-    const double s0 = h_phase / std::abs(p.rate);  // phase + sign(rate) h_phase
-    const double s_limit = x[3] + s0 + h_length;
-    std::unique_ptr<Elastica> own_path;
-    std::unique_ptr<internal::ElasticaRollingTable> own_table;
-    if (LastServes(x, s_limit)) {  // the trial's table and residual at this point
-      own_path = std::move(last.path);
-      own_table = std::move(last.table);
-      std::copy(last.r, last.r + 4, r);
-    } else {
-      own_path = std::make_unique<Elastica>(p);
-      own_table = std::make_unique<internal::ElasticaRollingTable>(*own_path, s_limit, acc.steps_per_period, acc.max_step);
-      if (!own_table->Valid() || !ResidualOnTable(*own_path, *own_table, 0.0, x[3], r)) {
-        for (int i = 0; i < 4; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
-        return false;
-      }
+    const double s0 = h_phase / std::abs(p.rate);  // phase + sign(rate) h_phase (infinite at rate 0)
+    if (jacobian == nullptr || !std::isfinite(s0 + x[3] + h_length) || !Admissible(p, x[3]))
+      return ForwardDifferences<4>(*this, x, r, jacobian);
+    if (!LastAt(x) && !Residual(x, r)) {  // else the trial's rolling and residual at this point
+      for (int i = 0; i < 4; ++i) r[i] = std::numeric_limits<double>::quiet_NaN();
+      return false;
     }
-    const Elastica& e = *own_path;
-    const internal::ElasticaRollingTable& table = *own_table;
+    std::copy(last.r, last.r + 4, r);
+    const std::unique_ptr<Elastica> path = std::move(last.path);  // the rate and modulus columns reuse `last`
+    const std::unique_ptr<internal::ElasticaClosedRolling> rolling = std::move(last.rolling);
     double rp[4], rl[4];
-    if (!ResidualOnTable(e, table, s0, x[3], rp) || !ResidualOnTable(e, table, 0.0, x[3] + h_length, rl)) return false;
+    if (!ResidualFrom(*path, *rolling, s0, x[3], rp) || !ResidualFrom(*path, *rolling, 0.0, x[3] + h_length, rl))
+      return false;
     const double signed_phase_step = p.rate > 0 ? h_phase : -h_phase;
     for (int i = 0; i < 4; ++i) {
       jacobian[2 * 4 + i] = (rp[i] - r[i]) / signed_phase_step;
@@ -454,29 +458,28 @@ struct FreeLengthFunctor {
 };
 
 // Hands a free-length result (length L) to the crossing formulation: the crossing of the circle
-// nearest to L on a table of the given accuracy over the search length, if within
+// nearest to L on the nodes of the given accuracy over the search length, if within
 // kSearchSameTol, and the residual there (at most kSearchAccept).
 bool HandOff(const Context& ctx, double length, const Accuracy& acc, LocalResult* r) {
   const ElasticaParameters p = ToParameters(r->regime, r->x);
   if (!Admissible(p)) return false;
   const Elastica e(p);
-  const internal::ElasticaRollingTable table(e, ctx.s_limit, acc.steps_per_period, acc.max_step);
+  const internal::ElasticaRollingTable table = CrossingTable(e, ctx.s_limit, acc);
   double s = 0.0;
   if (!table.Valid() ||
       !table.NearestCrossing(ctx.radius, length, kSearchSameTol * (1 + length), kMaxCrossingsPerStart * 4, &r->crossing, &s))
     return false;
-  return EvaluateOnTable(ctx, e, table, s, &r->ev) && r->ev.residual.norm() <= kSearchAccept;
+  return EvaluateAt(ctx, e, s, &r->ev) && r->ev.residual.norm() <= kSearchAccept;
 }
 
 // Search stage on the free-length formulation from a start and one of its crossings; the result
 // is handed to the crossing formulation (its crossing number counted) for the polish. A run that
 // reaches one of the `known` solutions stops there (LocalResult::duplicate).
 LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
-                                  const IsoparallelOptions& options, const std::vector<SearchRoot>* known = nullptr,
-                                  const Accuracy& acc = kSearch) {
+                                  const IsoparallelOptions& options, const std::vector<SearchRoot>* known = nullptr) {
   LocalResult out;
   out.regime = regime;
-  FreeLengthFunctor f{&ctx, regime, acc};
+  FreeLengthFunctor f{&ctx, regime};
   f.known = known;
   Eigen::Vector4d v(x0[0], x0[1], x0[2], length0);
   ceres::TinySolver<FreeLengthFunctor> solver;
@@ -583,7 +586,7 @@ struct Candidate {
 // How many times a family member crosses the circle |x - x0| = |x1 - x0| up to its end (which
 // lies on the circle): the `crossing` reported for a family.
 int CrossingCount(const Context& ctx, const Elastica& e, double length) {
-  const internal::ElasticaRollingTable table(e, length * (1 + 1e-9), kSearch.steps_per_period, kSearch.max_step);
+  const internal::ElasticaRollingTable table = CrossingTable(e, length * (1 + 1e-9), kSearch);
   return std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 100000).size()));
 }
 
@@ -800,7 +803,7 @@ std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const Iso
   return SearchAll(0, n, n, options, [&](int i) {
     const Start& st = starts[i];
     const Elastica e(ToParameters(st.regime, st.x));
-    const internal::ElasticaRollingTable table(e, ctx.s_limit, kSearch.steps_per_period, kSearch.max_step);
+    const internal::ElasticaRollingTable table = CrossingTable(e, ctx.s_limit, kSearch);
     std::vector<LocalResult> out;
     for (double crossing : table.Crossings(ctx.radius, kMaxCrossingsPerStart))
       if (crossing > covered) out.push_back(SearchLocalFreeLength(ctx, st.regime, st.x, crossing, options));
@@ -1014,7 +1017,7 @@ std::vector<LocalResult> TwinSearches(const Context& ctx, const LocalResult& r, 
   for (double sign : {1.0, -1.0}) {
     Eigen::Vector4d y;
     if (!FollowCurve(f, w, u, start, sign * v, &y)) continue;
-    twins.push_back(SearchLocalFreeLength(ctx, r.regime, y.data(), y[3], options, nullptr, kPolish));
+    twins.push_back(SearchLocalFreeLength(ctx, r.regime, y.data(), y[3], options, nullptr));
   }
   *evaluations += f.evaluations;
   return twins;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
 #include "isoparallel_twin.h"
+#include "rotation_trick.h"
 #include "support/test_support.h"
 #include "plateball/elastica.h"
 #include "plateball/isoparallel_plan.h"
@@ -124,6 +126,81 @@ TEST(ElasticaRolling, CrossingsLieOnTheCircle) {
     prev = f;
   }
   EXPECT_EQ(static_cast<int>(crossings.size()), changes);
+}
+
+// The polish finds its crossings on a table of positions only (issue 15, eighth round): the same
+// nodes and positions as the full table bit for bit, hence the same crossings, numbers and roots;
+// its rolling is not there to be used by mistake.
+TEST(ElasticaRolling, PositionsOnlyTableHasTheSameCrossingsAndNoRolling) {
+  std::mt19937_64 rng(15);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int crossings_seen = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const Elastica e = Elastica::FromInitialState(0.1 + 1.5 * unit(rng), 0.2, 3.0 * unit(rng), -1.5 + 3.0 * unit(rng));
+    if (e.IsStraight()) continue;
+    const double radius = 1.0 + 2.0 * unit(rng), limit = 30.0;
+    const internal::ElasticaRollingTable full(e, limit, 160, 0.02), positions(e, limit, 160, 0.02, 200000, true);
+    ASSERT_TRUE(positions.PositionsOnly());
+    ASSERT_EQ(full.Valid(), positions.Valid());
+    const std::vector<double> a = full.Crossings(radius, 50), b = positions.Crossings(radius, 50);
+    ASSERT_EQ(a, b) << trial;
+    crossings_seen += static_cast<int>(a.size());
+    for (std::size_t n = 0; n < a.size(); ++n) {
+      double s = -1.0;
+      ASSERT_TRUE(positions.FindCrossing(radius, static_cast<int>(n + 1), &s));
+      EXPECT_EQ(s, a[n]);
+      EXPECT_NEAR(e.Position(s).norm(), radius, 1e-12);
+      int count = 0;
+      double root = -1.0;
+      ASSERT_TRUE(positions.NearestCrossing(radius, a[n] + 1e-6, 1e-5, 50, &count, &root));
+      EXPECT_EQ(count, static_cast<int>(n + 1));
+      EXPECT_EQ(root, a[n]);
+    }
+  }
+  EXPECT_GT(crossings_seen, 20) << "the trials must cross their circles";
+  const Elastica e = Elastica::FromInitialState(0.6, 0.2, 0.9, 0.4);
+  const internal::ElasticaRollingTable positions(e, 10.0, 12, 0.5, 200000, true);
+  EXPECT_THROW(positions.Rolling(1.0), std::logic_error);
+  std::vector<Eigen::Matrix3d> q;
+  std::vector<Eigen::Vector2d> x;
+  EXPECT_THROW(positions.Nodes(&q, &x), std::logic_error);
+}
+
+// The polish and the twin searches take the rolling in closed form (issue 15, eighth round): their
+// residuals, the rotation trick at the n-th crossing and the free-length one from s0 to s0 + L,
+// agree with those of a fine Magnus table (400 steps per period, steps <= 0.01) at random
+// parameters and targets, to well below the solver's 1e-12 tolerance.
+TEST(Isoparallel, ClosedFormResidualsAgreeWithAFineTable) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int compared = 0;
+  for (int trial = 0; trial < 16; ++trial) {
+    ElasticaParameters p;
+    p.regime = trial % 2 == 0 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
+    p.rate = (trial % 4 < 2 ? 1.0 : -1.0) * (0.2 + 1.5 * unit(rng));
+    p.modulus = 0.95 * (2.0 * unit(rng) - 1.0);
+    p.phase = 6.0 * unit(rng);
+    const Elastica e(p);
+    const Eigen::Matrix3d target = ExpSO3(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 2.0);
+    const double radius = 0.5 + 2.0 * unit(rng), goal_angle = 6.0 * unit(rng);
+    const internal::ElasticaClosedRolling closed(e);
+    const internal::ElasticaRollingTable fine(e, 25.0, 400, 0.01);
+    ASSERT_TRUE(fine.Valid());
+    auto residual = [&](const Eigen::Matrix3d& q, const Eigen::Vector2d& chord) {
+      return internal::RotationTrickResidual(target, internal::ChordTurn(goal_angle, chord), q);
+    };
+    for (double s : fine.Crossings(radius, 4)) {  // the crossing formulation
+      const Eigen::Vector2d chord = e.Position(s);
+      EXPECT_LT((residual(closed.Rolling(s), chord) - residual(fine.Rolling(s), chord)).norm(), 1e-11) << trial;
+      ++compared;
+    }
+    const double s0 = 3.0 * unit(rng), length = 2.0 + 10.0 * unit(rng);  // the free-length residual
+    const Eigen::Vector2d chord = e.Position(s0 + length) - e.Position(s0);
+    const Eigen::Matrix3d by_table = fine.Rolling(s0 + length) * fine.Rolling(s0).transpose();
+    EXPECT_LT((residual(closed.Rolling(s0, s0 + length), chord) - residual(by_table, chord)).norm(), 1e-11) << trial;
+    ++compared;
+  }
+  EXPECT_GT(compared, 30);
 }
 
 TEST(Isoparallel, Figure7ShortestIsAVerifiedFamily) {
@@ -324,6 +401,25 @@ TEST(Isoparallel, TwinSearchCrossesAFoldFromEitherMemberOfThePair) {
       EXPECT_LT((twin.PositionAt(twin.length) - p.goal).norm(), kVerifiedTol);
     }
     EXPECT_TRUE(found) << "from " << from.length;
+  }
+}
+
+// The closed-form rolling takes |rate| <= 1e150 and finite rate s + phase (else it throws): the
+// searches treat parameters beyond that as a failed evaluation, like an invalid table before it
+// (a twin search from such a "solution" finds nothing and does not throw).
+TEST(Isoparallel, ParametersBeyondTheClosedFormFailTheEvaluationWithoutThrowing) {
+  IsoparallelProblem p;
+  p.goal = {3.0, 0.0};
+  p.goal_orientation = ExpSO3({0.3, 0.0, 0.0});
+  for (const auto& [rate, length] : {std::pair{1e200, 5.0}, std::pair{1e100, 1e200}}) {
+    IsoparallelSolution s;
+    s.parameters.regime = PendulumRegime::kOscillating;
+    s.parameters.rate = rate;
+    s.parameters.modulus = 0.5;
+    s.length = length;
+    std::vector<IsoparallelSolution> twins;
+    EXPECT_NO_THROW(twins = internal::IsoparallelTwins(p, s)) << rate;
+    EXPECT_TRUE(twins.empty()) << rate;
   }
 }
 
