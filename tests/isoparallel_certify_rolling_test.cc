@@ -83,7 +83,8 @@ Eigen::Matrix3d ClosedRolling(PendulumRegime regime, const CertifyPoint& x) {
 
 // The independent rolling: sixth-order Magnus steps (<= 0.002 long, >= 512 per period).
 Eigen::Matrix3d MagnusRolling(PendulumRegime regime, const CertifyPoint& x) {
-  const ElasticaRollingTable table(CertifyElastica(regime, x), x[kCertifyLength], 512, 0.002, 2000000);
+  const Elastica e = CertifyElastica(regime, x);  // the table keeps a reference: it must outlive it
+  const ElasticaRollingTable table(e, x[kCertifyLength], 512, 0.002, 2000000);
   EXPECT_TRUE(table.Valid());
   return table.Rolling(x[kCertifyLength]);
 }
