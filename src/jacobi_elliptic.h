@@ -30,14 +30,14 @@ inline double OneMinusSquare(double x) {
   return (1.0 - a) * (1.0 + a);
 }
 
-// Legendre's integrals by Carlson's symmetric forms (DLMF 19.25.1, 19.25.5, 19.25.13), with the
-// complementary parameter k'^2 = OneMinusSquare(k) and Delta(phi)^2 = cos^2 + k'^2 sin^2 (never
-// 1 - k^2 sin^2): relatively accurate to a few ulps up to the separatrix. Boost's ellint_1(k),
-// ellint_d(k) and their incomplete forms subtract k^2 from 1 and lose ~1e-10 of K at
+// Legendre's integrals by Carlson's symmetric forms (DLMF 19.25.1, 19.25.5, 19.25.13; carlson.h),
+// with the complementary parameter k'^2 = OneMinusSquare(k) and Delta(phi)^2 = cos^2 + k'^2 sin^2
+// (never 1 - k^2 sin^2): relatively accurate to a few ulps up to the separatrix. Boost's
+// ellint_1(k), ellint_d(k) and their incomplete forms subtract k^2 from 1 and lose ~1e-10 of K at
 // k = 1 - 1e-8 (docs/paper_notes.md, "Elastica near the separatrix and at tiny arguments").
-/// K(k) = R_F(0, k'^2, 1), |k| < 1.
+/// K(k) = R_F(0, k'^2, 1) = pi / (2 AGM(1, k')), |k| < 1.
 double CompleteEllipticK(double k);
-/// D(k) = (K - E) / k^2 = int_0^K sn^2 = R_D(0, k'^2, 1) / 3, |k| < 1.
+/// D(k) = (K - E) / k^2 = int_0^K sn^2 = R_D(0, k'^2, 1) / 3 (by the same AGM), |k| < 1.
 double CompleteEllipticD(double k);
 /// F(phi, k) for |phi| <= pi/2 from sin_phi, cos_phi (only cos_phi^2 enters) and kc2 = k'^2:
 /// sin_phi R_F(cos^2, Delta^2, 1).
