@@ -109,10 +109,10 @@ inline double CarlsonRD(double x, double y, double z) {
 /// R_F(x, y, z) and R_J(x, y, z, p) (DLMF 19.16.2) of the same x, y, z from one duplication loop
 /// (the two share x_n, y_n, z_n and lambda_n; R_J adds p_n). Preconditions (not checked): finite
 /// x, y, z >= 0, at most one zero, p > 0. Relative accuracy a few ulps when
-/// e_0 = (p - x)(p - y)(p - z) / ((sqrt p + sqrt x)(sqrt p + sqrt y)(sqrt p + sqrt z))^2 >= -1/2,
-/// which holds whenever p lies between two of x, y, z or above them all (the closed rolling's
-/// x = cn^2 <= p <= y = dn^2 <= z = 1 gives e_n >= 0); e_0 -> -1 (p far below two of them) loses
-/// digits to 1 + e_0.
+/// e_0 = prod (p - x_i) / (sqrt p + sqrt x_i)^2 = prod (sqrt p - sqrt x_i) / (sqrt p + sqrt x_i)
+/// is >= -1/2. e_0 >= 0 whenever p exceeds all of x, y, z or exactly one of them (the closed
+/// rolling's x = cn^2 <= p <= y = dn^2 <= z = 1, so there every e_n >= 0); e_0 -> -1 needs p far
+/// below one or three of them and far above the others, and loses digits to 1 + e_0.
 struct CarlsonFJ {
   double rf, rj;
 };
@@ -121,12 +121,16 @@ inline CarlsonFJ CarlsonRFRJ(double x, double y, double z, double p) {
   const double af0 = af, aj0 = aj, fdx = af0 - x, fdy = af0 - y, jdx = aj0 - x, jdy = aj0 - y, jdz = aj0 - z;
   const double qf = carlson::kInvTauF * carlson::Max3Abs(fdx, fdy, af0 - z);
   const double qj = carlson::kInvTauJ * std::max(carlson::Max3Abs(jdx, jdy, jdz), std::abs(aj0 - p));
-  double delta = (p - x) * (p - y) * (p - z);  // delta_n = delta_0 / 64^n
+  // p_n - x_n = (p - x) / 4^n exactly (Carlson's delta_n = delta_0 / 64^n, one factor at a time:
+  // the product (p - x)(p - y)(p - z) underflows for p ~ 1e-308, and its quotient by d^2 would not).
+  const double px = p - x, py = p - y, pz = p - z;
   double f = 1.0, sum = 0.0;
   for (int n = 0; n < carlson::kMaxSteps && !(f * qf < af && f * qj < aj); ++n) {
     const double rx = std::sqrt(x), ry = std::sqrt(y), rz = std::sqrt(z), rp = std::sqrt(p);
-    const double inv_d = 1.0 / ((rp + rx) * (rp + ry) * (rp + rz));
-    sum += f * inv_d * CarlsonRC1p(delta * inv_d * inv_d);
+    const double tx = rp + rx, ty = rp + ry, tz = rp + rz, inv_d = 1.0 / (tx * ty * tz);
+    // e_n = prod (p_n - x_n) / (sqrt p_n + sqrt x_n)^2, each quotient sqrt p_n - sqrt x_n.
+    const double e = f * px / tx * inv_d * (f * py / ty) * (f * pz / tz);
+    sum += f * inv_d * CarlsonRC1p(e);
     const double lambda = rx * (ry + rz) + ry * rz;
     af = 0.25 * (af + lambda);
     aj = 0.25 * (aj + lambda);
@@ -134,7 +138,6 @@ inline CarlsonFJ CarlsonRFRJ(double x, double y, double z, double p) {
     y = 0.25 * (y + lambda);
     z = 0.25 * (z + lambda);
     p = 0.25 * (p + lambda);
-    delta *= 1.0 / 64.0;
     f *= 0.25;
   }
   CarlsonFJ out;
@@ -157,11 +160,12 @@ inline double CarlsonRJ(double x, double y, double z, double p) { return Carlson
 /// K = R_F(0, kc^2, 1) = pi / (2 AGM(1, kc)) (DLMF 19.8.5) and
 /// D = (K - E) / k^2 = R_D(0, kc^2, 1) / 3 = K (1/2 + sum_{n >= 1} 2^(n-1) (c_n / k)^2) (DLMF 19.8.6,
 /// c_n = (a_(n-1) - b_(n-1)) / 2 = c_(n-1)^2 / (4 a_n): every term positive, no cancellation).
-/// kc = 0 (the separatrix) is not allowed (K infinite).
+/// kc = 0 (the separatrix) gives K = D = +infinity.
 struct CompleteKD {
   double k, d;
 };
 inline CompleteKD CompleteEllipticKD(double k, double kc) {
+  if (kc == 0.0) return {HUGE_VAL, HUGE_VAL};  // the separatrix: K and D infinite
   // a, b = a_(n-1), b_(n-1) at the top of step n >= 1; t = t_n = c_n / k with t_1 = k / (2 (1 + kc)),
   // t_(n+1) = k t_n^2 / (4 a_(n+1)); weight = 2^(n-1).
   double a = 1.0, b = kc, t = k / (2.0 * (1.0 + kc)), weight = 1.0, sum = 0.5;

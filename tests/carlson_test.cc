@@ -2,7 +2,7 @@
 // ellint_rf / ellint_rd / ellint_rj / ellint_rc evaluated in 50-digit arithmetic
 // (boost::multiprecision::cpp_bin_float_50), over the argument ranges of the closed-form elastica
 // and rolling (x = cn^2, y = dn^2 = cn^2 + k'^2 sn^2, z = 1, p = cn^2 + (1 - N) sn^2, with k' down
-// to 1e-12 and 1 - N down to ~1e-30), and against closed forms (DLMF 19.20) and Legendre's
+// to 1e-12 and 1 - N down to ~1e-324, the characteristic n down to -1e300 near G = 1), and against closed forms (DLMF 19.20) and Legendre's
 // relation. Errors are measured in units of eps = 2^-52 relative to the reference.
 #include "carlson.h"
 
@@ -46,8 +46,10 @@ std::vector<Args> LibraryArgs() {
     const double kc2 = kc * kc;
     for (double phi : {1e-9, 1e-4, 0.01, 0.3, 0.8, 1.2, 1.5, 1.5707, 1.5707963, M_PI / 2}) {
       const double s = std::sin(phi), c = phi == M_PI / 2 ? 0.0 : std::cos(phi);
-      for (double n : {-1e-12, -1e-3, -0.5, -3.0, -40.0, -1e4, -1e8}) {
+      for (double n : {-1e-12, -1e-3, -0.5, -3.0, -40.0, -1e4, -1e8, -1e30, -1e200, -1e300}) {
+        // The library's k'^2 >= 1.1e-16 and n >= -4e300 (|1 - G| >= 1e-150) keep 1 - N > 0.
         const double one_minus_big_n = kc2 / (1.0 - n);
+        if (one_minus_big_n == 0.0) continue;
         out.push_back({c * c, c * c + kc2 * s * s, c * c + one_minus_big_n * s * s});
       }
     }
@@ -166,6 +168,9 @@ TEST(Carlson, CompleteKAndDSatisfyLegendresRelationAndMatchCarlson) {
   EXPECT_DOUBLE_EQ(zero.d, M_PI / 4);
   const double g14 = std::tgamma(0.25);
   EXPECT_NEAR(CompleteEllipticKD(M_SQRT1_2, M_SQRT1_2).k, g14 * g14 / (4 * std::sqrt(M_PI)), 4 * kEps);
+  // The separatrix k' = 0: both infinite (not a finite value from a truncated AGM).
+  EXPECT_EQ(CompleteEllipticKD(1.0, 0.0).k, HUGE_VAL);
+  EXPECT_EQ(CompleteEllipticKD(1.0, 0.0).d, HUGE_VAL);
 }
 
 }  // namespace
