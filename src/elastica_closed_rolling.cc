@@ -15,9 +15,9 @@ ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
       modulus_(e.parameters().modulus),
       phase_(e.parameters().phase),
       big_g_(e.G()),
-      cos_w_(std::sin(e.parameters().heading_w)),
-      sin_w_(-std::cos(e.parameters().heading_w)),
-      complete_k_(e.kk_),  // the Elastica's K (its period) and AGM sequence, computed once
+      cos_w_(e.cos_w_),  // the Elastica's rotation sin(g_W), -cos(g_W), K (its period) and AGM
+      sin_w_(e.sin_w_),  // sequence, computed once
+      complete_k_(e.kk_),
       agm_(*e.agm_) {
   if (!(std::abs(rate_) <= kMaxRate))
     ThrowInvalid("rate", rate_,

@@ -83,7 +83,7 @@ class Elastica {
 
  private:
   friend struct internal::ElasticaAccess;  // elastica_rolling.cc marches the Jacobi functions
-  friend class internal::ElasticaClosedRolling;  // shares the AGM sequence and K
+  friend class internal::ElasticaClosedRolling;  // shares the AGM sequence, K, k'^2, g_W and s = 0 values
   struct Jacobi {
     double sn, cn, dn;
   };
