@@ -240,21 +240,28 @@ long ElasticaRollingTable::NodeCount() const {
   return straight_ ? 1 : static_cast<long>(std::ceil(s_limit_ / h_));
 }
 
+std::vector<Eigen::Matrix3d> ElasticaRollingTable::MonodromyPowers() const {
+  RequireRotations("MonodromyPowers");
+  std::vector<Eigen::Matrix3d> powers{Eigen::Matrix3d::Identity()};
+  if (straight_ || !std::isfinite(period_)) return powers;
+  const long count = NodeCount() / steps_;
+  for (long n = 1; n <= count; ++n) powers.push_back(monodromy_ * powers.back());
+  return powers;
+}
+
+void ElasticaRollingTable::NodePositions(std::vector<Eigen::Vector2d>* position) const {
+  const long count = NodeCount();
+  position->resize(count + 1);
+  for (long i = 0; i <= count; ++i) (*position)[i] = straight_ ? pos_[std::min<long>(i, 1)] : NodePosition(i);
+}
+
 void ElasticaRollingTable::Nodes(std::vector<Eigen::Matrix3d>* rolling, std::vector<Eigen::Vector2d>* position) const {
   RequireRotations("Nodes");
+  const std::vector<Eigen::Matrix3d> powers = MonodromyPowers();
   const long count = NodeCount();
   rolling->resize(count + 1);
-  position->resize(count + 1);
-  Eigen::Matrix3d power = Eigen::Matrix3d::Identity();  // P^n for the nodes of period n
-  for (long i = 0; i <= count; ++i) {
-    if (straight_ || !std::isfinite(period_)) {
-      (*rolling)[i] = rot_[std::min<long>(i, steps_)];
-    } else {
-      if (i > 0 && i % steps_ == 0) power = monodromy_ * power;
-      (*rolling)[i] = rot_[i % steps_] * power;
-    }
-    (*position)[i] = straight_ ? pos_[std::min<long>(i, 1)] : NodePosition(i);
-  }
+  for (long i = 0; i <= count; ++i) (*rolling)[i] = NodeRolling(i, powers);
+  NodePositions(position);
 }
 
 template <class Pred>

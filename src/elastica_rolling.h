@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -60,6 +61,17 @@ class ElasticaRollingTable {
   /// Q(0, i h) and x(i h) at every node i = 0 .. NodeCount(), from the one-period table and the
   /// monodromy (no Magnus step, no closed form): for scans over many (s0, s0 + L) node pairs.
   void Nodes(std::vector<Eigen::Matrix3d>* rolling, std::vector<Eigen::Vector2d>* position) const;
+  /// Nodes' positions alone, x(i h) for i = 0 .. NodeCount().
+  void NodePositions(std::vector<Eigen::Vector2d>* position) const;
+  /// The monodromy's powers P^n, n = 0 .. NodeCount() / Steps() (just the identity for a table
+  /// that does not repeat), for NodeRolling.
+  std::vector<Eigen::Matrix3d> MonodromyPowers() const;
+  /// Q(0, i h) of one node, 0 <= i <= NodeCount(), bit for bit Nodes' value, with `powers` from
+  /// MonodromyPowers(): for scans that need the rolling at a few of the nodes only.
+  Eigen::Matrix3d NodeRolling(long i, const std::vector<Eigen::Matrix3d>& powers) const {
+    if (straight_ || !std::isfinite(period_)) return rot_[std::min<long>(i, steps_)];
+    return rot_[i % steps_] * powers[i / steps_];
+  }
 
  private:
   void Build(int steps);
