@@ -847,20 +847,28 @@ struct ShapeScan {
 };
 
 // One row of the scan: start node i0, lengths up to node l_end; `limit` is the search length.
+// The chord moves by at most h per node (unit speed): while |chord| - radius exceeds
+// kTangencyMiss + (k + 2) h, or radius - |chord| does, the next k nodes hold no crossing and no
+// near-tangency and are skipped. Elsewhere the squared chord against precomputed bounds decides,
+// with a square root only where a skip or an event is possible.
 void ScanRow(const Context& ctx, const ShapeNodes& nodes, double h, long i0, long l_end, double limit,
              std::vector<ScanPoint>* row) {
   const std::vector<Eigen::Vector2d>& x = nodes.x;
   const Eigen::Matrix3d q0t = nodes.table->NodeRolling(i0, nodes.powers).transpose();
   const Eigen::Vector2d x0 = x[i0];
-  const double r2 = ctx.radius * ctx.radius, far = ctx.radius + kTangencyMiss;
+  const double r2 = ctx.radius * ctx.radius, far = ctx.radius + kTangencyMiss, near = ctx.radius - kTangencyMiss;
+  // Squared chords beyond which a skip is possible (a skip needs |chord| - far >= 3 h, or
+  // near - |chord| >= 3 h), and the band (loosened by 1e-9) where an extremum is a near-tangency.
+  const double skip_out = (far + 2.5 * h) * (far + 2.5 * h);
+  const double skip_in = near - 2.5 * h > 0 ? (near - 2.5 * h) * (near - 2.5 * h) : -1.0;
+  const double band_lo = near > 0 ? near * near * (1 - 1e-9) : -1.0, band_hi = far * far * (1 + 1e-9);
   const std::size_t first = row->size();
   double f_prev = -r2, f_prev2 = -r2;  // |chord|^2 - radius^2 at the two previous nodes
   for (long l = 1; l <= l_end; ++l) {
     double f = (x[i0 + l] - x0).squaredNorm() - r2;
-    // The chord moves by at most h per node (unit speed): while |chord| - radius exceeds
-    // kTangencyMiss + (k + 2) h, the next k nodes hold no crossing and no near-tangency.
-    if (f > 0 && f_prev > 0 && f + r2 > far * far) {
-      const long skip = static_cast<long>((std::sqrt(f + r2) - far) / h) - 2;
+    if ((f + r2 > skip_out && f_prev > 0) || (f + r2 < skip_in && f_prev < 0)) {
+      const double c = std::sqrt(f + r2);
+      const long skip = static_cast<long>(f > 0 ? (c - far) / h : (near - c) / h) - 2;
       if (skip > 0 && l + skip + 2 <= l_end) {  // resume with the two nodes before the next one
         l += skip;
         f_prev2 = (x[i0 + l - 1] - x0).squaredNorm() - r2;
@@ -869,11 +877,6 @@ void ScanRow(const Context& ctx, const ShapeNodes& nodes, double h, long i0, lon
         f = (x[i0 + l] - x0).squaredNorm() - r2;
       }
     }
-    const bool extremum = l >= 2 && ((f_prev > f_prev2 && f_prev >= f && f_prev < 0) ||
-                                     (f_prev < f_prev2 && f_prev <= f && f_prev > 0));
-    const double miss = extremum ? std::sqrt(f_prev + r2) - ctx.radius : 0.0;
-    if (extremum && std::abs(miss) < kTangencyMiss)
-      row->push_back({(l - 1) * h, std::hypot(miss, NodeResidual(nodes, q0t, i0, i0 + l - 1).norm())});
     if ((f > 0) != (f_prev > 0)) {
       const double t = f_prev / (f_prev - f);  // linear interpolation between the nodes
       Eigen::Vector3d r = NodeResidual(nodes, q0t, i0, i0 + l);
@@ -881,6 +884,11 @@ void ScanRow(const Context& ctx, const ShapeNodes& nodes, double h, long i0, lon
       if ((l - 1 + t) * h > limit) break;
       row->push_back({(l - 1 + t) * h, r.norm()});
       if (row->size() - first >= static_cast<std::size_t>(kMaxCrossingsPerStart)) break;
+    } else if (l >= 2 && f_prev + r2 > band_lo && f_prev + r2 < band_hi &&
+               ((f_prev > f_prev2 && f_prev >= f && f_prev < 0) || (f_prev < f_prev2 && f_prev <= f && f_prev > 0))) {
+      const double miss = std::sqrt(f_prev + r2) - ctx.radius;  // an extremum at node l - 1
+      if (std::abs(miss) < kTangencyMiss)
+        row->push_back({(l - 1) * h, std::hypot(miss, NodeResidual(nodes, q0t, i0, i0 + l - 1).norm())});
     }
     f_prev2 = f_prev;
     f_prev = f;
