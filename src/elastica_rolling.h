@@ -70,7 +70,8 @@ class ElasticaRollingTable {
   /// MonodromyPowers(): for scans that need the rolling at a few of the nodes only.
   Eigen::Matrix3d NodeRolling(long i, const std::vector<Eigen::Matrix3d>& powers) const {
     if (straight_ || !std::isfinite(period_)) return rot_[std::min<long>(i, steps_)];
-    return rot_[i % steps_] * powers[i / steps_];
+    const long n = i / steps_;
+    return n == 0 ? rot_[i] : Eigen::Matrix3d(rot_[i % steps_] * powers[n]);  // P^0 = I: no product
   }
 
  private:

@@ -846,30 +846,60 @@ struct ShapeScan {
   std::size_t RowSize(long i0) const { return row_end[i0] - RowBegin(i0); }
 };
 
+// How far the chord of a shape's table can move over k nodes, for the scan's skips: reach[k] >=
+// |x[j + k'] - x[j]| for every node j and every k' <= k (k = 0 .. count). From the unit speed, k h;
+// for a shape of many periods within the search length (N nodes per period, N <= count / 8), also
+// m |D| + M[r] (k = m N + r: x[j + k] - x[j] = m D + x[j + r] - x[j], D the drift per period, M[r]
+// the longest chord over r nodes of one period, measured on the nodes), much less for curled shapes.
+std::vector<double> ChordReach(const std::vector<Eigen::Vector2d>& x, long period_nodes, long count, double h) {
+  const long n = period_nodes;
+  const bool periodic = n * 8 <= count && static_cast<long>(x.size()) >= 2 * n;
+  std::vector<double> longest(periodic ? n + 1 : 0, 0.0);  // M[r]
+  for (long r = 1; r < static_cast<long>(longest.size()); ++r) {
+    for (long j = 0; j < n; ++j) longest[r] = std::max(longest[r], (x[j + r] - x[j]).squaredNorm());
+    longest[r] = std::sqrt(longest[r]);
+  }
+  std::vector<double> reach(count + 1);
+  double running = 0.0;
+  for (long k = 0, m = 0, r = 0; k <= count; ++k, ++r) {  // k = m n + r
+    if (periodic && r == n) {
+      ++m;
+      r = 0;
+    }
+    double b = k * h;
+    if (periodic) b = std::min(b, static_cast<double>(m) * longest[n] + longest[r]);
+    running = std::max(running, b * (1 + 1e-9) + 1e-12);  // the margin covers the nodes' round-off
+    reach[k] = running;
+  }
+  return reach;
+}
+
 // One row of the scan: start node i0, lengths up to node l_end; `limit` is the search length.
-// The chord moves by at most h per node (unit speed): while |chord| - radius exceeds
-// kTangencyMiss + (k + 2) h, or radius - |chord| does, the next k nodes hold no crossing and no
-// near-tangency and are skipped. Elsewhere the squared chord against precomputed bounds decides,
-// with a square root only where a skip or an event is possible.
-void ScanRow(const Context& ctx, const ShapeNodes& nodes, double h, long i0, long l_end, double limit,
-             std::vector<ScanPoint>* row) {
+// While |chord| - radius exceeds kTangencyMiss + reach[k + 2] (ChordReach), or radius - |chord|
+// does, the next k nodes hold no crossing and no near-tangency and are skipped. Elsewhere the
+// squared chord against precomputed bounds decides, with a square root only where a skip or an
+// event is possible.
+void ScanRow(const Context& ctx, const ShapeNodes& nodes, const std::vector<double>& reach, double h, long i0,
+             long l_end, double limit, std::vector<ScanPoint>* row) {
   const std::vector<Eigen::Vector2d>& x = nodes.x;
   const Eigen::Matrix3d q0t = nodes.table->NodeRolling(i0, nodes.powers).transpose();
   const Eigen::Vector2d x0 = x[i0];
   const double r2 = ctx.radius * ctx.radius, far = ctx.radius + kTangencyMiss, near = ctx.radius - kTangencyMiss;
-  // Squared chords beyond which a skip is possible (a skip needs |chord| - far >= 3 h, or
-  // near - |chord| >= 3 h), and the band (loosened by 1e-9) where an extremum is a near-tangency.
-  const double skip_out = (far + 2.5 * h) * (far + 2.5 * h);
-  const double skip_in = near - 2.5 * h > 0 ? (near - 2.5 * h) * (near - 2.5 * h) : -1.0;
+  // Squared chords beyond which a skip is possible (a skip needs |chord| - far > reach[3], or
+  // near - |chord| > reach[3]), and the band (loosened by 1e-9) where an extremum is a near-tangency.
+  const double skip_out = (far + reach[3]) * (far + reach[3]);
+  const double skip_in = near - reach[3] > 0 ? (near - reach[3]) * (near - reach[3]) : -1.0;
   const double band_lo = near > 0 ? near * near * (1 - 1e-9) : -1.0, band_hi = far * far * (1 + 1e-9);
   const std::size_t first = row->size();
   double f_prev = -r2, f_prev2 = -r2;  // |chord|^2 - radius^2 at the two previous nodes
   for (long l = 1; l <= l_end; ++l) {
     double f = (x[i0 + l] - x0).squaredNorm() - r2;
     if ((f + r2 > skip_out && f_prev > 0) || (f + r2 < skip_in && f_prev < 0)) {
-      const double c = std::sqrt(f + r2);
-      const long skip = static_cast<long>(f > 0 ? (c - far) / h : (near - c) / h) - 2;
-      if (skip > 0 && l + skip + 2 <= l_end) {  // resume with the two nodes before the next one
+      const double c = std::sqrt(f + r2), gap = f > 0 ? c - far : near - c;
+      // reach[k] < gap for k <= skip + 2, and the row's end not passed.
+      const long fit = std::lower_bound(reach.begin(), reach.end(), gap) - reach.begin() - 1;
+      const long skip = std::min(fit - 2, l_end - l - 2);
+      if (skip > 0) {  // resume with the two nodes before the next one
         l += skip;
         f_prev2 = (x[i0 + l - 1] - x0).squaredNorm() - r2;
         f_prev = (x[i0 + l] - x0).squaredNorm() - r2;
@@ -910,12 +940,14 @@ ShapeScan ScanShape(const Context& ctx, const Elastica& e) {
   const double h = table.Step();
   scan.step = h;
   const long last = static_cast<long>(nodes.x.size()) - 1;
-  long l_limit = 1;  // the rows' last node: the first l with (l - 1) h >= s_limit, less one
+  // The rows' last node: the first l with (l - 1) h >= s_limit, less one.
+  long l_limit = std::max(1L, static_cast<long>(ctx.s_limit / h) - 2);
   while ((l_limit - 1) * h < ctx.s_limit) ++l_limit;
   --l_limit;
+  const std::vector<double> reach = ChordReach(nodes.x, table.Steps(), l_limit + 3, h);
   scan.row_end.reserve(table.Steps());
   for (long i0 = 0; i0 < table.Steps(); ++i0) {
-    ScanRow(ctx, nodes, h, i0, std::min(last - i0, l_limit), ctx.s_limit, &scan.points);
+    ScanRow(ctx, nodes, reach, h, i0, std::min(last - i0, l_limit), ctx.s_limit, &scan.points);
     scan.row_end.push_back(scan.points.size());
   }
   return scan;
