@@ -333,4 +333,27 @@ bool ElasticaRollingTable::NearestCrossing(double radius, double s, double tol, 
   return found;
 }
 
+std::vector<double> ChordReach(const std::vector<Eigen::Vector2d>& x, long period_nodes, long count, double h) {
+  const long n = period_nodes;
+  const bool periodic = n >= 1 && n * 8 <= count && static_cast<long>(x.size()) >= 2 * n;
+  std::vector<double> longest(periodic ? n + 1 : 0, 0.0);  // M[r]
+  for (long r = 1; r < static_cast<long>(longest.size()); ++r) {
+    for (long j = 0; j < n; ++j) longest[r] = std::max(longest[r], (x[j + r] - x[j]).squaredNorm());
+    longest[r] = std::sqrt(longest[r]);
+  }
+  std::vector<double> reach(count + 1);
+  double running = 0.0;
+  for (long k = 0, m = 0, r = 0; k <= count; ++k, ++r) {  // k = m n + r
+    if (periodic && r == n) {
+      ++m;
+      r = 0;
+    }
+    double b = k * h;
+    if (periodic) b = std::min(b, static_cast<double>(m) * longest[n] + longest[r]);
+    running = std::max(running, b * (1 + 1e-9) + 1e-12);  // the margin covers the nodes' round-off
+    reach[k] = running;
+  }
+  return reach;
+}
+
 }  // namespace plateball::internal

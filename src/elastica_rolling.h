@@ -98,4 +98,14 @@ class ElasticaRollingTable {
   std::vector<Eigen::Vector2d> pos_;  // x(j h)
 };
 
+/// How far the chord between two nodes of a table can move over k nodes, for scans that skip
+/// nodes (isoparallel.cc, ScanShape): reach[k] >= |x[j + k'] - x[j]| for every node j and every
+/// k' <= k, k = 0 .. count, given the nodes' positions x (ElasticaRollingTable::NodePositions),
+/// the nodes per period N and the spacing h. From the unit speed, k h; for a table of many periods
+/// (N <= count / 8, x holding at least 2 N nodes), also m |D| + M[r] (k = m N + r:
+/// x[j + k] - x[j] = m D + x[j + r] - x[j], D the drift per period, M[r] the longest chord over r
+/// nodes of one period, measured on the nodes), much less for curled shapes. Non-decreasing, with a
+/// margin (1e-9 relative, 1e-12 absolute) for the nodes' round-off.
+std::vector<double> ChordReach(const std::vector<Eigen::Vector2d>& x, long period_nodes, long count, double h);
+
 }  // namespace plateball::internal

@@ -846,34 +846,6 @@ struct ShapeScan {
   std::size_t RowSize(long i0) const { return row_end[i0] - RowBegin(i0); }
 };
 
-// How far the chord of a shape's table can move over k nodes, for the scan's skips: reach[k] >=
-// |x[j + k'] - x[j]| for every node j and every k' <= k (k = 0 .. count). From the unit speed, k h;
-// for a shape of many periods within the search length (N nodes per period, N <= count / 8), also
-// m |D| + M[r] (k = m N + r: x[j + k] - x[j] = m D + x[j + r] - x[j], D the drift per period, M[r]
-// the longest chord over r nodes of one period, measured on the nodes), much less for curled shapes.
-std::vector<double> ChordReach(const std::vector<Eigen::Vector2d>& x, long period_nodes, long count, double h) {
-  const long n = period_nodes;
-  const bool periodic = n * 8 <= count && static_cast<long>(x.size()) >= 2 * n;
-  std::vector<double> longest(periodic ? n + 1 : 0, 0.0);  // M[r]
-  for (long r = 1; r < static_cast<long>(longest.size()); ++r) {
-    for (long j = 0; j < n; ++j) longest[r] = std::max(longest[r], (x[j + r] - x[j]).squaredNorm());
-    longest[r] = std::sqrt(longest[r]);
-  }
-  std::vector<double> reach(count + 1);
-  double running = 0.0;
-  for (long k = 0, m = 0, r = 0; k <= count; ++k, ++r) {  // k = m n + r
-    if (periodic && r == n) {
-      ++m;
-      r = 0;
-    }
-    double b = k * h;
-    if (periodic) b = std::min(b, static_cast<double>(m) * longest[n] + longest[r]);
-    running = std::max(running, b * (1 + 1e-9) + 1e-12);  // the margin covers the nodes' round-off
-    reach[k] = running;
-  }
-  return reach;
-}
-
 // One row of the scan: start node i0, lengths up to node l_end; `limit` is the search length.
 // While |chord| - radius exceeds kTangencyMiss + reach[k + 2] (ChordReach), or radius - |chord|
 // does, the next k nodes hold no crossing and no near-tangency and are skipped. Elsewhere the
@@ -944,7 +916,7 @@ ShapeScan ScanShape(const Context& ctx, const Elastica& e) {
   long l_limit = std::max(1L, static_cast<long>(ctx.s_limit / h) - 2);
   while ((l_limit - 1) * h < ctx.s_limit) ++l_limit;
   --l_limit;
-  const std::vector<double> reach = ChordReach(nodes.x, table.Steps(), l_limit + 3, h);
+  const std::vector<double> reach = internal::ChordReach(nodes.x, table.Steps(), l_limit + 3, h);
   scan.row_end.reserve(table.Steps());
   for (long i0 = 0; i0 < table.Steps(); ++i0) {
     ScanRow(ctx, nodes, reach, h, i0, std::min(last - i0, l_limit), ctx.s_limit, &scan.points);
