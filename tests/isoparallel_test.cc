@@ -126,11 +126,11 @@ TEST(ElasticaRolling, ChordReachBoundsEveryNodeChord) {
   std::mt19937_64 rng(10);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int tight = 0;
-  for (int trial = 0; trial < 10; ++trial) {
+  for (int trial = 0; trial < 10; ++trial) {  // both regimes and senses, periods ~0.4-3.7
     ElasticaParameters p;
-    p.regime = trial % 2 == 0 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
-    p.rate = (trial % 4 < 2 ? 1.0 : -1.0) * (3.0 + 5.0 * unit(rng));
     p.modulus = 0.97 * unit(rng);
+    p.rate = (3.0 + 5.0 * unit(rng)) * (trial % 4 < 2 ? 1.0 : -1.0);
+    p.regime = trial % 2 == 0 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
     const Elastica e(p);
     const internal::ElasticaRollingTable table(e, 30.0 + e.Period(), 12, 0.5);  // the scan's accuracy
     ASSERT_TRUE(table.Valid());
