@@ -221,7 +221,7 @@ double Elastica::IntegralSn2(double u, Jacobi* j) const {
   internal::JacobiSnCnDn(r, *agm_, &j->sn, &j->cn, &j->dn);
   // D(am r) with sin(am r) = sn, cos(am r) = cn (no atan2, no 1 - k^2 sin^2 formed).
   const double integral = 2.0 * m * dk_ + internal::EllipticDSinCos(j->sn, j->cn, kc2_);
-  if (std::fmod(m, 2.0) != 0.0) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r), dn(r + 2K) = dn(r)
+  if (internal::IsOddInteger(m)) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r), dn(r + 2K) = dn(r)
     j->sn = -j->sn;
     j->cn = -j->cn;
   }

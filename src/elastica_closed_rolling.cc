@@ -79,7 +79,7 @@ double ElasticaClosedRolling::ThirdKind(double sn, double cn, double dn) const {
 // modulo 2K with the same K (its j0_, signs flipped for odd m): unflipped, they give the node.
 void ElasticaClosedRolling::CacheOrigin(const Elastica& e) {
   const double m = std::round(phase_ / (2.0 * complete_k_));
-  const double sign = std::fmod(m, 2.0) != 0.0 ? -1.0 : 1.0;
+  const double sign = IsOddInteger(m) ? -1.0 : 1.0;
   origin_ = NodeFrom(m, sign * e.j0_.sn, sign * e.j0_.cn, e.j0_.dn, true);
   if (!straight_) origin_frame_t_ = FrameAt(origin_).transpose();
 }
@@ -103,7 +103,7 @@ ElasticaClosedRolling::Node ElasticaClosedRolling::NodeFrom(double m, double sn,
   j.dn = dn;
   // Pi(n; am(r), k), am(r) in [-pi/2, pi/2], needed by the twist when n != 0.
   if (with_pi && n_ != 0.0 && j.sn != 0.0) j.pi = ThirdKind(j.sn, j.cn, j.dn);
-  if (std::fmod(j.m, 2.0) != 0.0) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r)
+  if (IsOddInteger(j.m)) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r)
     j.sn = -j.sn;
     j.cn = -j.cn;
   }

@@ -1,6 +1,8 @@
 // Internal: fast Jacobi elliptic functions for the closed-form elastica (elastica.h).
 #pragma once
 
+#include <cmath>
+
 namespace plateball::internal {
 
 /// The arithmetic-geometric mean sequence of the modulus k (depends on k only): computed once
@@ -22,6 +24,13 @@ void JacobiSnCnDn(double u, double k, double* sn, double* cn, double* dn);
 /// The same with the modulus' AGM sequence precomputed.
 void JacobiSnCnDn(double u, const JacobiAgm& agm, double* sn, double* cn, double* dn);
 constexpr double kJacobiTinyArgument = 1e-20;
+
+/// Whether the integer-valued m (a count of half periods 2K) is odd: std::fmod(m, 2) != 0 without
+/// the libm call (0.5 m is exact; every double beyond 2^53 is even).
+inline bool IsOddInteger(double m) {
+  const double half = 0.5 * m;
+  return half != std::trunc(half);
+}
 
 /// 1 - x^2 as (1 - |x|)(1 + |x|): no cancellation near |x| = 1 (the complementary parameter
 /// k'^2 = 1 - k^2 of a modulus near the separatrix; 1 - G near G = 1).

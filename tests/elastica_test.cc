@@ -250,6 +250,17 @@ LongDoubleKE AgmKE(long double k, long double kc) {
 
 }  // namespace
 
+TEST(Elastica, HalfPeriodParityMatchesFmod) {
+  // The sign flip of odd half periods (Position, the closed rolling): IsOddInteger(m) against
+  // std::fmod(m, 2) != 0 for the integer-valued m the reductions produce.
+  for (double m : {0.0, -0.0, 1.0, -1.0, 2.0, -3.0, 7.0, 1e6 + 1, -(1e6 + 1), 9007199254740991.0, 9007199254740992.0,
+                   -9007199254740990.0, 1e300, -1e300}) {
+    EXPECT_EQ(internal::IsOddInteger(m), std::fmod(m, 2.0) != 0.0) << m;
+  }
+  EXPECT_TRUE(internal::IsOddInteger(9007199254740991.0));  // 2^53 - 1
+  EXPECT_FALSE(internal::IsOddInteger(-4.0));
+}
+
 TEST(Elastica, ShortArcPositionsMatchAnEightPointQuadratureOfTheTangent) {
   // Below |rate s| = 2e-4 (the searches' finite-difference arcs) Position uses the 2-point Gauss
   // rule, below 0.05 the 8-point rule, above the closed form: all agree with an 8-point
