@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -87,6 +88,29 @@ Eigen::Matrix3d MagnusRolling(PendulumRegime regime, const CertifyPoint& x) {
   const ElasticaRollingTable table(e, x[kCertifyLength], 512, 0.002, 2000000);
   EXPECT_TRUE(table.Valid());
   return table.Rolling(x[kCertifyLength]);
+}
+
+// The largest dist(Q(x), Q(centre)) (closed form) over 8 points x of the box (PointIn), and
+// the point where it is reached.
+double LargestSampledDistance(PendulumRegime regime, const CertifyBox& box, std::mt19937* rng, CertifyPoint* worst_x) {
+  const Eigen::Matrix3d qc = ClosedRolling(regime, box.Centre());
+  double worst = -1.0;
+  for (int j = 0; j < 8; ++j) {
+    const CertifyPoint x = PointIn(box, rng);
+    const double dist = RotationAngle(ClosedRolling(regime, x), qc);
+    if (dist > worst) worst = dist, *worst_x = x;
+  }
+  return worst;
+}
+
+// |f(x + h e_i) - f(x - h e_i)| / (2h), h = step max(1, |x_i|).
+double CentralDifference(const std::function<double(const CertifyPoint&)>& f, const CertifyPoint& x, int i,
+                         double step) {
+  const double h = step * std::max(1.0, std::abs(x[i]));
+  CertifyPoint p = x, m = x;
+  p[i] += h;
+  m[i] -= h;
+  return std::abs(f(p) - f(m)) / (2.0 * h);
 }
 
 // Whether the rotation test excludes the box with min(D, the closed-form bounds of both charts)
@@ -169,14 +193,8 @@ TEST(IsoparallelCertifyRolling, BoundNeverUndershootsSampledRotationDistances) {
       if (std::isinf(bound)) continue;
       ++finite;
       const CertifyPoint c = box.Centre();
-      const Eigen::Matrix3d qc = ClosedRolling(regime, c);
-      double worst = -1.0;
       CertifyPoint worst_x{};
-      for (int j = 0; j < 8; ++j) {
-        const CertifyPoint x = PointIn(box, &rng);
-        const double dist = RotationAngle(ClosedRolling(regime, x), qc);
-        if (dist > worst) worst = dist, worst_x = x;
-      }
+      const double worst = LargestSampledDistance(regime, box, &rng, &worst_x);
       ASSERT_LE(worst, bound * (1.0 + 1e-9) + 1e-9) << ToString(regime) << " box " << b;
       const double magnus = RotationAngle(MagnusRolling(regime, worst_x), MagnusRolling(regime, c));
       ASSERT_NEAR(magnus, worst, 1e-7) << ToString(regime) << " box " << b;
@@ -209,11 +227,7 @@ TEST(IsoparallelCertifyRolling, TwistAndFrameBoundsNeverUndershoot) {
       for (int j = 0; j < 2; ++j) {
         const CertifyPoint x = PointIn(box, &rng);
         for (int i = 0; i < 4; ++i) {
-          const double h = 1e-6 * std::max(1.0, std::abs(x[i]));
-          CertifyPoint p = x, m = x;
-          p[i] += h;
-          m[i] -= h;
-          const double fd = std::abs(twist(p) - twist(m)) / (2.0 * h);
+          const double fd = CentralDifference(twist, x, i, 1e-6);
           ASSERT_LE(fd, d[i] * (1.0 + 1e-6) + 1e-4) << ToString(regime) << " box " << b << " axis " << i;
         }
         const CertifyPoint c = box.Centre();
@@ -380,14 +394,8 @@ TEST(IsoparallelCertifyRolling, ChartBoundNeverUndershootsSampledRotationDistanc
       ++finite;
       across_finite += across ? 1 : 0;
       const CertifyPoint c = box.Centre();
-      const Eigen::Matrix3d qc = ClosedRolling(regime, c);
-      double worst = -1.0;
       CertifyPoint worst_x{};
-      for (int j = 0; j < 8; ++j) {
-        const CertifyPoint x = PointIn(box, &rng);
-        const double dist = RotationAngle(ClosedRolling(regime, x), qc);
-        if (dist > worst) worst = dist, worst_x = x;
-      }
+      const double worst = LargestSampledDistance(regime, box, &rng, &worst_x);
       ASSERT_LE(worst, bound * (1.0 + 1e-9) + 1e-9) << ToString(regime) << " box " << b;
       if (b % 4 == 0) {  // the Magnus table is slow at long lengths: a quarter of the boxes
         const double magnus = RotationAngle(MagnusRolling(regime, worst_x), MagnusRolling(regime, c));
@@ -421,15 +429,12 @@ TEST(IsoparallelCertifyRolling, ChartTwistAndFrameBoundsNeverUndershoot) {
       const CertifyPoint d = ChartTwistDerivativeBounds(regime, box);
       ASSERT_TRUE(std::isfinite(d[0])) << ToString(regime) << " box " << b;
       ++tested;
+      const auto chart_twist = [regime](const CertifyPoint& x) { return ChartTwistByQuadrature(regime, x); };
       const CertifyPoint c = box.Centre();
       for (int j = 0; j < 2; ++j) {
         const CertifyPoint x = PointIn(box, &rng);
         for (int i = 0; i < 4; ++i) {
-          const double h = 1e-5 * std::max(1.0, std::abs(x[i]));
-          CertifyPoint p = x, m = x;
-          p[i] += h;
-          m[i] -= h;
-          const double fd = std::abs(ChartTwistByQuadrature(regime, p) - ChartTwistByQuadrature(regime, m)) / (2.0 * h);
+          const double fd = CentralDifference(chart_twist, x, i, 1e-5);
           ASSERT_LE(fd, d[i] * (1.0 + 1e-6) + 1e-5)
               << ToString(regime) << " box " << b << " axis " << i << " rate " << x[0] << " k " << x[1];
           if (fd > 1e-3) tightest = std::min(tightest, d[i] / fd);
