@@ -39,8 +39,9 @@ struct Accuracy {
   double max_step;
 };
 // Search: the shape scan's table, rolling errors ~2e-5 rad median, up to 3e-4 (60 random elastica
-// of 1-4 periods against dopri5 at 1e-14), and the coarse crossing nodes. Polish: the crossing
-// nodes of the polish (those of its former Magnus tables: the same crossing numbers).
+// of 1-4 periods against dopri5 at 1e-14), and the coarse crossing nodes. kPolish: the fine
+// crossing nodes of the hand-off near a tangency (those of the former polish: the same crossing
+// numbers).
 constexpr Accuracy kSearch{12, 0.5};
 constexpr Accuracy kPolish{160, 0.02};
 // A search run stops below kSearchStop (the search accuracy) and is polished when below
@@ -156,16 +157,9 @@ bool Admissible(const ElasticaParameters& p) {
   return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::abs(p.modulus) < 1.0;
 }
 
-// The rotation trick of section 2.2 on the n-th crossing of the circle.
-bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, const Accuracy& acc, Evaluation* out,
-              double fixed_length = -1.0) {
-  if (!Admissible(p)) return false;
-  const Elastica e(p);
-  if (fixed_length > 0) return EvaluateAt(ctx, e, fixed_length, out);
-  const internal::ElasticaRollingTable table = CrossingTable(e, ctx.s_limit, acc);
-  double s = 0.0;
-  if (!table.Valid() || !table.FindCrossing(ctx.radius, crossing, &s)) return false;
-  return EvaluateAt(ctx, e, s, out);
+// The rotation trick of section 2.2 at arc length `length` of the elastica with parameters p.
+bool Evaluate(const Context& ctx, const ElasticaParameters& p, double length, Evaluation* out) {
+  return Admissible(p) && EvaluateAt(ctx, Elastica(p), length, out);
 }
 
 // TinySolver's functor call for a residual f.Residual(x, r) of N unknowns and N residuals:
@@ -189,62 +183,6 @@ bool ForwardDifferences(const F& f, const double* x, double* r, double* jacobian
   return true;
 }
 
-struct ShootingFunctor {
-  using Scalar = double;
-  enum { NUM_RESIDUALS = 3, NUM_PARAMETERS = 3 };
-  ShootingFunctor(const Context* c, PendulumRegime r, int n, const Accuracy& a) : ctx(c), regime(r), crossing(n), acc(a) {}
-  const Context* ctx;
-  PendulumRegime regime;
-  int crossing;
-  Accuracy acc;
-  mutable long evaluations = 0;
-  // TinySolver evaluates every accepted point twice (a trial, then with the Jacobian), and
-  // PolishLocal once more at the end: the evaluations of the last point taken with a Jacobian
-  // (slot 0) and of the last trial (slot 1) are kept.
-  struct Memo {
-    bool valid = false, ok = false;
-    double x[3] = {0, 0, 0};
-    Evaluation ev;
-  };
-  mutable Memo memo[2];
-
-  // The evaluation at x (a kept one if x is one of the last two points).
-  bool At(const double* x, Evaluation* ev, int slot = 1) const {
-    for (Memo& m : memo) {
-      if (!m.valid || !std::equal(x, x + 3, m.x)) continue;
-      *ev = m.ev;
-      if (&m != &memo[slot]) memo[slot] = m;
-      return m.ok;
-    }
-    Memo& m = memo[slot];
-    ++evaluations;
-    m.ok = Evaluate(*ctx, ToParameters(regime, x), crossing, acc, &m.ev);
-    m.valid = true;
-    std::copy(x, x + 3, m.x);
-    *ev = m.ev;
-    return m.ok;
-  }
-
-  bool Residual(const double* x, double* r, bool with_jacobian = false) const {
-    Evaluation ev;
-    if (!At(x, &ev, with_jacobian ? 0 : 1)) return false;
-    for (int i = 0; i < 3; ++i) r[i] = ev.residual[i];
-    return true;
-  }
-
-  bool Shifted(const double* x, double* r) const {
-    ++evaluations;
-    Evaluation ev;
-    if (!Evaluate(*ctx, ToParameters(regime, x), crossing, acc, &ev)) return false;
-    for (int i = 0; i < 3; ++i) r[i] = ev.residual[i];
-    return true;
-  }
-
-  bool operator()(const double* x, double* r, double* jacobian) const {
-    return ForwardDifferences<3>(*this, x, r, jacobian);
-  }
-};
-
 struct LocalResult {
   bool converged = false;
   PendulumRegime regime = PendulumRegime::kOscillating;
@@ -255,22 +193,6 @@ struct LocalResult {
   Evaluation ev;
   long evaluations = 0;
 };
-
-// Levenberg-Marquardt (ceres::TinySolver) on the three pendulum parameters.
-bool RunLm(ShootingFunctor& f, double* x, int max_iterations, double cost_threshold) {
-  Eigen::Vector3d v(x[0], x[1], x[2]);
-  double r0[3];
-  if (!f.Residual(x, r0)) return false;
-  ceres::TinySolver<ShootingFunctor> solver;
-  solver.options.max_num_iterations = max_iterations;
-  solver.options.gradient_tolerance = 0.0;
-  solver.options.parameter_tolerance = 1e-15;
-  solver.options.function_tolerance = 0.0;
-  solver.options.cost_threshold = cost_threshold;
-  solver.Solve(f, &v);
-  for (int i = 0; i < 3; ++i) x[i] = v[i];
-  return v.allFinite();
-}
 
 // A known solution in the free-length search's unknowns (rate, atanh k, phase, L).
 struct SearchRoot {
@@ -518,13 +440,30 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   return out;
 }
 
-// Polish stage: LM (in effect Newton) with the accurate tables, to options.tolerance.
+// Polish stage: LM (in effect Newton) on the free-length formulation with exact Jacobians (no
+// Broyden columns), from the handed-off point (the search's parameters, L at its crossing), to
+// options.tolerance on all four residuals: the chord miss and the rotation residual there. The
+// crossing number stays the hand-off's. (The crossing formulation's polish found the crossing on a
+// table of positions over the whole search length at kPolish nodes, ~250,000 instructions per
+// evaluation against ~7,000 here: 170M of the rotation problem's 1.76G; the roots are the same to
+// the tolerance, the same 31 lengths to 10 digits; docs/paper_notes.md, "General targets", point 11.)
 void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalResult* r) {
-  ShootingFunctor polish{&ctx, r->regime, r->crossing, kPolish};  // forward differences suffice from 1e-4
-  const double thr = 0.5 * std::pow(0.1 * options.tolerance, 2);
-  RunLm(polish, r->x, std::min(options.max_iterations, kPolishIterations), thr);
-  r->evaluations += polish.evaluations;
-  r->converged = polish.At(r->x, &r->ev) && r->ev.residual.norm() <= options.tolerance;
+  FreeLengthFunctor f{&ctx, r->regime};
+  f.secant = false;
+  Eigen::Vector4d v(r->x[0], r->x[1], r->x[2], r->ev.s);
+  ceres::TinySolver<FreeLengthFunctor> solver;
+  solver.options.max_num_iterations = std::min(options.max_iterations, kPolishIterations);
+  solver.options.gradient_tolerance = 0.0;
+  solver.options.parameter_tolerance = 1e-15;
+  solver.options.function_tolerance = 0.0;
+  solver.options.cost_threshold = 0.5 * std::pow(0.1 * options.tolerance, 2);
+  solver.Solve(f, &v);
+  double res[4];
+  r->converged = v.allFinite() && f.Residual(v.data(), res) && Eigen::Map<const Eigen::Vector4d>(res).norm() <= options.tolerance;
+  r->evaluations += f.evaluations;
+  if (!r->converged) return;
+  std::copy(v.data(), v.data() + 3, r->x);
+  r->converged = Evaluate(ctx, ToParameters(r->regime, r->x), v[3], &r->ev);
 }
 
 // Radical-inverse (Halton): deterministic, portable.
@@ -654,13 +593,13 @@ Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, c
       ElasticaParameters q = p;
       q.phase += frac * u_period;
       Evaluation evq;
-      if (!Evaluate(ctx, q, 1, kPolish, &evq, ev.s) || evq.residual.norm() > kFamilyTol) family = false;
+      if (!Evaluate(ctx, q, ev.s, &evq) || evq.residual.norm() > kFamilyTol) family = false;
     }
     if (family) {
       ElasticaParameters q = p;
       q.phase = 0.0;  // canonical member
       Evaluation evq;
-      if (Evaluate(ctx, q, 1, kPolish, &evq, ev.s)) {
+      if (Evaluate(ctx, q, ev.s, &evq)) {
         sol.family = true;
         p = q;
         ev = evq;
