@@ -103,6 +103,12 @@ constexpr double kDuplicateTol = 3e-3;
 // targets", points 9 and 10: 0.1 with the search tables; with the closed form 0.1 loses T7's
 // 14.27603954, 0.2 and 0.3 keep every solution of the ten targets).
 constexpr double kSecantResidual = 0.3;
+// A search run stalls when its residual at each of its last two accepted points fell by less than
+// a factor kStallRatio while still above kStallFloor: it is stopped there (docs/paper_notes.md,
+// "General targets", point 11: such runs end beyond the hand-off or at a nonzero minimum; a root
+// reached at a fold, where Newton converges linearly, still halves the residual per step).
+constexpr double kStallRatio = 0.95;
+constexpr double kStallFloor = 1e-5;
 
 struct Context {
   Eigen::Matrix3d target;  // A1 A0^-1
@@ -226,6 +232,10 @@ struct FreeLengthFunctor {
   const std::vector<SearchRoot>* known = nullptr;
   mutable bool duplicate = false;
   bool secant = true;  // SecantColumns allowed (the twin continuation needs the exact columns)
+  // Whether a stalled run stops (Stalls: the searches; not the polish or the curve following).
+  bool stall_stop = false;
+  mutable bool stalled = false;
+  mutable double accepted[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
 
   bool Admissible(const ElasticaParameters& p, double length) const {
     return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::isfinite(length) &&
@@ -279,7 +289,7 @@ struct FreeLengthFunctor {
   // Forward differences, but one closed-form rolling (one per (rate, k)) serves the residual and
   // the phase and length columns: only the rate and modulus columns build new ones.
   bool operator()(const double* x, double* r, double* jacobian) const {
-    if (duplicate) return StopRun(r, jacobian);
+    if (duplicate || stalled) return StopRun(r, jacobian);
     if (jacobian != nullptr && kept.valid && std::equal(x, x + 4, kept.x)) {  // the triage's last point
       std::copy(kept.r, kept.r + 4, r);
       std::copy(kept.jacobian, kept.jacobian + 16, jacobian);
@@ -288,6 +298,10 @@ struct FreeLengthFunctor {
     if (!Evaluate(x, r, jacobian)) return false;
     if (jacobian != nullptr && ReachesKnown(x, r, jacobian)) {
       duplicate = true;
+      return StopRun(r, jacobian);
+    }
+    if (jacobian != nullptr && Stalls(Eigen::Map<const Eigen::Vector4d>(r).norm())) {
+      stalled = true;
       return StopRun(r, jacobian);
     }
     if (jacobian != nullptr) {
@@ -308,8 +322,18 @@ struct FreeLengthFunctor {
   };
   mutable KeptJacobian kept;
 
-  // A run that reached a known solution: a zero residual and Jacobian end TinySolver's loop at
-  // once (cost below its threshold); the caller drops the run by `duplicate`.
+  // Whether the run stalls at an accepted point of residual norm `norm` (TinySolver evaluates the
+  // Jacobian exactly at the accepted points): see kStallRatio.
+  bool Stalls(double norm) const {
+    const bool stall = stall_stop && norm >= kStallFloor && norm > kStallRatio * accepted[1] &&
+                       accepted[1] > kStallRatio * accepted[0];
+    accepted[0] = accepted[1];
+    accepted[1] = norm;
+    return stall;
+  }
+
+  // A run that reached a known solution (or stalled): a zero residual and Jacobian end TinySolver's loop at
+  // once (cost below its threshold); the caller drops the run by `duplicate` (or `stalled`).
   static bool StopRun(double* r, double* jacobian) {
     std::fill(r, r + 4, 0.0);
     if (jacobian != nullptr) std::fill(jacobian, jacobian + 16, 0.0);
@@ -403,6 +427,7 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   out.regime = regime;
   FreeLengthFunctor f{&ctx, regime};
   f.known = known;
+  f.stall_stop = true;
   Eigen::Vector4d v(x0[0], x0[1], x0[2], length0);
   ceres::TinySolver<FreeLengthFunctor> solver;
   solver.options.max_num_iterations = std::min(options.max_iterations, kSearchIterations);
@@ -428,7 +453,7 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   out.evaluations = f.evaluations;
   out.duplicate = f.duplicate;
   std::copy(v.data(), v.data() + 3, out.x);
-  if (out.duplicate) return out;
+  if (out.duplicate || f.stalled) return out;
   if (!v.allFinite() || !(v[3] > 0) || std::abs(std::tanh(v[1])) >= 1.0) return out;
   // Runs that stopped far from a root are not handed off (the hand-off's tables over the whole
   // search length were a fifth of the time on the rotation problem, mostly spent on such runs).
