@@ -93,6 +93,11 @@ constexpr int kTwinSteps = 8;
 constexpr double kTwinCurveTol = 1e-3;
 constexpr int kTwinCorrections = 4;
 constexpr double kTwinGiveUp = 1.0;
+// The continuation moves by at most kTwinStep per step (a unit tangent; the corrector's steps are
+// small), so a twin's start lies within kTwinSteps kTwinStep of its solution's length: the twins of
+// a solution longer than the cap by more than twice that are not searched (nothing past the cap
+// is reported, and the cap only shrinks as solutions are found).
+constexpr double kTwinReach = 2 * kTwinSteps * kTwinStep;
 // A search run whose residual is below kDuplicateResidual and whose Gauss-Newton root estimate
 // lies within kDuplicateTol (relative) of a solution known before its batch is stopped there: it
 // would converge to that solution (docs/paper_notes.md, "General targets", point 8).
@@ -1010,8 +1015,16 @@ bool MergeResult(const Context& ctx, const IsoparallelProblem& problem, const Is
   return true;
 }
 
+// The longest length reported: length_cap_factor times the shortest solution found.
+double CapLength(const IsoparallelOptions& options, const std::vector<Candidate>& found) {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (const Candidate& c : found) shortest = std::min(shortest, c.solution.length);
+  return options.length_cap_factor * shortest;
+}
+
 // Polishes the searched results that are not known yet and adds the new distinct solutions; for
-// a general target, each new solution's twin across a fold (TwinSearch) is tried at once.
+// a general target, each new solution's twin across a fold (TwinSearch) is tried at once, unless
+// the solution lies beyond the cap by more than kTwinReach.
 void MergeResults(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
                   std::vector<std::vector<LocalResult>> per_start, std::vector<Candidate>* found,
                   IsoparallelSummary* summary) {
@@ -1022,18 +1035,12 @@ void MergeResults(const Context& ctx, const IsoparallelProblem& problem, const I
       while (!pending.empty()) {
         const LocalResult from = pending.back();
         pending.pop_back();
+        if (from.ev.s > CapLength(options, *found) + kTwinReach) continue;
         for (LocalResult& twin : TwinSearches(ctx, from, options, &summary->evaluations))
           if (MergeResult(ctx, problem, options, &twin, found, summary)) pending.push_back(twin);
       }
     }
   }
-}
-
-// The longest length reported: length_cap_factor times the shortest solution found.
-double CapLength(const IsoparallelOptions& options, const std::vector<Candidate>& found) {
-  double shortest = std::numeric_limits<double>::infinity();
-  for (const Candidate& c : found) shortest = std::min(shortest, c.solution.length);
-  return options.length_cap_factor * shortest;
 }
 
 // The found solutions as roots of the free-length search (the straight segment, rate 0, is not
