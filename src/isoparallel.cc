@@ -247,19 +247,40 @@ struct FreeLengthFunctor {
            std::abs(p.modulus) < 1.0 && length > 0 && length <= 2.0 * ctx->s_limit;
   }
 
-  // The residual of the path from arc length s0 to s0 + length of the rolling's elastica: the
-  // phase shifted by rate s0 (u = rate s + phase), Q(s0, s0 + L) in closed form.
-  bool ResidualFrom(const Elastica& e, const internal::ElasticaClosedRolling& rolling, double s0, double length,
-                    double* r) const {
-    ++evaluations;
-    // x(0) = 0 (Position(0) would still evaluate its 8-point short-arc quadrature).
-    const Eigen::Vector2d xs = s0 == 0.0 ? e.Position(length) : e.Position(s0 + length) - e.Position(s0);
+  // The residual of a path with chord xs and rolling q.
+  bool ResidualOf(const Eigen::Vector2d& xs, const Eigen::Matrix3d& q, double* r) const {
     if (xs.norm() == 0.0) return false;
-    const Eigen::Matrix3d q = s0 == 0.0 ? rolling.Rolling(length) : rolling.Rolling(s0, s0 + length);
     const Eigen::Vector3d rot = internal::RotationTrickResidual(ctx->target, internal::ChordTurn(ctx->goal_angle, xs), q);
     r[0] = xs.norm() - ctx->radius;
     for (int i = 0; i < 3; ++i) r[i + 1] = rot[i];
     return rot.allFinite();
+  }
+
+  // The residual of the path from 0 to `length` of the rolling's elastica (x(0) = 0), Q(0, L) in
+  // closed form; its chord and rolling are kept in `last`.
+  bool ResidualFrom(const Elastica& e, const internal::ElasticaClosedRolling& rolling, double length, double* r) const {
+    ++evaluations;
+    last.chord = e.Position(length);
+    last.q = rolling.Rolling(length);
+    return ResidualOf(last.chord, last.q, r);
+  }
+
+  // The residuals of the last path (length L) shifted by s0 along its elastica (the phase shifted
+  // by rate s0: chord x(s0 + L) - x(s0), rolling Q(s0, s0 + L)) and lengthened by h, from its chord
+  // and rolling and the tangents and curvatures at 0 and L: the chords to second order, the
+  // rollings by dQ(s0, s1)/ds1 = hat(w(s1)) Q and dQ/ds0 = -Q hat(w(s0)) (w = e3 x x') with w at
+  // the step's midpoint (error O(h^3), as the chord's): the phase and length columns without the
+  // two positions and two closed-form rollings they took (docs/paper_notes.md, "General targets",
+  // point 11).
+  bool ShiftedResiduals(const Elastica& e, double length, double s0, double h, double* rp, double* rl) const {
+    const Eigen::Vector2d t0 = e.Tangent(0.0), t1 = e.Tangent(length);
+    const Eigen::Vector2d n0 = e.Curvature(0.0) * Eigen::Vector2d(-t0.y(), t0.x());
+    const Eigen::Vector2d n1 = e.Curvature(length) * Eigen::Vector2d(-t1.y(), t1.x());
+    const auto spin = [](const Eigen::Vector2d& t, double step) { return ExpSO3(step * Eigen::Vector3d(-t.y(), t.x(), 0.0)); };
+    const Eigen::Vector2d chord_p = last.chord + s0 * (t1 - t0) + 0.5 * s0 * s0 * (n1 - n0);
+    const Eigen::Matrix3d q_p = spin(t1 + 0.5 * s0 * n1, s0) * last.q * spin(t0 + 0.5 * s0 * n0, -s0);
+    const Eigen::Vector2d chord_l = last.chord + h * t1 + 0.5 * h * h * n1;
+    return ResidualOf(chord_p, q_p, rp) && ResidualOf(chord_l, spin(t1 + 0.5 * h * n1, h) * last.q, rl);
   }
 
   // The last residual evaluated (TinySolver evaluates every accepted point twice: as a trial
@@ -268,6 +289,8 @@ struct FreeLengthFunctor {
     bool ok = false;
     double x[4] = {0, 0, 0, 0};
     double r[4] = {0, 0, 0, 0};
+    Eigen::Vector2d chord = Eigen::Vector2d::Zero();
+    Eigen::Matrix3d q = Eigen::Matrix3d::Identity();
     std::unique_ptr<Elastica> path;
     std::unique_ptr<internal::ElasticaClosedRolling> rolling;
   };
@@ -282,7 +305,7 @@ struct FreeLengthFunctor {
     last.path = std::make_unique<Elastica>(p);
     if (!ClosedFormApplies(*last.path, 2.0 * ctx->s_limit)) return false;  // every length Admissible takes, and L + h
     last.rolling = std::make_unique<internal::ElasticaClosedRolling>(*last.path);
-    last.ok = ResidualFrom(*last.path, *last.rolling, 0.0, x[3], r);
+    last.ok = ResidualFrom(*last.path, *last.rolling, x[3], r);
     std::copy(x, x + 4, last.x);
     if (last.ok) std::copy(r, r + 4, last.r);
     return last.ok;
@@ -387,10 +410,9 @@ struct FreeLengthFunctor {
     }
     std::copy(last.r, last.r + 4, r);
     const std::unique_ptr<Elastica> path = std::move(last.path);  // the rate and modulus columns reuse `last`
-    const std::unique_ptr<internal::ElasticaClosedRolling> rolling = std::move(last.rolling);
+    last.rolling.reset();
     double rp[4], rl[4];
-    if (!ResidualFrom(*path, *rolling, s0, x[3], rp) || !ResidualFrom(*path, *rolling, 0.0, x[3] + h_length, rl))
-      return false;
+    if (!ShiftedResiduals(*path, x[3], s0, h_length, rp, rl)) return false;
     const double signed_phase_step = p.rate > 0 ? h_phase : -h_phase;
     for (int i = 0; i < 4; ++i) {
       jacobian[2 * 4 + i] = (rp[i] - r[i]) / signed_phase_step;
