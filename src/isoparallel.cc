@@ -446,8 +446,9 @@ bool HandOff(const Context& ctx, double length, const Accuracy& acc, LocalResult
 }
 
 // Search stage on the free-length formulation from a start and one of its crossings; the result
-// is handed to the crossing formulation (its crossing number counted) for the polish. A run that
-// reaches one of the `known` solutions stops there (LocalResult::duplicate).
+// is handed off (its crossing number counted, the residual checked at that crossing) to the
+// polish. A run that reaches one of the `known` solutions stops there (LocalResult::duplicate), a
+// run that stalls (kStallRatio) too.
 LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
                                   const IsoparallelOptions& options, const std::vector<SearchRoot>* known = nullptr) {
   LocalResult out;
