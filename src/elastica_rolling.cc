@@ -240,21 +240,28 @@ long ElasticaRollingTable::NodeCount() const {
   return straight_ ? 1 : static_cast<long>(std::ceil(s_limit_ / h_));
 }
 
+std::vector<Eigen::Matrix3d> ElasticaRollingTable::MonodromyPowers() const {
+  RequireRotations("MonodromyPowers");
+  std::vector<Eigen::Matrix3d> powers{Eigen::Matrix3d::Identity()};
+  if (straight_ || !std::isfinite(period_)) return powers;
+  const long count = NodeCount() / steps_;
+  for (long n = 1; n <= count; ++n) powers.push_back(monodromy_ * powers.back());
+  return powers;
+}
+
+void ElasticaRollingTable::NodePositions(std::vector<Eigen::Vector2d>* position) const {
+  const long count = NodeCount();
+  position->resize(count + 1);
+  for (long i = 0; i <= count; ++i) (*position)[i] = straight_ ? pos_[std::min<long>(i, 1)] : NodePosition(i);
+}
+
 void ElasticaRollingTable::Nodes(std::vector<Eigen::Matrix3d>* rolling, std::vector<Eigen::Vector2d>* position) const {
   RequireRotations("Nodes");
+  const std::vector<Eigen::Matrix3d> powers = MonodromyPowers();
   const long count = NodeCount();
   rolling->resize(count + 1);
-  position->resize(count + 1);
-  Eigen::Matrix3d power = Eigen::Matrix3d::Identity();  // P^n for the nodes of period n
-  for (long i = 0; i <= count; ++i) {
-    if (straight_ || !std::isfinite(period_)) {
-      (*rolling)[i] = rot_[std::min<long>(i, steps_)];
-    } else {
-      if (i > 0 && i % steps_ == 0) power = monodromy_ * power;
-      (*rolling)[i] = rot_[i % steps_] * power;
-    }
-    (*position)[i] = straight_ ? pos_[std::min<long>(i, 1)] : NodePosition(i);
-  }
+  for (long i = 0; i <= count; ++i) (*rolling)[i] = NodeRolling(i, powers);
+  NodePositions(position);
 }
 
 template <class Pred>
@@ -324,6 +331,29 @@ bool ElasticaRollingTable::NearestCrossing(double radius, double s, double tol, 
     found = true;
   }
   return found;
+}
+
+std::vector<double> ChordReach(const std::vector<Eigen::Vector2d>& x, long period_nodes, long count, double h) {
+  const long n = period_nodes;
+  const bool periodic = n >= 1 && n * 8 <= count && static_cast<long>(x.size()) >= 2 * n;
+  std::vector<double> longest(periodic ? n + 1 : 0, 0.0);  // M[r]
+  for (long r = 1; r < static_cast<long>(longest.size()); ++r) {
+    for (long j = 0; j < n; ++j) longest[r] = std::max(longest[r], (x[j + r] - x[j]).squaredNorm());
+    longest[r] = std::sqrt(longest[r]);
+  }
+  std::vector<double> reach(count + 1);
+  double running = 0.0;
+  for (long k = 0, m = 0, r = 0; k <= count; ++k, ++r) {  // k = m n + r
+    if (periodic && r == n) {
+      ++m;
+      r = 0;
+    }
+    double b = k * h;
+    if (periodic) b = std::min(b, static_cast<double>(m) * longest[n] + longest[r]);
+    running = std::max(running, b * (1 + 1e-9) + 1e-12);  // the margin covers the nodes' round-off
+    reach[k] = running;
+  }
+  return reach;
 }
 
 }  // namespace plateball::internal

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -60,6 +61,18 @@ class ElasticaRollingTable {
   /// Q(0, i h) and x(i h) at every node i = 0 .. NodeCount(), from the one-period table and the
   /// monodromy (no Magnus step, no closed form): for scans over many (s0, s0 + L) node pairs.
   void Nodes(std::vector<Eigen::Matrix3d>* rolling, std::vector<Eigen::Vector2d>* position) const;
+  /// Nodes' positions alone, x(i h) for i = 0 .. NodeCount().
+  void NodePositions(std::vector<Eigen::Vector2d>* position) const;
+  /// The monodromy's powers P^n, n = 0 .. NodeCount() / Steps() (just the identity for a table
+  /// that does not repeat), for NodeRolling.
+  std::vector<Eigen::Matrix3d> MonodromyPowers() const;
+  /// Q(0, i h) of one node, 0 <= i <= NodeCount(), bit for bit Nodes' value, with `powers` from
+  /// MonodromyPowers(): for scans that need the rolling at a few of the nodes only.
+  Eigen::Matrix3d NodeRolling(long i, const std::vector<Eigen::Matrix3d>& powers) const {
+    if (straight_ || !std::isfinite(period_)) return rot_[std::min<long>(i, steps_)];
+    const long n = i / steps_;
+    return n == 0 ? rot_[i] : Eigen::Matrix3d(rot_[i % steps_] * powers[n]);  // P^0 = I: no product
+  }
 
  private:
   void Build(int steps);
@@ -84,5 +97,15 @@ class ElasticaRollingTable {
   std::vector<Eigen::Matrix3d> rot_;  // Q(0, j h), j = 0..steps_
   std::vector<Eigen::Vector2d> pos_;  // x(j h)
 };
+
+/// How far the chord between two nodes of a table can move over k nodes, for scans that skip
+/// nodes (isoparallel.cc, ScanShape): reach[k] >= |x[j + k'] - x[j]| for every node j and every
+/// k' <= k, k = 0 .. count, given the nodes' positions x (ElasticaRollingTable::NodePositions),
+/// the nodes per period N and the spacing h. From the unit speed, k h; for a table of many periods
+/// (N <= count / 8, x holding at least 2 N nodes), also m |D| + M[r] (k = m N + r:
+/// x[j + k] - x[j] = m D + x[j + r] - x[j], D the drift per period, M[r] the longest chord over r
+/// nodes of one period, measured on the nodes), much less for curled shapes. Non-decreasing, with a
+/// margin (1e-9 relative, 1e-12 absolute) for the nodes' round-off.
+std::vector<double> ChordReach(const std::vector<Eigen::Vector2d>& x, long period_nodes, long count, double h);
 
 }  // namespace plateball::internal

@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "chord_residual.h"
 #include "dynamics.h"
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
@@ -110,7 +111,7 @@ constexpr double kDuplicateTol = 3e-3;
 constexpr double kSecantResidual = 0.3;
 // A search run stalls when its residual at each of its last two accepted points fell by less than
 // a factor kStallRatio while still above kStallFloor: it is stopped there (docs/paper_notes.md,
-// "General targets", point 11: such runs end beyond the hand-off or at a nonzero minimum; a root
+// "General targets", point 12: such runs end beyond the hand-off or at a nonzero minimum; a root
 // reached at a fold, where Newton converges linearly, still halves the residual per step).
 constexpr double kStallRatio = 0.95;
 constexpr double kStallFloor = 1e-5;
@@ -271,7 +272,7 @@ struct FreeLengthFunctor {
   // rollings by dQ(s0, s1)/ds1 = hat(w(s1)) Q and dQ/ds0 = -Q hat(w(s0)) (w = e3 x x') with w at
   // the step's midpoint (error O(h^3), as the chord's): the phase and length columns without the
   // two positions and two closed-form rollings they took (docs/paper_notes.md, "General targets",
-  // point 11).
+  // point 12).
   bool ShiftedResiduals(const Elastica& e, double length, double s0, double h, double* rp, double* rl) const {
     const Eigen::Vector2d t0 = e.Tangent(0.0), t1 = e.Tangent(length);
     const Eigen::Vector2d n0 = e.Curvature(0.0) * Eigen::Vector2d(-t0.y(), t0.x());
@@ -499,7 +500,7 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
 // crossing number stays the hand-off's. (The crossing formulation's polish found the crossing on a
 // table of positions over the whole search length at kPolish nodes, ~250,000 instructions per
 // evaluation against ~7,000 here: 170M of the rotation problem's 1.76G; the roots are the same to
-// the tolerance, the same 31 lengths to 10 digits; docs/paper_notes.md, "General targets", point 11.)
+// the tolerance, the same 31 lengths to 10 digits; docs/paper_notes.md, "General targets", point 12.)
 void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalResult* r) {
   FreeLengthFunctor f{&ctx, r->regime};
   f.secant = false;
@@ -803,15 +804,21 @@ std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const Iso
   });
 }
 
+// A shape's table in the form the scan reads it: the node positions, and the rolling at a node
+// on demand (Q(0, i h) = Q(0, j h) P^n, i = n N + j, bit for bit ElasticaRollingTable::Nodes).
+struct ShapeNodes {
+  const internal::ElasticaRollingTable* table;
+  std::vector<Eigen::Matrix3d> powers;
+  std::vector<Eigen::Vector2d> x;
+  Eigen::Matrix3d target_t;
+  internal::GoalDirection goal;
+};
+
 // The rotation residual of the path from node i0 to node i of a shape's table (the rotation trick
-// with B from the chord's direction).
-Eigen::Vector3d NodeResidual(const Context& ctx, const std::vector<Eigen::Matrix3d>& rolling,
-                             const std::vector<Eigen::Vector2d>& position, long i0, long i) {
-  const Eigen::Vector2d c = position[i] - position[i0];
-  // The two node rollings are multiplied in this order (not through RotationTrickResidual's one q),
-  // so that the scan's residuals stay bit for bit those its thresholds were measured with.
-  const Eigen::Matrix3d b = RotationZ(internal::ChordTurn(ctx.goal_angle, c));
-  return LogSO3(ctx.target.transpose() * b * rolling[i] * rolling[i0].transpose() * b.transpose());
+// with B from the chord's direction; q0t = Q(0, s0)^T, Q(s0, s) = Q(0, s) Q(0, s0)^T).
+Eigen::Vector3d NodeResidual(const ShapeNodes& nodes, const Eigen::Matrix3d& q0t, long i0, long i) {
+  return internal::ChordResidual(nodes.target_t, nodes.goal, nodes.x[i] - nodes.x[i0],
+                                 nodes.table->NodeRolling(i, nodes.powers) * q0t);
 }
 
 // A point of a shape's (s0, L) scan where the chord |x(s0 + L) - x(s0)| crosses the radius
@@ -821,62 +828,93 @@ struct ScanPoint {
   double residual = 0.0;  // |rotation residual| (interpolated between nodes), with the chord miss
 };
 
+// A shape's scan: the points of row i0 (start node s0 = i0 h) are points[row_end[i0 - 1] ..
+// row_end[i0]) (row_end[-1] = 0), in order of L.
+struct ShapeScan {
+  std::vector<ScanPoint> points;
+  std::vector<std::size_t> row_end;
+  double step = 0.0;
+  std::size_t RowBegin(long i0) const { return i0 == 0 ? 0 : row_end[i0 - 1]; }
+  std::size_t RowSize(long i0) const { return row_end[i0] - RowBegin(i0); }
+};
+
+// One row of the scan: start node i0, lengths up to node l_end; `limit` is the search length.
+// While |chord| - radius exceeds kTangencyMiss + reach[k + 2] (ChordReach), or radius - |chord|
+// does, the next k nodes hold no crossing and no near-tangency and are skipped. Elsewhere the
+// squared chord against precomputed bounds decides, with a square root only where a skip or an
+// event is possible.
+void ScanRow(const Context& ctx, const ShapeNodes& nodes, const std::vector<double>& reach, double h, long i0,
+             long l_end, double limit, std::vector<ScanPoint>* row) {
+  const std::vector<Eigen::Vector2d>& x = nodes.x;
+  const Eigen::Matrix3d q0t = nodes.table->NodeRolling(i0, nodes.powers).transpose();
+  const Eigen::Vector2d x0 = x[i0];
+  const double r2 = ctx.radius * ctx.radius, far = ctx.radius + kTangencyMiss, near = ctx.radius - kTangencyMiss;
+  // Squared chords beyond which a skip is possible (a skip needs |chord| - far > reach[3], or
+  // near - |chord| > reach[3]), and the band (loosened by 1e-9) where an extremum is a near-tangency.
+  const double skip_out = (far + reach[3]) * (far + reach[3]);
+  const double skip_in = near - reach[3] > 0 ? (near - reach[3]) * (near - reach[3]) : -1.0;
+  const double band_lo = near > 0 ? near * near * (1 - 1e-9) : -1.0, band_hi = far * far * (1 + 1e-9);
+  const std::size_t first = row->size();
+  double f_prev = -r2, f_prev2 = -r2;  // |chord|^2 - radius^2 at the two previous nodes
+  for (long l = 1; l <= l_end; ++l) {
+    double f = (x[i0 + l] - x0).squaredNorm() - r2;
+    if ((f + r2 > skip_out && f_prev > 0) || (f + r2 < skip_in && f_prev < 0)) {
+      const double c = std::sqrt(f + r2), gap = f > 0 ? c - far : near - c;
+      // reach[k] < gap for k <= skip + 2, and the row's end not passed.
+      const long fit = std::lower_bound(reach.begin(), reach.end(), gap) - reach.begin() - 1;
+      const long skip = std::min(fit - 2, l_end - l - 2);
+      if (skip > 0) {  // resume with the two nodes before the next one
+        l += skip;
+        f_prev2 = (x[i0 + l - 1] - x0).squaredNorm() - r2;
+        f_prev = (x[i0 + l] - x0).squaredNorm() - r2;
+        ++l;
+        f = (x[i0 + l] - x0).squaredNorm() - r2;
+      }
+    }
+    if ((f > 0) != (f_prev > 0)) {
+      const double t = f_prev / (f_prev - f);  // linear interpolation between the nodes
+      Eigen::Vector3d r = NodeResidual(nodes, q0t, i0, i0 + l);
+      if (l > 1) r = t * r + (1 - t) * NodeResidual(nodes, q0t, i0, i0 + l - 1);
+      if ((l - 1 + t) * h > limit) break;
+      row->push_back({(l - 1 + t) * h, r.norm()});
+      if (row->size() - first >= static_cast<std::size_t>(kMaxCrossingsPerStart)) break;
+    } else if (l >= 2 && f_prev + r2 > band_lo && f_prev + r2 < band_hi &&
+               ((f_prev > f_prev2 && f_prev >= f && f_prev < 0) || (f_prev < f_prev2 && f_prev <= f && f_prev > 0))) {
+      const double miss = std::sqrt(f_prev + r2) - ctx.radius;  // an extremum at node l - 1
+      if (std::abs(miss) < kTangencyMiss)
+        row->push_back({(l - 1) * h, std::hypot(miss, NodeResidual(nodes, q0t, i0, i0 + l - 1).norm())});
+    }
+    f_prev2 = f_prev;
+    f_prev = f;
+  }
+}
+
 // The (s0, L) scan of one shape (rate, k; phase 0): ONE rolling table over [0, T + s_limit], and
 // for every start node s0 = i0 h of one period (a whole-period shift gives the same path) the
 // crossings and near-tangencies of the chord along L <= s_limit, from the table's nodes only
-// (Q(s0, s0 + L) = Q(0, s0 + L) Q(0, s0)^-1): rows[i0] lists them in order of L.
-std::vector<std::vector<ScanPoint>> ScanShape(const Context& ctx, const Elastica& e, double* step) {
-  std::vector<std::vector<ScanPoint>> rows;
-  if (e.IsStraight() || !std::isfinite(e.Period())) return rows;
+// (Q(s0, s0 + L) = Q(0, s0 + L) Q(0, s0)^-1).
+ShapeScan ScanShape(const Context& ctx, const Elastica& e) {
+  ShapeScan scan;
+  if (e.IsStraight() || !std::isfinite(e.Period())) return scan;
   const internal::ElasticaRollingTable table(e, ctx.s_limit + e.Period(), kSearch.steps_per_period, kSearch.max_step);
-  if (!table.Valid()) return rows;
-  std::vector<Eigen::Matrix3d> q;
-  std::vector<Eigen::Vector2d> x;
-  table.Nodes(&q, &x);
-  const double h = table.Step(), r2 = ctx.radius * ctx.radius;
-  *step = h;
-  const long last = static_cast<long>(x.size()) - 1;
-  long l_limit = 1;  // the rows' last node: the first l with (l - 1) h >= s_limit, less one
+  if (!table.Valid()) return scan;
+  ShapeNodes nodes{&table, table.MonodromyPowers(), {}, ctx.target.transpose(),
+                   {std::cos(ctx.goal_angle), std::sin(ctx.goal_angle)}};
+  table.NodePositions(&nodes.x);
+  const double h = table.Step();
+  scan.step = h;
+  const long last = static_cast<long>(nodes.x.size()) - 1;
+  // The rows' last node: the first l with (l - 1) h >= s_limit, less one.
+  long l_limit = std::max(1L, static_cast<long>(ctx.s_limit / h) - 2);
   while ((l_limit - 1) * h < ctx.s_limit) ++l_limit;
   --l_limit;
-  // The chord moves by at most h per node (unit speed): while |chord| - radius exceeds
-  // kTangencyMiss + (k + 2) h, the next k nodes hold no crossing and no near-tangency.
-  const double far = ctx.radius + kTangencyMiss;
+  const std::vector<double> reach = internal::ChordReach(nodes.x, table.Steps(), l_limit + 3, h);
+  scan.row_end.reserve(table.Steps());
   for (long i0 = 0; i0 < table.Steps(); ++i0) {
-    std::vector<ScanPoint> row;
-    double f_prev = -r2, f_prev2 = -r2;  // |chord|^2 - radius^2 at the two previous nodes
-    const long l_end = std::min(last - i0, l_limit);
-    for (long l = 1; l <= l_end; ++l) {
-      double f = (x[i0 + l] - x[i0]).squaredNorm() - r2;
-      if (f > 0 && f_prev > 0 && f + r2 > far * far) {
-        const long skip = static_cast<long>((std::sqrt(f + r2) - far) / h) - 2;
-        if (skip > 0 && l + skip + 2 <= l_end) {  // resume with the two nodes before the next one
-          l += skip;
-          f_prev2 = (x[i0 + l - 1] - x[i0]).squaredNorm() - r2;
-          f_prev = (x[i0 + l] - x[i0]).squaredNorm() - r2;
-          ++l;
-          f = (x[i0 + l] - x[i0]).squaredNorm() - r2;
-        }
-      }
-      const bool extremum = l >= 2 && ((f_prev > f_prev2 && f_prev >= f && f_prev < 0) ||
-                                       (f_prev < f_prev2 && f_prev <= f && f_prev > 0));
-      const double miss = extremum ? std::sqrt(f_prev + r2) - ctx.radius : 0.0;
-      if (extremum && std::abs(miss) < kTangencyMiss)
-        row.push_back({(l - 1) * h, std::hypot(miss, NodeResidual(ctx, q, x, i0, i0 + l - 1).norm())});
-      if ((f > 0) != (f_prev > 0)) {
-        const double t = f_prev / (f_prev - f);  // linear interpolation between the nodes
-        Eigen::Vector3d r = NodeResidual(ctx, q, x, i0, i0 + l);
-        if (l > 1) r = t * r + (1 - t) * NodeResidual(ctx, q, x, i0, i0 + l - 1);
-        if ((l - 1 + t) * h > ctx.s_limit) break;
-        row.push_back({(l - 1 + t) * h, r.norm()});
-        if (static_cast<int>(row.size()) >= kMaxCrossingsPerStart) break;
-      }
-      f_prev2 = f_prev;
-      f_prev = f;
-    }
-    rows.push_back(row);
+    ScanRow(ctx, nodes, reach, h, i0, std::min(last - i0, l_limit), ctx.s_limit, &scan.points);
+    scan.row_end.push_back(scan.points.size());
   }
-  return rows;
+  return scan;
 }
 
 // Search from one shape: every scan point with a residual below kScanResidual that is a local
@@ -885,20 +923,19 @@ std::vector<std::vector<ScanPoint>> ScanShape(const Context& ctx, const Elastica
 std::vector<LocalResult> SearchShape(const Context& ctx, const Start& shape, const IsoparallelOptions& options,
                                      double covered, const std::vector<SearchRoot>& known) {
   std::vector<LocalResult> out;
-  double h = 0.0;
-  const std::vector<std::vector<ScanPoint>> rows = ScanShape(ctx, Elastica(ToParameters(shape.regime, shape.x)), &h);
-  const long n_rows = static_cast<long>(rows.size());
+  const ShapeScan scan = ScanShape(ctx, Elastica(ToParameters(shape.regime, shape.x)));
+  const long n_rows = static_cast<long>(scan.row_end.size());
   for (long i0 = 0; i0 < n_rows; ++i0) {
-    for (std::size_t n = 0; n < rows[i0].size(); ++n) {
-      const ScanPoint& p = rows[i0][n];
+    for (std::size_t n = 0; n < scan.RowSize(i0); ++n) {
+      const ScanPoint& p = scan.points[scan.RowBegin(i0) + n];
       if (p.residual > kScanResidual || p.length <= covered) continue;
       bool minimum = true;
       for (long d : {-1L, 1L}) {
-        const std::vector<ScanPoint>& nb = rows[(i0 + d + n_rows) % n_rows];
-        if (n < nb.size() && nb[n].residual < p.residual) minimum = false;
+        const long nb = (i0 + d + n_rows) % n_rows;
+        if (n < scan.RowSize(nb) && scan.points[scan.RowBegin(nb) + n].residual < p.residual) minimum = false;
       }
       if (!minimum) continue;
-      const double x[3] = {shape.x[0], shape.x[1], shape.x[0] * i0 * h};
+      const double x[3] = {shape.x[0], shape.x[1], shape.x[0] * i0 * scan.step};
       out.push_back(SearchLocalFreeLength(ctx, shape.regime, x, p.length, options, &known));
     }
   }

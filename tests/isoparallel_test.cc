@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "chord_residual.h"
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
 #include "isoparallel_twin.h"
@@ -90,6 +92,101 @@ TEST(ElasticaRolling, NodesMatchDopriAndTheClosedForm) {
   shifted.phase += shifted.rate * i0 * h;  // the same path from s0 = i0 h
   const Elastica from_s0(shifted);
   EXPECT_LT(RotationAngle(q[i1] * q[i0].transpose(), ReferenceRolling(from_s0, (i1 - i0) * h)), 1e-11);
+}
+
+// The shape scan reads the table node by node (ScanShape): NodeRolling at every node of a table of
+// several periods against the closed-form rolling (an independent method) and bit for bit against
+// Nodes; NodePositions against the closed-form position.
+TEST(ElasticaRolling, NodeRollingMatchesTheClosedForm) {
+  const Elastica e = Elastica::FromInitialState(0.6, 0.2, 0.9, 0.4);
+  const internal::ElasticaRollingTable table(e, 4.3 * e.Period(), 160, 0.02);
+  const internal::ElasticaClosedRolling closed(e);
+  const std::vector<Eigen::Matrix3d> powers = table.MonodromyPowers();
+  ASSERT_EQ(static_cast<long>(powers.size()), table.NodeCount() / table.Steps() + 1);
+  std::vector<Eigen::Matrix3d> q;
+  std::vector<Eigen::Vector2d> x, positions;
+  table.Nodes(&q, &x);
+  table.NodePositions(&positions);
+  ASSERT_EQ(positions, x);
+  double worst = 0.0;
+  for (long i = 0; i <= table.NodeCount(); ++i) {
+    const Eigen::Matrix3d node = table.NodeRolling(i, powers);
+    ASSERT_EQ(node, q[i]) << i;
+    worst = std::max(worst, RotationAngle(node, closed.Rolling(i * table.Step())));
+    EXPECT_LT((positions[i] - e.Position(i * table.Step())).norm(), 1e-11) << i;
+  }
+  EXPECT_LT(worst, 1e-11);
+  EXPECT_GT(worst, 0.0) << "two methods: not the same numbers";
+}
+
+// ChordReach bounds the chord's motion over k nodes (the scan skips nodes by it): brute force over
+// every node pair of tables of curled and open shapes, never above k h, and for shapes of many
+// periods well below it (the periodic bound is in use).
+TEST(ElasticaRolling, ChordReachBoundsEveryNodeChord) {
+  std::mt19937_64 rng(10);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int tight = 0;
+  for (int trial = 0; trial < 10; ++trial) {  // both regimes and senses, periods ~0.4-3.7
+    ElasticaParameters p;
+    p.modulus = 0.97 * unit(rng);
+    p.rate = (3.0 + 5.0 * unit(rng)) * (trial % 4 < 2 ? 1.0 : -1.0);
+    p.regime = trial % 2 == 0 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
+    const Elastica e(p);
+    const internal::ElasticaRollingTable table(e, 30.0 + e.Period(), 12, 0.5);  // the scan's accuracy
+    ASSERT_TRUE(table.Valid());
+    std::vector<Eigen::Vector2d> x;
+    table.NodePositions(&x);
+    const long count = static_cast<long>(x.size()) - 1 - table.Steps();
+    const std::vector<double> reach = internal::ChordReach(x, table.Steps(), count, table.Step());
+    ASSERT_EQ(static_cast<long>(reach.size()), count + 1);
+    std::vector<double> longest(count + 1, 0.0);  // the longest chord over exactly k nodes
+    for (long k = 1; k <= count; ++k)
+      for (long j = 0; j + k < static_cast<long>(x.size()); ++j) longest[k] = std::max(longest[k], (x[j + k] - x[j]).norm());
+    double running = 0.0;
+    for (long k = 0; k <= count; ++k) {
+      running = std::max(running, longest[k]);
+      ASSERT_GE(reach[k], running) << trial << " " << k;
+      EXPECT_LE(reach[k], k * table.Step() * (1 + 1e-9) + 1e-12) << trial << " " << k;
+      if (k > 0) {
+        EXPECT_GE(reach[k], reach[k - 1]);
+      }
+    }
+    if (reach[count] < 0.5 * count * table.Step()) ++tight;
+  }
+  EXPECT_GE(tight, 5) << "curled shapes of many periods: the periodic bound must be in use";
+}
+
+// The scan's residual (ChordResidual: B's cos and sin from the normalised chord, the logarithm by
+// the trace route) against the rotation trick's (RotationTrickResidual: atan2, sincos, LogSO3 of
+// the product) at random targets, chords and rollings over all angles up to pi, a zero chord, and
+// TraceLogSO3 against LogSO3 on both sides of its branch (trace 0, angle 2 pi / 3) and near pi.
+TEST(Isoparallel, ScanResidualMatchesTheRotationTrick) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto random_rotation = [&](double angle) {
+    return ExpSO3(angle * Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized());
+  };
+  double largest = 0.0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Eigen::Matrix3d target = random_rotation(M_PI * std::abs(unit(rng)));
+    const Eigen::Matrix3d q = random_rotation(M_PI * std::abs(unit(rng)));
+    const double goal_angle = M_PI * unit(rng);
+    const Eigen::Vector2d chord = trial == 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(3 * unit(rng), 3 * unit(rng));
+    const Eigen::Vector3d expected = internal::RotationTrickResidual(target, internal::ChordTurn(goal_angle, chord), q);
+    const Eigen::Vector3d got = internal::ChordResidual(target.transpose(), {std::cos(goal_angle), std::sin(goal_angle)}, chord, q);
+    largest = std::max(largest, expected.norm());
+    if (expected.norm() < 3.0) {
+      ASSERT_LT((got - expected).norm(), 1e-12) << trial;
+    } else {  // near pi the axis' sign is free
+      ASSERT_NEAR(got.norm(), expected.norm(), 1e-12) << trial;
+    }
+  }
+  EXPECT_GT(largest, 3.0) << "angles up to pi";
+  for (double angle : {0.0, 1e-9, 0.3, 2.0, 2 * M_PI / 3 - 1e-9, 2 * M_PI / 3, 2 * M_PI / 3 + 1e-9, 3.0, M_PI - 1e-6}) {
+    const Eigen::Matrix3d r = random_rotation(angle);
+    EXPECT_LT((internal::TraceLogSO3(r) - LogSO3(r)).norm(), 1e-12) << angle;
+    EXPECT_NEAR(internal::TraceLogSO3(r).norm(), angle, 1e-12) << angle;
+  }
 }
 
 // The search reuses a trial's table for longer lengths only where ServesLength says a table over
