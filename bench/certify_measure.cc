@@ -19,8 +19,9 @@
 // --costate 0 turns off the costate test (isoparallel_certify_costate.h; on by default);
 // --closed-rolling 0 turns off the closed-form rolling bound of the rotation test
 // (isoparallel_certify_rolling.h; on by default); --chart-rolling 0 the theta/2 chart's bound
-// (same header, smooth through G = 1; on by default); --centred-phase 1 takes the phase window
-// [-P/2, P/2] instead of [0, P] (P the period at k_max: the same paths, |u0| halved);
+// (same header, smooth through G = 1; on by default); the phase window is [-P/2, P/2] (P the
+// period at k_max: |u0| and so the secular terms of the bounds halved), --centred-phase 0 takes
+// [0, P] instead (the same paths; the figures of rounds before the tenth);
 // --known 0 runs without the solver's solutions (then only the first-order tests can finish).
 //
 // Default: problems/isoparallel_rotation.json (relative to the working directory), caps 1.0, 1.2,
@@ -51,7 +52,7 @@ struct Settings {
   long budget = 2000000;
   double k_max = 0.95, rate_max = 2.0;
   bool first_order = false, known = true, costate = true, closed_rolling = true, chart_rolling = true;
-  bool centred_phase = false;
+  bool centred_phase = true;
   double first_order_deviation = 0.5;
   std::string trace;  // file of split boxes, or empty
 };
@@ -135,8 +136,8 @@ CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, double 
   o.closed_rolling = s.closed_rolling;
   o.chart_rolling = s.chart_rolling;
   o.first_order_deviation = s.first_order_deviation;
-  // One period of the phase at k_max (>= the period at every smaller k): [0, P], or [-P/2, P/2]
-  // with --centred-phase 1 (the same paths; |u0| and so the secular terms of the bounds halved).
+  // One period of the phase at k_max (>= the period at every smaller k): [-P/2, P/2], or [0, P]
+  // with --centred-phase 0 (the same paths; centred, |u0| and so the secular terms are halved).
   const double period = PhasePeriod(regime, s.k_max), phase_lo = s.centred_phase ? -0.5 * period : 0.0;
   o.window.lo = {oscillating ? 0.0 : -s.rate_max, 0.0, phase_lo, radius};
   // With the first-order tests the length reaches 1e-4 past the cap: a solution exactly at the
