@@ -40,8 +40,9 @@ struct Accuracy {
   double max_step;
 };
 // Search: the shape scan's table, rolling errors ~2e-5 rad median, up to 3e-4 (60 random elastica
-// of 1-4 periods against dopri5 at 1e-14), and the coarse crossing nodes. Polish: the crossing
-// nodes of the polish (those of its former Magnus tables: the same crossing numbers).
+// of 1-4 periods against dopri5 at 1e-14), and the coarse crossing nodes. kPolish: the fine
+// crossing nodes of the hand-off near a tangency (those of the former polish: the same crossing
+// numbers).
 constexpr Accuracy kSearch{12, 0.5};
 constexpr Accuracy kPolish{160, 0.02};
 // A search run stops below kSearchStop (the search accuracy) and is polished when below
@@ -93,6 +94,11 @@ constexpr int kTwinSteps = 8;
 constexpr double kTwinCurveTol = 1e-3;
 constexpr int kTwinCorrections = 4;
 constexpr double kTwinGiveUp = 1.0;
+// The continuation moves by at most kTwinStep per step (a unit tangent; the corrector's steps are
+// small), so a twin's start lies within kTwinSteps kTwinStep of its solution's length: the twins of
+// a solution longer than the cap by more than twice that are not searched (nothing past the cap
+// is reported, and the cap only shrinks as solutions are found).
+constexpr double kTwinReach = 2 * kTwinSteps * kTwinStep;
 // A search run whose residual is below kDuplicateResidual and whose Gauss-Newton root estimate
 // lies within kDuplicateTol (relative) of a solution known before its batch is stopped there: it
 // would converge to that solution (docs/paper_notes.md, "General targets", point 8).
@@ -103,6 +109,12 @@ constexpr double kDuplicateTol = 3e-3;
 // targets", points 9 and 10: 0.1 with the search tables; with the closed form 0.1 loses T7's
 // 14.27603954, 0.2 and 0.3 keep every solution of the ten targets).
 constexpr double kSecantResidual = 0.3;
+// A search run stalls when its residual at each of its last two accepted points fell by less than
+// a factor kStallRatio while still above kStallFloor: it is stopped there (docs/paper_notes.md,
+// "General targets", point 12: such runs end beyond the hand-off or at a nonzero minimum; a root
+// reached at a fold, where Newton converges linearly, still halves the residual per step).
+constexpr double kStallRatio = 0.95;
+constexpr double kStallFloor = 1e-5;
 
 struct Context {
   Eigen::Matrix3d target;  // A1 A0^-1
@@ -157,16 +169,9 @@ bool Admissible(const ElasticaParameters& p) {
   return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::abs(p.modulus) < 1.0;
 }
 
-// The rotation trick of section 2.2 on the n-th crossing of the circle.
-bool Evaluate(const Context& ctx, const ElasticaParameters& p, int crossing, const Accuracy& acc, Evaluation* out,
-              double fixed_length = -1.0) {
-  if (!Admissible(p)) return false;
-  const Elastica e(p);
-  if (fixed_length > 0) return EvaluateAt(ctx, e, fixed_length, out);
-  const internal::ElasticaRollingTable table = CrossingTable(e, ctx.s_limit, acc);
-  double s = 0.0;
-  if (!table.Valid() || !table.FindCrossing(ctx.radius, crossing, &s)) return false;
-  return EvaluateAt(ctx, e, s, out);
+// The rotation trick of section 2.2 at arc length `length` of the elastica with parameters p.
+bool Evaluate(const Context& ctx, const ElasticaParameters& p, double length, Evaluation* out) {
+  return Admissible(p) && EvaluateAt(ctx, Elastica(p), length, out);
 }
 
 // TinySolver's functor call for a residual f.Residual(x, r) of N unknowns and N residuals:
@@ -190,62 +195,6 @@ bool ForwardDifferences(const F& f, const double* x, double* r, double* jacobian
   return true;
 }
 
-struct ShootingFunctor {
-  using Scalar = double;
-  enum { NUM_RESIDUALS = 3, NUM_PARAMETERS = 3 };
-  ShootingFunctor(const Context* c, PendulumRegime r, int n, const Accuracy& a) : ctx(c), regime(r), crossing(n), acc(a) {}
-  const Context* ctx;
-  PendulumRegime regime;
-  int crossing;
-  Accuracy acc;
-  mutable long evaluations = 0;
-  // TinySolver evaluates every accepted point twice (a trial, then with the Jacobian), and
-  // PolishLocal once more at the end: the evaluations of the last point taken with a Jacobian
-  // (slot 0) and of the last trial (slot 1) are kept.
-  struct Memo {
-    bool valid = false, ok = false;
-    double x[3] = {0, 0, 0};
-    Evaluation ev;
-  };
-  mutable Memo memo[2];
-
-  // The evaluation at x (a kept one if x is one of the last two points).
-  bool At(const double* x, Evaluation* ev, int slot = 1) const {
-    for (Memo& m : memo) {
-      if (!m.valid || !std::equal(x, x + 3, m.x)) continue;
-      *ev = m.ev;
-      if (&m != &memo[slot]) memo[slot] = m;
-      return m.ok;
-    }
-    Memo& m = memo[slot];
-    ++evaluations;
-    m.ok = Evaluate(*ctx, ToParameters(regime, x), crossing, acc, &m.ev);
-    m.valid = true;
-    std::copy(x, x + 3, m.x);
-    *ev = m.ev;
-    return m.ok;
-  }
-
-  bool Residual(const double* x, double* r, bool with_jacobian = false) const {
-    Evaluation ev;
-    if (!At(x, &ev, with_jacobian ? 0 : 1)) return false;
-    for (int i = 0; i < 3; ++i) r[i] = ev.residual[i];
-    return true;
-  }
-
-  bool Shifted(const double* x, double* r) const {
-    ++evaluations;
-    Evaluation ev;
-    if (!Evaluate(*ctx, ToParameters(regime, x), crossing, acc, &ev)) return false;
-    for (int i = 0; i < 3; ++i) r[i] = ev.residual[i];
-    return true;
-  }
-
-  bool operator()(const double* x, double* r, double* jacobian) const {
-    return ForwardDifferences<3>(*this, x, r, jacobian);
-  }
-};
-
 struct LocalResult {
   bool converged = false;
   PendulumRegime regime = PendulumRegime::kOscillating;
@@ -256,22 +205,6 @@ struct LocalResult {
   Evaluation ev;
   long evaluations = 0;
 };
-
-// Levenberg-Marquardt (ceres::TinySolver) on the three pendulum parameters.
-bool RunLm(ShootingFunctor& f, double* x, int max_iterations, double cost_threshold) {
-  Eigen::Vector3d v(x[0], x[1], x[2]);
-  double r0[3];
-  if (!f.Residual(x, r0)) return false;
-  ceres::TinySolver<ShootingFunctor> solver;
-  solver.options.max_num_iterations = max_iterations;
-  solver.options.gradient_tolerance = 0.0;
-  solver.options.parameter_tolerance = 1e-15;
-  solver.options.function_tolerance = 0.0;
-  solver.options.cost_threshold = cost_threshold;
-  solver.Solve(f, &v);
-  for (int i = 0; i < 3; ++i) x[i] = v[i];
-  return v.allFinite();
-}
 
 // A known solution in the free-length search's unknowns (rate, atanh k, phase, L).
 struct SearchRoot {
@@ -305,25 +238,50 @@ struct FreeLengthFunctor {
   const std::vector<SearchRoot>* known = nullptr;
   mutable bool duplicate = false;
   bool secant = true;  // SecantColumns allowed (the twin continuation needs the exact columns)
+  // Whether a stalled run stops (Stalls: the searches; not the polish or the curve following).
+  bool stall_stop = false;
+  mutable bool stalled = false;
+  mutable double accepted[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
 
   bool Admissible(const ElasticaParameters& p, double length) const {
     return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::isfinite(length) &&
            std::abs(p.modulus) < 1.0 && length > 0 && length <= 2.0 * ctx->s_limit;
   }
 
-  // The residual of the path from arc length s0 to s0 + length of the rolling's elastica: the
-  // phase shifted by rate s0 (u = rate s + phase), Q(s0, s0 + L) in closed form.
-  bool ResidualFrom(const Elastica& e, const internal::ElasticaClosedRolling& rolling, double s0, double length,
-                    double* r) const {
-    ++evaluations;
-    // x(0) = 0 (Position(0) would still evaluate its 8-point short-arc quadrature).
-    const Eigen::Vector2d xs = s0 == 0.0 ? e.Position(length) : e.Position(s0 + length) - e.Position(s0);
+  // The residual of a path with chord xs and rolling q.
+  bool ResidualOf(const Eigen::Vector2d& xs, const Eigen::Matrix3d& q, double* r) const {
     if (xs.norm() == 0.0) return false;
-    const Eigen::Matrix3d q = s0 == 0.0 ? rolling.Rolling(length) : rolling.Rolling(s0, s0 + length);
     const Eigen::Vector3d rot = internal::RotationTrickResidual(ctx->target, internal::ChordTurn(ctx->goal_angle, xs), q);
     r[0] = xs.norm() - ctx->radius;
     for (int i = 0; i < 3; ++i) r[i + 1] = rot[i];
     return rot.allFinite();
+  }
+
+  // The residual of the path from 0 to `length` of the rolling's elastica (x(0) = 0), Q(0, L) in
+  // closed form; its chord and rolling are kept in `last`.
+  bool ResidualFrom(const Elastica& e, const internal::ElasticaClosedRolling& rolling, double length, double* r) const {
+    ++evaluations;
+    last.chord = e.Position(length);
+    last.q = rolling.Rolling(length);
+    return ResidualOf(last.chord, last.q, r);
+  }
+
+  // The residuals of the last path (length L) shifted by s0 along its elastica (the phase shifted
+  // by rate s0: chord x(s0 + L) - x(s0), rolling Q(s0, s0 + L)) and lengthened by h, from its chord
+  // and rolling and the tangents and curvatures at 0 and L: the chords to second order, the
+  // rollings by dQ(s0, s1)/ds1 = hat(w(s1)) Q and dQ/ds0 = -Q hat(w(s0)) (w = e3 x x') with w at
+  // the step's midpoint (error O(h^3), as the chord's): the phase and length columns without the
+  // two positions and two closed-form rollings they took (docs/paper_notes.md, "General targets",
+  // point 12).
+  bool ShiftedResiduals(const Elastica& e, double length, double s0, double h, double* rp, double* rl) const {
+    const Eigen::Vector2d t0 = e.Tangent(0.0), t1 = e.Tangent(length);
+    const Eigen::Vector2d n0 = e.Curvature(0.0) * Eigen::Vector2d(-t0.y(), t0.x());
+    const Eigen::Vector2d n1 = e.Curvature(length) * Eigen::Vector2d(-t1.y(), t1.x());
+    const auto spin = [](const Eigen::Vector2d& t, double step) { return ExpSO3(step * Eigen::Vector3d(-t.y(), t.x(), 0.0)); };
+    const Eigen::Vector2d chord_p = last.chord + s0 * (t1 - t0) + 0.5 * s0 * s0 * (n1 - n0);
+    const Eigen::Matrix3d q_p = spin(t1 + 0.5 * s0 * n1, s0) * last.q * spin(t0 + 0.5 * s0 * n0, -s0);
+    const Eigen::Vector2d chord_l = last.chord + h * t1 + 0.5 * h * h * n1;
+    return ResidualOf(chord_p, q_p, rp) && ResidualOf(chord_l, spin(t1 + 0.5 * h * n1, h) * last.q, rl);
   }
 
   // The last residual evaluated (TinySolver evaluates every accepted point twice: as a trial
@@ -332,6 +290,8 @@ struct FreeLengthFunctor {
     bool ok = false;
     double x[4] = {0, 0, 0, 0};
     double r[4] = {0, 0, 0, 0};
+    Eigen::Vector2d chord = Eigen::Vector2d::Zero();
+    Eigen::Matrix3d q = Eigen::Matrix3d::Identity();
     std::unique_ptr<Elastica> path;
     std::unique_ptr<internal::ElasticaClosedRolling> rolling;
   };
@@ -346,7 +306,7 @@ struct FreeLengthFunctor {
     last.path = std::make_unique<Elastica>(p);
     if (!ClosedFormApplies(*last.path, 2.0 * ctx->s_limit)) return false;  // every length Admissible takes, and L + h
     last.rolling = std::make_unique<internal::ElasticaClosedRolling>(*last.path);
-    last.ok = ResidualFrom(*last.path, *last.rolling, 0.0, x[3], r);
+    last.ok = ResidualFrom(*last.path, *last.rolling, x[3], r);
     std::copy(x, x + 4, last.x);
     if (last.ok) std::copy(r, r + 4, last.r);
     return last.ok;
@@ -358,7 +318,7 @@ struct FreeLengthFunctor {
   // Forward differences, but one closed-form rolling (one per (rate, k)) serves the residual and
   // the phase and length columns: only the rate and modulus columns build new ones.
   bool operator()(const double* x, double* r, double* jacobian) const {
-    if (duplicate) return StopRun(r, jacobian);
+    if (duplicate || stalled) return StopRun(r, jacobian);
     if (jacobian != nullptr && kept.valid && std::equal(x, x + 4, kept.x)) {  // the triage's last point
       std::copy(kept.r, kept.r + 4, r);
       std::copy(kept.jacobian, kept.jacobian + 16, jacobian);
@@ -367,6 +327,10 @@ struct FreeLengthFunctor {
     if (!Evaluate(x, r, jacobian)) return false;
     if (jacobian != nullptr && ReachesKnown(x, r, jacobian)) {
       duplicate = true;
+      return StopRun(r, jacobian);
+    }
+    if (jacobian != nullptr && Stalls(Eigen::Map<const Eigen::Vector4d>(r).norm())) {
+      stalled = true;
       return StopRun(r, jacobian);
     }
     if (jacobian != nullptr) {
@@ -387,8 +351,18 @@ struct FreeLengthFunctor {
   };
   mutable KeptJacobian kept;
 
-  // A run that reached a known solution: a zero residual and Jacobian end TinySolver's loop at
-  // once (cost below its threshold); the caller drops the run by `duplicate`.
+  // Whether the run stalls at an accepted point of residual norm `norm` (TinySolver evaluates the
+  // Jacobian exactly at the accepted points): see kStallRatio.
+  bool Stalls(double norm) const {
+    const bool stall = stall_stop && norm >= kStallFloor && norm > kStallRatio * accepted[1] &&
+                       accepted[1] > kStallRatio * accepted[0];
+    accepted[0] = accepted[1];
+    accepted[1] = norm;
+    return stall;
+  }
+
+  // A run that reached a known solution (or stalled): a zero residual and Jacobian end TinySolver's loop at
+  // once (cost below its threshold); the caller drops the run by `duplicate` (or `stalled`).
   static bool StopRun(double* r, double* jacobian) {
     std::fill(r, r + 4, 0.0);
     if (jacobian != nullptr) std::fill(jacobian, jacobian + 16, 0.0);
@@ -437,10 +411,9 @@ struct FreeLengthFunctor {
     }
     std::copy(last.r, last.r + 4, r);
     const std::unique_ptr<Elastica> path = std::move(last.path);  // the rate and modulus columns reuse `last`
-    const std::unique_ptr<internal::ElasticaClosedRolling> rolling = std::move(last.rolling);
+    last.rolling.reset();
     double rp[4], rl[4];
-    if (!ResidualFrom(*path, *rolling, s0, x[3], rp) || !ResidualFrom(*path, *rolling, 0.0, x[3] + h_length, rl))
-      return false;
+    if (!ShiftedResiduals(*path, x[3], s0, h_length, rp, rl)) return false;
     const double signed_phase_step = p.rate > 0 ? h_phase : -h_phase;
     for (int i = 0; i < 4; ++i) {
       jacobian[2 * 4 + i] = (rp[i] - r[i]) / signed_phase_step;
@@ -474,14 +447,16 @@ bool HandOff(const Context& ctx, double length, const Accuracy& acc, LocalResult
 }
 
 // Search stage on the free-length formulation from a start and one of its crossings; the result
-// is handed to the crossing formulation (its crossing number counted) for the polish. A run that
-// reaches one of the `known` solutions stops there (LocalResult::duplicate).
+// is handed off (its crossing number counted, the residual checked at that crossing) to the
+// polish. A run that reaches one of the `known` solutions stops there (LocalResult::duplicate), a
+// run that stalls (kStallRatio) too.
 LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
                                   const IsoparallelOptions& options, const std::vector<SearchRoot>* known = nullptr) {
   LocalResult out;
   out.regime = regime;
   FreeLengthFunctor f{&ctx, regime};
   f.known = known;
+  f.stall_stop = true;
   Eigen::Vector4d v(x0[0], x0[1], x0[2], length0);
   ceres::TinySolver<FreeLengthFunctor> solver;
   solver.options.max_num_iterations = std::min(options.max_iterations, kSearchIterations);
@@ -507,7 +482,7 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   out.evaluations = f.evaluations;
   out.duplicate = f.duplicate;
   std::copy(v.data(), v.data() + 3, out.x);
-  if (out.duplicate) return out;
+  if (out.duplicate || f.stalled) return out;
   if (!v.allFinite() || !(v[3] > 0) || std::abs(std::tanh(v[1])) >= 1.0) return out;
   // Runs that stopped far from a root are not handed off (the hand-off's tables over the whole
   // search length were a fifth of the time on the rotation problem, mostly spent on such runs).
@@ -519,13 +494,30 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   return out;
 }
 
-// Polish stage: LM (in effect Newton) with the accurate tables, to options.tolerance.
+// Polish stage: LM (in effect Newton) on the free-length formulation with exact Jacobians (no
+// Broyden columns), from the handed-off point (the search's parameters, L at its crossing), to
+// options.tolerance on all four residuals: the chord miss and the rotation residual there. The
+// crossing number stays the hand-off's. (The crossing formulation's polish found the crossing on a
+// table of positions over the whole search length at kPolish nodes, ~250,000 instructions per
+// evaluation against ~7,000 here: 170M of the rotation problem's 1.76G; the roots are the same to
+// the tolerance, the same 31 lengths to 10 digits; docs/paper_notes.md, "General targets", point 12.)
 void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalResult* r) {
-  ShootingFunctor polish{&ctx, r->regime, r->crossing, kPolish};  // forward differences suffice from 1e-4
-  const double thr = 0.5 * std::pow(0.1 * options.tolerance, 2);
-  RunLm(polish, r->x, std::min(options.max_iterations, kPolishIterations), thr);
-  r->evaluations += polish.evaluations;
-  r->converged = polish.At(r->x, &r->ev) && r->ev.residual.norm() <= options.tolerance;
+  FreeLengthFunctor f{&ctx, r->regime};
+  f.secant = false;
+  Eigen::Vector4d v(r->x[0], r->x[1], r->x[2], r->ev.s);
+  ceres::TinySolver<FreeLengthFunctor> solver;
+  solver.options.max_num_iterations = std::min(options.max_iterations, kPolishIterations);
+  solver.options.gradient_tolerance = 0.0;
+  solver.options.parameter_tolerance = 1e-15;
+  solver.options.function_tolerance = 0.0;
+  solver.options.cost_threshold = 0.5 * std::pow(0.1 * options.tolerance, 2);
+  solver.Solve(f, &v);
+  double res[4];
+  r->converged = v.allFinite() && f.Residual(v.data(), res) && Eigen::Map<const Eigen::Vector4d>(res).norm() <= options.tolerance;
+  r->evaluations += f.evaluations;
+  if (!r->converged) return;
+  std::copy(v.data(), v.data() + 3, r->x);
+  r->converged = Evaluate(ctx, ToParameters(r->regime, r->x), v[3], &r->ev);
 }
 
 // Radical-inverse (Halton): deterministic, portable.
@@ -655,13 +647,13 @@ Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, c
       ElasticaParameters q = p;
       q.phase += frac * u_period;
       Evaluation evq;
-      if (!Evaluate(ctx, q, 1, kPolish, &evq, ev.s) || evq.residual.norm() > kFamilyTol) family = false;
+      if (!Evaluate(ctx, q, ev.s, &evq) || evq.residual.norm() > kFamilyTol) family = false;
     }
     if (family) {
       ElasticaParameters q = p;
       q.phase = 0.0;  // canonical member
       Evaluation evq;
-      if (Evaluate(ctx, q, 1, kPolish, &evq, ev.s)) {
+      if (Evaluate(ctx, q, ev.s, &evq)) {
         sol.family = true;
         p = q;
         ev = evq;
@@ -1083,8 +1075,16 @@ bool MergeResult(const Context& ctx, const IsoparallelProblem& problem, const Is
   return true;
 }
 
+// The longest length reported: length_cap_factor times the shortest solution found.
+double CapLength(const IsoparallelOptions& options, const std::vector<Candidate>& found) {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (const Candidate& c : found) shortest = std::min(shortest, c.solution.length);
+  return options.length_cap_factor * shortest;
+}
+
 // Polishes the searched results that are not known yet and adds the new distinct solutions; for
-// a general target, each new solution's twin across a fold (TwinSearch) is tried at once.
+// a general target, each new solution's twin across a fold (TwinSearch) is tried at once, unless
+// the solution lies beyond the cap by more than kTwinReach.
 void MergeResults(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
                   std::vector<std::vector<LocalResult>> per_start, std::vector<Candidate>* found,
                   IsoparallelSummary* summary) {
@@ -1095,18 +1095,12 @@ void MergeResults(const Context& ctx, const IsoparallelProblem& problem, const I
       while (!pending.empty()) {
         const LocalResult from = pending.back();
         pending.pop_back();
+        if (from.ev.s > CapLength(options, *found) + kTwinReach) continue;
         for (LocalResult& twin : TwinSearches(ctx, from, options, &summary->evaluations))
           if (MergeResult(ctx, problem, options, &twin, found, summary)) pending.push_back(twin);
       }
     }
   }
-}
-
-// The longest length reported: length_cap_factor times the shortest solution found.
-double CapLength(const IsoparallelOptions& options, const std::vector<Candidate>& found) {
-  double shortest = std::numeric_limits<double>::infinity();
-  for (const Candidate& c : found) shortest = std::min(shortest, c.solution.length);
-  return options.length_cap_factor * shortest;
 }
 
 // The found solutions as roots of the free-length search (the straight segment, rate 0, is not

@@ -1,7 +1,5 @@
 #include "isoparallel_certify.h"
 
-#include <boost/math/special_functions/ellint_1.hpp>
-#include <boost/math/special_functions/ellint_d.hpp>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -12,6 +10,7 @@
 #include "isoparallel_certify_costate.h"
 #include "isoparallel_certify_jacobian.h"
 #include "isoparallel_certify_rolling.h"
+#include "jacobi_elliptic.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
 
@@ -190,7 +189,7 @@ std::string CertifyMessage(const CertifyWindowResult& result, bool first_order) 
 }  // namespace
 
 double PhasePeriod(PendulumRegime regime, double k) {
-  const double kk = boost::math::ellint_1(k);
+  const double kk = CompleteEllipticK(k);
   return regime == PendulumRegime::kOscillating ? 4.0 * kk : 2.0 * kk;
 }
 
@@ -226,8 +225,8 @@ double HeadingModulusBoundByZeta(PendulumRegime regime, double k_min, double k_m
   // and K grow with k, 1 - D/K = <cos^2> under the weight (1 - k^2 sin^2)^(-1/2) decreases.
   if (!(k_max < 1.0)) return std::numeric_limits<double>::infinity();  // K(1) is infinite
   const double kp2 = (1.0 - k_max) * (1.0 + k_max);
-  const double kk = boost::math::ellint_1(k_max);
-  const double secular = 1.0 - boost::math::ellint_d(k_min) / boost::math::ellint_1(k_min);
+  const double kk = CompleteEllipticK(k_max);
+  const double secular = 1.0 - CompleteEllipticD(k_min) / CompleteEllipticK(k_min);
   const double am_k = k_max * (0.5 * (1.0 + kk) + secular * v_max) / kp2;
   return HeadingModulusFromAmplitude(regime, k_max, am_k);
 }
@@ -413,6 +412,25 @@ CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double leng
   return {rate, k, phase, length};
 }
 
+namespace {
+
+// The rotation test with min(D, R, Rt) (R: the costate chart, Rt: the theta/2 chart,
+// isoparallel_certify_rolling.h) on a box D leaves undecided; stop = min(D, slack).
+BoxVerdict ClosedFormRotationTest(const CertifyWindowOptions& options, const CertifyBox& box, double stop, double slack,
+                                  CertifyWindowResult* result) {
+  if (options.closed_rolling && ClosedRollingDeviationBound(options.regime, box, options.margin, stop) < slack) {
+    ++result->excluded_by_closed_rolling;
+    return BoxVerdict::kExcludedByRotation;
+  }
+  if (options.chart_rolling && ChartRollingDeviationBound(options.regime, box, options.margin, stop) < slack) {
+    ++result->excluded_by_chart_rolling;
+    return BoxVerdict::kExcludedByRotation;
+  }
+  return BoxVerdict::kUndecided;
+}
+
+}  // namespace
+
 CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector<CertifyPoint>& known,
                                   const CertifyWindowOptions& options) {
   CertifyWindowResult result;
@@ -444,11 +462,8 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
       const double chord_deviation = std::min(deviation, ChordDeviationBound(options.regime, box));
       verdict = TestBox(centre, deviation, chord_deviation, options.margin);
       const double slack = RotationSlack(centre, chord_deviation, options.margin);
-      if (verdict == BoxVerdict::kUndecided && options.closed_rolling && slack > box.HalfWidth(kCertifyLength) &&
-          ClosedRollingDeviationBound(options.regime, box, options.margin, std::min(deviation, slack)) < slack) {
-        verdict = BoxVerdict::kExcludedByRotation;  // the rotation test with min(D, R)
-        ++result.excluded_by_closed_rolling;
-      }
+      if (verdict == BoxVerdict::kUndecided && slack > box.HalfWidth(kCertifyLength))
+        verdict = ClosedFormRotationTest(options, box, std::min(deviation, slack), slack, &result);
       if (verdict == BoxVerdict::kUndecided && options.costate &&
           CostateExcludes(target, options.regime, box, chord_deviation, options.margin))
         verdict = BoxVerdict::kExcludedByCostate;

@@ -142,6 +142,9 @@ struct CertifyWindowOptions {
   /// (isoparallel_certify_rolling.h: from the closed-form rolling, linear in L) on boxes D leaves
   /// undecided: rigorous, ~ two costates per box.
   bool closed_rolling = true;
+  /// Then min(D, ChartRollingDeviationBound) (the theta/2 chart, isoparallel_certify_rolling.h:
+  /// smooth and finite through G = 1, linear in L) on boxes still undecided: rigorous.
+  bool chart_rolling = true;
   std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
   std::string Validate() const;
 };
@@ -160,6 +163,7 @@ struct CertifyWindowResult {
   long excluded_by_rotation = 0;
   long excluded_by_costate = 0;
   long excluded_by_closed_rolling = 0;  // of excluded_by_rotation: only with the closed-form bound
+  long excluded_by_chart_rolling = 0;   // of excluded_by_rotation: only with the theta/2 chart's bound
   long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
   long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
   std::vector<int> matched;  // per known solution: how many accounted boxes it explains

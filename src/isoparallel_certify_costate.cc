@@ -1,11 +1,10 @@
 #include "isoparallel_certify_costate.h"
 
-#include <boost/math/special_functions/ellint_1.hpp>
-#include <boost/math/special_functions/ellint_d.hpp>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
+#include "jacobi_elliptic.h"
 #include "plateball/isoparallel_families.h"
 #include "plateball/so3.h"
 
@@ -21,14 +20,14 @@ double CappedTurn(double slope, double length) {
 }
 
 // 1 - D/K at k (D = (K - E)/k^2): the secular factor of K_k/K = k (1 - D/K)/k'^2, decreasing in k.
-double SecularFactor(double k) { return 1.0 - boost::math::ellint_d(k) / boost::math::ellint_1(k); }
+double SecularFactor(double k) { return 1.0 - CompleteEllipticD(k) / CompleteEllipticK(k); }
 
 // sup |d am/dk| at fixed v over [k_min, k_max] and |v| <= v_max: the smaller of the fixed-v form
 // k (1/2 + |v|)/k'^2 and the zeta form k ((1 + K)/2 + (1 - D/K) |v|)/k'^2 (isoparallel_certify.h).
 double AmplitudeModulusBound(double k_min, double k_max, double v_max) {
   const double kp2 = (1.0 - k_max) * (1.0 + k_max);
   const double by_v = k_max * (0.5 + v_max) / kp2;
-  const double by_zeta = k_max * (0.5 * (1.0 + boost::math::ellint_1(k_max)) + SecularFactor(k_min) * v_max) / kp2;
+  const double by_zeta = k_max * (0.5 * (1.0 + CompleteEllipticK(k_max)) + SecularFactor(k_min) * v_max) / kp2;
   return std::min(by_v, by_zeta);
 }
 

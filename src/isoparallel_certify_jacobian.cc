@@ -1,6 +1,5 @@
 #include "isoparallel_certify_jacobian.h"
 
-#include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/ellint_2.hpp>
 #include <Eigen/LU>
 #include <algorithm>
@@ -178,7 +177,7 @@ bool CertifyEnclosureAvailable(PendulumRegime regime, const CertifyBox& box, dou
 }
 
 HeadingDerivatives HeadingDerivativesAt(PendulumRegime regime, double k, double v) {
-  const JacobiPoint j = JacobiUnwrapped(JacobiAgm(k), boost::math::ellint_1(k), v);
+  const JacobiPoint j = JacobiUnwrapped(JacobiAgm(k), CompleteEllipticK(k), v);
   return HeadingFrom(regime, k, v, j, EpsilonAt(k, j));
 }
 
@@ -197,7 +196,7 @@ CertifyQuadrature CertifyQuadratureAlong(double length, double max_step) {
 std::vector<HeadingDerivatives> HeadingDerivativesAtNodes(PendulumRegime regime, double k, double rate, double phase,
                                                           const CertifyQuadrature& quad) {
   const JacobiAgm agm(k);
-  const double kk = boost::math::ellint_1(k);
+  const double kk = CompleteEllipticK(k);
   // The four gaps between consecutive nodes (the first across a step's end), their sn and E(am).
   JacobiPoint gap[4];
   double gap_epsilon[4];

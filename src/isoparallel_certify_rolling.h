@@ -20,6 +20,8 @@
 
 #include <limits>
 
+#include <Eigen/Core>
+
 #include "isoparallel_certify.h"
 
 namespace plateball::internal {
@@ -44,5 +46,47 @@ double FrameDeviationAngle(double delta, double norm, double norm_h);
 /// below stop_above (then it stops as soon as a partial sum reaches it: the caller's D).
 double ClosedRollingDeviationBound(PendulumRegime regime, const CertifyBox& box, double margin,
                                    double stop_above = std::numeric_limits<double>::infinity());
+
+// ---------------------------------------------------------------------------------------------
+// The theta/2 chart: a frame and twist that stay smooth through G = 1 (docs/paper_notes.md,
+// "General targets: a rolling bound smooth through G = 1 (issue 15, tenth round)").
+// With e = (-sin(theta/2), cos(theta/2), 0) (oscillating (-k sn, dn, 0), rotating (-sn, cn, 0)),
+// c = <e, u> = (G - 1) cos(theta/2) / V, the frame Ft = [f1 u x f1 u], f1 = (e - c u)/|e - c u|,
+// is defined wherever |e - c u|^2 = 1 - c^2 > 0 (always for rate != 0, and k > 0 oscillating), and
+// Q(0, L) = Ft(L) Rz(Psit) Ft(0)^T with Psit = int_0^L phi(rate s + u0) ds,
+//   phi(w) = -(V/2) [1 + (1 - G^2) S / ((1 - G)^2 S + 4 rate^2)],  S = sn^2(w, k)   (both regimes),
+// bounded and smooth in (rate, k, w) for rate != 0, G = 1 included (there phi = -V/2).
+
+/// The chart's frame Ft(s) on a path (CertifyElastica) and |e - <e, u> u| = sqrt(1 - c^2) (its
+/// conditioning; `frame` is Ft when projection > 0).
+struct ChartFrameAt {
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
+  double projection = 0.0;
+  double costate_norm = 0.0;  // |v(s)| = V
+};
+ChartFrameAt ChartFrame(const Elastica& path, double s);
+
+/// The chart's twist rate phi at arc length s of the path (formula above).
+double ChartTwistRate(const Elastica& path, double s);
+
+/// Sup over the box of |dPsit/dx_i| (derived in the notes: pointwise sups of the explicit
+/// dependence, the rate's s-weighted and the k's secular parts by parts); +infinity when the box
+/// meets rate 0 or k_max >= 1. Finite through G = 1.
+CertifyPoint ChartTwistDerivativeBounds(PendulumRegime regime, const CertifyBox& box);
+/// Bound on |Psit(x) - Psit(centre)| over the box: sum of half-width x ChartTwistDerivativeBounds.
+double ChartTwistDeviationBound(PendulumRegime regime, const CertifyBox& box);
+
+/// Bound on the angle between the chart frames Ft(x) and Ft(centre) at one end when
+/// |v(x) - v(centre)| <= delta, |v(centre)| = norm, theta/2 moves by at most half_turn and the
+/// centre's projection |e - c u| is `projection` (pi when it fails).
+double ChartFrameDeviationAngle(double delta, double norm, double half_turn, double projection);
+
+/// Bound on |theta(x)/2 - theta(centre)/2| at one end of the path over the box (heading bounds).
+double HalfHeadingDeviationBound(PendulumRegime regime, const CertifyBox& box, bool at_end);
+
+/// As ClosedRollingDeviationBound, in the theta/2 chart: +infinity when the box meets rate 0, the
+/// centre is inadmissible, or the bound is not below stop_above; finite through G = 1.
+double ChartRollingDeviationBound(PendulumRegime regime, const CertifyBox& box, double margin,
+                                  double stop_above = std::numeric_limits<double>::infinity());
 
 }  // namespace plateball::internal

@@ -1,14 +1,13 @@
 #include "isoparallel_certify_tails.h"
 
-#include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/ellint_2.hpp>
-#include <boost/math/special_functions/ellint_d.hpp>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "check.h"
 #include "isoparallel_certify_separatrix.h"
+#include "jacobi_elliptic.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
 
@@ -22,9 +21,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Both are decreasing in k (E/K and D/K are means of decreasing resp. increasing functions of
 // sin^2 under a weight (1 - k^2 sin^2)^(-1/2) whose likelihood ratio grows with k).
 double DriftRatio(PendulumRegime regime, double k) {
-  const double kk = boost::math::ellint_1(k);
+  const double kk = CompleteEllipticK(k);
   if (regime == PendulumRegime::kOscillating) return 2.0 * boost::math::ellint_2(k) / kk - 1.0;
-  return 1.0 - 2.0 * boost::math::ellint_d(k) / kk;
+  return 1.0 - 2.0 * CompleteEllipticD(k) / kk;
 }
 
 // h(cap) = sqrt(cap^2 - l^2) + l, l = |x1 - x0| (the bound's factor at the largest length), over
@@ -51,7 +50,7 @@ double StraightResidual(const CertifyTarget& target) {
 double DriftDeficit(PendulumRegime regime, double k) {
   if (k <= 0.0) return regime == PendulumRegime::kOscillating ? 0.0 : 1.0;
   if (!(k < 1.0)) return 0.0;  // the limit k -> 1 (like 2 / sqrt(K)): |rho| -> 1 at the separatrix
-  const double kk = boost::math::ellint_1(k), d = boost::math::ellint_d(k);
+  const double kk = CompleteEllipticK(k), d = CompleteEllipticD(k);
   // 1 - rho^2 = (1 - rho)(1 + rho) without cancellation: oscillating 1 - rho = 2 k^2 D / K,
   // 1 + rho = 2E / K; rotating 1 - rho = 2D / K, 1 + rho = 2 (K - D) / K.
   if (regime == PendulumRegime::kOscillating) return 2.0 * k * std::sqrt(d * boost::math::ellint_2(k)) / kk;

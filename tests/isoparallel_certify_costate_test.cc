@@ -20,6 +20,7 @@
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
 #include "support/dopri_rolling.h"
+#include "support/made_certify_target.h"
 #include "support/test_support.h"
 
 using namespace plateball;
@@ -86,16 +87,6 @@ CertifyPoint CentralDifferenceNorms(const CertifyPoint& x, F&& f) {
 
 Eigen::Matrix3d Dopri(const Elastica& e, double length) { return plateball::testing::DopriElasticaRolling(e, length, 1e-12); }
 
-// A target made from a chosen path: the path is an exact solution by construction.
-CertifyTarget MadeTarget(PendulumRegime regime, const CertifyPoint& x) {
-  const Elastica e = CertifyElastica(regime, x);
-  const Eigen::Vector2d chord = e.Position(x[kCertifyLength]);
-  CertifyTarget t;
-  t.target = Dopri(e, x[kCertifyLength]);
-  t.radius = chord.norm();
-  t.goal_angle = std::atan2(chord.y(), chord.x());
-  return t;
-}
 
 CertifyBox BoxAround(const CertifyPoint& x, const CertifyPoint& offset, double h) {
   CertifyBox box;
@@ -269,7 +260,7 @@ TEST(IsoparallelCertifyCostate, NeverExcludesABoxHoldingASolution) {
     cases.push_back({CertifyTargetOf(setup.problem), {s.parameters.regime, CanonicalSolution(s.parameters, s.length)}});
   for (const auto& [regime, x] : {std::pair{PendulumRegime::kRotating, CertifyPoint{0.6, 0.6, 0.7, 3.0}},
                                   std::pair{PendulumRegime::kOscillating, CertifyPoint{1.1, 0.8, 1.8, 5.0}}})
-    cases.push_back({MadeTarget(regime, x), {regime, x}});
+    cases.push_back({plateball::testing::MadeCertifyTarget(regime, x), {regime, x}});
   ASSERT_GE(cases.size(), 10u);
   std::mt19937 rng(19);
   std::uniform_real_distribution<double> offset(-0.9, 0.9);
@@ -310,7 +301,7 @@ TEST(IsoparallelCertifyCostate, NeverExcludesARandomBoxAroundAMadeSolution) {
       box.hi[kCertifyRate] = std::clamp(box.hi[kCertifyRate], -5.0, 5.0);
       box.lo[kCertifyRate] = std::clamp(box.lo[kCertifyRate], -5.0, box.hi[kCertifyRate]);
       const CertifyPoint x = RandomPointIn(box, &rng);
-      const CertifyTarget target = MadeTarget(regime, x);
+      const CertifyTarget target = plateball::testing::MadeCertifyTarget(regime, x);
       const double dc = std::min(RollingDeviationBound(regime, box), ChordDeviationBound(regime, box));
       ASSERT_FALSE(SomeTestExcludes(target, regime, box)) << ToString(regime) << " box " << b;
       CertifyTarget turned = target;

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -89,11 +90,38 @@ Eigen::Matrix3d MagnusRolling(PendulumRegime regime, const CertifyPoint& x) {
   return table.Rolling(x[kCertifyLength]);
 }
 
-// Whether the rotation test excludes the box with min(D, the closed-form bound) (margin 1e-7).
+// The largest dist(Q(x), Q(centre)) (closed form) over 8 points x of the box (PointIn), and
+// the point where it is reached.
+double LargestSampledDistance(PendulumRegime regime, const CertifyBox& box, std::mt19937* rng, CertifyPoint* worst_x) {
+  const Eigen::Matrix3d qc = ClosedRolling(regime, box.Centre());
+  double worst = -1.0;
+  for (int j = 0; j < 8; ++j) {
+    const CertifyPoint x = PointIn(box, rng);
+    const double dist = RotationAngle(ClosedRolling(regime, x), qc);
+    if (dist > worst) worst = dist, *worst_x = x;
+  }
+  return worst;
+}
+
+// |f(x + h e_i) - f(x - h e_i)| / (2h), h = step max(1, |x_i|).
+double CentralDifference(const std::function<double(const CertifyPoint&)>& f, const CertifyPoint& x, int i,
+                         double step) {
+  const double h = step * std::max(1.0, std::abs(x[i]));
+  CertifyPoint p = x, m = x;
+  p[i] += h;
+  m[i] -= h;
+  return std::abs(f(p) - f(m)) / (2.0 * h);
+}
+
+// Whether the rotation test excludes the box with min(D, the closed-form bounds of both charts)
+// (margin 1e-7).
 BoxVerdict VerdictWithClosedForm(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
                                  bool closed_form) {
   const double d = RollingDeviationBound(regime, box);
-  const double rolling = closed_form ? std::min(d, ClosedRollingDeviationBound(regime, box, 1e-7)) : d;
+  const double rolling =
+      closed_form
+          ? std::min({d, ClosedRollingDeviationBound(regime, box, 1e-7), ChartRollingDeviationBound(regime, box, 1e-7)})
+          : d;
   CertifyResidual centre;
   if (!EvaluateCertifyResidual(target, regime, box.Centre(), 0.05, &centre)) {
     ADD_FAILURE() << "centre residual not available";
@@ -110,6 +138,32 @@ CertifyTarget TargetSolvedBy(PendulumRegime regime, const CertifyPoint& x) {
   t.radius = chord.norm();
   t.goal_angle = std::atan2(chord.y(), chord.x());
   return t;
+}
+
+// Psit = int_0^L phi ds of the theta/2 chart by composite 5-point Gauss-Legendre quadrature
+// (pieces <= 0.1 long in w = rate s + u0; phi is smooth with |phi_w| bounded, so the error is far below 1e-12).
+double ChartTwistByQuadrature(PendulumRegime regime, const CertifyPoint& x) {
+  static const double kNode[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                                  0.9061798459386640};
+  static const double kWeight[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
+                                    0.2369268850561891, 0.2369268850561891};
+  const double len = x[kCertifyLength];
+  const int pieces = std::max(1, static_cast<int>(std::ceil(len * std::max(1.0, std::abs(x[kCertifyRate])) / 0.1)));
+  const double h = len / pieces;
+  const Elastica path = CertifyElastica(regime, x);
+  double sum = 0.0;
+  for (int p = 0; p < pieces; ++p)
+    for (int j = 0; j < 5; ++j) sum += 0.5 * h * kWeight[j] * ChartTwistRate(path, (p + 0.5) * h + 0.5 * h * kNode[j]);
+  return sum;
+}
+
+// Q(0, L) from the theta/2 chart: Ft(L) Rz(Psit) Ft(0)^T.
+Eigen::Matrix3d ChartRolling(PendulumRegime regime, const CertifyPoint& x) {
+  const double twist = ChartTwistByQuadrature(regime, x);
+  Eigen::Matrix3d rz = Eigen::Matrix3d::Identity();
+  rz.topLeftCorner<2, 2>() << std::cos(twist), -std::sin(twist), std::sin(twist), std::cos(twist);
+  const Elastica path = CertifyElastica(regime, x);
+  return ChartFrame(path, x[kCertifyLength]).frame * rz * ChartFrame(path, 0.0).frame.transpose();
 }
 
 // The geometric mean of positive ratios (1 for none).
@@ -139,14 +193,8 @@ TEST(IsoparallelCertifyRolling, BoundNeverUndershootsSampledRotationDistances) {
       if (std::isinf(bound)) continue;
       ++finite;
       const CertifyPoint c = box.Centre();
-      const Eigen::Matrix3d qc = ClosedRolling(regime, c);
-      double worst = -1.0;
       CertifyPoint worst_x{};
-      for (int j = 0; j < 8; ++j) {
-        const CertifyPoint x = PointIn(box, &rng);
-        const double dist = RotationAngle(ClosedRolling(regime, x), qc);
-        if (dist > worst) worst = dist, worst_x = x;
-      }
+      const double worst = LargestSampledDistance(regime, box, &rng, &worst_x);
       ASSERT_LE(worst, bound * (1.0 + 1e-9) + 1e-9) << ToString(regime) << " box " << b;
       const double magnus = RotationAngle(MagnusRolling(regime, worst_x), MagnusRolling(regime, c));
       ASSERT_NEAR(magnus, worst, 1e-7) << ToString(regime) << " box " << b;
@@ -179,11 +227,7 @@ TEST(IsoparallelCertifyRolling, TwistAndFrameBoundsNeverUndershoot) {
       for (int j = 0; j < 2; ++j) {
         const CertifyPoint x = PointIn(box, &rng);
         for (int i = 0; i < 4; ++i) {
-          const double h = 1e-6 * std::max(1.0, std::abs(x[i]));
-          CertifyPoint p = x, m = x;
-          p[i] += h;
-          m[i] -= h;
-          const double fd = std::abs(twist(p) - twist(m)) / (2.0 * h);
+          const double fd = CentralDifference(twist, x, i, 1e-6);
           ASSERT_LE(fd, d[i] * (1.0 + 1e-6) + 1e-4) << ToString(regime) << " box " << b << " axis " << i;
         }
         const CertifyPoint c = box.Centre();
@@ -204,8 +248,8 @@ TEST(IsoparallelCertifyRolling, TwistAndFrameBoundsNeverUndershoot) {
 
 // The first 150,000 boxes of the rotation problem's rotating 1.0x window (rate up to 13.41, k up
 // to 0.95, one phase period, L from |x1 - x0| to the shortest solution's 9.4492): with the
-// closed-form bound the rotation test excludes boxes the test with D alone leaves undecided, and
-// the window resolves more volume with the same budget.
+// closed-form bound the rotation test excludes boxes the test with D alone leaves undecided, the
+// theta/2 chart's bound more, and the window resolves more volume with the same budget each time.
 TEST(IsoparallelCertifyRolling, DecidesBoxesDLeavesUndecided) {
   const Problem file = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
   const CertifyTarget target = CertifyTargetOf(IsoparallelSetupFor(file).problem);
@@ -216,14 +260,20 @@ TEST(IsoparallelCertifyRolling, DecidesBoxesDLeavesUndecided) {
   options.max_boxes = 150000;
   options.stop_at_unaccounted = false;
   const CertifyWindowResult with = CertifyWindow(target, {}, options);
+  options.chart_rolling = false;
+  const CertifyWindowResult costate_chart = CertifyWindow(target, {}, options);
   options.closed_rolling = false;
   const CertifyWindowResult without = CertifyWindow(target, {}, options);
-  std::printf("150,000 boxes: %ld excluded by rotation only with the closed-form bound; resolved volume %.6f "
-              "(%.6f with D alone)\n",
-              with.excluded_by_closed_rolling, with.resolved_volume, without.resolved_volume);
+  std::printf("150,000 boxes: %ld excluded by rotation only with the closed-form bound, %ld more only with the "
+              "theta/2 chart's; resolved volume %.6f (%.6f without the theta/2 chart, %.6f with D alone)\n",
+              with.excluded_by_closed_rolling, with.excluded_by_chart_rolling, with.resolved_volume,
+              costate_chart.resolved_volume, without.resolved_volume);
   EXPECT_GT(with.excluded_by_closed_rolling, 50);
+  EXPECT_GT(with.excluded_by_chart_rolling, 50);
+  EXPECT_EQ(costate_chart.excluded_by_chart_rolling, 0);
   EXPECT_EQ(without.excluded_by_closed_rolling, 0);
-  EXPECT_GT(with.resolved_volume, without.resolved_volume);
+  EXPECT_GT(costate_chart.resolved_volume, without.resolved_volume);
+  EXPECT_GT(with.resolved_volume, costate_chart.resolved_volume);
 }
 
 // Boxes of half-widths 1e-5..0.3 around the rotation problem's solutions (the solver's) and
@@ -285,4 +335,124 @@ TEST(IsoparallelCertifyRolling, NeverExcludesABoxHoldingASolution) {
               "turned target\n",
               boxes, turned_excluded, 6 * cases.size(), cases.size());
   EXPECT_GE(turned_excluded, static_cast<int>(cases.size()));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The theta/2 chart (isoparallel_certify_rolling.h, ChartRollingDeviationBound): smooth and
+// finite through G = 1.
+
+// Q(0, L) = Ft(L) Rz(int phi) Ft(0)^T, the chart's frames and twist rate against the closed-form
+// rolling (the costate chart and Legendre's Pi, an independent evaluation) at random points of both
+// regimes and at G = 1 exactly, 1 +- 1e-12, 1e-8, 1e-4 (there the costate chart's frame turns by pi
+// in a layer of width |1 - G| and its bounds are infinite).
+TEST(IsoparallelCertifyRolling, ChartFrameAndTwistReproduceTheClosedForm) {
+  std::mt19937 rng(1520);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worst = 0.0;
+  int points = 0;
+  for (PendulumRegime regime : kBothRegimes) {
+    const bool rotating = regime == PendulumRegime::kRotating;
+    for (int j = 0; j < 60; ++j) {
+      const double k = 0.05 + 0.9 * unit(rng);
+      double rate = LogUniform(0.1, 5.0, &rng);
+      if (j % 2 == 0) {  // G = 1 + offset: rate 1 (oscillating) or 1/k (rotating)
+        const double offsets[] = {0.0, 1e-12, -1e-12, 1e-8, -1e-8, 1e-4, -1e-4};
+        rate = (rotating ? 1.0 / k : 1.0) * std::sqrt(1.0 + offsets[(j / 2) % 7]);
+      }
+      if (rotating && unit(rng) < 0.5) rate = -rate;
+      const CertifyPoint x = {rate, k, -6.0 + 12.0 * unit(rng), 0.2 + 8.0 * unit(rng)};
+      const Elastica path = CertifyElastica(regime, x);
+      const ChartFrameAt f0 = ChartFrame(path, 0.0), f1 = ChartFrame(path, x[kCertifyLength]);
+      ASSERT_NEAR((f0.frame.transpose() * f0.frame - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
+      ASSERT_GT(f0.projection, 0.0);
+      ASSERT_GT(f1.projection, 0.0);
+      const double error = (ChartRolling(regime, x) - ClosedRolling(regime, x)).cwiseAbs().maxCoeff();
+      ASSERT_LT(error, 1e-10) << ToString(regime) << " point " << j << " rate " << rate << " k " << k;
+      worst = std::max(worst, error);
+      ++points;
+    }
+  }
+  std::printf("%d points: largest entry difference between the theta/2 chart and the closed form %.2e\n", points,
+              worst);
+}
+
+// The chart's bound is never below the largest of 8 sampled dist(Q(x), Q(centre)) (closed form)
+// on 1,200 random boxes per regime, half of them across G = 1, where it stays finite; the extreme
+// sample is checked by an independent Magnus rolling.
+TEST(IsoparallelCertifyRolling, ChartBoundNeverUndershootsSampledRotationDistancesAcrossUnitG) {
+  std::mt19937 rng(1521);
+  for (PendulumRegime regime : kBothRegimes) {
+    std::vector<double> ratios, across_ratios, costate_ratios;
+    int finite = 0, across_finite = 0, sharper = 0;
+    const int boxes = 1200;
+    for (int b = 0; b < boxes; ++b) {
+      const bool across = b % 2 == 0;
+      const CertifyBox box = RandomRollingBox(regime, across, &rng);
+      const double bound = ChartRollingDeviationBound(regime, box, 0.0);
+      ASSERT_FALSE(std::isnan(bound)) << ToString(regime) << " box " << b;
+      if (std::isinf(bound)) continue;
+      ++finite;
+      across_finite += across ? 1 : 0;
+      const CertifyPoint c = box.Centre();
+      CertifyPoint worst_x{};
+      const double worst = LargestSampledDistance(regime, box, &rng, &worst_x);
+      ASSERT_LE(worst, bound * (1.0 + 1e-9) + 1e-9) << ToString(regime) << " box " << b;
+      if (b % 4 == 0) {  // the Magnus table is slow at long lengths: a quarter of the boxes
+        const double magnus = RotationAngle(MagnusRolling(regime, worst_x), MagnusRolling(regime, c));
+        ASSERT_NEAR(magnus, worst, 1e-7) << ToString(regime) << " box " << b;
+      }
+      if (worst > 1e-12 && bound < M_PI) (across ? across_ratios : ratios).push_back(bound / worst);
+      const double costate_chart = ClosedRollingDeviationBound(regime, box, 0.0);
+      if (worst > 1e-12 && costate_chart < M_PI) costate_ratios.push_back(costate_chart / worst);
+      if (bound < std::min(costate_chart, RollingDeviationBound(regime, box))) ++sharper;
+    }
+    std::printf("%s: %d of %d boxes finite (%d of %d across G = 1); bound / largest sampled distance geometric "
+                "mean %.2f (%zu boxes), across G = 1 %.2f (%zu), costate chart %.2f (%zu); below D and the costate "
+                "chart's in %d\n",
+                ToString(regime).c_str(), finite, boxes, across_finite, boxes / 2, GeometricMean(ratios),
+                ratios.size(), GeometricMean(across_ratios), across_ratios.size(), GeometricMean(costate_ratios),
+                costate_ratios.size(), sharper);
+    EXPECT_EQ(across_finite, boxes / 2) << ToString(regime);
+    EXPECT_GT(sharper, boxes / 10) << ToString(regime);
+  }
+}
+
+// The chart twist's per-axis bounds never undershoot central differences of Psit (by quadrature),
+// nor the chart frames' bound the sampled frame angles, on random boxes half across G = 1.
+TEST(IsoparallelCertifyRolling, ChartTwistAndFrameBoundsNeverUndershoot) {
+  std::mt19937 rng(1522);
+  for (PendulumRegime regime : kBothRegimes) {
+    int tested = 0;
+    double tightest = INFINITY;
+    for (int b = 0; b < 100; ++b) {
+      const CertifyBox box = RandomRollingBox(regime, b % 2 == 0, &rng);
+      const CertifyPoint d = ChartTwistDerivativeBounds(regime, box);
+      ASSERT_TRUE(std::isfinite(d[0])) << ToString(regime) << " box " << b;
+      ++tested;
+      const auto chart_twist = [regime](const CertifyPoint& x) { return ChartTwistByQuadrature(regime, x); };
+      const CertifyPoint c = box.Centre();
+      for (int j = 0; j < 2; ++j) {
+        const CertifyPoint x = PointIn(box, &rng);
+        for (int i = 0; i < 4; ++i) {
+          const double fd = CentralDifference(chart_twist, x, i, 1e-5);
+          ASSERT_LE(fd, d[i] * (1.0 + 1e-6) + 1e-5)
+              << ToString(regime) << " box " << b << " axis " << i << " rate " << x[0] << " k " << x[1];
+          if (fd > 1e-3) tightest = std::min(tightest, d[i] / fd);
+        }
+        for (bool at_end : {false, true}) {
+          const double s_x = at_end ? x[kCertifyLength] : 0.0, s_c = at_end ? c[kCertifyLength] : 0.0;
+          const ChartFrameAt fx = ChartFrame(CertifyElastica(regime, x), s_x);
+          const ChartFrameAt fc = ChartFrame(CertifyElastica(regime, c), s_c);
+          const double bound = ChartFrameDeviationAngle(CostateDeviationBound(regime, box, at_end), fc.costate_norm,
+                                                        HalfHeadingDeviationBound(regime, box, at_end), fc.projection);
+          ASSERT_LE(RotationAngle(fx.frame, fc.frame), bound + 1e-9) << ToString(regime) << " box " << b;
+          const double half = 0.5 * std::abs(CertifyElastica(regime, x).PendulumAngle(s_x) -
+                                             CertifyElastica(regime, c).PendulumAngle(s_c));
+          ASSERT_LE(half, HalfHeadingDeviationBound(regime, box, at_end) + 1e-9) << ToString(regime) << " box " << b;
+        }
+      }
+    }
+    std::printf("%s: %d boxes; smallest bound / central difference of the twist %.2f\n", ToString(regime).c_str(),
+                tested, tightest);
+  }
 }

@@ -19,6 +19,7 @@
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
+#include "support/made_certify_target.h"
 #include "support/test_support.h"
 
 using namespace plateball;
@@ -58,15 +59,7 @@ const CertifyPoint kShortest = {1.1321176940954867, 0.79235739683313566, 1.81505
 // is an exact solution by construction (its rolling by dopri5 is the target).
 const CertifyPoint kMade = {0.6, 0.6, 0.7, 3.0};
 
-CertifyTarget MadeTarget() {
-  const Elastica e = PathAt(PendulumRegime::kRotating, kMade);
-  const Eigen::Vector2d chord = e.Position(kMade[kCertifyLength]);
-  CertifyTarget t;
-  t.target = Dopri(e, kMade[kCertifyLength]);
-  t.radius = chord.norm();
-  t.goal_angle = std::atan2(chord.y(), chord.x());
-  return t;
-}
+CertifyTarget MadeTarget() { return plateball::testing::MadeCertifyTarget(PendulumRegime::kRotating, kMade); }
 
 // The window: the neighbourhood 0.01 of the made solution, widened to rate 0.8 (an off-centre
 // window: the solution is no box's centre).

@@ -761,3 +761,63 @@ TEST(Isoparallel, ReaderAndSolverShareOneThreadRange) {
     EXPECT_NE(m.find("isoparallel.solver.threads"), std::string::npos) << m;
   }
 }
+
+// ---- search10 (issue 15, ninth round): cheaper searches and merge, no solution lost ----
+
+// The 31 lengths of problems/isoparallel_rotation.json up to 3x the shortest as main at 4a16fbe
+// listed them (polished on the crossing formulation: the n-th crossing of the circle on a fine
+// table, 3 unknowns; now the polish runs on the free-length formulation, and searches that stall
+// stop early): the same 31 to 1e-9, each verified by an independent dopri5 rolling. A stop rule
+// or a polish that dropped or moved one of them (14.60812893 and 14.60932895 are 1.2e-3 apart)
+// fails here.
+TEST(Isoparallel, RotationProblemKeepsEveryLengthOfTheCrossingPolish) {
+  const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json"));
+  const IsoparallelSetup setup = IsoparallelSetupFor(p);
+  const IsoparallelSummary s = SolveIsoparallel(setup.problem, setup.options);
+  ASSERT_TRUE(s.IsSolutionUsable());
+  const std::vector<double> crossing_polish = {
+      5.9909830797,  8.7052933716,  9.4492190884,  9.8133329585,  10.4790024427, 11.7180594252, 12.0943102659,
+      12.4809348826, 13.0276940919, 13.1701146349, 13.2431730363, 14.2891160078, 14.6081289291, 14.6093289477,
+      14.6614414044, 14.9051505615, 14.9669529338, 15.2303177409, 15.4169774821, 15.6480712410, 15.8949691241,
+      16.1210575023, 16.4772209098, 16.6912579126, 17.0332972183, 17.0464659669, 17.1337968844, 17.2172584639,
+      17.7031878323, 17.7630272098, 17.9237659676};
+  ASSERT_EQ(s.solutions.size(), crossing_polish.size()) << s.FullReport();
+  for (std::size_t i = 0; i < s.solutions.size(); ++i) {
+    const IsoparallelSolution& sol = s.solutions[i];
+    EXPECT_NEAR(sol.length, crossing_polish[i], 1e-9) << i;
+    const Eigen::Matrix3d a1 = ReferenceRolling(sol.Path(), sol.length) * setup.problem.start_orientation;
+    EXPECT_LT(OperatorNormDistance(a1, setup.problem.goal_orientation), kVerifiedTol) << sol.length;
+    EXPECT_LT((sol.PositionAt(sol.length) - setup.problem.goal).norm(), kVerifiedTol) << sol.length;
+  }
+}
+
+// Whole solves keep both members of T4's fold pair (22.73757780 and 22.75708870, 0.0195 apart:
+// a stop rule with a radius beyond the pair's distance would drop one), and T6 (x1 = (2, -1),
+// A1 = exp(hat(0.5, 0.5, 0.5))) lists 10.41197440, which main's polish on the crossing
+// formulation did not reach from the same search result; each verified by an independent dopri5
+// rolling.
+TEST(Isoparallel, WholeSolvesKeepTheFoldPairAndTheFreeLengthPolishFindsMore) {
+  struct Case {
+    Eigen::Vector2d goal;
+    Eigen::Vector3d w;
+    std::vector<double> lengths;
+  };
+  const Case cases[] = {{{3.0, 0.0}, {0.3, 0.0, 0.0}, {22.7375777986, 22.7570886954}},
+                        {{2.0, -1.0}, {0.5, 0.5, 0.5}, {10.4119744049}}};
+  for (const Case& c : cases) {
+    IsoparallelProblem p;
+    p.goal = c.goal;
+    p.goal_orientation = ExpSO3(c.w);
+    const IsoparallelSummary s = SolveIsoparallel(p);
+    ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
+    for (double length : c.lengths) {
+      const IsoparallelSolution* match = nullptr;
+      for (const IsoparallelSolution& sol : s.solutions)
+        if (std::abs(sol.length - length) < 1e-9) match = &sol;
+      ASSERT_NE(match, nullptr) << length << "\n" << s.FullReport();
+      const Eigen::Matrix3d a1 = ReferenceRolling(match->Path(), match->length);
+      EXPECT_LT(OperatorNormDistance(a1, p.goal_orientation), kVerifiedTol) << length;
+      EXPECT_LT((match->PositionAt(match->length) - p.goal).norm(), kVerifiedTol) << length;
+    }
+  }
+}

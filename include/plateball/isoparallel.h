@@ -10,7 +10,8 @@
 // The search stage frees the length: 4 unknowns (G, energy, phase, L), 4 residuals
 // (|x(L) - x0| - |x1 - x0| and the mismatch with B taken from the direction of x(L)), smooth where
 // the crossing number jumps (a tangency adds or removes a pair of crossings, and solutions often
-// lie near one). The polish (to the tolerance) runs on the crossing formulation above.
+// lie near one). The polish (to the tolerance) runs on the same four unknowns with exact
+// Jacobians; n is the crossing of the circle nearest to the search's L.
 // General targets, two stages: the shapes (rate, modulus) are the first `starts` Halton points
 // (no seed); for each shape ONE rolling table over [0, T + s_max] serves the whole (phase,
 // length) plane (Q(s0, s0 + L) = Q(0, s0 + L) Q(0, s0)^-1, every start node s0 of one period,
