@@ -1,20 +1,13 @@
 #include "elastica_closed_rolling.h"
 
 #include <Eigen/Geometry>
-#include <boost/math/policies/policy.hpp>
-#include <boost/math/special_functions/ellint_rf.hpp>  // Pi by Carlson (ThirdKind)
-#include <boost/math/special_functions/ellint_rj.hpp>
 #include <cmath>
 
+#include "carlson.h"  // Pi by Carlson's R_F and R_J (ThirdKind)
 #include "check.h"
 #include "plateball/so3.h"
 
 namespace plateball::internal {
-namespace {
-
-using FastPolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
-
-}  // namespace
 
 ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
     : regime_(e.parameters().regime),
@@ -22,9 +15,10 @@ ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
       modulus_(e.parameters().modulus),
       phase_(e.parameters().phase),
       big_g_(e.G()),
-      cos_w_(std::sin(e.parameters().heading_w)),
-      sin_w_(-std::cos(e.parameters().heading_w)),
-      agm_(std::abs(e.parameters().modulus)) {
+      cos_w_(e.cos_w_),  // the Elastica's rotation sin(g_W), -cos(g_W), K (its period) and AGM
+      sin_w_(e.sin_w_),  // sequence, computed once
+      complete_k_(e.kk_),
+      agm_(*e.agm_) {
   if (!(std::abs(rate_) <= kMaxRate))
     ThrowInvalid("rate", rate_,
                  "|rate| must be <= " + FormatNumber(kMaxRate) + " for the closed-form rolling (G, V^2 finite)");
@@ -38,19 +32,19 @@ ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
   straight_ = rate_ == 0.0 || (oscillating && k == 0.0);
   unit_chart_ = std::abs(one_minus_g_) < kUnitChart;
   straight_omega_ = Eigen::Vector3d::Zero();
-  const Eigen::Vector2d t = e.Tangent(0.0);
-  if (straight_) straight_omega_ = Eigen::Vector3d(-t.y(), t.x(), 0.0);
-  // k'^2 = (1 - k)(1 + k) and K = R_F(0, k'^2, 1), accurate near the separatrix
-  // (jacobi_elliptic.h), the same K as the Elastica's period.
-  const double kc2 = OneMinusSquare(k);
-  complete_k_ = CompleteEllipticK(k);
+  if (straight_) {
+    const Eigen::Vector2d t = e.Tangent(0.0);
+    straight_omega_ = Eigen::Vector3d(-t.y(), t.x(), 0.0);
+  }
+  // k'^2 = (1 - k)(1 + k), accurate near the separatrix (jacobi_elliptic.h), as the Elastica's.
+  const double kc2 = e.kc2_;
   if (!straight_ && !unit_chart_) {
     const double kappa2 = oscillating ? k * k : 1.0;
     n_ = -4.0 * big_g_ * kappa2 / (one_minus_g_ * one_minus_g_);
     if (n_ != 0.0) SetUpThirdKind(k * k, kc2);
     twist_factor_ = (1.0 + big_g_) / (one_minus_g_ * rate_);
   }
-  CacheOrigin();
+  CacheOrigin(e);
 }
 
 // A&S 17.7.15 (Boost's form of it): for n < 0, N = (k^2 - n)/(1 - n) in (k^2, 1) and
@@ -64,22 +58,29 @@ void ElasticaClosedRolling::SetUpThirdKind(double k2, double kc2) {
   third_.c2 = k2 / (k2 - n_);
   third_.c3 = std::sqrt(-n_ / (k2 - n_)) * std::sqrt(1.0 / (1.0 - n_));
   third_.p2 = std::sqrt(-n_) * std::sqrt(third_.n_big);
-  complete_pi_ = ThirdKind(1.0, 0.0, std::sqrt(kc2));
+  // At phi = pi/2: F = K, the atan term vanishes, Pi(N) = K + (N/3) R_J(0, k'^2, 1, 1 - N).
+  const double pi_big = complete_k_ + (third_.n_big / 3.0) * CarlsonRJ(0.0, kc2, 1.0, third_.one_minus_n_big);
+  complete_pi_ = third_.c1 * pi_big + third_.c2 * complete_k_;
 }
 
 // Pi(n; phi, k) from sin(phi), cos(phi) >= 0 and Delta = sqrt(1 - k^2 sin^2 phi) (the Jacobi
 // sn, cn, dn of the reduced argument: no 1 - k^2 sin^2 formed), by Carlson's R_F and R_J:
 // F = sn R_F(cn^2, dn^2, 1), Pi(N) = F + (N/3) sn^3 R_J(cn^2, dn^2, 1, cn^2 + (1 - N) sn^2).
+// R_F and R_J share one duplication loop; p lies in [x, y], so R_J's R_C(1, 1 + e_n) have e_n >= 0.
 double ElasticaClosedRolling::ThirdKind(double sn, double cn, double dn) const {
-  const double x = cn * cn, y = dn * dn;
-  const double f = sn * boost::math::ellint_rf(x, y, 1.0, FastPolicy());
-  const double p = x + third_.one_minus_n_big * sn * sn;
-  const double pi_big = f + (third_.n_big / 3.0) * sn * sn * sn * boost::math::ellint_rj(x, y, 1.0, p, FastPolicy());
+  const double x = cn * cn, y = dn * dn, sn2 = sn * sn;
+  const CarlsonFJ fj = CarlsonRFRJ(x, y, 1.0, x + third_.one_minus_n_big * sn2);
+  const double f = sn * fj.rf;
+  const double pi_big = f + (third_.n_big / 3.0) * sn * sn2 * fj.rj;
   return third_.c1 * pi_big + third_.c2 * f + third_.c3 * std::atan(third_.p2 * sn * cn / dn);
 }
 
-void ElasticaClosedRolling::CacheOrigin() {
-  origin_ = At(0.0, "s0", true);
+// At s = 0 (w = phase) the Elastica has the Jacobi functions already, from the same reduction
+// modulo 2K with the same K (its j0_, signs flipped for odd m): unflipped, they give the node.
+void ElasticaClosedRolling::CacheOrigin(const Elastica& e) {
+  const double m = std::round(phase_ / (2.0 * complete_k_));
+  const double sign = IsOddInteger(m) ? -1.0 : 1.0;
+  origin_ = NodeFrom(m, sign * e.j0_.sn, sign * e.j0_.cn, e.j0_.dn, true);
   if (!straight_) origin_frame_t_ = FrameAt(origin_).transpose();
 }
 
@@ -87,13 +88,22 @@ ElasticaClosedRolling::Node ElasticaClosedRolling::At(double s, const char* fiel
   RequireFinite(field, s);
   const double w = rate_ * s + phase_;
   if (!std::isfinite(w)) ThrowInvalid(field, s, "rate * s + phase must be finite");
+  const double m = std::round(w / (2.0 * complete_k_));
+  const double r = w - 2.0 * complete_k_ * m;  // |r| <= K: cn(r) >= 0
+  double sn = 0.0, cn = 1.0, dn = 1.0;
+  JacobiSnCnDn(r, agm_, &sn, &cn, &dn);  // finite for every r (sn = r, cn = dn = 1 when tiny)
+  return NodeFrom(m, sn, cn, dn, with_pi);
+}
+
+ElasticaClosedRolling::Node ElasticaClosedRolling::NodeFrom(double m, double sn, double cn, double dn, bool with_pi) const {
   Node j;
-  j.m = std::round(w / (2.0 * complete_k_));
-  const double r = w - 2.0 * complete_k_ * j.m;  // |r| <= K: cn(r) >= 0
-  JacobiSnCnDn(r, agm_, &j.sn, &j.cn, &j.dn);  // finite for every r (sn = r, cn = dn = 1 when tiny)
+  j.m = m;
+  j.sn = sn;
+  j.cn = cn;
+  j.dn = dn;
   // Pi(n; am(r), k), am(r) in [-pi/2, pi/2], needed by the twist when n != 0.
   if (with_pi && n_ != 0.0 && j.sn != 0.0) j.pi = ThirdKind(j.sn, j.cn, j.dn);
-  if (std::fmod(j.m, 2.0) != 0.0) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r)
+  if (IsOddInteger(j.m)) {  // sn(r + 2K) = -sn(r), cn(r + 2K) = -cn(r)
     j.sn = -j.sn;
     j.cn = -j.cn;
   }

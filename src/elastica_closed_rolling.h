@@ -63,9 +63,11 @@ class ElasticaClosedRolling {
     double pi = 0.0;                 // Pi(n; am(r), k), when asked for and n != 0
   };
   Node At(double s, const char* field, bool with_pi) const;
+  // The node from m and the Jacobi functions of r (before the sign flip of odd m).
+  Node NodeFrom(double m, double sn, double cn, double dn, bool with_pi) const;
   void SetUpThirdKind(double k2, double kc2);
   double ThirdKind(double sn, double cn, double dn) const;
-  void CacheOrigin();
+  void CacheOrigin(const Elastica& e);
   Eigen::Vector3d PendulumCostate(const Node& j) const;
   Eigen::Matrix3d FrameAt(const Node& j) const;
   // psi(s1) - psi(s0) from the nodes (s1 - s0 passed exactly).

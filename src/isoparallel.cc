@@ -220,7 +220,7 @@ bool SameRoot(PendulumRegime regime, const Eigen::Vector4d& y, const SearchRoot&
   for (int i : {0, 1, 3})
     if (!(std::abs(y[i] - root.x[i]) <= kDuplicateTol * (1 + std::abs(root.x[i])))) return false;
   const double u_period = (regime == PendulumRegime::kOscillating ? 4.0 : 2.0) *
-                          boost::math::ellint_1(std::abs(std::tanh(root.x[1])));
+                          internal::CompleteEllipticK(std::abs(std::tanh(root.x[1])));
   return std::abs(std::remainder(y[2] - root.x[2], u_period)) <= kDuplicateTol * (1 + u_period);
 }
 
@@ -560,7 +560,7 @@ std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit,
     // Shapes: denser towards the separatrix (k = 0.97 sin(pi u / 2)), where long solutions have
     // narrow basins in atanh k; starts: uniform in k.
     const double k = shapes ? 0.97 * std::sin(0.5 * M_PI * u[2]) : 0.97 * u[2];
-    const double kk = boost::math::ellint_1(k);
+    const double kk = internal::CompleteEllipticK(k);
     const double period = t_min * std::pow(t_max / t_min, u[1]);
     const double u_period = s.regime == PendulumRegime::kOscillating ? 4.0 * kk : 2.0 * kk;
     s.x[0] = sign * u_period / period;
@@ -641,7 +641,7 @@ Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, c
   if (!e.IsStraight() && whole >= 1 && std::abs(sol.periods - whole) < kWholePeriodTol * whole) {
     // Family test: shift the starting phase, keep the length (a whole number of periods).
     const double u_period = (r.regime == PendulumRegime::kOscillating ? 2.0 : 1.0) * 2.0 *
-                            boost::math::ellint_1(std::abs(p.modulus));
+                            internal::CompleteEllipticK(std::abs(p.modulus));
     bool family = true;
     for (double frac : {0.31, 0.67}) {
       ElasticaParameters q = p;

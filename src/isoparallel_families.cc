@@ -2,8 +2,6 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <boost/math/special_functions/ellint_1.hpp>
-#include <boost/math/special_functions/ellint_d.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <cstdint>
@@ -13,6 +11,7 @@
 
 #include "check.h"
 #include "elastica_rolling.h"
+#include "jacobi_elliptic.h"
 #include "parallel_for.h"
 
 namespace plateball {
@@ -47,9 +46,8 @@ struct Shape {
 };
 
 Shape ShapeOf(PendulumRegime regime, double k) {
-  using boost::math::ellint_1;
-  using boost::math::ellint_d;
-  const double kk = ellint_1(k), dd = ellint_d(k);  // D = (K - E) / k^2
+  // D = (K - E) / k^2; k'^2 = (1 - k)(1 + k), not 1 - k^2 (jacobi_elliptic.h).
+  const double kk = internal::CompleteEllipticK(k), dd = internal::CompleteEllipticD(k);
   Shape s;
   if (regime == PendulumRegime::kOscillating) {
     s.T1 = 4.0 * kk;

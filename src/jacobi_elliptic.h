@@ -1,6 +1,8 @@
 // Internal: fast Jacobi elliptic functions for the closed-form elastica (elastica.h).
 #pragma once
 
+#include <cmath>
+
 namespace plateball::internal {
 
 /// The arithmetic-geometric mean sequence of the modulus k (depends on k only): computed once
@@ -23,6 +25,13 @@ void JacobiSnCnDn(double u, double k, double* sn, double* cn, double* dn);
 void JacobiSnCnDn(double u, const JacobiAgm& agm, double* sn, double* cn, double* dn);
 constexpr double kJacobiTinyArgument = 1e-20;
 
+/// Whether the integer-valued m (a count of half periods 2K) is odd: std::fmod(m, 2) != 0 without
+/// the libm call (0.5 m is exact; every double beyond 2^53 is even).
+inline bool IsOddInteger(double m) {
+  const double half = 0.5 * m;
+  return half != std::trunc(half);
+}
+
 /// 1 - x^2 as (1 - |x|)(1 + |x|): no cancellation near |x| = 1 (the complementary parameter
 /// k'^2 = 1 - k^2 of a modulus near the separatrix; 1 - G near G = 1).
 inline double OneMinusSquare(double x) {
@@ -30,14 +39,14 @@ inline double OneMinusSquare(double x) {
   return (1.0 - a) * (1.0 + a);
 }
 
-// Legendre's integrals by Carlson's symmetric forms (DLMF 19.25.1, 19.25.5, 19.25.13), with the
-// complementary parameter k'^2 = OneMinusSquare(k) and Delta(phi)^2 = cos^2 + k'^2 sin^2 (never
-// 1 - k^2 sin^2): relatively accurate to a few ulps up to the separatrix. Boost's ellint_1(k),
-// ellint_d(k) and their incomplete forms subtract k^2 from 1 and lose ~1e-10 of K at
+// Legendre's integrals by Carlson's symmetric forms (DLMF 19.25.1, 19.25.5, 19.25.13; carlson.h),
+// with the complementary parameter k'^2 = OneMinusSquare(k) and Delta(phi)^2 = cos^2 + k'^2 sin^2
+// (never 1 - k^2 sin^2): relatively accurate to a few ulps up to the separatrix. Boost's
+// ellint_1(k), ellint_d(k) and their incomplete forms subtract k^2 from 1 and lose ~1e-10 of K at
 // k = 1 - 1e-8 (docs/paper_notes.md, "Elastica near the separatrix and at tiny arguments").
-/// K(k) = R_F(0, k'^2, 1), |k| < 1.
+/// K(k) = R_F(0, k'^2, 1) = pi / (2 AGM(1, k')), |k| < 1.
 double CompleteEllipticK(double k);
-/// D(k) = (K - E) / k^2 = int_0^K sn^2 = R_D(0, k'^2, 1) / 3, |k| < 1.
+/// D(k) = (K - E) / k^2 = int_0^K sn^2 = R_D(0, k'^2, 1) / 3 (by the same AGM), |k| < 1.
 double CompleteEllipticD(double k);
 /// F(phi, k) for |phi| <= pi/2 from sin_phi, cos_phi (only cos_phi^2 enters) and kc2 = k'^2:
 /// sin_phi R_F(cos^2, Delta^2, 1).

@@ -10,7 +10,7 @@
 //  - rotating (E > G):    theta/2 = am(a s + u0, k), |a| = sqrt(G)/k, k^2 = 2G/(E + G);
 //  - G = 0: circles (rotating, k = 0) and straight lines (rate 0).
 // Positions are elliptic integrals too (Jacobi epsilon / Legendre's D), so every quantity of the
-// path is evaluated in closed form with Boost.Math, at any s, without integration.
+// path is evaluated in closed form (Carlson's symmetric integrals), at any s, without integration.
 #pragma once
 
 #include <Eigen/Core>
@@ -22,6 +22,7 @@
 // Library-internal types (src/), declared outside the exported namespace so they stay hidden.
 namespace plateball::internal {
 struct ElasticaAccess;
+class ElasticaClosedRolling;  // src/elastica_closed_rolling.h
 struct JacobiAgm;  // src/jacobi_elliptic.h
 }  // namespace plateball::internal
 
@@ -82,18 +83,23 @@ class Elastica {
 
  private:
   friend struct internal::ElasticaAccess;  // elastica_rolling.cc marches the Jacobi functions
+  friend class internal::ElasticaClosedRolling;  // shares the AGM sequence, K, k'^2, g_W and s = 0 values
   struct Jacobi {
     double sn, cn, dn;
   };
   Jacobi Eval(double u) const;
   Eigen::Vector2d TangentOf(const Jacobi& j) const;
   double IntegralSn2(double u) const;  // int_0^u sn^2
+  double IntegralSn2(double u, Jacobi* j) const;  // the same, and the Jacobi functions at u
   double AmplitudeOf(double u) const;  // am(u), continuous
   ElasticaParameters p_;
   double k_ = 0.0;       // |modulus|
   std::shared_ptr<const internal::JacobiAgm> agm_;  // AGM sequence of k (immutable, shared by copies)
   double kk_ = 0.0;      // complete K(k)
   double dk_ = 0.0;      // complete D(k) = int_0^K sn^2
+  double kc2_ = 1.0;     // k'^2 = 1 - k^2 (formed without cancellation)
+  Jacobi j0_{0.0, 1.0, 1.0};  // the Jacobi functions at u = phase (s = 0)
+  double i0_ = 0.0;      // int_0^phase sn^2
   double g_ = 0.0;
   double energy_ = 0.0;
   double period_ = 0.0;
