@@ -858,8 +858,9 @@ struct ShapeScan {
 // does, the next k nodes hold no crossing and no near-tangency and are skipped. Elsewhere the
 // squared chord against precomputed bounds decides, with a square root only where a skip or an
 // event is possible.
-void ScanRow(const Context& ctx, const ShapeNodes& nodes, const std::vector<double>& reach, double h, long i0,
-             long l_end, double limit, std::vector<ScanPoint>* row) {
+// Not inlined: ScanShape's loop over rows would crowd its registers (the node loop spills).
+[[gnu::noinline]] void ScanRow(const Context& ctx, const ShapeNodes& nodes, const std::vector<double>& reach,
+                               double h, long i0, long l_end, double limit, std::vector<ScanPoint>* row) {
   const std::vector<Eigen::Vector2d>& x = nodes.x;
   const Eigen::Matrix3d q0t = nodes.table->NodeRolling(i0, nodes.powers).transpose();
   const Eigen::Vector2d x0 = x[i0];
