@@ -927,6 +927,7 @@ ShapeScan ScanShape(const Context& ctx, const Elastica& e) {
   --l_limit;
   const std::vector<double> reach = internal::ChordReach(nodes.x, table.Steps(), l_limit + 3, h);
   scan.row_end.reserve(table.Steps());
+  scan.points.reserve(2 * table.Steps());  // about two points a row on the rotation problem
   for (long i0 = 0; i0 < table.Steps(); ++i0) {
     ScanRow(ctx, nodes, reach, h, i0, std::min(last - i0, l_limit), ctx.s_limit, &scan.points);
     scan.row_end.push_back(scan.points.size());
