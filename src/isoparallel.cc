@@ -242,6 +242,12 @@ struct FreeLengthFunctor {
   bool stall_stop = false;
   mutable bool stalled = false;
   mutable double accepted[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  // TinySolver's cost_threshold when this functor drives a TinySolver run (0: none): a point below
+  // it ends the run in the Update that asks for its Jacobian, which is then not computed (Converged).
+  double cost_threshold = 0.0;
+
+  // Whether the residual r ends the TinySolver run (its test: cost |r|^2 / 2 below the threshold).
+  bool Converged(const double* r) const { return Eigen::Map<const Eigen::Vector4d>(r).squaredNorm() / 2 < cost_threshold; }
 
   bool Admissible(const ElasticaParameters& p, double length) const {
     return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::isfinite(length) &&
@@ -299,11 +305,12 @@ struct FreeLengthFunctor {
 
   bool Shifted(const double* x, double* r) const { return Residual(x, r); }
 
-  bool Residual(const double* x, double* r, bool = false) const {
+  // `base`: an elastica of x's modulus and phase (another rate), whose rate-free parts the path shares.
+  bool Residual(const double* x, double* r, bool = false, const Elastica* base = nullptr) const {
     const ElasticaParameters p = ToParameters(regime, x);
     last.rolling.reset();
     if (!Admissible(p, x[3])) return false;
-    last.path = std::make_unique<Elastica>(p);
+    last.path = std::make_unique<Elastica>(base != nullptr ? base->WithRate(p.rate) : Elastica(p));
     if (!ClosedFormApplies(*last.path, 2.0 * ctx->s_limit)) return false;  // every length Admissible takes, and L + h
     last.rolling = std::make_unique<internal::ElasticaClosedRolling>(*last.path);
     last.ok = ResidualFrom(*last.path, *last.rolling, x[3], r);
@@ -375,7 +382,10 @@ struct FreeLengthFunctor {
     const Eigen::Map<const Eigen::Vector4d> res(r);
     if (!(res.norm() <= kDuplicateResidual)) return false;
     const Eigen::Map<const Eigen::Matrix4d> jac(jacobian);
-    const Eigen::Vector4d y = Eigen::Map<const Eigen::Vector4d>(x) - jac.fullPivLu().solve(res);
+    // At a converged point (no Jacobian computed: Converged) the point itself, within kSearchStop
+    // of a root, stands for the Gauss-Newton step.
+    const Eigen::Vector4d y = Converged(r) ? Eigen::Vector4d(Eigen::Map<const Eigen::Vector4d>(x))
+                                           : Eigen::Vector4d(Eigen::Map<const Eigen::Vector4d>(x) - jac.fullPivLu().solve(res));
     if (!y.allFinite()) return false;
     for (const SearchRoot& root : *known)
       if (SameRoot(regime, y, root)) return true;
@@ -410,6 +420,10 @@ struct FreeLengthFunctor {
       return false;
     }
     std::copy(last.r, last.r + 4, r);
+    if (Converged(r)) {  // the run ends here: TinySolver never uses this Jacobian
+      std::fill(jacobian, jacobian + 16, 0.0);
+      return true;
+    }
     const std::unique_ptr<Elastica> path = std::move(last.path);  // the rate and modulus columns reuse `last`
     last.rolling.reset();
     double rp[4], rl[4];
@@ -424,7 +438,7 @@ struct FreeLengthFunctor {
       const double h = 1e-6 * (1.0 + std::abs(x[j]));
       double xp[4] = {x[0], x[1], x[2], x[3]}, rj[4];
       xp[j] += h;
-      if (!Residual(xp, rj)) return false;
+      if (!Residual(xp, rj, false, j == 0 ? path.get() : nullptr)) return false;  // the rate: path's k, K, phase terms
       for (int i = 0; i < 4; ++i) jacobian[j * 4 + i] = (rj[i] - r[i]) / h;
     }
     return true;
@@ -464,6 +478,7 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   solver.options.parameter_tolerance = 1e-15;
   solver.options.function_tolerance = 0.0;
   solver.options.cost_threshold = 0.5 * kSearchStop * kSearchStop;
+  f.cost_threshold = solver.options.cost_threshold;
   double r0[4];
   if (f.Residual(v.data(), r0)) {
     // A run still far from a root after a few iterations is abandoned (such runs rarely
@@ -511,6 +526,7 @@ void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalRes
   solver.options.parameter_tolerance = 1e-15;
   solver.options.function_tolerance = 0.0;
   solver.options.cost_threshold = 0.5 * std::pow(0.1 * options.tolerance, 2);
+  f.cost_threshold = solver.options.cost_threshold;
   solver.Solve(f, &v);
   double res[4];
   r->converged = v.allFinite() && f.Residual(v.data(), res) && Eigen::Map<const Eigen::Vector4d>(res).norm() <= options.tolerance;
