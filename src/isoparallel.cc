@@ -10,7 +10,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
-#include <memory>
+#include <optional>
 #include <mutex>
 #include <random>
 #include <sstream>
@@ -298,8 +298,8 @@ struct FreeLengthFunctor {
     double r[4] = {0, 0, 0, 0};
     Eigen::Vector2d chord = Eigen::Vector2d::Zero();
     Eigen::Matrix3d q = Eigen::Matrix3d::Identity();
-    std::unique_ptr<Elastica> path;
-    std::unique_ptr<internal::ElasticaClosedRolling> rolling;
+    std::optional<Elastica> path;  // in place: no allocation per residual
+    std::optional<internal::ElasticaClosedRolling> rolling;
   };
   mutable LastResidual last;
 
@@ -310,9 +310,12 @@ struct FreeLengthFunctor {
     const ElasticaParameters p = ToParameters(regime, x);
     last.rolling.reset();
     if (!Admissible(p, x[3])) return false;
-    last.path = std::make_unique<Elastica>(base != nullptr ? base->WithRate(p.rate) : Elastica(p));
+    if (base != nullptr)
+      last.path.emplace(base->WithRate(p.rate));
+    else
+      last.path.emplace(p);
     if (!ClosedFormApplies(*last.path, 2.0 * ctx->s_limit)) return false;  // every length Admissible takes, and L + h
-    last.rolling = std::make_unique<internal::ElasticaClosedRolling>(*last.path);
+    last.rolling.emplace(*last.path);
     last.ok = ResidualFrom(*last.path, *last.rolling, x[3], r);
     std::copy(x, x + 4, last.x);
     if (last.ok) std::copy(r, r + 4, last.r);
@@ -320,7 +323,14 @@ struct FreeLengthFunctor {
   }
 
   // Whether the last residual was evaluated at x.
-  bool LastAt(const double* x) const { return last.rolling != nullptr && last.ok && std::equal(x, x + 4, last.x); }
+  bool LastAt(const double* x) const { return last.rolling.has_value() && last.ok && std::equal(x, x + 4, last.x); }
+
+  // The residual at x, the last one when it was evaluated there (a run that ended on an accepted point).
+  bool ResidualAt(const double* x, double* r) const {
+    if (!LastAt(x)) return Residual(x, r);
+    std::copy(last.r, last.r + 4, r);
+    return true;
+  }
 
   // Forward differences, but one closed-form rolling (one per (rate, k)) serves the residual and
   // the phase and length columns: only the rate and modulus columns build new ones.
@@ -424,10 +434,11 @@ struct FreeLengthFunctor {
       std::fill(jacobian, jacobian + 16, 0.0);
       return true;
     }
-    const std::unique_ptr<Elastica> path = std::move(last.path);  // the rate and modulus columns reuse `last`
+    const Elastica path = std::move(*last.path);  // the rate and modulus columns reuse `last`
+    last.path.reset();
     last.rolling.reset();
     double rp[4], rl[4];
-    if (!ShiftedResiduals(*path, x[3], s0, h_length, rp, rl)) return false;
+    if (!ShiftedResiduals(path, x[3], s0, h_length, rp, rl)) return false;
     const double signed_phase_step = p.rate > 0 ? h_phase : -h_phase;
     for (int i = 0; i < 4; ++i) {
       jacobian[2 * 4 + i] = (rp[i] - r[i]) / signed_phase_step;
@@ -438,7 +449,7 @@ struct FreeLengthFunctor {
       const double h = 1e-6 * (1.0 + std::abs(x[j]));
       double xp[4] = {x[0], x[1], x[2], x[3]}, rj[4];
       xp[j] += h;
-      if (!Residual(xp, rj, false, j == 0 ? path.get() : nullptr)) return false;  // the rate: path's k, K, phase terms
+      if (!Residual(xp, rj, false, j == 0 ? &path : nullptr)) return false;  // the rate: path's k, K, phase terms
       for (int i = 0; i < 4; ++i) jacobian[j * 4 + i] = (rj[i] - r[i]) / h;
     }
     return true;
@@ -529,7 +540,7 @@ void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalRes
   f.cost_threshold = solver.options.cost_threshold;
   solver.Solve(f, &v);
   double res[4];
-  r->converged = v.allFinite() && f.Residual(v.data(), res) && Eigen::Map<const Eigen::Vector4d>(res).norm() <= options.tolerance;
+  r->converged = v.allFinite() && f.ResidualAt(v.data(), res) && Eigen::Map<const Eigen::Vector4d>(res).norm() <= options.tolerance;
   r->evaluations += f.evaluations;
   if (!r->converged) return;
   std::copy(v.data(), v.data() + 3, r->x);
