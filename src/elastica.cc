@@ -260,10 +260,17 @@ double Elastica::PendulumAngle(double s) const {
 
 double Elastica::Heading(double s) const { return PendulumAngle(s) + p_.heading_w - M_PI / 2; }
 
-double Elastica::Curvature(double s) const {
-  const Jacobi j = Eval(p_.rate * s + p_.phase);
+double Elastica::Curvature(double s) const { return CurvatureOf(Eval(p_.rate * s + p_.phase)); }
+
+double Elastica::CurvatureOf(const Jacobi& j) const {
   if (p_.regime == PendulumRegime::kOscillating) return 2.0 * p_.modulus * p_.rate * j.cn;
   return 2.0 * p_.rate * j.dn;
+}
+
+void Elastica::TangentAndCurvature(double s, Eigen::Vector2d* tangent, double* curvature) const {
+  const Jacobi j = Eval(p_.rate * s + p_.phase);
+  *tangent = TangentOf(j);
+  *curvature = CurvatureOf(j);
 }
 
 Eigen::Vector2d Elastica::Tangent(double s) const { return TangentOf(Eval(p_.rate * s + p_.phase)); }

@@ -280,9 +280,11 @@ struct FreeLengthFunctor {
   // two positions and two closed-form rollings they took (docs/paper_notes.md, "General targets",
   // point 12).
   bool ShiftedResiduals(const Elastica& e, double length, double s0, double h, double* rp, double* rl) const {
-    const Eigen::Vector2d t0 = e.Tangent(0.0), t1 = e.Tangent(length);
-    const Eigen::Vector2d n0 = e.Curvature(0.0) * Eigen::Vector2d(-t0.y(), t0.x());
-    const Eigen::Vector2d n1 = e.Curvature(length) * Eigen::Vector2d(-t1.y(), t1.x());
+    Eigen::Vector2d t0, t1;
+    double k0 = 0, k1 = 0;
+    e.TangentAndCurvature(0.0, &t0, &k0);
+    e.TangentAndCurvature(length, &t1, &k1);
+    const Eigen::Vector2d n0 = k0 * Eigen::Vector2d(-t0.y(), t0.x()), n1 = k1 * Eigen::Vector2d(-t1.y(), t1.x());
     const auto spin = [](const Eigen::Vector2d& t, double step) { return ExpSO3(step * Eigen::Vector3d(-t.y(), t.x(), 0.0)); };
     const Eigen::Vector2d chord_p = last.chord + s0 * (t1 - t0) + 0.5 * s0 * s0 * (n1 - n0);
     const Eigen::Matrix3d q_p = spin(t1 + 0.5 * s0 * n1, s0) * last.q * spin(t0 + 0.5 * s0 * n0, -s0);

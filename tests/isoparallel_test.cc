@@ -825,7 +825,8 @@ TEST(Isoparallel, WholeSolvesKeepTheFoldPairAndTheFreeLengthPolishFindsMore) {
 // Elastica::WithRate (the searches' rate column: the path of another rate sharing k's AGM
 // sequence, K, D and the values at s = 0) gives what the constructor gives for the same
 // parameters, bit for bit: positions, tangents, curvatures, G, E, the period, the drift and the
-// closed-form rolling built on it; down to rate 0 (a straight line: infinite period, no drift,
+// closed-form rolling built on it (and TangentAndCurvature, the phase and length columns' one
+// Jacobi evaluation, Tangent's and Curvature's values); down to rate 0 (a straight line: infinite period, no drift,
 // none kept from the curved path) and in both regimes. A non-finite rate is refused by name.
 TEST(Isoparallel, ElasticaWithRateEqualsTheConstructedPath) {
   for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
@@ -849,6 +850,11 @@ TEST(Isoparallel, ElasticaWithRateEqualsTheConstructedPath) {
         EXPECT_EQ(shared.Position(s), made.Position(s)) << rate << " " << s;
         EXPECT_EQ(shared.Tangent(s), made.Tangent(s)) << rate << " " << s;
         EXPECT_EQ(shared.Curvature(s), made.Curvature(s)) << rate << " " << s;
+        Eigen::Vector2d tangent;
+        double curvature = 0.0;
+        shared.TangentAndCurvature(s, &tangent, &curvature);  // one Jacobi evaluation for both
+        EXPECT_EQ(tangent, made.Tangent(s)) << rate << " " << s;
+        EXPECT_EQ(curvature, made.Curvature(s)) << rate << " " << s;
       }
       if (rate == 0.0) {
         EXPECT_TRUE(std::isinf(shared.Period()));

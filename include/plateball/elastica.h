@@ -77,6 +77,8 @@ class Elastica {
   double Curvature(double s) const;
   /// Unit tangent x'(s).
   Eigen::Vector2d Tangent(double s) const;
+  /// Tangent(s) and Curvature(s), bit for bit, from one evaluation of the Jacobi functions.
+  void TangentAndCurvature(double s, Eigen::Vector2d* tangent, double* curvature) const;
   /// x(s) - x(0), in closed form.
   Eigen::Vector2d Position(double s) const;
   /// Period of the curvature in s: 4K/|b| (oscillating), 2K/|a| (rotating); +infinity for
@@ -95,6 +97,7 @@ class Elastica {
   };
   Jacobi Eval(double u) const;
   Eigen::Vector2d TangentOf(const Jacobi& j) const;
+  double CurvatureOf(const Jacobi& j) const;
   double IntegralSn2(double u) const;  // int_0^u sn^2
   double IntegralSn2(double u, Jacobi* j) const;  // the same, and the Jacobi functions at u
   double AmplitudeOf(double u) const;  // am(u), continuous
