@@ -137,6 +137,20 @@ Elastica::Elastica(const ElasticaParameters& parameters) : p_(parameters) {
   dk_ = complete.d;
   // Position(s) subtracts the values at s = 0 (u = phase): kept.
   i0_ = IntegralSn2(p_.phase, &j0_);
+  cos_w_ = std::sin(p_.heading_w);   // cos(g_W - pi/2)
+  sin_w_ = -std::cos(p_.heading_w);  // sin(g_W - pi/2)
+  SetRateTerms();
+}
+
+Elastica Elastica::WithRate(double rate) const {
+  internal::RequireFinite("rate", rate);
+  Elastica e = *this;  // k, its AGM sequence, K, D, k'^2, g_W and the values at u = phase: independent of the rate
+  e.p_.rate = rate;
+  e.SetRateTerms();
+  return e;
+}
+
+void Elastica::SetRateTerms() {
   const double r = p_.rate;
   if (p_.regime == PendulumRegime::kOscillating) {
     g_ = r * r;
@@ -147,8 +161,7 @@ Elastica::Elastica(const ElasticaParameters& parameters) : p_(parameters) {
     energy_ = 2.0 * r * r - g_;
     period_ = r == 0.0 ? std::numeric_limits<double>::infinity() : 2.0 * kk_ / std::abs(r);
   }
-  cos_w_ = std::sin(p_.heading_w);   // cos(g_W - pi/2)
-  sin_w_ = -std::cos(p_.heading_w);  // sin(g_W - pi/2)
+  drift_ = Eigen::Vector2d::Zero();
   if (std::isfinite(period_)) {
     // Over one period u advances by 4K (oscillating) or 2K (rotating); int sn^2 by 4D(k) or
     // 2D(k); the transverse coordinate returns. (Position(Period()) agrees: elastica_test.)
@@ -247,10 +260,17 @@ double Elastica::PendulumAngle(double s) const {
 
 double Elastica::Heading(double s) const { return PendulumAngle(s) + p_.heading_w - M_PI / 2; }
 
-double Elastica::Curvature(double s) const {
-  const Jacobi j = Eval(p_.rate * s + p_.phase);
+double Elastica::Curvature(double s) const { return CurvatureOf(Eval(p_.rate * s + p_.phase)); }
+
+double Elastica::CurvatureOf(const Jacobi& j) const {
   if (p_.regime == PendulumRegime::kOscillating) return 2.0 * p_.modulus * p_.rate * j.cn;
   return 2.0 * p_.rate * j.dn;
+}
+
+void Elastica::TangentAndCurvature(double s, Eigen::Vector2d* tangent, double* curvature) const {
+  const Jacobi j = Eval(p_.rate * s + p_.phase);
+  *tangent = TangentOf(j);
+  *curvature = CurvatureOf(j);
 }
 
 Eigen::Vector2d Elastica::Tangent(double s) const { return TangentOf(Eval(p_.rate * s + p_.phase)); }

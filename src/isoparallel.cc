@@ -10,7 +10,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
-#include <memory>
+#include <optional>
 #include <mutex>
 #include <random>
 #include <sstream>
@@ -244,6 +244,12 @@ struct FreeLengthFunctor {
   bool stall_stop = false;
   mutable bool stalled = false;
   mutable double accepted[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  // TinySolver's cost_threshold when this functor drives a TinySolver run (0: none): a point below
+  // it ends the run in the Update that asks for its Jacobian, which is then not computed (Converged).
+  double cost_threshold = 0.0;
+
+  // Whether the residual r ends the TinySolver run (its test: cost |r|^2 / 2 below the threshold).
+  bool Converged(const double* r) const { return Eigen::Map<const Eigen::Vector4d>(r).squaredNorm() / 2 < cost_threshold; }
 
   bool Admissible(const ElasticaParameters& p, double length) const {
     return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::isfinite(length) &&
@@ -276,9 +282,11 @@ struct FreeLengthFunctor {
   // two positions and two closed-form rollings they took (docs/paper_notes.md, "General targets",
   // point 12).
   bool ShiftedResiduals(const Elastica& e, double length, double s0, double h, double* rp, double* rl) const {
-    const Eigen::Vector2d t0 = e.Tangent(0.0), t1 = e.Tangent(length);
-    const Eigen::Vector2d n0 = e.Curvature(0.0) * Eigen::Vector2d(-t0.y(), t0.x());
-    const Eigen::Vector2d n1 = e.Curvature(length) * Eigen::Vector2d(-t1.y(), t1.x());
+    Eigen::Vector2d t0, t1;
+    double k0 = 0, k1 = 0;
+    e.TangentAndCurvature(0.0, &t0, &k0);
+    e.TangentAndCurvature(length, &t1, &k1);
+    const Eigen::Vector2d n0 = k0 * Eigen::Vector2d(-t0.y(), t0.x()), n1 = k1 * Eigen::Vector2d(-t1.y(), t1.x());
     const auto spin = [](const Eigen::Vector2d& t, double step) { return ExpSO3(step * Eigen::Vector3d(-t.y(), t.x(), 0.0)); };
     const Eigen::Vector2d chord_p = last.chord + s0 * (t1 - t0) + 0.5 * s0 * s0 * (n1 - n0);
     const Eigen::Matrix3d q_p = spin(t1 + 0.5 * s0 * n1, s0) * last.q * spin(t0 + 0.5 * s0 * n0, -s0);
@@ -294,20 +302,24 @@ struct FreeLengthFunctor {
     double r[4] = {0, 0, 0, 0};
     Eigen::Vector2d chord = Eigen::Vector2d::Zero();
     Eigen::Matrix3d q = Eigen::Matrix3d::Identity();
-    std::unique_ptr<Elastica> path;
-    std::unique_ptr<internal::ElasticaClosedRolling> rolling;
+    std::optional<Elastica> path;  // in place: no allocation per residual
+    std::optional<internal::ElasticaClosedRolling> rolling;
   };
   mutable LastResidual last;
 
   bool Shifted(const double* x, double* r) const { return Residual(x, r); }
 
-  bool Residual(const double* x, double* r, bool = false) const {
+  // `base`: an elastica of x's modulus and phase (another rate), whose rate-free parts the path shares.
+  bool Residual(const double* x, double* r, bool = false, const Elastica* base = nullptr) const {
     const ElasticaParameters p = ToParameters(regime, x);
     last.rolling.reset();
     if (!Admissible(p, x[3])) return false;
-    last.path = std::make_unique<Elastica>(p);
+    if (base != nullptr)
+      last.path.emplace(base->WithRate(p.rate));
+    else
+      last.path.emplace(p);
     if (!ClosedFormApplies(*last.path, 2.0 * ctx->s_limit)) return false;  // every length Admissible takes, and L + h
-    last.rolling = std::make_unique<internal::ElasticaClosedRolling>(*last.path);
+    last.rolling.emplace(*last.path);
     last.ok = ResidualFrom(*last.path, *last.rolling, x[3], r);
     std::copy(x, x + 4, last.x);
     if (last.ok) std::copy(r, r + 4, last.r);
@@ -315,7 +327,14 @@ struct FreeLengthFunctor {
   }
 
   // Whether the last residual was evaluated at x.
-  bool LastAt(const double* x) const { return last.rolling != nullptr && last.ok && std::equal(x, x + 4, last.x); }
+  bool LastAt(const double* x) const { return last.rolling.has_value() && last.ok && std::equal(x, x + 4, last.x); }
+
+  // The residual at x, the last one when it was evaluated there (a run that ended on an accepted point).
+  bool ResidualAt(const double* x, double* r) const {
+    if (!LastAt(x)) return Residual(x, r);
+    std::copy(last.r, last.r + 4, r);
+    return true;
+  }
 
   // Forward differences, but one closed-form rolling (one per (rate, k)) serves the residual and
   // the phase and length columns: only the rate and modulus columns build new ones.
@@ -377,7 +396,10 @@ struct FreeLengthFunctor {
     const Eigen::Map<const Eigen::Vector4d> res(r);
     if (!(res.norm() <= kDuplicateResidual)) return false;
     const Eigen::Map<const Eigen::Matrix4d> jac(jacobian);
-    const Eigen::Vector4d y = Eigen::Map<const Eigen::Vector4d>(x) - jac.fullPivLu().solve(res);
+    // At a converged point (no Jacobian computed: Converged) the point itself, within kSearchStop
+    // of a root, stands for the Gauss-Newton step.
+    const Eigen::Vector4d y = Converged(r) ? Eigen::Vector4d(Eigen::Map<const Eigen::Vector4d>(x))
+                                           : Eigen::Vector4d(Eigen::Map<const Eigen::Vector4d>(x) - jac.fullPivLu().solve(res));
     if (!y.allFinite()) return false;
     for (const SearchRoot& root : *known)
       if (SameRoot(regime, y, root)) return true;
@@ -412,10 +434,15 @@ struct FreeLengthFunctor {
       return false;
     }
     std::copy(last.r, last.r + 4, r);
-    const std::unique_ptr<Elastica> path = std::move(last.path);  // the rate and modulus columns reuse `last`
+    if (Converged(r)) {  // the run ends here: TinySolver never uses this Jacobian
+      std::fill(jacobian, jacobian + 16, 0.0);
+      return true;
+    }
+    const Elastica path = std::move(*last.path);  // the rate and modulus columns reuse `last`
+    last.path.reset();
     last.rolling.reset();
     double rp[4], rl[4];
-    if (!ShiftedResiduals(*path, x[3], s0, h_length, rp, rl)) return false;
+    if (!ShiftedResiduals(path, x[3], s0, h_length, rp, rl)) return false;
     const double signed_phase_step = p.rate > 0 ? h_phase : -h_phase;
     for (int i = 0; i < 4; ++i) {
       jacobian[2 * 4 + i] = (rp[i] - r[i]) / signed_phase_step;
@@ -426,7 +453,7 @@ struct FreeLengthFunctor {
       const double h = 1e-6 * (1.0 + std::abs(x[j]));
       double xp[4] = {x[0], x[1], x[2], x[3]}, rj[4];
       xp[j] += h;
-      if (!Residual(xp, rj)) return false;
+      if (!Residual(xp, rj, false, j == 0 ? &path : nullptr)) return false;  // the rate: path's k, K, phase terms
       for (int i = 0; i < 4; ++i) jacobian[j * 4 + i] = (rj[i] - r[i]) / h;
     }
     return true;
@@ -466,6 +493,7 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   solver.options.parameter_tolerance = 1e-15;
   solver.options.function_tolerance = 0.0;
   solver.options.cost_threshold = 0.5 * kSearchStop * kSearchStop;
+  f.cost_threshold = solver.options.cost_threshold;
   double r0[4];
   if (f.Residual(v.data(), r0)) {
     // A run still far from a root after a few iterations is abandoned (such runs rarely
@@ -513,9 +541,10 @@ void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalRes
   solver.options.parameter_tolerance = 1e-15;
   solver.options.function_tolerance = 0.0;
   solver.options.cost_threshold = 0.5 * std::pow(0.1 * options.tolerance, 2);
+  f.cost_threshold = solver.options.cost_threshold;
   solver.Solve(f, &v);
   double res[4];
-  r->converged = v.allFinite() && f.Residual(v.data(), res) && Eigen::Map<const Eigen::Vector4d>(res).norm() <= options.tolerance;
+  r->converged = v.allFinite() && f.ResidualAt(v.data(), res) && Eigen::Map<const Eigen::Vector4d>(res).norm() <= options.tolerance;
   r->evaluations += f.evaluations;
   if (!r->converged) return;
   std::copy(v.data(), v.data() + 3, r->x);

@@ -866,3 +866,49 @@ TEST(Isoparallel, WholeSolvesKeepTheFoldPairAndTheFreeLengthPolishFindsMore) {
     }
   }
 }
+
+// Elastica::WithRate (the searches' rate column: the path of another rate sharing k's AGM
+// sequence, K, D and the values at s = 0) gives what the constructor gives for the same
+// parameters, bit for bit: positions, tangents, curvatures, G, E, the period, the drift and the
+// closed-form rolling built on it (and TangentAndCurvature, the phase and length columns' one
+// Jacobi evaluation, Tangent's and Curvature's values); down to rate 0 (a straight line: infinite period, no drift,
+// none kept from the curved path) and in both regimes. A non-finite rate is refused by name.
+TEST(Isoparallel, ElasticaWithRateEqualsTheConstructedPath) {
+  for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
+    ElasticaParameters p;
+    p.regime = regime;
+    p.rate = 1.3;
+    p.modulus = -0.7;
+    p.phase = 2.9;
+    p.heading_w = 0.4;
+    const Elastica base(p);
+    for (double rate : {1.3 + 1e-6, -0.45, 2.7, 0.0}) {
+      ElasticaParameters q = p;
+      q.rate = rate;
+      const Elastica made(q), shared = base.WithRate(rate);
+      EXPECT_EQ(shared.parameters().rate, rate);
+      EXPECT_EQ(shared.G(), made.G()) << rate;
+      EXPECT_EQ(shared.Energy(), made.Energy()) << rate;
+      EXPECT_EQ(shared.Period(), made.Period()) << rate;
+      EXPECT_EQ(shared.DriftPerPeriod(), made.DriftPerPeriod()) << rate;
+      for (double s : {0.0, 1e-7, 0.02, 0.9, 7.5, -3.1}) {
+        EXPECT_EQ(shared.Position(s), made.Position(s)) << rate << " " << s;
+        EXPECT_EQ(shared.Tangent(s), made.Tangent(s)) << rate << " " << s;
+        EXPECT_EQ(shared.Curvature(s), made.Curvature(s)) << rate << " " << s;
+        Eigen::Vector2d tangent;
+        double curvature = 0.0;
+        shared.TangentAndCurvature(s, &tangent, &curvature);  // one Jacobi evaluation for both
+        EXPECT_EQ(tangent, made.Tangent(s)) << rate << " " << s;
+        EXPECT_EQ(curvature, made.Curvature(s)) << rate << " " << s;
+      }
+      if (rate == 0.0) {
+        EXPECT_TRUE(std::isinf(shared.Period()));
+        EXPECT_EQ(shared.DriftPerPeriod(), Eigen::Vector2d::Zero());
+        continue;
+      }
+      const internal::ElasticaClosedRolling a(shared), b(made);
+      EXPECT_EQ(a.Rolling(5.3), b.Rolling(5.3)) << rate;
+    }
+    EXPECT_THROW(base.WithRate(std::nan("")), std::invalid_argument);
+  }
+}

@@ -58,6 +58,12 @@ class Elastica {
   /// Throws std::invalid_argument on the separatrix (E = G to 1e-12 relative) or invalid values.
   static Elastica FromInitialState(double G, double heading_w, double heading0, double curvature0);
 
+  /// The same elastica with rate `rate` (regime, modulus, phase and heading_w kept), equal bit for
+  /// bit to Elastica with those parameters: the AGM sequence of k, K, D and the values at s = 0 do
+  /// not depend on the rate and are shared, not recomputed (the rate column of the isoparallel
+  /// searches' Jacobian, section 2.2). Throws std::invalid_argument naming the rate when not finite.
+  Elastica WithRate(double rate) const;
+
   const ElasticaParameters& parameters() const { return p_; }
   /// G = |W| (1/length^2).
   double G() const { return g_; }
@@ -71,6 +77,8 @@ class Elastica {
   double Curvature(double s) const;
   /// Unit tangent x'(s).
   Eigen::Vector2d Tangent(double s) const;
+  /// Tangent(s) and Curvature(s), bit for bit, from one evaluation of the Jacobi functions.
+  void TangentAndCurvature(double s, Eigen::Vector2d* tangent, double* curvature) const;
   /// x(s) - x(0), in closed form.
   Eigen::Vector2d Position(double s) const;
   /// Period of the curvature in s: 4K/|b| (oscillating), 2K/|a| (rotating); +infinity for
@@ -89,9 +97,11 @@ class Elastica {
   };
   Jacobi Eval(double u) const;
   Eigen::Vector2d TangentOf(const Jacobi& j) const;
+  double CurvatureOf(const Jacobi& j) const;
   double IntegralSn2(double u) const;  // int_0^u sn^2
   double IntegralSn2(double u, Jacobi* j) const;  // the same, and the Jacobi functions at u
   double AmplitudeOf(double u) const;  // am(u), continuous
+  void SetRateTerms();  // G, E, the period and the drift from p_.rate (and k, K, D, g_W)
   ElasticaParameters p_;
   double k_ = 0.0;       // |modulus|
   std::shared_ptr<const internal::JacobiAgm> agm_;  // AGM sequence of k (immutable, shared by copies)
