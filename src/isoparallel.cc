@@ -78,6 +78,8 @@ constexpr int kMaxCrossingsPerStart = 12;
 // Shape scan (SearchShape): scan points with a rotation residual up to kScanResidual (rad) start
 // a search; near-tangencies count when the chord misses the radius by less than kTangencyMiss.
 constexpr double kScanResidual = 1.0;
+// The residual a scan point gets where LogNormBound proves it above kScanResidual (no logarithm).
+constexpr double kAboveScanResidual = std::numeric_limits<double>::infinity();
 constexpr double kTangencyMiss = 0.3;
 // Shapes are searched in batches of kShapeBatch (the first one kFirstShapeBatch: the cap is
 // unknown until then); between batches the search length shrinks to the cap (times
@@ -841,13 +843,26 @@ struct ShapeNodes {
   std::vector<Eigen::Vector2d> x;
   Eigen::Matrix3d target_t;
   internal::GoalDirection goal;
+  internal::LogNormBound bound{kScanResidual};
 };
 
-// The rotation residual of the path from node i0 to node i of a shape's table (the rotation trick
-// with B from the chord's direction; q0t = Q(0, s0)^T, Q(s0, s) = Q(0, s) Q(0, s0)^T).
-Eigen::Vector3d NodeResidual(const ShapeNodes& nodes, const Eigen::Matrix3d& q0t, long i0, long i) {
-  return internal::ChordResidual(nodes.target_t, nodes.goal, nodes.x[i] - nodes.x[i0],
+// The rotation whose log is the residual of the path from node i0 to node i of a shape's table (the
+// rotation trick with B from the chord's direction; q0t = Q(0, s0)^T, Q(s0, s) = Q(0, s) Q(0, s0)^T).
+Eigen::Matrix3d NodeResidualRotation(const ShapeNodes& nodes, const Eigen::Matrix3d& q0t, long i0, long i) {
+  return internal::ChordRotation(nodes.target_t, nodes.goal, nodes.x[i] - nodes.x[i0],
                                  nodes.table->NodeRolling(i, nodes.powers) * q0t);
+}
+
+// |residual| of a crossing between nodes i0 + l - 1 and i0 + l (interpolated with weight t on the
+// later node; node i0 + 1's alone for l = 1), +infinity where LogNormBound proves it above
+// kScanResidual (SearchShape reads no residual beyond it, and such a neighbour never undercuts one
+// below it), without the logarithms.
+double CrossingResidual(const ShapeNodes& nodes, const Eigen::Matrix3d& q0t, long i0, long l, double t) {
+  const Eigen::Matrix3d a = NodeResidualRotation(nodes, q0t, i0, i0 + l);
+  if (l == 1) return nodes.bound.Exceeds(a) ? kAboveScanResidual : internal::TraceLogSO3(a).norm();
+  const Eigen::Matrix3d b = NodeResidualRotation(nodes, q0t, i0, i0 + l - 1);
+  if (nodes.bound.InterpolationExceeds(a, b)) return kAboveScanResidual;
+  return (t * internal::TraceLogSO3(a) + (1 - t) * internal::TraceLogSO3(b)).norm();
 }
 
 // A point of a shape's (s0, L) scan where the chord |x(s0 + L) - x(s0)| crosses the radius
@@ -872,8 +887,9 @@ struct ShapeScan {
 // does, the next k nodes hold no crossing and no near-tangency and are skipped. Elsewhere the
 // squared chord against precomputed bounds decides, with a square root only where a skip or an
 // event is possible.
-void ScanRow(const Context& ctx, const ShapeNodes& nodes, const std::vector<double>& reach, double h, long i0,
-             long l_end, double limit, std::vector<ScanPoint>* row) {
+// Not inlined: ScanShape's loop over rows would crowd its registers (the node loop spills).
+[[gnu::noinline]] void ScanRow(const Context& ctx, const ShapeNodes& nodes, const std::vector<double>& reach,
+                               double h, long i0, long l_end, double limit, std::vector<ScanPoint>* row) {
   const std::vector<Eigen::Vector2d>& x = nodes.x;
   const Eigen::Matrix3d q0t = nodes.table->NodeRolling(i0, nodes.powers).transpose();
   const Eigen::Vector2d x0 = x[i0];
@@ -902,16 +918,17 @@ void ScanRow(const Context& ctx, const ShapeNodes& nodes, const std::vector<doub
     }
     if ((f > 0) != (f_prev > 0)) {
       const double t = f_prev / (f_prev - f);  // linear interpolation between the nodes
-      Eigen::Vector3d r = NodeResidual(nodes, q0t, i0, i0 + l);
-      if (l > 1) r = t * r + (1 - t) * NodeResidual(nodes, q0t, i0, i0 + l - 1);
       if ((l - 1 + t) * h > limit) break;
-      row->push_back({(l - 1 + t) * h, r.norm()});
+      row->push_back({(l - 1 + t) * h, CrossingResidual(nodes, q0t, i0, l, t)});
       if (row->size() - first >= static_cast<std::size_t>(kMaxCrossingsPerStart)) break;
     } else if (l >= 2 && f_prev + r2 > band_lo && f_prev + r2 < band_hi &&
                ((f_prev > f_prev2 && f_prev >= f && f_prev < 0) || (f_prev < f_prev2 && f_prev <= f && f_prev > 0))) {
       const double miss = std::sqrt(f_prev + r2) - ctx.radius;  // an extremum at node l - 1
-      if (std::abs(miss) < kTangencyMiss)
-        row->push_back({(l - 1) * h, std::hypot(miss, NodeResidual(nodes, q0t, i0, i0 + l - 1).norm())});
+      if (std::abs(miss) < kTangencyMiss) {
+        const Eigen::Matrix3d a = NodeResidualRotation(nodes, q0t, i0, i0 + l - 1);
+        const double r = nodes.bound.Exceeds(a) ? kAboveScanResidual : internal::TraceLogSO3(a).norm();
+        row->push_back({(l - 1) * h, std::hypot(miss, r)});
+      }
     }
     f_prev2 = f_prev;
     f_prev = f;
@@ -939,6 +956,7 @@ ShapeScan ScanShape(const Context& ctx, const Elastica& e) {
   --l_limit;
   const std::vector<double> reach = internal::ChordReach(nodes.x, table.Steps(), l_limit + 3, h);
   scan.row_end.reserve(table.Steps());
+  scan.points.reserve(2 * table.Steps());  // about two points a row on the rotation problem
   for (long i0 = 0; i0 < table.Steps(); ++i0) {
     ScanRow(ctx, nodes, reach, h, i0, std::min(last - i0, l_limit), ctx.s_limit, &scan.points);
     scan.row_end.push_back(scan.points.size());

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -186,6 +187,50 @@ TEST(Isoparallel, ScanResidualMatchesTheRotationTrick) {
     const Eigen::Matrix3d r = random_rotation(angle);
     EXPECT_LT((internal::TraceLogSO3(r) - LogSO3(r)).norm(), 1e-12) << angle;
     EXPECT_NEAR(internal::TraceLogSO3(r).norm(), angle, 1e-12) << angle;
+  }
+}
+
+// The scan stores a crossing's residual as +infinity where LogNormBound proves it above the bound
+// without the logarithms: never where |t Log a + (1 - t) Log b| (TraceLogSO3, t on a grid) is at
+// most the bound, also near pi where the two logs of close rotations point opposite ways (their
+// interpolation small), and it does fire for most pairs clear of the bound and of pi.
+TEST(Isoparallel, ScanResidualBoundNeverHidesAStart) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto direction = [&] { return Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized(); };
+  const internal::LogNormBound bound(1.0);
+  int fired = 0, clear = 0, flipped = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Eigen::Vector3d axis = direction();
+    const double angle = trial % 4 == 0 ? M_PI - 0.4 * std::abs(unit(rng)) : 0.8 + 2.4 * std::abs(unit(rng));
+    const Eigen::Matrix3d a = ExpSO3(angle * axis);
+    const Eigen::Matrix3d b = a * ExpSO3(0.8 * std::abs(unit(rng)) * direction());  // phi up to 0.8
+    const Eigen::Vector3d la = internal::TraceLogSO3(a), lb = internal::TraceLogSO3(b);
+    double lowest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= 64; ++k) lowest = std::min(lowest, ((k / 64.0) * la + (1 - k / 64.0) * lb).norm());
+    if (la.dot(lb) < 0) ++flipped;
+    const bool exceeds = bound.InterpolationExceeds(a, b);
+    if (exceeds) {
+      ++fired;
+      ASSERT_GT(lowest, 1.0) << trial;
+    }
+    if (lowest > 1.6 && std::max(la.norm(), lb.norm()) < 2.6 && RotationAngle(a, b) < 0.5) {  // tier phi <= 0.5
+      ++clear;
+      EXPECT_TRUE(exceeds) << trial;
+    }
+    if (bound.Exceeds(a)) {
+      ASSERT_GT(la.norm(), 1.0) << trial;
+    }
+    if (la.norm() > 1.0 + 2e-6) {
+      ASSERT_TRUE(bound.Exceeds(a)) << trial;
+    }
+  }
+  EXPECT_GT(flipped, 100) << "pairs across pi: logs of opposite sign";
+  EXPECT_GT(clear, 2000);
+  EXPECT_GT(fired, clear);
+  for (double angle : {1.0 - 1e-9, 1.0, 1.0 + 1e-7, 1.0 + 2e-6, 2.0, M_PI}) {  // one rotation
+    const Eigen::Matrix3d r = ExpSO3(angle * direction());
+    EXPECT_EQ(bound.Exceeds(r), angle > 1.0 + 1e-6) << angle;
   }
 }
 
