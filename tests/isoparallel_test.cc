@@ -157,23 +157,42 @@ TEST(ElasticaRolling, ChordReachBoundsEveryNodeChord) {
   EXPECT_GE(tight, 5) << "curled shapes of many periods: the periodic bound must be in use";
 }
 
+namespace {
+// The scan's table of a shape (rate 5, the given modulus) over `length` plus a period: its nodes'
+// positions, their ChordReach over every node, the spacing and the nodes per period (no nodes:
+// the table is not valid).
+struct ReachTable {
+  std::vector<Eigen::Vector2d> x;
+  std::vector<double> reach;
+  double h = 0.0;
+  long steps = 0;
+};
+ReachTable MakeReachTable(double modulus, double length) {
+  ElasticaParameters p;
+  p.modulus = modulus;
+  p.rate = 5.0;
+  const Elastica e(p);
+  const internal::ElasticaRollingTable table(e, length + e.Period(), 12, 0.5);
+  ReachTable t;
+  if (!table.Valid()) return t;
+  table.NodePositions(&t.x);
+  t.h = table.Step();
+  t.steps = table.Steps();
+  t.reach = internal::ChordReach(t.x, t.steps, static_cast<long>(t.x.size()) - 1, t.h);
+  return t;
+}
+}  // namespace
+
 // FirstReachAtLeast (the scan's galloping search from the guess gap / h) gives std::lower_bound's
 // index for every gap: reaches of open and curled shapes, gaps at, between and beyond every entry
 // (guesses below, at and far above the answer), and NaN.
 TEST(ElasticaRolling, FirstReachAtLeastIsLowerBound) {
   int checked = 0;
   for (const double modulus : {0.3, 0.95}) {
-    ElasticaParameters p;
-    p.modulus = modulus;
-    p.rate = 5.0;
-    const Elastica e(p);
-    const internal::ElasticaRollingTable table(e, 30.0 + e.Period(), 12, 0.5);
-    ASSERT_TRUE(table.Valid());
-    std::vector<Eigen::Vector2d> x;
-    table.NodePositions(&x);
-    const long count = static_cast<long>(x.size()) - 1 - table.Steps();
-    const std::vector<double> reach = internal::ChordReach(x, table.Steps(), count, table.Step());
-    const double h = table.Step();
+    const ReachTable t = MakeReachTable(modulus, 30.0);
+    ASSERT_FALSE(t.x.empty());
+    const std::vector<double>& reach = t.reach;
+    const double h = t.h;
     std::vector<double> gaps = {0.0, -1.0, 1e300, std::numeric_limits<double>::quiet_NaN(), reach.back() * 2};
     for (std::size_t k = 0; k < reach.size(); ++k)
       for (const double d : {-1e-13, 0.0, 1e-13, 0.5 * h}) gaps.push_back(reach[k] + d);
@@ -195,21 +214,15 @@ TEST(ElasticaRolling, FirstReachAtLeastIsLowerBound) {
 TEST(ElasticaRolling, ReachSkipKeepsSkippedNodesBeyondTheEdge) {
   long skipped = 0;
   for (const double modulus : {0.3, 0.95}) {
-    ElasticaParameters p;
-    p.modulus = modulus;
-    p.rate = 5.0;
-    const Elastica e(p);
-    const internal::ElasticaRollingTable table(e, 12.0 + e.Period(), 12, 0.5);
-    ASSERT_TRUE(table.Valid());
-    std::vector<Eigen::Vector2d> x;
-    table.NodePositions(&x);
+    const ReachTable t = MakeReachTable(modulus, 12.0);
+    ASSERT_FALSE(t.x.empty());
+    const std::vector<Eigen::Vector2d>& x = t.x;
     const long last = static_cast<long>(x.size()) - 1;
-    const std::vector<double> reach = internal::ChordReach(x, table.Steps(), last, table.Step());
     for (const double edge : {1.0, 2.0, 3.0})
-      for (long j = 0; j < table.Steps(); ++j)
+      for (long j = 0; j < t.steps; ++j)
         for (long l = j + 1; l <= last; ++l) {
           const double c = (x[l] - x[j]).norm(), gap = std::abs(c - edge);
-          const long k = std::min(internal::ReachSkip(reach, gap, table.Step()), last - l);
+          const long k = std::min(internal::ReachSkip(t.reach, gap, t.h), last - l);
           if (k < 1) continue;
           skipped += k;
           for (long m = l - 1; m <= l + k; ++m)
