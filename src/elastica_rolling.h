@@ -108,4 +108,28 @@ class ElasticaRollingTable {
 /// margin (1e-9 relative, 1e-12 absolute) for the nodes' round-off.
 std::vector<double> ChordReach(const std::vector<Eigen::Vector2d>& x, long period_nodes, long count, double h);
 
+/// std::lower_bound(reach.begin(), reach.end(), gap) - reach.begin() (reach non-decreasing), found
+/// by a galloping search up from the guess gap / h (ChordReach's reach[k] is at most about k h,
+/// and close to it on the scan's long-period shapes): the same index for any guess, in a few
+/// comparisons where the answer lies near the guess.
+inline long FirstReachAtLeast(const std::vector<double>& reach, double gap, double h) {
+  const long n = static_cast<long>(reach.size());
+  const double guess = gap / h;
+  long lo = guess >= 0.0 && guess < static_cast<double>(n) ? static_cast<long>(guess) : (guess >= 0.0 ? n : 0);
+  if (lo > 0 && !(reach[lo - 1] < gap))  // the answer lies below the guess
+    return std::lower_bound(reach.begin(), reach.begin() + lo, gap) - reach.begin();
+  long hi = lo;  // every k < lo has reach[k] < gap; the answer lies in [lo, hi] once reach[hi] >= gap
+  for (long step = 1; hi < n && reach[hi] < gap; step *= 2) {
+    lo = hi + 1;
+    hi = std::min(n, hi + step);
+  }
+  return std::lower_bound(reach.begin() + lo, reach.begin() + hi, gap) - reach.begin();
+}
+
+/// The nodes a scan may skip after node l whose chord |x[l] - x[j]| passes an edge (outward or
+/// inward) by `gap`: the largest k with reach[k] < gap (-1: none, gap <= reach[0]). Nodes l - 1 ..
+/// l + k then keep their chords beyond the edge (|x[l + d] - x[l]| <= reach[|d|] < gap for
+/// |d| <= k) when k >= 1 (node l - 1 needs reach[1] < gap).
+inline long ReachSkip(const std::vector<double>& reach, double gap, double h) { return FirstReachAtLeast(reach, gap, h) - 1; }
+
 }  // namespace plateball::internal

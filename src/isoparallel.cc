@@ -883,31 +883,36 @@ struct ShapeScan {
 };
 
 // One row of the scan: start node i0, lengths up to node l_end; `limit` is the search length.
-// While |chord| - radius exceeds kTangencyMiss + reach[k + 2] (ChordReach), or radius - |chord|
-// does, the next k nodes hold no crossing and no near-tangency and are skipped. Elsewhere the
-// squared chord against precomputed bounds decides, with a square root only where a skip or an
-// event is possible.
+// While |chord| at node l exceeds the near-tangency band's outer edge (radius + kTangencyMiss,
+// loosened as the band test is by 1e-9) by more than reach[k] (ChordReach), or falls below its
+// inner edge by more, nodes l - 1 .. l + k lie outside the band on the same side of the radius:
+// no crossing between them and no near-tangency at them, and the k nodes after l are skipped (the
+// row resumes with the crossing between nodes l + k and l + k + 1 and the extremum test at l + k).
+// Elsewhere the squared chord against precomputed bounds decides, with a square root only where a
+// skip or an event is possible.
 // Not inlined: ScanShape's loop over rows would crowd its registers (the node loop spills).
+constexpr long kMinSkip = 3;  // ScanRow: the fewest nodes a skip is tried for
 [[gnu::noinline]] void ScanRow(const Context& ctx, const ShapeNodes& nodes, const std::vector<double>& reach,
                                double h, long i0, long l_end, double limit, std::vector<ScanPoint>* row) {
   const std::vector<Eigen::Vector2d>& x = nodes.x;
   const Eigen::Matrix3d q0t = nodes.table->NodeRolling(i0, nodes.powers).transpose();
   const Eigen::Vector2d x0 = x[i0];
   const double r2 = ctx.radius * ctx.radius, far = ctx.radius + kTangencyMiss, near = ctx.radius - kTangencyMiss;
-  // Squared chords beyond which a skip is possible (a skip needs |chord| - far > reach[3], or
-  // near - |chord| > reach[3]), and the band (loosened by 1e-9) where an extremum is a near-tangency.
-  const double skip_out = (far + reach[3]) * (far + reach[3]);
-  const double skip_in = near - reach[3] > 0 ? (near - reach[3]) * (near - reach[3]) : -1.0;
+  // The band (loosened by 1e-9) where an extremum is a near-tangency; chords beyond its edges
+  // (loosened by 1e-9 more) by more than reach[k] stay out of it for k nodes; squared chords beyond
+  // which a skip of kMinSkip nodes is possible.
   const double band_lo = near > 0 ? near * near * (1 - 1e-9) : -1.0, band_hi = far * far * (1 + 1e-9);
+  const double out_edge = far * (1 + 1e-9), in_edge = near * (1 - 1e-9);
+  const double skip_out = (out_edge + reach[kMinSkip]) * (out_edge + reach[kMinSkip]);
+  const double skip_in = in_edge - reach[kMinSkip] > 0 ? (in_edge - reach[kMinSkip]) * (in_edge - reach[kMinSkip]) : -1.0;
   const std::size_t first = row->size();
   double f_prev = -r2, f_prev2 = -r2;  // |chord|^2 - radius^2 at the two previous nodes
   for (long l = 1; l <= l_end; ++l) {
     double f = (x[i0 + l] - x0).squaredNorm() - r2;
     if ((f + r2 > skip_out && f_prev > 0) || (f + r2 < skip_in && f_prev < 0)) {
-      const double c = std::sqrt(f + r2), gap = f > 0 ? c - far : near - c;
-      // reach[k] < gap for k <= skip + 2, and the row's end not passed.
-      const long fit = std::lower_bound(reach.begin(), reach.end(), gap) - reach.begin() - 1;
-      const long skip = std::min(fit - 2, l_end - l - 2);
+      const double c = std::sqrt(f + r2), gap = f > 0 ? c - out_edge : in_edge - c;
+      // reach[k] < gap for k <= skip, and the row's end not passed.
+      const long skip = std::min(internal::ReachSkip(reach, gap, h), l_end - l - 2);
       if (skip > 0) {  // resume with the two nodes before the next one
         l += skip;
         f_prev2 = (x[i0 + l - 1] - x0).squaredNorm() - r2;

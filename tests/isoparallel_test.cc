@@ -157,6 +157,81 @@ TEST(ElasticaRolling, ChordReachBoundsEveryNodeChord) {
   EXPECT_GE(tight, 5) << "curled shapes of many periods: the periodic bound must be in use";
 }
 
+namespace {
+// The scan's table of a shape (rate 5, the given modulus) over `length` plus a period: its nodes'
+// positions, their ChordReach over every node, the spacing and the nodes per period (no nodes:
+// the table is not valid).
+struct ReachTable {
+  std::vector<Eigen::Vector2d> x;
+  std::vector<double> reach;
+  double h = 0.0;
+  long steps = 0;
+};
+ReachTable MakeReachTable(double modulus, double length) {
+  ElasticaParameters p;
+  p.modulus = modulus;
+  p.rate = 5.0;
+  const Elastica e(p);
+  const internal::ElasticaRollingTable table(e, length + e.Period(), 12, 0.5);
+  ReachTable t;
+  if (!table.Valid()) return t;
+  table.NodePositions(&t.x);
+  t.h = table.Step();
+  t.steps = table.Steps();
+  t.reach = internal::ChordReach(t.x, t.steps, static_cast<long>(t.x.size()) - 1, t.h);
+  return t;
+}
+}  // namespace
+
+// FirstReachAtLeast (the scan's galloping search from the guess gap / h) gives std::lower_bound's
+// index for every gap: reaches of open and curled shapes, gaps at, between and beyond every entry
+// (guesses below, at and far above the answer), and NaN.
+TEST(ElasticaRolling, FirstReachAtLeastIsLowerBound) {
+  int checked = 0;
+  for (const double modulus : {0.3, 0.95}) {
+    const ReachTable t = MakeReachTable(modulus, 30.0);
+    ASSERT_FALSE(t.x.empty());
+    const std::vector<double>& reach = t.reach;
+    const double h = t.h;
+    std::vector<double> gaps = {0.0, -1.0, 1e300, std::numeric_limits<double>::quiet_NaN(), reach.back() * 2};
+    for (std::size_t k = 0; k < reach.size(); ++k)
+      for (const double d : {-1e-13, 0.0, 1e-13, 0.5 * h}) gaps.push_back(reach[k] + d);
+    for (const double gap : gaps) {
+      const long expect = std::lower_bound(reach.begin(), reach.end(), gap) - reach.begin();
+      ASSERT_EQ(internal::FirstReachAtLeast(reach, gap, h), expect) << modulus << " " << gap;
+      for (const double guess_h : {1e-15 * h, 0.1 * h, 10.0 * h})  // guesses far above and below the answer
+        ASSERT_EQ(internal::FirstReachAtLeast(reach, gap, guess_h), expect) << modulus << " " << gap;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100);
+}
+
+// ReachSkip (the nodes the shape scan skips): brute force over start nodes j and nodes l of
+// tables of an open and a curled shape of many periods, against edges at 1, 2 and 3 (the rotation
+// problem's radius 2.24 +- kTangencyMiss): every node l - 1 .. l + k keeps its chord on the side
+// of the edge its chord at l is on, and skips do happen.
+TEST(ElasticaRolling, ReachSkipKeepsSkippedNodesBeyondTheEdge) {
+  long skipped = 0;
+  for (const double modulus : {0.3, 0.95}) {
+    const ReachTable t = MakeReachTable(modulus, 12.0);
+    ASSERT_FALSE(t.x.empty());
+    const std::vector<Eigen::Vector2d>& x = t.x;
+    const long last = static_cast<long>(x.size()) - 1;
+    for (const double edge : {1.0, 2.0, 3.0})
+      for (long j = 0; j < t.steps; ++j)
+        for (long l = j + 1; l <= last; ++l) {
+          const double c = (x[l] - x[j]).norm(), gap = std::abs(c - edge);
+          const long k = std::min(internal::ReachSkip(t.reach, gap, t.h), last - l);
+          if (k < 1) continue;
+          skipped += k;
+          for (long m = l - 1; m <= l + k; ++m)
+            ASSERT_EQ((x[m] - x[j]).norm() > edge, c > edge) << modulus << " " << edge << " " << j << " " << l << " " << m;
+        }
+  }
+  EXPECT_GT(skipped, 1000);
+}
+
 // The scan's residual (ChordResidual: B's cos and sin from the normalised chord, the logarithm by
 // the trace route) against the rotation trick's (RotationTrickResidual: atan2, sincos, LogSO3 of
 // the product) at random targets, chords and rollings over all angles up to pi, a zero chord, and
