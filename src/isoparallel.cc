@@ -5,7 +5,6 @@
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 #include <algorithm>
-#include <boost/math/special_functions/ellint_1.hpp>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
