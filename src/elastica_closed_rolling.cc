@@ -178,3 +178,135 @@ Eigen::Matrix3d ElasticaClosedRolling::Rolling(double s) const {
 }
 
 }  // namespace plateball::internal
+
+namespace plateball::internal {
+
+// One direction of the parameters (drate, dk) and what it moves: G, V, n and twist_factor_.
+struct ElasticaClosedRolling::Direction {
+  double drate = 0.0, dk = 0.0;
+  double kc2 = 1.0;  // k'^2
+  double dg = 0.0, dv = 0.0, dn = 0.0, dt = 0.0;
+};
+
+// The Jacobi functions, int_0^w sn^2 (Legendre's D of am w) and the whole Pi(n; am w) of a node
+// moved along a Direction (w by dw).
+struct ElasticaClosedRolling::NodeDerivative {
+  double dsn = 0.0, dcn = 0.0, ddn = 0.0, dintegral = 0.0, dpi_total = 0.0;
+};
+
+ElasticaClosedRolling::NodeDerivative ElasticaClosedRolling::Differentiate(const Node& j, double w, double integral_sn2,
+                                                                           double dw, const Direction& d) const {
+  const double k = modulus_, k2 = k * k, kc2 = d.kc2, sc = j.sn * j.cn;
+  // am(w, k) at fixed w: F(am, k) = w, dF/dk = E/(k k'^2) - F/k - k sin cos/(k'^2 Delta) with
+  // F = w and E(am w) = w - k^2 D(am w): d am/dk = (k/k'^2)(sn cn - dn (w - D)).
+  const double dphi = j.dn * dw + (k / kc2) * (sc - j.dn * (w - integral_sn2)) * d.dk;
+  NodeDerivative out;
+  out.dsn = j.cn * dphi;
+  out.dcn = -j.sn * dphi;
+  out.ddn = -(k * j.sn * j.sn * d.dk + k2 * sc * dphi) / j.dn;
+  // D(phi, k) = (F - E)/k^2 at fixed phi: dD/dk = (w - (1 + k'^2) D - sn cn/dn)/(k k'^2).
+  out.dintegral = j.sn * j.sn / j.dn * dphi + (w - (1.0 + kc2) * integral_sn2 - sc / j.dn) / (k * kc2) * d.dk;
+  // Pi(n; phi, k): dPi/dphi = 1/((1 - n sin^2) Delta); dPi/dn and dPi/dk (Byrd and Friedman
+  // 733.00, 710.00) in terms of F = w, E and Pi of the same phi (any phi: the whole periods included).
+  const double n = n_, e_total = w - k2 * integral_sn2, pi_total = 2.0 * j.m * complete_pi_ + j.pi;
+  const double lam = 1.0 - n * j.sn * j.sn;
+  const double dpi_dn =
+      (e_total + (k2 - n) * w / n + (n * n - k2) * pi_total / n - n * j.dn * sc / lam) / (2.0 * (k2 - n) * (n - 1.0));
+  const double dpi_dk = k / (n - k2) * (-e_total / kc2 + pi_total + k2 * sc / (kc2 * j.dn));
+  out.dpi_total = dphi / (lam * j.dn) + dpi_dk * d.dk + dpi_dn * d.dn;
+  return out;
+}
+
+// dF for F = [f1, u x f1, u] from the costate's derivative (the chart off G = 1).
+Eigen::Matrix3d ElasticaClosedRolling::FrameDerivative(const Node& j, const NodeDerivative& dj, const Direction& d) const {
+  const Eigen::Vector3d v = PendulumCostate(j);
+  Eigen::Vector3d dv;
+  if (regime_ == PendulumRegime::kOscillating) {  // v = (2 k sn dn, 2 k^2 sn^2 - (1 - G), 2 k b cn)
+    const double k = modulus_, b = rate_;
+    dv << 2.0 * (d.dk * j.sn * j.dn + k * dj.dsn * j.dn + k * j.sn * dj.ddn),
+        4.0 * k * d.dk * j.sn * j.sn + 4.0 * k * k * j.sn * dj.dsn + d.dg,
+        2.0 * (d.dk * b * j.cn + k * d.drate * j.cn + k * b * dj.dcn);
+  } else {  // v = (2 sn cn, 2 sn^2 - (1 - G), 2 a dn)
+    dv << 2.0 * (dj.dsn * j.cn + j.sn * dj.dcn), 4.0 * j.sn * dj.dsn + d.dg, 2.0 * (d.drate * j.dn + rate_ * dj.ddn);
+  }
+  const double norm = v.norm(), rho2 = v.x() * v.x() + v.y() * v.y(), rho = std::sqrt(rho2);
+  const Eigen::Vector3d u = v / norm, du = (dv - u * u.dot(dv)) / norm;
+  const Eigen::Vector2d f(-v.y() / rho, v.x() / rho);
+  const Eigen::Vector2d df = Eigen::Vector2d(-dv.y(), dv.x()) / rho - f * (v.x() * dv.x() + v.y() * dv.y()) / rho2;
+  const auto plane = [this](double x, double y, double z) {
+    return Eigen::Vector3d(cos_w_ * x - sin_w_ * y, sin_w_ * x + cos_w_ * y, z);
+  };
+  const Eigen::Vector3d f1 = plane(f.x(), f.y(), 0.0), df1 = plane(df.x(), df.y(), 0.0);
+  const Eigen::Vector3d up = plane(u.x(), u.y(), u.z()), dup = plane(du.x(), du.y(), du.z());
+  Eigen::Matrix3d out;
+  out << df1, dup.cross(f1) + up.cross(df1), dup;
+  return out;
+}
+
+// d(x(s) - x(0)) from the positions' closed forms (Elastica::Position) in the pendulum frame.
+Eigen::Vector2d ElasticaClosedRolling::ChordDerivative(const Node& a, const NodeDerivative& da, double ia, const Node& b,
+                                                       const NodeDerivative& db, double ib, const Direction& d) const {
+  const double di = ib - ia, ddi = db.dintegral - da.dintegral;
+  double dx = 0.0, dy = 0.0;
+  if (regime_ == PendulumRegime::kOscillating) {  // x = s - 2 k^2 D / b, y = -2 k (cn1 - cn0) / b
+    const double k = modulus_, r = rate_, dc = b.cn - a.cn;
+    dx = -4.0 * k * d.dk * di / r - 2.0 * k * k * ddi / r + 2.0 * k * k * di * d.drate / (r * r);
+    dy = -2.0 * d.dk * dc / r - 2.0 * k * (db.dcn - da.dcn) / r + 2.0 * k * dc * d.drate / (r * r);
+  } else {  // x = s - 2 D / a, y = 2 (sn1^2 - sn0^2) / ((dn1 + dn0) a)
+    const double r = rate_, p = b.sn * b.sn - a.sn * a.sn, q = b.dn + a.dn, y = 2.0 * p / (q * r);
+    dx = -2.0 * ddi / r + 2.0 * di * d.drate / (r * r);
+    const double dp = 2.0 * (b.sn * db.dsn - a.sn * da.dsn), dq = db.ddn + da.ddn;
+    dy = 2.0 * dp / (q * r) - y * (dq / q + d.drate / r);
+  }
+  return {cos_w_ * dx - sin_w_ * dy, sin_w_ * dx + cos_w_ * dy};
+}
+
+// omega with dQ = Q hat(omega), Q = F1 Rz(psi) F0^T: Q^T dQ = F0 Rz^T F1^T dF1 Rz F0^T
+// + dpsi hat(F0 e3) + F0 dF0^T.
+Eigen::Vector3d ElasticaClosedRolling::Spin(const Node& a, const NodeDerivative& da, const Node& b,
+                                            const NodeDerivative& db, double s, const Direction& d) const {
+  const Eigen::Matrix3d f0 = origin_frame_t_.transpose(), f1 = FrameAt(b);
+  const double dpi = 2.0 * (b.m - a.m) * complete_pi_ + (b.pi - a.pi);
+  const double dpsi = -0.5 * d.dv * (s + twist_factor_ * dpi) -
+                      0.5 * norm_v_ * (d.dt * dpi + twist_factor_ * (db.dpi_total - da.dpi_total));
+  const Eigen::Matrix3d rz = RotationZ(TwistBetween(a, b, s));
+  const Eigen::Matrix3d m = f0 * (rz.transpose() * (f1.transpose() * FrameDerivative(b, db, d)) * rz) * f0.transpose() +
+                            f0 * FrameDerivative(a, da, d).transpose();
+  return Vee(m) + dpsi * f0.col(2);
+}
+
+bool ElasticaClosedRolling::Sensitivity(const Elastica& e, double s, PathSensitivity* out) const {
+  if (straight_ || unit_chart_ || n_ == 0.0 || !(modulus_ >= kSensitivityMinModulus) ||
+      !(std::abs(one_minus_g_) >= kSensitivityMinOneMinusG) || !(std::abs(rate_ * s) >= kSensitivityMinArc))
+    return false;
+  const double w = rate_ * s + phase_;
+  if (!std::isfinite(w)) return false;
+  const Node b = At(s, "s", true);
+  const double ia = e.i0_, ib = e.IntegralSn2(w);
+  const bool oscillating = regime_ == PendulumRegime::kOscillating;
+  const double k = modulus_, g = big_g_;
+  PathSensitivity result;
+  for (int p = 0; p < 2; ++p) {
+    Direction d;
+    d.drate = p == 0 ? 1.0 : 0.0;
+    d.dk = p == 0 ? 0.0 : 1.0;
+    d.kc2 = e.kc2_;
+    // G = b^2 (oscillating), (a k)^2 (rotating); V = hypot(1 - G, 2 b k or 2 a); n = -4 G kappa^2/(1 - G)^2.
+    d.dg = oscillating ? 2.0 * rate_ * d.drate : 2.0 * rate_ * k * (k * d.drate + rate_ * d.dk);
+    const double scale = oscillating ? 2.0 * rate_ * k : 2.0 * rate_;
+    const double dscale = oscillating ? 2.0 * (k * d.drate + rate_ * d.dk) : 2.0 * d.drate;
+    d.dv = (-one_minus_g_ * d.dg + scale * dscale) / norm_v_;
+    d.dn = n_ * (d.dg / g + (oscillating ? 2.0 * d.dk / k : 0.0) + 2.0 * d.dg / one_minus_g_);
+    d.dt = twist_factor_ * (d.dg / (1.0 + g) + d.dg / one_minus_g_ - d.drate / rate_);
+    const NodeDerivative da = Differentiate(origin_, phase_, ia, 0.0, d), db = Differentiate(b, w, ib, s * d.drate, d);
+    (p == 0 ? result.chord_rate : result.chord_modulus) = ChordDerivative(origin_, da, ia, b, db, ib, d);
+    (p == 0 ? result.spin_rate : result.spin_modulus) = Spin(origin_, da, b, db, s, d);
+  }
+  if (!result.chord_rate.allFinite() || !result.chord_modulus.allFinite() || !result.spin_rate.allFinite() ||
+      !result.spin_modulus.allFinite())
+    return false;
+  *out = result;
+  return true;
+}
+
+}  // namespace plateball::internal

@@ -47,6 +47,25 @@ class ElasticaClosedRolling {
   double Twist(double s) const;
   /// V = |v(s)| (constant).
   double CostateNorm() const { return norm_v_; }
+
+  /// First derivatives of the path from 0 to s, x(s) - x(0) = e.Position(s) and Q(0, s) =
+  /// Rolling(s), with respect to the rate and to the modulus (the other parameters fixed): the
+  /// chord's directly, the rolling's as the spin omega with dQ/dp = Q hat(omega).
+  struct PathSensitivity {
+    Eigen::Vector2d chord_rate = Eigen::Vector2d::Zero(), chord_modulus = Eigen::Vector2d::Zero();
+    Eigen::Vector3d spin_rate = Eigen::Vector3d::Zero(), spin_modulus = Eigen::Vector3d::Zero();
+  };
+  /// The derivatives in closed form: each Jacobi function, Legendre's D and E and the twist's Pi
+  /// differentiated at fixed argument w = rate s + u0 (d am / dk, and dPi/dn, dPi/dk in terms of
+  /// F, E, Pi: Byrd and Friedman 710.00, 733.00), the costate frame through its costate. `e` must
+  /// be the elastica this object was built from. False (out untouched) where these forms are not
+  /// used: straight lines, circles and tiny moduli (modulus < kSensitivityMinModulus, also every
+  /// negative modulus), |1 - G| < kSensitivityMinOneMinusG (the frame's layer), short arcs
+  /// (|rate s| < kSensitivityMinArc, where the chord cancels), non-finite or overflowing s.
+  bool Sensitivity(const Elastica& e, double s, PathSensitivity* out) const;
+  static constexpr double kSensitivityMinModulus = 1e-3;
+  static constexpr double kSensitivityMinOneMinusG = 1e-3;
+  static constexpr double kSensitivityMinArc = 0.05;
   /// True when the curvature vanishes identically (rate 0, or oscillating with k = 0).
   bool IsStraight() const { return straight_; }
   /// True when the frame uses the G = 1 chart (|1 - G| < kUnitChart).
@@ -72,6 +91,15 @@ class ElasticaClosedRolling {
   Eigen::Matrix3d FrameAt(const Node& j) const;
   // psi(s1) - psi(s0) from the nodes (s1 - s0 passed exactly).
   double TwistBetween(const Node& a, const Node& b, double ds) const;
+  // Sensitivity's pieces: one direction (drate, dk) of the parameters.
+  struct Direction;
+  struct NodeDerivative;
+  NodeDerivative Differentiate(const Node& j, double w, double integral_sn2, double dw, const Direction& d) const;
+  Eigen::Matrix3d FrameDerivative(const Node& j, const NodeDerivative& dj, const Direction& d) const;
+  Eigen::Vector2d ChordDerivative(const Node& a, const NodeDerivative& da, double ia, const Node& b,
+                                  const NodeDerivative& db, double ib, const Direction& d) const;
+  Eigen::Vector3d Spin(const Node& a, const NodeDerivative& da, const Node& b, const NodeDerivative& db, double s,
+                       const Direction& d) const;
 
   PendulumRegime regime_;
   double rate_, modulus_, phase_;  // modulus_ signed, as in ElasticaParameters

@@ -422,6 +422,27 @@ struct FreeLengthFunctor {
     return jac.allFinite();
   }
 
+  // The rate and modulus columns from the closed-form derivatives of the last path's chord and
+  // rolling (ElasticaClosedRolling::Sensitivity): the residual of the chord and rolling moved along
+  // them by the forward-difference step, like the phase and length columns, without the two
+  // elasticas and closed rollings whole-path differences build (docs/paper_notes.md, "General
+  // targets", point 13). False where Sensitivity declines (the caller then differences paths).
+  bool AnalyticColumns(const double* x, const double* r, double* jacobian) const {
+    internal::ElasticaClosedRolling::PathSensitivity sens;
+    if (!last.rolling->Sensitivity(*last.path, x[3], &sens)) return false;
+    const double modulus = last.path->parameters().modulus;
+    const double dmodulus = (1.0 - modulus) * (1.0 + modulus);  // d tanh(atanh k) / d atanh k
+    for (int j = 0; j < 2; ++j) {
+      const double h = 1e-6 * (1.0 + std::abs(x[j])), step = j == 0 ? h : h * dmodulus;
+      const Eigen::Vector2d chord = last.chord + step * (j == 0 ? sens.chord_rate : sens.chord_modulus);
+      const Eigen::Matrix3d q = last.q * ExpSO3(step * (j == 0 ? sens.spin_rate : sens.spin_modulus));
+      double rj[4];
+      if (!ResidualOf(chord, q, rj)) return false;
+      for (int i = 0; i < 4; ++i) jacobian[j * 4 + i] = (rj[i] - r[i]) / h;
+    }
+    return true;
+  }
+
   bool Evaluate(const double* x, double* r, double* jacobian) const {
     const ElasticaParameters p = ToParameters(regime, x);
     const double h_phase = 1e-6 * (1.0 + std::abs(x[2])), h_length = 1e-6 * (1.0 + std::abs(x[3]));
@@ -437,17 +458,17 @@ struct FreeLengthFunctor {
       std::fill(jacobian, jacobian + 16, 0.0);
       return true;
     }
-    const Elastica path = std::move(*last.path);  // the rate and modulus columns reuse `last`
-    last.path.reset();
-    last.rolling.reset();
     double rp[4], rl[4];
-    if (!ShiftedResiduals(path, x[3], s0, h_length, rp, rl)) return false;
+    if (!ShiftedResiduals(*last.path, x[3], s0, h_length, rp, rl)) return false;
     const double signed_phase_step = p.rate > 0 ? h_phase : -h_phase;
     for (int i = 0; i < 4; ++i) {
       jacobian[2 * 4 + i] = (rp[i] - r[i]) / signed_phase_step;
       jacobian[3 * 4 + i] = (rl[i] - r[i]) / h_length;
     }
-    if (SecantColumns(x, r, jacobian)) return true;
+    if (SecantColumns(x, r, jacobian) || AnalyticColumns(x, r, jacobian)) return true;
+    const Elastica path = std::move(*last.path);  // the rate and modulus columns reuse `last`
+    last.path.reset();
+    last.rolling.reset();
     for (int j = 0; j < 2; ++j) {
       const double h = 1e-6 * (1.0 + std::abs(x[j]));
       double xp[4] = {x[0], x[1], x[2], x[3]}, rj[4];
