@@ -38,6 +38,8 @@ ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
   }
   // k'^2 = (1 - k)(1 + k), accurate near the separatrix (jacobi_elliptic.h), as the Elastica's.
   const double kc2 = e.kc2_;
+  kc2_ = kc2;
+  integral_sn2_origin_ = e.i0_;
   if (!straight_ && !unit_chart_) {
     const double kappa2 = oscillating ? k * k : 1.0;
     n_ = -4.0 * big_g_ * kappa2 / (one_minus_g_ * one_minus_g_);
@@ -171,32 +173,64 @@ Eigen::Matrix3d ElasticaClosedRolling::Rolling(double s0, double s1) const {
   return FrameAt(b) * RotationZ(TwistBetween(a, b, s1 - s0)) * FrameAt(a).transpose();
 }
 
-Eigen::Matrix3d ElasticaClosedRolling::Rolling(double s) const {
-  const Node b = At(s, "s", true);
+Eigen::Matrix3d ElasticaClosedRolling::Rolling(double s) const { return RollingTo(At(s, "s", true), s); }
+
+Eigen::Matrix3d ElasticaClosedRolling::RollingTo(const Node& b, double s) const {
   if (straight_) return ExpSO3(s * straight_omega_);
   return FrameAt(b) * RotationZ(TwistBetween(origin_, b, s)) * origin_frame_t_;
 }
 
-}  // namespace plateball::internal
+ElasticaClosedRolling::PathEnd ElasticaClosedRolling::Path(const Elastica& e, double s) const {
+  RequireFinite("s", s);
+  const double w = rate_ * s + phase_;
+  if (!std::isfinite(w)) ThrowInvalid("s", s, "rate * s + phase must be finite");
+  PathEnd end;
+  end.s = s;
+  Elastica::Jacobi j{};
+  end.chord = e.Position(s, &j, &end.integral_sn2);
+  if (std::isnan(end.integral_sn2)) {
+    end.node = At(s, "s", true);
+  } else {  // Position's reduction modulo 2K is At's (the same m and r): its odd half periods unflipped
+    const double m = std::round(w / (2.0 * complete_k_));
+    const double sign = IsOddInteger(m) ? -1.0 : 1.0;
+    end.node = NodeFrom(m, sign * j.sn, sign * j.cn, j.dn, true);
+  }
+  end.q = RollingTo(end.node, s);
+  return end;
+}
 
-namespace plateball::internal {
-
-// One direction of the parameters (drate, dk) and what it moves: G, V, n and twist_factor_.
+// Sensitivity: one direction (drate, dk) of the parameters and what it moves: G, V, n and
+// twist_factor_ (G = b^2 oscillating, (a k)^2 rotating; V = hypot(1 - G, 2 b k or 2 a);
+// n = -4 G kappa^2 / (1 - G)^2; twist_factor_ = (1 + G) / ((1 - G) rate)).
 struct ElasticaClosedRolling::Direction {
   double drate = 0.0, dk = 0.0;
-  double kc2 = 1.0;  // k'^2
   double dg = 0.0, dv = 0.0, dn = 0.0, dt = 0.0;
 };
 
-// The Jacobi functions, int_0^w sn^2 (Legendre's D of am w) and the whole Pi(n; am w) of a node
-// moved along a Direction (w by dw).
+// A node's Jacobi functions, int_0^w sn^2 (Legendre's D of am w) and whole Pi(n; am w) moved
+// along a Direction.
 struct ElasticaClosedRolling::NodeDerivative {
   double dsn = 0.0, dcn = 0.0, ddn = 0.0, dintegral = 0.0, dpi_total = 0.0;
 };
 
+ElasticaClosedRolling::Direction ElasticaClosedRolling::MakeDirection(double drate, double dk) const {
+  const bool oscillating = regime_ == PendulumRegime::kOscillating;
+  const double k = modulus_, g = big_g_;
+  Direction d;
+  d.drate = drate;
+  d.dk = dk;
+  d.dg = oscillating ? 2.0 * rate_ * drate : 2.0 * rate_ * k * (k * drate + rate_ * dk);
+  const double scale = oscillating ? 2.0 * rate_ * k : 2.0 * rate_;
+  const double dscale = oscillating ? 2.0 * (k * drate + rate_ * dk) : 2.0 * drate;
+  d.dv = (-one_minus_g_ * d.dg + scale * dscale) / norm_v_;
+  d.dn = n_ * (d.dg / g + (oscillating ? 2.0 * dk / k : 0.0) + 2.0 * d.dg / one_minus_g_);
+  d.dt = twist_factor_ * (d.dg / (1.0 + g) + d.dg / one_minus_g_ - drate / rate_);
+  return d;
+}
+
 ElasticaClosedRolling::NodeDerivative ElasticaClosedRolling::Differentiate(const Node& j, double w, double integral_sn2,
                                                                            double dw, const Direction& d) const {
-  const double k = modulus_, k2 = k * k, kc2 = d.kc2, sc = j.sn * j.cn;
+  const double k = modulus_, k2 = k * k, kc2 = kc2_, sc = j.sn * j.cn;
   // am(w, k) at fixed w: F(am, k) = w, dF/dk = E/(k k'^2) - F/k - k sin cos/(k'^2 Delta) with
   // F = w and E(am w) = w - k^2 D(am w): d am/dk = (k/k'^2)(sn cn - dn (w - D)).
   const double dphi = j.dn * dw + (k / kc2) * (sc - j.dn * (w - integral_sn2)) * d.dk;
@@ -217,8 +251,9 @@ ElasticaClosedRolling::NodeDerivative ElasticaClosedRolling::Differentiate(const
   return out;
 }
 
-// dF for F = [f1, u x f1, u] from the costate's derivative (the chart off G = 1).
-Eigen::Matrix3d ElasticaClosedRolling::FrameDerivative(const Node& j, const NodeDerivative& dj, const Direction& d) const {
+// The costate frame's spin omega, dF = hat(omega) F for F = [f1, f2 = u x f1, u] (the chart off
+// G = 1), from the costate's derivative: omega = (f1 x df1 + f2 x df2 + u x du) / 2.
+Eigen::Vector3d ElasticaClosedRolling::FrameSpin(const Node& j, const NodeDerivative& dj, const Direction& d) const {
   const Eigen::Vector3d v = PendulumCostate(j);
   Eigen::Vector3d dv;
   if (regime_ == PendulumRegime::kOscillating) {  // v = (2 k sn dn, 2 k^2 sn^2 - (1 - G), 2 k b cn)
@@ -231,22 +266,19 @@ Eigen::Matrix3d ElasticaClosedRolling::FrameDerivative(const Node& j, const Node
   }
   const double norm = v.norm(), rho2 = v.x() * v.x() + v.y() * v.y(), rho = std::sqrt(rho2);
   const Eigen::Vector3d u = v / norm, du = (dv - u * u.dot(dv)) / norm;
-  const Eigen::Vector2d f(-v.y() / rho, v.x() / rho);
-  const Eigen::Vector2d df = Eigen::Vector2d(-dv.y(), dv.x()) / rho - f * (v.x() * dv.x() + v.y() * dv.y()) / rho2;
-  const auto plane = [this](double x, double y, double z) {
-    return Eigen::Vector3d(cos_w_ * x - sin_w_ * y, sin_w_ * x + cos_w_ * y, z);
-  };
-  const Eigen::Vector3d f1 = plane(f.x(), f.y(), 0.0), df1 = plane(df.x(), df.y(), 0.0);
-  const Eigen::Vector3d up = plane(u.x(), u.y(), u.z()), dup = plane(du.x(), du.y(), du.z());
-  Eigen::Matrix3d out;
-  out << df1, dup.cross(f1) + up.cross(df1), dup;
-  return out;
+  const Eigen::Vector3d f1(-v.y() / rho, v.x() / rho, 0.0);
+  const Eigen::Vector3d df1 = Eigen::Vector3d(-dv.y(), dv.x(), 0.0) / rho - f1 * (v.x() * dv.x() + v.y() * dv.y()) / rho2;
+  const Eigen::Vector3d f2 = u.cross(f1), df2 = du.cross(f1) + u.cross(df1);
+  const Eigen::Vector3d omega = 0.5 * (f1.cross(df1) + f2.cross(df2) + u.cross(du));  // pendulum frame
+  return {cos_w_ * omega.x() - sin_w_ * omega.y(), sin_w_ * omega.x() + cos_w_ * omega.y(), omega.z()};
 }
 
-// d(x(s) - x(0)) from the positions' closed forms (Elastica::Position) in the pendulum frame.
-Eigen::Vector2d ElasticaClosedRolling::ChordDerivative(const Node& a, const NodeDerivative& da, double ia, const Node& b,
-                                                       const NodeDerivative& db, double ib, const Direction& d) const {
-  const double di = ib - ia, ddi = db.dintegral - da.dintegral;
+// d(x(s) - x(0)) from the positions' closed forms (Elastica::Position) in the pendulum frame
+// (a = origin_, di = int_{u0}^{w} sn^2).
+Eigen::Vector2d ElasticaClosedRolling::ChordDerivative(const Node& b, const NodeDerivative& da, const NodeDerivative& db,
+                                                       double di, const Direction& d) const {
+  const Node& a = origin_;
+  const double ddi = db.dintegral - da.dintegral;
   double dx = 0.0, dy = 0.0;
   if (regime_ == PendulumRegime::kOscillating) {  // x = s - 2 k^2 D / b, y = -2 k (cn1 - cn0) / b
     const double k = modulus_, r = rate_, dc = b.cn - a.cn;
@@ -261,46 +293,27 @@ Eigen::Vector2d ElasticaClosedRolling::ChordDerivative(const Node& a, const Node
   return {cos_w_ * dx - sin_w_ * dy, sin_w_ * dx + cos_w_ * dy};
 }
 
-// omega with dQ = Q hat(omega), Q = F1 Rz(psi) F0^T: Q^T dQ = F0 Rz^T F1^T dF1 Rz F0^T
-// + dpsi hat(F0 e3) + F0 dF0^T.
-Eigen::Vector3d ElasticaClosedRolling::Spin(const Node& a, const NodeDerivative& da, const Node& b,
-                                            const NodeDerivative& db, double s, const Direction& d) const {
-  const Eigen::Matrix3d f0 = origin_frame_t_.transpose(), f1 = FrameAt(b);
-  const double dpi = 2.0 * (b.m - a.m) * complete_pi_ + (b.pi - a.pi);
-  const double dpsi = -0.5 * d.dv * (s + twist_factor_ * dpi) -
-                      0.5 * norm_v_ * (d.dt * dpi + twist_factor_ * (db.dpi_total - da.dpi_total));
-  const Eigen::Matrix3d rz = RotationZ(TwistBetween(a, b, s));
-  const Eigen::Matrix3d m = f0 * (rz.transpose() * (f1.transpose() * FrameDerivative(b, db, d)) * rz) * f0.transpose() +
-                            f0 * FrameDerivative(a, da, d).transpose();
-  return Vee(m) + dpsi * f0.col(2);
-}
-
-bool ElasticaClosedRolling::Sensitivity(const Elastica& e, double s, PathSensitivity* out) const {
+bool ElasticaClosedRolling::Sensitivity(const PathEnd& path, PathSensitivity* out) const {
+  const double s = path.s;
   if (straight_ || unit_chart_ || n_ == 0.0 || !(modulus_ >= kSensitivityMinModulus) ||
-      !(std::abs(one_minus_g_) >= kSensitivityMinOneMinusG) || !(std::abs(rate_ * s) >= kSensitivityMinArc))
+      !(std::abs(one_minus_g_) >= kSensitivityMinOneMinusG) || !(std::abs(rate_ * s) >= kSensitivityMinArc) ||
+      std::isnan(path.integral_sn2))
     return false;
-  const double w = rate_ * s + phase_;
-  if (!std::isfinite(w)) return false;
-  const Node b = At(s, "s", true);
-  const double ia = e.i0_, ib = e.IntegralSn2(w);
-  const bool oscillating = regime_ == PendulumRegime::kOscillating;
-  const double k = modulus_, g = big_g_;
+  const double w = rate_ * s + phase_, ia = integral_sn2_origin_, ib = path.integral_sn2;
+  const Node &a = origin_, &b = path.node;
+  const Eigen::Vector3d u0 = origin_frame_t_.row(2).transpose();  // u(0)
+  const double delta_pi = 2.0 * (b.m - a.m) * complete_pi_ + (b.pi - a.pi);
   PathSensitivity result;
   for (int p = 0; p < 2; ++p) {
-    Direction d;
-    d.drate = p == 0 ? 1.0 : 0.0;
-    d.dk = p == 0 ? 0.0 : 1.0;
-    d.kc2 = e.kc2_;
-    // G = b^2 (oscillating), (a k)^2 (rotating); V = hypot(1 - G, 2 b k or 2 a); n = -4 G kappa^2/(1 - G)^2.
-    d.dg = oscillating ? 2.0 * rate_ * d.drate : 2.0 * rate_ * k * (k * d.drate + rate_ * d.dk);
-    const double scale = oscillating ? 2.0 * rate_ * k : 2.0 * rate_;
-    const double dscale = oscillating ? 2.0 * (k * d.drate + rate_ * d.dk) : 2.0 * d.drate;
-    d.dv = (-one_minus_g_ * d.dg + scale * dscale) / norm_v_;
-    d.dn = n_ * (d.dg / g + (oscillating ? 2.0 * d.dk / k : 0.0) + 2.0 * d.dg / one_minus_g_);
-    d.dt = twist_factor_ * (d.dg / (1.0 + g) + d.dg / one_minus_g_ - d.drate / rate_);
-    const NodeDerivative da = Differentiate(origin_, phase_, ia, 0.0, d), db = Differentiate(b, w, ib, s * d.drate, d);
-    (p == 0 ? result.chord_rate : result.chord_modulus) = ChordDerivative(origin_, da, ia, b, db, ib, d);
-    (p == 0 ? result.spin_rate : result.spin_modulus) = Spin(origin_, da, b, db, s, d);
+    const Direction d = MakeDirection(p == 0 ? 1.0 : 0.0, p == 0 ? 0.0 : 1.0);
+    const NodeDerivative da = Differentiate(a, phase_, ia, 0.0, d), db = Differentiate(b, w, ib, s * d.drate, d);
+    // psi(s) - psi(0) = -(V/2) [s + twist_factor_ Delta Pi].
+    const double dpsi = -0.5 * d.dv * (s + twist_factor_ * delta_pi) -
+                        0.5 * norm_v_ * (d.dt * delta_pi + twist_factor_ * (db.dpi_total - da.dpi_total));
+    // Q = F(s) Rz(psi) F(0)^T and dF = hat(omega) F: dQ = Q hat(Q^T omega(s) - omega(0) + dpsi u(0)).
+    const Eigen::Vector3d spin = path.q.transpose() * FrameSpin(b, db, d) - FrameSpin(a, da, d) + dpsi * u0;
+    (p == 0 ? result.chord_rate : result.chord_modulus) = ChordDerivative(b, da, db, ib - ia, d);
+    (p == 0 ? result.spin_rate : result.spin_modulus) = spin;
   }
   if (!result.chord_rate.allFinite() || !result.chord_modulus.allFinite() || !result.spin_rate.allFinite() ||
       !result.spin_modulus.allFinite())

@@ -390,7 +390,10 @@ TEST(ElasticaClosedRollingTest, SensitivityMatchesCentralDifferences) {
     const ElasticaClosedRolling closed(e);
     const double s = (0.1 + 2.9 * unit(gen)) * e.Period();
     ElasticaClosedRolling::PathSensitivity sens;
-    if (!closed.Sensitivity(e, s, &sens)) {
+    const ElasticaClosedRolling::PathEnd end = closed.Path(e, s);
+    EXPECT_EQ(end.chord, e.Position(s)) << Describe(p);  // bit for bit
+    EXPECT_EQ(end.q, closed.Rolling(s)) << Describe(p);
+    if (!closed.Sensitivity(end, &sens)) {
       // Only the layer |1 - G| < 1e-3 and short arcs are left to the caller among these shapes.
       EXPECT_TRUE(std::abs(1.0 - e.G()) < ElasticaClosedRolling::kSensitivityMinOneMinusG ||
                   std::abs(rate * s) < ElasticaClosedRolling::kSensitivityMinArc)
@@ -438,7 +441,8 @@ TEST(ElasticaClosedRollingTest, SensitivityDeclinesOutsideItsForms) {
   ElasticaClosedRolling::PathSensitivity sens;
   const auto declines = [&sens](const ElasticaParameters& p, double s) {
     const Elastica e(p);
-    return !ElasticaClosedRolling(e).Sensitivity(e, s, &sens);
+    const ElasticaClosedRolling closed(e);
+    return !closed.Sensitivity(closed.Path(e, s), &sens);
   };
   EXPECT_TRUE(declines(Params(PendulumRegime::kOscillating, 0.0, 0.5, 0.3, 0.0), 2.0));   // straight
   EXPECT_TRUE(declines(Params(PendulumRegime::kRotating, 0.7, 0.0, 0.3, 0.0), 2.0));      // circle
