@@ -424,7 +424,8 @@ struct FreeLengthFunctor {
   // rolling (ElasticaClosedRolling::Sensitivity): the residual of the chord and rolling moved along
   // them by the forward-difference step, like the phase and length columns, without the two
   // elasticas and closed rollings whole-path differences build (docs/paper_notes.md, "General
-  // targets", point 13). False where Sensitivity declines (the caller then differences paths).
+  // targets", point 12, twelfth round). False where Sensitivity declines (the caller then
+  // differences paths).
   bool AnalyticColumns(const double* x, const double* r, double* jacobian) const {
     internal::ElasticaClosedRolling::PathSensitivity sens;
     if (!last.rolling->Sensitivity(last.end, &sens)) return false;
