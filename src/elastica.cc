@@ -291,10 +291,10 @@ Eigen::Vector2d Elastica::TangentOf(const Jacobi& j) const {
 Eigen::Vector2d Elastica::Position(double s) const {
   Jacobi j{};
   double integral_sn2 = 0.0;
-  return Position(s, &j, &integral_sn2);
+  return PositionAt(s, &j, &integral_sn2);
 }
 
-Eigen::Vector2d Elastica::Position(double s, Jacobi* jacobi, double* integral_sn2) const {
+Eigen::Vector2d Elastica::PositionAt(double s, Jacobi* jacobi, double* integral_sn2) const {
   const double du = p_.rate * s;
   if (std::abs(du) < kShortArcArgument) {
     *integral_sn2 = std::numeric_limits<double>::quiet_NaN();

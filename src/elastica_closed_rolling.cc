@@ -187,7 +187,7 @@ ElasticaClosedRolling::PathEnd ElasticaClosedRolling::Path(const Elastica& e, do
   PathEnd end;
   end.s = s;
   Elastica::Jacobi j{};
-  end.chord = e.Position(s, &j, &end.integral_sn2);
+  end.chord = e.PositionAt(s, &j, &end.integral_sn2);
   if (std::isnan(end.integral_sn2)) {
     end.node = At(s, "s", true);
   } else {  // Position's reduction modulo 2K is At's (the same m and r): its odd half periods unflipped
