@@ -80,11 +80,13 @@ Eigen::Vector2d Chord(PendulumRegime regime, const CertifyPoint& x) {
   return CertifyElastica(regime, x).Position(x[kCertifyLength]);
 }
 
-double GeometricMean(const std::vector<double>& v) {
+// The geometric mean of the positive ratios added (1 for none).
+struct RatioMean {
   double log_sum = 0.0;
-  for (double x : v) log_sum += std::log(x);
-  return v.empty() ? 1.0 : std::exp(log_sum / static_cast<double>(v.size()));
-}
+  int count = 0;
+  void Add(double ratio) { log_sum += std::log(ratio), ++count; }
+  double Value() const { return count > 0 ? std::exp(log_sum / count) : 1.0; }
+};
 
 }  // namespace
 
@@ -152,7 +154,7 @@ TEST(IsoparallelCertifyPeriods, NeverUndershootsSampledRotationAndChordDistances
   std::mt19937 rng(1303);
   int planted_caught = 0;
   for (PendulumRegime regime : kRegimes) {
-    std::vector<double> ratios, main_ratios;
+    RatioMean ratios, main_ratios;
     int sharper = 0, caught = 0;
     for (int b = 0; b < 600; ++b) {
       const CertifyBox box = RandomBox(regime, b % 3 == 0, &rng);
@@ -175,13 +177,13 @@ TEST(IsoparallelCertifyPeriods, NeverUndershootsSampledRotationAndChordDistances
       const double d = RollingDeviationBound(regime, box);
       const double existing = std::min({d, ClosedRollingDeviationBound(regime, box, 0.0),
                                         ChartRollingDeviationBound(regime, box, 0.0)});
-      if (worst > 1e-12 && std::isfinite(bound)) ratios.push_back(bound / worst);
-      if (worst > 1e-12 && std::isfinite(existing)) main_ratios.push_back(existing / worst);
+      if (worst > 1e-12 && std::isfinite(bound)) ratios.Add(bound / worst);
+      if (worst > 1e-12 && std::isfinite(existing)) main_ratios.Add(existing / worst);
       sharper += bound < existing ? 1 : 0;
     }
     std::printf("%s: bound / largest sampled distance geometric mean %.2f (min(D, R, Rt): %.2f); below min(D, R, Rt) "
                 "on %d of 600 boxes; without the k share below a sample on %d\n",
-                ToString(regime).c_str(), GeometricMean(ratios), GeometricMean(main_ratios), sharper, caught);
+                ToString(regime).c_str(), ratios.Value(), main_ratios.Value(), sharper, caught);
     EXPECT_GT(sharper, 60) << ToString(regime);
     planted_caught += caught;
   }
@@ -194,31 +196,28 @@ TEST(IsoparallelCertifyPeriods, NeverUndershootsSampledRotationAndChordDistances
 // by 0.01 rad often are.
 TEST(IsoparallelCertifyPeriods, NeverExcludesABoxHoldingASolution) {
   struct Case {
-    CertifyTarget target;
     PendulumRegime regime;
     CertifyPoint solution;
+    CertifyTarget target;
   };
-  std::vector<Case> cases;
+  const auto made = [](PendulumRegime regime, const CertifyPoint& x) {  // a target x solves
+    const Eigen::Vector2d chord = Chord(regime, x);
+    CertifyTarget t;
+    t.target = Rolling(regime, x), t.radius = chord.norm(), t.goal_angle = std::atan2(chord.y(), chord.x());
+    return Case{regime, x, t};
+  };
   const IsoparallelSetup setup =
       IsoparallelSetupFor(ReadProblemFile(plateball::testing::SourcePath("problems/isoparallel_rotation.json")));
   const IsoparallelSummary solved = SolveIsoparallel(setup.problem, setup.options);
   ASSERT_TRUE(solved.IsSolutionUsable());
+  std::vector<Case> cases;
   for (const IsoparallelSolution& s : solved.solutions)
-    cases.push_back({CertifyTargetOf(setup.problem), s.parameters.regime, CanonicalSolution(s.parameters, s.length)});
+    cases.push_back({s.parameters.regime, CanonicalSolution(s.parameters, s.length), CertifyTargetOf(setup.problem)});
   std::mt19937 rng(1304);
-  const auto made = [&](PendulumRegime regime, const CertifyPoint& x) {
-    CertifyTarget t;
-    const Eigen::Vector2d chord = Chord(regime, x);
-    t.target = Rolling(regime, x);
-    t.radius = chord.norm();
-    t.goal_angle = std::atan2(chord.y(), chord.x());
-    return Case{t, regime, x};
-  };
-  for (PendulumRegime regime : kRegimes)
-    for (int j = 0; j < 8; ++j) {
-      const CertifyBox box = RandomBox(regime, j % 2 == 0, &rng);
-      cases.push_back(made(regime, PointOf(box, 16, &rng)));
-    }
+  for (int j = 0; j < 16; ++j) {
+    const PendulumRegime regime = kRegimes[j % 2];
+    cases.push_back(made(regime, PointOf(RandomBox(regime, j % 4 < 2, &rng), 16, &rng)));
+  }
   const auto verdict = [](const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box) {
     CertifyWindowOptions options;
     options.regime = regime;
@@ -228,15 +227,14 @@ TEST(IsoparallelCertifyPeriods, NeverExcludesABoxHoldingASolution) {
     return FixedPeriodsTest(options, box, centre, d, std::min(d, ChordDeviationBound(regime, box)));
   };
   int boxes = 0, turned_excluded = 0;
-  std::uniform_real_distribution<double> offset(-0.9, 0.9);
-  for (const auto& [target, regime, x] : cases)
+  for (const auto& [regime, x, target] : cases)
     for (double h : {1e-5, 1e-4, 1e-3, 1e-2, 0.1, 0.3}) {
-      CertifyBox box;
       const CertifyPoint scale = {std::max(0.05, std::abs(x[kCertifyRate])), 0.2, 1.0, 1.0};
-      for (int i = 0; i < 4; ++i) {
-        const double o = offset(rng);
-        box.lo[i] = x[i] - h * scale[i] * (1.0 + o);
-        box.hi[i] = x[i] + h * scale[i] * (1.0 - o);
+      CertifyBox box;
+      for (int i = 0; i < 4; ++i) {  // the solution off-centre by up to 0.9 half-widths
+        const double half = h * scale[i], centre = x[i] + half * Uniform(-0.9, 0.9, &rng);
+        box.lo[i] = centre - half;
+        box.hi[i] = centre + half;
       }
       box.lo[kCertifyModulus] = std::max(0.0, box.lo[kCertifyModulus]);
       box.hi[kCertifyModulus] = std::min(0.99, box.hi[kCertifyModulus]);
@@ -249,7 +247,7 @@ TEST(IsoparallelCertifyPeriods, NeverExcludesABoxHoldingASolution) {
   for (PendulumRegime regime : kRegimes)
     for (int b = 0; b < 300; ++b) {
       const CertifyBox box = RandomBox(regime, b % 3 == 0, &rng);
-      const Case c = made(regime, PointOf(box, b % 32, &rng));
+      const Case c = made(regime, PointOf(box, b % 32, &rng));  // corners and inner points
       ASSERT_EQ(verdict(c.target, regime, box), BoxVerdict::kUndecided) << ToString(regime) << " box " << b;
       ++boxes;
     }
