@@ -22,8 +22,9 @@
 // (same header, smooth through G = 1; on by default); the phase window is [-P/2, P/2] (P the
 // period at k_max: |u0| and so the secular terms of the bounds halved), --centred-phase 0 takes
 // [0, P] instead (the same paths; the figures of rounds before the tenth);
-// --fixed-periods 0 turns off the bounds compared at a fixed number of periods
-// (isoparallel_certify_periods.h; on by default);
+// --fixed-periods 0 turns off the bounds compared at a fixed number of periods and the split
+// along their shares (isoparallel_certify_periods.h; on by default: the trace's shares are then
+// those of the fixed-periods bound where it is below D);
 // --known 0 runs without the solver's solutions (then only the first-order tests can finish).
 //
 // Default: problems/isoparallel_rotation.json (relative to the working directory), caps 1.0, 1.2,

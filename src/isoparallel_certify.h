@@ -147,7 +147,9 @@ struct CertifyWindowOptions {
   bool chart_rolling = true;
   /// Then the chord and rotation tests with the bounds compared at a fixed number of periods
   /// (isoparallel_certify_periods.h: a k change split into a bounded one at fixed rate / K and
-  /// u0 / K, a rate change and a phase shift) on boxes still undecided: rigorous.
+  /// u0 / K, a rate change and a phase shift) on boxes still undecided: rigorous. A box is then
+  /// also split along the largest share of FixedPeriodsDeviationBound where it is below D (the
+  /// trace's shares are those).
   bool fixed_periods = true;
   std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
   std::string Validate() const;
