@@ -33,13 +33,20 @@ inline Eigen::Vector3d TraceLogSO3(const Eigen::Matrix3d& r) {
   return (2.0 * std::atan2(s, w) / s) * v;
 }
 
+/// B's angle beta = arg(x1 - x0) - arg(chord) as cos and sin, from the normalised chord (cos(g - a)
+/// = cos g cos a + sin g sin a: no atan2, no sincos); a zero chord turns by the goal angle.
+inline GoalDirection ChordTurnDirection(const GoalDirection& goal, const Eigen::Vector2d& chord) {
+  const double n = chord.norm();
+  const double ca = n > 0.0 ? chord.x() / n : 1.0, sa = n > 0.0 ? chord.y() / n : 0.0;
+  return {goal.c * ca + goal.s * sa, goal.s * ca - goal.c * sa};
+}
+
 /// ChordResidual's rotation before the logarithm: target^-1 B q B^-1, given target^T and the goal's
 /// direction; a zero chord turns by the goal angle (atan2(0, 0) = 0).
 inline Eigen::Matrix3d ChordRotation(const Eigen::Matrix3d& target_t, const GoalDirection& goal,
                                      const Eigen::Vector2d& chord, const Eigen::Matrix3d& q) {
-  const double n = chord.norm();
-  const double ca = n > 0.0 ? chord.x() / n : 1.0, sa = n > 0.0 ? chord.y() / n : 0.0;
-  const double c = goal.c * ca + goal.s * sa, s = goal.s * ca - goal.c * sa;  // cos, sin of beta
+  const GoalDirection beta = ChordTurnDirection(goal, chord);
+  const double c = beta.c, s = beta.s;
   Eigen::Matrix3d g;  // target^T B
   g.col(0) = c * target_t.col(0) + s * target_t.col(1);
   g.col(1) = c * target_t.col(1) - s * target_t.col(0);
@@ -73,9 +80,8 @@ inline Eigen::Vector3d QuaternionLog(const Eigen::Quaterniond& q) {
 /// beta (no half angles): 4 + 16 multiplications instead of ChordRotation's 51.
 inline Eigen::Quaterniond ChordQuaternion(const Eigen::Quaterniond& target_conj, const GoalDirection& goal,
                                           const Eigen::Vector2d& chord, const Eigen::Quaterniond& q) {
-  const double n = chord.norm();
-  const double ca = n > 0.0 ? chord.x() / n : 1.0, sa = n > 0.0 ? chord.y() / n : 0.0;
-  const double c = goal.c * ca + goal.s * sa, s = goal.s * ca - goal.c * sa;  // cos, sin of beta
+  const GoalDirection beta = ChordTurnDirection(goal, chord);
+  const double c = beta.c, s = beta.s;
   const Eigen::Quaterniond turned(q.w(), c * q.x() - s * q.y(), s * q.x() + c * q.y(), q.z());
   return target_conj * turned;
 }
