@@ -83,7 +83,8 @@ class ElasticaRollingTable {
   /// that does not repeat), for NodeRolling.
   std::vector<Eigen::Matrix3d> MonodromyPowers() const;
   /// Q(0, i h) of one node, 0 <= i <= NodeCount(), bit for bit Nodes' value, with `powers` from
-  /// MonodromyPowers(): for scans that need the rolling at a few of the nodes only.
+  /// MonodromyPowers(): for scans that need the rolling at a few of the nodes only (a table of
+  /// matrices; NodeQuaternion reads a table of quaternions).
   Eigen::Matrix3d NodeRolling(long i, const std::vector<Eigen::Matrix3d>& powers) const {
     if (straight_ || !std::isfinite(period_)) return rot_[std::min<long>(i, steps_)];
     const long n = i / steps_;
