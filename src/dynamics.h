@@ -120,7 +120,9 @@ inline FullState InitialFullState(const Eigen::Vector3d& z0) {
 // Boost 1.74's generic RK steppers (rkf78) trip GCC's -Wuninitialized on their unused copy constructor.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"
+#if !defined(__clang__)  // clang knows no -Wmaybe-uninitialized and warns about the pragma itself
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 template <typename Stepper = void, typename State, typename Rhs, typename Observer>
 double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double dt0,
                          const IntegrationOptions& options, Observer&& observer) {

@@ -344,7 +344,9 @@ bool RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen:
 // is again a solution, so a solution with t < 0 is the solution (s + pi, -t).
 // Ceres 2.1's TinySolver leaves members unset until Solve; GCC cannot see that once it is inlined here.
 #pragma GCC diagnostic push
+#if !defined(__clang__)  // clang knows no -Wmaybe-uninitialized and warns about the pragma itself
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 int SolveLocal(JoinFunction& fn, const JoinOptions& options, int max_iterations, Eigen::Vector2d* params) {
   ceres::TinySolver<JoinFunction> solver;
   solver.options.max_num_iterations = max_iterations;
