@@ -82,7 +82,7 @@ double CentredRemainderBound(PendulumRegime regime, const CertifyBox& box, bool 
   const double e1 = ha * mv + hk * (by_zeta ? zk1 : mk1) * rate_max;
   const double lambda = e0 * length + 0.5 * e1 * length * length;  // >= int |z| ds, |z| <= |g_p - g_c|
   if (!(lambda < M_PI)) return kInfinity;
-  const double magnus = lambda * lambda / 4.0 + lambda * lambda * lambda / 18.0;
+  const double magnus = 0.25 * lambda * lambda;  // |dexp_X - I| <= |X| / 2
   // int eps^2 / 2 (|w(g + delta) - w(g) - w'(g) delta| <= delta^2 / 2, |w''| = 1).
   const double end = e0 + e1 * length;
   const double square = e1 > 0.0 ? (end * end * end - e0 * e0 * e0) / (6.0 * e1) : 0.5 * e0 * e0 * length;

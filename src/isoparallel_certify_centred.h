@@ -4,7 +4,7 @@
 // For p in the box collapsed to L = Lc, E(s) = Q_p(s) Q_c(s)^T solves E' = E hat(z), z(s) =
 // Q_c(s) (w_p(s) - w_c(s)), w = (-sin g, cos g, 0) the angular velocity of heading g. With
 // Z(p) = int_0^Lc z ds and Lambda >= int_0^Lc |z| ds (the zeroth-order line of D):
-//   dist(E(Lc), exp hat(Z)) <= Rm = Lambda^2 / 4 + Lambda^3 / 18        (|dexp_X - I| <= t/2 + t^2/6);
+//   dist(E(Lc), exp hat(Z)) <= Rm = Lambda^2 / 4      (|dexp_X - I| = |e^{it} - 1 - it| / t <= t/2, t = |X|);
 //   Z(p) = M (p - c) + r,  |r| <= R2 = int [eps^2 / 2 + (1/2) sup |d^T H_g d|] ds,
 // M the rolling's exact first derivative at the centre (never formed), eps(s) the first-order bound
 // on |g_p - g_c| and H_g the Hessian of the heading in (rate, k, u0) (HeadingSecondDerivativeBounds).
