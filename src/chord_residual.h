@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -32,13 +33,20 @@ inline Eigen::Vector3d TraceLogSO3(const Eigen::Matrix3d& r) {
   return (2.0 * std::atan2(s, w) / s) * v;
 }
 
+/// B's angle beta = arg(x1 - x0) - arg(chord) as cos and sin, from the normalised chord (cos(g - a)
+/// = cos g cos a + sin g sin a: no atan2, no sincos); a zero chord turns by the goal angle.
+inline GoalDirection ChordTurnDirection(const GoalDirection& goal, const Eigen::Vector2d& chord) {
+  const double n = chord.norm();
+  const double ca = n > 0.0 ? chord.x() / n : 1.0, sa = n > 0.0 ? chord.y() / n : 0.0;
+  return {goal.c * ca + goal.s * sa, goal.s * ca - goal.c * sa};
+}
+
 /// ChordResidual's rotation before the logarithm: target^-1 B q B^-1, given target^T and the goal's
 /// direction; a zero chord turns by the goal angle (atan2(0, 0) = 0).
 inline Eigen::Matrix3d ChordRotation(const Eigen::Matrix3d& target_t, const GoalDirection& goal,
                                      const Eigen::Vector2d& chord, const Eigen::Matrix3d& q) {
-  const double n = chord.norm();
-  const double ca = n > 0.0 ? chord.x() / n : 1.0, sa = n > 0.0 ? chord.y() / n : 0.0;
-  const double c = goal.c * ca + goal.s * sa, s = goal.s * ca - goal.c * sa;  // cos, sin of beta
+  const GoalDirection beta = ChordTurnDirection(goal, chord);
+  const double c = beta.c, s = beta.s;
   Eigen::Matrix3d g;  // target^T B
   g.col(0) = c * target_t.col(0) + s * target_t.col(1);
   g.col(1) = c * target_t.col(1) - s * target_t.col(0);
@@ -55,6 +63,27 @@ inline Eigen::Matrix3d ChordRotation(const Eigen::Matrix3d& target_t, const Goal
 inline Eigen::Vector3d ChordResidual(const Eigen::Matrix3d& target_t, const GoalDirection& goal,
                                      const Eigen::Vector2d& chord, const Eigen::Matrix3d& q) {
   return TraceLogSO3(ChordRotation(target_t, goal, chord, q));
+}
+
+/// TraceLogSO3 of a quaternion's rotation (q of any norm: both ratios below are scale-free): with
+/// the sign making w >= 0, Log = 2 atan2(|v|, w) v / |v|, valid at every angle up to pi.
+inline Eigen::Vector3d QuaternionLog(const Eigen::Quaterniond& q) {
+  const double w = std::abs(q.w());
+  const Eigen::Vector3d v = q.w() < 0.0 ? Eigen::Vector3d(-q.vec()) : Eigen::Vector3d(q.vec());
+  const double s = v.norm();
+  if (s < 1e-12 * w) return (2.0 / w) * v;
+  return (2.0 * std::atan2(s, w) / s) * v;
+}
+
+/// ChordRotation in quaternions: target^-1 B q B^-1 given target's conjugate and q as quaternions.
+/// B q B^-1 keeps q's scalar and turns its vector by B (about e3), straight from cos and sin of
+/// beta (no half angles): 4 + 16 multiplications instead of ChordRotation's 51.
+inline Eigen::Quaterniond ChordQuaternion(const Eigen::Quaterniond& target_conj, const GoalDirection& goal,
+                                          const Eigen::Vector2d& chord, const Eigen::Quaterniond& q) {
+  const GoalDirection beta = ChordTurnDirection(goal, chord);
+  const double c = beta.c, s = beta.s;
+  const Eigen::Quaterniond turned(q.w(), c * q.x() - s * q.y(), s * q.x() + c * q.y(), q.z());
+  return target_conj * turned;
 }
 
 /// Exact tests, from traces only (no logarithm), that |TraceLogSO3(a)| or the interpolation
@@ -78,18 +107,29 @@ class LogNormBound {
   }
   /// |TraceLogSO3(a)| > bound for sure.
   bool Exceeds(const Eigen::Matrix3d& a) const { return a.trace() < single_; }
+  /// The same for a quaternion's rotation (trace 4 w^2 / |q|^2 - 1).
+  bool Exceeds(const Eigen::Quaterniond& a) const { return Trace(a) < single_; }
   /// |t TraceLogSO3(a) + (1 - t) TraceLogSO3(b)| > bound for sure, for every t in [0, 1].
   bool InterpolationExceeds(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) const {
     const double ta = a.trace(), tb = b.trace();
     if (!(ta < single_ && tb < single_)) return false;
-    const double tab = a.cwiseProduct(b).sum();  // tr(a^T b)
-    for (const Tier& tier : tiers_)
-      if (tab >= tier.trace_phi)
-        return std::max(ta, tb) <= tier.trace_low && std::min(ta, tb) >= tier.trace_high;
-    return false;
+    return TiersExceed(ta, tb, a.cwiseProduct(b).sum());  // tr(a^T b)
+  }
+  /// The same for two quaternions' rotations (tr(a^T b) = 4 (a.b)^2 / (|a|^2 |b|^2) - 1).
+  bool InterpolationExceeds(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) const {
+    const double ta = Trace(a), tb = Trace(b);
+    if (!(ta < single_ && tb < single_)) return false;
+    const double d = a.coeffs().dot(b.coeffs());
+    return TiersExceed(ta, tb, 4.0 * d * d / (a.squaredNorm() * b.squaredNorm()) - 1.0);
   }
 
  private:
+  static double Trace(const Eigen::Quaterniond& q) { return 4.0 * q.w() * q.w() / q.squaredNorm() - 1.0; }
+  bool TiersExceed(double ta, double tb, double tab) const {
+    for (const Tier& tier : tiers_)
+      if (tab >= tier.trace_phi) return std::max(ta, tb) <= tier.trace_low && std::min(ta, tb) >= tier.trace_high;
+    return false;
+  }
   static constexpr double kMargin = 1e-6;
   static constexpr std::size_t kTiers = 6;
   static constexpr double kPhi[kTiers] = {0.05, 0.1, 0.2, 0.35, 0.5, 0.7};

@@ -54,19 +54,50 @@ static Eigen::Vector2d GaussDisplacement(const Eigen::Vector2d& t1, const Eigen:
   return (h / 18.0) * (5.0 * t1 + 8.0 * t2 + 5.0 * t3);
 }
 
+// The Magnus step's rotation vector (Q(s0, s0 + h) = exp(hat(omega))) from the tangents at the
+// three Gauss nodes: Blanes, Casas, Ros (2000), order 6 with Gauss-Legendre nodes ([hat a, hat b] =
+// hat(a x b)),
+//   a1 = h w2, a2 = sqrt(15) h (w3 - w1) / 3, a3 = 10 h (w3 - 2 w2 + w1) / 3, c1 = a1 x a2,
+//   c2 = -a1 x (2 a3 + c1) / 60, omega = a1 + a3 / 12 + (-20 a1 - a3 + c1) x (a2 + c2) / 240,
+// written out for w = e3 x t in the plane (a1, a2, a3 in the plane, c1 along e3): the cross
+// products' terms with a zero factor are left out (each is an exact zero: the same bits).
+static Eigen::Vector3d MagnusVector(const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3,
+                                    double h) {
+  const Eigen::Vector2d w1(-t1.y(), t1.x()), w2(-t2.y(), t2.x()), w3(-t3.y(), t3.x());
+  const Eigen::Vector2d a1 = h * w2;
+  const Eigen::Vector2d a2 = (kSqrt15 * h / 3.0) * (w3 - w1);
+  const Eigen::Vector2d a3 = (10.0 * h / 3.0) * (w3 - 2.0 * w2 + w1);
+  const double c1 = a1.x() * a2.y() - a1.y() * a2.x();  // along e3
+  // c2 = -(1/60) a1 x d, d = (2 a3, c1): in the plane a1 x (0, 0, c1) = (a1.y c1, -a1.x c1), along e3 a1 x 2 a3.
+  const Eigen::Vector2d d = 2.0 * a3;
+  const Eigen::Vector3d c2 = -(1.0 / 60.0) * Eigen::Vector3d(a1.y() * c1, -(a1.x() * c1), a1.x() * d.y() - a1.y() * d.x());
+  const Eigen::Vector3d f(-20.0 * a1.x() - a3.x(), -20.0 * a1.y() - a3.y(), c1);  // -20 a1 - a3 + c1
+  const Eigen::Vector3d g(a2.x() + c2.x(), a2.y() + c2.y(), c2.z());              // a2 + c2
+  return Eigen::Vector3d(a1.x() + a3.x() / 12.0, a1.y() + a3.y() / 12.0, 0.0) + (1.0 / 240.0) * f.cross(g);
+}
+
 // The Magnus step from the tangents at the three Gauss nodes.
 static Eigen::Matrix3d MagnusFromTangents(const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3,
-                                   double h, Eigen::Vector2d* displacement) {
+                                          double h, Eigen::Vector2d* displacement) {
   if (displacement) *displacement = GaussDisplacement(t1, t2, t3, h);  // same Gauss nodes
-  const Eigen::Vector3d w1 = Omega(t1), w2 = Omega(t2), w3 = Omega(t3);
-  // Blanes, Casas, Ros (2000), order 6 with Gauss-Legendre nodes; [hat a, hat b] = hat(a x b).
-  const Eigen::Vector3d a1 = h * w2;
-  const Eigen::Vector3d a2 = (kSqrt15 * h / 3.0) * (w3 - w1);
-  const Eigen::Vector3d a3 = (10.0 * h / 3.0) * (w3 - 2.0 * w2 + w1);
-  const Eigen::Vector3d c1 = a1.cross(a2);
-  const Eigen::Vector3d c2 = -(1.0 / 60.0) * a1.cross(2.0 * a3 + c1);
-  const Eigen::Vector3d omega = a1 + a3 / 12.0 + (1.0 / 240.0) * (-20.0 * a1 - a3 + c1).cross(a2 + c2);
-  return ExpSO3(omega);
+  return ExpSO3(MagnusVector(t1, t2, t3, h));
+}
+
+Eigen::Quaterniond QuaternionExp(const Eigen::Vector3d& w) {
+  const double t2 = w.squaredNorm();
+  double c, a;  // cos(t / 2) and sin(t / 2) / t
+  if (t2 < 0.36) {  // Taylor series in x = (t / 2)^2 < 0.09: the first term left out is below 1e-20
+    const double x = t2 / 4.0;
+    c = 1.0 + x * (-1.0 / 2 + x * (1.0 / 24 + x * (-1.0 / 720 + x * (1.0 / 40320 + x * (-1.0 / 3628800 +
+        x * (1.0 / 479001600 - x / 87178291200.0))))));
+    a = 0.5 * (1.0 + x * (-1.0 / 6 + x * (1.0 / 120 + x * (-1.0 / 5040 + x * (1.0 / 362880 + x * (-1.0 / 39916800 +
+        x * (1.0 / 6227020800.0 - x / 1307674368000.0)))))));
+  } else {
+    const double t = std::sqrt(t2);
+    c = std::cos(0.5 * t);
+    a = std::sin(0.5 * t) / t;
+  }
+  return Eigen::Quaterniond(c, a * w.x(), a * w.y(), a * w.z());
 }
 
 Eigen::Matrix3d MagnusRollingStep(const Elastica& e, double s0, double s1, Eigen::Vector2d* displacement) {
@@ -82,17 +113,30 @@ Eigen::Matrix3d MagnusRollingStep(const Elastica& e, double s0, double s1, Eigen
 
 ElasticaRollingTable::ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
                                            int max_total_steps, bool positions_only)
-    : e_(&e), s_limit_(s_limit), max_total_steps_(max_total_steps), positions_only_(positions_only) {
+    : ElasticaRollingTable(e, s_limit, steps_per_period, max_step, max_total_steps,
+                           positions_only ? TableRotations::kNone : TableRotations::kMatrices) {}
+
+ElasticaRollingTable::ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
+                                           int max_total_steps, TableRotations rotations)
+    : e_(&e), s_limit_(s_limit), max_total_steps_(max_total_steps), rotations_(rotations) {
   steps_per_period = std::max(4, steps_per_period);
   straight_ = e.IsStraight();
+  monodromy_.setIdentity();
+  monodromy_quat_.setIdentity();
   if (straight_) {
     period_ = s_limit;
     steps_ = 1;
     h_ = s_limit;
-    rot_ = {Eigen::Matrix3d::Identity(), ExpSO3(s_limit * Omega(e.Tangent(0.0)))};
+    const Eigen::Vector3d w = s_limit * Omega(e.Tangent(0.0));
+    if (rotations_ == TableRotations::kQuaternions) {
+      quat_ = {Eigen::Quaterniond::Identity(), QuaternionExp(w)};
+      monodromy_quat_ = quat_[1];
+    } else {
+      rot_ = {Eigen::Matrix3d::Identity(), ExpSO3(w)};
+      monodromy_ = rot_[1];
+    }
     pos_ = {Eigen::Vector2d::Zero(), e.Position(s_limit)};
     drift_ = pos_[1];
-    monodromy_ = rot_[1];
     return;
   }
   period_ = e.Period();
@@ -111,10 +155,10 @@ ElasticaRollingTable::ElasticaRollingTable(const Elastica& e, double s_limit, in
   Build(steps_);
   if (periods < 1.0) {
     period_ = std::numeric_limits<double>::infinity();  // no repetition needed
-    monodromy_.setIdentity();
     drift_.setZero();
   } else {
-    monodromy_ = positions_only_ ? Eigen::Matrix3d::Identity() : rot_[steps_];
+    if (rotations_ == TableRotations::kMatrices) monodromy_ = rot_[steps_];
+    if (rotations_ == TableRotations::kQuaternions) monodromy_quat_ = quat_[steps_];
     drift_ = e.DriftPerPeriod();
   }
 }
@@ -143,9 +187,19 @@ static void MarchGaussTangents(const Elastica& e, double h, int steps, OnStep&& 
 void ElasticaRollingTable::Build(int steps) {
   pos_.resize(steps + 1);
   pos_[0].setZero();
-  if (positions_only_) {  // the displacement of MagnusFromTangents, without the rotation
+  if (rotations_ == TableRotations::kNone) {  // the displacement of MagnusFromTangents, without the rotation
     MarchGaussTangents(*e_, h_, steps,
                        [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
+                         pos_[j + 1] = pos_[j] + GaussDisplacement(t1, t2, t3, h_);
+                       });
+    return;
+  }
+  if (rotations_ == TableRotations::kQuaternions) {  // the same steps, exp and products as quaternions
+    quat_.resize(steps + 1);
+    quat_[0].setIdentity();
+    MarchGaussTangents(*e_, h_, steps,
+                       [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
+                         quat_[j + 1] = QuaternionExp(MagnusVector(t1, t2, t3, h_)) * quat_[j];
                          pos_[j + 1] = pos_[j] + GaussDisplacement(t1, t2, t3, h_);
                        });
     return;
@@ -172,7 +226,15 @@ Eigen::Matrix3d PeriodRolling(const Elastica& e, int steps) {
 }
 
 void ElasticaRollingTable::RequireRotations(const char* what) const {
-  if (positions_only_) throw std::logic_error(std::string("ElasticaRollingTable::") + what + ": a table of positions only");
+  if (rotations_ == TableRotations::kNone)
+    throw std::logic_error(std::string("ElasticaRollingTable::") + what + ": a table of positions only");
+  if (rotations_ == TableRotations::kQuaternions)
+    throw std::logic_error(std::string("ElasticaRollingTable::") + what + ": a table of quaternions");
+}
+
+void ElasticaRollingTable::RequireQuaternions(const char* what) const {
+  if (rotations_ != TableRotations::kQuaternions)
+    throw std::logic_error(std::string("ElasticaRollingTable::") + what + ": not a table of quaternions");
 }
 
 Eigen::Matrix3d ElasticaRollingTable::Rolling(double s) const {
@@ -249,10 +311,30 @@ std::vector<Eigen::Matrix3d> ElasticaRollingTable::MonodromyPowers() const {
   return powers;
 }
 
+std::vector<Eigen::Quaterniond> ElasticaRollingTable::MonodromyQuaternionPowers() const {
+  RequireQuaternions("MonodromyQuaternionPowers");
+  std::vector<Eigen::Quaterniond> powers{Eigen::Quaterniond::Identity()};
+  if (straight_ || !std::isfinite(period_)) return powers;
+  const long count = NodeCount() / steps_;
+  powers.reserve(count + 1);
+  for (long n = 1; n <= count; ++n) powers.push_back(monodromy_quat_ * powers.back());
+  return powers;
+}
+
 void ElasticaRollingTable::NodePositions(std::vector<Eigen::Vector2d>* position) const {
   const long count = NodeCount();
   position->resize(count + 1);
-  for (long i = 0; i <= count; ++i) (*position)[i] = straight_ ? pos_[std::min<long>(i, 1)] : NodePosition(i);
+  if (straight_ || !std::isfinite(period_)) {
+    const long last = straight_ ? 1 : steps_;
+    for (long i = 0; i <= count; ++i) (*position)[i] = pos_[std::min(i, last)];
+    return;
+  }
+  // NodePosition(i) = n D + x_j (i = n N + j) period by period: the same bits, no division per node.
+  for (long start = 0, n = 0; start <= count; start += steps_, ++n) {
+    const Eigen::Vector2d shift = static_cast<double>(n) * drift_;
+    const long end = std::min<long>(steps_, count - start + 1);
+    for (long j = 0; j < end; ++j) (*position)[start + j] = shift + pos_[j];
+  }
 }
 
 void ElasticaRollingTable::Nodes(std::vector<Eigen::Matrix3d>* rolling, std::vector<Eigen::Vector2d>* position) const {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -24,6 +25,16 @@ Eigen::Matrix3d MagnusRollingStep(const Elastica& e, double s0, double s1, Eigen
 /// uniform sixth-order Magnus steps (no table kept). Not for straight lines (infinite period).
 Eigen::Matrix3d PeriodRolling(const Elastica& e, int steps);
 
+/// What an ElasticaRollingTable keeps of the rolling at its nodes: rotation matrices, nothing
+/// (positions only), or unit quaternions (for scans that compose many node rotations: a product
+/// of two costs 16 multiplications instead of 27, and the trace and logarithm the scan needs come
+/// straight from the quaternion).
+enum class TableRotations { kMatrices, kNone, kQuaternions };
+
+/// exp(hat(w)) as a unit quaternion (cos(|w| / 2), sin(|w| / 2) w / |w|): ExpSO3(w)'s rotation
+/// (Taylor series below 1e-18 for small |w|).
+Eigen::Quaterniond QuaternionExp(const Eigen::Vector3d& w);
+
 /// Rolling along an elastica on [0, s_limit], from a table over one curvature period.
 class ElasticaRollingTable {
  public:
@@ -34,8 +45,13 @@ class ElasticaRollingTable {
   /// (the rolling then comes from ElasticaClosedRolling, elastica_closed_rolling.h).
   ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
                        int max_total_steps = 200000, bool positions_only = false);
+  /// The same table keeping `rotations` (kNone: positions_only; kQuaternions: the same Magnus steps
+  /// composed as unit quaternions, read by NodeQuaternion only: Rolling, Nodes, MonodromyPowers
+  /// throw std::logic_error on it). Nodes and positions are the same bit for bit in every form.
+  ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step, int max_total_steps,
+                       TableRotations rotations);
   bool Valid() const { return valid_; }
-  bool PositionsOnly() const { return positions_only_; }
+  bool PositionsOnly() const { return rotations_ == TableRotations::kNone; }
   /// Whether a table of the same elastica and accuracy over [0, s_limit] (s_limit >= this one's)
   /// would be this one: a periodic table (one period tabulated) is the same for every length, so
   /// it serves Rolling(s) for any s up to s_limit as it stands.
@@ -67,16 +83,28 @@ class ElasticaRollingTable {
   /// that does not repeat), for NodeRolling.
   std::vector<Eigen::Matrix3d> MonodromyPowers() const;
   /// Q(0, i h) of one node, 0 <= i <= NodeCount(), bit for bit Nodes' value, with `powers` from
-  /// MonodromyPowers(): for scans that need the rolling at a few of the nodes only.
+  /// MonodromyPowers(): for scans that need the rolling at a few of the nodes only (a table of
+  /// matrices; NodeQuaternion reads a table of quaternions).
   Eigen::Matrix3d NodeRolling(long i, const std::vector<Eigen::Matrix3d>& powers) const {
     if (straight_ || !std::isfinite(period_)) return rot_[std::min<long>(i, steps_)];
     const long n = i / steps_;
     return n == 0 ? rot_[i] : Eigen::Matrix3d(rot_[i % steps_] * powers[n]);  // P^0 = I: no product
   }
+  /// A table of quaternions (TableRotations::kQuaternions): the monodromy's powers p^n, n = 0 ..
+  /// NodeCount() / Steps(), and the unit quaternion of Q(0, i h) at node i, 0 <= i <= NodeCount()
+  /// (q_j p^n, i = n N + j, as NodeRolling), with `powers` from MonodromyQuaternionPowers(). The
+  /// rotations agree with a matrix table's NodeRolling to round-off (about 1e-15 per step).
+  std::vector<Eigen::Quaterniond> MonodromyQuaternionPowers() const;
+  Eigen::Quaterniond NodeQuaternion(long i, const std::vector<Eigen::Quaterniond>& powers) const {
+    if (straight_ || !std::isfinite(period_)) return quat_[std::min<long>(i, steps_)];
+    const long n = i / steps_;
+    return n == 0 ? quat_[i] : Eigen::Quaterniond(quat_[i % steps_] * powers[n]);
+  }
 
  private:
   void Build(int steps);
   void RequireRotations(const char* what) const;
+  void RequireQuaternions(const char* what) const;
   // Counts node brackets up to max_count and refines those for which refine(count, sa, sb) holds
   // (count from 1; bracket [sa, sb]), appending (count, root) to out; -1 on failure.
   template <class Pred>
@@ -87,14 +115,16 @@ class ElasticaRollingTable {
   double s_limit_;
   int max_total_steps_;
   bool valid_ = true;
-  bool positions_only_ = false;
+  TableRotations rotations_ = TableRotations::kMatrices;
   bool straight_ = false;
   double period_ = 0.0;
   double h_ = 0.0;
   int steps_ = 0;
   Eigen::Vector2d drift_;
   Eigen::Matrix3d monodromy_;
-  std::vector<Eigen::Matrix3d> rot_;  // Q(0, j h), j = 0..steps_
+  Eigen::Quaterniond monodromy_quat_;
+  std::vector<Eigen::Matrix3d> rot_;      // Q(0, j h), j = 0..steps_ (kMatrices)
+  std::vector<Eigen::Quaterniond> quat_;  // the same as unit quaternions (kQuaternions)
   std::vector<Eigen::Vector2d> pos_;  // x(j h)
 };
 

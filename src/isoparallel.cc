@@ -835,33 +835,35 @@ std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const Iso
 }
 
 // A shape's table in the form the scan reads it: the node positions, and the rolling at a node
-// on demand (Q(0, i h) = Q(0, j h) P^n, i = n N + j, bit for bit ElasticaRollingTable::Nodes).
+// on demand as a unit quaternion (Q(0, i h) = Q(0, j h) P^n, i = n N + j, a table of quaternions:
+// ElasticaRollingTable::NodeQuaternion).
 struct ShapeNodes {
   const internal::ElasticaRollingTable* table;
-  std::vector<Eigen::Matrix3d> powers;
+  std::vector<Eigen::Quaterniond> powers;
   std::vector<Eigen::Vector2d> x;
-  Eigen::Matrix3d target_t;
+  Eigen::Quaterniond target_conj;
   internal::GoalDirection goal;
   internal::LogNormBound bound{kScanResidual};
 };
 
-// The rotation whose log is the residual of the path from node i0 to node i of a shape's table (the
-// rotation trick with B from the chord's direction; q0t = Q(0, s0)^T, Q(s0, s) = Q(0, s) Q(0, s0)^T).
-Eigen::Matrix3d NodeResidualRotation(const ShapeNodes& nodes, const Eigen::Matrix3d& q0t, long i0, long i) {
-  return internal::ChordRotation(nodes.target_t, nodes.goal, nodes.x[i] - nodes.x[i0],
-                                 nodes.table->NodeRolling(i, nodes.powers) * q0t);
+// The rotation (a quaternion) whose log is the residual of the path from node i0 to node i of a
+// shape's table (the rotation trick with B from the chord's direction; q0c = Q(0, s0)'s conjugate,
+// Q(s0, s) = Q(0, s) Q(0, s0)^T).
+Eigen::Quaterniond NodeResidualRotation(const ShapeNodes& nodes, const Eigen::Quaterniond& q0c, long i0, long i) {
+  return internal::ChordQuaternion(nodes.target_conj, nodes.goal, nodes.x[i] - nodes.x[i0],
+                                   nodes.table->NodeQuaternion(i, nodes.powers) * q0c);
 }
 
 // |residual| of a crossing between nodes i0 + l - 1 and i0 + l (interpolated with weight t on the
 // later node; node i0 + 1's alone for l = 1), +infinity where LogNormBound proves it above
 // kScanResidual (SearchShape reads no residual beyond it, and such a neighbour never undercuts one
 // below it), without the logarithms.
-double CrossingResidual(const ShapeNodes& nodes, const Eigen::Matrix3d& q0t, long i0, long l, double t) {
-  const Eigen::Matrix3d a = NodeResidualRotation(nodes, q0t, i0, i0 + l);
-  if (l == 1) return nodes.bound.Exceeds(a) ? kAboveScanResidual : internal::TraceLogSO3(a).norm();
-  const Eigen::Matrix3d b = NodeResidualRotation(nodes, q0t, i0, i0 + l - 1);
+double CrossingResidual(const ShapeNodes& nodes, const Eigen::Quaterniond& q0c, long i0, long l, double t) {
+  const Eigen::Quaterniond a = NodeResidualRotation(nodes, q0c, i0, i0 + l);
+  if (l == 1) return nodes.bound.Exceeds(a) ? kAboveScanResidual : internal::QuaternionLog(a).norm();
+  const Eigen::Quaterniond b = NodeResidualRotation(nodes, q0c, i0, i0 + l - 1);
   if (nodes.bound.InterpolationExceeds(a, b)) return kAboveScanResidual;
-  return (t * internal::TraceLogSO3(a) + (1 - t) * internal::TraceLogSO3(b)).norm();
+  return (t * internal::QuaternionLog(a) + (1 - t) * internal::QuaternionLog(b)).norm();
 }
 
 // A point of a shape's (s0, L) scan where the chord |x(s0 + L) - x(s0)| crosses the radius
@@ -894,7 +896,7 @@ constexpr long kMinSkip = 3;  // ScanRow: the fewest nodes a skip is tried for
 [[gnu::noinline]] void ScanRow(const Context& ctx, const ShapeNodes& nodes, const std::vector<double>& reach,
                                double h, long i0, long l_end, double limit, std::vector<ScanPoint>* row) {
   const std::vector<Eigen::Vector2d>& x = nodes.x;
-  const Eigen::Matrix3d q0t = nodes.table->NodeRolling(i0, nodes.powers).transpose();
+  const Eigen::Quaterniond q0c = nodes.table->NodeQuaternion(i0, nodes.powers).conjugate();
   const Eigen::Vector2d x0 = x[i0];
   const double r2 = ctx.radius * ctx.radius, far = ctx.radius + kTangencyMiss, near = ctx.radius - kTangencyMiss;
   // The band (loosened by 1e-9) where an extremum is a near-tangency; chords beyond its edges
@@ -923,14 +925,14 @@ constexpr long kMinSkip = 3;  // ScanRow: the fewest nodes a skip is tried for
     if ((f > 0) != (f_prev > 0)) {
       const double t = f_prev / (f_prev - f);  // linear interpolation between the nodes
       if ((l - 1 + t) * h > limit) break;
-      row->push_back({(l - 1 + t) * h, CrossingResidual(nodes, q0t, i0, l, t)});
+      row->push_back({(l - 1 + t) * h, CrossingResidual(nodes, q0c, i0, l, t)});
       if (row->size() - first >= static_cast<std::size_t>(kMaxCrossingsPerStart)) break;
     } else if (l >= 2 && f_prev + r2 > band_lo && f_prev + r2 < band_hi &&
                ((f_prev > f_prev2 && f_prev >= f && f_prev < 0) || (f_prev < f_prev2 && f_prev <= f && f_prev > 0))) {
       const double miss = std::sqrt(f_prev + r2) - ctx.radius;  // an extremum at node l - 1
       if (std::abs(miss) < kTangencyMiss) {
-        const Eigen::Matrix3d a = NodeResidualRotation(nodes, q0t, i0, i0 + l - 1);
-        const double r = nodes.bound.Exceeds(a) ? kAboveScanResidual : internal::TraceLogSO3(a).norm();
+        const Eigen::Quaterniond a = NodeResidualRotation(nodes, q0c, i0, i0 + l - 1);
+        const double r = nodes.bound.Exceeds(a) ? kAboveScanResidual : internal::QuaternionLog(a).norm();
         row->push_back({(l - 1) * h, std::hypot(miss, r)});
       }
     }
@@ -946,9 +948,10 @@ constexpr long kMinSkip = 3;  // ScanRow: the fewest nodes a skip is tried for
 ShapeScan ScanShape(const Context& ctx, const Elastica& e) {
   ShapeScan scan;
   if (e.IsStraight() || !std::isfinite(e.Period())) return scan;
-  const internal::ElasticaRollingTable table(e, ctx.s_limit + e.Period(), kSearch.steps_per_period, kSearch.max_step);
+  const internal::ElasticaRollingTable table(e, ctx.s_limit + e.Period(), kSearch.steps_per_period, kSearch.max_step,
+                                             200000, internal::TableRotations::kQuaternions);
   if (!table.Valid()) return scan;
-  ShapeNodes nodes{&table, table.MonodromyPowers(), {}, ctx.target.transpose(),
+  ShapeNodes nodes{&table, table.MonodromyQuaternionPowers(), {}, Eigen::Quaterniond(ctx.target).conjugate(),
                    {std::cos(ctx.goal_angle), std::sin(ctx.goal_angle)}};
   table.NodePositions(&nodes.x);
   const double h = table.Step();

@@ -10,6 +10,7 @@
 #include "isoparallel_certify_centred.h"
 #include "isoparallel_certify_costate.h"
 #include "isoparallel_certify_jacobian.h"
+#include "isoparallel_certify_periods.h"
 #include "isoparallel_certify_rolling.h"
 #include "jacobi_elliptic.h"
 #include "plateball/so3.h"
@@ -473,6 +474,9 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
       if (verdict == BoxVerdict::kUndecided && options.costate &&
           CostateExcludes(target, options.regime, box, chord_deviation, options.margin))
         verdict = BoxVerdict::kExcludedByCostate;
+      if (verdict == BoxVerdict::kUndecided && options.fixed_periods &&
+          (verdict = FixedPeriodsTest(options, box, centre, deviation, chord_deviation)) != BoxVerdict::kUndecided)
+        ++result.excluded_by_fixed_periods;
     }
     if (verdict != BoxVerdict::kUndecided) {
       ++(verdict == BoxVerdict::kExcludedByChord      ? result.excluded_by_chord
@@ -480,6 +484,10 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
                                                       : result.excluded_by_costate);
       result.resolved_volume += BoxVolume(box) / window_volume;
       continue;
+    }
+    if (options.fixed_periods) {  // split as the fixed-periods bound sees the box, when it is the smaller
+      CertifyPoint periods_share;
+      if (FixedPeriodsDeviationBound(options.regime, box, &periods_share) < deviation) share = periods_share;
     }
     int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
     FirstOrderOutcome first;

@@ -149,6 +149,12 @@ struct CertifyWindowOptions {
   /// box's vertices plus a second-order remainder, isoparallel_certify_centred.h) on boxes still
   /// undecided: rigorous.
   bool centred_rolling = true;
+  /// Then the chord and rotation tests with the bounds compared at a fixed number of periods
+  /// (isoparallel_certify_periods.h: a k change split into a bounded one at fixed rate / K and
+  /// u0 / K, a rate change and a phase shift) on boxes still undecided: rigorous. A box is then
+  /// also split along the largest share of FixedPeriodsDeviationBound where it is below D (the
+  /// trace's shares are those).
+  bool fixed_periods = true;
   std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
   std::string Validate() const;
 };
@@ -169,6 +175,7 @@ struct CertifyWindowResult {
   long excluded_by_closed_rolling = 0;  // of excluded_by_rotation: only with the closed-form bound
   long excluded_by_chart_rolling = 0;   // of excluded_by_rotation: only with the theta/2 chart's bound
   long excluded_by_centred_rolling = 0;  // of excluded_by_rotation: only with the centred form, after those
+  long excluded_by_fixed_periods = 0;   // of excluded_by_chord/rotation: only with the fixed-periods bounds
   long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
   long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
   std::vector<int> matched;  // per known solution: how many accounted boxes it explains

@@ -309,6 +309,116 @@ TEST(Isoparallel, ScanResidualBoundNeverHidesAStart) {
   }
 }
 
+// The scan's table keeps its rotations as unit quaternions (TableRotations::kQuaternions): against
+// a matrix table of the same shape and accuracy (the reference path), the same spacing, steps and
+// node positions bit for bit, every node's NodeQuaternion the rotation of NodeRolling to round-off,
+// still unit; NodePositions bit for bit n D + x_j (D = DriftPerPeriod, i = n N + j) at the scan's
+// accuracy; each form's reads throw on the other; a table shorter than a period and a straight
+// line. QuaternionExp against ExpSO3 across its Taylor branch (|w| = 0.6) and up to pi.
+TEST(ElasticaRolling, QuaternionTableMatchesTheMatrixTable) {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 8; ++trial) {  // both regimes and senses; the last one shorter than a period
+    ElasticaParameters p;
+    p.modulus = 0.97 * unit(rng);
+    p.rate = (0.5 + 5.0 * unit(rng)) * (trial % 4 < 2 ? 1.0 : -1.0);
+    p.regime = trial % 2 == 0 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
+    const Elastica e(p);
+    const double length = trial == 7 ? 0.7 * e.Period() : 20.0 + e.Period();
+    const internal::ElasticaRollingTable matrices(e, length, 12, 0.5);
+    const internal::ElasticaRollingTable quats(e, length, 12, 0.5, 200000, internal::TableRotations::kQuaternions);
+    ASSERT_TRUE(matrices.Valid() && quats.Valid()) << trial;
+    ASSERT_EQ(quats.Steps(), matrices.Steps());
+    ASSERT_EQ(quats.Step(), matrices.Step());
+    ASSERT_EQ(quats.NodeCount(), matrices.NodeCount());
+    std::vector<Eigen::Vector2d> xm, xq;
+    matrices.NodePositions(&xm);
+    quats.NodePositions(&xq);
+    ASSERT_EQ(xq, xm) << trial;
+    const long n_steps = quats.Steps();
+    for (long i = 0; trial < 7 && i <= quats.NodeCount(); ++i)
+      ASSERT_EQ(xq[i], (static_cast<double>(i / n_steps) * e.DriftPerPeriod() + xq[i % n_steps]).eval()) << trial << " " << i;
+    const std::vector<Eigen::Matrix3d> pm = matrices.MonodromyPowers();
+    const std::vector<Eigen::Quaterniond> pq = quats.MonodromyQuaternionPowers();
+    ASSERT_EQ(pq.size(), pm.size());
+    double worst = 0.0;
+    for (long i = 0; i <= quats.NodeCount(); ++i) {
+      const Eigen::Quaterniond q = quats.NodeQuaternion(i, pq);
+      worst = std::max(worst, (q.toRotationMatrix() - matrices.NodeRolling(i, pm)).cwiseAbs().maxCoeff());
+      EXPECT_NEAR(q.norm(), 1.0, 1e-13) << trial << " " << i;
+    }
+    EXPECT_LT(worst, 1e-13) << trial;
+    EXPECT_THROW(quats.Rolling(1.0), std::logic_error);
+    EXPECT_THROW(quats.MonodromyPowers(), std::logic_error);
+    EXPECT_THROW(matrices.MonodromyQuaternionPowers(), std::logic_error);
+  }
+  ElasticaParameters line;
+  line.rate = 0.0;
+  const Elastica straight(line);
+  ASSERT_TRUE(straight.IsStraight());
+  const internal::ElasticaRollingTable ms(straight, 3.0, 12, 0.5), qs(straight, 3.0, 12, 0.5, 200000,
+                                                                          internal::TableRotations::kQuaternions);
+  const std::vector<Eigen::Quaterniond> none = qs.MonodromyQuaternionPowers();
+  EXPECT_LT((qs.NodeQuaternion(1, none).toRotationMatrix() - ms.NodeRolling(1, ms.MonodromyPowers())).norm(), 1e-15);
+  std::uniform_real_distribution<double> sym(-1.0, 1.0);
+  for (double angle : {0.0, 1e-9, 0.1, 0.2, 0.6 - 1e-12, 0.6, 0.6 + 1e-12, 1.0, 2.5, M_PI}) {
+    const Eigen::Vector3d w = angle * Eigen::Vector3d(sym(rng), sym(rng), sym(rng)).normalized();
+    const Eigen::Quaterniond q = internal::QuaternionExp(w);
+    EXPECT_NEAR(q.norm(), 1.0, 2e-16) << angle;
+    EXPECT_LT((q.toRotationMatrix() - ExpSO3(w)).cwiseAbs().maxCoeff(), 1e-15) << angle;
+  }
+}
+
+// The scan's residual in quaternions (ChordQuaternion, QuaternionLog, LogNormBound on quaternions)
+// against the matrix path it replaced (ChordRotation, TraceLogSO3, LogNormBound on matrices) at
+// random targets, goals, chords (one zero) and rollings over all angles up to pi: the same logs
+// to 1e-12 (near pi, where the axis' sign is free, the same norm), the same bound decisions, and
+// for quaternions scaled off the unit sphere (the scale cancels) the same again.
+TEST(Isoparallel, ScanQuaternionResidualMatchesTheMatrixPath) {
+  std::mt19937_64 rng(14);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto random_rotation = [&](double angle) {
+    return ExpSO3(angle * Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized());
+  };
+  const internal::LogNormBound bound(1.0);
+  int exceeds = 0, interpolation_exceeds = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Eigen::Matrix3d target = random_rotation(M_PI * std::abs(unit(rng)));
+    const Eigen::Matrix3d q = random_rotation(M_PI * std::abs(unit(rng)));
+    const Eigen::Matrix3d q2 = q * random_rotation(0.8 * std::abs(unit(rng)));  // a neighbouring node
+    const double goal_angle = M_PI * unit(rng);
+    const internal::GoalDirection goal{std::cos(goal_angle), std::sin(goal_angle)};
+    const Eigen::Vector2d chord = trial == 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(3 * unit(rng), 3 * unit(rng));
+    const Eigen::Vector2d chord2 = chord + Eigen::Vector2d(0.3 * unit(rng), 0.3 * unit(rng));
+    const Eigen::Matrix3d ma = internal::ChordRotation(target.transpose(), goal, chord, q);
+    const Eigen::Matrix3d mb = internal::ChordRotation(target.transpose(), goal, chord2, q2);
+    const double scale = trial % 3 == 0 ? 1.0 : 0.5 + 2.0 * std::abs(unit(rng));
+    const Eigen::Quaterniond tc = Eigen::Quaterniond(target).conjugate();
+    const Eigen::Quaterniond qa = internal::ChordQuaternion(tc, goal, chord, Eigen::Quaterniond(q));
+    const Eigen::Quaterniond qb = internal::ChordQuaternion(tc, goal, chord2, Eigen::Quaterniond(q2));
+    const Eigen::Quaterniond sa(scale * qa.coeffs()), sb(scale * qb.coeffs());
+    const Eigen::Vector3d expected = internal::TraceLogSO3(ma);
+    for (const Eigen::Quaterniond& a : {qa, sa}) {
+      const Eigen::Vector3d got = internal::QuaternionLog(a);
+      if (expected.norm() < 3.0) {
+        ASSERT_LT((got - expected).norm(), 1e-12) << trial;
+      } else {
+        ASSERT_NEAR(got.norm(), expected.norm(), 1e-12) << trial;
+      }
+    }
+    EXPECT_LT((qa.toRotationMatrix() - ma).cwiseAbs().maxCoeff(), 1e-14) << trial;
+    exceeds += bound.Exceeds(ma);
+    interpolation_exceeds += bound.InterpolationExceeds(ma, mb);
+    ASSERT_EQ(bound.Exceeds(qa), bound.Exceeds(ma)) << trial;
+    ASSERT_EQ(bound.Exceeds(sa), bound.Exceeds(ma)) << trial;
+    ASSERT_EQ(bound.InterpolationExceeds(qa, qb), bound.InterpolationExceeds(ma, mb)) << trial;
+    ASSERT_EQ(bound.InterpolationExceeds(sa, sb), bound.InterpolationExceeds(ma, mb)) << trial;
+  }
+  EXPECT_GT(exceeds, 1000);
+  EXPECT_GT(interpolation_exceeds, 500);
+  EXPECT_LT(interpolation_exceeds, exceeds) << "both outcomes of each test";
+}
+
 // The search reuses a trial's table for longer lengths only where ServesLength says a table over
 // that length would be the same one: a periodic table (the rolling there bit for bit that of a
 // table built over the longer length, and near dopri5 at the search accuracy), not a table
