@@ -9,7 +9,8 @@
 //   certify_measure [PROBLEM.json] [--caps 1.0,1.2,1.5] [--regime oscillating|rotating|both]
 //                   [--budget BOXES] [--k-max K] [--rate-max A] [--first-order 0|1] [--known 0|1]
 //                   [--first-order-deviation D] [--costate 0|1] [--closed-rolling 0|1]
-//                   [--chart-rolling 0|1] [--centred-phase 0|1] [--fixed-periods 0|1] [--trace FILE]
+//                   [--chart-rolling 0|1] [--centred-rolling 0|1] [--centred-phase 0|1] [--fixed-periods 0|1]
+//                   [--trace FILE]
 //
 // --first-order 1 adds the first-order tests (mean-value exclusion, Krawczyk) and prints the
 // solutions they prove unique, each with the solver's solution it matches (or "new");
@@ -19,7 +20,8 @@
 // --costate 0 turns off the costate test (isoparallel_certify_costate.h; on by default);
 // --closed-rolling 0 turns off the closed-form rolling bound of the rotation test
 // (isoparallel_certify_rolling.h; on by default); --chart-rolling 0 the theta/2 chart's bound
-// (same header, smooth through G = 1; on by default); the phase window is [-P/2, P/2] (P the
+// (same header, smooth through G = 1; on by default); --centred-rolling 0 the centred form's bound
+// (isoparallel_certify_centred.h: vertex rollings plus a second-order remainder; on by default); the phase window is [-P/2, P/2] (P the
 // period at k_max: |u0| and so the secular terms of the bounds halved), --centred-phase 0 takes
 // [0, P] instead (the same paths; the figures of rounds before the tenth);
 // --fixed-periods 0 turns off the bounds compared at a fixed number of periods and the split
@@ -55,7 +57,7 @@ struct Settings {
   long budget = 2000000;
   double k_max = 0.95, rate_max = 2.0;
   bool first_order = false, known = true, costate = true, closed_rolling = true, chart_rolling = true;
-  bool centred_phase = true, fixed_periods = true;
+  bool centred_phase = true, centred_rolling = true, fixed_periods = true;
   double first_order_deviation = 0.5;
   std::string trace;  // file of split boxes, or empty
 };
@@ -117,6 +119,8 @@ Settings Parse(int argc, char** argv) {
       s.closed_rolling = Number(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--chart-rolling") {
       s.chart_rolling = Number(a, v, 0.0, 1.0) != 0.0;
+    } else if (a == "--centred-rolling") {
+      s.centred_rolling = Number(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--centred-phase") {
       s.centred_phase = Number(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--fixed-periods") {
@@ -140,6 +144,7 @@ CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, double 
   o.costate = s.costate;
   o.closed_rolling = s.closed_rolling;
   o.chart_rolling = s.chart_rolling;
+  o.centred_rolling = s.centred_rolling;
   o.fixed_periods = s.fixed_periods;
   o.first_order_deviation = s.first_order_deviation;
   // One period of the phase at k_max (>= the period at every smaller k): [-P/2, P/2], or [0, P]
@@ -195,8 +200,9 @@ int Run(const Settings& s) {
       std::printf("cap %.2fx %s: %s; resolved volume %.6f; %.1f s (%.1f s CPU)\n", factor, ToString(regime).c_str(),
                   w.message.c_str(), w.resolved_volume, seconds, cpu);
       std::printf("  excluded by rotation %ld (%ld only with the closed-form rolling bound, %ld then only with the "
-                  "theta/2 chart's)\n",
-                  w.excluded_by_rotation, w.excluded_by_closed_rolling, w.excluded_by_chart_rolling);
+                  "theta/2 chart's, %ld then only with the centred form)\n",
+                  w.excluded_by_rotation, w.excluded_by_closed_rolling, w.excluded_by_chart_rolling,
+                  w.excluded_by_centred_rolling);
       std::printf("  excluded only with the fixed-periods bounds %ld\n", w.excluded_by_fixed_periods);
       for (size_t i = 0; i < w.found.size(); ++i) {
         const CertifyPoint& f = w.found[i];

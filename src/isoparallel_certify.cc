@@ -7,6 +7,7 @@
 
 #include "check.h"
 #include "elastica_closed_rolling.h"
+#include "isoparallel_certify_centred.h"
 #include "isoparallel_certify_costate.h"
 #include "isoparallel_certify_jacobian.h"
 #include "isoparallel_certify_periods.h"
@@ -415,8 +416,9 @@ CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double leng
 
 namespace {
 
-// The rotation test with min(D, R, Rt) (R: the costate chart, Rt: the theta/2 chart,
-// isoparallel_certify_rolling.h) on a box D leaves undecided; stop = min(D, slack).
+// The rotation test with min(D, R, Rt, Rc) (R: the costate chart, Rt: the theta/2 chart,
+// isoparallel_certify_rolling.h; Rc: the centred form, isoparallel_certify_centred.h) on a box D
+// leaves undecided; stop = min(D, slack).
 BoxVerdict ClosedFormRotationTest(const CertifyWindowOptions& options, const CertifyBox& box, double stop, double slack,
                                   CertifyWindowResult* result) {
   if (options.closed_rolling && ClosedRollingDeviationBound(options.regime, box, options.margin, stop) < slack) {
@@ -425,6 +427,10 @@ BoxVerdict ClosedFormRotationTest(const CertifyWindowOptions& options, const Cer
   }
   if (options.chart_rolling && ChartRollingDeviationBound(options.regime, box, options.margin, stop) < slack) {
     ++result->excluded_by_chart_rolling;
+    return BoxVerdict::kExcludedByRotation;
+  }
+  if (options.centred_rolling && CentredRollingDeviationBound(options.regime, box, options.margin, stop) < slack) {
+    ++result->excluded_by_centred_rolling;
     return BoxVerdict::kExcludedByRotation;
   }
   return BoxVerdict::kUndecided;

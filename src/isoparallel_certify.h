@@ -145,6 +145,10 @@ struct CertifyWindowOptions {
   /// Then min(D, ChartRollingDeviationBound) (the theta/2 chart, isoparallel_certify_rolling.h:
   /// smooth and finite through G = 1, linear in L) on boxes still undecided: rigorous.
   bool chart_rolling = true;
+  /// Then min(D, CentredRollingDeviationBound) (a centred form: the closed-form rolling at the
+  /// box's vertices plus a second-order remainder, isoparallel_certify_centred.h) on boxes still
+  /// undecided: rigorous.
+  bool centred_rolling = true;
   /// Then the chord and rotation tests with the bounds compared at a fixed number of periods
   /// (isoparallel_certify_periods.h: a k change split into a bounded one at fixed rate / K and
   /// u0 / K, a rate change and a phase shift) on boxes still undecided: rigorous. A box is then
@@ -170,6 +174,7 @@ struct CertifyWindowResult {
   long excluded_by_costate = 0;
   long excluded_by_closed_rolling = 0;  // of excluded_by_rotation: only with the closed-form bound
   long excluded_by_chart_rolling = 0;   // of excluded_by_rotation: only with the theta/2 chart's bound
+  long excluded_by_centred_rolling = 0;  // of excluded_by_rotation: only with the centred form, after those
   long excluded_by_fixed_periods = 0;   // of excluded_by_chord/rotation: only with the fixed-periods bounds
   long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
   long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
