@@ -289,8 +289,15 @@ Eigen::Vector2d Elastica::TangentOf(const Jacobi& j) const {
 }
 
 Eigen::Vector2d Elastica::Position(double s) const {
+  Jacobi j{};
+  double integral_sn2 = 0.0;
+  return PositionAt(s, &j, &integral_sn2);
+}
+
+Eigen::Vector2d Elastica::PositionAt(double s, Jacobi* jacobi, double* integral_sn2) const {
   const double du = p_.rate * s;
   if (std::abs(du) < kShortArcArgument) {
+    *integral_sn2 = std::numeric_limits<double>::quiet_NaN();
     // Short arc (or straight line): 8-point Gauss-Legendre quadrature of the closed-form
     // tangent; the tangent is analytic, so the error is O(du^16) relative (2 points: O(du^4)).
     const double half = 0.5 * s;
@@ -301,8 +308,10 @@ Eigen::Vector2d Elastica::Position(double s) const {
     }
     return half * acc;
   }
-  Jacobi j{};  // at u = phase + du (sn, cn, dn and int_0^u sn^2 from one reduction modulo 2K)
-  const double di = IntegralSn2(p_.phase + du, &j) - i0_;
+  // At u = phase + du: sn, cn, dn and int_0^u sn^2 from one reduction modulo 2K.
+  *integral_sn2 = IntegralSn2(p_.phase + du, jacobi);
+  const double di = *integral_sn2 - i0_;
+  const Jacobi& j = *jacobi;
   const Jacobi& j0 = j0_;
   double x, y;  // pendulum frame
   if (p_.regime == PendulumRegime::kOscillating) {

@@ -24,6 +24,13 @@ namespace plateball::internal {
 /// ElasticaRollingTable: Rolling(0, s) = ElasticaRollingTable::Rolling(s)), in closed form at
 /// any s0, s1: O(1) work whatever the number of periods between them.
 class ElasticaClosedRolling {
+  // The Jacobi functions at w = rate s + u0 = 2 K m + r, |r| <= K.
+  struct Node {
+    double m = 0.0;                  // number of half periods 2K (an integer)
+    double sn = 0.0, cn = 1.0, dn = 1.0;  // at w
+    double pi = 0.0;                 // Pi(n; am(r), k), when asked for and n != 0
+  };
+
  public:
   /// Keeps the elastica's parameters (not a reference to it). Throws std::invalid_argument naming
   /// the rate when |rate| > kMaxRate (G and V^2 would overflow).
@@ -47,6 +54,40 @@ class ElasticaClosedRolling {
   double Twist(double s) const;
   /// V = |v(s)| (constant).
   double CostateNorm() const { return norm_v_; }
+
+  /// First derivatives of the path from 0 to s, x(s) - x(0) = e.Position(s) and Q(0, s) =
+  /// Rolling(s), with respect to the rate and to the modulus (the other parameters fixed): the
+  /// chord's directly, the rolling's as the spin omega with dQ/dp = Q hat(omega).
+  struct PathSensitivity {
+    Eigen::Vector2d chord_rate = Eigen::Vector2d::Zero(), chord_modulus = Eigen::Vector2d::Zero();
+    Eigen::Vector3d spin_rate = Eigen::Vector3d::Zero(), spin_modulus = Eigen::Vector3d::Zero();
+  };
+  /// The path from 0 to s: its chord x(s) - x(0) and Q(0, s), bit for bit e.Position(s) and
+  /// Rolling(s) (`e` the elastica this object was built from), from one evaluation of the Jacobi
+  /// functions at s; what Sensitivity needs is kept.
+  struct PathEnd {
+    double s = 0.0;
+    Eigen::Vector2d chord = Eigen::Vector2d::Zero();
+    Eigen::Matrix3d q = Eigen::Matrix3d::Identity();
+
+   private:
+    friend class ElasticaClosedRolling;
+    Node node;
+    double integral_sn2 = 0.0;  // int_0^w sn^2 (NaN on a short arc: Position integrates it)
+  };
+  /// Throws like Rolling(s).
+  PathEnd Path(const Elastica& e, double s) const;
+  /// The derivatives in closed form at the end of `path` (from Path(e, s)): each Jacobi function,
+  /// Legendre's D and E and the twist's Pi differentiated at fixed argument w = rate s + u0 (d am /
+  /// dk, and dPi/dn, dPi/dk in terms of F, E, Pi: Byrd and Friedman 710.00, 733.00), the costate
+  /// frame through its costate. False (out untouched) where these forms are not used: straight
+  /// lines, circles and tiny moduli (modulus < kSensitivityMinModulus, also every negative
+  /// modulus), |1 - G| < kSensitivityMinOneMinusG (the frame's layer), short arcs (|rate s| <
+  /// kSensitivityMinArc, where the chord cancels).
+  bool Sensitivity(const PathEnd& path, PathSensitivity* out) const;
+  static constexpr double kSensitivityMinModulus = 1e-3;
+  static constexpr double kSensitivityMinOneMinusG = 1e-3;
+  static constexpr double kSensitivityMinArc = 0.05;
   /// True when the curvature vanishes identically (rate 0, or oscillating with k = 0).
   bool IsStraight() const { return straight_; }
   /// True when the frame uses the G = 1 chart (|1 - G| < kUnitChart).
@@ -56,12 +97,6 @@ class ElasticaClosedRolling {
   static constexpr double kUnitChart = 1e-150;
 
  private:
-  // The Jacobi functions at w = rate s + u0 = 2 K m + r, |r| <= K.
-  struct Node {
-    double m = 0.0;                  // number of half periods 2K (an integer)
-    double sn = 0.0, cn = 1.0, dn = 1.0;  // at w
-    double pi = 0.0;                 // Pi(n; am(r), k), when asked for and n != 0
-  };
   Node At(double s, const char* field, bool with_pi) const;
   // The node from m and the Jacobi functions of r (before the sign flip of odd m).
   Node NodeFrom(double m, double sn, double cn, double dn, bool with_pi) const;
@@ -72,6 +107,15 @@ class ElasticaClosedRolling {
   Eigen::Matrix3d FrameAt(const Node& j) const;
   // psi(s1) - psi(s0) from the nodes (s1 - s0 passed exactly).
   double TwistBetween(const Node& a, const Node& b, double ds) const;
+  // Sensitivity's pieces: one direction (drate, dk) of the parameters.
+  struct Direction;
+  struct NodeDerivative;
+  NodeDerivative Differentiate(const Node& j, double w, double integral_sn2, double dw, const Direction& d) const;
+  Direction MakeDirection(double drate, double dk) const;
+  Eigen::Vector3d FrameSpin(const Node& j, const NodeDerivative& dj, const Direction& d) const;
+  Eigen::Vector2d ChordDerivative(const Node& b, const NodeDerivative& da, const NodeDerivative& db, double di,
+                                  const Direction& d) const;
+  Eigen::Matrix3d RollingTo(const Node& b, double s) const;
 
   PendulumRegime regime_;
   double rate_, modulus_, phase_;  // modulus_ signed, as in ElasticaParameters
@@ -88,6 +132,8 @@ class ElasticaClosedRolling {
   bool straight_, unit_chart_;
   JacobiAgm agm_;
   Eigen::Vector3d straight_omega_;  // e3 x x' on a straight line
+  double kc2_ = 1.0;                // k'^2
+  double integral_sn2_origin_ = 0.0;  // int_0^u0 sn^2
   Node origin_;                     // at s = 0, with Pi
   Eigen::Matrix3d origin_frame_t_ = Eigen::Matrix3d::Identity();  // F(0)^T (not for straight lines)
 };

@@ -268,9 +268,8 @@ struct FreeLengthFunctor {
   // closed form; its chord and rolling are kept in `last`.
   bool ResidualFrom(const Elastica& e, const internal::ElasticaClosedRolling& rolling, double length, double* r) const {
     ++evaluations;
-    last.chord = e.Position(length);
-    last.q = rolling.Rolling(length);
-    return ResidualOf(last.chord, last.q, r);
+    last.end = rolling.Path(e, length);
+    return ResidualOf(last.end.chord, last.end.q, r);
   }
 
   // The residuals of the last path (length L) shifted by s0 along its elastica (the phase shifted
@@ -287,10 +286,10 @@ struct FreeLengthFunctor {
     e.TangentAndCurvature(length, &t1, &k1);
     const Eigen::Vector2d n0 = k0 * Eigen::Vector2d(-t0.y(), t0.x()), n1 = k1 * Eigen::Vector2d(-t1.y(), t1.x());
     const auto spin = [](const Eigen::Vector2d& t, double step) { return ExpSO3(step * Eigen::Vector3d(-t.y(), t.x(), 0.0)); };
-    const Eigen::Vector2d chord_p = last.chord + s0 * (t1 - t0) + 0.5 * s0 * s0 * (n1 - n0);
-    const Eigen::Matrix3d q_p = spin(t1 + 0.5 * s0 * n1, s0) * last.q * spin(t0 + 0.5 * s0 * n0, -s0);
-    const Eigen::Vector2d chord_l = last.chord + h * t1 + 0.5 * h * h * n1;
-    return ResidualOf(chord_p, q_p, rp) && ResidualOf(chord_l, spin(t1 + 0.5 * h * n1, h) * last.q, rl);
+    const Eigen::Vector2d chord_p = last.end.chord + s0 * (t1 - t0) + 0.5 * s0 * s0 * (n1 - n0);
+    const Eigen::Matrix3d q_p = spin(t1 + 0.5 * s0 * n1, s0) * last.end.q * spin(t0 + 0.5 * s0 * n0, -s0);
+    const Eigen::Vector2d chord_l = last.end.chord + h * t1 + 0.5 * h * h * n1;
+    return ResidualOf(chord_p, q_p, rp) && ResidualOf(chord_l, spin(t1 + 0.5 * h * n1, h) * last.end.q, rl);
   }
 
   // The last residual evaluated (TinySolver evaluates every accepted point twice: as a trial
@@ -299,10 +298,9 @@ struct FreeLengthFunctor {
     bool ok = false;
     double x[4] = {0, 0, 0, 0};
     double r[4] = {0, 0, 0, 0};
-    Eigen::Vector2d chord = Eigen::Vector2d::Zero();
-    Eigen::Matrix3d q = Eigen::Matrix3d::Identity();
     std::optional<Elastica> path;  // in place: no allocation per residual
     std::optional<internal::ElasticaClosedRolling> rolling;
+    internal::ElasticaClosedRolling::PathEnd end;  // its chord and rolling, and what AnalyticColumns needs
   };
   mutable LastResidual last;
 
@@ -422,6 +420,28 @@ struct FreeLengthFunctor {
     return jac.allFinite();
   }
 
+  // The rate and modulus columns from the closed-form derivatives of the last path's chord and
+  // rolling (ElasticaClosedRolling::Sensitivity): the residual of the chord and rolling moved along
+  // them by the forward-difference step, like the phase and length columns, without the two
+  // elasticas and closed rollings whole-path differences build (docs/paper_notes.md, "General
+  // targets", point 12, twelfth round). False where Sensitivity declines (the caller then
+  // differences paths).
+  bool AnalyticColumns(const double* x, const double* r, double* jacobian) const {
+    internal::ElasticaClosedRolling::PathSensitivity sens;
+    if (!last.rolling->Sensitivity(last.end, &sens)) return false;
+    const double modulus = last.path->parameters().modulus;
+    const double dmodulus = (1.0 - modulus) * (1.0 + modulus);  // d tanh(atanh k) / d atanh k
+    for (int j = 0; j < 2; ++j) {
+      const double h = 1e-6 * (1.0 + std::abs(x[j])), step = j == 0 ? h : h * dmodulus;
+      const Eigen::Vector2d chord = last.end.chord + step * (j == 0 ? sens.chord_rate : sens.chord_modulus);
+      const Eigen::Matrix3d q = last.end.q * ExpSO3(step * (j == 0 ? sens.spin_rate : sens.spin_modulus));
+      double rj[4];
+      if (!ResidualOf(chord, q, rj)) return false;
+      for (int i = 0; i < 4; ++i) jacobian[j * 4 + i] = (rj[i] - r[i]) / h;
+    }
+    return true;
+  }
+
   bool Evaluate(const double* x, double* r, double* jacobian) const {
     const ElasticaParameters p = ToParameters(regime, x);
     const double h_phase = 1e-6 * (1.0 + std::abs(x[2])), h_length = 1e-6 * (1.0 + std::abs(x[3]));
@@ -437,17 +457,17 @@ struct FreeLengthFunctor {
       std::fill(jacobian, jacobian + 16, 0.0);
       return true;
     }
-    const Elastica path = std::move(*last.path);  // the rate and modulus columns reuse `last`
-    last.path.reset();
-    last.rolling.reset();
     double rp[4], rl[4];
-    if (!ShiftedResiduals(path, x[3], s0, h_length, rp, rl)) return false;
+    if (!ShiftedResiduals(*last.path, x[3], s0, h_length, rp, rl)) return false;
     const double signed_phase_step = p.rate > 0 ? h_phase : -h_phase;
     for (int i = 0; i < 4; ++i) {
       jacobian[2 * 4 + i] = (rp[i] - r[i]) / signed_phase_step;
       jacobian[3 * 4 + i] = (rl[i] - r[i]) / h_length;
     }
-    if (SecantColumns(x, r, jacobian)) return true;
+    if (SecantColumns(x, r, jacobian) || AnalyticColumns(x, r, jacobian)) return true;
+    const Elastica path = std::move(*last.path);  // the rate and modulus columns reuse `last`
+    last.path.reset();
+    last.rolling.reset();
     for (int j = 0; j < 2; ++j) {
       const double h = 1e-6 * (1.0 + std::abs(x[j]));
       double xp[4] = {x[0], x[1], x[2], x[3]}, rj[4];

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -368,6 +369,87 @@ TEST(ElasticaClosedRollingTest, BadInputNamesTheField) {
   }
   // Large but finite arguments: a rotation, never NaN.
   EXPECT_TRUE(IsRotation(closed.Rolling(-1e12, 1e12), 1e-12));
+}
+
+// The closed-form derivatives of the chord x(s) - x(0) and of Q(0, s) with respect to the rate and
+// the modulus (Sensitivity) against central differences of independently built elasticas and
+// closed rollings (steps 2e-5 and 1e-5, extrapolated: truncation and round-off ~1e-10), over random shapes
+// of both regimes, both rate signs, k from 0.01 to 0.99 and lengths up to three periods (several
+// half periods of the twist's Pi); the spin omega from dQ = Q hat(omega).
+TEST(ElasticaClosedRollingTest, SensitivityMatchesCentralDifferences) {
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int checked = 0;
+  double worst = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    const auto regime = i % 2 == 0 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
+    const double k = 0.01 + 0.98 * unit(gen);
+    const double rate = (unit(gen) < 0.5 ? -1.0 : 1.0) * (0.2 + 1.8 * unit(gen));
+    const ElasticaParameters p = Params(regime, rate, k, 6.0 * unit(gen) - 3.0, 6.0 * unit(gen) - 3.0);
+    const Elastica e(p);
+    const ElasticaClosedRolling closed(e);
+    const double s = (0.1 + 2.9 * unit(gen)) * e.Period();
+    ElasticaClosedRolling::PathSensitivity sens;
+    const ElasticaClosedRolling::PathEnd end = closed.Path(e, s);
+    EXPECT_EQ(end.chord, e.Position(s)) << Describe(p);  // bit for bit
+    EXPECT_EQ(end.q, closed.Rolling(s)) << Describe(p);
+    if (!closed.Sensitivity(end, &sens)) {
+      // Only the layer |1 - G| < 1e-3 and short arcs are left to the caller among these shapes.
+      EXPECT_TRUE(std::abs(1.0 - e.G()) < ElasticaClosedRolling::kSensitivityMinOneMinusG ||
+                  std::abs(rate * s) < ElasticaClosedRolling::kSensitivityMinArc)
+          << Describe(p);
+      continue;
+    }
+    ++checked;
+    const Eigen::Matrix3d q = closed.Rolling(s);
+    for (int j = 0; j < 2; ++j) {
+      // Central differences at steps h and h/2, Richardson-extrapolated (the derivatives grow
+      // like s^n: plain central differences are off by ~1e-6 relative at three periods).
+      const auto central = [&](double h, Eigen::Vector2d* chord, Eigen::Vector3d* spin) {
+        ElasticaParameters pp = p, pm = p;
+        (j == 0 ? pp.rate : pp.modulus) += h;
+        (j == 0 ? pm.rate : pm.modulus) -= h;
+        const Elastica ep(pp), em(pm);
+        *chord = (ep.Position(s) - em.Position(s)) / (2 * h);
+        *spin = Vee(q.transpose() * (ElasticaClosedRolling(ep).Rolling(s) - ElasticaClosedRolling(em).Rolling(s)) / (2 * h));
+      };
+      Eigen::Vector2d chord, chord_half;
+      Eigen::Vector3d spin, spin_half;
+      central(2e-5, &chord, &spin);
+      central(1e-5, &chord_half, &spin_half);
+      chord = (4.0 * chord_half - chord) / 3.0;
+      spin = (4.0 * spin_half - spin) / 3.0;
+      const Eigen::Vector2d chord_a = j == 0 ? sens.chord_rate : sens.chord_modulus;
+      const Eigen::Vector3d spin_a = j == 0 ? sens.spin_rate : sens.spin_modulus;
+      const double scale = 1.0 + std::max(chord.norm(), spin.norm());
+      const double err = std::max((chord_a - chord).norm(), (spin_a - spin).norm()) / scale;
+      worst = std::max(worst, err);
+      EXPECT_LT(err, 1e-8) << Describe(p) << " s " << s << (j == 0 ? " rate" : " modulus") << " chord "
+                           << chord.transpose() << " vs " << chord_a.transpose() << " spin " << spin.transpose()
+                           << " vs " << spin_a.transpose();
+    }
+  }
+  EXPECT_GE(checked, 50);
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", worst);
+  RecordProperty("worst_error", text);
+}
+
+// Where Sensitivity declines (the caller then differences whole paths): straight lines, circles and
+// tiny or negative moduli, the layer |1 - G| < 1e-3, short arcs.
+TEST(ElasticaClosedRollingTest, SensitivityDeclinesOutsideItsForms) {
+  ElasticaClosedRolling::PathSensitivity sens;
+  const auto declines = [&sens](const ElasticaParameters& p, double s) {
+    const Elastica e(p);
+    const ElasticaClosedRolling closed(e);
+    return !closed.Sensitivity(closed.Path(e, s), &sens);
+  };
+  EXPECT_TRUE(declines(Params(PendulumRegime::kOscillating, 0.0, 0.5, 0.3, 0.0), 2.0));   // straight
+  EXPECT_TRUE(declines(Params(PendulumRegime::kRotating, 0.7, 0.0, 0.3, 0.0), 2.0));      // circle
+  EXPECT_TRUE(declines(Params(PendulumRegime::kOscillating, 0.7, -0.5, 0.3, 0.0), 2.0));  // negative modulus
+  EXPECT_TRUE(declines(Params(PendulumRegime::kOscillating, 1.0 + 1e-4, 0.5, 0.3, 0.0), 2.0));  // |1 - G| ~ 2e-4
+  EXPECT_TRUE(declines(Params(PendulumRegime::kRotating, 0.7, 0.5, 0.3, 0.0), 0.01));            // short arc
+  EXPECT_FALSE(declines(Params(PendulumRegime::kRotating, 0.7, 0.5, 0.3, 0.0), 2.0));
 }
 
 }  // namespace

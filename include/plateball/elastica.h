@@ -96,6 +96,9 @@ class Elastica {
     double sn, cn, dn;
   };
   Jacobi Eval(double u) const;
+  // Position(s), and the Jacobi functions at u = phase + rate s and int_0^u sn^2 from which the
+  // closed form took it (integral NaN on a short arc, which is integrated instead).
+  Eigen::Vector2d PositionAt(double s, Jacobi* j, double* integral_sn2) const;
   Eigen::Vector2d TangentOf(const Jacobi& j) const;
   double CurvatureOf(const Jacobi& j) const;
   double IntegralSn2(double u) const;  // int_0^u sn^2
