@@ -23,6 +23,7 @@
 #include "plateball/task_adapters.h"
 #include "support/dopri_rolling.h"
 #include "support/made_certify_target.h"
+#include "support/random_certify_box.h"
 #include "support/test_support.h"
 
 using namespace plateball;
@@ -32,10 +33,6 @@ namespace {
 
 const PendulumRegime kRegimes[] = {PendulumRegime::kOscillating, PendulumRegime::kRotating};
 
-double LogUniformIn(double lo, double hi, std::mt19937* rng) {
-  return lo * std::pow(hi / lo, std::uniform_real_distribution<double>(0.0, 1.0)(*rng));
-}
-
 // A small random box: centre |rate| 0.05..5 (either sign when rotating, then a tenth of the boxes
 // across rate 0, half of those centred on it), k 0.02..0.95 (a tenth from k = 0), phase -6..6,
 // length 0.5..10; half-widths 1e-5..0.03 of each axis' scale (log-uniform): the centred form is a
@@ -43,16 +40,7 @@ double LogUniformIn(double lo, double hi, std::mt19937* rng) {
 CertifyBox SmallBox(PendulumRegime regime, std::mt19937* rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const bool rotating = regime == PendulumRegime::kRotating;
-  const double sign = rotating && unit(*rng) < 0.5 ? -1.0 : 1.0;
-  const CertifyPoint c = {sign * LogUniformIn(0.05, 5.0, rng), 0.02 + 0.93 * unit(*rng), -6.0 + 12.0 * unit(*rng),
-                          0.5 + 9.5 * unit(*rng)};
-  const CertifyPoint scale = {std::abs(c[kCertifyRate]), 0.3, 1.0, 1.0};
-  CertifyBox box;
-  for (int i = 0; i < 4; ++i) {
-    const double h = scale[i] * LogUniformIn(1e-5, 0.03, rng);
-    box.lo[i] = c[i] - h;
-    box.hi[i] = c[i] + h;
-  }
+  CertifyBox box = plateball::testing::RandomCertifyBox(regime, {0.05, 5.0, 0.02, 0.95, 0.5, 10.0, 1.0, 1e-5, 0.03}, rng);
   if (rotating && unit(*rng) < 0.1)  // across rate 0, or centred on it
     box.lo[kCertifyRate] = (unit(*rng) < 0.5 ? -0.5 : -1.0) * box.hi[kCertifyRate];
   if (unit(*rng) < 0.1) box.lo[kCertifyModulus] = 0.0;

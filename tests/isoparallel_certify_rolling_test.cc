@@ -23,6 +23,7 @@
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
+#include "support/random_certify_box.h"
 #include "support/test_support.h"
 
 using namespace plateball;
@@ -32,26 +33,15 @@ namespace {
 
 const PendulumRegime kBothRegimes[] = {PendulumRegime::kOscillating, PendulumRegime::kRotating};
 
-double LogUniform(double lo, double hi, std::mt19937* rng) {
-  return std::exp(std::log(lo) + std::uniform_real_distribution<double>(0.0, 1.0)(*rng) * std::log(hi / lo));
-}
+using plateball::testing::LogUniform;
 
 // A random box: centre |rate| 0.05..20 (either sign when rotating), k up to 0.95, phase -6..6,
 // length 0.5..20, half-widths 1e-4..0.3 of each axis' scale (log-uniform); with `across_unit`
 // its rate range is widened to hold G = 1 (rate 1, or rate 1/k when rotating).
 CertifyBox RandomRollingBox(PendulumRegime regime, bool across_unit, std::mt19937* rng) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   const bool rotating = regime == PendulumRegime::kRotating;
-  const double sign = rotating && unit(*rng) < 0.5 ? -1.0 : 1.0;
-  const CertifyPoint c = {sign * LogUniform(0.05, 20.0, rng), 0.1 + 0.85 * unit(*rng), -6.0 + 12.0 * unit(*rng),
-                          0.5 + 19.5 * unit(*rng)};
-  const CertifyPoint scale = {std::abs(c[kCertifyRate]), 0.3, 1.0, 2.0};
-  CertifyBox box;
-  for (int i = 0; i < 4; ++i) {
-    const double h = scale[i] * LogUniform(1e-4, 0.3, rng);
-    box.lo[i] = c[i] - h;
-    box.hi[i] = c[i] + h;
-  }
+  CertifyBox box = plateball::testing::RandomCertifyBox(regime, {0.05, 20.0, 0.1, 0.95, 0.5, 20.0, 2.0, 1e-4, 0.3}, rng);
+  const double sign = box.Centre()[kCertifyRate] < 0.0 ? -1.0 : 1.0;
   box.lo[kCertifyModulus] = std::max(0.0, box.lo[kCertifyModulus]);
   box.hi[kCertifyModulus] = std::min(0.95, box.hi[kCertifyModulus]);
   box.lo[kCertifyLength] = std::max(0.1, box.lo[kCertifyLength]);
@@ -60,7 +50,7 @@ CertifyBox RandomRollingBox(PendulumRegime regime, bool across_unit, std::mt1993
     box.lo[kCertifyRate] = sign * unit_rate * (1.0 - LogUniform(1e-6, 0.1, rng));
     box.hi[kCertifyRate] = sign * unit_rate * (1.0 + LogUniform(1e-6, 0.1, rng));
     if (sign < 0.0) std::swap(box.lo[kCertifyRate], box.hi[kCertifyRate]);
-  } else if (c[kCertifyRate] > 0.0) {
+  } else if (sign > 0.0) {
     box.lo[kCertifyRate] = std::max(0.01, box.lo[kCertifyRate]);
   } else {
     box.hi[kCertifyRate] = std::min(-0.01, box.hi[kCertifyRate]);
