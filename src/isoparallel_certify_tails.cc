@@ -57,10 +57,66 @@ double DriftDeficit(PendulumRegime regime, double k) {
   return 2.0 * std::sqrt(d * (kk - d)) / kk;
 }
 
-double AveragingDeviationBound(double period, double deficit, double length, double chord) {
-  if (!std::isfinite(period)) return kInf;
+namespace {
+
+// The forms of PeriodicPartLength (v units), each with its monotonicity in k (notes, "a tail rate
+// bound uniform up to the separatrix", 2).
+
+// Cauchy-Schwarz: n K sqrt(1 - rho^2); infinite at k = 1.
+double CauchySchwarzLength(PendulumRegime regime, double k) {
+  return k < 1.0 ? PhasePeriod(regime, k) * DriftDeficit(regime, k) : kInf;
+}
+
+// Rotating, t at theta = pi: 2 |cos am| = 2 |cn| over [0, 2K] (int_0^K cn = asin(k) / k) plus
+// 2K (1 + rho) = 4 (K - D). Both terms increase with k; at k = 1: 2 pi + 4.
+double RotatingLengthAtPi(double k) {
+  const double asin_over_k = k > 0.0 ? std::asin(k) / k : 1.0;
+  const double k_minus_d = k < 1.0 ? CompleteEllipticK(k) - CompleteEllipticD(k) : 1.0;
+  return 4.0 * asin_over_k + 4.0 * k_minus_d;
+}
+
+// Oscillating, t at theta = pi: 2 cos(theta / 2) = 2 dn over [0, 4K] (int_0^K dn = pi / 2) plus
+// 4K (1 + rho) = 8E. Decreasing with k (E is); at k = 1: 4 pi + 8.
+double OscillatingLengthAtPi(double k) {
+  const double e = k < 1.0 ? CompleteEllipticK(k) - k * k * CompleteEllipticD(k) : 1.0;
+  return 4.0 * M_PI + 8.0 * e;
+}
+
+// Oscillating, t at theta = 0: 2 |sin(theta / 2)| = 2k |sn| over [0, 4K] (int_0^K sn = atanh(k) / k)
+// plus 4K (1 - rho) = 8 (K - E) = 8 k^2 D. Increasing with k; infinite at k = 1 (best at small k).
+double OscillatingLengthAtZero(double k) {
+  return k < 1.0 ? 8.0 * std::atanh(k) + 8.0 * k * k * CompleteEllipticD(k) : kInf;
+}
+
+// The sup of the Cauchy-Schwarz form over [k_lo, k_hi]: K(k_hi) and the smallest |rho| (rho is
+// decreasing in k: 0 if it changes sign on the interval, else the smaller end value).
+double CauchySchwarzLengthOver(PendulumRegime regime, double k_lo, double k_hi) {
+  if (!(k_hi < 1.0)) return kInf;
+  const double r_lo = DriftRatio(regime, k_lo), r_hi = DriftRatio(regime, k_hi);
+  const double m = (r_lo >= 0.0 && r_hi <= 0.0) ? 0.0 : std::min(std::abs(r_lo), std::abs(r_hi));
+  return PhasePeriod(regime, k_hi) * std::sqrt(std::max(0.0, (1.0 - m) * (1.0 + m)));
+}
+
+}  // namespace
+
+double PeriodicPartLength(PendulumRegime regime, double k) {
+  if (!(k >= 0.0 && k <= 1.0)) return kInf;
+  const double cs = CauchySchwarzLength(regime, k);
+  if (regime == PendulumRegime::kRotating) return std::min(cs, RotatingLengthAtPi(k));
+  return std::min({cs, OscillatingLengthAtPi(k), OscillatingLengthAtZero(k)});
+}
+
+double PeriodicPartLengthOver(PendulumRegime regime, double k_lo, double k_hi) {
+  if (!(k_lo >= 0.0 && k_lo <= k_hi && k_hi <= 1.0)) return kInf;
+  const double cs = CauchySchwarzLengthOver(regime, k_lo, k_hi);
+  if (regime == PendulumRegime::kRotating) return std::min(cs, RotatingLengthAtPi(k_hi));
+  return std::min({cs, OscillatingLengthAtPi(k_lo), OscillatingLengthAtZero(k_hi)});
+}
+
+double AveragingDeviationBound(double periodic_length, double length, double chord) {
+  if (!std::isfinite(periodic_length)) return kInf;
   const double c = std::min(std::abs(chord), length);
-  return DeviationAngle(0.5 * period * deficit * (std::sqrt((length - c) * (length + c)) + c));
+  return DeviationAngle(0.5 * periodic_length * (std::sqrt((length - c) * (length + c)) + c));
 }
 
 double StraightRunDeviationBound(double eta, double length, double chord) {
@@ -119,21 +175,14 @@ double SeparatrixHeadingGapSup(PendulumRegime regime, double k) {
 
 double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin) {
   const double scale = RateScale(target, cap, margin);
-  if (scale == 0.0 || !(k < 1.0)) return kInf;  // K(1) is infinite: no bound at the separatrix
-  // a = n K / P and P >= P* = 4 sin(delta / 2) / (deficit h): a_max = n K deficit h / (4 sin).
-  return PhasePeriod(regime, k) * DriftDeficit(regime, k) * scale;
+  // B = (Lambda_v / (2 |a|)) h >= 2 sin(delta / 2) for a solution: |a| <= Lambda_v h / (4 sin).
+  return scale == 0.0 ? kInf : PeriodicPartLength(regime, k) * scale;
 }
 
 double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
                            double margin) {
   const double scale = RateScale(target, cap, margin);
-  if (scale == 0.0 || !(k_hi < 1.0)) return kInf;
-  // rho is decreasing in k: the smallest |rho| on [k_lo, k_hi] is 0 if it changes sign there,
-  // else the smaller end value; K is increasing.
-  const double r_lo = DriftRatio(regime, k_lo), r_hi = DriftRatio(regime, k_hi);
-  const double m = (r_lo >= 0.0 && r_hi <= 0.0) ? 0.0 : std::min(std::abs(r_lo), std::abs(r_hi));
-  const double deficit = std::sqrt(std::max(0.0, (1.0 - m) * (1.0 + m)));
-  return PhasePeriod(regime, k_hi) * deficit * scale;
+  return scale == 0.0 ? kInf : PeriodicPartLengthOver(regime, k_lo, k_hi) * scale;
 }
 
 CertifyBox CoverageWindow::Box() const {
@@ -145,11 +194,22 @@ CertifyBox CoverageWindow::Box() const {
 
 namespace {
 
+// The tail's rate range beyond the windows: "A < |rate| <= A_tail (rotating), <= ... (oscillating)".
+std::string TailRateRange(const CertifyTarget& target, double cap, double k_max, double margin, double a) {
+  std::string words = a > 0.0 ? std::to_string(a) + " < |rate| <= " : "|rate| <= ";
+  words += std::to_string(MaxSolutionRateOver(target, PendulumRegime::kRotating, k_max, 1.0, cap, margin)) +
+           " (rotating), <= " +
+           std::to_string(MaxSolutionRateOver(target, PendulumRegime::kOscillating, k_max, 1.0, cap, margin)) +
+           " (oscillating)";
+  return words;
+}
+
 // The separatrix tail's windows for rates |rate| <= A and the words for what stays uncovered.
 std::string AddTailWindows(const CertifyTarget& target, double cap, double k_max, double margin, double a,
                            CoverageStatement* out) {
   const std::string tail = "k in [" + std::to_string(k_max) + ", 1) in both regimes";
-  if (!(a > 0.0)) return tail + " (the separatrix tail)";
+  const std::string rates = " with " + TailRateRange(target, cap, k_max, margin, a);
+  if (!(a > 0.0)) return tail + rates + " (the separatrix tail)";
   for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
     TailWindow w;
     w.regime = regime;
@@ -163,7 +223,7 @@ std::string AddTailWindows(const CertifyTarget& target, double cap, double k_max
     w.box.hi = {a, 1.0, phase, cap};
     out->tail_windows.push_back(w);
   }
-  return tail + " with |rate| > " + std::to_string(a) + " (the separatrix tail's fast paths)";
+  return tail + rates + " (the separatrix tail's fast paths)";
 }
 
 }  // namespace
@@ -201,6 +261,8 @@ CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k
       out.windows.push_back(w);
     }
   }
+  out.tail_rate_bound = std::max(MaxSolutionRateOver(target, PendulumRegime::kRotating, k_max, 1.0, cap, margin),
+                                 MaxSolutionRateOver(target, PendulumRegime::kOscillating, k_max, 1.0, cap, margin));
   out.uncovered = AddTailWindows(target, cap, k_max, margin, tail_rate_max, &out);
   if (!out.rate_tail_excluded)
     out.uncovered += "; every rate: the straight residual " + std::to_string(out.straight_residual) +
