@@ -106,11 +106,32 @@ double PeriodicPartLength(PendulumRegime regime, double k) {
   return std::min({cs, OscillatingLengthAtPi(k), OscillatingLengthAtZero(k)});
 }
 
-double PeriodicPartLengthOver(PendulumRegime regime, double k_lo, double k_hi) {
-  if (!(k_lo >= 0.0 && k_lo <= k_hi && k_hi <= 1.0)) return kInf;
+namespace {
+
+// A sup of PeriodicPartLength on [k_lo, k_hi] from each form's own sup (a min of sups).
+double PeriodicPartLengthOnPiece(PendulumRegime regime, double k_lo, double k_hi) {
   const double cs = CauchySchwarzLengthOver(regime, k_lo, k_hi);
   if (regime == PendulumRegime::kRotating) return std::min(cs, RotatingLengthAtPi(k_hi));
   return std::min({cs, OscillatingLengthAtPi(k_lo), OscillatingLengthAtZero(k_hi)});
+}
+
+}  // namespace
+
+double PeriodicPartLengthOver(PendulumRegime regime, double k_lo, double k_hi) {
+  if (!(k_lo >= 0.0 && k_lo <= k_hi && k_hi <= 1.0)) return kInf;
+  if (k_lo == k_hi) return PeriodicPartLength(regime, k_lo);
+  // The sup of a min is at most the min of the sups, piece by piece: 16 pieces uniform in
+  // log(1 - k) (the scale on which K grows; down to 1 - k = 1e-12 when k_hi = 1), so that the
+  // forms' crossings are resolved. The pieces are contiguous and end at k_hi exactly.
+  constexpr int kPieces = 16;
+  const double gap_lo = 1.0 - k_lo, gap_hi = std::max(1.0 - k_hi, std::min(1e-12, 0.5 * gap_lo));
+  double sup = 0.0, a = k_lo;
+  for (int i = 1; i <= kPieces; ++i) {
+    const double b = i == kPieces ? k_hi : std::min(k_hi, 1.0 - gap_lo * std::pow(gap_hi / gap_lo, double(i) / kPieces));
+    sup = std::max(sup, PeriodicPartLengthOnPiece(regime, a, std::max(a, b)));
+    a = std::max(a, b);
+  }
+  return sup;
 }
 
 double AveragingDeviationBound(double periodic_length, double length, double chord) {

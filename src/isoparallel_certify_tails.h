@@ -52,9 +52,10 @@ double DriftDeficit(PendulumRegime regime, double k);
 /// 2 pi + 4, oscillating 4 pi + 8 (two loops per period).
 double PeriodicPartLength(PendulumRegime regime, double k);
 /// A rigorous sup of PeriodicPartLength over moduli in [k_lo, k_hi], 0 <= k_lo <= k_hi <= 1: the
-/// Cauchy-Schwarz form with K(k_hi) and the smallest |rho| (infinite for k_hi = 1); the forms
-/// increasing in k (rotating; oscillating at theta = 0) at k_hi, the decreasing one (oscillating
-/// at theta = pi, E decreasing) at k_lo.
+/// largest over 16 pieces (uniform in log(1 - k)) of the smallest form's sup on the piece: the
+/// Cauchy-Schwarz form with K at the piece's top and its smallest |rho| (infinite up to k = 1);
+/// the forms increasing in k (rotating; oscillating at theta = 0) at the top, the decreasing one
+/// (oscillating at theta = pi, E decreasing) at the bottom.
 double PeriodicPartLengthOver(PendulumRegime regime, double k_lo, double k_hi);
 
 /// The averaging bound: the rotation angle between Q(0, L) and the straight rolling
