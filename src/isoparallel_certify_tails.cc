@@ -215,21 +215,13 @@ CertifyBox CoverageWindow::Box() const {
 
 namespace {
 
-// The tail's rate range beyond the windows: "A < |rate| <= A_tail (rotating), <= ... (oscillating)".
-std::string TailRateRange(const CertifyTarget& target, double cap, double k_max, double margin, double a) {
-  std::string words = a > 0.0 ? std::to_string(a) + " < |rate| <= " : "|rate| <= ";
-  words += std::to_string(MaxSolutionRateOver(target, PendulumRegime::kRotating, k_max, 1.0, cap, margin)) +
-           " (rotating), <= " +
-           std::to_string(MaxSolutionRateOver(target, PendulumRegime::kOscillating, k_max, 1.0, cap, margin)) +
-           " (oscillating)";
-  return words;
-}
-
-// The separatrix tail's windows for rates |rate| <= A and the words for what stays uncovered.
+// The separatrix tail's windows for rates |rate| <= A and the words for what stays uncovered: the
+// tail's rates up to its bounds "A < |rate| <= A_rot (rotating), <= A_osc (oscillating)".
 std::string AddTailWindows(const CertifyTarget& target, double cap, double k_max, double margin, double a,
-                           CoverageStatement* out) {
+                           double a_rot, double a_osc, CoverageStatement* out) {
   const std::string tail = "k in [" + std::to_string(k_max) + ", 1) in both regimes";
-  const std::string rates = " with " + TailRateRange(target, cap, k_max, margin, a);
+  const std::string rates = " with " + (a > 0.0 ? std::to_string(a) + " < |rate| <= " : "|rate| <= ") +
+                            std::to_string(a_rot) + " (rotating), <= " + std::to_string(a_osc) + " (oscillating)";
   if (!(a > 0.0)) return tail + rates + " (the separatrix tail)";
   for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
     TailWindow w;
@@ -282,9 +274,10 @@ CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k
       out.windows.push_back(w);
     }
   }
-  out.tail_rate_bound = std::max(MaxSolutionRateOver(target, PendulumRegime::kRotating, k_max, 1.0, cap, margin),
-                                 MaxSolutionRateOver(target, PendulumRegime::kOscillating, k_max, 1.0, cap, margin));
-  out.uncovered = AddTailWindows(target, cap, k_max, margin, tail_rate_max, &out);
+  const double a_rot = MaxSolutionRateOver(target, PendulumRegime::kRotating, k_max, 1.0, cap, margin);
+  const double a_osc = MaxSolutionRateOver(target, PendulumRegime::kOscillating, k_max, 1.0, cap, margin);
+  out.tail_rate_bound = std::max(a_rot, a_osc);
+  out.uncovered = AddTailWindows(target, cap, k_max, margin, tail_rate_max, a_rot, a_osc, &out);
   if (!out.rate_tail_excluded)
     out.uncovered += "; every rate: the straight residual " + std::to_string(out.straight_residual) +
                      " does not exceed the margin, so the averaging lemma excludes nothing";
