@@ -115,29 +115,78 @@ double PeriodicPartLengthOnPiece(PendulumRegime regime, double k_lo, double k_hi
   return std::min({cs, OscillatingLengthAtPi(k_lo), OscillatingLengthAtZero(k_hi)});
 }
 
-}  // namespace
-
-double PeriodicPartLengthOver(PendulumRegime regime, double k_lo, double k_hi) {
-  if (!(k_lo >= 0.0 && k_lo <= k_hi && k_hi <= 1.0)) return kInf;
-  if (k_lo == k_hi) return PeriodicPartLength(regime, k_lo);
-  // The sup of a min is at most the min of the sups, piece by piece: 16 pieces uniform in
-  // log(1 - k) (the scale on which K grows; down to 1 - k = 1e-12 when k_hi = 1), so that the
-  // forms' crossings are resolved. The pieces are contiguous and end at k_hi exactly.
+// The largest of piece_sup(a, b) over contiguous pieces covering [k_lo, k_hi] (k_lo < k_hi): the
+// sup of a min is at most the min of the sups, piece by piece. 16 pieces uniform in log(1 - k)
+// (the scale on which K grows; down to 1 - k = 1e-12 when k_hi = 1), so that the forms' crossings
+// are resolved; the last piece ends at k_hi exactly.
+template <typename PieceSup>
+double OverPieces(double k_lo, double k_hi, PieceSup piece_sup) {
   constexpr int kPieces = 16;
   const double gap_lo = 1.0 - k_lo, gap_hi = std::max(1.0 - k_hi, std::min(1e-12, 0.5 * gap_lo));
   double sup = 0.0, a = k_lo;
   for (int i = 1; i <= kPieces; ++i) {
     const double b = i == kPieces ? k_hi : std::min(k_hi, 1.0 - gap_lo * std::pow(gap_hi / gap_lo, double(i) / kPieces));
-    sup = std::max(sup, PeriodicPartLengthOnPiece(regime, a, std::max(a, b)));
+    sup = std::max(sup, piece_sup(a, std::max(a, b)));
     a = std::max(a, b);
   }
   return sup;
 }
 
-double AveragingDeviationBound(double periodic_length, double length, double chord) {
-  if (!std::isfinite(periodic_length)) return kInf;
+}  // namespace
+
+double PeriodicPartLengthOver(PendulumRegime regime, double k_lo, double k_hi) {
+  if (!(k_lo >= 0.0 && k_lo <= k_hi && k_hi <= 1.0)) return kInf;
+  if (k_lo == k_hi) return PeriodicPartLength(regime, k_lo);
+  return OverPieces(k_lo, k_hi, [regime](double a, double b) { return PeriodicPartLengthOnPiece(regime, a, b); });
+}
+
+namespace {
+
+// A bound on max_v Z(v, k) (Jacobi's zeta, odd and 2K-periodic) for every k in [a, b]: with
+// G(phi, k) = E(phi, k) - (E/K)(k) F(phi, k) (= Z at phi = am v), E(phi, .) and E/K decrease and
+// F(phi, .) increases in k, so G(phi, k) <= E(phi, a) - r F(phi, a), r = (E/K)(b), whose max over
+// phi is where Delta_a^2 = r: sin^2 phi = min(1, (1 - r) / a^2). Exact for a = b (dn^2 = E/K).
+// E(phi, a) = F - a^2 D(phi) and 1 - r = b^2 D(b) / K(b) without cancellation.
+double ZetaMaxOver(double a, double b) {
+  if (!(b > 0.0)) return 0.0;  // Z = 0 for k = 0
+  if (!(b < 1.0)) return a < 1.0 ? CompleteEllipticK(a) - a * a * CompleteEllipticD(a) : 1.0;  // r = 0: E(a)
+  const double one_minus_r = b * b * CompleteEllipticD(b) / CompleteEllipticK(b);
+  const double s2 = a > 0.0 ? std::min(1.0, one_minus_r / (a * a)) : 1.0;
+  const double sn = std::sqrt(s2), cn = std::sqrt(1.0 - s2), kc2 = OneMinusSquare(a);
+  return one_minus_r * EllipticFSinCos(sn, cn, kc2) - a * a * EllipticDSinCos(sn, cn, kc2);
+}
+
+// The diagonal of the box holding p over one period, in the frame of the drift direction (v
+// units), for every k in [a, b]: p_e = int (cos theta - rho) = 2 Z / k^2 (rotating), 2 Z
+// (oscillating), range 2 Z_max times that; p_perp = int sin theta = -2 dn / k^2 (rotating,
+// sin theta = 2 sn cn; range 2 (1 - k') / k^2 = 2 / (1 + k'), increasing) or -2k cn (oscillating,
+// sin theta = 2k sn dn; range 4k).
+double BoxDiagonalOver(PendulumRegime regime, double a, double b) {
+  const double z = ZetaMaxOver(a, b);
+  if (regime == PendulumRegime::kOscillating) return std::hypot(4.0 * z, 4.0 * b);
+  if (!(a > 0.0)) return kInf;  // Z / k^2 at k = 0: left to the other forms
+  return std::hypot(4.0 * z / (a * a), 2.0 / (1.0 + std::sqrt(OneMinusSquare(b))));
+}
+
+}  // namespace
+
+double PeriodicPartDiameter(PendulumRegime regime, double k) {
+  if (!(k >= 0.0 && k <= 1.0)) return kInf;
+  return std::min(0.5 * PeriodicPartLength(regime, k), BoxDiagonalOver(regime, k, k));
+}
+
+double PeriodicPartDiameterOver(PendulumRegime regime, double k_lo, double k_hi) {
+  if (!(k_lo >= 0.0 && k_lo <= k_hi && k_hi <= 1.0)) return kInf;
+  if (k_lo == k_hi) return PeriodicPartDiameter(regime, k_lo);
+  return OverPieces(k_lo, k_hi, [regime](double a, double b) {
+    return std::min(0.5 * PeriodicPartLengthOnPiece(regime, a, b), BoxDiagonalOver(regime, a, b));
+  });
+}
+
+double AveragingDeviationBound(double diameter, double length, double chord) {
+  if (!std::isfinite(diameter)) return kInf;
   const double c = std::min(std::abs(chord), length);
-  return DeviationAngle(0.5 * periodic_length * (std::sqrt((length - c) * (length + c)) + c));
+  return DeviationAngle(diameter * (std::sqrt((length - c) * (length + c)) + c));
 }
 
 double StraightRunDeviationBound(double eta, double length, double chord) {
@@ -196,14 +245,14 @@ double SeparatrixHeadingGapSup(PendulumRegime regime, double k) {
 
 double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin) {
   const double scale = RateScale(target, cap, margin);
-  // B = (Lambda_v / (2 |a|)) h >= 2 sin(delta / 2) for a solution: |a| <= Lambda_v h / (4 sin).
-  return scale == 0.0 ? kInf : PeriodicPartLength(regime, k) * scale;
+  // B = (diameter_v / |a|) h >= 2 sin(delta / 2) for a solution: |a| <= diameter_v h / (2 sin).
+  return scale == 0.0 ? kInf : 2.0 * PeriodicPartDiameter(regime, k) * scale;
 }
 
 double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
                            double margin) {
   const double scale = RateScale(target, cap, margin);
-  return scale == 0.0 ? kInf : PeriodicPartLengthOver(regime, k_lo, k_hi) * scale;
+  return scale == 0.0 ? kInf : 2.0 * PeriodicPartDiameterOver(regime, k_lo, k_hi) * scale;
 }
 
 CertifyBox CoverageWindow::Box() const {

@@ -7,16 +7,17 @@
 //   for an elastica with heading period P in arc length (x(s + P) = x(s) + c_P), rolled over
 //   [0, L] with chord c = x(L) - x(0),
 //     angle(Q(0, L), exp(hat(e3 x c))) <= 2 asin(min(1, B / 2)),
-//     B = (Lambda / 2) (sqrt(L^2 - |c|^2) + |c|),
-//   Lambda >= int_0^P |x' - c_P / P| ds the length of the closed curve x(s) - s c_P / P.
+//     B = diam(p) (sqrt(L^2 - |c|^2) + |c|),   p(s) = x(s) - s c_P / P (P-periodic).
 //
-// Lambda = PeriodicPartLength(regime, k) / |a|: the smaller of the Cauchy-Schwarz form
-// P sqrt(1 - rho^2) (rho = |c_P| / P; grows like sqrt K) and triangle forms
-// int |x' - t| + P |t - c_P / P| for t = +-(drift direction), which stay bounded up to k = 1.
+// diam(p) <= PeriodicPartDiameter(regime, k) / |a|: the smaller of half the length of the closed
+// curve p (PeriodicPartLength: the Cauchy-Schwarz form P sqrt(1 - rho^2), rho = |c_P| / P, which
+// grows like sqrt K, and triangle forms int |x' - t| + P |t - c_P / P| for t = +-(drift
+// direction)) and the diagonal of the box holding p (Jacobi's zeta); all but Cauchy-Schwarz stay
+// bounded up to k = 1.
 // A solution of the rotation trick has |c| = |x1 - x0|, so its residual differs from the straight
 // segment's residual delta0 = angle(target^T exp(hat(e3 x (x1 - x0)))) by at most that bound:
 // no solution of length <= cap has a rate above
-//   a_max(k) = PeriodicPartLength(regime, k) h / (4 sin(delta / 2)),
+//   a_max(k) = PeriodicPartDiameter(regime, k) h / (2 sin(delta / 2)),
 // h = sqrt(cap^2 - |x1 - x0|^2) + |x1 - x0|, delta = delta0 - margin; finite for every k <= 1
 // (the separatrix as a limit). When delta0 <= margin (the target is the straight rolling, or
 // nearly) nothing is excluded. The modulus tail k -> 1: isoparallel_certify_separatrix.h covers its
@@ -58,11 +59,24 @@ double PeriodicPartLength(PendulumRegime regime, double k);
 /// (oscillating at theta = pi, E decreasing) at the bottom.
 double PeriodicPartLengthOver(PendulumRegime regime, double k_lo, double k_hi);
 
+/// A bound on the diameter of p(s) = x(s) - s c_P / P (v units; divide by |a|), k in [0, 1]: the
+/// smaller of PeriodicPartLength / 2 (a closed curve's diameter is at most half its length) and
+/// the diagonal of the box holding p in the frame of the drift direction e:
+///   rotating     p_e = 2 Z(v) / k^2, p_perp = -2 dn / k^2:  hypot(4 Z_max / k^2, 2 / (1 + k'));
+///   oscillating  p_e = 2 Z(v),       p_perp = -2k cn:       hypot(4 Z_max, 4k);
+/// Z = E(am v) - (E/K) v Jacobi's zeta, Z_max its max (where dn^2 = E/K). At k = 1 (Z = tanh):
+/// sqrt 20 = 4.47 rotating, sqrt 32 = 5.66 oscillating.
+double PeriodicPartDiameter(PendulumRegime regime, double k);
+/// A rigorous sup of PeriodicPartDiameter over [k_lo, k_hi], k_hi <= 1 allowed: by pieces as
+/// PeriodicPartLengthOver, Z_max bounded on [a, b] by E(phi, a) - (E/K)(b) F(phi, a) maximised
+/// over phi (E(phi, .), E/K decrease and F(phi, .) increases with k), the perpendicular range at b.
+double PeriodicPartDiameterOver(PendulumRegime regime, double k_lo, double k_hi);
+
 /// The averaging bound: the rotation angle between Q(0, L) and the straight rolling
-/// exp(hat(e3 x c)) along the chord, for a periodic path whose periodic part has length at most
-/// `periodic_length` (arc length: PeriodicPartLength / |rate|), of length L and chord |c| <= L.
-/// +inf for an infinite periodic length (rate 0).
-double AveragingDeviationBound(double periodic_length, double length, double chord);
+/// exp(hat(e3 x c)) along the chord, for a periodic path whose periodic part has diameter at most
+/// `diameter` (arc length: PeriodicPartDiameter / |rate|), of length L and chord |c| <= L:
+/// 2 asin(min(1, B / 2)), B = diameter (sqrt(L^2 - |c|^2) + |c|). +inf for an infinite diameter.
+double AveragingDeviationBound(double diameter, double length, double chord);
 
 /// The straight-run bound: a path whose heading stays within eta (<= pi/2) of one direction over
 /// [0, L] rolls to within 2 asin(min(1, B / 2)) of exp(hat(e3 x c)), B = (mu L^2 / 2)(2 mu + |c| / L),
@@ -91,7 +105,7 @@ double SeparatrixHeadingGapSup(PendulumRegime regime, double k);
 /// nothing then) or k is not in [0, 1].
 double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin);
 /// A rigorous sup of MaxSolutionRate over moduli in [k_lo, k_hi], k_hi <= 1 allowed
-/// (PeriodicPartLengthOver): finite up to the separatrix.
+/// (PeriodicPartDiameterOver): finite up to the separatrix.
 double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
                            double margin);
 
