@@ -125,7 +125,8 @@ double OverPieces(double k_lo, double k_hi, PieceSup piece_sup) {
   const double gap_lo = 1.0 - k_lo, gap_hi = std::max(1.0 - k_hi, std::min(1e-12, 0.5 * gap_lo));
   double sup = 0.0, a = k_lo;
   for (int i = 1; i <= kPieces; ++i) {
-    const double b = i == kPieces ? k_hi : std::min(k_hi, 1.0 - gap_lo * std::pow(gap_hi / gap_lo, double(i) / kPieces));
+    const double gap = gap_lo * std::pow(gap_hi / gap_lo, double(i) / kPieces);
+    const double b = i == kPieces ? k_hi : std::min(k_hi, 1.0 - gap);
     sup = std::max(sup, piece_sup(a, std::max(a, b)));
     a = std::max(a, b);
   }

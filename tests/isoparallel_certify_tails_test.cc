@@ -1,7 +1,9 @@
 // The tails of the certified exclusion (src/isoparallel_certify_tails.h): the averaging bound
-// against rollings by dopri5 at sampled (rate, k, phase, length), the drift deficit against the
-// closed-form chord per period, the rate bound a_max(k) against the known solutions and against
-// dopri5 rollings of fast paths ending on the circle |x| = |x1 - x0|, and the coverage statement.
+// against rollings by dopri5 at sampled (rate, k, phase, length), up to k = 0.99999; the periodic
+// part's length and diameter bounds against quadrature and the sampled curve up to k = 1 - 1e-12,
+// and their interval sups against sampled moduli; the drift deficit against the closed-form chord
+// per period; the rate bound a_max(k) against the known solutions, against dopri5 rollings of fast
+// paths ending on the circle |x| = |x1 - x0|, and finite up to the separatrix; the coverage statement.
 #include "isoparallel_certify_tails.h"
 #include "isoparallel_certify_separatrix.h"
 
@@ -222,14 +224,16 @@ TEST(IsoparallelCertifyTails, PeriodicPartLengthOverBoundsEverySampledModulus) {
     for (size_t i = 0; i + 1 < ends.size(); ++i) {
       for (size_t j = i + 1; j < ends.size(); ++j) {
         const double lo = ends[i], hi = ends[j], sup = PeriodicPartLengthOver(regime, lo, hi);
-        ASSERT_TRUE(std::isfinite(sup)) << ToString(regime) << " [" << lo << ", " << hi << "]";
+        const double diameter_sup = PeriodicPartDiameterOver(regime, lo, hi);
+        ASSERT_TRUE(std::isfinite(sup) && std::isfinite(diameter_sup))
+            << ToString(regime) << " [" << lo << ", " << hi << "]";
         for (int t = 0; t <= 64; ++t) {
           // Uniform in k and in log(1 - k) (the separatrix end).
           const double k_lin = lo + (hi - lo) * t / 64;
           const double k_log = 1.0 - (1.0 - lo) * std::pow(std::max(1.0 - hi, 1e-15) / (1.0 - lo), t / 64.0);
           for (double k : {k_lin, std::clamp(k_log, lo, hi)}) {
             ASSERT_LE(PeriodicPartLength(regime, k), sup * (1 + 1e-12)) << ToString(regime) << " k " << k;
-            ASSERT_LE(PeriodicPartDiameter(regime, k), PeriodicPartDiameterOver(regime, lo, hi) * (1 + 1e-12))
+            ASSERT_LE(PeriodicPartDiameter(regime, k), diameter_sup * (1 + 1e-12))
                 << ToString(regime) << " k " << k << " in [" << lo << ", " << hi << "]";
           }
         }
@@ -468,13 +472,16 @@ TEST(IsoparallelCertifyTails, RateBoundIsFiniteUpToTheSeparatrix) {
         sampled = std::max(sampled, a);
       }
       EXPECT_LE(tail, 1.001 * std::max(sampled, at_one)) << ToString(regime);
+      // The Cauchy-Schwarz form alone (the rate bound before this round): n K sqrt(1 - rho^2) times
+      // the scale h / (4 sin(delta / 2)) = a_max(1) / (2 diameter(1)).
+      const auto old_rate = [&](double k) {
+        return PhasePeriod(regime, k) * DriftDeficit(regime, k) * at_one / (2 * PeriodicPartDiameter(regime, 1.0));
+      };
       std::printf("cap %.4f %s: tail rate bound over [0.95, 1] %.2f (largest sampled %.2f, at k = 1 %.2f); sup over "
                   "[0, 0.95] %.2f; Cauchy-Schwarz a_max at k = 0.95, 0.99, 0.9999: %.2f, %.2f, %.2f\n",
                   cap, ToString(regime).c_str(), tail, sampled, at_one,
                   MaxSolutionRateOver(target, regime, 0.0, 0.95, cap, margin),
-                  PhasePeriod(regime, 0.95) * DriftDeficit(regime, 0.95) / (2 * PeriodicPartDiameter(regime, 1.0)) * at_one,
-                  PhasePeriod(regime, 0.99) * DriftDeficit(regime, 0.99) / (2 * PeriodicPartDiameter(regime, 1.0)) * at_one,
-                  PhasePeriod(regime, 0.9999) * DriftDeficit(regime, 0.9999) / (2 * PeriodicPartDiameter(regime, 1.0)) * at_one);
+                  old_rate(0.95), old_rate(0.99), old_rate(0.9999));
     }
   }
   // Still nothing excluded for the straight target.
