@@ -44,8 +44,8 @@ void Print(PendulumRegime regime, const LoopFamilyOptions& o, const LoopFamilyRe
               o.k_t, CompleteEllipticK(o.k_t), r.core_half_width, r.heading_error * o.cap, r.heading_error);
   std::printf("  window rate [%g, %g] run [%g, %g] phase [%g, %g] L [%g, %g], both senses\n", w.lo[0], w.hi[0],
               w.lo[1], w.hi[1], w.lo[2], w.hi[2], w.lo[3], w.hi[3]);
-  std::printf("  %s; boxes %ld (chord %ld, rotation %ld), undecided %ld, resolved volume %.6f; %.1f s CPU\n",
-              ToString(r.status).c_str(), r.boxes, r.excluded_by_chord, r.excluded_by_rotation, r.undecided,
+  std::printf("  %s; boxes %ld (chord %ld, rotation %ld, outside the domain %ld), undecided %ld, resolved volume %.6f; %.1f s CPU\n",
+              ToString(r.status).c_str(), r.boxes, r.excluded_by_chord, r.excluded_by_rotation, r.outside_domain, r.undecided,
               r.resolved_volume, cpu);
   for (std::size_t i = 0; i < r.undecided_boxes.size(); ++i) {
     const CertifyPoint c = r.undecided_boxes[i].Centre();

@@ -74,6 +74,13 @@ void RelevantCores(double w_max, double p_min, const CertifyBox& box, double wid
 
 }  // namespace
 
+bool LoopBoxOutsideDomain(double core_half_width, double run_min_k, const CertifyBox& box) {
+  // Every path has t0 in [-W2/b, r + W2/b) and r >= 2 (K_t - W2)/b (run_min_k = 2 (K_t - W2)).
+  const double w_max = core_half_width / box.lo[kLoopRate];
+  return box.lo[kLoopPhase] > box.hi[kLoopRun] + w_max || box.hi[kLoopPhase] < -w_max ||
+         box.hi[kLoopRun] < run_min_k / box.hi[kLoopRate];
+}
+
 double LoopModelHeadingError(PendulumRegime regime, double k_t, double core_half_width) {
   // 2 asin(sech W2) = pi - 2 gd(W2): the separatrix's distance to its limit direction beyond W2
   // (the rotating run spread's formula; it is the same in both regimes).
@@ -208,7 +215,8 @@ LoopFamilyResult CertifyLoopFamily(const CertifyTarget& target, const LoopFamily
   result.core_half_width = w2;
   result.heading_error = LoopModelHeadingError(options.regime, options.k_t, w2) +
                          SeparatrixHeadingGapSup(PendulumRegime::kRotating, kLoopCoreModulus);
-  const double run_lo = std::max(0.0, 2.0 * (CompleteEllipticK(options.k_t) - w2) / options.rate_max);
+  const double run_min_k = 2.0 * (CompleteEllipticK(options.k_t) - w2);
+  const double run_lo = std::max(0.0, run_min_k / options.rate_max);
   const double w_max = w2 / options.rate_lo;
   result.window.lo = {options.rate_lo, run_lo, -w_max, options.length_lo};
   result.window.hi = {options.rate_max, std::max(options.cap, run_lo), options.cap + w_max, options.cap};
@@ -220,6 +228,11 @@ LoopFamilyResult CertifyLoopFamily(const CertifyTarget& target, const LoopFamily
       const CertifyBox box = stack.back();
       stack.pop_back();
       ++result.boxes;
+      if (LoopBoxOutsideDomain(w2, run_min_k, box)) {
+        ++result.outside_domain;
+        result.resolved_volume += Volume(box) / window_volume;
+        continue;
+      }
       CertifyPoint share;
       const double model = LoopModelDeviationBound(w2, box, &share);
       const double deviation = model + result.heading_error * box.hi[kLoopLength];

@@ -78,6 +78,10 @@ struct LoopModelPoint {
 };
 LoopModelPoint LoopModelOf(const Elastica& e, double length, double core_half_width);
 
+/// True when no path needs the box: every path has a model point with t0 in [-W2/b, r + W2/b) and
+/// r >= run_min_k / b, run_min_k = 2 (K(k_t) - W2); a box entirely outside that set is dropped.
+bool LoopBoxOutsideDomain(double core_half_width, double run_min_k, const CertifyBox& box);
+
 struct LoopFamilyOptions {
   PendulumRegime regime = PendulumRegime::kRotating;
   double k_t = 1.0 - 1e-4;        // the family covers k in [k_t, 1)
@@ -103,6 +107,7 @@ struct LoopFamilyResult {
   CertifyBox window;             // (rate, run, phase, length), searched once per sense
   long boxes = 0;
   long excluded_by_chord = 0, excluded_by_rotation = 0;
+  long outside_domain = 0;  // boxes no path needs (LoopBoxOutsideDomain)
   long undecided = 0;
   std::vector<CertifyBox> undecided_boxes;  // the first keep_undecided
   std::vector<int> undecided_senses;        // their senses

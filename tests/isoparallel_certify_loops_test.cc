@@ -79,6 +79,50 @@ TEST(LoopFamily, RealTailPathsStayWithinTheHeadingErrorOfTheirModel) {
   }
 }
 
+// The model's heading at s (mod 2 pi, run direction pi), written out from the header's definition.
+double ModelHeading(PendulumRegime regime, int sense, double w2, const CertifyPoint& x, double s) {
+  const double b = x[kLoopRate], w = w2 / b, period = x[kLoopRun] + 2.0 * w;
+  const double j = std::round((s - x[kLoopPhase]) / period), c = x[kLoopPhase] + j * period;
+  if (std::abs(s - c) > w) return M_PI;
+  const int sigma = regime == PendulumRegime::kRotating || std::fmod(std::abs(j), 2.0) == 0.0 ? sense : -sense;
+  return sigma * 2.0 * std::atan(std::sinh(b * (s - c)));
+}
+
+double AngleDistance(double a, double b) { return std::abs(std::remainder(a - b, 2.0 * M_PI)); }
+
+TEST(LoopFamily, RealTailHeadingsStayWithinEpsOfTheModelHeading) {
+  // Lemma (1) pointwise: |theta(a s + u0) - model heading| <= eps = G_t + 2 asin(sech W2) on a fine
+  // grid, half the paths at k = k_t, with the automatic W2 (spread = G_t) and W2 = 6 (spread >> G_t).
+  std::mt19937 rng(14);
+  for (const PendulumRegime regime : kRegimes) {
+    const double k_t = TailModulus(regime);
+    for (const double w2 : {LoopCoreHalfWidthFor(regime, k_t), 6.0}) {
+      const double eps = LoopModelHeadingError(regime, k_t, w2);
+      double worst = 0.0;
+      for (int i = 0; i < 120; ++i) {
+        Elastica e = RandomTailElastica(regime, &rng);
+        if (i % 2 == 0) {
+          ElasticaParameters p = e.parameters();
+          p.modulus = k_t;
+          e = Elastica(p);
+        }
+        const double length = 6.0;
+        const LoopModelPoint m = LoopModelOf(e, length, w2);
+        const CertifyBox point{m.x, m.x};  // every path's model point lies in the searched domain
+        ASSERT_FALSE(LoopBoxOutsideDomain(w2, 2.0 * (CompleteEllipticK(k_t) - w2), point));
+        for (int n = 0; n <= 3000; ++n) {
+          const double s = length * n / 3000.0;
+          const double d = AngleDistance(e.PendulumAngle(s), ModelHeading(regime, m.sense, w2, m.x, s));
+          ASSERT_LE(d, eps) << ToString(regime) << " k " << e.parameters().modulus << " rate "
+                            << e.parameters().rate << " s " << s;
+          worst = std::max(worst, d / eps);
+        }
+      }
+      std::printf("%s, W2 %.4g: worst heading deviation / eps %.3f\n", ToString(regime).c_str(), w2, worst);
+    }
+  }
+}
+
 TEST(LoopFamily, RealTailRollingsAgreeWithDopri) {
   // The closed-form real rollings of the test above against dopri5 (a few, at k' ~ 1e-8).
   std::mt19937 rng(16);
