@@ -74,11 +74,21 @@ void RelevantCores(double w_max, double p_min, const CertifyBox& box, double wid
 
 }  // namespace
 
-bool LoopBoxOutsideDomain(double core_half_width, double run_min_k, const CertifyBox& box) {
-  // Every path has t0 in [-W2/b, r + W2/b) and r >= 2 (K_t - W2)/b (run_min_k = 2 (K_t - W2)).
+bool LoopBoxOutsideDomain(double core_half_width, double run_min_k, double run_cap, const CertifyBox& box) {
+  // Every path's (capped) model point has t0 in [-W2/b, r + W2/b] and r >= min(2 (K_t - W2)/b, run_cap)
+  // (run_min_k = 2 (K_t - W2); a run longer than run_cap is written as run_cap, CapLoopRun).
   const double w_max = core_half_width / box.lo[kLoopRate];
   return box.lo[kLoopPhase] > box.hi[kLoopRun] + w_max || box.hi[kLoopPhase] < -w_max ||
-         box.hi[kLoopRun] < run_min_k / box.hi[kLoopRate];
+         box.hi[kLoopRun] < std::min(run_min_k / box.hi[kLoopRate], run_cap);
+}
+
+LoopModelPoint CapLoopRun(const LoopModelPoint& point, double run_cap, double core_half_width) {
+  LoopModelPoint out = point;
+  if (point.x[kLoopRun] <= run_cap) return out;
+  // At most one core meets [0, L] (run_cap >= L): keep it where it is, or put it just after L.
+  out.x[kLoopRun] = run_cap;
+  out.x[kLoopPhase] = std::min(point.x[kLoopPhase], point.x[kLoopLength] + core_half_width / point.x[kLoopRate]);
+  return out;
 }
 
 double LoopModelHeadingError(PendulumRegime regime, double k_t, double core_half_width) {
@@ -228,7 +238,7 @@ LoopFamilyResult CertifyLoopFamily(const CertifyTarget& target, const LoopFamily
       const CertifyBox box = stack.back();
       stack.pop_back();
       ++result.boxes;
-      if (LoopBoxOutsideDomain(w2, run_min_k, box)) {
+      if (LoopBoxOutsideDomain(w2, run_min_k, result.window.hi[kLoopRun], box)) {
         ++result.outside_domain;
         result.resolved_volume += Volume(box) / window_volume;
         continue;

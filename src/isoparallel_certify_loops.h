@@ -78,9 +78,14 @@ struct LoopModelPoint {
 };
 LoopModelPoint LoopModelOf(const Elastica& e, double length, double core_half_width);
 
-/// True when no path needs the box: every path has a model point with t0 in [-W2/b, r + W2/b) and
-/// r >= run_min_k / b, run_min_k = 2 (K(k_t) - W2); a box entirely outside that set is dropped.
-bool LoopBoxOutsideDomain(double core_half_width, double run_min_k, const CertifyBox& box);
+/// A model point with a run longer than run_cap (>= its length L) written with run_cap: at most one
+/// core meets [0, L], kept in place (t0 <= L + W2/b) or moved to t0 = L + W2/b (none meets it).
+LoopModelPoint CapLoopRun(const LoopModelPoint& point, double run_cap, double core_half_width);
+
+/// True when no path needs the box: every path's capped model point (CapLoopRun) has t0 in
+/// [-W2/b, r + W2/b] and r >= min(run_min_k / b, run_cap), run_min_k = 2 (K(k_t) - W2); a box
+/// entirely outside that set is dropped.
+bool LoopBoxOutsideDomain(double core_half_width, double run_min_k, double run_cap, const CertifyBox& box);
 
 struct LoopFamilyOptions {
   PendulumRegime regime = PendulumRegime::kRotating;

@@ -108,8 +108,10 @@ TEST(IsoparallelCertifyLoops, RealTailHeadingsStayWithinEpsOfTheModelHeading) {
         }
         const double length = 6.0;
         const LoopModelPoint m = LoopModelOf(e, length, w2);
-        const CertifyBox point{m.x, m.x};  // every path's model point lies in the searched domain
-        ASSERT_FALSE(LoopBoxOutsideDomain(w2, 2.0 * (CompleteEllipticK(k_t) - w2), point));
+        // Every path's capped model point lies in the searched domain (run cap = L, the smallest).
+        const LoopModelPoint capped = CapLoopRun(m, length, w2);
+        const CertifyBox point{capped.x, capped.x};
+        ASSERT_FALSE(LoopBoxOutsideDomain(w2, 2.0 * (CompleteEllipticK(k_t) - w2), length, point));
         for (int n = 0; n <= 3000; ++n) {
           const double s = length * n / 3000.0;
           const double d = AngleDistance(e.PendulumAngle(s), ModelHeading(regime, m.sense, w2, m.x, s));
@@ -182,7 +184,9 @@ TEST(IsoparallelCertifyLoops, RunsLongerThanThePathAreTheCappedRun) {
       const double t0 = std::uniform_real_distribution<double>(-w, r + w)(rng);
       const int sense = i % 2 == 0 ? 1 : -1;
       const LoopModelRolling a = RollLoopModel(regime, sense, w2, {b, r, t0, length});
-      const LoopModelRolling c = RollLoopModel(regime, sense, w2, {b, length, std::min(t0, length + w), length});
+      const LoopModelPoint capped = CapLoopRun({sense, {b, r, t0, length}}, length, w2);
+      ASSERT_EQ(capped.x[kLoopRun], length);
+      const LoopModelRolling c = RollLoopModel(regime, sense, w2, capped.x);
       EXPECT_LE(Angle(a.rolling, c.rolling), 1e-12);
       EXPECT_LE((a.chord - c.chord).norm(), 1e-12);
     }
