@@ -115,8 +115,8 @@ LoopModelRolling RollLoopModel(PendulumRegime regime, int sense, double core_hal
     if (start > s) AppendRun(std::min(start, length) - s, &out);
     if (start >= length) break;
     const double end = std::min(length, c + w);
-    AppendCore(CoreSense(regime, sense, j), b, b * (start - c), end - start, &out);
-    s = end;
+    if (end > start) AppendCore(CoreSense(regime, sense, j), b, b * (start - c), end - start, &out);
+    s = std::max(s, end);  // (a first core ending a rounding error before 0 is skipped)
   }
   return out;
 }
