@@ -270,30 +270,43 @@ TEST(IsoparallelCertifyLoops, BoxBoundCoversRealTailPaths) {
   }
 }
 
-TEST(IsoparallelCertifyLoops, MadeTailSolutionWithTwoLoopsIsNeverExcluded) {
-  // A rotating path at k' ~ 1.4e-6 (K ~ 14.8), rate 6 (P = 4.9), two loops on [0, 7.5].
-  const CertifyPoint x = {6.0, 1.0 - 1e-12, -3.0, 7.5};
-  const PendulumRegime regime = PendulumRegime::kRotating;
+// Boxes around the model point of a made tail solution (the target built from the real path x
+// by dopri5) with two cores on the path: never excluded by TestBox with D + eps L.
+void ExpectNestedBoxesKept(PendulumRegime regime, const CertifyPoint& x, double k_t, std::mt19937* rng) {
   const CertifyTarget target = plateball::testing::MadeCertifyTarget(regime, x);
-  const double k_t = 1.0 - 1e-9;
   const double w2 = LoopCoreHalfWidthFor(regime, k_t);
   const LoopModelPoint m = LoopModelOf(CertifyElastica(regime, x), x[kCertifyLength], w2);
   ASSERT_LT(m.x[kLoopRun] + 2.0 * w2 / m.x[kLoopRate], x[kCertifyLength]);  // two cores meet the path
   const double eps = LoopModelHeadingError(regime, k_t, w2) +
                      SeparatrixHeadingGapSup(PendulumRegime::kRotating, kLoopCoreModulus);
-  std::mt19937 rng(21);
   for (int i = 0; i < 40; ++i) {
     CertifyBox box;
     for (int a = 0; a < 4; ++a) {
-      const double h = LogUniform(1e-6, 0.05, &rng), u = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+      const double h = LogUniform(1e-6, 0.05, rng), u = std::uniform_real_distribution<double>(0.0, 1.0)(*rng);
       box.lo[a] = m.x[a] - 2.0 * h * u;
       box.hi[a] = box.lo[a] + 2.0 * h;
     }
     CertifyResidual centre;
     ASSERT_TRUE(EvaluateLoopModelResidual(target, regime, m.sense, w2, box.Centre(), &centre));
     const double d = LoopModelDeviationBound(w2, box) + eps * box.hi[kLoopLength];
-    EXPECT_EQ(TestBox(centre, d, 1e-7), BoxVerdict::kUndecided) << "box " << i;
+    EXPECT_EQ(TestBox(centre, d, 1e-7), BoxVerdict::kUndecided) << ToString(regime) << " box " << i;
   }
+}
+
+TEST(IsoparallelCertifyLoops, MadeTailSolutionWithTwoLoopsIsNeverExcluded) {
+  // Paths with two loops on [0, 7.5]: at k' = 1e-3 = k'_t (K = 8.3), |rate| 4 (P = 4.1), where
+  // the model's own distance to the path matters (without the eps L term boxes are excluded),
+  // oscillating with a negative rate (mirrored cores) and rotating; and rotating at k' ~ 1.4e-6
+  // (K ~ 14.8), rate 6 (P = 4.9), the target of the certificate run below.
+  std::mt19937 rng(21);
+  const double k3 = std::sqrt(1.0 - 9e-4);
+  ExpectNestedBoxesKept(PendulumRegime::kOscillating, {-2.0, k3, 1.0, 7.5}, k3, &rng);
+  ExpectNestedBoxesKept(PendulumRegime::kRotating, {2.0, k3, -3.0, 7.5}, k3, &rng);
+  const CertifyPoint x = {6.0, 1.0 - 1e-12, -3.0, 7.5};
+  const PendulumRegime regime = PendulumRegime::kRotating;
+  const double k_t = 1.0 - 1e-9;
+  ExpectNestedBoxesKept(regime, x, k_t, &rng);
+  const CertifyTarget target = plateball::testing::MadeCertifyTarget(regime, x);
   // The certificate over a small window around it: not excluded, while it excludes boxes.
   LoopFamilyOptions o;
   o.regime = regime;
