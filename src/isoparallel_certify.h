@@ -14,7 +14,8 @@
 //   - heading derivatives: |d theta/dv| <= 2k (oscillating), 2 (rotating), v = rate s + u0, and
 //     |d am/dk| <= k (1/2 + |v|) / k'^2 (from d am/dk = [k sn cn - dn (E(am v) - k'^2 v) / k] / k'^2
 //     and E(am v) - k'^2 v = k^2 int_0^v cn^2), or through a fixed number of periods (Jacobi's
-//     zeta) k ((1 + K)/2 + (1 - D/K) |v|) / k'^2, D = (K - E)/k^2: D of a box takes the smaller;
+//     zeta, |Z| <= min(k^2 K/2, E)) (k/2 + |Z|/k + k (1 - D/K) |v|) / k'^2, D = (K - E)/k^2: D of a box
+//     takes the smaller;
 //   - the chord's direction moves by at most asin(D / |chord|), and the conjugation by B moves
 //     the rotation by at most twice that.
 // The box test is rigorous up to the floating-point error of the centre's residual (the rolling
