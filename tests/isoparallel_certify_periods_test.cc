@@ -130,7 +130,7 @@ TEST(IsoparallelCertifyPeriods, HeadingModulusBoundAtFixedPeriodsHolds) {
 }
 
 // In lambda = -ln k' (dk = k'^2/k dlambda) the bound at fixed z is uniform up to the separatrix:
-// Mz k'^2 / k <= 3.5 + 2 k'/k (rotating 1 + 2 E/k^2: 3.45 at k = 0.95, -> 3 at k = 1; oscillating
+// Mz k'^2 / k <= 3.5 + 2 k'/k (rotating 1 + 2 E/k^2: 3.44 at k = 0.95, -> 3 at k = 1; oscillating
 // adds 2 k'/k) from k' = 0.3 to k' = 1e-7; with |Z| <= k^2 K/2 alone it would grow like K.
 TEST(IsoparallelCertifyPeriods, FixedPeriodsBoundIsUniformInLambda) {
   for (PendulumRegime regime : kRegimes)
