@@ -7,7 +7,8 @@
 // counts and the verdicts.
 //
 //   certify_measure [PROBLEM.json] [--caps 1.0,1.2,1.5] [--regime oscillating|rotating|both]
-//                   [--budget BOXES] [--k-max K] [--rate-max A] [--first-order 0|1] [--known 0|1]
+//                   [--budget BOXES] [--k-min K] [--k-max K] [--rate-min R] [--rate-max A]
+//                   [--log-modulus-split K] [--first-order 0|1] [--known 0|1]
 //                   [--first-order-deviation D] [--costate 0|1] [--closed-rolling 0|1]
 //                   [--chart-rolling 0|1] [--centred-rolling 0|1] [--centred-phase 0|1] [--fixed-periods 0|1]
 //                   [--trace FILE]
@@ -27,11 +28,17 @@
 // --fixed-periods 0 turns off the bounds compared at a fixed number of periods and the split
 // along their shares (isoparallel_certify_periods.h; on by default: the trace's shares are then
 // those of the fixed-periods bound where it is below D);
-// --known 0 runs without the solver's solutions (then only the first-order tests can finish).
+// --known 0 runs without the solver's solutions (then only the first-order tests can finish);
+// --k-min K starts the modulus range at K (default 0; k-max up to 1 - 1e-9); --rate-min R > 0
+// keeps |rate| >= R: the oscillating window's rate is [R, A], the rotating one is run as two
+// windows, [-A, -R] and [R, A]; --log-modulus-split K splits boxes with k_lo >= K in lambda =
+// -ln k' (CertifyWindowOptions::log_modulus_split; default 1, never). Each regime and cap first
+// prints MaxSolutionRateOver the k range (isoparallel_certify_tails.h: the rate a window needs).
 //
 // Default: problems/isoparallel_rotation.json (relative to the working directory), caps 1.0, 1.2,
 // 1.5, both regimes, 2,000,000 boxes, k_max 0.95, rate_max 2.
 
+#include <array>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -42,6 +49,7 @@
 #include <vector>
 
 #include "isoparallel_certify.h"
+#include "isoparallel_certify_tails.h"
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
 
@@ -55,7 +63,7 @@ struct Settings {
   std::vector<double> caps = {1.0, 1.2, 1.5};
   std::vector<PendulumRegime> regimes = {PendulumRegime::kOscillating, PendulumRegime::kRotating};
   long budget = 2000000;
-  double k_max = 0.95, rate_max = 2.0;
+  double k_min = 0.0, k_max = 0.95, rate_min = 0.0, rate_max = 2.0, log_modulus_split = 1.0;
   bool first_order = false, known = true, costate = true, closed_rolling = true, chart_rolling = true;
   bool centred_phase = true, centred_rolling = true, fixed_periods = true;
   double first_order_deviation = 0.5;
@@ -103,8 +111,14 @@ Settings Parse(int argc, char** argv) {
       s.regimes = Regimes(v);
     } else if (a == "--budget") {
       s.budget = static_cast<long>(Number(a, v, 1.0, 1e10));
+    } else if (a == "--k-min") {
+      s.k_min = Number(a, v, 0.0, kMaxWindowModulus);
     } else if (a == "--k-max") {
-      s.k_max = Number(a, v, 0.0, 0.999);
+      s.k_max = Number(a, v, 0.0, kMaxWindowModulus);
+    } else if (a == "--rate-min") {
+      s.rate_min = Number(a, v, 0.0, 1e3);
+    } else if (a == "--log-modulus-split") {
+      s.log_modulus_split = Number(a, v, 0.0, 1.0);
     } else if (a == "--rate-max") {
       s.rate_max = Number(a, v, 1e-6, 1e3);
     } else if (a == "--first-order") {
@@ -131,11 +145,23 @@ Settings Parse(int argc, char** argv) {
       throw std::invalid_argument(a + ": unknown option");
     }
   }
+  if (!(s.k_min <= s.k_max))
+    throw std::invalid_argument("--k-min: value " + std::to_string(s.k_min) + ": above --k-max");
+  if (!(s.rate_min < s.rate_max))
+    throw std::invalid_argument("--rate-min: value " + std::to_string(s.rate_min) + ": not below --rate-max");
   return s;
 }
 
-CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, double radius, double cap) {
-  const bool oscillating = regime == PendulumRegime::kOscillating;
+// The rate ranges of a regime's windows: [rate_min, A] oscillating; rotating [-A, A], or with
+// rate_min > 0 the two windows [-A, -rate_min] and [rate_min, A].
+std::vector<std::array<double, 2>> RateRanges(const Settings& s, PendulumRegime regime) {
+  if (regime == PendulumRegime::kOscillating) return {{s.rate_min, s.rate_max}};
+  if (s.rate_min == 0.0) return {{-s.rate_max, s.rate_max}};
+  return {{-s.rate_max, -s.rate_min}, {s.rate_min, s.rate_max}};
+}
+
+CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, const std::array<double, 2>& rates,
+                               double radius, double cap) {
   CertifyWindowOptions o;
   o.regime = regime;
   o.max_boxes = s.budget;
@@ -146,15 +172,16 @@ CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, double 
   o.chart_rolling = s.chart_rolling;
   o.centred_rolling = s.centred_rolling;
   o.fixed_periods = s.fixed_periods;
+  o.log_modulus_split = s.log_modulus_split;
   o.first_order_deviation = s.first_order_deviation;
   // One period of the phase at k_max (>= the period at every smaller k): [-P/2, P/2], or [0, P]
   // with --centred-phase 0 (the same paths; centred, |u0| and so the secular terms are halved).
   const double period = PhasePeriod(regime, s.k_max), phase_lo = s.centred_phase ? -0.5 * period : 0.0;
-  o.window.lo = {oscillating ? 0.0 : -s.rate_max, 0.0, phase_lo, radius};
+  o.window.lo = {rates[0], s.k_min, phase_lo, radius};
   // With the first-order tests the length reaches 1e-4 past the cap: a solution exactly at the
   // cap (the shortest at 1.0x) would lie on the window's face, where Krawczyk cannot prove it.
   const double length_hi = s.first_order ? cap * (1.0 + 1e-4) : cap;
-  o.window.hi = {s.rate_max, s.k_max, phase_lo + period, length_hi};
+  o.window.hi = {rates[1], s.k_max, phase_lo + period, length_hi};
   return o;
 }
 
@@ -186,30 +213,36 @@ int Run(const Settings& s) {
       std::printf("%s solution {%.17g, %.17g, %.17g, %.17g}\n", ToString(regime).c_str(), c[0], c[1], c[2], c[3]);
     }
     if (!s.known) known.clear();
-    for (double factor : s.caps) {
-      CertifyWindowOptions options = WindowFor(s, regime, target.radius, factor * shortest);
-      std::FILE* trace = s.trace.empty() ? nullptr : std::fopen(s.trace.c_str(), "w");
-      if (!s.trace.empty() && !trace) throw std::invalid_argument("--trace: value " + s.trace + ": cannot write");
-      if (trace) options.trace = [trace](const CertifyBoxTrace& t) { WriteTrace(trace, t); };
-      const auto start = std::chrono::steady_clock::now();
-      const std::clock_t cpu_start = std::clock();
-      const CertifyWindowResult w = CertifyWindow(target, known, options);
-      if (trace) std::fclose(trace);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-      std::printf("cap %.2fx %s: %s; resolved volume %.6f; %.1f s (%.1f s CPU)\n", factor, ToString(regime).c_str(),
-                  w.message.c_str(), w.resolved_volume, seconds, cpu);
-      std::printf("  excluded by rotation %ld (%ld only with the closed-form rolling bound, %ld then only with the "
-                  "theta/2 chart's, %ld then only with the centred form)\n",
-                  w.excluded_by_rotation, w.excluded_by_closed_rolling, w.excluded_by_chart_rolling,
-                  w.excluded_by_centred_rolling);
-      std::printf("  excluded only with the fixed-periods bounds %ld\n", w.excluded_by_fixed_periods);
-      for (size_t i = 0; i < w.found.size(); ++i) {
-        const CertifyPoint& f = w.found[i];
-        std::printf("  proved unique {%.12g, %.12g, %.12g, %.12g}: %s\n", f[0], f[1], f[2], f[3],
-                    w.found_known[i] >= 0 ? ("solver's solution " + std::to_string(w.found_known[i])).c_str() : "new");
+    for (double factor : s.caps)
+      std::printf("%s, cap %.2fx: MaxSolutionRateOver k [%.10g, %.10g] = %.6g (the rate beyond which no solution)\n",
+                  ToString(regime).c_str(), factor, s.k_min, s.k_max,
+                  MaxSolutionRateOver(target, regime, s.k_min, s.k_max, factor * shortest, 1e-7));
+    for (double factor : s.caps)
+      for (const std::array<double, 2>& rates : RateRanges(s, regime)) {
+        CertifyWindowOptions options = WindowFor(s, regime, rates, target.radius, factor * shortest);
+        std::FILE* trace = s.trace.empty() ? nullptr : std::fopen(s.trace.c_str(), "w");
+        if (!s.trace.empty() && !trace) throw std::invalid_argument("--trace: value " + s.trace + ": cannot write");
+        if (trace) options.trace = [trace](const CertifyBoxTrace& t) { WriteTrace(trace, t); };
+        const auto start = std::chrono::steady_clock::now();
+        const std::clock_t cpu_start = std::clock();
+        const CertifyWindowResult w = CertifyWindow(target, known, options);
+        if (trace) std::fclose(trace);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+        std::printf("cap %.2fx %s, rate [%g, %g], k [%.10g, %.10g]: %s; resolved volume %.6f; %.1f s (%.1f s CPU)\n",
+                    factor, ToString(regime).c_str(), rates[0], rates[1], s.k_min, s.k_max, w.message.c_str(),
+                    w.resolved_volume, seconds, cpu);
+        std::printf("  excluded by rotation %ld (%ld only with the closed-form rolling bound, %ld then only with the "
+                    "theta/2 chart's, %ld then only with the centred form)\n",
+                    w.excluded_by_rotation, w.excluded_by_closed_rolling, w.excluded_by_chart_rolling,
+                    w.excluded_by_centred_rolling);
+        std::printf("  excluded only with the fixed-periods bounds %ld\n", w.excluded_by_fixed_periods);
+        for (size_t i = 0; i < w.found.size(); ++i) {
+          const CertifyPoint& f = w.found[i];
+          const std::string match = w.found_known[i] >= 0 ? "solver's solution " + std::to_string(w.found_known[i]) : "new";
+          std::printf("  proved unique {%.12g, %.12g, %.12g, %.12g}: %s\n", f[0], f[1], f[2], f[3], match.c_str());
+        }
       }
-    }
   }
   return 0;
 }

@@ -205,21 +205,31 @@ double HeadingRateBound(PendulumRegime regime, double k_max) {
   return regime == PendulumRegime::kOscillating ? 2.0 * k_max : 2.0;
 }
 
-namespace {
-
-// sup |d theta/dk| from a bound am_k on |d am/dk| at modulus k_max (both increasing in k).
 double HeadingModulusFromAmplitude(PendulumRegime regime, double k_max, double am_k) {
   if (regime == PendulumRegime::kRotating) return 2.0 * am_k;  // theta = 2 am
-  // theta = 2 asin(k sn): d theta/dk = 2 (sn + k cn d am/dk) / dn, dn >= k'.
-  return 2.0 * (1.0 + k_max * am_k) / std::sqrt((1.0 - k_max) * (1.0 + k_max));
+  // theta = 2 asin(k sn): d theta/dk = 2 (sn + k cn d am/dk) / dn, dn >= k' and dn^2 = k'^2 + k^2 cn^2
+  // >= k^2 cn^2. The two forms differ by 2 am_k (k/k' - 1): the choice depends on k_max only, so
+  // the bound stays affine in am_k (the callers take slopes in v); ~1/k'^2 instead of ~1/k'^3 near 1.
+  const double kp = std::sqrt((1.0 - k_max) * (1.0 + k_max));
+  return k_max <= kp ? 2.0 * (1.0 + k_max * am_k) / kp : 2.0 * (1.0 / kp + am_k);
 }
 
-}  // namespace
+double JacobiZetaOverModulusBound(double k_min, double k_max) {
+  const double by_slope = 0.5 * k_max * CompleteEllipticK(k_max);
+  if (!(k_min > 0.0)) return by_slope;
+  // E = K - k^2 D, decreasing in k; widened by 1e-12 relative for the rounding of K, D and the difference.
+  const double e = CompleteEllipticK(k_min) - k_min * k_min * CompleteEllipticD(k_min);
+  return std::min(by_slope, e * (1.0 + 1e-12) / k_min);
+}
 
 double HeadingModulusBound(PendulumRegime regime, double k_max, double v_max) {
   const double kp2 = (1.0 - k_max) * (1.0 + k_max);  // k'^2, decreasing in k: the sup is at k_max
   const double am_k = k_max * (0.5 + v_max) / kp2;    // sup |d am / dk|
-  return HeadingModulusFromAmplitude(regime, k_max, am_k);
+  if (regime == PendulumRegime::kRotating) return 2.0 * am_k;
+  // The oscillating form 2 (1 + k am_k) / k' of HeadingModulusFromAmplitude at every k: the zeta
+  // form below takes the smaller one above k = 1/sqrt 2, and D the smaller of the two bounds; this
+  // one stays as tests/isoparallel_certify_tails_test.cc compares it with the separatrix bound.
+  return 2.0 * (1.0 + k_max * am_k) / std::sqrt(kp2);
 }
 
 double HeadingModulusBoundByZeta(PendulumRegime regime, double k_min, double k_max, double v_max) {
@@ -227,9 +237,8 @@ double HeadingModulusBoundByZeta(PendulumRegime regime, double k_min, double k_m
   // and K grow with k, 1 - D/K = <cos^2> under the weight (1 - k^2 sin^2)^(-1/2) decreases.
   if (!(k_max < 1.0)) return std::numeric_limits<double>::infinity();  // K(1) is infinite
   const double kp2 = (1.0 - k_max) * (1.0 + k_max);
-  const double kk = CompleteEllipticK(k_max);
   const double secular = 1.0 - CompleteEllipticD(k_min) / CompleteEllipticK(k_min);
-  const double am_k = k_max * (0.5 * (1.0 + kk) + secular * v_max) / kp2;
+  const double am_k = (0.5 * k_max + JacobiZetaOverModulusBound(k_min, k_max) + k_max * secular * v_max) / kp2;
   return HeadingModulusFromAmplitude(regime, k_max, am_k);
 }
 
@@ -378,8 +387,8 @@ std::string CertifyWindowOptions::Validate() const {
     if (std::abs(window.lo[i]) > 1e6 || std::abs(window.hi[i]) > 1e6)
       return InvalidValueMessage(kNames[i], MaxAbs(window.lo[i], window.hi[i]), "must be within [-1e6, 1e6]");
   }
-  if (window.lo[kCertifyModulus] < 0.0 || window.hi[kCertifyModulus] > 0.999)
-    return InvalidValueMessage("window.modulus", window.hi[kCertifyModulus], "must lie in [0, 0.999]");
+  if (window.lo[kCertifyModulus] < 0.0 || window.hi[kCertifyModulus] > kMaxWindowModulus)
+    return InvalidValueMessage("window.modulus", window.hi[kCertifyModulus], "must lie in [0, 1 - 1e-9]");
   if (window.lo[kCertifyLength] <= 0.0) return InvalidValueMessage("window.length", window.lo[kCertifyLength], "must be > 0");
   if (window.hi[kCertifyLength] > 1000.0) return InvalidValueMessage("window.length", window.hi[kCertifyLength], "must be <= 1000");
   if (!(max_boxes >= 1 && max_boxes <= 2000000000L)) return InvalidValueMessage("max_boxes", max_boxes, "must be in [1, 2e9]");
@@ -391,9 +400,20 @@ std::string CertifyWindowOptions::Validate() const {
     return InvalidValueMessage("first_order_deviation", first_order_deviation, "must be in [0, 10]");
   if (!(first_order_min_deviation >= 1e-14 && first_order_min_deviation <= 1.0))
     return InvalidValueMessage("first_order_min_deviation", first_order_min_deviation, "must be in [1e-14, 1]");
+  if (!(log_modulus_split >= 0.0 && log_modulus_split <= 1.0))
+    return InvalidValueMessage("log_modulus_split", log_modulus_split, "must be in [0, 1]");
   if (!(first_order_margin >= 0.0 && first_order_margin <= 1e-2))
     return InvalidValueMessage("first_order_margin", first_order_margin, "must be in [0, 1e-2]");
   return "";
+}
+
+double ModulusSplitPoint(double k_lo, double k_hi, double log_split) {
+  const double arithmetic = 0.5 * (k_lo + k_hi);
+  if (!(k_lo >= log_split && k_hi < 1.0)) return arithmetic;
+  // k'^2 = (1 - k)(1 + k): 1 - k is exact (Sterbenz), so k' keeps its relative accuracy near k = 1.
+  const double product = std::sqrt((1.0 - k_lo) * (1.0 + k_lo) * (1.0 - k_hi) * (1.0 + k_hi));  // k'_lo k'_hi
+  const double geometric = std::sqrt(1.0 - product);
+  return geometric > k_lo && geometric < k_hi ? geometric : arithmetic;
 }
 
 CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double length) {
@@ -515,7 +535,9 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     }
     if (options.trace) options.trace({box, deviation, share, first.contraction, axis});
     CertifyBox left = box, right = box;
-    const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);
+    const double mid = axis == kCertifyModulus
+                           ? ModulusSplitPoint(box.lo[axis], box.hi[axis], options.log_modulus_split)
+                           : 0.5 * (box.lo[axis] + box.hi[axis]);
     left.hi[axis] = mid;
     right.lo[axis] = mid;
     stack.push_back(right);

@@ -14,7 +14,8 @@
 //   - heading derivatives: |d theta/dv| <= 2k (oscillating), 2 (rotating), v = rate s + u0, and
 //     |d am/dk| <= k (1/2 + |v|) / k'^2 (from d am/dk = [k sn cn - dn (E(am v) - k'^2 v) / k] / k'^2
 //     and E(am v) - k'^2 v = k^2 int_0^v cn^2), or through a fixed number of periods (Jacobi's
-//     zeta) k ((1 + K)/2 + (1 - D/K) |v|) / k'^2, D = (K - E)/k^2: D of a box takes the smaller;
+//     zeta, |Z| <= min(k^2 K/2, E)) (k/2 + |Z|/k + k (1 - D/K) |v|) / k'^2, D = (K - E)/k^2: D of a box
+//     takes the smaller;
 //   - the chord's direction moves by at most asin(D / |chord|), and the conjugation by B moves
 //     the rotation by at most twice that.
 // The box test is rigorous up to the floating-point error of the centre's residual (the rolling
@@ -48,12 +49,22 @@ double PhasePeriod(PendulumRegime regime, double k);
 
 /// sup |d theta / dv| over moduli in [0, k_max] (theta the pendulum angle, v = rate s + u0).
 double HeadingRateBound(PendulumRegime regime, double k_max);
-/// sup |d theta / dk| at fixed v over moduli in [0, k_max] and |v| <= v_max (k_max < 1).
+/// sup |d theta / dk| at fixed v over moduli in [0, k_max] and |v| <= v_max (k_max < 1): from
+/// |d am/dk| <= k (1/2 + |v|) / k'^2, oscillating with dn >= k' alone (2 (1 + k am_k) / k').
 double HeadingModulusBound(PendulumRegime regime, double k_max, double v_max);
 /// A second bound on the same sup over moduli in [k_min, k_max], from d am/dk at a fixed number of
-/// periods (Jacobi's zeta, |Z| <= k^2 K / 2) plus the period's change: a larger constant, a
-/// secular slope smaller by the factor 1 - D/K <= 1/2 (D = (K - E) / k^2, taken at k_min).
+/// periods (Jacobi's zeta, |Z| / k <= JacobiZetaOverModulusBound) plus the period's change: a
+/// larger constant, a secular slope smaller by the factor 1 - D/K <= 1/2 (D = (K - E) / k^2, taken
+/// at k_min).
 double HeadingModulusBoundByZeta(PendulumRegime regime, double k_min, double k_max, double v_max);
+/// sup |Z(v, k)| / k over every v and k in [k_min, k_max] (Jacobi's zeta Z = E(am v) - (E/K) v):
+/// the smaller of k_max K(k_max) / 2 (|Z'| <= k^2, Z(0) = Z(K) = 0) and E(k_min) / k_min (on
+/// [0, K] both terms of Z lie in [0, E]; Z is odd and 2K-periodic), which stays bounded as k -> 1.
+double JacobiZetaOverModulusBound(double k_min, double k_max);
+/// sup |d theta/dk| over moduli in [k_min, k_max] from a bound am_k on |d am/dk| there (along any
+/// path in (v, k)): 2 am_k rotating (theta = 2 am); oscillating (theta = 2 asin(k sn)) the smaller of
+/// 2 (1 + k_max am_k) / k' and 2 (1/k' + am_k) (|sn| / dn <= 1/k', k |cn| / dn <= 1), k' at k_max.
+double HeadingModulusFromAmplitude(PendulumRegime regime, double k_max, double am_k);
 
 /// Bound D on both the rotation distance between Q(0, L) of any point of the box and Q(0, Lc) of
 /// its centre, and on the distance between their chords. `contributions` (optional) receives the
@@ -116,9 +127,18 @@ struct CertifyBoxTrace {
   int split_axis = -1;
 };
 
+/// The largest modulus a window may reach (k' ~ 4.5e-5; the separatrix's loop family takes over
+/// below that k').
+inline constexpr double kMaxWindowModulus = 1.0 - 1e-9;
+
+/// The modulus at which a box [k_lo, k_hi] is split: sqrt(1 - k'_lo k'_hi) (the midpoint in
+/// lambda = -ln k') when k_lo >= log_split, the arithmetic midpoint otherwise (or when rounding
+/// leaves the geometric one outside (k_lo, k_hi)).
+double ModulusSplitPoint(double k_lo, double k_hi, double log_split);
+
 struct CertifyWindowOptions {
   PendulumRegime regime = PendulumRegime::kOscillating;
-  CertifyBox window;             // rate, k in [0, 1), phase, L > 0
+  CertifyBox window;             // rate, k in [0, kMaxWindowModulus], phase, L > 0
   long max_boxes = 1000000;      // budget of examined boxes
   double accept_deviation = 1e-3;  // an undecided box with D below this must meet a neighbourhood
   /// Half-widths (rate, k, phase, length) of the neighbourhood of each known solution that is not
@@ -155,6 +175,10 @@ struct CertifyWindowOptions {
   /// also split along the largest share of FixedPeriodsDeviationBound where it is below D (the
   /// trace's shares are those).
   bool fixed_periods = true;
+  /// A box with k_lo >= log_modulus_split is split in k at the geometric mean of k' = sqrt(1 - k^2)
+  /// (the midpoint in lambda = -ln k', where the fixed-periods k share is uniform up to k = 1)
+  /// instead of the arithmetic midpoint; in [0, 1], 1 = never.
+  double log_modulus_split = 1.0;
   std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
   std::string Validate() const;
 };

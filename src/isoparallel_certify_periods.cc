@@ -25,17 +25,15 @@ double ScaledHalfWidth(double lo, double hi, double rho_lo, double rho_hi, doubl
 
 }  // namespace
 
-double HeadingModulusBoundAtFixedPeriods(PendulumRegime regime, double k_max) {
+double HeadingModulusBoundAtFixedPeriods(PendulumRegime regime, double k_min, double k_max) {
   // At fixed z, d am/dk = [k sn cn - dn Z(v) / k] / k'^2 (the secular term dn v K'/K of the
-  // derivative at fixed v is the period's change), |sn cn| <= 1/2, dn <= 1, |Z| <= k^2 K / 2;
-  // k / k'^2 and K increase with k, so the sup is at k_max.
+  // derivative at fixed v is the period's change), |sn cn| <= 1/2, dn <= 1, |Z| / k <=
+  // JacobiZetaOverModulusBound; k / k'^2 increases with k, so the sup is at k_max.
   if (!(k_max < 1.0)) return std::numeric_limits<double>::infinity();
   const double k = std::max(0.0, k_max);
   const double kp2 = (1.0 - k) * (1.0 + k);
-  const double am_k = k * (1.0 + CompleteEllipticK(k)) / (2.0 * kp2);
-  if (regime == PendulumRegime::kRotating) return 2.0 * am_k;  // theta = 2 am
-  // theta = 2 asin(k sn): d theta/dk = 2 (sn + k cn d am/dk) / dn along any path, dn >= k'.
-  return 2.0 * (1.0 + k * am_k) / std::sqrt(kp2);
+  const double am_k = (0.5 * k + JacobiZetaOverModulusBound(std::max(0.0, k_min), k)) / kp2;
+  return HeadingModulusFromAmplitude(regime, k, am_k);
 }
 
 CertifyBox FixedPeriodsBox(const CertifyBox& box) {
@@ -59,7 +57,8 @@ double FixedPeriodsModulusShare(PendulumRegime regime, const CertifyBox& box) {
   const double hk = box.HalfWidth(kCertifyModulus);
   if (hk == 0.0) return 0.0;
   // |w1 - w2| = 2 |sin(dg / 2)| <= min(|dg|, 2) at every s, dg <= h_k Mz (mean value in k at fixed z).
-  return box.hi[kCertifyLength] * std::min(hk * HeadingModulusBoundAtFixedPeriods(regime, box.hi[kCertifyModulus]), 2.0);
+  const double mz = HeadingModulusBoundAtFixedPeriods(regime, box.lo[kCertifyModulus], box.hi[kCertifyModulus]);
+  return box.hi[kCertifyLength] * std::min(hk * mz, 2.0);
 }
 
 double FixedPeriodsDeviationBound(PendulumRegime regime, const CertifyBox& box, CertifyPoint* contributions) {

@@ -4,7 +4,7 @@
 // A point x = (rate, k, u0, L) of a box and the point x' = (rate rho, k_c, u0 rho, L),
 // rho = K(k_c) / K(k), k_c the box's centre modulus, run through the same normalised phase
 // z(s) = (rate s + u0) / K(k) at every s: their headings differ by a k change at fixed z, bounded
-// without a secular part (|d am/dk| at fixed z <= A0 = k (1 + K) / (2 k'^2), Jacobi's zeta), so
+// without a secular part (|d am/dk| at fixed z <= A0 = (k/2 + min(k K/2, E/k)) / k'^2, Jacobi's zeta), so
 //   dist(Q(x), Q(x')) <= int_0^L min(h_k Mz, 2) ds,   Mz = sup |d theta/dk| at fixed z,
 // and the same bounds the chord's move. x' lies in a box of the centre modulus only (zero k
 // width) centred at the box's centre with the rate and phase ranges widened by the change of
@@ -19,9 +19,11 @@
 
 namespace plateball::internal {
 
-/// sup |d theta/dk| at a fixed normalised phase z = v / K(k) over moduli in [0, k_max], k_max < 1
-/// (+infinity otherwise): from |d am/dk| <= k (1 + K) / (2 k'^2) at k_max.
-double HeadingModulusBoundAtFixedPeriods(PendulumRegime regime, double k_max);
+/// sup |d theta/dk| at a fixed normalised phase z = v / K(k) over moduli in [k_min, k_max], k_max < 1
+/// (+infinity otherwise): from |d am/dk| <= (k/2 + |Z|/k) / k'^2 at k_max, |Z| / k <=
+/// JacobiZetaOverModulusBound (min(k K/2, E/k): near k = 1 the bound grows like 1/k'^2 only, so
+/// in lambda = -ln k' (dk = k'^2/k dlambda) it is uniform up to the separatrix).
+double HeadingModulusBoundAtFixedPeriods(PendulumRegime regime, double k_min, double k_max);
 
 /// The box of the points x' = (rate rho, k_c, u0 rho, L), rho = K(k_c) / K(k), of every point of
 /// `box`: centred at the box's centre, of zero width in k (rounding of K covered).

@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "jacobi_elliptic.h"
 #include "plateball/elastica.h"
 #include "plateball/isoparallel.h"
 #include "plateball/problem_io.h"
@@ -102,6 +103,76 @@ TEST(IsoparallelCertify, HeadingDerivativeBoundsNeverUndershootFiniteDifferences
     std::printf("%s: bound / sampled sup of |d theta/dk| over |v| <= 30: worst %.2f\n", ToString(regime).c_str(),
                 worst_ratio);
     EXPECT_LT(worst_ratio, regime == PendulumRegime::kRotating ? 4.0 : 12.0) << ToString(regime);
+  }
+}
+
+// Jacobi's zeta Z(v) = E(am v) - (E/K) v, sampled at 4,001 points of [0, K] (Z is odd and
+// 2K-periodic with Z(2K - v) = -Z(v): that is every value) for k from 0.1 to k' = 1e-8: |Z| / k
+// never above JacobiZetaOverModulusBound(k, k), and for k' < 0.02 within a factor 1/0.6 of it (sup Z
+// -> 1 = E(1) slowly: Z ~ tanh v - v / K, 0.64 at k' = 0.014, 0.79 at k' = 1e-5). Planted error:
+// E / (2k) in place of E / k fails.
+TEST(IsoparallelCertify, JacobiZetaBoundHoldsUpToTheSeparatrix) {
+  int row = 0;
+  for (double kp = 0.995; kp > 1e-8; kp *= 0.7, ++row) {
+    const double k = std::sqrt(1.0 - kp * kp), kk = CompleteEllipticK(k);
+    const double e_over_k = (kk - k * k * CompleteEllipticD(k)) / kk;
+    double sup = 0.0;
+    for (int i = 0; i <= 4000; ++i) {
+      const double v = kk * i / 4000.0;
+      double sn, cn, dn;
+      JacobiSnCnDn(v, k, &sn, &cn, &dn);
+      const double zeta = v - k * k * EllipticDSinCos(sn, cn, kp * kp) - e_over_k * v;  // E(am v) = v - k^2 D(am v)
+      sup = std::max(sup, std::abs(zeta));
+    }
+    const double bound = JacobiZetaOverModulusBound(k, k);
+    ASSERT_LE(sup / k, bound) << "k' " << kp;
+    if (kp < 0.02) {
+      EXPECT_GT(sup / k, 0.6 * bound) << "k' " << kp;
+    }
+    if (row % 6 == 0)
+      std::printf("k' %.3g: sup |Z| / k %.6f, bound %.6f (k K / 2 %.4f)\n", kp, sup / k, bound, 0.5 * k * kk);
+  }
+}
+
+// The heading bounds at fixed v (HeadingModulusBound, and the zeta form HeadingModulusBoundByZeta)
+// never undershoot central differences (step k'^2 1e-6) in the middle of the separatrix tail, k
+// from 0.95 to 0.9999 in lambda = -ln k', |v| <= 30; the sampled sup against each bound printed.
+TEST(IsoparallelCertify, HeadingModulusBoundsHoldNearTheSeparatrix) {
+  for (PendulumRegime regime : kRegimes) {
+    double worst_fixed_v = 0.0, worst_zeta = 0.0;
+    for (double kp = 0.31; kp > 0.0141; kp *= 0.8) {
+      const double k = std::sqrt(1.0 - kp * kp), h = 1e-6 * kp * kp;
+      for (double v = -30.0; v <= 30.0; v += 0.0173) {
+        const double dk = std::abs(Theta(regime, k + h, v) - Theta(regime, k - h, v)) / (2 * h);
+        const double fixed_v = HeadingModulusBound(regime, k + h, std::abs(v));
+        const double zeta = HeadingModulusBoundByZeta(regime, k - h, k + h, std::abs(v));
+        ASSERT_LE(dk, fixed_v * (1 + 1e-6)) << ToString(regime) << " k " << k << " v " << v;
+        ASSERT_LE(dk, zeta * (1 + 1e-6)) << ToString(regime) << " k " << k << " v " << v;
+        worst_fixed_v = std::max(worst_fixed_v, dk / fixed_v);
+        worst_zeta = std::max(worst_zeta, dk / zeta);
+      }
+    }
+    std::printf("%s, k 0.95..0.9999: largest sampled |d theta/dk| / bound: fixed v %.3f, zeta %.3f\n",
+                ToString(regime).c_str(), worst_fixed_v, worst_zeta);
+    EXPECT_GT(worst_zeta, 0.05) << ToString(regime);
+  }
+}
+
+// The split point in k: the arithmetic midpoint below the threshold; above it the midpoint in
+// lambda = -ln k' (k'_mid^2 = k'_lo k'_hi), strictly inside the box up to k' ~ 1e-8.
+TEST(IsoparallelCertify, ModulusSplitPointIsTheMidpointInLambda) {
+  EXPECT_DOUBLE_EQ(ModulusSplitPoint(0.2, 0.4, 1.0), 0.3);
+  EXPECT_DOUBLE_EQ(ModulusSplitPoint(0.2, 0.4, 0.5), 0.3);
+  EXPECT_DOUBLE_EQ(ModulusSplitPoint(0.6, 0.8, 0.5), std::sqrt(1.0 - 0.8 * 0.6));  // k' 0.8 and 0.6
+  for (double kp_lo = 0.3; kp_lo > 1e-4; kp_lo *= 0.1) {  // k'_hi down to 3e-7 (the window's limit: 4.5e-5)
+    const double k_lo = std::sqrt(1.0 - kp_lo * kp_lo), k_hi = std::sqrt(1.0 - 1e-4 * kp_lo * kp_lo);
+    const double mid = ModulusSplitPoint(k_lo, k_hi, 0.9);
+    ASSERT_GT(mid, k_lo);
+    ASSERT_LT(mid, k_hi);
+    const auto log_kp = [](double k) { return 0.5 * std::log((1.0 - k) * (1.0 + k)); };
+    // k_mid is rounded to a double: k'_mid^2 within 1.2e-16 of the exact one.
+    const double tolerance = 1e-12 + 1.2e-16 / ((1.0 - mid) * (1.0 + mid));
+    EXPECT_NEAR(log_kp(mid), 0.5 * (log_kp(k_lo) + log_kp(k_hi)), tolerance) << "k'_lo " << kp_lo;
   }
 }
 
@@ -253,6 +324,14 @@ TEST(IsoparallelCertify, InvalidWindowIsRejectedByName) {
   o.window.lo[kCertifyLength] = std::nan("");
   r = CertifyWindow(CertifyTarget{}, {}, o);
   EXPECT_NE(r.message.find("window.length"), std::string::npos) << r.message;
+  o = SmallWindow();
+  o.window.hi[kCertifyModulus] = kMaxWindowModulus;
+  EXPECT_EQ(o.Validate(), "");
+  o.window.hi[kCertifyModulus] = 1.0 - 1e-10;
+  EXPECT_NE(o.Validate().find("window.modulus"), std::string::npos);
+  o = SmallWindow();
+  o.log_modulus_split = 1.5;
+  EXPECT_NE(o.Validate().find("log_modulus_split"), std::string::npos);
   o = SmallWindow();
   o.max_boxes = 0;
   EXPECT_NE(o.Validate().find("max_boxes"), std::string::npos);
