@@ -15,21 +15,6 @@ namespace plateball::internal {
 
 namespace {
 
-double Volume(const CertifyBox& box) {
-  double v = 1.0;
-  for (int i = 0; i < 4; ++i) v *= box.hi[i] - box.lo[i];
-  return v;
-}
-
-void Split(const CertifyBox& box, int axis, std::vector<CertifyBox>* stack) {
-  const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);
-  CertifyBox left = box, right = box;
-  left.hi[axis] = mid;
-  right.lo[axis] = mid;
-  stack->push_back(right);
-  stack->push_back(left);
-}
-
 // The sense of core j: rotating sigma_0 in every cell, oscillating mirrored in every other one.
 int CoreSense(PendulumRegime regime, int sense, long j) {
   return regime == PendulumRegime::kRotating || std::abs(j) % 2 == 0 ? sense : -sense;
@@ -192,25 +177,7 @@ std::string LoopFamilyOptions::Validate() const {
   if (!(cap > 0.0 && cap <= 1e3)) return InvalidValueMessage("cap", cap, "expected a length in (0, 1000]");
   if (!(length_lo >= 0.0 && length_lo < cap))
     return InvalidValueMessage("length_lo", length_lo, "expected a length in [0, cap)");
-  if (!(max_boxes >= 1 && max_boxes <= 1000000000L))
-    return InvalidValueMessage("max_boxes", static_cast<double>(max_boxes), "expected [1, 1e9]");
-  if (!(accept_deviation > 0.0 && accept_deviation <= 1.0))
-    return InvalidValueMessage("accept_deviation", accept_deviation, "expected (0, 1]");
-  if (!(keep_undecided >= 0 && keep_undecided <= 100000))
-    return InvalidValueMessage("keep_undecided", keep_undecided, "expected [0, 100000]");
-  if (!(margin >= 0.0 && margin <= 1e-2)) return InvalidValueMessage("margin", margin, "expected [0, 0.01]");
-  return "";
-}
-
-std::string ToString(LoopFamilyStatus status) {
-  switch (status) {
-    case LoopFamilyStatus::kNotRun: return "not run";
-    case LoopFamilyStatus::kExcluded: return "excluded";
-    case LoopFamilyStatus::kUndecided: return "undecided boxes remain";
-    case LoopFamilyStatus::kBudgetExhausted: return "budget exhausted";
-    case LoopFamilyStatus::kInvalidInput: return "invalid input";
-  }
-  return "unknown";
+  return ValidateBisectionBudget(max_boxes, accept_deviation, keep_undecided, margin);
 }
 
 LoopFamilyResult CertifyLoopFamily(const CertifyTarget& target, const LoopFamilyOptions& options) {
@@ -230,19 +197,10 @@ LoopFamilyResult CertifyLoopFamily(const CertifyTarget& target, const LoopFamily
   const double w_max = w2 / options.rate_lo;
   result.window.lo = {options.rate_lo, run_lo, -w_max, options.length_lo};
   result.window.hi = {options.rate_max, std::max(options.cap, run_lo), options.cap + w_max, options.cap};
-  const double window_volume = 2.0 * Volume(result.window);
-  bool budget_left = true;
+  BisectionTally tally;
   for (const int sense : {1, -1}) {
-    std::vector<CertifyBox> stack = {result.window};
-    while (!stack.empty() && result.boxes < options.max_boxes) {
-      const CertifyBox box = stack.back();
-      stack.pop_back();
-      ++result.boxes;
-      if (LoopBoxOutsideDomain(w2, run_min_k, result.window.hi[kLoopRun], box)) {
-        ++result.outside_domain;
-        result.resolved_volume += Volume(box) / window_volume;
-        continue;
-      }
+    const auto decide = [&](const CertifyBox& box) {
+      if (LoopBoxOutsideDomain(w2, run_min_k, result.window.hi[kLoopRun], box)) return BoxDecision{BoxFate::kOutsideDomain};
       CertifyPoint share;
       const double model = LoopModelDeviationBound(w2, box, &share);
       const double deviation = model + result.heading_error * box.hi[kLoopLength];
@@ -250,24 +208,22 @@ LoopFamilyResult CertifyLoopFamily(const CertifyTarget& target, const LoopFamily
       BoxVerdict verdict = BoxVerdict::kUndecided;
       if (EvaluateLoopModelResidual(target, options.regime, sense, w2, box.Centre(), &centre))
         verdict = TestBox(centre, deviation, options.margin);
-      if (verdict != BoxVerdict::kUndecided) {
-        ++(verdict == BoxVerdict::kExcludedByChord ? result.excluded_by_chord : result.excluded_by_rotation);
-        result.resolved_volume += Volume(box) / window_volume;
-      } else if (model <= options.accept_deviation) {
-        ++result.undecided;
-        if (static_cast<int>(result.undecided_boxes.size()) < options.keep_undecided) {
-          result.undecided_boxes.push_back(box);
-          result.undecided_senses.push_back(sense);
-        }
-      } else {
-        Split(box, static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin()), &stack);
-      }
-    }
-    if (!stack.empty()) budget_left = false;
+      return DecideByVerdict(verdict, model, options.accept_deviation, share);
+    };
+    const auto keep = [&](const CertifyBox& box) {
+      if (static_cast<int>(result.undecided_boxes.size()) >= options.keep_undecided) return;
+      result.undecided_boxes.push_back(box);
+      result.undecided_senses.push_back(sense);
+    };
+    Bisect(result.window, 2.0 * BoxWidthProduct(result.window), options.max_boxes, decide, keep, &tally);
   }
-  result.status = !budget_left             ? LoopFamilyStatus::kBudgetExhausted
-                  : result.undecided > 0 ? LoopFamilyStatus::kUndecided
-                                         : LoopFamilyStatus::kExcluded;
+  result.boxes = tally.boxes;
+  result.excluded_by_chord = tally.excluded_by_chord;
+  result.excluded_by_rotation = tally.excluded_by_rotation;
+  result.outside_domain = tally.outside_domain;
+  result.undecided = tally.undecided;
+  result.resolved_volume = tally.resolved_volume;
+  result.status = tally.Status();
   return result;
 }
 

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "isoparallel_certify.h"
+#include "isoparallel_certify_bisection.h"
 #include "plateball/elastica.h"
 
 namespace plateball::internal {
@@ -102,8 +103,7 @@ struct LoopFamilyOptions {
   std::string Validate() const;
 };
 
-enum class LoopFamilyStatus { kNotRun, kExcluded, kUndecided, kBudgetExhausted, kInvalidInput };
-std::string ToString(LoopFamilyStatus status);
+using LoopFamilyStatus = ExclusionStatus;  // ToString in isoparallel_certify_bisection.h
 
 struct LoopFamilyResult {
   LoopFamilyStatus status = LoopFamilyStatus::kNotRun;

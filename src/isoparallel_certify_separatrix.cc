@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "check.h"
+#include "isoparallel_certify_bisection.h"
 #include "isoparallel_certify_tails.h"
 
 namespace plateball::internal {
@@ -13,26 +14,11 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double Volume(const CertifyBox& box) {
-  double v = 1.0;
-  for (int i = 0; i < 4; ++i) v *= box.hi[i] - box.lo[i];
-  return v;
-}
-
 // The largest |v| a box reaches: its start phase plus rate times length.
 double MaxAbsV(const CertifyBox& box) {
   const double phase = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
   const double rate = std::max(std::abs(box.lo[kCertifyRate]), std::abs(box.hi[kCertifyRate]));
   return phase + rate * box.hi[kCertifyLength];
-}
-
-void Split(const CertifyBox& box, int axis, std::vector<CertifyBox>* stack) {
-  const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);
-  CertifyBox left = box, right = box;
-  left.hi[axis] = mid;
-  right.lo[axis] = mid;
-  stack->push_back(right);
-  stack->push_back(left);
 }
 
 }  // namespace
@@ -71,26 +57,10 @@ std::string SeparatrixTailOptions::Validate() const {
   if (!(cap > 0.0 && cap <= 1e3)) return InvalidValueMessage("cap", cap, "expected a length in (0, 1000]");
   if (!(length_lo >= 0.0 && length_lo < cap))
     return InvalidValueMessage("length_lo", length_lo, "expected a length in [0, cap)");
-  if (!(max_boxes >= 1 && max_boxes <= 1000000000L))
-    return InvalidValueMessage("max_boxes", static_cast<double>(max_boxes), "expected [1, 1e9]");
-  if (!(accept_deviation > 0.0 && accept_deviation <= 1.0))
-    return InvalidValueMessage("accept_deviation", accept_deviation, "expected (0, 1]");
-  if (!(keep_undecided >= 0 && keep_undecided <= 100000))
-    return InvalidValueMessage("keep_undecided", keep_undecided, "expected [0, 100000]");
-  if (!(margin >= 0.0 && margin <= 1e-2)) return InvalidValueMessage("margin", margin, "expected [0, 0.01]");
+  const std::string budget = ValidateBisectionBudget(max_boxes, accept_deviation, keep_undecided, margin);
+  if (!budget.empty()) return budget;
   if (!(max_step > 0.0 && max_step <= 1.0)) return InvalidValueMessage("max_step", max_step, "expected (0, 1]");
   return "";
-}
-
-std::string ToString(SeparatrixTailStatus status) {
-  switch (status) {
-    case SeparatrixTailStatus::kNotRun: return "not run";
-    case SeparatrixTailStatus::kExcluded: return "excluded";
-    case SeparatrixTailStatus::kUndecided: return "undecided boxes remain";
-    case SeparatrixTailStatus::kBudgetExhausted: return "budget exhausted";
-    case SeparatrixTailStatus::kInvalidInput: return "invalid input";
-  }
-  return "unknown";
 }
 
 SeparatrixTailResult CertifySeparatrixTail(const CertifyTarget& target, const SeparatrixTailOptions& options) {
@@ -109,32 +79,26 @@ SeparatrixTailResult CertifySeparatrixTail(const CertifyTarget& target, const Se
   const double phase = result.run_distance + options.rate_max * options.cap;
   result.window.lo = {-options.rate_max, options.k_lo, -phase, options.length_lo};
   result.window.hi = {options.rate_max, 1.0, phase, options.cap};
-  const double window_volume = Volume(result.window);
-  std::vector<CertifyBox> stack = {result.window};
-  while (!stack.empty() && result.boxes < options.max_boxes) {
-    const CertifyBox box = stack.back();
-    stack.pop_back();
-    ++result.boxes;
+  BisectionTally tally;
+  const auto decide = [&](const CertifyBox& box) {
     CertifyPoint share;
     const double deviation = SeparatrixDeviationBound(options.regime, box, &share);
     CertifyResidual centre;
     BoxVerdict verdict = BoxVerdict::kUndecided;
     if (EvaluateCertifyResidual(target, options.regime, box.Centre(), options.max_step, &centre))
       verdict = TestBox(centre, deviation, options.margin);
-    if (verdict != BoxVerdict::kUndecided) {
-      ++(verdict == BoxVerdict::kExcludedByChord ? result.excluded_by_chord : result.excluded_by_rotation);
-      result.resolved_volume += Volume(box) / window_volume;
-    } else if (deviation <= options.accept_deviation) {
-      ++result.undecided;
-      if (static_cast<int>(result.undecided_boxes.size()) < options.keep_undecided)
-        result.undecided_boxes.push_back(box);
-    } else {
-      Split(box, static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin()), &stack);
-    }
-  }
-  result.status = !stack.empty()           ? SeparatrixTailStatus::kBudgetExhausted
-                  : result.undecided > 0 ? SeparatrixTailStatus::kUndecided
-                                         : SeparatrixTailStatus::kExcluded;
+    return DecideByVerdict(verdict, deviation, options.accept_deviation, share);
+  };
+  const auto keep = [&](const CertifyBox& box) {
+    if (static_cast<int>(result.undecided_boxes.size()) < options.keep_undecided) result.undecided_boxes.push_back(box);
+  };
+  Bisect(result.window, BoxWidthProduct(result.window), options.max_boxes, decide, keep, &tally);
+  result.boxes = tally.boxes;
+  result.excluded_by_chord = tally.excluded_by_chord;
+  result.excluded_by_rotation = tally.excluded_by_rotation;
+  result.undecided = tally.undecided;
+  result.resolved_volume = tally.resolved_volume;
+  result.status = tally.Status();
   return result;
 }
 

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "isoparallel_certify.h"
+#include "isoparallel_certify_bisection.h"
 #include "plateball/elastica.h"
 
 namespace plateball::internal {
@@ -52,8 +53,7 @@ struct SeparatrixTailOptions {
   std::string Validate() const;
 };
 
-enum class SeparatrixTailStatus { kNotRun, kExcluded, kUndecided, kBudgetExhausted, kInvalidInput };
-std::string ToString(SeparatrixTailStatus status);
+using SeparatrixTailStatus = ExclusionStatus;  // ToString in isoparallel_certify_bisection.h
 
 struct SeparatrixTailResult {
   SeparatrixTailStatus status = SeparatrixTailStatus::kNotRun;
