@@ -21,22 +21,14 @@
 #include "plateball/isoparallel.h"
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
+#include "positional_argument.h"
 
 namespace {
 
 using namespace plateball;
 using namespace plateball::internal;
 
-// Argument i as a number in [lo, hi], or `fallback` when absent.
-double Argument(int argc, char** argv, int i, double lo, double hi, double fallback) {
-  if (i >= argc) return fallback;
-  std::size_t used = 0;
-  const std::string text = argv[i];
-  const double v = std::stod(text, &used);
-  if (used != text.size() || !(v >= lo && v <= hi))
-    throw std::invalid_argument("argument " + std::to_string(i) + ": value " + text + ": out of range");
-  return v;
-}
+using bench::PositionalNumber;
 
 void Print(PendulumRegime regime, const LoopFamilyOptions& o, const LoopFamilyResult& r, double cpu) {
   const CertifyBox& w = r.window;
@@ -61,14 +53,14 @@ int Run(int argc, char** argv) {
   if (!solved.IsSolutionUsable()) throw std::runtime_error("the solver found no solution: " + solved.message);
   const CertifyTarget target = CertifyTargetOf(setup.problem);
   LoopFamilyOptions o;
-  o.cap = Argument(argc, argv, 2, 1.0, 10.0, 1.0) * solved.Shortest().length * 1.0001;
-  const double kp = Argument(argc, argv, 3, 1e-8, 0.4, 1e-4);
+  o.cap = PositionalNumber(argc, argv, 2, 1.0, 10.0, 1.0) * solved.Shortest().length * 1.0001;
+  const double kp = PositionalNumber(argc, argv, 3, 1e-8, 0.4, 1e-4);
   o.k_t = std::sqrt((1.0 - kp) * (1.0 + kp));
-  o.rate_lo = Argument(argc, argv, 4, 1e-3, 1e3, 0.5);
-  o.rate_max = Argument(argc, argv, 5, 1e-3, 1e3, 30.0);
-  o.max_boxes = static_cast<long>(Argument(argc, argv, 6, 1.0, 1e10, 2e6));
+  o.rate_lo = PositionalNumber(argc, argv, 4, 1e-3, 1e3, 0.5);
+  o.rate_max = PositionalNumber(argc, argv, 5, 1e-3, 1e3, 30.0);
+  o.max_boxes = static_cast<long>(PositionalNumber(argc, argv, 6, 1.0, 1e10, 2e6));
   const std::string which = argc > 7 ? argv[7] : "both";
-  o.core_half_width = Argument(argc, argv, 8, 0.0, 1e3, 0.0);
+  o.core_half_width = PositionalNumber(argc, argv, 8, 0.0, 1e3, 0.0);
   o.length_lo = target.radius;
   std::printf("%s: cap %.9g, |x1 - x0| %.9g, delta0 %.9g\n", file.c_str(), o.cap, target.radius,
               StraightResidual(target));

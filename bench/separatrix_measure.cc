@@ -21,22 +21,14 @@
 #include "plateball/isoparallel.h"
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
+#include "positional_argument.h"
 
 namespace {
 
 using namespace plateball;
 using namespace plateball::internal;
 
-// Argument i as a number in [lo, hi], or `fallback` when absent.
-double Argument(int argc, char** argv, int i, double lo, double hi, double fallback) {
-  if (i >= argc) return fallback;
-  std::size_t used = 0;
-  const std::string text = argv[i];
-  const double v = std::stod(text, &used);
-  if (used != text.size() || !(v >= lo && v <= hi))
-    throw std::invalid_argument("argument " + std::to_string(i) + ": value " + text + ": out of range");
-  return v;
-}
+using bench::PositionalNumber;
 
 void Print(PendulumRegime regime, const SeparatrixTailResult& r, double seconds) {
   const CertifyBox& w = r.window;
@@ -58,10 +50,10 @@ int Run(int argc, char** argv) {
   if (!solved.IsSolutionUsable()) throw std::runtime_error("the solver found no solution: " + solved.message);
   const CertifyTarget target = CertifyTargetOf(setup.problem);
   SeparatrixTailOptions o;
-  o.cap = Argument(argc, argv, 2, 1.0, 10.0, 1.0) * solved.Shortest().length;
-  o.rate_max = Argument(argc, argv, 3, 1e-6, 1e3, 0.5);
-  o.k_lo = Argument(argc, argv, 4, 0.5, 0.999999, 0.95);
-  o.max_boxes = static_cast<long>(Argument(argc, argv, 5, 1.0, 1e10, 2e6));
+  o.cap = PositionalNumber(argc, argv, 2, 1.0, 10.0, 1.0) * solved.Shortest().length;
+  o.rate_max = PositionalNumber(argc, argv, 3, 1e-6, 1e3, 0.5);
+  o.k_lo = PositionalNumber(argc, argv, 4, 0.5, 0.999999, 0.95);
+  o.max_boxes = static_cast<long>(PositionalNumber(argc, argv, 5, 1.0, 1e10, 2e6));
   o.length_lo = target.radius;
   const std::string which = argc > 6 ? argv[6] : "both";
   std::printf("%s: cap %.9g, |x1 - x0| %.9g, delta0 %.9g\n", file.c_str(), o.cap, target.radius,
