@@ -61,16 +61,6 @@ int MatchKnown(const CertifyBox& box, const CertifyWindowOptions& options, const
   return -1;
 }
 
-// Whether two canonical solutions are the same path: every coordinate within `tolerance`, the
-// phase compared modulo its period (a path near the end of the period is also near its start).
-bool SamePath(PendulumRegime regime, const CertifyPoint& a, const CertifyPoint& b, double tolerance) {
-  for (int axis : {kCertifyRate, kCertifyModulus, kCertifyLength})
-    if (std::abs(a[axis] - b[axis]) > tolerance) return false;
-  const double period = PhasePeriod(regime, a[kCertifyModulus]);
-  const double d = std::abs(a[kCertifyPhase] - b[kCertifyPhase]);
-  return std::min(d, std::abs(period - d)) <= tolerance;
-}
-
 // Whether the box lies inside one of `boxes`.
 bool InsideAny(const CertifyBox& box, const std::vector<CertifyBox>& boxes) {
   for (const CertifyBox& b : boxes) {
@@ -414,6 +404,14 @@ double ModulusSplitPoint(double k_lo, double k_hi, double log_split) {
   const double product = std::sqrt((1.0 - k_lo) * (1.0 + k_lo) * (1.0 - k_hi) * (1.0 + k_hi));  // k'_lo k'_hi
   const double geometric = std::sqrt(1.0 - product);
   return geometric > k_lo && geometric < k_hi ? geometric : arithmetic;
+}
+
+bool SamePath(PendulumRegime regime, const CertifyPoint& a, const CertifyPoint& b, double tolerance) {
+  for (int axis : {kCertifyRate, kCertifyModulus, kCertifyLength})
+    if (std::abs(a[axis] - b[axis]) > tolerance) return false;
+  const double period = PhasePeriod(regime, a[kCertifyModulus]);
+  const double d = std::abs(a[kCertifyPhase] - b[kCertifyPhase]);
+  return std::min(d, std::abs(period - d)) <= tolerance;
 }
 
 CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double length) {

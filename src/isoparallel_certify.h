@@ -225,6 +225,10 @@ struct CertifyWindowResult {
 /// written with a positive one (same heading up to sign conventions: the same path).
 CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double length);
 
+/// Whether two canonical solutions are the same path: every coordinate within `tolerance`, the
+/// phase compared modulo its period (a path near the end of the period is also near its start).
+bool SamePath(PendulumRegime regime, const CertifyPoint& a, const CertifyPoint& b, double tolerance);
+
 /// Branch and bound over the window: every box lies inside the `match` neighbourhood of a known
 /// solution, or is excluded (TestBox, the chord part with the smaller of D and the closed-form
 /// chord bound; then the costate test, isoparallel_certify_costate.h), or is split along the axis with the largest share of D,

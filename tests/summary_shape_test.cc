@@ -11,6 +11,7 @@
 #include "plateball/execution.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/isoparallel.h"
+#include "plateball/isoparallel_certificate.h"
 #include "plateball/join.h"
 #include "plateball/monte_carlo.h"
 #include "plateball/reach.h"
@@ -23,7 +24,7 @@ template <class Summary>
 class SummaryShape : public ::testing::Test {};
 
 using Summaries = ::testing::Types<JoinSummary, ReachSummary, PlanSummary, IsoparallelSummary, ExactArrivalSummary,
-                                   ExecutionSummary, MonteCarloSummary>;
+                                   ExecutionSummary, MonteCarloSummary, IsoparallelCertificate>;
 TYPED_TEST_SUITE(SummaryShape, Summaries);
 
 TYPED_TEST(SummaryShape, DefaultSaysNotRun) {

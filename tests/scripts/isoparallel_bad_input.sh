@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Table-driven bad-input suite for isoparallel_solve (issue 6): each case must exit with the
-# documented code (2 usage, 3 bad input, 4 no solution, 5 I/O), name the offending field in its
+# documented code (2 usage, 3 bad input, 4 no solution, 5 I/O, 7 not certified), name the offending field in its
 # message, finish within the time bound, and never print a NaN.
 # Usage: isoparallel_bad_input.sh TOOL WORKDIR
 set -u
@@ -58,6 +58,10 @@ cases=(
   "non-numeric seed|3|--seed|--seed|abc"
   "unknown option|2|--frobnicate|--frobnicate"
   "solver starved of iterations|4|solution|$work/stall_one_iteration.json"
+  "certify cap below one|3|--certify-cap|--certify|--certify-cap|0.5"
+  "certify budget zero|3|--certify-budget|--certify|--certify-budget|0"
+  "certify cap without --certify|2|--certify|--certify-cap|2"
+  "certificate out of budget|7|not closed|$(dirname "$0")/../../problems/isoparallel_rotation.json|--certify|--certify-budget|1"
 )
 
 passed=0

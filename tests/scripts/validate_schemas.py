@@ -141,6 +141,9 @@ def check_tool_outputs(run, problems):
         # The variants of the outputs: timings, --exact, --orientation, the points forms.
         run.output(["plateball", "converge", "problems/circle.json", "--impulses", "8,16", "--timings"])
         run.output(["plateball", "isoparallel", "--exact"])
+        # --certify with a budget of one box per piece: the certificate section of an incomplete one.
+        run.output(["plateball", "isoparallel", "problems/isoparallel_rotation.json", "--certify", "--certify-budget",
+                    "1", "--quiet"], ok_codes=(7,))
         run.output(["plateball", "roll", "--points", "0,0;1,0.5;2,0", "--orientation", '{"quaternion": [1, 0, 0, 0]}'])
         run.output(["plateball", "roll", "--samples-file", "tests/data/roll_samples.json"])
         run.output(["plateball", "steer", "problems/figure7_exact.json", "--summary-only"])

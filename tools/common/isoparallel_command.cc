@@ -22,12 +22,14 @@
 #include "common/exact_output.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/plan_json.h"
 #include "common/progress.h"
 #include "common/svg.h"
 #include "plateball/free_motion.h"
 #include "plateball/isoparallel.h"
+#include "plateball/isoparallel_certificate.h"
 #include "plateball/isoparallel_plan.h"
 #include "plateball/task_adapters.h"
 #include "plateball/problem_io.h"
@@ -267,6 +269,52 @@ ExactRun SolveExact(const plateball::Problem& problem, const plateball::Isoparal
   return r;
 }
 
+// --certify: the certificate of the solution list (isoparallel_certificate.h), one line per
+// piece on standard error as it ends (not under --quiet), the result on `out`.
+plateball::IsoparallelCertificate Certify(const IsoparallelCliOptions& cli,
+                                          const plateball::IsoparallelSummary& summary, std::ostream& out) {
+  using namespace plateball;
+  IsoparallelCertificateOptions o;
+  o.cap_factor = cli.certify_cap;
+  o.max_boxes = cli.certify_budget;
+  o.threads = summary.options.threads;
+  o.progress = [&](const IsoparallelCertificatePiece& p, int done, int total) {
+    if (Verbose())
+      std::cerr << cli.program << ": certificate piece " << done << " of " << total << ": "
+                << (p.closed ? "closed, " : "NOT closed, ") << p.name << " (" << p.boxes << " boxes, "
+                << std::setprecision(3) << p.cpu_seconds << " s CPU)" << std::endl;
+  };
+  const IsoparallelCertificate c = CertifyIsoparallel(summary, o);
+  out << "certificate: " << ToString(c.status);
+  if (!c.IsComplete()) {
+    out << ": " << c.message << "\n";
+    return c;
+  }
+  out << std::setprecision(10) << " up to length " << c.length_cap << std::setprecision(6) << " (" << cli.certify_cap
+      << " x 1.0001 x the shortest): " << c.solutions.size() << " solution(s), " << c.MissedBySolver()
+      << " of them not in the solver's list (" << c.boxes << " boxes in " << c.pieces.size() << " pieces, "
+      << std::setprecision(3) << c.cpu_seconds << " s CPU)\n";
+  for (const CertifiedSolution& m : c.solutions)
+    if (m.solver_index < 0)
+      out << std::setprecision(10) << "  missed by the solver: " << ToString(m.regime) << ", length " << m.length
+          << ", rate " << m.rate << ", k " << m.modulus << ", phase " << m.phase << "\n";
+  return c;
+}
+
+Json CertificateJson(const plateball::IsoparallelCertificate& c, double cap_factor) {
+  Json sols = Json::array(), pieces = Json::array();
+  for (const plateball::CertifiedSolution& s : c.solutions)
+    sols.push_back(Json{{"regime", plateball::ToString(s.regime)}, {"rate", s.rate}, {"modulus", s.modulus},
+                        {"phase", s.phase}, {"length", s.length}, {"solver_index", s.solver_index}});
+  for (const plateball::IsoparallelCertificatePiece& p : c.pieces)
+    pieces.push_back(Json{{"name", p.name}, {"closed", p.closed}, {"result", p.result}, {"boxes", p.boxes},
+                          {"resolved_volume", p.resolved_volume}, {"proved", p.proved}});
+  return Json{{"status", plateball::ToString(c.status)}, {"complete", c.IsComplete()}, {"message", c.message},
+              {"cap_factor", cap_factor}, {"length_cap", c.length_cap}, {"straight_residual", c.straight_residual},
+              {"solutions", std::move(sols)}, {"solver_unproved", c.solver_unproved}, {"pieces", std::move(pieces)},
+              {"boxes", c.boxes}};
+}
+
 int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
   using namespace plateball;
   Problem problem;
@@ -276,6 +324,12 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
   const int impulses = cli.impulses_opt->count() == 0
                            ? 0
                            : static_cast<int>(RequireIntegerInRange("--impulses", cli.impulses, 1, 10'000));
+  if (cli.certify) {
+    RequireIntegerInRange("--certify-budget", cli.certify_budget, 1, IsoparallelCertificateOptions::kMaxBoxes);
+    if (!(cli.certify_cap >= 1.0 && cli.certify_cap <= IsoparallelOptions::kMaxLengthCapFactor))
+      throw std::invalid_argument("command line: --certify-cap: value " + FormatNumber(cli.certify_cap) +
+                                  ": must be in [1, 10]");
+  }
   const IsoparallelSummary summary = SolveWithProgress(setup, cli.program);
 
   const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
@@ -301,9 +355,15 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
       plan.IsSolutionUsable() ? SampleArcs(problem.model, plan, 40) : std::vector<std::vector<Eigen::Vector2d>>{};
   std::optional<ExactRun> exact;
   if (cli.exact) exact = SolveExact(problem, best, impulses, out);
+  std::optional<IsoparallelCertificate> certificate;
+  if (cli.certify && summary.complete)
+    out << "certificate: not needed (the family enumeration is complete up to the cap)\n";
+  else if (cli.certify)
+    certificate = Certify(cli, summary, out);
   if (!cli.out.empty() || cli.json_to_stdout) {
     Json doc = PlanFileJson(cli, problem, prob, opt, summary, path_pts, plan, arcs, final_error);
     if (exact) doc["exact"] = ExactArrivalToJson(exact->summary, exact->replay);
+    if (certificate) doc["certificate"] = CertificateJson(*certificate, cli.certify_cap);
     WriteJson(doc, cli.out);
   }
   if (!cli.svg.empty() && exact)
@@ -311,7 +371,8 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
   else if (!cli.svg.empty())
     Figure(name, prob, best, path_pts, arcs, plan).Write(cli.svg);
   if (exact && !exact->summary.IsSolutionUsable()) return kExitNoSolution;
-  return plan.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
+  if (!plan.IsSolutionUsable()) return kExitNoSolution;
+  return certificate && !certificate->IsComplete() ? kExitNotCertified : kExitSuccess;
 }
 
 }  // namespace
@@ -327,6 +388,15 @@ void AddIsoparallelOptions(CLI::App& app, IsoparallelCliOptions& cli) {
   AddFigureSizeOption(app);
   app.add_flag("--shooting", cli.shooting,
                "identity targets: use the multi-start shooting instead of the family enumeration");
+  CLI::Option* certify = app.add_flag(
+      "--certify", cli.certify,
+      "general targets: also certify the solution list, every solution up to --certify-cap x 1.0001 x the "
+      "shortest proved and the rest of parameter space excluded (an offline check: minutes to hours; "
+      "JSON section \"certificate\", exit code 7 when it does not close)");
+  app.add_option("--certify-cap", cli.certify_cap, "with --certify: the length cap as a factor of the shortest, 1 ... 10 "
+                 "(default 1: the shortest proved the shortest)")->needs(certify);
+  app.add_option("--certify-budget", cli.certify_budget, "with --certify: boxes per piece, 1 ... 1e10 (default 2.5e8)")
+      ->needs(certify);
   app.add_flag("--exact", cli.exact,
                "also solve exact arrival at the goal position and orientation with the same impulse count "
                "(JSON section \"exact\", SVG: the exact trajectory)");

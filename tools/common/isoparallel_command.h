@@ -3,7 +3,8 @@
 // with --out) and `plateball isoparallel` (JSON on standard output or --out, the report on
 // standard error). Both take the same options: the problem options of problem_options.h, the
 // isoparallel overrides (--start, --goal, --start-orientation, --goal-orientation, --starts,
-// --threads), --impulses, --out, --svg, --shooting, --exact.
+// --threads), --impulses, --out, --svg, --shooting, --exact, --certify (with --certify-cap and
+// --certify-budget).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -23,13 +24,16 @@ struct IsoparallelCliOptions {
   std::string out, svg;
   bool shooting = false;
   bool exact = false;  ///< exact arrival along the optimal path (exact_arrival.h)
+  bool certify = false;  ///< certify the solution list up to certify_cap (isoparallel_certificate.h)
+  double certify_cap = 1.0;
+  long long certify_budget = 250000000;
 };
 
 /// Adds the options above to `app` (set program, tool and json_to_stdout first).
 void AddIsoparallelOptions(CLI::App& app, IsoparallelCliOptions& cli);
 
 /// Solves, plans, writes; returns the exit code (0 solved and planned, 4 no solution or the plan
-/// failed). Throws as every subcommand does (errors.h maps the exceptions to exit codes).
+/// failed, 7 a requested certificate did not close). Throws as every subcommand does (errors.h maps the exceptions to exit codes).
 int RunIsoparallel(const IsoparallelCliOptions& cli);
 
 }  // namespace plateball::tools
