@@ -5,8 +5,6 @@
 #include <cmath>
 #include <limits>
 
-#include "check.h"
-#include "isoparallel_certify_separatrix.h"
 #include "jacobi_elliptic.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
@@ -254,84 +252,6 @@ double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, d
                            double margin) {
   const double scale = RateScale(target, cap, margin);
   return scale == 0.0 ? kInf : 2.0 * PeriodicPartDiameterOver(regime, k_lo, k_hi) * scale;
-}
-
-CertifyBox CoverageWindow::Box() const {
-  CertifyBox b;
-  b.lo = {rate_lo, k_lo, 0.0, length_lo};
-  b.hi = {rate_hi, k_hi, phase_hi, length_hi};
-  return b;
-}
-
-namespace {
-
-// The separatrix tail's windows for rates |rate| <= A and the words for what stays uncovered: the
-// tail's rates up to its bounds "A < |rate| <= A_rot (rotating), <= A_osc (oscillating)".
-std::string AddTailWindows(const CertifyTarget& target, double cap, double k_max, double margin, double a,
-                           double a_rot, double a_osc, CoverageStatement* out) {
-  const std::string tail = "k in [" + std::to_string(k_max) + ", 1) in both regimes";
-  const std::string rates = " with " + (a > 0.0 ? std::to_string(a) + " < |rate| <= " : "|rate| <= ") +
-                            std::to_string(a_rot) + " (rotating), <= " + std::to_string(a_osc) + " (oscillating)";
-  if (!(a > 0.0)) return tail + rates + " (the separatrix tail)";
-  for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
-    TailWindow w;
-    w.regime = regime;
-    w.run_distance = SeparatrixRunDistance(target, regime, cap, margin);
-    if (!std::isfinite(w.run_distance)) {
-      out->tail_windows.clear();
-      return tail + " (the separatrix tail: its runs are not excluded)";
-    }
-    const double phase = w.run_distance + a * cap;
-    w.box.lo = {-a, k_max, -phase, target.radius};
-    w.box.hi = {a, 1.0, phase, cap};
-    out->tail_windows.push_back(w);
-  }
-  return tail + rates + " (the separatrix tail's fast paths)";
-}
-
-}  // namespace
-
-CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k_max, int pieces, double margin,
-                               double tail_rate_max) {
-  CoverageStatement out;
-  if (!(target.radius > 0.0 && target.radius <= 1e3))
-    out.message = InvalidValueMessage("target.radius", target.radius, "must be in (0, 1e3]");
-  else if (!(cap >= target.radius && cap <= 1e3))
-    out.message = InvalidValueMessage("cap", cap, "must lie in [|x1 - x0|, 1e3]");
-  else if (!(k_max >= 0.0 && k_max <= 0.999))
-    out.message = InvalidValueMessage("k_max", k_max, "must lie in [0, 0.999]");
-  else if (!(pieces >= 1 && pieces <= 10000))
-    out.message = InvalidValueMessage("pieces", pieces, "must be in [1, 10000]");
-  else if (!(margin >= 0.0 && margin <= 1e-2))
-    out.message = InvalidValueMessage("margin", margin, "must be in [0, 1e-2]");
-  else if (!(tail_rate_max >= 0.0 && tail_rate_max <= 1e3))
-    out.message = InvalidValueMessage("tail_rate_max", tail_rate_max, "must be in [0, 1e3]");
-  if (!out.message.empty()) return out;
-  out.straight_residual = StraightResidual(target);
-  out.rate_tail_excluded = out.straight_residual > margin;
-  for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
-    for (int i = 0; i < pieces; ++i) {
-      CoverageWindow w;
-      w.regime = regime;
-      w.k_lo = k_max * i / pieces;
-      w.k_hi = k_max * (i + 1) / pieces;
-      w.rate_hi = MaxSolutionRateOver(target, regime, w.k_lo, w.k_hi, cap, margin);
-      // An oscillating path with a negative rate is the same path with a positive one.
-      w.rate_lo = regime == PendulumRegime::kOscillating ? 0.0 : -w.rate_hi;
-      w.phase_hi = PhasePeriod(regime, w.k_hi);
-      w.length_lo = target.radius;
-      w.length_hi = cap;
-      out.windows.push_back(w);
-    }
-  }
-  const double a_rot = MaxSolutionRateOver(target, PendulumRegime::kRotating, k_max, 1.0, cap, margin);
-  const double a_osc = MaxSolutionRateOver(target, PendulumRegime::kOscillating, k_max, 1.0, cap, margin);
-  out.tail_rate_bound = std::max(a_rot, a_osc);
-  out.uncovered = AddTailWindows(target, cap, k_max, margin, tail_rate_max, a_rot, a_osc, &out);
-  if (!out.rate_tail_excluded)
-    out.uncovered += "; every rate: the straight residual " + std::to_string(out.straight_residual) +
-                     " does not exceed the margin, so the averaging lemma excludes nothing";
-  return out;
 }
 
 }  // namespace plateball::internal

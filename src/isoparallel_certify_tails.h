@@ -20,9 +20,7 @@
 //   a_max(k) = PeriodicPartDiameter(regime, k) h / (2 sin(delta / 2)),
 // h = sqrt(cap^2 - |x1 - x0|^2) + |x1 - x0|, delta = delta0 - margin; finite for every k <= 1
 // (the separatrix as a limit). When delta0 <= margin (the target is the straight rolling, or
-// nearly) nothing is excluded. The modulus tail k -> 1: isoparallel_certify_separatrix.h covers its
-// rates |a| <= A (the windows CoverageUpTo lists with tail_rate_max = A); rates in
-// (A, A_tail] (CoverageStatement::tail_rate_bound) are not covered, rates above A_tail excluded.
+// nearly) nothing is excluded. The pieces below these rates: isoparallel_certify_coverage.h.
 #pragma once
 
 #include <string>
@@ -108,46 +106,5 @@ double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, doubl
 /// (PeriodicPartDiameterOver): finite up to the separatrix.
 double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
                            double margin);
-
-/// One window the branch and bound must certify: regime, k in [k_lo, k_hi], rate in
-/// [rate_lo, rate_hi] (a rigorous sup over the k range), phase in [0, phase_hi) (one period of v
-/// at k_hi), L in [length_lo, length_hi].
-struct CoverageWindow {
-  PendulumRegime regime = PendulumRegime::kOscillating;
-  double k_lo = 0.0, k_hi = 0.0;
-  double rate_lo = 0.0, rate_hi = 0.0;
-  double phase_hi = 0.0;
-  double length_lo = 0.0, length_hi = 0.0;
-  CertifyBox Box() const;
-};
-
-/// A window of the separatrix tail (isoparallel_certify_separatrix.h): k in [k_max, 1] (the
-/// separatrix itself as a limit), rate in [-A, A], phase from a loop centre in
-/// [-W - A cap, W + A cap], L in [|x1 - x0|, cap]; every tail path with |rate| <= A starting
-/// outside it is a run at distance >= W from every loop, excluded by the straight-run lemma.
-struct TailWindow {
-  PendulumRegime regime = PendulumRegime::kRotating;
-  double run_distance = 0.0;  // W
-  CertifyBox box;
-};
-
-/// What `complete` up to a length cap needs: the windows (both regimes, k in [0, k_max] split in
-/// `pieces` intervals each), with tail_rate_max = A > 0 the separatrix tail windows for rates
-/// |rate| <= A, the tail's rate bound A_tail, and the parts of parameter space no argument covers
-/// (the tail's k in [k_max, 1) with A < |rate| <= A_tail).
-struct CoverageStatement {
-  std::string message;            // empty when valid, else the invalid-value message
-  double straight_residual = 0.0;  // delta0
-  bool rate_tail_excluded = false;  // delta0 > margin: every rate above the windows is excluded
-  // A_tail: MaxSolutionRateOver(k_max, 1), the larger of the two regimes' (both are in
-  // `uncovered`): no solution with k in [k_max, 1) has a larger |rate|. +inf when delta0 <= margin.
-  double tail_rate_bound = 0.0;
-  std::vector<CoverageWindow> windows;
-  std::vector<TailWindow> tail_windows;  // empty unless tail_rate_max > 0 and the runs are excluded
-  std::string uncovered;  // the parameter sets outside every window and not excluded
-};
-
-CoverageStatement CoverageUpTo(const CertifyTarget& target, double cap, double k_max, int pieces,
-                               double margin = 1e-7, double tail_rate_max = 0.0);
 
 }  // namespace plateball::internal

@@ -491,67 +491,8 @@ TEST(IsoparallelCertifyTails, RateBoundIsFiniteUpToTheSeparatrix) {
   EXPECT_TRUE(std::isinf(MaxSolutionRateOver(straight, PendulumRegime::kOscillating, 0.95, 1.0, 10.0, margin)));
 }
 
-TEST(IsoparallelCertifyTails, CoverageStatesTheWindowsAndTheUncoveredTail) {
-  const CertifyTarget target = RotationProblemTarget();
-  const CoverageStatement c = CoverageUpTo(target, 3.0 * 5.99098308, 0.95, 4);
-  ASSERT_EQ(c.message, "");
-  EXPECT_TRUE(c.rate_tail_excluded);
-  ASSERT_EQ(c.windows.size(), 8u);
-  for (const CoverageWindow& w : c.windows) {
-    EXPECT_GE(w.rate_hi * (1 + 1e-12), MaxSolutionRate(target, w.regime, w.k_hi, 3.0 * 5.99098308, 1e-7));
-    EXPECT_EQ(w.rate_lo, w.regime == PendulumRegime::kOscillating ? 0.0 : -w.rate_hi);
-  }
-  EXPECT_NE(c.uncovered.find("separatrix"), std::string::npos);
-  // The straight rolling as target: delta0 = 0, the lemma excludes nothing and says so.
-  CertifyTarget straight = target;
-  straight.target = StraightRolling(Eigen::Vector2d(2.0, 1.0));
-  const CoverageStatement s = CoverageUpTo(straight, 10.0, 0.95, 1);
-  EXPECT_LT(s.straight_residual, 1e-12);
-  EXPECT_FALSE(s.rate_tail_excluded);
-  EXPECT_TRUE(std::isinf(s.windows[0].rate_hi));
-  EXPECT_NE(s.uncovered.find("excludes nothing"), std::string::npos);
-  // The tail's rate bound: finite, the larger regime's sup over [0.95, 1], and in the words.
-  EXPECT_TRUE(std::isfinite(c.tail_rate_bound));
-  const double tail_rot = MaxSolutionRateOver(target, PendulumRegime::kRotating, 0.95, 1.0, 3.0 * 5.99098308, 1e-7);
-  const double tail_osc = MaxSolutionRateOver(target, PendulumRegime::kOscillating, 0.95, 1.0, 3.0 * 5.99098308, 1e-7);
-  EXPECT_EQ(c.tail_rate_bound, std::max(tail_rot, tail_osc));
-  EXPECT_NE(c.uncovered.find("|rate| <= " + std::to_string(tail_rot) + " (rotating), <= " + std::to_string(tail_osc) +
-                             " (oscillating)"),
-            std::string::npos)
-      << c.uncovered;
-  EXPECT_TRUE(std::isinf(s.tail_rate_bound));
+TEST(IsoparallelCertifyTails, ZetaModulusBoundIsInfiniteAtTheSeparatrix) {
   EXPECT_TRUE(std::isinf(HeadingModulusBoundByZeta(PendulumRegime::kRotating, 0.5, 1.0, 1.0)));
-  // Invalid input is named.
-  EXPECT_NE(CoverageUpTo(target, 1.0, 0.95, 4).message.find("cap"), std::string::npos);
-  EXPECT_NE(CoverageUpTo(target, 10.0, 1.0, 4).message.find("k_max"), std::string::npos);
-  EXPECT_NE(CoverageUpTo(target, 10.0, 0.9, 0).message.find("pieces"), std::string::npos);
-  EXPECT_NE(CoverageUpTo(target, 10.0, 0.9, 4, 1e-7, -1.0).message.find("tail_rate_max"), std::string::npos);
-  EXPECT_TRUE(c.tail_windows.empty());
-}
-
-TEST(IsoparallelCertifyTails, CoverageListsTheSeparatrixTailWindows) {
-  const CertifyTarget target = RotationProblemTarget();
-  const double cap = 5.99098308;
-  const CoverageStatement c = CoverageUpTo(target, cap, 0.95, 2, 1e-7, 0.25);
-  ASSERT_EQ(c.message, "");
-  ASSERT_EQ(c.tail_windows.size(), 2u);
-  for (const TailWindow& w : c.tail_windows) {
-    EXPECT_EQ(w.run_distance, SeparatrixRunDistance(target, w.regime, cap, 1e-7));
-    EXPECT_EQ(w.box.lo[kCertifyModulus], 0.95);
-    EXPECT_EQ(w.box.hi[kCertifyModulus], 1.0);
-    EXPECT_DOUBLE_EQ(w.box.hi[kCertifyPhase], w.run_distance + 0.25 * cap);
-    EXPECT_EQ(w.box.lo[kCertifyRate], -0.25);
-  }
-  EXPECT_NE(c.uncovered.find(std::to_string(0.25) + " < |rate| <= " +
-                             std::to_string(MaxSolutionRateOver(target, PendulumRegime::kRotating, 0.95, 1.0, cap, 1e-7))),
-            std::string::npos)
-      << c.uncovered;
-  // The straight target: no run is excluded, so no tail window is claimed.
-  CertifyTarget straight = target;
-  straight.target = StraightRolling(Eigen::Vector2d(2.0, 1.0));
-  const CoverageStatement s = CoverageUpTo(straight, 10.0, 0.95, 1, 1e-7, 0.25);
-  EXPECT_TRUE(s.tail_windows.empty());
-  EXPECT_NE(s.uncovered.find("runs are not excluded"), std::string::npos);
 }
 
 }  // namespace
