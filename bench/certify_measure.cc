@@ -52,6 +52,7 @@
 #include "isoparallel_certify_tails.h"
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
+#include "positional_argument.h"
 
 namespace {
 
@@ -70,21 +71,7 @@ struct Settings {
   std::string trace;  // file of split boxes, or empty
 };
 
-double Number(const std::string& option, const std::string& text, double lo, double hi) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !(v >= lo && v <= hi)) {
-    std::ostringstream m;
-    m << option << ": value " << text << ": expected a number in [" << lo << ", " << hi << "]";
-    throw std::invalid_argument(m.str());
-  }
-  return v;
-}
+using bench::ParseNumber;
 
 std::vector<PendulumRegime> Regimes(const std::string& text) {
   if (text == "oscillating") return {PendulumRegime::kOscillating};
@@ -106,41 +93,41 @@ Settings Parse(int argc, char** argv) {
     if (a == "--caps") {
       s.caps.clear();
       std::stringstream list(v);
-      for (std::string item; std::getline(list, item, ',');) s.caps.push_back(Number(a, item, 1.0, 10.0));
+      for (std::string item; std::getline(list, item, ',');) s.caps.push_back(ParseNumber(a, item, 1.0, 10.0));
     } else if (a == "--regime") {
       s.regimes = Regimes(v);
     } else if (a == "--budget") {
-      s.budget = static_cast<long>(Number(a, v, 1.0, 1e10));
+      s.budget = static_cast<long>(ParseNumber(a, v, 1.0, 1e10));
     } else if (a == "--k-min") {
-      s.k_min = Number(a, v, 0.0, kMaxWindowModulus);
+      s.k_min = ParseNumber(a, v, 0.0, kMaxWindowModulus);
     } else if (a == "--k-max") {
-      s.k_max = Number(a, v, 0.0, kMaxWindowModulus);
+      s.k_max = ParseNumber(a, v, 0.0, kMaxWindowModulus);
     } else if (a == "--rate-min") {
-      s.rate_min = Number(a, v, 0.0, 1e3);
+      s.rate_min = ParseNumber(a, v, 0.0, 1e3);
     } else if (a == "--log-modulus-split") {
-      s.log_modulus_split = Number(a, v, 0.0, 1.0);
+      s.log_modulus_split = ParseNumber(a, v, 0.0, 1.0);
     } else if (a == "--rate-max") {
-      s.rate_max = Number(a, v, 1e-6, 1e3);
+      s.rate_max = ParseNumber(a, v, 1e-6, 1e3);
     } else if (a == "--first-order") {
-      s.first_order = Number(a, v, 0.0, 1.0) != 0.0;
+      s.first_order = ParseNumber(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--first-order-deviation") {
-      s.first_order_deviation = Number(a, v, 0.0, 10.0);
+      s.first_order_deviation = ParseNumber(a, v, 0.0, 10.0);
     } else if (a == "--trace") {
       s.trace = v;
     } else if (a == "--costate") {
-      s.costate = Number(a, v, 0.0, 1.0) != 0.0;
+      s.costate = ParseNumber(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--closed-rolling") {
-      s.closed_rolling = Number(a, v, 0.0, 1.0) != 0.0;
+      s.closed_rolling = ParseNumber(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--chart-rolling") {
-      s.chart_rolling = Number(a, v, 0.0, 1.0) != 0.0;
+      s.chart_rolling = ParseNumber(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--centred-rolling") {
-      s.centred_rolling = Number(a, v, 0.0, 1.0) != 0.0;
+      s.centred_rolling = ParseNumber(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--centred-phase") {
-      s.centred_phase = Number(a, v, 0.0, 1.0) != 0.0;
+      s.centred_phase = ParseNumber(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--fixed-periods") {
-      s.fixed_periods = Number(a, v, 0.0, 1.0) != 0.0;
+      s.fixed_periods = ParseNumber(a, v, 0.0, 1.0) != 0.0;
     } else if (a == "--known") {
-      s.known = Number(a, v, 0.0, 1.0) != 0.0;
+      s.known = ParseNumber(a, v, 0.0, 1.0) != 0.0;
     } else {
       throw std::invalid_argument(a + ": unknown option");
     }

@@ -1,4 +1,5 @@
-// The positional numeric arguments of the measuring programs (separatrix_measure, loops_measure).
+// The numeric arguments of the measuring programs (certify_measure's options, the positional ones
+// of separatrix_measure and loops_measure).
 #pragma once
 
 #include <sstream>
@@ -7,12 +8,10 @@
 
 namespace plateball::bench {
 
-/// Argument i as a number in [lo, hi], or `fallback` when absent. Throws std::invalid_argument
-/// naming the argument and its value when it is not a number in range.
-inline double PositionalNumber(int argc, char** argv, int i, double lo, double hi, double fallback) {
-  if (i >= argc) return fallback;
+/// `text` as a number in [lo, hi]. Throws std::invalid_argument "NAME: value TEXT: expected a
+/// number in [lo, hi]" when it is not one (or has trailing characters).
+inline double ParseNumber(const std::string& name, const std::string& text, double lo, double hi) {
   std::size_t used = 0;
-  const std::string text = argv[i];
   double v = 0.0;
   try {
     v = std::stod(text, &used);
@@ -21,10 +20,16 @@ inline double PositionalNumber(int argc, char** argv, int i, double lo, double h
   }
   if (used != text.size() || !(v >= lo && v <= hi)) {
     std::ostringstream message;
-    message << "argument " << i << ": value " << text << ": expected a number in [" << lo << ", " << hi << "]";
+    message << name << ": value " << text << ": expected a number in [" << lo << ", " << hi << "]";
     throw std::invalid_argument(message.str());
   }
   return v;
+}
+
+/// Argument i as a number in [lo, hi], or `fallback` when absent. Throws std::invalid_argument
+/// naming the argument and its value when it is not a number in range.
+inline double PositionalNumber(int argc, char** argv, int i, double lo, double hi, double fallback) {
+  return i >= argc ? fallback : ParseNumber("argument " + std::to_string(i), argv[i], lo, hi);
 }
 
 }  // namespace plateball::bench
