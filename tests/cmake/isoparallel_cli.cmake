@@ -7,6 +7,17 @@ if(TARGET isoparallel_solve)
   add_test(NAME IsoparallelCli.HelpExitsZero COMMAND isoparallel_solve --help)
   add_test(NAME IsoparallelCli.UnknownOptionIsUsageError COMMAND isoparallel_solve --no-such-option)
   set_tests_properties(IsoparallelCli.UnknownOptionIsUsageError PROPERTIES WILL_FAIL TRUE)
+  # --certify: not needed at an identity target (the enumeration is complete); at 3 rad about e3
+  # and 0.2 away no path shorter than 3 exists (rolling turns the ball by at most the length), so
+  # the certificate up to 0.25 must close with no solution.
+  add_test(NAME IsoparallelCli.CertifyIsNotNeededAtAnIdentityTarget COMMAND isoparallel_solve --certify)
+  set_tests_properties(IsoparallelCli.CertifyIsNotNeededAtAnIdentityTarget PROPERTIES
+    PASS_REGULAR_EXPRESSION "certificate: not needed \\(the family enumeration is complete")
+  add_test(NAME IsoparallelCli.CertifyProvesALowerBound
+    COMMAND isoparallel_solve --goal 0.2,0 --goal-orientation "{\"axis_angle\": {\"axis\": [0, 0, 1], \"angle\": 3}}"
+            --certify --certify-length 0.25 --quiet)
+  set_tests_properties(IsoparallelCli.CertifyProvesALowerBound PROPERTIES
+    PASS_REGULAR_EXPRESSION "certificate: complete up to length 0\\.25: 0 solution\\(s\\), 0 of them not in the solver's list \\(593820 boxes in 10 pieces")
   add_test(NAME IsoparallelCli.ExitCodes
     COMMAND ${CMAKE_COMMAND} -DTOOL=$<TARGET_FILE:isoparallel_solve> -DSRC=${PROJECT_SOURCE_DIR}
             -DWORK=${CMAKE_CURRENT_BINARY_DIR}/isoparallel_cli

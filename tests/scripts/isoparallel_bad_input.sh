@@ -61,6 +61,8 @@ cases=(
   "certify cap below one|3|--certify-cap|--certify|--certify-cap|0.5"
   "certify budget zero|3|--certify-budget|--certify|--certify-budget|0"
   "certify cap without --certify|2|--certify|--certify-cap|2"
+  "certify length below the chord|3|--certify-length|--certify|--certify-length|1"
+  "certify length and cap together|2|--certify-cap|--certify|--certify-length|5|--certify-cap|2"
   "certificate out of budget|7|not closed|$(dirname "$0")/../../problems/isoparallel_rotation.json|--certify|--certify-budget|1"
 )
 

@@ -276,6 +276,7 @@ plateball::IsoparallelCertificate Certify(const IsoparallelCliOptions& cli,
   using namespace plateball;
   IsoparallelCertificateOptions o;
   o.cap_factor = cli.certify_cap;
+  o.length_cap = cli.certify_length;
   o.max_boxes = cli.certify_budget;
   o.threads = summary.options.threads;
   o.progress = [&](const IsoparallelCertificatePiece& p, int done, int total) {
@@ -290,10 +291,11 @@ plateball::IsoparallelCertificate Certify(const IsoparallelCliOptions& cli,
     out << ": " << c.message << "\n";
     return c;
   }
-  out << std::setprecision(10) << " up to length " << c.length_cap << std::setprecision(6) << " (" << cli.certify_cap
-      << " x 1.0001 x the shortest): " << c.solutions.size() << " solution(s), " << c.MissedBySolver()
-      << " of them not in the solver's list (" << c.boxes << " boxes in " << c.pieces.size() << " pieces, "
-      << std::setprecision(3) << c.cpu_seconds << " s CPU)\n";
+  out << std::setprecision(10) << " up to length " << c.length_cap << std::setprecision(6);
+  if (cli.certify_length <= 0.0) out << " (" << cli.certify_cap << " x 1.0001 x the shortest)";
+  out << ": " << c.solutions.size() << " solution(s), " << c.MissedBySolver() << " of them not in the solver's list ("
+      << c.boxes << " boxes in " << c.pieces.size() << " pieces, " << std::setprecision(4) << c.cpu_seconds
+      << " s CPU)\n";
   for (const CertifiedSolution& m : c.solutions)
     if (m.solver_index < 0)
       out << std::setprecision(10) << "  missed by the solver: " << ToString(m.regime) << ", length " << m.length
@@ -329,6 +331,10 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
     if (!(cli.certify_cap >= 1.0 && cli.certify_cap <= IsoparallelOptions::kMaxLengthCapFactor))
       throw std::invalid_argument("command line: --certify-cap: value " + FormatNumber(cli.certify_cap) +
                                   ": must be in [1, 10]");
+    const double chord = (setup.problem.goal - setup.problem.start).norm();
+    if (cli.certify_length != 0.0 && !(cli.certify_length > chord && cli.certify_length <= 1e3))
+      throw std::invalid_argument("command line: --certify-length: value " + FormatNumber(cli.certify_length) +
+                                  ": must exceed |goal - start| = " + FormatNumber(chord) + " and be <= 1000");
   }
   const IsoparallelSummary summary = SolveWithProgress(setup, cli.program);
 
@@ -395,6 +401,8 @@ void AddIsoparallelOptions(CLI::App& app, IsoparallelCliOptions& cli) {
       "JSON section \"certificate\", exit code 7 when it does not close)");
   app.add_option("--certify-cap", cli.certify_cap, "with --certify: the length cap as a factor of the shortest, 1 ... 10 "
                  "(default 1: the shortest proved the shortest)")->needs(certify);
+  app.add_option("--certify-length", cli.certify_length, "with --certify: the length cap itself instead (a cap "
+                 "below the shortest proves that no solution is shorter)")->needs(certify)->excludes("--certify-cap");
   app.add_option("--certify-budget", cli.certify_budget, "with --certify: boxes per piece, 1 ... 1e10 (default 2.5e8)")
       ->needs(certify);
   app.add_flag("--exact", cli.exact,

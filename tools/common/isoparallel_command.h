@@ -3,8 +3,8 @@
 // with --out) and `plateball isoparallel` (JSON on standard output or --out, the report on
 // standard error). Both take the same options: the problem options of problem_options.h, the
 // isoparallel overrides (--start, --goal, --start-orientation, --goal-orientation, --starts,
-// --threads), --impulses, --out, --svg, --shooting, --exact, --certify (with --certify-cap and
-// --certify-budget).
+// --threads), --impulses, --out, --svg, --shooting, --exact, --certify (with --certify-cap or
+// --certify-length, and --certify-budget).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -26,6 +26,7 @@ struct IsoparallelCliOptions {
   bool exact = false;  ///< exact arrival along the optimal path (exact_arrival.h)
   bool certify = false;  ///< certify the solution list up to certify_cap (isoparallel_certificate.h)
   double certify_cap = 1.0;
+  double certify_length = 0.0;  ///< > 0: this length cap instead of certify_cap x the shortest
   long long certify_budget = 250000000;
 };
 
