@@ -18,10 +18,11 @@ library's message (FIELD: value V: what). The solvers release the GIL.
 import functools
 
 from ._plateball import *  # noqa: F401,F403
-from ._plateball import (__version__, _converge, _isoparallel, _join, _plan, _plan_optimal_path,  # noqa: F401
+from ._plateball import (__version__, _certify_isoparallel, _converge, _isoparallel, _join, _plan, _plan_optimal_path,  # noqa: F401
                          _reach, _steer, _fewest_impulses, ConvergenceOptions, ConvergenceProblem,
                          ExactArrivalOptions, ExactArrivalProblem, FewestImpulsesOptions, FewestImpulsesProblem,
-                         IsoparallelOptions, IsoparallelPlanProblem, IsoparallelProblem,
+                         IsoparallelCertificateOptions, IsoparallelOptions, IsoparallelPlanProblem,
+                         IsoparallelProblem,
                          JoinOptions, JoinProblem, MonteCarloOptions, MonteCarloProblem, PlanOptions, PlanProblem,
                          ReachOptions, ReachProblem, _montecarlo)
 
@@ -72,6 +73,20 @@ def converge(problem=None, options=None, **kwargs):
 def isoparallel(problem=None, options=None, **kwargs):
     """Shortest paths with a given reorientation (section 2.2): an IsoparallelSummary."""
     return _solve(_isoparallel, IsoparallelProblem, IsoparallelOptions, problem, options, kwargs)
+
+
+def certify_isoparallel(summary, options=None, **kwargs):
+    """The certificate of an isoparallel summary of a general target: every solution up to the cap
+    proved, or the piece of parameter space that did not close (an IsoparallelCertificate; minutes
+    at the shortest length). Keywords: the fields of IsoparallelCertificateOptions."""
+    options = IsoparallelCertificateOptions() if options is None else options
+    fields = _fields(IsoparallelCertificateOptions)
+    for key, value in kwargs.items():
+        if key not in fields:
+            raise TypeError(f"certify_isoparallel(): unexpected keyword argument '{key}' "
+                            f"(not a field of IsoparallelCertificateOptions)")
+        setattr(options, key, value)
+    return _certify_isoparallel(summary, options)
 
 
 def plan_optimal_path(problem=None, options=None, **kwargs):

@@ -5,6 +5,7 @@
 #include "plateball/exact_arrival.h"
 #include "plateball/impulse.h"
 #include "plateball/isoparallel.h"
+#include "plateball/isoparallel_certificate.h"
 #include "plateball/isoparallel_plan.h"
 #include "plateball/so3.h"
 
@@ -116,6 +117,48 @@ void BindIsoparallelSolve(py::module_& m) {
   m.def("_plan_optimal_path", &PlanOptimalPath, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
 }
 
+// The certificate of a general target (isoparallel_certificate.h): the solver's summary in, every
+// solution up to the cap proved (or the piece that did not close) out.
+void BindIsoparallelCertificate(py::module_& m) {
+  py::class_<IsoparallelCertificateOptions> options(m, "IsoparallelCertificateOptions");
+  WithKeywordInit(options)
+      .def_readwrite("cap_factor", &IsoparallelCertificateOptions::cap_factor)
+      .def_readwrite("length_cap", &IsoparallelCertificateOptions::length_cap)
+      .def_readwrite("max_boxes", &IsoparallelCertificateOptions::max_boxes)
+      .def_readwrite("threads", &IsoparallelCertificateOptions::threads)
+      .def("validate", &IsoparallelCertificateOptions::Validate);
+  py::class_<IsoparallelCertificatePiece>(m, "IsoparallelCertificatePiece")
+      .def_readonly("name", &IsoparallelCertificatePiece::name)
+      .def_readonly("closed", &IsoparallelCertificatePiece::closed)
+      .def_readonly("result", &IsoparallelCertificatePiece::result)
+      .def_readonly("boxes", &IsoparallelCertificatePiece::boxes)
+      .def_readonly("resolved_volume", &IsoparallelCertificatePiece::resolved_volume)
+      .def_readonly("proved", &IsoparallelCertificatePiece::proved)
+      .def_readonly("cpu_seconds", &IsoparallelCertificatePiece::cpu_seconds);
+  py::class_<CertifiedSolution>(m, "CertifiedSolution")
+      .def_property_readonly("regime", [](const CertifiedSolution& c) { return ToString(c.regime); })
+      .def_readonly("rate", &CertifiedSolution::rate)
+      .def_readonly("modulus", &CertifiedSolution::modulus)
+      .def_readonly("phase", &CertifiedSolution::phase)
+      .def_readonly("length", &CertifiedSolution::length)
+      .def_readonly("solver_index", &CertifiedSolution::solver_index);
+  py::class_<IsoparallelCertificate> certificate(m, "IsoparallelCertificate");
+  AddSummaryShape(certificate);
+  certificate.def_property_readonly("complete", &IsoparallelCertificate::IsComplete)
+      .def_readonly("length_cap", &IsoparallelCertificate::length_cap)
+      .def_readonly("straight_residual", &IsoparallelCertificate::straight_residual)
+      .def_readonly("solutions", &IsoparallelCertificate::solutions)
+      .def_readonly("solver_unproved", &IsoparallelCertificate::solver_unproved)
+      .def_readonly("pieces", &IsoparallelCertificate::pieces)
+      .def_readonly("boxes", &IsoparallelCertificate::boxes)
+      .def_readonly("cpu_seconds", &IsoparallelCertificate::cpu_seconds)
+      .def_readonly("time_seconds", &IsoparallelCertificate::time_seconds)
+      .def_property_readonly("missed_by_solver", &IsoparallelCertificate::MissedBySolver)
+      .def_property_readonly("full_report", &IsoparallelCertificate::FullReport);
+  m.def("_certify_isoparallel", &CertifyIsoparallel, py::arg("summary"), py::arg("options"),
+        py::call_guard<py::gil_scoped_release>());
+}
+
 void BindExactInputs(py::module_& m) {
   py::class_<ExactArrivalOptions> options(m, "ExactArrivalOptions");
   WithKeywordInit(options)
@@ -181,6 +224,7 @@ void BindIsoparallel(py::module_& m) {
   BindElastica(m);
   BindIsoparallelInputs(m);
   BindIsoparallelSolve(m);
+  BindIsoparallelCertificate(m);
 }
 
 void BindExactArrival(py::module_& m) {

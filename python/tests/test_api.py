@@ -142,3 +142,22 @@ def test_steer_from_rest_and_stop_at_goal():
     assert np.allclose(replay.x, [1.0, 0.0], atol=1e-12, rtol=0) and replay.orientation_error < 1e-10
     assert np.allclose(s.stop.position, [1.0, 0.0], atol=1e-12, rtol=0)
     assert pb.steer(impulses=4).stop is None
+
+
+def test_certificate_proves_a_lower_bound_and_says_which_piece_stays_open():
+    # 3 rad about e3 and 0.2 away: rolling turns the ball by at most the length rolled, so no
+    # solution is shorter than 3; the certificate up to 0.25 closes every piece and proves none.
+    summary = pb.isoparallel(goal=(0.2, 0.0), goal_orientation=pb.exp_so3(np.array([0.0, 0.0, 3.0])), starts=64)
+    c = pb.certify_isoparallel(summary, length_cap=0.25, threads=2)
+    assert (c.status, c.complete, c.usable, c.message) == ("complete", True, True, "")
+    assert c.solutions == [] and c.solver_unproved == [] and c.missed_by_solver == 0
+    assert len(c.pieces) == 10 and all(p.closed for p in c.pieces)
+    assert c.boxes == sum(p.boxes for p in c.pieces) == 593820  # as `isoparallel_solve --certify-length 0.25`
+    assert c.report.startswith("Isoparallel certificate: complete, length cap 0.25, 0 solution(s) proved")
+    small = pb.certify_isoparallel(summary, pb.IsoparallelCertificateOptions(length_cap=0.25, max_boxes=50))
+    assert small.status == "incomplete" and not small.usable
+    assert small.message.startswith("not closed: ") and "budget exhausted" in small.message
+    with pytest.raises(ValueError, match=r"max_boxes: value 0"):
+        pb.certify_isoparallel(summary, max_boxes=0)
+    with pytest.raises(TypeError, match="cap"):
+        pb.certify_isoparallel(summary, cap=2.0)
