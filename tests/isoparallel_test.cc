@@ -764,6 +764,34 @@ TEST(Isoparallel, ConstructedProblemFindsThePathOrAShorterOne) {
   EXPECT_LT(s.Shortest().orientation_residual, kVerifiedTol);
 }
 
+TEST(Isoparallel, ConstructedShortNearlyStraightPathsAreTheShortest) {
+  // Short arcs whose chord is 95-99.8% of their length, on targets near the straight rolling: the
+  // polish ends where the Jacobian is nearly singular and needs more than the 12 Newton steps it
+  // once had (each of these was lost then, and a path of length ~10 reported as the shortest).
+  struct Made {
+    PendulumRegime regime;
+    double rate, modulus, phase, length;
+  };
+  for (const Made& m : {Made{PendulumRegime::kOscillating, 1.5, 0.3, 0.5, 1.2},
+                        Made{PendulumRegime::kOscillating, 1.102, 0.089, 2.059, 1.088},
+                        Made{PendulumRegime::kRotating, 0.604, 0.666, 0.081, 0.955}}) {
+    ElasticaParameters q;
+    q.regime = m.regime;
+    q.rate = m.rate;
+    q.modulus = m.modulus;
+    q.phase = m.phase;
+    const Elastica e(q);
+    IsoparallelProblem p;
+    p.goal = e.Position(m.length);
+    p.goal_orientation = ReferenceRolling(e, m.length);
+    const IsoparallelSummary s = SolveIsoparallel(p);
+    ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
+    EXPECT_NEAR(s.Shortest().length, m.length, 1e-9) << s.FullReport();
+    EXPECT_EQ(s.Shortest().parameters.regime, m.regime);
+    EXPECT_LT(s.Shortest().orientation_residual, kVerifiedTol);
+  }
+}
+
 TEST(Isoparallel, StraightSegmentTargetGivesTheSegment) {
   // Rolling along the segment gives exp(hat(e3 x d)); no path is shorter than the chord.
   IsoparallelProblem p;
