@@ -89,33 +89,37 @@ CoveragePieceResult FromExclusion(const Result& e) {
   return r;
 }
 
-CoveragePieceResult RunSlowTail(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
-                                double margin) {
-  SeparatrixTailOptions o;
+// The fields the tail certificates share: regime, L in [|x1 - x0|, cap], budget and margin.
+template <class Options>
+Options ExclusionOptions(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
+                         double margin) {
+  Options o;
   o.regime = piece.regime;
-  o.k_lo = piece.k_lo;
-  o.rate_max = piece.rate_hi;
   o.length_lo = target.radius;
   o.cap = cap;
   o.max_boxes = max_boxes;
   o.margin = margin;
+  return o;
+}
+
+CoveragePieceResult RunSlowTail(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
+                                double margin) {
+  auto o = ExclusionOptions<SeparatrixTailOptions>(target, piece, cap, max_boxes, margin);
+  o.k_lo = piece.k_lo;
+  o.rate_max = piece.rate_hi;
   return FromExclusion(CertifySeparatrixTail(target, o));
 }
 
 CoveragePieceResult RunLoops(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
                              double margin) {
-  LoopFamilyOptions o;
-  o.regime = piece.regime;
+  auto o = ExclusionOptions<LoopFamilyOptions>(target, piece, cap, max_boxes, margin);
   o.k_t = piece.k_lo;
-  // Oscillating: cores as wide as their cells (the automatic W2 leaves the runs' error larger
-  // than the cores save there; the rotation problem's and T10's runs).
+  // The heading error eps decreases in W2: oscillating (larger gap G_t), cores as wide as their
+  // cells (W2 = K(k_t), no run at k = k_t); rotating, the automatic W2 (2 asin(sech W2) = G_t).
+  // Those of the rotation problem's and T10's certificates.
   o.core_half_width = piece.regime == PendulumRegime::kOscillating ? CompleteEllipticK(piece.k_lo) : 0.0;
   o.rate_lo = piece.rate_lo;
   o.rate_max = piece.rate_hi;
-  o.length_lo = target.radius;
-  o.cap = cap;
-  o.max_boxes = max_boxes;
-  o.margin = margin;
   return FromExclusion(CertifyLoopFamily(target, o));
 }
 
