@@ -95,13 +95,17 @@ void Conclude(const IsoparallelSummary& solved, IsoparallelCertificate* out) {
   const auto open = std::find_if(out->pieces.begin(), out->pieces.end(),
                                  [](const IsoparallelCertificatePiece& p) { return !p.closed; });
   out->status = IsoparallelCertificateStatus::kIncomplete;
-  if (open != out->pieces.end())
+  if (open != out->pieces.end()) {
     out->message = "not closed: " + open->name + ": " + open->result;
-  else if (!out->solver_unproved.empty())
-    out->message = "the solver's solution " + std::to_string(out->solver_unproved.front()) +
-                   " is not among the proved ones (a contradiction: report it)";
-  else
-    out->status = IsoparallelCertificateStatus::kComplete, out->message.clear();
+  } else if (!out->solver_unproved.empty()) {
+    const int i = out->solver_unproved.front();
+    out->message = "the solver's solution #" + std::to_string(i + 1) + " (length " +
+                   internal::FormatNumber(solved.solutions[i].length) +
+                   ") is not among the proved ones (a contradiction: please report it)";
+  } else {
+    out->status = IsoparallelCertificateStatus::kComplete;
+    out->message.clear();
+  }
 }
 
 }  // namespace

@@ -269,6 +269,19 @@ ExactRun SolveExact(const plateball::Problem& problem, const plateball::Isoparal
   return r;
 }
 
+// The --certify options, checked before the solve (a bad value must not cost a solve).
+void CheckCertifyOptions(const IsoparallelCliOptions& cli, const plateball::IsoparallelProblem& prob) {
+  using plateball::IsoparallelCertificateOptions;
+  RequireIntegerInRange("--certify-budget", cli.certify_budget, 1, IsoparallelCertificateOptions::kMaxBoxes);
+  if (!(cli.certify_cap >= 1.0 && cli.certify_cap <= plateball::IsoparallelOptions::kMaxLengthCapFactor))
+    throw std::invalid_argument("command line: --certify-cap: value " + FormatNumber(cli.certify_cap) +
+                                ": must be in [1, 10]");
+  const double chord = (prob.goal - prob.start).norm();
+  if (cli.certify_length != 0.0 && !(cli.certify_length > chord && cli.certify_length <= 1e3))
+    throw std::invalid_argument("command line: --certify-length: value " + FormatNumber(cli.certify_length) +
+                                ": must exceed |goal - start| = " + FormatNumber(chord) + " and be <= 1000");
+}
+
 // --certify: the certificate of the solution list (isoparallel_certificate.h), one line per
 // piece on standard error as it ends (not under --quiet), the result on `out`.
 plateball::IsoparallelCertificate Certify(const IsoparallelCliOptions& cli,
@@ -326,16 +339,7 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
   const int impulses = cli.impulses_opt->count() == 0
                            ? 0
                            : static_cast<int>(RequireIntegerInRange("--impulses", cli.impulses, 1, 10'000));
-  if (cli.certify) {
-    RequireIntegerInRange("--certify-budget", cli.certify_budget, 1, IsoparallelCertificateOptions::kMaxBoxes);
-    if (!(cli.certify_cap >= 1.0 && cli.certify_cap <= IsoparallelOptions::kMaxLengthCapFactor))
-      throw std::invalid_argument("command line: --certify-cap: value " + FormatNumber(cli.certify_cap) +
-                                  ": must be in [1, 10]");
-    const double chord = (setup.problem.goal - setup.problem.start).norm();
-    if (cli.certify_length != 0.0 && !(cli.certify_length > chord && cli.certify_length <= 1e3))
-      throw std::invalid_argument("command line: --certify-length: value " + FormatNumber(cli.certify_length) +
-                                  ": must exceed |goal - start| = " + FormatNumber(chord) + " and be <= 1000");
-  }
+  if (cli.certify) CheckCertifyOptions(cli, prob);
   const IsoparallelSummary summary = SolveWithProgress(setup, cli.program);
 
   const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
