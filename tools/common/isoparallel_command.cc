@@ -324,7 +324,9 @@ Json CertificateJson(const plateball::IsoparallelCertificate& c, double cap_fact
   for (const plateball::IsoparallelCertificatePiece& p : c.pieces)
     pieces.push_back(Json{{"name", p.name}, {"closed", p.closed}, {"result", p.result}, {"boxes", p.boxes},
                           {"resolved_volume", p.resolved_volume}, {"proved", p.proved}});
-  return Json{{"status", plateball::ToString(c.status)}, {"complete", c.IsComplete()}, {"message", c.message},
+  // The result state without "report" (its BriefReport has a wall time; docs/output_contract.md).
+  return Json{{"status", plateball::ToString(c.status)}, {"usable", c.IsSolutionUsable()}, {"message", c.message},
+              {"complete", c.IsComplete()},
               {"cap_factor", cap_factor}, {"length_cap", c.length_cap}, {"straight_residual", c.straight_residual},
               {"solutions", std::move(sols)}, {"solver_unproved", c.solver_unproved}, {"pieces", std::move(pieces)},
               {"boxes", c.boxes}};
