@@ -1,8 +1,10 @@
-// Internal: a deterministic parallel loop for the solvers (results do not depend on the thread
-// count: every index runs the same code, the partition is static).
+// Internal: deterministic parallel loops for the solvers (results do not depend on the thread
+// count: every index runs the same code). ParallelFor partitions statically; ParallelForDynamic
+// hands the next index to whichever thread is free (jobs of very unequal cost).
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <thread>
 #include <vector>
@@ -35,6 +37,26 @@ void ParallelFor(int n, int threads, Job&& job) {
   for (auto& th : pool) th.join();
   const auto first = std::min_element(failed_at.begin(), failed_at.end()) - failed_at.begin();
   if (failure[first]) std::rethrow_exception(failure[first]);
+}
+
+/// As ParallelFor, but each next index (in increasing order) goes to the first free thread, for
+/// jobs of very unequal cost. Every index runs (a failing job does not stop the others); the
+/// exception of the lowest failing index is rethrown after every thread joined.
+template <class Job>
+void ParallelForDynamic(int n, int threads, Job&& job) {
+  std::atomic<int> next{0};
+  std::vector<std::exception_ptr> failure(static_cast<std::size_t>(std::max(n, 1)));
+  ParallelFor(std::max(1, std::min(threads, n)), threads, [&](int) {
+    for (int i = next++; i < n; i = next++) {
+      try {
+        job(i);
+      } catch (...) {
+        failure[static_cast<std::size_t>(i)] = std::current_exception();
+      }
+    }
+  });
+  for (const std::exception_ptr& e : failure)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace plateball::internal
