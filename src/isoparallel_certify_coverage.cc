@@ -20,18 +20,6 @@ double LoopModulus() {
   return std::sqrt((1.0 - kp) * (1.0 + kp));
 }
 
-CoveragePiece Piece(CoveragePieceKind kind, PendulumRegime regime, double k_lo, double k_hi, double rate_lo,
-                    double rate_hi) {
-  CoveragePiece p;
-  p.kind = kind;
-  p.regime = regime;
-  p.k_lo = k_lo;
-  p.k_hi = k_hi;
-  p.rate_lo = rate_lo;
-  p.rate_hi = rate_hi;
-  return p;
-}
-
 // The middle windows (|rate| in [0.5, A] for k in [k_lo, k_hi]) and the loop family of a regime,
 // those with a non-empty rate range.
 void AddFastTail(const CertifyTarget& target, PendulumRegime regime, double cap, double margin,
@@ -44,11 +32,11 @@ void AddFastTail(const CertifyTarget& target, PendulumRegime regime, double cap,
     const double a = MaxSolutionRateOver(target, regime, k[0], k[1], cap, margin);
     if (!(a > slow)) continue;
     if (regime == PendulumRegime::kRotating)
-      pieces->push_back(Piece(CoveragePieceKind::kWindow, regime, k[0], k[1], -a, -slow));
-    pieces->push_back(Piece(CoveragePieceKind::kWindow, regime, k[0], k[1], slow, a));
+      pieces->push_back(CoveragePiece{CoveragePieceKind::kWindow, regime, k[0], k[1], -a, -slow});
+    pieces->push_back(CoveragePiece{CoveragePieceKind::kWindow, regime, k[0], k[1], slow, a});
   }
   const double k_t = LoopModulus(), a = MaxSolutionRateOver(target, regime, k_t, 1.0, cap, margin);
-  if (a > slow) pieces->push_back(Piece(CoveragePieceKind::kLoops, regime, k_t, 1.0, slow, a));
+  if (a > slow) pieces->push_back(CoveragePiece{CoveragePieceKind::kLoops, regime, k_t, 1.0, slow, a});
 }
 
 std::string Interval(double lo, double hi) {
@@ -156,12 +144,12 @@ CoveragePlan PlanCoverage(const CertifyTarget& target, double cap, double margin
   AddFastTail(target, PendulumRegime::kOscillating, cap, margin, &pieces);
   const double k0 = kCoverageWindowModulus;
   const double a_osc = MaxSolutionRateOver(target, PendulumRegime::kOscillating, 0.0, k0, cap, margin);
-  pieces.push_back(Piece(CoveragePieceKind::kWindow, PendulumRegime::kOscillating, 0.0, k0, 0.0, a_osc));
+  pieces.push_back(CoveragePiece{CoveragePieceKind::kWindow, PendulumRegime::kOscillating, 0.0, k0, 0.0, a_osc});
   AddFastTail(target, PendulumRegime::kRotating, cap, margin, &pieces);
   const double a_rot = MaxSolutionRateOver(target, PendulumRegime::kRotating, 0.0, k0, cap, margin);
-  pieces.push_back(Piece(CoveragePieceKind::kWindow, PendulumRegime::kRotating, 0.0, k0, -a_rot, a_rot));
+  pieces.push_back(CoveragePiece{CoveragePieceKind::kWindow, PendulumRegime::kRotating, 0.0, k0, -a_rot, a_rot});
   for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating})
-    pieces.push_back(Piece(CoveragePieceKind::kSlowTail, regime, k0, 1.0, -kCoverageSlowRate, kCoverageSlowRate));
+    pieces.push_back(CoveragePiece{CoveragePieceKind::kSlowTail, regime, k0, 1.0, -kCoverageSlowRate, kCoverageSlowRate});
   return plan;
 }
 
