@@ -115,6 +115,13 @@ constexpr double kSecantResidual = 0.3;
 // reached at a fold, where Newton converges linearly, still halves the residual per step).
 constexpr double kStallRatio = 0.95;
 constexpr double kStallFloor = 1e-5;
+// The valley polish (ValleyPolish) starts from a polish that ended above the tolerance but below
+// kValleyResidual; it takes at most kValleySteps secant steps in the rate (each an LM solve of at
+// most kValleyInnerIterations in the other unknowns), each within a factor kValleyMaxFactor.
+constexpr double kValleyResidual = 1e-5;
+constexpr int kValleySteps = 40;
+constexpr int kValleyInnerIterations = 30;
+constexpr double kValleyMaxFactor = 1.5;
 
 struct Context {
   Eigen::Matrix3d target;  // A1 A0^-1
@@ -542,6 +549,66 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   return out;
 }
 
+// The free-length residual at a fixed rate, in the other three unknowns (atanh k, phase, L).
+struct FixedRateFunctor {
+  using Scalar = double;
+  enum { NUM_RESIDUALS = 4, NUM_PARAMETERS = 3 };
+  const FreeLengthFunctor* f;
+  double rate;
+  bool operator()(const double* y, double* r, double* jacobian) const {
+    const double x[4] = {rate, y[0], y[1], y[2]};
+    double full[16];
+    if (!f->Evaluate(x, r, jacobian != nullptr ? full : nullptr)) return false;
+    if (jacobian != nullptr) std::copy(full + 4, full + 16, jacobian);  // column-major: drop the rate's
+    return true;
+  }
+};
+
+// The rest of the residual after an LM solve in (atanh k, phase, L) at the given rate (y: the
+// start, then the solve's point); false where it is not finite.
+bool SolveAtRate(const FreeLengthFunctor& f, double rate, Eigen::Vector3d* y, Eigen::Vector4d* r) {
+  const FixedRateFunctor g{&f, rate};
+  ceres::TinySolver<FixedRateFunctor> solver;
+  solver.options.max_num_iterations = kValleyInnerIterations;
+  solver.options.gradient_tolerance = 0.0;
+  solver.options.parameter_tolerance = 1e-15;
+  solver.options.function_tolerance = 0.0;
+  solver.Solve(g, y);
+  return y->allFinite() && g(y->data(), r->data(), nullptr) && r->allFinite();
+}
+
+// Valley polish, for a polish that stalls near the straight rolling (docs/paper_notes.md, "General
+// targets: the valley of nearly straight short arcs"): a short arc near a turning point of the
+// heading is fixed to second order by two curvature moments, so the residual is ~1e-9 along a
+// whole curve of (rate, k, phase) and Newton's step along it is noise. Along that curve the rate
+// is the coordinate: at each rate the other three unknowns are solved by LM, the residual left
+// over keeps its direction u, and the secant method finds the rate where u.r vanishes. The point
+// reached is handed back to the polish (true), or false when the secant leaves the rate's sign or
+// a solve fails.
+bool ValleyPolish(const FreeLengthFunctor& f, Eigen::Vector4d* v) {
+  Eigen::Vector3d y = v->tail<3>();
+  Eigen::Vector4d r;
+  if (!SolveAtRate(f, (*v)[0], &y, &r) || r.norm() == 0.0) return false;
+  const Eigen::Vector4d u = r.normalized();
+  double a = (*v)[0], ga = u.dot(r), b = a * (1 + 2e-2);
+  Eigen::Vector3d yb = y;
+  if (!SolveAtRate(f, b, &yb, &r)) return false;
+  double gb = u.dot(r);
+  for (int step = 0; step < kValleySteps && gb != ga && std::abs(b - a) > 1e-15 * std::abs(b); ++step) {
+    // The secant step, within a factor kValleyMaxFactor of b: the rate keeps its sign.
+    const double near = b / kValleyMaxFactor, far = b * kValleyMaxFactor;
+    const double c = std::clamp(b - gb * (b - a) / (gb - ga), std::min(near, far), std::max(near, far));
+    if (!std::isfinite(c)) return false;
+    a = b;
+    ga = gb;
+    b = c;
+    if (!SolveAtRate(f, b, &yb, &r)) return false;
+    gb = u.dot(r);
+  }
+  *v << b, yb;
+  return true;
+}
+
 // Polish stage: LM (in effect Newton) on the free-length formulation with exact Jacobians (no
 // Broyden columns), from the handed-off point (the search's parameters, L at its crossing), to
 // options.tolerance on all four residuals: the chord miss and the rotation residual there. The
@@ -567,7 +634,15 @@ void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalRes
   f.cost_threshold = solver.options.cost_threshold;
   solver.Solve(f, &v);
   double res[4];
-  r->converged = v.allFinite() && f.ResidualAt(v.data(), res) && Eigen::Map<const Eigen::Vector4d>(res).norm() <= options.tolerance;
+  const auto residual = [&]() {
+    return v.allFinite() && f.ResidualAt(v.data(), res) ? Eigen::Map<const Eigen::Vector4d>(res).norm() : NAN;
+  };
+  double norm = residual();
+  if (norm > options.tolerance && norm < kValleyResidual && ValleyPolish(f, &v)) {
+    solver.Solve(f, &v);
+    norm = residual();
+  }
+  r->converged = norm <= options.tolerance;
   r->evaluations += f.evaluations;
   if (!r->converged) return;
   std::copy(v.data(), v.data() + 3, r->x);
