@@ -63,6 +63,11 @@ constexpr double kHopelessResidual = 0.5;
 // kHandOffResidual (100x kSearchAccept: the crossing residual differs from the free-length one by
 // the chord miss times the rolling's Lipschitz constant).
 constexpr double kHandOffResidual = 1e-2;
+// A run whose chord has no crossing of the circle near its length (a near-tangency: the solution
+// ends next to the chord's extremum, and a nearby path's chord may just miss the radius) is handed
+// off at its own length when its free-length residual is below kTangentHandOff; the polish, which
+// needs no crossing, decides, and the crossing number is counted on the polished path.
+constexpr double kTangentHandOff = 1e-3;
 // Relative tolerance for "the same solution" between a search result and a polished one.
 constexpr double kSearchSameTol = 1e-4;
 // Relative tolerances for "same solution" (lengths, G, E) and for "whole number of periods".
@@ -172,6 +177,13 @@ internal::ElasticaRollingTable CrossingTable(const Elastica& e, double s_limit, 
   return internal::ElasticaRollingTable(e, s_limit, acc.steps_per_period, acc.max_step, 200000, true);
 }
 
+// How many times a family member crosses the circle |x - x0| = |x1 - x0| up to its end (which
+// lies on the circle): the `crossing` reported for a family.
+int CrossingCount(const Context& ctx, const Elastica& e, double length) {
+  const internal::ElasticaRollingTable table = CrossingTable(e, length * (1 + 1e-9), kSearch);
+  return std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 100000).size()));
+}
+
 bool Admissible(const ElasticaParameters& p) {
   return std::isfinite(p.rate) && std::isfinite(p.modulus) && std::isfinite(p.phase) && std::abs(p.modulus) < 1.0;
 }
@@ -206,7 +218,7 @@ struct LocalResult {
   bool converged = false;
   PendulumRegime regime = PendulumRegime::kOscillating;
   double x[3] = {0, 0, 0};
-  int crossing = 1;
+  int crossing = 1;  // 0 until the polish when handed off at a near-tangency (kTangentHandOff)
   bool searched = false;  // the search stage got within kSearchAccept
   bool duplicate = false;  // the search stopped at a solution known before its batch
   Evaluation ev;
@@ -546,6 +558,11 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   // The crossing formulation's n: the crossing nearest to L on the search table, else on the
   // polish table (a near-tangency, the chord just reaching the radius between two coarse nodes).
   out.searched = HandOff(ctx, v[3], kSearch, &out) || HandOff(ctx, v[3], kPolish, &out);
+  if (!out.searched && std::sqrt(2 * cost) <= kTangentHandOff &&
+      Evaluate(ctx, ToParameters(regime, v.data()), v[3], &out.ev)) {
+    out.crossing = 0;  // counted after the polish
+    out.searched = true;
+  }
   return out;
 }
 
@@ -647,6 +664,7 @@ void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalRes
   if (!r->converged) return;
   std::copy(v.data(), v.data() + 3, r->x);
   r->converged = Evaluate(ctx, ToParameters(r->regime, r->x), v[3], &r->ev);
+  if (r->converged && r->crossing == 0) r->crossing = CrossingCount(ctx, Elastica(ToParameters(r->regime, r->x)), v[3]);
 }
 
 // Radical-inverse (Halton): deterministic, portable.
@@ -705,12 +723,6 @@ struct Candidate {
   std::vector<Eigen::Vector2d> signature;  // world positions at s = L/3, 2L/3
 };
 
-// How many times a family member crosses the circle |x - x0| = |x1 - x0| up to its end (which
-// lies on the circle): the `crossing` reported for a family.
-int CrossingCount(const Context& ctx, const Elastica& e, double length) {
-  const internal::ElasticaRollingTable table = CrossingTable(e, length * (1 + 1e-9), kSearch);
-  return std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 100000).size()));
-}
 
 // Length, G, E and world-frame signature of a search result, without the family test.
 Candidate MakeRoughCandidate(const Context&, const IsoparallelProblem& problem, const LocalResult& r) {

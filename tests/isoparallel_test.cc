@@ -799,6 +799,31 @@ TEST(Isoparallel, ConstructedShortNearlyStraightPathsAreTheShortest) {
   }
 }
 
+TEST(Isoparallel, ConstructedPathEndingNextToAChordTangencyIsTheShortest) {
+  // |chord| of this path peaks 0.0015 before its end (d|chord|/ds = -0.004 there): the searches
+  // that reach it end at residuals ~1e-4 on paths whose chord just misses the radius, with no
+  // crossing to hand off, and it was lost (the shortest reported was 8.95, also with 10,000
+  // shapes) until such runs were handed off at their own length (kTangentHandOff).
+  ElasticaParameters q;
+  q.regime = PendulumRegime::kOscillating;
+  q.rate = 1.792;
+  q.modulus = 0.931;
+  q.phase = 0.295;
+  const double length = 2.503;
+  const Elastica e(q);
+  const double chord = e.Position(length).norm();
+  ASSERT_GT(chord, e.Position(length - 0.01).norm());  // past the chord's peak, not by much
+  ASSERT_LT(chord, e.Position(length - 0.002).norm());
+  IsoparallelProblem p;
+  p.goal = e.Position(length);
+  p.goal_orientation = ReferenceRolling(e, length);
+  const IsoparallelSummary s = SolveIsoparallel(p);
+  ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
+  EXPECT_NEAR(s.Shortest().length, length, 1e-9) << s.FullReport();
+  EXPECT_LT(s.Shortest().orientation_residual, kVerifiedTol);
+  EXPECT_GE(s.Shortest().crossing, 1);
+}
+
 TEST(Isoparallel, StraightSegmentTargetGivesTheSegment) {
   // Rolling along the segment gives exp(hat(e3 x d)); no path is shorter than the chord.
   IsoparallelProblem p;
