@@ -124,8 +124,8 @@ constexpr double kStallFloor = 1e-5;
 // kValleyResidual; it takes at most kValleySteps secant steps in the rate (each an LM solve of at
 // most kValleyInnerIterations in the other unknowns), each within a factor kValleyMaxFactor.
 constexpr double kValleyResidual = 1e-5;
-constexpr int kValleySteps = 40;
-constexpr int kValleyInnerIterations = 30;
+constexpr int kValleySteps = 12;
+constexpr int kValleyInnerIterations = 15;
 constexpr double kValleyMaxFactor = 1.5;
 
 struct Context {
