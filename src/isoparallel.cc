@@ -558,7 +558,7 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   // The crossing formulation's n: the crossing nearest to L on the search table, else on the
   // polish table (a near-tangency, the chord just reaching the radius between two coarse nodes).
   out.searched = HandOff(ctx, v[3], kSearch, &out) || HandOff(ctx, v[3], kPolish, &out);
-  if (!out.searched && std::sqrt(2 * cost) <= kTangentHandOff &&
+  if (!out.searched && !ctx.identity && std::sqrt(2 * cost) <= kTangentHandOff &&  // cf. PolishLocal
       Evaluate(ctx, ToParameters(regime, v.data()), v[3], &out.ev)) {
     out.crossing = 0;  // counted after the polish
     out.searched = true;
@@ -655,7 +655,9 @@ void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalRes
     return v.allFinite() && f.ResidualAt(v.data(), res) ? Eigen::Map<const Eigen::Vector4d>(res).norm() : NAN;
   };
   double norm = residual();
-  if (norm > options.tolerance && norm < kValleyResidual && ValleyPolish(f, &v)) {
+  // Not at an identity target: every solution there is a family (a phase shift), its polishes
+  // stall on that degeneracy, and its shooting is only a comparison with the enumeration.
+  if (!ctx.identity && norm > options.tolerance && norm < kValleyResidual && ValleyPolish(f, &v)) {
     solver.Solve(f, &v);
     norm = residual();
   }
