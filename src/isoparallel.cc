@@ -177,8 +177,8 @@ internal::ElasticaRollingTable CrossingTable(const Elastica& e, double s_limit, 
   return internal::ElasticaRollingTable(e, s_limit, acc.steps_per_period, acc.max_step, 200000, true);
 }
 
-// How many times a family member crosses the circle |x - x0| = |x1 - x0| up to its end (which
-// lies on the circle): the `crossing` reported for a family.
+// How many times a path crosses the circle |x - x0| = |x1 - x0| up to its end (which lies on the
+// circle): the `crossing` reported for a family, and for a path handed off at a near-tangency.
 int CrossingCount(const Context& ctx, const Elastica& e, double length) {
   const internal::ElasticaRollingTable table = CrossingTable(e, length * (1 + 1e-9), kSearch);
   return std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 100000).size()));
@@ -219,7 +219,7 @@ struct LocalResult {
   PendulumRegime regime = PendulumRegime::kOscillating;
   double x[3] = {0, 0, 0};
   int crossing = 1;  // 0 until the polish when handed off at a near-tangency (kTangentHandOff)
-  bool searched = false;  // the search stage got within kSearchAccept
+  bool searched = false;  // handed to the polish: within kSearchAccept, or kTangentHandOff at a near-tangency
   bool duplicate = false;  // the search stopped at a solution known before its batch
   Evaluation ev;
   long evaluations = 0;
@@ -724,7 +724,6 @@ struct Candidate {
   IsoparallelSolution solution;
   std::vector<Eigen::Vector2d> signature;  // world positions at s = L/3, 2L/3
 };
-
 
 // Length, G, E and world-frame signature of a search result, without the family test.
 Candidate MakeRoughCandidate(const Context&, const IsoparallelProblem& problem, const LocalResult& r) {
