@@ -18,6 +18,7 @@
 #include "check.h"
 #include "chord_residual.h"
 #include "dynamics.h"
+#include "circle_crossings.h"
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
 #include "isoparallel_twin.h"
@@ -66,7 +67,7 @@ constexpr double kHandOffResidual = 1e-2;
 // A run whose chord has no crossing of the circle near its length (a near-tangency: the solution
 // ends next to the chord's extremum, and a nearby path's chord may just miss the radius) is handed
 // off at its own length when its free-length residual is below kTangentHandOff; the polish, which
-// needs no crossing, decides, and the crossing number is counted on the polished path.
+// needs no crossing, decides (every reported path's crossing number is counted on it).
 constexpr double kTangentHandOff = 1e-3;
 // Relative tolerance for "the same solution" between a search result and a polished one.
 constexpr double kSearchSameTol = 1e-4;
@@ -177,11 +178,12 @@ internal::ElasticaRollingTable CrossingTable(const Elastica& e, double s_limit, 
   return internal::ElasticaRollingTable(e, s_limit, acc.steps_per_period, acc.max_step, 200000, true);
 }
 
-// How many times a path crosses the circle |x - x0| = |x1 - x0| up to its end (which lies on the
-// circle): the `crossing` reported for a family, and for a path handed off at a near-tangency.
+// Which crossing of the circle |x - x0| = |x1 - x0| ends a path of the given length (its end lies
+// on the circle to the tolerance): 1 + the crossings before it, counted with a proof
+// (circle_crossings.h; a pair between two table nodes counts too), up to 1e-9 (1 + length) short
+// of the end (the end's own crossing, moved by the residual, is not counted twice).
 int CrossingCount(const Context& ctx, const Elastica& e, double length) {
-  const internal::ElasticaRollingTable table = CrossingTable(e, length * (1 + 1e-9), kSearch);
-  return std::max<int>(1, static_cast<int>(table.Crossings(ctx.radius, 100000).size()));
+  return 1 + internal::CountCircleCrossings(e, ctx.radius, length - 1e-9 * (1 + length));
 }
 
 bool Admissible(const ElasticaParameters& p) {
@@ -218,7 +220,6 @@ struct LocalResult {
   bool converged = false;
   PendulumRegime regime = PendulumRegime::kOscillating;
   double x[3] = {0, 0, 0};
-  int crossing = 1;  // 0 until the polish when handed off at a near-tangency (kTangentHandOff)
   bool searched = false;  // handed to the polish: within kSearchAccept, or kTangentHandOff at a near-tangency
   bool duplicate = false;  // the search stopped at a solution known before its batch
   Evaluation ev;
@@ -506,14 +507,15 @@ bool HandOff(const Context& ctx, double length, const Accuracy& acc, LocalResult
   const Elastica e(p);
   const internal::ElasticaRollingTable table = CrossingTable(e, ctx.s_limit, acc);
   double s = 0.0;
+  int n = 0;
   if (!table.Valid() ||
-      !table.NearestCrossing(ctx.radius, length, kSearchSameTol * (1 + length), kMaxCrossingsPerStart * 4, &r->crossing, &s))
+      !table.NearestCrossing(ctx.radius, length, kSearchSameTol * (1 + length), kMaxCrossingsPerStart * 4, &n, &s))
     return false;
   return EvaluateAt(ctx, e, s, &r->ev) && r->ev.residual.norm() <= kSearchAccept;
 }
 
 // Search stage on the free-length formulation from a start and one of its crossings; the result
-// is handed off (its crossing number counted, the residual checked at that crossing) to the
+// is handed off (at the crossing nearest its length, the residual checked there) to the
 // polish. A run that reaches one of the `known` solutions stops there (LocalResult::duplicate), a
 // run that stalls (kStallRatio) too.
 LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
@@ -560,7 +562,6 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   out.searched = HandOff(ctx, v[3], kSearch, &out) || HandOff(ctx, v[3], kPolish, &out);
   if (!out.searched && !ctx.identity && std::sqrt(2 * cost) <= kTangentHandOff &&  // cf. PolishLocal
       Evaluate(ctx, ToParameters(regime, v.data()), v[3], &out.ev)) {
-    out.crossing = 0;  // counted after the polish
     out.searched = true;
   }
   return out;
@@ -628,8 +629,8 @@ bool ValleyPolish(const FreeLengthFunctor& f, Eigen::Vector4d* v) {
 
 // Polish stage: LM (in effect Newton) on the free-length formulation with exact Jacobians (no
 // Broyden columns), from the handed-off point (the search's parameters, L at its crossing), to
-// options.tolerance on all four residuals: the chord miss and the rotation residual there. The
-// crossing number stays the hand-off's. (The crossing formulation's polish found the crossing on a
+// options.tolerance on all four residuals: the chord miss and the rotation residual there (the
+// crossing number is counted on the reported path: CrossingCount). (The crossing formulation's polish found the crossing on a
 // table of positions over the whole search length at kPolish nodes, ~250,000 instructions per
 // evaluation against ~7,000 here: 170M of the rotation problem's 1.76G; the roots are the same to
 // the tolerance, the same 31 lengths to 10 digits; docs/paper_notes.md, "General targets", point 12.)
@@ -666,7 +667,6 @@ void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalRes
   if (!r->converged) return;
   std::copy(v.data(), v.data() + 3, r->x);
   r->converged = Evaluate(ctx, ToParameters(r->regime, r->x), v[3], &r->ev);
-  if (r->converged && r->crossing == 0) r->crossing = CrossingCount(ctx, Elastica(ToParameters(r->regime, r->x)), v[3]);
 }
 
 // Radical-inverse (Halton): deterministic, portable.
@@ -775,7 +775,6 @@ Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, c
   Evaluation ev = r.ev;
   const Elastica e(p);
   sol.length = ev.s;
-  sol.crossing = r.crossing;
   sol.G = e.G();
   sol.energy = e.Energy();
   sol.periods = e.IsStraight() ? 0.0 : ev.s / e.Period();
@@ -799,7 +798,6 @@ Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, c
         sol.family = true;
         p = q;
         ev = evq;
-        sol.crossing = CrossingCount(ctx, Elastica(q), ev.s);
       }
     }
   }
@@ -863,7 +861,6 @@ Candidate FamilyCandidate(const Context& ctx, const IsoparallelProblem& problem,
   const Eigen::Vector2d drift = e.DriftPerPeriod();
   p.heading_w += internal::ChordTurn(ctx.goal_angle, drift);
   sol.parameters = p;
-  sol.crossing = CrossingCount(ctx, e, f.length);
   c.signature = {sol.PositionAt(sol.length / 3), sol.PositionAt(2 * sol.length / 3)};
   return c;
 }
@@ -1359,6 +1356,7 @@ void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const
   internal::ParallelFor(static_cast<int>(sols.size()), options.threads, [&](int i) {
     IsoparallelSolution& sol = sols[i];
     sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
+    sol.crossing = CrossingCount(ctx, Elastica(sol.parameters), sol.length);
     if (mirror[i] >= 0) return;
     const Eigen::Matrix3d r = VerifyRolling(sol, options.integration);
     sol.orientation_residual = LogSO3(ctx.target.transpose() * r).norm();

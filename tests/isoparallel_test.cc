@@ -821,6 +821,9 @@ TEST(Isoparallel, ConstructedPathEndingNextToAChordTangencyIsTheShortest) {
   ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
   EXPECT_NEAR(s.Shortest().length, length, 1e-9) << s.FullReport();
   EXPECT_LT(s.Shortest().orientation_residual, kVerifiedTol);
+  // It leaves the circle at s = 2.5000099 and ends where it re-enters (both between two of the
+  // search's nodes, which see neither): the second crossing.
+  EXPECT_EQ(s.Shortest().crossing, 2) << s.FullReport();
 }
 
 TEST(Isoparallel, StraightSegmentTargetGivesTheSegment) {

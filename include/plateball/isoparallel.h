@@ -11,7 +11,8 @@
 // (|x(L) - x0| - |x1 - x0| and the mismatch with B taken from the direction of x(L)), smooth where
 // the crossing number jumps (a tangency adds or removes a pair of crossings, and solutions often
 // lie near one). The polish (to the tolerance) runs on the same four unknowns with exact
-// Jacobians; n is the crossing of the circle nearest to the search's L.
+// Jacobians; a reported path's n is counted on it with a proof (every root of |x(s) - x0| =
+// |x1 - x0| before its end, also a pair between two of the search's nodes).
 // General targets, two stages: the shapes (rate, modulus) are the first `starts` Halton points
 // (no seed); for each shape ONE rolling table over [0, T + s_max] serves the whole (phase,
 // length) plane (Q(s0, s0 + L) = Q(0, s0 + L) Q(0, s0)^-1, every start node s0 of one period,
@@ -97,7 +98,8 @@ struct IsoparallelSolution {
   ElasticaParameters parameters;  ///< in the plate's frame (heading_w includes the rotation B)
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
   double length = 0.0;
-  int crossing = 1;         ///< which crossing of the circle |x - x0| = |x1 - x0| ends the path
+  /// Which crossing of the circle |x - x0| = |x1 - x0| ends the path: 1 + the roots before the end.
+  int crossing = 1;
   double G = 0.0;           ///< pendulum "gravity" |W| (1/length^2); R ~ 1/sqrt(G)
   double energy = 0.0;      ///< pendulum energy E = theta'^2/2 - G cos(theta)
   double periods = 0.0;     ///< length / curvature period
