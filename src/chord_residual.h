@@ -12,6 +12,7 @@
 #include <cstddef>
 
 #include "plateball/so3.h"
+#include "quaternion_log.h"
 
 namespace plateball::internal {
 
@@ -27,10 +28,7 @@ inline Eigen::Vector3d TraceLogSO3(const Eigen::Matrix3d& r) {
   const double tr = r.trace();
   if (!(tr > 0.0)) return LogSO3(r);
   const double w = 0.5 * std::sqrt(1.0 + tr), f = 0.25 / w;
-  const Eigen::Vector3d v(f * (r(2, 1) - r(1, 2)), f * (r(0, 2) - r(2, 0)), f * (r(1, 0) - r(0, 1)));
-  const double s = v.norm();
-  if (s < 1e-12) return 2.0 * v;
-  return (2.0 * std::atan2(s, w) / s) * v;
+  return QuaternionLog({w, f * (r(2, 1) - r(1, 2)), f * (r(0, 2) - r(2, 0)), f * (r(1, 0) - r(0, 1))});
 }
 
 /// B's angle beta = arg(x1 - x0) - arg(chord) as cos and sin, from the normalised chord (cos(g - a)
@@ -63,16 +61,6 @@ inline Eigen::Matrix3d ChordRotation(const Eigen::Matrix3d& target_t, const Goal
 inline Eigen::Vector3d ChordResidual(const Eigen::Matrix3d& target_t, const GoalDirection& goal,
                                      const Eigen::Vector2d& chord, const Eigen::Matrix3d& q) {
   return TraceLogSO3(ChordRotation(target_t, goal, chord, q));
-}
-
-/// TraceLogSO3 of a quaternion's rotation (q of any norm: both ratios below are scale-free): with
-/// the sign making w >= 0, Log = 2 atan2(|v|, w) v / |v|, valid at every angle up to pi.
-inline Eigen::Vector3d QuaternionLog(const Eigen::Quaterniond& q) {
-  const double w = std::abs(q.w());
-  const Eigen::Vector3d v = q.w() < 0.0 ? Eigen::Vector3d(-q.vec()) : Eigen::Vector3d(q.vec());
-  const double s = v.norm();
-  if (s < 1e-12 * w) return (2.0 / w) * v;
-  return (2.0 * std::atan2(s, w) / s) * v;
 }
 
 /// ChordRotation in quaternions: target^-1 B q B^-1 given target's conjugate and q as quaternions.

@@ -7,6 +7,7 @@
 
 #include "check.h"
 #include "kinematics.h"
+#include "quaternion_log.h"
 
 namespace plateball {
 
@@ -50,12 +51,7 @@ Eigen::Vector3d LogSO3(const Eigen::Matrix3d& r) {
   // Quaternion route: stable at 0 and at pi.
   Eigen::Quaterniond q(r);
   q.normalize();
-  if (q.w() < 0) q.coeffs() = -q.coeffs();
-  const Eigen::Vector3d v = q.vec();
-  const double s = v.norm();
-  if (s < 1e-12) return 2.0 * v;  // angle ~ 2 s
-  const double angle = 2.0 * std::atan2(s, q.w());
-  return (angle / s) * v;
+  return internal::QuaternionLog(q);
 }
 
 double OperatorNormDistance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
