@@ -316,27 +316,43 @@ bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d
   return delta->allFinite();
 }
 
-// The guess refined by two Newton steps on Taylor models of x(s, t) on arcs with
-// t sqrt(mu) <= kSeriesArc. The ellipse guess is the model's first-order solution (T1: residual
-// up to 5e-4); a step on the order-4 model brings it to ~2e-6, one on the order-7 model (its
-// Jacobian from the order-4 terms: the step is ~1e-6, so a Jacobian good to ~1e-6 suffices) to
-// the model's truncation error (T1: below the check rollout's own ~3e-13), so that the rollout
-// there (the check) is within 1e-12 and the iteration on rollouts is not needed. False (the guess
-// unchanged) when the arc is not short or the model steps do not settle; either way a rollout
-// decides convergence, the model only saves rollouts. *dx_ds: the model's d x / d s (to ~1e-6
-// relative: the reported conditioning's s column).
+// The guess refined by two Newton steps on Taylor models of x(s, t): a step on the order-4 model,
+// then one on the order-7 model (its Jacobian from the order-4 terms). *dx_ds: the model's
+// d x / d s. What the model is worth depends on the arc (t sqrt(mu)):
+//  - up to kSeriesArc, kChecked: the ellipse guess is the model's first-order solution (T1:
+//    residual up to 5e-4), the first step brings it to ~2e-6 and the second (~1e-6: a Jacobian
+//    good to ~1e-6 suffices) to the model's truncation error (T1: below the check rollout's own
+//    ~3e-13), so that the rollout there (the check) is within 1e-12 and needs no iteration; dx/ds
+//    is good to ~1e-6 relative (the reported conditioning's s column).
+//  - up to kSeriesGuessArc, kGuess: the truncation error is above the tolerance, but the refined
+//    point is still far better than the ellipse's (random joins at t sqrt(mu) 0.2-1: residual
+//    1e-5 against 2e-2; docs/benchmarks.md, "The Taylor model as the long arcs' guess"); a rollout
+//    with the variational equations and the quasi-Newton steps follow. Taken when the second step
+//    is at most half the first (the model converging), else the ellipse guess stays.
+//  - kNone (the guess unchanged): beyond, or when a step is singular or leaves t > 0.
+// Either way a rollout decides convergence: the model only saves rollouts.
 constexpr double kSeriesArc = 0.2;
-bool RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Guess* guess,
-                    Eigen::Vector2d* dx_ds) {
-  const auto short_arc = [&](const Eigen::Vector2d& p) { return p[1] > 0 && p[1] * std::sqrt(mu) <= kSeriesArc; };
+constexpr double kSeriesGuessArc = 3.0;
+enum class SeriesUse { kNone, kGuess, kChecked };
+SeriesUse RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Guess* guess,
+                         Eigen::Vector2d* dx_ds) {
+  const double root_mu = std::sqrt(mu);
+  const auto within = [&](const Eigen::Vector2d& p, double arc) { return p[1] > 0 && p[1] * root_mu <= arc; };
   Eigen::Vector2d delta;
-  if (!short_arc(guess->p) || !SeriesNewtonStep<4, 3>(basis, d, *guess, &delta, dx_ds)) return false;
+  if (!within(guess->p, kSeriesGuessArc) || !SeriesNewtonStep<4, 3>(basis, d, *guess, &delta, dx_ds))
+    return SeriesUse::kNone;
   const Guess g = Moved(*guess, delta);
-  if (!short_arc(g.p) || !SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds)) return false;
-  // The second step is the model's quadratic convergence; a large one means the model is no guide.
-  if (!(delta.norm() <= 1e-4 * (1.0 + std::abs(g.p[1])))) return false;
+  const double first = delta.norm();
+  if (!within(g.p, kSeriesGuessArc) || !SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds)) return SeriesUse::kNone;
+  // On a short arc the second step is the model's quadratic convergence; a large one means the
+  // model is no guide there.
+  if (within(guess->p, kSeriesArc) && within(g.p, kSeriesArc) && delta.norm() <= 1e-4 * (1.0 + std::abs(g.p[1]))) {
+    *guess = Moved(g, delta);
+    return SeriesUse::kChecked;
+  }
+  if (!(delta.norm() <= 0.5 * first)) return SeriesUse::kNone;
   *guess = Moved(g, delta);
-  return true;
+  return SeriesUse::kGuess;
 }
 
 // Levenberg-Marquardt (Ceres TinySolver) on (s, t) from the guess; leaves fn's cache at the
@@ -403,7 +419,8 @@ bool QuasiNewton(JoinFunction& fn, const JoinOptions& options, int max_steps, Gu
 }
 
 // From the ellipse guess to the answer: on a short arc the guess refined on the Taylor model and
-// checked by one rollout of (z, x), else one rollout with the variational equations at the guess;
+// checked by one rollout of (z, x), else one rollout with the variational equations at the guess
+// (refined on the model up to kSeriesGuessArc);
 // from there quasi-Newton steps on rollouts of (z, x) (QuasiNewton), and Levenberg-Marquardt on
 // full rollouts only when they fail. Fills delta_psi, t, residual, conditioning, iterations (the
 // quasi-Newton steps and LM's) and the residual at the first point rolled out; leaves fn's cache
@@ -413,7 +430,7 @@ bool QuasiNewton(JoinFunction& fn, const JoinOptions& options, int max_steps, Gu
 bool SolveFromGuess(JoinFunction& fn, double mu, const JoinOptions& options, double step, Guess* guess,
                     JoinSummary* out) {
   Eigen::Vector2d dx_ds;
-  const bool modelled = RefineOnSeries(fn.basis(), mu, fn.d(), guess, &dx_ds);
+  const bool modelled = RefineOnSeries(fn.basis(), mu, fn.d(), guess, &dx_ds) == SeriesUse::kChecked;
   fn.set_dt_hint(step > 0 ? step : guess->p[1]);
   if (modelled)
     fn.EvaluateWithSColumn(guess->p[0], guess->p[1], guess->cos_w, guess->sin_w, dx_ds);  // the check

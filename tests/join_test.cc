@@ -59,9 +59,10 @@ TEST(Join, ReachesEveryT1TargetCheckedByIndependentIntegration) {
 
 // The ways a join ends: the check rollout at the guess refined on the Taylor model is the answer
 // (a short arc: 0 iterations); the check misses the tolerance and quasi-Newton steps on rollouts
-// of (z, x) go on from it (the model's truncation error grows with the arc); no model
-// (t sqrt(mu) > 0.2: one rollout with the variational equations, then quasi-Newton steps; 0.75 is
-// T2's segment at n = 16). Levenberg-Marquardt only where those fail (below: the tight tolerance).
+// of (z, x) go on from it (the model's truncation error grows with the arc); the model as a guess
+// only (t sqrt(mu) > 0.2: one rollout with the variational equations at the model's point, then
+// quasi-Newton steps; 0.75 is T2's segment at n = 16). Levenberg-Marquardt only where those fail
+// (below: the tight tolerance).
 // Each lands on its target, checked by an independent integration, with a Jacobian conditioning
 // that agrees with the one of the exact rollouts.
 TEST(Join, ModelCheckAndIterationPathsAllReachTheTarget) {
@@ -93,6 +94,36 @@ TEST(Join, ModelCheckAndIterationPathsAllReachTheTarget) {
       EXPECT_NEAR(e.t, j.t, 1e-9);
       EXPECT_NEAR(e.jacobian_conditioning, j.jacobian_conditioning, 1e-5);
     }
+  }
+}
+
+// On arcs beyond the Taylor model's check (t sqrt(mu) 0.3 ... 1) the first rollout is at the
+// guess refined on the model: its residual is 7e-8 / 1e-6 / 5e-4 at distances 0.25 / 0.35 / 0.75
+// where the ellipse guess left 1.3e-2 / 2.6e-2 / 0.12, and the joins take 1 / 1.1 / 2.1
+// quasi-Newton steps instead of 3.3 / 3.5 / 3.9 (docs/benchmarks.md, "The Taylor model as the long
+// arcs' guess"). Each answer is checked by an independent integration.
+TEST(Join, LongArcsStartFromTheGuessRefinedOnTheTaylorModel) {
+  const BallModel model = BallModel::FromLambda(2.0);
+  const AngleState start{M_PI / 3, 0.4, 0.1};
+  const Eigen::Vector2d x0(0.3, -0.2);
+  struct Case {
+    double distance, first_residual;
+    int iterations;  // over the 8 directions
+  };
+  for (const Case c : {Case{0.25, 1e-6, 8}, Case{0.35, 1e-5, 10}, Case{0.75, 2e-3, 18}}) {
+    int iterations = 0;
+    for (int k = 0; k < 8; ++k) {
+      const double b = 2 * M_PI * k / 8 + 0.1;
+      const Eigen::Vector2d target = x0 + c.distance * Eigen::Vector2d(std::cos(b), std::sin(b));
+      const JoinSummary j = Join(JoinProblem{model, start, 1.0, x0, target});
+      ASSERT_EQ(j.status, JoinStatus::kConverged) << j.BriefReport();
+      EXPECT_GT(j.t * std::sqrt(j.mu), 0.2) << "beyond the model's check";
+      EXPECT_LT(j.initial_guess_residual, c.first_residual) << "distance " << c.distance << ", k = " << k;
+      iterations += j.iterations;
+      const MotionSample end = Arrive(model, start, 1.0, x0, j.delta_psi, j.t);
+      EXPECT_LT((end.x - target).norm(), 1e-12) << "distance " << c.distance << ", k = " << k;
+    }
+    EXPECT_LE(iterations, c.iterations) << "distance " << c.distance;
   }
 }
 
