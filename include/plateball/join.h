@@ -61,11 +61,13 @@ struct JoinSummary {
   double delta_psi = 0.0;  ///< s of Lemma 2.1, in (-pi, pi]
   double t = 0.0;          ///< time of flight, >= 0
   double residual = 0.0;   ///< |x_s(t) - target|
-  /// Levenberg-Marquardt iterations on rollouts with sensitivities; 0 when the first rollout (at
-  /// the guess refined on the Taylor model of a short arc) was already within the tolerance.
+  /// Quasi-Newton steps on rollouts (and Levenberg-Marquardt iterations, where those fail); 0 when
+  /// the first rollout (at the guess refined on the Taylor model of a short arc) was already
+  /// within the tolerance.
   int iterations = 0;
   /// |x - target| at the first point rolled out: the velocity-ellipse guess (27)-(28), refined on
-  /// a Taylor model of x(s, t) when the arc is short (t sqrt(mu) <= 0.2).
+  /// a Taylor model of x(s, t) (t sqrt(mu) <= 0.2: checked there; up to 3: as the guess, when the
+  /// model's Newton steps converge).
   double initial_guess_residual = 0.0;
   double time_limit = 0.0;              ///< K1 |target - x0|: the local branch has t <= this
   /// |det J| / (|J_s| |J_t|) at the solution: sine of the angle between dx/ds and dx/dt
