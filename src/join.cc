@@ -329,10 +329,14 @@ bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d
 //    1e-5 against 2e-2; docs/benchmarks.md, "The Taylor model as the long arcs' guess"); a rollout
 //    with the variational equations and the quasi-Newton steps follow. Taken when the second step
 //    is at most half the first (the model converging), else the ellipse guess stays.
+//    On kHighOrderArcs the second step is on the order-13 model (Jacobian from order 6): random
+//    joins there need 1.9 quasi-Newton steps instead of 2.4 (0.5-1), 3.2 instead of 3.3 (1-1.5);
+//    beyond 1.5 it is no better than order 7.
 //  - kNone (the guess unchanged): beyond, or when a step is singular or leaves t > 0.
 // Either way a rollout decides convergence: the model only saves rollouts.
 constexpr double kSeriesArc = 0.2;
 constexpr double kSeriesGuessArc = 3.0;
+constexpr double kHighOrderArcs[2] = {0.5, 1.5};
 enum class SeriesUse { kNone, kGuess, kChecked };
 SeriesUse RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Guess* guess,
                          Eigen::Vector2d* dx_ds) {
@@ -343,7 +347,11 @@ SeriesUse RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const E
     return SeriesUse::kNone;
   const Guess g = Moved(*guess, delta);
   const double first = delta.norm();
-  if (!within(g.p, kSeriesGuessArc) || !SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds)) return SeriesUse::kNone;
+  const double arc = g.p[1] * root_mu;
+  const bool high = arc > kHighOrderArcs[0] && arc <= kHighOrderArcs[1];
+  if (!within(g.p, kSeriesGuessArc) ||
+      !(high ? SeriesNewtonStep<13, 6>(basis, d, g, &delta, dx_ds) : SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds)))
+    return SeriesUse::kNone;
   // On a short arc the second step is the model's quadratic convergence; a large one means the
   // model is no guide there.
   if (within(guess->p, kSeriesArc) && within(g.p, kSeriesArc) && delta.norm() <= 1e-4 * (1.0 + std::abs(g.p[1]))) {

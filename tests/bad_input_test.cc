@@ -232,11 +232,13 @@ TEST(BadInput, StarvedIntegrationEndsInABoundedError) {
 }
 
 TEST(BadInput, StarvedJoinReturnsAStatusWithFiniteNumbers) {
-  // One Levenberg-Marquardt iteration from the velocity-ellipse guess cannot reach 1e-12 for a
-  // target at the edge of the local radius: a status comes back, with finite numbers.
+  // One iteration from the guess cannot reach 1e-12 for a target at distance 1.5 (t sqrt(mu) ~ 1.5:
+  // the join needs three without the cap): a status comes back, with finite numbers.
   JoinOptions o;
   o.max_iterations = 1;
-  const JoinSummary j = Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.4, 0.3}}, o);
+  const JoinProblem problem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {1.2, 0.9}};
+  ASSERT_EQ(Join(problem).status, JoinStatus::kConverged);
+  const JoinSummary j = Join(problem, o);
   EXPECT_NE(j.status, JoinStatus::kConverged);
   EXPECT_TRUE(std::isfinite(j.residual));
   EXPECT_TRUE(std::isfinite(j.delta_psi));

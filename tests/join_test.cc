@@ -98,10 +98,10 @@ TEST(Join, ModelCheckAndIterationPathsAllReachTheTarget) {
 }
 
 // On arcs beyond the Taylor model's check (t sqrt(mu) 0.3 ... 1) the first rollout is at the
-// guess refined on the model: its residual is 7e-8 / 1e-6 / 5e-4 at distances 0.25 / 0.35 / 0.75
-// where the ellipse guess left 1.3e-2 / 2.6e-2 / 0.12, and the joins take 1 / 1.1 / 2.1
-// quasi-Newton steps instead of 3.3 / 3.5 / 3.9 (docs/benchmarks.md, "The Taylor model as the long
-// arcs' guess"). Each answer is checked by an independent integration.
+// guess refined on the model (at 0.75 on the order-13 one): its residual is 7e-8 / 1e-6 / 3e-5 at
+// distances 0.25 / 0.35 / 0.75 where the ellipse guess left 1.3e-2 / 2.6e-2 / 0.12, and the joins
+// take 1 / 1.1 / 1.75 quasi-Newton steps instead of 3.3 / 3.5 / 3.9 (docs/benchmarks.md, "The
+// Taylor model as the long arcs' guess"). Each answer is checked by an independent integration.
 TEST(Join, LongArcsStartFromTheGuessRefinedOnTheTaylorModel) {
   const BallModel model = BallModel::FromLambda(2.0);
   const AngleState start{M_PI / 3, 0.4, 0.1};
@@ -110,7 +110,7 @@ TEST(Join, LongArcsStartFromTheGuessRefinedOnTheTaylorModel) {
     double distance, first_residual;
     int iterations;  // over the 8 directions
   };
-  for (const Case c : {Case{0.25, 1e-6, 8}, Case{0.35, 1e-5, 10}, Case{0.75, 2e-3, 18}}) {
+  for (const Case c : {Case{0.25, 1e-6, 8}, Case{0.35, 1e-5, 10}, Case{0.75, 1e-4, 15}}) {
     int iterations = 0;
     for (int k = 0; k < 8; ++k) {
       const double b = 2 * M_PI * k / 8 + 0.1;
