@@ -630,10 +630,11 @@ bool ValleyPolish(const FreeLengthFunctor& f, Eigen::Vector4d* v) {
 // Polish stage: LM (in effect Newton) on the free-length formulation with exact Jacobians (no
 // Broyden columns), from the handed-off point (the search's parameters, L at its crossing), to
 // options.tolerance on all four residuals: the chord miss and the rotation residual there (the
-// crossing number is counted on the reported path: CrossingCount). (The crossing formulation's polish found the crossing on a
-// table of positions over the whole search length at kPolish nodes, ~250,000 instructions per
-// evaluation against ~7,000 here: 170M of the rotation problem's 1.76G; the roots are the same to
-// the tolerance, the same 31 lengths to 10 digits; docs/paper_notes.md, "General targets", point 12.)
+// crossing number is counted on the reported path: CrossingCount). (The crossing formulation's
+// polish found the crossing on a table of positions over the whole search length at kPolish
+// nodes, ~250,000 instructions per evaluation against ~7,000 here: 170M of the rotation problem's
+// 1.76G; the roots are the same to the tolerance, the same 31 lengths to 10 digits;
+// docs/paper_notes.md, "General targets", point 12.)
 void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalResult* r) {
   FreeLengthFunctor f{&ctx, r->regime};
   f.secant = false;

@@ -349,9 +349,10 @@ SeriesUse RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const E
   const double first = delta.norm();
   const double arc = g.p[1] * root_mu;
   const bool high = arc > kHighOrderArcs[0] && arc <= kHighOrderArcs[1];
-  if (!within(g.p, kSeriesGuessArc) ||
-      !(high ? SeriesNewtonStep<13, 6>(basis, d, g, &delta, dx_ds) : SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds)))
-    return SeriesUse::kNone;
+  if (!within(g.p, kSeriesGuessArc)) return SeriesUse::kNone;
+  const bool stepped = high ? SeriesNewtonStep<13, 6>(basis, d, g, &delta, dx_ds)
+                            : SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds);
+  if (!stepped) return SeriesUse::kNone;
   // On a short arc the second step is the model's quadratic convergence; a large one means the
   // model is no guide there.
   if (within(guess->p, kSeriesArc) && within(g.p, kSeriesArc) && delta.norm() <= 1e-4 * (1.0 + std::abs(g.p[1]))) {
