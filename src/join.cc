@@ -341,25 +341,25 @@ enum class SeriesUse { kNone, kGuess, kChecked };
 SeriesUse RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Guess* guess,
                          Eigen::Vector2d* dx_ds) {
   const double root_mu = std::sqrt(mu);
-  const auto within = [&](const Eigen::Vector2d& p, double arc) { return p[1] > 0 && p[1] * root_mu <= arc; };
+  const double arc0 = guess->p[1] * root_mu;
   Eigen::Vector2d delta;
-  if (!within(guess->p, kSeriesGuessArc) || !SeriesNewtonStep<4, 3>(basis, d, *guess, &delta, dx_ds))
+  if (!(guess->p[1] > 0 && arc0 <= kSeriesGuessArc) || !SeriesNewtonStep<4, 3>(basis, d, *guess, &delta, dx_ds))
     return SeriesUse::kNone;
   const Guess g = Moved(*guess, delta);
-  const double first = delta.norm();
-  const double arc = g.p[1] * root_mu;
+  const double arc = g.p[1] * root_mu, first = delta.squaredNorm();
+  if (!(g.p[1] > 0 && arc <= kSeriesGuessArc)) return SeriesUse::kNone;
   const bool high = arc > kHighOrderArcs[0] && arc <= kHighOrderArcs[1];
-  if (!within(g.p, kSeriesGuessArc)) return SeriesUse::kNone;
   const bool stepped = high ? SeriesNewtonStep<13, 6>(basis, d, g, &delta, dx_ds)
                             : SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds);
   if (!stepped) return SeriesUse::kNone;
   // On a short arc the second step is the model's quadratic convergence; a large one means the
   // model is no guide there.
-  if (within(guess->p, kSeriesArc) && within(g.p, kSeriesArc) && delta.norm() <= 1e-4 * (1.0 + std::abs(g.p[1]))) {
+  const bool short_arc = arc0 <= kSeriesArc && arc <= kSeriesArc;
+  if (short_arc && delta.norm() <= 1e-4 * (1.0 + std::abs(g.p[1]))) {
     *guess = Moved(g, delta);
     return SeriesUse::kChecked;
   }
-  if (!(delta.norm() <= 0.5 * first)) return SeriesUse::kNone;
+  if (!(delta.squaredNorm() <= 0.25 * first)) return SeriesUse::kNone;  // the model not converging
   *guess = Moved(g, delta);
   return SeriesUse::kGuess;
 }
