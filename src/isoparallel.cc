@@ -17,8 +17,8 @@
 
 #include "check.h"
 #include "chord_residual.h"
-#include "dynamics.h"
 #include "circle_crossings.h"
+#include "dynamics.h"
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
 #include "isoparallel_twin.h"

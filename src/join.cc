@@ -317,8 +317,9 @@ bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d
 }
 
 // The guess refined by two Newton steps on Taylor models of x(s, t): a step on the order-4 model,
-// then one on the order-7 model (its Jacobian from the order-4 terms). *dx_ds: the model's
-// d x / d s. What the model is worth depends on the arc (t sqrt(mu)):
+// then one on the order-7 model (its Jacobian from the order-4 terms; order 13 from order 6 on
+// kHighOrderArcs, below). *dx_ds: the model's d x / d s. What the model is worth depends on the
+// arc (t sqrt(mu)):
 //  - up to kSeriesArc, kChecked: the ellipse guess is the model's first-order solution (T1:
 //    residual up to 5e-4), the first step brings it to ~2e-6 and the second (~1e-6: a Jacobian
 //    good to ~1e-6 suffices) to the model's truncation error (T1: below the check rollout's own
@@ -326,8 +327,8 @@ bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d
 //    is good to ~1e-6 relative (the reported conditioning's s column).
 //  - up to kSeriesGuessArc, kGuess: the truncation error is above the tolerance, but the refined
 //    point is still far better than the ellipse's (random joins at t sqrt(mu) 0.2-1: residual
-//    1e-5 against 2e-2; docs/benchmarks.md, "The Taylor model as the long arcs' guess"); a rollout
-//    with the variational equations and the quasi-Newton steps follow. Taken when the second step
+//    1.7e-6 against 1.5e-2; docs/benchmarks.md, "The Taylor model as the long arcs' guess"); a
+//    rollout with the variational equations and the quasi-Newton steps follow. Taken when the second step
 //    is at most half the first (the model converging), else the ellipse guess stays.
 //    On kHighOrderArcs the second step is on the order-13 model (Jacobian from order 6): random
 //    joins there need 1.9 quasi-Newton steps instead of 2.4 (0.5-1), 3.2 instead of 3.3 (1-1.5);
