@@ -82,6 +82,23 @@ double LoopModelHeadingError(PendulumRegime regime, double k_t, double core_half
   return SeparatrixHeadingGapSup(regime, k_t) + SeparatrixRunHeadingSpread(PendulumRegime::kRotating, core_half_width);
 }
 
+LoopHeadingError::LoopHeadingError(PendulumRegime regime, double k_t, double core_half_width)
+    : regime_(regime),
+      k_t_(k_t),
+      v_one_core_(std::min(core_half_width, CompleteEllipticK(k_t))),
+      gap_sup_(SeparatrixHeadingGapSup(regime, k_t)),
+      core_gap_(SeparatrixHeadingGapSup(PendulumRegime::kRotating, kLoopCoreModulus)),
+      family_(LoopModelHeadingError(regime, k_t, core_half_width) + core_gap_) {}
+
+double LoopHeadingError::ForBox(const CertifyBox& box) const {
+  const double t_lo = box.lo[kLoopPhase], t_hi = box.hi[kLoopPhase];
+  const double reach =
+      std::max({std::abs(t_lo), std::abs(t_hi), box.hi[kLoopLength] - t_lo, t_hi - box.lo[kLoopLength]});
+  const double v_max = box.hi[kLoopRate] * reach;
+  if (!(v_max <= v_one_core_)) return family_;
+  return std::min(SeparatrixHeadingGapGrowing(regime_, k_t_, v_max), gap_sup_) + core_gap_;
+}
+
 double LoopCoreHalfWidthFor(PendulumRegime regime, double k_t) {
   const double gap = SeparatrixHeadingGapSup(regime, k_t);
   const double w = gap > 0.0 ? std::acosh(1.0 / std::sin(0.5 * std::min(gap, 1.0))) : 700.0;
@@ -190,8 +207,8 @@ LoopFamilyResult CertifyLoopFamily(const CertifyTarget& target, const LoopFamily
   const double w2 =
       options.core_half_width > 0.0 ? options.core_half_width : LoopCoreHalfWidthFor(options.regime, options.k_t);
   result.core_half_width = w2;
-  result.heading_error = LoopModelHeadingError(options.regime, options.k_t, w2) +
-                         SeparatrixHeadingGapSup(PendulumRegime::kRotating, kLoopCoreModulus);
+  const LoopHeadingError heading_error(options.regime, options.k_t, w2);
+  result.heading_error = heading_error.Family();
   const double run_min_k = 2.0 * (CompleteEllipticK(options.k_t) - w2);
   const double run_lo = std::max(0.0, run_min_k / options.rate_max);
   const double w_max = w2 / options.rate_lo;
@@ -203,7 +220,7 @@ LoopFamilyResult CertifyLoopFamily(const CertifyTarget& target, const LoopFamily
       if (LoopBoxOutsideDomain(w2, run_min_k, result.window.hi[kLoopRun], box)) return BoxDecision{BoxFate::kOutsideDomain};
       CertifyPoint share;
       const double model = LoopModelDeviationBound(w2, box, &share);
-      const double deviation = model + result.heading_error * box.hi[kLoopLength];
+      const double deviation = model + heading_error.ForBox(box) * box.hi[kLoopLength];
       CertifyResidual centre;
       BoxVerdict verdict = BoxVerdict::kUndecided;
       if (EvaluateLoopModelResidual(target, options.regime, sense, w2, box.Centre(), &centre))

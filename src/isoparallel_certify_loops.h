@@ -47,6 +47,23 @@ inline constexpr double kLoopCoreRateIntegral = 4.0 * 0.91596559417721901505;
 /// (the separatrix piece's distance to its limit direction beyond W2, in both regimes).
 double LoopModelHeadingError(PendulumRegime regime, double k_t, double core_half_width);
 
+/// The heading error per unit length of the real paths of a box against their model (same regime):
+/// D gets ForBox(box) * L_max. In general the family's eps plus the model core's own gap (Family).
+/// When every path of the box stays within one core, |v| <= V = b_max max(|t0|, |L - t0|) from
+/// core 0's centre with V <= min(W2, K(k_t)), no run replaces the separatrix and the elastica is
+/// far closer to it than at the cell's edge: then min(the growing side of the gap at V, G_t) plus
+/// the core's gap (a slow path is a short piece of one loop).
+class LoopHeadingError {
+ public:
+  LoopHeadingError(PendulumRegime regime, double k_t, double core_half_width);
+  double Family() const { return family_; }
+  double ForBox(const CertifyBox& box) const;
+
+ private:
+  PendulumRegime regime_;
+  double k_t_, v_one_core_, gap_sup_, core_gap_, family_;
+};
+
 /// The half-width W2 (in v) that makes 2 asin(sech W2) equal to the gap G_t, capped at K(k_t)
 /// (the cores must lie inside their cells).
 double LoopCoreHalfWidthFor(PendulumRegime regime, double k_t);
@@ -108,7 +125,7 @@ using LoopFamilyStatus = ExclusionStatus;  // ToString in isoparallel_certify_bi
 struct LoopFamilyResult {
   LoopFamilyStatus status = LoopFamilyStatus::kNotRun;
   double core_half_width = 0.0;  // W2
-  double heading_error = 0.0;    // eps (+ the core's own gap): D gets (this) * L
+  double heading_error = 0.0;    // eps (+ the core's own gap): D gets (this) * L (LoopHeadingError::Family)
   CertifyBox window;             // (rate, run, phase, length), searched once per sense
   long boxes = 0;
   long excluded_by_chord = 0, excluded_by_rotation = 0;

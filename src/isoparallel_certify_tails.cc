@@ -208,13 +208,8 @@ double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, do
 
 namespace {
 
-// The two sides of the gap: the growing bound (the modulus integral of the separatrix bound) and
-// the decreasing one (the loop's distance to pi).
-double GapGrowing(PendulumRegime regime, double k, double v) {
-  const double ch = std::cosh(std::min(std::abs(v), 350.0));
-  return regime == PendulumRegime::kRotating ? (1.0 - k) * (1.0 + k) * (ch - 1.0) : 2.0 * (1.0 - k) * ch * ch;
-}
-
+// The decreasing side of the gap (the loop's distance to pi); the growing one is the modulus
+// integral of the separatrix bound, SeparatrixHeadingGapGrowing.
 double GapDecreasing(PendulumRegime regime, double k, double v) {
   const double a = std::min(std::abs(v), 350.0);
   return regime == PendulumRegime::kRotating ? 2.0 * std::asin(1.0 / std::cosh(a)) : 2.0 * std::acos(k * std::tanh(a));
@@ -222,8 +217,13 @@ double GapDecreasing(PendulumRegime regime, double k, double v) {
 
 }  // namespace
 
+double SeparatrixHeadingGapGrowing(PendulumRegime regime, double k, double v) {
+  const double ch = std::cosh(std::min(std::abs(v), 350.0));
+  return regime == PendulumRegime::kRotating ? (1.0 - k) * (1.0 + k) * (ch - 1.0) : 2.0 * (1.0 - k) * ch * ch;
+}
+
 double SeparatrixHeadingGap(PendulumRegime regime, double k, double v) {
-  return std::min(GapGrowing(regime, k, v), GapDecreasing(regime, k, v));
+  return std::min(SeparatrixHeadingGapGrowing(regime, k, v), GapDecreasing(regime, k, v));
 }
 
 double SeparatrixHeadingGapSup(PendulumRegime regime, double k) {
@@ -231,7 +231,7 @@ double SeparatrixHeadingGapSup(PendulumRegime regime, double k) {
   // every v has min <= A(hi) (v <= hi) or <= B(lo) (v >= lo). Over every v >= 0 (not only
   // [0, K(k)]), so that it also bounds every modulus in [k, 1), whose A and B are smaller.
   if (!(k < 1.0)) return 0.0;
-  const auto a = [&](double v) { return GapGrowing(regime, k, v); };
+  const auto a = [&](double v) { return SeparatrixHeadingGapGrowing(regime, k, v); };
   const auto b = [&](double v) { return GapDecreasing(regime, k, v); };
   double lo = 0.0, hi = 1.0;
   while (a(hi) < b(hi)) hi *= 2.0;  // A grows without bound, B stays bounded

@@ -97,6 +97,10 @@ double HeadingModulusBoundNearSeparatrix(PendulumRegime regime, double k_max, do
 /// modulus in [k, 1): one loop of an elastica is the separatrix loop within it in heading.
 double SeparatrixHeadingGap(PendulumRegime regime, double k, double v);
 double SeparatrixHeadingGapSup(PendulumRegime regime, double k);
+/// The growing side of the gap alone (k'^2 (cosh v - 1) rotating, 2 (1 - k) cosh^2 v oscillating):
+/// increasing in |v| and decreasing in k, so for |v| <= v_max <= K(k) and every modulus in [k, 1)
+/// the gap is at most its value at (k, v_max).
+double SeparatrixHeadingGapGrowing(PendulumRegime regime, double k, double v);
 
 /// a_max(k): no solution of length <= cap (chord |x1 - x0|) has |rate| > a_max at modulus k in
 /// [0, 1] (k = 1 the limit). +inf when StraightResidual(target) <= margin (the lemma excludes

@@ -270,6 +270,62 @@ TEST(IsoparallelCertifyLoops, BoxBoundCoversRealTailPaths) {
   }
 }
 
+TEST(IsoparallelCertifyLoops, SlowPathsWithinOneCoreStayWithinTheLocalGap) {
+  // A path that stays within V <= min(W2, K(k_t)) of one loop centre (a slow path: b L <= 2 V):
+  // pointwise its heading is within min(gap's growing side at V, G_t) of the model's core, and
+  // its rolling within D + LoopHeadingError::ForBox L of any box's centre model; at the coverage's
+  // k'_t = 1e-2, half the paths at k_t itself (the largest gap), the rest up to k' ~ 2e-8.
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double kp = 1e-2, k_t = std::sqrt((1.0 - kp) * (1.0 + kp));
+  for (const PendulumRegime regime : kRegimes) {
+    const double w2 = regime == PendulumRegime::kOscillating ? CompleteEllipticK(k_t) : LoopCoreHalfWidthFor(regime, k_t);
+    const LoopHeadingError heading(regime, k_t, w2);
+    const double core_gap = SeparatrixHeadingGapSup(PendulumRegime::kRotating, kLoopCoreModulus);
+    double worst_point = 0.0, worst_rolling = 0.0, largest_gain = 0.0;
+    for (int i = 0; i < 200; ++i) {
+      ElasticaParameters p;
+      p.regime = regime;
+      p.modulus = i % 2 == 0 ? k_t : 1.0 - LogUniform(2e-16, 1.0 - k_t, &rng);
+      const double b = LogUniform(0.5, 5.0, &rng), v = (0.2 + 0.8 * unit(rng)) * std::min(w2, CompleteEllipticK(k_t));
+      const double length = std::min(LogUniform(0.3, 2.0 * v / b, &rng), 2.0 * v / b);
+      const double t0 = length - v / b + (2.0 * v / b - length) * unit(rng);  // max(|t0|, |L - t0|) <= v / b
+      p.rate = unit(rng) < 0.5 ? -b : b;
+      p.phase = -p.rate * t0;  // a loop centre (v = 0) at s = t0
+      p.heading_w = M_PI / 2;
+      const Elastica e(p);
+      const LoopModelPoint m = LoopModelOf(e, length, w2);
+      ASSERT_NEAR(m.x[kLoopPhase], t0, 1e-9 * (1.0 + std::abs(t0)));
+      const double point_error = heading.ForBox(CertifyBox{m.x, m.x});
+      ASSERT_LT(point_error, heading.Family()) << ToString(regime) << " path " << i;
+      largest_gain = std::max(largest_gain, heading.Family() / point_error);
+      for (int n = 0; n <= 2000; ++n) {
+        const double s = length * n / 2000.0;
+        const double d = AngleDistance(e.PendulumAngle(s), ModelHeading(regime, m.sense, w2, m.x, s));
+        ASSERT_LE(d, point_error - core_gap + 1e-12) << ToString(regime) << " k " << p.modulus << " s " << s;
+        if (i % 2 == 0) worst_point = std::max(worst_point, d / (point_error - core_gap));
+      }
+      CertifyBox box;
+      for (int a = 0; a < 4; ++a) {
+        const double h = std::abs(m.x[a]) * LogUniform(1e-6, 1e-2, &rng) + 1e-9;
+        box.lo[a] = m.x[a] - 2.0 * h * unit(rng);
+        box.hi[a] = box.lo[a] + 2.0 * h;
+      }
+      const LoopModelRolling c = RollLoopModel(regime, m.sense, w2, box.Centre());
+      const double actual = std::max(Angle(ElasticaClosedRolling(e).Rolling(length), c.rolling),
+                                     (e.Position(length) - c.chord).norm());
+      const double d = LoopModelDeviationBound(w2, box) + heading.ForBox(box) * box.hi[kLoopLength];
+      EXPECT_LE(actual, d) << ToString(regime) << " path " << i;
+      worst_rolling = std::max(worst_rolling, actual / d);
+    }
+    // The local gap is nearly reached at k_t (the bound is not loose enough to hide an error).
+    EXPECT_GT(worst_point, 0.3) << ToString(regime);
+    std::printf("%s: heading deviation / local gap at k_t, worst %.3f; rolling deviation / bound, worst %.3f; "
+                "family eps / local eps up to %.3g\n",
+                ToString(regime).c_str(), worst_point, worst_rolling, largest_gain);
+  }
+}
+
 // Boxes around the model point of a made tail solution (the target built from the real path x
 // by dopri5) with two cores on the path: never excluded by TestBox with D + eps L.
 void ExpectNestedBoxesKept(PendulumRegime regime, const CertifyPoint& x, double k_t, std::mt19937* rng) {
