@@ -93,6 +93,11 @@ void RecordFound(const CertifyPoint& x, const CertifyWindowOptions& options, con
   result->found_known.push_back(MatchKnown(point, options, known, false));
 }
 
+// The error the first-order tests allow on each component of the centre's residual.
+double FirstOrderMargin(const CertifyWindowOptions& options, const CertifyBox& box) {
+  return options.first_order_margin + CertifyResidualError(box);
+}
+
 // The first-order verdict of a box the zeroth-order test left undecided, the axis to split when
 // it stays undecided (the largest column of the Krawczyk contraction times the half-widths, or
 // -1), and for a proved unique solution its Newton refinement (the box centre if Newton fails).
@@ -110,10 +115,11 @@ FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindow
   FirstOrderOutcome out;
   CertifyJacobian centre;
   Eigen::Matrix4d radius;
+  const double margin = FirstOrderMargin(options, box);
   if (!EvaluateCertifyJacobian(target, options.regime, box.Centre(), options.max_step, &centre) ||
-      !CertifyJacobianEnclosure(options.regime, box, centre, options.first_order_margin, &radius))
+      !CertifyJacobianEnclosure(options.regime, box, centre, margin, &radius))
     return out;
-  out.verdict = FirstOrderTest(box, centre, radius, options.first_order_margin);
+  out.verdict = FirstOrderTest(box, centre, radius, margin);
   if (out.verdict == FirstOrderVerdict::kUnique) {
     out.solution = box.Centre();
     CertifyPoint x = out.solution;
@@ -141,8 +147,8 @@ FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindow
     CertifyBox target_point;
     for (int i = 0; i < 4; ++i) target_point.lo[i] = target_point.hi[i] = box.Centre()[i] - newton[i];
     if (((spread * h).array() < h.array()).all() && !InsideAny(target_point, proved))
-      out.proved_nearby = ProveAroundNewtonPoint(target, options.regime, box, centre, options.max_step,
-                                                 options.first_order_margin, &out.proved, &out.solution);
+      out.proved_nearby = ProveAroundNewtonPoint(target, options.regime, box, centre, options.max_step, margin,
+                                                 &out.proved, &out.solution);
   }
   return out;
 }
@@ -510,7 +516,8 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
     FirstOrderOutcome first;
     if (hit < 0 && options.first_order && deviation <= options.first_order_deviation &&
-        CertifyEnclosureAvailable(options.regime, box, centre.chord_norm, centre.rotation, options.first_order_margin)) {
+        CertifyEnclosureAvailable(options.regime, box, centre.chord_norm, centre.rotation,
+                                  FirstOrderMargin(options, box))) {
       first = FirstOrderBox(target, options, box, proved);
       if (RecordFirstOrder(first, options, known, &proved, &result)) {
         result.resolved_volume += BoxVolume(box) / window_volume;

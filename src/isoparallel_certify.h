@@ -154,7 +154,9 @@ struct CertifyWindowOptions {
   bool first_order = false;
   double first_order_deviation = 0.5;
   double first_order_min_deviation = 1e-9;
-  double first_order_margin = 1e-8;  // on the centre's residual components (tested error ~1e-9)
+  /// Added to CertifyResidualError(box) (isoparallel_certify_jacobian.h), the bound on the error
+  /// of the centre's residual components that the first-order tests allow for.
+  double first_order_margin = 0.0;
   /// The costate test (isoparallel_certify_costate.h) on boxes the chord and rotation tests leave
   /// undecided: rigorous, no rolling (~ a closed-form chord and two costates per box).
   bool costate = true;

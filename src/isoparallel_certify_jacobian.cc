@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
 #include "jacobi_elliptic.h"
 #include "plateball/so3.h"
@@ -229,19 +230,20 @@ bool EvaluateCertifyJacobian(const CertifyTarget& target, PendulumRegime regime,
     if (!std::isfinite(c)) return false;
   if (!(x[kCertifyModulus] >= 0.0 && x[kCertifyModulus] < 1.0) || !(length > 0.0) || !(max_step > 0.0)) return false;
   const Elastica e = CertifyElastica(regime, x);
-  const ElasticaRollingTable table(e, length, 32, max_step);
+  const double step = CertifyJacobianStep(max_step, x[kCertifyRate]);
+  const ElasticaRollingTable table(e, length, 32, step);
   if (!table.Valid()) return false;
   const Eigen::Vector2d chord = e.Position(length);
   const double norm = chord.norm();
   if (!(norm > 1e-12)) return false;
-  const Eigen::Matrix3d q = table.Rolling(length);
+  const Eigen::Matrix3d q = ElasticaClosedRolling(e).Rolling(length);  // CertifyResidualError
   const double beta = ChordTurn(target.goal_angle, chord);
   const Eigen::Matrix3d b = RotationZ(beta);
   const Eigen::Matrix3d p = b * q * b.transpose();
   const Eigen::Vector3d r = RotationTrickResidual(target.target, beta, q);
   if (!(r.allFinite() && r.norm() < M_PI - 1e-6)) return false;
   PathVariation var[4];
-  IntegrateVariations(regime, x, e, table, max_step, var);
+  IntegrateVariations(regime, x, e, table, step, var);
   const Eigen::Vector2d t = e.Tangent(length);
   var[kCertifyLength].chord = t;
   var[kCertifyLength].xi = q.transpose() * Eigen::Vector3d(-t.y(), t.x(), 0.0);  // w(L) = e3 x t(L)
@@ -258,6 +260,15 @@ bool EvaluateCertifyJacobian(const CertifyTarget& target, PendulumRegime regime,
     out->jacobian.block<3, 1>(1, c) = jr_inv * (b * var[c].xi + dbeta * tilt);
   }
   return out->residual.allFinite() && out->jacobian.allFinite();
+}
+
+double CertifyResidualError(const CertifyBox& box) {
+  const double rate_max = std::max(std::abs(box.lo[kCertifyRate]), std::abs(box.hi[kCertifyRate]));
+  return 1e-13 * (1.0 + box.hi[kCertifyLength] * (1.0 + rate_max));
+}
+
+double CertifyJacobianStep(double max_step, double rate) {
+  return std::min(max_step, kJacobianArcStep / std::abs(rate));
 }
 
 bool NewtonRefineCertify(const CertifyTarget& target, PendulumRegime regime, double max_step, double tolerance,

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "elastica_rolling.h"
 #include "plateball/elastica.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
@@ -125,6 +126,109 @@ TEST(IsoparallelCertifyJacobian, JacobianMatchesCentralDifferencesOfDopriResidua
     }
   }
   std::printf("worst relative |J - central difference of dopri5 residuals| = %.2e\n", worst);
+}
+
+namespace {
+
+// A random point of a window reaching high rates and lengths: |rate| in [0.3, 1] rate_max (either
+// sign), k' = 10^(-4.4 u) (k from 0 to the window's largest modulus), phase [-8, 8], L [0.5, 1]
+// length_max.
+CertifyPoint RandomFarPoint(std::mt19937& rng, double rate_max, double length_max) {
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const double rate = (0.3 + 0.7 * uni(rng)) * rate_max * (uni(rng) < 0.5 ? -1.0 : 1.0);
+  const double kp = std::pow(10.0, -4.4 * uni(rng));
+  return {rate, std::sqrt((1.0 - kp) * (1.0 + kp)), 16.0 * uni(rng) - 8.0, length_max * (0.5 + 0.5 * uni(rng))};
+}
+
+CertifyBox PointBox(const CertifyPoint& x) {
+  CertifyBox box;
+  box.lo = box.hi = x;
+  return box;
+}
+
+}  // namespace
+
+// The residual the first-order tests use is within CertifyResidualError of the residual from an
+// independent rolling, a sixth-order Magnus table at steps of 0.005 / |rate| (1024 per period; its
+// own error measured ~1e-11 at rate 80 and length 60), at rates up to 80 and lengths up to 60 of
+// both regimes, k' down to 4e-5; the error stays below a fifth of the bound. (With the Magnus
+// table at steps of 0.05 that the residual used before, the error reached 5e-8 at rate 10.)
+TEST(IsoparallelCertifyJacobian, ResidualIsWithinItsErrorBoundAtHighRatesAndLengths) {
+  std::mt19937 rng(20261125);
+  for (PendulumRegime regime : kBothRegimes) {
+    const CertifyTarget target = MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
+    double worst = 0.0;
+    int points = 0;
+    for (double rate_max : {1.5, 10.0, 30.0, 80.0}) {
+      for (double length_max : {6.0, 20.0, 60.0}) {
+        for (int trial = 0; trial < 6; ++trial) {
+          const CertifyPoint x = RandomFarPoint(rng, rate_max, length_max);
+          CertifyJacobian j;
+          if (!EvaluateCertifyJacobian(target, regime, x, 0.05, &j)) continue;  // a residual near pi
+          const Elastica e = CertifyElastica(regime, x);
+          const ElasticaRollingTable fine(e, x[kCertifyLength], 1024, 0.005 / std::abs(x[kCertifyRate]), 40000000);
+          ASSERT_TRUE(fine.Valid());
+          const Eigen::Vector2d chord = e.Position(x[kCertifyLength]);
+          Eigen::Vector4d f;
+          f << chord.norm() - target.radius,
+              RotationTrickResidual(target.target, ChordTurn(target.goal_angle, chord), fine.Rolling(x[kCertifyLength]));
+          const double ratio = (j.residual - f).lpNorm<Eigen::Infinity>() / CertifyResidualError(PointBox(x));
+          EXPECT_LT(ratio, 0.2) << ToString(regime) << " rate " << x[0] << " k " << x[1] << " L " << x[3];
+          worst = std::max(worst, ratio);
+          ++points;
+        }
+      }
+    }
+    EXPECT_GE(points, 60) << ToString(regime);
+    std::printf("%s: %d points, largest |residual - Magnus residual| / CertifyResidualError = %.3g\n",
+                ToString(regime).c_str(), points, worst);
+  }
+}
+
+// At high rates (|rate| up to 75, k up to 0.999, L up to 12) the Jacobian's columns agree with
+// fourth-order central differences (Richardson) of the closed-form residual to within
+// kJacobianMargin (1e-6) of the column, as the enclosure assumes: its steps shrink with the rate
+// (CertifyJacobianStep). The difference steps follow each column's scale: 1e-3 / L in rate,
+// 3e-2 k'^2 / (1 + |v|_max) in k, 1e-3 in phase, 1e-3 / (1 + |rate|) in length. (Steps of 0.05
+// alone were off by 2e-3 of the column at rate 25.)
+TEST(IsoparallelCertifyJacobian, JacobianHoldsItsMarginAtHighRates) {
+  std::mt19937 rng(11);
+  for (PendulumRegime regime : kBothRegimes) {
+    const CertifyTarget target = MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
+    double worst = 0.0;
+    int points = 0;
+    for (double rate_max : {10.0, 26.0, 75.0}) {
+      for (int trial = 0; trial < 8; ++trial) {
+        CertifyPoint x = RandomFarPoint(rng, rate_max, 12.0);
+        x[kCertifyModulus] = std::min(x[kCertifyModulus], 0.999);
+        CertifyJacobian j;
+        if (!EvaluateCertifyJacobian(target, regime, x, 0.05, &j)) continue;
+        const auto residual = [&](int axis, double d) {
+          CertifyPoint y = x;
+          y[axis] += d;
+          CertifyJacobian f;
+          EXPECT_TRUE(EvaluateCertifyJacobian(target, regime, y, 0.05, &f));
+          return Eigen::Vector4d(f.residual);
+        };
+        for (int c = 0; c < 4; ++c) {
+          const double kp2 = (1.0 - x[kCertifyModulus]) * (1.0 + x[kCertifyModulus]);
+          const double v_max = std::abs(x[kCertifyPhase]) + std::abs(x[kCertifyRate]) * x[kCertifyLength];
+          const double h = c == kCertifyRate      ? 1e-3 / x[kCertifyLength]
+                           : c == kCertifyModulus ? 3e-2 * kp2 / (1.0 + v_max)
+                           : c == kCertifyPhase   ? 1e-3
+                                                  : 1e-3 / (1.0 + std::abs(x[kCertifyRate]));
+          const Eigen::Vector4d fd = (8.0 * (residual(c, h) - residual(c, -h)) - (residual(c, 2 * h) - residual(c, -2 * h))) / (12.0 * h);
+          const double err = (j.jacobian.col(c) - fd).lpNorm<Eigen::Infinity>() / (1.0 + fd.lpNorm<Eigen::Infinity>());
+          EXPECT_LT(err, kJacobianMargin) << ToString(regime) << " rate " << x[0] << " k " << x[1] << " column " << c;
+          worst = std::max(worst, err);
+        }
+        ++points;
+      }
+    }
+    EXPECT_GE(points, 20) << ToString(regime);
+    std::printf("%s: %d points, worst relative |J - central difference| = %.2e\n", ToString(regime).c_str(), points,
+                worst);
+  }
 }
 
 // Newton's method from a start 0.02 off in every coordinate recovers the made solution to 1e-9,
