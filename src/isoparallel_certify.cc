@@ -197,6 +197,13 @@ CertifyPoint CertifyBox::Centre() const {
   return c;
 }
 
+double ArgumentBound(const CertifyBox& box, double s) {
+  double v = 0.0;
+  for (double rate : {box.lo[kCertifyRate], box.hi[kCertifyRate]})
+    for (double phase : {box.lo[kCertifyPhase], box.hi[kCertifyPhase]}) v = std::max(v, std::abs(rate * s + phase));
+  return v;
+}
+
 double HeadingRateBound(PendulumRegime regime, double k_max) {
   return regime == PendulumRegime::kOscillating ? 2.0 * k_max : 2.0;
 }

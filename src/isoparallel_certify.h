@@ -47,6 +47,11 @@ struct CertifyBox {
 /// 4 K(k) oscillating, 2 K(k) rotating.
 double PhasePeriod(PendulumRegime regime, double k);
 
+/// sup |v| = |rate s + phase| over the box's rates and phases at arc length s >= 0: the largest
+/// modulus of the affine form, at a corner (a phase of the opposite sign to the rate offsets it,
+/// where |rate|_max s + |phase|_max does not).
+double ArgumentBound(const CertifyBox& box, double s);
+
 /// sup |d theta / dv| over moduli in [0, k_max] (theta the pendulum angle, v = rate s + u0).
 double HeadingRateBound(PendulumRegime regime, double k_max);
 /// sup |d theta / dk| at fixed v over moduli in [0, k_max] and |v| <= v_max (k_max < 1): from

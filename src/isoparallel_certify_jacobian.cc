@@ -116,8 +116,6 @@ struct ColumnSums {
 
 ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
   const double k_max = box.hi[kCertifyModulus], l_max = box.hi[kCertifyLength];
-  const double rate_max = std::max(std::abs(box.lo[kCertifyRate]), std::abs(box.hi[kCertifyRate]));
-  const double phase_max = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
   const double hr = box.HalfWidth(kCertifyRate), hk = box.HalfWidth(kCertifyModulus);
   const double hu = box.HalfWidth(kCertifyPhase);
   const double mv = HeadingRateBound(regime, k_max);
@@ -125,7 +123,8 @@ ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
   const double ds = l_max / pieces;
   ColumnSums out;
   for (int j = 1; j <= pieces; ++j) {
-    const double s = j * ds, v_max = rate_max * s + phase_max, lin = s * hr + hu;
+    // The heading bounds grow with |v|: taken at the box's largest |v| at s.
+    const double s = j * ds, v_max = ArgumentBound(box, s), lin = s * hr + hu;
     const double mk = HeadingModulusBound(regime, k_max, v_max);
     const HeadingSecondBounds b = HeadingSecondDerivativeBounds(regime, k_max, v_max);
     const double dg = std::min(hk * mk + lin * mv, 2.0);  // |theta(s; x) - theta(s; c)|, |t_x - t_c|

@@ -158,6 +158,39 @@ TEST(IsoparallelCertify, HeadingModulusBoundsHoldNearTheSeparatrix) {
   }
 }
 
+// ArgumentBound is the sup of |rate s + phase| over the box: never below a sampled point's, and
+// reached at a corner (within rounding); a box whose phases oppose its rates gets less than
+// |rate|_max s + |phase|_max (at T9's shortest path, {1.539, phase -4.439}: 4.44 at its end,
+// against 13.3).
+TEST(IsoparallelCertify, ArgumentBoundIsTheLargestArgumentOverTheBox) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    CertifyBox box;
+    for (int axis : {kCertifyRate, kCertifyPhase}) {
+      const double a = 20.0 * uni(rng) - 10.0, b = a + 3.0 * uni(rng) * uni(rng);
+      box.lo[axis] = a;
+      box.hi[axis] = b;
+    }
+    const double s = 8.0 * uni(rng), bound = ArgumentBound(box, s);
+    double sampled = 0.0;
+    for (int m = 0; m < 64; ++m) {  // corners first, then interior points
+      const double tr = m < 4 ? (m & 1) : uni(rng), tp = m < 4 ? (m >> 1) : uni(rng);
+      const double rate = box.lo[kCertifyRate] + tr * (box.hi[kCertifyRate] - box.lo[kCertifyRate]);
+      const double phase = box.lo[kCertifyPhase] + tp * (box.hi[kCertifyPhase] - box.lo[kCertifyPhase]);
+      const double v = std::abs(rate * s + phase);
+      ASSERT_LE(v, bound * (1.0 + 1e-15)) << "trial " << trial;
+      sampled = std::max(sampled, v);
+    }
+    EXPECT_NEAR(sampled, bound, 1e-13 * (1.0 + bound)) << "trial " << trial;
+  }
+  CertifyBox t9;
+  t9.lo = {1.5394, 0.78, -4.4386, 5.7663};
+  t9.hi = {1.5395, 0.78, -4.4385, 5.7664};
+  EXPECT_NEAR(ArgumentBound(t9, 5.7663), 4.4386, 1e-3);
+  EXPECT_NEAR(ArgumentBound(t9, 0.0), 4.4386, 1e-12);
+}
+
 // The split point in k: the arithmetic midpoint below the threshold; above it the midpoint in
 // lambda = -ln k' (k'_mid^2 = k'_lo k'_hi), strictly inside the box up to k' ~ 1e-8.
 TEST(IsoparallelCertify, ModulusSplitPointIsTheMidpointInLambda) {
