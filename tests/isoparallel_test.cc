@@ -987,7 +987,8 @@ TEST(IsoparallelPlan, InitialAnglesComeFromTheStartOrientation) {
 
 TEST(Isoparallel, ProblemFilesSolveToTheirExpectedValues) {
   for (const char* name : {"problems/figure7.json", "problems/isoparallel_rotation.json", "problems/isoparallel_t3.json",
-                           "problems/isoparallel_t7.json", "problems/isoparallel_t10.json"}) {
+                           "problems/isoparallel_t7.json", "problems/isoparallel_t9.json",
+                           "problems/isoparallel_t10.json"}) {
     const Problem p = ReadProblemFile(plateball::testing::SourcePath(name));
     ASSERT_TRUE(p.isoparallel.has_value()) << name;
     const IsoparallelSetup setup = IsoparallelSetupFor(p);  // what isoparallel_solve runs
