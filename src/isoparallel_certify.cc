@@ -22,7 +22,7 @@ namespace {
 
 double MaxAbs(double a, double b) { return std::max(std::abs(a), std::abs(b)); }
 
-// int_0^length min(alpha + beta s, cap) ds for alpha, beta >= 0.
+// int_0^length min(alpha + beta s, cap) ds for alpha >= 0 and alpha + beta length >= 0.
 double IntegralOfCappedLine(double alpha, double beta, double cap, double length) {
   if (alpha >= cap) return cap * length;
   const double s_cap = beta > 0.0 ? (cap - alpha) / beta : length;
@@ -204,6 +204,14 @@ double ArgumentBound(const CertifyBox& box, double s) {
   return v;
 }
 
+double ArgumentBoundOver(const CertifyBox& box, double s_lo, double s_hi) {
+  return std::max(ArgumentBound(box, s_lo), ArgumentBound(box, s_hi));
+}
+
+double ArgumentChordSlope(const CertifyBox& box, double length) {
+  return (ArgumentBound(box, length) - ArgumentBound(box, 0.0)) / length;
+}
+
 double HeadingRateBound(PendulumRegime regime, double k_max) {
   return regime == PendulumRegime::kOscillating ? 2.0 * k_max : 2.0;
 }
@@ -252,13 +260,14 @@ namespace {
 double DeviationForModulusBound(PendulumRegime regime, const CertifyBox& box, double mk0, double mk_slope,
                                 CertifyPoint* contributions) {
   const double k_max = box.hi[kCertifyModulus];
-  const double rate_max = MaxAbs(box.lo[kCertifyRate], box.hi[kCertifyRate]);
   const double length_max = box.hi[kCertifyLength];
   const double mv = HeadingRateBound(regime, k_max);
   const double hr = box.HalfWidth(kCertifyRate), hk = box.HalfWidth(kCertifyModulus);
   const double hu = box.HalfWidth(kCertifyPhase), hl = box.HalfWidth(kCertifyLength);
   // Mean value theorem on the segment from the centre: |g(s; p) - g(s; centre)| <= alpha + beta s.
-  const double alpha = hk * mk0, beta = hr * mv + hk * mk_slope * rate_max;
+  // |v| <= |u0|_max + slope s on [0, L_max] (the chord of the convex sup |v|; slope <= rate_max).
+  const double slope = ArgumentChordSlope(box, length_max);
+  const double alpha = hk * mk0, beta = hr * mv + hk * mk_slope * slope;
   // The phase either enters the heading bound (hu |d theta/dv|, over the whole length) or, at a
   // fixed rate, shifts the path along itself by du / rate: one rolling at each end, at most
   // 2 |du| / |rate| in rotation and in chord (rate_min = 0 when the box meets rate 0).
@@ -270,7 +279,7 @@ double DeviationForModulusBound(PendulumRegime regime, const CertifyBox& box, do
                                          : by_heading;
   if (contributions != nullptr) {
     (*contributions)[kCertifyRate] = 0.5 * hr * mv * length_max * length_max;
-    (*contributions)[kCertifyModulus] = hk * (mk0 * length_max + 0.5 * mk_slope * rate_max * length_max * length_max);
+    (*contributions)[kCertifyModulus] = hk * (mk0 * length_max + 0.5 * mk_slope * slope * length_max * length_max);
     (*contributions)[kCertifyPhase] = hu * (rate_min > 0.0 ? std::min(mv * length_max, 2.0 / rate_min) : mv * length_max);
     (*contributions)[kCertifyLength] = hl;
   }
@@ -283,7 +292,7 @@ double DeviationForModulusBound(PendulumRegime regime, const CertifyBox& box, do
 double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, CertifyPoint* contributions) {
   const double k_min = std::max(0.0, box.lo[kCertifyModulus]), k_max = box.hi[kCertifyModulus];
   const double phase_max = MaxAbs(box.lo[kCertifyPhase], box.hi[kCertifyPhase]);
-  // d theta/dk is bounded by c1 + c2 |v| with |v| <= rate_max s + phase_max (two such bounds: at
+  // d theta/dk is bounded by c1 + c2 |v| with |v| <= phase_max + slope s (two such bounds: at
   // fixed v, and through a fixed number of periods; both rigorous, the smaller D is kept).
   const double mk0 = HeadingModulusBound(regime, k_max, phase_max);
   const double mk_slope = HeadingModulusBound(regime, k_max, phase_max + 1.0) - mk0;

@@ -51,6 +51,13 @@ double PhasePeriod(PendulumRegime regime, double k);
 /// modulus of the affine form, at a corner (a phase of the opposite sign to the rate offsets it,
 /// where |rate|_max s + |phase|_max does not).
 double ArgumentBound(const CertifyBox& box, double s);
+/// sup |v| over the box and arc lengths s in [s_lo, s_hi] (0 <= s_lo <= s_hi): ArgumentBound is a
+/// maximum of |affine| in s, so convex, and its sup over an interval is at one of the two ends.
+double ArgumentBoundOver(const CertifyBox& box, double s_lo, double s_hi);
+/// The slope c of the chord |phase|_max + c s of ArgumentBound over [0, length] (length > 0): by
+/// convexity sup |v| <= |phase|_max + c s there. c <= |rate|_max, and c < 0 where the phase
+/// opposes the rate (the bound that was |phase|_max + |rate|_max s).
+double ArgumentChordSlope(const CertifyBox& box, double length);
 
 /// sup |d theta / dv| over moduli in [0, k_max] (theta the pendulum angle, v = rate s + u0).
 double HeadingRateBound(PendulumRegime regime, double k_max);

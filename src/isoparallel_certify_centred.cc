@@ -62,37 +62,39 @@ double LargestVertexDistance(PendulumRegime regime, const CertifyBox& box, const
 double CentredRemainderBound(PendulumRegime regime, const CertifyBox& box, bool collapse_phase) {
   const double k_min = std::max(0.0, box.lo[kCertifyModulus]), k_max = box.hi[kCertifyModulus];
   if (!(k_max < 1.0)) return kInfinity;
-  const double rate_max = MaxAbs(box.lo[kCertifyRate], box.hi[kCertifyRate]);
   const double phase_max = MaxAbs(box.lo[kCertifyPhase], box.hi[kCertifyPhase]);
   const double length = box.Centre()[kCertifyLength];
   const double ha = box.HalfWidth(kCertifyRate), hk = box.HalfWidth(kCertifyModulus);
   const double hu = collapse_phase ? 0.0 : box.HalfWidth(kCertifyPhase);
   const double mv = HeadingRateBound(regime, k_max);
   // |g_p(s) - g_c(s)| <= eps(s) = e0 + e1 s: |theta_v| <= mv, |theta_k| <= m0 + m1 (|v| - phase_max)
-  // for |v| <= phase_max + rate_max s (two such bounds, the smaller integral kept).
+  // for |v| <= phase_max + slope s (the chord of ArgumentBound; two such bounds, the smaller
+  // integral kept).
   const double mk0 = HeadingModulusBound(regime, k_max, phase_max);
   const double mk1 = HeadingModulusBound(regime, k_max, phase_max + 1.0) - mk0;
   const double zk0 = HeadingModulusBoundByZeta(regime, k_min, k_max, phase_max);
   const double zk1 = HeadingModulusBoundByZeta(regime, k_min, k_max, phase_max + 1.0) - zk0;
+  const double slope = ArgumentChordSlope(box, length);
   const auto integral = [&](double m0, double m1) {
-    return (hu * mv + hk * m0) * length + 0.5 * (ha * mv + hk * m1 * rate_max) * length * length;
+    return (hu * mv + hk * m0) * length + 0.5 * (ha * mv + hk * m1 * slope) * length * length;
   };
   const bool by_zeta = integral(zk0, zk1) < integral(mk0, mk1);
   const double e0 = hu * mv + hk * (by_zeta ? zk0 : mk0);
-  const double e1 = ha * mv + hk * (by_zeta ? zk1 : mk1) * rate_max;
+  const double e1 = ha * mv + hk * (by_zeta ? zk1 : mk1) * slope;
   const double lambda = e0 * length + 0.5 * e1 * length * length;  // >= int |z| ds, |z| <= |g_p - g_c|
   if (!(lambda < M_PI)) return kInfinity;
   const double magnus = 0.25 * lambda * lambda;  // |dexp_X - I| <= |X| / 2
-  // int eps^2 / 2 (|w(g + delta) - w(g) - w'(g) delta| <= delta^2 / 2, |w''| = 1).
-  const double end = e0 + e1 * length;
-  const double square = e1 > 0.0 ? (end * end * end - e0 * e0 * e0) / (6.0 * e1) : 0.5 * e0 * e0 * length;
+  // int eps^2 / 2 (|w(g + delta) - w(g) - w'(g) delta| <= delta^2 / 2, |w''| = 1; e1 < 0 where the
+  // phase opposes the rate, eps >= 0 throughout).
+  const double square = 0.5 * length * (e0 * e0 + e0 * e1 * length + e1 * e1 * length * length / 3.0);
   // int (1/2) sup |d^T H d| with d^T H d = theta_vv (s da + du)^2 + 2 theta_vk (s da + du) dk +
-  // theta_kk dk^2 (g = theta(rate s + u0; k) + const), the bounds at each piece's end.
+  // theta_kk dk^2 (g = theta(rate s + u0; k) + const), the bounds at the sup of |v| over each
+  // piece, t = |s da + du| at the piece's end.
   double hessian = 0.0;
   const double piece = length / kHessianPieces;
   for (int i = 1; i <= kHessianPieces; ++i) {
     const double s = i * piece, t = s * ha + hu;
-    const HeadingSecondBounds b = HeadingSecondDerivativeBounds(regime, k_max, phase_max + rate_max * s);
+    const HeadingSecondBounds b = HeadingSecondDerivativeBounds(regime, k_max, ArgumentBoundOver(box, s - piece, s));
     hessian += 0.5 * (b.vv * t * t + 2.0 * b.vk * t * hk + b.kk * hk * hk) * piece;
   }
   const double bound = 2.0 * magnus + 2.0 * (square + hessian);

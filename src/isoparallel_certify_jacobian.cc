@@ -103,8 +103,8 @@ double JrInvCoefficient(double a) {
 // ||JrInv(phi)||_2 = (a/2) / sin(a/2), a = |phi| (1 along phi, the same on its normal plane).
 double JrInvNorm(double a) { return a < 1e-8 ? 1.0 : 0.5 * a / std::sin(0.5 * a); }
 
-// Sums over [0, L_max] (right-endpoint sums of increasing bounds: upper bounds of the integrals)
-// for the rate, modulus and phase columns.
+// Sums over [0, L_max] (each piece at the sup of its bounds over the piece: upper bounds of the
+// integrals) for the rate, modulus and phase columns.
 struct ColumnSums {
   double sup[3] = {};        // >= int |theta_p|: sup |d chord_p|, sup |xi_p|
   double chord[3] = {};      // >= |d chord_p(x) - d chord_p(c)| over [0, L_c]
@@ -123,8 +123,9 @@ ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
   const double ds = l_max / pieces;
   ColumnSums out;
   for (int j = 1; j <= pieces; ++j) {
-    // The heading bounds grow with |v|: taken at the box's largest |v| at s.
-    const double s = j * ds, v_max = ArgumentBound(box, s), lin = s * hr + hu;
+    // The heading bounds grow with |v|: taken at the box's largest |v| over the piece [s - ds, s]
+    // (not at s alone: where the phase opposes the rate, |v| falls along the piece).
+    const double s = j * ds, v_max = ArgumentBoundOver(box, s - ds, s), lin = s * hr + hu;
     const double mk = HeadingModulusBound(regime, k_max, v_max);
     const HeadingSecondBounds b = HeadingSecondDerivativeBounds(regime, k_max, v_max);
     const double dg = std::min(hk * mk + lin * mv, 2.0);  // |theta(s; x) - theta(s; c)|, |t_x - t_c|

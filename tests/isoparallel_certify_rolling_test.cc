@@ -236,7 +236,7 @@ TEST(IsoparallelCertifyRolling, TwistAndFrameBoundsNeverUndershoot) {
   }
 }
 
-// The first 150,000 boxes of the rotation problem's rotating 1.0x window (rate up to 13.41, k up
+// The first 250,000 boxes of the rotation problem's rotating 1.0x window (rate up to 13.41, k up
 // to 0.95, one phase period, L from |x1 - x0| to the shortest solution's 9.4492): with the
 // closed-form bound the rotation test excludes boxes the test with D alone leaves undecided, the
 // theta/2 chart's bound more, and the window resolves more volume with the same budget each time.
@@ -247,15 +247,15 @@ TEST(IsoparallelCertifyRolling, DecidesBoxesDLeavesUndecided) {
   options.regime = PendulumRegime::kRotating;
   options.window.lo = {-13.41, 0.0, 0.0, target.radius};
   options.window.hi = {13.41, 0.95, PhasePeriod(PendulumRegime::kRotating, 0.95), 9.4492190883751181};
-  options.max_boxes = 150000;
+  options.max_boxes = 250000;
   options.stop_at_unaccounted = false;
   const CertifyWindowResult with = CertifyWindow(target, {}, options);
   options.chart_rolling = false;
   const CertifyWindowResult costate_chart = CertifyWindow(target, {}, options);
   options.closed_rolling = false;
   const CertifyWindowResult without = CertifyWindow(target, {}, options);
-  std::printf("150,000 boxes: %ld excluded by rotation only with the closed-form bound, %ld more only with the "
-              "theta/2 chart's; resolved volume %.6f (%.6f without the theta/2 chart, %.6f with D alone)\n",
+  std::printf("250,000 boxes: %ld excluded by rotation only with the closed-form bound, %ld more only with the "
+              "theta/2 chart's; resolved volume %.15f (%.15f without the theta/2 chart, %.15f with D alone)\n",
               with.excluded_by_closed_rolling, with.excluded_by_chart_rolling, with.resolved_volume,
               costate_chart.resolved_volume, without.resolved_volume);
   EXPECT_GT(with.excluded_by_closed_rolling, 50);

@@ -191,6 +191,50 @@ TEST(IsoparallelCertify, ArgumentBoundIsTheLargestArgumentOverTheBox) {
   EXPECT_NEAR(ArgumentBound(t9, 0.0), 4.4386, 1e-12);
 }
 
+// Over an interval of arc lengths |v| can fall (the phase opposing the rate) and rise again: the
+// sup over the interval and the chord over [0, L] hold at every sampled point (rate, phase, s) of
+// the box, and the interval's sup is reached. At T9's box a bound taken at the interval's right
+// end alone (what the Jacobian enclosure once summed) is exceeded inside the interval.
+TEST(IsoparallelCertify, ArgumentBoundOverAnIntervalAndItsChordHoldInside) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    CertifyBox box;
+    for (int axis : {kCertifyRate, kCertifyPhase}) {
+      const double a = 20.0 * uni(rng) - 10.0, b = a + 3.0 * uni(rng) * uni(rng);
+      box.lo[axis] = a;
+      box.hi[axis] = b;
+    }
+    const double length = 0.1 + 8.0 * uni(rng), s_lo = length * uni(rng), s_hi = s_lo + (length - s_lo) * uni(rng);
+    const double over = ArgumentBoundOver(box, s_lo, s_hi), slope = ArgumentChordSlope(box, length);
+    const double phase_max = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
+    ASSERT_LE(slope, std::max(std::abs(box.lo[kCertifyRate]), std::abs(box.hi[kCertifyRate])) * (1.0 + 1e-15));
+    double sampled = 0.0;
+    for (int m = 0; m < 256; ++m) {  // the interval's corners first, then interior points
+      const double tr = m < 8 ? (m & 1) : uni(rng), tp = m < 8 ? ((m >> 1) & 1) : uni(rng);
+      const double ts = m < 8 ? (m >> 2) : uni(rng);
+      const double rate = box.lo[kCertifyRate] + tr * (box.hi[kCertifyRate] - box.lo[kCertifyRate]);
+      const double phase = box.lo[kCertifyPhase] + tp * (box.hi[kCertifyPhase] - box.lo[kCertifyPhase]);
+      const double s = s_lo + ts * (s_hi - s_lo), v = std::abs(rate * s + phase);
+      ASSERT_LE(v, over * (1.0 + 1e-15) + 1e-15) << "trial " << trial;
+      sampled = std::max(sampled, v);
+      const double on_whole = length * uni(rng);  // the chord on [0, length]
+      ASSERT_LE(std::abs(rate * on_whole + phase), (phase_max + slope * on_whole) * (1.0 + 1e-14) + 1e-14)
+          << "trial " << trial;
+    }
+    EXPECT_NEAR(sampled, over, 1e-13 * (1.0 + over)) << "trial " << trial;
+  }
+  CertifyBox t9;
+  t9.lo = {1.5394, 0.78, -4.4386, 0.0};
+  t9.hi = {1.5395, 0.78, -4.4385, 5.7664};
+  const double ds = 5.7664 / 64;
+  EXPECT_GT(ArgumentBoundOver(t9, ds, 2.0 * ds), ArgumentBound(t9, 2.0 * ds) + 0.1);
+  EXPECT_NEAR(ArgumentBoundOver(t9, ds, 2.0 * ds), 4.4386 - 1.5394 * ds, 1e-12);
+  // The path runs from v = -4.44 to +4.44: the chord is flat where |rate|_max s + |phase|_max rose by 1.54.
+  EXPECT_NEAR(ArgumentChordSlope(t9, 5.7664), (1.5395 * 5.7664 - 4.4385 - 4.4386) / 5.7664, 1e-12);
+  EXPECT_LT(ArgumentChordSlope(t9, 5.7664), 1e-4);
+}
+
 // The split point in k: the arithmetic midpoint below the threshold; above it the midpoint in
 // lambda = -ln k' (k'_mid^2 = k'_lo k'_hi), strictly inside the box up to k' ~ 1e-8.
 TEST(IsoparallelCertify, ModulusSplitPointIsTheMidpointInLambda) {

@@ -152,7 +152,7 @@ def test_certificate_proves_a_lower_bound_and_says_which_piece_stays_open():
     assert (c.status, c.complete, c.usable, c.message) == ("complete", True, True, "")
     assert c.solutions == [] and c.solver_unproved == [] and c.missed_by_solver == 0
     assert len(c.pieces) == 10 and all(p.closed for p in c.pieces)
-    assert c.boxes == sum(p.boxes for p in c.pieces) == 585116  # as `isoparallel_solve --certify-length 0.25`
+    assert c.boxes == sum(p.boxes for p in c.pieces) == 584592  # as `isoparallel_solve --certify-length 0.25`
     assert c.report.startswith("Isoparallel certificate: complete, length cap 0.25, 0 solution(s) proved")
     small = pb.certify_isoparallel(summary, pb.IsoparallelCertificateOptions(length_cap=0.25, max_boxes=50))
     assert small.status == "incomplete" and not small.usable

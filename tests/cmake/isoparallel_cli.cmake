@@ -17,7 +17,7 @@ if(TARGET isoparallel_solve)
     COMMAND isoparallel_solve --goal 0.2,0 --goal-orientation "{\"axis_angle\": {\"axis\": [0, 0, 1], \"angle\": 3}}"
             --certify --certify-length 0.25 --quiet)
   set_tests_properties(IsoparallelCli.CertifyProvesALowerBound PROPERTIES
-    PASS_REGULAR_EXPRESSION "certificate: complete up to length 0\\.25: 0 solution\\(s\\), 0 of them not in the solver's list \\(585116 boxes in 10 pieces")
+    PASS_REGULAR_EXPRESSION "certificate: complete up to length 0\\.25: 0 solution\\(s\\), 0 of them not in the solver's list \\(584592 boxes in 10 pieces")
   add_test(NAME IsoparallelCli.ExitCodes
     COMMAND ${CMAKE_COMMAND} -DTOOL=$<TARGET_FILE:isoparallel_solve> -DSRC=${PROJECT_SOURCE_DIR}
             -DWORK=${CMAKE_CURRENT_BINARY_DIR}/isoparallel_cli
