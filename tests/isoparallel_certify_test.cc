@@ -158,6 +158,22 @@ TEST(IsoparallelCertify, HeadingModulusBoundsHoldNearTheSeparatrix) {
   }
 }
 
+namespace {
+
+// A box of rates and phases in [-10, 13], each up to 3 wide (the other axes zero).
+CertifyBox RandomRateAndPhaseBox(std::mt19937* rng) {
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  CertifyBox box;
+  for (int axis : {kCertifyRate, kCertifyPhase}) {
+    const double a = 20.0 * uni(*rng) - 10.0, b = a + 3.0 * uni(*rng) * uni(*rng);
+    box.lo[axis] = a;
+    box.hi[axis] = b;
+  }
+  return box;
+}
+
+}  // namespace
+
 // ArgumentBound is the sup of |rate s + phase| over the box: never below a sampled point's, and
 // reached at a corner (within rounding); a box whose phases oppose its rates gets less than
 // |rate|_max s + |phase|_max (at T9's shortest path, {1.539, phase -4.439}: 4.44 at its end,
@@ -166,12 +182,7 @@ TEST(IsoparallelCertify, ArgumentBoundIsTheLargestArgumentOverTheBox) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   for (int trial = 0; trial < 200; ++trial) {
-    CertifyBox box;
-    for (int axis : {kCertifyRate, kCertifyPhase}) {
-      const double a = 20.0 * uni(rng) - 10.0, b = a + 3.0 * uni(rng) * uni(rng);
-      box.lo[axis] = a;
-      box.hi[axis] = b;
-    }
+    const CertifyBox box = RandomRateAndPhaseBox(&rng);
     const double s = 8.0 * uni(rng), bound = ArgumentBound(box, s);
     double sampled = 0.0;
     for (int m = 0; m < 64; ++m) {  // corners first, then interior points
@@ -199,12 +210,7 @@ TEST(IsoparallelCertify, ArgumentBoundOverAnIntervalAndItsChordHoldInside) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   for (int trial = 0; trial < 200; ++trial) {
-    CertifyBox box;
-    for (int axis : {kCertifyRate, kCertifyPhase}) {
-      const double a = 20.0 * uni(rng) - 10.0, b = a + 3.0 * uni(rng) * uni(rng);
-      box.lo[axis] = a;
-      box.hi[axis] = b;
-    }
+    const CertifyBox box = RandomRateAndPhaseBox(&rng);
     const double length = 0.1 + 8.0 * uni(rng), s_lo = length * uni(rng), s_hi = s_lo + (length - s_lo) * uni(rng);
     const double over = ArgumentBoundOver(box, s_lo, s_hi), slope = ArgumentChordSlope(box, length);
     const double phase_max = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
