@@ -13,7 +13,7 @@ namespace plateball::internal {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// Pieces of [0, Lc] for the Hessian term's upper Riemann sum (its integrand increases in s).
+// Pieces of [0, Lc] for the Hessian term's upper Riemann sum (each piece at the sup of its integrand).
 constexpr int kHessianPieces = 16;
 
 double MaxAbs(double a, double b) { return std::max(std::abs(a), std::abs(b)); }
