@@ -109,9 +109,9 @@ struct ColumnSums {
   double sup[3] = {};        // >= int |theta_p|: sup |d chord_p|, sup |xi_p|
   double chord[3] = {};      // >= |d chord_p(x) - d chord_p(c)| over [0, L_c]
   double xi[3] = {};         // >= |xi_p(x) - xi_p(c)| over [0, L_c]
-  double tail[3] = {};       // sup |theta_p| at L_max (times the length half-width: the ends)
+  double tail[3] = {};       // sup |theta_p| over [L_lo, L_max] (times the length half-width: the ends)
   double rolling = 0.0;      // >= int min(dg, 2): rotation and chord deviation at fixed length
-  double heading_end = 0.0;  // >= min(dg(L_max), 2)
+  double heading_end = 0.0;  // >= min(dg(s), 2) over s in [L_lo, L_max]
 };
 
 ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
@@ -136,11 +136,16 @@ ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
       out.sup[p] += theta_p[p] * ds;
       out.chord[p] += (delta_p[p] + theta_p[p] * dg) * ds;
       out.xi[p] += (delta_p[p] + theta_p[p] * (rolled + dg)) * ds;
-      out.tail[p] = theta_p[p];
     }
     out.rolling = rolled;
-    out.heading_end = dg;
   }
+  // The ends: sup over the box's lengths [L_lo, L_max], which can be wider than the last piece.
+  const double v_end = ArgumentBoundOver(box, std::max(0.0, box.lo[kCertifyLength]), l_max);
+  const double mk_end = HeadingModulusBound(regime, k_max, v_end);
+  out.tail[0] = l_max * mv;
+  out.tail[1] = mk_end;
+  out.tail[2] = mv;
+  out.heading_end = std::min(hk * mk_end + (l_max * hr + hu) * mv, 2.0);
   return out;
 }
 
