@@ -53,7 +53,7 @@ struct Candidate {
 class Scan {
  public:
   Scan(const ReachProblem& p, const ReachOptions& o, double period, double horizon)
-      : ns_(o.scan_directions), n_(o.scan_steps_per_period), period_(period) {
+      : ns_(o.scan_directions), n_(o.scan_steps_per_period) {
     h_ = period / n_;
     ds_ = kTwoPi / ns_;
     m_ = static_cast<int>(std::ceil(horizon / h_ - 1e-9));
@@ -96,7 +96,7 @@ class Scan {
 
  private:
   int ns_, n_, m_ = 0, blocks_ = 0;
-  double period_, h_ = 0.0, ds_ = 0.0;
+  double h_ = 0.0, ds_ = 0.0;
   std::vector<internal::ScanPeriod> tab_;
   std::vector<Box> boxes_;
 };
