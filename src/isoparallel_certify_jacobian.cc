@@ -114,6 +114,13 @@ struct ColumnSums {
   double heading_end = 0.0;  // >= min(dg(s), 2) over s in [L_lo, L_max]
 };
 
+// min(dg, 2), dg >= |theta(s; x) - theta(s; c)| by the mean value theorem from c to x: |d theta/dk|
+// <= mk, |d theta/dv| <= mv, |v_x - v_c| <= s h_rate + h_phase. 2 also bounds |t_x - t_c|.
+double HeadingDeviation(const CertifyBox& box, double s, double mk, double mv) {
+  const double lin = s * box.HalfWidth(kCertifyRate) + box.HalfWidth(kCertifyPhase);
+  return std::min(box.HalfWidth(kCertifyModulus) * mk + lin * mv, 2.0);
+}
+
 ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
   const double k_max = box.hi[kCertifyModulus], l_max = box.hi[kCertifyLength];
   const double hr = box.HalfWidth(kCertifyRate), hk = box.HalfWidth(kCertifyModulus);
@@ -128,7 +135,7 @@ ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
     const double s = j * ds, v_max = ArgumentBoundOver(box, s - ds, s), lin = s * hr + hu;
     const double mk = HeadingModulusBound(regime, k_max, v_max);
     const HeadingSecondBounds b = HeadingSecondDerivativeBounds(regime, k_max, v_max);
-    const double dg = std::min(hk * mk + lin * mv, 2.0);  // |theta(s; x) - theta(s; c)|, |t_x - t_c|
+    const double dg = HeadingDeviation(box, s, mk, mv);  // |theta(s; x) - theta(s; c)|, |t_x - t_c|
     const double rolled = out.rolling + dg * ds;            // |Q_x(s) - Q_c(s)|
     const double theta_p[3] = {s * mv, mk, mv};
     const double delta_p[3] = {s * (lin * b.vv + hk * b.vk), lin * b.vk + hk * b.kk, lin * b.vv + hk * b.vk};
@@ -139,13 +146,11 @@ ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
     }
     out.rolling = rolled;
   }
-  // The ends: sup over the box's lengths [L_lo, L_max], which can be wider than the last piece.
-  const double v_end = ArgumentBoundOver(box, std::max(0.0, box.lo[kCertifyLength]), l_max);
-  const double mk_end = HeadingModulusBound(regime, k_max, v_end);
+  const EndHeadingBounds ends = EndHeadingBoundsOf(regime, box);
   out.tail[0] = l_max * mv;
-  out.tail[1] = mk_end;
+  out.tail[1] = ends.dk;
   out.tail[2] = mv;
-  out.heading_end = std::min(hk * mk_end + (l_max * hr + hu) * mv, 2.0);
+  out.heading_end = ends.deviation;
   return out;
 }
 
@@ -173,6 +178,17 @@ bool AdmissibleForEnclosure(const CertifyBox& box) {
 }
 
 }  // namespace
+
+EndHeadingBounds EndHeadingBoundsOf(PendulumRegime regime, const CertifyBox& box) {
+  // The box's lengths [L_lo, L_max] can be wider than a piece of the sums, and |v| can fall along
+  // them: the sup over the whole range, at one of its ends (ArgumentBoundOver).
+  const double k_max = box.hi[kCertifyModulus], l_max = box.hi[kCertifyLength];
+  const double v_end = ArgumentBoundOver(box, std::max(0.0, box.lo[kCertifyLength]), l_max);
+  EndHeadingBounds ends;
+  ends.dk = HeadingModulusBound(regime, k_max, v_end);
+  ends.deviation = HeadingDeviation(box, l_max, ends.dk, HeadingRateBound(regime, k_max));
+  return ends;
+}
 
 bool CertifyEnclosureAvailable(PendulumRegime regime, const CertifyBox& box, double chord_norm, double rotation,
                                double margin) {

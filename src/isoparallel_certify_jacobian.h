@@ -88,6 +88,15 @@ struct HeadingSecondBounds {
 };
 HeadingSecondBounds HeadingSecondDerivativeBounds(PendulumRegime regime, double k_max, double v_max);
 
+/// The enclosure's end terms, over the box's parameters x and its lengths s in [L_lo, L_max]
+/// (0 <= k_max < 1): dk >= |d theta/dk (s; x)| at fixed v = rate s + u0, and deviation >=
+/// min(|theta(s; x) - theta(s; c)|, 2), c = box.Centre() (the heading's change over the box at
+/// the path's end; 2 also bounds the tangent's).
+struct EndHeadingBounds {
+  double dk = 0.0, deviation = 0.0;
+};
+EndHeadingBounds EndHeadingBoundsOf(PendulumRegime regime, const CertifyBox& box);
+
 /// Relative floating-point error allowed on a column of the centre's Jacobian: the enclosure adds
 /// kJacobianMargin (1 + |column|_max) to every entry (tests: measured error ~3e-9).
 inline constexpr double kJacobianMargin = 1e-6;

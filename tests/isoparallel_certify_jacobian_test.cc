@@ -273,6 +273,51 @@ TEST(IsoparallelCertifyJacobian, HeadingSecondDerivativeBoundsNeverUndershoot) {
   }
 }
 
+// The enclosure's end terms hold over the box's whole range of lengths [L_lo, L_max], not only its
+// last piece: boxes whose phase brings v = rate s + u0 near 0 at L_max (|v| falls along the range
+// from ~rate (L_max - L_lo), 1.5 to 22, at L_lo), sampled at random (rate, k, u0, s) with the centre's theta at
+// the same s. Where |v| falls, the sampled |d theta/dk| exceeds the bound at the last piece (what
+// the sums once took) in most boxes.
+TEST(IsoparallelCertifyJacobian, EndHeadingBoundsHoldOverTheWholeLengthRange) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (PendulumRegime regime : kBothRegimes) {
+    int beyond_last_piece = 0;
+    double worst_dk = 0.0;  // largest sampled |d theta/dk| / EndHeadingBounds::dk
+    for (int trial = 0; trial < 100; ++trial) {
+      const double rate = 1.0 + 2.0 * uni(rng), k = 0.4 + 0.5 * uni(rng), l_max = 3.0 + 5.0 * uni(rng);
+      const double half[3] = {1e-3 + 0.05 * uni(rng), 1e-3 + 0.05 * uni(rng), 1e-3 + 0.05 * uni(rng)};
+      CertifyBox box;
+      box.lo = {rate - half[0], k - half[1], -rate * l_max - half[2], l_max * (0.1 + 0.4 * uni(rng))};
+      box.hi = {rate + half[0], k + half[1], -rate * l_max + half[2], l_max};
+      const EndHeadingBounds ends = EndHeadingBoundsOf(regime, box);
+      const CertifyPoint c = box.Centre();
+      const double last_piece = HeadingModulusBound(regime, box.hi[kCertifyModulus],
+                                                    ArgumentBoundOver(box, l_max - l_max / 64, l_max));
+      double sampled_dk = 0.0;
+      for (int m = 0; m < 256; ++m) {  // the 16 corners of (rate, k, u0, s) first, then interior points
+        double t[4];
+        for (int i = 0; i < 4; ++i) t[i] = m < 16 ? ((m >> i) & 1) : uni(rng);
+        CertifyPoint x;
+        for (int i = 0; i < 4; ++i) x[i] = box.lo[i] + t[i] * (box.hi[i] - box.lo[i]);
+        const double s = x[kCertifyLength];
+        const HeadingDerivatives h = HeadingDerivativesAt(regime, x[kCertifyModulus], x[kCertifyRate] * s + x[kCertifyPhase]);
+        const HeadingDerivatives hc = HeadingDerivativesAt(regime, c[kCertifyModulus], c[kCertifyRate] * s + c[kCertifyPhase]);
+        ASSERT_LE(std::abs(h.dk), ends.dk * (1 + 1e-12)) << ToString(regime) << " trial " << trial;
+        ASSERT_LE(std::min(std::abs(h.theta - hc.theta), 2.0), ends.deviation * (1 + 1e-12))
+            << ToString(regime) << " trial " << trial;
+        sampled_dk = std::max(sampled_dk, std::abs(h.dk));
+      }
+      worst_dk = std::max(worst_dk, sampled_dk / ends.dk);
+      if (sampled_dk > last_piece) ++beyond_last_piece;
+    }
+    std::printf("%s: sampled |d theta/dk| / end bound up to %.3g; beyond the last piece's bound in %d of 100 boxes\n",
+                ToString(regime).c_str(), worst_dk, beyond_last_piece);
+    EXPECT_GE(beyond_last_piece, 40) << ToString(regime);
+    EXPECT_GT(worst_dk, 0.2) << ToString(regime);  // the bound is not vacuous
+  }
+}
+
 namespace {
 
 // A random box of half-widths in [1e-4, scale] around a random point of the usual window.
