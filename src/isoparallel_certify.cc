@@ -208,6 +208,10 @@ double ArgumentBoundOver(const CertifyBox& box, double s_lo, double s_hi) {
   return std::max(ArgumentBound(box, s_lo), ArgumentBound(box, s_hi));
 }
 
+double EndArgumentBound(const CertifyBox& box) {
+  return ArgumentBoundOver(box, box.lo[kCertifyLength], box.hi[kCertifyLength]);
+}
+
 double ArgumentChordSlope(const CertifyBox& box, double length) {
   return (ArgumentBound(box, length) - ArgumentBound(box, 0.0)) / length;
 }

@@ -54,6 +54,9 @@ double ArgumentBound(const CertifyBox& box, double s);
 /// sup |v| over the box and arc lengths s in [s_lo, s_hi] (0 <= s_lo <= s_hi): ArgumentBound is a
 /// maximum of |affine| in s, so convex, and its sup over an interval is at one of the two ends.
 double ArgumentBoundOver(const CertifyBox& box, double s_lo, double s_hi);
+/// sup |u0 + rate L| over the box: the argument at the path's end, ArgumentBoundOver the box's
+/// lengths (at most |phase|_max + |rate|_max L_max).
+double EndArgumentBound(const CertifyBox& box);
 /// The slope c of the chord |phase|_max + c s of ArgumentBound over [0, length] (length > 0): by
 /// convexity sup |v| <= |phase|_max + c s there. c <= |rate|_max, and c < 0 where the phase
 /// opposes the rate (the bound that was |phase|_max + |rate|_max s).

@@ -48,7 +48,6 @@ BoxExtremes ExtremesOf(const CertifyBox& box) {
   b.k_max = box.hi[kCertifyModulus];
   b.phase_max = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));
   b.length_max = box.hi[kCertifyLength];
-  b.end_argument_max = ArgumentBoundOver(box, box.lo[kCertifyLength], box.hi[kCertifyLength]);
   return b;
 }
 
@@ -85,7 +84,7 @@ CertifyPoint CostateDerivativeBounds(PendulumRegime regime, const CertifyBox& bo
   const BoxExtremes b = ExtremesOf(box);
   const bool oscillating = regime == PendulumRegime::kOscillating;
   const double k = b.k_max, kp = std::sqrt((1.0 - k) * (1.0 + k)), r = b.rate_max;
-  const double u_max = at_end ? b.end_argument_max : b.phase_max;
+  const double u_max = at_end ? EndArgumentBound(box) : b.phase_max;
   // In u at fixed (rate, k): (cos theta, sin theta) theta_v and rate theta_vv, |theta_vv| <= 2k
   // (oscillating, theta_v = 2k cn) or k^2 (rotating, theta_v = 2 dn).
   const double mv = HeadingRateBound(regime, k);

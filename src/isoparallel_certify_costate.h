@@ -26,10 +26,9 @@
 
 namespace plateball::internal {
 
-/// The box's extremes of |rate| (rate_min = 0 when the box meets rate 0), k, |u0| and L, and of the
-/// end argument |u0 + rate L| (ArgumentBoundOver the box's lengths: at most phase_max + rate_max L).
+/// The box's extremes of |rate| (rate_min = 0 when the box meets rate 0), k, |u0| and L.
 struct BoxExtremes {
-  double rate_min, rate_max, k_min, k_max, phase_max, length_max, end_argument_max;
+  double rate_min, rate_max, k_min, k_max, phase_max, length_max;
 };
 BoxExtremes ExtremesOf(const CertifyBox& box);
 

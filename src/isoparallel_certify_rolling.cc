@@ -128,7 +128,7 @@ double HalfHeadingDeviationBound(PendulumRegime regime, const CertifyBox& box, b
   if (!(e.k_max < 1.0)) return kInfinity;
   // theta(w, k) at w = u0 (start) or u0 + rate L (end): |theta_w| <= Mv, |theta_k| at fixed w by
   // the smaller of the two heading bounds over |w| <= w_max.
-  const double w_max = at_end ? e.end_argument_max : e.phase_max;
+  const double w_max = at_end ? EndArgumentBound(box) : e.phase_max;
   const double mv = HeadingRateBound(regime, e.k_max);
   const double theta_k = std::min(HeadingModulusBound(regime, e.k_max, w_max),
                                   HeadingModulusBoundByZeta(regime, e.k_min, e.k_max, w_max));
