@@ -69,7 +69,7 @@ void RunPieces(const IsoparallelSummary& solved, const internal::CertifyTarget& 
     p.closed = results[i].closed;
     p.result = results[i].result;
     p.boxes = results[i].boxes;
-    p.resolved_volume = results[i].resolved_volume;
+    p.resolved_volume = std::min(results[i].resolved_volume, 1.0);  // a sum of shares: rounding can pass 1
     p.proved = static_cast<int>(results[i].found.size());
     p.cpu_seconds = ThreadCpuSeconds() - cpu;
     const std::lock_guard<std::mutex> lock(done_mutex);

@@ -48,10 +48,13 @@ ExclusionStatus BisectionTally::Status() const {
                          : ExclusionStatus::kExcluded;
 }
 
-double BoxWidthProduct(const CertifyBox& box) {
-  double v = 1.0;
-  for (int i = 0; i < 4; ++i) v *= box.hi[i] - box.lo[i];
-  return v;
+double BoxShare(const CertifyBox& box, const CertifyBox& window) {
+  double share = 1.0;
+  for (int i = 0; i < 4; ++i) {
+    const double width = window.hi[i] - window.lo[i];
+    if (width > 0.0) share *= (box.hi[i] - box.lo[i]) / width;
+  }
+  return share;
 }
 
 }  // namespace plateball::internal

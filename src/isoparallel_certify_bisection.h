@@ -32,20 +32,24 @@ BoxDecision DecideByVerdict(BoxVerdict verdict, double deviation, double accept_
 struct BisectionTally {
   long boxes = 0;
   long excluded_by_chord = 0, excluded_by_rotation = 0, outside_domain = 0, undecided = 0;
-  double resolved_volume = 0.0;  // the excluded and outside boxes' volume over the normalising volume
+  double resolved_volume = 0.0;  // the excluded and outside boxes' shares of their windows, weighted
   bool budget_left = true;       // false when the budget ended with boxes left
   ExclusionStatus Status() const;
 };
 
-/// The product of the box's widths.
-double BoxWidthProduct(const CertifyBox& box);
+/// The box's share of `window` (the box inside it): the product of width ratios over the axes on
+/// which the window has a positive width. A window of zero width on an axis (a loop family whose
+/// shortest run already reaches the cap) is measured on its other axes, so that a decided
+/// degenerate window counts as wholly resolved instead of 0/0.
+double BoxShare(const CertifyBox& box, const CertifyBox& window);
 
 /// Bisects `window` depth first (left half first) until every box is decided or `max_boxes`
 /// boxes (counted over every call on `tally`) have been examined. `decide(box)` returns a
-/// BoxDecision; `keep(box)` is called for every kUndecided box. Volumes are divided by
-/// `normalising_volume`.
+/// BoxDecision; `keep(box)` is called for every kUndecided box. Each decided box adds `weight`
+/// times its BoxShare of the window to the resolved volume (weight 1/2 for each of two calls
+/// that make one whole, as the loop family's two senses).
 template <class Decide, class Keep>
-void Bisect(const CertifyBox& window, double normalising_volume, long max_boxes, Decide&& decide, Keep&& keep,
+void Bisect(const CertifyBox& window, double weight, long max_boxes, Decide&& decide, Keep&& keep,
             BisectionTally* tally) {
   std::vector<CertifyBox> stack = {window};
   while (!stack.empty() && tally->boxes < max_boxes) {
@@ -69,7 +73,7 @@ void Bisect(const CertifyBox& window, double normalising_volume, long max_boxes,
         continue;
       }
     }
-    tally->resolved_volume += BoxWidthProduct(box) / normalising_volume;
+    tally->resolved_volume += weight * BoxShare(box, window);
   }
   if (!stack.empty()) tally->budget_left = false;
 }

@@ -31,7 +31,7 @@ CertifyBox Window() {
 TEST(IsoparallelCertifyBisection, CountsVolumeAndOrderMatchTheHandCount) {
   BisectionTally tally;
   std::vector<double> kept;
-  Bisect(Window(), BoxWidthProduct(Window()), 1000, DecideAlongAxisZero,
+  Bisect(Window(), 1.0, 1000, DecideAlongAxisZero,
          [&](const CertifyBox& box) { kept.push_back(box.lo[0]); }, &tally);
   EXPECT_EQ(tally.boxes, 11);
   EXPECT_EQ(tally.excluded_by_chord, 1);
@@ -50,15 +50,35 @@ TEST(IsoparallelCertifyBisection, OutsideBoxesCountAsResolvedAndAWindowCanBeExcl
     if (box.lo[0] >= 0.5) return BoxDecision{BoxFate::kExcludedByRotation};
     return BoxDecision{BoxFate::kSplit, 0};
   };
-  // Two calls on one tally (as the loop family's two senses), each normalised by twice the window.
-  for (int call = 0; call < 2; ++call)
-    Bisect(Window(), 2.0 * BoxWidthProduct(Window()), 1000, decide, [](const CertifyBox&) {}, &tally);
+  // Two calls on one tally (as the loop family's two senses), each of weight 1/2.
+  for (int call = 0; call < 2; ++call) Bisect(Window(), 0.5, 1000, decide, [](const CertifyBox&) {}, &tally);
   EXPECT_EQ(tally.boxes, 6);
   EXPECT_EQ(tally.outside_domain, 2);
   EXPECT_EQ(tally.excluded_by_rotation, 2);
   EXPECT_DOUBLE_EQ(tally.resolved_volume, 1.0);
   EXPECT_EQ(tally.Status(), ExclusionStatus::kExcluded);
   EXPECT_EQ(ToString(tally.Status()), "excluded");
+}
+
+// A window of zero width on an axis (the loop family's run range when its shortest run already
+// reaches the cap) is measured on its other axes: excluded whole, it counts as resolved 1 (it was
+// 0/0, a NaN that the tool's JSON writer refused). The share of a box is its width ratios there.
+TEST(IsoparallelCertifyBisection, ADegenerateWindowIsMeasuredOnItsOtherAxes) {
+  CertifyBox flat = Window();
+  flat.hi[1] = flat.lo[1];
+  BisectionTally tally;
+  const auto decide = [](const CertifyBox& box) {
+    return box.hi[0] - box.lo[0] <= 0.25 ? BoxDecision{BoxFate::kExcludedByRotation} : BoxDecision{BoxFate::kSplit, 0};
+  };
+  Bisect(flat, 1.0, 1000, decide, [](const CertifyBox&) {}, &tally);
+  EXPECT_EQ(tally.boxes, 7);
+  EXPECT_EQ(tally.excluded_by_rotation, 4);
+  EXPECT_DOUBLE_EQ(tally.resolved_volume, 1.0);
+  CertifyBox quarter = flat;
+  quarter.hi[0] = 0.25;
+  quarter.hi[2] = 1.0;
+  EXPECT_DOUBLE_EQ(BoxShare(quarter, flat), 0.125);  // 1/4 along axis 0, 1/2 along axis 2
+  EXPECT_DOUBLE_EQ(BoxShare(quarter, Window()), 0.0);  // zero width inside a full window
 }
 
 TEST(IsoparallelCertifyBisection, TheBudgetCountsOverCallsAndEndsWithBudgetExhausted) {

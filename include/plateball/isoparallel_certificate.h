@@ -29,7 +29,7 @@ struct IsoparallelCertificatePiece {
   bool closed = false;  ///< certified (every solution in it proved) or excluded (none in it)
   std::string result;   ///< the piece certificate's status and message
   long boxes = 0;       ///< boxes examined
-  double resolved_volume = 0.0;  ///< fraction of the piece decided
+  double resolved_volume = 0.0;  ///< fraction of the piece decided, in [0, 1]
   int proved = 0;               ///< solutions proved in it (windows only)
   double cpu_seconds = 0.0;
 };

@@ -144,6 +144,11 @@ def check_tool_outputs(run, problems):
         # --certify with a budget of one box per piece: the certificate section of an incomplete one.
         run.output(["plateball", "isoparallel", "problems/isoparallel_rotation.json", "--certify", "--certify-budget",
                     "1", "--quiet"], ok_codes=(7,))
+        # A complete one (a lower bound, 1 s): every piece closed, its resolved volume a fraction in
+        # [0, 1] (a sum of box shares that rounding once took past 1, and to NaN on an empty window).
+        run.output(["plateball", "isoparallel", "--goal", "0.2,0", "--goal-orientation",
+                    '{"axis_angle": {"axis": [0, 0, 1], "angle": 3}}', "--certify", "--certify-length", "0.25",
+                    "--quiet"])
         run.output(["plateball", "roll", "--points", "0,0;1,0.5;2,0", "--orientation", '{"quaternion": [1, 0, 0, 0]}'])
         run.output(["plateball", "roll", "--samples-file", "tests/data/roll_samples.json"])
         run.output(["plateball", "steer", "problems/figure7_exact.json", "--summary-only"])
