@@ -277,7 +277,7 @@ void CheckCertifyOptions(const IsoparallelCliOptions& cli, const plateball::Isop
     throw std::invalid_argument("command line: --certify-cap: value " + FormatNumber(cli.certify_cap) +
                                 ": must be in [1, 10]");
   const double chord = (prob.goal - prob.start).norm();
-  if (cli.certify_length != 0.0 && !(cli.certify_length > chord && cli.certify_length <= 1e3))
+  if (cli.certify_length_given && !(cli.certify_length > chord && cli.certify_length <= 1e3))
     throw std::invalid_argument("command line: --certify-length: value " + FormatNumber(cli.certify_length) +
                                 ": must exceed |goal - start| = " + FormatNumber(chord) + " and be <= 1000");
 }
@@ -289,7 +289,7 @@ plateball::IsoparallelCertificate Certify(const IsoparallelCliOptions& cli,
   using namespace plateball;
   IsoparallelCertificateOptions o;
   o.cap_factor = cli.certify_cap;
-  o.length_cap = cli.certify_length;
+  if (cli.certify_length_given) o.length_cap = cli.certify_length;
   o.max_boxes = cli.certify_budget;
   o.threads = summary.options.threads;
   o.progress = [&](const IsoparallelCertificatePiece& p, int done, int total) {
@@ -305,7 +305,7 @@ plateball::IsoparallelCertificate Certify(const IsoparallelCliOptions& cli,
     return c;
   }
   out << std::setprecision(10) << " up to length " << c.length_cap << std::setprecision(6);
-  if (cli.certify_length <= 0.0) out << " (" << cli.certify_cap << " x 1.0001 x the shortest)";
+  if (!cli.certify_length_given) out << " (" << cli.certify_cap << " x 1.0001 x the shortest)";
   out << ": " << c.solutions.size() << " solution(s), " << c.MissedBySolver() << " of them not in the solver's list ("
       << c.boxes << " boxes in " << c.pieces.size() << " pieces, " << std::setprecision(4) << c.cpu_seconds
       << " s CPU)\n";
@@ -407,8 +407,16 @@ void AddIsoparallelOptions(CLI::App& app, IsoparallelCliOptions& cli) {
       "JSON section \"certificate\", exit code 7 when it does not close)");
   app.add_option("--certify-cap", cli.certify_cap, "with --certify: the length cap as a factor of the shortest, 1 ... 10 "
                  "(default 1: the shortest proved the shortest)")->needs(certify);
-  app.add_option("--certify-length", cli.certify_length, "with --certify: the length cap itself instead (a cap "
-                 "below the shortest proves that no solution is shorter)")->needs(certify)->excludes("--certify-cap");
+  app.add_option_function<double>(
+         "--certify-length",
+         [&cli](double length) {
+           cli.certify_length = length;
+           cli.certify_length_given = true;
+         },
+         "with --certify: the length cap itself instead (a cap below the shortest proves that no solution is "
+         "shorter)")
+      ->needs(certify)
+      ->excludes("--certify-cap");
   app.add_option("--certify-budget", cli.certify_budget, "with --certify: boxes per piece, 1 ... 1e10 (default 2.5e8)")
       ->needs(certify);
   app.add_flag("--exact", cli.exact,

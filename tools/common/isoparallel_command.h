@@ -26,7 +26,8 @@ struct IsoparallelCliOptions {
   bool exact = false;  ///< exact arrival along the optimal path (exact_arrival.h)
   bool certify = false;  ///< certify the solution list up to certify_cap (isoparallel_certificate.h)
   double certify_cap = 1.0;
-  double certify_length = 0.0;  ///< > 0: this length cap instead of certify_cap x the shortest
+  double certify_length = 0.0;  ///< with certify_length_given: this length cap instead of certify_cap x the shortest
+  bool certify_length_given = false;  ///< --certify-length was given (any value, 0 included, is then checked)
   long long certify_budget = 250000000;
 };
 
