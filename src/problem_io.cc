@@ -380,6 +380,11 @@ class Reader {
     par.ball_mass = NonNegative(Require(ph, pp, "ball_mass"), Join(pp, "ball_mass"));
     par.radius = Positive(Require(ph, pp, "radius"), Join(pp, "radius"));
     par.plate_mass = NonNegative(Require(ph, pp, "plate_mass"), Join(pp, "plate_mass"));
+    const double moment_sum = 2.0 * par.inertia_1 + par.inertia_3;
+    if (!(moment_sum <= 2.0 * par.ball_mass * par.radius * par.radius * (1.0 + 1e-12)))
+      Fail(Join(pp, "ball_mass"), ph["ball_mass"],
+           "a rigid ball holds its mass within its radius, 2 I1 + I3 <= 2 ball_mass radius^2 (2 I1 + I3 = " +
+               NumberText(moment_sum) + ")");
     RequireLambdaOf(par.inertia_3 / par.inertia_1, par.EffectiveMass() * par.radius * par.radius / par.inertia_1, pp, ph);
     try {
       p->model = BallModel::FromPhysical(par);

@@ -4,6 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+
+#include "plateball/ball_state.h"
+#include "plateball/free_motion.h"
+
 #include "support/test_support.h"
 
 #include <cmath>
@@ -23,27 +28,144 @@ std::string Message(const PhysicalParameters& p) {
   return "no exception";
 }
 
+// A rigid ball: 2 I1 + I3 = 7 <= 2 M_ball r^2 = 12.
 PhysicalParameters Example() {
   PhysicalParameters p;
   p.inertia_1 = 2.0;
   p.inertia_3 = 3.0;
   p.ball_mass = 1.5;
-  p.radius = 0.5;
+  p.radius = 2.0;
   p.plate_mass = 0.25;
   return p;
 }
 
 TEST(BallModel, PhysicalParametersGiveAlphaBetaLambdaByHand) {
-  // M = 1.5 + 2 * 0.25 = 2; alpha = 3/2; beta = M r^2 / I1 = 2 * 0.25 / 2 = 0.25;
-  // lambda = (1.5 + 0.25) / (1 + 0.25) = 1.4.
+  // M = 1.5 + 4 * 0.25 = 2.5; alpha = 3/2; beta = M r^2 / I1 = 2.5 * 4 / 2 = 5;
+  // lambda = (1.5 + 5) / (1 + 5) = 13/12.
   const BallModel m = BallModel::FromPhysical(Example());
   EXPECT_TRUE(m.has_inertia());
-  EXPECT_DOUBLE_EQ(Example().EffectiveMass(), 2.0);
+  EXPECT_DOUBLE_EQ(Example().EffectiveMass(), 2.5);
   EXPECT_DOUBLE_EQ(m.alpha(), 1.5);
-  EXPECT_DOUBLE_EQ(m.beta(), 0.25);
-  EXPECT_DOUBLE_EQ(m.lambda(), 1.4);
-  // mu = 2E / (I1 + M r^2) = 6 / 2.5.
-  EXPECT_DOUBLE_EQ(BallModel::EnergyToMu(Example(), 3.0), 2.4);
+  EXPECT_DOUBLE_EQ(m.beta(), 5.0);
+  EXPECT_DOUBLE_EQ(m.lambda(), 13.0 / 12.0);
+  EXPECT_TRUE(m.IsRealisable());
+  // mu = 2E / (I1 + M r^2) = 6 / 12.
+  EXPECT_DOUBLE_EQ(BallModel::EnergyToMu(Example(), 3.0), 0.5);
+}
+
+TEST(BallModel, RigidBallsHaveLambdaBetweenOneHalfAndFourThirds) {
+  // A thin ring of radius r in the equatorial plane (I3 = M r^2, I1 = M r^2 / 2) sits on both rigid-body
+  // bounds and, without a plate, has lambda = (2 + 2)/(1 + 2) = 4/3.
+  PhysicalParameters ring;
+  ring.ball_mass = 2.0;
+  ring.radius = 0.5;
+  ring.inertia_3 = 0.5;
+  ring.inertia_1 = 0.25;
+  EXPECT_TRUE(ring.Validate().empty()) << ring.Validate();
+  EXPECT_DOUBLE_EQ(BallModel::FromPhysical(ring).lambda(), 4.0 / 3.0);
+  // Two point masses at the poles (I1 = M r^2, I3 -> 0): lambda -> (0 + 1)/(1 + 1) = 1/2.
+  PhysicalParameters poles = ring;
+  poles.inertia_1 = 0.5;
+  poles.inertia_3 = 1e-9;
+  EXPECT_NEAR(BallModel::FromPhysical(poles).lambda(), 0.5, 1e-9);
+  // The plate's mass pulls lambda toward 1 from either side.
+  ring.plate_mass = poles.plate_mass = 10.0;
+  EXPECT_LT(BallModel::FromPhysical(ring).lambda(), 1.01);
+  EXPECT_GT(BallModel::FromPhysical(poles).lambda(), 0.99);
+  // The realisable flag: bare lambda in (1/2, 4/3]; alpha, beta with beta >= 1 + alpha/2.
+  EXPECT_TRUE(BallModel::FromLambda(4.0 / 3.0).IsRealisable());
+  EXPECT_TRUE(BallModel::FromLambda(0.51).IsRealisable());
+  EXPECT_FALSE(BallModel::FromLambda(0.5).IsRealisable());
+  EXPECT_FALSE(BallModel::FromLambda(1.34).IsRealisable());
+  EXPECT_FALSE(BallModel::FromLambda(2.0).IsRealisable());  // the paper's examples: mathematics, not a ball
+  EXPECT_TRUE(BallModel::FromAlphaBeta(2.0, 2.0).IsRealisable());
+  EXPECT_FALSE(BallModel::FromAlphaBeta(2.0, 1.9).IsRealisable());  // a ring heavier than its ball
+  EXPECT_FALSE(BallModel::FromAlphaBeta(0.5, 0.0).IsRealisable());
+}
+
+// Newton-Euler for the ball and the upper plate as two bodies, with the contact forces as unknowns:
+// an independent route to the effective mass. Ball: m a = F_top + F_bot,
+// d(I omega)/dt = r e3 x F_top - r e3 x F_bot + tau e3; plate: M_plate A_plate = -F_top; rolling at both
+// contacts: v = r omega x e3, V_plate = 2 r omega x e3; no spin: omega_3 = 0.
+struct PlateBall {
+  PhysicalParameters p;
+  Eigen::Matrix3d Inertia(const Eigen::Vector3d& z) const {
+    return p.inertia_1 * Eigen::Matrix3d::Identity() + (p.inertia_3 - p.inertia_1) * z * z.transpose();
+  }
+  // omega' from the 8 x 8 linear system in (omega', F_top, F_bot, tau).
+  Eigen::Vector3d AngularAcceleration(const Eigen::Vector3d& z, const Eigen::Vector3d& w) const {
+    Eigen::Matrix3d cross_e3;  // w -> w x e3
+    cross_e3 << 0, 1, 0, -1, 0, 0, 0, 0, 0;
+    Eigen::Matrix<double, 3, 2> e3_cross;  // horizontal F -> e3 x F
+    e3_cross << 0, -1, 1, 0, 0, 0;
+    const Eigen::Matrix<double, 2, 3> acc = p.radius * cross_e3.topRows<2>();  // omega' -> centre acceleration
+    const Eigen::Matrix3d I = Inertia(z);
+    Eigen::Matrix<double, 8, 8> a = Eigen::Matrix<double, 8, 8>::Zero();
+    Eigen::Matrix<double, 8, 1> b = Eigen::Matrix<double, 8, 1>::Zero();
+    a.block<2, 3>(0, 0) = p.ball_mass * acc;  // ball, linear
+    a.block<2, 2>(0, 3) = -Eigen::Matrix2d::Identity();
+    a.block<2, 2>(0, 5) = -Eigen::Matrix2d::Identity();
+    a.block<3, 3>(2, 0) = I;  // ball, angular about the centre
+    a.block<3, 2>(2, 3) = -p.radius * e3_cross;
+    a.block<3, 2>(2, 5) = p.radius * e3_cross;
+    a(4, 7) = -1.0;
+    b.segment<3>(2) = -w.cross(I * w);
+    a.block<2, 3>(5, 0) = p.plate_mass * 2.0 * acc;  // plate
+    a.block<2, 2>(5, 3) = Eigen::Matrix2d::Identity();
+    a(7, 2) = 1.0;  // no spin
+    return a.colPivHouseholderQr().solve(b).head<3>();
+  }
+  double Energy(const Eigen::Vector3d& z, const Eigen::Vector3d& w) const {
+    const double v2 = p.radius * p.radius * (w.x() * w.x() + w.y() * w.y());
+    return 0.5 * w.dot(Inertia(z) * w) + 0.5 * p.ball_mass * v2 + 0.5 * p.plate_mass * 4.0 * v2;
+  }
+};
+
+TEST(BallModel, NewtonEulerOfBallAndPlateFollowsTheEffectiveMass) {
+  // problems/physical_units.json's ball: M = 0.1 + 4 * 0.05 = 0.3 kg, lambda = (0.75 + 7.5)/(1 + 7.5).
+  PhysicalParameters phys;
+  phys.inertia_1 = 1.6e-5;
+  phys.inertia_3 = 1.2e-5;
+  phys.ball_mass = 0.1;
+  phys.radius = 0.02;
+  phys.plate_mass = 0.05;
+  const BallModel model = BallModel::FromPhysical(phys);
+  EXPECT_NEAR(model.lambda(), 8.25 / 8.5, 1e-15);
+  const AngleState angles{M_PI / 3, 0.4, 0.1};
+  const double mu = 4.0, period = 2.0 * M_PI / std::sqrt(mu);
+  const BallState start = StateFromAngles(angles, mu, model);
+  // Classical RK4 on (z, omega, x): error ~ dt^4, far below the tolerance at dt = period / 20000.
+  const PlateBall ne{phys};
+  Eigen::Matrix<double, 8, 1> y;
+  y << start.z, start.omega, 0.0, 0.0;
+  auto rhs = [&](const Eigen::Matrix<double, 8, 1>& s) {
+    const Eigen::Vector3d z = s.head<3>(), w = s.segment<3>(3);
+    Eigen::Matrix<double, 8, 1> d;
+    d << w.cross(z), ne.AngularAcceleration(z, w), w.y(), -w.x();  // contact point moves with r omega x e3 / r
+    return d;
+  };
+  const int steps = 40000;
+  const double dt = 2.0 * period / steps, energy0 = ne.Energy(start.z, start.omega);
+  for (int i = 0; i < steps; ++i) {
+    const auto k1 = rhs(y), k2 = rhs(y + 0.5 * dt * k1), k3 = rhs(y + 0.5 * dt * k2), k4 = rhs(y + dt * k3);
+    y += dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  }
+  // Tolerances: RK4's global error at this step is ~1e-12; the library integrates at 1e-12.
+  constexpr double kAgreement = 1e-9;
+  IntegrationOptions tight;
+  tight.absolute_tolerance = tight.relative_tolerance = 1e-13;
+  const MotionSample lib = FreeMotion::FromAngles(model, angles, mu, {0, 0}, Eigen::Matrix3d::Identity(), tight)
+                               .At(2.0 * period);
+  EXPECT_NEAR(ne.Energy(y.head<3>(), y.segment<3>(3)) / energy0, 1.0, kAgreement);
+  EXPECT_LT((y.head<3>() - lib.state.z).norm(), kAgreement);
+  EXPECT_LT((y.segment<3>(3) - lib.state.omega).norm(), kAgreement);
+  EXPECT_LT((y.tail<2>() - lib.x).norm(), kAgreement);
+  // The paper's M = M_ball + 2 M_plate gives lambda = 5.75/6 and a visibly different motion.
+  const BallModel paper = BallModel::FromAlphaBeta(0.75, (0.1 + 2 * 0.05) * 4e-4 / 1.6e-5);
+  EXPECT_NEAR(paper.lambda(), 5.75 / 6.0, 1e-15);
+  const MotionSample wrong = FreeMotion::FromAngles(paper, angles, mu, {0, 0}, Eigen::Matrix3d::Identity(), tight)
+                                 .At(2.0 * period);
+  EXPECT_GT((y.tail<2>() - wrong.x).norm(), 1e-2);
 }
 
 TEST(BallModel, UniformSolidBallHasLambdaOne) {
@@ -79,6 +201,8 @@ TEST(BallModel, InvalidPhysicalParametersAreRejectedNamingTheField) {
   bad.push_back({"plate_mass", with([](PhysicalParameters& p) { p.plate_mass = -2.0; })});
   bad.push_back({"radius", with([](PhysicalParameters& p) { p.radius = 0.0; })});
   bad.push_back({"radius", with([&](PhysicalParameters& p) { p.radius = std::numeric_limits<double>::infinity(); })});
+  bad.push_back({"ball_mass", with([](PhysicalParameters& p) { p.radius = 1.0; })});  // 2 I1 + I3 = 7 > 3
+  bad.push_back({"ball_mass", with([](PhysicalParameters& p) { p.ball_mass = 0.0; })});
   for (const Bad& b : bad) {
     const std::string m = Message(b.p);
     EXPECT_NE(m.find(std::string("physical.") + b.field + ": value"), std::string::npos) << m;

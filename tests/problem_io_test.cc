@@ -209,8 +209,9 @@ TEST(ProblemIo, FullDocumentParsesEveryField) {
   EXPECT_EQ(p.seed, 42u);
   EXPECT_EQ(p.integration.max_steps, 50000);
   ASSERT_TRUE(p.physical.has_value());
-  // alpha = I3/I1, beta = (M_ball + 2 M_plate) r^2 / I1 (section 2.1), lambda = (alpha+beta)/(1+beta).
-  const double alpha = 0.3 / 0.4, beta = 1.5 / 0.4;
+  // alpha = I3/I1, beta = (M_ball + 4 M_plate) r^2 / I1 (the plate's kinetic energy; docs/paper_notes.md),
+  // lambda = (alpha+beta)/(1+beta).
+  const double alpha = 0.3 / 0.4, beta = 2.0 / 0.4;
   EXPECT_DOUBLE_EQ(p.model.lambda(), (alpha + beta) / (1.0 + beta));
   EXPECT_DOUBLE_EQ(p.initial_angles.theta, -M_PI / 3);
   EXPECT_EQ(p.x0, Eigen::Vector2d(0.5, -0.25));

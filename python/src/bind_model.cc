@@ -34,6 +34,8 @@ void BindStates(py::module_& m) {
       .def_property_readonly("has_inertia", &BallModel::has_inertia)
       .def_property_readonly("alpha", &BallModel::alpha)
       .def_property_readonly("beta", &BallModel::beta)
+      .def_property_readonly("realisable", &BallModel::IsRealisable,
+                             "Whether a rigid ball with an upper plate has this model (lambda in (1/2, 4/3]).")
       .def("__repr__", [](const BallModel& b) { return "BallModel(lambda_=" + std::string(py::repr(py::float_(b.lambda()))) + ")"; });
   py::class_<AngleState> angles(m, "AngleState", "The angles (theta, phi, psi) of eqs. (12)-(18).");
   WithKeywordInit(angles)

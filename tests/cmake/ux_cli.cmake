@@ -36,10 +36,10 @@ plateball_cli_test(reach.quiet 0 -- reach problems/figure8_reach.json --targets 
 set_tests_properties(cli.reach.quiet PROPERTIES FAIL_REGULAR_EXPRESSION "\nReach: solved")
 
 # ---------------------------------------------------------------- physical units
-# E = mu (I1 + (M_ball + 2 M_plate) r^2) / 2 = 4 (1.6e-5 + 0.2 * 4e-4) / 2 = 1.92e-4 J; lengths
+# E = mu (I1 + (M_ball + 4 M_plate) r^2) / 2 = 4 (1.6e-5 + 0.3 * 4e-4) / 2 = 2.72e-4 J; lengths
 # scale by r = 0.02 m, time by 1 s: t_end 3 s, the target (6, 0) radii is (0.12, 0) m.
 plateball_cli_test(units.simulate 0 REGEX "\"scales\": \\{[^}]*\"length_m\": 0.02,[^}]*\"time_s\": 1.0"
-  --number kinetic_energy_J 1.92e-4 1e-18 --number t_end 3 0
+  --number kinetic_energy_J 2.72e-4 1e-18 --number t_end 3 0
   -- simulate problems/physical_units.json)
 plateball_cli_test(units.reach 0 REGEX "\"target\": \\[6.0, 0.0\\],.*\"si\": {\n *\"target\": \\[0.12, 0.0\\]"
   -- reach problems/physical_units.json)

@@ -28,6 +28,7 @@ Json ToJson(const BallModel& m) {
     j["alpha"] = m.alpha();
     j["beta"] = m.beta();
   }
+  j["realisable"] = m.IsRealisable();
   return j;
 }
 Json ToJson(const MotionSample& s) {
