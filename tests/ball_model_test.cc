@@ -65,13 +65,14 @@ TEST(BallModel, RigidBallsHaveLambdaBetweenOneHalfAndFourThirds) {
   EXPECT_DOUBLE_EQ(BallModel::FromPhysical(ring).lambda(), 4.0 / 3.0);
   // Two point masses at the poles (I1 = M r^2, I3 -> 0): lambda -> (0 + 1)/(1 + 1) = 1/2.
   PhysicalParameters poles = ring;
-  poles.inertia_1 = 0.5;
+  poles.inertia_1 = 0.5 - 1e-9;
   poles.inertia_3 = 1e-9;
-  EXPECT_NEAR(BallModel::FromPhysical(poles).lambda(), 0.5, 1e-9);
-  // The plate's mass pulls lambda toward 1 from either side.
+  EXPECT_NEAR(BallModel::FromPhysical(poles).lambda(), 0.5, 2e-9);  // alpha = 2e-9, beta = 1 + 2e-9
+  // The plate's mass pulls lambda toward 1 from either side: M = 2 + 4 * 10 = 42, so beta = 42 for the
+  // ring (lambda = 44/43) and 21 for the poles (lambda = 21/22, up to alpha ~ 2e-9).
   ring.plate_mass = poles.plate_mass = 10.0;
-  EXPECT_LT(BallModel::FromPhysical(ring).lambda(), 1.01);
-  EXPECT_GT(BallModel::FromPhysical(poles).lambda(), 0.99);
+  EXPECT_NEAR(BallModel::FromPhysical(ring).lambda(), 44.0 / 43.0, 1e-15);
+  EXPECT_NEAR(BallModel::FromPhysical(poles).lambda(), 21.0 / 22.0, 1e-8);
   // The realisable flag: bare lambda in (1/2, 4/3]; alpha, beta with beta >= 1 + alpha/2.
   EXPECT_TRUE(BallModel::FromLambda(4.0 / 3.0).IsRealisable());
   EXPECT_TRUE(BallModel::FromLambda(0.51).IsRealisable());
