@@ -99,8 +99,8 @@ TEST(Units, ScalesAreTheRadiusForLengthsAndVelocitiesAndOneForTime) {
   AddPhysicalUnits(p, &doc);
   EXPECT_EQ(doc["si"]["period"], 3.0);
   EXPECT_EQ(doc["steps"][0]["si"]["plate_velocity_change"], Json::array({0.02, -0.04, 0.0}));
-  // E = mu (I1 + M r^2) / 2 with M = ball + 2 plate.
-  EXPECT_NEAR(doc["units"]["kinetic_energy_J"].get<double>(), 0.5 * 4.0 * (1.6e-5 + 0.2 * 0.02 * 0.02), 1e-18);
+  // E = mu (I1 + M r^2) / 2 with M = ball + 4 plate (the plate moves at twice the centre's speed).
+  EXPECT_NEAR(doc["units"]["kinetic_energy_J"].get<double>(), 0.5 * 4.0 * (1.6e-5 + 0.3 * 0.02 * 0.02), 1e-18);
   Problem plain;  // no physical section: nothing added
   Json untouched{{"period", 3.0}};
   AddPhysicalUnits(plain, &untouched);
