@@ -2,5 +2,6 @@
 # Configures and builds plateball (Release, warnings on) into ./build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPLATEBALL_WERROR=ON "$@"
+source scripts/compiler_cache.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPLATEBALL_WERROR=ON "${compiler_cache[@]}" "$@"
 cmake --build build -j "$(nproc)"

@@ -22,8 +22,9 @@ if ! command -v clang++ >/dev/null; then
 fi
 dpkg-query -W -f='${Status}' libclang-rt-14-dev 2>/dev/null | grep -q "install ok installed" || \
   { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libclang-rt-14-dev; }
+source scripts/compiler_cache.sh
 cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPLATEBALL_FUZZ=ON \
-      -DPLATEBALL_BUILD_TESTS=OFF -DPLATEBALL_BUILD_BENCHMARKS=OFF -DPLATEBALL_BUILD_TOOLS=OFF
+      -DPLATEBALL_BUILD_TESTS=OFF -DPLATEBALL_BUILD_BENCHMARKS=OFF -DPLATEBALL_BUILD_TOOLS=OFF "${compiler_cache[@]}"
 cmake --build build-fuzz -j "$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1

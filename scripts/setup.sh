@@ -9,6 +9,7 @@ packages+=(python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytes
 packages+=(libopenmpi-dev openmpi-bin)  # montecarlo: optional MPI component (issue 12)
 packages+=(chromium)  # view (issue 14): Debian's Chromium for the browser tests of `plateball view`
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)  # view (issue 14): npm ci in web/ (below)
+packages+=(ccache)  # compiler cache for scripts/build.sh, sanitize.sh and fuzz.sh (scripts/compiler_cache.sh)
 packages+=(help2man)  # man pages of the tools (issue 13: tools/man/make_man.sh)
 missing=()
 for p in "${packages[@]}"; do
