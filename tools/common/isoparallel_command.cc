@@ -227,12 +227,16 @@ void PrintConjugatePoints(const plateball::IsoparallelSummary& summary, std::ost
   const plateball::IsoparallelSolution& best = summary.Shortest();
   int local = 0;
   for (const plateball::IsoparallelSolution& s : summary.solutions) local += s.locally_optimal ? 1 : 0;
-  out << std::setprecision(10) << "first conjugate point of the shortest: ";
-  if (std::isfinite(best.conjugate_time)) out << "s = " << best.conjugate_time;
-  else out << "none up to " << plateball::kConjugateSearchFactor << "x its length";
-  out << (best.locally_optimal ? " (none before the end: locally optimal)" : " (before the end: NOT locally optimal)")
+  const std::streamsize precision = out.precision(10);
+  out << "first conjugate point of the shortest: ";
+  if (!std::isfinite(best.conjugate_time)) out << "none up to " << plateball::kConjugateSearchFactor << "x its length";
+  else if (best.locally_optimal && best.conjugate_time <= best.length * (1 + plateball::kConjugateEndTolerance))
+    out << "at its end (s = " << best.conjugate_time << ")";
+  else out << "s = " << best.conjugate_time;
+  out << (best.locally_optimal ? ", none before the end: locally optimal" : ", before the end: NOT locally optimal")
       << "; locally optimal: " << local << " of " << summary.solutions.size() << " solutions; Maxwell pairs (equal length): "
       << summary.maxwell_pairs.size() << "\n";
+  out.precision(precision);
 }
 
 void PrintSolutions(const plateball::IsoparallelSummary& summary, const plateball::IsoparallelOptions& opt,
