@@ -24,7 +24,9 @@ constexpr double kTolerance = 1e-12;  // dopri5 absolute and relative tolerance
 constexpr double kDeterminantNoise = 1e-9;
 constexpr int kGridPerPeriod = 48;  // grid points per curvature period (and at least kMinGrid)
 constexpr int kMinGrid = 96;
-constexpr int kBisections = 48;
+constexpr int kRootIterations = 60;
+constexpr double kTimeTolerance = 1e-12;  // relative width of the root's bracket
+constexpr double kFirstStep = 0.01;       // the first trial step (the controller adapts it)
 
 struct Rhs {
   Eigen::Vector2d w;
@@ -59,17 +61,20 @@ State Initial(const ExtremalData& data) {
   return y;
 }
 
-// y from s0 to s1 (adaptive steps).
-void Advance(const Rhs& rhs, State* y, double s0, double s1) {
-  double s = s0, h = std::min(0.1, s1 - s0);
+// y from s0 to s1 (adaptive steps; *step carries the last accepted step size between calls).
+void Advance(const Rhs& rhs, State* y, double s0, double s1, double* step) {
+  double s = s0, h = *step;
   while (s < s1) {
+    const double h_free = h;
     h = std::min(h, s1 - s);
     State trial = *y;
     const double err = DormandPrince5Step(rhs, trial, s, h, kTolerance, kTolerance);
     if (err <= 1.0) {
       *y = trial;
-      s = (s1 - s - h <= 1e-15 * std::max(1.0, std::abs(s1))) ? s1 : s + h;
+      const bool last = s1 - s - h <= 1e-15 * std::max(1.0, std::abs(s1));
+      s = last ? s1 : s + h;
       h *= std::min(4.0, 0.9 * std::pow(std::max(err, 1e-10), -0.2));
+      if (last) h = std::max(h, h_free);  // a step cut to end on s1 does not shrink the next call's
     } else {
       h *= std::max(0.1, 0.9 * std::pow(err, -0.25));
     }
@@ -101,6 +106,37 @@ double Determinant(ConjugateProblem problem, const State& y) {
   return m.determinant();
 }
 
+// The zero of f = sign det in [lo, hi] (f(lo) > 0 >= f(hi)), y the state at lo: Illinois
+// regula falsi (the secant of the bracket, the retained end's value halved when one end stays
+// twice), each trial integrated from the bracket's lower end.
+double Refine(ConjugateProblem problem, const Rhs& rhs, State y, double lo, double f_lo, double hi, double f_hi,
+              double sign, double step) {
+  int side = 0;
+  for (int k = 0; k < kRootIterations && hi - lo > kTimeTolerance * hi; ++k) {
+    double mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
+    State m = y;
+    double trial_step = step;
+    Advance(rhs, &m, lo, mid, &trial_step);
+    const double f = sign * Determinant(problem, m);
+    if (f > 0.0) {
+      lo = mid;
+      f_lo = f;
+      y = m;
+      if (side == 1) f_hi *= 0.5;
+      side = 1;
+    } else {
+      hi = mid;
+      f_hi = f;
+      if (f == 0.0) return mid;
+      if (side == -1) f_lo *= 0.5;
+      side = -1;
+    }
+  }
+  const double root = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+  return root > lo && root < hi ? root : 0.5 * (lo + hi);
+}
+
 }  // namespace
 
 ExtremalData ExtremalDataOf(const ElasticaParameters& parameters) {
@@ -115,7 +151,8 @@ ExtremalData ExtremalDataOf(const ElasticaParameters& parameters) {
 double ConjugateDeterminant(ConjugateProblem problem, const ExtremalData& data, double s) {
   const Rhs rhs{data.w};
   State y = Initial(data);
-  Advance(rhs, &y, 0.0, s);
+  double step = kFirstStep;
+  Advance(rhs, &y, 0.0, s, &step);
   return Determinant(problem, y);
 }
 
@@ -126,30 +163,18 @@ ConjugateTime FirstConjugateTime(ConjugateProblem problem, const ExtremalData& d
   const int grid = std::max(kMinGrid, static_cast<int>(std::ceil(kGridPerPeriod * s_max / (2 * M_PI * scale))));
   const double h = s_max / grid;
   State y = Initial(data);
-  double s = 0.0, sign = 0.0;
+  double s = 0.0, sign = 0.0, step = kFirstStep, previous = 0.0;
   for (int i = 1; i <= grid; ++i) {
     State next = y;
     const double s_next = i == grid ? s_max : i * h;
-    Advance(rhs, &next, s, s_next);
+    Advance(rhs, &next, s, s_next, &step);
     const double det = Determinant(problem, next);
     if (sign == 0.0) {
       if (std::abs(det) > kDeterminantNoise) sign = det > 0 ? 1.0 : -1.0;
     } else if (det * sign <= 0.0) {
-      double lo = s, hi = s_next;  // det has the sign `sign` at lo and not at hi
-      State at_lo = y;
-      for (int k = 0; k < kBisections && hi - lo > 1e-14 * hi; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        State m = at_lo;
-        Advance(rhs, &m, lo, mid);
-        if (Determinant(problem, m) * sign > 0.0) {
-          lo = mid;
-          at_lo = m;
-        } else {
-          hi = mid;
-        }
-      }
-      return {true, 0.5 * (lo + hi)};
+      return {true, Refine(problem, rhs, y, s, previous * sign, s_next, det * sign, sign, step)};
     }
+    previous = det;
     y = next;
     s = s_next;
   }

@@ -20,7 +20,7 @@
 //
 // The determinant of the Jacobian with unit-normalised columns is followed along s on a grid; the
 // first sign change after it has left the round-off of s = 0 (where it vanishes to high order) is
-// refined by bisection. A zero of even order (a touch without sign change) is not detected.
+// refined by regula falsi (Illinois). A zero of even order (a touch without sign change) is not detected.
 #pragma once
 
 #include <Eigen/Core>
