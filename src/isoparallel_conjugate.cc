@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "dopri5.h"
 
@@ -26,7 +28,8 @@ constexpr int kGridPerPeriod = 48;  // grid points per curvature period (and at 
 constexpr int kMinGrid = 96;
 constexpr int kRootIterations = 60;
 constexpr double kTimeTolerance = 1e-12;  // relative width of the root's bracket
-constexpr double kFirstStep = 0.01;       // the first trial step (the controller adapts it)
+constexpr double kFirstStep = 0.01;
+constexpr long kMaxSteps = 1'000'000;     // per call; a stalled integration is an error, never a hang       // the first trial step (the controller adapts it)
 
 struct Rhs {
   Eigen::Vector2d w;
@@ -64,7 +67,9 @@ State Initial(const ExtremalData& data) {
 // y from s0 to s1 (adaptive steps; *step carries the last accepted step size between calls).
 void Advance(const Rhs& rhs, State* y, double s0, double s1, double* step) {
   double s = s0, h = *step;
-  while (s < s1) {
+  for (long steps = 0; s < s1; ++steps) {
+    if (steps > kMaxSteps || !(h > 1e-14 * std::max(1.0, std::abs(s))))
+      throw std::runtime_error("conjugate points: the variational equations stalled at s = " + std::to_string(s));
     const double h_free = h;
     h = std::min(h, s1 - s);
     State trial = *y;

@@ -50,6 +50,7 @@ struct ConjugateTime {
   bool found = false;
   double time = 0.0;
 };
+/// Throws std::runtime_error when the integration stalls (more than 10^6 steps in one interval).
 ConjugateTime FirstConjugateTime(ConjugateProblem problem, const ExtremalData& data, double s_max);
 
 }  // namespace plateball::internal
