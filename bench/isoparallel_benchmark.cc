@@ -7,12 +7,14 @@
 // Tolerances: shooting residual 1e-12 (options.tolerance).
 // The identity target is solved by the family enumeration (isoparallel_families.h: complete up
 // to 3x, certified); BM_T4...Shooting runs the multi-start shooting on the same problem for
-// comparison (its solution count grows with the number of starts).
+// comparison (its solution count grows with the number of starts). BM_ConjugateTimesFigure7:
+// the first conjugate time of each of the 47 solutions (src/isoparallel_conjugate.h).
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "isoparallel_conjugate.h"
 #include "plateball/isoparallel.h"
 #include "plateball/so3.h"
 
@@ -93,7 +95,34 @@ void BM_T4bIsoparallelRotation(benchmark::State& state) {
   state.counters["seed"] = 0;                 // not used for this target
 }
 
+// The first conjugate times of Figure 7's 47 solutions (the solve is set up once, untimed).
+// Counters: the solutions, how many are locally optimal, the largest relative distance
+// |conjugate time - length| / length among those (a family's end is conjugate: ~0).
+void BM_ConjugateTimesFigure7(benchmark::State& state) {
+  const IsoparallelSummary summary = SolveIsoparallel(Figure7());
+  int local = 0;
+  double end_gap = 0.0;
+  for (auto _ : state) {
+    local = 0;
+    end_gap = 0.0;
+    for (const IsoparallelSolution& s : summary.solutions) {
+      const internal::ConjugateTime c = internal::FirstConjugateTime(
+          internal::ConjugateProblem::kPlateBall, internal::ExtremalDataOf(s.parameters), kConjugateSearchFactor * s.length);
+      if (c.found && c.time >= s.length * (1 - kConjugateEndTolerance)) {
+        ++local;
+        end_gap = std::max(end_gap, std::abs(c.time - s.length) / s.length);
+      }
+      benchmark::DoNotOptimize(c.time);
+    }
+  }
+  state.counters["solutions"] = static_cast<double>(summary.solutions.size());
+  state.counters["locally_optimal"] = local;
+  state.counters["end_gap"] = end_gap;
+}
+
 }  // namespace
+
+BENCHMARK(BM_ConjugateTimesFigure7)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 BENCHMARK(BM_T4bIsoparallelRotation)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -24,6 +25,15 @@ std::string ToString(FewestImpulsesStatus status) {
   return "unknown";
 }
 
+std::string ToString(FewestCountVerdict verdict) {
+  switch (verdict) {
+    case FewestCountVerdict::kReached: return "reached";
+    case FewestCountVerdict::kGenericallyImpossible: return "generically_impossible";
+    case FewestCountVerdict::kNotFound: return "not_found";
+  }
+  return "unknown";
+}
+
 std::string FewestImpulsesOptions::Validate() const {
   using internal::InvalidValueMessage;
   const std::string n_range = "must be in [1, " + std::to_string(kMaxImpulses) + "]";
@@ -34,6 +44,8 @@ std::string FewestImpulsesOptions::Validate() const {
     return InvalidValueMessage("starts", starts, "must be in [1, " + std::to_string(kMaxStarts) + "]");
   if (arrivals_per_count < 1 || arrivals_per_count > kMaxStarts)
     return InvalidValueMessage("arrivals_per_count", arrivals_per_count, "must be in [1, " + std::to_string(kMaxStarts) + "]");
+  if (adaptive_starts < 0 || adaptive_starts > kMaxStarts)
+    return InvalidValueMessage("adaptive_starts", adaptive_starts, "must be in [0, " + std::to_string(kMaxStarts) + "]");
   if (!(std::isfinite(max_total_time) && max_total_time >= 0 && max_total_time <= 1e6))
     return InvalidValueMessage("max_total_time", max_total_time, "must be in [0, 1e6] (0: automatic)");
   if (max_iterations < 1 || max_iterations > 10000)
@@ -57,9 +69,13 @@ std::string FewestImpulsesSummary::BriefReport() const {
   std::ostringstream os;
   os.precision(3);
   os << "FewestImpulses: " << ToString(status);
-  if (const FewestImpulsesCount* f = Fewest())
-    os << ", fewest n = " << fewest << ", T = " << f->total_time << ", length = " << f->path_length
+  if (const FewestImpulsesCount* f = Fewest()) {
+    os << ", fewest n = " << fewest
+       << (minimal_for_generic_goal ? " (fewer: 2n below the conditions, impossible for a generic goal)"
+                                    : " (a smaller count was not found, not proved impossible)")
+       << ", shortest T found = " << f->total_time << ", length = " << f->path_length
        << ", position error = " << f->position_error << ", orientation error = " << f->orientation_error << " rad";
+  }
   os << ", counts searched = " << counts.size() << ", window T <= " << max_total_time;
   if (!message.empty()) os << " (" << message << ")";
   return os.str();
@@ -283,62 +299,172 @@ void Consider(const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, dou
   *best_nodes = nodes;
 }
 
-// All starts of count n (the first the previous count's arrival split, when there is one): the
-// arrival of shortest total time, shortened along the arrival manifold, else the closest arrival.
-FewestImpulsesCount SearchCount(const Search& s, int n, const Eigen::VectorXd& previous) {
-  FewestImpulsesCount row;
-  row.impulses = n;
-  ArrivalFunctor f(s, n);
+// The solver of count n's starts.
+ceres::TinySolver<ArrivalFunctor> CountSolver(const Search& s) {
   ceres::TinySolver<ArrivalFunctor> solver;
   solver.options.max_num_iterations = s.options->max_iterations;
   solver.options.cost_threshold = 0.5 * 1e-14;  // |r| < 1e-7: Newton's Restore takes over
   solver.options.function_tolerance = 1e-14;
   solver.options.gradient_tolerance = 1e-16;
   solver.options.parameter_tolerance = 1e-12;
-  double best_time = std::numeric_limits<double>::infinity(), closest = best_time;
-  Eigen::VectorXd best_u;
-  std::vector<ChainNode> best_nodes;
-  for (int i = 0; i < s.options->starts && row.arrived < s.options->arrivals_per_count; ++i) {
-    Eigen::VectorXd u;
-    if (i == 0 && previous.size() > 0) {
-      u = Split(previous);
-    } else {
-      Eigen::VectorXd v = StartPoint(s, n, i - (previous.size() > 0 ? 1 : 0));
-      solver.Solve(f, &v);
-      u = v;
-      u.tail(n) = v.tail(n).array().exp();
+  return solver;
+}
+
+// The best of a count so far: the arrival of shortest total time, else the closest point.
+struct CountBest {
+  double time = std::numeric_limits<double>::infinity();
+  double closest = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd u;
+  std::vector<ChainNode> nodes;
+};
+
+// Rolls the refined point u (flight times, not logs) of count row->impulses; counts it as an
+// arrival when it polishes to the tolerances within the window, else keeps it as the closest.
+void Try(const Search& s, Eigen::VectorXd u, FewestImpulsesCount* row, CountBest* best) {
+  ++row->starts;
+  std::vector<ChainNode> nodes;
+  Eigen::VectorXd r;
+  try {
+    r = Evaluate(s, u, s.options->search_integration, &nodes, nullptr);
+    if (r.norm() < 1e-2 && Polish(s, &u, &nodes, &r)) {
+      ++row->arrived;
+      Consider(u, nodes, &best->time, &best->u, &best->nodes);
+    } else if (!std::isfinite(best->time) && r.allFinite() && r.norm() < best->closest) {
+      best->closest = r.norm();
+      best->u = u;
+      best->nodes = nodes;
     }
-    ++row.starts;
-    std::vector<ChainNode> nodes;
-    Eigen::VectorXd r;
-    try {
-      r = Evaluate(s, u, s.options->search_integration, &nodes, nullptr);
-      if (r.norm() < 1e-2 && Polish(s, &u, &nodes, &r)) {
-        ++row.arrived;
-        Consider(u, nodes, &best_time, &best_u, &best_nodes);
-      } else if (!std::isfinite(best_time) && r.allFinite() && r.norm() < closest) {
-        closest = r.norm();
-        best_u = u;
-        best_nodes = nodes;
-      }
-    } catch (const std::runtime_error&) {
-      continue;  // a start whose flights cannot be integrated is not a candidate
-    }
+  } catch (const std::runtime_error&) {
+    // a start whose flights cannot be integrated is not a candidate
   }
-  row.reached = row.arrived > 0;
-  if (row.reached) {
-    Eigen::VectorXd u = best_u;
+}
+
+// Levenberg-Marquardt from v = (s_k, log t_k), then Try.
+void Refine(const Search& s, Eigen::VectorXd v, FewestImpulsesCount* row, CountBest* best) {
+  const int n = row->impulses;
+  ArrivalFunctor f(s, n);
+  ceres::TinySolver<ArrivalFunctor> solver = CountSolver(s);
+  solver.Solve(f, &v);
+  Eigen::VectorXd u = v;
+  u.tail(n) = v.tail(n).array().exp();
+  Try(s, u, row, best);
+}
+
+// The row from the count's best: an arrival is shortened along the arrival manifold first.
+void Conclude(const Search& s, CountBest* best, FewestImpulsesCount* row) {
+  row->reached = row->arrived > 0;
+  const bool generic = 2 * row->impulses < s.conditions;
+  row->verdict = row->reached ? FewestCountVerdict::kReached
+                 : generic    ? FewestCountVerdict::kGenericallyImpossible
+                              : FewestCountVerdict::kNotFound;
+  if (row->reached) {
+    Eigen::VectorXd u = best->u;
     std::vector<ChainNode> nodes;
     Eigen::VectorXd r;
     try {
       Shorten(s, &u);
-      if (Polish(s, &u, &nodes, &r)) Consider(u, nodes, &best_time, &best_u, &best_nodes);
+      if (Polish(s, &u, &nodes, &r)) Consider(u, nodes, &best->time, &best->u, &best->nodes);
     } catch (const std::runtime_error&) {
       // keep the arrival found before shortening
     }
   }
-  if (best_u.size() > 0) Describe(s, best_u, best_nodes, &row);
-  row.parameters = best_u;
+  if (best->u.size() > 0) Describe(s, best->u, best->nodes, row);
+  row->parameters = best->u;
+}
+
+// All starts of count n (the first the previous count's arrival split, when there is one). A
+// count with 2n >= conditions that no start reached continues up to adaptive_starts starts.
+FewestImpulsesCount SearchCount(const Search& s, int n, const Eigen::VectorXd& previous) {
+  FewestImpulsesCount row;
+  row.impulses = n;
+  CountBest best;
+  const int seeded = previous.size() > 0 ? 1 : 0;
+  if (seeded) Try(s, Split(previous), &row, &best);
+  const int budget = 2 * n >= s.conditions ? std::max(s.options->starts, s.options->adaptive_starts) : s.options->starts;
+  for (int i = 0; row.starts < budget && row.arrived < s.options->arrivals_per_count; ++i) {
+    if (row.starts >= s.options->starts && row.arrived > 0) break;  // settled: the count is reached
+    Refine(s, StartPoint(s, n, i), &row, &best);
+  }
+  Conclude(s, &best, &row);
+  return row;
+}
+
+// Projected descent of log t_k along the arrival manifold of u's count (2n > conditions), each
+// step restored onto the manifold at the search tolerance, until t_k is below kMergeFraction of
+// the total time. Returns false when the descent stalls first.
+constexpr double kMergeFraction = 1e-4;
+bool ShrinkFlight(const Search& s, int k, Eigen::VectorXd* u) {
+  const int n = static_cast<int>(u->size() / 2);
+  double step = 0.5;
+  for (int it = 0; it < 60 && step > 1e-3; ++it) {
+    const Eigen::VectorXd t = u->tail(n);
+    if (t[k] < kMergeFraction * t.sum()) return true;
+    Eigen::MatrixXd jac;
+    std::vector<ChainNode> nodes;
+    Evaluate(s, *u, s.options->search_integration, &nodes, &jac);
+    jac.rightCols(n) = jac.rightCols(n) * t.asDiagonal();
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * n);
+    g[n + k] = 1.0;  // d log t_k
+    Eigen::VectorXd d = -(g - jac.completeOrthogonalDecomposition().solve(jac * g));
+    if (d.norm() < 1e-9) return false;
+    d *= step / d.norm();
+    Eigen::VectorXd trial = *u;
+    trial.head(n) += d.head(n);
+    trial.tail(n) = (t.array().log() + d.tail(n).array()).exp();
+    Eigen::VectorXd r;
+    if (Restore(s, s.options->search_integration, 1e-9, 1e-9, &trial, &nodes, &r) && trial[n + k] < t[k]) {
+      *u = trial;
+      step = std::min(2.0, 2.0 * step);
+    } else {
+      step *= 0.25;
+    }
+  }
+  return (*u)[n + k] < kMergeFraction * u->tail(n).sum();
+}
+
+// u of count n + 1 with flight k (of length ~0) removed: impulses k and k + 1 merge (their turns
+// of psi add); a vanishing last flight removes the last impulse. Returns (s_j, log t_j) of count n.
+Eigen::VectorXd Merge(const Eigen::VectorXd& u, int k) {
+  const int m = static_cast<int>(u.size() / 2), n = m - 1;
+  Eigen::VectorXd v(2 * n);
+  for (int j = 0, src = 0; j < n; ++j, ++src) {
+    if (src == k) {
+      if (k + 1 < m) {
+        v[j] = u[k] + u[k + 1];
+        v[n + j] = std::log(u[m + k + 1]);
+        ++src;
+        continue;
+      }
+    }
+    v[j] = u[src];
+    v[n + j] = std::log(u[m + src]);
+  }
+  return v;
+}
+
+// Continuation into count n from count n + 1's arrival u: each flight in turn (shortest first)
+// is shrunk to zero and the merged point refined. Returns the row when one arrives.
+std::optional<FewestImpulsesCount> Continue(const Search& s, int n, const Eigen::VectorXd& u) {
+  const int m = n + 1;
+  std::vector<int> order(static_cast<std::size_t>(m));
+  for (int k = 0; k < m; ++k) order[static_cast<std::size_t>(k)] = k;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return u[m + a] < u[m + b]; });
+  FewestImpulsesCount row;
+  row.impulses = n;
+  CountBest best;
+  for (int k : order) {
+    Eigen::VectorXd w = u;
+    try {
+      if (!ShrinkFlight(s, k, &w)) continue;
+    } catch (const std::runtime_error&) {
+      continue;
+    }
+    Refine(s, Merge(w, k), &row, &best);
+    if (row.arrived > 0) break;
+  }
+  if (row.arrived == 0) return std::nullopt;
+  Conclude(s, &best, &row);
+  row.by_continuation = true;
   return row;
 }
 
@@ -351,11 +477,32 @@ void ValidateProblem(const FewestImpulsesProblem& p) {
 
 std::string Searched(const Search& s, int last) {
   std::ostringstream os;
-  os << "n = 1.." << last << ", " << s.options->starts << " Halton starts per n (directions in [-pi, pi), total time in ["
+  os << "n = 1.." << last << ", " << s.options->starts << " Halton starts per n (up to "
+     << std::max(s.options->starts, s.options->adaptive_starts)
+     << " while a count with 2n >= conditions has no arrival, then continuation from count n + 1; directions in [-pi, pi), total time in ["
      << 0.1 * s.max_total_time << ", " << 0.9 * s.max_total_time << "]), Levenberg-Marquardt (ceres::TinySolver, exact"
      << " Jacobian) in (delta psi, log t), window T <= " << s.max_total_time << "; " << s.conditions
      << " conditions on 2n unknowns";
   return os.str();
+}
+
+int FirstReached(const std::vector<FewestImpulsesCount>& counts) {
+  for (const FewestImpulsesCount& c : counts)
+    if (c.reached) return c.impulses;
+  return 0;
+}
+
+// After count n arrived: counts below it with 2k >= conditions that no start reached are tried by
+// continuation, downwards while it succeeds.
+void ContinueDown(const Search& s, std::vector<FewestImpulsesCount>* counts) {
+  for (std::size_t i = counts->size() - 1; i >= 1; --i) {
+    FewestImpulsesCount& below = (*counts)[i - 1];
+    if (below.reached || below.verdict != FewestCountVerdict::kNotFound) return;
+    std::optional<FewestImpulsesCount> row = Continue(s, below.impulses, (*counts)[i].parameters);
+    if (!row) return;
+    row->starts += below.starts;
+    below = *row;
+  }
 }
 
 }  // namespace
@@ -384,8 +531,13 @@ FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem, 
         !out.counts.empty() && out.counts.back().reached ? out.counts.back().parameters : Eigen::VectorXd();
     out.counts.push_back(SearchCount(s, n, previous));
     last = n;
-    if (out.fewest == 0 && out.counts.back().reached) out.fewest = n;
+    if (out.counts.back().reached) ContinueDown(s, &out.counts);
+    out.fewest = FirstReached(out.counts);
   }
+  out.minimal_for_generic_goal = out.fewest > 0;
+  for (const FewestImpulsesCount& c : out.counts)
+    if (c.impulses < out.fewest && c.verdict != FewestCountVerdict::kGenericallyImpossible)
+      out.minimal_for_generic_goal = false;
   out.searched = Searched(s, last);
   if (out.fewest > 0) {
     out.status = FewestImpulsesStatus::kFound;

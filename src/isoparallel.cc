@@ -21,6 +21,7 @@
 #include "dynamics.h"
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
+#include "isoparallel_conjugate.h"
 #include "isoparallel_twin.h"
 #include "parallel_for.h"
 #include "plateball/isoparallel_families.h"
@@ -1340,6 +1341,23 @@ std::vector<int> MirrorImages(const std::vector<IsoparallelSolution>& sols, Isop
   return mirror;
 }
 
+// The first conjugate time of the solution's extremal and Jacobi's condition.
+void SetConjugateTime(IsoparallelSolution* sol) {
+  const internal::ConjugateTime c = internal::FirstConjugateTime(
+      internal::ConjugateProblem::kPlateBall, internal::ExtremalDataOf(sol->parameters), kConjugateSearchFactor * sol->length);
+  sol->conjugate_time = c.found ? c.time : std::numeric_limits<double>::infinity();
+  sol->locally_optimal = sol->conjugate_time >= sol->length * (1 - kConjugateEndTolerance);
+}
+
+// The pairs of solutions of equal length (sorted by length: neighbours in runs).
+std::vector<MaxwellPair> MaxwellPairs(const std::vector<IsoparallelSolution>& sols) {
+  std::vector<MaxwellPair> pairs;
+  for (std::size_t i = 0; i < sols.size(); ++i)
+    for (std::size_t j = i + 1; j < sols.size() && sols[j].length <= sols[i].length * (1 + kMaxwellLengthTolerance); ++j)
+      pairs.push_back({static_cast<int>(i), static_cast<int>(j)});
+  return pairs;
+}
+
 // The solutions up to the length cap, sorted, each verified independently by rolling (dopri5
 // along the path, spread over the threads; a failed integration is rethrown here).
 void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
@@ -1358,6 +1376,7 @@ void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const
     IsoparallelSolution& sol = sols[i];
     sol.endpoint_error = (sol.PositionAt(sol.length) - problem.goal).norm();
     sol.crossing = CrossingCount(ctx, Elastica(sol.parameters), sol.length);
+    SetConjugateTime(&sol);
     if (mirror[i] >= 0) return;
     const Eigen::Matrix3d r = VerifyRolling(sol, options.integration);
     sol.orientation_residual = LogSO3(ctx.target.transpose() * r).norm();
@@ -1368,6 +1387,7 @@ void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const
     sols[i].orientation_residual = sols[mirror[i]].orientation_residual;
     sols[i].orientation_error = sols[mirror[i]].orientation_error;
   }
+  summary->maxwell_pairs = MaxwellPairs(sols);
 }
 
 }  // namespace
@@ -1543,8 +1563,10 @@ std::string IsoparallelSummary::FullReport() const {
     os << std::setprecision(10) << "  #" << i + 1 << " length " << s.length << " " << ToString(s.parameters.regime)
        << " G " << s.G << " E " << s.energy << " periods " << s.periods << (s.family ? " family" : "")
        << std::setprecision(3) << " crossing " << s.crossing << " residual " << s.orientation_residual
-       << " endpoint " << s.endpoint_error << "\n";
+       << " endpoint " << s.endpoint_error << " conjugate " << s.conjugate_time
+       << (s.locally_optimal ? " locally optimal" : " NOT locally optimal") << "\n";
   }
+  os << "  Maxwell pairs (equal length, same goal): " << maxwell_pairs.size() << "\n";
   return os.str();
 }
 

@@ -1,4 +1,4 @@
-// Fewest impulses (issue 11, item 2): the smallest number n of impulses that brings the ball from
+// Fewest impulses: the smallest number n of impulses that brings the ball from
 // a start state (rolling, or at rest) to a goal position x1 and orientation A1 exactly, found by
 // a systematic search, with the trade-off between n and the total time / path length.
 //
@@ -17,16 +17,28 @@
 //
 // The search, for n = 1, 2, ..., max_impulses in turn: `starts` deterministic starts per n (a
 // Halton sequence over the directions s_k in [-pi, pi) and the flight times, total time in
-// [0.1, 0.9] of the window (0, max_total_time]), each refined by Levenberg-Marquardt on the arrival conditions in
-// (s_k, log t_k) with the exact Jacobian (src/exact_chain.h), then polished to the tolerances with
-// 1e-14 rollouts (Newton steps with fresh exact Jacobians). The fewest count is the first n for which a start arrives within the window; a
-// smaller count is reported with the closest arrival its starts reached (for 2n below the number
-// of conditions no generic goal is reachable: the reachable set has lower dimension). For the
-// Pareto table the search continues `pareto_counts - 1` counts beyond the fewest and reports, per
-// count, the arrival of shortest total time among those found, shortened further along the arrival
-// manifold (projected descent of T); count n + 1 is first seeded by count n's arrival with its
-// longest flight split by a zero impulse, so the times do not grow with the count. A count stops
-// after `arrivals_per_count` arrivals.
+// [0.1, 0.9] of the window (0, max_total_time]), each refined by Levenberg-Marquardt on the arrival
+// conditions in (s_k, log t_k) with the exact Jacobian (src/exact_chain.h), then polished to the
+// tolerances with 1e-14 rollouts (Newton steps with fresh exact Jacobians). A count with 2n >= m
+// unknowns that no start reached continues with more Halton starts, up to `adaptive_starts` in
+// all, and when count n + 1 arrives it is tried once more by continuation: along the arrival
+// manifold of count n + 1 one flight is shrunk towards zero (projected descent of log t_k), the
+// two impulses around it are merged into one (their turns of psi add) and the n-impulse point is
+// refined like a start. The fewest count is the first n for which a start arrives within the
+// window; a smaller count is reported with the closest arrival its starts reached.
+//
+// What is proved. A reached count is proved reachable (the arrival is re-integrated). A count
+// with 2n < m (m = 5 conditions, 3 with orientation_only) is impossible for a generic goal: the
+// goals that n impulses reach are the image of a 2n-dimensional parameter set under a smooth map,
+// a set of measure zero (Sard) — `kGenericallyImpossible`; a particular goal may still lie in it
+// (a goal made by one impulse, or Figure 7's two straight rolls). Every other count that did not
+// arrive is only `kNotFound`. So a fewest count n with 2(n - 1) < m is the fewest for a generic
+// goal (`minimal_for_generic_goal`): n = 3 with five conditions, n = 2 with three. The Pareto
+// table's times are the shortest FOUND per count, not proved shortest: per count the arrival of
+// shortest total time among those found, shortened further along the arrival manifold
+// (projected descent of T); count n + 1 is first seeded by count n's arrival with its longest
+// flight split by a zero impulse, so the times do not grow with the count. A count stops after
+// `arrivals_per_count` arrivals.
 #pragma once
 
 #include <Eigen/Core>
@@ -49,6 +61,14 @@ enum class FewestImpulsesStatus {
 };
 std::string ToString(FewestImpulsesStatus status);
 
+/// What is known of one impulse count after the search (see the header comment, "What is proved").
+enum class FewestCountVerdict {
+  kReached,                ///< an arrival within the window was found and re-integrated
+  kGenericallyImpossible,  ///< 2n < conditions: no generic goal is reachable (Sard); none found
+  kNotFound,               ///< 2n >= conditions and no start arrived: not found, NOT proved impossible
+};
+std::string ToString(FewestCountVerdict verdict);
+
 struct FewestImpulsesProblem {
   BallModel model = BallModel::FromLambda(1.0);
   AngleState initial{M_PI / 3, 0.4, 0.1};  ///< (theta, phi, psi) at the start (psi: reference of s_0 from rest)
@@ -69,6 +89,9 @@ struct FewestImpulsesOptions {
   int pareto_counts = 3;   ///< rows of the Pareto table from the fewest count up, in [1, kMaxImpulses]
   int starts = 24;         ///< starts per count, in [1, kMaxStarts]
   int arrivals_per_count = 4;  ///< a count stops after this many arrivals, in [1, kMaxStarts]
+  /// Starts in all (the first `starts` included) for a count with 2n >= conditions that no start
+  /// reached, in [0, kMaxStarts]; at most `starts` are tried when smaller.
+  int adaptive_starts = 256;
   /// Search window: total time T <= max_total_time (> 0); 0 chooses 1.5 (|x1 - x0| + angle(A0, A1) +
   /// 2 pi) / sqrt(mu): one and a half times the time to roll the distance, the turn and a full turn
   /// at the speed sqrt(mu). Starts take total times in [0.1, 0.9] of the window.
@@ -87,7 +110,11 @@ struct FewestImpulsesCount {
   int starts = 0;         ///< starts tried
   int arrived = 0;        ///< starts that arrived exactly within the window
   bool reached = false;   ///< arrived > 0
-  /// The arrival of shortest total time found (when reached), else the closest arrival found.
+  FewestCountVerdict verdict = FewestCountVerdict::kNotFound;
+  /// The arrival was found by continuation from count n + 1 (a flight shrunk to zero).
+  bool by_continuation = false;
+  /// The arrival of shortest total time FOUND (when reached; not proved shortest), else the
+  /// closest arrival found.
   std::vector<ExactImpulse> plan;
   std::optional<ExactImpulse> stop;  ///< with stop_at_goal, when reached
   double total_time = 0.0;           ///< T = sum t_k
@@ -104,6 +131,9 @@ struct FewestImpulsesSummary {
   FewestImpulsesStatus status = FewestImpulsesStatus::kNotRun;
   std::string message = "not run";
   int fewest = 0;                           ///< the fewest count (0 when not found)
+  /// Every count below `fewest` is kGenericallyImpossible: `fewest` is the fewest for a generic
+  /// goal. false: a smaller count is only kNotFound (or nothing was found).
+  bool minimal_for_generic_goal = false;
   std::vector<FewestImpulsesCount> counts;  ///< every count searched, n = 1, 2, ... in order
   double max_total_time = 0.0;              ///< the window used
   std::string searched;                     ///< what was searched, in words

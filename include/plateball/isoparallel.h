@@ -39,6 +39,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -111,9 +112,33 @@ struct IsoparallelSolution {
   double orientation_residual = 0.0;  ///< |LogSO3(A1 A0^-1)^-1 R)|, R by VerifyRolling
   double orientation_error = 0.0;     ///< operator 2-norm ||A1 - R A0|| (verification)
   double endpoint_error = 0.0;        ///< |x(length) - x1|
+  /// The first conjugate time along the extremal in (0, kConjugateSearchFactor x length]: where
+  /// the Jacobian of the end state (x, y, log R) with respect to the initial costate and the length
+  /// (the exponential map) changes sign; +infinity when it does not there (docs/paper_notes.md,
+  /// "Conjugate points of the isoparallel extremals"). A family's end is conjugate (its members at
+  /// other phases reach the same state), so its conjugate time is at most its length.
+  double conjugate_time = std::numeric_limits<double>::infinity();
+  /// No conjugate point strictly before the end (conjugate_time >= length to kConjugateEndTolerance
+  /// relative): Jacobi's condition. The path is then a local minimiser of length among nearby paths
+  /// with the same ends; it says nothing of other, distant paths (global optimality is what the
+  /// branch-and-bound certificate, isoparallel_certificate.h, proves).
+  bool locally_optimal = false;
   Elastica Path() const { return Elastica(parameters); }
   Eigen::Vector2d PositionAt(double s) const { return start + Elastica(parameters).Position(s); }
 };
+
+/// The conjugate-point search runs to this multiple of the solution's length.
+constexpr double kConjugateSearchFactor = 2.0;
+/// A conjugate time within this relative distance of the end is the end (a family's end point).
+constexpr double kConjugateEndTolerance = 1e-7;
+
+/// Two distinct reported solutions of equal length (to kMaxwellLengthTolerance relative): both reach
+/// the goal, so the goal is a Maxwell point of each, and neither stays optimal past it.
+struct MaxwellPair {
+  int first = 0;   ///< index into IsoparallelSummary::solutions
+  int second = 0;  ///< a larger index
+};
+constexpr double kMaxwellLengthTolerance = 1e-9;
 
 enum class IsoparallelStatus {
   kNotRun,              ///< default: no solve was run
@@ -144,6 +169,9 @@ struct IsoparallelSummary {
   /// do not depend on the seed.
   bool seeded = false;
   std::vector<IsoparallelSolution> solutions;  ///< distinct, sorted by length (shortest first)
+  /// Pairs of solutions of equal length (Maxwell points at the goal); a family is besides a whole
+  /// continuum of equal-length solutions (its other phases).
+  std::vector<MaxwellPair> maxwell_pairs;
   int local_solves = 0;        ///< Levenberg-Marquardt runs (start, crossing)
   int converged_solves = 0;    ///< runs that reached the tolerance
   long evaluations = 0;        ///< candidate paths evaluated (residuals and Jacobians)

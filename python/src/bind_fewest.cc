@@ -16,6 +16,7 @@ void BindFewestInputs(py::module_& m) {
       .def_readwrite("pareto_counts", &FewestImpulsesOptions::pareto_counts)
       .def_readwrite("starts", &FewestImpulsesOptions::starts)
       .def_readwrite("arrivals_per_count", &FewestImpulsesOptions::arrivals_per_count)
+      .def_readwrite("adaptive_starts", &FewestImpulsesOptions::adaptive_starts)
       .def_readwrite("max_total_time", &FewestImpulsesOptions::max_total_time)
       .def_readwrite("max_iterations", &FewestImpulsesOptions::max_iterations)
       .def_readwrite("position_tolerance", &FewestImpulsesOptions::position_tolerance)
@@ -44,6 +45,9 @@ void BindFewestCount(py::module_& m) {
       .def_readonly("starts", &FewestImpulsesCount::starts)
       .def_readonly("arrived", &FewestImpulsesCount::arrived)
       .def_readonly("reached", &FewestImpulsesCount::reached)
+      .def_property_readonly("verdict", [](const FewestImpulsesCount& c) { return ToString(c.verdict); },
+                             "reached, generically_impossible (2n below the conditions) or not_found (not proved impossible)")
+      .def_readonly("by_continuation", &FewestImpulsesCount::by_continuation)
       .def_readonly("plan", &FewestImpulsesCount::plan)
       .def_readonly("stop", &FewestImpulsesCount::stop)
       .def_readonly("total_time", &FewestImpulsesCount::total_time)
@@ -64,6 +68,8 @@ void BindFewestImpulses(py::module_& m) {
   AddSummaryShape(summary);
   summary.def_readonly("fewest", &FewestImpulsesSummary::fewest)
       .def_readonly("counts", &FewestImpulsesSummary::counts)
+      .def_readonly("minimal_for_generic_goal", &FewestImpulsesSummary::minimal_for_generic_goal,
+                    "Every smaller count is impossible for a generic goal (dimension count).")
       .def_readonly("max_total_time", &FewestImpulsesSummary::max_total_time)
       .def_readonly("searched", &FewestImpulsesSummary::searched)
       .def_readonly("rollouts", &FewestImpulsesSummary::rollouts)

@@ -78,6 +78,10 @@ void BindIsoparallelInputs(py::module_& m) {
       .def_readonly("orientation_residual", &IsoparallelSolution::orientation_residual)
       .def_readonly("orientation_error", &IsoparallelSolution::orientation_error)
       .def_readonly("endpoint_error", &IsoparallelSolution::endpoint_error)
+      .def_readonly("conjugate_time", &IsoparallelSolution::conjugate_time,
+                    "First conjugate time along the extremal (inf: none up to 2x the length).")
+      .def_readonly("locally_optimal", &IsoparallelSolution::locally_optimal,
+                    "No conjugate point strictly before the end (Jacobi's condition); not global optimality.")
       .def("elastica", &IsoparallelSolution::Path, "The path as an Elastica (from the origin, before the shift to start).")
       .def("position_at", &IsoparallelSolution::PositionAt, py::arg("s"))
       .def("points", [](const IsoparallelSolution& s, int n) { return SampleArc(s.length, n, [&](double a) { return s.PositionAt(a); }); },
@@ -93,6 +97,11 @@ void BindIsoparallelSolve(py::module_& m) {
       .def_readonly("complete", &IsoparallelSummary::complete)
       .def_readonly("periods_searched", &IsoparallelSummary::periods_searched)
       .def_readonly("solutions", &IsoparallelSummary::solutions)
+      .def_property_readonly("maxwell_pairs", [](const IsoparallelSummary& s) {
+            std::vector<std::pair<int, int>> pairs;
+            for (const MaxwellPair& m : s.maxwell_pairs) pairs.emplace_back(m.first, m.second);
+            return pairs;
+          }, "Index pairs of distinct solutions of equal length (Maxwell points at the goal).")
       .def_readonly("local_solves", &IsoparallelSummary::local_solves)
       .def_readonly("converged_solves", &IsoparallelSummary::converged_solves)
       .def_readonly("evaluations", &IsoparallelSummary::evaluations)

@@ -105,6 +105,12 @@ def test_isoparallel_shortest_rolls_to_identity(problems):
     h = s_[1] - s_[0]
     gdd = (g[2:] - 2 * g[1:-1] + g[:-2]) / h ** 2
     assert np.max(np.abs(gdd + el.G * np.cos(g[1:-1] - best.parameters.heading_w))) < 1e-4
+    # Jacobi's condition: the shortest (a family) is conjugate exactly at its end, no earlier; the
+    # mirror images of a rotating family have equal lengths (Maxwell pairs)
+    assert best.locally_optimal and best.conjugate_time == pytest.approx(best.length, rel=1e-6)
+    assert (1, 2) in s.maxwell_pairs
+    assert all(s.solutions[i].length == pytest.approx(s.solutions[j].length, rel=1e-9) for i, j in s.maxwell_pairs)
+    assert not all(q.locally_optimal for q in s.solutions)
 
 
 def test_join_arrives_by_independent_free_motion():
@@ -128,6 +134,10 @@ def test_fewest_impulses_figure7_two_straight_rolls(problems):
     s = pb.fewest_impulses(*setup)
     assert (s.status, s.usable, s.fewest) == ("found", True, 2)
     assert [c.reached for c in s.counts[:2]] == [False, True]
+    # one impulse: 2 unknowns against 5 conditions, impossible for a generic goal (this goal is not
+    # generic for two: it is reached)
+    assert [c.verdict for c in s.counts[:2]] == ["generically_impossible", "reached"]
+    assert s.minimal_for_generic_goal
     f = s.fewest_count
     assert f.impulses == 2 and len(f.plan) == 2
     assert f.total_time == pytest.approx(4 * math.pi, abs=1e-9)

@@ -61,7 +61,8 @@ Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay
 Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses) {
   Json rows = Json::array();
   for (const FewestImpulsesCount& c : s.counts) {
-    Json row{{"impulse_count", c.impulses}, {"reached", c.reached},   {"starts", c.starts},
+    Json row{{"impulse_count", c.impulses}, {"reached", c.reached},   {"verdict", ToString(c.verdict)},
+             {"by_continuation", c.by_continuation}, {"starts", c.starts},
              {"arrived", c.arrived},        {"total_time", c.total_time}, {"path_length", c.path_length},
              {"position_error", c.position_error}, {"orientation_error", c.orientation_error}};
     if (!c.plan.empty()) {  // the independent re-integration of the row's impulses
@@ -74,6 +75,8 @@ Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpu
   }
   Json j = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
   Append(j, Json{{"fewest_impulses", s.fewest},
+         {"minimal_for_generic_goal", s.minimal_for_generic_goal},
+         {"pareto_times", "shortest_found"},
          {"searched", s.searched},
          {"max_total_time", s.max_total_time},
          {"rollouts", s.rollouts},

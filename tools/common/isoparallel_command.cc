@@ -77,6 +77,13 @@ std::vector<std::vector<Eigen::Vector2d>> SampleArcs(const plateball::BallModel&
   return arcs;
 }
 
+// Index pairs (into "solutions") of equal-length solutions: Maxwell points at the goal.
+Json MaxwellPairsJson(const plateball::IsoparallelSummary& summary) {
+  Json pairs = Json::array();
+  for (const plateball::MaxwellPair& m : summary.maxwell_pairs) pairs.push_back(Json::array({m.first, m.second}));
+  return pairs;
+}
+
 Json SolutionJson(const plateball::IsoparallelSolution& s) {
   Json j = Json::object();
   j["length"] = s.length;
@@ -95,6 +102,9 @@ Json SolutionJson(const plateball::IsoparallelSolution& s) {
   j["orientation_residual"] = s.orientation_residual;
   j["orientation_distance"] = s.orientation_error;
   j["endpoint_error"] = s.endpoint_error;
+  // null: no conjugate point up to kConjugateSearchFactor x the length
+  j["conjugate_time"] = std::isfinite(s.conjugate_time) ? Json(s.conjugate_time) : Json(nullptr);
+  j["locally_optimal"] = s.locally_optimal;
   return j;
 }
 
@@ -126,7 +136,8 @@ Json PlanFileJson(const IsoparallelCliOptions& cli, const plateball::Problem& pr
                       {"length_cap_factor", opt.length_cap_factor},
                       {"tolerance", opt.tolerance},
                       {"local_solves", summary.local_solves},
-                      {"searched_length", summary.searched_length}});
+                      {"searched_length", summary.searched_length},
+                      {"maxwell_pairs", MaxwellPairsJson(summary)}});
   j["solver"] = std::move(solver);
   Json sols = Json::array();
   for (const auto& s : summary.solutions) sols.push_back(SolutionJson(s));
@@ -211,6 +222,23 @@ void PrintNoSolution(const plateball::IsoparallelSummary& summary, const plateba
               << ", paths up to length " << summary.searched_length << ")\n";
 }
 
+// Jacobi's condition for the shortest and how many solutions meet it; the Maxwell pairs.
+void PrintConjugatePoints(const plateball::IsoparallelSummary& summary, std::ostream& out) {
+  const plateball::IsoparallelSolution& best = summary.Shortest();
+  int local = 0;
+  for (const plateball::IsoparallelSolution& s : summary.solutions) local += s.locally_optimal ? 1 : 0;
+  const std::streamsize precision = out.precision(10);
+  out << "first conjugate point of the shortest: ";
+  if (!std::isfinite(best.conjugate_time)) out << "none up to " << plateball::kConjugateSearchFactor << "x its length";
+  else if (best.locally_optimal && best.conjugate_time <= best.length * (1 + plateball::kConjugateEndTolerance))
+    out << "at its end (s = " << best.conjugate_time << ")";
+  else out << "s = " << best.conjugate_time;
+  out << (best.locally_optimal ? ", none before the end: locally optimal" : ", before the end: NOT locally optimal")
+      << "; locally optimal: " << local << " of " << summary.solutions.size() << " solutions; Maxwell pairs (equal length): "
+      << summary.maxwell_pairs.size() << "\n";
+  out.precision(precision);
+}
+
 void PrintSolutions(const plateball::IsoparallelSummary& summary, const plateball::IsoparallelOptions& opt,
                     std::ostream& out) {
   using namespace plateball;
@@ -229,6 +257,7 @@ void PrintSolutions(const plateball::IsoparallelSummary& summary, const platebal
             << (best.family ? ", a one-parameter family: phase free, phase 0 reported" : "") << ")\n";
   out << std::setprecision(3) << "verified by rolling (Runge-Kutta-Fehlberg 7(8)): orientation residual " << best.orientation_residual
             << " rad, endpoint error " << best.endpoint_error << "\n";
+  PrintConjugatePoints(summary, out);
 }
 
 void PrintPlan(const plateball::PlanSummary& plan, double final_error, double solve_seconds, double plan_seconds,
