@@ -1,5 +1,6 @@
 #include "plateball/plate_impulse.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "check.h"
