@@ -348,7 +348,7 @@ ReplayReport ReplayInTwin(const RigPlan& plan, const PlannedTrajectory& referenc
   out.energy_planned = reference.EnergyAt(out.t_end);
   out.energy_engine = end.energy;
   const double diff = std::abs(out.energy_engine - out.energy_planned);
-  out.energy_error = out.energy_planned > 0 ? diff / out.energy_planned : diff;
+  out.energy_error = reference.MaxEnergy() > 0 ? diff / reference.MaxEnergy() : diff;
   return out;
 }
 

@@ -94,7 +94,7 @@ struct ReplayReport {
   double orientation_error = 0.0;     ///< angle of R_plan^T R_engine at t_end, rad
   double energy_planned = 0.0;        ///< J
   double energy_engine = 0.0;         ///< J
-  double energy_error = 0.0;          ///< |E_engine - E_plan| / E_plan (absolute in J when E_plan = 0)
+  double energy_error = 0.0;          ///< |E_engine - E_plan| / the plan's largest energy (J when it is 0)
   double max_slip_speed = 0.0;        ///< m/s over all steps
   double max_spin_rate = 0.0;         ///< rad/s over all steps
   std::vector<Eigen::Vector3d> pulse_impulse;  ///< J per impulse (N s), PlateImpulseFor

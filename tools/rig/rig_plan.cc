@@ -1,5 +1,6 @@
 #include "rig/rig_plan.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -8,7 +9,6 @@
 #include "common/input_file.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
-#include "plateball/task_adapters.h"
 
 namespace plateball::tools::rig {
 namespace {
@@ -84,13 +84,15 @@ Problem LoadProblemOf(const json& doc, const std::string& result_file) {
   return ReadProblemFile(file);
 }
 
-RigImpulse ImpulseOf(const json& step, const std::string& where, const BallModel& model, bool plan) {
+RigImpulse ImpulseOf(const json& step, const std::string& where, const BallModel& model, bool plan,
+                     BallState* before_state) {
   RigImpulse k;
   k.t = Number(step, where, "t_impulse");
   k.delta_omega = Vector<3>(step, where, "delta_omega");
   const AngleState before = Angles(step, where, "angles_before");
   const double mu_before = plan ? Number(step, where, "mu") : Number(step, where, "mu_before");
   const BallState state = StateOf(before, mu_before, model);
+  *before_state = state;
   k.z = state.z;
   k.omega_after = plan ? Vector<3>(step, where, "omega_after_impulse") : Eigen::Vector3d(state.omega + k.delta_omega);
   return k;
@@ -118,18 +120,8 @@ RigPlan ReadRigPlan(const std::string& result_file) {
   out.integration = p.integration;
   const bool plan = out.command == "plan";
   const json& initial = Get(doc, "", "initial");
-  const AngleState angles = Angles(initial, "initial.", "angles");
-  const double mu = Number(initial, "initial.", "mu");
-  out.start = StateOf(angles, mu, out.model);
+  out.start = StateOf(Angles(initial, "initial.", "angles"), Number(initial, "initial.", "mu"), out.model);
   out.x0 = Vector<2>(initial, "initial.", "x0");
-  if (plan) {
-    out.A0 = Rotation(initial, "initial.", "orientation");
-  } else {
-    const ExactArrivalSetup setup = ExactArrivalSetupFor(p);
-    out.A0 = AlignOrientationToAxis(setup.problem.A0, out.start.z);
-  }
-  if ((out.A0.col(2) - out.start.z).norm() > 1e-9)
-    Fail("initial.orientation", "(matrix)", "its third column is not the symmetry axis of initial.angles");
   out.t_end = Number(doc, "", "total_time");
   const char* list = plan ? "steps" : "impulses";
   const json& steps = Get(doc, "", list);
@@ -138,12 +130,28 @@ RigPlan ReadRigPlan(const std::string& result_file) {
   double previous = 0.0;
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const std::string where = std::string(list) + "[" + std::to_string(i) + "].";
-    RigImpulse k = ImpulseOf(steps[i], where, out.model, plan);
+    BallState before;
+    RigImpulse k = ImpulseOf(steps[i], where, out.model, plan, &before);
     if (k.t < previous || k.t > out.t_end * (1 + 1e-12) + 1e-12)
       Fail(where + "t_impulse", std::to_string(k.t), "impulse times must increase within [0, total_time]");
+    // The first impulse (at t = 0) starts from its record's state and position: steer starts at rest
+    // with --start-at-rest and from the isoparallel start without a plan section.
+    if (i == 0 && k.t == 0.0) {
+      out.start = before;
+      if (!plan) out.x0 = Vector<2>(steps[i], where, "x");
+    }
     previous = k.t;
     out.impulses.push_back(k);
   }
+  if (plan) {
+    out.A0 = Rotation(initial, "initial.", "orientation");
+  } else {
+    // steer's start orientation (task_adapters.cc): the isoparallel start without a plan section.
+    const bool iso = !p.plan && p.isoparallel;
+    out.A0 = AlignOrientationToAxis(iso ? p.isoparallel->start_orientation : p.A0, out.start.z);
+  }
+  if ((out.A0.col(2) - out.start.z).norm() > 1e-9)
+    Fail("initial.orientation", "(matrix)", "its third column is not the symmetry axis of the first impulse's state");
   return out;
 }
 
@@ -163,6 +171,7 @@ PlannedTrajectory::PlannedTrajectory(const RigPlan& plan) : plan_(plan) {
     arc.rest.state = state;
     arc.rest.energy = Energy(state, plan.model);
     arcs_.push_back(arc);
+    max_energy_ = std::max(max_energy_, EnergyAt(t0));
   };
   add_arc(0.0, plan.start);
   for (const RigImpulse& k : plan.impulses) {

@@ -53,6 +53,8 @@ class PlannedTrajectory {
   MotionSample At(double t) const;
   /// Kinetic energy of ball and plate in J at the planned state: mu (I1 + M r^2) / 2.
   double EnergyAt(double t) const;
+  /// The largest kinetic energy of the plan's arcs in J (the scale of its energy errors).
+  double MaxEnergy() const { return max_energy_; }
 
  private:
   struct Arc {
@@ -63,6 +65,7 @@ class PlannedTrajectory {
   const Arc& ArcAt(double t) const;
   RigPlan plan_;
   std::vector<Arc> arcs_;
+  double max_energy_ = 0.0;
 };
 
 }  // namespace plateball::tools::rig
