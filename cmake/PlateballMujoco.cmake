@@ -29,7 +29,3 @@ if(PLATEBALL_MUJOCO AND TARGET plateball_cli AND NOT PLATEBALL_SANITIZE AND NOT 
     message(STATUS "plateball rig: MuJoCo not found (Debian: libmujoco-dev), the digital twin is not built")
   endif()
 endif()
-if(PLATEBALL_WITH_MUJOCO)
-  add_executable(twin_measure_tmp ${PROJECT_SOURCE_DIR}/tests/rig/twin_measure.cc)
-  target_link_libraries(twin_measure_tmp PRIVATE plateball_rig)
-endif()
