@@ -82,7 +82,7 @@ std::string ScheduleFileFor(const std::string& mjcf) {
 
 Json ScheduleJson(const RigCliOptions& o, const rig::RigPlan& plan, const std::string& schedule_file) {
   const double D = o.pulse_duration;
-  Json doc = HeaderJson("plateball", "rig export", plan.problem, plan.problem.source, false);
+  Json doc = HeaderJson("plateball", "rig_export", plan.problem, plan.problem.source, false);
   doc["result"] = o.result;
   doc["mjcf"] = o.mjcf;
   doc["schedule"] = schedule_file;
@@ -135,7 +135,7 @@ int RunReplay(const RigCliOptions& o) {
   const rig::ReplayOptions options = ReplayOptionsOf(o);
   const rig::PlannedTrajectory reference(plan);
   const rig::ReplayReport r = WithOptionNames([&] { return rig::ReplayInTwin(plan, reference, options); });
-  Json doc = HeaderJson("plateball", "rig replay", plan.problem, plan.problem.source);
+  Json doc = HeaderJson("plateball", "rig_replay", plan.problem, plan.problem.source);
   doc["result"] = Json{{"file", o.result}, {"command", plan.command}, {"impulse_count", plan.impulses.size()},
                        {"total_time", plan.t_end}};
   doc["settings"] = SettingsJson(options.settings);
