@@ -9,18 +9,15 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/number_format.h"
 #include "plateball/plate_impulse.h"
 #include "plateball/so3.h"
 
 namespace plateball::tools::rig {
 namespace {
 
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
+// Shortest round-trip text: the MJCF carries the exact parameters.
+std::string Num(double v) { return FormatNumber(v); }
 
 std::string Bad(const std::string& field, double value, const std::string& what) {
   return field + ": value " + Num(value) + ": " + what;
