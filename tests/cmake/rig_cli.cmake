@@ -34,12 +34,16 @@ plateball_cli_test(rig.overlapping_pulses 3 REGEX "--pulse-duration: value 1: lo
   -- rig replay ${rig}/plan16.json --pulse-duration 1)
 plateball_cli_test(rig.export_overlapping_pulses 3 REGEX "--pulse-duration: value 1: longer than the flight"
   -- rig export ${rig}/plan16.json --mjcf ${rig}/bad.xml --pulse-duration 1)
+# A 1 us pulse needs 2.7 kN of friction at the top, where mu_s = 100 holds 49 N.
+plateball_cli_test(rig.pulse_would_slip 3
+  REGEX "--pulse-duration: value 1e-06: too short: impulse 0 would slip: the top contact needs [0-9.e+]+ N of friction"
+  -- rig export ${rig}/plan16.json --mjcf ${rig}/slip.xml --pulse-duration 1e-6)
 plateball_cli_test(rig.bad_timestep 3 REGEX "--dt: value 0: must be in \\(0, 0.1\\] s"
   -- rig replay ${rig}/plan16.json --dt 0)
 plateball_cli_test(rig.not_a_plan 3 REGEX "command: value \"simulate\": the rig replays results of"
   -- rig replay ${rig}/simulate.json)
 set_tests_properties(cli.rig.replay_follows_plan cli.rig.replay_centred_pulses cli.rig.export cli.rig.export_schedule
-  cli.rig.no_physical_ball cli.rig.overlapping_pulses cli.rig.export_overlapping_pulses cli.rig.bad_timestep
+  cli.rig.no_physical_ball cli.rig.overlapping_pulses cli.rig.pulse_would_slip cli.rig.export_overlapping_pulses cli.rig.bad_timestep
   PROPERTIES FIXTURES_REQUIRED rig_results)
 plateball_cli_test(rig.setup_simulate 0 -- simulate problems/physical_units.json --samples 3 --out ${rig}/simulate.json)
 set_tests_properties(cli.rig.setup_simulate PROPERTIES FIXTURES_SETUP rig_simulate)

@@ -120,7 +120,13 @@ int RunExport(const RigCliOptions& o) {
   const rig::RigPlan plan = rig::ReadRigPlan(o.result);
   RequireBuildable(plan);
   const rig::ReplayOptions options = ReplayOptionsOf(o);
-  if (o.pulse_duration > 0) WithOptionNames([&] { rig::CheckPulseWindows(plan, o.pulse_duration, "pulse_duration"); return 0; });
+  if (o.pulse_duration > 0) {
+    WithOptionNames([&] {
+      rig::CheckPulseWindows(plan, o.pulse_duration, "pulse_duration");
+      rig::CheckPulseFriction(plan, o.pulse_duration, options.settings, "pulse_duration");
+      return 0;
+    });
+  }
   const std::string xml = rig::TwinMjcf(plan.physical, plan.x0, plan.A0, options.settings);
   Json doc = ScheduleJson(o, plan, schedule);
   AddPhysicalUnits(plan.problem, &doc);

@@ -249,10 +249,6 @@ void CheckPulseWindows(const RigPlan& plan, double duration, const std::string& 
   }
 }
 
-namespace {
-
-// The friction a pulse needs: the contacts' impulses over D within mu_s (mu_t for the torsion) times
-// the normal loads, the plate's weight on top and the plate's and ball's below.
 void CheckPulseFriction(const RigPlan& plan, double duration, const TwinSettings& s, const std::string& field) {
   const PhysicalParameters& p = plan.physical;
   const double top_load = p.plate_mass * s.gravity, bottom_load = (p.plate_mass + p.ball_mass) * s.gravity;
@@ -274,6 +270,8 @@ void CheckPulseFriction(const RigPlan& plan, double duration, const TwinSettings
       throw std::invalid_argument(Bad(field, duration, "too short: impulse " + std::to_string(i) + " would slip: " + what));
   }
 }
+
+namespace {
 
 // Equal substeps <= dt from a to b.
 int Substeps(double a, double b, double dt) { return std::max(1, static_cast<int>(std::ceil((b - a) / dt - 1e-9))); }

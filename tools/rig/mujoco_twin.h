@@ -104,6 +104,11 @@ struct ReplayReport {
 /// std::invalid_argument naming `field` and the impulse otherwise.
 void CheckPulseWindows(const RigPlan& plan, double duration, const std::string& field);
 
+/// The contacts must hold each pulse: the top contact's friction impulse over D within mu_s M_plate g,
+/// the bottom's within mu_s (M_plate + M_ball) g, the torsional one within mu_t (M_ball + 2 M_plate) g.
+/// Throws std::invalid_argument naming `field` and the impulse that would slip otherwise.
+void CheckPulseFriction(const RigPlan& plan, double duration, const TwinSettings& settings, const std::string& field);
+
 /// Runs the plan in the engine from its start to max(t_end, last pulse's end) and compares with the
 /// planned trajectory at that time. Ideal jumps set omega to the planned post-impulse omega at each
 /// impulse time; pulses apply the force J/D to the plate over the centred window, J =
