@@ -204,6 +204,22 @@ TEST(MujocoTwin, ExportedMjcfLoadsWithTheBallsInertiaAndOrientation) {
   mj_deleteModel(m);
 }
 
+// The reason for the twin's own check: MuJoCo's compiler itself rejects I3 > 2 I1.
+TEST(MujocoTwin, MujocosCompilerRejectsAnInertiaAgainstTheTriangleInequality) {
+  const PhysicalParameters p{1.6e-5, 1.2e-5, 0.1, 0.02, 0.05};
+  std::string xml = TwinMjcf(p, Eigen::Vector2d::Zero(), Eigen::Matrix3d::Identity(), TwinSettings{});
+  const std::string good = "diaginertia=\"1.6e-05 1.6e-05 1.2e-05\"";
+  ASSERT_NE(xml.find(good), std::string::npos);
+  xml.replace(xml.find(good), good.size(), "diaginertia=\"1.6e-05 1.6e-05 4e-05\"");
+  const std::string file = TempFile("bad_inertia.xml");
+  std::ofstream(file) << xml;
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(file.c_str(), nullptr, error, sizeof(error));
+  EXPECT_EQ(m, nullptr);
+  if (m) mj_deleteModel(m);
+  EXPECT_NE(std::string(error).find("inertia"), std::string::npos) << error;
+}
+
 TEST(MujocoTwin, BallsMujocoCannotBuildAreNamed) {
   PhysicalParameters p{1.6e-5, 1.2e-5, 0.1, 0.02, 0.05};
   EXPECT_EQ(TwinBuildableMessage(p), "");

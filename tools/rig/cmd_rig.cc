@@ -127,7 +127,9 @@ int RunExport(const RigCliOptions& o) {
       return 0;
     });
   }
-  const std::string xml = rig::TwinMjcf(plan.physical, plan.x0, plan.A0, options.settings);
+  rig::TwinSettings settings = options.settings;
+  settings.plate_half_size_radii = rig::PlateHalfSizeFor(plan, rig::PlannedTrajectory(plan), settings);
+  const std::string xml = rig::TwinMjcf(plan.physical, plan.x0, plan.A0, settings);
   Json doc = ScheduleJson(o, plan, schedule);
   AddPhysicalUnits(plan.problem, &doc);
   WriteOutput(o.mjcf, xml);

@@ -31,7 +31,8 @@ void ThrowIf(const std::string& message) {
 // output, where the tools write their JSON; the twin reads its data's warning counters instead.
 void QuietWarning(const char*) {}
 
-constexpr double kSettleTimeConstants = 60.0;  // vertical settling: e^-60 of the initial transient
+constexpr double kSettleTimeConstants = 60.0;
+constexpr double kMaxReplaySteps = 1e8;  // about 10 minutes of RK4 on one core  // vertical settling: e^-60 of the initial transient
 const char* const kXmlName = "plateball_twin.xml";
 
 }  // namespace
@@ -271,6 +272,24 @@ void CheckPulseFriction(const RigPlan& plan, double duration, const TwinSettings
   }
 }
 
+double PlateHalfSizeFor(const RigPlan& plan, const PlannedTrajectory& reference, const TwinSettings& settings) {
+  // The plate starts centred over the ball and moves twice as far: the contact moves on it as far as
+  // the ball moves. The impulse points and the end bound the path up to a flight's length.
+  double extent = 0.0, longest_flight = 0.0, previous = 0.0;
+  for (const RigImpulse& k : plan.impulses) {
+    extent = std::max(extent, (reference.At(k.t).x - plan.x0).norm());
+    longest_flight = std::max(longest_flight, k.t - previous);
+    previous = k.t;
+  }
+  longest_flight = std::max(longest_flight, plan.t_end - previous);
+  extent = std::max(extent, (reference.At(plan.t_end).x - plan.x0).norm());
+  // |x'| = |omega_h| <= sqrt(mu / min(1, lambda)) (eq. (9)) bounds a flight's path in radii.
+  const double speed = std::sqrt(reference.MaxEnergy() * 2 /
+                                 (plan.physical.inertia_1 + plan.physical.EffectiveMass() * std::pow(plan.physical.radius, 2)) /
+                                 std::min(1.0, plan.model.lambda()));
+  return std::max(settings.plate_half_size_radii, 2 * (extent + speed * longest_flight) + 10);
+}
+
 namespace {
 
 // Equal substeps <= dt from a to b.
@@ -303,8 +322,15 @@ ReplayReport ReplayInTwin(const RigPlan& plan, const PlannedTrajectory& referenc
   }
   std::sort(breaks.begin(), breaks.end());
   out.t_end = breaks.back();
+  const double steps = (out.t_end - out.t_begin) / options.settings.timestep;
+  if (steps > kMaxReplaySteps)
+    throw std::invalid_argument(Bad("total_time", plan.t_end,
+                                    "the replay would take " + Num(std::ceil(steps)) + " steps of " +
+                                        Num(options.settings.timestep) + " s, more than " + Num(kMaxReplaySteps)));
 
-  MujocoTwin twin(plan.physical, options.settings);
+  TwinSettings settings = options.settings;
+  settings.plate_half_size_radii = PlateHalfSizeFor(plan, reference, settings);
+  MujocoTwin twin(plan.physical, settings);
   const MotionSample start = reference.At(out.t_begin);
   twin.SetState(out.t_begin, start.x, start.A, start.state.omega);
   std::size_t next_jump = 0;

@@ -109,11 +109,15 @@ void CheckPulseWindows(const RigPlan& plan, double duration, const std::string& 
 /// Throws std::invalid_argument naming `field` and the impulse that would slip otherwise.
 void CheckPulseFriction(const RigPlan& plan, double duration, const TwinSettings& settings, const std::string& field);
 
+/// The upper plate's half side in radii for a plan: the settings' at least, and twice the farthest the
+/// contact point gets from its start (impulse points plus the longest flight at the largest speed).
+double PlateHalfSizeFor(const RigPlan& plan, const PlannedTrajectory& reference, const TwinSettings& settings);
+
 /// Runs the plan in the engine from its start to max(t_end, last pulse's end) and compares with the
 /// planned trajectory at that time. Ideal jumps set omega to the planned post-impulse omega at each
 /// impulse time; pulses apply the force J/D to the plate over the centred window, J =
 /// PlateImpulseFor(z_k, delta_omega_k).plate. Throws std::invalid_argument for invalid options or
-/// windows, std::runtime_error when the ball leaves the plates.
+/// windows or more than 1e8 steps, std::runtime_error when the ball leaves the plates.
 ReplayReport ReplayInTwin(const RigPlan& plan, const PlannedTrajectory& reference, const ReplayOptions& options);
 
 }  // namespace plateball::tools::rig
