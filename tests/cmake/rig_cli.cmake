@@ -48,3 +48,10 @@ set_tests_properties(cli.rig.replay_follows_plan cli.rig.replay_centred_pulses c
 plateball_cli_test(rig.setup_simulate 0 -- simulate problems/physical_units.json --samples 3 --out ${rig}/simulate.json)
 set_tests_properties(cli.rig.setup_simulate PROPERTIES FIXTURES_SETUP rig_simulate)
 set_tests_properties(cli.rig.not_a_plan PROPERTIES FIXTURES_REQUIRED rig_simulate)
+
+# Bash completion of the subcommand group: `plateball rig <TAB>` offers export and replay, then the
+# chosen one's options.
+add_test(NAME completion.rig_group
+         COMMAND bash -c "source \"$1\"; COMP_WORDS=(\"$2\" rig ''); COMP_CWORD=2; _plateball; echo \"\${COMPREPLY[*]}\"; COMP_WORDS=(\"$2\" rig replay --p); COMP_CWORD=3; _plateball; echo \"\${COMPREPLY[*]}\""
+                 bash ${PROJECT_SOURCE_DIR}/tools/completion/plateball.bash $<TARGET_FILE:plateball_cli>)
+set_tests_properties(completion.rig_group PROPERTIES PASS_REGULAR_EXPRESSION "^export replay\n--pulse-duration\n" LABELS cli)
