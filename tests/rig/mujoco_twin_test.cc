@@ -242,6 +242,21 @@ TEST(MujocoTwin, ResultWithoutPhysicalBallIsNamed) {
   }
 }
 
+TEST(MujocoTwin, ResultOfAnotherBallThanItsProblemIsNamed) {
+  const std::string file = PlanResult(kSource + "/problems/circle_physical.json", 8, "circle8.json");
+  std::ifstream in(file);
+  Json doc = Json::parse(in);
+  doc["model"]["lambda"] = 0.96;
+  std::ofstream(file) << DumpJson(doc);
+  try {
+    ReadRigPlan(file);
+    FAIL() << "a result of another ball was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("model.lambda: value 0.96: the result was planned for another ball", 0), 0u)
+        << e.what();
+  }
+}
+
 TEST(MujocoTwin, OverlappingPulsesAndTooLittleFrictionAreNamed) {
   const RigPlan plan = ReadRigPlan(PlanResult(kSource + "/problems/circle_physical.json", 64, "circle64b.json"));
   const double flight = plan.impulses[1].t - plan.impulses[0].t;  // 0.19 s

@@ -115,6 +115,11 @@ RigPlan ReadRigPlan(const std::string& result_file) {
   out.problem = LoadProblemOf(doc, result_file);
   const Problem& p = out.problem;
   if (!p.physical) Fail("ball.physical", "(missing)", "the rig needs the ball's physical parameters (problem " + p.source + ")");
+  const double lambda = Number(Get(doc, "", "model"), "model.", "lambda");
+  if (std::abs(lambda - p.model.lambda()) > 1e-12 * p.model.lambda())
+    Fail("model.lambda", Text(Get(doc, "", "model").at("lambda")),
+         "the result was planned for another ball than its problem file's now (lambda " +
+             Text(json(p.model.lambda())) + ")");
   out.physical = *p.physical;
   out.model = p.model;
   out.integration = p.integration;
