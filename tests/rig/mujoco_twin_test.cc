@@ -171,7 +171,8 @@ TEST(MujocoTwin, ExportedMjcfLoadsWithTheBallsInertiaAndOrientation) {
   const Problem p = ReadProblemFile(kSource + "/problems/physical_units.json");
   const Eigen::Matrix3d A0 = FreeMotion::FromAngles(p.model, p.initial_angles, p.mu).start().A0;
   const std::string file = TempFile("model.xml");
-  std::ofstream(file) << TwinMjcf(*p.physical, Eigen::Vector2d(1.5, -2.0), A0, TwinSettings{});
+  const Eigen::Vector3d omega0(0.3, -0.7, 0.0);
+  std::ofstream(file) << TwinMjcf(*p.physical, Eigen::Vector2d(1.5, -2.0), A0, TwinSettings{}, omega0);
   char error[1000] = "";
   mjModel* m = mj_loadXML(file.c_str(), nullptr, error, sizeof(error));
   ASSERT_NE(m, nullptr) << error;
@@ -200,6 +201,15 @@ TEST(MujocoTwin, ExportedMjcfLoadsWithTheBallsInertiaAndOrientation) {
   EXPECT_NEAR(d->xpos[3 * ball], 1.5 * p.physical->radius, 1e-15);
   EXPECT_NEAR(d->xpos[3 * ball + 2], p.physical->radius, 1e-15);
   EXPECT_LT((R - A0).norm(), 1e-12);
+  // The keyframe "start": the same pose, rolling velocities v = r omega x e3 and 2 v, the body-frame omega.
+  ASSERT_EQ(m->nkey, 1);
+  mj_resetDataKeyframe(m, d, 0);
+  const double r = p.physical->radius;
+  EXPECT_NEAR(d->qvel[0], r * omega0.y(), 1e-15);
+  EXPECT_NEAR(d->qvel[1], -r * omega0.x(), 1e-15);
+  EXPECT_LT((A0 * Eigen::Vector3d(d->qvel[3], d->qvel[4], d->qvel[5]) - omega0).norm(), 1e-14);
+  EXPECT_NEAR(d->qvel[6], 2 * r * omega0.y(), 1e-15);
+  EXPECT_NEAR(d->qpos[0], 1.5 * r, 1e-15);
   mj_deleteData(d);
   mj_deleteModel(m);
 }

@@ -129,7 +129,7 @@ int RunExport(const RigCliOptions& o) {
   }
   rig::TwinSettings settings = options.settings;
   settings.plate_half_size_radii = rig::PlateHalfSizeFor(plan, rig::PlannedTrajectory(plan), settings);
-  const std::string xml = rig::TwinMjcf(plan.physical, plan.x0, plan.A0, settings);
+  const std::string xml = rig::TwinMjcf(plan.physical, plan.x0, plan.A0, settings, plan.start.omega);
   Json doc = ScheduleJson(o, plan, schedule);
   AddPhysicalUnits(plan.problem, &doc);
   WriteOutput(o.mjcf, xml);

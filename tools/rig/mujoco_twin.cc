@@ -68,13 +68,16 @@ std::string TwinBuildableMessage(const PhysicalParameters& p) {
 }
 
 std::string TwinMjcf(const PhysicalParameters& p, const Eigen::Vector2d& x0, const Eigen::Matrix3d& A0,
-                     const TwinSettings& settings) {
+                     const TwinSettings& settings, const Eigen::Vector3d& omega0) {
   ThrowIf(TwinBuildableMessage(p));
   ThrowIf(settings.Validate());
   const double r = p.radius;
   const double half = settings.plate_half_size_radii * r, thick = 0.25 * r;
   const Eigen::Quaterniond q(A0);
   const double plate_moment = p.plate_mass * (half * half + thick * thick) / 3.0;
+  const Eigen::Vector3d omega(omega0.x(), omega0.y(), 0.0);
+  const Eigen::Vector3d v = r * omega.cross(Eigen::Vector3d::UnitZ());  // rolling on the lower plate
+  const Eigen::Vector3d w_body = A0.transpose() * omega;
   std::ostringstream x;
   x << "<mujoco model=\"plateball\">\n"
     << "  <!-- SI units. Lower plate fixed, upper plate on slide joints pressed by its weight; condim 4\n"
@@ -105,6 +108,14 @@ std::string TwinMjcf(const PhysicalParameters& p, const Eigen::Vector2d& x0, con
     << "      <geom name=\"upper_plate\" type=\"box\" size=\"" << Num(half) << " " << Num(half) << " " << Num(thick) << "\"/>\n"
     << "    </body>\n"
     << "  </worldbody>\n"
+    << "  <keyframe>\n"
+    << "    <!-- the plan's start: qpos = ball (x y z, quat w x y z), plate slides (x y z); qvel = ball\n"
+    << "         (linear velocity, world frame; angular velocity, body frame), plate (x y z) -->\n"
+    << "    <key name=\"start\" qpos=\"" << Num(x0.x() * r) << " " << Num(x0.y() * r) << " " << Num(r) << " "
+    << Num(q.w()) << " " << Num(q.x()) << " " << Num(q.y()) << " " << Num(q.z()) << " 0 0 0\" qvel=\""
+    << Num(v.x()) << " " << Num(v.y()) << " 0 " << Num(w_body.x()) << " " << Num(w_body.y()) << " " << Num(w_body.z())
+    << " " << Num(2 * v.x()) << " " << Num(2 * v.y()) << " 0\"/>\n"
+    << "  </keyframe>\n"
     << "</mujoco>\n";
   return x.str();
 }

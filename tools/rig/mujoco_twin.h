@@ -34,10 +34,11 @@ struct TwinSettings {
 std::string TwinBuildableMessage(const PhysicalParameters& p);
 
 /// The MJCF (MuJoCo XML) of the machine with the ball's centre above x0 (normalised contact point)
-/// and orientation A0. Throws std::invalid_argument naming the field for an unbuildable ball or
-/// invalid settings.
+/// and orientation A0, and the keyframe "start": the ball rolling with angular velocity omega0 (its
+/// vertical part dropped), the plate moving with the top point. Throws std::invalid_argument naming
+/// the field for an unbuildable ball or invalid settings.
 std::string TwinMjcf(const PhysicalParameters& p, const Eigen::Vector2d& x0, const Eigen::Matrix3d& A0,
-                     const TwinSettings& settings);
+                     const TwinSettings& settings, const Eigen::Vector3d& omega0 = Eigen::Vector3d::Zero());
 
 /// The engine's ball and plate at one instant (SI units; x normalised like the library's).
 struct TwinState {
