@@ -303,6 +303,30 @@ double PlateHalfSizeFor(const RigPlan& plan, const PlannedTrajectory& reference,
 
 namespace {
 
+// The times where the force or the velocity changes, sorted, ending with the replay's end: the
+// impulse times for ideal jumps, the window edges for pulses of duration D.
+std::vector<double> BreakTimes(const RigPlan& plan, double D) {
+  std::vector<double> breaks{plan.t_end};
+  for (const RigImpulse& k : plan.impulses) {
+    if (D > 0) {
+      breaks.push_back(k.t - D / 2);
+      breaks.push_back(k.t + D / 2);
+    } else {
+      breaks.push_back(k.t);
+    }
+  }
+  std::sort(breaks.begin(), breaks.end());
+  return breaks;
+}
+
+void CheckStepCount(const RigPlan& plan, double span, double dt) {
+  const double steps = span / dt;
+  if (steps > kMaxReplaySteps)
+    throw std::invalid_argument(Bad("total_time", plan.t_end,
+                                    "the replay would take " + Num(std::ceil(steps)) + " steps of " + Num(dt) +
+                                        " s, more than " + Num(kMaxReplaySteps)));
+}
+
 // Equal substeps <= dt from a to b.
 int Substeps(double a, double b, double dt) { return std::max(1, static_cast<int>(std::ceil((b - a) / dt - 1e-9))); }
 
@@ -318,26 +342,14 @@ ReplayReport ReplayInTwin(const RigPlan& plan, const PlannedTrajectory& referenc
     out.pulse_impulse.push_back(PlateImpulseFor(plan.physical, impulses[i].z, impulses[i].delta_omega).plate);
     if (D > 0) force[i] = out.pulse_impulse[i].head<2>() / D;
   }
-  std::vector<double> breaks{plan.t_end};
-  out.t_begin = 0.0;
   if (D > 0) {
     CheckPulseWindows(plan, D, "pulse_duration");
     CheckPulseFriction(plan, D, options.settings, "pulse_duration");
-    for (const RigImpulse& k : impulses) {
-      breaks.push_back(k.t - D / 2);
-      breaks.push_back(k.t + D / 2);
-    }
-    if (!impulses.empty()) out.t_begin = std::min(0.0, impulses.front().t - D / 2);
-  } else {
-    for (const RigImpulse& k : impulses) breaks.push_back(k.t);
   }
-  std::sort(breaks.begin(), breaks.end());
+  const std::vector<double> breaks = BreakTimes(plan, D);
+  out.t_begin = std::min(0.0, breaks.front());
   out.t_end = breaks.back();
-  const double steps = (out.t_end - out.t_begin) / options.settings.timestep;
-  if (steps > kMaxReplaySteps)
-    throw std::invalid_argument(Bad("total_time", plan.t_end,
-                                    "the replay would take " + Num(std::ceil(steps)) + " steps of " +
-                                        Num(options.settings.timestep) + " s, more than " + Num(kMaxReplaySteps)));
+  CheckStepCount(plan, out.t_end - out.t_begin, options.settings.timestep);
 
   TwinSettings settings = options.settings;
   settings.plate_half_size_radii = PlateHalfSizeFor(plan, reference, settings);
