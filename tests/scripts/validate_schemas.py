@@ -124,7 +124,7 @@ def check_rig(run, rel, tmp):
         return
     run.output(["plateball", "rig", "replay", plan])
     mjcf = os.path.join(tmp, "rig.xml")
-    if run.tool(["plateball", "rig", "export", plan, "--mjcf", mjcf, "--pulse-duration", "0.01"]) is not None:
+    if run.output(["plateball", "rig", "export", plan, "--mjcf", mjcf, "--pulse-duration", "0.01"]) is not None:
         with open(os.path.join(tmp, "rig.pulses.json")) as f:
             run.expect_valid("output/rig_export.schema.json", json.load(f), f"plateball rig export {rel}")
 

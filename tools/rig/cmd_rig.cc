@@ -134,6 +134,7 @@ int RunExport(const RigCliOptions& o) {
   AddPhysicalUnits(plan.problem, &doc);
   WriteOutput(o.mjcf, xml);
   WriteOutput(schedule, DumpJson(doc));
+  WriteJson(doc, "");  // the schedule on standard output too, as every subcommand prints its JSON
   return kExitSuccess;
 }
 
@@ -175,7 +176,7 @@ void AddCommon(CLI::App& sub, RigCliOptions& o) {
 std::function<int()> SetupRig(CLI::App& sub) {
   auto o = std::make_shared<RigCliOptions>();
   sub.require_subcommand(1);
-  o->export_cmd = sub.add_subcommand("export", "write the machine of a plan as MuJoCo MJCF and its pulse schedule (JSON) beside it");
+  o->export_cmd = sub.add_subcommand("export", "write the machine of a plan as MuJoCo MJCF and its pulse schedule (JSON) beside it and on standard output");
   AddCommon(*o->export_cmd, *o);
   o->export_cmd->add_option("--mjcf", o->mjcf, "the MJCF file to write; the schedule goes to the same name with .pulses.json")
       ->required();
