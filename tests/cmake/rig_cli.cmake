@@ -11,7 +11,10 @@ file(MAKE_DIRECTORY ${rig})
 # The results the rig reads: a physical ball's plan (16 impulses) and a lambda-only ball's.
 plateball_cli_test(rig.setup_plan 0 -- plan problems/circle_physical.json --impulses 16 --out ${rig}/plan16.json)
 plateball_cli_test(rig.setup_plan_lambda 0 -- plan problems/circle.json --impulses 8 --out ${rig}/plan_lambda.json)
-set_tests_properties(cli.rig.setup_plan cli.rig.setup_plan_lambda PROPERTIES FIXTURES_SETUP rig_results)
+plateball_cli_test(rig.setup_isoparallel 0
+  -- isoparallel tests/data/rig_isoparallel_physical.json --quiet --out ${rig}/isoparallel.json)
+set_tests_properties(cli.rig.setup_plan cli.rig.setup_plan_lambda cli.rig.setup_isoparallel
+  PROPERTIES FIXTURES_SETUP rig_results)
 
 # Ideal jumps at dt = 1e-3: the 64-impulse plan's agreement (docs/mujoco_twin.md: 1.9e-9 r,
 # 1.5e-6 rad) holds for 16 impulses with the same margins as tests/rig/mujoco_twin_test.cc.
@@ -21,6 +24,9 @@ plateball_cli_test(rig.replay_follows_plan 0
 # Centred pulses of 10 ms: O(D^2), measured 1.1e-5 rad on the 64-impulse plan.
 plateball_cli_test(rig.replay_centred_pulses 0 REGEX "\"kind\": \"centred_pulses\""
   --number orientation_error 0 5e-5 -- rig replay ${rig}/plan16.json --pulse-duration 0.01)
+# An isoparallel result's plan (Figure 7 with a physical ball): measured 7.7e-8 r, 7.1e-7 rad.
+plateball_cli_test(rig.replay_isoparallel 0 REGEX "\"command\": \"isoparallel\""
+  --number orientation_error 0 5e-6 -- rig replay ${rig}/isoparallel.json)
 plateball_cli_test(rig.export 0
   REGEX "<freejoint name=\"ball\"/>.*diaginertia=\"1.6e-05 1.6e-05 1.2e-05\".*<joint name=\"plate_x\" type=\"slide\""
   --cat ${rig}/twin.xml -- rig export ${rig}/plan16.json --mjcf ${rig}/twin.xml --pulse-duration 0.01)
@@ -42,7 +48,7 @@ plateball_cli_test(rig.bad_timestep 3 REGEX "--dt: value 0: must be in \\(0, 0.1
   -- rig replay ${rig}/plan16.json --dt 0)
 plateball_cli_test(rig.not_a_plan 3 REGEX "command: value \"simulate\": the rig replays results of"
   -- rig replay ${rig}/simulate.json)
-set_tests_properties(cli.rig.replay_follows_plan cli.rig.replay_centred_pulses cli.rig.export cli.rig.export_schedule
+set_tests_properties(cli.rig.replay_follows_plan cli.rig.replay_centred_pulses cli.rig.replay_isoparallel cli.rig.export cli.rig.export_schedule
   cli.rig.no_physical_ball cli.rig.overlapping_pulses cli.rig.pulse_would_slip cli.rig.export_overlapping_pulses cli.rig.bad_timestep
   PROPERTIES FIXTURES_REQUIRED rig_results)
 plateball_cli_test(rig.setup_simulate 0 -- simulate problems/physical_units.json --samples 3 --out ${rig}/simulate.json)

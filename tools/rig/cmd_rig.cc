@@ -1,4 +1,5 @@
-// `plateball rig export|replay RESULT.json`: the MuJoCo digital twin of a plan (rig/mujoco_twin.h).
+// `plateball rig export|replay RESULT.json`: the MuJoCo digital twin of a plan (rig/mujoco_twin.h), from
+// a result of `plan`, `steer` or `isoparallel`.
 // export writes the machine as MJCF and the pulse schedule beside it; replay runs the plan in MuJoCo
 // and reports how far the engine's ball ends from the plan.
 #include <filesystem>
@@ -166,7 +167,7 @@ int RunReplay(const RigCliOptions& o) {
 }
 
 void AddCommon(CLI::App& sub, RigCliOptions& o) {
-  sub.add_option("result", o.result, "a result of `plateball plan` or `plateball steer` (with its per-impulse records) whose problem has ball.physical")
+  sub.add_option("result", o.result, "a result of `plateball plan`, `steer` or `isoparallel` (with its per-impulse records) whose problem has ball.physical")
       ->required();
   sub.add_option("--dt", o.dt, "the engine's RK4 timestep in s (default 1e-3)");
   sub.add_option("--pulse-duration", o.pulse_duration,

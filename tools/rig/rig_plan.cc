@@ -109,8 +109,8 @@ RigPlan ReadRigPlan(const std::string& result_file) {
   }
   RigPlan out;
   const json& command = Get(doc, "", "command");
-  if (command != "plan" && command != "steer")
-    Fail("command", Text(command), "the rig replays results of `plateball plan` and `plateball steer`");
+  if (command != "plan" && command != "steer" && command != "isoparallel")
+    Fail("command", Text(command), "the rig replays results of `plateball plan`, `steer` and `isoparallel`");
   out.command = command.get<std::string>();
   out.problem = LoadProblemOf(doc, result_file);
   const Problem& p = out.problem;
@@ -123,18 +123,22 @@ RigPlan ReadRigPlan(const std::string& result_file) {
   out.physical = *p.physical;
   out.model = p.model;
   out.integration = p.integration;
-  const bool plan = out.command == "plan";
+  // isoparallel results hold a plan in the layout of `plateball plan` under "plan".
+  const bool plan = out.command != "steer";
+  const bool nested = out.command == "isoparallel";
+  const json& body = nested ? Get(doc, "", "plan") : doc;
+  const std::string prefix = nested ? "plan." : "";
   const json& initial = Get(doc, "", "initial");
   out.start = StateOf(Angles(initial, "initial.", "angles"), Number(initial, "initial.", "mu"), out.model);
   out.x0 = Vector<2>(initial, "initial.", "x0");
-  out.t_end = Number(doc, "", "total_time");
-  const char* list = plan ? "steps" : "impulses";
-  const json& steps = Get(doc, "", list);
+  out.t_end = Number(body, prefix, "total_time");
+  const std::string list = prefix + (plan ? "steps" : "impulses");
+  const json& steps = Get(body, prefix, plan ? "steps" : "impulses");
   if (!steps.is_array() || steps.empty())
     Fail(list, Text(steps), "the rig needs the per-impulse records (run without --summary-only)");
   double previous = 0.0;
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    const std::string where = std::string(list) + "[" + std::to_string(i) + "].";
+    const std::string where = list + "[" + std::to_string(i) + "].";
     BallState before;
     RigImpulse k = ImpulseOf(steps[i], where, out.model, plan, &before);
     if (k.t < previous || k.t > out.t_end * (1 + 1e-12) + 1e-12)

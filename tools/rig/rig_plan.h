@@ -1,4 +1,4 @@
-// The impulse schedule of a `plan` or `steer` result, read back for the MuJoCo twin (`plateball rig`),
+// The impulse schedule of a `plan`, `steer` or `isoparallel` result, read back for the MuJoCo twin (`plateball rig`),
 // and the planned impulsive trajectory it defines (the reference the engine is compared with).
 #pragma once
 
@@ -26,7 +26,7 @@ struct RigImpulse {
 /// What the twin needs of a result: the physical ball, the start and the impulses (SI units: the
 /// normalised time is the second and omega is in rad/s; positions are normalised, r metres each).
 struct RigPlan {
-  std::string command;  ///< "plan" or "steer" (empty for a free motion)
+  std::string command;  ///< "plan", "steer" or "isoparallel" (empty for a free motion)
   Problem problem;      ///< the problem file the result names
   PhysicalParameters physical;
   BallModel model = BallModel::FromLambda(1.0);
@@ -38,8 +38,9 @@ struct RigPlan {
   IntegrationOptions integration;
 };
 
-/// Reads a `plateball plan` or `plateball steer` result (with its per-impulse records) and the
-/// problem file it names (as `plateball view` does: as given, else beside the result). Throws
+/// Reads a `plateball plan`, `steer` or `isoparallel` (`isoparallel_solve --out`) result (with its
+/// per-impulse records) and the problem file it names (as `plateball view` does: as given, else
+/// beside the result). Throws
 /// std::invalid_argument "FIELD: value V: what is wrong" for a result without ball.physical, of
 /// another command, without impulses or with impulses out of order.
 RigPlan ReadRigPlan(const std::string& result_file);
