@@ -63,15 +63,18 @@ TEST(BallModel, RigidBallsHaveLambdaBetweenOneHalfAndFourThirds) {
   ring.inertia_1 = 0.25;
   EXPECT_TRUE(ring.Validate().empty()) << ring.Validate();
   EXPECT_DOUBLE_EQ(BallModel::FromPhysical(ring).lambda(), 4.0 / 3.0);
-  // Two point masses at the poles (I1 = M r^2, I3 -> 0): lambda -> (0 + 1)/(1 + 1) = 1/2.
+  // Two point masses at the poles (I1 = M r^2, I3 -> 0): lambda -> (0 + 1)/(1 + 1) = 1/2. I1 is 1e-9 short
+  // of M r^2 so that 2 I1 + I3 <= 2 M r^2 holds with I3 = 1e-9.
   PhysicalParameters poles = ring;
-  poles.inertia_1 = 0.5;
+  poles.inertia_1 = 0.5 - 1e-9;
   poles.inertia_3 = 1e-9;
-  EXPECT_NEAR(BallModel::FromPhysical(poles).lambda(), 0.5, 1e-9);
-  // The plate's mass pulls lambda toward 1 from either side.
+  // alpha = 2e-9 and beta = 1 + 2e-9 to first order: lambda = 1/2 + 1.5e-9.
+  EXPECT_NEAR(BallModel::FromPhysical(poles).lambda(), 0.5, 1e-8);
+  // The plate's mass pulls lambda toward 1 from either side: M = 2 + 4 * 10 = 42, M r^2 = 10.5, so the
+  // ring has beta = 42, lambda = 44/43 (was 4/3), the poles beta = 21, lambda = 21/22 (was 1/2).
   ring.plate_mass = poles.plate_mass = 10.0;
-  EXPECT_LT(BallModel::FromPhysical(ring).lambda(), 1.01);
-  EXPECT_GT(BallModel::FromPhysical(poles).lambda(), 0.99);
+  EXPECT_NEAR(BallModel::FromPhysical(ring).lambda(), 44.0 / 43.0, 1e-14);
+  EXPECT_NEAR(BallModel::FromPhysical(poles).lambda(), 21.0 / 22.0, 1e-8);
   // The realisable flag: bare lambda in (1/2, 4/3]; alpha, beta with beta >= 1 + alpha/2.
   EXPECT_TRUE(BallModel::FromLambda(4.0 / 3.0).IsRealisable());
   EXPECT_TRUE(BallModel::FromLambda(0.51).IsRealisable());
