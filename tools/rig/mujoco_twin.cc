@@ -31,8 +31,9 @@ void ThrowIf(const std::string& message) {
 // output, where the tools write their JSON; the twin reads its data's warning counters instead.
 void QuietWarning(const char*) {}
 
-constexpr double kSettleTimeConstants = 60.0;
-constexpr double kMaxReplaySteps = 1e8;  // about 10 minutes of RK4 on one core  // vertical settling: e^-60 of the initial transient
+constexpr double kSettleTimeConstants = 60.0;    // vertical settling: e^-60 of the initial transient
+constexpr double kMaxReplaySteps = 1e8;           // about 10 minutes of RK4 on one core
+constexpr double kMaxPlateHalfSizeRadii = 1e6;    // the largest upper plate, in ball radii
 const char* const kXmlName = "plateball_twin.xml";
 
 }  // namespace
@@ -50,7 +51,8 @@ std::string TwinSettings::Validate() const {
   if (noslip_iterations < 0 || noslip_iterations > 10000)
     return Bad("noslip_iterations", noslip_iterations, "must be in [0, 10000]");
   if (!(std::isfinite(gravity) && gravity > 0)) return Bad("gravity", gravity, "must be finite and > 0 (it presses the plate)");
-  if (!(std::isfinite(plate_half_size_radii) && plate_half_size_radii >= 2 && plate_half_size_radii <= 1e6))
+  if (!(std::isfinite(plate_half_size_radii) && plate_half_size_radii >= 2 &&
+        plate_half_size_radii <= kMaxPlateHalfSizeRadii))
     return Bad("plate_half_size_radii", plate_half_size_radii, "must be in [2, 1e6]");
   return {};
 }
@@ -298,7 +300,12 @@ double PlateHalfSizeFor(const RigPlan& plan, const PlannedTrajectory& reference,
   const double speed = std::sqrt(reference.MaxEnergy() * 2 /
                                  (plan.physical.inertia_1 + plan.physical.EffectiveMass() * std::pow(plan.physical.radius, 2)) /
                                  std::min(1.0, plan.model.lambda()));
-  return std::max(settings.plate_half_size_radii, 2 * (extent + speed * longest_flight) + 10);
+  const double half = std::max(settings.plate_half_size_radii, 2 * (extent + speed * longest_flight) + 10);
+  if (!(half <= kMaxPlateHalfSizeRadii))
+    throw std::invalid_argument(Bad("total_time", plan.t_end,
+                                    "the plan travels up to " + Num(half / 2) + " radii, more than the twin's plate (" +
+                                        Num(kMaxPlateHalfSizeRadii) + " radii) holds"));
+  return half;
 }
 
 namespace {
