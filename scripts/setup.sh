@@ -7,6 +7,7 @@ packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-c
 packages+=(python3 python3-jsonschema)  # output contract: schema validation (tests/scripts/validate_schemas.py)
 packages+=(python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib)  # Python bindings, pytest, gallery (issue 13)
 packages+=(libopenmpi-dev openmpi-bin)  # montecarlo: optional MPI component (issue 12)
+packages+=(libmujoco-dev)  # rig: optional MuJoCo digital twin (C API; Debian has no Python bindings)
 packages+=(chromium)  # view (issue 14): Debian's Chromium for the browser tests of `plateball view`
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)  # view (issue 14): npm ci in web/ (below)
 packages+=(ccache)  # compiler cache for scripts/build.sh, sanitize.sh and fuzz.sh (scripts/compiler_cache.sh)

@@ -63,7 +63,8 @@ TEST(BallModel, RigidBallsHaveLambdaBetweenOneHalfAndFourThirds) {
   ring.inertia_1 = 0.25;
   EXPECT_TRUE(ring.Validate().empty()) << ring.Validate();
   EXPECT_DOUBLE_EQ(BallModel::FromPhysical(ring).lambda(), 4.0 / 3.0);
-  // Two point masses at the poles (I1 = M r^2, I3 -> 0): lambda -> (0 + 1)/(1 + 1) = 1/2.
+  // Two point masses at the poles (I1 = M r^2, I3 -> 0): lambda -> (0 + 1)/(1 + 1) = 1/2. I1 is 1e-9 short
+  // of M r^2 so that 2 I1 + I3 <= 2 M r^2 holds with I3 = 1e-9.
   PhysicalParameters poles = ring;
   poles.inertia_1 = 0.5 - 1e-9;
   poles.inertia_3 = 1e-9;

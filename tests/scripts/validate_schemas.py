@@ -111,6 +111,24 @@ def check_inputs(run):
     return problems
 
 
+def rig_built(run):
+    """`plateball rig` exists only where MuJoCo was found (cmake/PlateballMujoco.cmake)."""
+    r = subprocess.run([run.args.plateball, "rig", "--help"], cwd=ROOT, capture_output=True, text=True, timeout=60)
+    return r.returncode == 0
+
+
+def check_rig(run, rel, tmp):
+    """The MuJoCo twin's replay (standard output) and export (the schedule beside the MJCF) of a plan."""
+    plan = os.path.join(tmp, "rig_plan.json")
+    if run.tool(["plateball", "plan", rel, "--impulses", "16", "--out", plan]) is None:
+        return
+    run.output(["plateball", "rig", "replay", plan])
+    mjcf = os.path.join(tmp, "rig.xml")
+    if run.output(["plateball", "rig", "export", plan, "--mjcf", mjcf, "--pulse-duration", "0.01"]) is not None:
+        with open(os.path.join(tmp, "rig.pulses.json")) as f:
+            run.expect_valid("output/rig_export.schema.json", json.load(f), f"plateball rig export {rel}")
+
+
 def check_tool_outputs(run, problems):
     """Every command that applies to a problem file, on every problem file (small sizes: this is a
     check of the shapes, the numbers are the other tests')."""
@@ -131,6 +149,8 @@ def check_tool_outputs(run, problems):
                     run.output(["plateball", "converge", rel, "--impulses", "8,16"], ok_codes=(0, 4))
             if "steer" in p:
                 run.output(["plateball", "steer", rel], ok_codes=(0, 4))
+            if "plan" in p and "physical" in p.get("ball", {}) and rig_built(run):
+                check_rig(run, rel, tmp)
             if "isoparallel" in p:
                 out = os.path.join(tmp, "iso.json")
                 # 64 starts keep the shooting problems short; the shape does not depend on it.

@@ -16,7 +16,7 @@ _plateball() {
   prev=${COMP_WORDS[COMP_CWORD - 1]}
   tool=${COMP_WORDS[0]}
   case $prev in
-    --out | --svg | --csv | --samples-file) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+    --out | --svg | --csv | --samples-file | --mjcf) COMPREPLY=($(compgen -f -- "$cur")); return ;;
   esac
   sub=
   if [[ $(basename "$tool") == plateball ]]; then
@@ -26,6 +26,19 @@ _plateball() {
     if [[ -z $sub ]]; then
       COMPREPLY=($(compgen -W "$(_plateball_words "$tool")" -- "$cur"))
       return
+    fi
+    # A subcommand group (`rig export|replay`): its subcommands first, then the chosen one's options.
+    local group sub2=
+    group=$("$tool" "$sub" --help 2>/dev/null | awk '/^Subcommands:/ { s = 1; next } s && /^  [a-z]/ { print $1 }')
+    if [[ -n $group ]]; then
+      for ((i = i + 1; i < COMP_CWORD; ++i)); do
+        [[ ${COMP_WORDS[i]} != -* ]] && { sub2=${COMP_WORDS[i]}; break; }
+      done
+      if [[ -z $sub2 ]]; then
+        COMPREPLY=($(compgen -W "$group" -- "$cur"))
+        return
+      fi
+      sub="$sub $sub2"
     fi
   fi
   if [[ $cur == -* ]]; then

@@ -14,11 +14,19 @@ trap 'rm -f "$include"' EXIT
 } > "$include"
 # Subcommands: the names under "Subcommands:" in the tool's help.
 subcommands=$("$tool" --help | awk '/^Subcommands:/{s=1; next} s && /^  [a-z]/{print $1}')
+# A subcommand group (`rig export|replay`) adds a section per member.
+escape() { sed -e 's/\\/\\\\/g' -e 's/^\./\\\&./' -e 's/^/ /'; }
 for sub in $subcommands; do
   {
     echo "[SUBCOMMAND: $sub]"
-    "$tool" "$sub" --help | sed -e 's/\\/\\\\/g' -e 's/^\./\\\&./' -e 's/^/ /'
+    "$tool" "$sub" --help | escape
   } >> "$include"
+  for member in $("$tool" "$sub" --help | awk '/^Subcommands:/{s=1; next} s && /^  [a-z]/{print $1}'); do
+    {
+      echo "[SUBCOMMAND: $sub $member]"
+      "$tool" "$sub" "$member" --help | escape
+    } >> "$include"
+  done
 done
 help2man --no-info --no-discard-stderr --name="$description" --include="$include" \
   --version-string="$("$tool" --version | awk '{print $NF}')" -o "$out" "$tool"

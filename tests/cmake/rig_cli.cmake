@@ -1,0 +1,63 @@
+# Command-line tests of `plateball rig` (the MuJoCo twin, built only where MuJoCo is found): the replay
+# of a plan within the agreement measured in docs/mujoco_twin.md, the export's MJCF and schedule, and
+# bad input with exit code 3 naming the field. (Named rig_* so that cli_tests.cmake, which defines
+# plateball_cli_test, is read first.)
+if(NOT TARGET plateball_cli OR NOT TARGET plateball_rig)
+  return()
+endif()
+set(rig ${CMAKE_CURRENT_BINARY_DIR}/rig_cli)
+file(MAKE_DIRECTORY ${rig})
+
+# The results the rig reads: a physical ball's plan (16 impulses) and a lambda-only ball's.
+plateball_cli_test(rig.setup_plan 0 -- plan problems/circle_physical.json --impulses 16 --out ${rig}/plan16.json)
+plateball_cli_test(rig.setup_plan_lambda 0 -- plan problems/circle.json --impulses 8 --out ${rig}/plan_lambda.json)
+plateball_cli_test(rig.setup_isoparallel 0
+  -- isoparallel tests/data/rig_isoparallel_physical.json --quiet --out ${rig}/isoparallel.json)
+set_tests_properties(cli.rig.setup_plan cli.rig.setup_plan_lambda cli.rig.setup_isoparallel
+  PROPERTIES FIXTURES_SETUP rig_results)
+
+# Ideal jumps at dt = 1e-3: the 64-impulse plan's agreement (docs/mujoco_twin.md: 1.9e-9 r,
+# 1.5e-6 rad) holds for 16 impulses with the same margins as tests/rig/mujoco_twin_test.cc.
+plateball_cli_test(rig.replay_follows_plan 0
+  --number orientation_error 0 1e-5 --number position_error 0 1e-7 --number relative_error 0 5e-8
+  -- rig replay ${rig}/plan16.json)
+# Centred pulses of 10 ms: O(D^2), measured 1.1e-5 rad on the 64-impulse plan.
+plateball_cli_test(rig.replay_centred_pulses 0 REGEX "\"kind\": \"centred_pulses\""
+  --number orientation_error 0 5e-5 -- rig replay ${rig}/plan16.json --pulse-duration 0.01)
+# An isoparallel result's plan (Figure 7 with a physical ball): measured 7.7e-8 r, 7.1e-7 rad.
+plateball_cli_test(rig.replay_isoparallel 0 REGEX "\"command\": \"isoparallel\""
+  --number orientation_error 0 5e-6 -- rig replay ${rig}/isoparallel.json)
+plateball_cli_test(rig.export 0
+  REGEX "<freejoint name=\"ball\"/>.*diaginertia=\"1.6e-05 1.6e-05 1.2e-05\".*<joint name=\"plate_x\" type=\"slide\""
+  --cat ${rig}/twin.xml -- rig export ${rig}/plan16.json --mjcf ${rig}/twin.xml --pulse-duration 0.01)
+plateball_cli_test(rig.export_schedule 0 REGEX "\"command\": \"rig_export\".*\"force\""
+  --cat ${rig}/twin2.pulses.json -- rig export ${rig}/plan16.json --mjcf ${rig}/twin2.xml --pulse-duration 0.01)
+
+# Bad input: exit 3 naming the field.
+plateball_cli_test(rig.no_physical_ball 3 REGEX "ball.physical: value \\(missing\\)"
+  -- rig replay ${rig}/plan_lambda.json)
+plateball_cli_test(rig.overlapping_pulses 3 REGEX "--pulse-duration: value 1: longer than the flight of [0-9.e-]+ s after impulse 0: the pulses of impulses 0 and 1 overlap"
+  -- rig replay ${rig}/plan16.json --pulse-duration 1)
+plateball_cli_test(rig.export_overlapping_pulses 3 REGEX "--pulse-duration: value 1: longer than the flight"
+  -- rig export ${rig}/plan16.json --mjcf ${rig}/bad.xml --pulse-duration 1)
+# A 1 us pulse needs 2.7 kN of friction at the top, where mu_s = 100 holds 49 N.
+plateball_cli_test(rig.pulse_would_slip 3
+  REGEX "--pulse-duration: value 1e-06: too short: impulse 0 would slip: the top contact needs [0-9.e+]+ N of friction"
+  -- rig export ${rig}/plan16.json --mjcf ${rig}/slip.xml --pulse-duration 1e-6)
+plateball_cli_test(rig.bad_timestep 3 REGEX "--dt: value 0: must be in \\(0, 0.1\\] s"
+  -- rig replay ${rig}/plan16.json --dt 0)
+plateball_cli_test(rig.not_a_plan 3 REGEX "command: value \"simulate\": the rig replays results of"
+  -- rig replay ${rig}/simulate.json)
+set_tests_properties(cli.rig.replay_follows_plan cli.rig.replay_centred_pulses cli.rig.replay_isoparallel cli.rig.export cli.rig.export_schedule
+  cli.rig.no_physical_ball cli.rig.overlapping_pulses cli.rig.pulse_would_slip cli.rig.export_overlapping_pulses cli.rig.bad_timestep
+  PROPERTIES FIXTURES_REQUIRED rig_results)
+plateball_cli_test(rig.setup_simulate 0 -- simulate problems/physical_units.json --samples 3 --out ${rig}/simulate.json)
+set_tests_properties(cli.rig.setup_simulate PROPERTIES FIXTURES_SETUP rig_simulate)
+set_tests_properties(cli.rig.not_a_plan PROPERTIES FIXTURES_REQUIRED rig_simulate)
+
+# Bash completion of the subcommand group: `plateball rig <TAB>` offers export and replay, then the
+# chosen one's options.
+add_test(NAME completion.rig_group
+         COMMAND bash -c "source \"$1\"; COMP_WORDS=(\"$2\" rig ''); COMP_CWORD=2; _plateball; echo \"\${COMPREPLY[*]}\"; COMP_WORDS=(\"$2\" rig replay --p); COMP_CWORD=3; _plateball; echo \"\${COMPREPLY[*]}\""
+                 bash ${PROJECT_SOURCE_DIR}/tools/completion/plateball.bash $<TARGET_FILE:plateball_cli>)
+set_tests_properties(completion.rig_group PROPERTIES PASS_REGULAR_EXPRESSION "^export replay\n--pulse-duration\n" LABELS cli)
