@@ -33,6 +33,9 @@ constexpr double kSingularRatio = 1e-13;
 // A parameter whose (scaled) standard error exceeds this is listed as not identified
 // (for the angles: radians; for lambda and mu: relative; for x0: radii of spread).
 constexpr double kHugeError = 1.0;
+// Below this RMS residual (radii) the track is taken as noiseless: the fit's residual is then the
+// integration error (~1e-11), and the interval is the Wald interval lambda +- 1.96 se.
+constexpr double kNoiselessResidual = 1e-8;
 }  // namespace
 
 std::string ToString(IdentifyStatus status) {
@@ -286,15 +289,22 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
     FillCovariance(fit, s2, &s);
     FillUnidentified(&s);
     s.lambda_low = s.lambda_high = kNaN;
-    if (options.profile_interval && std::isfinite(s.standard_errors[0])) {
+    if (options.profile_interval && std::isfinite(s.standard_errors[0]) && s.rms_residual < kNoiselessResidual) {
+      // A noiseless track: the profile would resolve the integration's round-off, not a noise.
+      s.lambda_low = s.lambda - 1.96 * s.standard_errors[0];
+      s.lambda_high = s.lambda + 1.96 * s.standard_errors[0];
+      s.interval_method = "wald";
+    } else if (options.profile_interval && std::isfinite(s.standard_errors[0])) {
       const internal::ProfileInterval pi = internal::ProfileLambda(data, options, fit, s.standard_errors[0],
                                                                    ProfileThreshold(s.sigma_estimated, dof) * s2);
       s.lambda_low = pi.low;
       s.lambda_high = pi.high;
       s.profile_fits = pi.fits;
+      s.interval_method = "profile";
     } else if (options.profile_interval) {
       s.lambda_low = 0.0;
       s.lambda_high = kInf;
+      s.interval_method = "profile";
     }
     Classify(options, &s);
   } catch (const std::exception& e) {

@@ -62,6 +62,20 @@ TEST(Identify, NoiselessTracksRecoverLambdaAndMuFromTheMultiStart) {
   }
 }
 
+TEST(Identify, NoiselessTrackGetsTheWaldIntervalAroundTheTruth) {
+  Truth truth;
+  truth.lambda = 2.0;
+  const IdentifyProblem p = MakeTrack(truth, 0.0, 2.0 * PeriodOf(truth), 200, 0.0, 1);
+  const IdentifySummary s = Identify(p);
+  ASSERT_EQ(s.status, IdentifyStatus::kIdentified) << s.BriefReport();
+  EXPECT_EQ(s.interval_method, "wald");
+  EXPECT_EQ(s.profile_fits, 0);
+  EXPECT_LT(s.lambda_low, s.lambda);
+  EXPECT_GT(s.lambda_high, s.lambda);
+  EXPECT_LT(s.lambda_high - s.lambda_low, kNoiselessLambdaTolerance);
+  EXPECT_NEAR(s.lambda, truth.lambda, kNoiselessLambdaTolerance);
+}
+
 TEST(Identify, ModelJacobianMatchesCentralDifferences) {
   const double q[7] = {1.3, 4.0, 0.8, 0.3, 0.2, 0.5, -0.2};
   const std::vector<double> tau{0.0, 0.4, 1.7, 3.9};
@@ -108,6 +122,7 @@ TEST(Identify, ProfileIntervalCoversTheTruthInAbout95PercentOfSeeds) {
       ASSERT_EQ(s.status, IdentifyStatus::kIdentified) << seed << ": " << s.BriefReport();
       EXPECT_LT(s.lambda_low, s.lambda);
       EXPECT_GT(s.lambda_high, s.lambda);
+      EXPECT_EQ(s.interval_method, "profile");
       if (s.lambda_low <= lambda && lambda <= s.lambda_high) ++covered;
     }
     EXPECT_GE(covered, kCoverageLow) << "lambda " << lambda;

@@ -96,6 +96,9 @@ struct IdentifySummary {
   /// 95% profile-likelihood interval of lambda. A side that does not close (the profile does not
   /// rise by the threshold before lambda_min / lambda_max) is 0 / infinity; NaN when not computed.
   double lambda_low = 0.0, lambda_high = 0.0;
+  /// "profile"; "wald" (lambda +- 1.96 se) for a noiseless track (RMS residual < 1e-8 radii),
+  /// whose profile would only resolve the integration error; empty when not computed.
+  std::string interval_method;
   // Identifiability.
   bool lambda_identified = false;
   double lambda_relative_error = 0.0;  ///< standard error / lambda

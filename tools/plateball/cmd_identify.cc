@@ -176,7 +176,8 @@ Json FitJson(const IdentifySummary& s) {
          {"x0", ToJson(s.x0)}, {"period", s.period}, {"standard_errors", ErrorsJson(s)}};
   if (std::isfinite(s.lambda_low) || std::isinf(s.lambda_high))
     j["lambda_interval"] = Json{{"low", s.lambda_low}, {"high", FiniteOrNull(s.lambda_high)},
-                                {"closed", s.lambda_low > 0 && std::isfinite(s.lambda_high)}, {"confidence", 0.95}};
+                                {"closed", s.lambda_low > 0 && std::isfinite(s.lambda_high)}, {"confidence", 0.95},
+                                {"method", s.interval_method}};
   j["identifiability"] = Json{{"lambda_identified", s.lambda_identified},
                               {"lambda_relative_error", FiniteOrNull(s.lambda_relative_error)},
                               {"scaled_condition", s.scaled_condition},
