@@ -112,7 +112,8 @@ std::string IdentifySummary::BriefReport() const {
   if (status == IdentifyStatus::kIdentified || status == IdentifyStatus::kLambdaNotIdentified) {
     os << "; lambda " << lambda;
     if (!standard_errors.empty()) os << " +- " << standard_errors[0];
-    if (status == IdentifyStatus::kIdentified) os << " (95% profile interval [" << lambda_low << ", " << lambda_high << "])";
+    if (status == IdentifyStatus::kIdentified && !interval_method.empty())
+      os << " (95% " << interval_method << " interval [" << lambda_low << ", " << lambda_high << "])";
     os << ", mu " << mu;
     if (!standard_errors.empty()) os << " +- " << standard_errors[1];
   }
