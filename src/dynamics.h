@@ -3,6 +3,7 @@
 // by hand (tests/fehlberg78_test.cc checks them against ceres::Jet on the kinematics kernel).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <ceres/jet.h>
 #include <boost/numeric/odeint.hpp>
@@ -160,6 +161,38 @@ template <typename State, typename Rhs>
 double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double dt0,
                          const IntegrationOptions& options) {
   return IntegrateAdaptive(rhs, y, t0, t1, dt0, options, [](double, const State&) {});
+}
+
+/// Integrates y from times[0] forward with Dormand-Prince 5(4) and its continuous extension
+/// (odeint's dense output), calling observer(i, y_i) with the state at each of the non-decreasing
+/// times[i] in order: one pass over a whole track at the steps the tolerance needs, however dense
+/// the times (IntegrateAdaptive would stop at every time). The same step limit and finiteness
+/// checks as IntegrateAdaptive.
+template <typename State, typename Rhs, typename Observer>
+void IntegrateDenseAtTimes(const Rhs& rhs, const State& y0, const double* times, std::size_t n, double dt0,
+                           const IntegrationOptions& options, Observer&& observer) {
+  namespace odeint = boost::numeric::odeint;
+  if (n == 0) return;
+  auto stepper = odeint::make_dense_output(options.absolute_tolerance, options.relative_tolerance,
+                                           odeint::runge_kutta_dopri5<State>());
+  std::size_t i = 0;
+  for (; i < n && times[i] == times[0]; ++i) observer(i, y0);
+  if (i == n) return;
+  stepper.initialize(y0, times[0], std::min(dt0, times[n - 1] - times[0]));
+  State y;
+  long steps = 0;
+  while (i < n) {
+    if (++steps > options.max_steps)
+      throw StepLimitError("integration exceeded max_steps = " + std::to_string(options.max_steps) +
+                           " at t = " + std::to_string(stepper.current_time()));
+    stepper.do_step(rhs);
+    for (double v : stepper.current_state())
+      if (!std::isfinite(v)) throw std::runtime_error("integration produced a non-finite state at t = " + std::to_string(stepper.previous_time()));
+    for (; i < n && times[i] <= stepper.current_time(); ++i) {
+      stepper.calc_state(times[i], y);
+      observer(i, static_cast<const State&>(y));
+    }
+  }
 }
 
 }  // namespace plateball::internal

@@ -137,8 +137,9 @@ inline void MomentumFromOmega(const Z* z, const T* w, double lambda, T* k) {
 }
 
 /// omega_h from (z, K): v0 = <K, z_h>/(z3^2 + lambda |z_h|^2), omega_h = K - (lambda-1) v0 z_h.
-template <typename T>
-inline void OmegaFromZK(const T* z, const T* k, double lambda, T* w) {
+/// lambda may be a ceres::Jet too (identify.cc differentiates the motion with respect to it).
+template <typename T, typename L>
+inline void OmegaFromZK(const T* z, const T* k, const L& lambda, T* w) {
   const T v0 = (k[0] * z[0] + k[1] * z[1]) / (z[2] * z[2] + lambda * (z[0] * z[0] + z[1] * z[1]));
   w[0] = k[0] - (lambda - 1.0) * v0 * z[0];
   w[1] = k[1] - (lambda - 1.0) * v0 * z[1];

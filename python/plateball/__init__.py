@@ -19,9 +19,9 @@ import functools
 
 from ._plateball import *  # noqa: F401,F403
 from ._plateball import (__version__, _certify_isoparallel, _converge, _isoparallel, _join, _plan, _plan_optimal_path,  # noqa: F401
-                         _reach, _steer, _fewest_impulses, ConvergenceOptions, ConvergenceProblem,
+                         _reach, _steer, _fewest_impulses, _identify, ConvergenceOptions, ConvergenceProblem,
                          ExactArrivalOptions, ExactArrivalProblem, FewestImpulsesOptions, FewestImpulsesProblem,
-                         IsoparallelCertificateOptions, IsoparallelOptions, IsoparallelPlanProblem,
+                         IdentifyOptions, IsoparallelCertificateOptions, IsoparallelOptions, IsoparallelPlanProblem,
                          IsoparallelProblem,
                          JoinOptions, JoinProblem, MonteCarloOptions, MonteCarloProblem, PlanOptions, PlanProblem,
                          ReachOptions, ReachProblem, _montecarlo)
@@ -97,6 +97,19 @@ def plan_optimal_path(problem=None, options=None, **kwargs):
 def steer(problem=None, options=None, **kwargs):
     """Exact arrival at (x1, A1) with n impulses closest to a reference path: an ExactArrivalSummary."""
     return _solve(_steer, ExactArrivalProblem, ExactArrivalOptions, problem, options, kwargs)
+
+
+def identify(t, xy, sigma=None, options=None, **kwargs):
+    """Fits lambda, mu and the state at t[0] to a track of the contact point: t (n,), xy (n, 2),
+    sigma (n,) or None (estimated); keywords name fields of IdentifyOptions (radius, guess, ...).
+    Returns IdentifySummary (status "identified", "lambda_not_identified", "no_fit", "failed")."""
+    options = IdentifyOptions() if options is None else options
+    fields = _fields(IdentifyOptions)
+    for key, value in kwargs.items():
+        if key not in fields:
+            raise TypeError(f"identify(): unexpected keyword argument '{key}'")
+        setattr(options, key, value)
+    return _identify(t, xy, sigma, options)
 
 
 def fewest_impulses(problem=None, options=None, **kwargs):

@@ -295,6 +295,7 @@ void BindConvergence(py::module_& m) {
 void BindIsoparallel(py::module_& m);    // bind_isoparallel.cc
 void BindExactArrival(py::module_& m);   // bind_isoparallel.cc
 void BindFewestImpulses(py::module_& m);  // bind_fewest.cc
+void BindIdentify(py::module_& m);        // bind_identify.cc
 
 void BindSolvers(py::module_& m) {
   BindJoin(m);
@@ -307,6 +308,7 @@ void BindSolvers(py::module_& m) {
   BindIsoparallel(m);
   BindExactArrival(m);
   BindFewestImpulses(m);
+  BindIdentify(m);
 }
 
 }  // namespace plateball::python

@@ -57,4 +57,4 @@ add_test(NAME completion.lists_subcommands
          COMMAND bash -c "source \"$1\"; COMP_WORDS=(\"$2\" ''); COMP_CWORD=1; _plateball; echo \"\${COMPREPLY[*]}\"; COMP_WORDS=(\"$2\" simulate --c); COMP_CWORD=2; _plateball; echo \"\${COMPREPLY[*]}\""
                  bash ${PROJECT_SOURCE_DIR}/tools/completion/plateball.bash $<TARGET_FILE:plateball_cli>)
 set_tests_properties(completion.lists_subcommands PROPERTIES
-  PASS_REGULAR_EXPRESSION "converge isoparallel join montecarlo plan reach( rig)? roll simulate steer( view)?\n--csv" LABELS cli)
+  PASS_REGULAR_EXPRESSION "converge identify isoparallel join montecarlo plan reach( rig)? roll simulate steer( view)?\n--csv" LABELS cli)

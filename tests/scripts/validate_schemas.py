@@ -171,6 +171,12 @@ def check_tool_outputs(run, problems):
                     "--quiet"])
         run.output(["plateball", "roll", "--points", "0,0;1,0.5;2,0", "--orientation", '{"quaternion": [1, 0, 0, 0]}'])
         run.output(["plateball", "roll", "--samples-file", "tests/data/roll_samples.json"])
+        # identify: a track that identifies lambda (its fitted_problem is a problem file) and one that does not.
+        doc = run.output(["plateball", "identify", "tests/data/identify_track.csv"])
+        if doc is not None:
+            run.expect_valid(os.path.join("input", "problem.schema.json"), doc["fitted_problem"],
+                             "identify tests/data/identify_track.csv: fitted_problem")
+        run.output(["plateball", "identify", "tests/data/identify_straight.csv"])
         run.output(["plateball", "steer", "problems/figure7_exact.json", "--summary-only"])
         run.output(["plateball", "montecarlo", "problems/circle.json", "--impulses", "8", "--trials", "2", "--quiet",
                     "--strategy", "open_loop,feedback", "--noise", "timing=1e-3", "--sweep-n", "16", "--timings"])

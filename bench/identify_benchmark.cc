@@ -1,0 +1,70 @@
+// Identification (docs/benchmarks.md, T7): fitting lambda, mu and the state to 2,000 samples of
+// the contact point over two periods. The track is the library's FreeMotion (lambda = 1.3, mu = 4,
+// (theta, phi, psi) = (0.8, 0.3, 0.2), x0 = (0.5, -0.2)) with seeded Gaussian noise sigma = 0.005
+// (seed 1), or without noise. Timed: the whole Identify call; the variants are the full run
+// (multi-start, fit, profile interval), the run without the profile interval, and the fit from a
+// given guess. Counters (outside the timed loop): lambda_error = |lambda - 1.3|, mu_error,
+// lambda_se (the standard error), the 95% interval's half width, starts and iterations.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+
+#include "plateball/free_motion.h"
+#include "plateball/identify.h"
+
+namespace {
+
+using namespace plateball;
+
+constexpr double kLambda = 1.3, kMu = 4.0;
+const AngleState kAngles{0.8, 0.3, 0.2};
+const Eigen::Vector2d kX0{0.5, -0.2};
+
+IdentifyProblem Track(double sigma) {
+  const FreeMotion motion = FreeMotion::FromAngles(BallModel::FromLambda(kLambda), kAngles, kMu, kX0);
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  IdentifyProblem p;
+  constexpr int kSamples = 2000;
+  for (int i = 0; i < kSamples; ++i) {
+    const double t = 2.0 * motion.Period() * i / (kSamples - 1);
+    p.t.push_back(t);
+    p.x.push_back(motion.PositionAt(t) + sigma * Eigen::Vector2d(noise(rng), noise(rng)));
+  }
+  return p;
+}
+
+void Run(benchmark::State& state, double sigma, bool profile, bool guess) {
+  const IdentifyProblem p = Track(sigma);
+  IdentifyOptions o;
+  o.profile_interval = profile;
+  if (guess) o.guess = IdentifyGuess{1.0, 3.5, {0.7, 0.4, 0.1}, kX0};
+  IdentifySummary s;
+  for (auto _ : state) {
+    s = Identify(p, o);
+    benchmark::DoNotOptimize(s.status);
+  }
+  if (s.status != IdentifyStatus::kIdentified) state.SkipWithError(s.BriefReport().c_str());
+  state.counters["lambda_error"] = std::abs(s.lambda - kLambda);
+  state.counters["mu_error"] = std::abs(s.mu - kMu);
+  state.counters["lambda_se"] = s.standard_errors.empty() ? -1 : s.standard_errors[0];
+  state.counters["interval_half_width"] = profile ? 0.5 * (s.lambda_high - s.lambda_low) : 0.0;
+  state.counters["starts"] = s.starts;
+  state.counters["iterations"] = s.iterations;
+  state.counters["profile_fits"] = s.profile_fits;
+}
+
+void BM_IdentifyNoisyFull(benchmark::State& state) { Run(state, 0.005, true, false); }
+void BM_IdentifyNoisyNoProfile(benchmark::State& state) { Run(state, 0.005, false, false); }
+void BM_IdentifyNoisyFromGuess(benchmark::State& state) { Run(state, 0.005, false, true); }
+void BM_IdentifyNoiselessFull(benchmark::State& state) { Run(state, 0.0, true, false); }
+
+BENCHMARK(BM_IdentifyNoisyFull)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyNoisyNoProfile)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyNoisyFromGuess)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyNoiselessFull)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,132 @@
+// Identification of lambda, mu and the initial state from a measured track of the contact point
+// (docs/identify.md): nonlinear least squares over the free motion (free_motion.h, the chart-free
+// equations of docs/paper_notes.md) with multi-start, standard errors, a profile-likelihood
+// interval for lambda and an identifiability report.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plateball/ball_state.h"
+#include "plateball/export.h"
+#include "plateball/integration_options.h"
+
+namespace plateball PLATEBALL_EXPORT {
+
+/// A measured track of one free flight: contact points x_i at strictly increasing times t_i.
+struct IdentifyProblem {
+  std::vector<double> t;
+  std::vector<Eigen::Vector2d> x;  ///< contact point (length unit: IdentifyOptions::radius)
+  /// Per-sample standard deviation of each coordinate (> 0), or empty: then one common sigma is
+  /// estimated from the residuals.
+  std::vector<double> sigma;
+  /// Empty when valid, else "FIELD: value V: what is wrong" naming the first bad row.
+  std::string Validate() const;
+};
+
+/// Starting point of the fit instead of the multi-start (all at the track's first time).
+struct IdentifyGuess {
+  double lambda = 1.0;
+  double mu = 1.0;
+  AngleState angles;
+  Eigen::Vector2d x0 = Eigen::Vector2d::Zero();
+};
+
+struct IdentifyOptions {
+  /// The ball's radius in the track's length unit: the track is divided by it (the model's unit is
+  /// the radius). 1 when the track is already in radii.
+  double radius = 1.0;
+  /// Search range of lambda (README, "Limits": [1e-3, 1e3]).
+  double lambda_min = 1e-3;
+  double lambda_max = 1e3;
+  /// Multi-start grid: theta values in (0, pi/2] times phase values w = phi - psi in [0, 2 pi)
+  /// (z -> -z gives the same track, so theta in (0, pi/2] is enough).
+  int theta_starts = 3;
+  int phase_starts = 4;
+  /// Start values of lambda tried at every grid point.
+  std::vector<double> lambda_starts{0.7, 1.6};
+  /// Skip the multi-start and start from this guess.
+  std::optional<IdentifyGuess> guess;
+  int max_iterations = 100;  ///< of the final fit, in [1, 10000]
+  /// lambda counts as identified when its standard error is below this fraction of lambda and the
+  /// 95% profile interval closes inside [lambda_min, lambda_max].
+  double max_lambda_relative_error = 0.5;
+  /// No model fits when the fit is rejected by the chi-square test at this significance (with
+  /// given sigma), or, with estimated sigma, when the RMS residual exceeds this fraction of the
+  /// track's RMS spread about its mean.
+  double no_fit_significance = 1e-6;
+  double max_relative_residual = 0.05;
+  /// Compute the profile-likelihood interval of lambda (the costliest part).
+  bool profile_interval = true;
+  /// Tolerances of the final fit (the multi-start uses 1e-8).
+  IntegrationOptions integration{1e-11, 1e-11, 2'000'000};
+  /// Empty when valid, else the first offending field, its value and the bound.
+  std::string Validate() const;
+};
+
+enum class IdentifyStatus {
+  kNotRun,                ///< default: nothing was fitted
+  kIdentified,            ///< lambda, mu and the state fitted, lambda identified
+  kLambdaNotIdentified,   ///< mu and the state fitted; the track carries no (or too little) information on lambda
+  kNoFit,                 ///< no free motion fits the track (the residual is reported)
+  kFailed,                ///< the solver or an integration failed (message)
+};
+std::string ToString(IdentifyStatus status);
+
+/// Names of the fitted parameters, in the order of IdentifySummary::standard_errors.
+inline constexpr const char* kIdentifyParameterNames[7] = {"lambda", "mu", "theta", "phi", "psi", "x0", "y0"};
+
+/// A default-constructed summary says "not run".
+struct IdentifySummary {
+  IdentifyStatus status = IdentifyStatus::kNotRun;
+  std::string message = "not run";
+  // The fit: the state at t_ref = the track's first time.
+  double t_ref = 0.0;
+  double lambda = 0.0;
+  double mu = 0.0;
+  AngleState angles;                          ///< (theta, phi, psi) at t_ref, theta in [0, pi]
+  Eigen::Vector2d x0 = Eigen::Vector2d::Zero();  ///< contact point at t_ref (radii)
+  double period = 0.0;                        ///< 2 pi / sqrt(mu)
+  /// Standard errors of (lambda, mu, theta, phi, psi, x0, y0); infinity where J^T J is singular.
+  std::vector<double> standard_errors;
+  /// Correlation matrix of the fitted parameters (7x7; NaN rows where singular).
+  Eigen::MatrixXd correlation;
+  /// 95% profile-likelihood interval of lambda. A side that does not close (the profile does not
+  /// rise by the threshold before lambda_min / lambda_max) is 0 / infinity; NaN when not computed.
+  double lambda_low = 0.0, lambda_high = 0.0;
+  /// "profile"; "wald" (lambda +- 1.96 se) for a noiseless track (RMS residual < 1e-8 radii),
+  /// whose profile would only resolve the integration error; empty when not computed.
+  std::string interval_method;
+  // Identifiability.
+  bool lambda_identified = false;
+  double lambda_relative_error = 0.0;  ///< standard error / lambda
+  /// Smallest eigenvalue over the largest of the column-scaled J^T J (0: a direction the track
+  /// does not see at all).
+  double scaled_condition = 0.0;
+  std::vector<std::string> unidentified;  ///< parameters with a huge or infinite standard error
+  // Residuals.
+  int samples = 0;
+  int residuals = 0;
+  double rms_residual = 0.0;      ///< sqrt(mean of the squared coordinate residuals), radii
+  double max_residual = 0.0;      ///< largest |x_i - x(t_i)|, radii
+  double sigma = 0.0;             ///< noise used for the errors (given mean or estimated)
+  bool sigma_estimated = true;
+  double chi_square = 0.0;        ///< sum of squared weighted residuals
+  double track_spread = 0.0;      ///< RMS distance of the track from its mean, radii
+  std::vector<Eigen::Vector2d> fitted;  ///< the fitted x(t_i), radii
+  int starts = 0;                 ///< multi-start fits run
+  int iterations = 0;             ///< solver iterations of the final fit
+  int profile_fits = 0;           ///< fits at fixed lambda for the profile interval
+
+  bool IsSolutionUsable() const { return status == IdentifyStatus::kIdentified; }
+  std::string BriefReport() const;
+};
+
+/// Fits lambda, mu, (theta, phi, psi) and x0 at the track's first time to the track. Throws
+/// std::invalid_argument naming the field and row for an invalid track or options; a track that
+/// no free motion fits is the status kNoFit with its residual.
+IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& options = {});
+
+}  // namespace plateball

@@ -1,0 +1,104 @@
+// Python binding: identification of lambda, mu and the state from a track (identify.h):
+// identify(t, xy, sigma=None, options=None, **option_keywords) with NumPy arrays in.
+#include "bind_common.h"
+
+#include <optional>
+
+#include "plateball/identify.h"
+
+namespace plateball::python {
+
+namespace {
+
+/// The track from NumPy arrays: t (n,), xy (n, 2), sigma (n,) or None. Shapes are checked here
+/// (naming the argument); values by IdentifyProblem::Validate (naming the row).
+IdentifyProblem TrackFromArrays(const py::array_t<double, py::array::forcecast>& t,
+                                const py::array_t<double, py::array::forcecast>& xy,
+                                const std::optional<py::array_t<double, py::array::forcecast>>& sigma) {
+  if (t.ndim() != 1) throw std::invalid_argument("t: value (array of " + std::to_string(t.ndim()) + " dimensions): must be 1-dimensional");
+  if (xy.ndim() != 2 || xy.shape(1) != 2)
+    throw std::invalid_argument("xy: value (array of shape not (n, 2)): must have shape (n, 2)");
+  IdentifyProblem p;
+  const auto tv = t.unchecked<1>();
+  const auto xv = xy.unchecked<2>();
+  for (py::ssize_t i = 0; i < tv.shape(0); ++i) p.t.push_back(tv(i));
+  for (py::ssize_t i = 0; i < xv.shape(0); ++i) p.x.emplace_back(xv(i, 0), xv(i, 1));
+  if (sigma) {
+    if (sigma->ndim() != 1) throw std::invalid_argument("sigma: value (array of " + std::to_string(sigma->ndim()) + " dimensions): must be 1-dimensional");
+    const auto sv = sigma->unchecked<1>();
+    for (py::ssize_t i = 0; i < sv.shape(0); ++i) p.sigma.push_back(sv(i));
+  }
+  return p;
+}
+
+void BindIdentifyInputs(py::module_& m) {
+  py::class_<IdentifyGuess> guess(m, "IdentifyGuess", "Start of the fit instead of the multi-start (at the track's first time).");
+  WithKeywordInit(guess)
+      .def_readwrite("lambda_", &IdentifyGuess::lambda)
+      .def_readwrite("mu", &IdentifyGuess::mu)
+      .def_readwrite("angles", &IdentifyGuess::angles)
+      .def_readwrite("x0", &IdentifyGuess::x0);
+  py::class_<IdentifyOptions> options(m, "IdentifyOptions");
+  WithKeywordInit(options)
+      .def_readwrite("radius", &IdentifyOptions::radius)
+      .def_readwrite("lambda_min", &IdentifyOptions::lambda_min)
+      .def_readwrite("lambda_max", &IdentifyOptions::lambda_max)
+      .def_readwrite("theta_starts", &IdentifyOptions::theta_starts)
+      .def_readwrite("phase_starts", &IdentifyOptions::phase_starts)
+      .def_readwrite("lambda_starts", &IdentifyOptions::lambda_starts)
+      .def_readwrite("guess", &IdentifyOptions::guess)
+      .def_readwrite("max_iterations", &IdentifyOptions::max_iterations)
+      .def_readwrite("max_lambda_relative_error", &IdentifyOptions::max_lambda_relative_error)
+      .def_readwrite("no_fit_significance", &IdentifyOptions::no_fit_significance)
+      .def_readwrite("max_relative_residual", &IdentifyOptions::max_relative_residual)
+      .def_readwrite("profile_interval", &IdentifyOptions::profile_interval)
+      .def_readwrite("integration", &IdentifyOptions::integration)
+      .def("validate", &IdentifyOptions::Validate);
+}
+
+}  // namespace
+
+void BindIdentify(py::module_& m) {
+  BindIdentifyInputs(m);
+  py::class_<IdentifySummary> summary(m, "IdentifySummary");
+  AddSummaryShape(summary);
+  summary.def_readonly("t_ref", &IdentifySummary::t_ref)
+      .def_readonly("lambda_", &IdentifySummary::lambda)
+      .def_readonly("mu", &IdentifySummary::mu)
+      .def_readonly("angles", &IdentifySummary::angles)
+      .def_readonly("x0", &IdentifySummary::x0)
+      .def_readonly("period", &IdentifySummary::period)
+      .def_readonly("standard_errors", &IdentifySummary::standard_errors)
+      .def_readonly("correlation", &IdentifySummary::correlation)
+      .def_property_readonly("lambda_interval", [](const IdentifySummary& s) { return py::make_tuple(s.lambda_low, s.lambda_high); })
+      .def_readonly("interval_method", &IdentifySummary::interval_method)
+      .def_readonly("lambda_identified", &IdentifySummary::lambda_identified)
+      .def_readonly("lambda_relative_error", &IdentifySummary::lambda_relative_error)
+      .def_readonly("scaled_condition", &IdentifySummary::scaled_condition)
+      .def_readonly("unidentified", &IdentifySummary::unidentified)
+      .def_readonly("samples", &IdentifySummary::samples)
+      .def_readonly("rms_residual", &IdentifySummary::rms_residual)
+      .def_readonly("max_residual", &IdentifySummary::max_residual)
+      .def_readonly("sigma", &IdentifySummary::sigma)
+      .def_readonly("sigma_estimated", &IdentifySummary::sigma_estimated)
+      .def_readonly("chi_square", &IdentifySummary::chi_square)
+      .def_readonly("track_spread", &IdentifySummary::track_spread)
+      .def_property_readonly("fitted", [](const IdentifySummary& s) {
+            return Stack<2>(s.fitted, [](const Eigen::Vector2d& v) { return v.transpose(); });
+          }, "The fitted contact points x(t_i), (n, 2), radii.")
+      .def_readonly("starts", &IdentifySummary::starts)
+      .def_readonly("iterations", &IdentifySummary::iterations)
+      .def_readonly("profile_fits", &IdentifySummary::profile_fits)
+      .def_property_readonly_static("parameter_names", [](const py::object&) {
+            std::vector<std::string> names(std::begin(kIdentifyParameterNames), std::end(kIdentifyParameterNames));
+            return names;
+          });
+  m.def("_identify", [](const py::array_t<double, py::array::forcecast>& t, const py::array_t<double, py::array::forcecast>& xy,
+                        const std::optional<py::array_t<double, py::array::forcecast>>& sigma, const IdentifyOptions& options) {
+          const IdentifyProblem p = TrackFromArrays(t, xy, sigma);
+          py::gil_scoped_release release;
+          return Identify(p, options);
+        }, py::arg("t"), py::arg("xy"), py::arg("sigma"), py::arg("options"));
+}
+
+}  // namespace plateball::python

@@ -1,0 +1,74 @@
+"""identify(t, xy, ...): lambda, mu and the state fitted to a track given as NumPy arrays. The
+tracks come from the library's own free motion (pb.simulate), with seeded noise; the CLI's
+answer on the same example track is the reference of the binding."""
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import plateball as pb
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def track(lambda_=1.3, mu=4.0, angles=(0.8, 0.3, 0.2), periods=2.0, n=300, sigma=0.0, seed=1):
+    motion, traj = pb.simulate(model=pb.BallModel(lambda_), angles=angles, mu=mu,
+                               t_end=periods * 2 * math.pi / math.sqrt(mu), samples=n)
+    rng = np.random.default_rng(seed)
+    return np.asarray(traj.t), np.asarray(traj.x) + sigma * rng.standard_normal((n, 2))
+
+
+def test_noiseless_track_recovers_lambda_and_mu():
+    t, xy = track()
+    s = pb.identify(t, xy, profile_interval=False)
+    assert s.status == "identified" and s.usable
+    assert abs(s.lambda_ - 1.3) < 1e-8 and abs(s.mu - 4.0) < 1e-8
+    assert s.fitted.shape == (300, 2)
+    assert np.max(np.abs(s.fitted - xy)) < 1e-9
+
+
+def test_noisy_track_with_sigma_has_an_interval_around_lambda():
+    t, xy = track(sigma=0.005, seed=3)
+    s = pb.identify(t, xy, sigma=np.full(len(t), 0.005))
+    low, high = s.lambda_interval
+    assert s.status == "identified" and low < s.lambda_ < high and not s.sigma_estimated
+    assert abs(s.lambda_ - 1.3) < 4 * s.standard_errors[0]
+    assert s.interval_method == "profile"
+
+
+def test_straight_track_does_not_identify_lambda():
+    # w = phi - psi = pi/2: v0 = 0, a straight line at speed sqrt(mu) for every lambda.
+    t, xy = track(lambda_=1.7, angles=(0.9, 0.4, 0.4 - math.pi / 2), sigma=0.003)
+    s = pb.identify(t, xy)
+    assert s.status == "lambda_not_identified" and not s.usable and "lambda" in s.unidentified
+    assert abs(s.mu - 4.0) < 4e-3
+
+
+def test_bad_input_raises_value_error_naming_the_row():
+    t, xy = track(n=20)
+    t[5] = t[4]
+    with pytest.raises(ValueError, match=r"^t\[5\]: value .*: duplicate time"):
+        pb.identify(t, xy)
+    with pytest.raises(ValueError, match=r"xy: .*must have shape \(n, 2\)"):
+        pb.identify(np.arange(10.0), np.zeros((10, 3)))
+    with pytest.raises(ValueError, match=r"t \(rows\): value 3: too few samples"):
+        pb.identify(np.arange(3.0), np.zeros((3, 2)))
+    with pytest.raises(TypeError, match="unexpected keyword argument 'lambda_guess'"):
+        pb.identify(np.arange(10.0), np.zeros((10, 2)), lambda_guess=1.0)
+
+
+def test_the_binding_gives_the_cli_answer_on_the_example_track():
+    cli = os.environ.get("PLATEBALL_CLI")
+    if not cli:
+        pytest.skip("PLATEBALL_CLI not set")
+    path = os.path.join(ROOT, "tests", "data", "identify_track.csv")
+    doc = json.loads(subprocess.run([cli, "identify", path], check=True, capture_output=True, text=True).stdout)
+    data = np.loadtxt(path, delimiter=",", comments="#", skiprows=3)
+    s = pb.identify(data[:, 0], data[:, 1:3])
+    assert s.status == doc["status"]
+    # The CSV's numbers read by C++ strtod and NumPy are the same doubles: the same fit to the digit.
+    assert s.lambda_ == doc["fit"]["lambda"] and s.mu == doc["fit"]["mu"]
+    assert s.lambda_interval == (doc["fit"]["lambda_interval"]["low"], doc["fit"]["lambda_interval"]["high"])

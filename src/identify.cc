@@ -1,0 +1,318 @@
+// Identification of (lambda, mu, theta, phi, psi, x0) from a track (identify.h, docs/identify.md).
+//
+// The model is the free motion from the state at the first sample (identify_model.h). The fit is
+// Ceres' Levenberg-Marquardt on the weighted residuals w_i (x(t_i) - x_i) with the exact Jacobian.
+// The motion is periodic and its phase unknown, so one fit from one guess can lock onto a wrong
+// number of turns: the multi-start fits a grid of (theta, w = phi - psi, lambda) on a short
+// window (half a guessed period), where every start sees the same part of the orbit, and the
+// best one is carried to the whole track by doubling the window (identify_fit.cc).
+#include "plateball/identify.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/fisher_f.hpp>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "check.h"
+#include "identify_fit.h"
+#include "identify_model.h"
+
+namespace plateball {
+
+namespace {
+constexpr int kMinSamples = 8;  // 2n = 16 residuals for 7 parameters: 9 degrees of freedom for the noise
+constexpr int kP = internal::kTrackParameters;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Eigenvalue ratio of the column-scaled J^T J below which a direction counts as unseen: the
+// round-off floor of J^T J in double is ~1e-16 relative, the exact Jacobian's error ~1e-10.
+constexpr double kSingularRatio = 1e-13;
+// A parameter whose (scaled) standard error exceeds this is listed as not identified
+// (for the angles: radians; for lambda and mu: relative; for x0: radii of spread).
+constexpr double kHugeError = 1.0;
+// Below this RMS residual (radii) the track is taken as noiseless: the fit's residual is then the
+// integration error (~1e-11), and the interval is the Wald interval lambda +- 1.96 se.
+constexpr double kNoiselessResidual = 1e-8;
+}  // namespace
+
+std::string ToString(IdentifyStatus status) {
+  switch (status) {
+    case IdentifyStatus::kNotRun: return "not_run";
+    case IdentifyStatus::kIdentified: return "identified";
+    case IdentifyStatus::kLambdaNotIdentified: return "lambda_not_identified";
+    case IdentifyStatus::kNoFit: return "no_fit";
+    case IdentifyStatus::kFailed: return "failed";
+  }
+  return "unknown";
+}
+
+std::string IdentifyProblem::Validate() const {
+  using internal::InvalidValueMessage;
+  if (t.size() != x.size())
+    return InvalidValueMessage("x (rows)", x.size(), "must have one row per time (" + std::to_string(t.size()) + ")");
+  if (t.size() < static_cast<std::size_t>(kMinSamples))
+    return InvalidValueMessage("t (rows)", t.size(), "too few samples: at least " + std::to_string(kMinSamples) +
+                                                         " are needed for 7 parameters and a noise estimate");
+  if (!sigma.empty() && sigma.size() != t.size())
+    return InvalidValueMessage("sigma (rows)", sigma.size(), "must be empty or have one row per time (" + std::to_string(t.size()) + ")");
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const std::string row = "[" + std::to_string(i) + "]";
+    if (!std::isfinite(t[i])) return InvalidValueMessage("t" + row, t[i], "must be finite");
+    if (i > 0 && !(t[i] > t[i - 1]))
+      return InvalidValueMessage("t" + row, t[i], t[i] == t[i - 1] ? "duplicate time (times must be strictly increasing)"
+                                                                   : "times must be strictly increasing (previous " +
+                                                                         internal::FormatNumber(t[i - 1]) + ")");
+    for (int c = 0; c < 2; ++c)
+      if (!std::isfinite(x[i][c])) return InvalidValueMessage((c == 0 ? "x" : "y") + row, x[i][c], "must be finite");
+    if (!sigma.empty() && !(std::isfinite(sigma[i]) && sigma[i] > 0))
+      return InvalidValueMessage("sigma" + row, sigma[i], "must be finite and > 0");
+  }
+  return {};
+}
+
+std::string IdentifyOptions::Validate() const {
+  using internal::InvalidValueMessage;
+  if (!(std::isfinite(radius) && radius > 0)) return InvalidValueMessage("radius", radius, "must be finite and > 0");
+  if (!(lambda_min >= 1e-3 && lambda_min <= 1e3)) return InvalidValueMessage("lambda_min", lambda_min, "must be in [0.001, 1000]");
+  if (!(lambda_max >= lambda_min && lambda_max <= 1e3))
+    return InvalidValueMessage("lambda_max", lambda_max, "must be in [lambda_min, 1000]");
+  if (theta_starts < 1 || theta_starts > 50) return InvalidValueMessage("theta_starts", theta_starts, "must be in [1, 50]");
+  if (phase_starts < 1 || phase_starts > 50) return InvalidValueMessage("phase_starts", phase_starts, "must be in [1, 50]");
+  if (lambda_starts.empty() || lambda_starts.size() > 20)
+    return InvalidValueMessage("lambda_starts (count)", lambda_starts.size(), "must be 1 ... 20 values");
+  for (std::size_t i = 0; i < lambda_starts.size(); ++i)
+    if (!(lambda_starts[i] >= lambda_min && lambda_starts[i] <= lambda_max))
+      return InvalidValueMessage("lambda_starts[" + std::to_string(i) + "]", lambda_starts[i], "must be in [lambda_min, lambda_max]");
+  if (guess) {
+    if (!(guess->lambda >= lambda_min && guess->lambda <= lambda_max))
+      return InvalidValueMessage("guess.lambda", guess->lambda, "must be in [lambda_min, lambda_max]");
+    if (!(std::isfinite(guess->mu) && guess->mu > 0)) return InvalidValueMessage("guess.mu", guess->mu, "must be finite and > 0");
+    const double g[5] = {guess->angles.theta, guess->angles.phi, guess->angles.psi, guess->x0.x(), guess->x0.y()};
+    const char* names[5] = {"guess.theta", "guess.phi", "guess.psi", "guess.x0[0]", "guess.x0[1]"};
+    for (int i = 0; i < 5; ++i)
+      if (!std::isfinite(g[i])) return InvalidValueMessage(names[i], g[i], "must be finite");
+  }
+  if (max_iterations < 1 || max_iterations > 10000) return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, 10000]");
+  if (!(max_lambda_relative_error > 0 && max_lambda_relative_error <= 1e6))
+    return InvalidValueMessage("max_lambda_relative_error", max_lambda_relative_error, "must be in (0, 1e6]");
+  if (!(no_fit_significance > 0 && no_fit_significance < 1))
+    return InvalidValueMessage("no_fit_significance", no_fit_significance, "must be in (0, 1)");
+  if (!(max_relative_residual > 0 && max_relative_residual <= 1))
+    return InvalidValueMessage("max_relative_residual", max_relative_residual, "must be in (0, 1]");
+  const std::string integration_error = integration.Validate();
+  return integration_error.empty() ? std::string() : "integration." + integration_error;
+}
+
+std::string IdentifySummary::BriefReport() const {
+  std::ostringstream os;
+  os << "identify: " << ToString(status) << " (" << message << ")";
+  if (status == IdentifyStatus::kIdentified || status == IdentifyStatus::kLambdaNotIdentified) {
+    os << "; lambda " << lambda;
+    if (!standard_errors.empty()) os << " +- " << standard_errors[0];
+    if (status == IdentifyStatus::kIdentified && !interval_method.empty())
+      os << " (95% " << interval_method << " interval [" << lambda_low << ", " << lambda_high << "])";
+    os << ", mu " << mu;
+    if (!standard_errors.empty()) os << " +- " << standard_errors[1];
+  }
+  os << "; rms residual " << rms_residual << " over " << samples << " samples";
+  return os.str();
+}
+
+namespace {
+
+using internal::TrackData;
+
+/// The track in model units: times relative to the first, positions over the radius, weights.
+TrackData MakeTrackData(const IdentifyProblem& problem, const IdentifyOptions& options) {
+  TrackData d;
+  const std::size_t n = problem.t.size();
+  d.tau.resize(n);
+  d.x.resize(2 * n);
+  d.weight.assign(n, 1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    d.tau[i] = problem.t[i] - problem.t[0];
+    d.x[2 * i] = problem.x[i].x() / options.radius;
+    d.x[2 * i + 1] = problem.x[i].y() / options.radius;
+    if (!problem.sigma.empty()) d.weight[i] = options.radius / problem.sigma[i];
+  }
+  return d;
+}
+
+double TrackSpread(const TrackData& d) {
+  const std::size_t n = d.tau.size();
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (std::size_t i = 0; i < n; ++i) mean += Eigen::Vector2d(d.x[2 * i], d.x[2 * i + 1]);
+  mean /= static_cast<double>(n);
+  double s = 0;
+  for (std::size_t i = 0; i < n; ++i) s += (Eigen::Vector2d(d.x[2 * i], d.x[2 * i + 1]) - mean).squaredNorm();
+  return std::sqrt(s / static_cast<double>(n));
+}
+
+/// Residual statistics of the fit at q (unweighted residuals in radii, chi^2 weighted).
+void FillResiduals(const TrackData& d, const internal::TrackFit& fit, IdentifySummary* s) {
+  const std::size_t n = d.tau.size();
+  s->fitted.resize(n);
+  double sum2 = 0, max_r = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    s->fitted[i] = Eigen::Vector2d(fit.model[2 * i], fit.model[2 * i + 1]);
+    const double r = (s->fitted[i] - Eigen::Vector2d(d.x[2 * i], d.x[2 * i + 1])).norm();
+    sum2 += r * r;
+    max_r = std::max(max_r, r);
+  }
+  s->samples = static_cast<int>(n);
+  s->residuals = static_cast<int>(2 * n);
+  s->rms_residual = std::sqrt(sum2 / static_cast<double>(2 * n));
+  s->max_residual = max_r;
+  s->chi_square = 2.0 * fit.cost;
+  s->track_spread = TrackSpread(d);
+}
+
+/// Standard errors and correlations from the weighted Jacobian at the optimum: cov = s^2 (J^T J)^-1,
+/// s^2 = chi^2 / (m - p) when sigma is estimated, 1 when given. Singular directions of the
+/// column-scaled J^T J get infinite errors for the parameters they involve.
+void FillCovariance(const internal::TrackFit& fit, double s2, IdentifySummary* s) {
+  const Eigen::MatrixXd jtj = fit.jacobian.transpose() * fit.jacobian;
+  Eigen::VectorXd scale = jtj.diagonal().cwiseSqrt();
+  for (int i = 0; i < kP; ++i)
+    if (!(scale[i] > 0)) scale[i] = 1.0;
+  const Eigen::MatrixXd c = scale.cwiseInverse().asDiagonal() * jtj * scale.cwiseInverse().asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(c);
+  const Eigen::VectorXd ev = eig.eigenvalues();
+  s->scaled_condition = ev.maxCoeff() > 0 ? std::max(0.0, ev.minCoeff() / ev.maxCoeff()) : 0.0;
+  Eigen::MatrixXd inv = Eigen::MatrixXd::Zero(kP, kP);
+  std::vector<bool> singular(kP, false);
+  for (int k = 0; k < kP; ++k) {
+    const Eigen::VectorXd v = eig.eigenvectors().col(k);
+    if (ev[k] > kSingularRatio * ev.maxCoeff()) {
+      inv += v * v.transpose() / ev[k];
+    } else {
+      for (int i = 0; i < kP; ++i)
+        if (std::abs(v[i]) > 1e-3) singular[static_cast<std::size_t>(i)] = true;
+    }
+  }
+  const Eigen::MatrixXd cov = s2 * scale.cwiseInverse().asDiagonal() * inv * scale.cwiseInverse().asDiagonal();
+  s->standard_errors.assign(kP, 0.0);
+  s->correlation = Eigen::MatrixXd::Constant(kP, kP, kNaN);
+  for (int i = 0; i < kP; ++i) {
+    s->standard_errors[static_cast<std::size_t>(i)] = singular[static_cast<std::size_t>(i)] ? kInf : std::sqrt(cov(i, i));
+    for (int j = 0; j < kP; ++j)
+      if (!singular[static_cast<std::size_t>(i)] && !singular[static_cast<std::size_t>(j)])
+        s->correlation(i, j) = cov(i, j) / std::sqrt(cov(i, i) * cov(j, j));
+  }
+}
+
+void FillUnidentified(IdentifySummary* s) {
+  const auto& e = s->standard_errors;
+  const double scaled[kP] = {e[0] / s->lambda, e[1] / s->mu, e[2], e[3], e[4],
+                             e[5] / std::max(s->track_spread, 1e-300), e[6] / std::max(s->track_spread, 1e-300)};
+  for (int i = 0; i < kP; ++i)
+    if (!(scaled[i] <= kHugeError)) s->unidentified.emplace_back(kIdentifyParameterNames[i]);
+}
+
+/// The profile threshold of a 95% interval: chi^2_1 with given sigma, F(1, m - p) with estimated.
+double ProfileThreshold(bool sigma_estimated, int dof) {
+  if (!sigma_estimated) return boost::math::quantile(boost::math::chi_squared_distribution<double>(1.0), 0.95);
+  return boost::math::quantile(boost::math::fisher_f_distribution<double>(1.0, dof), 0.95);
+}
+
+/// True when the chi^2 (given sigma) or the RMS residual (estimated) rejects the model.
+bool RejectsFit(const IdentifySummary& s, const IdentifyOptions& o, int dof, std::string* why) {
+  std::ostringstream os;
+  if (!s.sigma_estimated) {
+    const double p = boost::math::cdf(boost::math::complement(boost::math::chi_squared_distribution<double>(dof), s.chi_square));
+    os << "chi-square " << s.chi_square << " on " << dof << " degrees of freedom (p = " << p << " < "
+       << o.no_fit_significance << ")";
+    *why = os.str();
+    return p < o.no_fit_significance;
+  }
+  os << "rms residual " << s.rms_residual << " radii > " << o.max_relative_residual << " x the track's spread " << s.track_spread;
+  *why = os.str();
+  return s.rms_residual > o.max_relative_residual * s.track_spread;
+}
+
+void FillFit(const internal::TrackFit& fit, IdentifySummary* s) {
+  s->lambda = fit.q[0];
+  s->mu = fit.q[1];
+  s->angles = AngleState{fit.q[2], fit.q[3], fit.q[4]}.Canonicalize();
+  s->x0 = Eigen::Vector2d(fit.q[5], fit.q[6]);
+  s->period = 2.0 * M_PI / std::sqrt(s->mu);
+  s->iterations = fit.iterations;
+}
+
+/// Decides identified / not identified from the standard error and the profile interval.
+void Classify(const IdentifyOptions& o, IdentifySummary* s) {
+  s->lambda_relative_error = s->standard_errors[0] / s->lambda;
+  const bool closed = s->lambda_low > 0 && std::isfinite(s->lambda_high);
+  s->lambda_identified = s->lambda_relative_error <= o.max_lambda_relative_error && (closed || !o.profile_interval);
+  std::ostringstream os;
+  if (s->lambda_identified) {
+    s->status = IdentifyStatus::kIdentified;
+    os << "lambda identified: relative standard error " << s->lambda_relative_error;
+  } else {
+    s->status = IdentifyStatus::kLambdaNotIdentified;
+    os << "lambda not identified: relative standard error " << s->lambda_relative_error
+       << (closed || !o.profile_interval ? "" : ", the 95% profile interval does not close in [lambda_min, lambda_max]")
+       << "; the track fixes mu (the period 2 pi/sqrt(mu)) and the state but carries (almost) no information on "
+          "lambda (docs/identify.md: a track with axial spin v0 != 0, i.e. a curved, drifting contact path, does)";
+  }
+  s->message = os.str();
+}
+
+}  // namespace
+
+IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& options) {
+  internal::ThrowIfInvalid(problem.Validate());
+  internal::ThrowIfInvalid(options.Validate());
+  const TrackData data = MakeTrackData(problem, options);
+  IdentifySummary s;
+  s.t_ref = problem.t[0];
+  s.sigma_estimated = problem.sigma.empty();
+  try {
+    internal::TrackFit fit = internal::FitTrack(data, options, &s.starts);
+    FillFit(fit, &s);
+    FillResiduals(data, fit, &s);
+    const int dof = s.residuals - kP;
+    const double s2 = s.sigma_estimated ? s.chi_square / dof : 1.0;
+    s.sigma = s.sigma_estimated ? std::sqrt(s2) : 0.0;
+    if (!s.sigma_estimated) {
+      for (double v : problem.sigma) s.sigma += v / options.radius;
+      s.sigma /= static_cast<double>(problem.sigma.size());
+    }
+    std::string why;
+    if (RejectsFit(s, options, dof, &why)) {
+      s.status = IdentifyStatus::kNoFit;
+      s.message = "no free motion fits the track: " + why;
+      return s;
+    }
+    FillCovariance(fit, s2, &s);
+    FillUnidentified(&s);
+    s.lambda_low = s.lambda_high = kNaN;
+    if (options.profile_interval && std::isfinite(s.standard_errors[0]) && s.rms_residual < kNoiselessResidual) {
+      // A noiseless track: the profile would resolve the integration's round-off, not a noise.
+      s.lambda_low = s.lambda - 1.96 * s.standard_errors[0];
+      s.lambda_high = s.lambda + 1.96 * s.standard_errors[0];
+      s.interval_method = "wald";
+    } else if (options.profile_interval && std::isfinite(s.standard_errors[0])) {
+      const internal::ProfileInterval pi = internal::ProfileLambda(data, options, fit, s.standard_errors[0],
+                                                                   ProfileThreshold(s.sigma_estimated, dof) * s2);
+      s.lambda_low = pi.low;
+      s.lambda_high = pi.high;
+      s.profile_fits = pi.fits;
+      s.interval_method = "profile";
+    } else if (options.profile_interval) {
+      s.lambda_low = 0.0;
+      s.lambda_high = kInf;
+      s.interval_method = "profile";
+    }
+    Classify(options, &s);
+  } catch (const std::exception& e) {
+    s.status = IdentifyStatus::kFailed;
+    s.message = std::string("the fit failed: ") + e.what();
+  }
+  return s;
+}
+
+}  // namespace plateball

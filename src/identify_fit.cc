@@ -1,0 +1,262 @@
+#include "identify_fit.h"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "identify_model.h"
+#include "kinematics.h"
+
+namespace plateball::internal {
+namespace {
+
+constexpr int kP = kTrackParameters;
+// The multi-start and the window continuation only have to land in the right basin: looser
+// tolerances, few samples per window.
+constexpr double kStartTolerance = 1e-8;
+constexpr int kStartIterations = 30;
+constexpr std::size_t kStartSamples = 100;
+constexpr std::size_t kWindowSamples = 400;
+// The first window: half a guessed period (every start sees the same arc of the orbit), and at
+// least this many samples.
+constexpr double kFirstWindowPeriods = 0.5;
+constexpr std::size_t kMinWindowSamples = 12;
+// mu is bounded to the problem files' range (schemas/input/problem.schema.json).
+constexpr double kMuMin = 1e-12, kMuMax = 1e12;
+// The variational equations of the Jacobian: 1e-8 gives the derivatives to ~1e-7 relative, ample
+// for Levenberg-Marquardt and the standard errors; the residuals keep the full tolerance.
+constexpr double kJacobianTolerance = 1e-8;
+
+IntegrationOptions JacobianOptions(const IntegrationOptions& o) {
+  return {std::max(kJacobianTolerance, o.absolute_tolerance), std::max(kJacobianTolerance, o.relative_tolerance), o.max_steps};
+}
+
+/// The weighted residuals w_i (x(tau_i) - x_i) and their exact Jacobian, parameter blocks
+/// lambda (1) and (mu, theta, phi, psi, x0, y0) (6), so that the profile can hold lambda constant.
+class TrackCost final : public ceres::CostFunction {
+ public:
+  TrackCost(const TrackData& data, const IntegrationOptions& options)
+      : data_(data), options_(options), jacobian_options_(JacobianOptions(options)) {
+    set_num_residuals(static_cast<int>(2 * data.tau.size()));
+    mutable_parameter_block_sizes()->push_back(1);
+    mutable_parameter_block_sizes()->push_back(kP - 1);
+  }
+  bool Evaluate(double const* const* p, double* residuals, double** jacobians) const override {
+    const double q[kP] = {p[0][0], p[1][0], p[1][1], p[1][2], p[1][3], p[1][4], p[1][5]};
+    const std::size_t n = data_.tau.size();
+    std::vector<double> model(2 * n);
+    const bool want_j = jacobians != nullptr && (jacobians[0] != nullptr || jacobians[1] != nullptr);
+    std::vector<double> j(want_j ? 2 * n * kP : 0);
+    try {
+      EvaluateTrack(q, data_.tau.data(), n, options_, model.data(), want_j ? j.data() : nullptr, &jacobian_options_);
+    } catch (const std::exception&) {
+      return false;  // an integration failure rejects the step (Ceres shrinks the trust region)
+    }
+    for (std::size_t k = 0; k < 2 * n; ++k) {
+      const double w = data_.weight[k / 2];
+      residuals[k] = w * (model[k] - data_.x[k]);
+      if (!want_j) continue;
+      if (jacobians[0] != nullptr) jacobians[0][k] = w * j[k * kP];
+      if (jacobians[1] != nullptr)
+        for (int c = 1; c < kP; ++c) jacobians[1][k * (kP - 1) + static_cast<std::size_t>(c - 1)] = w * j[k * kP + static_cast<std::size_t>(c)];
+    }
+    return true;
+  }
+
+ private:
+  const TrackData& data_;
+  IntegrationOptions options_;
+  IntegrationOptions jacobian_options_;
+};
+
+/// One Levenberg-Marquardt fit from q (lambda held at q[0] when fixed).
+TrackFit Solve(const TrackData& data, const std::array<double, kP>& q0, const IdentifyOptions& o,
+               const IntegrationOptions& integration, int max_iterations, bool lambda_fixed) {
+  TrackFit fit;
+  fit.q = q0;
+  double* lambda = fit.q.data();
+  double* rest = fit.q.data() + 1;
+  ceres::Problem problem;
+  problem.AddResidualBlock(new TrackCost(data, integration), nullptr, lambda, rest);
+  problem.SetParameterLowerBound(lambda, 0, o.lambda_min);
+  problem.SetParameterUpperBound(lambda, 0, o.lambda_max);
+  problem.SetParameterLowerBound(rest, 0, kMuMin);
+  problem.SetParameterUpperBound(rest, 0, kMuMax);
+  if (lambda_fixed) problem.SetParameterBlockConstant(lambda);
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = max_iterations;
+  so.function_tolerance = 1e-14;
+  so.gradient_tolerance = 1e-16;
+  so.parameter_tolerance = 1e-13;
+  so.num_threads = 1;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  fit.cost = summary.final_cost;
+  fit.iterations = static_cast<int>(summary.iterations.size());
+  if (!std::isfinite(fit.cost)) fit.cost = std::numeric_limits<double>::infinity();
+  return fit;
+}
+
+/// The samples with tau <= tau_max (at least kMinWindowSamples), thinned evenly to <= max_samples.
+TrackData Window(const TrackData& d, double tau_max, std::size_t max_samples) {
+  std::size_t end = 0;
+  while (end < d.tau.size() && d.tau[end] <= tau_max) ++end;
+  end = std::min(d.tau.size(), std::max(end, kMinWindowSamples));
+  const std::size_t stride = (end + max_samples - 1) / max_samples;
+  TrackData w;
+  for (std::size_t i = 0; i < end; i += stride) {
+    w.tau.push_back(d.tau[i]);
+    w.x.push_back(d.x[2 * i]);
+    w.x.push_back(d.x[2 * i + 1]);
+    w.weight.push_back(d.weight[i]);
+  }
+  return w;
+}
+
+Eigen::Vector2d PointAt(const TrackData& d, std::size_t i) { return {d.x[2 * i], d.x[2 * i + 1]}; }
+
+/// What the track says before any fit: mu ~ the mean squared speed (exact for v0 = 0,
+/// |x'|^2 = mu + (1 - lambda) v0^2 otherwise) over chords of 1/50 of the track, and the direction
+/// of the first chord.
+struct TrackGuess {
+  double mu = 1.0;
+  double direction = 0.0;
+};
+TrackGuess GuessFromTrack(const TrackData& d) {
+  const std::size_t n = d.tau.size();
+  const double h = d.tau.back() / 50.0;
+  TrackGuess g;
+  double sum = 0;
+  int count = 0;
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < n; i = std::max(j, i + 1)) {
+    j = i + 1;
+    while (j + 1 < n && d.tau[j] - d.tau[i] < h) ++j;
+    if (j >= n) break;
+    const Eigen::Vector2d chord = PointAt(d, j) - PointAt(d, i);
+    if (count == 0) g.direction = std::atan2(chord.y(), chord.x());
+    sum += chord.squaredNorm() / std::pow(d.tau[j] - d.tau[i], 2);
+    ++count;
+  }
+  g.mu = std::clamp(count > 0 ? sum / count : 1.0, kMuMin, kMuMax);
+  return g;
+}
+
+/// The start with the given (lambda, mu, theta, w = phi - psi), phi turned so that the contact
+/// velocity x'(0) = (omega_2, -omega_1) points along `direction` (the motion is invariant under
+/// turning phi and psi together about the vertical).
+std::array<double, kP> StartPoint(double lambda, double mu, double theta, double w, double direction,
+                                  const Eigen::Vector2d& x0) {
+  const PhaseVariables p = PhaseFromTrig(TrigFromAngles(AngleState{theta, 0.0, -w}), mu, lambda);
+  const double phi = WrapPi(direction - std::atan2(-p.omega.x(), p.omega.y()));
+  return {lambda, mu, theta, phi, WrapPi(phi - w), x0.x(), x0.y()};
+}
+
+/// The best of the grid of starts on the first window.
+TrackFit MultiStart(const TrackData& d, const IdentifyOptions& o, const TrackGuess& g, double window, int* starts) {
+  const TrackData w = Window(d, window, kStartSamples);
+  const IntegrationOptions coarse{kStartTolerance, kStartTolerance, o.integration.max_steps};
+  TrackFit best;
+  best.cost = std::numeric_limits<double>::infinity();
+  for (double lambda : o.lambda_starts)
+    for (int a = 0; a < o.theta_starts; ++a)
+      for (int b = 0; b < o.phase_starts; ++b) {
+        const double theta = (a + 0.5) / o.theta_starts * M_PI / 2.0;
+        const double phase = (b + 0.5) / o.phase_starts * kTwoPi;
+        const TrackFit f = Solve(w, StartPoint(lambda, g.mu, theta, phase, g.direction, PointAt(d, 0)), o, coarse,
+                                 kStartIterations, false);
+        ++*starts;
+        if (f.cost < best.cost) best = f;
+      }
+  return best;
+}
+
+/// Model and weighted Jacobian at fit.q on the whole track.
+void FinishFit(const TrackData& d, const IntegrationOptions& integration, TrackFit* fit) {
+  const std::size_t n = d.tau.size();
+  fit->model.resize(2 * n);
+  std::vector<double> j(2 * n * kP);
+  const IntegrationOptions jacobian_options = JacobianOptions(integration);
+  EvaluateTrack(fit->q.data(), d.tau.data(), n, integration, fit->model.data(), j.data(), &jacobian_options);
+  fit->jacobian.resize(static_cast<Eigen::Index>(2 * n), kP);
+  for (std::size_t k = 0; k < 2 * n; ++k)
+    for (int c = 0; c < kP; ++c) fit->jacobian(static_cast<Eigen::Index>(k), c) = d.weight[k / 2] * j[k * kP + static_cast<std::size_t>(c)];
+}
+
+}  // namespace
+
+TrackFit FitTrack(const TrackData& data, const IdentifyOptions& o, int* starts) {
+  *starts = 0;
+  std::array<double, kP> q{};
+  const double span = data.tau.back();
+  if (o.guess) {
+    const IdentifyGuess& g = *o.guess;
+    q = {g.lambda, g.mu, g.angles.theta, g.angles.phi, g.angles.psi, g.x0.x() / o.radius, g.x0.y() / o.radius};
+  } else {
+    const TrackGuess g = GuessFromTrack(data);
+    double window = std::min(span, kFirstWindowPeriods * kTwoPi / std::sqrt(g.mu));
+    q = MultiStart(data, o, g, window, starts).q;
+    // Doubling the window carries the phase from one window to the next without skipping a turn.
+    const IntegrationOptions mid{kStartTolerance / 10, kStartTolerance / 10, o.integration.max_steps};
+    while (window < span) {
+      window = std::min(span, 2.0 * window);
+      q = Solve(Window(data, window, kWindowSamples), q, o, mid, kStartIterations, false).q;
+    }
+  }
+  TrackFit fit = Solve(data, q, o, o.integration, o.max_iterations, false);
+  FinishFit(data, o.integration, &fit);
+  return fit;
+}
+
+namespace {
+
+/// One side (dir = -1 or +1) of the profile interval: the secant method on the signed root
+/// r(lambda) = sqrt(2 (cost(lambda) - cost_min)), nearly linear in lambda, for r = sqrt(threshold).
+double ProfileSide(const TrackData& d, const IdentifyOptions& o, const TrackFit& fit, double se, double threshold,
+                   double dir, int* fits) {
+  constexpr int kMaxSteps = 16;
+  constexpr double kRootTolerance = 1e-3;  // relative on r: ~0.1% of the interval's half-width
+  const double target = std::sqrt(threshold);
+  const double bound = dir < 0 ? o.lambda_min : o.lambda_max;
+  const double lam_hat = fit.q[0];
+  double last_lam = lam_hat, last_r = 0.0;
+  double lam = std::clamp(lam_hat + dir * 1.96 * se, o.lambda_min, o.lambda_max);
+  std::array<double, kP> warm = fit.q;
+  if (lam == lam_hat) return dir < 0 ? 0.0 : std::numeric_limits<double>::infinity();  // at the bound
+  for (int step = 0; step < kMaxSteps && lam != lam_hat; ++step) {
+    std::array<double, kP> q = warm;
+    q[0] = lam;
+    const TrackFit f = Solve(d, q, o, o.integration, o.max_iterations, true);
+    ++*fits;
+    const double r = std::sqrt(std::max(0.0, 2.0 * (f.cost - fit.cost)));
+    if (std::abs(r - target) <= kRootTolerance * target) return lam;
+    if (r < target && lam == bound) return dir < 0 ? 0.0 : std::numeric_limits<double>::infinity();
+    const double slope = (r - last_r) / (lam - last_lam);
+    double next = slope * dir > 0 ? lam + (target - r) / slope : lam + 4.0 * (lam - lam_hat);
+    // Never jump more than 4x the current distance from the optimum (a flat profile).
+    const double far = lam_hat + 4.0 * (lam - lam_hat);
+    if (dir * (next - far) > 0) next = far;
+    if (r < target) warm = f.q;
+    last_lam = lam;
+    last_r = r;
+    lam = std::clamp(next, o.lambda_min, o.lambda_max);
+  }
+  return lam;
+}
+
+}  // namespace
+
+ProfileInterval ProfileLambda(const TrackData& data, const IdentifyOptions& options, const TrackFit& fit, double se,
+                              double threshold) {
+  ProfileInterval p;
+  p.low = ProfileSide(data, options, fit, se, threshold, -1.0, &p.fits);
+  p.high = ProfileSide(data, options, fit, se, threshold, +1.0, &p.fits);
+  return p;
+}
+
+}  // namespace plateball::internal

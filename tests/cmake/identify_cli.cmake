@@ -1,0 +1,83 @@
+# Command-line tests of `plateball identify`: the fit of the example tracks (tests/data, made by
+# `plateball simulate` with seeded noise, see their header lines), the fitted problem read back by
+# simulate, exit codes and messages of bad tracks. Uses plateball_cli_test() from cli_tests.cmake.
+if(NOT TARGET plateball_cli OR NOT COMMAND plateball_cli_test)
+  return()
+endif()
+
+plateball_cli_test(identify.help 0 REGEX "--svg.*--radius" -- identify --help)
+# lambda = 1.3, mu = 4 (period pi), noise 0.005 on 301 samples: lambda to ~1e-3, the period to ~3e-3.
+plateball_cli_test(identify.track 0 --number period 3.141592653589793 0.02
+  REGEX "\"status\": \"identified\".*\"lambda\": 1\\.30.*\"fitted_problem\""
+  -- identify tests/data/identify_track.csv)
+plateball_cli_test(identify.track_json_with_sigma 0 --number period 3.141592653589793 0.05
+  REGEX "\"status\": \"identified\".*\"sigma_estimated\": false"
+  -- identify tests/data/identify_track.json)
+plateball_cli_test(identify.svg 0 REGEX "<svg.*fitted free motion.*residuals, rms"
+  --cat ${CMAKE_CURRENT_BINARY_DIR}/cli_identify.svg
+  -- identify tests/data/identify_track.csv --no-profile --out ${CMAKE_CURRENT_BINARY_DIR}/cli_identify.json
+     --svg ${CMAKE_CURRENT_BINARY_DIR}/cli_identify.svg)
+# The straight track of problems/simulate_example.json (v0 = 0): mu = 1 (period 2 pi) is fitted,
+# lambda is reported as not identified (exit 0: the fit itself is a result), no fitted_problem.
+plateball_cli_test(identify.straight_track_does_not_identify_lambda 0 --number period 6.283185307179586 0.01
+  REGEX "\"status\": \"lambda_not_identified\".*\"usable\": false.*lambda not identified"
+  -- identify tests/data/identify_straight.csv)
+
+# Bad tracks: exit 3 naming the row, 4 when no free motion fits, 5 for a missing file.
+set(dir ${CMAKE_CURRENT_BINARY_DIR}/identify_tracks)
+file(MAKE_DIRECTORY ${dir})
+set(head "t,x,y\n")
+set(rows "")
+foreach(i RANGE 0 9)
+  string(APPEND rows "${i},0.${i},0\n")
+endforeach()
+file(WRITE ${dir}/unsorted.csv "${head}0,0,0\n1,1,0\n3,3,0\n2,2,0\n4,4,0\n5,5,0\n6,6,0\n7,7,0\n8,8,0\n")
+file(WRITE ${dir}/duplicate.csv "${head}0,0,0\n1,1,0\n1,2,0\n3,3,0\n4,4,0\n5,5,0\n6,6,0\n7,7,0\n8,8,0\n")
+file(WRITE ${dir}/nan.csv "${head}0,0,0\n1,1,0\n2,nan,0\n3,3,0\n4,4,0\n5,5,0\n6,6,0\n7,7,0\n8,8,0\n")
+file(WRITE ${dir}/text.csv "${head}0,0,0\n1,one,0\n")
+file(WRITE ${dir}/few.csv "${head}0,0,0\n1,1,0\n2,2,0\n")
+file(WRITE ${dir}/column.csv "t,x,y,qw\n0,0,0,1\n")
+file(WRITE ${dir}/sigma.csv "t,x,y,sigma\n${rows}")
+file(WRITE ${dir}/negative_sigma.csv "t,x,y,sigma\n0,0,0,0.1\n1,1,0,0.1\n2,2,0,0.1\n3,3,0,-1\n4,4,0,0.1\n5,5,0,0.1\n6,6,0,0.1\n7,7,0,0.1\n8,8,0,0.1\n")
+# A zigzag: the contact point reverses every 10 samples, which no free motion does.
+set(zigzag "${head}")
+foreach(i RANGE 0 59)
+  math(EXPR leg "(${i} / 10) % 2")
+  math(EXPR k "${i} % 10")
+  if(leg EQUAL 0)
+    string(APPEND zigzag "${i},${k},0\n")
+  else()
+    math(EXPR back "10 - ${k}")
+    string(APPEND zigzag "${i},${back},0\n")
+  endif()
+endforeach()
+file(WRITE ${dir}/zigzag.csv "${zigzag}")
+plateball_cli_test(identify.unsorted 3 REGEX "unsorted.csv: t\\[3\\]: value 2: times must be strictly increasing" -- identify ${dir}/unsorted.csv)
+plateball_cli_test(identify.duplicate 3 REGEX "t\\[2\\]: value 1: duplicate time" -- identify ${dir}/duplicate.csv)
+plateball_cli_test(identify.nan 3 REGEX "x\\[2\\]: value nan: must be finite" -- identify ${dir}/nan.csv)
+plateball_cli_test(identify.not_a_number 3 REGEX "x\\[1\\]: value \"one\": not a number" -- identify ${dir}/text.csv)
+plateball_cli_test(identify.too_few 3 REGEX "t \\(rows\\): value 3: too few samples" -- identify ${dir}/few.csv)
+plateball_cli_test(identify.unknown_column 3 REGEX "header column 3: value \"qw\": unknown column" -- identify ${dir}/column.csv)
+plateball_cli_test(identify.cells 3 REGEX "row\\[0\\]: value 3 cells: must have 4 cells" -- identify ${dir}/sigma.csv)
+plateball_cli_test(identify.negative_sigma 3 REGEX "sigma\\[3\\]: value -1: must be finite and > 0" -- identify ${dir}/negative_sigma.csv)
+plateball_cli_test(identify.no_fit 4 REGEX "\"status\": \"no_fit\".*no free motion fits the track: rms residual" -- identify ${dir}/zigzag.csv)
+plateball_cli_test(identify.bad_radius 3 REGEX "--radius: value -2" -- identify tests/data/identify_track.csv --radius -2)
+plateball_cli_test(identify.guess_needs_problem 3 REGEX "--guess" -- identify tests/data/identify_track.csv --guess)
+plateball_cli_test(identify.missing_file 5 -- identify tests/data/no_such_track.csv)
+
+# The fitted problem is a problem file: simulate reads it back and moves at the fitted period.
+if(EXISTS /usr/bin/python3)
+  add_test(NAME cli.identify.fitted_problem_is_a_problem_file
+    COMMAND /usr/bin/python3 -c "
+import json, subprocess, sys
+exe, out = sys.argv[1], sys.argv[2]
+doc = json.loads(subprocess.run([exe, 'identify', 'tests/data/identify_track.csv', '--no-profile'], check=True, capture_output=True, text=True).stdout)
+json.dump(doc['fitted_problem'], open(out, 'w'))
+sim = json.loads(subprocess.run([exe, 'simulate', out, '--samples', '2'], check=True, capture_output=True, text=True).stdout)
+assert abs(sim['period'] - doc['fit']['period']) < 1e-12 and sim['model']['lambda'] == doc['fit']['lambda'], (sim['period'], doc['fit'])
+print('fitted problem read back: period', sim['period'])
+" $<TARGET_FILE:plateball_cli> ${dir}/fitted_problem.json
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(cli.identify.fitted_problem_is_a_problem_file PROPERTIES TIMEOUT 120 LABELS cli
+                       PASS_REGULAR_EXPRESSION "fitted problem read back")
+endif()

@@ -1,0 +1,340 @@
+// `plateball identify TRACK [PROBLEM.json]`: fit lambda, mu and the initial state to a measured
+// track of the contact point (identify.h, docs/identify.md) and print the result as JSON.
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/command_registry.h"
+#include "common/exit_codes.h"
+#include "common/input_file.h"
+#include "common/json_output.h"
+#include "common/number_format.h"
+#include "common/output_file.h"
+#include "common/problem_options.h"
+#include "common/svg.h"
+#include "plateball/free_motion.h"
+#include "plateball/identify.h"
+#include "plateball/problem.h"
+
+namespace plateball::tools {
+namespace {
+
+struct IdentifyCliOptions {
+  std::string track;
+  std::string problem;
+  std::string out;
+  std::string svg;
+  double radius = 1.0;
+  bool guess = false;
+  bool no_profile = false;
+  CLI::Option* radius_opt = nullptr;
+};
+
+[[noreturn]] void TrackError(const std::string& file, const std::string& field, const std::string& value,
+                             const std::string& what) {
+  throw std::invalid_argument(file + ": " + field + ": value " + value + ": " + what);
+}
+
+// ------------------------------------------------------------------ reading the track
+
+/// One number of a CSV cell: the whole cell must parse.
+double ParseCell(const std::string& file, const std::string& field, const std::string& cell) {
+  const char* begin = cell.c_str();
+  char* end = nullptr;
+  const double v = std::strtod(begin, &end);
+  if (end == begin || *end != '\0') TrackError(file, field, "\"" + cell + "\"", "not a number");
+  return v;
+}
+
+std::string Trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  const auto e = s.find_last_not_of(" \t\r");
+  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> SplitCells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) cells.push_back(Trim(cell));
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+/// CSV with a header line naming the columns t, x, y and optionally sigma ('#' lines are comments).
+IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
+  std::stringstream in(text);
+  std::string line;
+  std::vector<std::string> columns;
+  IdentifyProblem p;
+  int col[4] = {-1, -1, -1, -1};  // t, x, y, sigma
+  const char* names[4] = {"t", "x", "y", "sigma"};
+  while (std::getline(in, line)) {
+    const std::string trimmed = Trim(line);
+    if (trimmed.empty() || trimmed[0] == '#') continue;
+    const std::vector<std::string> cells = SplitCells(trimmed);
+    if (columns.empty()) {
+      columns = cells;
+      for (std::size_t c = 0; c < cells.size(); ++c) {
+        int k = -1;
+        for (int m = 0; m < 4; ++m)
+          if (cells[c] == names[m]) k = m;
+        if (k < 0) TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"", "unknown column (the columns are t, x, y and optionally sigma)");
+        if (col[k] >= 0) TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"", "repeated column");
+        col[k] = static_cast<int>(c);
+      }
+      for (int m = 0; m < 3; ++m)
+        if (col[m] < 0) TrackError(file, std::string("header column ") + names[m], "(missing)", "the columns t, x and y are required");
+      continue;
+    }
+    const std::size_t row = p.t.size();
+    const std::string r = "[" + std::to_string(row) + "]";
+    if (cells.size() != columns.size())
+      TrackError(file, "row" + r, std::to_string(cells.size()) + " cells", "must have " + std::to_string(columns.size()) + " cells like the header");
+    p.t.push_back(ParseCell(file, "t" + r, cells[static_cast<std::size_t>(col[0])]));
+    p.x.emplace_back(ParseCell(file, "x" + r, cells[static_cast<std::size_t>(col[1])]),
+                     ParseCell(file, "y" + r, cells[static_cast<std::size_t>(col[2])]));
+    if (col[3] >= 0) p.sigma.push_back(ParseCell(file, "sigma" + r, cells[static_cast<std::size_t>(col[3])]));
+  }
+  if (columns.empty()) TrackError(file, "(document)", "(empty)", "no header line t,x,y");
+  return p;
+}
+
+/// JSON {"t": [...], "x": [[x, y], ...], "sigma": [...] (optional)}.
+IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) {
+  using nlohmann::json;
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::exception& e) {
+    TrackError(file, "(document)", "(see message)", std::string("malformed JSON: ") + e.what());
+  }
+  if (!doc.is_object()) TrackError(file, "(document)", "(not an object)", "must be an object {\"t\": [...], \"x\": [[x, y], ...]}");
+  for (auto it = doc.begin(); it != doc.end(); ++it)
+    if (it.key() != "t" && it.key() != "x" && it.key() != "sigma")
+      TrackError(file, it.key(), "(any)", "unknown key (a track has t, x and optionally sigma)");
+  for (const char* key : {"t", "x"})
+    if (!doc.contains(key) || !doc[key].is_array()) TrackError(file, key, "(missing)", "required array");
+  IdentifyProblem p;
+  auto number = [&](const json& v, const std::string& field) {
+    if (!v.is_number()) TrackError(file, field, v.dump(), "must be a number");
+    return v.get<double>();
+  };
+  for (std::size_t i = 0; i < doc["t"].size(); ++i) p.t.push_back(number(doc["t"][i], "t[" + std::to_string(i) + "]"));
+  for (std::size_t i = 0; i < doc["x"].size(); ++i) {
+    const json& q = doc["x"][i];
+    const std::string f = "x[" + std::to_string(i) + "]";
+    if (!q.is_array() || q.size() != 2) TrackError(file, f, q.dump(), "must be a point [x, y]");
+    p.x.emplace_back(number(q[0], f + "[0]"), number(q[1], f + "[1]"));
+  }
+  if (doc.contains("sigma")) {
+    if (!doc["sigma"].is_array()) TrackError(file, "sigma", doc["sigma"].dump(), "must be an array of numbers");
+    for (std::size_t i = 0; i < doc["sigma"].size(); ++i) p.sigma.push_back(number(doc["sigma"][i], "sigma[" + std::to_string(i) + "]"));
+  }
+  return p;
+}
+
+IdentifyProblem ReadTrack(const std::string& file) {
+  const std::string text = ReadInputText(file);
+  const auto first = text.find_first_not_of(" \t\r\n");
+  IdentifyProblem p = first != std::string::npos && (text[first] == '{' || text[first] == '[') ? ReadTrackJson(file, text)
+                                                                                                 : ReadTrackCsv(file, text);
+  const std::string error = p.Validate();
+  if (!error.empty()) throw std::invalid_argument(file + ": " + error);
+  return p;
+}
+
+// ------------------------------------------------------------------ output
+
+Json FiniteOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+Json ErrorsJson(const IdentifySummary& s) {
+  Json j = Json::object();
+  for (int i = 0; i < 5; ++i) j[kIdentifyParameterNames[i]] = FiniteOrNull(s.standard_errors[static_cast<std::size_t>(i)]);
+  j["x0"] = Json::array({FiniteOrNull(s.standard_errors[5]), FiniteOrNull(s.standard_errors[6])});
+  return j;
+}
+
+Json CorrelationJson(const IdentifySummary& s) {
+  Json rows = Json::array();
+  for (Eigen::Index i = 0; i < s.correlation.rows(); ++i) {
+    Json row = Json::array();
+    for (Eigen::Index k = 0; k < s.correlation.cols(); ++k) row.push_back(FiniteOrNull(s.correlation(i, k)));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+Json FitJson(const IdentifySummary& s) {
+  Json j{{"t_ref", s.t_ref}, {"lambda", s.lambda}, {"mu", s.mu}, {"angles", ToJson(s.angles)},
+         {"x0", ToJson(s.x0)}, {"period", s.period}, {"standard_errors", ErrorsJson(s)}};
+  if (std::isfinite(s.lambda_low) || std::isinf(s.lambda_high))
+    j["lambda_interval"] = Json{{"low", s.lambda_low}, {"high", FiniteOrNull(s.lambda_high)},
+                                {"closed", s.lambda_low > 0 && std::isfinite(s.lambda_high)}, {"confidence", 0.95},
+                                {"method", s.interval_method}};
+  j["identifiability"] = Json{{"lambda_identified", s.lambda_identified},
+                              {"lambda_relative_error", FiniteOrNull(s.lambda_relative_error)},
+                              {"scaled_condition", s.scaled_condition},
+                              {"unidentified", s.unidentified}};
+  j["correlation"] = CorrelationJson(s);
+  j["parameters"] = Json::array();
+  for (const char* name : kIdentifyParameterNames) j["parameters"].push_back(name);
+  return j;
+}
+
+Json ResidualsJson(const IdentifySummary& s) {
+  return Json{{"samples", s.samples}, {"rms", s.rms_residual}, {"max", s.max_residual}, {"chi_square", s.chi_square},
+              {"sigma", s.sigma}, {"sigma_estimated", s.sigma_estimated}, {"track_spread", s.track_spread}};
+}
+
+/// The fitted model as problem-file sections (ball, initial) that plan and steer read.
+Json FittedProblemJson(const IdentifySummary& s) {
+  return Json{{"ball", Json{{"lambda", s.lambda}}},
+              {"initial", Json{{"theta", s.angles.theta}, {"phi", s.angles.phi}, {"psi", s.angles.psi}, {"mu", s.mu},
+                               {"x0", ToJson(s.x0)}}}};
+}
+
+/// Six significant digits for a title.
+std::string Short(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+/// The plate view: the measured track (points) and the fitted free motion (line), in radii.
+SvgFigure PlateFigure(const IdentifyProblem& track, const IdentifySummary& s, double radius, bool fitted) {
+  SvgFigure fig(640, 560);
+  fig.Title("plateball identify: " + ToString(s.status) +
+            (fitted ? ", lambda = " + Short(s.lambda) + ", mu = " + Short(s.mu) : std::string()));
+  // The points first, the fitted line over them: a good fit runs through the cloud.
+  const SvgFigure::Style point{"#555555", 1.0, "", "#555555"};
+  for (const Eigen::Vector2d& x : track.x) fig.Marker(x / radius, 1.2, point);
+  fig.Legend("measured track", point, SvgFigure::Swatch::kPoint);
+  if (fitted) {
+    const FreeMotion motion = FreeMotion::FromAngles(BallModel::FromLambda(s.lambda), s.angles, s.mu, s.x0);
+    std::vector<Eigen::Vector2d> curve;
+    constexpr int kCurvePoints = 600;
+    for (int i = 0; i <= kCurvePoints; ++i)
+      curve.push_back(motion.PositionAt((track.t.back() - track.t.front()) * i / kCurvePoints));
+    fig.Polyline(curve, {"#1f77b4", 1.2, "", "none"});
+    fig.Legend("fitted free motion", {"#1f77b4", 1.2, "", "none"});
+  }
+  return fig;
+}
+
+/// The residual components (measured - fitted, radii) against time.
+SvgFigure ResidualFigure(const IdentifyProblem& track, const IdentifySummary& s, double radius) {
+  SvgFigure fig(640, 340);
+  fig.EqualAspect(false);
+  fig.Title("residuals, rms " + Short(s.rms_residual) + " radii");
+  fig.AxisLabels("t", "measured - fitted (ball radii)");
+  std::vector<Eigen::Vector2d> rx, ry;
+  for (std::size_t i = 0; i < track.t.size(); ++i) {
+    const Eigen::Vector2d r = track.x[i] / radius - s.fitted[i];
+    rx.emplace_back(track.t[i], r.x());
+    ry.emplace_back(track.t[i], r.y());
+  }
+  fig.Polyline({{track.t.front(), 0.0}, {track.t.back(), 0.0}}, {"gray", 1.0, "4,3", "none"});
+  fig.Polyline(rx, {"#d62728", 1.0, "", "none"});
+  fig.Polyline(ry, {"#2ca02c", 1.0, "", "none"});
+  fig.Legend("x residual", {"#d62728", 1.0, "", "none"});
+  fig.Legend("y residual", {"#2ca02c", 1.0, "", "none"});
+  return fig;
+}
+
+/// The two panels stacked in one SVG (each rendered by SvgFigure, nested at its offset).
+void WriteFigure(const std::string& path, const IdentifyProblem& track, const IdentifySummary& s, double radius) {
+  const bool fitted = !s.fitted.empty() && s.mu > 0;
+  std::vector<std::string> panels{PlateFigure(track, s, radius, fitted).Render()};
+  if (fitted) panels.push_back(ResidualFigure(track, s, radius).Render());
+  double height = 0;
+  std::string body;
+  for (std::string& panel : panels) {
+    // Each panel is a complete <svg width=".." height=".."> element: nest it at y = height.
+    const auto h = panel.find("height=\"");
+    const double panel_height = std::stod(panel.substr(h + 8));
+    panel.replace(0, 4, "<svg y=\"" + Short(height) + "\"");
+    body += panel;
+    height += panel_height;
+  }
+  WriteOutput(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"" + Short(height) +
+                        "\" viewBox=\"0 0 640 " + Short(height) + "\">\n" + body + "</svg>\n");
+}
+
+int RunIdentify(const IdentifyCliOptions& o) {
+  CheckOutputPaths({{"--out", o.out}, {"--svg", o.svg}}, {{"TRACK", o.track}, {"PROBLEM.json", o.problem}});
+  const IdentifyProblem track = ReadTrack(o.track);
+  Problem p;
+  p.source = "(built-in defaults)";
+  if (!o.problem.empty()) p = ReadProblemInput(o.problem);
+  IdentifyOptions opt;
+  opt.integration = {std::max(p.integration.absolute_tolerance, 1e-13), std::max(p.integration.relative_tolerance, 1e-13),
+                     p.integration.max_steps};
+  if (o.problem.empty()) opt.integration = IdentifyOptions().integration;
+  if (p.physical) opt.radius = p.physical->radius;
+  if (o.radius_opt->count() > 0) opt.radius = RequirePositiveOption("--radius", o.radius);
+  opt.profile_interval = !o.no_profile;
+  if (o.guess) {
+    if (o.problem.empty()) throw std::invalid_argument(std::string(kCommandLine) + ": --guess: value (set): needs PROBLEM.json (its ball.lambda and initial state)");
+    opt.guess = IdentifyGuess{p.model.lambda(), p.mu, p.initial_angles, p.x0 * opt.radius};
+  }
+  const IdentifySummary s = Identify(track, opt);
+
+  Json doc = HeaderJson("plateball", "identify", p, o.problem, false);
+  doc["integration"] = Json{{"absolute_tolerance", opt.integration.absolute_tolerance},
+                            {"relative_tolerance", opt.integration.relative_tolerance},
+                            {"max_steps", opt.integration.max_steps}};
+  doc["options"] = Json{{"radius", opt.radius}, {"lambda_min", opt.lambda_min}, {"lambda_max", opt.lambda_max},
+                        {"max_lambda_relative_error", opt.max_lambda_relative_error},
+                        {"profile_interval", opt.profile_interval}, {"guess", o.guess}};
+  doc["track"] = Json{{"file", o.track}, {"samples", track.t.size()}, {"t_first", track.t.front()}, {"t_last", track.t.back()},
+                      {"sigma_given", !track.sigma.empty()}};
+  Append(doc, ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport()));
+  const bool fitted = s.status == IdentifyStatus::kIdentified || s.status == IdentifyStatus::kLambdaNotIdentified;
+  if (fitted) doc["fit"] = FitJson(s);
+  if (s.status != IdentifyStatus::kFailed) doc["residuals"] = ResidualsJson(s);
+  if (s.IsSolutionUsable()) doc["fitted_problem"] = FittedProblemJson(s);
+  doc["starts"] = s.starts;
+  doc["iterations"] = s.iterations;
+  doc["profile_fits"] = s.profile_fits;
+  if (!o.svg.empty()) WriteFigure(o.svg, track, s, opt.radius);
+  WriteJson(doc, o.out);
+  return fitted ? kExitSuccess : kExitNoSolution;
+}
+
+std::function<int()> SetupIdentify(CLI::App& sub) {
+  auto o = std::make_shared<IdentifyCliOptions>();
+  sub.add_option("TRACK", o->track, "the track: CSV with a header t,x,y[,sigma] or JSON {\"t\", \"x\", \"sigma\"} (\"-\": standard input)")
+      ->required();
+  sub.add_option("PROBLEM.json", o->problem,
+                 "optional problem file: its integration tolerances, ball.physical.radius (a track in metres) and, "
+                 "with --guess, its ball.lambda and initial state as the start of the fit");
+  sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
+  sub.add_option("--svg", o->svg, "draw the track, the fitted motion and the residuals to this SVG file");
+  o->radius_opt = sub.add_option("--radius", o->radius, "the ball's radius in the track's length unit (default 1, or ball.physical.radius)");
+  sub.add_flag("--guess", o->guess, "start from PROBLEM.json's ball.lambda and initial state instead of the multi-start");
+  sub.add_flag("--no-profile", o->no_profile, "skip the profile-likelihood interval of lambda (faster)");
+  sub.footer(
+      "Fits lambda, mu and the state (angles, contact point) at the track's first time to a measured track of\n"
+      "the contact point (docs/identify.md). Prints JSON (docs/output_contract.md): status identified |\n"
+      "lambda_not_identified | no_fit | failed, the fit with standard errors, the 95% profile interval of\n"
+      "lambda, an identifiability report, the residuals and, when identified, fitted_problem: the ball and\n"
+      "initial sections of a problem file for plan and steer.\n"
+      "Example: plateball identify tests/data/identify_track.csv --svg fit.svg\n"
+      "Exit codes: 0 fitted (lambda identified or not), 2 usage, 3 invalid input, 4 no fit or the fit failed,\n"
+      "5 unreadable file.");
+  return [o] { return RunIdentify(*o); };
+}
+
+const CommandRegistrar kRegistrar{
+    {"identify", "fit lambda, mu and the initial state to a measured contact-point track (JSON)", SetupIdentify}};
+
+}  // namespace
+}  // namespace plateball::tools
