@@ -37,7 +37,8 @@ html_static_path = []
 nitpicky = False
 
 # C++ API: breathe over Doxygen's XML.
-breathe_projects = {"plateball": os.environ.get("PLATEBALL_DOXYGEN_XML", str(BUILD / "docs" / "doxygen" / "xml"))}
+breathe_projects = {"plateball": str((ROOT / os.environ.get("PLATEBALL_DOXYGEN_XML",
+                                                                 BUILD / "docs" / "doxygen" / "xml")).resolve())}
 breathe_default_project = "plateball"
 breathe_domain_by_extension = {"h": "cpp"}
 cpp_index_common_prefix = ["plateball::"]
@@ -50,7 +51,7 @@ autodoc_typehints = "none"
 sys.path.insert(0, str(ROOT / "examples"))
 os.environ.setdefault("PLATEBALL_GALLERY_KEEP_FIGURES", "1")
 os.environ.setdefault("MPLBACKEND", "Agg")
-_gallery_out = os.environ.get("PLATEBALL_GALLERY_OUT", str(BUILD / "docs" / "gallery_files"))
+_gallery_out = str((ROOT / os.environ.get("PLATEBALL_GALLERY_OUT", BUILD / "docs" / "gallery_files")).resolve())
 sphinx_gallery_conf = {
     "examples_dirs": str(ROOT / "examples"),
     "gallery_dirs": "_generated_gallery",
@@ -66,7 +67,7 @@ sphinx_gallery_conf = {
 
 def _render_man_pages(app):
     """The CLI reference: every man page of the tools rendered as text into _generated/cli/."""
-    man_dir = pathlib.Path(os.environ.get("PLATEBALL_MAN_DIR", str(BUILD / "man")))
+    man_dir = (ROOT / os.environ.get("PLATEBALL_MAN_DIR", BUILD / "man")).resolve()
     out = DOCS / "_generated" / "cli"
     out.mkdir(parents=True, exist_ok=True)
     pages = sorted(man_dir.glob("*.1"))

@@ -153,6 +153,6 @@ struct ReplayResult {
 };
 /// Re-integrates `impulses` from the problem's start with `integration` (the independent check above).
 ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
-                                const IntegrationOptions& integration = {1e-14, 1e-14, 2'000'000});
+                                const IntegrationOptions& integration = {1e-14, 1e-14, 2000000});
 
 }  // namespace plateball

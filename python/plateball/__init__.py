@@ -5,7 +5,7 @@ problem and options either as objects or as keyword arguments (a keyword names a
 problem or of the options; unknown keywords are a TypeError), and returns the library's summary
 with NumPy arrays for trajectories, orientations and impulses, the same status words
 ("converged", "success", ...) and messages as the tools. Invalid input raises ValueError with the
-library's message (FIELD: value V: what). The solvers release the GIL.
+library's message (FIELD: value V: what). The solvers release the GIL. For example::
 
     import plateball as pb
     s = pb.join(model=pb.BallModel(2.0), start=(1.0471975511965976, 0.4, 0.1), target=(0.05, 0))
