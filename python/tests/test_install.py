@@ -1,4 +1,5 @@
 """The package around the extension: the interpreter check of __init__.py and the type stubs."""
+import inspect
 import pathlib
 import shutil
 import subprocess
@@ -33,7 +34,7 @@ def test_other_python_version_names_the_interpreter_it_needs(tmp_path):
 def test_stubs_cover_every_public_name():
     """The committed stubs (python/plateball/*.pyi) declare every public name of the built module."""
     stubs = (SOURCE / "_plateball.pyi").read_text() + (SOURCE / "__init__.pyi").read_text()
-    names = [n for n in dir(pb) if not n.startswith("_")]
+    names = [n for n in dir(pb) if not n.startswith("_") and not inspect.ismodule(getattr(pb, n))]
     missing = [n for n in names if f"class {n}" not in stubs and f"def {n}(" not in stubs and f"{n}:" not in stubs]
     assert not missing, f"names without a stub (regenerate with tools/python/make_stubs.py): {missing}"
     assert (SOURCE / "py.typed").exists()
