@@ -52,7 +52,16 @@ sys.path.insert(0, str(ROOT / "examples"))
 os.environ.setdefault("PLATEBALL_GALLERY_KEEP_FIGURES", "1")
 os.environ.setdefault("MPLBACKEND", "Agg")
 _gallery_out = str((ROOT / os.environ.get("PLATEBALL_GALLERY_OUT", BUILD / "docs" / "gallery_files")).resolve())
+
+
+def _tight_figures(gallery_conf, fname):
+    """After sphinx-gallery's matplotlib reset: save whole figures (the legends sit under the plots)."""
+    import matplotlib
+    matplotlib.rcParams["savefig.bbox"] = "tight"
+
+
 sphinx_gallery_conf = {
+    "reset_modules": ("matplotlib", _tight_figures),
     "examples_dirs": str(ROOT / "examples"),
     "gallery_dirs": "_generated_gallery",
     "filename_pattern": r"/(figure\d|convergence_chart)",
