@@ -1,5 +1,8 @@
-"""The convergence chart (section 2.3, Theorem 2.6 / Corollary 3): the measured error
-||A(T) - A~_n||, the polyline's error, the reported a-posteriori bound and Theorem 2.6's bound
+"""Convergence: the error against the number of impulses
+=====================================================
+
+The convergence chart (section 2.3, Theorem 2.6 / Corollary 3): the measured error
+``||A(T) - A~_n||``, the polyline's error, the reported a-posteriori bound and Theorem 2.6's bound
 against the number n of impulses, for one lap of the circle of problems/circle.json; the fitted
 log-log slope of the error is -2."""
 import numpy as np

@@ -1,4 +1,7 @@
-"""Figure 2 of the paper: solutions of (22)-(23), theta' = -b sin w, w' = -b cos(theta) cos(w)/sin(theta),
+"""Figure 2: the phase portrait of (22)-(23)
+=========================================
+
+Figure 2 of the paper: solutions of (22)-(23), theta' = -b sin w, w' = -b cos(theta) cos(w)/sin(theta),
 for mu = 1, theta(t0) = m pi/24, w(t0) = n pi, in the (w, theta) plane. The dashed lines are the
 singularities theta = 0, pi of the spherical coordinates.
 

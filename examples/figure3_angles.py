@@ -1,4 +1,7 @@
-"""Figure 3 of the paper: solutions of (19)-(21) for mu = 1, lambda = 1/2, psi(t0) = 0, phi(t0) = 0,
+"""Figure 3: the angles of the free motion
+=======================================
+
+Figure 3 of the paper: solutions of (19)-(21) for mu = 1, lambda = 1/2, psi(t0) = 0, phi(t0) = 0,
 theta(t0) = m pi/24 (m = 1, ..., 12): theta(t), phi(t), psi(t) and the contact point x(t) on the
 plate, integrated by the library (IntegrateAngleForm, with x' = (omega_2, -omega_1))."""
 import math

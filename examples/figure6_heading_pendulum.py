@@ -1,4 +1,7 @@
-"""Figure 6 of the paper: along an optimal path of the isoparallel problem the velocity vector
+"""Figure 6: the heading pendulum
+==============================
+
+Figure 6 of the paper: along an optimal path of the isoparallel problem the velocity vector
 behaves like a nonlinear pendulum, g'' = -G cos(g - g_W) (omega_0^2 = g/R = G). Left: Figure 7's
 optimal paths (the shortest three solutions) with their unit velocity vectors; right: the
 pendulum's phase portrait (g - g_W, g') of every solution found, oscillating and rotating.

@@ -1,4 +1,7 @@
-"""Figure 7 of the paper: approximating a solution of the isoparallel problem. The ball goes from
+"""Figure 7: the isoparallel path and its impulses
+===============================================
+
+Figure 7 of the paper: approximating a solution of the isoparallel problem. The ball goes from
 (0, 0) to (3, 3) and the resulting rotation is the identity (problems/figure7.json: lambda = 2,
 mu = 1, 12 impulses). Dashed: the optimal curve; solid: the impulsive approximation (every free arc
 re-integrated from its impulse); dots: where the impulses act."""

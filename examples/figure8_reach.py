@@ -1,4 +1,7 @@
-"""Figure 8 of the paper: reaching points by taking different values of (delta psi)_k; mu = 1,
+"""Figure 8: reaching points
+=========================
+
+Figure 8 of the paper: reaching points by taking different values of (delta psi)_k; mu = 1,
 lambda = 2, theta0 = -pi/3, phi0 = pi/2, psi0 = 0 (problems/figure8_reach.json). Thin lines: the
 free motion after the impulse psi -> psi + delta psi for eight values of delta psi (three periods);
 thick lines: the earliest solution of Reach for each target of the file."""

@@ -30,7 +30,8 @@ def save(fig, out_dir, name):
     out_dir.mkdir(parents=True, exist_ok=True)
     fig.savefig(out_dir / f"{name}.png", bbox_inches="tight")
     fig.savefig(out_dir / f"{name}.svg", bbox_inches="tight", metadata={"Date": None})
-    plt.close(fig)
+    if not env_flag("PLATEBALL_GALLERY_KEEP_FIGURES"):  # the documentation's gallery collects them
+        plt.close(fig)
     return [out_dir / f"{name}.png", out_dir / f"{name}.svg"]
 
 

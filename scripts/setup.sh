@@ -1,9 +1,14 @@
 #!/usr/bin/env bash
 # Installs plateball's build and test dependencies from Debian's packages, only when missing.
-# Idempotent; needs root (or sudo) on Debian 12.
+# Idempotent; needs root (or sudo) on Debian 12. `--main`: only what the main job needs (the library
+# and isoparallel_solve; scripts/main.sh), without the test, Python, browser and documentation tools.
 set -euo pipefail
+main_only=0
+[[ ${1:-} == --main ]] && main_only=1
 packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-cxx-dev libboost-dev
-          libboost-math-dev libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev)
+          libboost-math-dev nlohmann-json3-dev libcli11-dev)
+if ((!main_only)); then
+packages+=(libgtest-dev libgmock-dev libbenchmark-dev)
 packages+=(python3 python3-jsonschema)  # output contract: schema validation (tests/scripts/validate_schemas.py)
 packages+=(python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib)  # Python bindings, pytest, gallery (issue 13)
 packages+=(libopenmpi-dev openmpi-bin)  # montecarlo: optional MPI component (issue 12)
@@ -12,6 +17,12 @@ packages+=(chromium)  # view (issue 14): Debian's Chromium for the browser tests
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)  # view (issue 14): npm ci in web/ (below)
 packages+=(ccache)  # compiler cache for scripts/build.sh, sanitize.sh and fuzz.sh (scripts/compiler_cache.sh)
 packages+=(help2man)  # man pages of the tools (issue 13: tools/man/make_man.sh)
+# The documentation site (docs/, the `docs` target): Sphinx, breathe (C++ API from Doxygen's XML),
+# MyST (Markdown), sphinx-gallery; the notebooks (docs/notebooks/) run by nbclient on ipykernel;
+# mypy's stubgen for the Python type stubs.
+packages+=(doxygen python3-sphinx python3-breathe python3-myst-parser python3-sphinx-gallery)
+packages+=(python3-ipykernel python3-nbclient python3-nbformat mypy python3-setuptools python3-pip)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -28,6 +39,7 @@ fi
 
 # view (issue 14): three.js (embedded into `plateball view`'s pages at build time) and playwright-core
 # (the browser tests), exactly as web/package-lock.json pins them; skipped when already installed.
+((main_only)) && exit 0
 web_dir="$(cd "$(dirname "$0")/../web" && pwd)"
 if ! cmp -s "$web_dir/package-lock.json" "$web_dir/node_modules/.plateball-package-lock.json"; then
   echo "setup: npm ci in web/"

@@ -22,6 +22,7 @@ enum class AngleFormStatus {
   kStepLimit,     ///< IntegrationOptions::max_steps exceeded
   kFailed,        ///< non-finite state or step-size underflow
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(AngleFormStatus status);
 
 struct AngleFormOptions {

@@ -46,9 +46,13 @@ class BallModel {
   /// 0 < alpha <= 2 (a rigid body has I3 <= 2 I1), beta >= 0.
   static BallModel FromAlphaBeta(double alpha, double beta);
 
+  /// lambda = J/(M r^2) of the ball (section 2.1); 0 for the inertia-free limit.
   double lambda() const { return lambda_; }
+  /// False for the inertia-free limit (lambda = 0), true otherwise.
   bool has_inertia() const { return has_inertia_; }
+  /// alpha of the equations of motion (section 2.1), from lambda and the plate mass.
   double alpha() const { return alpha_; }
+  /// beta of the equations of motion (section 2.1), from lambda and the plate mass.
   double beta() const { return beta_; }
   /// True when some rigid ball with a plate of mass >= 0 has this model: alpha <= 2 and
   /// beta >= 1 + alpha/2 when alpha, beta are known, else lambda in (1/2, 4/3].

@@ -30,6 +30,7 @@ enum class ClosedFormFamily {
   kNegativeC,     ///< c < 0: the mirror (theta, w) -> (pi - theta, w + pi) of a c > 0 solution
   kThroughPoles,  ///< c = 0: great circle through both poles, theta linear in t
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(ClosedFormFamily family);
 
 /// The constants of the appendix for one trajectory.
@@ -55,7 +56,9 @@ class AppendixSolution {
   AppendixSolution(const BallModel& model, const AngleState& initial, double mu,
                    double pole_family_tolerance = 1e-15);
 
+  /// The constants of the closed form (appendix (30)-(34)) of this motion.
   const AppendixConstants& constants() const { return k_; }
+  /// The energy mu of the motion.
   double mu() const { return mu_; }
   /// 2 pi / sqrt(mu): the period of the whole state (docs/paper_notes.md, periodicity theorem).
   double Period() const;
@@ -63,6 +66,8 @@ class AppendixSolution {
   double Theta(double t) const;  ///< (30), corrected branch; extended chart for c = 0
   double W(double t) const;      ///< (31) = phi - psi, continuous in t
   double Phi(double t) const;    ///< from (33), sign corrected
+
+  /// psi = phi - w at t (from (31) and (33)).
   double Psi(double t) const { return Phi(t) - W(t); }
   /// (theta, phi, psi) at t, continuous in t (theta in (0, pi) unless c = 0).
   AngleState At(double t) const;

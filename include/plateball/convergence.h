@@ -27,6 +27,7 @@ struct ConvergenceOptions {
   /// Called after each partition size with (sizes done, sizes in all), for a tool's progress
   /// line. The library never prints.
   std::function<void(int, int)> progress;
+  /// Empty when the options are valid; else a message naming the field and its value.
   std::string Validate() const { return plan.Validate(); }
 };
 
@@ -55,6 +56,8 @@ struct ConvergenceStudy {
   bool bound_holds = true;            ///< measured error <= bound on every successful row
   int failed_rows = 0;
   std::string message = "not run";    ///< empty once run, or why there is no slope
+
+  /// One line: the status, the slopes and the largest n.
   std::string BriefReport() const;
 };
 

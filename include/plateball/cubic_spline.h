@@ -15,13 +15,20 @@ class CubicSpline2d {
   /// Throws std::invalid_argument (naming the sample index) for fewer than 2 points, non-finite
   /// points, repeated consecutive points or non-increasing knots.
   explicit CubicSpline2d(const std::vector<Eigen::Vector2d>& points);
+  /// The natural spline through the points at the given knots (strictly increasing, one per point); throws as the constructor above.
   CubicSpline2d(const std::vector<double>& knots, const std::vector<Eigen::Vector2d>& points);
 
+  /// The first knot.
   double ParameterBegin() const { return s_.front(); }
+  /// The last knot.
   double ParameterEnd() const { return s_.back(); }
+  /// The point of the spline at parameter s.
   Eigen::Vector2d Value(double s) const;
+  /// The first derivative with respect to s.
   Eigen::Vector2d Derivative(double s) const;
+  /// The second derivative with respect to s.
   Eigen::Vector2d SecondDerivative(double s) const;
+  /// The knots (one per point).
   const std::vector<double>& knots() const { return s_; }
 
  private:

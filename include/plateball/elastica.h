@@ -29,6 +29,7 @@ struct JacobiAgm;  // src/jacobi_elliptic.h
 namespace plateball PLATEBALL_EXPORT {
 
 enum class PendulumRegime { kOscillating, kRotating };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(PendulumRegime regime);
 
 /// The three pendulum parameters (G, energy, phase) of section 2.2 in the form the closed
@@ -64,6 +65,7 @@ class Elastica {
   /// searches' Jacobian, section 2.2). Throws std::invalid_argument naming the rate when not finite.
   Elastica WithRate(double rate) const;
 
+  /// The parameters this elastica was built from.
   const ElasticaParameters& parameters() const { return p_; }
   /// G = |W| (1/length^2).
   double G() const { return g_; }

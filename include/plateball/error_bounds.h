@@ -46,6 +46,8 @@ struct ErrorBounds {
   double a_posteriori_path = 0.0;   ///< sum_k max|p'| max|p''| h_k^3 / 12 (polyline vs path)
   double a_posteriori_arcs = 0.0;   ///< sum_k max|x'| max|x''| dt_k^3 / 12 (arcs vs polyline)
   double a_posteriori = 0.0;        ///< the sum of both: the bound the planner reports
+
+  /// One line: the status, the message and the main numbers.
   std::string BriefReport() const;
 };
 
@@ -57,6 +59,7 @@ struct CurveDerivativeBounds {
   double max_speed = 0.0;
   double max_acceleration = 0.0;
 };
+/// The bounds of CurveDerivativeBounds for `curve` on [a, b] (see above).
 CurveDerivativeBounds EstimateCurveDerivativeBounds(const SmoothCurve& curve, double a, double b, int samples = 9);
 
 /// Lemma 2.4 per segment: ||R - S|| <= max|p'| max|p''| h^3 / 12.

@@ -39,6 +39,7 @@ struct ErrorModel {
 
   /// Empty when every magnitude is finite and in [0, its maximum]; else names field and value.
   std::string Validate() const;
+  /// True when every magnitude is 0 (the nominal execution, no errors).
   bool IsZero() const;
 };
 

@@ -40,6 +40,7 @@ enum class ExactArrivalStatus {
   kWarmStartFailed,      ///< the paper's plan along the reference failed (its message is kept)
   kIntegrationFailure,   ///< an ODE integration failed
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(ExactArrivalStatus status);
 
 /// What is asked: the ball at `x0` with angles `initial`, energy mu and orientation A0, the
@@ -80,6 +81,8 @@ struct ExactArrivalOptions {
   /// kinematics kernel, looser than the rollouts (Newton needs the derivatives to ~1e-8).
   IntegrationOptions jacobian_integration{1e-10, 1e-10, 2'000'000};
   PlanOptions warm_start;                ///< options of the paper's plan (the warm start)
+
+  /// Empty when the options are valid; else a message naming the field and its value.
   std::string Validate() const;
 };
 
@@ -88,6 +91,7 @@ enum class ExactImpulseKind {
   kStart,             ///< from rest: omega 0 -> the angles' omega at mu (energy-changing)
   kStop,              ///< at the goal: omega -> 0 (energy-changing, "arrive and stop")
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(ExactImpulseKind kind);
 
 /// One impulse k at time t_impulse, then the free arc of duration t_k.
@@ -127,7 +131,9 @@ struct ExactArrivalSummary {
   double planned_orientation_error = 0.0;
   double planned_total_time = 0.0;
 
+  /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == ExactArrivalStatus::kArrived; }
+  /// One line: the status, the message and the main numbers.
   std::string BriefReport() const;
 };
 
@@ -145,7 +151,8 @@ struct ReplayResult {
   double position_error = 0.0;
   double orientation_error = 0.0;
 };
+/// Re-integrates `impulses` from the problem's start with `integration` (the independent check above).
 ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
-                                const IntegrationOptions& integration = {1e-14, 1e-14, 2'000'000});
+                                const IntegrationOptions& integration = {1e-14, 1e-14, 2000000});
 
 }  // namespace plateball

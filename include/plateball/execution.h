@@ -41,6 +41,7 @@ enum class ExecutionStatus {
   kLost,                ///< feedback: the next pass point could not be joined from the observed state
   kIntegrationFailure,  ///< an ODE integration failed
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(ExecutionStatus status);
 
 /// The deterministic plan every trial executes, computed once (PlanImpulses) with the pass points
@@ -80,7 +81,9 @@ struct ExecutionOptions {
   /// Options of those re-plans (looser than exact_arrival.h's defaults: the errors that follow
   /// are larger than 1e-10).
   ExactArrivalOptions exact = DefaultExactOptions();
+  /// Empty when the options are valid; else a message naming the field and its value.
   std::string Validate() const;
+  /// The default options of the exact re-plans (the `exact` field).
   static ExactArrivalOptions DefaultExactOptions();
 };
 
@@ -105,7 +108,9 @@ struct ExecutionSummary {
   int exact_solves = 0;              ///< feedback_exact: exact re-plans that arrived
   int exact_failures = 0;            ///< ... that did not (the last exact plan goes on, else a join)
 
+  /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == ExecutionStatus::kCompleted; }
+  /// One line: the status, the message and the main numbers.
   std::string BriefReport() const;
 };
 

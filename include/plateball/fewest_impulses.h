@@ -59,6 +59,7 @@ enum class FewestImpulsesStatus {
   kFound,     ///< an exact arrival with `fewest` impulses (and none with fewer within the search)
   kNotFound,  ///< no count up to max_impulses arrived within the search (closest arrival reported)
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(FewestImpulsesStatus status);
 
 /// What is known of one impulse count after the search (see the header comment, "What is proved").
@@ -101,6 +102,8 @@ struct FewestImpulsesOptions {
   double orientation_tolerance = 1e-10;   ///< rad
   IntegrationOptions integration{1e-14, 1e-14, 2'000'000};         ///< final rollouts
   IntegrationOptions search_integration{1e-8, 1e-8, 2'000'000};    ///< rollouts + Jacobians of the search
+
+  /// Empty when the options are valid; else a message naming the field and its value.
   std::string Validate() const;
 };
 
@@ -139,9 +142,11 @@ struct FewestImpulsesSummary {
   std::string searched;                     ///< what was searched, in words
   int rollouts = 0;                         ///< trajectories integrated
 
+  /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == FewestImpulsesStatus::kFound; }
   /// The row of the fewest count (nullptr when not found).
   const FewestImpulsesCount* Fewest() const;
+  /// One line: the status, the message and the main numbers.
   std::string BriefReport() const;
 };
 

@@ -39,13 +39,17 @@ class FreeMotion {
   /// Throws std::invalid_argument for an invalid state (naming the field), mu = 0 (a ball at
   /// rest has no period), a non-rotation A0 or invalid options.
   FreeMotion(const BallModel& model, const FreeMotionStart& start, const IntegrationOptions& options = {});
+  /// The free motion from the angles (theta, phi, psi), energy mu, contact point x0 and orientation A0; throws as the constructor.
   static FreeMotion FromAngles(const BallModel& model, const AngleState& angles, double mu,
                                const Eigen::Vector2d& x0 = Eigen::Vector2d::Zero(),
                                const Eigen::Matrix3d& A0 = Eigen::Matrix3d::Identity(),
                                const IntegrationOptions& options = {});
 
+  /// The ball model.
   const BallModel& model() const { return model_; }
+  /// The initial state.
   const FreeMotionStart& start() const { return start_; }
+  /// The energy mu (conserved along the free motion).
   double mu() const { return mu_; }
   /// T = 2 pi / sqrt(mu).
   double Period() const { return period_; }

@@ -27,6 +27,7 @@ enum class PlanStatus {
   kSegmentBeyondLocalRadius,  ///< a join found no local solution (refine the partition)
   kIntegrationFailure,        ///< an ODE integration failed
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(PlanStatus status);
 
 /// An energy-changing impulse inserted into a plan: at global partition point `index` the speed
@@ -59,6 +60,8 @@ struct PlanOptions {
   ReachOptions reach;               ///< options of that fallback (integration: join's)
   IntegrationOptions integration;   ///< arcs with orientation and the rolling reference
   int bound_samples = 5;            ///< samples of p', p'' per segment for the bounds (>= 2)
+
+  /// Empty when the options are valid; else a message naming the field and its value.
   std::string Validate() const;
 };
 
@@ -119,7 +122,9 @@ struct PlanSummary {
   BallState final_state;
   double mu_final = 0.0;
 
+  /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == PlanStatus::kSuccess; }
+  /// One line: the status, the message and the main numbers.
   std::string BriefReport() const;
 };
 

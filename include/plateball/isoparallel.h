@@ -123,7 +123,10 @@ struct IsoparallelSolution {
   /// with the same ends; it says nothing of other, distant paths (global optimality is what the
   /// branch-and-bound certificate, isoparallel_certificate.h, proves).
   bool locally_optimal = false;
+
+  /// The optimal path as an Elastica (arc length from the start).
   Elastica Path() const { return Elastica(parameters); }
+  /// The contact point at arc length s along the path.
   Eigen::Vector2d PositionAt(double s) const { return start + Elastica(parameters).Position(s); }
 };
 
@@ -146,12 +149,14 @@ enum class IsoparallelStatus {
   kNoSolution,          ///< no start converged to a verified solution
   kIntegrationFailure,  ///< the verification by rolling failed (step bound); message says where
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(IsoparallelStatus status);
 
 enum class IsoparallelMethod {
   kShooting,            ///< seeded multi-start shooting (general targets)
   kFamilyEnumeration,   ///< identity target: families enumerated directly
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(IsoparallelMethod method);
 
 struct IsoparallelSummary {
@@ -177,10 +182,13 @@ struct IsoparallelSummary {
   long evaluations = 0;        ///< candidate paths evaluated (residuals and Jacobians)
   double searched_length = 0;  ///< longest path considered
   double time_seconds = 0.0;
+  /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == IsoparallelStatus::kSolved; }
   /// Shortest solution. Throws std::logic_error when there is none.
   const IsoparallelSolution& Shortest() const;
+  /// One line: the status, the message and the main numbers.
   std::string BriefReport() const;
+  /// The brief report and one line per solution.
   std::string FullReport() const;
 };
 

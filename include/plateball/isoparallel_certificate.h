@@ -59,6 +59,7 @@ enum class IsoparallelCertificateStatus {
   kNotApplicable,  ///< identity target (the family enumeration is complete already), no solution
                    ///< to set the cap from, or a target the straight rolling reaches within the margin
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(IsoparallelCertificateStatus status);
 
 /// A solution proved the only one of a box, in canonical parameters (k >= 0; the phase of the
@@ -83,8 +84,11 @@ struct IsoparallelCertificate {
   long boxes = 0;
   double cpu_seconds = 0.0;   ///< summed over the pieces
   double time_seconds = 0.0;  ///< wall clock
+
+  /// True when the certificate closed: every solution up to the cap is proved.
   bool IsComplete() const { return status == IsoparallelCertificateStatus::kComplete; }
   bool IsSolutionUsable() const { return IsComplete(); }  ///< the shape every summary shares
+
   /// How many proved solutions the solver missed (solver_index -1); meaningful when complete.
   int MissedBySolver() const;
   /// One line: the status, the cap, the solutions proved and missed, boxes and time.

@@ -61,6 +61,7 @@ struct ElasticaFamily {
   int winding = 0;        ///< j: m phi = 2 pi j
   double length = 0.0;    ///< m T
   double residual = 0.0;  ///< |m phi - 2 pi j| with the accurate rolling (radians)
+
   /// The elastica in the pendulum frame (W along +y, heading 0 at s = 0; phase 0).
   ElasticaParameters Parameters() const;
 };

@@ -23,6 +23,7 @@ enum class JoinStatus {
                              ///< a global reach (reach.h) is needed
   kIntegrationFailure,       ///< the ODE integration failed (step bound exceeded)
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(JoinStatus status);
 
 struct JoinOptions {
@@ -79,7 +80,9 @@ struct JoinSummary {
   AngleState angles_after;     ///< canonical angles on arrival
   Eigen::Vector2d x_after = Eigen::Vector2d::Zero();  ///< contact point on arrival (~ target)
 
+  /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == JoinStatus::kConverged; }
+  /// One line: the status, the message and the main numbers.
   std::string BriefReport() const;
 };
 

@@ -51,6 +51,7 @@ struct MonteCarloOptions {
   bool keep_trials = true;  ///< keep every trial's record in the summary
   /// Called now and then with (tasks done, tasks to do) from the calling thread.
   std::function<void(long long, long long)> progress;
+  /// Empty when the options are valid; else a message naming the field and its value.
   std::string Validate() const;
 };
 
@@ -70,6 +71,7 @@ struct TrialRecord {
 struct Distribution {
   double median = 0.0, p95 = 0.0, max = 0.0, mean = 0.0;
 };
+/// The Distribution of the values (empty: all zero).
 Distribution Distribute(std::vector<double> values);
 
 struct MonteCarloCell {
@@ -108,6 +110,7 @@ enum class MonteCarloStatus {
   kCompleted,          ///< every trial ran (some may have lost the ball: see the cells)
   kNominalPlanFailed,  ///< the deterministic plan of some n failed: nothing was executed
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(MonteCarloStatus status);
 
 /// A default-constructed summary says "not run".
@@ -120,7 +123,9 @@ struct MonteCarloSummary {
   std::vector<TrialRecord> records;   ///< every trial (keep_trials), in task order
   long long failed_trials = 0;        ///< trials that did not complete (lost or integration failure)
 
+  /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == MonteCarloStatus::kCompleted; }
+  /// One line: the status, the message and the main numbers.
   std::string BriefReport() const;
 };
 
@@ -130,6 +135,7 @@ class MonteCarloWork {
  public:
   /// Throws std::invalid_argument naming the field and value for invalid input.
   MonteCarloWork(const MonteCarloProblem& problem, const MonteCarloOptions& options);
+  /// The number of (cell, trial) tasks.
   long long TaskCount() const { return total_; }
   /// Runs tasks [begin, end) on options.threads threads; the records in task order.
   std::vector<TrialRecord> Run(long long begin, long long end) const;
@@ -137,6 +143,7 @@ class MonteCarloWork {
   MonteCarloSummary Summarize(std::vector<TrialRecord> records) const;
   /// The nominal plan of the main n.
   const NominalPlan& MainPlan() const { return *nominals_.front(); }
+  /// The partition sizes n of the run, the main n first.
   const std::vector<int>& Ns() const { return ns_; }
 
  private:

@@ -17,6 +17,7 @@ namespace plateball PLATEBALL_EXPORT {
 class CubicSpline2d;
 
 enum class CurveKind { kLine, kCircle, kEllipse, kLemniscate, kSine, kSamples, kCustom };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(CurveKind kind);
 
 /// One smooth piece p(tau), tau in [Begin(), End()], with exact first and second derivatives.
@@ -47,24 +48,35 @@ class SmoothCurve {
   /// (e.g. an optimal path of the isoparallel problem, elastica.h). The functions must be finite
   /// there; the speed check applies.
   using CurveFunction = std::function<Eigen::Vector2d(double)>;
+  /// A curve from its value and derivative functions (see CurveFunction).
   static SmoothCurve Custom(CurveFunction value, CurveFunction derivative, CurveFunction second_derivative,
                             double tau_begin, double tau_end);
 
+  /// Which kind of curve this is.
   CurveKind kind() const { return kind_; }
+  /// True when the curve runs backwards (Reversed()).
   bool reversed() const { return reversed_; }
+  /// The first parameter tau_begin.
   double Begin() const { return tau_begin_; }
+  /// The last parameter tau_end.
   double End() const { return tau_end_; }
+  /// The point p(tau).
   Eigen::Vector2d Value(double tau) const;
+  /// p'(tau).
   Eigen::Vector2d Derivative(double tau) const;
+  /// p''(tau).
   Eigen::Vector2d SecondDerivative(double tau) const;
   /// {|p'(tau)|, |p''(tau)|}, equal to Derivative(tau).norm() and SecondDerivative(tau).norm()
   /// but with one sine and cosine on a circle or an ellipse (the bounds sample them per segment).
   std::array<double, 2> DerivativeNorms(double tau) const;
+  /// p(tau_begin).
   Eigen::Vector2d StartPoint() const { return Value(tau_begin_); }
+  /// p(tau_end).
   Eigen::Vector2d EndPoint() const { return Value(tau_end_); }
   /// Arc length between parameters a and b (negative for b < a): adaptive Gauss-Kronrod (G15/K31)
   /// with an error estimate on panels where |p'| is smooth, accurate to about 1e-12 relative.
   double ArcLength(double a, double b) const;
+  /// The arc length from tau_begin to tau_end.
   double Length() const { return ArcLength(tau_begin_, tau_end_); }
 
  private:
@@ -99,10 +111,15 @@ class Path {
   /// Throws std::invalid_argument (naming "pieces[i]") for an empty chain or a gap between pieces.
   explicit Path(std::vector<SmoothCurve> pieces);
 
+  /// The pieces, in order.
   const std::vector<SmoothCurve>& pieces() const { return pieces_; }
+  /// The number of pieces.
   int PieceCount() const { return static_cast<int>(pieces_.size()); }
+  /// The first point of the path.
   Eigen::Vector2d StartPoint() const { return pieces_.front().StartPoint(); }
+  /// The last point of the path.
   Eigen::Vector2d EndPoint() const { return pieces_.back().EndPoint(); }
+  /// The total arc length.
   double Length() const;
 
  private:

@@ -65,6 +65,7 @@ enum class ReachStatus {
   kNumericalFailure,           ///< an integration failed (step bound); message says where
   kTargetEqualsStart,          ///< |target - x0| <= tolerance: nothing to reach (t = 0)
 };
+/// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(ReachStatus status);
 
 /// One way to reach the target: impulse psi -> psi + delta_psi, then free rolling for time t.
@@ -107,6 +108,7 @@ struct ReachSummary {
   int tight_evaluations = 0;        ///< tight integrations of x_s(t) (with or without d/ds)
   int global_evaluations = 0;       ///< NLopt objective evaluations
 
+  /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == ReachStatus::kSolved && !solutions.empty(); }
   /// The default answer: the earliest solution. Throws std::logic_error when there is none.
   const ReachSolution& Earliest() const;

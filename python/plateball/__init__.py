@@ -5,7 +5,7 @@ problem and options either as objects or as keyword arguments (a keyword names a
 problem or of the options; unknown keywords are a TypeError), and returns the library's summary
 with NumPy arrays for trajectories, orientations and impulses, the same status words
 ("converged", "success", ...) and messages as the tools. Invalid input raises ValueError with the
-library's message (FIELD: value V: what). The solvers release the GIL.
+library's message (FIELD: value V: what). The solvers release the GIL. For example::
 
     import plateball as pb
     s = pb.join(model=pb.BallModel(2.0), start=(1.0471975511965976, 0.4, 0.1), target=(0.05, 0))
@@ -16,8 +16,26 @@ library's message (FIELD: value V: what). The solvers release the GIL.
 """
 
 import functools
+import sys
 
-from ._plateball import *  # noqa: F401,F403
+from ._build_info import PYTHON_EXECUTABLE as _BUILT_FOR, PYTHON_VERSION as _BUILT_VERSION
+
+
+def _interpreter_error(reason):
+    here = f"{sys.executable} (Python {sys.version_info[0]}.{sys.version_info[1]}.{sys.version_info[2]})"
+    return ImportError(f"plateball: the compiled module was built for {_BUILT_FOR} (Python {_BUILT_VERSION}), "
+                       f"this interpreter is {here}: {reason}. Run it with {_BUILT_FOR}, or build the module "
+                       f"for this interpreter (cmake -DPython_EXECUTABLE={sys.executable}, or "
+                       f"{sys.executable} -m pip install . --no-build-isolation)")
+
+
+# A different minor version cannot load the extension at all (its ABI tag differs): say so first.
+if tuple(sys.version_info[:2]) != tuple(int(v) for v in _BUILT_VERSION.split(".")[:2]):
+    raise _interpreter_error("the Python versions differ")
+try:
+    from ._plateball import *  # noqa: F401,F403
+except ImportError as _error:  # same version, other interpreter: e.g. without Debian's NumPy
+    raise _interpreter_error(f"importing the extension failed ({_error})") from _error
 from ._plateball import (__version__, _certify_isoparallel, _converge, _isoparallel, _join, _plan, _plan_optimal_path,  # noqa: F401
                          _reach, _steer, _fewest_impulses, _identify, ConvergenceOptions, ConvergenceProblem,
                          ExactArrivalOptions, ExactArrivalProblem, FewestImpulsesOptions, FewestImpulsesProblem,
@@ -114,12 +132,12 @@ def identify(t, xy, sigma=None, options=None, **kwargs):
 
 def fewest_impulses(problem=None, options=None, **kwargs):
     """The fewest impulses that reach (x1, A1) exactly, with the Pareto table of impulse count
-    against total time (issue 11): a FewestImpulsesSummary."""
+    against total time: a FewestImpulsesSummary."""
     return _solve(_fewest_impulses, FewestImpulsesProblem, FewestImpulsesOptions, problem, options, kwargs)
 
 
 def montecarlo(problem=None, options=None, **kwargs):
-    """A plan executed under errors by each strategy, many seeded trials (issue 12): a MonteCarloSummary."""
+    """A plan executed under errors by each strategy, many seeded trials: a MonteCarloSummary."""
     return _solve(_montecarlo, MonteCarloProblem, MonteCarloOptions, problem, options, kwargs)
 
 

@@ -113,8 +113,8 @@ void BindIsoparallelSolve(py::module_& m) {
   m.def("_isoparallel", &SolveIsoparallel, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
   m.def("verify_rolling", &VerifyRolling, py::arg("solution"), py::arg("integration") = IntegrationOptions{},
         py::call_guard<py::gil_scoped_release>(), "The reorientation of rolling along the solution (Runge-Kutta-Fehlberg 7(8), independent of the solver).");
-  m.def("optimal_path", &OptimalPath, py::arg("solution"));
-  m.def("initial_angles_from_orientation", &InitialAnglesFromOrientation, py::arg("orientation"), py::arg("psi"));
+  m.def("optimal_path", &OptimalPath, py::arg("solution"), "The smooth curve of an isoparallel solution (for planning it with impulses).");
+  m.def("initial_angles_from_orientation", &InitialAnglesFromOrientation, py::arg("orientation"), py::arg("psi"), "The angles (theta, phi, psi) of an orientation with the given psi.");
   py::class_<IsoparallelPlanProblem> plan(m, "IsoparallelPlanProblem", "The impulsive approximation of an optimal path (Figure 7).");
   WithKeywordInit(plan)
       .def_readwrite("model", &IsoparallelPlanProblem::model)
@@ -262,7 +262,7 @@ void BindExactArrival(py::module_& m) {
            py::call_guard<py::gil_scoped_release>(), "(m, 2) contact points of the exact trajectory");
   m.def("_steer", &SolveExactArrival, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
   m.def("replay_exact_arrival", &ReplayExactArrival, py::arg("problem"), py::arg("impulses"),
-        py::arg("integration") = IntegrationOptions{1e-14, 1e-14, 2'000'000}, py::call_guard<py::gil_scoped_release>());
+        py::arg("integration") = IntegrationOptions{1e-14, 1e-14, 2'000'000}, py::call_guard<py::gil_scoped_release>(), "Re-integrates exact-arrival impulses from the problem's start (the independent check).");
 }
 
 }  // namespace plateball::python

@@ -61,11 +61,11 @@ void BindStates(py::module_& m) {
       .def_readwrite("relative_tolerance", &IntegrationOptions::relative_tolerance)
       .def_readwrite("max_steps", &IntegrationOptions::max_steps)
       .def("validate", &IntegrationOptions::Validate);
-  m.def("state_from_angles", &StateFromAngles, py::arg("angles"), py::arg("mu"), py::arg("model"));
-  m.def("angles_from_state", &AnglesFromState, py::arg("state"), py::arg("model"));
-  m.def("energy", &Energy, py::arg("state"), py::arg("model"), "mu = |omega x z|^2 + lambda v0^2, eq. (9).");
-  m.def("conserved_momentum", &ConservedMomentum, py::arg("state"), py::arg("model"));
-  m.def("minimum_contact_speed", &MinimumContactSpeed, py::arg("mu"), py::arg("model"));
+  m.def("state_from_angles", &StateFromAngles, py::arg("angles"), py::arg("mu"), py::arg("model"), "The ball state of the angles (theta, phi, psi) and energy mu (section 2.1).");
+  m.def("angles_from_state", &AnglesFromState, py::arg("state"), py::arg("model"), "The Euler angles (theta, phi, psi) of a ball state (section 2.1).");
+  m.def("energy", &Energy, py::arg("state"), py::arg("model"), "The energy mu = ``|omega x z|^2 + lambda v0^2``, eq. (9).");
+  m.def("conserved_momentum", &ConservedMomentum, py::arg("state"), py::arg("model"), "The conserved vector K of the free motion (section 2.1) for a state.");
+  m.def("minimum_contact_speed", &MinimumContactSpeed, py::arg("mu"), py::arg("model"), "The smallest contact speed of a free motion with energy mu (section 2.1).");
 }
 
 void BindImpulses(py::module_& m) {
@@ -81,9 +81,9 @@ void BindImpulses(py::module_& m) {
       .def_readonly("state_before", &Impulse::state_before)
       .def_readonly("state_after", &Impulse::state_after);
   m.def("energy_preserving_impulse", &EnergyPreservingImpulse, py::arg("angles"), py::arg("mu"),
-        py::arg("delta_psi"), py::arg("model"));
+        py::arg("delta_psi"), py::arg("model"), "The energy-preserving impulse psi -> psi + delta_psi at the given angles and mu (section 2.1).");
   m.def("energy_changing_impulse", &EnergyChangingImpulse, py::arg("angles"), py::arg("mu"), py::arg("factor"),
-        py::arg("model"));
+        py::arg("model"), "An impulse that multiplies the energy mu by `factor` (section 2.1).");
 }
 
 void BindTrajectory(py::module_& m) {
@@ -171,17 +171,17 @@ void BindAngleForm(py::module_& m) {
 }
 
 void BindRolling(py::module_& m) {
-  m.def("roll_along_segment", &RollAlongSegment, py::arg("p"), py::arg("q"));
-  m.def("roll_along_polyline", &RollAlongPolyline, py::arg("points"));
+  m.def("roll_along_segment", &RollAlongSegment, py::arg("p"), py::arg("q"), "The reorientation R of rolling along the segment from p to q: the rotation by |q - p| about e3 x d.");
+  m.def("roll_along_polyline", &RollAlongPolyline, py::arg("points"), "The reorientation R of rolling along the polyline through the points (exact).");
   m.def("roll_along_samples", &RollAlongSamples, py::arg("points"), py::arg("integration") = IntegrationOptions{},
-        py::call_guard<py::gil_scoped_release>());
-  m.def("hat", &Hat);
-  m.def("exp_so3", &ExpSO3);
-  m.def("log_so3", &LogSO3);
-  m.def("operator_norm_distance", &OperatorNormDistance);
-  m.def("rotation_angle", &RotationAngle);
-  m.def("rotation_z", &RotationZ);
-  m.def("align_orientation_to_axis", &AlignOrientationToAxis, py::arg("orientation"), py::arg("z"));
+        py::call_guard<py::gil_scoped_release>(), "The reorientation R of rolling along the natural cubic spline through the points (integrated).");
+  m.def("hat", &Hat, "The skew-symmetric matrix hat(w) with hat(w) v = w x v.");
+  m.def("exp_so3", &ExpSO3, "The rotation exp(hat(w)) of a rotation vector w (3x3).");
+  m.def("log_so3", &LogSO3, "The rotation vector w with exp(hat(w)) = R, |w| <= pi.");
+  m.def("operator_norm_distance", &OperatorNormDistance, "The operator 2-norm ||A - B|| of two 3x3 matrices (the error the paper compares).");
+  m.def("rotation_angle", &RotationAngle, "The angle of a rotation matrix, in [0, pi].");
+  m.def("rotation_z", &RotationZ, "The rotation by an angle about e3 (3x3).");
+  m.def("align_orientation_to_axis", &AlignOrientationToAxis, py::arg("orientation"), py::arg("z"), "The rotation closest to `orientation` whose third column is the unit vector z (minimal rotation).");
 }
 
 }  // namespace

@@ -55,7 +55,7 @@ void BindPartitions(py::module_& m) {
   py::class_<ExplicitTaus>(m, "ExplicitTaus", "Explicit partition parameters (single-piece paths).")
       .def(py::init([](std::vector<double> taus) { return ExplicitTaus{std::move(taus)}; }), py::arg("taus"))
       .def_readwrite("taus", &ExplicitTaus::taus);
-  m.def("make_partition", &MakePartition, py::arg("path"), py::arg("rules"), py::arg("field") = "partition");
+  m.def("make_partition", &MakePartition, py::arg("path"), py::arg("rules"), py::arg("field") = "partition", "The partition of a path by the rules of a problem file's partition section (`field` names it in errors).");
 }
 
 }  // namespace

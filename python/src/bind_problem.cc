@@ -63,10 +63,10 @@ void BindProblemValue(py::module_& m) {
       .def("__repr__", [](const Problem& p) { return "<plateball.Problem " + (p.name.empty() ? p.source : p.name) + ">"; });
   m.def("read_problem_file", &ReadProblemFile, py::arg("path"),
         "Read a problem file (ValueError naming the field and value; ProblemFileReadError when unreadable).");
-  m.def("parse_problem", &ParseProblem, py::arg("json_text"), py::arg("source_name") = "<memory>");
+  m.def("parse_problem", &ParseProblem, py::arg("json_text"), py::arg("source_name") = "<memory>", "A problem from JSON text, with the same checks and messages as the tools' reader.");
   m.def("write_problem_json", &WriteProblemJson, py::arg("problem"), "The canonical JSON form of a problem.");
   m.def("parse_orientation", &ParseOrientation, py::arg("json_text"), py::arg("field") = "orientation",
-        py::arg("source_name") = "<python>");
+        py::arg("source_name") = "<python>", "An orientation from its JSON text in any of the problem file's three forms (3x3).");
 }
 
 // One setup per task: problem and options, ready for the solver call (what the tools run).
@@ -87,21 +87,21 @@ void BindAdapters(py::module_& m) {
   BindSetup<IsoparallelPlanSetup>(m, "IsoparallelPlanSetup");
   BindSetup<ExactArrivalSetup>(m, "ExactArrivalSetup");
   BindSetup<FewestImpulsesSetup>(m, "FewestImpulsesSetup");
-  m.def("path_from_spec", &PathFromSpec, py::arg("spec"), py::arg("field") = "path");
-  m.def("free_motion_for", &FreeMotionFor, py::arg("problem"), py::call_guard<py::gil_scoped_release>());
-  m.def("join_setup_for", &JoinSetupFor, py::arg("problem"), py::arg("target"));
-  m.def("reach_setup_for", &ReachSetupFor, py::arg("problem"), py::arg("target"));
-  m.def("plan_setup_for", &PlanSetupFor, py::arg("problem"), py::arg("n") = 0, py::arg("n_field") = "n");
+  m.def("path_from_spec", &PathFromSpec, py::arg("spec"), py::arg("field") = "path", "The Path of a problem file's path section (`field` names it in errors).");
+  m.def("free_motion_for", &FreeMotionFor, py::arg("problem"), py::call_guard<py::gil_scoped_release>(), "The FreeMotion of a problem file's ball and initial state (what `plateball simulate` integrates).");
+  m.def("join_setup_for", &JoinSetupFor, py::arg("problem"), py::arg("target"), "The (problem, options) of a join from the file's initial state to `target`.");
+  m.def("reach_setup_for", &ReachSetupFor, py::arg("problem"), py::arg("target"), "The (problem, options) of `plateball reach` for a problem file and one target.");
+  m.def("plan_setup_for", &PlanSetupFor, py::arg("problem"), py::arg("n") = 0, py::arg("n_field") = "n", "The (problem, options) of `plateball plan` for a problem file; n > 0 replaces a uniform partition's n.");
   m.def("convergence_setup_for", &ConvergenceSetupFor, py::arg("problem"), py::arg("ns") = std::vector<int>{},
-        py::arg("ns_field") = "ns", py::arg("timings") = false);
-  m.def("isoparallel_setup_for", &IsoparallelSetupFor, py::arg("problem"));
+        py::arg("ns_field") = "ns", py::arg("timings") = false, "The (problem, options) of `plateball converge` for a problem file, for the partition sizes ns (empty: the file's).");
+  m.def("isoparallel_setup_for", &IsoparallelSetupFor, py::arg("problem"), "The (problem, options) of `isoparallel_solve` for a problem file.");
   m.def("isoparallel_plan_setup_for", &IsoparallelPlanSetupFor, py::arg("problem"), py::arg("solution"),
-        py::arg("impulses") = 0);
+        py::arg("impulses") = 0, "The (problem, options) that follow an isoparallel solution with the file's impulses (Figure 7).");
   m.def("exact_arrival_setup_for", py::overload_cast<const Problem&, int, const std::string&>(&ExactArrivalSetupFor),
-        py::arg("problem"), py::arg("impulses") = 0, py::arg("n_field") = "impulses");
+        py::arg("problem"), py::arg("impulses") = 0, py::arg("n_field") = "impulses", "The (problem, options) of `plateball steer` for a problem file.");
   m.def("exact_arrival_setup_for",
         py::overload_cast<const Problem&, const IsoparallelSolution&, int, const std::string&>(&ExactArrivalSetupFor),
-        py::arg("problem"), py::arg("solution"), py::arg("impulses") = 0, py::arg("n_field") = "impulses");
+        py::arg("problem"), py::arg("solution"), py::arg("impulses") = 0, py::arg("n_field") = "impulses", "The (problem, options) of `plateball steer` for a problem file.");
   m.def("fewest_impulses_setup_for", &FewestImpulsesSetupFor, py::arg("problem"),
         "What `plateball steer` runs on a file whose steer section asks for the fewest impulses.");
 }

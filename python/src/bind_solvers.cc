@@ -286,7 +286,7 @@ void BindConvergence(py::module_& m) {
              if (it == kColumns.end()) throw std::invalid_argument("column: value '" + name + "': unknown column");
              return Stack<1>(s.rows, [&](const ConvergenceRow& r) { return Scalar1(r.*(it->second)); });
            }, py::arg("name"), "One column of the rows as an array: n, measured_error, polyline_error, bound, ...");
-  m.def("log_log_slope", &LogLogSlope, py::arg("x"), py::arg("y"));
+  m.def("log_log_slope", &LogLogSlope, py::arg("x"), py::arg("y"), "The least-squares slope of log(y) against log(x) (the convergence rate).");
   m.def("_converge", &RunConvergenceStudy, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
 }
 

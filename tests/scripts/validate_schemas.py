@@ -9,7 +9,7 @@ Checks, from the repository root:
   2. every problem file of problems/ (the golden problems) and the test data files validate against
      the input schemas;
   3. every output the tools produce on problems/*.json validates against its command's schema;
-  4. every example shown in the README (a "$ plateball ..." block): the command is run, its JSON
+  4. every example shown in the README and the pages moved from it (docs/getting_started, tutorials, guide) (a "$ plateball ..." block): the command is run, its JSON
      validates, and every line the README shows is a line of the real output, in order;
   5. negative checks: broken outputs and broken problem files are rejected by the schemas, and the
      broken problem files by the tools' reader too (exit code 3).
@@ -200,9 +200,17 @@ def readme_examples(text):
     return examples
 
 
+# The README and the site's pages that hold examples moved from it (getting started, tutorials, the
+# user guide): each "$ plateball ..." block is checked wherever it now lives.
+EXAMPLE_PAGES = ["README.md", "docs/getting_started/*.md", "docs/tutorials/*.md", "docs/guide/*.md"]
+
+
 def check_readme(run):
-    with open(os.path.join(ROOT, "README.md")) as f:
-        examples = readme_examples(f.read())
+    examples = []
+    for pattern in EXAMPLE_PAGES:
+        for path in sorted(glob.glob(os.path.join(ROOT, pattern))):
+            with open(path) as f:
+                examples += readme_examples(f.read())
     for command, shown in examples:
         first = shlex.split(command.split("|")[0])
         first[0] = {"plateball": "plateball", "build/plateball": "plateball"}.get(first[0], first[0])
