@@ -64,8 +64,12 @@ std::string MonteCarloSummary::BriefReport() const {
     if (c.n != cells.front().n) break;
     os << "; " << ToString(c.strategy);
     if (scenarios) os << " (scenario " << c.scenario << ")";
-    os << ": orientation error median " << c.orientation_error.median << " rad, p95 " << c.orientation_error.p95
-       << ", position error median " << c.position_error.median;
+    if (!c.orientation_error || !c.position_error) {
+      os << ": no trial completed";
+      continue;
+    }
+    os << ": orientation error median " << c.orientation_error->median << " rad, p95 " << c.orientation_error->p95
+       << ", position error median " << c.position_error->median;
   }
   if (!message.empty()) os << " (" << message << ")";
   return os.str();
@@ -208,6 +212,7 @@ MonteCarloCell MakeCell(const std::vector<TrialRecord>& records, std::size_t fir
     missed.push_back(r.missed_pass_points);
     time.push_back(r.total_time);
   }
+  if (c.completed == 0) return c;  // no distribution: not zeros
   c.position_error = Distribute(pos);
   c.orientation_error = Distribute(ori);
   c.max_pass_miss = Distribute(miss);
@@ -241,6 +246,16 @@ MonteCarloSummary MonteCarloWork::Summarize(std::vector<TrialRecord> records) co
       s.cells.push_back(MakeCell(records, static_cast<std::size_t>(offsets_[i]) + c * trials, trials));
   }
   for (const TrialRecord& r : records) s.failed_trials += r.status != ExecutionStatus::kCompleted;
+  std::string empty;
+  for (const MonteCarloCell& c : s.cells) {
+    if (c.completed > 0) continue;
+    ++s.empty_cells;
+    empty += std::string(s.empty_cells > 1 ? "; " : "") + ToString(c.strategy) + " at n = " + std::to_string(c.n);
+    if (problem_.scenarios.size() > 1) empty += " (scenario " + std::to_string(c.scenario) + ")";
+  }
+  if (s.empty_cells > 0 && s.message.empty())
+    s.message = "no trial completed in " + std::to_string(s.empty_cells) + " cell" + (s.empty_cells > 1 ? "s" : "") +
+                (ns_.size() > 1 ? " (no distribution; missing from the sweep's fits): " : " (no distribution): ") + empty;
   if (planned_ && ns_.size() > 1) s.sweeps = MakeSweeps(s);
   if (options_.keep_trials) s.records = std::move(records);
   return s;
@@ -261,15 +276,26 @@ std::vector<SweepSeries> MonteCarloWork::MakeSweeps(const MonteCarloSummary& s) 
       const MonteCarloCell& cell = s.cells[i * per_n + c];
       series.n.push_back(ns_[i]);
       xn.push_back(ns_[i]);
-      series.median_orientation_error.push_back(cell.orientation_error.median);
-      series.median_position_error.push_back(cell.position_error.median);
+      series.median_orientation_error.push_back(
+          cell.orientation_error ? std::optional<double>(cell.orientation_error->median) : std::nullopt);
+      series.median_position_error.push_back(
+          cell.position_error ? std::optional<double>(cell.position_error->median) : std::nullopt);
       series.plan_orientation_error.push_back(nominals_[i]->plan_orientation_error);
     }
-    series.slope = LogLogSlope(xn, series.median_orientation_error);
+    std::vector<double> x_data, y_data;  // the n with data: a missing n is left out of the fit
+    for (std::size_t i = 0; i < xn.size(); ++i) {
+      if (series.Missing(i)) continue;
+      x_data.push_back(xn[i]);
+      y_data.push_back(*series.median_orientation_error[i]);
+    }
+    series.slope = LogLogSlope(x_data, y_data);
     series.plan_slope = LogLogSlope(xn, series.plan_orientation_error);
     for (std::size_t i = 0; i + 1 < xn.size(); ++i)
-      series.local_slopes.push_back(LogLogSlope({xn[i], xn[i + 1]}, {series.median_orientation_error[i],
-                                                                     series.median_orientation_error[i + 1]}));
+      series.local_slopes.push_back(
+          series.Missing(i) || series.Missing(i + 1)
+              ? std::nullopt
+              : LogLogSlope({xn[i], xn[i + 1]},
+                            {*series.median_orientation_error[i], *series.median_orientation_error[i + 1]}));
     out.push_back(std::move(series));
   }
   return out;

@@ -72,25 +72,31 @@ struct Distribution {
 };
 Distribution Distribute(std::vector<double> values);
 
+/// The distributions are over the completed trials; a cell where no trial completed has none
+/// (nullopt: "no trial completed", never zeros).
 struct MonteCarloCell {
   int n = 0;
   int scenario = 0;
   ExecutionStrategy strategy = ExecutionStrategy::kFeedback;
   int trials = 0, completed = 0;
-  Distribution position_error, orientation_error, max_pass_miss, missed_pass_points, total_time;
+  std::optional<Distribution> position_error, orientation_error, max_pass_miss, missed_pass_points, total_time;
 };
 
-/// Median final errors of one (scenario, strategy) against n, with the plan's own error.
+/// Median final errors of one (scenario, strategy) against n, with the plan's own error. An n
+/// whose cell has no completed trial is missing: its medians are nullopt and the fits leave it out.
 struct SweepSeries {
   int scenario = 0;
   ExecutionStrategy strategy = ExecutionStrategy::kFeedback;
   std::vector<int> n;
-  std::vector<double> median_orientation_error, median_position_error, plan_orientation_error;
-  /// Least-squares slope of log(median orientation error) against log(n) over every n (none when
-  /// fewer than two n have a positive median), and between neighbouring n.
+  std::vector<std::optional<double>> median_orientation_error, median_position_error;
+  std::vector<double> plan_orientation_error;
+  /// Least-squares slope of log(median orientation error) against log(n) over every n with data
+  /// (none when fewer than two n have a positive median), and between neighbouring n (none when
+  /// either is missing).
   std::optional<double> slope;
   std::vector<std::optional<double>> local_slopes;
   std::optional<double> plan_slope;  ///< the same fit of plan_orientation_error (Theorem 2.6: -2)
+  bool Missing(std::size_t i) const { return !median_orientation_error[i].has_value(); }
 };
 
 /// The nominal plan of one n.
@@ -119,6 +125,7 @@ struct MonteCarloSummary {
   std::vector<SweepSeries> sweeps;    ///< per (scenario, strategy) when more than one n
   std::vector<TrialRecord> records;   ///< every trial (keep_trials), in task order
   long long failed_trials = 0;        ///< trials that did not complete (lost or integration failure)
+  int empty_cells = 0;                ///< cells where no trial completed (named in message)
 
   bool IsSolutionUsable() const { return status == MonteCarloStatus::kCompleted; }
   std::string BriefReport() const;

@@ -37,3 +37,15 @@ plateball_cli_test(montecarlo.no_plan_section 3 REGEX "plan"
 # Zero noise: every trial is the plan (the circle's n = 64 error 0.0149 rad, Theorem 2.6).
 plateball_cli_test(montecarlo.zero_noise_is_the_plan 0 REGEX "\"orientation_error\": 0.01490297432"
   -- montecarlo problems/circle.json --trials 2 --noise none --strategy feedback --quiet)
+# Every feedback trial loses the ball under this noise: the cell has no distribution (null, "no
+# trial completed"), never zeros, and the run says so.
+set(montecarlo_hard_noise "impulse_magnitude=0.5,impulse_angle=0.5,energy_loss=0.5,timing=0.1,lambda=0.1,observation=0.1")
+plateball_cli_test(montecarlo.every_trial_lost_has_no_distribution 0
+  REGEX "feedback: no trial completed.*\"completed\": 0,[^}]*\"position_error\": null,[^}]*\"orientation_error\": null,[^}]*\"note\": \"no trial completed\""
+  -- montecarlo problems/circle.json --trials 20 --strategy open_loop,feedback --noise ${montecarlo_hard_noise} --quiet)
+# A sweep whose feedback cell at n = 64 has no completed trial: that row is missing (null medians)
+# and left out of the fit, whose slope is then the two-point slope of n = 16 and 32.
+plateball_cli_test(montecarlo.sweep_row_without_data_is_missing 0
+  REGEX "\"n\": 64,[^}]*\"median_orientation_error\": null,[^}]*\"missing\": \"no trial completed: left out of slope and local_slopes\"[^]]*\\],[^\"]*\"slope\": -1.99[0-9]*,[^\"]*\"local_slopes\": \\[[^]]*null"
+  -- montecarlo problems/circle.json --trials 3 --impulses 16 --sweep-n 32,64 --strategy open_loop,feedback
+     --noise ${montecarlo_hard_noise} --quiet)

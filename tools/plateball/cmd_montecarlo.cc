@@ -101,9 +101,13 @@ class Progress {
   Clock::time_point start_, last_;
 };
 
-Json DistributionJson(const Distribution& d) {
-  return Json{{"median", d.median}, {"p95", d.p95}, {"max", d.max}, {"mean", d.mean}};
+// null for a cell where no trial completed (it has no distribution).
+Json DistributionJson(const std::optional<Distribution>& d) {
+  if (!d) return Json(nullptr);
+  return Json{{"median", d->median}, {"p95", d->p95}, {"max", d->max}, {"mean", d->mean}};
 }
+
+Json NullableNumber(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
 
 Json NullableSlope(const std::optional<double>& s) { return s ? Json(*s) : Json(nullptr); }
 
@@ -128,20 +132,26 @@ Json ResultsJson(const MonteCarloProblem& mp, const MonteCarloSummary& s) {
     nominal.push_back(Json{{"n", n.n}, {"status", ToString(n.status)}, {"usable", n.status == PlanStatus::kSuccess},
                            {"message", n.message}, {"orientation_error", n.orientation_error},
                            {"measured_error", n.measured_error}, {"total_time", n.total_time}});
-  for (const MonteCarloCell& c : s.cells)
-    results.push_back(Json{{"n", c.n}, {"scenario", mp.scenarios[static_cast<std::size_t>(c.scenario)].name},
-                           {"strategy", ToString(c.strategy)}, {"trials", c.trials}, {"completed", c.completed},
-                           {"position_error", DistributionJson(c.position_error)},
-                           {"orientation_error", DistributionJson(c.orientation_error)},
-                           {"max_pass_miss", DistributionJson(c.max_pass_miss)},
-                           {"missed_pass_points", DistributionJson(c.missed_pass_points)},
-                           {"total_time", DistributionJson(c.total_time)}});
+  for (const MonteCarloCell& c : s.cells) {
+    Json cell{{"n", c.n}, {"scenario", mp.scenarios[static_cast<std::size_t>(c.scenario)].name},
+              {"strategy", ToString(c.strategy)}, {"trials", c.trials}, {"completed", c.completed},
+              {"position_error", DistributionJson(c.position_error)},
+              {"orientation_error", DistributionJson(c.orientation_error)},
+              {"max_pass_miss", DistributionJson(c.max_pass_miss)},
+              {"missed_pass_points", DistributionJson(c.missed_pass_points)},
+              {"total_time", DistributionJson(c.total_time)}};
+    if (c.completed == 0) cell["note"] = "no trial completed";
+    results.push_back(cell);
+  }
   for (const SweepSeries& w : s.sweeps) {
     Json rows = Json::array();
-    for (std::size_t i = 0; i < w.n.size(); ++i)
-      rows.push_back(Json{{"n", w.n[i]}, {"median_orientation_error", w.median_orientation_error[i]},
-                          {"median_position_error", w.median_position_error[i]},
-                          {"plan_orientation_error", w.plan_orientation_error[i]}});
+    for (std::size_t i = 0; i < w.n.size(); ++i) {
+      Json row{{"n", w.n[i]}, {"median_orientation_error", NullableNumber(w.median_orientation_error[i])},
+               {"median_position_error", NullableNumber(w.median_position_error[i])},
+               {"plan_orientation_error", w.plan_orientation_error[i]}};
+      if (w.Missing(i)) row["missing"] = "no trial completed: left out of slope and local_slopes";
+      rows.push_back(row);
+    }
     Json local = Json::array();
     for (const auto& l : w.local_slopes) local.push_back(NullableSlope(l));
     sweeps.push_back(Json{{"scenario", mp.scenarios[static_cast<std::size_t>(w.scenario)].name},
