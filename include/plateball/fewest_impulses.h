@@ -103,7 +103,7 @@ struct FewestImpulsesCount {
 struct FewestImpulsesSummary {
   FewestImpulsesStatus status = FewestImpulsesStatus::kNotRun;
   std::string message = "not run";
-  int fewest = 0;                           ///< the fewest count (0 when not found)
+  int fewest = 0;  ///< the fewest count (0 when not found, or found when the start meets the goal)
   std::vector<FewestImpulsesCount> counts;  ///< every count searched, n = 1, 2, ... in order
   double max_total_time = 0.0;              ///< the window used
   std::string searched;                     ///< what was searched, in words
