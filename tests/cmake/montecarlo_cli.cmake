@@ -49,3 +49,8 @@ plateball_cli_test(montecarlo.sweep_row_without_data_is_missing 0
   REGEX "\"n\": 64,[^}]*\"median_orientation_error\": null,[^}]*\"missing\": \"no trial completed: left out of slope and local_slopes\"[^]]*\\],[^\"]*\"slope\": -1.99[0-9]*,[^\"]*\"local_slopes\": \\[[^]]*null"
   -- montecarlo problems/circle.json --trials 3 --impulses 16 --sweep-n 32,64 --strategy open_loop,feedback
      --noise ${montecarlo_hard_noise} --quiet)
+# -q and --progress like every subcommand: --progress ends with the final line of the trials done.
+plateball_cli_test(montecarlo.progress_final_line 0 REGEX "plateball montecarlo \\(trials\\): done \\(4 of 4\\)"
+  -- montecarlo problems/circle.json --trials 2 --noise none --progress)
+plateball_cli_test(montecarlo.quiet_short_option 0 REGEX "\"command\": \"montecarlo\""
+  -- montecarlo problems/circle.json --trials 2 --noise none -q)

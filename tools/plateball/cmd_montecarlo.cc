@@ -18,6 +18,7 @@
 #include "common/json_output.h"
 #include "common/number_format.h"
 #include "common/output_file.h"
+#include "common/progress.h"
 #include "common/problem_options.h"
 #include "montecarlo_charts.h"
 #include "montecarlo_ranks.h"
@@ -40,7 +41,7 @@ struct MonteCarloCliOptions {
   long long exact_window = 12;
   long long threads = 0;
   std::string out, csv, svg, svg_sweep;
-  bool quiet = false, timings = false;
+  bool timings = false;
 };
 
 std::string Option(const char* name) { return std::string(kCommandLine) + ": " + name; }
@@ -75,31 +76,6 @@ std::pair<MonteCarloProblem, MonteCarloOptions> BuildStudy(const MonteCarloCliOp
   mo.threads = static_cast<int>(o.threads == 0 ? std::min(hw, 256LL) : RequireIntegerInRange("--threads", o.threads, 1, 256));
   return {mp, mo};
 }
-
-// A progress line on stderr at most once a second, after the first second: done / total, ETA.
-class Progress {
- public:
-  explicit Progress(bool enabled) : enabled_(enabled), start_(Clock::now()), last_(start_) {}
-  void operator()(long long done, long long total) {
-    if (!enabled_) return;
-    const auto now = Clock::now();
-    if (now - last_ < std::chrono::seconds(1) && done < total) return;
-    if (now - start_ < std::chrono::seconds(1)) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double eta = done > 0 ? elapsed * static_cast<double>(total - done) / static_cast<double>(done) : 0.0;
-    char line[160];
-    std::snprintf(line, sizeof line, "montecarlo: %lld/%lld trials (%.0f%%), elapsed %.1f s, ETA %.1f s\n", done,
-                  total, 100.0 * static_cast<double>(done) / static_cast<double>(std::max(total, 1LL)), elapsed, eta);
-    std::cerr << line << std::flush;
-  }
-  double Seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
-
- private:
-  using Clock = std::chrono::steady_clock;
-  bool enabled_;
-  Clock::time_point start_, last_;
-};
 
 // null for a cell where no trial completed (it has no distribution).
 Json DistributionJson(const std::optional<Distribution>& d) {
@@ -185,13 +161,19 @@ int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
   if (!o.svg_sweep.empty() && mp.sweep_n.empty())
     throw std::invalid_argument(Option("--svg-sweep") + ": value " + o.svg_sweep + ": needs --sweep-n");
   const Ranks ranks;
-  Progress progress(!o.quiet && ranks.rank() == 0);
-  mo.progress = [&progress](long long done, long long total) { progress(done, total); };
+  const auto start = std::chrono::steady_clock::now();
+  // Rank 0 shows the trials of its own share (the ranks' shares differ by at most one trial).
+  const std::string label = ranks.size() > 1 ? "plateball montecarlo (trials of rank 0 of " +
+                                                   std::to_string(ranks.size()) + ")"
+                                             : "plateball montecarlo (trials)";
+  Progress progress = ranks.rank() == 0 ? Progress(label, 0) : Progress(label, 0, ProgressMode::kQuiet, false);
+  mo.progress = [&progress](long long done, long long) { progress.Update(static_cast<double>(done)); };
   const MonteCarloWork work(mp, mo);
   const auto [begin, end] = ranks.Share(work.TaskCount());
+  progress.SetTotal(static_cast<double>(end - begin));
   std::vector<TrialRecord> records = ranks.Gather(work.Run(begin, end));
   if (ranks.rank() != 0) return kExitSuccess;
-  const double seconds = progress.Seconds();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const MonteCarloSummary s = work.Summarize(std::move(records));
   Json doc = HeaderJson("plateball", "montecarlo", p, o.problem.file());
   doc["initial"] = InitialJson(p);
@@ -228,7 +210,6 @@ std::function<int()> SetupMonteCarlo(CLI::App& sub) {
   sub.add_option("--csv", o->csv, "write one line per trial to this CSV file");
   sub.add_option("--svg", o->svg, "draw the distributions of the final errors per strategy (SVG)");
   sub.add_option("--svg-sweep", o->svg_sweep, "draw the median final error against n, log-log, with the fitted slopes (SVG)");
-  sub.add_flag("--quiet", o->quiet, "no progress line on standard error");
   sub.add_flag("--timings", o->timings, "add the wall time (the output then differs from run to run)");
   sub.footer(
       "Executes the plan of plan.path under seeded errors, trial i of every cell drawing from (seed, i) alone.\n"
