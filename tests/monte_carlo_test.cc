@@ -172,6 +172,16 @@ TEST(MonteCarlo, LimitsNameTheFieldAndTheValue) {
   p.trials = 1'000'000;
   EXPECT_NE(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }).find("trials: value 1000000: the study would run 4000000"),
             std::string::npos);
+  // The work bound, counted before any sweep plan: 2 scenarios x 2 strategies x 200000 trials x
+  // n = 200 impulses = 1.6e8 executions > 1e8, though the 800000 trials are within kMaxTasks.
+  p = CircleStudy(200, 200'000);
+  EXPECT_NE(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); })
+                .find("trials: value 200000: the study would execute about 160000000 impulses"),
+            std::string::npos);
+  // feedback_exact adds W^3 per trial: 2 x 1 x 100000 x (200 + 12^3) = 3.856e8.
+  p = CircleStudy(200, 100'000);
+  p.strategies = {ExecutionStrategy::kFeedbackExact};
+  EXPECT_NE(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }).find("about 385600000 impulses"), std::string::npos);
   p = CircleStudy();
   p.scenarios[1].errors.timing = 1;
   EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }),

@@ -44,6 +44,10 @@ struct MonteCarloProblem {
 struct MonteCarloOptions {
   static constexpr int kMaxTrials = 1'000'000;
   static constexpr long long kMaxTasks = 2'000'000;  ///< trials over all cells and n (memory: ~60 bytes each)
+  /// Bound of the study's work, counted up front in impulse executions: every trial executes its n
+  /// impulses, and a feedback_exact trial re-solves exactly while at most W = execution.exact_window
+  /// impulses remain (about W^3 more): work = sum over cells of trials x (n + [feedback_exact] W^3).
+  static constexpr long long kMaxWork = 100'000'000;
   PlanOptions plan;
   ExecutionOptions execution;
   int threads = 1;       ///< 1 ... 256; the results do not depend on it
@@ -132,7 +136,9 @@ struct MonteCarloSummary {
 };
 
 /// The work of a study as a flat list of tasks (n, scenario, strategy, trial), for splitting over
-/// threads or processes. The constructor validates and plans every n once.
+/// threads or processes. The constructor validates, bounds the work (kMaxTasks, kMaxWork) and
+/// plans every n, one at a time, keeping only the main n's plan: Run plans another n again (the
+/// same deterministic plan) while it runs that n's tasks, so one sweep plan is held at a time.
 class MonteCarloWork {
  public:
   /// Throws std::invalid_argument naming the field and value for invalid input.
@@ -143,17 +149,19 @@ class MonteCarloWork {
   /// The summary of the records of all tasks, in task order (as Run gives them).
   MonteCarloSummary Summarize(std::vector<TrialRecord> records) const;
   /// The nominal plan of the main n.
-  const NominalPlan& MainPlan() const { return *nominals_.front(); }
+  const NominalPlan& MainPlan() const { return *main_; }
   const std::vector<int>& Ns() const { return ns_; }
 
  private:
-  TrialRecord RunTask(long long task) const;
+  TrialRecord RunTask(long long task, std::size_t i, const std::shared_ptr<const NominalPlan>& nominal) const;
+  std::shared_ptr<const NominalPlan> Plan(std::size_t i) const;
   std::vector<SweepSeries> MakeSweeps(const MonteCarloSummary& summary) const;
   MonteCarloProblem problem_;
   MonteCarloOptions options_;
-  std::vector<int> ns_;                                   // main n first, then the sweep's others
-  std::vector<std::shared_ptr<const NominalPlan>> nominals_;
-  std::vector<long long> offsets_;                        // first task of each n
+  std::vector<int> ns_;                               // main n first, then the sweep's others
+  std::shared_ptr<const NominalPlan> main_;           // the main n's plan; the others are re-planned
+  std::vector<NominalInfo> info_;                     // per n (in ns_ order): what the summary reports
+  std::vector<long long> offsets_;                    // first task of each n
   long long total_ = 0;
   bool planned_ = true;
 };

@@ -54,3 +54,11 @@ plateball_cli_test(montecarlo.progress_final_line 0 REGEX "plateball montecarlo 
   -- montecarlo problems/circle.json --trials 2 --noise none --progress)
 plateball_cli_test(montecarlo.quiet_short_option 0 REGEX "\"command\": \"montecarlo\""
   -- montecarlo problems/circle.json --trials 2 --noise none -q)
+# The study's work is bounded up front (README, Limits): 1000 sweep values near 10^4 are refused
+# before any of their plans is made, naming the option.
+set(montecarlo_many_n 9000)
+foreach(n RANGE 9001 9999)
+  string(APPEND montecarlo_many_n ",${n}")
+endforeach()
+plateball_cli_test(montecarlo.sweep_work_is_bounded 3 REGEX "--trials: value 10: the study would execute about 189991280 impulses"
+  -- montecarlo problems/circle.json --trials 10 -q --sweep-n ${montecarlo_many_n})

@@ -168,7 +168,16 @@ int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
                                              : "plateball montecarlo (trials)";
   Progress progress = ranks.rank() == 0 ? Progress(label, 0) : Progress(label, 0, ProgressMode::kQuiet, false);
   mo.progress = [&progress](long long done, long long) { progress.Update(static_cast<double>(done)); };
-  const MonteCarloWork work(mp, mo);
+  const MonteCarloWork work = [&] {
+    try {
+      return MonteCarloWork(mp, mo);
+    } catch (const std::invalid_argument& e) {  // the library's bound of the study: name the options
+      const std::string m = e.what(), field = "trials: ";
+      if (m.rfind(field, 0) != 0) throw;
+      throw std::invalid_argument(Option("--trials") + ": " + m.substr(field.size()) +
+                                  " (the limit counts --trials, --sweep-trials, --impulses and --sweep-n together)");
+    }
+  }();
   const auto [begin, end] = ranks.Share(work.TaskCount());
   progress.SetTotal(static_cast<double>(end - begin));
   std::vector<TrialRecord> records = ranks.Gather(work.Run(begin, end));
