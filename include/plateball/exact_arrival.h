@@ -64,11 +64,12 @@ struct ExactArrivalProblem {
   bool stop_at_goal = false;
 };
 
-/// Upper bound of ExactArrivalProblem::impulses: each Jacobian integrates about n^2 arcs.
-inline constexpr int kMaxExactImpulses = 1000;
+/// Upper bound of ExactArrivalProblem::impulses: each Jacobian integrates about n^2 arcs, so the
+/// worst case (kMaxExactImpulses^2 x kMaxIterations, 2 x 10^6 arcs) takes about 10 s on one core.
+inline constexpr int kMaxExactImpulses = 200;
 
 struct ExactArrivalOptions {
-  static constexpr int kMaxIterations = 10000;
+  static constexpr int kMaxIterations = 50;  ///< the tools' value: bounds the work with kMaxExactImpulses
   double position_tolerance = 1e-12;     ///< |x(T) - x1| to reach
   double orientation_tolerance = 1e-10;  ///< |LogSO3(A1^T A(T))| (rad) to reach
   int max_iterations = 50;               ///< Gauss-Newton (KKT) iterations, in [1, kMaxIterations]

@@ -60,3 +60,6 @@ plateball_cli_test(steer.max_impulses_needs_fewest 3 REGEX "--max-impulses: valu
   -- steer problems/figure7_exact.json --max-impulses 3)
 plateball_cli_test(steer.starts_needs_fewest 3 REGEX "--starts: value 5: needs --fewest-impulses"
   -- steer problems/figure7_exact.json --starts 5)
+# The exact arrival's worst case is bounded (README, Limits): 200 impulses x 50 iterations.
+plateball_cli_test(steer.impulses_beyond_the_limit 3 REGEX "--impulses: value 201: must be in \\[3, 200\\]"
+  -- steer problems/figure7_exact.json --impulses 201 --summary-only)
