@@ -62,3 +62,12 @@ foreach(n RANGE 9001 9999)
 endforeach()
 plateball_cli_test(montecarlo.sweep_work_is_bounded 3 REGEX "--trials: value 10: the study would execute about 189991280 impulses"
   -- montecarlo problems/circle.json --trials 10 -q --sweep-n ${montecarlo_many_n})
+# Under MPI standard input reaches rank 0 only: `montecarlo -` is refused once, clearly (exit 3).
+if(PLATEBALL_WITH_MPI)
+  add_test(NAME cli.montecarlo.stdin_under_mpi_is_refused
+           COMMAND bash -c "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ${MPIEXEC_EXECUTABLE} --oversubscribe -np 2 $<TARGET_FILE:plateball_cli> montecarlo - --trials 2 -q < problems/circle.json 2>&1; echo exit=$?"
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(cli.montecarlo.stdin_under_mpi_is_refused PROPERTIES TIMEOUT 60 LABELS cli
+    PASS_REGULAR_EXPRESSION "PROBLEM.json: value -: standard input reaches rank 0 only: under MPI \\(2 ranks\\).*exit=3"
+    FAIL_REGULAR_EXPRESSION "malformed")
+endif()

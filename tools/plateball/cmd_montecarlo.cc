@@ -156,11 +156,18 @@ int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--csv", o.csv}, {"--svg", o.svg},
                     {"--svg-sweep", o.svg_sweep}},
                    {{"PROBLEM.json", o.problem.file()}});
+  const Ranks ranks;
+  // Standard input reaches one process only: under MPI the other ranks would read nothing. Rank 0
+  // says so once; the others end with the same exit code in silence.
+  if (ranks.size() > 1 && o.problem.file() == "-") {
+    if (ranks.rank() != 0) return kExitBadInput;
+    throw std::invalid_argument("PROBLEM.json: value -: standard input reaches rank 0 only: under MPI (" +
+                                std::to_string(ranks.size()) + " ranks) give the problem as a file");
+  }
   const Problem p = o.problem.Load();
   auto [mp, mo] = BuildStudy(o, p);
   if (!o.svg_sweep.empty() && mp.sweep_n.empty())
     throw std::invalid_argument(Option("--svg-sweep") + ": value " + o.svg_sweep + ": needs --sweep-n");
-  const Ranks ranks;
   const auto start = std::chrono::steady_clock::now();
   // Rank 0 shows the trials of its own share (the ranks' shares differ by at most one trial).
   const std::string label = ranks.size() > 1 ? "plateball montecarlo (trials of rank 0 of " +
