@@ -67,14 +67,18 @@ void BM_T6Study(benchmark::State& state) {
   const MonteCarloCell& ol = s.cells.at(1);
   state.counters["us_per_trial"] = benchmark::Counter(2.0 * p.trials * 1e-6, benchmark::Counter::kIsIterationInvariantRate |
                                                                               benchmark::Counter::kInvert);
-  state.counters["feedback_median"] = fb.orientation_error.median;
-  state.counters["feedback_p95"] = fb.orientation_error.p95;
-  state.counters["feedback_max"] = fb.orientation_error.max;
-  state.counters["feedback_pos_median"] = fb.position_error.median;
-  state.counters["open_loop_median"] = ol.orientation_error.median;
-  state.counters["open_loop_p95"] = ol.orientation_error.p95;
-  state.counters["open_loop_max"] = ol.orientation_error.max;
-  state.counters["open_loop_pos_median"] = ol.position_error.median;
+  // A cell where no trial completed has no distribution: NaN counters say so.
+  const Distribution none{NAN, NAN, NAN, NAN};
+  const Distribution fo = fb.orientation_error.value_or(none), fp = fb.position_error.value_or(none);
+  const Distribution oo = ol.orientation_error.value_or(none), op = ol.position_error.value_or(none);
+  state.counters["feedback_median"] = fo.median;
+  state.counters["feedback_p95"] = fo.p95;
+  state.counters["feedback_max"] = fo.max;
+  state.counters["feedback_pos_median"] = fp.median;
+  state.counters["open_loop_median"] = oo.median;
+  state.counters["open_loop_p95"] = oo.p95;
+  state.counters["open_loop_max"] = oo.max;
+  state.counters["open_loop_pos_median"] = op.median;
   state.counters["failed"] = static_cast<double>(s.failed_trials);
 }
 BENCHMARK(BM_T6Study)->ArgName("threads")->Arg(1)->Arg(2)->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);

@@ -231,12 +231,8 @@ void Polish(const Setup& s, const Eigen::MatrixXd& jac, Eigen::VectorXd* u, std:
   }
 }
 
-}  // namespace
-
-ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const ExactArrivalOptions& options) {
-  const std::string err = options.Validate();
-  if (!err.empty()) throw std::invalid_argument(err);
-  ValidateProblem(problem);
+// The solve at mu = 1 (the caller normalises the time scale, see SolveExactArrival).
+ExactArrivalSummary SolveNormalised(const ExactArrivalProblem& problem, const ExactArrivalOptions& options) {
   ExactArrivalSummary out;
   const PlanSummary plan = WarmStart(problem, options);
   if (!plan.IsSolutionUsable()) {
@@ -281,12 +277,16 @@ ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const 
       const bool settled = out.iterations > 1 && Merit(r) < 1e-6 &&
                            std::abs(deviation_before - deviation) <= options.deviation_tolerance * deviation_before;
       if (settled || (Arrived(r, options) && du.norm() <= 1e-8 * (1.0 + u.norm()))) break;
+      out.iteration_limit_reached = out.iterations == options.max_iterations;
     }
     if (jac.size() > 0) Polish(s, jac, &u, &nodes, &r, &out.rollouts);
     Report(s, problem, u, nodes, plan, out);
     if (Arrived(r, options)) {
       out.status = ExactArrivalStatus::kArrived;
       out.message.clear();
+      if (out.iteration_limit_reached)
+        out.message = "arrived, but the minimisation of the deviation stopped at the iteration limit (" +
+                      std::to_string(options.max_iterations) + "): the pass points are not the closest ones found";
     } else {
       out.status = ExactArrivalStatus::kNotReached;
       out.message = stalled ? "no step reduced the arrival error (closest arrival reported)"
@@ -296,6 +296,39 @@ ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const 
     out.status = ExactArrivalStatus::kIntegrationFailure;
     out.message = e.what();
   }
+  return out;
+}
+
+// A solution at energy 1 as the solution at energy mu: the motion at energy mu is the motion at
+// energy 1 with time scaled by 1/sqrt(mu) (eq. (9): omega scales with sqrt(mu)); positions,
+// orientations, angles and the delta psi are the same.
+void ScaleEnergy(double mu, ExactImpulse* e) {
+  const double time = 1.0 / std::sqrt(mu), rate = std::sqrt(mu);
+  e->t_impulse *= time;
+  e->duration *= time;
+  e->planned_duration *= time;
+  e->delta_omega *= rate;
+  e->plate_velocity_change *= rate;
+  e->mu_before *= mu;  // 1 -> mu, 0 (at rest) stays 0
+  e->mu_after *= mu;
+}
+
+}  // namespace
+
+ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const ExactArrivalOptions& options) {
+  const std::string err = options.Validate();
+  if (!err.empty()) throw std::invalid_argument(err);
+  ValidateProblem(problem);
+  // Solved in the time scale of mu = 1, so that every mu gives the same pass points (the iteration,
+  // its step bound and its tolerances then see the same numbers for every mu).
+  if (problem.mu == 1.0) return SolveNormalised(problem, options);
+  ExactArrivalProblem unit = problem;
+  unit.mu = 1.0;
+  ExactArrivalSummary out = SolveNormalised(unit, options);
+  for (ExactImpulse& e : out.impulses) ScaleEnergy(problem.mu, &e);
+  if (out.stop) ScaleEnergy(problem.mu, &*out.stop);
+  out.total_time /= std::sqrt(problem.mu);
+  out.planned_total_time /= std::sqrt(problem.mu);
   return out;
 }
 

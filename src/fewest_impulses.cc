@@ -60,6 +60,7 @@ std::string FewestImpulsesOptions::Validate() const {
 }
 
 const FewestImpulsesCount* FewestImpulsesSummary::Fewest() const {
+  if (status != FewestImpulsesStatus::kFound) return nullptr;
   for (const FewestImpulsesCount& c : counts)
     if (c.reached && c.impulses == fewest) return &c;
   return nullptr;
@@ -505,6 +506,27 @@ void ContinueDown(const Search& s, std::vector<FewestImpulsesCount>* counts) {
   }
 }
 
+// The goal is met at the start (within the tolerances): the fewest count is 0, the only row
+// the start itself (a rolling start with stop_at_goal stops there).
+FewestImpulsesSummary MetAtStart(const Search& s, double turn, FewestImpulsesSummary out) {
+  const FewestImpulsesProblem& p = *s.problem;
+  FewestImpulsesCount row;
+  row.arrived = 1;
+  row.reached = true;
+  row.position_error = s.conditions == 5 ? (p.x1 - p.x0).norm() : 0.0;
+  row.orientation_error = turn;
+  row.x_final = p.x0;
+  row.A_final = s.start.A;
+  if (p.stop_at_goal && !p.start_at_rest) row.stop = internal::StopImpulse(p.model, p.mu, s.start, 0.0);
+  out.counts.push_back(row);
+  out.fewest = 0;
+  out.minimal_for_generic_goal = true;  // no count is smaller than 0
+  out.status = FewestImpulsesStatus::kFound;
+  out.message = "the goal is met at the start: 0 impulses";
+  out.searched = "nothing: the start meets the goal within the tolerances";
+  return out;
+}
+
 }  // namespace
 
 constexpr double kWindowFactor = 1.5;
@@ -524,6 +546,8 @@ FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem, 
   s.max_total_time = options.max_total_time > 0 ? options.max_total_time
                                                 : kWindowFactor * (distance + turn + 2.0 * M_PI) / std::sqrt(problem.mu);
   out.max_total_time = s.max_total_time;
+  if (distance <= options.position_tolerance && turn <= options.orientation_tolerance)
+    return MetAtStart(s, turn, std::move(out));
   int last = 0;
   for (int n = 1; n <= options.max_impulses; ++n) {
     if (out.fewest > 0 && n >= out.fewest + options.pareto_counts) break;

@@ -64,8 +64,12 @@ std::string MonteCarloSummary::BriefReport() const {
     if (c.n != cells.front().n) break;
     os << "; " << ToString(c.strategy);
     if (scenarios) os << " (scenario " << c.scenario << ")";
-    os << ": orientation error median " << c.orientation_error.median << " rad, p95 " << c.orientation_error.p95
-       << ", position error median " << c.position_error.median;
+    if (!c.orientation_error || !c.position_error) {
+      os << ": no trial completed";
+      continue;
+    }
+    os << ": orientation error median " << c.orientation_error->median << " rad, p95 " << c.orientation_error->p95
+       << ", position error median " << c.position_error->median;
   }
   if (!message.empty()) os << " (" << message << ")";
   return os.str();
@@ -117,41 +121,58 @@ MonteCarloWork::MonteCarloWork(const MonteCarloProblem& problem, const MonteCarl
     : problem_(problem), options_(options) {
   ValidateProblem(problem, options);
   options_.progress = nullptr;  // Run takes it from `options` each time
-  auto main = std::make_shared<NominalPlan>(MakeNominalPlan(problem.plan, options.plan));
-  ns_.push_back(main->plan.segments);
-  nominals_.push_back(main);
   std::vector<int> others;
   for (int n : problem.sweep_n)
     if (n != MainN(problem.plan)) others.push_back(n);
   std::sort(others.begin(), others.end());
-  for (int n : others) {
-    ns_.push_back(n);
-    nominals_.push_back(std::make_shared<NominalPlan>(MakeNominalPlan(WithN(problem.plan, n), options.plan)));
-  }
-  const long long cells = static_cast<long long>(problem.scenarios.size() * problem.strategies.size());
+  main_ = std::make_shared<NominalPlan>(MakeNominalPlan(problem.plan, options.plan));
+  ns_.push_back(main_->plan.segments);
+  for (int n : others) ns_.push_back(n);
+  // The tasks and the work up front, before the sweep's plans (each n also plans once, about n
+  // impulses of work: fewer than its trials execute).
+  const bool exact = std::find(problem.strategies.begin(), problem.strategies.end(),
+                               ExecutionStrategy::kFeedbackExact) != problem.strategies.end();
+  const long long w = options.execution.exact_window, per_trial_exact = exact ? w * w * w : 0;
+  const long long scenarios = static_cast<long long>(problem.scenarios.size());
+  const long long strategies = static_cast<long long>(problem.strategies.size());
+  long long work = 0;
   for (std::size_t i = 0; i < ns_.size(); ++i) {
-    planned_ = planned_ && nominals_[i]->plan.IsSolutionUsable();
-    const int t = i == 0 || options.sweep_trials == 0 ? problem.trials : options.sweep_trials;
+    const long long t = i == 0 || options.sweep_trials == 0 ? problem.trials : options.sweep_trials;
     offsets_.push_back(total_);
-    total_ += cells * t;
+    total_ += scenarios * strategies * t;
+    work += scenarios * t * (strategies * ns_[i] + per_trial_exact);
   }
   if (total_ > MonteCarloOptions::kMaxTasks)
     internal::ThrowInvalid("trials", problem.trials,
                            "the study would run " + std::to_string(total_) + " trials (cells x trials over all n), more than " +
                                std::to_string(MonteCarloOptions::kMaxTasks));
+  if (work > MonteCarloOptions::kMaxWork)
+    internal::ThrowInvalid("trials", problem.trials,
+                           "the study would execute about " + std::to_string(work) +
+                               " impulses (the sum over cells of trials x (n + W^3 with feedback_exact)), more than " +
+                               std::to_string(MonteCarloOptions::kMaxWork) + ": fewer trials, n or sweep_n");
+  for (std::size_t i = 0; i < ns_.size(); ++i) {
+    const std::shared_ptr<const NominalPlan> p = Plan(i);  // the sweep's plans one at a time
+    info_.push_back({ns_[i], p->plan.status, p->plan.message, p->plan_orientation_error, p->plan.measured_error,
+                     p->plan.total_time});
+    planned_ = planned_ && p->plan.IsSolutionUsable();
+  }
   if (!planned_) total_ = 0;
   options_.progress = options.progress;
 }
 
-TrialRecord MonteCarloWork::RunTask(long long task) const {
-  const std::size_t i = static_cast<std::size_t>(
-      std::upper_bound(offsets_.begin(), offsets_.end(), task) - offsets_.begin() - 1);
+std::shared_ptr<const NominalPlan> MonteCarloWork::Plan(std::size_t i) const {
+  if (i == 0) return main_;
+  return std::make_shared<NominalPlan>(MakeNominalPlan(WithN(problem_.plan, ns_[i]), options_.plan));
+}
+
+TrialRecord MonteCarloWork::RunTask(long long task, std::size_t i, const std::shared_ptr<const NominalPlan>& nominal) const {
   const long long trials = i == 0 || options_.sweep_trials == 0 ? problem_.trials : options_.sweep_trials;
   const long long local = task - offsets_[i];
   const long long cell = local / trials;
   const int strategies = static_cast<int>(problem_.strategies.size());
   ExecutionProblem ep;
-  ep.nominal = nominals_[i];
+  ep.nominal = nominal;
   ep.strategy = problem_.strategies[static_cast<std::size_t>(cell % strategies)];
   const int scenario = static_cast<int>(cell / strategies);
   ep.errors = problem_.scenarios[static_cast<std::size_t>(scenario)].errors;
@@ -179,11 +200,19 @@ std::vector<TrialRecord> MonteCarloWork::Run(long long begin, long long end) con
   std::vector<TrialRecord> out(static_cast<std::size_t>(count));
   const int threads = std::max(1, std::min(options_.threads, count));
   std::atomic<long long> done{0};
-  internal::ParallelFor(count, threads, [&](int j) {
-    out[static_cast<std::size_t>(j)] = RunTask(begin + j);
-    const long long d = ++done;
-    if (options_.progress && j % threads == 0) options_.progress(d, count);
-  });
+  // The tasks of one n at a time, with that n's plan (the sweep's plans are not all held at once).
+  for (std::size_t i = 0; i < ns_.size(); ++i) {
+    const long long n_end = i + 1 < ns_.size() ? offsets_[i + 1] : total_;
+    const long long from = std::max(begin, offsets_[i]), to = std::min(end, n_end);
+    if (from >= to) continue;
+    const std::shared_ptr<const NominalPlan> nominal = Plan(i);
+    internal::ParallelFor(static_cast<int>(to - from), threads, [&](int j) {
+      const long long task = from + j;
+      out[static_cast<std::size_t>(task - begin)] = RunTask(task, i, nominal);
+      const long long d = ++done;
+      if (options_.progress && j % threads == 0) options_.progress(d, count);
+    });
+  }
   if (options_.progress) options_.progress(count, count);
   return out;
 }
@@ -208,6 +237,7 @@ MonteCarloCell MakeCell(const std::vector<TrialRecord>& records, std::size_t fir
     missed.push_back(r.missed_pass_points);
     time.push_back(r.total_time);
   }
+  if (c.completed == 0) return c;  // no distribution: not zeros
   c.position_error = Distribute(pos);
   c.orientation_error = Distribute(ori);
   c.max_pass_miss = Distribute(miss);
@@ -225,12 +255,10 @@ MonteCarloSummary MonteCarloWork::Summarize(std::vector<TrialRecord> records) co
   MonteCarloSummary s;
   s.status = planned_ ? MonteCarloStatus::kCompleted : MonteCarloStatus::kNominalPlanFailed;
   s.message.clear();
-  for (std::size_t i = 0; i < ns_.size(); ++i) {
-    const NominalPlan& p = *nominals_[i];
-    s.nominal.push_back({ns_[i], p.plan.status, p.plan.message, p.plan_orientation_error, p.plan.measured_error,
-                         p.plan.total_time});
-    if (!p.plan.IsSolutionUsable() && s.message.empty())
-      s.message = "the nominal plan with n = " + std::to_string(ns_[i]) + " failed: " + p.plan.message;
+  for (const NominalInfo& info : info_) {
+    s.nominal.push_back(info);
+    if (info.status != PlanStatus::kSuccess && s.message.empty())
+      s.message = "the nominal plan with n = " + std::to_string(info.n) + " failed: " + info.message;
   }
   std::sort(s.nominal.begin(), s.nominal.end(), [](const NominalInfo& a, const NominalInfo& b) { return a.n < b.n; });
   const std::size_t per_n = problem_.scenarios.size() * problem_.strategies.size();
@@ -241,6 +269,16 @@ MonteCarloSummary MonteCarloWork::Summarize(std::vector<TrialRecord> records) co
       s.cells.push_back(MakeCell(records, static_cast<std::size_t>(offsets_[i]) + c * trials, trials));
   }
   for (const TrialRecord& r : records) s.failed_trials += r.status != ExecutionStatus::kCompleted;
+  std::string empty;
+  for (const MonteCarloCell& c : s.cells) {
+    if (c.completed > 0) continue;
+    ++s.empty_cells;
+    empty += std::string(s.empty_cells > 1 ? "; " : "") + ToString(c.strategy) + " at n = " + std::to_string(c.n);
+    if (problem_.scenarios.size() > 1) empty += " (scenario " + std::to_string(c.scenario) + ")";
+  }
+  if (s.empty_cells > 0 && s.message.empty())
+    s.message = "no trial completed in " + std::to_string(s.empty_cells) + " cell" + (s.empty_cells > 1 ? "s" : "") +
+                (ns_.size() > 1 ? " (no distribution; missing from the sweep's fits): " : " (no distribution): ") + empty;
   if (planned_ && ns_.size() > 1) s.sweeps = MakeSweeps(s);
   if (options_.keep_trials) s.records = std::move(records);
   return s;
@@ -261,15 +299,26 @@ std::vector<SweepSeries> MonteCarloWork::MakeSweeps(const MonteCarloSummary& s) 
       const MonteCarloCell& cell = s.cells[i * per_n + c];
       series.n.push_back(ns_[i]);
       xn.push_back(ns_[i]);
-      series.median_orientation_error.push_back(cell.orientation_error.median);
-      series.median_position_error.push_back(cell.position_error.median);
-      series.plan_orientation_error.push_back(nominals_[i]->plan_orientation_error);
+      series.median_orientation_error.push_back(
+          cell.orientation_error ? std::optional<double>(cell.orientation_error->median) : std::nullopt);
+      series.median_position_error.push_back(
+          cell.position_error ? std::optional<double>(cell.position_error->median) : std::nullopt);
+      series.plan_orientation_error.push_back(info_[i].orientation_error);
     }
-    series.slope = LogLogSlope(xn, series.median_orientation_error);
+    std::vector<double> x_data, y_data;  // the n with data: a missing n is left out of the fit
+    for (std::size_t i = 0; i < xn.size(); ++i) {
+      if (series.Missing(i)) continue;
+      x_data.push_back(xn[i]);
+      y_data.push_back(*series.median_orientation_error[i]);
+    }
+    series.slope = LogLogSlope(x_data, y_data);
     series.plan_slope = LogLogSlope(xn, series.plan_orientation_error);
     for (std::size_t i = 0; i + 1 < xn.size(); ++i)
-      series.local_slopes.push_back(LogLogSlope({xn[i], xn[i + 1]}, {series.median_orientation_error[i],
-                                                                     series.median_orientation_error[i + 1]}));
+      series.local_slopes.push_back(
+          series.Missing(i) || series.Missing(i + 1)
+              ? std::nullopt
+              : LogLogSlope({xn[i], xn[i + 1]},
+                            {*series.median_orientation_error[i], *series.median_orientation_error[i + 1]}));
     out.push_back(std::move(series));
   }
   return out;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "exact_chain.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/problem_io.h"
@@ -106,6 +107,33 @@ TEST(FewestImpulses, LambdaOneAnyOrientationInTwoStraightRolls) {
     const StraightRolls closed = ComposeStraightRolls(p, s.Fewest()->plan);
     EXPECT_LE(LogSO3(p.A1.transpose() * closed.A).norm(), kOrientationTol);
   }
+}
+
+// A start that already has the goal orientation (orientation only) needs no impulse: the answer
+// is 0 impulses, with no flight at all (not one impulse with an almost zero flight time).
+TEST(FewestImpulses, GoalMetAtTheStartIsZeroImpulses) {
+  FewestImpulsesProblem p = StraightRollProblem();
+  p.orientation_only = true;
+  p.A1 = internal::StartNode(p.model, p.initial, p.mu, p.x0, p.A0).A;  // the start orientation on the axis
+  p.x1 = Eigen::Vector2d(5, -3);  // free with orientation_only
+  FewestImpulsesSummary s = SolveFewestImpulses(p);
+  ASSERT_TRUE(s.IsSolutionUsable()) << s.BriefReport();
+  EXPECT_EQ(s.fewest, 0) << s.BriefReport();
+  ASSERT_NE(s.Fewest(), nullptr);
+  EXPECT_TRUE(s.Fewest()->plan.empty());
+  EXPECT_EQ(s.Fewest()->total_time, 0.0);
+  EXPECT_LE(s.Fewest()->orientation_error, kOrientationTol);
+  // With the position prescribed too, the same start meets the goal at x1 = x0 only.
+  p.orientation_only = false;
+  p.x1 = p.x0;
+  s = SolveFewestImpulses(p);
+  EXPECT_EQ(s.fewest, 0) << s.BriefReport();
+  p.x1 = p.x0 + Eigen::Vector2d(1, 0);
+  FewestImpulsesOptions o;
+  o.max_impulses = 1;
+  o.starts = 2;
+  s = SolveFewestImpulses(p, o);
+  EXPECT_FALSE(s.IsSolutionUsable() && s.fewest == 0) << s.BriefReport();
 }
 
 // A goal made by applying a known impulse sequence is found again with the same count (for

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
 #include "support/test_support.h"
@@ -49,7 +51,8 @@ TEST(MonteCarlo, ThreadCountDoesNotChangeAnyResult) {
   ExpectSameRecords(a.records, b.records);
   EXPECT_EQ(a.BriefReport(), b.BriefReport());
   ASSERT_EQ(a.cells.size(), 4u);  // 2 scenarios x 2 strategies
-  EXPECT_EQ(a.cells[1].orientation_error.p95, b.cells[1].orientation_error.p95);
+  ASSERT_TRUE(a.cells[1].orientation_error && b.cells[1].orientation_error);
+  EXPECT_EQ(a.cells[1].orientation_error->p95, b.cells[1].orientation_error->p95);
 }
 
 // The split of the ranks: any partition of [0, TaskCount()) gathered in order is the whole run.
@@ -100,10 +103,64 @@ TEST(MonteCarlo, ZeroNoiseSweepHasThePlansSlopeMinusTwo) {
     EXPECT_NEAR(*w.slope, -2.0, 0.02) << ToString(w.strategy);
     EXPECT_NEAR(*w.slope, *w.plan_slope, 1e-6);
     for (std::size_t i = 0; i < w.n.size(); ++i)
-      EXPECT_NEAR(w.median_orientation_error[i], w.plan_orientation_error[i], 1e-10);
+      EXPECT_NEAR(w.median_orientation_error[i].value(), w.plan_orientation_error[i], 1e-10);
   }
   EXPECT_EQ(s.nominal.size(), 3u);
   EXPECT_EQ(s.nominal.front().n, 16);
+}
+
+// A cell where no trial completed has no distribution (not zeros), the report says "no trial
+// completed", and a sweep row without data is missing and left out of the fit: the slope is then
+// the fit over the remaining n, here two n, whose slope is log(e2 / e1) / log(n2 / n1) exactly.
+TEST(MonteCarlo, CellWithoutACompletedTrialHasNoDistributionAndLeavesTheFit) {
+  MonteCarloProblem p = CircleStudy(16, 3);
+  p.scenarios = {{"none", {}}};
+  p.strategies = {ExecutionStrategy::kFeedback};
+  p.sweep_n = {32, 64};
+  const MonteCarloWork work(p, {});
+  std::vector<TrialRecord> records = work.Run(0, work.TaskCount());
+  ASSERT_EQ(records.size(), 9u);  // n = 16, 32, 64 in that order (main n first), 3 trials each
+  for (std::size_t i = 3; i < 6; ++i) {
+    ASSERT_EQ(records[i].n, 32);
+    records[i].status = ExecutionStatus::kLost;  // every trial at n = 32 lost the ball
+  }
+  const MonteCarloSummary s = work.Summarize(records);
+  ASSERT_TRUE(s.IsSolutionUsable()) << s.BriefReport();  // every trial ran
+  ASSERT_EQ(s.cells.size(), 3u);
+  const MonteCarloCell& empty = s.cells[1];
+  EXPECT_EQ(empty.n, 32);
+  EXPECT_EQ(empty.completed, 0);
+  EXPECT_FALSE(empty.orientation_error || empty.position_error || empty.max_pass_miss || empty.missed_pass_points ||
+               empty.total_time);
+  EXPECT_EQ(s.empty_cells, 1);
+  EXPECT_NE(s.message.find("no trial completed in 1 cell"), std::string::npos) << s.message;
+  EXPECT_NE(s.BriefReport().find("no trial completed"), std::string::npos) << s.BriefReport();
+  ASSERT_EQ(s.sweeps.size(), 1u);
+  const SweepSeries& w = s.sweeps.front();
+  ASSERT_EQ(w.n, (std::vector<int>{16, 32, 64}));
+  EXPECT_TRUE(w.Missing(1));
+  EXPECT_FALSE(w.median_position_error[1]);
+  ASSERT_FALSE(w.Missing(0) || w.Missing(2));
+  ASSERT_TRUE(w.slope);
+  const double two_point = std::log(*w.median_orientation_error[2] / *w.median_orientation_error[0]) / std::log(4.0);
+  constexpr double kRounding = 1e-12;  // the same two logarithms, summed in another order
+  EXPECT_NEAR(*w.slope, two_point, kRounding);
+  ASSERT_EQ(w.local_slopes.size(), 2u);
+  EXPECT_FALSE(w.local_slopes[0] || w.local_slopes[1]);  // each touches the missing n
+}
+
+// The noise of a hostile run: every feedback trial loses the ball, and its cell says so.
+TEST(MonteCarlo, EveryTrialLostGivesNoDistribution) {
+  MonteCarloProblem p = CircleStudy(64, 20);
+  p.strategies = {ExecutionStrategy::kFeedback};
+  p.scenarios = {{"hard", ParseErrorModel("impulse_magnitude=0.5,impulse_angle=0.5,energy_loss=0.5,timing=0.1,"
+                                          "lambda=0.1,observation=0.1")}};
+  const MonteCarloSummary s = RunMonteCarlo(p, {});
+  ASSERT_EQ(s.cells.size(), 1u);
+  ASSERT_EQ(s.failed_trials, 20);
+  EXPECT_EQ(s.cells[0].completed, 0);
+  EXPECT_FALSE(s.cells[0].orientation_error);
+  EXPECT_NE(s.BriefReport().find("feedback: no trial completed"), std::string::npos) << s.BriefReport();
 }
 
 TEST(MonteCarlo, LimitsNameTheFieldAndTheValue) {
@@ -115,6 +172,16 @@ TEST(MonteCarlo, LimitsNameTheFieldAndTheValue) {
   p.trials = 1'000'000;
   EXPECT_NE(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }).find("trials: value 1000000: the study would run 4000000"),
             std::string::npos);
+  // The work bound, counted before any sweep plan: 2 scenarios x 2 strategies x 200000 trials x
+  // n = 200 impulses = 1.6e8 executions > 1e8, though the 800000 trials are within kMaxTasks.
+  p = CircleStudy(200, 200'000);
+  EXPECT_NE(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); })
+                .find("trials: value 200000: the study would execute about 160000000 impulses"),
+            std::string::npos);
+  // feedback_exact adds W^3 per trial: 2 x 1 x 100000 x (200 + 12^3) = 3.856e8.
+  p = CircleStudy(200, 100'000);
+  p.strategies = {ExecutionStrategy::kFeedbackExact};
+  EXPECT_NE(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }).find("about 385600000 impulses"), std::string::npos);
   p = CircleStudy();
   p.scenarios[1].errors.timing = 1;
   EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }),

@@ -65,11 +65,12 @@ struct ExactArrivalProblem {
   bool stop_at_goal = false;
 };
 
-/// Upper bound of ExactArrivalProblem::impulses: each Jacobian integrates about n^2 arcs.
-inline constexpr int kMaxExactImpulses = 1000;
+/// Upper bound of ExactArrivalProblem::impulses: each Jacobian integrates about n^2 arcs, so the
+/// worst case (kMaxExactImpulses^2 x kMaxIterations, 2 x 10^6 arcs) takes about 10 s on one core.
+inline constexpr int kMaxExactImpulses = 200;
 
 struct ExactArrivalOptions {
-  static constexpr int kMaxIterations = 10000;
+  static constexpr int kMaxIterations = 50;  ///< the tools' value: bounds the work with kMaxExactImpulses
   double position_tolerance = 1e-12;     ///< |x(T) - x1| to reach
   double orientation_tolerance = 1e-10;  ///< |LogSO3(A1^T A(T))| (rad) to reach
   int max_iterations = 50;               ///< Gauss-Newton (KKT) iterations, in [1, kMaxIterations]
@@ -125,6 +126,9 @@ struct ExactArrivalSummary {
   double max_pass_displacement = 0.0;  ///< max_k |x_k - p(tau_k)|
   double total_time = 0.0;             ///< T = sum t_k
   int iterations = 0;                  ///< Gauss-Newton iterations
+  /// The iteration stopped at ExactArrivalOptions::max_iterations before the deviation settled:
+  /// with kArrived, the arrival is exact but the pass points may not be the closest (the message says so).
+  bool iteration_limit_reached = false;
   int rollouts = 0;                    ///< trajectories integrated (with or without their Jacobian)
   // The paper's plan (warm start), for comparison.
   double planned_position_error = 0.0;
@@ -137,7 +141,8 @@ struct ExactArrivalSummary {
   std::string BriefReport() const;
 };
 
-/// Solves the exact-arrival problem. Throws std::invalid_argument naming the field for invalid
+/// Solves the exact-arrival problem in the time scale of mu = 1 (mu only rescales time by
+/// 1/sqrt(mu)): every mu gives the same pass points, with times scaled by 1/sqrt(mu). Throws std::invalid_argument naming the field for invalid
 /// input (impulses < 3, mu, angles, A0 or A1 not rotations, x0 not the reference start, options);
 /// a goal that is not reached is the status kNotReached with the closest arrival found.
 ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const ExactArrivalOptions& options = {});

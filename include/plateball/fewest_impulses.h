@@ -133,7 +133,7 @@ struct FewestImpulsesCount {
 struct FewestImpulsesSummary {
   FewestImpulsesStatus status = FewestImpulsesStatus::kNotRun;
   std::string message = "not run";
-  int fewest = 0;                           ///< the fewest count (0 when not found)
+  int fewest = 0;  ///< the fewest count (0 when not found, or found when the start meets the goal)
   /// Every count below `fewest` is kGenericallyImpossible: `fewest` is the fewest for a generic
   /// goal. false: a smaller count is only kNotFound (or nothing was found).
   bool minimal_for_generic_goal = false;

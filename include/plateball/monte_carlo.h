@@ -44,6 +44,10 @@ struct MonteCarloProblem {
 struct MonteCarloOptions {
   static constexpr int kMaxTrials = 1'000'000;
   static constexpr long long kMaxTasks = 2'000'000;  ///< trials over all cells and n (memory: ~60 bytes each)
+  /// Bound of the study's work, counted up front in impulse executions: every trial executes its n
+  /// impulses, and a feedback_exact trial re-solves exactly while at most W = execution.exact_window
+  /// impulses remain (about W^3 more): work = sum over cells of trials x (n + [feedback_exact] W^3).
+  static constexpr long long kMaxWork = 100'000'000;
   PlanOptions plan;
   ExecutionOptions execution;
   int threads = 1;       ///< 1 ... 256; the results do not depend on it
@@ -74,25 +78,31 @@ struct Distribution {
 /// The Distribution of the values (empty: all zero).
 Distribution Distribute(std::vector<double> values);
 
+/// The distributions are over the completed trials; a cell where no trial completed has none
+/// (nullopt: "no trial completed", never zeros).
 struct MonteCarloCell {
   int n = 0;
   int scenario = 0;
   ExecutionStrategy strategy = ExecutionStrategy::kFeedback;
   int trials = 0, completed = 0;
-  Distribution position_error, orientation_error, max_pass_miss, missed_pass_points, total_time;
+  std::optional<Distribution> position_error, orientation_error, max_pass_miss, missed_pass_points, total_time;
 };
 
-/// Median final errors of one (scenario, strategy) against n, with the plan's own error.
+/// Median final errors of one (scenario, strategy) against n, with the plan's own error. An n
+/// whose cell has no completed trial is missing: its medians are nullopt and the fits leave it out.
 struct SweepSeries {
   int scenario = 0;
   ExecutionStrategy strategy = ExecutionStrategy::kFeedback;
   std::vector<int> n;
-  std::vector<double> median_orientation_error, median_position_error, plan_orientation_error;
-  /// Least-squares slope of log(median orientation error) against log(n) over every n (none when
-  /// fewer than two n have a positive median), and between neighbouring n.
+  std::vector<std::optional<double>> median_orientation_error, median_position_error;
+  std::vector<double> plan_orientation_error;
+  /// Least-squares slope of log(median orientation error) against log(n) over every n with data
+  /// (none when fewer than two n have a positive median), and between neighbouring n (none when
+  /// either is missing).
   std::optional<double> slope;
   std::vector<std::optional<double>> local_slopes;
   std::optional<double> plan_slope;  ///< the same fit of plan_orientation_error (Theorem 2.6: -2)
+  bool Missing(std::size_t i) const { return !median_orientation_error[i].has_value(); }
 };
 
 /// The nominal plan of one n.
@@ -122,6 +132,7 @@ struct MonteCarloSummary {
   std::vector<SweepSeries> sweeps;    ///< per (scenario, strategy) when more than one n
   std::vector<TrialRecord> records;   ///< every trial (keep_trials), in task order
   long long failed_trials = 0;        ///< trials that did not complete (lost or integration failure)
+  int empty_cells = 0;                ///< cells where no trial completed (named in message)
 
   /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == MonteCarloStatus::kCompleted; }
@@ -130,7 +141,9 @@ struct MonteCarloSummary {
 };
 
 /// The work of a study as a flat list of tasks (n, scenario, strategy, trial), for splitting over
-/// threads or processes. The constructor validates and plans every n once.
+/// threads or processes. The constructor validates, bounds the work (kMaxTasks, kMaxWork) and
+/// plans every n, one at a time, keeping only the main n's plan: Run plans another n again (the
+/// same deterministic plan) while it runs that n's tasks, so one sweep plan is held at a time.
 class MonteCarloWork {
  public:
   /// Throws std::invalid_argument naming the field and value for invalid input.
@@ -142,18 +155,20 @@ class MonteCarloWork {
   /// The summary of the records of all tasks, in task order (as Run gives them).
   MonteCarloSummary Summarize(std::vector<TrialRecord> records) const;
   /// The nominal plan of the main n.
-  const NominalPlan& MainPlan() const { return *nominals_.front(); }
+  const NominalPlan& MainPlan() const { return *main_; }
   /// The partition sizes n of the run, the main n first.
   const std::vector<int>& Ns() const { return ns_; }
 
  private:
-  TrialRecord RunTask(long long task) const;
+  TrialRecord RunTask(long long task, std::size_t i, const std::shared_ptr<const NominalPlan>& nominal) const;
+  std::shared_ptr<const NominalPlan> Plan(std::size_t i) const;
   std::vector<SweepSeries> MakeSweeps(const MonteCarloSummary& summary) const;
   MonteCarloProblem problem_;
   MonteCarloOptions options_;
-  std::vector<int> ns_;                                   // main n first, then the sweep's others
-  std::vector<std::shared_ptr<const NominalPlan>> nominals_;
-  std::vector<long long> offsets_;                        // first task of each n
+  std::vector<int> ns_;                               // main n first, then the sweep's others
+  std::shared_ptr<const NominalPlan> main_;           // the main n's plan; the others are re-planned
+  std::vector<NominalInfo> info_;                     // per n (in ns_ order): what the summary reports
+  std::vector<long long> offsets_;                    // first task of each n
   long long total_ = 0;
   bool planned_ = true;
 };

@@ -250,6 +250,7 @@ void BindExactArrival(py::module_& m) {
       .def_readonly("max_pass_displacement", &ExactArrivalSummary::max_pass_displacement)
       .def_readonly("total_time", &ExactArrivalSummary::total_time)
       .def_readonly("iterations", &ExactArrivalSummary::iterations)
+      .def_readonly("iteration_limit_reached", &ExactArrivalSummary::iteration_limit_reached)
       .def_readonly("rollouts", &ExactArrivalSummary::rollouts)
       .def_readonly("planned_position_error", &ExactArrivalSummary::planned_position_error)
       .def_readonly("planned_orientation_error", &ExactArrivalSummary::planned_orientation_error)

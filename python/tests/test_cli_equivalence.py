@@ -366,3 +366,27 @@ def test_montecarlo(problems, run_cli):
     summary = pb.montecarlo(study, pb.MonteCarloOptions(plan=setup.options, threads=1))
     assert summary.trials("position_error").shape == (12,)
     assert_same(doc, summary, "montecarlo")
+
+
+def test_montecarlo_cell_without_a_completed_trial_is_none(problems, run_cli):
+    """A cell where every trial lost the ball has no distribution: null in the JSON, None here."""
+    noise = "impulse_magnitude=0.5,impulse_angle=0.5,energy_loss=0.5,timing=0.1,lambda=0.1,observation=0.1"
+    doc = run_cli("plateball", "montecarlo", problems / "circle.json", "--trials", 20, "--strategy", "feedback",
+                  "--noise", noise, "--threads", 1, "--quiet")
+    problem = pb.load_problem(problems / "circle.json")
+    setup = pb.plan_setup_for(problem, 64)
+    errors = pb.parse_error_model(noise)
+    study = pb.MonteCarloProblem(plan=setup.problem, trials=20, seed=problem.seed, strategies=["feedback"],
+                                 scenarios=[pb.MonteCarloScenario(name=str(errors), errors=errors)])
+    summary = pb.montecarlo(study, pb.MonteCarloOptions(plan=setup.options, threads=1))
+    cell = summary.cells[0]
+    assert cell.completed == 0 and doc["results"][0]["completed"] == 0
+    assert cell.orientation_error is None and cell.position_error is None
+    assert doc["results"][0]["orientation_error"] is None
+    assert doc["results"][0]["note"] == "no trial completed"
+
+
+def test_exact_arrival_iteration_cap_is_the_tools():
+    """Python's iteration cap is the tools' 50 (the exact arrival's work bound)."""
+    assert pb.ExactArrivalOptions(max_iterations=50).validate() == ""
+    assert "max_iterations: value 51" in pb.ExactArrivalOptions(max_iterations=51).validate()

@@ -37,3 +37,37 @@ plateball_cli_test(montecarlo.no_plan_section 3 REGEX "plan"
 # Zero noise: every trial is the plan (the circle's n = 64 error 0.0149 rad, Theorem 2.6).
 plateball_cli_test(montecarlo.zero_noise_is_the_plan 0 REGEX "\"orientation_error\": 0.01490297432"
   -- montecarlo problems/circle.json --trials 2 --noise none --strategy feedback --quiet)
+# Every feedback trial loses the ball under this noise: the cell has no distribution (null, "no
+# trial completed"), never zeros, and the run says so.
+set(montecarlo_hard_noise "impulse_magnitude=0.5,impulse_angle=0.5,energy_loss=0.5,timing=0.1,lambda=0.1,observation=0.1")
+plateball_cli_test(montecarlo.every_trial_lost_has_no_distribution 0
+  REGEX "feedback: no trial completed.*\"completed\": 0,[^}]*\"position_error\": null,[^}]*\"orientation_error\": null,[^}]*\"note\": \"no trial completed\""
+  -- montecarlo problems/circle.json --trials 20 --strategy open_loop,feedback --noise ${montecarlo_hard_noise} --quiet)
+# A sweep whose feedback cell at n = 64 has no completed trial: that row is missing (null medians)
+# and left out of the fit, whose slope is then the two-point slope of n = 16 and 32.
+plateball_cli_test(montecarlo.sweep_row_without_data_is_missing 0
+  REGEX "\"n\": 64,[^}]*\"median_orientation_error\": null,[^}]*\"missing\": \"no trial completed: left out of slope and local_slopes\"[^]]*\\],[^\"]*\"slope\": -1.99[0-9]*,[^\"]*\"local_slopes\": \\[[^]]*null"
+  -- montecarlo problems/circle.json --trials 3 --impulses 16 --sweep-n 32,64 --strategy open_loop,feedback
+     --noise ${montecarlo_hard_noise} --quiet)
+# -q and --progress like every subcommand: --progress ends with the final line of the trials done.
+plateball_cli_test(montecarlo.progress_final_line 0 REGEX "plateball montecarlo \\(trials\\): done \\(4 of 4\\)"
+  -- montecarlo problems/circle.json --trials 2 --noise none --progress)
+plateball_cli_test(montecarlo.quiet_short_option 0 REGEX "\"command\": \"montecarlo\""
+  -- montecarlo problems/circle.json --trials 2 --noise none -q)
+# The study's work is bounded up front (README, Limits): 1000 sweep values near 10^4 are refused
+# before any of their plans is made, naming the option.
+set(montecarlo_many_n 9000)
+foreach(n RANGE 9001 9999)
+  string(APPEND montecarlo_many_n ",${n}")
+endforeach()
+plateball_cli_test(montecarlo.sweep_work_is_bounded 3 REGEX "--trials: value 10: the study would execute about 189991280 impulses"
+  -- montecarlo problems/circle.json --trials 10 -q --sweep-n ${montecarlo_many_n})
+# Under MPI standard input reaches rank 0 only: `montecarlo -` is refused once, clearly (exit 3).
+if(PLATEBALL_WITH_MPI)
+  add_test(NAME cli.montecarlo.stdin_under_mpi_is_refused
+           COMMAND bash -c "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ${MPIEXEC_EXECUTABLE} --oversubscribe -np 2 $<TARGET_FILE:plateball_cli> montecarlo - --trials 2 -q < problems/circle.json 2>&1; echo exit=$?"
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(cli.montecarlo.stdin_under_mpi_is_refused PROPERTIES TIMEOUT 60 LABELS cli
+    PASS_REGULAR_EXPRESSION "PROBLEM.json: value -: standard input reaches rank 0 only: under MPI \\(2 ranks\\).*exit=3"
+    FAIL_REGULAR_EXPRESSION "malformed")
+endif()

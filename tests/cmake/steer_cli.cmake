@@ -47,3 +47,19 @@ if(TARGET isoparallel_solve)
   set_tests_properties(IsoparallelCli.ExactNeedsThreeImpulses PROPERTIES
     PASS_REGULAR_EXPRESSION "--impulses: value 2: must be in \\[3")
 endif()
+# mu only rescales time by 1/sqrt(mu): at mu = 1e12 and 1e-8 the same deviation as at mu = 1
+# (0.2130914...), the total time 11.365464870055014 / sqrt(mu), arrived (exit 0).
+plateball_cli_test(steer.exact_large_mu_is_time_scaled 0
+  --number total_time 1.1365464870055014e-05 1e-18 REGEX "\"value\": 0.21309140"
+  -- steer problems/figure7_exact.json --mu 1e12 --summary-only)
+plateball_cli_test(steer.exact_small_mu_is_time_scaled 0
+  --number total_time 113654.64870055014 1e-7 REGEX "\"value\": 0.21309140"
+  -- steer problems/figure7_exact.json --mu 1e-8 --summary-only)
+# The search's options without the search are an error naming both options.
+plateball_cli_test(steer.max_impulses_needs_fewest 3 REGEX "--max-impulses: value 3: needs --fewest-impulses"
+  -- steer problems/figure7_exact.json --max-impulses 3)
+plateball_cli_test(steer.starts_needs_fewest 3 REGEX "--starts: value 5: needs --fewest-impulses"
+  -- steer problems/figure7_exact.json --starts 5)
+# The exact arrival's worst case is bounded (README, Limits): 200 impulses x 50 iterations.
+plateball_cli_test(steer.impulses_beyond_the_limit 3 REGEX "--impulses: value 201: must be in \\[3, 200\\]"
+  -- steer problems/figure7_exact.json --impulses 201 --summary-only)

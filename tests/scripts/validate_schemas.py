@@ -180,6 +180,10 @@ def check_tool_outputs(run, problems):
         run.output(["plateball", "steer", "problems/figure7_exact.json", "--summary-only"])
         run.output(["plateball", "montecarlo", "problems/circle.json", "--impulses", "8", "--trials", "2", "--quiet",
                     "--strategy", "open_loop,feedback", "--noise", "timing=1e-3", "--sweep-n", "16", "--timings"])
+        # A cell without a completed trial (null distributions) and a sweep row without data (missing).
+        run.output(["plateball", "montecarlo", "problems/circle.json", "--impulses", "16", "--trials", "3", "--quiet",
+                    "--strategy", "open_loop,feedback", "--sweep-n", "32,64", "--noise",
+                    "impulse_magnitude=0.5,impulse_angle=0.5,energy_loss=0.5,timing=0.1,lambda=0.1,observation=0.1"])
 
 
 def readme_examples(text):

@@ -34,6 +34,7 @@ Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay
   Append(j, Json{{"impulse_count", s.impulses.size()},
          {"total_time", s.total_time},
          {"iterations", s.iterations},
+         {"iteration_limit_reached", s.iteration_limit_reached},
          {"rollouts", s.rollouts},
          {"arrival", Json{{"x", ToJson(s.x_final)},
                           {"rotation", RotationToJson(s.A_final)},

@@ -23,7 +23,7 @@ std::string Seconds(double s) {
 }  // namespace
 
 void AddProgressOptions(CLI::App& app) {
-  // A command with its own --quiet (montecarlo) reports its progress itself.
+  // A command with its own --quiet reports its progress itself.
   if (app.get_option_no_throw("--quiet") != nullptr) return;
   CLI::Option* quiet = app.add_flag_callback(
       "--quiet,-q", [] { SetProgressSetting(ProgressMode::kQuiet); },

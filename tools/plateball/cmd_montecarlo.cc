@@ -18,6 +18,7 @@
 #include "common/json_output.h"
 #include "common/number_format.h"
 #include "common/output_file.h"
+#include "common/progress.h"
 #include "common/problem_options.h"
 #include "montecarlo_charts.h"
 #include "montecarlo_ranks.h"
@@ -40,7 +41,7 @@ struct MonteCarloCliOptions {
   long long exact_window = 12;
   long long threads = 0;
   std::string out, csv, svg, svg_sweep;
-  bool quiet = false, timings = false;
+  bool timings = false;
 };
 
 std::string Option(const char* name) { return std::string(kCommandLine) + ": " + name; }
@@ -76,34 +77,13 @@ std::pair<MonteCarloProblem, MonteCarloOptions> BuildStudy(const MonteCarloCliOp
   return {mp, mo};
 }
 
-// A progress line on stderr at most once a second, after the first second: done / total, ETA.
-class Progress {
- public:
-  explicit Progress(bool enabled) : enabled_(enabled), start_(Clock::now()), last_(start_) {}
-  void operator()(long long done, long long total) {
-    if (!enabled_) return;
-    const auto now = Clock::now();
-    if (now - last_ < std::chrono::seconds(1) && done < total) return;
-    if (now - start_ < std::chrono::seconds(1)) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double eta = done > 0 ? elapsed * static_cast<double>(total - done) / static_cast<double>(done) : 0.0;
-    char line[160];
-    std::snprintf(line, sizeof line, "montecarlo: %lld/%lld trials (%.0f%%), elapsed %.1f s, ETA %.1f s\n", done,
-                  total, 100.0 * static_cast<double>(done) / static_cast<double>(std::max(total, 1LL)), elapsed, eta);
-    std::cerr << line << std::flush;
-  }
-  double Seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
-
- private:
-  using Clock = std::chrono::steady_clock;
-  bool enabled_;
-  Clock::time_point start_, last_;
-};
-
-Json DistributionJson(const Distribution& d) {
-  return Json{{"median", d.median}, {"p95", d.p95}, {"max", d.max}, {"mean", d.mean}};
+// null for a cell where no trial completed (it has no distribution).
+Json DistributionJson(const std::optional<Distribution>& d) {
+  if (!d) return Json(nullptr);
+  return Json{{"median", d->median}, {"p95", d->p95}, {"max", d->max}, {"mean", d->mean}};
 }
+
+Json NullableNumber(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
 
 Json NullableSlope(const std::optional<double>& s) { return s ? Json(*s) : Json(nullptr); }
 
@@ -128,20 +108,26 @@ Json ResultsJson(const MonteCarloProblem& mp, const MonteCarloSummary& s) {
     nominal.push_back(Json{{"n", n.n}, {"status", ToString(n.status)}, {"usable", n.status == PlanStatus::kSuccess},
                            {"message", n.message}, {"orientation_error", n.orientation_error},
                            {"measured_error", n.measured_error}, {"total_time", n.total_time}});
-  for (const MonteCarloCell& c : s.cells)
-    results.push_back(Json{{"n", c.n}, {"scenario", mp.scenarios[static_cast<std::size_t>(c.scenario)].name},
-                           {"strategy", ToString(c.strategy)}, {"trials", c.trials}, {"completed", c.completed},
-                           {"position_error", DistributionJson(c.position_error)},
-                           {"orientation_error", DistributionJson(c.orientation_error)},
-                           {"max_pass_miss", DistributionJson(c.max_pass_miss)},
-                           {"missed_pass_points", DistributionJson(c.missed_pass_points)},
-                           {"total_time", DistributionJson(c.total_time)}});
+  for (const MonteCarloCell& c : s.cells) {
+    Json cell{{"n", c.n}, {"scenario", mp.scenarios[static_cast<std::size_t>(c.scenario)].name},
+              {"strategy", ToString(c.strategy)}, {"trials", c.trials}, {"completed", c.completed},
+              {"position_error", DistributionJson(c.position_error)},
+              {"orientation_error", DistributionJson(c.orientation_error)},
+              {"max_pass_miss", DistributionJson(c.max_pass_miss)},
+              {"missed_pass_points", DistributionJson(c.missed_pass_points)},
+              {"total_time", DistributionJson(c.total_time)}};
+    if (c.completed == 0) cell["note"] = "no trial completed";
+    results.push_back(cell);
+  }
   for (const SweepSeries& w : s.sweeps) {
     Json rows = Json::array();
-    for (std::size_t i = 0; i < w.n.size(); ++i)
-      rows.push_back(Json{{"n", w.n[i]}, {"median_orientation_error", w.median_orientation_error[i]},
-                          {"median_position_error", w.median_position_error[i]},
-                          {"plan_orientation_error", w.plan_orientation_error[i]}});
+    for (std::size_t i = 0; i < w.n.size(); ++i) {
+      Json row{{"n", w.n[i]}, {"median_orientation_error", NullableNumber(w.median_orientation_error[i])},
+               {"median_position_error", NullableNumber(w.median_position_error[i])},
+               {"plan_orientation_error", w.plan_orientation_error[i]}};
+      if (w.Missing(i)) row["missing"] = "no trial completed: left out of slope and local_slopes";
+      rows.push_back(row);
+    }
     Json local = Json::array();
     for (const auto& l : w.local_slopes) local.push_back(NullableSlope(l));
     sweeps.push_back(Json{{"scenario", mp.scenarios[static_cast<std::size_t>(w.scenario)].name},
@@ -170,18 +156,40 @@ int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--csv", o.csv}, {"--svg", o.svg},
                     {"--svg-sweep", o.svg_sweep}},
                    {{"PROBLEM.json", o.problem.file()}});
+  const Ranks ranks;
+  // Standard input reaches one process only: under MPI the other ranks would read nothing. Rank 0
+  // says so once; the others end with the same exit code in silence.
+  if (ranks.size() > 1 && o.problem.file() == "-") {
+    if (ranks.rank() != 0) return kExitBadInput;
+    throw std::invalid_argument("PROBLEM.json: value -: standard input reaches rank 0 only: under MPI (" +
+                                std::to_string(ranks.size()) + " ranks) give the problem as a file");
+  }
   const Problem p = o.problem.Load();
   auto [mp, mo] = BuildStudy(o, p);
   if (!o.svg_sweep.empty() && mp.sweep_n.empty())
     throw std::invalid_argument(Option("--svg-sweep") + ": value " + o.svg_sweep + ": needs --sweep-n");
-  const Ranks ranks;
-  Progress progress(!o.quiet && ranks.rank() == 0);
-  mo.progress = [&progress](long long done, long long total) { progress(done, total); };
-  const MonteCarloWork work(mp, mo);
+  const auto start = std::chrono::steady_clock::now();
+  // Rank 0 shows the trials of its own share (the ranks' shares differ by at most one trial).
+  const std::string label = ranks.size() > 1 ? "plateball montecarlo (trials of rank 0 of " +
+                                                   std::to_string(ranks.size()) + ")"
+                                             : "plateball montecarlo (trials)";
+  Progress progress = ranks.rank() == 0 ? Progress(label, 0) : Progress(label, 0, ProgressMode::kQuiet, false);
+  mo.progress = [&progress](long long done, long long) { progress.Update(static_cast<double>(done)); };
+  const MonteCarloWork work = [&] {
+    try {
+      return MonteCarloWork(mp, mo);
+    } catch (const std::invalid_argument& e) {  // the library's bound of the study: name the options
+      const std::string m = e.what(), field = "trials: ";
+      if (m.rfind(field, 0) != 0) throw;
+      throw std::invalid_argument(Option("--trials") + ": " + m.substr(field.size()) +
+                                  " (the limit counts --trials, --sweep-trials, --impulses and --sweep-n together)");
+    }
+  }();
   const auto [begin, end] = ranks.Share(work.TaskCount());
+  progress.SetTotal(static_cast<double>(end - begin));
   std::vector<TrialRecord> records = ranks.Gather(work.Run(begin, end));
   if (ranks.rank() != 0) return kExitSuccess;
-  const double seconds = progress.Seconds();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const MonteCarloSummary s = work.Summarize(std::move(records));
   Json doc = HeaderJson("plateball", "montecarlo", p, o.problem.file());
   doc["initial"] = InitialJson(p);
@@ -218,7 +226,6 @@ std::function<int()> SetupMonteCarlo(CLI::App& sub) {
   sub.add_option("--csv", o->csv, "write one line per trial to this CSV file");
   sub.add_option("--svg", o->svg, "draw the distributions of the final errors per strategy (SVG)");
   sub.add_option("--svg-sweep", o->svg_sweep, "draw the median final error against n, log-log, with the fitted slopes (SVG)");
-  sub.add_flag("--quiet", o->quiet, "no progress line on standard error");
   sub.add_flag("--timings", o->timings, "add the wall time (the output then differs from run to run)");
   sub.footer(
       "Executes the plan of plan.path under seeded errors, trial i of every cell drawing from (seed, i) alone.\n"

@@ -3,6 +3,7 @@
 // path, else the shortest isoparallel path of the isoparallel section), as JSON and optionally
 // the plate as SVG (reference dashed, exact impulsive trajectory solid).
 #include <memory>
+#include <iostream>
 #include <sstream>
 #include <string>
 
@@ -55,7 +56,9 @@ int RunFewest(const SteerCliOptions& o, const Problem& p) {
   Append(doc, FewestImpulsesToJson(setup.problem, s, !o.summary_only));
   WriteJson(doc, o.out);
   const FewestImpulsesCount* f = s.Fewest();
-  if (!o.svg.empty() && f) {
+  if (!o.svg.empty() && f && f->impulses == 0)
+    std::cerr << "steer: --svg: value " << o.svg << ": not written: the goal is met at the start (0 impulses)\n";
+  if (!o.svg.empty() && f && f->impulses > 0) {
     std::ostringstream title;
     title.precision(3);
     title << (p.name.empty() ? std::string("steer") : p.name) << ": fewest impulses n = " << f->impulses
@@ -70,6 +73,11 @@ int RunSteer(const SteerCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   if (o.fewest || (p.steer && p.steer->fewest)) return RunFewest(o, p);
+  for (const CLI::Option* search : {o.max_impulses_opt, o.starts_opt})  // options of the search only
+    if (search->count() > 0)
+      throw std::invalid_argument(std::string(kCommandLine) + ": " + search->get_name() + ": value " +
+                                  search->as<std::string>() +
+                                  ": needs --fewest-impulses (or steer.fewest in the problem file)");
   const int n = o.impulses_opt->count() == 0
                     ? 0
                     : static_cast<int>(RequireIntegerInRange("--impulses", o.impulses, 3, 1'000'000));

@@ -161,9 +161,13 @@ std::string RenderErrorDistributions(const MonteCarloProblem& problem, const Mon
         pos.push_back(r.position_error);
       }
     const std::string color = Color(problem, c.scenario, c.strategy), name = CellName(problem, c.scenario, c.strategy);
-    series.push_back(Survival(ori, name + ": orientation error (rad), median " + Short(c.orientation_error.median),
+    if (!c.orientation_error || !c.position_error) {  // an empty legend entry says why nothing is drawn
+      series.push_back({name + ": no trial completed", {}, {}, {color, 1.8, "", "none"}, false});
+      continue;
+    }
+    series.push_back(Survival(ori, name + ": orientation error (rad), median " + Short(c.orientation_error->median),
                               {color, 1.8, "", "none"}));
-    series.push_back(Survival(pos, name + ": position error, median " + Short(c.position_error.median),
+    series.push_back(Survival(pos, name + ": position error, median " + Short(c.position_error->median),
                               {color, 1.4, "6,4", "none"}));
   }
   const double floor_p = 1.0 / std::max(1, problem.trials);
@@ -182,10 +186,20 @@ std::string RenderErrorAgainstN(const MonteCarloProblem& problem, const MonteCar
   std::vector<ChartSeries> series;
   std::vector<double> ticks;
   for (const SweepSeries& w : summary.sweeps) {
-    ChartSeries s{CellName(problem, w.scenario, w.strategy) + ": median, slope " + (w.slope ? Short(*w.slope) : "none"),
-                  {}, w.median_orientation_error, SweepStyle(problem, w.scenario, w.strategy), true};
-    for (int n : w.n) s.x.push_back(n);
-    ticks = s.x;
+    std::string missing;  // the n without data, named in the legend and not drawn
+    ChartSeries s{"", {}, {}, SweepStyle(problem, w.scenario, w.strategy), true};
+    ticks.clear();
+    for (std::size_t i = 0; i < w.n.size(); ++i) {
+      ticks.push_back(w.n[i]);
+      if (w.Missing(i)) {
+        missing += (missing.empty() ? "" : ", ") + std::to_string(w.n[i]);
+        continue;
+      }
+      s.x.push_back(w.n[i]);
+      s.y.push_back(*w.median_orientation_error[i]);
+    }
+    s.label = CellName(problem, w.scenario, w.strategy) + ": median, slope " + (w.slope ? Short(*w.slope) : "none") +
+              (missing.empty() ? "" : " (no trial completed at n = " + missing + ")");
     series.push_back(s);
   }
   if (!summary.sweeps.empty()) {

@@ -473,8 +473,10 @@ double ResultMedian(const ResultReader& r, int n, const std::string& scenario, c
   for (std::size_t i = 0; results && results->is_array() && i < results->size(); ++i) {
     const json& c = (*results)[i];
     const json *cn = r.Find(c, "cell_n"), *cs = r.Find(c, "cell_scenario"), *ct = r.Find(c, "cell_strategy");
-    if (cn && cs && ct && *cn == n && *cs == scenario && *ct == strategy)
-      return r.Number(c, "results[" + std::to_string(i) + "]", "cell_position_median");
+    if (!(cn && cs && ct && *cn == n && *cs == scenario && *ct == strategy)) continue;
+    const auto completed = c.find("completed");  // a cell where no trial completed has no median (null)
+    if (completed != c.end() && completed->is_number_integer() && *completed == 0) return -1.0;
+    return r.Number(c, "results[" + std::to_string(i) + "]", "cell_position_median");
   }
   return -1.0;
 }
