@@ -6,6 +6,7 @@ time) and without the tools, tests and benchmarks; the built extension and the g
 _build_info.py are then copied into the wheel."""
 import os
 import pathlib
+import shlex
 import shutil
 import subprocess
 import sys
@@ -27,6 +28,9 @@ class CMakeBuild(build_ext):
                      "-DCMAKE_POSITION_INDEPENDENT_CODE=ON", "-DPLATEBALL_BUILD_PYTHON=ON",
                      "-DPLATEBALL_BUILD_TESTS=OFF", "-DPLATEBALL_BUILD_BENCHMARKS=OFF",
                      "-DPLATEBALL_BUILD_TOOLS=OFF"]
+        # Extra configure arguments, e.g. CI's -DPLATEBALL_WERROR=ON: with the same flags as build/
+        # every object is a compiler-cache hit.
+        configure += shlex.split(os.environ.get("PLATEBALL_CMAKE_ARGS", ""))
         if shutil.which("ccache"):
             configure += ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"]
         subprocess.run(configure, check=True)

@@ -11,7 +11,10 @@ echo "docs.sh: documentation site built in $((SECONDS - start)) s (build/docs/ht
 start=$SECONDS
 target=$(mktemp -d)
 trap 'rm -rf "$target"' EXIT
-/usr/bin/python3 -m pip install . --no-build-isolation --no-deps --no-index --target "$target" -q
+# The same compile flags as scripts/build.sh's build/, through the same compiler cache.
+source scripts/compiler_cache.sh
+PLATEBALL_CMAKE_ARGS="-DPLATEBALL_WERROR=ON" \
+  /usr/bin/python3 -m pip install . --no-build-isolation --no-deps --no-index --target "$target" -q
 (cd "$target" && PYTHONPATH="$target" /usr/bin/python3 -c \
   "import plateball as pb; s = pb.join(model=pb.BallModel(2.0), start=(1.0471975511965976, 0.4, 0.1), target=(0.05, 0)); assert s.status == 'converged', s.status; print('docs.sh: pip-installed plateball', pb.__version__, 'joins:', s.status)")
 echo "docs.sh: pip install and import in $((SECONDS - start)) s"
