@@ -16,6 +16,7 @@ library's message (FIELD: value V: what). The solvers release the GIL.
 """
 
 import functools
+import os
 
 from ._plateball import *  # noqa: F401,F403
 from ._plateball import (__version__, _certify_isoparallel, _converge, _isoparallel, _join, _plan, _plan_optimal_path,  # noqa: F401
@@ -139,5 +140,9 @@ def roll(points, segment=False, integration=None):
 
 
 def load_problem(path):
-    """Reads a problem file with the library's reader (same checks and messages as the tools)."""
-    return read_problem_file(str(path))
+    """Reads a problem file with the library's reader (same checks and messages as the tools).
+
+    path: a str or os.PathLike; anything else raises TypeError (str(None) would name a file "None")."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError("load_problem(): path: value " + repr(path) + ": must be a str or os.PathLike")
+    return read_problem_file(os.fspath(path))
