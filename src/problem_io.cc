@@ -1053,11 +1053,10 @@ Problem ReadProblemFile(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw ProblemFileReadError(path + ": (file): value \"" + path + "\": is a directory, not a problem file");
-  // Opening a FIFO blocks until a writer appears, and a device can be endless: only regular files
-  // are read (standard input is the tools' "-").
-  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+  // Opening a FIFO blocks until a writer appears (an endless device is cut off by the size limit).
+  if (std::filesystem::is_fifo(path, ec) || std::filesystem::is_socket(path, ec))
     throw ProblemFileReadError(path + ": (file): value \"" + path +
-                               "\": not a regular file (a FIFO, device or socket); give a file, or \"-\" for standard input");
+                               "\": a FIFO or socket, not a file; give a file, or \"-\" for standard input");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ProblemFileReadError(path + ": (file): value \"" + path + "\": cannot open the file for reading");
   std::string text;

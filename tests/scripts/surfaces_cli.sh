@@ -33,9 +33,9 @@ cases=(
   "kinetic energy inf (simulate)|3|initial.mu|pb|simulate|$work/infinite_energy.json|--samples|10"
   "kinetic energy inf (reach)|3|initial.mu|pb|reach|$work/infinite_energy.json"
   "problem on standard input above 16 MiB|3|16 MiB|pb|simulate|-|<$work/huge_problem.json"
-  "FIFO as the problem file|5|not a regular file|pb|simulate|$work/fifo.json"
-  "FIFO as the problem file (isoparallel_solve)|5|not a regular file|iso|$work/fifo.json"
-  "FIFO as the result of view|5|not a regular file|pb|view|$work/fifo.json|--html|$work/v.html"
+  "FIFO as the problem file|5|a FIFO or socket, not a file|pb|simulate|$work/fifo.json"
+  "FIFO as the problem file (isoparallel_solve)|5|a FIFO or socket, not a file|iso|$work/fifo.json"
+  "FIFO as the result of view|5|a FIFO or socket, not a file|pb|view|$work/fifo.json|--html|$work/v.html"
   "unknown subcommand|2|\"bogus\": unknown subcommand|pb|bogus"
   "unknown subcommand rig|2|\"rig\": unknown subcommand|pb|rig|x.json"
   "--exact with 2 impulses, before the solve|3|--impulses: value 2|iso|$src/problems/figure7.json|--exact|--impulses|2"
@@ -76,6 +76,29 @@ else bad "SVG of a name with control characters is not well-formed XML"; fi
 "$iso" "$work/control_figure7.json" > "$work/control_iso.txt" 2>&1
 if [[ -s "$work/control_iso.txt" ]] && ! grep -q $'\x1b\|\x01\|\x07' "$work/control_iso.txt" && grep -q 'a\\x01b\\x1b' "$work/control_iso.txt"
 then ok; else bad "isoparallel_solve printed control characters raw: $(head -c 200 "$work/control_iso.txt" | od -c | head -3)"; fi
+
+# SIGTERM while an output is being written: the temporary file is removed, no output appears.
+"$pb" simulate "$src/problems/simulate_example.json" --samples 200000 --out "$work/sig.json" 2>/dev/null &
+pid=$!
+seen=0
+for _ in $(seq 1 4000); do
+  if compgen -G "$work/.sig.json.tmp*" > /dev/null; then seen=1; kill -TERM $pid; break; fi
+  sleep 0.005
+done
+wait $pid
+code=$?
+left=$(compgen -G "$work/.sig.json.tmp*" | wc -l)
+if [[ $seen -eq 1 && $code -eq 143 && $left -eq 0 && ! -e "$work/sig.json" ]]; then ok
+else bad "SIGTERM during a write: temporary seen $seen, exit $code, $left temporaries left"; fi
+
+# A run's outputs go in place together: when the SVG cannot be written, the JSON is not replaced
+# either (and no temporary file is left).
+echo old > "$work/together.json"
+timeout 60 "$iso" "$src/problems/figure7.json" --out "$work/together.json" --svg /dev/full > /dev/null 2>&1
+code=$?
+left=$(compgen -G "$work/.together.json.tmp*" | wc -l)
+if [[ $code -eq 5 && "$(cat "$work/together.json")" == old && $left -eq 0 ]]; then ok
+else bad "--out with a failing --svg: exit $code, --out now $(head -c 40 "$work/together.json"), $left temporaries left"; fi
 
 # view accepts real results: steer --stop-at-goal (a last arc of duration 0) and the fewest search.
 "$pb" steer "$src/problems/figure7_exact.json" --stop-at-goal --quiet --out "$work/stop.json" 2>/dev/null

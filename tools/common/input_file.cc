@@ -31,10 +31,10 @@ bool IsStandardInput(const std::string& path) { return path == "-"; }
 
 std::string ReadInputText(const std::string& path) {
   if (IsStandardInput(path)) return ReadBounded(std::cin, "standard input");
-  // Opening a FIFO blocks until a writer appears, and a device can be endless: only regular files.
+  // Opening a FIFO blocks until a writer appears (an endless device is cut off by ReadBounded).
   std::error_code ec;
-  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
-    throw IoError(path + ": not a regular file (a FIFO, device, socket or directory); give a file, or \"-\" for standard input");
+  if (std::filesystem::is_fifo(path, ec) || std::filesystem::is_socket(path, ec))
+    throw IoError(path + ": a FIFO or socket, not a file; give a file, or \"-\" for standard input");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open the file for reading");
   return ReadBounded(in, path);
