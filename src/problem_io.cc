@@ -1034,8 +1034,15 @@ std::string ToString(const PathSpec& spec) {
   return kNames[spec.shape.index()];
 }
 
+// The one message for a problem text above kMaxFileBytes (a file, standard input or a string).
+static std::string TooLargeMessage(const std::string& source_name) {
+  return source_name + ": (file): value (more than " + std::to_string(kMaxFileBytes) + " bytes): larger than the " +
+         std::to_string(kMaxFileBytes >> 20) + " MiB limit of a problem file";
+}
+
 Problem ParseProblem(const std::string& json_text, const std::string& source_name) {
   const Reader reader(source_name);
+  if (json_text.size() > kMaxFileBytes) throw std::invalid_argument(TooLargeMessage(source_name));
   try {
     const json root = ParseJson(json_text, reader);
     return reader.Document(root);
@@ -1051,16 +1058,17 @@ Problem ReadProblemFile(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw ProblemFileReadError(path + ": (file): value \"" + path + "\": is a directory, not a problem file");
+  // Opening a FIFO blocks until a writer appears (an endless device is cut off by the size limit).
+  if (std::filesystem::is_fifo(path, ec) || std::filesystem::is_socket(path, ec))
+    throw ProblemFileReadError(path + ": (file): value \"" + path +
+                               "\": a FIFO or socket, not a file; give a file, or \"-\" for standard input");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ProblemFileReadError(path + ": (file): value \"" + path + "\": cannot open the file for reading");
   std::string text;
   char buffer[1 << 16];
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
     text.append(buffer, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > kMaxFileBytes)
-      throw std::invalid_argument(path + ": (file): value (more than " + std::to_string(kMaxFileBytes) +
-                                  " bytes): larger than the " + std::to_string(kMaxFileBytes >> 20) +
-                                  " MiB limit of a problem file");
+    if (text.size() > kMaxFileBytes) throw std::invalid_argument(TooLargeMessage(path));
   }
   if (in.bad()) throw ProblemFileReadError(path + ": (file): value \"" + path + "\": read error");
   return ParseProblem(text, path);

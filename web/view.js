@@ -99,22 +99,29 @@
   const size = box.getSize(new THREE.Vector2());
   const extent = Math.max(size.x, size.y);
 
-  // Lower plate: a light slab with a unit grid.
-  const lower = new THREE.Mesh(new THREE.PlaneGeometry(Math.ceil(extent + 2), Math.ceil(extent + 2)),
+  // Lower plate: a light slab with a grid of spacing 1, 10, 100, ... so that it has at most
+  // kMaxGridLines lines whatever the extent (a unit grid over a long simulation would need more
+  // lines than an array can hold).
+  const kMaxGridLines = 200;
+  const gridStep = (size) => { let step = 1; while (size / step > kMaxGridLines && step < 1e30) step *= 10; return step; };
+  const plateStep = gridStep(extent + 2);
+  const plateSize = plateStep * Math.ceil((extent + 2) / plateStep);
+  const lower = new THREE.Mesh(new THREE.PlaneGeometry(plateSize, plateSize),
     new THREE.MeshBasicMaterial({ color: 0xefede6 }));
   lower.position.set(centre.x, centre.y, -0.001);
   scene.add(lower);
-  const grid = new THREE.GridHelper(Math.ceil(extent + 2), Math.ceil(extent + 2), 0xd6d3ca, 0xd6d3ca);
+  const grid = new THREE.GridHelper(plateSize, Math.round(plateSize / plateStep), 0xd6d3ca, 0xd6d3ca);
   grid.rotation.x = Math.PI / 2;
   grid.position.set(centre.x, centre.y, 0);
   scene.add(grid);
 
   // Upper plate at z = 2, translucent, its own grid so that its motion shows.
   const upper = new THREE.Group();
-  const upperSize = Math.max(5, Math.ceil(0.6 * extent));
+  const upperStep = gridStep(Math.max(5, 0.6 * extent));
+  const upperSize = upperStep * Math.max(5, Math.ceil(0.6 * extent / upperStep));
   upper.add(new THREE.Mesh(new THREE.PlaneGeometry(upperSize, upperSize),
     new THREE.MeshBasicMaterial({ color: 0xd8c27a, transparent: true, opacity: 0.16, side: THREE.DoubleSide, depthWrite: false })));
-  const upperGrid = new THREE.GridHelper(upperSize, Math.round(upperSize), 0xa08a3a, 0xa08a3a);
+  const upperGrid = new THREE.GridHelper(upperSize, Math.round(upperSize / upperStep), 0xa08a3a, 0xa08a3a);
   upperGrid.rotation.x = Math.PI / 2;
   upperGrid.material.transparent = true;
   upperGrid.material.opacity = 0.45;
@@ -494,6 +501,8 @@
     contactPoint: () => current.x.slice(),
     spread: () => D.spread.map((cell) => ({ label: cell.label, x: cell.x.slice() })),
     goal: () => (D.goal ? D.goal.slice() : null),
+    // Lines of the lower plate's grid (two vertices each).
+    gridLines: () => grid.geometry.attributes.position.count / 2,
     // The ball's bounding box on the screen (CSS pixels): the projections of its bounding cube.
     ballBox: () => {
       const xs = [], ys = [];

@@ -16,6 +16,7 @@ library's message (FIELD: value V: what). The solvers release the GIL. For examp
 """
 
 import functools
+import os
 import sys
 
 from ._build_info import PYTHON_EXECUTABLE as _BUILT_FOR, PYTHON_VERSION as _BUILT_VERSION
@@ -170,5 +171,9 @@ def roll(points, segment=False, integration=None):
 
 
 def load_problem(path):
-    """Reads a problem file with the library's reader (same checks and messages as the tools)."""
-    return read_problem_file(str(path))
+    """Reads a problem file with the library's reader (same checks and messages as the tools).
+
+    path: a str or os.PathLike; anything else raises TypeError (str(None) would name a file "None")."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError("load_problem(): path: value " + repr(path) + ": must be a str or os.PathLike")
+    return read_problem_file(os.fspath(path))

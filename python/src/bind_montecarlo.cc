@@ -1,5 +1,7 @@
 // Python binding: execution under errors and the Monte Carlo study (error_model.h, execution.h,
 // monte_carlo.h). RunMonteCarlo releases the GIL; its progress callback is not exposed.
+#include <utility>
+
 #include "bind_common.h"
 #include "plateball/error_model.h"
 #include "plateball/execution.h"
@@ -25,6 +27,9 @@ void BindInputs(py::module_& m) {
         "'impulse_magnitude=1e-3,timing=1e-4' -> ErrorModel (the CLI's --noise)");
   py::class_<MonteCarloScenario> scenario(m, "MonteCarloScenario");
   WithKeywordInit(scenario).def_readwrite("name", &MonteCarloScenario::name).def_readwrite("errors", &MonteCarloScenario::errors);
+  // The positional form MonteCarloScenario(name, errors=ErrorModel(...)) of the README.
+  scenario.def(py::init([](std::string name, const ErrorModel& errors) { return MonteCarloScenario{std::move(name), errors}; }),
+               py::arg("name"), py::arg("errors") = ErrorModel{});
   py::class_<ExecutionOptions> execution(m, "ExecutionOptions");
   WithKeywordInit(execution)
       .def_readwrite("miss_tolerance", &ExecutionOptions::miss_tolerance)

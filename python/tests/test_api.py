@@ -103,6 +103,24 @@ def test_helper_counts_are_checked():
         pb.FreeMotion(pb.BallModel(1.0), (1.0, 0.0, 0.0), 1.0).sample(0.0, 1.0, 1)
 
 
+def test_load_problem_refuses_a_non_path_and_parse_problem_has_the_file_limit(problems):
+    with pytest.raises(TypeError, match=r"load_problem\(\): path: value None"):
+        pb.load_problem(None)
+    text = (problems / "simulate_example.json").read_text()
+    assert pb.parse_problem(text).name == pb.load_problem(problems / "simulate_example.json").name
+    # The same 16 MiB limit as a problem file read by the tools, here on a string.
+    with pytest.raises(ValueError, match="16 MiB limit of a problem file"):
+        pb.parse_problem(text + " " * (16 * 2**20))
+
+
+def test_montecarlo_scenario_positional_as_in_the_readme():
+    errors = pb.ErrorModel(timing=1e-3)
+    s = pb.MonteCarloScenario("late", errors=errors)
+    assert s.name == "late" and s.errors.timing == 1e-3
+    assert pb.MonteCarloScenario("plain").errors.timing == 0.0
+    assert pb.MonteCarloScenario(name="kw").name == "kw"
+
+
 def test_montecarlo_inputs_are_words_and_checked():
     p = pb.MonteCarloProblem(strategies=["feedback_exact", "open_loop"])
     assert p.strategies == ["feedback_exact", "open_loop"]

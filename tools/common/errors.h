@@ -14,6 +14,10 @@ class IoError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// `text` for a terminal: C0 control characters other than line feed and tab, and DEL, are shown
+/// as "\xNN" (a name with ESC sequences could otherwise retitle or clear the terminal).
+std::string TerminalSafe(const std::string& text);
+
 /// The exit code of a run that ended with the exception currently being handled, after printing
 /// "PROGRAM: KIND: message" on `err`. Call it only inside a catch block. The mapping:
 ///   plateball::ProblemFileReadError, IoError      -> kExitIoError (5)      "cannot read/write"

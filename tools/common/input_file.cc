@@ -1,5 +1,6 @@
 #include "common/input_file.h"
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
@@ -30,6 +31,10 @@ bool IsStandardInput(const std::string& path) { return path == "-"; }
 
 std::string ReadInputText(const std::string& path) {
   if (IsStandardInput(path)) return ReadBounded(std::cin, "standard input");
+  // Opening a FIFO blocks until a writer appears (an endless device is cut off by ReadBounded).
+  std::error_code ec;
+  if (std::filesystem::is_fifo(path, ec) || std::filesystem::is_socket(path, ec))
+    throw IoError(path + ": a FIFO or socket, not a file; give a file, or \"-\" for standard input");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open the file for reading");
   return ReadBounded(in, path);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/command_line.h"
+#include "common/errors.h"
 #include "common/exact_output.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
@@ -27,6 +28,7 @@
 #include "common/plan_json.h"
 #include "common/progress.h"
 #include "common/svg.h"
+#include "plateball/exact_arrival.h"
 #include "plateball/free_motion.h"
 #include "plateball/isoparallel.h"
 #include "plateball/isoparallel_certificate.h"
@@ -371,12 +373,16 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
                            ? 0
                            : static_cast<int>(RequireIntegerInRange("--impulses", cli.impulses, 1, 10'000));
   if (cli.certify) CheckCertifyOptions(cli, prob);
+  // Exact arrival needs 2n unknowns >= 5 conditions (exact_arrival.h): checked before the solve.
+  if (cli.exact && impulses != 0 && (impulses < 3 || impulses > plateball::kMaxExactImpulses))
+    throw std::invalid_argument("--impulses: value " + std::to_string(impulses) + ": --exact needs 3 ... " +
+                                std::to_string(plateball::kMaxExactImpulses) + " impulses");
   const IsoparallelSummary summary = SolveWithProgress(setup, cli.program);
 
   const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
   const std::string name = ProblemName(problem);
   out << std::setprecision(6);
-  out << cli.program << ": " << name << ": (" << prob.start.x() << ", " << prob.start.y() << ") -> ("
+  out << cli.program << ": " << TerminalSafe(name) << ": (" << prob.start.x() << ", " << prob.start.y() << ") -> ("
             << prob.goal.x() << ", " << prob.goal.y() << "), target reorientation angle " << angle << " rad\n";
   if (!summary.IsSolutionUsable()) {
     PrintNoSolution(summary, opt, out);

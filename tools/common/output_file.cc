@@ -4,12 +4,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include "common/errors.h"
 
@@ -110,27 +112,97 @@ class BufferedFd {
   std::string buffer_;
 };
 
+// ---- temporary files removed on SIGINT, SIGTERM and SIGHUP
+// The paths live in fixed buffers so that the signal handler reads them without allocating.
+constexpr int kMaxLiveTemps = 32;
+constexpr std::size_t kMaxTempPath = 4096;
+char g_live_path[kMaxLiveTemps][kMaxTempPath];
+volatile std::sig_atomic_t g_live_used[kMaxLiveTemps];
+
+extern "C" void RemoveTemporariesAndReraise(int sig) {
+  for (int i = 0; i < kMaxLiveTemps; ++i)
+    if (g_live_used[i]) ::unlink(g_live_path[i]);  // async-signal-safe
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+// Installs the handler once, for the signals whose action is still the default (a handler that
+// the program or a library such as MPI installed is left alone).
+void InstallTemporaryCleanup() {
+  static const bool installed = [] {
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction old {};
+      if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;
+      struct sigaction act {};
+      act.sa_handler = RemoveTemporariesAndReraise;
+      sigemptyset(&act.sa_mask);
+      ::sigaction(sig, &act, nullptr);
+    }
+    return true;
+  }();
+  (void)installed;
+}
+
+// The slot of a registered temporary path, or -1 (too many or too long: not removed on a signal).
+int RegisterTemporary(const std::string& temp) {
+  InstallTemporaryCleanup();
+  if (temp.size() >= kMaxTempPath) return -1;
+  for (int i = 0; i < kMaxLiveTemps; ++i) {
+    if (g_live_used[i]) continue;
+    std::memcpy(g_live_path[i], temp.c_str(), temp.size() + 1);
+    g_live_used[i] = 1;
+    return i;
+  }
+  return -1;
+}
+
+void UnregisterTemporary(int slot) {
+  if (slot >= 0) g_live_used[slot] = 0;
+}
+
+// A written temporary file waiting to be renamed over its path.
+struct PendingOutput {
+  std::string temp;
+  std::string path;
+  int slot;
+};
+// Non-null inside WithOutputsTogether: renames wait for the end of the run.
+std::vector<PendingOutput>* g_pending = nullptr;
+
+void DiscardPending(std::vector<PendingOutput>* pending) {
+  for (const PendingOutput& p : *pending) {
+    ::unlink(p.temp.c_str());
+    UnregisterTemporary(p.slot);
+  }
+  pending->clear();
+}
+
 void WriteStreamedAtomically(const std::string& path, const std::function<void(const OutputSink&)>& produce) {
   std::string temp = (fs::path(DirectoryOf(path)) / ("." + fs::path(path).filename().string() + ".tmpXXXXXX")).string();
   const int fd = ::mkstemp(temp.data());
   if (fd < 0) throw IoError(path + ": cannot create a temporary file in " + DirectoryOf(path) + ": " + ErrnoText(errno));
+  const int slot = RegisterTemporary(temp);
   BufferedFd out(fd);
   try {
     produce([&out](std::string_view text) { out.Append(text); });
   } catch (...) {
     ::close(fd);
     ::unlink(temp.c_str());
+    UnregisterTemporary(slot);
     throw;
   }
   int err = out.Flush();
   if (err == 0 && ::fchmod(fd, TargetMode(path)) != 0) err = errno;
   if (err == 0 && ::fsync(fd) != 0) err = errno;
   if (::close(fd) != 0 && err == 0) err = errno;
-  if (err == 0 && ::rename(temp.c_str(), path.c_str()) != 0) err = errno;
-  if (err != 0) {
-    ::unlink(temp.c_str());
-    throw IoError(path + ": write failed (the previous file, if any, is unchanged): " + ErrnoText(err));
+  if (err == 0 && g_pending != nullptr) {
+    g_pending->push_back({temp, path, slot});
+    return;
   }
+  if (err == 0 && ::rename(temp.c_str(), path.c_str()) != 0) err = errno;
+  if (err != 0) ::unlink(temp.c_str());
+  UnregisterTemporary(slot);
+  if (err != 0) throw IoError(path + ": write failed (the previous file, if any, is unchanged): " + ErrnoText(err));
 }
 
 }  // namespace
@@ -155,6 +227,32 @@ void WriteOutputStreamed(const std::string& path, const std::function<void(const
   } else {
     WriteStreamedAtomically(path, produce);
   }
+}
+
+int WithOutputsTogether(const std::function<int()>& run) {
+  if (g_pending != nullptr) return run();  // nested: the outer call puts the outputs in place
+  std::vector<PendingOutput> pending;
+  g_pending = &pending;
+  int code = 0;
+  try {
+    code = run();
+  } catch (...) {
+    g_pending = nullptr;
+    DiscardPending(&pending);
+    throw;
+  }
+  g_pending = nullptr;
+  for (std::size_t i = 0; i < pending.size(); ++i) {
+    if (::rename(pending[i].temp.c_str(), pending[i].path.c_str()) == 0) {
+      UnregisterTemporary(pending[i].slot);
+      continue;
+    }
+    const int err = errno;
+    std::vector<PendingOutput> rest(pending.begin() + static_cast<std::ptrdiff_t>(i), pending.end());
+    DiscardPending(&rest);
+    throw IoError(pending[i].path + ": write failed (the previous file, if any, is unchanged): " + ErrnoText(err));
+  }
+  return code;
 }
 
 void FlushStandardOutput() {

@@ -29,6 +29,15 @@ using OutputSink = std::function<void(std::string_view)>;
 /// passes on (the previous file is untouched).
 void WriteOutputStreamed(const std::string& path, const std::function<void(const OutputSink&)>& produce);
 
+/// Runs `run` with the outputs of WriteOutput and WriteOutputStreamed to files held back: each is
+/// written completely to its temporary file, and the renames over the paths wait until `run`
+/// returns; then they follow one another (so a run's --out and --svg, or --out and --csv, replace
+/// the previous files together: a concurrent reader or writer can only fall between two renames, a
+/// window of microseconds, not of the run's duration). When `run` throws, every temporary file is
+/// removed and no output is replaced. Temporary files are also removed on SIGINT, SIGTERM and
+/// SIGHUP (when the program has no handler of its own for them). RunWithExitCodes calls it.
+int WithOutputsTogether(const std::function<int()>& run);
+
 /// Flushes standard output; throws IoError("standard output: write failed") when any write to it
 /// failed (a full disk, a closed pipe). RunWithExitCodes calls it after every run.
 void FlushStandardOutput();

@@ -31,6 +31,9 @@ std::string Escape(const std::string& s) {
     else if (c == '>') out += "&gt;";
     else if (c == '&') out += "&amp;";
     else if (c == '"') out += "&quot;";
+    // C0 controls other than tab, line feed and carriage return are not XML 1.0 characters (not
+    // even as references): each is shown as U+FFFD, the replacement character.
+    else if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') out += "\xEF\xBF\xBD";
     else out += c;
   }
   return out;

@@ -1,7 +1,11 @@
 #include "common/units.h"
 
+#include <cmath>
 #include <map>
+#include <stdexcept>
 #include <string>
+
+#include "common/number_format.h"
 
 namespace plateball::tools {
 namespace {
@@ -59,6 +63,21 @@ void AddSi(Json* j, const PhysicalScales& s) {
 
 }  // namespace
 
+namespace {
+
+// The kinetic energy mu (I1 + M r^2) / 2 in joules; refused (exit 3, naming initial.mu) when it overflows.
+double KineticEnergyOf(const Problem& problem) {
+  const PhysicalParameters& q = *problem.physical;
+  const double energy = 0.5 * problem.mu * (q.inertia_1 + q.EffectiveMass() * q.radius * q.radius);  // docs/units.md
+  if (!std::isfinite(energy))
+    throw std::invalid_argument("initial.mu: value " + FormatNumber(problem.mu) +
+                                ": with ball.physical the kinetic energy mu (I1 + M r^2) / 2 = " + FormatNumber(energy) +
+                                " J is not finite; reduce initial.mu or the inertias");
+  return energy;
+}
+
+}  // namespace
+
 std::optional<PhysicalScales> ScalesOf(const Problem& problem) {
   if (!problem.physical) return std::nullopt;
   PhysicalScales s;
@@ -77,7 +96,7 @@ void AddPhysicalUnits(const Problem& problem, Json* doc) {
                         {"radius", q.radius}, {"plate_mass", q.plate_mass}}},
       {"normalisation", "I1 = 1, r = 1, time unchanged (section 2.1); mu in s^-2; see docs/units.md"},
       {"scales", Json{{"length_m", s->length_m}, {"time_s", s->time_s}, {"velocity_m_per_s", s->velocity_m_per_s}}},
-      {"kinetic_energy_J", 0.5 * problem.mu * (q.inertia_1 + q.EffectiveMass() * q.radius * q.radius)}};
+      {"kinetic_energy_J", KineticEnergyOf(problem)}};
 }
 
 }  // namespace plateball::tools

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <map>
 #include <stdexcept>
+#include <string>
 
 #include "common/command_line.h"
 #include "common/command_registry.h"
@@ -22,6 +23,19 @@ int main(int argc, char** argv) {
     CLI::App* sub = app.add_subcommand(c.name, c.description);
     runners[sub] = c.setup(*sub);
     AddProgressOptions(*sub);  // --quiet, --progress on every subcommand (progress.h)
+  }
+  // A first word that names no subcommand is reported as such (CLI11 would say only that a
+  // subcommand is required).
+  std::string names;
+  bool known = false;
+  for (const Command& c : Commands()) {
+    names += (names.empty() ? "" : ", ") + c.name;
+    known = known || (argc >= 2 && c.name == argv[1]);
+  }
+  if (argc >= 2 && argv[1][0] != '-' && !known) {
+    std::cerr << "plateball: command line: SUBCOMMAND: value \"" << TerminalSafe(argv[1])
+              << "\": unknown subcommand; one of " << names << "\nRun with --help for more information.\n";
+    return kExitUsage;
   }
   if (const auto code = ParseCommandLine(app, argc, argv, "plateball")) return *code;
   for (const auto& [sub, run] : runners) {

@@ -2,15 +2,19 @@
 // `plateball simulate`, `plan`, `steer` or an isoparallel solution: the data (re-simulated by the
 // library, view_data.h), the page's script and three.js are all in the one HTML file, which opens
 // offline and makes no network request.
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/command_registry.h"
 #include "common/errors.h"
 #include "common/exit_codes.h"
 #include "common/input_file.h"
 #include "common/limits.h"
+#include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
 #include "plateball/version.h"
@@ -41,17 +45,45 @@ nlohmann::json ParseResult(const std::string& file, const std::string& text) {
   }
 }
 
-// Replaces the one occurrence of `marker` in `page` by `text`.
-void Fill(std::string* page, const std::string& marker, const std::string& text) {
-  const std::size_t at = page->find(marker);
-  if (at == std::string::npos) throw std::logic_error("web/view.html lacks the marker " + marker);
-  page->replace(at, marker.size(), text);
+// Fills every marker of the template in one pass over the template: each marker is found in the
+// template itself, never in text already filled in, so data that contains a marker stays data.
+std::string FillTemplate(const std::string& page, const std::vector<std::pair<std::string, std::string>>& fills) {
+  std::vector<std::pair<std::size_t, std::size_t>> at;  // (position in page, index in fills)
+  for (std::size_t k = 0; k < fills.size(); ++k) {
+    const std::size_t pos = page.find(fills[k].first);
+    if (pos == std::string::npos) throw std::logic_error("web/view.html lacks the marker " + fills[k].first);
+    at.emplace_back(pos, k);
+  }
+  std::sort(at.begin(), at.end());
+  std::string out;
+  std::size_t from = 0;
+  for (const auto& [pos, k] : at) {
+    out.append(page, from, pos - from);
+    out += fills[k].second;
+    from = pos + fills[k].first.size();
+  }
+  out.append(page, from, std::string::npos);
+  return out;
 }
 
-// Text inside <script>: "</" could close the element, so it is written "<\/" (same JSON value).
-std::string ScriptSafe(std::string text) {
-  for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) text.insert(at + 1, "\\");
-  return text;
+// JSON text for a <script> element: '<', '>' and '&' (which could open "<!--", "<script" or "</script")
+// and U+2028/U+2029 (line terminators in older JavaScript) are written as \uXXXX escapes. They can only
+// occur inside JSON strings, where the escape denotes the same character, so the value is unchanged.
+std::string ScriptSafeJson(const nlohmann::json& value) {
+  const std::string text = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '<') out += "\\u003c";
+    else if (c == '>') out += "\\u003e";
+    else if (c == '&') out += "\\u0026";
+    else if (c == '\xE2' && i + 2 < text.size() && text[i + 1] == '\x80' && (text[i + 2] == '\xA8' || text[i + 2] == '\xA9')) {
+      out += text[i + 2] == '\xA8' ? "\\u2028" : "\\u2029";
+      i += 2;
+    } else out += c;
+  }
+  return out;
 }
 
 std::string HtmlEscape(const std::string& text) {
@@ -68,6 +100,26 @@ std::string HtmlEscape(const std::string& text) {
   return out;
 }
 
+// The page draws in single precision (WebGL): a float resolves a position to 1/16 ball radius up to
+// 10^6, and the grid of the plate is scaled to at most 200 lines. Motions reaching farther than
+// this are refused rather than drawn as jitter (or not at all, once coordinates overflow a float).
+constexpr double kMaxDrawnCoordinate = 1e6;
+
+void CheckDrawable(const std::string& file, const view::ViewData& d) {
+  const auto check = [&](const char* what, const std::vector<Eigen::Vector2d>& points) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double r = points[i].cwiseAbs().maxCoeff();
+      if (!(r <= kMaxDrawnCoordinate))
+        throw std::invalid_argument(file + ": " + what + "[" + std::to_string(i) + "]: value " + FormatNumber(r) +
+                                    ": the page draws coordinates up to 1e6 ball radii; shorten the motion");
+    }
+  };
+  check("contact path (re-simulated)", d.x);
+  check("planned path", d.planned);
+  for (const auto& [label, points] : d.spread) check(("Monte Carlo final points of " + label).c_str(), points);
+  if (d.has_goal) check("goal", {d.goal});
+}
+
 int RunView(const ViewCliOptions& o) {
   CheckOutputPaths({{"--html", o.html}}, {{"RESULT.json", o.result}, {"--problem", o.problem}});
   const long long samples = RequireIntegerInRange("--samples", o.samples, 100, 100'000);
@@ -78,13 +130,13 @@ int RunView(const ViewCliOptions& o) {
   options.problem_file = o.problem;
   options.samples = static_cast<int>(samples);
   const view::ViewData data = view::BuildView(reader, options);
+  CheckDrawable(o.result, data);
   nlohmann::json page_data = view::ViewDataToJson(data);
   page_data["generator"] = std::string("plateball ") + PLATEBALL_VERSION_STRING + ", three.js " + view::kThreeVersion;
-  std::string page = view::kViewTemplate;
-  Fill(&page, "@TITLE@", HtmlEscape(data.title));
-  Fill(&page, "/*@THREE@*/", view::kThreeScript);
-  Fill(&page, "/*@VIEW@*/", view::kViewScript);
-  Fill(&page, "\"@DATA@\"", ScriptSafe(page_data.dump()));
+  const std::string page = FillTemplate(view::kViewTemplate, {{"@TITLE@", HtmlEscape(data.title)},
+                                                                {"/*@THREE@*/", view::kThreeScript},
+                                                                {"/*@VIEW@*/", view::kViewScript},
+                                                                {"\"@DATA@\"", ScriptSafeJson(page_data)}});
   WriteOutput(o.html, page);
   return kExitSuccess;
 }

@@ -12,6 +12,7 @@
 #include "common/number_format.h"
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/fewest_impulses.h"
 #include "plateball/free_motion.h"
 #include "plateball/execution.h"
 #include "plateball/isoparallel.h"
@@ -184,13 +185,17 @@ double TotalDuration(const ResultReader& r, const json& list, const std::string&
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string where = list_field + "[" + std::to_string(k) + "]";
     const double duration = r.Number(list[k], where, "duration");
-    if (!(duration > 0)) r.Fail(where + ".duration", FormatNumber(duration), "must be > 0");
+    // 0 is an arc that ends where it begins: the stop at the goal (steer --stop-at-goal).
+    if (!(duration >= 0)) r.Fail(where + ".duration", FormatNumber(duration), "must be >= 0");
     total += duration;
   }
+  if (!(total > 0 && std::isfinite(total)))
+    r.Fail(list_field + "[].duration", FormatNumber(total), "the durations must add up to a finite time > 0");
   return total;
 }
 
 int ArcSamples(double duration, double total, int samples) {
+  if (duration == 0) return 0;  // no time passes: the arc adds no sample (times must increase)
   if (!(total > 0)) return 4;
   return std::clamp(static_cast<int>(std::ceil(samples * (duration / total))), 4, samples);
 }
@@ -408,19 +413,38 @@ void AddPlanned(std::vector<Eigen::Vector2d> polyline, const PlanSteps& plan, Vi
 
 // ---------------------------------------------------------------- steer
 
+// Where a steer result starts and the path its ghost follows: the exact-arrival reference, or
+// for the fewest-impulse search (which has none) the straight line from the start to the goal.
+struct SteerStart {
+  Eigen::Vector2d x0;
+  Eigen::Matrix3d A0;
+  double mu = 1.0;
+  std::vector<Eigen::Vector2d> reference;
+};
+
+SteerStart SteerStartOf(const ResultReader& r, const Problem& problem) {
+  if (r.Find(r.doc(), "fewest_impulses")) {
+    const FewestImpulsesSetup setup = FewestImpulsesSetupFor(problem);
+    const FewestImpulsesProblem& f = setup.problem;
+    return {f.x0, f.A0, f.mu, {f.x0, f.orientation_only ? f.x0 : f.x1}};
+  }
+  const ExactArrivalSetup setup = SteerSetup(problem);
+  return {setup.problem.x0, setup.problem.A0, setup.problem.mu, SamplePath(setup.problem.reference)};
+}
+
 void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out) {
   const Problem problem = LoadProblem(r, options);
-  const ExactArrivalSetup setup = SteerSetup(problem);  // reference; start state when the result lacks it
+  const SteerStart begin = SteerStartOf(r, problem);  // reference; start state when the result lacks it
   const json& doc = r.doc();
   const BallModel model = ModelFrom(r, options);
   const IntegrationOptions integration = ExactArrivalOptions{}.integration;  // as the solver's rollouts
-  const double mu = r.Find(doc, "initial_mu") ? r.Number(doc, "", "initial_mu") : setup.problem.mu;
+  const double mu = r.Find(doc, "initial_mu") ? r.Number(doc, "", "initial_mu") : begin.mu;
   const json& impulses = r.Array(doc, "", "impulses", 1, kMaxSteps);
   const double total = TotalDuration(r, impulses, "impulses");
-  Eigen::Matrix3d A = r.Find(doc, "initial_orientation") ? r.Rotation(doc, "", "initial_orientation") : setup.problem.A0;
+  Eigen::Matrix3d A = r.Find(doc, "initial_orientation") ? r.Rotation(doc, "", "initial_orientation") : begin.A0;
   PlanSteps keys;
   double t = 0.0;
-  Eigen::Vector2d x = setup.problem.x0;
+  Eigen::Vector2d x = begin.x0;
   for (std::size_t k = 0; k < impulses.size(); ++k) {
     const json& e = impulses[k];
     const std::string where = "impulses[" + std::to_string(k) + "]";
@@ -434,7 +458,8 @@ void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out
     const double duration = r.Number(e, where, "duration");
     out->impulses.push_back({t, start.x0, r.Vector3(e, where, "plate_velocity_change")});
     keys.t.push_back(t);
-    keys.p.push_back(r.Vector2(e, where, "impulse_p"));
+    // The planned pass point; the fewest search plans none (its ghost passes the impulse points).
+    keys.p.push_back(r.Find(e, "impulse_p") ? r.Vector2(e, where, "impulse_p") : start.x0);
     const MotionSample end = AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples),
                                        integration, out);
     A = end.A;
@@ -442,12 +467,12 @@ void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out
     t += duration;
   }
   AppendFinal(t, x, A, out);
-  out->resimulation_mismatch = MaxEntry(A, r.Rotation(doc, "", "arrival_orientation"));
-  const Path& reference = setup.problem.reference;
+  out->resimulation_mismatch = MaxEntry(A, r.Find(doc, "arrival_orientation") ? r.Rotation(doc, "", "arrival_orientation")
+                                                                             : r.Rotation(doc, "", "goal_orientation"));
   keys.t.push_back(t);
-  keys.p.push_back(reference.EndPoint());
-  keys.A_planned.push_back(setup.problem.A0);
-  AddPlanned(SamplePath(reference), keys, out);
+  keys.p.push_back(begin.reference.back());
+  keys.A_planned.push_back(begin.A0);
+  AddPlanned(begin.reference, keys, out);
   out->goal = r.Vector2(doc, "", "goal");
   out->has_goal = true;
 }
@@ -455,6 +480,9 @@ void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out
 // ---------------------------------------------------------------- montecarlo
 
 constexpr long long kMaxSpreadTrials = 6000;  // trials re-run for the spread, over all cells
+// Impulses executed for the spread, over all cells (trials x cells x n): an edited result asking
+// for n = 10^4 re-runs a few trials instead of 6000 x 10^4 impulses (minutes to an hour).
+constexpr double kMaxSpreadImpulses = 2e5;
 
 // A cell's error model from the result's options.scenarios[i].errors.
 ErrorModel ErrorsFrom(const ResultReader& r, const json& errors, const std::string& where) {
@@ -487,7 +515,9 @@ PlanSteps NominalTrajectory(const ResultReader& r, const NominalPlan& nominal, c
   json plan_doc = PlanSummaryToJson(nominal.plan);
   plan_doc["model"] = r.Get(r.doc(), "", "model");
   if (const json* i = r.Find(r.doc(), "integration")) plan_doc["integration"] = *i;
-  plan_doc["initial"] = r.Get(r.doc(), "", "initial");
+  const json& initial = r.Get(r.doc(), "", "initial");
+  if (!initial.is_object()) r.Fail("initial", ValueText(initial), "must be an object (the initial state)");
+  plan_doc["initial"] = initial;
   plan_doc["initial"]["orientation"] = ToJson(nominal.plan.A0);
   const ResultReader plan_reader(r.file() + " (nominal plan)", plan_doc, r.fields());
   return BuildPlanTrajectory(plan_reader, plan_reader.Get(plan_doc, "", "steps"), "steps", options, out);
@@ -513,8 +543,9 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
   const json& scenarios = r.Array(o, "options", "mc_scenarios", 1, 64);
   const json& strategies = r.Array(o, "options", "mc_strategies", 1, 3);
   const long long cells = static_cast<long long>(scenarios.size() * strategies.size());
-  const long long trials =
-      std::min(std::max(1LL, kMaxSpreadTrials / cells), static_cast<long long>(std::min(r.Number(o, "options", "mc_trials"), 1e6)));
+  const long long file_trials = static_cast<long long>(std::clamp(r.Number(o, "options", "mc_trials"), 1.0, 1e6));
+  const long long budget_trials = std::max(1LL, static_cast<long long>(kMaxSpreadImpulses / (double(cells) * n)));
+  const long long trials = std::min({std::max(1LL, kMaxSpreadTrials / cells), file_trials, budget_trials});
   double mismatch = 0.0;
   for (std::size_t i = 0; i < scenarios.size(); ++i) {
     const std::string where = "options.scenarios[" + std::to_string(i) + "]";
@@ -542,7 +573,10 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
   }
   out->goal = nominal->goal;
   out->has_goal = true;
-  out->facts.push_back({"trials re-run", std::to_string(trials) + " per cell (Execute, seed " + seed.dump() + ")"});
+  out->facts.push_back({"trials re-run", std::to_string(trials) + " per cell (Execute, seed " + seed.dump() + ")" +
+                                             (trials == budget_trials && trials < file_trials
+                                                  ? ", the view's work budget of 2e5 impulses over all cells"
+                                                  : "")});
   out->facts.push_back({"re-run vs file", "median final position errors agree to " + FormatNumber(mismatch)});
 }
 

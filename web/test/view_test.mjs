@@ -56,6 +56,18 @@ run(P, ["plan", problem("circle.json"), "--out", work("plan.json")]);
 run(P, ["isoparallel", problem("figure7.json"), "--out", work("isoparallel.json")]);
 run(P, ["steer", problem("figure7_exact.json"), "--out", work("steer.json")]);
 run(P, ["simulate", problem("simulate_example.json"), "--t-end", "100", "--samples", "10000", "--out", work("big.json")]);
+// Strings that attack the page: a comment opener before "<script>" (which would make the data
+// script swallow the document), the template's fill markers, U+2028/U+2029 and an ampersand.
+const hostileName = 'a<!--<script> </script> /*@THREE@*/ "@DATA@" @TITLE@ /*@VIEW@*/ \u2028\u2029 & end';
+{
+  const doc = readJson(problem("simulate_example.json"));
+  doc.name = hostileName;
+  fs.writeFileSync(work("hostile_problem.json"), JSON.stringify(doc));
+}
+run(P, ["simulate", work("hostile_problem.json"), "--out", work("hostile.json")]);
+// A motion reaching 1e5 ball radii: the plate's grid is scaled, not sized by the extent.
+run(P, ["simulate", problem("simulate_example.json"), "--t-end", "1e5", "--samples", "2000", "--out", work("far.json")]);
+run(P, ["simulate", problem("simulate_example.json"), "--t-end", "1e8", "--samples", "2000", "--out", work("too_far.json")]);
 run(P, ["montecarlo", problem("circle.json"), "--trials", "40", "--noise", "impulse_magnitude=1e-3", "--noise", "timing=1e-3",
   "--threads", "1", "--quiet", "--out", work("montecarlo.json")]);
 const pages = {
@@ -64,6 +76,8 @@ const pages = {
   isoparallel: ["isoparallel.json"],
   steer: ["steer.json", "--problem", problem("figure7_exact.json")],
   big: ["big.json"],
+  hostile: ["hostile.json"],
+  far: ["far.json"],
   montecarlo: ["montecarlo.json"],
 };
 for (const [name, [result, ...rest]] of Object.entries(pages))
@@ -81,6 +95,7 @@ console.log("# page sizes: " + sizes.join(", ") + " [" + ((Date.now() - begun) /
     ["bad_sample.json", 3, "not a rotation matrix"],
     ["malformed.json", 3, "malformed JSON"],
     ["missing.json", 5, "cannot open"],
+    ["too_far.json", 3, "contact path (re-simulated)["],
   ];
   for (const [file, code, text] of cases) {
     const r = spawnSync(P, ["view", work(file), "--html", work("bad.html")]);
@@ -244,6 +259,28 @@ for (const name of ["simulate", "plan", "isoparallel", "steer"]) {
   }
   check(log.errors.length === 0, name + ": no console errors", log.errors.join(" | "));
   check(log.requests.length === 0, name + ": no network requests", log.requests.join(" "));
+  await context.close();
+}
+
+// ------------------------------------------------------------ hostile strings, huge extents
+{
+  const { page, log, context } = await open("hostile");
+  const shown = await page.evaluate(() => ({ title: document.title, h1: document.getElementById("title").textContent,
+    data: PLATEBALL_DATA.title, scripts: document.scripts.length }));
+  const expected = readJson(work("hostile.json")).problem.name;
+  check(expected === hostileName && shown.title.startsWith(hostileName) && shown.h1.startsWith(hostileName) &&
+    shown.data.startsWith(hostileName) && shown.scripts === 3,
+    "hostile: a name with \"<!--<script>\", fill markers and U+2028 is shown verbatim, the page intact",
+    JSON.stringify(shown));
+  check(log.errors.length === 0 && log.requests.length === 0, "hostile: no console errors, no network requests",
+    log.errors.concat(log.requests).join(" | "));
+  await context.close();
+}
+{
+  const { page, log, context } = await open("far");
+  const lines = await page.evaluate(() => window.plateballView.gridLines());
+  check(log.errors.length === 0 && lines > 0 && lines <= 2 * 201,
+    "far: a motion over 1e5 ball radii draws with a scaled grid", lines + " grid lines, " + log.errors.join(" | "));
   await context.close();
 }
 
