@@ -20,7 +20,7 @@ void RequireLambda(double lambda) {
 }  // namespace
 
 std::string PhysicalParameters::Validate() const {
-  auto bad = [](const char* field, double v, const char* bound) {
+  auto bad = [](const char* field, double v, const std::string& bound) {
     return internal::InvalidValueMessage(std::string("physical.") + field, v, bound);
   };
   if (!(std::isfinite(inertia_1) && inertia_1 > 0)) return bad("inertia_1", inertia_1, "must be finite and > 0");
