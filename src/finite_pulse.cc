@@ -1,28 +1,53 @@
 #include "plateball/finite_pulse.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "check.h"
 #include "dynamics.h"
+#include "forced_arc.h"
 #include "kinematics.h"
 
 namespace plateball {
+namespace internal {
 namespace {
-using State = std::array<double, 7>;  // z[3], x[2], K[2]
+using ForcedState = std::array<double, 16>;  // z[3], x[2], Phi[9] row-major, K[2]
 
 struct ForcedRhs {
   double lambda;
-  double rate[2];  // K' over the segment
-  void operator()(const State& y, State& dy, double /*t*/) const {
+  double rate[2];  // K'
+  void operator()(const ForcedState& y, ForcedState& dy, double /*t*/) const {
     double w[2];
-    internal::OmegaFromZK(y.data(), y.data() + 5, lambda, w);
-    internal::ZxRhs(y.data(), w, dy.data(), dy.data() + 3);
-    dy[5] = rate[0];
-    dy[6] = rate[1];
+    OmegaFromZK(y.data(), y.data() + 14, lambda, w);
+    ZxRhs(y.data(), w, dy.data(), dy.data() + 3);
+    RotationRhs(w[0], w[1], y.data() + 5, dy.data() + 5);
+    dy[14] = rate[0];
+    dy[15] = rate[1];
   }
 };
+}  // namespace
 
+ForcedArcEnd IntegrateForcedArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k0,
+                                const Eigen::Vector2d& k_rate, double t, const IntegrationOptions& options) {
+  ForcedState y{};
+  const FullState start = InitialFullState(z0);
+  std::copy(start.begin(), start.end(), y.begin());
+  y[14] = k0.x();
+  y[15] = k0.y();
+  const ForcedRhs rhs{lambda, {k_rate.x(), k_rate.y()}};
+  if (t != 0.0) IntegrateAdaptive(rhs, y, 0.0, t, 0.01 * t, options);
+  ForcedArcEnd out;
+  out.z = Eigen::Vector3d(y[0], y[1], y[2]).normalized();
+  out.dx = {y[3], y[4]};
+  out.phi = MatrixFromRowMajor(y.data() + 5);
+  out.k = {y[14], y[15]};
+  return out;
+}
+}  // namespace internal
+
+namespace {
 void CheckPulses(const std::vector<Pulse>& pulses, double t0, double t1) {
   double previous_end = t0;
   for (std::size_t i = 0; i < pulses.size(); ++i) {
@@ -40,11 +65,14 @@ void CheckPulses(const std::vector<Pulse>& pulses, double t0, double t1) {
   }
 }
 
-void Segment(ForcedRhs rhs, const Eigen::Vector2d& rate, State& y, double from, double to,
-             const IntegrationOptions& options) {
-  rhs.rate[0] = rate.x();
-  rhs.rate[1] = rate.y();
-  if (to > from) internal::IntegrateAdaptive(rhs, y, from, to, 0.01 * (to - from), options);
+// One segment of constant K rate from `s`.
+void Segment(double lambda, const Eigen::Vector2d& rate, double duration, const IntegrationOptions& options,
+             PulsedState* s) {
+  if (duration <= 0.0) return;
+  const internal::ForcedArcEnd end = internal::IntegrateForcedArc(lambda, s->z, s->k, rate, duration, options);
+  s->z = end.z;
+  s->x += end.dx;
+  s->k = end.k;
 }
 }  // namespace
 
@@ -64,20 +92,16 @@ PulsedState RunPulsed(const PhysicalParameters& p, const PulsedState& initial, d
   internal::RequireFinite("t1", t1);
   if (t1 < t0) internal::ThrowInvalid("t1", t1, "must be >= t0 = " + internal::FormatNumber(t0));
   CheckPulses(pulses, t0, t1);
-  const ForcedRhs rhs{BallModel::FromPhysical(p).lambda(), {0.0, 0.0}};
-  State y{initial.z.x(), initial.z.y(), initial.z.z(), initial.x.x(), initial.x.y(), initial.k.x(), initial.k.y()};
+  const double lambda = BallModel::FromPhysical(p).lambda();
+  PulsedState s = initial;
   double t = t0;
   for (const Pulse& pulse : pulses) {
-    Segment(rhs, Eigen::Vector2d::Zero(), y, t, pulse.start, options);
+    Segment(lambda, Eigen::Vector2d::Zero(), pulse.start - t, options, &s);
+    Segment(lambda, MomentumRate(p, pulse.impulse / pulse.duration), pulse.duration, options, &s);
     t = pulse.start + pulse.duration;
-    Segment(rhs, MomentumRate(p, pulse.impulse / pulse.duration), y, pulse.start, t, options);
   }
-  Segment(rhs, Eigen::Vector2d::Zero(), y, t, t1, options);
-  PulsedState out;
-  out.z = Eigen::Vector3d(y[0], y[1], y[2]);
-  out.x = Eigen::Vector2d(y[3], y[4]);
-  out.k = Eigen::Vector2d(y[5], y[6]);
-  return out;
+  Segment(lambda, Eigen::Vector2d::Zero(), t1 - t, options, &s);
+  return s;
 }
 
 }  // namespace plateball
