@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <chrono>
 #include <map>
@@ -249,6 +250,58 @@ TEST(Execution, BadInputNamesTheFieldAndTheValue) {
   EXPECT_NE(InvalidArgumentMessage([] { Execute(ExecutionProblem{}); }).find("nominal: value null"), std::string::npos);
   EXPECT_TRUE(ParseErrorModel(" none ").IsZero());
   EXPECT_EQ(ToString(ParseErrorModel("timing=1e-4, impulse_magnitude=0.001")), "impulse_magnitude=0.001,timing=1e-04");
+}
+
+
+// Final-state difference of pulsed from ideal open-loop execution of the 16-impulse circle, fitted as
+// C delta^slope over delta = f * (shortest flight), f = 0.4 ... 0.05.
+double PulseOrder(bool causal, std::vector<double>* errors) {
+  const ExecutionSummary ideal = RunTrial(ExecutionStrategy::kOpenLoop, ErrorModel{}, 0, 16);
+  double shortest = Circle(16)->plan.total_time;
+  for (const PlanStep& s : Circle(16)->plan.steps) shortest = std::min(shortest, s.duration);
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const std::vector<double> fractions{0.4, 0.2, 0.1, 0.05};
+  for (const double f : fractions) {
+    ErrorModel e;
+    e.pulse_duration = f * shortest;
+    e.pulse_causal = causal ? 1.0 : 0.0;
+    const ExecutionSummary run = RunTrial(ExecutionStrategy::kOpenLoop, e, 0, 16);
+    EXPECT_EQ(run.status, ExecutionStatus::kCompleted) << run.message;
+    const double err = (run.x_final - ideal.x_final).norm() + RotationAngle(run.A_final, ideal.A_final);
+    errors->push_back(err);
+    const double lx = std::log(e.pulse_duration), ly = std::log(err);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+  }
+  const double n = static_cast<double>(fractions.size());
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+TEST(Execution, CentredPulsesLeaveSecondOrderErrorCausalFirstOrder) {
+  // A pulse of constant force spreads the ideal jump of K over its duration; centred on the impulse
+  // time its first-order error cancels (docs/rig.md, "Finite pulses").
+  constexpr double kCentredSlope = 2.0, kCentredTolerance = 0.2, kCausalSlope = 1.0, kCausalTolerance = 0.1;
+  std::vector<double> centred_errors, causal_errors;
+  const double centred = PulseOrder(false, &centred_errors), causal = PulseOrder(true, &causal_errors);
+  for (std::size_t i = 0; i < centred_errors.size(); ++i)
+    std::printf("fraction index %zu: centred %.3e causal %.3e\n", i, centred_errors[i], causal_errors[i]);
+  std::printf("slopes: centred %.4f causal %.4f\n", centred, causal);
+  EXPECT_NEAR(centred, kCentredSlope, kCentredTolerance);
+  EXPECT_NEAR(causal, kCausalSlope, kCausalTolerance);
+}
+
+TEST(Execution, PulsesLongerThanTheirFlightAreRejected) {
+  double shortest = Circle(16)->plan.total_time;
+  for (const PlanStep& s : Circle(16)->plan.steps) shortest = std::min(shortest, s.duration);
+  ErrorModel e;
+  e.pulse_duration = 1.1 * shortest;
+  const ExecutionSummary run = RunTrial(ExecutionStrategy::kOpenLoop, e, 0, 16);
+  EXPECT_EQ(run.status, ExecutionStatus::kLost);
+  EXPECT_NE(run.message.find("pulse_duration: value"), std::string::npos) << run.message;
+  EXPECT_NE(run.message.find("overlaps"), std::string::npos) << run.message;
+  EXPECT_NE(plateball::testing::InvalidArgumentMessage([] { ParseErrorModel("pulse_causal=0.5"); })
+                .find("noise.pulse_causal: value 0.5: must be 0 (centred pulses) or 1"),
+            std::string::npos);
+  EXPECT_EQ(ToString(ParseErrorModel("pulse_duration=0.01,pulse_causal=1")), "pulse_duration=0.01,pulse_causal=1");
 }
 
 }  // namespace
