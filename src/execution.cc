@@ -133,7 +133,7 @@ class Trial {
   void Fly(double duration);
   void Forced(const Eigen::Vector2d& k_rate, double duration);
   void Pulse(int k, const Eigen::Vector3d& delta_omega);
-  BallState Predicted(Eigen::Vector2d* x) const;
+  BallState Predicted(Eigen::Vector2d* x, Eigen::Matrix3d* A = nullptr) const;
   void Finish();
 
   const NominalPlan& nominal_;
@@ -153,12 +153,13 @@ class Trial {
   ExecutionSummary out_;
 };
 
+// The state at the impulse time: with a centred pulse the controller decides at the pulse's start
+// for the state it predicts at the pulse's centre.
 Observation Trial::Observe(int k) const {
   Observation o;
-  o.angles = AnglesFromState(state_, nominal_.model);
-  o.mu = Energy(state_, nominal_.model);
-  o.x = x_;
-  o.A = A_;
+  const BallState at = Predicted(&o.x, &o.A);
+  o.angles = AnglesFromState(at, nominal_.model);
+  o.mu = Energy(at, nominal_.model);
   const double s = errors_.observation;
   if (s == 0.0) return o;
   o.x += Eigen::Vector2d(Draw(k, kObsX, s), Draw(k, kObsY, s));
@@ -278,13 +279,15 @@ void Trial::Forced(const Eigen::Vector2d& k_rate, double duration) {
 }
 
 // The state at the impulse time: free flight over the time before the pulse's centre.
-BallState Trial::Predicted(Eigen::Vector2d* x) const {
+BallState Trial::Predicted(Eigen::Vector2d* x, Eigen::Matrix3d* A) const {
   *x = x_;
+  if (A != nullptr) *A = A_;
   if (pulse_before_ == 0.0) return state_;
   const Eigen::Vector2d k_mom = ConservedMomentum(state_, ball_model_);
   const internal::ArcEnd arc =
       internal::IntegrateArc(ball_model_.lambda(), state_.z, k_mom, pulse_before_, nominal_.options.integration);
   *x += arc.dx;
+  if (A != nullptr) *A = arc.phi * A_;
   return {arc.z, OmegaFromMomentum(arc.z, k_mom, ball_model_)};
 }
 

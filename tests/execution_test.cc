@@ -304,5 +304,19 @@ TEST(Execution, PulsesLongerThanTheirFlightAreRejected) {
   EXPECT_EQ(ToString(ParseErrorModel("pulse_duration=0.01,pulse_causal=1")), "pulse_duration=0.01,pulse_causal=1");
 }
 
+
+TEST(Execution, FeedbackWithCentredPulsesEndsNearerThanOpenLoop) {
+  // Feedback decides at each pulse's start for the state predicted at its centre, so it corrects the
+  // pulses' O(D^2) drift that open loop accumulates.
+  double shortest = Circle(16)->plan.total_time;
+  for (const PlanStep& s : Circle(16)->plan.steps) shortest = std::min(shortest, s.duration);
+  ErrorModel e;
+  e.pulse_duration = 0.4 * shortest;
+  const ExecutionSummary open = RunTrial(ExecutionStrategy::kOpenLoop, e, 0, 16);
+  const ExecutionSummary feedback = RunTrial(ExecutionStrategy::kFeedback, e, 0, 16);
+  ASSERT_EQ(feedback.status, ExecutionStatus::kCompleted) << feedback.message;
+  EXPECT_LT(feedback.position_error, open.position_error);
+}
+
 }  // namespace
 }  // namespace plateball

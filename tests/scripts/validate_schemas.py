@@ -153,7 +153,8 @@ def check_tool_outputs(run, problems):
         run.output(["plateball", "roll", "--samples-file", "tests/data/roll_samples.json"])
         run.output(["plateball", "steer", "problems/figure7_exact.json", "--summary-only"])
         run.output(["plateball", "montecarlo", "problems/circle.json", "--impulses", "8", "--trials", "2", "--quiet",
-                    "--strategy", "open_loop,feedback", "--noise", "timing=1e-3", "--sweep-n", "16", "--timings"])
+                    "--strategy", "open_loop,feedback", "--noise", "timing=1e-3", "--noise", "pulse_duration=0.05",
+                    "--sweep-n", "16", "--timings"])
 
 
 def readme_examples(text):
