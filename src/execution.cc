@@ -369,12 +369,30 @@ ExecutionSummary Trial::Run() {
 
 }  // namespace
 
+std::string PulseScheduleError(const NominalPlan& nominal, const ErrorModel& errors) {
+  const double d = errors.pulse_duration;
+  if (d == 0.0) return {};
+  const auto& steps = nominal.plan.steps;
+  const double after = errors.pulse_causal != 0.0 ? d : 0.5 * d;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const bool last = k + 1 == steps.size();
+    const double flight = (last ? nominal.plan.total_time : steps[k + 1].t_impulse) - steps[k].t_impulse;
+    if (flight < (last ? after : d))
+      return internal::InvalidValueMessage(
+          "pulse_duration", d,
+          "longer than the flight " + std::to_string(k) + (last ? " -> end (" : " -> " + std::to_string(k + 1) + " (") +
+              internal::FormatNumber(flight) + "): the pulses would overlap");
+  }
+  return {};
+}
+
 ExecutionSummary Execute(const ExecutionProblem& problem, const ExecutionOptions& options) {
   if (!problem.nominal) internal::ThrowInvalid("nominal", "null", "a nominal plan is required (MakeNominalPlan)");
   if (!problem.nominal->plan.IsSolutionUsable())
     internal::ThrowInvalid("nominal.plan.status", "'" + ToString(problem.nominal->plan.status) + "'",
                            "the nominal plan must be usable: " + problem.nominal->plan.message);
   internal::ThrowIfInvalid(problem.errors.Validate());
+  internal::ThrowIfInvalid(PulseScheduleError(*problem.nominal, problem.errors));
   internal::ThrowIfInvalid(options.Validate());
   return Trial(problem, options).Run();
 }

@@ -128,6 +128,12 @@ MonteCarloWork::MonteCarloWork(const MonteCarloProblem& problem, const MonteCarl
     ns_.push_back(n);
     nominals_.push_back(std::make_shared<NominalPlan>(MakeNominalPlan(WithN(problem.plan, n), options.plan)));
   }
+  for (const auto& nominal : nominals_)
+    for (std::size_t i = 0; i < problem.scenarios.size(); ++i)
+      if (nominal->plan.IsSolutionUsable()) {
+        const std::string e = PulseScheduleError(*nominal, problem.scenarios[i].errors);
+        if (!e.empty()) throw std::invalid_argument("scenarios[" + std::to_string(i) + "]." + e);
+      }
   const long long cells = static_cast<long long>(problem.scenarios.size() * problem.strategies.size());
   for (std::size_t i = 0; i < ns_.size(); ++i) {
     planned_ = planned_ && nominals_[i]->plan.IsSolutionUsable();

@@ -109,8 +109,14 @@ struct ExecutionSummary {
   std::string BriefReport() const;
 };
 
+/// Empty when the pulses of `errors.pulse_duration` fit the nominal plan's flights (each no longer
+/// than the flight to the next impulse; the last one's end before the plan's end); otherwise
+/// "pulse_duration: value D: longer than the flight K -> K+1 (F)". The first pulse may start
+/// before time 0 (the ball rolled freely before).
+std::string PulseScheduleError(const NominalPlan& nominal, const ErrorModel& errors);
+
 /// Executes one trial. Throws std::invalid_argument naming the field for a missing nominal plan,
-/// a plan that is not usable, invalid errors or options; a lost ball or a failed integration is a
+/// a plan that is not usable, invalid errors or options, pulses that do not fit the plan's flights; a lost ball or a failed integration is a
 /// status. The result depends only on (nominal, strategy, errors, seed, trial, options).
 ExecutionSummary Execute(const ExecutionProblem& problem, const ExecutionOptions& options = {});
 
