@@ -321,5 +321,26 @@ TEST(Execution, FeedbackWithCentredPulsesEndsNearerThanOpenLoop) {
   EXPECT_LT(feedback.position_error, open.position_error);
 }
 
+
+TEST(Execution, ChosenPulseDurationStaysWithinTheToleranceAndIsNotFarBelowIt) {
+  // The error is C d^2 (centred): the choice from one measurement lands near the tolerance, so the
+  // verified error lies within it and above half of it (the choice aims at 0.9 of it).
+  for (const double tolerance : {1e-3, 1e-5}) {
+    const PulseDurationChoice c = ChoosePulseDuration(Circle(16), tolerance);
+    std::printf("tolerance %.0e: duration %.4g, error %.3e, %d executions\n", tolerance, c.duration,
+                c.measured_error, c.executions);
+    EXPECT_TRUE(c.within) << tolerance;
+    EXPECT_LE(c.measured_error, tolerance);
+    EXPECT_GT(c.measured_error, 0.5 * tolerance) << c.duration;
+    EXPECT_EQ(c.executions, 2);
+  }
+  const PulseDurationChoice causal = ChoosePulseDuration(Circle(16), 1e-3, true);
+  EXPECT_TRUE(causal.within);
+  EXPECT_LT(causal.duration, ChoosePulseDuration(Circle(16), 1e-3).duration);
+  EXPECT_NE(plateball::testing::InvalidArgumentMessage([] { ChoosePulseDuration(Circle(16), 0.0); })
+                .find("tolerance: value 0"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace plateball
