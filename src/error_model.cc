@@ -17,13 +17,15 @@ struct ErrorField {
   double max;
 };
 
-constexpr std::array<ErrorField, 6> kFields{{
+constexpr std::array<ErrorField, 8> kFields{{
     {"impulse_magnitude", &ErrorModel::impulse_magnitude, ErrorModel::kMaxImpulseMagnitude},
     {"impulse_angle", &ErrorModel::impulse_angle, ErrorModel::kMaxImpulseAngle},
     {"timing", &ErrorModel::timing, ErrorModel::kMaxTiming},
     {"energy_loss", &ErrorModel::energy_loss, ErrorModel::kMaxEnergyLoss},
     {"lambda", &ErrorModel::lambda, ErrorModel::kMaxLambda},
     {"observation", &ErrorModel::observation, ErrorModel::kMaxObservation},
+    {"pulse_duration", &ErrorModel::pulse_duration, ErrorModel::kMaxPulseDuration},
+    {"pulse_causal", &ErrorModel::pulse_causal, 1.0},
 }};
 
 std::string RangeText(double max) { return "must be a number in [0, " + internal::FormatNumber(max) + "]"; }
@@ -39,7 +41,7 @@ void ParseItem(const std::string& item, const std::string& field, std::set<std::
   const auto eq = item.find('=');
   if (eq == std::string::npos)
     internal::ThrowInvalid(field, "'" + item + "'", "expected KEY=VALUE (keys: impulse_magnitude, impulse_angle, "
-                                                    "timing, energy_loss, lambda, observation)");
+                                                    "timing, energy_loss, lambda, observation, pulse_duration, pulse_causal)");
   const std::string key = Trim(item.substr(0, eq));
   const std::string value = Trim(item.substr(eq + 1));
   for (const ErrorField& f : kFields) {
@@ -51,11 +53,14 @@ void ParseItem(const std::string& item, const std::string& field, std::set<std::
     if (value.empty() || res.ec != std::errc() || res.ptr != value.data() + value.size())
       internal::ThrowInvalid(name, "'" + value + "'", RangeText(f.max));
     if (!(v >= 0.0 && v <= f.max)) internal::ThrowInvalid(name, v, RangeText(f.max));
+    if (f.member == &ErrorModel::pulse_causal && v != 0.0 && v != 1.0)
+      internal::ThrowInvalid(name, v, "must be 0 (centred pulses) or 1 (causal pulses)");
     model->*f.member = v;
     return;
   }
   internal::ThrowInvalid(field, "'" + key + "'", "unknown error model (keys: impulse_magnitude, impulse_angle, "
-                                                 "timing, energy_loss, lambda, observation)");
+                                                 "timing, energy_loss, lambda, observation, pulse_duration, "
+                                                 "pulse_causal)");
 }
 
 }  // namespace
@@ -65,6 +70,8 @@ std::string ErrorModel::Validate() const {
     const double v = this->*f.member;
     if (!(v >= 0.0 && v <= f.max)) return internal::InvalidValueMessage(f.name, v, RangeText(f.max));
   }
+  if (pulse_causal != 0.0 && pulse_causal != 1.0)
+    return internal::InvalidValueMessage("pulse_causal", pulse_causal, "must be 0 (centred pulses) or 1 (causal pulses)");
   return "";
 }
 

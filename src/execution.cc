@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -9,6 +10,7 @@
 #include "check.h"
 #include "connect.h"
 #include "counter_random.h"
+#include "forced_arc.h"
 #include "kinematics.h"
 #include "plateball/impulse.h"
 #include "plateball/path.h"
@@ -113,7 +115,9 @@ class Trial {
   Trial(const ExecutionProblem& p, const ExecutionOptions& o)
       : nominal_(*p.nominal), strategy_(p.strategy), errors_(p.errors), options_(o), random_(p.seed, p.trial),
         ball_model_(BallModel::FromLambda(nominal_.model.lambda() *
-                                          (1.0 + errors_.lambda * random_.Normal(kLambdaCounter)))) {}
+                                          (1.0 + errors_.lambda * random_.Normal(kLambdaCounter)))),
+        pulse_before_(errors_.pulse_causal != 0.0 ? 0.0 : 0.5 * errors_.pulse_duration),
+        pulse_after_(errors_.pulse_duration - pulse_before_) {}
 
   ExecutionSummary Run();
 
@@ -128,6 +132,9 @@ class Trial {
   void ApplyImpulse(int k, const Eigen::Vector3d& delta_omega);
   double ArcDuration(int k, const Command& c) const;
   void Fly(double duration);
+  void Forced(const Eigen::Vector2d& k_rate, double duration);
+  void Pulse(int k, const Eigen::Vector3d& delta_omega);
+  BallState Predicted(Eigen::Vector2d* x, Eigen::Matrix3d* A = nullptr) const;
   void Finish();
 
   const NominalPlan& nominal_;
@@ -136,6 +143,8 @@ class Trial {
   const ExecutionOptions& options_;
   internal::CounterRandom random_;
   BallModel ball_model_;  // the true ball
+  double pulse_before_;   // a pulse starts this long before its impulse time
+  double pulse_after_;    // and ends this long after it
   BallState state_;
   Eigen::Vector2d x_ = Eigen::Vector2d::Zero();
   Eigen::Matrix3d A_ = Eigen::Matrix3d::Identity();
@@ -145,12 +154,13 @@ class Trial {
   ExecutionSummary out_;
 };
 
+// The state at the impulse time: with a centred pulse the controller decides at the pulse's start
+// for the state it predicts at the pulse's centre.
 Observation Trial::Observe(int k) const {
   Observation o;
-  o.angles = AnglesFromState(state_, nominal_.model);
-  o.mu = Energy(state_, nominal_.model);
-  o.x = x_;
-  o.A = A_;
+  const BallState at = Predicted(&o.x, &o.A);
+  o.angles = AnglesFromState(at, nominal_.model);
+  o.mu = Energy(at, nominal_.model);
   const double s = errors_.observation;
   if (s == 0.0) return o;
   o.x += Eigen::Vector2d(Draw(k, kObsX, s), Draw(k, kObsY, s));
@@ -258,6 +268,46 @@ void Trial::Fly(double duration) {
   time_ += duration;
 }
 
+// A segment of constant K rate (zero: free flight; negative duration: back in time).
+void Trial::Forced(const Eigen::Vector2d& k_rate, double duration) {
+  const internal::ForcedArcEnd arc = internal::IntegrateForcedArc(
+      ball_model_.lambda(), state_.z, ConservedMomentum(state_, ball_model_), k_rate, duration,
+      nominal_.options.integration);
+  x_ += arc.dx;
+  A_ = arc.phi * A_;
+  state_ = {arc.z, OmegaFromMomentum(arc.z, arc.k, ball_model_)};
+  time_ += duration;
+}
+
+// The state at the impulse time: free flight over the time before the pulse's centre.
+BallState Trial::Predicted(Eigen::Vector2d* x, Eigen::Matrix3d* A) const {
+  *x = x_;
+  if (A != nullptr) *A = A_;
+  if (pulse_before_ == 0.0) return state_;
+  const Eigen::Vector2d k_mom = ConservedMomentum(state_, ball_model_);
+  const internal::ArcEnd arc =
+      internal::IntegrateArc(ball_model_.lambda(), state_.z, k_mom, pulse_before_, nominal_.options.integration);
+  *x += arc.dx;
+  if (A != nullptr) *A = arc.phi * A_;
+  return {arc.z, OmegaFromMomentum(arc.z, k_mom, ball_model_)};
+}
+
+// A finite pulse: the constant force whose impulse would give the (error-perturbed) jump at the
+// impulse time's orientation, i.e. the ideal jump of K spread evenly over the pulse.
+void Trial::Pulse(int k, const Eigen::Vector3d& delta_omega) {
+  Eigen::Vector3d d = delta_omega;
+  if (errors_.impulse_angle != 0.0) d = RotationZ(Draw(k, kAngle, errors_.impulse_angle)) * d;
+  if (errors_.impulse_magnitude != 0.0) d *= 1.0 + Draw(k, kMagnitude, errors_.impulse_magnitude);
+  Eigen::Vector2d x;
+  const BallState at = Predicted(&x);
+  BallState jumped = at;
+  jumped.omega += d;
+  const Eigen::Vector2d dk = ConservedMomentum(jumped, ball_model_) - ConservedMomentum(at, ball_model_);
+  Forced(dk / errors_.pulse_duration, errors_.pulse_duration);
+  if (errors_.energy_loss != 0.0) state_.omega *= std::sqrt(1.0 - errors_.energy_loss);
+  ++out_.impulses;
+}
+
 void Trial::Finish() {
   out_.x_final = x_;
   out_.A_final = ProjectToSO3(A_);
@@ -281,14 +331,29 @@ ExecutionSummary Trial::Run() {
   x_ = nominal_.pass_points.front();
   A_ = nominal_.plan.A0;
   const int n = static_cast<int>(nominal_.pass_points.size()) - 1;
+  const bool pulsed = errors_.pulse_duration > 0.0;
   try {
+    if (pulsed) Forced(Eigen::Vector2d::Zero(), -pulse_before_);  // the ball rolled freely before
     for (int k = 0; k < n && out_.status == ExecutionStatus::kCompleted; ++k) {
       const Command c = Decide(k);
       if (out_.status != ExecutionStatus::kCompleted) break;
-      ApplyImpulse(k, c.delta_omega);
-      Fly(ArcDuration(k, c));
-      out_.pass_misses.push_back((x_ - nominal_.pass_points[static_cast<std::size_t>(k) + 1]).norm());
-      out_.pass_speeds.push_back(state_.omega.head<2>().norm());
+      if (!pulsed) {
+        ApplyImpulse(k, c.delta_omega);
+        Fly(ArcDuration(k, c));
+      } else {
+        Pulse(k, c.delta_omega);
+        const double flight = ArcDuration(k, c) - (k + 1 < n ? pulse_before_ : 0.0) -
+                              (strategy_ == ExecutionStrategy::kOpenLoop ? 0.0 : pulse_after_);
+        if (flight < 0.0)
+          internal::ThrowInvalid("pulse_duration", errors_.pulse_duration,
+                                 "the pulse of impulse " + std::to_string(k) + " overlaps the next one or the end");
+        if (flight > 0.0) Fly(flight);
+      }
+      Eigen::Vector2d x;
+      const BallState at = k + 1 < n && pulsed ? Predicted(&x) : BallState{};
+      if (!(k + 1 < n && pulsed)) x = x_;
+      out_.pass_misses.push_back((x - nominal_.pass_points[static_cast<std::size_t>(k) + 1]).norm());
+      out_.pass_speeds.push_back((k + 1 < n && pulsed ? at : state_).omega.head<2>().norm());
     }
   } catch (const std::runtime_error& e) {
     out_.status = ExecutionStatus::kIntegrationFailure;
@@ -305,14 +370,77 @@ ExecutionSummary Trial::Run() {
 
 }  // namespace
 
+std::string PulseScheduleError(const NominalPlan& nominal, const ErrorModel& errors) {
+  const double d = errors.pulse_duration;
+  if (d == 0.0) return {};
+  const auto& steps = nominal.plan.steps;
+  const double after = errors.pulse_causal != 0.0 ? d : 0.5 * d;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const bool last = k + 1 == steps.size();
+    const double flight = (last ? nominal.plan.total_time : steps[k + 1].t_impulse) - steps[k].t_impulse;
+    if (flight < (last ? after : d))
+      return internal::InvalidValueMessage(
+          "pulse_duration", d,
+          "longer than the flight " + std::to_string(k) + (last ? " -> end (" : " -> " + std::to_string(k + 1) + " (") +
+              internal::FormatNumber(flight) + "): the pulses would overlap");
+  }
+  return {};
+}
+
 ExecutionSummary Execute(const ExecutionProblem& problem, const ExecutionOptions& options) {
   if (!problem.nominal) internal::ThrowInvalid("nominal", "null", "a nominal plan is required (MakeNominalPlan)");
   if (!problem.nominal->plan.IsSolutionUsable())
     internal::ThrowInvalid("nominal.plan.status", "'" + ToString(problem.nominal->plan.status) + "'",
                            "the nominal plan must be usable: " + problem.nominal->plan.message);
   internal::ThrowIfInvalid(problem.errors.Validate());
+  internal::ThrowIfInvalid(PulseScheduleError(*problem.nominal, problem.errors));
   internal::ThrowIfInvalid(options.Validate());
   return Trial(problem, options).Run();
+}
+
+namespace {
+constexpr double kPulseAim = 0.9;
+
+// Final deviation of an open-loop execution with the given pulses from `ideal`.
+double PulsedDeviation(const std::shared_ptr<const NominalPlan>& nominal, const ExecutionSummary& ideal,
+                       double duration, bool causal) {
+  ExecutionProblem p;
+  p.nominal = nominal;
+  p.strategy = ExecutionStrategy::kOpenLoop;
+  p.errors.pulse_duration = duration;
+  p.errors.pulse_causal = causal ? 1.0 : 0.0;
+  const ExecutionSummary s = Execute(p);
+  if (s.status != ExecutionStatus::kCompleted) return std::numeric_limits<double>::infinity();
+  return (s.x_final - ideal.x_final).norm() + RotationAngle(s.A_final, ideal.A_final);
+}
+}  // namespace
+
+PulseDurationChoice ChoosePulseDuration(const std::shared_ptr<const NominalPlan>& nominal, double tolerance,
+                                        bool causal) {
+  internal::RequirePositive("tolerance", tolerance);
+  if (!nominal) internal::ThrowInvalid("nominal", "null", "a nominal plan is required (MakeNominalPlan)");
+  ExecutionProblem ideal_problem;
+  ideal_problem.nominal = nominal;
+  const ExecutionSummary ideal = Execute(ideal_problem);
+  const auto& steps = nominal->plan.steps;
+  double shortest = nominal->plan.total_time - (steps.empty() ? 0.0 : steps.back().t_impulse);
+  for (std::size_t k = 0; k + 1 < steps.size(); ++k) shortest = std::min(shortest, steps[k + 1].t_impulse - steps[k].t_impulse);
+  PulseDurationChoice c;
+  const double d0 = 0.1 * shortest;
+  const double e0 = PulsedDeviation(nominal, ideal, d0, causal);
+  ++c.executions;
+  // Aim at 0.9 tolerance: the fitted order holds to a few per cent, not exactly.
+  const double scale = e0 > 0 ? kPulseAim * tolerance / e0 : 1.0;
+  c.duration = std::min(shortest, d0 * (causal ? scale : std::sqrt(scale)));
+  c.measured_error = PulsedDeviation(nominal, ideal, c.duration, causal);
+  ++c.executions;
+  for (int halvings = 0; c.measured_error > tolerance && halvings < 8; ++halvings) {
+    c.duration *= 0.5;
+    c.measured_error = PulsedDeviation(nominal, ideal, c.duration, causal);
+    ++c.executions;
+  }
+  c.within = c.measured_error <= tolerance;
+  return c;
 }
 
 }  // namespace plateball

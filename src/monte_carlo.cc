@@ -156,6 +156,11 @@ MonteCarloWork::MonteCarloWork(const MonteCarloProblem& problem, const MonteCarl
     info_.push_back({ns_[i], p->plan.status, p->plan.message, p->plan_orientation_error, p->plan.measured_error,
                      p->plan.total_time});
     planned_ = planned_ && p->plan.IsSolutionUsable();
+    // Pulses longer than a flight are invalid input, found before any trial runs.
+    for (std::size_t k = 0; k < problem.scenarios.size() && p->plan.IsSolutionUsable(); ++k) {
+      const std::string e = PulseScheduleError(*p, problem.scenarios[k].errors);
+      if (!e.empty()) throw std::invalid_argument("scenarios[" + std::to_string(k) + "]." + e);
+    }
   }
   if (!planned_) total_ = 0;
   options_.progress = options.progress;

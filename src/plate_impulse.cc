@@ -1,5 +1,7 @@
 #include "plateball/plate_impulse.h"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 
 #include <Eigen/Geometry>

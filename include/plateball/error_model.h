@@ -30,14 +30,23 @@ struct ErrorModel {
   double observation = 0.0;
 
   // Ranges (README, "Limits"): beyond them the ball leaves the local join's reach within a step.
+  /// Duration (s, normalised time) of every impulse's pulse: a constant plate force over
+  /// [t_k - d/2, t_k + d/2] (or [t_k, t_k + d] with pulse_causal = 1) instead of an instant jump
+  /// (docs/rig.md, "Finite pulses"); deterministic. 0 is the ideal impulse.
+  double pulse_duration = 0.0;
+  /// 1: the pulses start at the impulse times (causal); 0: they are centred on them.
+  double pulse_causal = 0.0;
+
   static constexpr double kMaxImpulseMagnitude = 0.5;
   static constexpr double kMaxImpulseAngle = 0.5;
   static constexpr double kMaxTiming = 0.1;
   static constexpr double kMaxEnergyLoss = 0.5;
   static constexpr double kMaxLambda = 0.1;
   static constexpr double kMaxObservation = 0.1;
+  static constexpr double kMaxPulseDuration = 10.0;
 
-  /// Empty when every magnitude is finite and in [0, its maximum]; else names field and value.
+  /// Empty when every magnitude is finite and in [0, its maximum] and pulse_causal is 0 or 1; else
+  /// names field and value.
   std::string Validate() const;
   /// True when every magnitude is 0 (the nominal execution, no errors).
   bool IsZero() const;

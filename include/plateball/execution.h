@@ -114,8 +114,29 @@ struct ExecutionSummary {
   std::string BriefReport() const;
 };
 
+/// Empty when the pulses of `errors.pulse_duration` fit the nominal plan's flights (each no longer
+/// than the flight to the next impulse; the last one's end before the plan's end); otherwise
+/// "pulse_duration: value D: longer than the flight K -> K+1 (F)". The first pulse may start
+/// before time 0 (the ball rolled freely before).
+std::string PulseScheduleError(const NominalPlan& nominal, const ErrorModel& errors);
+
+/// A pulse duration for executing a nominal plan open loop within a stated error.
+struct PulseDurationChoice {
+  double duration = 0.0;        ///< the chosen pulse duration (s, normalised time)
+  double measured_error = 0.0;  ///< final |x - x_ideal| + rotation angle to A_ideal, executed with it
+  int executions = 0;           ///< pulsed executions run (the ideal one not counted)
+  bool within = false;          ///< measured_error <= the tolerance
+};
+
+/// Chooses the pulse duration from the measured order: executes with d0 = 0.1 x the shortest flight,
+/// scales by (0.9 tolerance / error)^(1/2) (centred; causal: ^1, docs/rig.md), caps at the shortest flight,
+/// and verifies by executing, halving (at most 8 times) while the error exceeds the tolerance.
+/// Throws std::invalid_argument naming `tolerance` when it is not finite and > 0.
+PulseDurationChoice ChoosePulseDuration(const std::shared_ptr<const NominalPlan>& nominal, double tolerance,
+                                        bool causal = false);
+
 /// Executes one trial. Throws std::invalid_argument naming the field for a missing nominal plan,
-/// a plan that is not usable, invalid errors or options; a lost ball or a failed integration is a
+/// a plan that is not usable, invalid errors or options, pulses that do not fit the plan's flights; a lost ball or a failed integration is a
 /// status. The result depends only on (nominal, strategy, errors, seed, trial, options).
 ExecutionSummary Execute(const ExecutionProblem& problem, const ExecutionOptions& options = {});
 

@@ -21,6 +21,8 @@ void BindInputs(py::module_& m) {
       .def_readwrite("energy_loss", &ErrorModel::energy_loss)
       .def_readwrite("lambda_", &ErrorModel::lambda)
       .def_readwrite("observation", &ErrorModel::observation)
+      .def_readwrite("pulse_duration", &ErrorModel::pulse_duration)
+      .def_readwrite("pulse_causal", &ErrorModel::pulse_causal)
       .def("validate", &ErrorModel::Validate)
       .def("__str__", [](const ErrorModel& e) { return ToString(e); });
   m.def("parse_error_model", &ParseErrorModel, py::arg("text"), py::arg("field") = "noise",

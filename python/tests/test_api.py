@@ -129,6 +129,10 @@ def test_montecarlo_inputs_are_words_and_checked():
     with pytest.raises(ValueError, match="noise"):
         pb.parse_error_model("impulse_magnitude=2")
     assert str(pb.parse_error_model("timing=1e-4")).startswith("timing")
+    pulses = pb.parse_error_model("pulse_duration=0.05,pulse_causal=1")
+    assert (pulses.pulse_duration, pulses.pulse_causal) == (0.05, 1.0)
+    with pytest.raises(ValueError, match="noise.pulse_causal: value 0.5"):
+        pb.parse_error_model("pulse_causal=0.5")
 
 
 def test_fewest_impulses_keywords_errors_and_words():

@@ -179,7 +179,8 @@ def check_tool_outputs(run, problems):
         run.output(["plateball", "identify", "tests/data/identify_straight.csv"])
         run.output(["plateball", "steer", "problems/figure7_exact.json", "--summary-only"])
         run.output(["plateball", "montecarlo", "problems/circle.json", "--impulses", "8", "--trials", "2", "--quiet",
-                    "--strategy", "open_loop,feedback", "--noise", "timing=1e-3", "--sweep-n", "16", "--timings"])
+                    "--strategy", "open_loop,feedback", "--noise", "timing=1e-3", "--noise", "pulse_duration=0.05",
+                    "--sweep-n", "16", "--timings"])
         # A cell without a completed trial (null distributions) and a sweep row without data (missing).
         run.output(["plateball", "montecarlo", "problems/circle.json", "--impulses", "16", "--trials", "3", "--quiet",
                     "--strategy", "open_loop,feedback", "--sweep-n", "32,64", "--noise",

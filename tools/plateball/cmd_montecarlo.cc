@@ -95,7 +95,8 @@ Json OptionsJson(const MonteCarloProblem& mp, const MonteCarloOptions& mo, int m
     scenarios.push_back(Json{{"name", s.name},
                              {"errors", Json{{"impulse_magnitude", e.impulse_magnitude}, {"impulse_angle", e.impulse_angle},
                                              {"timing", e.timing}, {"energy_loss", e.energy_loss},
-                                             {"lambda", e.lambda}, {"observation", e.observation}}}});
+                                             {"lambda", e.lambda}, {"observation", e.observation},
+                                             {"pulse_duration", e.pulse_duration}, {"pulse_causal", e.pulse_causal}}}});
   }
   return Json{{"trials", mp.trials}, {"impulses", main_n}, {"strategies", strategies}, {"scenarios", scenarios},
               {"sweep_n", mp.sweep_n}, {"sweep_trials", mo.sweep_trials == 0 ? mp.trials : mo.sweep_trials},
@@ -214,7 +215,7 @@ std::function<int()> SetupMonteCarlo(CLI::App& sub) {
       ->delimiter(',');
   sub.add_option("--noise", o->noise,
                  "an error scenario KEY=VALUE[,KEY=VALUE] with keys impulse_magnitude, impulse_angle, timing, "
-                 "energy_loss, lambda, observation (\"none\": no error); repeat for more scenarios (default "
+                 "energy_loss, lambda, observation, pulse_duration, pulse_causal (\"none\": no error); repeat for more scenarios (default "
                  "impulse_magnitude=1e-3)");
   o->n_opt = sub.add_option("--impulses,--n", o->n, "impulses of the main plan, overrides plan.partition.n (--n: alias)");
   sub.add_option("--sweep-n", o->sweep_n, "further n for the error against n, e.g. 16,32,128,256")->delimiter(',');

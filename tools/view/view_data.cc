@@ -492,6 +492,11 @@ ErrorModel ErrorsFrom(const ResultReader& r, const json& errors, const std::stri
       {"error_timing", &ErrorModel::timing}, {"error_energy_loss", &ErrorModel::energy_loss},
       {"error_lambda", &ErrorModel::lambda}, {"error_observation", &ErrorModel::observation}};
   for (const auto& [concept_name, member] : members) e.*member = r.Number(errors, where, concept_name);
+  // Results written before finite pulses have no pulse fields: ideal impulses.
+  if (r.Find(errors, "error_pulse_duration") != nullptr) {
+    e.pulse_duration = r.Number(errors, where, "error_pulse_duration");
+    e.pulse_causal = r.Number(errors, where, "error_pulse_causal");
+  }
   return e;
 }
 
