@@ -68,6 +68,7 @@ enum class FewestCountVerdict {
   kGenericallyImpossible,  ///< 2n < conditions: no generic goal is reachable (Sard); none found
   kNotFound,               ///< 2n >= conditions and no start arrived: not found, NOT proved impossible
 };
+/// "reached", "generically_impossible" or "not_found", as in the JSON.
 std::string ToString(FewestCountVerdict verdict);
 
 struct FewestImpulsesProblem {

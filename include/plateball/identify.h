@@ -73,6 +73,7 @@ enum class IdentifyStatus {
   kNoFit,                 ///< no free motion fits the track (the residual is reported)
   kFailed,                ///< the solver or an integration failed (message)
 };
+/// The status as the JSON spells it (e.g. "identified", "lambda_not_identified").
 std::string ToString(IdentifyStatus status);
 
 /// Names of the fitted parameters, in the order of IdentifySummary::standard_errors.
@@ -120,7 +121,10 @@ struct IdentifySummary {
   int iterations = 0;             ///< solver iterations of the final fit
   int profile_fits = 0;           ///< fits at fixed lambda for the profile interval
 
+  /// True when lambda, mu and the state were all identified.
   bool IsSolutionUsable() const { return status == IdentifyStatus::kIdentified; }
+  /// One line: the status and message, lambda and mu with their standard errors (and lambda's 95%
+  /// interval), and the rms residual.
   std::string BriefReport() const;
 };
 

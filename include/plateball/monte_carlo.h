@@ -102,6 +102,8 @@ struct SweepSeries {
   std::optional<double> slope;
   std::vector<std::optional<double>> local_slopes;
   std::optional<double> plan_slope;  ///< the same fit of plan_orientation_error (Theorem 2.6: -2)
+
+  /// True when no trial of row i completed (its medians are null and the fit leaves it out).
   bool Missing(std::size_t i) const { return !median_orientation_error[i].has_value(); }
 };
 

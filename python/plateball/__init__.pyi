@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 
 from ._plateball import *
-from ._plateball import (BallModel, ConvergenceOptions, ConvergenceProblem, ConvergenceStudy, ExactArrivalOptions, ExactArrivalProblem, ExactArrivalSummary, FewestImpulsesOptions, FewestImpulsesProblem, FewestImpulsesSummary, FreeMotion, IntegrationOptions, IsoparallelCertificate, IsoparallelCertificateOptions, IsoparallelOptions, IsoparallelPlanProblem, IsoparallelProblem, IsoparallelSummary, JoinOptions, JoinProblem, JoinSummary, MonteCarloOptions, MonteCarloProblem, MonteCarloSummary, PlanOptions, PlanProblem, PlanSummary, Problem, ReachOptions, ReachProblem, ReachSummary, Trajectory)
+from ._plateball import (BallModel, ConvergenceOptions, ConvergenceProblem, ConvergenceStudy, ExactArrivalOptions, ExactArrivalProblem, ExactArrivalSummary, FewestImpulsesOptions, FewestImpulsesProblem, FewestImpulsesSummary, FreeMotion, IdentifyOptions, IdentifySummary, IntegrationOptions, IsoparallelCertificate, IsoparallelCertificateOptions, IsoparallelOptions, IsoparallelPlanProblem, IsoparallelProblem, IsoparallelSummary, JoinOptions, JoinProblem, JoinSummary, MonteCarloOptions, MonteCarloProblem, MonteCarloSummary, PlanOptions, PlanProblem, PlanSummary, Problem, ReachOptions, ReachProblem, ReachSummary, Trajectory)
 
 __version__: str
 
@@ -24,3 +24,4 @@ def certify_isoparallel(summary: IsoparallelSummary, options: Optional[Isoparall
 def simulate(model: Optional[BallModel] = ..., angles: Optional[Sequence[float]] = ..., mu: float = ..., x0: Sequence[float] = ..., orientation: Optional[numpy.typing.ArrayLike] = ..., t_end: float = ..., samples: int = ..., integration: Optional[IntegrationOptions] = ..., problem: Optional[Problem] = ...) -> Tuple[FreeMotion, Trajectory]: ...
 def roll(points: Sequence[Sequence[float]], segment: bool = ..., integration: Optional[IntegrationOptions] = ...) -> numpy.typing.NDArray[numpy.float64]: ...
 def load_problem(path: "str | os.PathLike[str]") -> Problem: ...
+def identify(t: Sequence[float], xy: Sequence[Sequence[float]], sigma: Optional[Sequence[float]] = ..., options: Optional[IdentifyOptions] = ..., **kwargs: Any) -> IdentifySummary: ...

@@ -16,10 +16,10 @@ bad() { failed=$((failed + 1)); echo "FAIL: $*"; }
 python3 - "$work" "$src" <<'PY'
 import json, sys
 w, src = sys.argv[1], sys.argv[2]
-# Inertias of 1e300 at mu = 1e12: every model quantity is finite (lambda, beta), the kinetic
-# energy mu (I1 + M r^2) / 2 is not.
+# A rigid ball with inertias of 1e299 and a mass of 1e300 at mu = 1e12: every model quantity is finite
+# (lambda, beta), the kinetic energy mu (I1 + M r^2) / 2 is not.
 d = json.load(open(f"{src}/problems/physical_units.json"))
-d["ball"]["physical"].update(inertia_1=1e300, inertia_3=1e300)
+d["ball"]["physical"].update(inertia_1=1e299, inertia_3=1e299, ball_mass=1e300, radius=1.0)
 d["initial"]["mu"] = 1e12
 json.dump(d, open(f"{w}/infinite_energy.json", "w"))
 # A valid problem padded with blanks beyond the 16 MiB limit of a problem file.
@@ -37,7 +37,7 @@ cases=(
   "FIFO as the problem file (isoparallel_solve)|5|a FIFO or socket, not a file|iso|$work/fifo.json"
   "FIFO as the result of view|5|a FIFO or socket, not a file|pb|view|$work/fifo.json|--html|$work/v.html"
   "unknown subcommand|2|\"bogus\": unknown subcommand|pb|bogus"
-  "unknown subcommand rig|2|\"rig\": unknown subcommand|pb|rig|x.json"
+  "unknown subcommand rig (or rig's unknown member)|2|unknown subcommand|pb|rig|x.json"
   "--exact with 2 impulses, before the solve|3|--impulses: value 2|iso|$src/problems/figure7.json|--exact|--impulses|2"
 )
 

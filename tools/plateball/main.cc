@@ -37,6 +37,22 @@ int main(int argc, char** argv) {
               << "\": unknown subcommand; one of " << names << "\nRun with --help for more information.\n";
     return kExitUsage;
   }
+  // The same for a group's second word (plateball rig export|replay).
+  if (argc >= 2 && known) {
+    const std::vector<CLI::App*> members = app.get_subcommand(argv[1])->get_subcommands([](CLI::App*) { return true; });
+    std::string member_names;
+    bool member = false;
+    for (const CLI::App* m : members) {
+      member_names += (member_names.empty() ? "" : ", ") + m->get_name();
+      member = member || (argc >= 3 && m->get_name() == argv[2]);
+    }
+    if (!members.empty() && !member && (argc < 3 || argv[2][0] != '-')) {
+      std::cerr << "plateball " << argv[1] << ": command line: SUBCOMMAND: value \""
+                << (argc >= 3 ? TerminalSafe(argv[2]) : std::string()) << "\": unknown subcommand; one of "
+                << member_names << "\nRun with --help for more information.\n";
+      return kExitUsage;
+    }
+  }
   if (const auto code = ParseCommandLine(app, argc, argv, "plateball")) return *code;
   for (const auto& [sub, run] : runners) {
     // Failures map to exit codes in one place (common/errors.h) for every tool.

@@ -41,7 +41,8 @@ def package_stub():
              "from ._plateball import *", "from ._plateball import (" + ", ".join(
                  sorted({name for triple in SOLVERS.values() for name in triple}
                         | {"BallModel", "FreeMotion", "IntegrationOptions", "IsoparallelCertificate",
-                           "IsoparallelCertificateOptions", "Problem", "Trajectory"})) + ")", "",
+                           "IsoparallelCertificateOptions", "IdentifyOptions", "IdentifySummary", "Problem",
+                           "Trajectory"})) + ")", "",
              "__version__: str", ""]
     for name, (problem, options, summary) in SOLVERS.items():
         lines.append(f"def {name}(problem: Optional[{problem}] = ..., options: Optional[{options}] = ..., "
@@ -54,7 +55,9 @@ def package_stub():
               "problem: Optional[Problem] = ...) -> Tuple[FreeMotion, Trajectory]: ...",
               "def roll(points: Sequence[Sequence[float]], segment: bool = ..., "
               "integration: Optional[IntegrationOptions] = ...) -> numpy.typing.NDArray[numpy.float64]: ...",
-              "def load_problem(path: \"str | os.PathLike[str]\") -> Problem: ...", ""]
+              "def load_problem(path: \"str | os.PathLike[str]\") -> Problem: ...",
+              "def identify(t: Sequence[float], xy: Sequence[Sequence[float]], sigma: Optional[Sequence[float]] = ..., "
+              "options: Optional[IdentifyOptions] = ..., **kwargs: Any) -> IdentifySummary: ...", ""]
     return "\n".join(lines)
 
 
