@@ -171,13 +171,13 @@ void BindAngleForm(py::module_& m) {
 }
 
 void BindRolling(py::module_& m) {
-  m.def("roll_along_segment", &RollAlongSegment, py::arg("p"), py::arg("q"), "The reorientation R of rolling along the segment from p to q: the rotation by |q - p| about e3 x d.");
+  m.def("roll_along_segment", &RollAlongSegment, py::arg("p"), py::arg("q"), "The reorientation R of rolling along the segment from p to q: the rotation by the length of q - p about e3 x d.");
   m.def("roll_along_polyline", &RollAlongPolyline, py::arg("points"), "The reorientation R of rolling along the polyline through the points (exact).");
   m.def("roll_along_samples", &RollAlongSamples, py::arg("points"), py::arg("integration") = IntegrationOptions{},
         py::call_guard<py::gil_scoped_release>(), "The reorientation R of rolling along the natural cubic spline through the points (integrated).");
   m.def("hat", &Hat, "The skew-symmetric matrix hat(w) with hat(w) v = w x v.");
   m.def("exp_so3", &ExpSO3, "The rotation exp(hat(w)) of a rotation vector w (3x3).");
-  m.def("log_so3", &LogSO3, "The rotation vector w with exp(hat(w)) = R, |w| <= pi.");
+  m.def("log_so3", &LogSO3, "The rotation vector w with exp(hat(w)) = R and a length of at most pi.");
   m.def("operator_norm_distance", &OperatorNormDistance, "The operator 2-norm ||A - B|| of two 3x3 matrices (the error the paper compares).");
   m.def("rotation_angle", &RotationAngle, "The angle of a rotation matrix, in [0, pi].");
   m.def("rotation_z", &RotationZ, "The rotation by an angle about e3 (3x3).");
