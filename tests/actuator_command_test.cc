@@ -18,20 +18,12 @@ namespace {
 // Closed forms evaluated in a different order than the library: a few ulps of the forces.
 constexpr double kRelative = 1e-13;
 
-PhysicalParameters Ball() {  // problems/physical_units.json's ball and plate
-  PhysicalParameters p;
-  p.inertia_1 = 1.6e-5;
-  p.inertia_3 = 1.2e-5;
-  p.ball_mass = 0.1;
-  p.radius = 0.02;
-  p.plate_mass = 0.05;
-  return p;
-}
+using plateball::testing::PhysicalUnitsBall;
 
 TEST(ActuatorCommand, HomogeneousBallForcesMatchTheClosedForm) {
   // I = I0: the ball's angular momentum about its centre changes by I0 dw = r e3 x (Q - G) and its
   // momentum by M r dw x e3 = Q + G, so |Q| = (I0 + M r^2) |dw| / (2 r) and |G| = |M r^2 - I0| |dw| / (2 r).
-  PhysicalParameters p = Ball();
+  PhysicalParameters p = PhysicalUnitsBall();
   p.inertia_1 = p.inertia_3 = 0.4 * p.ball_mass * p.radius * p.radius;
   const double i0 = p.inertia_1, m = p.ball_mass, r = p.radius;
   const Eigen::Vector3d dw(3.0, -4.0, 0.0);  // |dw| = 5 rad/s
@@ -58,7 +50,7 @@ TEST(ActuatorCommand, HomogeneousBallForcesMatchTheClosedForm) {
 TEST(ActuatorCommand, SlipAndSpinAreFlaggedAgainstTheGivenFriction) {
   // A tilted non-homogeneous ball: z = (1, 0, 1)/sqrt(2), dw = e1 needs the torsional impulse
   // (I3 - I1) (z . dw) z3 = (I3 - I1)/2 (PlateImpulse.TheImpulseDependsOnTheOrientation).
-  const PhysicalParameters p = Ball();
+  const PhysicalParameters p = PhysicalUnitsBall();
   const PlateImpulse j = PlateImpulseFor(p, Eigen::Vector3d(1, 0, 1).normalized(), Eigen::Vector3d(1, 0, 0));
   PulseOptions o;
   o.duration = 1e-2;
@@ -81,7 +73,7 @@ TEST(ActuatorCommand, SlipAndSpinAreFlaggedAgainstTheGivenFriction) {
 }
 
 TEST(ActuatorCommand, AnUnloadedMasslessPlateCannotHoldTheBall) {
-  PhysicalParameters p = Ball();
+  PhysicalParameters p = PhysicalUnitsBall();
   p.plate_mass = 0.0;
   const PulseForces f = PulseForcesFor(p, PlateImpulseFor(p, Eigen::Vector3d::UnitZ(), {1, 0, 0}), PulseOptions{});
   EXPECT_EQ(f.top_normal_load, 0.0);
@@ -107,7 +99,7 @@ TEST(ActuatorCommand, ScheduleRejectsPulsesThatDoNotFitNamingTheImpulse) {
 
 TEST(ActuatorCommand, InvalidOptionsAreRejectedNamingTheField) {
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
-  const PhysicalParameters p = Ball();
+  const PhysicalParameters p = PhysicalUnitsBall();
   const PlateImpulse j = PlateImpulseFor(p, Eigen::Vector3d::UnitZ(), {1, 0, 0});
   PulseOptions o;
   o.duration = -1;

@@ -20,15 +20,7 @@
 namespace plateball {
 namespace {
 
-PhysicalParameters Ball() {  // problems/physical_units.json's ball and plate
-  PhysicalParameters p;
-  p.inertia_1 = 1.6e-5;
-  p.inertia_3 = 1.2e-5;
-  p.ball_mass = 0.1;
-  p.radius = 0.02;
-  p.plate_mass = 0.05;
-  return p;
-}
+using plateball::testing::PhysicalUnitsBall;
 
 double Lambda(const PhysicalParameters& p) {
   const double m = p.EffectiveMass() * p.radius * p.radius;
@@ -77,7 +69,7 @@ TEST(FinitePulse, ForcedMotionMatchesTwoBodyNewtonEuler) {
   // Central difference over 2h = 2e-5 s: error ~ h^2 |omega'''| / 6 ~ 1e-9 relative here, plus the
   // integration tolerance 1e-12 / h ~ 1e-7 rad/s^2 against rates of ~1e2-1e3 rad/s^2.
   constexpr double kH = 1e-5, kRelative = 1e-6;
-  const PhysicalParameters p = Ball();
+  const PhysicalParameters p = PhysicalUnitsBall();
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < 10; ++i) {
@@ -100,7 +92,7 @@ TEST(FinitePulse, IdealImpulseJumpsKAsThePlateImpulseSays) {
   // Two derivations: PlateImpulseFor (contact impulses, Newton-Euler) and the moment about the lower
   // contact (MomentumRate). J applied at once must change K by K(omega + dw) - K(omega).
   constexpr double kRelative = 1e-12;  // a few roundings of quantities of similar size
-  const PhysicalParameters p = Ball();
+  const PhysicalParameters p = PhysicalUnitsBall();
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < 10; ++i) {
@@ -120,7 +112,7 @@ struct OrderFit {
 // Final-state error of one pulse of duration delta against the ideal impulse at t_k = 0.5 s, fitted
 // as error ~ C delta^slope by least squares in log-log over delta = 0.04 ... 0.005 s.
 OrderFit FitOrder(bool centred) {
-  const PhysicalParameters p = Ball();
+  const PhysicalParameters p = PhysicalUnitsBall();
   PulsedState s;
   s.z = Eigen::Vector3d(0.3, -0.5, 0.8).normalized();
   s.k = KFromOmega(p, s.z, {4.0, -2.0});
@@ -161,7 +153,7 @@ TEST(FinitePulse, CentredPulsesConvergeQuadraticallyCausalLinearly) {
 
 TEST(FinitePulse, BadPulsesAreRejectedNamingTheField) {
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
-  const PhysicalParameters p = Ball();
+  const PhysicalParameters p = PhysicalUnitsBall();
   const PulsedState s;
   const Eigen::Vector3d j(0.01, 0, 0);
   EXPECT_NE(message([&] { RunPulsed(p, s, 0, 1, {{0.2, 0.3, j}, {0.4, 0.1, j}}); }).find("pulses[1].start: value 0.4"),

@@ -17,15 +17,7 @@
 namespace plateball {
 namespace {
 
-PhysicalParameters Ball() {  // problems/physical_units.json's ball and plate
-  PhysicalParameters p;
-  p.inertia_1 = 1.6e-5;
-  p.inertia_3 = 1.2e-5;
-  p.ball_mass = 0.1;
-  p.radius = 0.02;
-  p.plate_mass = 0.05;
-  return p;
-}
+using plateball::testing::PhysicalUnitsBall;
 
 Eigen::Matrix3d Inertia(const PhysicalParameters& p, const Eigen::Vector3d& z) {
   return p.inertia_1 * Eigen::Matrix3d::Identity() + (p.inertia_3 - p.inertia_1) * z * z.transpose();
@@ -65,7 +57,7 @@ TEST(PlateImpulse, ForwardNewtonEulerOfThePlateImpulseGivesBackTheJump) {
   constexpr double kAgreement = 1e-10;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const PhysicalParameters p = Ball();
+  const PhysicalParameters p = PhysicalUnitsBall();
   const BallModel model = BallModel::FromPhysical(p);
   for (int i = 0; i < 20; ++i) {
     const AngleState angles{1.5 * u(rng) + 1.6, 3.0 * u(rng), 3.0 * u(rng)};
@@ -87,7 +79,7 @@ TEST(PlateImpulse, ForwardNewtonEulerOfThePlateImpulseGivesBackTheJump) {
 TEST(PlateImpulse, HomogeneousBallHasTheReducedMassAtThePlate) {
   // I = I0 everywhere: T = ((I0 + M r^2)/(4 r^2) + M_plate) V^2 / 2 in the plate's velocity V, so
   // J = ((I0 + M r^2)/(4 r^2) + M_plate) dV, and the ball's orientation does not matter.
-  PhysicalParameters p = Ball();
+  PhysicalParameters p = PhysicalUnitsBall();
   p.inertia_1 = p.inertia_3 = 0.4 * p.ball_mass * p.radius * p.radius;
   const double mass_at_plate = (p.inertia_1 + p.ball_mass * p.radius * p.radius) / (4 * p.radius * p.radius) + p.plate_mass;
   const Eigen::Vector3d dw(0.3, -1.2, 0.0);
@@ -101,7 +93,7 @@ TEST(PlateImpulse, HomogeneousBallHasTheReducedMassAtThePlate) {
 TEST(PlateImpulse, TheImpulseDependsOnTheOrientation) {
   // A non-homogeneous ball: the same plate velocity change needs different J for z vertical and tilted,
   // and a torsional impulse when z is tilted toward delta_omega.
-  const PhysicalParameters p = Ball();
+  const PhysicalParameters p = PhysicalUnitsBall();
   const Eigen::Vector3d dw(1.0, 0.0, 0.0);
   const PlateImpulse up = PlateImpulseFor(p, Eigen::Vector3d::UnitZ(), dw);
   const Eigen::Vector3d tilted = Eigen::Vector3d(1, 0, 1).normalized();
@@ -118,7 +110,7 @@ TEST(PlateImpulse, TheImpulseDependsOnTheOrientation) {
 
 TEST(PlateImpulse, InvalidInputIsRejectedNamingTheField) {
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
-  const PhysicalParameters p = Ball();
+  const PhysicalParameters p = PhysicalUnitsBall();
   EXPECT_NE(message([&] { PlateImpulseFor(p, {0, 0, 2}, {1, 0, 0}); }).find("z: value 2"), std::string::npos);
   EXPECT_NE(message([&] { PlateImpulseFor(p, {0, 0, 1}, {1, 0, 0.5}); }).find("delta_omega[2]: value 0.5"),
             std::string::npos);

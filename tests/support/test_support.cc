@@ -32,4 +32,14 @@ std::string InvalidArgumentMessage(const std::function<void()>& f, const std::st
 
 std::string SourcePath(const std::string& relative) { return std::string(PLATEBALL_SOURCE_DIR) + "/" + relative; }
 
+PhysicalParameters PhysicalUnitsBall() {
+  PhysicalParameters p;
+  p.inertia_1 = 1.6e-5;
+  p.inertia_3 = 1.2e-5;
+  p.ball_mass = 0.1;
+  p.radius = 0.02;
+  p.plate_mass = 0.05;
+  return p;
+}
+
 }  // namespace plateball::testing

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+
+#include "plateball/ball_model.h"
 #include <functional>
 #include <string>
 
@@ -18,5 +20,9 @@ std::string InvalidArgumentMessage(const std::function<void()>& f, const std::st
 
 /// Path of a file in the source tree (problems/, tests/data/ ...).
 std::string SourcePath(const std::string& relative);
+
+/// problems/physical_units.json's ball and plate: a 2 cm, 100 g ball (I1 = 1.6e-5, I3 = 1.2e-5 kg m^2)
+/// under a 50 g upper plate.
+PhysicalParameters PhysicalUnitsBall();
 
 }  // namespace plateball::testing
