@@ -125,12 +125,7 @@ struct PlateBall {
 
 TEST(BallModel, NewtonEulerOfBallAndPlateFollowsTheEffectiveMass) {
   // problems/physical_units.json's ball: M = 0.1 + 4 * 0.05 = 0.3 kg, lambda = (0.75 + 7.5)/(1 + 7.5).
-  PhysicalParameters phys;
-  phys.inertia_1 = 1.6e-5;
-  phys.inertia_3 = 1.2e-5;
-  phys.ball_mass = 0.1;
-  phys.radius = 0.02;
-  phys.plate_mass = 0.05;
+  const PhysicalParameters phys = plateball::testing::PhysicalUnitsBall();
   const BallModel model = BallModel::FromPhysical(phys);
   EXPECT_NEAR(model.lambda(), 8.25 / 8.5, 1e-15);
   const AngleState angles{M_PI / 3, 0.4, 0.1};
