@@ -108,14 +108,16 @@ TEST(Controller, ClosedLoopMatchesExecuteFeedbackExact) {
   ep.strategy = ExecutionStrategy::kFeedbackExact;
   ep.errors = RigErrors();
   ep.seed = 5;
-  ControllerOptions o = LoopOptions(ExecutionStrategy::kFeedbackExact);
-  o.execution.exact_window = 4;  // a few exact re-plans keep the test cheap
-  ExecutionOptions eo;
-  eo.exact_window = 4;
-  const ExecutionSummary s = Execute(ep, eo);
+  const ControllerOptions o = LoopOptions(ExecutionStrategy::kFeedbackExact);
+  const ExecutionSummary s = Execute(ep);
   ASSERT_TRUE(s.IsSolutionUsable()) << s.BriefReport();
-  const internal::ClosedLoopResult loop = Loop(ep.errors, ep.seed, ep.trial, o);
+  ASSERT_EQ(s.exact_solves, 10);  // every step while 12 ... 3 impulses remain re-planned exactly
+  Controller controller(Circle(), o);
+  internal::SimulatedRig rig(*Circle(), ep.errors, ep.seed, ep.trial);
+  const internal::ClosedLoopResult loop =
+      internal::RunClosedLoop(controller, rig, std::lround(2.0 * Circle()->plan.total_time / kTick));
   EXPECT_EQ(loop.status, ControllerStatus::kDone);
+  EXPECT_EQ(controller.exact_solves(), 10);
   EXPECT_NEAR((loop.x - Circle()->goal).norm(), s.position_error, kPositionMatch);
   EXPECT_NEAR(RotationAngle(Circle()->goal_orientation, loop.A), s.orientation_error, kOrientationMatch);
 }
@@ -200,14 +202,13 @@ TEST(Controller, PhysicalParametersGiveThePlateImpulse) {
 TEST(Controller, AnExhaustedBudgetGivesTheJoinWithAFlag) {
   ControllerOptions o = LoopOptions(ExecutionStrategy::kFeedbackExact);
   o.time_budget = 1e-12;  // spent before any exact re-plan could start
-  o.execution.exact_window = 4;
   Controller c(Circle(), o);
   internal::SimulatedRig rig(*Circle(), RigErrors(), 3, 0);
   const internal::ClosedLoopResult loop =
       internal::RunClosedLoop(c, rig, std::lround(2.0 * Circle()->plan.total_time / kTick));
   EXPECT_EQ(loop.status, ControllerStatus::kDone);
   EXPECT_EQ(c.exact_solves(), 0);
-  EXPECT_GE(loop.budget_exhausted, 2);  // at least the two impulses that wanted an exact re-plan
+  EXPECT_GE(loop.budget_exhausted, 10);  // at least the ten impulses that wanted an exact re-plan
 }
 
 TEST(Controller, InvalidOptionsNameTheField) {
