@@ -116,6 +116,7 @@ pb_status pb_plan_create(const pb_problem* problem, int n, pb_plan** out) {
   if (out == nullptr) return Null("out");
   *out = nullptr;
   return Guard([&] {
+    if (n < 0) return Fail(PB_INVALID_INPUT, "n: value " + std::to_string(n) + ": must be >= 0 (0: the file's partition)");
     const plateball::PlanSetup setup = plateball::PlanSetupFor(problem->problem, n);
     auto nominal = std::make_shared<plateball::NominalPlan>(plateball::MakeNominalPlan(setup.problem, setup.options));
     if (!nominal->plan.IsSolutionUsable()) return Fail(PB_NO_SOLUTION, nominal->plan.BriefReport());
