@@ -109,8 +109,11 @@ class Controller {
   /// Throws std::invalid_argument naming the field for a null or unusable plan or invalid options.
   /// Allocates everything the ticks need.
   Controller(std::shared_ptr<const NominalPlan> nominal, const ControllerOptions& options = {});
+  /// Releases the preallocated state.
   ~Controller();
+  /// Not copyable: the feedback policy refers to the controller's own options.
   Controller(const Controller&) = delete;
+  /// Not assignable (see the copy constructor).
   Controller& operator=(const Controller&) = delete;
 
   /// One tick at `time` (normalised time since the plan's first impulse) with the measurement.
@@ -122,9 +125,13 @@ class Controller {
   const ControllerOutput& output() const { return out_; }
   /// The last failure's full message (empty when none).
   const std::string& message() const { return message_; }
+  /// The plan it follows.
   const NominalPlan& nominal() const { return *nominal_; }
+  /// Its options.
   const ControllerOptions& options() const { return options_; }
+  /// feedback_exact: exact re-plans that arrived so far.
   int exact_solves() const;
+  /// feedback_exact: exact re-plans that did not arrive (the last exact plan or a join went on).
   int exact_failures() const;
 
  private:

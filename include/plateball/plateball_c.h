@@ -34,6 +34,7 @@ PB_API const char* pb_last_error(void);
 typedef struct pb_problem pb_problem;
 /** Reads a problem file (the JSON of schemas/input). */
 PB_API pb_status pb_problem_load(const char* path, pb_problem** out);
+/** Frees a problem (null: nothing). */
 PB_API void pb_problem_destroy(pb_problem* problem);
 
 /* ------------------------------------------------------------------ plans */
@@ -50,8 +51,11 @@ typedef struct pb_impulse {
 typedef struct pb_plan pb_plan;
 /** Plans the problem's `plan` section with n impulses (n = 0: the file's partition). */
 PB_API pb_status pb_plan_create(const pb_problem* problem, int n, pb_plan** out);
+/** Frees a plan (null: nothing); controllers made from it keep working. */
 PB_API void pb_plan_destroy(pb_plan* plan);
+/** The plan's impulses n (0 for null). */
 PB_API int pb_plan_impulse_count(const pb_plan* plan);
+/** The plan's duration from the first impulse to the arrival (0 for null). */
 PB_API double pb_plan_total_time(const pb_plan* plan);
 /** Impulse k, 0 <= k < pb_plan_impulse_count. */
 PB_API pb_status pb_plan_impulse(const pb_plan* plan, int k, pb_impulse* out);
@@ -137,6 +141,7 @@ PB_API pb_status pb_controller_create(const pb_plan* plan, const pb_controller_o
  * controller's status (see command->status); PB_INVALID_INPUT only for null pointers. */
 PB_API pb_status pb_controller_update(pb_controller* controller, double time, const pb_measurement* measurement,
                                       pb_command* command);
+/** Frees a controller (null: nothing). */
 PB_API void pb_controller_destroy(pb_controller* controller);
 
 #ifdef __cplusplus
