@@ -82,15 +82,13 @@ ControllerEstimate Roll(const ControllerEstimate& e, double duration, const Ball
   r.state = {arc.z, OmegaFromMomentum(arc.z, k, model)};
   return r;
 }
-
-bool AllFinite(const Eigen::Matrix3d& m) { return m.allFinite(); }
 }  // namespace
 
-bool Controller::Propagate(long tick) {
+// The estimate rolled freely from its tick to `tick`.
+void Controller::Propagate(long tick) {
   const double duration = static_cast<double>(tick - estimate_.tick) * options_.tick_period;
   estimate_ = Roll(estimate_, duration, nominal_->model, nominal_->options.integration);
   estimate_.tick = tick;
-  return true;
 }
 
 // Takes the measurement into the estimate unless it contradicts the model (then `reason` says why).
@@ -102,7 +100,7 @@ bool Controller::Accept(const ControllerMeasurement& m) {
   } else if ((m.x - estimate_.x).norm() > options_.jump_tolerance) {
     why = "the measured contact point jumped farther than jump_tolerance from the prediction";
   } else if (m.has_orientation) {
-    if (!AllFinite(m.A) || !m.omega.allFinite()) {
+    if (!m.A.allFinite() || !m.omega.allFinite()) {
       why = "the measured orientation or angular velocity is not finite";
     } else if ((m.A.transpose() * m.A - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > tol ||
                std::abs(m.A.determinant() - 1.0) > tol) {
@@ -128,6 +126,8 @@ bool Controller::Accept(const ControllerMeasurement& m) {
   return true;
 }
 
+// Decides impulse next_impulse_ from the estimate (the feedback policy), applies the commanded jump to
+// the estimate and schedules the next impulse on the tick grid.
 void Controller::Fire(long tick, std::chrono::steady_clock::time_point start) {
   const int k = next_impulse_;
   internal::FeedbackObservation obs;

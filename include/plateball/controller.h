@@ -135,7 +135,7 @@ class Controller {
   int exact_failures() const;
 
  private:
-  bool Propagate(long tick);
+  void Propagate(long tick);
   bool Accept(const ControllerMeasurement& m);
   void Fire(long tick, std::chrono::steady_clock::time_point start);
   void PredictNext();
