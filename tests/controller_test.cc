@@ -209,6 +209,26 @@ TEST(Controller, AnExhaustedBudgetGivesTheJoinWithAFlag) {
   EXPECT_EQ(loop.status, ControllerStatus::kDone);
   EXPECT_EQ(c.exact_solves(), 0);
   EXPECT_GE(loop.budget_exhausted, 10);  // at least the ten impulses that wanted an exact re-plan
+  // Every impulse was the re-join: the run is the feedback strategy's, to the last bit.
+  const internal::ClosedLoopResult feedback = Loop(RigErrors(), 3, 0, LoopOptions());
+  EXPECT_EQ(loop.x, feedback.x);
+  EXPECT_EQ(loop.A, feedback.A);
+}
+
+TEST(Controller, AMissedImpulseTickFiresLateAtTheNextUpdate) {
+  Controller c(Circle(), LoopOptions());
+  internal::SimulatedRig rig(*Circle(), ErrorModel{}, 1, 0);
+  const ControllerOutput& first = c.Update(0.0, rig.Measure(0));
+  ASSERT_TRUE(first.impulse);
+  rig.Impulse(0, first.delta_omega);
+  const long due = first.next_impulse_tick, now = due + 5;  // the rig skipped the due tick
+  rig.Roll(static_cast<double>(now) * kTick);
+  const ControllerOutput& late = c.Update(static_cast<double>(now) * kTick, rig.Measure(now));
+  EXPECT_EQ(late.status, ControllerStatus::kOk) << late.reason;
+  EXPECT_TRUE(late.impulse);
+  EXPECT_TRUE(late.late);
+  EXPECT_EQ(late.impulse_index, 1);
+  EXPECT_GT(late.next_impulse_tick, now);
 }
 
 TEST(Controller, InvalidOptionsNameTheField) {
