@@ -9,7 +9,8 @@
 #include "arc.h"
 #include "check.h"
 #include "connect.h"
-#include "counter_random.h"
+#include "execution_noise.h"
+#include "feedback_policy.h"
 #include "forced_arc.h"
 #include "kinematics.h"
 #include "plateball/impulse.h"
@@ -92,43 +93,32 @@ NominalPlan MakeNominalPlan(const PlanProblem& problem, const PlanOptions& optio
 
 namespace {
 
-// The normal draws of impulse k use the counters k * kSlots + slot; the trial's lambda one more.
-enum Slot { kMagnitude, kAngle, kTiming, kObsX, kObsY, kObsTheta, kObsPhi, kObsPsi, kObsMu, kObsRot, kSlots = 16 };
-constexpr std::uint64_t kLambdaCounter = 0xffffffffULL;
-
-// What the controller commands at one impulse.
-struct Command {
-  Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();
-  double duration = 0.0;
-};
-
-// What the controller sees before an impulse (nominal lambda).
-struct Observation {
-  AngleState angles;
-  double mu = 0.0;
-  Eigen::Vector2d x = Eigen::Vector2d::Zero();
-  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
-};
+using internal::kObsMu;
+using internal::kObsPhi;
+using internal::kObsPsi;
+using internal::kObsRot;
+using internal::kObsTheta;
+using internal::kObsX;
+using internal::kObsY;
+using internal::kTiming;
+using Command = internal::FeedbackCommand;
+using Observation = internal::FeedbackObservation;
 
 class Trial {
  public:
   Trial(const ExecutionProblem& p, const ExecutionOptions& o)
-      : nominal_(*p.nominal), strategy_(p.strategy), errors_(p.errors), options_(o), random_(p.seed, p.trial),
-        ball_model_(BallModel::FromLambda(nominal_.model.lambda() *
-                                          (1.0 + errors_.lambda * random_.Normal(kLambdaCounter)))),
+      : nominal_(*p.nominal), strategy_(p.strategy), errors_(p.errors), options_(o), noise_(p.errors, p.seed, p.trial),
+        ball_model_(BallModel::FromLambda(noise_.TrueLambda(nominal_.model.lambda()))),
         pulse_before_(errors_.pulse_causal != 0.0 ? 0.0 : 0.5 * errors_.pulse_duration),
-        pulse_after_(errors_.pulse_duration - pulse_before_) {}
+        pulse_after_(errors_.pulse_duration - pulse_before_),
+        policy_(nominal_, strategy_, options_) {}
 
   ExecutionSummary Run();
 
  private:
-  double Draw(int k, int slot, double sigma) const {
-    return sigma == 0.0 ? 0.0 : sigma * random_.Normal(static_cast<std::uint64_t>(k) * kSlots + slot);
-  }
+  double Draw(int k, int slot, double sigma) const { return noise_.Draw(k, slot, sigma); }
   Observation Observe(int k) const;
   Command Decide(int k);
-  Command Join(int k, const Observation& obs);
-  bool SolveExact(int k, const Observation& obs, Command* c);
   void ApplyImpulse(int k, const Eigen::Vector3d& delta_omega);
   double ArcDuration(int k, const Command& c) const;
   void Fly(double duration);
@@ -141,7 +131,7 @@ class Trial {
   ExecutionStrategy strategy_;
   ErrorModel errors_;
   const ExecutionOptions& options_;
-  internal::CounterRandom random_;
+  internal::ExecutionNoise noise_;
   BallModel ball_model_;  // the true ball
   double pulse_before_;   // a pulse starts this long before its impulse time
   double pulse_after_;    // and ends this long after it
@@ -149,8 +139,7 @@ class Trial {
   Eigen::Vector2d x_ = Eigen::Vector2d::Zero();
   Eigen::Matrix3d A_ = Eigen::Matrix3d::Identity();
   double time_ = 0.0;
-  std::vector<ExactImpulse> tail_;  // the last exact solution, from impulse tail_start_ on
-  int tail_start_ = 0;
+  internal::FeedbackPolicy policy_;  // the feedback strategies' decisions
   ExecutionSummary out_;
 };
 
@@ -172,78 +161,27 @@ Observation Trial::Observe(int k) const {
   return o;
 }
 
-// Feedback: join the observed state to the next pass point (the planner's connection).
-Command Trial::Join(int k, const Observation& obs) {
-  const PlanOptions& po = nominal_.options;
-  const JoinSummary j = internal::ConnectPoints(nominal_.model, obs.angles, obs.mu, obs.x,
-                                                nominal_.pass_points[static_cast<std::size_t>(k) + 1], po.join,
-                                                po.reach_fallback ? &po.reach : nullptr);
-  if (!j.IsSolutionUsable()) {
-    out_.status = j.status == JoinStatus::kIntegrationFailure ? ExecutionStatus::kIntegrationFailure
-                                                              : ExecutionStatus::kLost;
-    out_.message = "impulse " + std::to_string(k) + ": " + j.BriefReport();
-  }
-  return {j.impulse.delta_omega, j.t};
-}
-
-// Exact re-plan of the remaining impulses from the observed state; false when it did not arrive.
-bool Trial::SolveExact(int k, const Observation& obs, Command* c) {
-  const int n = static_cast<int>(nominal_.pass_points.size()) - 1;
-  ExactArrivalProblem ep;
-  ep.model = nominal_.model;
-  ep.initial = obs.angles;
-  ep.mu = obs.mu;
-  ep.A0 = ProjectToSO3(obs.A);
-  ep.x0 = obs.x;
-  std::vector<Eigen::Vector2d> points{obs.x};
-  points.insert(points.end(), nominal_.pass_points.begin() + k + 1, nominal_.pass_points.end());
-  ExactArrivalSummary sol;
-  try {
-    ep.reference = Path({SmoothCurve::Samples(points)});
-    ep.impulses = n - k;
-    ep.x1 = nominal_.goal;
-    ep.A1 = nominal_.goal_orientation;
-    sol = SolveExactArrival(ep, options_.exact);
-  } catch (const std::exception&) {
-    return false;  // e.g. the observed point on top of the next pass point: no reference
-  }
-  if (!sol.IsSolutionUsable()) return false;
-  tail_ = sol.impulses;
-  tail_start_ = k;
-  *c = {tail_.front().delta_omega, tail_.front().duration};
-  return true;
-}
-
 Command Trial::Decide(int k) {
   if (strategy_ == ExecutionStrategy::kOpenLoop) {
     const PlanStep& s = nominal_.plan.steps[static_cast<std::size_t>(k)];
-    return {s.delta_omega, s.duration};
+    return {s.delta_omega, s.duration, s.delta_psi};
   }
-  const Observation obs = Observe(k);
-  const int remaining = static_cast<int>(nominal_.pass_points.size()) - 1 - k;
-  if (strategy_ == ExecutionStrategy::kFeedbackExact && remaining >= 3 && remaining <= options_.exact_window) {
-    Command c;
-    if (SolveExact(k, obs, &c)) {
-      ++out_.exact_solves;
-      return c;
-    }
-    ++out_.exact_failures;  // go on with the last exact plan, if any, else join
+  Command c;
+  if (!policy_.Decide(k, Observe(k), true, &c)) {
+    out_.status = policy_.status();
+    out_.message = policy_.message();
   }
-  if (strategy_ == ExecutionStrategy::kFeedbackExact && remaining <= options_.exact_window && !tail_.empty()) {
-    const ExactImpulse& e = tail_[static_cast<std::size_t>(k - tail_start_)];
-    return {e.delta_omega, e.duration};
-  }
-  return Join(k, obs);
+  out_.exact_solves = policy_.exact_solves();
+  out_.exact_failures = policy_.exact_failures();
+  return c;
 }
 
 // The plate adds the commanded delta_omega, turned and scaled by the impulse errors, to the true
 // horizontal angular velocity; the restitution then scales the speed.
 void Trial::ApplyImpulse(int k, const Eigen::Vector3d& delta_omega) {
-  Eigen::Vector3d d = delta_omega;
-  if (errors_.impulse_angle != 0.0) d = RotationZ(Draw(k, kAngle, errors_.impulse_angle)) * d;
-  if (errors_.impulse_magnitude != 0.0) d *= 1.0 + Draw(k, kMagnitude, errors_.impulse_magnitude);
+  const Eigen::Vector3d d = noise_.PerturbImpulse(k, delta_omega);
   state_.omega += d;
-  if (errors_.energy_loss != 0.0) state_.omega *= std::sqrt(1.0 - errors_.energy_loss);
+  if (errors_.energy_loss != 0.0) state_.omega *= noise_.Restitution();
   ++out_.impulses;
 }
 
@@ -295,16 +233,14 @@ BallState Trial::Predicted(Eigen::Vector2d* x, Eigen::Matrix3d* A) const {
 // A finite pulse: the constant force whose impulse would give the (error-perturbed) jump at the
 // impulse time's orientation, i.e. the ideal jump of K spread evenly over the pulse.
 void Trial::Pulse(int k, const Eigen::Vector3d& delta_omega) {
-  Eigen::Vector3d d = delta_omega;
-  if (errors_.impulse_angle != 0.0) d = RotationZ(Draw(k, kAngle, errors_.impulse_angle)) * d;
-  if (errors_.impulse_magnitude != 0.0) d *= 1.0 + Draw(k, kMagnitude, errors_.impulse_magnitude);
+  const Eigen::Vector3d d = noise_.PerturbImpulse(k, delta_omega);
   Eigen::Vector2d x;
   const BallState at = Predicted(&x);
   BallState jumped = at;
   jumped.omega += d;
   const Eigen::Vector2d dk = ConservedMomentum(jumped, ball_model_) - ConservedMomentum(at, ball_model_);
   Forced(dk / errors_.pulse_duration, errors_.pulse_duration);
-  if (errors_.energy_loss != 0.0) state_.omega *= std::sqrt(1.0 - errors_.energy_loss);
+  if (errors_.energy_loss != 0.0) state_.omega *= noise_.Restitution();
   ++out_.impulses;
 }
 

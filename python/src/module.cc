@@ -6,6 +6,7 @@
 
 namespace plateball::python {
 void BindMonteCarlo(py::module_& m);  // bind_montecarlo.cc: error models, execution, Monte Carlo
+void BindController(py::module_& m);  // bind_controller.cc: the nominal plan and the real-time controller
 }  // namespace plateball::python
 
 PYBIND11_MODULE(_plateball, m) {
@@ -20,4 +21,5 @@ PYBIND11_MODULE(_plateball, m) {
   plateball::python::BindSolvers(m);
   plateball::python::BindProblem(m);
   plateball::python::BindMonteCarlo(m);
+  plateball::python::BindController(m);
 }
