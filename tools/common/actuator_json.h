@@ -25,6 +25,13 @@ struct ActuatorRequest {
   bool has_pulse = false;  ///< a pulse duration was given (pulse.duration)
 };
 
+/// What a command's JSON writer needs for the actuator's records of its impulses.
+struct ActuatorContext {
+  const Problem& problem;
+  ActuatorRequest request;
+  std::string prefix;  ///< the impulses' path in the document ("plan." in an isoparallel result)
+};
+
 /// --pulse-duration D, --static-friction MU, --torsional-friction ELL, --preload N of a subcommand.
 class ActuatorOptions {
  public:

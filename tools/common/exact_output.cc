@@ -9,7 +9,7 @@
 
 namespace plateball::tools {
 
-Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan) {
+Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, const ActuatorContext* actuator) {
   Json j{{"k", k},
          {"kind", ToString(e.kind)},
          {"t_impulse", e.t_impulse},
@@ -26,10 +26,14 @@ Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan) {
     j["planned_delta_psi"] = e.planned_delta_psi;
     j["planned_duration"] = e.planned_duration;
   }
+  if (actuator)
+    j["actuator"] = ActuatorJsonFromAngles(actuator->problem, e.angles_before, e.mu_before, e.delta_omega,
+                                           actuator->request, actuator->prefix + "impulses[" + std::to_string(k) + "]");
   return j;
 }
 
-Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses) {
+Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses,
+                        const ActuatorContext* actuator) {
   Json j = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
   Append(j, Json{{"impulse_count", s.impulses.size()},
          {"total_time", s.total_time},
@@ -52,14 +56,15 @@ Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay
                              {"total_time", s.planned_total_time}}}});
   if (with_impulses) {
     Json list = Json::array();
-    for (std::size_t k = 0; k < s.impulses.size(); ++k) list.push_back(ExactImpulseToJson(s.impulses[k], k, true));
-    if (s.stop) list.push_back(ExactImpulseToJson(*s.stop, s.impulses.size(), false));
+    for (std::size_t k = 0; k < s.impulses.size(); ++k) list.push_back(ExactImpulseToJson(s.impulses[k], k, true, actuator));
+    if (s.stop) list.push_back(ExactImpulseToJson(*s.stop, s.impulses.size(), false, actuator));
     j["impulses"] = list;
   }
   return j;
 }
 
-Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses) {
+Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses,
+                          const ActuatorContext* actuator) {
   Json rows = Json::array();
   for (const FewestImpulsesCount& c : s.counts) {
     Json row{{"impulse_count", c.impulses}, {"reached", c.reached},   {"verdict", ToString(c.verdict)},
@@ -88,8 +93,8 @@ Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpu
   const FewestImpulsesCount* f = s.Fewest();
   if (with_impulses && f) {
     Json list = Json::array();
-    for (std::size_t k = 0; k < f->plan.size(); ++k) list.push_back(ExactImpulseToJson(f->plan[k], k, false));
-    if (f->stop) list.push_back(ExactImpulseToJson(*f->stop, f->plan.size(), false));
+    for (std::size_t k = 0; k < f->plan.size(); ++k) list.push_back(ExactImpulseToJson(f->plan[k], k, false, actuator));
+    if (f->stop) list.push_back(ExactImpulseToJson(*f->stop, f->plan.size(), false, actuator));
     j["impulses"] = list;
   }
   return j;

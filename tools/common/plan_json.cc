@@ -20,7 +20,7 @@ Json BoundsToJson(const ErrorBounds& b) {
                     {"D_p", c.D_p}, {"K_tilde_p", c.K_tilde_p}}}};
 }
 
-Json StepToJson(const PlanStep& s, const PlanActuator* actuator) {
+Json StepToJson(const PlanStep& s, const ActuatorContext* actuator) {
   const std::string where = actuator ? actuator->prefix + "steps[" + std::to_string(s.global_index) + "]" : "";
   Json j{{"k", s.global_index},
          {"piece", s.piece},
@@ -66,7 +66,7 @@ Json StepToJson(const PlanStep& s, const PlanActuator* actuator) {
 
 }  // namespace
 
-Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps, const PlanActuator* actuator) {
+Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps, const ActuatorContext* actuator) {
   Json doc = ResultJson(ToString(plan.status), plan.IsSolutionUsable(), plan.message, plan.BriefReport());
   doc["total_time"] = plan.total_time;
   doc["max_pass_miss"] = plan.max_pass_miss;

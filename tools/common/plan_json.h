@@ -2,8 +2,6 @@
 // `plateball plan` and by `isoparallel_solve --out` (its "plan" section).
 #pragma once
 
-#include <string>
-
 #include "common/actuator_json.h"
 #include "common/json_output.h"
 #include "plateball/impulse_planner.h"
@@ -19,11 +17,6 @@ namespace plateball::tools {
 ///  path_bound, arc_bound, energy_changes)}.
 /// With `actuator`, every step and energy change also holds "actuator": ActuatorJson of its impulse
 /// (its axis before it, its delta_omega), named "PREFIXsteps[K]" in messages.
-struct PlanActuator {
-  const Problem& problem;
-  ActuatorRequest request;
-  std::string prefix;  ///< the steps' path in the document ("plan." in an isoparallel result)
-};
-Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps = true, const PlanActuator* actuator = nullptr);
+Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps = true, const ActuatorContext* actuator = nullptr);
 
 }  // namespace plateball::tools

@@ -143,7 +143,7 @@ int RunPlan(const PlanCliOptions& o) {
                                                     : Json(nullptr);
     doc["pulse_schedule_reason"] = plan.IsSolutionUsable() ? Json(nullptr) : Json("the plan is not usable");
   }
-  const PlanActuator actuator{p, request, ""};
+  const ActuatorContext actuator{p, request, ""};
   Append(doc, PlanSummaryToJson(plan, !o.summary_only, &actuator));
   AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
