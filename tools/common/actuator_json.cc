@@ -97,7 +97,7 @@ Json ActuatorJson(const Problem& problem, const Eigen::Vector3d& z, const Eigen:
   }
   // The records' delta_omega is horizontal up to rounding; the vertical part is not commanded.
   const Eigen::Vector3d dw(delta_omega.x(), delta_omega.y(), 0.0);
-  const PlateImpulse imp = PlateImpulseFor(*problem.physical, z.normalized(), dw);
+  const PlateImpulse imp = PlateImpulseFor(*problem.physical, z, dw);
   Json j{{"plate_impulse", ToJson(imp.plate)},
          {"plate_velocity_jump", ToJson(imp.plate_velocity_change)},
          {"top_contact_impulse", ToJson(imp.top_contact)},
