@@ -14,7 +14,8 @@ Checks, from the repository root, on real outputs:
        the ball's linear momentum                        Q + G = M_ball r dw x e3,
        the plate's velocity jump                         plate_velocity_jump = 2 r dw x e3 = r * the step's
                                                          normalised plate_velocity_change,
-     and the pulse's mean force is J / delta;
+     and the pulse's mean force is J / delta; with --preload the normal loads M_plate g + preload and
+     + M_ball g, and the friction needed from the record's own forces;
   3. a lambda-only problem's records are null with the reason "needs ball.physical".
 Exits 1 naming the first failure.
 """
@@ -32,6 +33,7 @@ import jsonschema
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 # The balances hold to rounding: J is one 3x3 solve of numbers of order 1e-4 N s.
 RELATIVE_TOLERANCE = 1e-9
+STANDARD_GRAVITY = 9.80665  # m/s^2, PulseOptions' default
 
 
 def fail(message):
@@ -119,6 +121,17 @@ def main():
         for s in doc["steps"]:
             checked += check_record(phys, s["angles_before"], s["delta_omega"], s["plate_velocity_change"],
                                     s["actuator"], 0.01, f"plan steps[{s['k']}]")
+        # --preload N: the normal loads M_plate g + N and + M_ball g (standard gravity), the friction needed
+        # from the record's own tangential forces and torque.
+        doc = json.loads(run([args.plateball, "plan", "problems/circle_physical.json", "--impulses", "16",
+                              "--pulse-duration", "0.01", "--preload", "2"]).stdout)
+        for s in doc["steps"]:
+            p = s["actuator"]["pulse"]
+            top, bottom = phys["plate_mass"] * STANDARD_GRAVITY + 2, (phys["plate_mass"] + phys["ball_mass"]) * STANDARD_GRAVITY + 2
+            close([p["top_normal_load"], p["bottom_normal_load"]], [top, bottom], bottom, f"preload steps[{s['k']}]: loads")
+            close([p["sliding_friction_needed"], p["torsional_friction_needed"]],
+                  [max(p["top_tangential_force"] / top, p["bottom_tangential_force"] / bottom),
+                   p["torsional_torque"] / (top + bottom)], 1.0, f"preload steps[{s['k']}]: friction needed")
         # plan --pulse-error: the schedule's J equals the step's, its force J / duration.
         doc = json.loads(run([args.plateball, "plan", "problems/circle_physical.json", "--impulses", "16",
                               "--pulse-error", "1e-4"]).stdout)
