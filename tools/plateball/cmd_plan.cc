@@ -160,9 +160,10 @@ std::function<int()> SetupPlan(CLI::App& sub) {
   sub.add_option("--svg", o->svg, "draw the plate to this SVG file (planned path dashed, trajectory solid; \"-\": standard output, with --out FILE)");
   AddFigureSizeOption(sub);
   o->pulse_error_opt = sub.add_option("--pulse-error", o->pulse_error,
-                                      "emit a pulse schedule: centred pulses of the longest duration whose open-loop "
-                                      "execution ends within this error of the ideal impulses' (position + rotation "
-                                      "angle); the impulses' pulse records use it");
+                                      "emit a pulse schedule: centred pulses of a duration chosen from the measured "
+                                      "O(D^2) error and verified by executing open loop, ending within this error of the "
+                                      "ideal impulses' (position + rotation angle; \"within\" says whether it did); "
+                                      "the impulses' pulse records use it");
   o->actuator.Add(sub, o->pulse_error_opt);
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
   sub.footer(
