@@ -115,6 +115,21 @@ Json ActuatorJson(const Problem& problem, const Eigen::Vector3d& z, const Eigen:
   return j;
 }
 
+void CheckPulseFlights(const std::vector<double>& times, double final_time, const ActuatorRequest& request,
+                       const std::string& list) {
+  if (!request.has_pulse) return;
+  const double d = request.pulse.duration;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    const bool last = k + 1 == times.size();
+    const double flight = (last ? final_time : times[k + 1]) - times[k];
+    if (last && flight <= 0) continue;  // an impulse at the end (a stop)
+    if (d > flight)
+      throw std::invalid_argument("--pulse-duration: value " + FormatNumber(d) + ": longer than the flight of " +
+                                  FormatNumber(flight) + " s after impulse " + list + "[" + std::to_string(k) + "]: " +
+                                  (last ? "its pulse would run past the end" : "its pulse would overlap the next one's"));
+  }
+}
+
 Json ActuatorJsonFromAngles(const Problem& problem, const AngleState& angles_before, double mu_before,
                             const Eigen::Vector3d& delta_omega, const ActuatorRequest& request,
                             const std::string& where) {

@@ -62,6 +62,13 @@ class ActuatorOptions {
 Json ActuatorJson(const Problem& problem, const Eigen::Vector3d& z, const Eigen::Vector3d& delta_omega,
                   const ActuatorRequest& request, const std::string& where);
 
+/// With a pulse duration D: each impulse's pulse (D long around its time) must fit the flight to the
+/// next impulse, the last one's the flight to `final_time` (an impulse at the end, a stop, is exempt).
+/// Throws std::invalid_argument "--pulse-duration: value D: longer than the flight of F s after impulse
+/// PREFIX[K]: ..." otherwise. `times` increase.
+void CheckPulseFlights(const std::vector<double>& times, double final_time, const ActuatorRequest& request,
+                       const std::string& list);
+
 /// ActuatorJson of an impulse given by its angles and energy before it (z from StateFromAngles).
 Json ActuatorJsonFromAngles(const Problem& problem, const AngleState& angles_before, double mu_before,
                             const Eigen::Vector3d& delta_omega, const ActuatorRequest& request,

@@ -1,5 +1,6 @@
 #include "common/exact_output.h"
 
+#include <optional>
 #include <vector>
 
 #include "common/svg.h"
@@ -8,6 +9,17 @@
 #include "plateball/impulse_planner.h"
 
 namespace plateball::tools {
+namespace {
+
+// The impulse times of an exact-arrival sequence, the stop (at the end) last.
+std::vector<double> ImpulseTimes(const std::vector<ExactImpulse>& impulses, const std::optional<ExactImpulse>& stop) {
+  std::vector<double> times;
+  for (const ExactImpulse& e : impulses) times.push_back(e.t_impulse);
+  if (stop) times.push_back(stop->t_impulse);
+  return times;
+}
+
+}  // namespace
 
 Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, const ActuatorContext* actuator) {
   Json j{{"k", k},
@@ -54,6 +66,7 @@ Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay
          {"paper_plan", Json{{"position_error", s.planned_position_error},
                              {"orientation_error", s.planned_orientation_error},
                              {"total_time", s.planned_total_time}}}});
+  if (actuator) CheckPulseFlights(ImpulseTimes(s.impulses, s.stop), s.total_time, actuator->request, actuator->prefix + "impulses");
   if (with_impulses) {
     Json list = Json::array();
     for (std::size_t k = 0; k < s.impulses.size(); ++k) list.push_back(ExactImpulseToJson(s.impulses[k], k, true, actuator));
@@ -91,6 +104,7 @@ Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpu
          {"orientation_only", problem.orientation_only},
          {"pareto", rows}});
   const FewestImpulsesCount* f = s.Fewest();
+  if (actuator && f) CheckPulseFlights(ImpulseTimes(f->plan, f->stop), f->total_time, actuator->request, actuator->prefix + "impulses");
   if (with_impulses && f) {
     Json list = Json::array();
     for (std::size_t k = 0; k < f->plan.size(); ++k) list.push_back(ExactImpulseToJson(f->plan[k], k, false, actuator));

@@ -1,5 +1,8 @@
 #include "common/plan_json.h"
 
+#include <string>
+#include <vector>
+
 namespace plateball::tools {
 namespace {
 
@@ -78,6 +81,11 @@ Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps, const ActuatorC
                               {"polyline", RotationToJson(plan.A_polyline)},
                               {"impulsive", RotationToJson(plan.A_impulsive)}};
   doc["final"] = Json{{"mu", plan.mu_final}, {"z", ToJson(plan.final_state.z)}, {"omega", ToJson(plan.final_state.omega)}};
+  if (actuator) {
+    std::vector<double> times;
+    for (const PlanStep& s : plan.steps) times.push_back(s.t_impulse);
+    CheckPulseFlights(times, plan.total_time, actuator->request, actuator->prefix + "steps");
+  }
   if (with_steps) {
     Json steps = Json::array();
     for (const PlanStep& s : plan.steps) steps.push_back(StepToJson(s, actuator));
