@@ -92,5 +92,6 @@ void BindModel(py::module_& m);     // model, states, impulses, free motion, rol
 void BindPaths(py::module_& m);     // curves, paths, partitions
 void BindSolvers(py::module_& m);   // join, reach, plan, converge, isoparallel, exact arrival
 void BindProblem(py::module_& m);   // problem files and task adapters
+void BindActuator(py::module_& m);  // the actuator's commands: plate impulse, pulse forces and friction
 
 }  // namespace plateball::python

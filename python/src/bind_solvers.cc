@@ -14,6 +14,9 @@
 #include "plateball/so3.h"
 
 namespace plateball::python {
+
+void BindPlanActuator(py::class_<PlanSummary>& plan);  // bind_actuator.cc
+
 namespace {
 
 using Scalar1 = Eigen::Matrix<double, 1, 1>;
@@ -245,6 +248,7 @@ void BindPlanSummary(py::module_& m) {
       .def("trajectory", &PlanTrajectory, py::arg("model"), py::arg("samples_per_arc") = 24,
            py::arg("integration") = IntegrationOptions{}, py::call_guard<py::gil_scoped_release>(),
            "The impulsive trajectory, every free arc re-integrated from its impulse.");
+  BindPlanActuator(summary);
   m.def("_plan", &PlanImpulses, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
 }
 

@@ -17,6 +17,7 @@ PYBIND11_MODULE(_plateball, m) {
   // input (std::invalid_argument) is a ValueError with the library's message.
   py::register_exception<plateball::ProblemFileReadError>(m, "ProblemFileReadError", PyExc_OSError);
   plateball::python::BindModel(m);
+  plateball::python::BindActuator(m);
   plateball::python::BindPaths(m);
   plateball::python::BindSolvers(m);
   plateball::python::BindProblem(m);

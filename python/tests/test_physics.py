@@ -150,3 +150,36 @@ def test_fewest_impulses_figure7_two_straight_rolls(problems):
     corners = [f.plan[0].position, f.plan[1].position, f.stop.position]
     assert [np.linalg.norm(b - a) for a, b in zip(corners, corners[1:])] == pytest.approx([2 * math.pi] * 2, abs=1e-9)
     assert np.allclose(pb.roll(corners, segment=True), np.eye(3), atol=1e-9, rtol=0)
+
+
+# The balances hold to rounding: J is one 3x3 solve of numbers of order 1e-4 N s.
+MOMENTUM_BALANCE_TOLERANCE = 1e-12
+
+
+def test_plate_impulses_balance_the_momenta_of_ball_and_plate(problems, run_cli):
+    """Every step's plate impulse J (PlanSummary.plate_impulses, the CLI's steps[].actuator) against
+    the angular momentum of ball and plate about the lower contact, computed here:
+    2 r e3 x J = [I dw]_h + (M_ball + 4 M_plate) r^2 dw, I = I1 + (I3 - I1) z z^T; and the pulse's
+    mean force J / delta."""
+    problem = pb.load_problem(problems / "circle_physical.json")
+    phys = problem.physical
+    s = pb.plan(*pb.plan_setup_for(problem))
+    J = s.plate_impulses(phys)
+    assert J.shape == (len(s.steps), 3)
+    r, e3 = phys.radius, np.array([0.0, 0.0, 1.0])
+    m = phys.ball_mass + 4 * phys.plate_mass
+    for j, step in zip(J, s.steps):
+        z, dw = np.asarray(step.state_before.z), np.asarray(step.delta_omega)
+        inertia = phys.inertia_1 * np.eye(3) + (phys.inertia_3 - phys.inertia_1) * np.outer(z, z)
+        expected = (inertia @ dw + m * r * r * dw)[:2]
+        np.testing.assert_allclose((2 * r * np.cross(e3, j))[:2], expected, rtol=0,
+                                   atol=MOMENTUM_BALANCE_TOLERANCE * np.abs(expected).max())
+    doc = run_cli("plateball", "plan", problems / "circle_physical.json", "--pulse-duration", "0.01")
+    # The CLI and the module are separate builds of the library: the last bit may differ.
+    np.testing.assert_allclose(J, np.array([st["actuator"]["plate_impulse"] for st in doc["steps"]]),
+                               rtol=MOMENTUM_BALANCE_TOLERANCE, atol=0)
+    forces = s.pulse_forces(phys, pb.PulseOptions(duration=0.01))
+    np.testing.assert_allclose(np.array([f.mean_force for f in forces]), J / 0.01, rtol=MOMENTUM_BALANCE_TOLERANCE, atol=0)
+    np.testing.assert_allclose([f.sliding_friction_needed for f in forces],
+                               [st["actuator"]["pulse"]["sliding_friction_needed"] for st in doc["steps"]],
+                               rtol=MOMENTUM_BALANCE_TOLERANCE, atol=0)

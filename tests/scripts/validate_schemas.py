@@ -127,6 +127,7 @@ def check_rig(run, rel, tmp):
     if run.output(["plateball", "rig", "export", plan, "--mjcf", mjcf, "--pulse-duration", "0.01"]) is not None:
         with open(os.path.join(tmp, "rig.pulses.json")) as f:
             run.expect_valid("output/rig_export.schema.json", json.load(f), f"plateball rig export {rel}")
+    run.output(["plateball", "rig", "replay", plan, "--pulse-duration", "0.01", "--pulse-causal"])
 
 
 def check_tool_outputs(run, problems):

@@ -1,5 +1,6 @@
 #include "common/exact_output.h"
 
+#include <optional>
 #include <vector>
 
 #include "common/svg.h"
@@ -8,8 +9,19 @@
 #include "plateball/impulse_planner.h"
 
 namespace plateball::tools {
+namespace {
 
-Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan) {
+// The impulse times of an exact-arrival sequence, the stop (at the end) last.
+std::vector<double> ImpulseTimes(const std::vector<ExactImpulse>& impulses, const std::optional<ExactImpulse>& stop) {
+  std::vector<double> times;
+  for (const ExactImpulse& e : impulses) times.push_back(e.t_impulse);
+  if (stop) times.push_back(stop->t_impulse);
+  return times;
+}
+
+}  // namespace
+
+Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, const ActuatorContext* actuator) {
   Json j{{"k", k},
          {"kind", ToString(e.kind)},
          {"t_impulse", e.t_impulse},
@@ -26,10 +38,14 @@ Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan) {
     j["planned_delta_psi"] = e.planned_delta_psi;
     j["planned_duration"] = e.planned_duration;
   }
+  if (actuator)
+    j["actuator"] = ActuatorJsonFromAngles(actuator->problem, e.angles_before, e.mu_before, e.delta_omega,
+                                           actuator->request, actuator->prefix + "impulses[" + std::to_string(k) + "]");
   return j;
 }
 
-Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses) {
+Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses,
+                        const ActuatorContext* actuator) {
   Json j = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
   Append(j, Json{{"impulse_count", s.impulses.size()},
          {"total_time", s.total_time},
@@ -50,16 +66,18 @@ Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay
          {"paper_plan", Json{{"position_error", s.planned_position_error},
                              {"orientation_error", s.planned_orientation_error},
                              {"total_time", s.planned_total_time}}}});
+  if (actuator) CheckPulseFlights(ImpulseTimes(s.impulses, s.stop), s.total_time, actuator->request, actuator->prefix + "impulses");
   if (with_impulses) {
     Json list = Json::array();
-    for (std::size_t k = 0; k < s.impulses.size(); ++k) list.push_back(ExactImpulseToJson(s.impulses[k], k, true));
-    if (s.stop) list.push_back(ExactImpulseToJson(*s.stop, s.impulses.size(), false));
+    for (std::size_t k = 0; k < s.impulses.size(); ++k) list.push_back(ExactImpulseToJson(s.impulses[k], k, true, actuator));
+    if (s.stop) list.push_back(ExactImpulseToJson(*s.stop, s.impulses.size(), false, actuator));
     j["impulses"] = list;
   }
   return j;
 }
 
-Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses) {
+Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses,
+                          const ActuatorContext* actuator) {
   Json rows = Json::array();
   for (const FewestImpulsesCount& c : s.counts) {
     Json row{{"impulse_count", c.impulses}, {"reached", c.reached},   {"verdict", ToString(c.verdict)},
@@ -86,10 +104,11 @@ Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpu
          {"orientation_only", problem.orientation_only},
          {"pareto", rows}});
   const FewestImpulsesCount* f = s.Fewest();
+  if (actuator && f) CheckPulseFlights(ImpulseTimes(f->plan, f->stop), f->total_time, actuator->request, actuator->prefix + "impulses");
   if (with_impulses && f) {
     Json list = Json::array();
-    for (std::size_t k = 0; k < f->plan.size(); ++k) list.push_back(ExactImpulseToJson(f->plan[k], k, false));
-    if (f->stop) list.push_back(ExactImpulseToJson(*f->stop, f->plan.size(), false));
+    for (std::size_t k = 0; k < f->plan.size(); ++k) list.push_back(ExactImpulseToJson(f->plan[k], k, false, actuator));
+    if (f->stop) list.push_back(ExactImpulseToJson(*f->stop, f->plan.size(), false, actuator));
     j["impulses"] = list;
   }
   return j;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "common/actuator_json.h"
 #include "common/json_output.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/fewest_impulses.h"
@@ -17,20 +18,24 @@ namespace plateball::tools {
 ///  "deviation" ({"definition", "value", "max_pass_displacement"}), "paper_plan" ({"position_error",
 ///  "orientation_error", "total_time"}) and with `with_impulses` "impulses" (per
 ///  impulse: k, t_impulse, x, p, delta_psi, duration, delta_omega,
-///  plate_velocity_change, angles_before, planned_delta_psi, planned_duration)}.
-Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses = true);
+///  plate_velocity_change, angles_before, planned_delta_psi, planned_duration; with `actuator` also
+///  "actuator", ActuatorJson of the impulse)}.
+Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses = true,
+                        const ActuatorContext* actuator = nullptr);
 
 /// One impulse record (k, kind, t_impulse, position, delta_psi, duration, delta_omega,
 /// plate_velocity_change, angles_before, mu_before, mu_after and with `with_plan` the paper's
-/// planned_position, planned_delta_psi, planned_duration).
-Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan);
+/// planned_position, planned_delta_psi, planned_duration; with `actuator` "actuator", ActuatorJson of
+/// the impulse at its axis before it, named "PREFIXimpulses[K]" in messages).
+Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, const ActuatorContext* actuator = nullptr);
 
 /// The fewest-impulse search: {"status", "usable", "message", "report", "fewest_impulses", "searched",
 /// "max_total_time", "rollouts", "start_at_rest", "stop_at_goal", "orientation_only", "pareto" (per
 /// count searched: impulse_count, reached, starts, arrived, total_time, path_length, position_error,
 /// orientation_error, replay (an independent re-integration)), with `with_impulses` "impulses" of the
-/// fewest count (the stop impulse last)}.
-Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses);
+/// fewest count (the stop impulse last), each with `actuator` as ExactImpulseToJson's}.
+Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses,
+                          const ActuatorContext* actuator = nullptr);
 
 /// The plate as SVG: the reference dashed, the exact impulsive trajectory solid (each free arc
 /// re-integrated from its reported impulse), the impulse points and the goal marked.

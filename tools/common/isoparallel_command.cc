@@ -116,7 +116,7 @@ Json PlanFileJson(const IsoparallelCliOptions& cli, const plateball::Problem& pr
                   const plateball::IsoparallelProblem& prob, const plateball::IsoparallelOptions& opt,
                   const plateball::IsoparallelSummary& summary, const std::vector<Eigen::Vector2d>& path_pts,
                   const plateball::PlanSummary& plan, const std::vector<std::vector<Eigen::Vector2d>>& arcs,
-                  double final_error) {
+                  double final_error, const ActuatorRequest& request) {
   using namespace plateball;
   Json j = HeaderJson(cli.tool, "isoparallel", problem, cli.problem.file());
   // The state the plan starts from: the axis of the start orientation, the file's psi and mu.
@@ -147,7 +147,8 @@ Json PlanFileJson(const IsoparallelCliOptions& cli, const plateball::Problem& pr
   j["optimal_path"] = ToJson(path_pts);
   // The plan in the layout of `plateball plan` (plan_json.h), with what only this command knows:
   // the sampled impulsive trajectory and the distance of its final orientation from the goal.
-  Json pj = tools::PlanSummaryToJson(plan);
+  const ActuatorContext actuator{problem, request, "plan."};
+  Json pj = tools::PlanSummaryToJson(plan, true, &actuator);
   Json traj = Json::array();
   for (const auto& a : arcs) traj.push_back(ToJson(a));
   pj["trajectory"] = std::move(traj);
@@ -367,6 +368,7 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
   using namespace plateball;
   Problem problem;
   const IsoparallelSetup setup = LoadSetup(cli, &problem);
+  const ActuatorRequest request = cli.actuator.Request();
   const IsoparallelProblem& prob = setup.problem;
   const IsoparallelOptions& opt = setup.options;
   const int impulses = cli.impulses_opt->count() == 0
@@ -408,8 +410,9 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
   else if (cli.certify)
     certificate = Certify(cli, summary, out);
   if (!cli.out.empty() || cli.json_to_stdout) {
-    Json doc = PlanFileJson(cli, problem, prob, opt, summary, path_pts, plan, arcs, final_error);
-    if (exact) doc["exact"] = ExactArrivalToJson(exact->summary, exact->replay);
+    Json doc = PlanFileJson(cli, problem, prob, opt, summary, path_pts, plan, arcs, final_error, request);
+    const ActuatorContext exact_actuator{problem, request, "exact."};
+    if (exact) doc["exact"] = ExactArrivalToJson(exact->summary, exact->replay, true, &exact_actuator);
     if (certificate) doc["certificate"] = CertificateJson(*certificate, cli.certify_cap);
     WriteJson(doc, cli.out);
   }
@@ -457,6 +460,7 @@ void AddIsoparallelOptions(CLI::App& app, IsoparallelCliOptions& cli) {
   app.add_flag("--exact", cli.exact,
                "also solve exact arrival at the goal position and orientation with the same impulse count "
                "(JSON section \"exact\", SVG: the exact trajectory)");
+  cli.actuator.Add(app);
 }
 
 int RunIsoparallel(const IsoparallelCliOptions& cli) {

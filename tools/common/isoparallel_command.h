@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "common/actuator_json.h"
 #include "common/problem_options.h"
 
 namespace plateball::tools {
@@ -29,6 +30,7 @@ struct IsoparallelCliOptions {
   double certify_length = 0.0;  ///< with certify_length_given: this length cap instead of certify_cap x the shortest
   bool certify_length_given = false;  ///< --certify-length was given (any value, 0 included, is then checked)
   long long certify_budget = 250000000;
+  ActuatorOptions actuator;  ///< the actuator's records of the plan's and exact arrival's impulses (JSON only)
 };
 
 /// Adds the options above to `app` (set program, tool and json_to_stdout first).

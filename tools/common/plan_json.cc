@@ -1,5 +1,8 @@
 #include "common/plan_json.h"
 
+#include <string>
+#include <vector>
+
 namespace plateball::tools {
 namespace {
 
@@ -20,7 +23,8 @@ Json BoundsToJson(const ErrorBounds& b) {
                     {"D_p", c.D_p}, {"K_tilde_p", c.K_tilde_p}}}};
 }
 
-Json StepToJson(const PlanStep& s) {
+Json StepToJson(const PlanStep& s, const ActuatorContext* actuator) {
+  const std::string where = actuator ? actuator->prefix + "steps[" + std::to_string(s.global_index) + "]" : "";
   Json j{{"k", s.global_index},
          {"piece", s.piece},
          {"tau", Json::array({s.tau_begin, s.tau_end})},
@@ -48,17 +52,24 @@ Json StepToJson(const PlanStep& s) {
          {"arc_bound", s.arc_bound}};
   if (!s.energy_changes.empty()) {
     Json e = Json::array();
-    for (const Impulse& i : s.energy_changes)
-      e.push_back(Json{{"mu_before", i.mu_before}, {"mu_after", i.mu_after}, {"delta_omega", ToJson(i.delta_omega)},
-                       {"plate_velocity_change", ToJson(i.plate_velocity_change)}});
+    for (const Impulse& i : s.energy_changes) {
+      Json c{{"mu_before", i.mu_before}, {"mu_after", i.mu_after}, {"delta_omega", ToJson(i.delta_omega)},
+             {"plate_velocity_change", ToJson(i.plate_velocity_change)}};
+      if (actuator)
+        c["actuator"] = ActuatorJson(actuator->problem, i.state_before.z, i.delta_omega, actuator->request,
+                                     where + ".energy_changes[" + std::to_string(e.size()) + "]");
+      e.push_back(std::move(c));
+    }
     j["energy_changes"] = std::move(e);
   }
+  if (actuator)
+    j["actuator"] = ActuatorJson(actuator->problem, s.impulse.state_before.z, s.delta_omega, actuator->request, where);
   return j;
 }
 
 }  // namespace
 
-Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps) {
+Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps, const ActuatorContext* actuator) {
   Json doc = ResultJson(ToString(plan.status), plan.IsSolutionUsable(), plan.message, plan.BriefReport());
   doc["total_time"] = plan.total_time;
   doc["max_pass_miss"] = plan.max_pass_miss;
@@ -70,9 +81,14 @@ Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps) {
                               {"polyline", RotationToJson(plan.A_polyline)},
                               {"impulsive", RotationToJson(plan.A_impulsive)}};
   doc["final"] = Json{{"mu", plan.mu_final}, {"z", ToJson(plan.final_state.z)}, {"omega", ToJson(plan.final_state.omega)}};
+  if (actuator) {
+    std::vector<double> times;
+    for (const PlanStep& s : plan.steps) times.push_back(s.t_impulse);
+    CheckPulseFlights(times, plan.total_time, actuator->request, actuator->prefix + "steps");
+  }
   if (with_steps) {
     Json steps = Json::array();
-    for (const PlanStep& s : plan.steps) steps.push_back(StepToJson(s));
+    for (const PlanStep& s : plan.steps) steps.push_back(StepToJson(s, actuator));
     doc["steps"] = std::move(steps);
   }
   return doc;

@@ -2,6 +2,7 @@
 // `plateball plan` and by `isoparallel_solve --out` (its "plan" section).
 #pragma once
 
+#include "common/actuator_json.h"
 #include "common/json_output.h"
 #include "plateball/impulse_planner.h"
 
@@ -14,6 +15,8 @@ namespace plateball::tools {
 ///  `with_steps` "steps" (per impulse: k, piece, tau, p_begin, p_end, t_impulse, duration,
 ///  delta_psi, delta_omega, plate_velocity_change, mu, states and orientations, pass_miss, join,
 ///  path_bound, arc_bound, energy_changes)}.
-Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps = true);
+/// With `actuator`, every step and energy change also holds "actuator": ActuatorJson of its impulse
+/// (its axis before it, its delta_omega), named "PREFIXsteps[K]" in messages.
+Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps = true, const ActuatorContext* actuator = nullptr);
 
 }  // namespace plateball::tools

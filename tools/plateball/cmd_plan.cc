@@ -1,20 +1,24 @@
 // `plateball plan PROBLEM.json`: the impulses that make the ball follow the planned path of the
 // problem's plan task (impulse_planner.h), as JSON, and optionally the plate as SVG (Figure 7:
 // planned path dashed, impulsive trajectory solid, impulse points marked).
+#include <cmath>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "common/actuator_json.h"
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/plan_json.h"
 #include "common/problem_options.h"
 #include "common/units.h"
 #include "common/progress.h"
 #include "common/svg.h"
+#include "plateball/execution.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/path.h"
@@ -30,7 +34,37 @@ struct PlanCliOptions {
   std::string out;
   std::string svg;
   bool summary_only = false;
+  ActuatorOptions actuator;
+  double pulse_error = 0.0;
+  CLI::Option* pulse_error_opt = nullptr;
 };
+
+// The pulse schedule for a stated error: ChoosePulseDuration's duration (centred pulses, executed open
+// loop against the ideal impulses) and per impulse its window, J and mean force (ActuatorJson).
+Json PulseScheduleJson(const Problem& p, const std::shared_ptr<const NominalPlan>& nominal, double tolerance,
+                       ActuatorRequest* request) {
+  const PulseDurationChoice c = ChoosePulseDuration(nominal, tolerance, false);
+  request->pulse.duration = c.duration;
+  request->has_pulse = true;
+  Json pulses = Json::array();
+  for (const PlanStep& s : nominal->plan.steps) {
+    const std::string where = "steps[" + std::to_string(s.global_index) + "]";
+    const Json a = ActuatorJson(p, s.state_before.z, s.delta_omega, *request, where);
+    pulses.push_back(Json{{"k", s.global_index},
+                          {"centre", s.t_impulse},
+                          {"window", Json::array({s.t_impulse - c.duration / 2, s.t_impulse + c.duration / 2})},
+                          {"plate_impulse", a["plate_impulse"]},
+                          {"mean_force", a["pulse"].is_null() ? Json(nullptr) : a["pulse"]["mean_force"]},
+                          {"reason", a["reason"]}});
+  }
+  return Json{{"alignment", PulseAlignmentName(PulseAlignment::kCentred)},
+              {"tolerance", tolerance},
+              {"pulse_duration", c.duration},
+              {"measured_error", c.measured_error},
+              {"executions", c.executions},
+              {"within", c.within},
+              {"pulses", std::move(pulses)}};
+}
 
 void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const std::string& file) {
   SvgFigure fig;
@@ -83,10 +117,19 @@ int RunPlan(const PlanCliOptions& o) {
   const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--impulses", o.n, 1, 1'000'000));
   if (n > 0) RequirePartitionSteps("--impulses", n, p);
   const PlanSetup setup = PlanSetupFor(p, n, std::string(kCommandLine) + ": --impulses");
-  const PlanSummary plan = [&] {
+  ActuatorRequest request = o.actuator.Request();
+  const bool schedule = o.pulse_error_opt->count() > 0;
+  if (schedule && !(std::isfinite(o.pulse_error) && o.pulse_error > 0))
+    throw std::invalid_argument("--pulse-error: value " + FormatNumber(o.pulse_error) + ": must be finite and > 0");
+  // With --pulse-error the plan is executed (execution.h), which needs its pass points and goal.
+  const auto nominal = std::make_shared<const NominalPlan>([&] {
     Progress progress("plateball plan", 0);  // one solve: the elapsed time
-    return PlanImpulses(setup.problem, setup.options);
-  }();
+    if (schedule) return MakeNominalPlan(setup.problem, setup.options);
+    NominalPlan n;
+    n.plan = PlanImpulses(setup.problem, setup.options);
+    return n;
+  }());
+  const PlanSummary& plan = nominal->plan;
   const Path& path = setup.problem.path;
 
   Json doc = HeaderJson("plateball", "plan", p, o.problem.file());
@@ -95,7 +138,13 @@ int RunPlan(const PlanCliOptions& o) {
   doc["initial"] = std::move(initial);
   doc["path"] = Json{{"type", ToString(p.plan->path)}, {"pieces", path.PieceCount()}, {"length", path.Length()}};
   doc["partition"] = Json{{"type", ToString(p.plan->partition)}, {"segments", plan.segments}};
-  Append(doc, PlanSummaryToJson(plan, !o.summary_only));
+  if (schedule) {
+    doc["pulse_schedule"] = plan.IsSolutionUsable() ? PulseScheduleJson(p, nominal, o.pulse_error, &request)
+                                                    : Json(nullptr);
+    doc["pulse_schedule_reason"] = plan.IsSolutionUsable() ? Json(nullptr) : Json("the plan is not usable");
+  }
+  const ActuatorContext actuator{p, request, ""};
+  Append(doc, PlanSummaryToJson(plan, !o.summary_only, &actuator));
   AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) DrawPlan(p, path, plan, o.svg);
@@ -110,14 +159,22 @@ std::function<int()> SetupPlan(CLI::App& sub) {
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   sub.add_option("--svg", o->svg, "draw the plate to this SVG file (planned path dashed, trajectory solid; \"-\": standard output, with --out FILE)");
   AddFigureSizeOption(sub);
+  o->pulse_error_opt = sub.add_option("--pulse-error", o->pulse_error,
+                                      "emit a pulse schedule: centred pulses of a duration chosen from the measured "
+                                      "O(D^2) error and verified by executing open loop, ending within this error of the "
+                                      "ideal impulses' (position + rotation angle; \"within\" says whether it did); "
+                                      "the impulses' pulse records use it");
+  o->actuator.Add(sub, o->pulse_error_opt);
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
   sub.footer(
       "Plans one energy-preserving impulse per partition point of plan.path (section 2.3): per impulse the\n"
       "time, p(tau_k), delta psi, delta omega, the upper plate's velocity change, the states and the\n"
       "orientations A(tau_k) (planned path), the polyline's and the impulsive trajectory's; the measured\n"
-      "error ||A(T) - A_n|| and its bounds (Theorems 2.5, 2.6, Corollary 3, a-posteriori sum).\n"
+      "error ||A(T) - A_n|| and its bounds (Theorems 2.5, 2.6, Corollary 3, a-posteriori sum); the actuator's\n"
+      "impulse J, contact impulses and, with --pulse-duration or --pulse-error, each pulse's force and the\n"
+      "friction it needs (with ball.physical, docs/rig.md).\n"
       "Example: plateball plan problems/circle.json --summary-only --svg circle.svg\n"
-      "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 a segment could not be joined, 5 unreadable file.");
+      "Exit codes: 0 ok, 2 usage, 3 invalid input (also: friction below a pulse's need), 4 a segment could not be joined, 5 unreadable file.");
   return [o] { return RunPlan(*o); };
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "common/actuator_json.h"
 #include "common/command_registry.h"
 #include "common/exact_output.h"
 #include "common/exit_codes.h"
@@ -38,6 +39,7 @@ struct SteerCliOptions {
   long long starts = 0;
   CLI::Option* max_impulses_opt = nullptr;
   CLI::Option* starts_opt = nullptr;
+  ActuatorOptions actuator;
 };
 
 // The fewest-impulse search (steer.fewest in the file, or --fewest-impulses).
@@ -49,11 +51,12 @@ int RunFewest(const SteerCliOptions& o, const Problem& p) {
   if (o.starts_opt->count() > 0) setup.options.starts = static_cast<int>(RequireIntegerInRange("--starts", o.starts, 1, O::kMaxStarts));
   setup.problem.stop_at_goal = setup.problem.stop_at_goal || o.stop_at_goal;
   setup.problem.start_at_rest = setup.problem.start_at_rest || o.start_at_rest;
+  const ActuatorContext actuator{p, o.actuator.Request(), ""};
   const FewestImpulsesSummary s = SolveFewestImpulses(setup.problem, setup.options);
   Json doc = HeaderJson("plateball", "steer", p, o.problem.file());
   doc["initial"] = InitialJson(p);
   doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
-  Append(doc, FewestImpulsesToJson(setup.problem, s, !o.summary_only));
+  Append(doc, FewestImpulsesToJson(setup.problem, s, !o.summary_only, &actuator));
   WriteJson(doc, o.out);
   const FewestImpulsesCount* f = s.Fewest();
   if (!o.svg.empty() && f && f->impulses == 0)
@@ -95,6 +98,7 @@ int RunSteer(const SteerCliOptions& o) {
   }
   setup.problem.stop_at_goal = setup.problem.stop_at_goal || o.stop_at_goal;
   setup.problem.start_at_rest = setup.problem.start_at_rest || o.start_at_rest;
+  const ActuatorContext actuator{p, o.actuator.Request(), ""};
   const ExactArrivalSummary s = [&] {
     Progress progress("plateball steer", 0);  // one solve: the elapsed time
     return SolveExactArrival(setup.problem, setup.options);
@@ -105,7 +109,7 @@ int RunSteer(const SteerCliOptions& o) {
   doc["initial"] = InitialJson(p);
   doc["reference"] = Json{{"source", reference}, {"length", setup.problem.reference.Length()}};
   doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
-  Append(doc, ExactArrivalToJson(s, replay, !o.summary_only));
+  Append(doc, ExactArrivalToJson(s, replay, !o.summary_only, &actuator));
   AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) {
@@ -131,10 +135,12 @@ std::function<int()> SetupSteer(CLI::App& sub) {
   o->starts_opt = sub.add_option("--starts", o->starts, "starts per impulse count of the search (overrides steer.fewest.starts)");
   sub.add_flag("--stop-at-goal", o->stop_at_goal, "arrive and stop: one more impulse brings omega to zero at the goal");
   sub.add_flag("--start-at-rest", o->start_at_rest, "the ball starts at rest (the first impulse sets it rolling)");
+  o->actuator.Add(sub);
   sub.footer(
       "Exact arrival (issue 11): corrects the paper's plan along the reference (the plan section's path,\n"
       "else the shortest isoparallel path) so that the ball reaches steer.goal with steer.goal_orientation:\n"
-      "per impulse the time, position, delta psi, delta omega and the upper plate's velocity change; the\n"
+      "per impulse the time, position, delta psi, delta omega and the upper plate's velocity change, the\n"
+      "actuator's impulse J and, with --pulse-duration, its pulse's force and friction (docs/rig.md); the\n"
       "arrival errors, those of an independent re-integration, the deviation from the reference.\n"
       "With steer.fewest in the file or --fewest-impulses: the fewest impulses that reach the goal exactly\n"
       "(a systematic multi-start search over n = 1, 2, ...; the JSON says what was searched) and a Pareto\n"

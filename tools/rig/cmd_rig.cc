@@ -9,13 +9,14 @@
 
 #include <mujoco/mujoco.h>
 
+#include "common/actuator_json.h"
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/units.h"
-#include "plateball/plate_impulse.h"
+#include "plateball/actuator_command.h"
 #include "rig/mujoco_twin.h"
 #include "rig/rig_plan.h"
 
@@ -28,6 +29,7 @@ struct RigCliOptions {
   std::string out;
   double dt = 1e-3;
   double pulse_duration = 0.0;
+  bool causal = false;
   CLI::App* export_cmd = nullptr;
   CLI::App* replay_cmd = nullptr;
 };
@@ -37,11 +39,14 @@ rig::ReplayOptions ReplayOptionsOf(const RigCliOptions& o) {
   rig::ReplayOptions r;
   r.settings.timestep = o.dt;
   r.pulse_duration = o.pulse_duration;
+  r.causal = o.causal;
   if (!(std::isfinite(o.dt) && o.dt > 0 && o.dt <= 0.1))
     throw std::invalid_argument("--dt: value " + FormatNumber(o.dt) + ": must be in (0, 0.1] s");
   if (!(std::isfinite(o.pulse_duration) && o.pulse_duration >= 0))
     throw std::invalid_argument("--pulse-duration: value " + FormatNumber(o.pulse_duration) +
                                 ": must be finite and >= 0 s (0: ideal velocity jumps)");
+  if (o.causal && o.pulse_duration == 0)
+    throw std::invalid_argument("--pulse-causal: value true: needs --pulse-duration > 0 (ideal jumps have no window)");
   return r;
 }
 
@@ -90,25 +95,24 @@ Json ScheduleJson(const RigCliOptions& o, const rig::RigPlan& plan, const std::s
   doc["schedule"] = schedule_file;
   doc["settings"] = SettingsJson(ReplayOptionsOf(o).settings);
   doc["pulse_duration"] = D;
+  doc["pulse_alignment"] = D > 0 ? Json(PulseAlignmentName(o.causal ? PulseAlignment::kCausal : PulseAlignment::kCentred))
+                                 : Json(nullptr);
   doc["start"] = Json{{"t", 0.0}, {"x0", ToJson(plan.x0)}, {"orientation", ToJson(plan.A0)},
                       {"omega", ToJson(plan.start.omega)}};
   Json pulses = Json::array();
   for (std::size_t k = 0; k < plan.impulses.size(); ++k) {
     const rig::RigImpulse& i = plan.impulses[k];
-    const PlateImpulse imp = PlateImpulseFor(plan.physical, i.z, i.delta_omega);
+    ActuatorRequest request;  // the engine's friction is checked by CheckPulseFriction
+    request.has_pulse = D > 0;
+    if (D > 0) request.pulse.duration = D;
     Json j{{"k", k},
            {"t_impulse", i.t},
            {"z", ToJson(i.z)},
            {"delta_omega", ToJson(i.delta_omega)},
            {"omega_after", ToJson(i.omega_after)},
-           {"plate_impulse", ToJson(imp.plate)},
-           {"top_contact_impulse", ToJson(imp.top_contact)},
-           {"bottom_contact_impulse", ToJson(imp.bottom_contact)},
-           {"torsional_impulse", imp.torsion}};
-    if (D > 0) {
-      j["window"] = Json::array({i.t - D / 2, i.t + D / 2});
-      j["force"] = ToJson(Eigen::Vector3d(imp.plate / D));
-    }
+           {"actuator", ActuatorJson(plan.problem, i.z, i.delta_omega, request, "impulses[" + std::to_string(k) + "]")}};
+    const double start = o.causal ? i.t : i.t - D / 2;
+    if (D > 0) j["window"] = Json::array({start, start + D});
     pulses.push_back(std::move(j));
   }
   doc["pulses"] = std::move(pulses);
@@ -150,7 +154,7 @@ int RunReplay(const RigCliOptions& o) {
   doc["result"] = Json{{"file", o.result}, {"command", plan.command}, {"impulse_count", plan.impulses.size()},
                        {"total_time", plan.t_end}};
   doc["settings"] = SettingsJson(options.settings);
-  doc["execution"] = Json{{"kind", o.pulse_duration > 0 ? "centred_pulses" : "ideal_jumps"},
+  doc["execution"] = Json{{"kind", o.pulse_duration == 0 ? "ideal_jumps" : o.causal ? "causal_pulses" : "centred_pulses"},
                           {"pulse_duration", o.pulse_duration}};
   doc["replay"] = Json{{"t_begin", r.t_begin},
                        {"t_end", r.t_end},
@@ -172,6 +176,7 @@ void AddCommon(CLI::App& sub, RigCliOptions& o) {
   sub.add_option("--dt", o.dt, "the engine's RK4 timestep in s (default 1e-3)");
   sub.add_option("--pulse-duration", o.pulse_duration,
                  "pulse duration D in s: force J/D on the plate over [t_k - D/2, t_k + D/2] (default 0: ideal velocity jumps)");
+  sub.add_flag("--pulse-causal", o.causal, "with --pulse-duration: causal pulses over [t_k, t_k + D] (error O(D)) instead of centred (O(D^2))");
 }
 
 std::function<int()> SetupRig(CLI::App& sub) {

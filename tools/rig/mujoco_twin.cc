@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "common/number_format.h"
+#include "plateball/actuator_command.h"
 #include "plateball/plate_impulse.h"
 #include "plateball/so3.h"
 
@@ -264,21 +265,22 @@ void CheckPulseWindows(const RigPlan& plan, double duration, const std::string& 
 }
 
 void CheckPulseFriction(const RigPlan& plan, double duration, const TwinSettings& s, const std::string& field) {
-  const PhysicalParameters& p = plan.physical;
-  const double top_load = p.plate_mass * s.gravity, bottom_load = (p.plate_mass + p.ball_mass) * s.gravity;
+  // The contacts' loads under the engine's gravity and friction coefficients (actuator_command.h).
+  PulseOptions pulse;
+  pulse.duration = duration;
+  pulse.gravity = s.gravity;
+  pulse.static_friction = s.sliding_friction;
+  pulse.torsional_friction = s.torsional_friction;
   for (std::size_t i = 0; i < plan.impulses.size(); ++i) {
-    const PlateImpulse imp = PlateImpulseFor(p, plan.impulses[i].z, plan.impulses[i].delta_omega);
-    const double top = imp.top_contact.norm() / duration, bottom = imp.bottom_contact.norm() / duration;
-    const double torque = std::abs(imp.torsion) / duration;
+    const PlateImpulse imp = PlateImpulseFor(plan.physical, plan.impulses[i].z, plan.impulses[i].delta_omega);
+    const PulseForces f = PulseForcesFor(plan.physical, imp, pulse);
     std::string what;
-    if (top > s.sliding_friction * top_load)
-      what = "the top contact needs " + Num(top) + " N of friction, more than mu_s " + Num(s.sliding_friction) +
-             " times the plate's weight " + Num(top_load) + " N";
-    else if (bottom > s.sliding_friction * bottom_load)
-      what = "the bottom contact needs " + Num(bottom) + " N of friction, more than mu_s " + Num(s.sliding_friction) +
-             " times its load " + Num(bottom_load) + " N";
-    else if (torque > s.torsional_friction * (top_load + bottom_load))
-      what = "the contacts need a torsional torque of " + Num(torque) + " N m, more than mu_t " +
+    if (f.slides)
+      what = "the contacts need mu_s >= " + Num(f.sliding_friction_needed) + " (top " + Num(f.top_tangential_force) +
+             " N on " + Num(f.top_normal_load) + " N, bottom " + Num(f.bottom_tangential_force) + " N on " +
+             Num(f.bottom_normal_load) + " N), more than the engine's " + Num(s.sliding_friction);
+    else if (f.spins)
+      what = "the contacts need a torsional torque of " + Num(f.torsional_torque) + " N m, more than mu_t " +
              Num(s.torsional_friction) + " m times their loads";
     if (!what.empty())
       throw std::invalid_argument(Bad(field, duration, "too short: impulse " + std::to_string(i) + " would slip: " + what));
@@ -312,12 +314,15 @@ namespace {
 
 // The times where the force or the velocity changes, sorted, ending with the replay's end: the
 // impulse times for ideal jumps, the window edges for pulses of duration D.
-std::vector<double> BreakTimes(const RigPlan& plan, double D) {
+// Where impulse time t's pulse starts: t - D/2 (centred) or t (causal).
+double PulseStart(double t, double D, bool causal) { return causal ? t : t - D / 2; }
+
+std::vector<double> BreakTimes(const RigPlan& plan, double D, bool causal) {
   std::vector<double> breaks{plan.t_end};
   for (const RigImpulse& k : plan.impulses) {
     if (D > 0) {
-      breaks.push_back(k.t - D / 2);
-      breaks.push_back(k.t + D / 2);
+      breaks.push_back(PulseStart(k.t, D, causal));
+      breaks.push_back(PulseStart(k.t, D, causal) + D);
     } else {
       breaks.push_back(k.t);
     }
@@ -353,7 +358,7 @@ ReplayReport ReplayInTwin(const RigPlan& plan, const PlannedTrajectory& referenc
     CheckPulseWindows(plan, D, "pulse_duration");
     CheckPulseFriction(plan, D, options.settings, "pulse_duration");
   }
-  const std::vector<double> breaks = BreakTimes(plan, D);
+  const std::vector<double> breaks = BreakTimes(plan, D, options.causal);
   out.t_begin = std::min(0.0, breaks.front());
   out.t_end = breaks.back();
   CheckStepCount(plan, out.t_end - out.t_begin, options.settings.timestep);
@@ -361,7 +366,14 @@ ReplayReport ReplayInTwin(const RigPlan& plan, const PlannedTrajectory& referenc
   TwinSettings settings = options.settings;
   settings.plate_half_size_radii = PlateHalfSizeFor(plan, reference, settings);
   MujocoTwin twin(plan.physical, settings);
-  const MotionSample start = reference.At(out.t_begin);
+  // The planned state at t_begin is the one after an impulse there; a pulse starting at t_begin (causal,
+  // an impulse at t = 0) starts from the state before it.
+  MotionSample start = reference.At(out.t_begin);
+  if (D > 0 && out.t_begin == 0.0) {
+    start.state = plan.start;
+    start.x = plan.x0;
+    start.A = plan.A0;
+  }
   twin.SetState(out.t_begin, start.x, start.A, start.state.omega);
   std::size_t next_jump = 0;
   auto apply_jumps = [&](double t) {
@@ -377,7 +389,7 @@ ReplayReport ReplayInTwin(const RigPlan& plan, const PlannedTrajectory& referenc
     Eigen::Vector2d f = Eigen::Vector2d::Zero();
     const double mid = 0.5 * (a + b);
     for (std::size_t i = 0; D > 0 && i < impulses.size(); ++i)
-      if (std::abs(mid - impulses[i].t) < D / 2) f += force[i];
+      if (std::abs(mid - (PulseStart(impulses[i].t, D, options.causal) + D / 2)) < D / 2) f += force[i];
     const int n = Substeps(a, b, options.settings.timestep);
     for (int i = 0; i < n; ++i) {
       twin.Step((b - a) / n, f);

@@ -83,6 +83,7 @@ class MujocoTwin {
 /// How a plan is executed in the engine.
 struct ReplayOptions {
   double pulse_duration = 0.0;  ///< s; 0: ideal velocity jumps at the impulse times
+  bool causal = false;          ///< pulses over [t_k, t_k + D] instead of [t_k - D/2, t_k + D/2]
   TwinSettings settings;
   std::string Validate() const;
 };
@@ -105,8 +106,9 @@ struct ReplayReport {
 /// std::invalid_argument naming `field` and the impulse otherwise.
 void CheckPulseWindows(const RigPlan& plan, double duration, const std::string& field);
 
-/// The contacts must hold each pulse: the top contact's friction impulse over D within mu_s M_plate g,
-/// the bottom's within mu_s (M_plate + M_ball) g, the torsional one within mu_t (M_ball + 2 M_plate) g.
+/// The contacts must hold each pulse (PulseForcesFor with the engine's gravity and friction): the top
+/// contact's friction impulse over D within mu_s M_plate g, the bottom's within mu_s (M_plate + M_ball) g,
+/// the torsional one within mu_t times the two contacts' loads.
 /// Throws std::invalid_argument naming `field` and the impulse that would slip otherwise.
 void CheckPulseFriction(const RigPlan& plan, double duration, const TwinSettings& settings, const std::string& field);
 
@@ -116,7 +118,7 @@ double PlateHalfSizeFor(const RigPlan& plan, const PlannedTrajectory& reference,
 
 /// Runs the plan in the engine from its start to max(t_end, last pulse's end) and compares with the
 /// planned trajectory at that time. Ideal jumps set omega to the planned post-impulse omega at each
-/// impulse time; pulses apply the force J/D to the plate over the centred window, J =
+/// impulse time; pulses apply the force J/D to the plate over the centred (or causal) window, J =
 /// PlateImpulseFor(z_k, delta_omega_k).plate. Throws std::invalid_argument for invalid options or
 /// windows or more than 1e8 steps, std::runtime_error when the ball leaves the plates.
 ReplayReport ReplayInTwin(const RigPlan& plan, const PlannedTrajectory& reference, const ReplayOptions& options);
