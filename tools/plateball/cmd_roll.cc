@@ -92,7 +92,7 @@ std::vector<Eigen::Vector2d> ReadSamplesFile(const std::string& file) {
   }
   if (!points->is_array() || points->size() < 2 || points->size() > kMaxPoints)
     FileError(file, field, points->is_array() ? "[array of " + std::to_string(points->size()) + "]" : ValueText(*points),
-              "must be an array of 2 ... 1e6 points [x, y]");
+              "must be an array of 2 ... " + std::to_string(kMaxPoints) + " points [x, y]");
   std::vector<Eigen::Vector2d> out;
   for (std::size_t i = 0; i < points->size(); ++i) {
     const json& p = (*points)[i];
