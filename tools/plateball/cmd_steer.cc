@@ -1,4 +1,4 @@
-// `plateball steer PROBLEM.json`: exact arrival (issue 11): the impulses that bring the ball to the
+// `plateball steer PROBLEM.json`: exact arrival: the impulses that bring the ball to the
 // steer section's goal position and orientation exactly, along a reference (the plan section's
 // path, else the shortest isoparallel path of the isoparallel section), as JSON and optionally
 // the plate as SVG (reference dashed, exact impulsive trajectory solid).
@@ -132,7 +132,7 @@ std::function<int()> SetupSteer(CLI::App& sub) {
   sub.add_flag("--stop-at-goal", o->stop_at_goal, "arrive and stop: one more impulse brings omega to zero at the goal");
   sub.add_flag("--start-at-rest", o->start_at_rest, "the ball starts at rest (the first impulse sets it rolling)");
   sub.footer(
-      "Exact arrival (issue 11): corrects the paper's plan along the reference (the plan section's path,\n"
+      "Exact arrival: corrects the paper's plan along the reference (the plan section's path,\n"
       "else the shortest isoparallel path) so that the ball reaches steer.goal with steer.goal_orientation:\n"
       "per impulse the time, position, delta psi, delta omega and the upper plate's velocity change; the\n"
       "arrival errors, those of an independent re-integration, the deviation from the reference.\n"

@@ -1,4 +1,4 @@
-// `plateball view RESULT.json --html OUT.html` (issue 14): a self-contained 3-D page of a result of
+// `plateball view RESULT.json --html OUT.html`: a self-contained 3-D page of a result of
 // `plateball simulate`, `plan`, `steer` or an isoparallel solution: the data (re-simulated by the
 // library, view_data.h), the page's script and three.js are all in the one HTML file, which opens
 // offline and makes no network request.
