@@ -43,9 +43,9 @@ int RunSimulate(const SimulateOptions& o) {
   // free_motion.h evaluates |t| <= 1e12 periods: checked here to name the option.
   const double period = 2.0 * M_PI / std::sqrt(p.mu);
   if (task.t_end > kMaxPeriods * period)
-    throw std::invalid_argument((o.t_end_opt->count() > 0 ? std::string(kCommandLine) + ": --t-end" : p.source + ": simulate.t_end") +
-                                ": value " + FormatNumber(task.t_end) + ": must be <= 1e12 periods (" +
-                                FormatNumber(kMaxPeriods * period) + " at mu = " + FormatNumber(p.mu) + ")");
+    ThrowInvalidInput(o.t_end_opt->count() > 0 ? CommandLineField("--t-end") : p.source + ": simulate.t_end",
+                      FormatNumber(task.t_end),
+                      "must be <= 1e12 periods (" + FormatNumber(kMaxPeriods * period) + " at mu = " + FormatNumber(p.mu) + ")");
 
   const FreeMotion motion = FreeMotionFor(p);
 

@@ -75,9 +75,8 @@ int RunSteer(const SteerCliOptions& o) {
   if (o.fewest || (p.steer && p.steer->fewest)) return RunFewest(o, p);
   for (const CLI::Option* search : {o.max_impulses_opt, o.starts_opt})  // options of the search only
     if (search->count() > 0)
-      throw std::invalid_argument(std::string(kCommandLine) + ": " + search->get_name() + ": value " +
-                                  search->as<std::string>() +
-                                  ": needs --fewest-impulses (or steer.fewest in the problem file)");
+      ThrowInvalidInput(CommandLineField(search->get_name()), search->as<std::string>(),
+                        "needs --fewest-impulses (or steer.fewest in the problem file)");
   const int n = o.impulses_opt->count() == 0
                     ? 0
                     : static_cast<int>(RequireIntegerInRange("--impulses", o.impulses, 3, 1'000'000));

@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "common/invalid_input.h"
 #include "common/limits.h"
 #include "common/plan_json.h"
 #include "common/number_format.h"
@@ -71,7 +72,7 @@ const json* ResultReader::Find(const json& at, const std::string& concept_name) 
 }
 
 void ResultReader::Fail(const std::string& field, const std::string& value, const std::string& what) const {
-  throw std::invalid_argument(file_ + ": " + field + ": value " + value + ": " + what);
+  ThrowInvalidInput(file_ + ": " + field, value, what);
 }
 
 const json& ResultReader::Get(const json& at, const std::string& where, const std::string& concept_name) const {
