@@ -1,4 +1,4 @@
-# No tracker numbers ("issue 12") in code, build files, help texts, problem files or schemas
+# No tracker numbers ("issue N" with a number) in code, build files, help texts, problem files or schemas
 # (tests/scripts/check_no_tracker_refs.sh; src/isoparallel* and src/certify/ not yet checked).
 add_test(NAME Hygiene.NoTrackerReferences
   COMMAND bash ${PROJECT_SOURCE_DIR}/tests/scripts/check_no_tracker_refs.sh ${PROJECT_SOURCE_DIR})
