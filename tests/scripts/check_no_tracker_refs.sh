@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fails when code, build files, help texts, problem files or schemas cite the issue tracker
-# ("issue N", "(issue N)", "Issue N, task ..." with a number for N): the number means nothing to a user; say what the thing
-# is instead (history belongs in the commit log or docs/appendix/).
+# ("issue N", "(issue N)", "Issue N, task ..." with a number for N): the number means nothing to
+# a user; say what the thing is instead (history belongs in the commit log or docs/appendix/).
 # Not yet checked: src/isoparallel* and src/certify/, whose references go with the certificate's
 # move into src/certify/ (remove the grep -v of src/ below when it is merged).
 # Usage: check_no_tracker_refs.sh SOURCE_DIR
