@@ -1,4 +1,4 @@
-# Optional MPI component of `plateball montecarlo` (issue 12): with Open MPI found (Debian's
+# Optional MPI component of `plateball montecarlo`: with Open MPI found (Debian's
 # libopenmpi-dev), `mpirun -np K plateball montecarlo ...` splits the trials over the ranks
 # (tools/plateball/montecarlo_ranks.cc). Without it the tool runs its trials on threads. Not in
 # sanitizer or fuzz builds: Open MPI's own allocations would be reported as leaks.

@@ -11,6 +11,8 @@
 #include <string>
 #include <type_traits>
 
+#include "plateball/limits.h"
+
 namespace plateball::internal {
 
 /// Shortest text that reads back as the same double ("0.1", "1e+200", "nan", "-inf").
@@ -89,8 +91,8 @@ constexpr double kMaxMu = 1e12;
 constexpr double kMinTolerance = 1e-15;   ///< integration tolerances
 
 // Sizes that drive the work (README, "Limits"): each keeps one call under ~10 s and ~1 GB.
-constexpr int kMaxPartitionSteps = 10000;   ///< partition n (steps of a plan), impulses of a plan
-constexpr int kMaxSamples = 100000;         ///< samples of a simulation, sample points of a path
+constexpr int kMaxPartitionSteps = limits::kMaxPartitionSteps;  ///< partition n, impulses of a plan (limits.h)
+constexpr int kMaxSamples = limits::kMaxSamples;  ///< samples of a simulation, path sample points (limits.h)
 constexpr double kMaxIsoparallelChord = 40;  ///< |goal - start| of the isoparallel problem
 constexpr double kMaxStartsTimesChord = 3.5e5;  ///< multi-start: starts x |goal - start| (default 8192 x chord 40 fits)
 constexpr double kMaxLengthCapFactor = 10;   ///< family search (= IsoparallelOptions::kMaxLengthCapFactor)

@@ -1,4 +1,4 @@
-// Internal: the rolling of the ball along an elastica in closed form (issue 15).
+// Internal: the rolling of the ball along an elastica in closed form.
 //
 // Along an extremal the costate v(s) = (W - e3 x x'(s), g'(s)) is transported by the rolling,
 // Q(s0, s1) v(s0) = v(s1) (section 2.2; isoparallel_families.h), and |v| = V is constant,

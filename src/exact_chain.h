@@ -1,4 +1,4 @@
-// Internal: the impulse chain of exact arrival (issue 11) and its exact Jacobian.
+// Internal: the impulse chain of exact arrival and its exact Jacobian.
 //
 // The ball between impulses is (z, K): the symmetry axis and the conserved vector of the free arc
 // (kinematics.h). Impulse k, psi -> psi + s_k at fixed (theta, phi, mu) (section 2.1), moves the

@@ -89,7 +89,13 @@ Eigen::Matrix3d RotationZ(double a) {
 namespace internal {
 Eigen::Matrix3d RotateAxisOnto(const Eigen::Matrix3d& A0, const Eigen::Vector3d& z) {
   RequireFinite("A0", A0);
-  if (!IsRotation(A0, 1e-9)) throw std::invalid_argument("'A0' is not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+  if (!IsRotation(A0, 1e-9)) {
+    std::string rows;
+    for (int i = 0; i < 3; ++i)
+      rows += std::string(i > 0 ? ", " : "") + "[" + FormatNumber(A0(i, 0)) + ", " + FormatNumber(A0(i, 1)) + ", " +
+              FormatNumber(A0(i, 2)) + "]";
+    ThrowInvalid("A0", "[" + rows + "]", "not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+  }
   const Eigen::Vector3d e = A0.col(2);
   const Eigen::Vector3d axis = e.cross(z);
   const double angle = std::atan2(axis.norm(), e.dot(z));

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "kinematics.h"
 #include "support/test_support.h"
 
 namespace plateball {
@@ -118,6 +119,21 @@ TEST(SO3, AlignOrientationToAxisIsTheMinimalRotationOntoZ) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("A0"), std::string::npos);
   }
+}
+
+// A start orientation that is no rotation (a reflection: det = -1) is refused in the library's
+// message format, naming the field and showing the matrix.
+TEST(So3, RotateAxisOntoRefusesAReflectionInTheStandardFormat) {
+  const Eigen::Matrix3d reflection = Eigen::Vector3d(1.0, 1.0, -1.0).asDiagonal();
+  try {
+    internal::RotateAxisOnto(reflection, Eigen::Vector3d::UnitZ());
+    FAIL() << "a reflection was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "A0: value [[1, 0, 0], [0, 1, 0], [0, 0, -1]]: not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
+  }
+  // A rotation passes: the identity already has its axis on z.
+  EXPECT_TRUE(internal::RotateAxisOnto(Eigen::Matrix3d::Identity(), Eigen::Vector3d::UnitZ()).isIdentity(0.0));
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The page of `plateball view` (issue 14). Reads PLATEBALL_DATA (written by tools/view/view_data.cc):
+// The page of `plateball view`. Reads PLATEBALL_DATA (written by tools/view/view_data.cc):
 //   t[n]                 sample times
 //   x[2n], q[4n]         contact point and orientation A(t) as unit quaternions (w, x, y, z), the
 //                        library's values at t[i]; between samples the orientation is the slerp

@@ -1,4 +1,4 @@
-// Error models of a real plate-ball rig (issue 12): what goes wrong when a plan of section 2.3 is
+// Error models of a real plate-ball rig: what goes wrong when a plan of section 2.3 is
 // executed. The paper's conclusion expects such errors to slow the convergence of Theorem 2.6
 // from O(1/n^2) to about O(1/n); execution.h and monte_carlo.h measure it. Every magnitude is
 // the standard deviation of a seeded normal draw (energy_loss: a fixed fraction); zero means

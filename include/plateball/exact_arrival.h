@@ -1,4 +1,4 @@
-// Exact arrival (issue 11): the energy-preserving impulses (delta psi_k, t_k), k = 0..n-1, of the
+// Exact arrival: the energy-preserving impulses (delta psi_k, t_k), k = 0..n-1, of the
 // paper's control strategy (section 2.3) corrected so that the ball arrives at the goal position
 // x1 *and* the goal orientation A1 exactly, not only to O(1/n^2) (Theorem 2.6).
 //

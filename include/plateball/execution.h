@@ -1,4 +1,4 @@
-// Executing a plan of section 2.3 under the errors of a real rig (error_model.h, issue 12). The
+// Executing a plan of section 2.3 under the errors of a real rig (error_model.h). The
 // paper's strategy is open loop: the planned impulses at the planned times, in a perfect model.
 // Three strategies are executed here, with one seeded realisation of the errors per trial:
 //   open loop        the planned plate velocity changes at the planned (absolute) times;

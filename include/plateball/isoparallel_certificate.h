@@ -1,4 +1,4 @@
-// The certificate of a general isoparallel target (issue 15): every solution of length up to a
+// The certificate of a general isoparallel target: every solution of length up to a
 // cap, each proved (Krawczyk) the only solution of a box of parameter space, and a proof that the
 // rest of parameter space holds none. SolveIsoparallel's shooting is a deterministic sample
 // (`complete` false for general targets); this is the offline check that turns its list into a

@@ -1,4 +1,4 @@
-// Monte Carlo of plan execution under errors (issue 12): N seeded trials per strategy
+// Monte Carlo of plan execution under errors: N seeded trials per strategy
 // (execution.h) and error scenario (error_model.h), the distributions of the final errors, the
 // missed pass points and the total time, and the final error against the number of impulses n
 // with its fitted log-log slope (the paper's conclusion: errors of a more realistic model may

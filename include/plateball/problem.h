@@ -119,7 +119,7 @@ struct IsoparallelTask {
   IsoparallelOptions solver;
 };
 
-/// `plateball steer` / `isoparallel_solve --exact` (issue 11): exact arrival at (goal,
+/// `plateball steer` / `isoparallel_solve --exact`: exact arrival at (goal,
 /// goal_orientation) with `impulses` impulses along a reference: the plan section's path when the
 /// file has one, else the shortest isoparallel path.
 struct SteerTask {

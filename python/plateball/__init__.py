@@ -171,7 +171,8 @@ def roll(points, segment=False, integration=None):
 
 
 def load_problem(path):
-    """Reads a problem file with the library's reader (same checks and messages as the tools).
+    """Reads a problem file with the library's reader (same checks and messages as the tools; at
+    most MAX_PROBLEM_FILE_BYTES bytes, as parse_problem and the tools' standard input).
 
     path: a str or os.PathLike; anything else raises TypeError (str(None) would name a file "None")."""
     if not isinstance(path, (str, os.PathLike)):

@@ -4,6 +4,15 @@ from typing import Any, ClassVar, Dict, Iterator, List, Optional, Tuple, Union
 from typing import overload
 import numpy
 import numpy.typing
+MAX_HORIZON_PERIODS: float
+MAX_JSON_DEPTH: int
+MAX_LIST_LENGTH: int
+MAX_PARTITION_STEPS: int
+MAX_PIECE_DEPTH: int
+MAX_POINTS: int
+MAX_PROBLEM_FILE_BYTES: int
+MAX_RESULT_FILE_BYTES: int
+MAX_SAMPLES: int
 
 class AngleFormOptions:
     integration: IntegrationOptions

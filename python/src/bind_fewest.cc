@@ -1,4 +1,4 @@
-// Python binding: the fewest-impulse search (fewest_impulses.h, issue 11): its problem, options,
+// Python binding: the fewest-impulse search (fewest_impulses.h): its problem, options,
 // summary with the Pareto table, and the exact-arrival problem that replays a row's impulses.
 #include "bind_common.h"
 #include <optional>

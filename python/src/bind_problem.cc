@@ -1,6 +1,7 @@
 // Python binding: problem files (problem.h, problem_io.h) and the task adapters (task_adapters.h),
 // so that Python runs exactly what the tools run for a file.
 #include "bind_common.h"
+#include "plateball/limits.h"
 #include "plateball/problem.h"
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
@@ -61,9 +62,19 @@ void BindProblemValue(py::module_& m) {
       .def_readwrite("steer", &Problem::steer)
       .def_readwrite("expected", &Problem::expected)
       .def("__repr__", [](const Problem& p) { return "<plateball.Problem " + (p.name.empty() ? p.source : p.name) + ">"; });
+  // plateball.MAX_...: the sizes of plateball/limits.h, the same numbers as the reader and the tools.
+  m.attr("MAX_PROBLEM_FILE_BYTES") = limits::kMaxProblemFileBytes;
+  m.attr("MAX_RESULT_FILE_BYTES") = limits::kMaxResultFileBytes;
+  m.attr("MAX_JSON_DEPTH") = limits::kMaxJsonDepth;
+  m.attr("MAX_SAMPLES") = limits::kMaxSamples;
+  m.attr("MAX_POINTS") = limits::kMaxPoints;
+  m.attr("MAX_PARTITION_STEPS") = limits::kMaxPartitionSteps;
+  m.attr("MAX_LIST_LENGTH") = limits::kMaxListLength;
+  m.attr("MAX_HORIZON_PERIODS") = limits::kMaxHorizonPeriods;
+  m.attr("MAX_PIECE_DEPTH") = limits::kMaxPieceDepth;
   m.def("read_problem_file", &ReadProblemFile, py::arg("path"),
         "Read a problem file (ValueError naming the field and value; ProblemFileReadError when unreadable).");
-  m.def("parse_problem", &ParseProblem, py::arg("json_text"), py::arg("source_name") = "<memory>", "A problem from JSON text, with the same checks and messages as the tools' reader.");
+  m.def("parse_problem", &ParseProblem, py::arg("json_text"), py::arg("source_name") = "<memory>", "A problem from JSON text, with the same checks and messages as the tools' reader (at most MAX_PROBLEM_FILE_BYTES).");
   m.def("write_problem_json", &WriteProblemJson, py::arg("problem"), "The canonical JSON form of a problem.");
   m.def("parse_orientation", &ParseOrientation, py::arg("json_text"), py::arg("field") = "orientation",
         py::arg("source_name") = "<python>", "An orientation from its JSON text in any of the problem file's three forms (3x3).");

@@ -1,5 +1,6 @@
 """The binding's shape: keywords and objects, errors as ValueError with the library's message,
 status words, NumPy results, the GIL released during solves."""
+import json
 import math
 import threading
 
@@ -108,9 +109,27 @@ def test_load_problem_refuses_a_non_path_and_parse_problem_has_the_file_limit(pr
         pb.load_problem(None)
     text = (problems / "simulate_example.json").read_text()
     assert pb.parse_problem(text).name == pb.load_problem(problems / "simulate_example.json").name
-    # The same 16 MiB limit as a problem file read by the tools, here on a string.
+    # The same 16 MiB limit as a problem file read by the tools, here on a string: exactly the
+    # limit parses, one byte more is refused.
+    assert pb.MAX_PROBLEM_FILE_BYTES == 16 * 2**20
+    padding = pb.MAX_PROBLEM_FILE_BYTES - len(text.encode())
+    assert pb.parse_problem(text + " " * padding).name == pb.parse_problem(text).name
     with pytest.raises(ValueError, match="16 MiB limit of a problem file"):
-        pb.parse_problem(text + " " * (16 * 2**20))
+        pb.parse_problem(text + " " * (padding + 1))
+
+
+def test_limits_are_the_readers():
+    """plateball.MAX_... hold the numbers the reader applies: one past each is refused."""
+    base = {"ball": {"lambda": 1}, "initial": {"theta": 1.0, "phi": 0, "psi": 0, "mu": 1}}
+    at = dict(base, simulate={"samples": pb.MAX_SAMPLES})
+    assert pb.parse_problem(json.dumps(at)).simulate.samples == 100000
+    over = dict(base, simulate={"samples": pb.MAX_SAMPLES + 1})
+    with pytest.raises(ValueError, match=r"simulate\.samples: value 100001: must be <= 100000"):
+        pb.parse_problem(json.dumps(over))
+    deep = dict(base, plan={"path": {"type": "line", "from": [0, 0], "to": [1, 0]},
+                            "partition": {"n": pb.MAX_PARTITION_STEPS + 1}})
+    with pytest.raises(ValueError, match=r"plan\.partition\.n: value 10001: must be <= 10000"):
+        pb.parse_problem(json.dumps(deep))
 
 
 def test_montecarlo_scenario_positional_as_in_the_readme():

@@ -78,7 +78,7 @@ if [[ -s "$work/control_iso.txt" ]] && ! grep -q $'\x1b\|\x01\|\x07' "$work/cont
 then ok; else bad "isoparallel_solve printed control characters raw: $(head -c 200 "$work/control_iso.txt" | od -c | head -3)"; fi
 
 # SIGTERM while an output is being written: the temporary file is removed, no output appears.
-"$pb" simulate "$src/problems/simulate_example.json" --samples 200000 --out "$work/sig.json" 2>/dev/null &
+"$pb" simulate "$src/problems/simulate_example.json" --samples 100000 --out "$work/sig.json" 2>/dev/null &
 pid=$!
 seen=0
 for _ in $(seq 1 4000); do

@@ -16,6 +16,7 @@
 #include "common/command_line.h"
 #include "common/errors.h"
 #include "common/exit_codes.h"
+#include "common/invalid_input.h"
 #include "common/json_output.h"
 #include "common/number_format.h"
 #include "common/output_file.h"
@@ -50,6 +51,18 @@ TEST(ToolErrors, ExceptionsMapToTheDocumentedExitCodes) {
   EXPECT_EQ(CodeFor([] { throw std::logic_error("bug"); }), kExitInternalError);
   EXPECT_EQ(CodeFor([] { throw 42; }), kExitInternalError);
   EXPECT_EQ(CodeFor([] {}), kExitSuccess);
+}
+
+// The tools' one invalid-input helper writes the library's format and maps to exit code 3.
+TEST(ToolErrors, InvalidInputHasTheStandardFormatAndExitCode) {
+  std::string message;
+  EXPECT_EQ(CodeFor([] { ThrowInvalidInput(CommandLineField("--samples"), "0", "must be >= 2"); }, &message),
+            kExitBadInput);
+  EXPECT_EQ(message, "tool: invalid input: command line: --samples: value 0: must be >= 2\n");
+  EXPECT_EQ(CodeFor([] { ThrowInvalidInput("r.json: options.trials", "-5", "must be an integer in [1, 1000000]"); },
+                    &message),
+            kExitBadInput);
+  EXPECT_EQ(message, "tool: invalid input: r.json: options.trials: value -5: must be an integer in [1, 1000000]\n");
 }
 
 TEST(JsonOutput, DoublesReadBackBitExactly) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/exit_codes.h"
+#include "common/invalid_input.h"
 
 namespace plateball::tools {
 namespace {
@@ -78,8 +79,7 @@ std::uint64_t ParseSeedOption(const std::string& option, const std::string& text
   if (text.empty() || text.size() > 20 || text.find_first_not_of("0123456789") != std::string::npos ||
       errno == ERANGE || end != text.c_str() + text.size()) {
     const std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
-    throw std::invalid_argument("command line: " + option + ": value \"" + shown +
-                                "\": must be an integer in [0, 2^64 - 1]");
+    ThrowInvalidInput(CommandLineField(option), "\"" + shown + "\"", "must be an integer in [0, 2^64 - 1]");
   }
   return static_cast<std::uint64_t>(v);
 }

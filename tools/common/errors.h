@@ -6,13 +6,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace plateball::tools {
+#include "common/io_error.h"
 
-/// A file the tool had to read or write could not be (exit code kExitIoError).
-class IoError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace plateball::tools {
 
 /// `text` for a terminal: C0 control characters other than line feed and tab, and DEL, are shown
 /// as "\xNN" (a name with ESC sequences could otherwise retitle or clear the terminal).

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "common/invalid_input.h"
 #include "common/limits.h"
 #include "common/errors.h"
 #include "plateball/problem_io.h"
@@ -12,16 +13,21 @@
 namespace plateball::tools {
 namespace {
 
-// At most kMaxInputFileBytes + 1 bytes of `in` (so that /dev/zero or a huge file ends at once).
-std::string ReadBounded(std::istream& in, const std::string& name) {
-  std::string text(kMaxInputFileBytes + 1, '\0');
+// At most `limit` + 1 bytes of `in` (so that /dev/zero or a huge file ends at once).
+std::string ReadAtMost(std::istream& in, const std::string& name, std::size_t limit) {
+  std::string text(limit + 1, '\0');
   in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (in.bad()) throw IoError(name + ": read error");
   text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > kMaxInputFileBytes)
-    throw std::invalid_argument(name + ": (document): value (more than " + std::to_string(kMaxInputFileBytes >> 20) +
-                                " MiB): the file is larger than the limit of " +
-                                std::to_string(kMaxInputFileBytes >> 20) + " MiB");
+  return text;
+}
+
+// At most kMaxResultFileBytes of `in`; a larger input is an input error.
+std::string ReadBounded(std::istream& in, const std::string& name) {
+  std::string text = ReadAtMost(in, name, kMaxResultFileBytes);
+  if (text.size() > kMaxResultFileBytes)
+    ThrowInvalidInput(name + ": (document)", "(more than " + std::to_string(kMaxResultFileBytes >> 20) + " MiB)",
+                      "the file is larger than the limit of " + std::to_string(kMaxResultFileBytes >> 20) + " MiB");
   return text;
 }
 
@@ -42,7 +48,9 @@ std::string ReadInputText(const std::string& path) {
 
 Problem ReadProblemInput(const std::string& path) {
   if (!IsStandardInput(path)) return ReadProblemFile(path);
-  Problem p = ParseProblem(ReadInputText(path), "(standard input)");
+  // A problem on standard input has the problem file's limit: read one byte past it, and the
+  // reader refuses the text with the same message as for a file.
+  Problem p = ParseProblem(ReadAtMost(std::cin, "standard input", kMaxProblemFileBytes), "(standard input)");
   p.source = "(standard input)";
   return p;
 }

@@ -4,6 +4,7 @@
 // impulsive approximation (section 2.3) as in Figure 7. Failures are reported by the caller's
 // RunWithExitCodes (tools/common/errors.h), the plan file is written with json_output.h and the
 // figure with svg.h.
+#include "common/invalid_input.h"
 #include "common/isoparallel_command.h"
 
 #include <CLI/CLI.hpp>
@@ -306,12 +307,11 @@ void CheckCertifyOptions(const IsoparallelCliOptions& cli, const plateball::Isop
   using plateball::IsoparallelCertificateOptions;
   RequireIntegerInRange("--certify-budget", cli.certify_budget, 1, IsoparallelCertificateOptions::kMaxBoxes);
   if (!(cli.certify_cap >= 1.0 && cli.certify_cap <= plateball::IsoparallelOptions::kMaxLengthCapFactor))
-    throw std::invalid_argument("command line: --certify-cap: value " + FormatNumber(cli.certify_cap) +
-                                ": must be in [1, 10]");
+    ThrowInvalidInput(CommandLineField("--certify-cap"), FormatNumber(cli.certify_cap), "must be in [1, 10]");
   const double chord = (prob.goal - prob.start).norm();
   if (cli.certify_length_given && !(cli.certify_length > chord && cli.certify_length <= 1e3))
-    throw std::invalid_argument("command line: --certify-length: value " + FormatNumber(cli.certify_length) +
-                                ": must exceed |goal - start| = " + FormatNumber(chord) + " and be <= 1000");
+    ThrowInvalidInput(CommandLineField("--certify-length"), FormatNumber(cli.certify_length),
+                      "must exceed |goal - start| = " + FormatNumber(chord) + " and be <= 1000");
 }
 
 // --certify: the certificate of the solution list (isoparallel_certificate.h), one line per
@@ -377,8 +377,8 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
   if (cli.certify) CheckCertifyOptions(cli, prob);
   // Exact arrival needs 2n unknowns >= 5 conditions (exact_arrival.h): checked before the solve.
   if (cli.exact && impulses != 0 && (impulses < 3 || impulses > plateball::kMaxExactImpulses))
-    throw std::invalid_argument("--impulses: value " + std::to_string(impulses) + ": --exact needs 3 ... " +
-                                std::to_string(plateball::kMaxExactImpulses) + " impulses");
+    ThrowInvalidInput("--impulses", std::to_string(impulses),
+                      "--exact needs 3 ... " + std::to_string(plateball::kMaxExactImpulses) + " impulses");
   const IsoparallelSummary summary = SolveWithProgress(setup, cli.program);
 
   const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());

@@ -13,7 +13,8 @@
 #include <system_error>
 #include <utility>
 
-#include "common/errors.h"
+#include "common/invalid_input.h"
+#include "common/io_error.h"
 
 namespace plateball::tools {
 namespace {
@@ -269,14 +270,14 @@ void CheckOutputPaths(const std::vector<PathArgument>& outputs, const std::vecto
       if (b.path.empty()) continue;
       const bool both_stdout = a.path == "-" && b.path == "-";
       if (both_stdout || (a.path != "-" && b.path != "-" && SameFile(a.path, b.path)))
-        throw std::invalid_argument("command line: " + b.option + " and " + a.option + ": value " + a.path +
-                                    ": two outputs name the same " + (both_stdout ? "standard output" : "file"));
+        ThrowInvalidInput(CommandLineField(b.option + " and " + a.option), a.path,
+                          std::string("two outputs name the same ") + (both_stdout ? "standard output" : "file"));
     }
     if (a.path == "-") continue;
     for (const PathArgument& in : inputs)
       if (!in.path.empty() && in.path != "-" && SameFile(a.path, in.path))
-        throw std::invalid_argument("command line: " + a.option + " and " + in.option + ": value " + a.path +
-                                    ": the output would overwrite the input file");
+        ThrowInvalidInput(CommandLineField(a.option + " and " + in.option), a.path,
+                          "the output would overwrite the input file");
   }
   for (const PathArgument& a : outputs)
     if (!IsStandardOutput(a.path)) CheckWritable(a);

@@ -17,7 +17,7 @@ namespace plateball::tools {
 namespace {
 
 [[noreturn]] void Fail(const std::string& option, const std::string& value, const std::string& what) {
-  throw std::invalid_argument(std::string(kCommandLine) + ": " + option + ": value " + value + ": " + what);
+  ThrowInvalidInput(CommandLineField(option), value, what);
 }
 
 std::string Quote(const std::string& s) { return "\"" + (s.size() > 80 ? s.substr(0, 80) + "..." : s) + "\""; }
@@ -174,8 +174,8 @@ void ProblemOptions::ApplyIsoparallel(Problem* p) const {
                    given("isoparallel.solver.starts") || given("isoparallel.solver.threads");
   if (!any) return;
   if (!p->isoparallel)
-    throw std::invalid_argument(p->source + ": isoparallel: value (missing): the options --start, --goal, ... override "
-                                "the problem's isoparallel section, which it does not have");
+    ThrowInvalidInput(p->source + ": isoparallel", "(missing)",
+                      "the options --start, --goal, ... override the problem's isoparallel section, which it does not have");
   IsoparallelTask& t = *p->isoparallel;
   if (given("isoparallel.start")) t.start = ParsePointOption("--start", start_);
   if (given("isoparallel.goal")) t.goal = ParsePointOption("--goal", goal_);

@@ -13,12 +13,10 @@
 #include <utility>
 #include <vector>
 
+#include "common/invalid_input.h"
 #include "plateball/problem.h"
 
 namespace plateball::tools {
-
-/// Source name of command-line values in error messages: "command line: --mu: value -1: ...".
-inline constexpr const char* kCommandLine = "command line";
 
 class ProblemOptions {
  public:

@@ -1,5 +1,5 @@
 // Progress with an estimated time of arrival on standard error, for every command that can run
-// longer than a second (issue 13), and the --quiet / --progress options of every tool.
+// longer than a second, and the --quiet / --progress options of every tool.
 //
 // When it is shown (docs/command_line.md, "Progress"):
 //   default     on a terminal only, and only once the run has taken a second: one line rewritten

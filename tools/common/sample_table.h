@@ -1,4 +1,4 @@
-// Large sample tables streamed to their output (issue 13): `plateball simulate --samples 1000000`
+// Large sample tables streamed to their output: `plateball simulate --samples 100000`
 // writes its samples one at a time, as JSON or CSV, in memory that does not grow with the sample
 // count; the file is still replaced atomically (output_file.h: WriteOutputStreamed).
 #pragma once

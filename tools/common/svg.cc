@@ -1,3 +1,4 @@
+#include "common/invalid_input.h"
 #include "common/svg.h"
 
 #include <algorithm>
@@ -224,8 +225,8 @@ FigureSize ParseFigureSize(const std::string& option, const std::string& text) {
   const double h = x == std::string::npos ? -1.0 : number(text.substr(x + 1));
   if (!(w >= 200 && w <= 8000 && h >= 200 && h <= 8000)) {
     const std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
-    throw std::invalid_argument("command line: " + option + ": value \"" + shown +
-                                "\": must be WIDTHxHEIGHT in pixels, each an integer in [200, 8000]");
+    ThrowInvalidInput(CommandLineField(option), "\"" + shown + "\"",
+                      "must be WIDTHxHEIGHT in pixels, each an integer in [200, 8000]");
   }
   return {w, h};
 }

@@ -1,3 +1,4 @@
+#include "common/invalid_input.h"
 #include "common/units.h"
 
 #include <cmath>
@@ -70,9 +71,9 @@ double KineticEnergyOf(const Problem& problem) {
   const PhysicalParameters& q = *problem.physical;
   const double energy = 0.5 * problem.mu * (q.inertia_1 + q.EffectiveMass() * q.radius * q.radius);  // docs/units.md
   if (!std::isfinite(energy))
-    throw std::invalid_argument("initial.mu: value " + FormatNumber(problem.mu) +
-                                ": with ball.physical the kinetic energy mu (I1 + M r^2) / 2 = " + FormatNumber(energy) +
-                                " J is not finite; reduce initial.mu or the inertias");
+    ThrowInvalidInput("initial.mu", FormatNumber(problem.mu),
+                      "with ball.physical the kinetic energy mu (I1 + M r^2) / 2 = " + FormatNumber(energy) +
+                          " J is not finite; reduce initial.mu or the inertias");
   return energy;
 }
 

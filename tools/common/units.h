@@ -1,4 +1,4 @@
-// Physical units next to the normalised ones (issue 13). With the problem file's ball.physical
+// Physical units next to the normalised ones. With the problem file's ball.physical
 // section (inertia_1, inertia_3, ball_mass, radius, plate_mass; validated by the reader, which
 // names the field) a tool's JSON also reports times, distances and velocities in SI units.
 //

@@ -1,5 +1,5 @@
 # Man pages (help2man, Debian's help2man, when found) and bash completion of the command-line
-# tools, built and installed with them (issue 13). Included from the top-level CMakeLists.txt.
+# tools, built and installed with them. Included from the top-level CMakeLists.txt.
 if(NOT PLATEBALL_BUILD_TOOLS OR NOT TARGET plateball_cli)
   return()
 endif()

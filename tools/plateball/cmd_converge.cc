@@ -103,7 +103,7 @@ int RunConverge(const ConvergeCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   if (o.format != "json" && o.format != "csv")
-    throw std::invalid_argument(std::string(kCommandLine) + ": --format: value " + o.format + ": must be json or csv");
+    ThrowInvalidInput(CommandLineField("--format"), o.format, "must be json or csv");
   std::vector<int> ns;
   for (long long n : o.ns) ns.push_back(static_cast<int>(RequireIntegerInRange("--impulses", n, 1, 1'000'000)));
   for (int n : ns) RequirePartitionSteps("--impulses", n, p);

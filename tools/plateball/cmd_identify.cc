@@ -38,7 +38,7 @@ struct IdentifyCliOptions {
 
 [[noreturn]] void TrackError(const std::string& file, const std::string& field, const std::string& value,
                              const std::string& what) {
-  throw std::invalid_argument(file + ": " + field + ": value " + value + ": " + what);
+  ThrowInvalidInput(file + ": " + field, value, what);
 }
 
 // ------------------------------------------------------------------ reading the track
@@ -282,7 +282,8 @@ int RunIdentify(const IdentifyCliOptions& o) {
   if (o.radius_opt->count() > 0) opt.radius = RequirePositiveOption("--radius", o.radius);
   opt.profile_interval = !o.no_profile;
   if (o.guess) {
-    if (o.problem.empty()) throw std::invalid_argument(std::string(kCommandLine) + ": --guess: value (set): needs PROBLEM.json (its ball.lambda and initial state)");
+    if (o.problem.empty())
+      ThrowInvalidInput(CommandLineField("--guess"), "(set)", "needs PROBLEM.json (its ball.lambda and initial state)");
     opt.guess = IdentifyGuess{p.model.lambda(), p.mu, p.initial_angles, p.x0 * opt.radius};
   }
   const IdentifySummary s = Identify(track, opt);

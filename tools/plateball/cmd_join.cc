@@ -62,8 +62,8 @@ int RunJoin(const JoinCliOptions& o) {
   if (!o.targets.empty()) targets = ParsePointsOption("--targets", o.targets);
   else if (p.reach) targets = p.reach->targets;
   if (targets.empty())
-    throw std::invalid_argument(std::string(kCommandLine) +
-                                ": --targets: value (missing): give targets with --targets X,Y;X,Y or in the file's reach.targets");
+    ThrowInvalidInput(CommandLineField("--targets"), "(missing)",
+                      "give targets with --targets X,Y;X,Y or in the file's reach.targets");
   JoinOptions options = JoinSetupFor(p, p.x0).options;
   options.max_iterations = static_cast<int>(RequireIntegerInRange("--max-iterations", o.max_iterations, 1, 10000));
   options.residual_tolerance = RequirePositiveOption("--residual-tolerance", o.residual_tolerance);

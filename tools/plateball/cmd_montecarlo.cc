@@ -44,7 +44,7 @@ struct MonteCarloCliOptions {
   bool timings = false;
 };
 
-std::string Option(const char* name) { return std::string(kCommandLine) + ": " + name; }
+std::string Option(const char* name) { return CommandLineField(name); }
 
 // The command line as the library's problem and options (every value checked, naming the option).
 std::pair<MonteCarloProblem, MonteCarloOptions> BuildStudy(const MonteCarloCliOptions& o, const Problem& p) {
@@ -67,8 +67,7 @@ std::pair<MonteCarloProblem, MonteCarloOptions> BuildStudy(const MonteCarloCliOp
   for (long long v : o.sweep_n) mp.sweep_n.push_back(static_cast<int>(RequireIntegerInRange("--sweep-n", v, 1, 10'000)));
   mo.sweep_trials = static_cast<int>(RequireIntegerInRange("--sweep-trials", o.sweep_trials, 0, MonteCarloOptions::kMaxTrials));
   if (!(o.miss_tolerance > 0 && o.miss_tolerance <= 1e6))
-    throw std::invalid_argument(Option("--miss-tolerance") + ": value " + FormatNumber(o.miss_tolerance) +
-                                ": must be a number in (0, 1e6]");
+    ThrowInvalidInput(Option("--miss-tolerance"), FormatNumber(o.miss_tolerance), "must be a number in (0, 1e6]");
   mo.execution.miss_tolerance = o.miss_tolerance;
   mo.execution.exact_window = static_cast<int>(
       RequireIntegerInRange("--exact-window", o.exact_window, 3, ExecutionOptions::kMaxExactWindow));
@@ -162,13 +161,13 @@ int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
   // says so once; the others end with the same exit code in silence.
   if (ranks.size() > 1 && o.problem.file() == "-") {
     if (ranks.rank() != 0) return kExitBadInput;
-    throw std::invalid_argument("PROBLEM.json: value -: standard input reaches rank 0 only: under MPI (" +
-                                std::to_string(ranks.size()) + " ranks) give the problem as a file");
+    ThrowInvalidInput("PROBLEM.json", "-", "standard input reaches rank 0 only: under MPI (" +
+                                               std::to_string(ranks.size()) + " ranks) give the problem as a file");
   }
   const Problem p = o.problem.Load();
   auto [mp, mo] = BuildStudy(o, p);
   if (!o.svg_sweep.empty() && mp.sweep_n.empty())
-    throw std::invalid_argument(Option("--svg-sweep") + ": value " + o.svg_sweep + ": needs --sweep-n");
+    ThrowInvalidInput(Option("--svg-sweep"), o.svg_sweep, "needs --sweep-n");
   const auto start = std::chrono::steady_clock::now();
   // Rank 0 shows the trials of its own share (the ranks' shares differ by at most one trial).
   const std::string label = ranks.size() > 1 ? "plateball montecarlo (trials of rank 0 of " +

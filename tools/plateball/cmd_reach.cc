@@ -15,6 +15,7 @@
 #include "common/errors.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
+#include "common/limits.h"
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
@@ -144,13 +145,13 @@ int RunReach(const ReachCliOptions& o) {
   if (o.targets_opt->count() > 0) task.targets = ParsePointsOption("--targets", o.targets);
   if (o.horizon_opt->count() > 0) {
     task.horizon_periods = RequirePositiveOption("--horizon-periods", o.horizon_periods);
-    if (task.horizon_periods > 1e4)
-      throw std::invalid_argument(std::string(kCommandLine) + ": --horizon-periods: value " + FormatNumber(task.horizon_periods) +
-                                  ": must be <= 1e4 (as the problem file)");
+    if (task.horizon_periods > limits::kMaxHorizonPeriods)
+      ThrowInvalidInput(CommandLineField("--horizon-periods"), FormatNumber(task.horizon_periods),
+                        "must be <= " + FormatNumber(limits::kMaxHorizonPeriods) + " (as in a problem file)");
   }
   if (task.targets.empty())
-    throw std::invalid_argument((o.problem.file().empty() ? std::string(kCommandLine) : o.problem.file()) +
-                                ": reach.targets: value (missing): no target; give a problem file with a \"reach\" section or --targets X,Y");
+    ThrowInvalidInput((o.problem.file().empty() ? std::string(kCommandLine) : o.problem.file()) + ": reach.targets",
+                      "(missing)", "no target; give a problem file with a \"reach\" section or --targets X,Y");
   std::vector<ReachSummary> summaries;
   json results = json::array();
   bool all_solved = true;

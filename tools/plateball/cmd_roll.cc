@@ -13,6 +13,7 @@
 #include "common/errors.h"
 #include "common/exit_codes.h"
 #include "common/input_file.h"
+#include "common/invalid_input.h"
 #include "common/json_output.h"
 #include "common/limits.h"
 #include "common/number_format.h"
@@ -45,7 +46,7 @@ struct RollOptions {
 
 [[noreturn]] void FileError(const std::string& file, const std::string& field, const std::string& value,
                             const std::string& what) {
-  throw std::invalid_argument(file + ": " + field + ": value " + value + ": " + what);
+  ThrowInvalidInput(file + ": " + field, value, what);
 }
 
 // A value as text for a message: compact and at most kMaxValueTextChars characters.
@@ -92,7 +93,7 @@ std::vector<Eigen::Vector2d> ReadSamplesFile(const std::string& file) {
   }
   if (!points->is_array() || points->size() < 2 || points->size() > kMaxPoints)
     FileError(file, field, points->is_array() ? "[array of " + std::to_string(points->size()) + "]" : ValueText(*points),
-              "must be an array of 2 ... 1e6 points [x, y]");
+              "must be an array of 2 ... " + std::to_string(kMaxPoints) + " points [x, y]");
   std::vector<Eigen::Vector2d> out;
   for (std::size_t i = 0; i < points->size(); ++i) {
     const json& p = (*points)[i];
@@ -123,9 +124,10 @@ IntegrationOptions RollIntegration(const RollOptions& o, IntegrationOptions inte
   if (o.atol_opt->count() > 0) integration.absolute_tolerance = o.atol;
   if (o.rtol_opt->count() > 0) integration.relative_tolerance = o.rtol;
   if (const std::string err = integration.Validate(); !err.empty())
-    throw std::invalid_argument(std::string(kCommandLine) + ": --atol/--rtol: value (" +
-                                FormatNumber(integration.absolute_tolerance) + ", " +
-                                FormatNumber(integration.relative_tolerance) + "): " + err);
+    ThrowInvalidInput(CommandLineField("--atol/--rtol"),
+                      "(" + FormatNumber(integration.absolute_tolerance) + ", " +
+                          FormatNumber(integration.relative_tolerance) + ")",
+                      err);
   return integration;
 }
 
@@ -133,7 +135,7 @@ IntegrationOptions RollIntegration(const RollOptions& o, IntegrationOptions inte
 // may jump between pieces), R = R_n ... R_1.
 Json RollAlongProblemPath(const RollOptions& o, const Problem& p, Eigen::Matrix3d* r) {
   if (!p.plan)
-    throw std::invalid_argument(o.problem_file + ": plan.path: value (missing): roll needs a problem with a plan.path");
+    ThrowInvalidInput(o.problem_file + ": plan.path", "(missing)", "roll needs a problem with a plan.path");
   const IntegrationOptions integration = RollIntegration(o, p.integration);
   const Path path = PathFromSpec(p.plan->path, "plan.path");
   *r = Eigen::Matrix3d::Identity();
@@ -158,16 +160,15 @@ Json RollThroughPoints(const RollOptions& o, Eigen::Matrix3d* r) {
     const std::string field =
         (from_points ? std::string(kCommandLine) + ": --points" : o.samples_file + ": points") + "[" + std::to_string(i) + "]";
     if (points[i] == points[i - 1])
-      throw std::invalid_argument(field + ": value " + PointText(points[i]) +
-                                  ": repeats the previous point (consecutive points must differ)");
+      ThrowInvalidInput(field, PointText(points[i]), "repeats the previous point (consecutive points must differ)");
     // Chord lengths are squared on the way (spline knots): they must stay finite.
     if (!std::isfinite((points[i] - points[i - 1]).squaredNorm()))
-      throw std::invalid_argument(field + ": value " + PointText(points[i]) +
-                                  ": too far from the previous point (the squared distance overflows a double)");
+      ThrowInvalidInput(field, PointText(points[i]),
+                        "too far from the previous point (the squared distance overflows a double)");
   }
   if (!std::isfinite(PolylineLength(points)))
-    throw std::invalid_argument((from_points ? std::string(kCommandLine) + ": --points" : o.samples_file + ": points") +
-                                ": value [array of " + std::to_string(points.size()) + "]: the path length overflows a double");
+    ThrowInvalidInput(from_points ? CommandLineField("--points") : o.samples_file + ": points",
+                      "[array of " + std::to_string(points.size()) + "]", "the path length overflows a double");
   const IntegrationOptions integration = RollIntegration(o, IntegrationOptions{});
   *r = o.segment ? RollAlongPolyline(points) : RollAlongSamples(points, integration);
   return Json{{"source", from_points ? std::string("--points") : o.samples_file},
@@ -183,11 +184,11 @@ int RunRoll(const RollOptions& o) {
   const int sources = int(o.problem_opt->count() > 0) + int(o.points_opt->count() > 0) +
                       int(o.samples_file_opt->count() > 0);
   if (sources != 1)
-    throw std::invalid_argument(std::string(kCommandLine) + ": PROBLEM.json/--points/--samples-file: value (" +
-                                std::to_string(sources) + " given): give exactly one path");
+    ThrowInvalidInput(CommandLineField("PROBLEM.json/--points/--samples-file"), "(" + std::to_string(sources) + " given)",
+                      "give exactly one path");
   if (o.segment && o.problem_opt->count() > 0)
-    throw std::invalid_argument(std::string(kCommandLine) +
-                                ": --segment: value (set): only for --points or --samples-file, not a problem's plan.path");
+    ThrowInvalidInput(CommandLineField("--segment"), "(set)",
+                      "only for --points or --samples-file, not a problem's plan.path");
   Eigen::Matrix3d r;
   const bool from_problem = o.problem_opt->count() > 0;
   Problem p;

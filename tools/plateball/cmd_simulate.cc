@@ -43,9 +43,9 @@ int RunSimulate(const SimulateOptions& o) {
   // free_motion.h evaluates |t| <= 1e12 periods: checked here to name the option.
   const double period = 2.0 * M_PI / std::sqrt(p.mu);
   if (task.t_end > kMaxPeriods * period)
-    throw std::invalid_argument((o.t_end_opt->count() > 0 ? std::string(kCommandLine) + ": --t-end" : p.source + ": simulate.t_end") +
-                                ": value " + FormatNumber(task.t_end) + ": must be <= 1e12 periods (" +
-                                FormatNumber(kMaxPeriods * period) + " at mu = " + FormatNumber(p.mu) + ")");
+    ThrowInvalidInput(o.t_end_opt->count() > 0 ? CommandLineField("--t-end") : p.source + ": simulate.t_end",
+                      FormatNumber(task.t_end),
+                      "must be <= 1e12 periods (" + FormatNumber(kMaxPeriods * period) + " at mu = " + FormatNumber(p.mu) + ")");
 
   const FreeMotion motion = FreeMotionFor(p);
 
@@ -83,7 +83,7 @@ std::function<int()> SetupSimulate(CLI::App& sub) {
   o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
   o->t_end_opt = sub.add_option("--t-end", o->t_end, "end time > 0 (default: the file's simulate.t_end, else 10)");
   o->samples_opt = sub.add_option("--samples", o->samples,
-                                  "number of equally spaced samples on [0, t-end], 2 ... 1e6 (default: the file's, else 101)");
+                                  "number of equally spaced samples on [0, t-end], 2 ... 100000 (default: the file's, else 101)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
   sub.add_option("--csv", o->csv,
                  "write the samples as CSV to this file (\"-\": standard output); the JSON is then written only "

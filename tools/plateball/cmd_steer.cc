@@ -1,4 +1,4 @@
-// `plateball steer PROBLEM.json`: exact arrival (issue 11): the impulses that bring the ball to the
+// `plateball steer PROBLEM.json`: exact arrival: the impulses that bring the ball to the
 // steer section's goal position and orientation exactly, along a reference (the plan section's
 // path, else the shortest isoparallel path of the isoparallel section), as JSON and optionally
 // the plate as SVG (reference dashed, exact impulsive trajectory solid).
@@ -78,9 +78,8 @@ int RunSteer(const SteerCliOptions& o) {
   if (o.fewest || (p.steer && p.steer->fewest)) return RunFewest(o, p);
   for (const CLI::Option* search : {o.max_impulses_opt, o.starts_opt})  // options of the search only
     if (search->count() > 0)
-      throw std::invalid_argument(std::string(kCommandLine) + ": " + search->get_name() + ": value " +
-                                  search->as<std::string>() +
-                                  ": needs --fewest-impulses (or steer.fewest in the problem file)");
+      ThrowInvalidInput(CommandLineField(search->get_name()), search->as<std::string>(),
+                        "needs --fewest-impulses (or steer.fewest in the problem file)");
   const int n = o.impulses_opt->count() == 0
                     ? 0
                     : static_cast<int>(RequireIntegerInRange("--impulses", o.impulses, 3, 1'000'000));
@@ -137,7 +136,7 @@ std::function<int()> SetupSteer(CLI::App& sub) {
   sub.add_flag("--start-at-rest", o->start_at_rest, "the ball starts at rest (the first impulse sets it rolling)");
   o->actuator.Add(sub);
   sub.footer(
-      "Exact arrival (issue 11): corrects the paper's plan along the reference (the plan section's path,\n"
+      "Exact arrival: corrects the paper's plan along the reference (the plan section's path,\n"
       "else the shortest isoparallel path) so that the ball reaches steer.goal with steer.goal_orientation:\n"
       "per impulse the time, position, delta psi, delta omega and the upper plate's velocity change, the\n"
       "actuator's impulse J and, with --pulse-duration, its pulse's force and friction (docs/rig.md); the\n"

@@ -1,4 +1,4 @@
-// `plateball montecarlo` over MPI (optional, issue 12): when the tool is built with MPI
+// `plateball montecarlo` over MPI (optional): when the tool is built with MPI
 // (PLATEBALL_WITH_MPI, CMake finds Open MPI) and started by mpirun or srun, the trials are split
 // over the ranks and gathered on rank 0, which writes the outputs; otherwise one rank runs them
 // all (on threads). The records are pure functions of their task index, so the gathered summary

@@ -12,6 +12,7 @@
 #include "common/actuator_json.h"
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
+#include "common/invalid_input.h"
 #include "common/json_output.h"
 #include "common/number_format.h"
 #include "common/output_file.h"
@@ -41,12 +42,11 @@ rig::ReplayOptions ReplayOptionsOf(const RigCliOptions& o) {
   r.pulse_duration = o.pulse_duration;
   r.causal = o.causal;
   if (!(std::isfinite(o.dt) && o.dt > 0 && o.dt <= 0.1))
-    throw std::invalid_argument("--dt: value " + FormatNumber(o.dt) + ": must be in (0, 0.1] s");
+    ThrowInvalidInput("--dt", FormatNumber(o.dt), "must be in (0, 0.1] s");
   if (!(std::isfinite(o.pulse_duration) && o.pulse_duration >= 0))
-    throw std::invalid_argument("--pulse-duration: value " + FormatNumber(o.pulse_duration) +
-                                ": must be finite and >= 0 s (0: ideal velocity jumps)");
+    ThrowInvalidInput("--pulse-duration", FormatNumber(o.pulse_duration), "must be finite and >= 0 s (0: ideal velocity jumps)");
   if (o.causal && o.pulse_duration == 0)
-    throw std::invalid_argument("--pulse-causal: value true: needs --pulse-duration > 0 (ideal jumps have no window)");
+    ThrowInvalidInput("--pulse-causal", "true", "needs --pulse-duration > 0 (ideal jumps have no window)");
   return r;
 }
 

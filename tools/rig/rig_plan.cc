@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "common/input_file.h"
+#include "common/invalid_input.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
 
@@ -16,7 +17,7 @@ namespace {
 using nlohmann::json;
 
 [[noreturn]] void Fail(const std::string& field, const std::string& value, const std::string& what) {
-  throw std::invalid_argument(field + ": value " + value + ": " + what);
+  ThrowInvalidInput(field, value, what);
 }
 
 std::string Text(const json& j) {

@@ -1,4 +1,4 @@
-// `plateball view RESULT.json --html OUT.html` (issue 14): a self-contained 3-D page of a result of
+// `plateball view RESULT.json --html OUT.html`: a self-contained 3-D page of a result of
 // `plateball simulate`, `plan`, `steer` or an isoparallel solution: the data (re-simulated by the
 // library, view_data.h), the page's script and three.js are all in the one HTML file, which opens
 // offline and makes no network request.
@@ -13,6 +13,7 @@
 #include "common/errors.h"
 #include "common/exit_codes.h"
 #include "common/input_file.h"
+#include "common/invalid_input.h"
 #include "common/limits.h"
 #include "common/number_format.h"
 #include "common/output_file.h"
@@ -34,8 +35,8 @@ struct ViewCliOptions {
 nlohmann::json ParseResult(const std::string& file, const std::string& text) {
   const nlohmann::json::parser_callback_t depth_limit = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
     if (depth > kMaxJsonDepth)
-      throw std::invalid_argument(file + ": (document): value (nested deeper than " + std::to_string(kMaxJsonDepth) +
-                                  "): arrays and objects may be nested at most that deep");
+      ThrowInvalidInput(file + ": (document)", "(nested deeper than " + std::to_string(kMaxJsonDepth) + ")",
+                        "arrays and objects may be nested at most that deep");
     return true;
   };
   try {
@@ -110,8 +111,8 @@ void CheckDrawable(const std::string& file, const view::ViewData& d) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const double r = points[i].cwiseAbs().maxCoeff();
       if (!(r <= kMaxDrawnCoordinate))
-        throw std::invalid_argument(file + ": " + what + "[" + std::to_string(i) + "]: value " + FormatNumber(r) +
-                                    ": the page draws coordinates up to 1e6 ball radii; shorten the motion");
+        ThrowInvalidInput(file + ": " + what + "[" + std::to_string(i) + "]", FormatNumber(r),
+                          "the page draws coordinates up to 1e6 ball radii; shorten the motion");
     }
   };
   check("contact path (re-simulated)", d.x);

@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "common/invalid_input.h"
 #include "common/limits.h"
 #include "common/plan_json.h"
 #include "common/number_format.h"
@@ -71,7 +72,7 @@ const json* ResultReader::Find(const json& at, const std::string& concept_name) 
 }
 
 void ResultReader::Fail(const std::string& field, const std::string& value, const std::string& what) const {
-  throw std::invalid_argument(file_ + ": " + field + ": value " + value + ": " + what);
+  ThrowInvalidInput(file_ + ": " + field, value, what);
 }
 
 const json& ResultReader::Get(const json& at, const std::string& where, const std::string& concept_name) const {
@@ -528,6 +529,15 @@ PlanSteps NominalTrajectory(const ResultReader& r, const NominalPlan& nominal, c
   return BuildPlanTrajectory(plan_reader, plan_reader.Get(plan_doc, "", "steps"), "steps", options, out);
 }
 
+// A count of a montecarlo result (trials, impulses) as the tool accepts it: an integer in
+// [lo, hi]; anything else is refused (an edited file would otherwise be re-run with other counts
+// and the page would claim an agreement it never checked).
+long long CountIn(const ResultReader& r, double v, const std::string& field, long long lo, long long hi) {
+  if (!(std::floor(v) == v && v >= static_cast<double>(lo) && v <= static_cast<double>(hi)))
+    r.Fail(field, FormatNumber(v), "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return static_cast<long long>(v);
+}
+
 // The nominal plan's motion, and the final contact points of the trials re-run with the library
 // (Execute of (nominal plan, strategy, errors, seed, trial): what `plateball montecarlo` ran).
 void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData* out) {
@@ -535,7 +545,7 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
   const json& doc = r.doc();
   const json& o = r.Get(doc, "", "mc_options");
   const double n_value = r.Number(o, "options", "mc_impulses");
-  const int n = static_cast<int>(std::clamp(n_value, 1.0, 1e4));
+  const int n = static_cast<int>(CountIn(r, n_value, "options.impulses", 1, limits::kMaxPartitionSteps));
   const PlanSetup setup = PlanSetupFor(problem, n, "options.impulses");
   const auto nominal = std::make_shared<const NominalPlan>(MakeNominalPlan(setup.problem, setup.options));
   if (!nominal->plan.IsSolutionUsable()) r.Fail("options.impulses", FormatNumber(n_value), nominal->plan.BriefReport());
@@ -548,10 +558,12 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
   const json& scenarios = r.Array(o, "options", "mc_scenarios", 1, 64);
   const json& strategies = r.Array(o, "options", "mc_strategies", 1, 3);
   const long long cells = static_cast<long long>(scenarios.size() * strategies.size());
-  const long long file_trials = static_cast<long long>(std::clamp(r.Number(o, "options", "mc_trials"), 1.0, 1e6));
+  const long long file_trials =
+      CountIn(r, r.Number(o, "options", "mc_trials"), "options.trials", 1, MonteCarloOptions::kMaxTrials);
   const long long budget_trials = std::max(1LL, static_cast<long long>(kMaxSpreadImpulses / (double(cells) * n)));
   const long long trials = std::min({std::max(1LL, kMaxSpreadTrials / cells), file_trials, budget_trials});
   double mismatch = 0.0;
+  int compared = 0;  // cells whose file median and re-run median were both available
   for (std::size_t i = 0; i < scenarios.size(); ++i) {
     const std::string where = "options.scenarios[" + std::to_string(i) + "]";
     const json& name_json = r.Get(scenarios[i], where, "scenario_name");
@@ -572,7 +584,10 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
         errors.push_back(s.position_error);
       }
       const double median = ResultMedian(r, n, name, ToString(ep.strategy));
-      if (median >= 0 && !errors.empty()) mismatch = std::max(mismatch, std::abs(Distribute(errors).median - median));
+      if (median >= 0 && !errors.empty()) {
+        mismatch = std::max(mismatch, std::abs(Distribute(errors).median - median));
+        ++compared;
+      }
       out->spread.push_back({ToString(ep.strategy) + ", " + name, std::move(points)});
     }
   }
@@ -582,7 +597,8 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
                                              (trials == budget_trials && trials < file_trials
                                                   ? ", the view's work budget of 2e5 impulses over all cells"
                                                   : "")});
-  out->facts.push_back({"re-run vs file", "median final position errors agree to " + FormatNumber(mismatch)});
+  out->facts.push_back({"re-run vs file", compared > 0 ? "median final position errors agree to " + FormatNumber(mismatch)
+                                                       : std::string("not compared: no cell has a median in both")});
 }
 
 std::string TitleOf(const ResultReader& r, const std::string& kind) {

@@ -1,4 +1,4 @@
-// `plateball view` (issue 14): what the 3-D page shows, built from a tool's result JSON (plan,
+// `plateball view`: what the 3-D page shows, built from a tool's result JSON (plan,
 // simulate, isoparallel, steer) by re-simulating the motion with the library: dense samples of
 // the contact point x(t) and the orientation A(t) (FreeMotion, arc by arc from the result's
 // impulses), the planned path, a ghost ball rolling along it, the impulses and the orientation

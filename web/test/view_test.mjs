@@ -1,4 +1,4 @@
-// Browser tests of `plateball view` (issue 14), run by ctest (view.browser) when node, Debian's
+// Browser tests of `plateball view`, run by ctest (view.browser) when node, Debian's
 // chromium and web/node_modules/playwright-core are found:
 //   node web/test/view_test.mjs --plateball BIN --chromium /usr/bin/chromium
 //                               --problems DIR --work DIR [--screenshots DIR]
