@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/invalid_input.h"
 #include "common/number_format.h"
 #include "plateball/ball_state.h"
 #include "plateball/plate_impulse.h"
@@ -18,7 +19,7 @@ Json FiniteOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr);
 
 void RequireNonNegative(const std::string& option, double v, const char* unit) {
   if (!(std::isfinite(v) && v >= 0))
-    throw std::invalid_argument(option + ": value " + FormatNumber(v) + ": must be finite and >= 0 " + unit);
+    ThrowInvalidInput(option, FormatNumber(v), std::string("must be finite and >= 0 ") + unit);
 }
 
 Json PulseJson(const PulseForces& f, const PulseOptions& o) {
@@ -38,13 +39,13 @@ Json PulseJson(const PulseForces& f, const PulseOptions& o) {
 // Too little friction for the pulse's force is invalid input naming the option and the impulse.
 void ThrowIfSlips(const PulseForces& f, const PulseOptions& o, const std::string& where) {
   if (f.slides)
-    throw std::invalid_argument("--static-friction: value " + FormatNumber(o.static_friction) + ": impulse " + where +
-                                " would slip: its pulse of " + FormatNumber(o.duration) + " s needs mu_s >= " +
-                                FormatNumber(f.sliding_friction_needed));
+    ThrowInvalidInput("--static-friction", FormatNumber(o.static_friction),
+                      "impulse " + where + " would slip: its pulse of " + FormatNumber(o.duration) +
+                          " s needs mu_s >= " + FormatNumber(f.sliding_friction_needed));
   if (f.spins)
-    throw std::invalid_argument("--torsional-friction: value " + FormatNumber(o.torsional_friction) + ": impulse " +
-                                where + " would spin: its pulse of " + FormatNumber(o.duration) +
-                                " s needs ell >= " + FormatNumber(f.torsional_friction_needed) + " m");
+    ThrowInvalidInput("--torsional-friction", FormatNumber(o.torsional_friction),
+                      "impulse " + where + " would spin: its pulse of " + FormatNumber(o.duration) +
+                          " s needs ell >= " + FormatNumber(f.torsional_friction_needed) + " m");
 }
 
 }  // namespace
@@ -76,11 +77,11 @@ ActuatorRequest ActuatorOptions::Request() const {
   const bool pulse = duration_opt_->count() > 0 || (pulse_error_opt_ && pulse_error_opt_->count() > 0);
   for (const CLI::Option* opt : extras_)
     if (opt->count() > 0 && !pulse)
-      throw std::invalid_argument(opt->get_name() + ": value " + opt->as<std::string>() + ": needs --pulse-duration" +
-                                  (pulse_error_opt_ ? " or --pulse-error" : ""));
+      ThrowInvalidInput(opt->get_name(), opt->as<std::string>(),
+                        std::string("needs --pulse-duration") + (pulse_error_opt_ ? " or --pulse-error" : ""));
   if (duration_opt_ && duration_opt_->count() > 0) {
     if (!(std::isfinite(duration_) && duration_ > 0))
-      throw std::invalid_argument("--pulse-duration: value " + FormatNumber(duration_) + ": must be finite and > 0 s");
+      ThrowInvalidInput("--pulse-duration", FormatNumber(duration_), "must be finite and > 0 s");
     r.pulse.duration = duration_;
     r.has_pulse = true;
   }
@@ -124,9 +125,10 @@ void CheckPulseFlights(const std::vector<double>& times, double final_time, cons
     const double flight = (last ? final_time : times[k + 1]) - times[k];
     if (last && flight <= 0) continue;  // an impulse at the end (a stop)
     if (d > flight)
-      throw std::invalid_argument("--pulse-duration: value " + FormatNumber(d) + ": longer than the flight of " +
-                                  FormatNumber(flight) + " s after impulse " + list + "[" + std::to_string(k) + "]: " +
-                                  (last ? "its pulse would run past the end" : "its pulse would overlap the next one's"));
+      ThrowInvalidInput("--pulse-duration", FormatNumber(d),
+                        "longer than the flight of " + FormatNumber(flight) + " s after impulse " + list + "[" +
+                            std::to_string(k) + "]: " +
+                            (last ? "its pulse would run past the end" : "its pulse would overlap the next one's"));
   }
 }
 
