@@ -1,12 +1,14 @@
-// Identification (docs/benchmarks.md, T7): fitting lambda, mu and the state to 2,000 samples of
+// Identification (docs/benchmarks.md, T8): fitting lambda, mu and the state to 2,000 samples of
 // the contact point over two periods. The track is the library's FreeMotion (lambda = 1.3, mu = 4,
 // (theta, phi, psi) = (0.8, 0.3, 0.2), x0 = (0.5, -0.2)) with seeded Gaussian noise sigma = 0.005
 // (seed 1), or without noise. Timed: the whole Identify call; the variants are the full run
 // (multi-start, fit, profile interval), the run without the profile interval, and the fit from a
 // given guess. Counters (outside the timed loop): lambda_error = |lambda - 1.3|, mu_error,
-// lambda_se (the standard error), the 95% interval's half width, starts and iterations.
+// lambda_se (the standard error), x0_error and theta_error (the state), the 95% interval's half
+// width, starts and iterations.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -48,6 +50,9 @@ void Run(benchmark::State& state, double sigma, bool profile, bool guess) {
   if (s.status != IdentifyStatus::kIdentified) state.SkipWithError(s.BriefReport().c_str());
   state.counters["lambda_error"] = std::abs(s.lambda - kLambda);
   state.counters["mu_error"] = std::abs(s.mu - kMu);
+  // The state: x0 (radii) and theta up to z -> -z (theta -> pi - theta gives the same track).
+  state.counters["x0_error"] = (s.x0 - kX0).norm();
+  state.counters["theta_error"] = std::min(std::abs(s.angles.theta - kAngles.theta), std::abs(M_PI - s.angles.theta - kAngles.theta));
   state.counters["lambda_se"] = s.standard_errors.empty() ? -1 : s.standard_errors[0];
   state.counters["interval_half_width"] = profile ? 0.5 * (s.lambda_high - s.lambda_low) : 0.0;
   state.counters["starts"] = s.starts;

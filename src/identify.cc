@@ -36,6 +36,9 @@ constexpr double kHugeError = 1.0;
 // Below this RMS residual (radii) the track is taken as noiseless: the fit's residual is then the
 // integration error (~1e-11), and the interval is the Wald interval lambda +- 1.96 se.
 constexpr double kNoiselessResidual = 1e-8;
+// A fitted path within this many noise sigmas of a straight line counts as straight: the track
+// does not show the curvature that carries lambda (identify.h, straight_path).
+constexpr double kStraightPathNoise = 1.0;
 }  // namespace
 
 std::string ToString(IdentifyStatus status) {
@@ -204,12 +207,26 @@ void FillCovariance(const internal::TrackFit& fit, double s2, IdentifySummary* s
   }
 }
 
+/// path_deviation and straight_path of the fitted path (identify.h): the distance of the fitted
+/// points from their principal axis, against the noise.
+void FillStraightness(IdentifySummary* s) {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& p : s->fitted) mean += p;
+  mean /= static_cast<double>(s->fitted.size());
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const Eigen::Vector2d& p : s->fitted) scatter += (p - mean) * (p - mean).transpose();
+  const Eigen::Vector2d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(0);
+  s->path_deviation = 0.0;
+  for (const Eigen::Vector2d& p : s->fitted) s->path_deviation = std::max(s->path_deviation, std::abs((p - mean).dot(normal)));
+  s->straight_path = s->path_deviation <= std::max(kStraightPathNoise * s->sigma, kNoiselessResidual);
+}
+
 void FillUnidentified(IdentifySummary* s) {
   const auto& e = s->standard_errors;
   const double scaled[kP] = {e[0] / s->lambda, e[1] / s->mu, e[2], e[3], e[4],
                              e[5] / std::max(s->track_spread, 1e-300), e[6] / std::max(s->track_spread, 1e-300)};
   for (int i = 0; i < kP; ++i)
-    if (!(scaled[i] <= kHugeError)) s->unidentified.emplace_back(kIdentifyParameterNames[i]);
+    if (!(scaled[i] <= kHugeError) || (i == 0 && s->straight_path)) s->unidentified.emplace_back(kIdentifyParameterNames[i]);
 }
 
 /// The profile threshold of a 95% interval: chi^2_1 with given sigma, F(1, m - p) with estimated.
@@ -246,9 +263,18 @@ void FillFit(const internal::TrackFit& fit, IdentifySummary* s) {
 void Classify(const IdentifyOptions& o, IdentifySummary* s) {
   s->lambda_relative_error = s->standard_errors[0] / s->lambda;
   const bool closed = s->lambda_low > 0 && std::isfinite(s->lambda_high);
-  s->lambda_identified = s->lambda_relative_error <= o.max_lambda_relative_error && (closed || !o.profile_interval);
+  s->lambda_identified =
+      !s->straight_path && s->lambda_relative_error <= o.max_lambda_relative_error && (closed || !o.profile_interval);
   std::ostringstream os;
-  if (s->lambda_identified) {
+  if (s->straight_path) {
+    s->status = IdentifyStatus::kLambdaNotIdentified;
+    os << "lambda not identified, not identifiable from the contact track alone: the fitted contact path is a straight line (largest "
+          "deviation "
+       << s->path_deviation << " radii, within the noise " << s->sigma
+       << "). Every lambda gives a straight path when the axial spin v0 is 0, and every state gives one at lambda = 1 "
+          "(the ball rolls like a sphere), so the track fixes the speed but not lambda; a track with a curved, "
+          "drifting contact path identifies lambda (docs/identify.md)";
+  } else if (s->lambda_identified) {
     s->status = IdentifyStatus::kIdentified;
     os << "lambda identified: relative standard error " << s->lambda_relative_error;
   } else {
@@ -288,6 +314,7 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
       return s;
     }
     FillCovariance(fit, s2, &s);
+    FillStraightness(&s);
     FillUnidentified(&s);
     s.lambda_low = s.lambda_high = kNaN;
     if (options.profile_interval && std::isfinite(s.standard_errors[0]) && s.rms_residual < kNoiselessResidual) {

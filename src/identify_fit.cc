@@ -16,9 +16,16 @@ namespace {
 constexpr int kP = kTrackParameters;
 // The multi-start and the window continuation only have to land in the right basin: looser
 // tolerances, few samples per window.
-constexpr double kStartTolerance = 1e-8;
-constexpr int kStartIterations = 30;
-constexpr std::size_t kStartSamples = 100;
+constexpr double kStartTolerance = 1e-6;
+// The grid of starts only has to reach a basin: a coarser tolerance still.
+constexpr double kGridTolerance = 1e-5;
+constexpr int kStartIterations = 10;
+constexpr int kGridIterations = 8;
+constexpr std::size_t kMaxCandidates = 3;
+constexpr double kCandidateCost = 1.5;
+constexpr double kStartCandidateCost = 10.0;
+constexpr double kDistinctLambda = 0.1;
+constexpr std::size_t kStartSamples = 50;
 constexpr std::size_t kWindowSamples = 400;
 // The first window: half a guessed period (every start sees the same arc of the orbit), and at
 // least this many samples.
@@ -29,6 +36,9 @@ constexpr double kMuMin = 1e-12, kMuMax = 1e12;
 // The variational equations of the Jacobian: 1e-8 gives the derivatives to ~1e-7 relative, ample
 // for Levenberg-Marquardt and the standard errors; the residuals keep the full tolerance.
 constexpr double kJacobianTolerance = 1e-8;
+// The profile refits' integration tolerance as a fraction of the RMS residual (ProfileLambda).
+constexpr double kProfileNoiseFraction = 1e-4;
+constexpr double kProfileMaxTolerance = 1e-7;
 
 IntegrationOptions JacobianOptions(const IntegrationOptions& o) {
   return {std::max(kJacobianTolerance, o.absolute_tolerance), std::max(kJacobianTolerance, o.relative_tolerance), o.max_steps};
@@ -89,7 +99,7 @@ TrackFit Solve(const TrackData& data, const std::array<double, kP>& q0, const Id
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_QR;
   so.max_num_iterations = max_iterations;
-  so.function_tolerance = 1e-14;
+  so.function_tolerance = 1e-12;
   so.gradient_tolerance = 1e-16;
   so.parameter_tolerance = 1e-13;
   so.num_threads = 1;
@@ -157,23 +167,40 @@ std::array<double, kP> StartPoint(double lambda, double mu, double theta, double
   return {lambda, mu, theta, phi, WrapPi(phi - w), x0.x(), x0.y()};
 }
 
-/// The best of the grid of starts on the first window.
-TrackFit MultiStart(const TrackData& d, const IdentifyOptions& o, const TrackGuess& g, double window, int* starts) {
+/// The grid of starts on the first window, each stopped after kGridIterations: enough to fall
+/// into a basin, not to converge in it (on half a period lambda is weakly determined, and the
+/// minima of different lambda have nearly the same cost there). Sorted by cost.
+std::vector<TrackFit> MultiStart(const TrackData& d, const IdentifyOptions& o, const TrackGuess& g, double window,
+                                 int* starts) {
   const TrackData w = Window(d, window, kStartSamples);
-  const IntegrationOptions coarse{kStartTolerance, kStartTolerance, o.integration.max_steps};
-  TrackFit best;
-  best.cost = std::numeric_limits<double>::infinity();
+  const IntegrationOptions coarse{kGridTolerance, kGridTolerance, o.integration.max_steps};
+  std::vector<TrackFit> fits;
   for (double lambda : o.lambda_starts)
     for (int a = 0; a < o.theta_starts; ++a)
       for (int b = 0; b < o.phase_starts; ++b) {
         const double theta = (a + 0.5) / o.theta_starts * M_PI / 2.0;
         const double phase = (b + 0.5) / o.phase_starts * kTwoPi;
-        const TrackFit f = Solve(w, StartPoint(lambda, g.mu, theta, phase, g.direction, PointAt(d, 0)), o, coarse,
-                                 kStartIterations, false);
+        fits.push_back(Solve(w, StartPoint(lambda, g.mu, theta, phase, g.direction, PointAt(d, 0)), o, coarse,
+                             kGridIterations, false));
         ++*starts;
-        if (f.cost < best.cost) best = f;
       }
-  return best;
+  std::sort(fits.begin(), fits.end(), [](const TrackFit& a, const TrackFit& b) { return a.cost < b.cost; });
+  return fits;
+}
+
+/// The candidates carried to the whole track: the best start, and up to kMaxCandidates - 1 more
+/// within kStartCandidateCost x its cost whose lambda differs from every chosen one by more than
+/// kDistinctLambda (relative): the window decides the phase, the whole track decides lambda.
+std::vector<std::array<double, kP>> Candidates(const std::vector<TrackFit>& fits) {
+  std::vector<std::array<double, kP>> chosen;
+  for (const TrackFit& f : fits) {
+    if (chosen.size() == kMaxCandidates || !(f.cost <= kStartCandidateCost * fits.front().cost)) break;
+    const bool distinct = std::all_of(chosen.begin(), chosen.end(), [&](const std::array<double, kP>& c) {
+      return std::abs(f.q[0] - c[0]) > kDistinctLambda * c[0];
+    });
+    if (distinct) chosen.push_back(f.q);
+  }
+  return chosen;
 }
 
 /// Model and weighted Jacobian at fit.q on the whole track.
@@ -199,14 +226,27 @@ TrackFit FitTrack(const TrackData& data, const IdentifyOptions& o, int* starts) 
     q = {g.lambda, g.mu, g.angles.theta, g.angles.phi, g.angles.psi, g.x0.x() / o.radius, g.x0.y() / o.radius};
   } else {
     const TrackGuess g = GuessFromTrack(data);
-    double window = std::min(span, kFirstWindowPeriods * kTwoPi / std::sqrt(g.mu));
-    q = MultiStart(data, o, g, window, starts).q;
+    const double first = std::min(span, kFirstWindowPeriods * kTwoPi / std::sqrt(g.mu));
     // Doubling the window carries the phase from one window to the next without skipping a turn.
     const IntegrationOptions mid{kStartTolerance / 10, kStartTolerance / 10, o.integration.max_steps};
-    while (window < span) {
-      window = std::min(span, 2.0 * window);
-      q = Solve(Window(data, window, kWindowSamples), q, o, mid, kStartIterations, false).q;
+    // The candidates go through the windows together; after each window those whose cost
+    // exceeds kCandidateCost x the best are dropped (a wrong lambda shows as the window grows).
+    std::vector<TrackFit> candidates;
+    for (const std::array<double, kP>& c : Candidates(MultiStart(data, o, g, first, starts))) {
+      candidates.emplace_back();
+      candidates.back().q = c;
     }
+    double window = first;
+    do {
+      window = std::min(span, 2.0 * window);
+      const TrackData w = Window(data, window, kWindowSamples);
+      for (TrackFit& c : candidates) c = Solve(w, c.q, o, mid, kStartIterations, false);
+      std::sort(candidates.begin(), candidates.end(), [](const TrackFit& a, const TrackFit& b) { return a.cost < b.cost; });
+      const double keep = kCandidateCost * candidates.front().cost;
+      candidates.erase(std::find_if(candidates.begin() + 1, candidates.end(), [&](const TrackFit& c) { return !(c.cost <= keep); }),
+                       candidates.end());
+    } while (window < span);
+    q = candidates.front().q;
   }
   TrackFit fit = Solve(data, q, o, o.integration, o.max_iterations, false);
   FinishFit(data, o.integration, &fit);
@@ -215,10 +255,19 @@ TrackFit FitTrack(const TrackData& data, const IdentifyOptions& o, int* starts) 
 
 namespace {
 
+/// 1/2 sum of the squared weighted residuals at q.
+double Cost(const TrackData& d, const std::array<double, kP>& q, const IntegrationOptions& integration) {
+  std::vector<double> model(d.x.size());
+  EvaluateTrack(q.data(), d.tau.data(), d.tau.size(), integration, model.data(), nullptr);
+  double c = 0.0;
+  for (std::size_t k = 0; k < model.size(); ++k) c += std::pow(d.weight[k / 2] * (model[k] - d.x[k]), 2);
+  return 0.5 * c;
+}
+
 /// One side (dir = -1 or +1) of the profile interval: the secant method on the signed root
 /// r(lambda) = sqrt(2 (cost(lambda) - cost_min)), nearly linear in lambda, for r = sqrt(threshold).
-double ProfileSide(const TrackData& d, const IdentifyOptions& o, const TrackFit& fit, double se, double threshold,
-                   double dir, int* fits) {
+double ProfileSide(const TrackData& d, const IdentifyOptions& o, const IntegrationOptions& integration,
+                   const TrackFit& fit, double se, double threshold, double dir, int* fits) {
   constexpr int kMaxSteps = 16;
   constexpr double kRootTolerance = 1e-3;  // relative on r: ~0.1% of the interval's half-width
   const double target = std::sqrt(threshold);
@@ -231,7 +280,7 @@ double ProfileSide(const TrackData& d, const IdentifyOptions& o, const TrackFit&
   for (int step = 0; step < kMaxSteps && lam != lam_hat; ++step) {
     std::array<double, kP> q = warm;
     q[0] = lam;
-    const TrackFit f = Solve(d, q, o, o.integration, o.max_iterations, true);
+    const TrackFit f = Solve(d, q, o, integration, o.max_iterations, true);
     ++*fits;
     const double r = std::sqrt(std::max(0.0, 2.0 * (f.cost - fit.cost)));
     if (std::abs(r - target) <= kRootTolerance * target) return lam;
@@ -253,9 +302,20 @@ double ProfileSide(const TrackData& d, const IdentifyOptions& o, const TrackFit&
 
 ProfileInterval ProfileLambda(const TrackData& data, const IdentifyOptions& options, const TrackFit& fit, double se,
                               double threshold) {
+  // The profile's cost differences are ~threshold ~ sigma^2 per residual: an integration error
+  // delta moves them by ~sum r_i delta_i, negligible when delta << sigma, so the refits use
+  // kProfileNoiseFraction x the RMS residual (at most kJacobianTolerance, never tighter than
+  // asked). The optimum's cost is re-evaluated with the same tolerance so that the common part
+  // of the integration error cancels in the differences.
+  const double rms = std::sqrt(2.0 * fit.cost / static_cast<double>(data.x.size()));
+  const double tol = std::min(kProfileNoiseFraction * rms, kProfileMaxTolerance);
+  const IntegrationOptions integration{std::max(tol, options.integration.absolute_tolerance),
+                                       std::max(tol, options.integration.relative_tolerance), options.integration.max_steps};
+  TrackFit optimum = fit;
+  optimum.cost = Cost(data, fit.q, integration);
   ProfileInterval p;
-  p.low = ProfileSide(data, options, fit, se, threshold, -1.0, &p.fits);
-  p.high = ProfileSide(data, options, fit, se, threshold, +1.0, &p.fits);
+  p.low = ProfileSide(data, options, integration, optimum, se, threshold, -1.0, &p.fits);
+  p.high = ProfileSide(data, options, integration, optimum, se, threshold, +1.0, &p.fits);
   return p;
 }
 

@@ -107,6 +107,14 @@ struct IdentifySummary {
   /// does not see at all).
   double scaled_condition = 0.0;
   std::vector<std::string> unidentified;  ///< parameters with a huge or infinite standard error
+  /// Largest distance of the fitted contact path from its least-squares line (radii).
+  double path_deviation = 0.0;
+  /// True when path_deviation is within the noise (sigma, at least 1e-8 radii): the track cannot
+  /// tell its path from a straight line. A straight path is what every lambda gives when the axial
+  /// spin v0 is 0, and what every state gives at lambda = 1 (the ball rolls like a sphere), so
+  /// lambda is then not identifiable from the contact track alone (status kLambdaNotIdentified,
+  /// "lambda" in unidentified, whatever its standard error).
+  bool straight_path = false;
   // Residuals.
   int samples = 0;
   int residuals = 0;

@@ -75,6 +75,11 @@ void BindIdentify(py::module_& m) {
       .def_readonly("lambda_identified", &IdentifySummary::lambda_identified)
       .def_readonly("lambda_relative_error", &IdentifySummary::lambda_relative_error)
       .def_readonly("scaled_condition", &IdentifySummary::scaled_condition)
+      .def_readonly("path_deviation", &IdentifySummary::path_deviation,
+                    "Largest distance of the fitted contact path from its least-squares line (radii).")
+      .def_readonly("straight_path", &IdentifySummary::straight_path,
+                    "True when the fitted path is a straight line within the noise: lambda is then not identifiable "
+                    "from the contact track alone (axial spin 0, or lambda = 1 where the ball rolls like a sphere).")
       .def_readonly("unidentified", &IdentifySummary::unidentified)
       .def_readonly("samples", &IdentifySummary::samples)
       .def_readonly("rms_residual", &IdentifySummary::rms_residual)

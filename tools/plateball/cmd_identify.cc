@@ -181,6 +181,8 @@ Json FitJson(const IdentifySummary& s) {
   j["identifiability"] = Json{{"lambda_identified", s.lambda_identified},
                               {"lambda_relative_error", FiniteOrNull(s.lambda_relative_error)},
                               {"scaled_condition", s.scaled_condition},
+                              {"path_deviation", s.path_deviation},
+                              {"straight_path", s.straight_path},
                               {"unidentified", s.unidentified}};
   j["correlation"] = CorrelationJson(s);
   j["parameters"] = Json::array();
