@@ -1,4 +1,4 @@
-// What a certified branch and bound over the shape parameters costs (issue 15; docs/paper_notes.md,
+// What a certified branch and bound over the shape parameters costs (docs/paper_notes.md,
 // "General targets: certified exclusion over parameter boxes"). Not a timing benchmark: it solves
 // an isoparallel problem file with the default solver, then runs CertifyWindow over the window
 //   rate [0, rate_max] (oscillating) or [-rate_max, rate_max] (rotating), k [0, k_max],

@@ -1,4 +1,4 @@
-// The rolling along an elastica (issue 15): the closed form of elastica_closed_rolling.h (costate
+// The rolling along an elastica: the closed form of elastica_closed_rolling.h (costate
 // frame and twist, Legendre's Pi) against the sixth-order Magnus tables of elastica_rolling.h,
 // at k = 0.8, rate 0.9 (oscillating G = 0.81, rotating G = 0.5184), lengths L = 6 and L = 20.
 //  - BM_ClosedRollingBuildAndRoll: construct ElasticaClosedRolling (K, the complete Pi, the frame

@@ -1,4 +1,4 @@
-// T5(a) of docs/benchmarks.md (issue 11): the Figure 7 goal ((0, 0) -> (3, 3), identity
+// T5(a) of docs/benchmarks.md: the Figure 7 goal ((0, 0) -> (3, 3), identity
 // reorientation, lambda = 2, mu = 1) reached exactly with 12 impulses along the shortest
 // isoparallel path. Timed: SolveExactArrival (warm start by the paper's plan + the constrained
 // Gauss-Newton); the isoparallel solve is done once outside the loop. Counters: the arrival

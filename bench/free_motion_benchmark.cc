@@ -1,4 +1,4 @@
-// Free motion (issue 2): the time to integrate one period with x and A (constructing FreeMotion,
+// Free motion: the time to integrate one period with x and A (constructing FreeMotion,
 // which stores every accepted step for dense evaluation), and the time to evaluate a far time
 // (t = 1000.3 T) from the stored period. lambda = 2, mu = 1, (theta, phi, psi) = (pi/3, 0.4, 0.1)
 // (the state of the standard tasks), tolerances 1e-12. The accuracy reached is reported as

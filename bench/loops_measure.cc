@@ -1,6 +1,6 @@
 // Not a timing benchmark: the cost of the loop-by-loop certificate of the fast separatrix tail
-// (CertifyLoopFamily, src/isoparallel_certify_loops.h) on an isoparallel problem file (issue 15,
-// docs/paper_notes.md, "General targets: the separatrix tail loop by loop"). Run with `nice -n 10`.
+// (CertifyLoopFamily, src/isoparallel_certify_loops.h) on an isoparallel problem file
+// (docs/paper_notes.md, "General targets: the separatrix tail loop by loop"). Run with `nice -n 10`.
 //
 //   loops_measure [FILE [CAP_FACTOR [KP_T [RATE_LO [RATE_MAX [BUDGET [REGIME [W2]]]]]]]]
 //

@@ -1,4 +1,4 @@
-// T6 of docs/benchmarks.md (issue 12): T2's circle with n = 64 executed 10,000 times with the
+// T6 of docs/benchmarks.md: T2's circle with n = 64 executed 10,000 times with the
 // feedback strategy (re-join to the next pass point after each impulse) under a seeded relative
 // error of 1e-3 in the magnitude of every plate velocity change, and the same with open loop.
 //   BM_T6Trial/feedback, /open_loop: one trial (Execute) per iteration: the time per trial.

@@ -1,6 +1,6 @@
 // Not a timing benchmark: the cost of the separatrix-tail certificate (CertifySeparatrixTail,
-// src/isoparallel_certify_separatrix.h) on an isoparallel problem file (issue 15,
-// docs/paper_notes.md, "General targets: the separatrix tail"). Run with `nice -n 10`.
+// src/isoparallel_certify_separatrix.h) on an isoparallel problem file
+// (docs/paper_notes.md, "General targets: the separatrix tail"). Run with `nice -n 10`.
 //
 //   separatrix_measure [FILE [CAP_FACTOR [RATE_MAX [K_LO [BUDGET [REGIME]]]]]]
 //

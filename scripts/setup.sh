@@ -10,13 +10,13 @@ packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libnlopt-c
 if ((!main_only)); then
 packages+=(libgtest-dev libgmock-dev libbenchmark-dev)
 packages+=(python3 python3-jsonschema)  # output contract: schema validation (tests/scripts/validate_schemas.py)
-packages+=(python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib)  # Python bindings, pytest, gallery (issue 13)
-packages+=(libopenmpi-dev openmpi-bin)  # montecarlo: optional MPI component (issue 12)
+packages+=(python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib)  # Python bindings, pytest, gallery
+packages+=(libopenmpi-dev openmpi-bin)  # montecarlo: optional MPI component
 packages+=(libmujoco-dev)  # rig: optional MuJoCo digital twin (C API; Debian has no Python bindings)
-packages+=(chromium)  # view (issue 14): Debian's Chromium for the browser tests of `plateball view`
-command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)  # view (issue 14): npm ci in web/ (below)
+packages+=(chromium)  # view: Debian's Chromium for the browser tests of `plateball view`
+command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)  # view: npm ci in web/ (below)
 packages+=(ccache)  # compiler cache for scripts/build.sh, sanitize.sh and fuzz.sh (scripts/compiler_cache.sh)
-packages+=(help2man)  # man pages of the tools (issue 13: tools/man/make_man.sh)
+packages+=(help2man)  # man pages of the tools (tools/man/make_man.sh)
 # The documentation site (docs/, the `docs` target): Sphinx, breathe (C++ API from Doxygen's XML),
 # MyST (Markdown), sphinx-gallery; the notebooks (docs/notebooks/) run by nbclient on ipykernel;
 # mypy's stubgen for the Python type stubs.
@@ -37,7 +37,7 @@ else
   echo "setup: all dependencies present"
 fi
 
-# view (issue 14): three.js (embedded into `plateball view`'s pages at build time) and playwright-core
+# view: three.js (embedded into `plateball view`'s pages at build time) and playwright-core
 # (the browser tests), exactly as web/package-lock.json pins them; skipped when already installed.
 ((main_only)) && exit 0
 web_dir="$(cd "$(dirname "$0")/../web" && pwd)"

@@ -54,7 +54,7 @@ std::vector<double> ChordKnots(const std::vector<Eigen::Vector2d>& pts) {
 }
 }  // namespace
 
-// Issue 10's case: a sine of length 200, amplitude 1 and wavelength 0.5 (400 wavelengths). The fixed 64
+// A hard case: a sine of length 200, amplitude 1 and wavelength 0.5 (400 wavelengths). The fixed 64
 // Gauss-Legendre panels gave 1607.54 instead of 1622.366 (0.9% short).
 TEST(ArcLength, LongShortWavelengthSineMatchesTheEllipticIntegral) {
   const double amplitude = 1.0, wavelength = 0.5;

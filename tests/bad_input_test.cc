@@ -1,4 +1,4 @@
-// Table-driven bad-input suite over the library (issue 6): every case must end in a
+// Table-driven bad-input suite over the library: every case must end in a
 // std::invalid_argument whose message names the offending field (and, where there is one, the
 // value), or in a reported status — never a crash, a hang or a NaN.
 #include <gtest/gtest.h>

@@ -12,7 +12,7 @@
 using namespace plateball;
 
 namespace {
-// Corollary 3: error ~ n^-2; the fitted slope must lie in [-2.2, -1.8] (issue 3).
+// Corollary 3: error ~ n^-2; the fitted slope must lie in [-2.2, -1.8].
 constexpr double kSlopeLow = -2.2;
 constexpr double kSlopeHigh = -1.8;
 constexpr double kPassTolerance = 1e-10;
@@ -89,7 +89,7 @@ std::string ErrorOf(const std::function<void()>& f) {
 }
 }  // namespace
 
-// Issue 16: `converge --n 16,16,16` fitted a bound slope of -0.125 from one point.
+// `converge --n 16,16,16` fitted a bound slope of -0.125 from one point.
 TEST(Convergence, RepeatedPartitionSizeIsAnInputErrorNamingTheField) {
   const Problem p = FileProblem(Closed("circle"));
   const std::string e = ErrorOf([&] { ConvergenceSetupFor(p, {16, 16, 16}, "--n"); });
@@ -102,7 +102,7 @@ TEST(Convergence, RepeatedPartitionSizeIsAnInputErrorNamingTheField) {
   EXPECT_NE(ErrorOf([&] { RunConvergenceStudy(q); }).find("ns"), std::string::npos);
 }
 
-// Issue 16: `converge --n 16` printed "slope nan".
+// `converge --n 16` printed "slope nan".
 TEST(Convergence, OnePartitionSizeGivesNoSlopeAndSaysSo) {
   const ConvergenceSetup setup = ConvergenceSetupFor(FileProblem(Closed("circle")), {16});
   const ConvergenceStudy s = RunConvergenceStudy(setup.problem, setup.options);
@@ -115,7 +115,7 @@ TEST(Convergence, OnePartitionSizeGivesNoSlopeAndSaysSo) {
   EXPECT_NE(report.find("no slope"), std::string::npos) << report;
 }
 
-// Issue 16: with an explicit partition `--n` was silently ignored (every row the same).
+// With an explicit partition `--n` was silently ignored (every row the same).
 TEST(Convergence, ExplicitPartitionRejectsPartitionSizes) {
   Problem p = FileProblem(Closed("circle"));
   p.plan->partition = ExplicitTaus{{0.0, M_PI, 2 * M_PI}};

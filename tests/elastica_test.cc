@@ -182,7 +182,7 @@ TEST(Elastica, FastJacobiFunctionsMatchBoost) {
   }
 }
 
-// Issue 15: the elastica at tiny arguments and near the separatrix.
+// The elastica at tiny arguments and near the separatrix.
 
 TEST(Elastica, JacobiFunctionsAreFiniteAndRightAtTinyArguments) {
   // The descending recursion divides by sin(c u) and used to overflow (NaN) below |u| ~ 1e-154.

@@ -15,7 +15,7 @@
 namespace plateball {
 namespace {
 
-// The tolerances of issue 11, checked by an independent re-integration (FreeMotion over a stored
+// The tolerances, checked by an independent re-integration (FreeMotion over a stored
 // period per arc, not the solver's direct arc integration).
 constexpr double kPositionTol = 1e-12;
 constexpr double kOrientationTol = 1e-10;
@@ -63,7 +63,7 @@ TEST(ExactArrival, Figure7With12ImpulsesArrivesByIndependentReintegration) {
   ASSERT_EQ(p.impulses, 12);
   const ExactArrivalSummary s = SolveExactArrival(p);
   ExpectArrivesByReplay(p, s);
-  // The paper's plan was off (issue 11: ||A_goal - A~_12|| = 0.298), the exact one is not.
+  // The paper's plan was off (||A_goal - A~_12|| = 0.298), the exact one is not.
   EXPECT_GT(s.planned_orientation_error, 0.1);
   EXPECT_GT(s.deviation, 0.0);
   EXPECT_LT(s.max_pass_displacement, 0.5);

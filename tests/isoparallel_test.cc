@@ -64,7 +64,7 @@ TEST(ElasticaRolling, MagnusTableMatchesDopriAndIsSixthOrder) {
     const internal::ElasticaRollingTable polish(e, length, 160, 0.02);
     // The solver's polish accuracy must be below its 1e-12 tolerance: checked against the
     // closed-form rolling (~3e-14 from a Magnus table with steps 0.002), since the adaptive
-    // reference's own round-off reaches 1.5e-12 at this length (issue 15, eighth round).
+    // reference's own round-off reaches 1.5e-12 at this length.
     EXPECT_LT(RotationAngle(polish.Rolling(length), internal::ElasticaClosedRolling(e).Rolling(length)), 1e-12);
     EXPECT_LT(RotationAngle(polish.Rolling(length), ref), 3e-12);
   }
@@ -455,7 +455,7 @@ TEST(ElasticaRolling, CrossingsLieOnTheCircle) {
   EXPECT_EQ(static_cast<int>(crossings.size()), changes);
 }
 
-// The polish finds its crossings on a table of positions only (issue 15, eighth round): the same
+// The polish finds its crossings on a table of positions only: the same
 // nodes and positions as the full table bit for bit, hence the same crossings, numbers and roots;
 // its rolling is not there to be used by mistake.
 TEST(ElasticaRolling, PositionsOnlyTableHasTheSameCrossingsAndNoRolling) {
@@ -493,7 +493,7 @@ TEST(ElasticaRolling, PositionsOnlyTableHasTheSameCrossingsAndNoRolling) {
   EXPECT_THROW(positions.Nodes(&q, &x), std::logic_error);
 }
 
-// The polish and the twin searches take the rolling in closed form (issue 15, eighth round): their
+// The polish and the twin searches take the rolling in closed form: their
 // residuals, the rotation trick at the n-th crossing and the free-length one from s0 to s0 + L,
 // agree with those of a fine Magnus table (400 steps per period, steps <= 0.01) at random
 // parameters and targets, to well below the solver's 1e-12 tolerance.
@@ -869,7 +869,7 @@ TEST(Isoparallel, SameSeedGivesIdenticalResultsWithAnyThreadCount) {
 }
 
 // General targets: the starts are the unshifted Halton points, so every seed gives the same
-// solutions, bit for bit (issue 15). At the identity target the shooting (a comparison with the
+// solutions, bit for bit. At the identity target the shooting (a comparison with the
 // enumeration) still shifts its starts by the seed: there seeds 1 and 2 differ, so the check on
 // the general target is not vacuous.
 TEST(Isoparallel, GeneralTargetSolutionsDoNotDependOnTheSeed) {
@@ -1010,7 +1010,7 @@ TEST(Isoparallel, ProblemFilesSolveToTheirExpectedValues) {
   }
 }
 
-// Issue 10: the file's integration section reaches the solver and the plan (figure7.json with
+// The file's integration section reaches the solver and the plan (figure7.json with
 // max_steps 5 used to solve and plan); the failure is a status, with one thread or several.
 TEST(Isoparallel, IntegrationSectionReachesSolverAsAFailureStatus) {
   Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/figure7.json"));
@@ -1056,7 +1056,7 @@ TEST(Isoparallel, ReaderAndSolverShareOneThreadRange) {
   }
 }
 
-// ---- search10 (issue 15, ninth round): cheaper searches and merge, no solution lost ----
+// ---- search10: cheaper searches and merge, no solution lost ----
 
 // The 31 lengths of problems/isoparallel_rotation.json up to 3x the shortest as main at 4a16fbe
 // listed them (polished on the crossing formulation: the n-th crossing of the circle on a fine

@@ -239,7 +239,7 @@ TEST(Join, InvalidInputNamesTheField) {
 }
 
 TEST(Join, HugePsiIsReducedOnceAndJoins) {
-  // Issue 16: psi = 1e6 said target_beyond_local_radius for a target 0.05 away. lambda = 1 rolls
+  // Psi = 1e6 said target_beyond_local_radius for a target 0.05 away. lambda = 1 rolls
   // straight at speed sqrt(mu) (eq. (9)): t = 0.05 / sqrt(mu) exactly, whatever psi is.
   const BallModel model = BallModel::FromLambda(1.0);
   for (double psi : {0.1, 1e6, -2.5e12}) {
@@ -260,7 +260,7 @@ TEST(Join, HugePsiIsReducedOnceAndJoins) {
 }
 
 TEST(Join, ResidualToleranceOutsideItsRangeIsRejected) {
-  // Issue 16: 0.999 reported target_equals_start, 1e-300 target_beyond_local_radius.
+  // 0.999 reported target_equals_start, 1e-300 target_beyond_local_radius.
   const BallModel model = BallModel::FromLambda(2.0);
   const AngleState start{M_PI / 3, 0.4, 0.1};
   for (double tol : {0.999, 1e-300, 2e-3, 9e-16, 0.0, -1.0, double(NAN), double(INFINITY)}) {

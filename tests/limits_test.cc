@@ -1,4 +1,4 @@
-// The documented limits (README, "Limits") and the reproductions of issue 16 that used to run for
+// The documented limits (README, "Limits") and the reproductions that used to run for
 // minutes, exhaust memory, lose precision silently or blame the wrong input: each must now end at
 // once in a std::invalid_argument naming the field, the value and the limit.
 #include <gtest/gtest.h>

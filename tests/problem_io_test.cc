@@ -563,7 +563,7 @@ TEST(ProblemIo, ArbitraryBytesEitherParseOrThrowInvalidArgument) {
   EXPECT_EQ(parsed + rejected, static_cast<int>(inputs.size()));
 }
 
-// The steer section's fewest-impulse fields (issue 11): parsed, and a bad value names its field.
+// The steer section's fewest-impulse fields: parsed, and a bad value names its field.
 TEST(ProblemIo, SteerFewestFieldsParseAndNameTheirField) {
   const std::string base = R"({"ball": {"lambda": 2}, "initial": {"theta": 0, "phi": 0, "psi": 0, "mu": 1},
     "steer": {"goal": [3, 3], "start_at_rest": true, "stop_at_goal": true, "fewest": )";

@@ -369,7 +369,7 @@ TEST(Reach, LeavesNloptsGlobalRandomStateAloneAndDoesNotDependOnIt) {
 }
 
 TEST(Reach, HugePsiIsReducedOnceAndReachesTheTarget) {
-  // Issue 16: psi = 1e6 said "unreachable" for (6, 0) while psi = 0.1 reaches it at t = 6. With
+  // Psi = 1e6 said "unreachable" for (6, 0) while psi = 0.1 reaches it at t = 6. With
   // lambda = 1, K = omega_h is constant and |x'|^2 = mu (eq. (9)): the ball rolls straight at
   // speed sqrt(mu), so the earliest arrival at distance 6 is t = 6 / sqrt(mu) whatever psi is.
   for (double psi : {0.1, 1e6, -3.7e9}) {

@@ -52,7 +52,7 @@ plateball_cli_test(simulate.options_override_file 0
   -- simulate problems/simulate_example.json --mu 4 --samples 3)
 # theta = 0 (z vertical), phi = psi = 0: (12)-(18) give u = (-1, 0, 0), v0 = 0, so omega = v0 z - u =
 # (1, 0, 0); v0 stays 0 and K = omega_h, so omega is constant and x moves straight: x' = omega x e3
-# = (0, -1), drift (0, -2 pi) per period (issue 2's special case).
+# = (0, -1), drift (0, -2 pi) per period (a special case).
 plateball_cli_test(simulate.pole_start_rolls_straight 0
   --vector omega "1,0,0" 1e-9 --vector drift_per_period "0,-${two_pi}" 1e-9
   -- simulate --theta 0 --phi 0 --psi 0 --mu 1 --lambda 2 --samples 4)

@@ -1,4 +1,4 @@
-# The one command line (issue 13): `plateball isoparallel` shares isoparallel_solve's code and the
+# The one command line: `plateball isoparallel` shares isoparallel_solve's code and the
 # problem options, the same option names and exit codes in every tool, "-" for standard input,
 # and messages that name the option and the subcommand. Uses plateball_cli_test (cli_tests.cmake).
 if(NOT TARGET plateball_cli OR NOT TARGET isoparallel_solve)

@@ -1,4 +1,4 @@
-# Issue 16, tool side: hostile command-line cases of `plateball` and `isoparallel_solve` (exact exit
+# Tool side: hostile command-line cases of `plateball` and `isoparallel_solve` (exact exit
 # codes, the option or file named, 10 s per case), atomic output files, "-" as standard output,
 # escaped SVG, seeds as unsigned 64-bit integers.
 if(TARGET plateball_cli AND TARGET isoparallel_solve)

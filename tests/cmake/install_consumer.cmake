@@ -1,4 +1,4 @@
-# Issue 2: the library is an installable CMake package. This test installs the build tree into a
+# The library is an installable CMake package. This test installs the build tree into a
 # temporary prefix, builds tests/consumer (find_package(plateball) +
 # target_link_libraries(consumer plateball::plateball)) against it, runs it and checks the period
 # it prints (2 pi / sqrt(mu) = pi for mu = 4).

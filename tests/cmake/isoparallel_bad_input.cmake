@@ -1,4 +1,4 @@
-# Issue 6: table-driven bad-input cases of isoparallel_solve (exact exit codes, the field named,
+# Table-driven bad-input cases of isoparallel_solve (exact exit codes, the field named,
 # bounded time, no NaN) and byte-identical plan files across runs and solver thread counts.
 if(TARGET isoparallel_solve)
   add_test(NAME Hardening.IsoparallelSolveBadInputAndReproducibility

@@ -1,4 +1,4 @@
-# `plateball montecarlo` (issue 12): byte-identical output across thread counts and, in a build
+# `plateball montecarlo`: byte-identical output across thread counts and, in a build
 # with MPI, across 1, 2 and 3 ranks (tests/scripts/montecarlo_ranks.sh); bad options are exit 3
 # naming the option and the value.
 if(NOT TARGET plateball_cli)

@@ -45,7 +45,7 @@ plateball_cli_test(converge.csv 0 REGEX "n,segments,measured_error"
 # Wall times only on request (--timings): without it the output is reproducible byte for byte.
 plateball_cli_test(converge.csv_timings 0 REGEX "n,segments,plan_seconds,measured_error"
   -- converge problems/ellipse.json --n 16,32 --format csv --timings)
-# Issue 16: a repeated n, an n for an explicit partition: input errors naming --n; one n: no slope.
+# A repeated n, an n for an explicit partition: input errors naming --n; one n: no slope.
 plateball_cli_test(converge.repeated_n 3 REGEX "--impulses.*repeated"
   -- converge problems/circle.json --n 16,16,16)
 plateball_cli_test(converge.one_n 0 REGEX "no slope" -- converge problems/circle.json --n 16)

@@ -1,4 +1,4 @@
-# Command-line tests of `plateball steer` (issue 11, exact arrival): exit codes, messages, and the
+# Command-line tests of `plateball steer` (exact arrival): exit codes, messages, and the
 # arrival errors of the certified problem files (the library tests re-integrate independently).
 # Uses plateball_cli_test() from cli_tests.cmake (included before this file).
 if(NOT TARGET plateball_cli OR NOT COMMAND plateball_cli_test)

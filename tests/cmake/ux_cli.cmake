@@ -1,4 +1,4 @@
-# Command-line tests of issue 13's "figures" and "one command line" items: figure axes, legends,
+# Command-line tests of the "figures" and "one command line" items: figure axes, legends,
 # start/goal markers and --figure-size; streamed CSV samples; progress and --quiet; physical
 # units; the man page and the bash completion. (Named ux_* so that cli_tests.cmake, which
 # defines plateball_cli_test, is read first.)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fails when code, build files, help texts, problem files or schemas cite the issue tracker
+# Fails when code, tests, benchmarks, scripts, build files, help texts, problem files or schemas cite the issue tracker
 # ("issue N", "(issue N)", "Issue N, task ..." with a number for N): the number means nothing to
 # a user; say what the thing is instead (history belongs in the commit log or docs/appendix/).
 # Not yet checked: src/isoparallel* and src/certify/, whose references go with the certificate's
@@ -8,6 +8,7 @@
 set -u
 cd "$1" || exit 2
 hits=$(grep -rnIE '[Ii]ssue [0-9]+' src include tools python problems schemas web cmake CMakeLists.txt \
+         scripts bench tests fuzz examples .ci \
          --exclude-dir=node_modules --exclude-dir=__pycache__ 2>/dev/null |
        grep -vE '^src/(isoparallel|certify/)' || true)
 if [[ -n "$hits" ]]; then

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hostile command-line cases of issue 16 (tool side): each reproduction with its exact exit code
+# Hostile command-line cases (tool side): each reproduction with its exact exit code
 # (2 usage, 3 bad input, 4 no solution, 5 I/O), the option or file its message must name, and a
 # 10 s bound per case; then the file checks (atomic replacement, nothing overwritten by accident,
 # "-" is standard output, escaped SVG).

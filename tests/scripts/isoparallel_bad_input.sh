@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Table-driven bad-input suite for isoparallel_solve (issue 6): each case must exit with the
+# Table-driven bad-input suite for isoparallel_solve: each case must exit with the
 # documented code (2 usage, 3 bad input, 4 no solution, 5 I/O, 7 not certified), name the offending field in its
 # message, finish within the time bound, and never print a NaN.
 # Usage: isoparallel_bad_input.sh TOOL WORKDIR

@@ -1,4 +1,4 @@
-// Unit tests of issue 13's tool helpers: streamed sample documents (sample_table.h) against the
+// Unit tests of the tool helpers: streamed sample documents (sample_table.h) against the
 // whole-document writer, CSV columns, the progress text's ETA, the figure size option, the SI
 // scales (units.h) and the figure's axes and legend (svg.h).
 #include <gtest/gtest.h>
