@@ -50,15 +50,12 @@ constexpr Accuracy kPolish{160, 0.02};
 // kSearchAccept; runs that do not get there in kSearchIterations are abandoned.
 constexpr double kSearchStop = 3e-6;
 constexpr double kSearchAccept = 1e-4;
-// 20 instead of 40: runs still searching after 20 iterations rarely converge (the ten targets of
-// docs/paper_notes.md lose nothing; 14 lose one solution); 28% fewer evaluations on the rotation
-// problem, 2x fewer for short chords.
+// Runs still searching after 20 iterations rarely converge: a longer search finds no solution
+// more on the ten targets of docs/paper_notes.md and costs up to 2x the evaluations.
 constexpr int kSearchIterations = 20;
 // Triage: a search run whose residual is still above kHopelessResidual after kTriageIterations
-// is dropped (8192 starts on problems/isoparallel_rotation.json: 1.5 s instead of 7.5 s CPU, 29
-// of the 30 solutions; docs/paper_notes.md, "General targets"). 0.5 instead of 1 since the shape
-// scan: 14% fewer evaluations on the rotation problem, 2-4x fewer for short chords, nothing lost
-// on the ten targets.
+// is dropped: such runs almost never converge, and dropping them saves most of the search's cost
+// while losing nothing on the ten targets of docs/paper_notes.md ("General targets").
 constexpr int kTriageIterations = 8;
 constexpr double kHopelessResidual = 0.5;
 // A free-length search run is handed to the crossing formulation only when its residual is below
@@ -444,7 +441,7 @@ struct FreeLengthFunctor {
   // rolling (ElasticaClosedRolling::Sensitivity): the residual of the chord and rolling moved along
   // them by the forward-difference step, like the phase and length columns, without the two
   // elasticas and closed rollings whole-path differences build (docs/paper_notes.md, "General
-  // targets", point 12, twelfth round). False where Sensitivity declines (the caller then
+  // targets", point 12). False where Sensitivity declines (the caller then
   // differences paths).
   bool AnalyticColumns(const double* x, const double* r, double* jacobian) const {
     internal::ElasticaClosedRolling::PathSensitivity sens;

@@ -1,6 +1,6 @@
 // Internal: rigorous exclusion bounds for the isoparallel residual over boxes of ALL shape
 // parameters (rate, modulus k, phase u0, length L) and a branch-and-bound certificate over a
-// bounded window of one regime (issue 15, "General targets: certified, not statistical";
+// bounded window of one regime ("General targets: certified, not statistical";
 // docs/paper_notes.md, "General targets: certified exclusion over parameter boxes").
 //
 // The residual is the rotation trick of section 2.2 with a free length: roll the ball along the
@@ -19,7 +19,7 @@
 //   - the chord's direction moves by at most asin(D / |chord|), and the conjugation by B moves
 //     the rotation by at most twice that.
 // The box test is rigorous up to the floating-point error of the centre's residual (the rolling
-// in closed form, ~1e-13; a Magnus table of ~1e-10 before issue 15), covered by a stated margin.
+// in closed form, ~1e-13), covered by a stated margin.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
-// Internal: a centred (second-order) bound on the rolling's move over a parameter box (issue 15;
-// docs/paper_notes.md, "General targets: a centred form of the rolling bound").
+// Internal: a centred (second-order) bound on the rolling's move over a parameter box
+// (docs/paper_notes.md, "General targets: a centred form of the rolling bound").
 //
 // For p in the box collapsed to L = Lc, E(s) = Q_p(s) Q_c(s)^T solves E' = E hat(z), z(s) =
 // Q_c(s) (w_p(s) - w_c(s)), w = (-sin g, cos g, 0) the angular velocity of heading g. With

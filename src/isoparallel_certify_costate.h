@@ -1,5 +1,5 @@
 // Internal: two exclusion tests for the certificate's branch and bound whose bounds grow only
-// linearly in the path length (issue 15, "General targets: certified"; docs/paper_notes.md,
+// linearly in the path length ("General targets: certified"; docs/paper_notes.md,
 // "General targets: closed-form chord bounds and the costate test").
 //
 // Parameters x = (rate, k, u0, L), v = rate s + u0, heading theta(v) (heading_w = pi/2), chord

@@ -1,5 +1,5 @@
 // Internal: the whole certificate of a general isoparallel target up to a length cap, as a list of
-// pieces of parameter space each closed by one certificate (issue 15; docs/paper_notes.md,
+// pieces of parameter space each closed by one certificate (docs/paper_notes.md,
 // "General targets: the rotation problem's shortest path certified" and "General targets: the
 // whole certificate in one call").
 //

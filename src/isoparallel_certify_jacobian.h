@@ -1,4 +1,4 @@
-// Internal: the first-order part of the window certificate (issue 15; docs/paper_notes.md,
+// Internal: the first-order part of the window certificate (docs/paper_notes.md,
 // "General targets: the residual's Jacobian for a first-order certificate"): the free-length
 // residual as a smooth 4-vector
 //   F(rate, k, phase, L) = ( |chord| - |x1 - x0|,  Log(target^T B Q(0, L) B^T) ),

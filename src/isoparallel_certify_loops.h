@@ -1,5 +1,5 @@
 // Internal: the fast separatrix tail of the certified exclusion for general isoparallel targets,
-// loop by loop (issue 15; docs/paper_notes.md, "General targets: the separatrix tail loop by
+// loop by loop (docs/paper_notes.md, "General targets: the separatrix tail loop by
 // loop"). The composition lemma (b) of "the tails of the certificate window", point 7.
 //
 // For every modulus k in [k_t, 1), in the cell |v - 2jK| <= K (v = a s + u0) the heading is

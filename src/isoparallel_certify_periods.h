@@ -1,5 +1,5 @@
 // Internal: the rolling's deviation over a parameter box compared at a fixed number of periods
-// (issue 15; docs/paper_notes.md, "General targets: comparing at a fixed number of periods").
+// (docs/paper_notes.md, "General targets: comparing at a fixed number of periods").
 //
 // A point x = (rate, k, u0, L) of a box and the point x' = (rate rho, k_c, u0 rho, L),
 // rho = K(k_c) / K(k), k_c the box's centre modulus, run through the same normalised phase

@@ -1,6 +1,6 @@
 // Internal: a bound on the rolling's deviation over a parameter box from the closed-form rolling,
-// linear in the path length (issue 15, "General targets: certified"; docs/paper_notes.md,
-// "General targets: the rolling's deviation from the closed form (issue 15, eighth round)").
+// linear in the path length ("General targets: certified"; docs/paper_notes.md,
+// "General targets: the rolling's deviation from the closed form").
 //
 // Q(0, L) = F(L) Rz(Psi) F(0)^T (elastica_closed_rolling.h), F = [f1 f2 u] the costate frame,
 // u = v/V, f1 = e3 x u / |e3 x u|, Psi = psi(L) - psi(0) = -(V/2) [L + (1 - G^2) J],
@@ -49,7 +49,7 @@ double ClosedRollingDeviationBound(PendulumRegime regime, const CertifyBox& box,
 
 // ---------------------------------------------------------------------------------------------
 // The theta/2 chart: a frame and twist that stay smooth through G = 1 (docs/paper_notes.md,
-// "General targets: a rolling bound smooth through G = 1 (issue 15, tenth round)").
+// "General targets: a rolling bound smooth through G = 1").
 // With e = (-sin(theta/2), cos(theta/2), 0) (oscillating (-k sn, dn, 0), rotating (-sn, cn, 0)),
 // c = <e, u> = (G - 1) cos(theta/2) / V, the frame Ft = [f1 u x f1 u], f1 = (e - c u)/|e - c u|,
 // is defined wherever |e - c u|^2 = 1 - c^2 > 0 (always for rate != 0, and k > 0 oscillating), and

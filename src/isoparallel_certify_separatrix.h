@@ -1,5 +1,5 @@
 // Internal: the separatrix tail k in [k_lo, 1) of the certified exclusion for general isoparallel
-// targets (issue 15; docs/paper_notes.md, "General targets: the separatrix tail").
+// targets (docs/paper_notes.md, "General targets: the separatrix tail").
 //
 // Every path of the tail at modulus k, rate a (|a| <= A) and length L <= cap starts, modulo the
 // period of v (2K rotating, 4K oscillating with the mirrored loop at v = 2K written as

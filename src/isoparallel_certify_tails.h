@@ -1,5 +1,5 @@
-// Internal: the tails of the certified exclusion for general isoparallel targets (issue 15;
-// docs/paper_notes.md, "General targets: the tails of the certificate window").
+// Internal: the tails of the certified exclusion for general isoparallel targets
+// (docs/paper_notes.md, "General targets: the tails of the certificate window").
 //
 // The branch and bound of isoparallel_certify.h covers a BOUNDED window of elastica parameters.
 // This file bounds the large-rate tail rigorously (an averaging lemma):
