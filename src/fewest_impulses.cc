@@ -12,6 +12,7 @@
 
 #include "check.h"
 #include "exact_chain.h"
+#include "plateball/limits.h"
 #include "plateball/so3.h"
 
 namespace plateball {
@@ -94,6 +95,7 @@ struct Search {
   double max_total_time = 0.0;
   int conditions = 5;  // 3 with orientation_only
   int* rollouts = nullptr;
+  int* starts = nullptr;  // starts tried in all counts, for the progress hook
 };
 
 // The arrival conditions (the orientation's three first with orientation_only) at the chain's end.
@@ -384,6 +386,7 @@ FewestImpulsesCount SearchCount(const Search& s, int n, const Eigen::VectorXd& p
   const int budget = 2 * n >= s.conditions ? std::max(s.options->starts, s.options->adaptive_starts) : s.options->starts;
   for (int i = 0; row.starts < budget && row.arrived < s.options->arrivals_per_count; ++i) {
     if (row.starts >= s.options->starts && row.arrived > 0) break;  // settled: the count is reached
+    if (s.options->progress) s.options->progress(n, (*s.starts)++);
     Refine(s, StartPoint(s, n, i), &row, &best);
   }
   Conclude(s, &best, &row);
@@ -476,6 +479,19 @@ void ValidateProblem(const FewestImpulsesProblem& p) {
   internal::ValidateStartAndGoal(p.mu, p.x0, p.x1, p.A0, p.A1);
 }
 
+// The search window's rolling length sqrt(mu) T must stay within limits::kMaxFewestWindowLength: named by
+// max_total_time when the caller set the window, else by the goal whose distance sets it.
+void RequireBoundedWindow(const FewestImpulsesProblem& p, const FewestImpulsesOptions& o, double window) {
+  const double length = std::sqrt(p.mu) * window;
+  if (length <= limits::kMaxFewestWindowLength) return;
+  const std::string why = "the search window rolls sqrt(mu) T = " + internal::FormatNumber(length) +
+                          " radii, more than the limit " + internal::FormatNumber(limits::kMaxFewestWindowLength) +
+                          ": plan along a path and steer piece by piece";
+  if (o.max_total_time > 0) internal::ThrowInvalid("max_total_time", internal::FormatNumber(o.max_total_time), why);
+  internal::ThrowInvalid("x1", "(" + internal::FormatNumber(p.x1.x()) + ", " + internal::FormatNumber(p.x1.y()) + ")",
+                         "the goal is " + internal::FormatNumber((p.x1 - p.x0).norm()) + " radii from x0: " + why);
+}
+
 std::string Searched(const Search& s, int last) {
   std::ostringstream os;
   os << "n = 1.." << last << ", " << s.options->starts << " Halton starts per n (up to "
@@ -545,7 +561,10 @@ FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem, 
   const double distance = problem.orientation_only ? 0.0 : (problem.x1 - problem.x0).norm();
   s.max_total_time = options.max_total_time > 0 ? options.max_total_time
                                                 : kWindowFactor * (distance + turn + 2.0 * M_PI) / std::sqrt(problem.mu);
+  RequireBoundedWindow(problem, options, s.max_total_time);
   out.max_total_time = s.max_total_time;
+  int starts = 0;
+  s.starts = &starts;
   if (distance <= options.position_tolerance && turn <= options.orientation_tolerance)
     return MetAtStart(s, turn, std::move(out));
   int last = 0;

@@ -215,7 +215,7 @@ std::vector<TrialRecord> MonteCarloWork::Run(long long begin, long long end) con
       const long long task = from + j;
       out[static_cast<std::size_t>(task - begin)] = RunTask(task, i, nominal);
       const long long d = ++done;
-      if (options_.progress && j % threads == 0) options_.progress(d, count);
+      if (options_.progress) options_.progress(d, count);
     });
   }
   if (options_.progress) options_.progress(count, count);

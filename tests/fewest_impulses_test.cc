@@ -302,6 +302,52 @@ TEST(FewestImpulses, BadInputNamesTheField) {
   EXPECT_NE(InvalidArgumentMessage([&] { SolveFewestImpulses(p); }).find("x1"), std::string::npos);
 }
 
+// The search window's rolling length sqrt(mu) T is bounded before any work: the automatic window
+// 1.5 (distance + turn + 2 pi) / sqrt(mu) passes 500 radii between distances 320 and 330 whatever
+// the turn in [0, pi]; mu only rescales time, so it does not move the bound; a window set by the
+// caller is named itself.
+TEST(FewestImpulses, SearchWindowBeyondTheLimitIsRefusedUpFront) {
+  using plateball::testing::InvalidArgumentMessage;
+  FewestImpulsesProblem p;
+  FewestImpulsesOptions o;
+  o.max_impulses = 1;
+  o.starts = 1;
+  o.adaptive_starts = 0;
+  for (double mu : {1e-4, 1.0, 1e4}) {
+    p.mu = mu;
+    p.x1 = {330.0, 0.0};
+    EXPECT_NE(InvalidArgumentMessage([&] { SolveFewestImpulses(p, o); }).find("x1: value (330, 0): the goal is 330 radii"),
+              std::string::npos) << "mu " << mu;
+    p.x1 = {320.0, 0.0};
+    EXPECT_EQ(InvalidArgumentMessage([&] { SolveFewestImpulses(p, o); }), "") << "mu " << mu;
+  }
+  p.mu = 4.0;
+  p.x1 = {3.0, 0.0};
+  o.max_total_time = 251.0;  // sqrt(4) 251 = 502 radii
+  EXPECT_NE(InvalidArgumentMessage([&] { SolveFewestImpulses(p, o); }).find("max_total_time: value 251"), std::string::npos);
+}
+
+// The progress hook is called on every start, with the count searched; throwing abandons the search.
+TEST(FewestImpulses, ProgressHookSeesEveryStartAndCanAbandonTheSearch) {
+  FewestImpulsesProblem p = StraightRollProblem();
+  p.x1 = {2.0, 1.0};
+  FewestImpulsesOptions o;
+  o.max_impulses = 2;
+  o.starts = 3;
+  o.adaptive_starts = 0;
+  int calls = 0, last_n = 0;
+  o.progress = [&](int n, int starts) {
+    EXPECT_EQ(starts, calls);
+    EXPECT_GE(n, last_n);
+    last_n = n;
+    ++calls;
+  };
+  SolveFewestImpulses(p, o);
+  EXPECT_EQ(calls, 2 * o.starts);  // counts 1 and 2 (both unreachable for a generic goal), 3 starts each
+  o.progress = [](int n, int) { if (n == 2) throw std::runtime_error("stop"); };
+  EXPECT_THROW(SolveFewestImpulses(p, o), std::runtime_error);
+}
+
 }  // namespace
 }  // namespace plateball
 

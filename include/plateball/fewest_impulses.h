@@ -43,6 +43,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,10 @@ struct FewestImpulsesOptions {
   double orientation_tolerance = 1e-10;   ///< rad
   IntegrationOptions integration{1e-14, 1e-14, 2'000'000};         ///< final rollouts
   IntegrationOptions search_integration{1e-8, 1e-8, 2'000'000};    ///< rollouts + Jacobians of the search
+  /// Called on the calling thread before each start of the search with the count n being searched
+  /// and the starts tried so far in all counts; may throw to abandon the search (the exception
+  /// propagates out of SolveFewestImpulses). Empty: no calls.
+  std::function<void(int n, int starts)> progress;
 
   /// Empty when the options are valid; else a message naming the field and its value.
   std::string Validate() const;

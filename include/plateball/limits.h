@@ -34,5 +34,9 @@ inline constexpr long long kMaxListLength = 100'000;
 inline constexpr double kMaxHorizonPeriods = 100.0;
 /// Nesting of piecewise paths: real paths nest once or twice; the bound keeps recursion shallow.
 inline constexpr int kMaxPieceDepth = 8;
+/// Rolling length sqrt(mu) T of the fewest-impulse search's time window, in ball radii: its
+/// rollouts grow faster than the window (a goal 300 radii away: about 10 s; 1000 radii: minutes),
+/// so a longer move is planned along a path and steered exactly piece by piece.
+inline constexpr double kMaxFewestWindowLength = 500.0;
 
 }  // namespace plateball::limits

@@ -53,7 +53,9 @@ struct MonteCarloOptions {
   int threads = 1;       ///< 1 ... 256; the results do not depend on it
   int sweep_trials = 0;  ///< trials per cell at the sweep's other n (0: `trials`), 0 ... kMaxTrials
   bool keep_trials = true;  ///< keep every trial's record in the summary
-  /// Called now and then with (tasks done, tasks to do) from the calling thread.
+  /// Called after each task with (tasks done, tasks to do), on the thread that ran it (the calling
+  /// thread among them); may throw to abandon the run: each thread stops at its next task and the
+  /// exception propagates out of RunMonteCarlo.
   std::function<void(long long, long long)> progress;
   /// Empty when the options are valid; else a message naming the field and its value.
   std::string Validate() const;

@@ -1,6 +1,7 @@
 // Python binding: the fewest-impulse search (fewest_impulses.h): its problem, options,
 // summary with the Pareto table, and the exact-arrival problem that replays a row's impulses.
 #include "bind_common.h"
+#include "interrupt.h"
 #include <optional>
 
 #include "plateball/fewest_impulses.h"
@@ -77,8 +78,11 @@ void BindFewestImpulses(py::module_& m) {
             const FewestImpulsesCount* f = s.Fewest();
             return f ? std::optional<FewestImpulsesCount>(*f) : std::nullopt;
           }, "The row of the fewest count (None when not found).");
-  m.def("_fewest_impulses", &SolveFewestImpulses, py::arg("problem"), py::arg("options"),
-        py::call_guard<py::gil_scoped_release>());
+  m.def("_fewest_impulses", [](const FewestImpulsesProblem& problem, FewestImpulsesOptions options) {
+          const Interruptible interrupt;  // Ctrl-C abandons the search (KeyboardInterrupt)
+          options.progress = [interrupt](int, int) { interrupt.Check(); };
+          return interrupt.Run([&] { return SolveFewestImpulses(problem, options); });
+        }, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
   m.def("replay_problem_for", &ReplayProblemFor, py::arg("problem"), py::arg("impulses"),
         "The exact-arrival problem that replays a count's impulses (for replay_exact_arrival).");
 }

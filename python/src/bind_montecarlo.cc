@@ -1,8 +1,9 @@
 // Python binding: execution under errors and the Monte Carlo study (error_model.h, execution.h,
-// monte_carlo.h). RunMonteCarlo releases the GIL; its progress callback is not exposed.
+// monte_carlo.h). RunMonteCarlo releases the GIL; its progress callback checks for Ctrl-C (interrupt.h).
 #include <utility>
 
 #include "bind_common.h"
+#include "interrupt.h"
 #include "plateball/error_model.h"
 #include "plateball/execution.h"
 #include "plateball/monte_carlo.h"
@@ -125,7 +126,11 @@ void BindSummary(py::module_& m) {
              if (it == kColumns.end()) throw std::invalid_argument("column: value '" + column + "': unknown trial column");
              return Stack<1>(s.records, [&](const TrialRecord& r) { return Scalar1(r.*(it->second)); });
            }, py::arg("column"), "One column of the trial records as an array (n, scenario, position_error, ...).");
-  m.def("_montecarlo", &RunMonteCarlo, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
+  m.def("_montecarlo", [](const MonteCarloProblem& problem, MonteCarloOptions options) {
+          const Interruptible interrupt;  // Ctrl-C abandons the run (KeyboardInterrupt)
+          options.progress = [interrupt](long long, long long) { interrupt.Check(); };
+          return interrupt.Run([&] { return RunMonteCarlo(problem, options); });
+        }, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
 }
 
 }  // namespace

@@ -63,3 +63,15 @@ plateball_cli_test(steer.starts_needs_fewest 3 REGEX "--starts: value 5: needs -
 # The exact arrival's worst case is bounded (README, Limits): 200 impulses x 50 iterations.
 plateball_cli_test(steer.impulses_beyond_the_limit 3 REGEX "--impulses: value 201: must be in \\[3, 200\\]"
   -- steer problems/figure7_exact.json --impulses 201 --summary-only)
+
+# The fewest-impulse search's window is bounded up front (limits.h, kMaxFewestWindowLength): a goal
+# too far away and a window set too long are input errors naming the file's field, not hours of work.
+plateball_cli_test(steer.fewest_goal_too_far 3
+  REGEX "steer.goal: value \\(400, 0\\): the goal is 400 radii from x0: the search window rolls .* more than the limit 500"
+  -- steer tests/data/fewest_far_goal.json --summary-only)
+plateball_cli_test(steer.fewest_window_too_long 3
+  REGEX "steer.fewest.max_total_time: value 600: the search window rolls sqrt\\(mu\\) T = 600 radii, more than the limit 500"
+  -- steer tests/data/fewest_long_window.json --summary-only)
+# --progress reports the search (starts tried, elapsed time) on standard error.
+plateball_cli_test(steer.fewest_progress 0 REGEX "fewest-impulse search, starts tried: done in"
+  -- steer problems/figure7_fewest.json --max-impulses 2 --summary-only --progress)

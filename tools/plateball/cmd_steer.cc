@@ -5,7 +5,9 @@
 #include <memory>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "common/actuator_json.h"
 #include "common/command_registry.h"
@@ -42,6 +44,15 @@ struct SteerCliOptions {
   ActuatorOptions actuator;
 };
 
+// A message of the search about its window ("x1: ...", "max_total_time: ...") with the problem
+// file's field instead: "FILE: steer.goal: ...", "FILE: steer.fewest.max_total_time: ...".
+std::string FileFieldsOfSearch(const std::string& message, const std::string& file) {
+  for (const auto& [name, field] : {std::pair<std::string, std::string>{"x1", "steer.goal"},
+                                    {"max_total_time", "steer.fewest.max_total_time"}})
+    if (message.rfind(name + ": ", 0) == 0) return file + ": " + field + message.substr(name.size());
+  return message;
+}
+
 // The fewest-impulse search (steer.fewest in the file, or --fewest-impulses).
 int RunFewest(const SteerCliOptions& o, const Problem& p) {
   FewestImpulsesSetup setup = FewestImpulsesSetupFor(p);
@@ -52,7 +63,15 @@ int RunFewest(const SteerCliOptions& o, const Problem& p) {
   setup.problem.stop_at_goal = setup.problem.stop_at_goal || o.stop_at_goal;
   setup.problem.start_at_rest = setup.problem.start_at_rest || o.start_at_rest;
   const ActuatorContext actuator{p, o.actuator.Request(), ""};
-  const FewestImpulsesSummary s = SolveFewestImpulses(setup.problem, setup.options);
+  const FewestImpulsesSummary s = [&] {
+    Progress progress("plateball steer: fewest-impulse search, starts tried", 0);
+    setup.options.progress = [&progress](int, int starts) { progress.Update(starts); };
+    try {
+      return SolveFewestImpulses(setup.problem, setup.options);
+    } catch (const std::invalid_argument& e) {  // the search's own limits name the file's fields
+      throw std::invalid_argument(FileFieldsOfSearch(e.what(), o.problem.file()));
+    }
+  }();
   Json doc = HeaderJson("plateball", "steer", p, o.problem.file());
   doc["initial"] = InitialJson(p);
   doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
