@@ -155,6 +155,13 @@ def main():
         for s in doc["plan"]["steps"]:
             checked += check_record(phys, s["angles_before"], s["delta_omega"], s["plate_velocity_change"],
                                     s["actuator"], 0.01, f"isoparallel plan.steps[{s['k']}]")
+        # steer --fewest-impulses with a physical ball: the SI values and the units, like exact arrival.
+        doc = json.loads(run([args.plateball, "steer", "tests/data/rig_steer_physical.json", "--fewest-impulses",
+                              "--max-impulses", "4"]).stdout)
+        validate("output/steer.schema.json", doc, "steer --fewest-impulses (physical)")
+        radius = doc["units"]["physical"]["radius"]
+        for i, imp in enumerate(doc["impulses"]):
+            close(imp["si"]["x"], [radius * v for v in imp["x"]], radius, f"fewest impulses[{i}].si.x")
         # lambda-only problems: null with the reason, in plan, steer and the schedule.
         doc = json.loads(run([args.plateball, "plan", "problems/circle.json", "--impulses", "8",
                               "--pulse-error", "1e-3"]).stdout)

@@ -76,6 +76,7 @@ int RunFewest(const SteerCliOptions& o, const Problem& p) {
   doc["initial"] = InitialJson(p);
   doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
   Append(doc, FewestImpulsesToJson(setup.problem, s, !o.summary_only, &actuator));
+  AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   const FewestImpulsesCount* f = s.Fewest();
   if (!o.svg.empty() && f && f->impulses == 0)
