@@ -71,3 +71,13 @@ if(PLATEBALL_WITH_MPI)
     PASS_REGULAR_EXPRESSION "PROBLEM.json: value -: standard input reaches rank 0 only: under MPI \\(2 ranks\\).*exit=3"
     FAIL_REGULAR_EXPRESSION "malformed")
 endif()
+
+# Under an MPI starter every subcommand but montecarlo runs on rank 0 alone: its document is
+# printed once (the rank is read from the starter's environment, so this holds in any build).
+if(MPIEXEC_EXECUTABLE)
+  add_test(NAME cli.mpi.other_subcommands_print_once
+           COMMAND bash -c "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ${MPIEXEC_EXECUTABLE} --oversubscribe -np 2 $<TARGET_FILE:plateball_cli> simulate problems/figure7.json --samples 3 | grep -c '\"command\": \"simulate\"'"
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(cli.mpi.other_subcommands_print_once PROPERTIES TIMEOUT 60 LABELS cli
+                       PASS_REGULAR_EXPRESSION "^1\n$")
+endif()

@@ -1,5 +1,6 @@
 // `plateball`: command-line front end of the library; subcommands live in cmd_*.cc.
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <map>
@@ -12,6 +13,19 @@
 #include "common/exit_codes.h"
 #include "common/progress.h"
 #include "plateball/version.h"
+
+namespace {
+
+// This process's rank when an MPI starter (mpirun, srun) launched it, from the starter's
+// environment; 0 otherwise. Only montecarlo splits its work over ranks: every other subcommand
+// runs on rank 0 alone, so that its document is printed and its files written once.
+int LauncherRank() {
+  for (const char* v : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* rank = std::getenv(v)) return std::atoi(rank);
+  return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace plateball::tools;
@@ -55,6 +69,7 @@ int main(int argc, char** argv) {
   }
   if (const auto code = ParseCommandLine(app, argc, argv, "plateball")) return *code;
   for (const auto& [sub, run] : runners) {
+    if (sub->parsed() && sub->get_name() != "montecarlo" && LauncherRank() > 0) return kExitSuccess;
     // Failures map to exit codes in one place (common/errors.h) for every tool.
     if (sub->parsed()) return RunWithExitCodes("plateball " + sub->get_name(), run);
   }
