@@ -43,7 +43,8 @@ void RequireStartOnPath(const Problem& problem, const Path& path) {
   auto pair = [](const Eigen::Vector2d& v) {
     return "(" + internal::FormatNumber(v.x()) + ", " + internal::FormatNumber(v.y()) + ")";
   };
-  internal::ThrowInvalid("x0", pair(problem.x0), "must equal the path start p(tau_0) = " + pair(path.StartPoint()));
+  internal::ThrowInvalid(problem.source + ": initial.x0", pair(problem.x0),
+                         "must equal the path start p(tau_0) = " + pair(path.StartPoint()));
 }
 
 PlanOptions PlanOptionsFor(const Problem& problem) {

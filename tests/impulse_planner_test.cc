@@ -210,7 +210,7 @@ TEST(ImpulsePlanner, BadInputNamesTheField) {
   p.plan = PlanTask{};
   p.plan->path = PathSpec{CircleSpec{{-2, 0}, 2, 0, 2 * M_PI}};
   p.x0 = {1, 1};
-  EXPECT_NE(ErrorOf([&] { PlanSetupFor(p); }).find("x0: value"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanSetupFor(p); }).find("initial.x0: value"), std::string::npos);
   p.x0 = {0, 0};
   const PlanSetup setup = PlanSetupFor(p);
   EXPECT_TRUE(PlanImpulses(setup.problem, setup.options).IsSolutionUsable());

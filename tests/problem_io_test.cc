@@ -588,3 +588,23 @@ TEST(ProblemIo, SteerFewestFieldsParseAndNameTheirField) {
   EXPECT_NE(InvalidArgumentMessage([&] { ParseProblem(base + R"({"bogus": 1}}})", "f.json"); }).find("bogus"),
             std::string::npos);
 }
+
+// Angles beyond 1e15 (no digit left modulo 2 pi) are refused by the reader under the file's field
+// names, rather than later by the solvers under their own names ("start.theta") or as a NaN
+// orientation ("A0[0]: value -nan").
+TEST(ProblemIo, HugeAnglesAreRefusedUnderTheFilesFieldNames) {
+  using plateball::testing::InvalidArgumentMessage;
+  const std::string ball = R"({"ball": {"lambda": 2}, "initial": )";
+  EXPECT_EQ(InvalidArgumentMessage([&] { ParseProblem(ball + R"({"theta": 1e300, "phi": 0, "psi": 0, "mu": 1}})", "f.json"); }),
+            "f.json: initial.theta: value 1e+300: an angle beyond 1e15 in magnitude has no significant digits left modulo 2 pi");
+  EXPECT_NE(InvalidArgumentMessage([&] { ParseProblem(ball + R"({"theta": 0, "phi": 0, "psi": -2e15, "mu": 1}})", "f.json"); })
+                .find("f.json: initial.psi: value -2e+15"),
+            std::string::npos);
+  EXPECT_NE(InvalidArgumentMessage([&] {
+              ParseProblem(ball + R"({"theta": 0, "phi": 0, "psi": 0, "mu": 1, "orientation": {"axis_angle": {"axis": [0, 0, 1], "angle": 1e300}}}})",
+                           "f.json");
+            }).find("f.json: initial.orientation.axis_angle.angle: value 1e+300: an angle beyond 1e15"),
+            std::string::npos);
+  // 1e15 itself is still an angle.
+  EXPECT_EQ(InvalidArgumentMessage([&] { ParseProblem(ball + R"({"theta": 0, "phi": 0, "psi": 1e15, "mu": 1}})", "f.json"); }), "");
+}

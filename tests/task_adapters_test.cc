@@ -74,7 +74,7 @@ TEST(TaskAdapters, PlanSetupIsTheFilesPlanWithItsIntegrationSection) {
   ASSERT_NE(uniform, nullptr);
   EXPECT_EQ(uniform->n, 8);
   p.x0 = {5, 5};
-  EXPECT_NE(ErrorOf([&] { PlanSetupFor(p); }).find("x0: value"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanSetupFor(p); }).find("initial.x0: value"), std::string::npos);
 }
 
 TEST(TaskAdapters, SolverSectionsReachTheirOptions) {

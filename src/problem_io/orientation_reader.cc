@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "kinematics.h"
 #include "plateball/so3.h"
 #include "problem_io/field_reader.h"
 
@@ -48,6 +49,9 @@ Eigen::Matrix3d FieldReader::Orientation(const json& j, const std::string& path)
   const double angle = Number(Require(aa, p, "angle"), Join(p, "angle"));
   const double n = axis.norm();
   if (!(n > kDegenerateNorm) || !std::isfinite(n)) Fail(Join(p, "axis"), aa["axis"], "must be a non-zero vector (it is normalised)");
+  // Beyond kMaxAngleMagnitude the rotation has no significant digits left (and ExpSO3 gives NaN).
+  if (std::abs(angle) > kMaxAngleMagnitude)
+    Fail(Join(p, "angle"), aa["angle"], "an angle beyond 1e15 in magnitude has no significant digits left modulo 2 pi");
   return ExpSO3(axis / n * angle);
 }
 

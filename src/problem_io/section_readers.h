@@ -23,6 +23,7 @@ class StartStateReader : public FieldReader {
   void PhysicalBall(const json& ph, const std::string& pp, Problem* p) const;
   // lambda = (alpha + beta) / (1 + beta) in [1e-3, 1e3] (check.h), named by the given field.
   void RequireLambdaOf(double alpha, double beta, const std::string& path, const json& v) const;
+  double Angle(const json& j, const std::string& path, const char* key) const;
 };
 
 /// A path of "plan.path": one of seven shapes, piecewise paths nested at most kMaxPieceDepth deep.

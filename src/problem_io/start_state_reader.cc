@@ -1,8 +1,10 @@
 // The "integration", "ball" and "initial" sections: the model (one of three forms) and the start state.
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "check.h"
+#include "kinematics.h"
 #include "problem_io/section_readers.h"
 
 namespace plateball::internal::problem_io {
@@ -73,11 +75,20 @@ void StartStateReader::RequireLambdaOf(double alpha, double beta, const std::str
                       NumberText(internal::kMaxLambda) + "]");
 }
 
+// An angle of the start: finite, and within kMaxAngleMagnitude (beyond it no digit is left modulo
+// 2 pi), named by its field here rather than by the solver's internal name later.
+double StartStateReader::Angle(const json& j, const std::string& path, const char* key) const {
+  const double a = Number(Require(j, path, key), Join(path, key));
+  if (std::abs(a) > internal::kMaxAngleMagnitude)
+    Fail(Join(path, key), j[key], "an angle beyond 1e15 in magnitude has no significant digits left modulo 2 pi");
+  return a;
+}
+
 void StartStateReader::Initial(const json& j, const std::string& path, Problem* p) const {
   Object(j, path, {"theta", "phi", "psi", "mu", "x0", "orientation"});
-  p->initial_angles.theta = Number(Require(j, path, "theta"), Join(path, "theta"));
-  p->initial_angles.phi = Number(Require(j, path, "phi"), Join(path, "phi"));
-  p->initial_angles.psi = Number(Require(j, path, "psi"), Join(path, "psi"));
+  p->initial_angles.theta = Angle(j, path, "theta");
+  p->initial_angles.phi = Angle(j, path, "phi");
+  p->initial_angles.psi = Angle(j, path, "psi");
   p->mu = Positive(Require(j, path, "mu"), Join(path, "mu"));
   InClosedRange(j["mu"], Join(path, "mu"), internal::kMinMu, internal::kMaxMu);
   p->x0 = Eigen::Vector2d::Zero();
