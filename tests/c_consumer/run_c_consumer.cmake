@@ -1,5 +1,5 @@
 # cmake -DPLATEBALL_INCLUDE_DIR=... -DPLATEBALL_LIBRARY=... -DEXAMPLE_SOURCE=... -DCONSUMER_SOURCE=...
-#       -DWORK_DIR=... -DGENERATOR=... -DPROBLEM=... [-DC_COMPILER=...] -P run_c_consumer.cmake
+#       -DWORK_DIR=... -DGENERATOR=... -DPROBLEM=... [-DC_COMPILER=...] [-DSANITIZE=ON] -P run_c_consumer.cmake
 # Configures tests/c_consumer in WORK_DIR, builds examples/c/controller_loop.c with the C compiler
 # against the build tree's library, runs it on PROBLEM and checks what it prints; then runs it on a
 # missing file and checks the I/O status (5) and the message.
@@ -23,6 +23,11 @@ set(configure_args -S ${CONSUMER_SOURCE} -B ${WORK_DIR} -G ${GENERATOR} -DCMAKE_
     -DEXAMPLE_SOURCE=${EXAMPLE_SOURCE})
 if(DEFINED C_COMPILER)
   list(APPEND configure_args -DCMAKE_C_COMPILER=${C_COMPILER})
+endif()
+# A sanitizer build of plateball (PLATEBALL_SANITIZE) needs the sanitizer runtime in the consumer.
+if(SANITIZE)
+  list(APPEND configure_args "-DCMAKE_C_FLAGS=-fsanitize=address,undefined -fno-omit-frame-pointer"
+       "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined")
 endif()
 run("configure C consumer" ${CMAKE_COMMAND} ${configure_args})
 run("build C consumer" ${CMAKE_COMMAND} --build ${WORK_DIR})

@@ -10,6 +10,7 @@ add_test(NAME c_api.consumer_builds_and_runs_the_c_example
                  -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/c_consumer
                  -DGENERATOR=${CMAKE_GENERATOR}
                  -DPROBLEM=${PROJECT_SOURCE_DIR}/problems/circle.json
+                 -DSANITIZE=${PLATEBALL_SANITIZE}
                  -P ${PROJECT_SOURCE_DIR}/tests/c_consumer/run_c_consumer.cmake)
 set_tests_properties(c_api.consumer_builds_and_runs_the_c_example PROPERTIES
   TIMEOUT 300 PASS_REGULAR_EXPRESSION "C consumer: ok")
