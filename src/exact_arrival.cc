@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "constrained_arrival.h"
 #include "exact_chain.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
@@ -21,6 +22,7 @@ std::string ToString(ExactArrivalStatus status) {
     case ExactArrivalStatus::kNotReached: return "not_reached";
     case ExactArrivalStatus::kWarmStartFailed: return "warm_start_failed";
     case ExactArrivalStatus::kIntegrationFailure: return "integration_failure";
+    case ExactArrivalStatus::kLimitsNotMet: return "limits_not_met";
   }
   return "unknown";
 }
@@ -129,6 +131,33 @@ bool Arrived(const Eigen::VectorXd& r, const ExactArrivalOptions& o) {
 // the deviation counts once they are met.
 double Merit(const Eigen::VectorXd& r) { return r.head<5>().norm(); }
 
+std::string PointText(const Eigen::Vector2d& x) {
+  return "(" + internal::FormatNumber(x.x()) + ", " + internal::FormatNumber(x.y()) + ")";
+}
+
+// The start and the goal must themselves meet the plate and obstacle limits.
+void RequireAdmissiblePoint(const char* field, const Eigen::Vector2d& x, const RigLimits& l) {
+  if (l.plate && SignedDistanceInside(*l.plate, x) < l.clearance)
+    internal::ThrowInvalid(field, PointText(x), "lies outside rig.plate (or within rig.clearance of its edge)");
+  for (std::size_t i = 0; i < l.obstacles.size(); ++i)
+    if (-SignedDistanceInside(l.obstacles[i], x) < l.clearance)
+      internal::ThrowInvalid(field, PointText(x),
+                             "lies inside rig.obstacles[" + std::to_string(i) + "] (or within rig.clearance of it)");
+}
+
+void ValidateLimits(const ExactArrivalProblem& p) {
+  internal::ThrowIfInvalid(p.limits.Validate());
+  if (p.limits.NeedsPhysical() && !p.physical)
+    internal::ThrowInvalid(std::isinf(p.limits.max_plate_impulse) ? "rig.max_force" : "rig.max_plate_impulse",
+                           std::min(p.limits.max_plate_impulse, p.limits.max_force),
+                           "needs ball.physical (a bare lambda fixes no masses)");
+  if (p.physical) internal::ThrowIfInvalid(p.physical->Validate());
+  RequireAdmissiblePoint("x0", p.x0, p.limits);
+  RequireAdmissiblePoint("x1", p.x1, p.limits);
+  if (p.limits.stroke && ((2.0 * (p.x1 - p.x0)).cwiseAbs().array() > p.limits.stroke->array()).any())
+    internal::ThrowInvalid("x1", PointText(p.x1), "needs a plate displacement 2 (x1 - x0) beyond rig.stroke");
+}
+
 void ValidateProblem(const ExactArrivalProblem& p) {
   if (p.impulses < 3 || p.impulses > kMaxExactImpulses)
     internal::ThrowInvalid("impulses", p.impulses,
@@ -139,6 +168,7 @@ void ValidateProblem(const ExactArrivalProblem& p) {
   if (!(miss <= 1e-9 * std::max(1.0, p.reference.Length())))
     internal::ThrowInvalid("x0", "(" + internal::FormatNumber(p.x0.x()) + ", " + internal::FormatNumber(p.x0.y()) + ")",
                            "must equal the reference's start point (to 1e-9 of its length)");
+  ValidateLimits(p);
 }
 
 // The summary's per-impulse report and errors from the final parameters.
@@ -231,6 +261,45 @@ void Polish(const Setup& s, const Eigen::MatrixXd& jac, Eigen::VectorXd* u, std:
   }
 }
 
+// The rig's limits at mu = 1: the free optimum u when it meets them, else the constrained solve's
+// result (constrained_arrival.h). Returns false when no exact arrival meets them.
+bool ApplyLimits(const ExactArrivalProblem& p, const ExactArrivalOptions& o, const Setup& s, Eigen::VectorXd* u,
+                 std::vector<ChainNode>* nodes, ExactArrivalSummary* out, std::vector<long long>* ticks) {
+  internal::ConstrainedSetup cs;
+  cs.lambda = p.model.lambda();
+  cs.n = s.n;
+  cs.start = s.start;
+  cs.x1 = s.x1;
+  cs.A1 = s.A1;
+  cs.planned = s.planned;
+  cs.limits = p.limits;
+  cs.physical = p.physical;
+  cs.objective = p.objective;
+  cs.start_at_rest = p.start_at_rest;
+  cs.stop_at_goal = p.stop_at_goal;
+  cs.integration = o.integration;
+  cs.jacobian_integration = o.jacobian_integration;
+  cs.position_tolerance = o.position_tolerance;
+  cs.orientation_tolerance = o.orientation_tolerance;
+  if (internal::LimitsAreSlack(cs, *u)) return true;
+  const internal::ConstrainedOutcome c = internal::SolveConstrainedArrival(cs, *u);
+  *u = c.u;
+  RollOut(s, *u, *nodes);
+  out->rollouts += c.rollouts + 1;
+  out->limits.constrained = true;
+  out->limits.active = c.active;
+  out->limits.blocking = c.blocking;
+  out->limits.evaluations = c.evaluations;
+  *ticks = c.ticks;
+  return c.arrived;
+}
+
+std::string JoinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "none" : out;
+}
+
 // The solve at mu = 1 (the caller normalises the time scale, see SolveExactArrival).
 ExactArrivalSummary SolveNormalised(const ExactArrivalProblem& problem, const ExactArrivalOptions& options) {
   ExactArrivalSummary out;
@@ -280,8 +349,19 @@ ExactArrivalSummary SolveNormalised(const ExactArrivalProblem& problem, const Ex
       out.iteration_limit_reached = out.iterations == options.max_iterations;
     }
     if (jac.size() > 0) Polish(s, jac, &u, &nodes, &r, &out.rollouts);
+    std::vector<long long> ticks;
+    const bool limits_met = problem.limits.Empty() && problem.objective == ArrivalObjective::kDeviation
+                                ? true
+                                : ApplyLimits(problem, options, s, &u, &nodes, &out, &ticks);
+    r = Residuals(s, nodes);
     Report(s, problem, u, nodes, plan, out);
-    if (Arrived(r, options)) {
+    for (std::size_t k = 0; k < ticks.size(); ++k)
+      (k < out.impulses.size() ? out.impulses[k] : *out.stop).tick = ticks[k];
+    if (!limits_met) {
+      out.status = ExactArrivalStatus::kLimitsNotMet;
+      out.message = "no exact arrival found that meets the rig's limits; blocked by " +
+                    JoinNames(out.limits.blocking) + " (closest feasible arrival reported)";
+    } else if (Arrived(r, options)) {
       out.status = ExactArrivalStatus::kArrived;
       out.message.clear();
       if (out.iteration_limit_reached)
@@ -313,6 +393,29 @@ void ScaleEnergy(double mu, ExactImpulse* e) {
   e->mu_after *= mu;
 }
 
+// The limits in the time scale of mu = 1 (times x sqrt(mu), velocities and impulses / sqrt(mu)).
+RigLimits NormalisedLimits(RigLimits l, double mu) {
+  const double rate = std::sqrt(mu);
+  l.tick *= rate;
+  l.min_interval *= rate;
+  l.max_plate_velocity_change /= rate;
+  l.max_plate_impulse /= rate;
+  l.max_force /= rate;
+  return l;
+}
+
+// Impulse times on the grid exactly (t_impulse = index x tick), the flights their differences.
+void PlaceOnGrid(double tick, ExactArrivalSummary* out) {
+  if (!(tick > 0) || out->impulses.empty() || out->impulses.front().tick < 0) return;
+  std::vector<ExactImpulse*> all;
+  for (ExactImpulse& e : out->impulses) all.push_back(&e);
+  if (out->stop) all.push_back(&*out->stop);
+  for (ExactImpulse* e : all) e->t_impulse = static_cast<double>(e->tick) * tick;
+  for (std::size_t k = 0; k + 1 < all.size(); ++k) all[k]->duration = all[k + 1]->t_impulse - all[k]->t_impulse;
+  const ExactImpulse& last = out->impulses.back();
+  out->total_time = last.t_impulse + last.duration;
+}
+
 }  // namespace
 
 ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const ExactArrivalOptions& options) {
@@ -321,14 +424,20 @@ ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const 
   ValidateProblem(problem);
   // Solved in the time scale of mu = 1, so that every mu gives the same pass points (the iteration,
   // its step bound and its tolerances then see the same numbers for every mu).
-  if (problem.mu == 1.0) return SolveNormalised(problem, options);
+  if (problem.mu == 1.0) {
+    ExactArrivalSummary out = SolveNormalised(problem, options);
+    PlaceOnGrid(problem.limits.tick, &out);
+    return out;
+  }
   ExactArrivalProblem unit = problem;
   unit.mu = 1.0;
+  unit.limits = NormalisedLimits(problem.limits, problem.mu);
   ExactArrivalSummary out = SolveNormalised(unit, options);
   for (ExactImpulse& e : out.impulses) ScaleEnergy(problem.mu, &e);
   if (out.stop) ScaleEnergy(problem.mu, &*out.stop);
   out.total_time /= std::sqrt(problem.mu);
   out.planned_total_time /= std::sqrt(problem.mu);
+  PlaceOnGrid(problem.limits.tick, &out);
   return out;
 }
 

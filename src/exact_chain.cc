@@ -148,7 +148,11 @@ void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions
   // Derivatives of the node state: z (3), K before (2), x (2), A row-major (9).
   Eigen::MatrixXd dz = Eigen::MatrixXd::Zero(3, 2 * n), dk = Eigen::MatrixXd::Zero(2, 2 * n);
   Eigen::MatrixXd dxk = Eigen::MatrixXd::Zero(2, 2 * n), da = Eigen::MatrixXd::Zero(9, 2 * n);
-  if (jacobian) jacobian->dx.assign(1, dxk);
+  if (jacobian) {
+    jacobian->dx.assign(1, dxk);
+    jacobian->dz.assign(1, dz);
+    jacobian->dk.assign(1, dk);
+  }
   for (int k = 0; k < n; ++k) {
     ChainNode& a = (*nodes)[static_cast<std::size_t>(k)];
     Eigen::Vector2d k_after;
@@ -179,6 +183,8 @@ void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions
     dk = dk_after;
     da = da_next;
     jacobian->dx.push_back(dxk);
+    jacobian->dz.push_back(dz);
+    jacobian->dk.push_back(dk);
   }
   if (!jacobian) return;
   const Eigen::Matrix3d& an = nodes->back().A;

@@ -64,6 +64,8 @@ struct ChainNode {
 /// Derivatives of the chain with respect to u (2n columns).
 struct ChainJacobian {
   std::vector<Eigen::MatrixXd> dx;  ///< dx_k/du, k = 0..n (2 x 2n each)
+  std::vector<Eigen::MatrixXd> dz;  ///< dz_k/du, k = 0..n (3 x 2n each): the axis at node k
+  std::vector<Eigen::MatrixXd> dk;  ///< dK_k/du, k = 0..n (2 x 2n each): K of the arc before node k
   Eigen::MatrixXd rotation;         ///< 3 x 2n: column j is delta with dA_n/du_j = hat(delta) A_n
 };
 

@@ -30,6 +30,7 @@
 #include "plateball/impulse_planner.h"
 #include "plateball/integration_options.h"
 #include "plateball/path.h"
+#include "plateball/rig_limits.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
@@ -39,6 +40,7 @@ enum class ExactArrivalStatus {
   kNotReached,           ///< the iteration stopped without meeting the tolerances (closest arrival reported)
   kWarmStartFailed,      ///< the paper's plan along the reference failed (its message is kept)
   kIntegrationFailure,   ///< an ODE integration failed
+  kLimitsNotMet,         ///< no exact arrival meets the rig's limits (closest feasible arrival reported)
 };
 /// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(ExactArrivalStatus status);
@@ -63,6 +65,13 @@ struct ExactArrivalProblem {
   /// Arrive and stop: after the last arc, one more (energy-changing) impulse brings omega to zero;
   /// it is reported as ExactArrivalSummary::stop.
   bool stop_at_goal = false;
+  /// The rig's limits (rig_limits.h); empty: none. When the free optimum meets them (and the
+  /// objective is the deviation, without a tick), the result is the free optimum, unchanged.
+  RigLimits limits;
+  ArrivalObjective objective = ArrivalObjective::kDeviation;
+  /// The masses behind the impulse bounds and the impulse objective in the units of J (needed by
+  /// limits.max_plate_impulse and limits.max_force).
+  std::optional<PhysicalParameters> physical;
 };
 
 /// Upper bound of ExactArrivalProblem::impulses: each Jacobian integrates about n^2 arcs, so the
@@ -108,6 +117,8 @@ struct ExactImpulse {
   double mu_before = 0.0, mu_after = 0.0;             ///< energies (equal unless kStart / kStop)
   Eigen::Vector2d planned_position = Eigen::Vector2d::Zero();  ///< p(tau_k) of the reference
   double planned_delta_psi = 0.0, planned_duration = 0.0;     ///< the paper's plan (warm start)
+  /// With a rig tick: the impulse's index on the grid, t_impulse = tick x limits.tick exactly; else -1.
+  long long tick = -1;
 };
 
 /// A default-constructed summary says "not run".
@@ -134,6 +145,8 @@ struct ExactArrivalSummary {
   double planned_position_error = 0.0;
   double planned_orientation_error = 0.0;
   double planned_total_time = 0.0;
+  /// What the rig's limits did (empty without limits).
+  RigLimitsReport limits;
 
   /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == ExactArrivalStatus::kArrived; }
@@ -159,5 +172,12 @@ struct ReplayResult {
 /// Re-integrates `impulses` from the problem's start with `integration` (the independent check above).
 ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
                                 const IntegrationOptions& integration = {1e-14, 1e-14, 2000000});
+
+/// The independent check of a result against the problem's limits: re-integrates the impulses with
+/// FreeMotion, samples every arc at `samples_per_arc` points and checks every contact point, plate
+/// displacement, impulse (its delta omega from the replayed states, J by PlateImpulseFor), interval
+/// and grid time (exactly) against the limits with `tolerances`.
+RigCheck CheckRigLimits(const ExactArrivalProblem& problem, const ExactArrivalSummary& summary,
+                        const RigCheckTolerances& tolerances = {}, int samples_per_arc = 64);
 
 }  // namespace plateball

@@ -1,0 +1,533 @@
+#include "constrained_arrival.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <nlopt.hpp>
+#include <stdexcept>
+
+#include "check.h"
+#include "plateball/plate_impulse.h"
+
+namespace plateball::internal {
+
+namespace {
+
+// Smallest flight time the solver allows (the arcs must stay positive).
+constexpr double kMinFlight = 1e-6;
+// A constraint within this of its bound counts as active in the report.
+constexpr double kActiveTolerance = 1e-6;
+// The solver's constraints count as met to this (the sampling margin keeps the check's room).
+constexpr double kFeasibilityTolerance = 1e-7;
+// Points per flight of the dense look between sample nodes, and the rounds of adding missed points.
+constexpr int kDenseSamples = 32;
+constexpr int kExchangeRounds = 3;
+
+enum class ImpulseRole { kTurn, kStart, kStop };
+
+// The magnitude the limits bound of one impulse at (z, K) turning psi by s: |J| with physical
+// parameters, else the plate's velocity change 2 |delta omega_h|.
+double ImpulseMagnitude(const ConstrainedSetup& s, Eigen::Vector3d z, const Eigen::Vector2d& k, double turn,
+                        ImpulseRole role, bool as_impulse) {
+  z.normalize();
+  Eigen::Vector2d w_before, k_after, w_after;
+  OmegaFromZK(z.data(), k.data(), s.lambda, w_before.data());
+  ImpulseMomentum(z.data(), k.data(), turn, s.lambda, k_after.data());
+  OmegaFromZK(z.data(), k_after.data(), s.lambda, w_after.data());
+  Eigen::Vector2d dw = w_after - w_before;
+  if (role == ImpulseRole::kStart) dw = w_after;
+  if (role == ImpulseRole::kStop) dw = -w_before;
+  if (!as_impulse) return 2.0 * dw.norm();
+  return PlateImpulseFor(*s.physical, z, Eigen::Vector3d(dw.x(), dw.y(), 0.0)).plate.norm();
+}
+
+// Its gradient with respect to (z, K, s) by central differences of the closed form (no integration).
+Eigen::Matrix<double, 1, 6> ImpulseGradient(const ConstrainedSetup& s, const Eigen::Vector3d& z,
+                                            const Eigen::Vector2d& k, double turn, ImpulseRole role, bool as_impulse) {
+  Eigen::Matrix<double, 6, 1> v;
+  v << z, k, turn;
+  Eigen::Matrix<double, 1, 6> g;
+  for (int i = 0; i < 6; ++i) {
+    const double h = 1e-7 * std::max(1.0, std::abs(v[i]));
+    Eigen::Matrix<double, 6, 1> a = v, b = v;
+    a[i] += h;
+    b[i] -= h;
+    g[i] = (ImpulseMagnitude(s, a.head<3>(), a.segment<2>(3), a[5], role, as_impulse) -
+            ImpulseMagnitude(s, b.head<3>(), b.segment<2>(3), b[5], role, as_impulse)) /
+           (2 * h);
+  }
+  return g;
+}
+
+// The sample nodes of each flight: fractions 0 < f_1 < ... < f_m = 1 of its duration, the sub-chain
+// cutting flight k at them (zero impulses: the same motion).
+struct Samples {
+  std::vector<std::vector<double>> fractions;  // per flight
+  std::vector<int> offset;                     // node of impulse k in the sub-chain; offset[n] = last
+  int nodes = 0;                               // sub-arcs in all
+
+  explicit Samples(std::vector<std::vector<double>> f) : fractions(std::move(f)) {
+    for (const auto& fk : fractions) {
+      offset.push_back(nodes);
+      nodes += static_cast<int>(fk.size());
+    }
+    offset.push_back(nodes);
+  }
+  static Samples Uniform(int n, int m) {
+    std::vector<double> f;
+    for (int j = 1; j <= m; ++j) f.push_back(static_cast<double>(j) / m);
+    return Samples(std::vector<std::vector<double>>(static_cast<std::size_t>(n), f));
+  }
+  double Width(int k, int j) const {
+    const auto& f = fractions[static_cast<std::size_t>(k)];
+    return f[static_cast<std::size_t>(j)] - (j == 0 ? 0.0 : f[static_cast<std::size_t>(j) - 1]);
+  }
+};
+
+// Derivatives with respect to the sub-chain's parameters as derivatives with respect to u: s_k is
+// the sub-chain's s at impulse k's node, and t_k splits by the fractions.
+Eigen::MatrixXd Reduce(const Eigen::MatrixXd& d_sub, const Samples& sm) {
+  const int n = static_cast<int>(sm.fractions.size());
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(d_sub.rows(), 2 * n);
+  for (int k = 0; k < n; ++k) {
+    const int o = sm.offset[static_cast<std::size_t>(k)];
+    d.col(k) = d_sub.col(o);
+    for (std::size_t j = 0; j < sm.fractions[static_cast<std::size_t>(k)].size(); ++j)
+      d.col(n + k) += d_sub.col(sm.nodes + o + static_cast<int>(j)) * sm.Width(k, static_cast<int>(j));
+  }
+  return d;
+}
+
+Eigen::VectorXd SubParameters(const Eigen::VectorXd& u, const Samples& sm) {
+  const int n = static_cast<int>(sm.fractions.size());
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(2 * sm.nodes);
+  for (int k = 0; k < n; ++k) {
+    const int o = sm.offset[static_cast<std::size_t>(k)];
+    v[o] = u[k];
+    for (std::size_t j = 0; j < sm.fractions[static_cast<std::size_t>(k)].size(); ++j)
+      v[sm.nodes + o + static_cast<int>(j)] = u[n + k] * sm.Width(k, static_cast<int>(j));
+  }
+  return v;
+}
+
+// Everything the optimiser needs at one u: arrival residual, objective, inequalities (g <= 0),
+// each with its gradient with respect to u.
+struct Evaluation {
+  Eigen::VectorXd u;
+  Eigen::Matrix<double, 5, 1> r = Eigen::Matrix<double, 5, 1>::Zero();
+  Eigen::MatrixXd dr;
+  double f = 0.0;
+  Eigen::RowVectorXd df;
+  std::vector<double> g;
+  std::vector<Eigen::RowVectorXd> dg;
+  std::vector<std::string> names;
+};
+
+void AddConstraint(Evaluation* e, const std::string& name, double g, const Eigen::RowVectorXd& dg) {
+  e->names.push_back(name);
+  e->g.push_back(g);
+  e->dg.push_back(dg);
+}
+
+// The plate, obstacles and stroke at one sample point x (with dx/du).
+void AddPositionConstraints(const ConstrainedSetup& s, const Eigen::Vector2d& x, const Eigen::MatrixXd& dx,
+                            Evaluation* e) {
+  const RigLimits& l = s.limits;
+  const double keep = l.clearance + s.sampling_margin;
+  Eigen::Vector2d grad;
+  if (l.plate) {
+    const double d = SignedDistanceInside(*l.plate, x, &grad);
+    AddConstraint(e, "plate", keep - d, -grad.transpose() * dx);
+  }
+  for (std::size_t i = 0; i < l.obstacles.size(); ++i) {
+    const double d = SignedDistanceInside(l.obstacles[i], x, &grad);
+    AddConstraint(e, "obstacles[" + std::to_string(i) + "]", keep + d, grad.transpose() * dx);
+  }
+  if (l.stroke) {
+    const Eigen::Vector2d disp = 2.0 * (x - s.start.x);
+    for (int a = 0; a < 2; ++a) {
+      const std::string name = a == 0 ? "stroke.x" : "stroke.y";
+      const double bound = (*l.stroke)[a] - 2.0 * s.sampling_margin;
+      AddConstraint(e, name, disp[a] - bound, 2.0 * dx.row(a));
+      AddConstraint(e, name, -disp[a] - bound, -2.0 * dx.row(a));
+    }
+  }
+}
+
+struct ImpulseTerm {
+  double value = 0.0;
+  Eigen::RowVectorXd gradient;
+};
+
+// The bounded magnitude of impulse k (k = n: the stop) and its gradient with respect to u.
+ImpulseTerm Impulse(const ConstrainedSetup& s, const Samples& sm, const std::vector<ChainNode>& nodes,
+                    const ChainJacobian& cj, const Eigen::VectorXd& u, int k, bool as_impulse) {
+  const std::size_t node = static_cast<std::size_t>(sm.offset[static_cast<std::size_t>(k)]);
+  const ImpulseRole role = k == s.n ? ImpulseRole::kStop
+                           : (k == 0 && s.start_at_rest) ? ImpulseRole::kStart
+                                                         : ImpulseRole::kTurn;
+  const double turn = k < s.n ? u[k] : 0.0;
+  ImpulseTerm t;
+  t.value = ImpulseMagnitude(s, nodes[node].z, nodes[node].k, turn, role, as_impulse);
+  const Eigen::Matrix<double, 1, 6> g = ImpulseGradient(s, nodes[node].z, nodes[node].k, turn, role, as_impulse);
+  t.gradient = g.head<3>() * Reduce(cj.dz[node], sm) + g.segment<2>(3) * Reduce(cj.dk[node], sm);
+  if (k < s.n) t.gradient[k] += g[5];
+  return t;
+}
+
+int ImpulseCount(const ConstrainedSetup& s) { return s.n + (s.stop_at_goal ? 1 : 0); }
+
+void AddImpulseTerms(const ConstrainedSetup& s, const Samples& sm, const std::vector<ChainNode>& nodes,
+                     const ChainJacobian& cj, const Eigen::VectorXd& u, Evaluation* e) {
+  const RigLimits& l = s.limits;
+  const bool limit_v = !std::isinf(l.max_plate_velocity_change), limit_j = !std::isinf(l.ImpulseBound());
+  const bool objective = s.objective == ArrivalObjective::kTotalImpulse;
+  for (int k = 0; k < ImpulseCount(s); ++k) {
+    if (limit_v) {
+      const ImpulseTerm t = Impulse(s, sm, nodes, cj, u, k, false);
+      AddConstraint(e, "max_plate_velocity_change", t.value - l.max_plate_velocity_change, t.gradient);
+    }
+    if (limit_j) {
+      const ImpulseTerm t = Impulse(s, sm, nodes, cj, u, k, true);
+      AddConstraint(e, "max_plate_impulse", t.value - l.ImpulseBound(), t.gradient);
+    }
+    if (objective) {
+      const ImpulseTerm t = Impulse(s, sm, nodes, cj, u, k, s.physical.has_value());
+      e->f += t.value;
+      e->df += t.gradient;
+    }
+  }
+}
+
+void AddObjective(const ConstrainedSetup& s, const Samples& sm, const std::vector<ChainNode>& nodes,
+                  const ChainJacobian& cj, Evaluation* e) {
+  if (s.objective == ArrivalObjective::kTotalTime) {
+    e->f = e->u.tail(s.n).sum();
+    e->df.tail(s.n).setOnes();
+  } else if (s.objective == ArrivalObjective::kDeviation) {
+    for (int k = 1; k < s.n; ++k) {
+      const std::size_t node = static_cast<std::size_t>(sm.offset[static_cast<std::size_t>(k)]);
+      const Eigen::Vector2d d = nodes[node].x - s.planned[static_cast<std::size_t>(k)];
+      e->f += d.squaredNorm();
+      e->df += 2.0 * d.transpose() * Reduce(cj.dx[node], sm);
+    }
+  }
+}
+
+Evaluation Evaluate(const ConstrainedSetup& s, const Samples& sm, const Eigen::VectorXd& u, int* rollouts) {
+  std::vector<ChainNode> nodes(static_cast<std::size_t>(sm.nodes) + 1);
+  nodes[0] = s.start;
+  ChainJacobian cj;
+  RollChain(s.lambda, SubParameters(u, sm), s.jacobian_integration, &nodes, &s.jacobian_integration, &cj);
+  ++*rollouts;
+  Evaluation e;
+  e.u = u;
+  e.r = ArrivalResidual(nodes.back(), s.x1, s.A1);
+  e.dr = Reduce(ArrivalJacobian(cj, nodes.back(), s.A1), sm);
+  e.df = Eigen::RowVectorXd::Zero(2 * s.n);
+  AddObjective(s, sm, nodes, cj, &e);
+  for (std::size_t i = 1; i < nodes.size(); ++i) AddPositionConstraints(s, nodes[i].x, Reduce(cj.dx[i], sm), &e);
+  AddImpulseTerms(s, sm, nodes, cj, u, &e);
+  return e;
+}
+
+// The plate, obstacle and stroke constraints at `dense` points per flight of u (values only): for
+// each flight, the fraction of its worst point when that point breaks a limit by more than half
+// the sampling margin (the sample nodes missed it), else nothing.
+std::vector<std::vector<double>> MissedPoints(const ConstrainedSetup& s, const Eigen::VectorXd& u, int dense,
+                                              int* rollouts) {
+  const Samples sm = Samples::Uniform(s.n, dense);
+  std::vector<ChainNode> nodes(static_cast<std::size_t>(sm.nodes) + 1);
+  nodes[0] = s.start;
+  RollChain(s.lambda, SubParameters(u, sm), s.jacobian_integration, &nodes);
+  ++*rollouts;
+  std::vector<std::vector<double>> missed(static_cast<std::size_t>(s.n));
+  for (int k = 0; k < s.n; ++k) {
+    double worst = 0.5 * s.sampling_margin;
+    for (int j = 0; j < dense; ++j) {
+      Evaluation e;
+      AddPositionConstraints(s, nodes[static_cast<std::size_t>(k * dense + j + 1)].x, Eigen::MatrixXd::Zero(2, 2 * s.n), &e);
+      for (double g : e.g)
+        if (g > worst) worst = g, missed[static_cast<std::size_t>(k)] = {static_cast<double>(j + 1) / dense};
+    }
+  }
+  return missed;
+}
+
+// The optimisation over the free entries of u (the others fixed at `base`).
+struct Stage {
+  Stage(const ConstrainedSetup& setup, const Samples& samples, Eigen::VectorXd start, std::vector<int> free_entries,
+        bool closest_arrival)
+      : s(&setup), sm(&samples), base(std::move(start)), free(std::move(free_entries)), closest(closest_arrival) {}
+  const ConstrainedSetup* s;
+  const Samples* sm;
+  Eigen::VectorXd base;
+  std::vector<int> free;
+  bool closest;  // minimise |arrival residual|^2 under the inequalities (no equalities)
+  Evaluation last;
+  int rollouts = 0;
+  int evaluations = 0;
+
+  Eigen::VectorXd Full(const double* v) const {
+    Eigen::VectorXd u = base;
+    for (std::size_t i = 0; i < free.size(); ++i) u[free[i]] = v[i];
+    return u;
+  }
+  const Evaluation& At(const double* v) {
+    const Eigen::VectorXd u = Full(v);
+    if (last.u.size() != u.size() || last.u != u) {
+      last = Evaluate(*s, *sm, u, &rollouts);
+      ++evaluations;
+    }
+    return last;
+  }
+  void Gather(const Eigen::RowVectorXd& row, double* out) const {
+    for (std::size_t i = 0; i < free.size(); ++i) out[i] = row[free[i]];
+  }
+};
+
+double ObjectiveCallback(unsigned nv, const double* v, double* grad, void* data) {
+  Stage& st = *static_cast<Stage*>(data);
+  const Evaluation& e = st.At(v);
+  if (st.closest) {
+    if (grad) st.Gather(2.0 * e.r.transpose() * e.dr, grad);
+    return e.r.squaredNorm();
+  }
+  if (grad) st.Gather(e.df, grad);
+  (void)nv;
+  return e.f;
+}
+
+void ArrivalCallback(unsigned m, double* result, unsigned nv, const double* v, double* grad, void* data) {
+  Stage& st = *static_cast<Stage*>(data);
+  const Evaluation& e = st.At(v);
+  for (unsigned i = 0; i < m; ++i) {
+    result[i] = e.r[i];
+    if (grad) st.Gather(e.dr.row(i), grad + i * nv);
+  }
+}
+
+void LimitsCallback(unsigned m, double* result, unsigned nv, const double* v, double* grad, void* data) {
+  Stage& st = *static_cast<Stage*>(data);
+  const Evaluation& e = st.At(v);
+  for (unsigned i = 0; i < m && i < e.g.size(); ++i) {
+    result[i] = e.g[i];
+    if (grad) st.Gather(e.dg[i], grad + i * nv);
+  }
+}
+
+// The lower bound of flight k: the shortest interval between two impulses (the last flight ends at
+// an impulse only with the stop), and always a positive flight.
+double FlightLowerBound(const ConstrainedSetup& s, int k) {
+  const bool ends_at_impulse = k < s.n - 1 || s.stop_at_goal;
+  return std::max(kMinFlight, ends_at_impulse ? s.limits.min_interval : 0.0);
+}
+
+// One SLSQP run; returns the best u found (NLopt leaves it in x also when it stops early).
+Eigen::VectorXd RunSlsqp(Stage* st, int* evaluations) {
+  const ConstrainedSetup& s = *st->s;
+  const unsigned nv = static_cast<unsigned>(st->free.size());
+  std::vector<double> x(nv), lb(nv);
+  for (unsigned i = 0; i < nv; ++i) {
+    const int j = st->free[i];
+    x[i] = st->base[j];
+    lb[i] = j < s.n ? -HUGE_VAL : FlightLowerBound(s, j - s.n);
+    x[i] = std::max(x[i], lb[i]);
+  }
+  const Evaluation& first = st->At(x.data());
+  nlopt::opt opt(nlopt::LD_SLSQP, nv);
+  opt.set_lower_bounds(lb);
+  opt.set_min_objective(ObjectiveCallback, st);
+  if (!st->closest) opt.add_equality_mconstraint(ArrivalCallback, st, std::vector<double>(5, 1e-12));
+  if (!first.g.empty())
+    opt.add_inequality_mconstraint(LimitsCallback, st, std::vector<double>(first.g.size(), 1e-10));
+  opt.set_xtol_rel(1e-9);
+  opt.set_ftol_rel(1e-9);
+  opt.set_maxeval(s.max_evaluations);
+  double f = 0.0;
+  try {
+    opt.optimize(x, f);
+  } catch (const nlopt::roundoff_limited&) {  // x holds the last iterate
+  } catch (const std::invalid_argument&) {    // SLSQP's "more equality constraints than free unknowns" etc.
+  } catch (const nlopt::forced_stop&) {
+  }
+  *evaluations += st->evaluations;
+  return st->Full(x.data());
+}
+
+double MaxViolation(const Evaluation& e) {
+  double worst = 0.0;
+  for (double g : e.g) worst = std::max(worst, g);
+  return worst;
+}
+
+std::vector<std::string> ActiveNames(const ConstrainedSetup& s, const Evaluation& e) {
+  std::vector<std::string> out;
+  const auto add = [&out](const std::string& name) {
+    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+  };
+  for (std::size_t i = 0; i < e.g.size(); ++i)
+    if (e.g[i] > -kActiveTolerance) add(e.names[i]);
+  for (int k = 0; k < s.n; ++k)
+    if (s.limits.min_interval > 0 && FlightLowerBound(s, k) == s.limits.min_interval &&
+        e.u[s.n + k] <= s.limits.min_interval * (1 + 1e-9))
+      add("min_interval");
+  return out;
+}
+
+// Newton steps (minimum norm) on the arrival conditions over the free entries, rolled at the final
+// tolerance; flight times held at their lower bound stay there.
+void Polish(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free_entries, Eigen::VectorXd* u,
+            int* rollouts) {
+  std::vector<int> free;
+  for (int j : free_entries)
+    if (j < s.n || FlightLowerBound(s, j - s.n) <= kMinFlight || (*u)[j] > FlightLowerBound(s, j - s.n) * (1 + 1e-9))
+      free.push_back(j);
+  std::vector<ChainNode> nodes(static_cast<std::size_t>(s.n) + 1);
+  nodes[0] = s.start;
+  RollChain(s.lambda, *u, s.integration, &nodes);
+  ++*rollouts;
+  Eigen::Matrix<double, 5, 1> r = ArrivalResidual(nodes.back(), s.x1, s.A1);
+  for (int i = 0; i < 10 && free.size() >= 5; ++i) {
+    if (r.head<2>().norm() <= s.position_tolerance && r.tail<3>().norm() <= s.orientation_tolerance) return;
+    const Eigen::MatrixXd dr = Evaluate(s, sm, *u, rollouts).dr;
+    Eigen::MatrixXd J(5, free.size());
+    for (std::size_t c = 0; c < free.size(); ++c) J.col(static_cast<Eigen::Index>(c)) = dr.col(free[c]);
+    const Eigen::VectorXd step = -J.transpose() * (J * J.transpose()).fullPivLu().solve(r);
+    Eigen::VectorXd trial = *u;
+    for (std::size_t c = 0; c < free.size(); ++c) trial[free[c]] += step[static_cast<Eigen::Index>(c)];
+    if ((trial.tail(s.n).array() <= 0).any()) return;
+    RollChain(s.lambda, trial, s.integration, &nodes);
+    ++*rollouts;
+    const Eigen::Matrix<double, 5, 1> r_new = ArrivalResidual(nodes.back(), s.x1, s.A1);
+    if (!(r_new.norm() < r.norm())) return;
+    *u = trial;
+    r = r_new;
+  }
+}
+
+// Fixes the impulse times to the tick grid (the nearest multiples that keep the shortest interval)
+// and returns the tick index of every impulse (and of the stop).
+std::vector<long long> SnapToGrid(const ConstrainedSetup& s, Eigen::VectorXd* u) {
+  const double tick = s.limits.tick;
+  const long long gap = std::max<long long>(1, static_cast<long long>(std::ceil(s.limits.min_interval / tick - 1e-9)));
+  const int count = ImpulseCount(s);
+  std::vector<long long> index(static_cast<std::size_t>(count), 0);
+  double t = 0.0;
+  for (int k = 1; k < count; ++k) {
+    t += (*u)[s.n + k - 1];
+    index[static_cast<std::size_t>(k)] =
+        std::max(std::llround(t / tick), index[static_cast<std::size_t>(k) - 1] + gap);
+  }
+  for (int k = 0; k + 1 < count; ++k)
+    (*u)[s.n + k] = static_cast<double>(index[static_cast<std::size_t>(k) + 1] - index[static_cast<std::size_t>(k)]) * tick;
+  return index;
+}
+
+std::vector<int> FreeEntries(const ConstrainedSetup& s, bool grid) {
+  std::vector<int> free;
+  for (int j = 0; j < 2 * s.n; ++j) {
+    const bool time_fixed = grid && j >= s.n && (j < 2 * s.n - 1 || s.stop_at_goal);
+    if (!time_fixed) free.push_back(j);
+  }
+  return free;
+}
+
+bool Arrived(const ConstrainedSetup& s, const Eigen::VectorXd& u, int* rollouts) {
+  std::vector<ChainNode> nodes(static_cast<std::size_t>(s.n) + 1);
+  nodes[0] = s.start;
+  RollChain(s.lambda, u, s.integration, &nodes);
+  ++*rollouts;
+  const Eigen::Matrix<double, 5, 1> r = ArrivalResidual(nodes.back(), s.x1, s.A1);
+  return r.head<2>().norm() <= s.position_tolerance && r.tail<3>().norm() <= s.orientation_tolerance;
+}
+
+}  // namespace
+
+bool LimitsAreSlack(const ConstrainedSetup& setup, const Eigen::VectorXd& u) {
+  if (setup.objective != ArrivalObjective::kDeviation || setup.limits.tick > 0) return false;
+  for (int k = 0; k < setup.n; ++k)
+    if (u[setup.n + k] < FlightLowerBound(setup, k)) return false;
+  int rollouts = 0;
+  const Samples sm = Samples::Uniform(setup.n, setup.samples_per_arc);
+  if (MaxViolation(Evaluate(setup, sm, u, &rollouts)) > 0.0) return false;
+  const auto missed = MissedPoints(setup, u, kDenseSamples, &rollouts);
+  return std::all_of(missed.begin(), missed.end(), [](const auto& m) { return m.empty(); });
+}
+
+namespace {
+
+// SLSQP rounds, each followed by a dense look at the flights; a flight whose worst point breaks a
+// limit between the sample nodes gets that point as a new node (an exchange method for the
+// semi-infinite constraint "every point of the path"). Returns true when no point was missed.
+bool SolveWithExchange(const ConstrainedSetup& s, Samples* sm, const std::vector<int>& free, Eigen::VectorXd* u,
+                       ConstrainedOutcome* out) {
+  for (int round = 0; round < kExchangeRounds; ++round) {
+    Stage st(s, *sm, *u, free, false);
+    *u = RunSlsqp(&st, &out->evaluations);
+    out->rollouts += st.rollouts;
+    const auto missed = MissedPoints(s, *u, kDenseSamples, &out->rollouts);
+    if (std::all_of(missed.begin(), missed.end(), [](const auto& m) { return m.empty(); })) return true;
+    auto fractions = sm->fractions;
+    for (std::size_t k = 0; k < missed.size(); ++k)
+      for (double f : missed[k]) {
+        auto& fk = fractions[k];
+        if (std::find(fk.begin(), fk.end(), f) == fk.end()) fk.insert(std::upper_bound(fk.begin(), fk.end(), f), f);
+      }
+    *sm = Samples(fractions);
+  }
+  return false;
+}
+
+}  // namespace
+
+// The start of the closest-arrival search: u, or u without its turns (s_k = 0: the ball rolls on
+// with impulses of zero size), whichever breaks the limits less (SLSQP may not find feasibility
+// from far outside).
+Eigen::VectorXd LeastViolating(const ConstrainedSetup& s, const Samples& sm, const Eigen::VectorXd& u, int* rollouts) {
+  Eigen::VectorXd unturned = u;
+  unturned.head(s.n).setZero();
+  return MaxViolation(Evaluate(s, sm, unturned, rollouts)) < MaxViolation(Evaluate(s, sm, u, rollouts)) ? unturned : u;
+}
+
+double ObjectiveValue(const ConstrainedSetup& setup, const Eigen::VectorXd& u) {
+  int rollouts = 0;
+  return Evaluate(setup, Samples::Uniform(setup.n, setup.samples_per_arc), u, &rollouts).f;
+}
+
+ConstrainedOutcome SolveConstrainedArrival(const ConstrainedSetup& s, const Eigen::VectorXd& u0) {
+  const bool grid = s.limits.tick > 0;
+  const std::vector<int> free = FreeEntries(s, grid);
+  if (free.size() < 5)
+    ThrowInvalid("rig.tick", s.limits.tick,
+                 "fixes the impulse times, which leaves " + std::to_string(free.size()) +
+                     " unknowns for the five arrival conditions: needs impulses >= 4 (>= 5 with stop_at_goal)");
+  ConstrainedOutcome out;
+  Samples sm = Samples::Uniform(s.n, s.samples_per_arc);
+  Eigen::VectorXd u = u0;
+  bool covered = SolveWithExchange(s, &sm, FreeEntries(s, false), &u, &out);
+  if (grid) {
+    out.ticks = SnapToGrid(s, &u);
+    covered = SolveWithExchange(s, &sm, free, &u, &out);
+  }
+  Polish(s, sm, free, &u, &out.rollouts);
+  Evaluation e = Evaluate(s, sm, u, &out.rollouts);
+  out.feasible = covered && MaxViolation(e) <= kFeasibilityTolerance;
+  out.arrived = out.feasible && Arrived(s, u, &out.rollouts);
+  if (!out.arrived) {  // the closest feasible arrival, and the limits that stop it
+    u = LeastViolating(s, sm, u, &out.rollouts);
+    Stage closest(s, sm, u, free, true);
+    u = RunSlsqp(&closest, &out.evaluations);
+    out.rollouts += closest.rollouts;
+    e = Evaluate(s, sm, u, &out.rollouts);
+    out.feasible = MaxViolation(e) <= kFeasibilityTolerance;
+    out.blocking = ActiveNames(s, e);
+    if (grid) out.blocking.push_back("tick");
+  }
+  out.active = ActiveNames(s, e);
+  if (grid) out.active.push_back("tick");
+  out.u = u;
+  return out;
+}
+
+}  // namespace plateball::internal
