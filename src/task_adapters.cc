@@ -213,6 +213,13 @@ void SetImpulses(int impulses, const std::string& n_field, ExactArrivalProblem* 
   p->impulses = impulses;
 }
 
+// The file's rig section, the steer section's objective and the masses behind the impulse bounds.
+void SetRig(const Problem& problem, ExactArrivalProblem* p) {
+  p->limits = problem.rig;
+  if (problem.steer) p->objective = problem.steer->objective;
+  p->physical = problem.physical;
+}
+
 }  // namespace
 
 ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, int impulses, const std::string& n_field) {
@@ -232,6 +239,7 @@ ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, int impulses, con
   s.problem.start_at_rest = steer.start_at_rest;
   s.problem.stop_at_goal = steer.stop_at_goal;
   SetImpulses(impulses, n_field, &s.problem);
+  SetRig(problem, &s.problem);
   s.options = ExactOptionsFor(problem);
   return s;
 }
@@ -253,6 +261,7 @@ ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, const Isoparallel
   s.problem.start_at_rest = problem.steer && problem.steer->start_at_rest;
   s.problem.stop_at_goal = problem.steer && problem.steer->stop_at_goal;
   SetImpulses(impulses, n_field, &s.problem);
+  SetRig(problem, &s.problem);
   s.options = ExactOptionsFor(problem);
   return s;
 }

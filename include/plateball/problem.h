@@ -19,6 +19,7 @@
 #include "plateball/integration_options.h"
 #include "plateball/isoparallel.h"
 #include "plateball/partition.h"
+#include "plateball/rig_limits.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
@@ -128,6 +129,8 @@ struct SteerTask {
   int impulses = 12;  ///< n >= 3
   bool start_at_rest = false;  ///< the ball starts at rest (first impulse energy-changing)
   bool stop_at_goal = false;   ///< arrive and stop: one more impulse brings omega to zero
+  /// What the exact arrival minimises under the rig's limits (rig_limits.h).
+  ArrivalObjective objective = ArrivalObjective::kDeviation;
   /// `fewest` (fewest_impulses.h): the search's settings; present = the file asks for the fewest
   /// impulses (`plateball steer` runs the search instead of the exact arrival along a reference).
   struct Fewest {
@@ -167,6 +170,8 @@ struct Problem {
   std::optional<PlanTask> plan;
   std::optional<IsoparallelTask> isoparallel;
   std::optional<SteerTask> steer;
+  /// The rig's limits (JSON "rig"), honoured by `steer`; empty: an unbounded plate and actuator.
+  RigLimits rig;
   std::map<std::string, ExpectedValue> expected;
 };
 

@@ -85,6 +85,18 @@ class SteerReader : public FieldReader {
   SteerTask::Fewest Fewest(const json& j, const std::string& path) const;
 };
 
+/// "rig": the plate region, obstacles, stroke, actuator bounds and timing (rig_limits.h), lengths
+/// in ball radii or, with "length_unit": "m" and ball.physical, in metres.
+class RigReader : public FieldReader {
+ public:
+  explicit RigReader(const FieldReader& r) : FieldReader(r) {}
+  RigLimits Rig(const json& j, const std::string& path, const std::optional<PhysicalParameters>& physical) const;
+
+ private:
+  PlateShape Shape(const json& j, const std::string& path, double scale) const;
+  void Actuator(const json& j, const std::string& path, RigLimits* l) const;
+};
+
 /// The whole document: its top-level keys, each section by its reader.
 class DocumentReader : public FieldReader {
  public:

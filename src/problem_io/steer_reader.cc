@@ -6,7 +6,7 @@
 namespace plateball::internal::problem_io {
 
 SteerTask SteerReader::Steer(const json& j, const std::string& path) const {
-  Object(j, path, {"goal", "goal_orientation", "impulses", "start_at_rest", "stop_at_goal", "fewest"});
+  Object(j, path, {"goal", "goal_orientation", "impulses", "start_at_rest", "stop_at_goal", "objective", "fewest"});
   SteerTask t;
   t.goal = Point(Require(j, path, "goal"), Join(path, "goal"));
   if (const json* v = Find(j, "goal_orientation")) t.goal_orientation = Orientation(*v, Join(path, "goal_orientation"));
@@ -14,6 +14,11 @@ SteerTask SteerReader::Steer(const json& j, const std::string& path) const {
     t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 3, kMaxExactImpulses));
   if (const json* v = Find(j, "start_at_rest")) t.start_at_rest = Boolean(*v, Join(path, "start_at_rest"));
   if (const json* v = Find(j, "stop_at_goal")) t.stop_at_goal = Boolean(*v, Join(path, "stop_at_goal"));
+  if (const json* v = Find(j, "objective")) {
+    const auto o = ArrivalObjectiveFromString(String(*v, Join(path, "objective")));
+    if (!o) Fail(Join(path, "objective"), *v, "must be \"deviation\", \"time\" or \"impulse\"");
+    t.objective = *o;
+  }
   if (const json* v = Find(j, "fewest")) t.fewest = Fewest(*v, Join(path, "fewest"));
   return t;
 }

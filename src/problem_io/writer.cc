@@ -131,7 +131,8 @@ class Writer {
                     {"goal_orientation", Mat("steer.goal_orientation.matrix", task.goal_orientation)},
                     {"impulses", task.impulses},
                     {"start_at_rest", task.start_at_rest},
-                    {"stop_at_goal", task.stop_at_goal}};
+                    {"stop_at_goal", task.stop_at_goal},
+                    {"objective", ToString(task.objective)}};
     if (const auto& f = task.fewest)
       s["fewest"] = ojson{{"max_impulses", f->max_impulses},
                         {"starts", f->starts},
@@ -139,6 +140,35 @@ class Writer {
                         {"max_total_time", Num("steer.fewest.max_total_time", f->max_total_time)},
                         {"orientation_only", f->orientation_only}};
     return s;
+  }
+
+  ojson Shape(const std::string& path, const PlateShape& shape) const {
+    if (const auto* d = std::get_if<DiskShape>(&shape))
+      return ojson{{"type", "disk"}, {"center", Vec(path + ".center", d->center)}, {"radius", Num(path + ".radius", d->radius)}};
+    return ojson{{"type", "polygon"}, {"vertices", Points(path + ".vertices", std::get<PolygonShape>(shape).vertices)}};
+  }
+
+  // The rig in ball radii (a file in metres is written in radii); unset bounds are left out.
+  ojson Rig(const RigLimits& l) const {
+    ojson r = ojson::object();
+    if (l.plate) r["plate"] = Shape("rig.plate", *l.plate);
+    if (!l.obstacles.empty()) {
+      r["obstacles"] = ojson::array();
+      for (std::size_t i = 0; i < l.obstacles.size(); ++i)
+        r["obstacles"].push_back(Shape("rig.obstacles[" + std::to_string(i) + "]", l.obstacles[i]));
+    }
+    r["clearance"] = Num("rig.clearance", l.clearance);
+    if (l.stroke) r["stroke"] = Vec("rig.stroke", *l.stroke);
+    const auto bound = [&](const char* key, double v) {
+      if (!std::isinf(v)) r[key] = Num(std::string("rig.") + key, v);
+    };
+    bound("max_plate_velocity_change", l.max_plate_velocity_change);
+    bound("max_plate_impulse", l.max_plate_impulse);
+    bound("max_force", l.max_force);
+    if (!std::isinf(l.max_force)) r["pulse_duration"] = Num("rig.pulse_duration", l.pulse_duration);
+    if (l.min_interval > 0) r["min_interval"] = Num("rig.min_interval", l.min_interval);
+    if (l.tick > 0) r["tick"] = Num("rig.tick", l.tick);
+    return r;
   }
 
   ojson Expected(const std::map<std::string, ExpectedValue>& expected) const {
@@ -172,6 +202,7 @@ class Writer {
     if (p.plan) d["plan"] = Plan(*p.plan);
     if (p.isoparallel) d["isoparallel"] = Isoparallel(*p.isoparallel);
     if (p.steer) d["steer"] = Steer(*p.steer);
+    if (!p.rig.Empty()) d["rig"] = Rig(p.rig);
     if (!p.expected.empty()) d["expected"] = Expected(p.expected);
     return d.dump(2, ' ', false, ojson::error_handler_t::replace) + "\n";
   }

@@ -75,3 +75,16 @@ plateball_cli_test(steer.fewest_window_too_long 3
 # --progress reports the search (starts tried, elapsed time) on standard error.
 plateball_cli_test(steer.fewest_progress 0 REGEX "fewest-impulse search, starts tried: done in"
   -- steer problems/figure7_fewest.json --max-impulses 2 --summary-only --progress)
+
+# A rig: the Figure 7 goal on a disk plate that cuts the free optimum, with an obstacle on its
+# path; the arrival meets both and the independent replay check passes.
+plateball_cli_test(steer.rig_figure7 0
+  --number position_error 0 1e-12 --number orientation_error 0 1e-10
+  REGEX "\"constrained\": true.*\"active\": \\[[^]]*\"obstacles\\[0\\]\"[^]]*\"plate\".*\"passed\": true"
+  -- steer problems/figure7_rig.json --summary-only)
+plateball_cli_test(steer.rig_svg 0 REGEX "<svg.*plate edge.*obstacles"
+  --cat ${CMAKE_CURRENT_BINARY_DIR}/cli_steer_rig.svg
+  -- steer problems/figure7_rig.json --summary-only --svg ${CMAKE_CURRENT_BINARY_DIR}/cli_steer_rig.svg)
+plateball_cli_test(steer.rig_limits_not_met 4
+  REGEX "\"status\": \"limits_not_met\".*\"blocking\": \\[[^]]*\"max_plate_velocity_change\""
+  -- steer tests/data/rig_unreachable.json --summary-only)

@@ -291,6 +291,10 @@ def broken_problems():
             ("circle with a scale", edit(lambda d: d.update(plan={"path": {"type": "circle", "center": [0, 0], "radius": 1,
                                                                            "tau_begin": 0, "tau_end": 1, "scale": 2}}))),
             ("steer with 2 impulses", edit(lambda d: d.update(steer={"goal": [1, 1], "impulses": 2}))),
+            ("rig plate of negative radius", edit(lambda d: d.update(rig={"plate": {"type": "disk", "center": [0, 0], "radius": -1}}))),
+            ("rig obstacle of an unknown type", edit(lambda d: d.update(rig={"obstacles": [{"type": "ring", "center": [0, 0]}]}))),
+            ("rig max_force without pulse_duration", edit(lambda d: d.update(rig={"max_force": 10}))),
+            ("steer objective unknown", edit(lambda d: d.update(steer={"goal": [1, 1], "objective": "energy"}))),
             ("seed a string", edit(lambda d: d.update(seed="1")))]
 
 

@@ -1,6 +1,8 @@
 #include "common/exact_output.h"
 
+#include <cmath>
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include "common/svg.h"
@@ -38,6 +40,7 @@ Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, co
     j["planned_delta_psi"] = e.planned_delta_psi;
     j["planned_duration"] = e.planned_duration;
   }
+  if (e.tick >= 0) j["tick"] = e.tick;
   if (actuator)
     j["actuator"] = ActuatorJsonFromAngles(actuator->problem, e.angles_before, e.mu_before, e.delta_omega,
                                            actuator->request, actuator->prefix + "impulses[" + std::to_string(k) + "]");
@@ -114,6 +117,65 @@ Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpu
   return j;
 }
 
+bool HasRigSection(const ExactArrivalProblem& problem) {
+  return !problem.limits.Empty() || problem.objective != ArrivalObjective::kDeviation;
+}
+
+Json RigJson(const ExactArrivalProblem& problem, const ExactArrivalSummary& s, const RigCheck& check) {
+  const RigCheckTolerances tol;
+  Json margins = Json::object();
+  for (const auto& [name, margin] : check.margins) margins[name] = margin;
+  return Json{{"objective", ToString(problem.objective)},
+              {"constrained", s.limits.constrained},
+              {"active", s.limits.active},
+              {"blocking", s.limits.blocking},
+              {"evaluations", s.limits.evaluations},
+              {"check", Json{{"passed", check.passed},
+                             {"samples", check.samples},
+                             {"tolerances", Json{{"position", tol.position},
+                                                 {"impulse_relative", tol.impulse},
+                                                 {"interval_relative", tol.time},
+                                                 {"tick", 0.0}}},
+                             {"margins", margins},
+                             {"violations", check.violations}}}};
+}
+
+namespace {
+
+std::vector<Eigen::Vector2d> Outline(const PlateShape& shape) {
+  std::vector<Eigen::Vector2d> pts;
+  if (const auto* d = std::get_if<DiskShape>(&shape)) {
+    for (int i = 0; i <= 180; ++i)
+      pts.push_back(d->center + d->radius * Eigen::Vector2d(std::cos(i * M_PI / 90), std::sin(i * M_PI / 90)));
+  } else {
+    pts = std::get<PolygonShape>(shape).vertices;
+    pts.push_back(pts.front());
+  }
+  return pts;
+}
+
+// The plate region, the obstacles and the box the stroke allows the contact point (around x0).
+void DrawLimits(const ExactArrivalProblem& problem, SvgFigure* fig) {
+  const RigLimits& l = problem.limits;
+  const SvgFigure::Style plate{"#555555", 1.4, "", "none"}, obstacle{"#8e2b2b", 1.0, "", "#e8b4b4"},
+      stroke{"#7a5a00", 1.2, "3,3", "none"};
+  if (l.plate) {
+    fig->Polyline(Outline(*l.plate), plate);
+    fig->Legend("plate edge", plate);
+  }
+  for (const PlateShape& o : l.obstacles) fig->Polyline(Outline(o), obstacle);
+  if (!l.obstacles.empty()) fig->Legend("obstacles", obstacle, SvgFigure::Swatch::kPoint);
+  if (l.stroke) {
+    const Eigen::Vector2d h = 0.5 * *l.stroke, c = problem.x0;
+    fig->Polyline({c + Eigen::Vector2d(-h.x(), -h.y()), c + Eigen::Vector2d(h.x(), -h.y()), c + h,
+                   c + Eigen::Vector2d(-h.x(), h.y()), c + Eigen::Vector2d(-h.x(), -h.y())},
+                  stroke);
+    fig->Legend("upper plate's stroke (contact point box)", stroke);
+  }
+}
+
+}  // namespace
+
 void DrawExactArrival(const ExactArrivalProblem& problem, const ExactArrivalSummary& s, const std::string& title,
                       const std::string& file) {
   DrawExactArrival(problem, s.impulses, title, file, "reference path");
@@ -122,6 +184,7 @@ void DrawExactArrival(const ExactArrivalProblem& problem, const ExactArrivalSumm
 void DrawExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
                       const std::string& title, const std::string& file, const std::string& reference_label) {
   SvgFigure fig;
+  DrawLimits(problem, &fig);
   const SvgFigure::Style reference{"#1f5fbf", 1.6, "7,5", "none"};
   const SvgFigure::Style actual{"#c0392b", 1.4, "", "none"};
   const SvgFigure::Style impulse{"black", 1.0, "", "black"};

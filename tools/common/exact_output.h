@@ -23,6 +23,14 @@ namespace plateball::tools {
 Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses = true,
                         const ActuatorContext* actuator = nullptr);
 
+/// True when the problem has rig limits or an objective other than the deviation: the output then
+/// carries RigJson.
+bool HasRigSection(const ExactArrivalProblem& problem);
+/// {"objective", "constrained", "active", "blocking", "evaluations", "check" (the independent
+/// replay, CheckRigLimits: {"passed", "samples_per_arc", "samples", "tolerances", "margins",
+/// "violations"})}.
+Json RigJson(const ExactArrivalProblem& problem, const ExactArrivalSummary& s, const RigCheck& check);
+
 /// One impulse record (k, kind, t_impulse, position, delta_psi, duration, delta_omega,
 /// plate_velocity_change, angles_before, mu_before, mu_after and with `with_plan` the paper's
 /// planned_position, planned_delta_psi, planned_duration; with `actuator` "actuator", ActuatorJson of

@@ -129,6 +129,11 @@ int RunSteer(const SteerCliOptions& o) {
   doc["reference"] = Json{{"source", reference}, {"length", setup.problem.reference.Length()}};
   doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
   Append(doc, ExactArrivalToJson(s, replay, !o.summary_only, &actuator));
+  std::optional<RigCheck> check;
+  if (HasRigSection(setup.problem)) {
+    check = CheckRigLimits(setup.problem, s);
+    doc["rig"] = RigJson(setup.problem, s, *check);
+  }
   AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) {
@@ -138,7 +143,7 @@ int RunSteer(const SteerCliOptions& o) {
           << ", arrival errors " << replay.position_error << ", " << replay.orientation_error << " rad";
     DrawExactArrival(setup.problem, s, title.str(), o.svg);
   }
-  return s.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
+  return s.IsSolutionUsable() && (!check || check->passed) ? kExitSuccess : kExitNoSolution;
 }
 
 std::function<int()> SetupSteer(CLI::App& sub) {
@@ -164,8 +169,12 @@ std::function<int()> SetupSteer(CLI::App& sub) {
       "With steer.fewest in the file or --fewest-impulses: the fewest impulses that reach the goal exactly\n"
       "(a systematic multi-start search over n = 1, 2, ...; the JSON says what was searched) and a Pareto\n"
       "table of impulse count against total time and path length.\n"
+      "With a rig section (plate region, obstacles, stroke, impulse bounds, shortest interval, tick) or\n"
+      "steer.objective: the arrival that meets the limits (SLSQP from the free optimum; unchanged when\n"
+      "they are slack), the active limits and an independent replay check (docs/guide/steer.md).\n"
       "Example: plateball steer problems/figure7_exact.json --summary-only\n"
-      "Exit codes: 0 arrived, 2 usage, 3 invalid input, 4 goal not reached (closest arrival reported),\n"
+      "Exit codes: 0 arrived, 2 usage, 3 invalid input, 4 goal not reached or the limits not met\n"
+      "(closest arrival reported), "
       "5 unreadable file.");
   return [o] { return RunSteer(*o); };
 }
