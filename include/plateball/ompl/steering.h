@@ -23,8 +23,8 @@
 //     exact arrival reaches `to` and every sampled configuration of the motion between them is valid
 //     under the SpaceInformation's StateValidityChecker (contact points spaced at most
 //     SteeringOptions::sample_spacing apart along the motion); else false.
-// UseExactSteering() installs OMPL's SteeredControlSampler, so RRT and SST (ompl::control) extend
-// their trees by steer() and reach the goal state exactly (OMPL's EXACT_SOLUTION). OMPL checks the
+// UseExactSteering() installs OMPL's SteeredControlSampler, so ompl::control::RRT extends its tree
+// by steer() and reaches the goal state exactly (OMPL's EXACT_SOLUTION). OMPL checks the
 // validity of the propagated end state only; the motion between two nodes is checked by steer(),
 // which is why planners that sample random controls (KPIECE, EST, PDST) are not the intended use.
 #pragma once
