@@ -74,6 +74,14 @@ void SampleMotion(const SteeringOptions& o, Connection& c) {
   c.end_state = state;
 }
 
+// The start state's and the control's values: the key of the propagator's one-entry cache.
+std::vector<double> CacheKey(const ob::State* state, const oc::Control* control) {
+  const double* x = PointPart(state)->values;
+  const auto* q = RotationPart(state);
+  const double* u = control->as<oc::RealVectorControlSpace::ControlType>()->values;
+  return {x[0], x[1], q->w, q->x, q->y, q->z, u[0], u[1], u[2], u[3], u[4], u[5]};
+}
+
 Connection Failed(Connection c, ConnectionStatus status, std::string message) {
   c.status = status;
   c.message = std::move(message);
@@ -150,6 +158,14 @@ void SetConfiguration(ob::State* state, const Eigen::Vector2d& x, const Eigen::M
   r->x = q.x();
   r->y = q.y();
   r->z = q.z();
+}
+
+void SetTarget(oc::Control* control, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A1) {
+  if (!IsRotation(A1, 1e-9)) internal::ThrowInvalid("A1", "(matrix)", "not a rotation matrix (to 1e-9)");
+  const Eigen::Quaterniond q(A1);
+  double* v = control->as<oc::RealVectorControlSpace::ControlType>()->values;
+  const double values[kTargetDimension] = {x1.x(), x1.y(), q.w(), q.x(), q.y(), q.z()};
+  std::copy(values, values + kTargetDimension, v);
 }
 
 Eigen::Vector2d TargetPoint(const oc::Control* control) {
@@ -269,10 +285,7 @@ Connection ExactSteeringPropagator::ConnectTo(const ob::State* from, const Eigen
 
 void ExactSteeringPropagator::propagate(const ob::State* state, const oc::Control* control, double /*duration*/,
                                         ob::State* result) const {
-  const Eigen::Vector2d x0 = ContactPoint(state);
-  const auto* q = RotationPart(state);
-  const double* u = control->as<oc::RealVectorControlSpace::ControlType>()->values;
-  const std::vector<double> key{x0.x(), x0.y(), q->w, q->x, q->y, q->z, u[0], u[1], u[2], u[3], u[4], u[5]};
+  const std::vector<double> key = CacheKey(state, control);
   {
     const std::lock_guard<std::mutex> lock(cache_mutex_);
     if (key == cache_key_) {
@@ -305,12 +318,10 @@ bool ExactSteeringPropagator::steer(const ob::State* from, const ob::State* to, 
   u[2] = q->w;
   u[3] = q->x;
   u[4] = q->y;
-  u[5] = q->z;
+  u[5] = q->z;  // the state's own quaternion: the target is `to` exactly
   duration = 1.0;
-  const Eigen::Vector2d x0 = ContactPoint(from);
-  const auto* p = RotationPart(from);
   const std::lock_guard<std::mutex> lock(cache_mutex_);
-  cache_key_ = {x0.x(), x0.y(), p->w, p->x, p->y, p->z, u[0], u[1], u[2], u[3], u[4], u[5]};
+  cache_key_ = CacheKey(from, result);
   cache_x_ = c.summary.x_final;
   cache_A_ = ProjectToSO3(c.summary.A_final);
   return true;

@@ -12,11 +12,9 @@
 
 #include <ompl/base/PlannerStatus.h>
 #include <ompl/base/ScopedState.h>
-#include <ompl/base/spaces/SO3StateSpace.h>
 #include <ompl/control/PathControl.h>
 #include <ompl/control/SimpleSetup.h>
 #include <ompl/control/planners/rrt/RRT.h>
-#include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -198,10 +196,7 @@ TEST(OmplSteering, SteerToAnUnreachableTargetFailsAsNotReached) {
   EXPECT_EQ(c.status, ConnectionStatus::kNotReached) << c.BriefReport();
   // propagate() with that target is no move.
   oc::Control* u = s.si->allocControl();
-  double* v = u->as<oc::RealVectorControlSpace::ControlType>()->values;
-  const auto* q = s.to->as<ob::CompoundState>()->as<ob::SO3StateSpace::StateType>(1);
-  const double values[6] = {0.05, 0.0, q->w, q->x, q->y, q->z};
-  std::copy(values, values + 6, v);
+  SetTarget(u, ContactPoint(s.to.get()), Orientation(s.to.get()));
   ob::ScopedState<> result(s.si->getStateSpace());
   s.steering->propagate(s.from.get(), u, 1.0, result.get());
   EXPECT_EQ(ContactPoint(result.get()), ContactPoint(s.from.get()));
@@ -219,6 +214,13 @@ TEST(OmplSteering, SteerToAnInvalidTargetOrThroughTheDiskFails) {
   EXPECT_FALSE(s.Steer());
   const Connection across = s.steering->Connect(s.from.get(), s.to.get());
   EXPECT_EQ(across.status, ConnectionStatus::kInvalidMotion) << across.BriefReport();
+  // propagate() with that target (as a planner with random controls would) is no move.
+  oc::Control* u = s.si->allocControl();
+  SetTarget(u, ContactPoint(s.to.get()), Orientation(s.to.get()));
+  ob::ScopedState<> result(s.si->getStateSpace());
+  s.steering->propagate(s.from.get(), u, 1.0, result.get());
+  EXPECT_EQ(ContactPoint(result.get()), ContactPoint(s.from.get()));
+  s.si->freeControl(u);
   // Not finite: a NaN contact point.
   s.to[0] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(s.Steer());

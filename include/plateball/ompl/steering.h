@@ -25,8 +25,9 @@
 //     SteeringOptions::sample_spacing apart along the motion); else false.
 // UseExactSteering() installs OMPL's SteeredControlSampler, so ompl::control::RRT extends its tree
 // by steer() and reaches the goal state exactly (OMPL's EXACT_SOLUTION). OMPL checks the
-// validity of the propagated end state only; the motion between two nodes is checked by steer(),
-// which is why planners that sample random controls (KPIECE, EST, PDST) are not the intended use.
+// validity of the propagated end state only, so propagate() and steer() check the motion between
+// two nodes themselves. Planners that sample random controls (SST, KPIECE, EST, PDST) never call
+// steer(): their controls are random targets, and they reach the goal only approximately.
 #pragma once
 
 #include <Eigen/Core>
@@ -78,6 +79,8 @@ Eigen::Vector2d ContactPoint(const ompl::base::State* state);
 Eigen::Matrix3d Orientation(const ompl::base::State* state);
 /// Writes (x, A) into a state of MakeBallStateSpace(); A must be a rotation.
 void SetConfiguration(ompl::base::State* state, const Eigen::Vector2d& x, const Eigen::Matrix3d& A);
+/// Writes the target (x1, A1) into a control of MakeTargetControlSpace(); A1 must be a rotation.
+void SetTarget(ompl::control::Control* control, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A1);
 /// The target contact point of a control of MakeTargetControlSpace().
 Eigen::Vector2d TargetPoint(const ompl::control::Control* control);
 /// The target orientation of a control of MakeTargetControlSpace() (normalised quaternion; NaN
