@@ -1,8 +1,8 @@
 // Plans the ball from a start to a goal configuration (contact point and orientation) around a disk
 // on the plate with OMPL's control-based RRT, whose tree is extended by plateball's exact steering
-// (include/plateball/ompl/steering.h). Prints OMPL's status, the impulses of each connection and the
-// checks: each connection re-integrated independently (ReplayExactArrival), the whole impulse
-// sequence re-integrated from the start, and the clearance from the disk along the motion.
+// (include/plateball/ompl/steering.h). Prints OMPL's status, each connection with its independent
+// re-integration (ReplayExactArrival), the whole path's impulse sequence (ChainImpulses) re-integrated
+// from the start, and the clearance from the disk along the motion.
 // Usage: ompl_plan_around_disk [seed]   (exit 0 when the plan is exact and every check passes, 4 if not)
 #include <ompl/base/PlannerStatus.h>
 #include <ompl/control/PathControl.h>
@@ -77,9 +77,6 @@ int main(int argc, char** argv) {
                 "orientation error %.3g, node error %.3g\n",
                 i, c.problem.x0.x(), c.problem.x0.y(), c.problem.x1.x(), c.problem.x1.y(), c.summary.impulses.size(),
                 c.summary.total_time, replay.position_error, replay.orientation_error, node_error);
-    for (const plateball::ExactImpulse& e : c.summary.impulses)
-      std::printf("  t %.6f at (%.6f, %.6f): delta psi %+.9f, then %.6f\n", e.t_impulse, e.position.x(),
-                  e.position.y(), e.delta_psi, e.duration);
     ok = ok && replay.position_error < kArrivalTolerance && replay.orientation_error < kArrivalTolerance &&
          node_error < kArrivalTolerance;
     connections.push_back(std::move(c));
@@ -90,6 +87,11 @@ int main(int argc, char** argv) {
   whole.A1 = ps::Orientation(goal.get());
   const std::vector<plateball::ExactImpulse> chained = ps::ChainImpulses(connections);
   const plateball::ReplayResult replay = plateball::ReplayExactArrival(whole, chained);
+  // The sequence to execute: each later connection's first delta psi re-based on the ball's psi there.
+  std::printf("impulse sequence (time, contact point, delta psi, then flight time):\n");
+  for (const plateball::ExactImpulse& e : chained)
+    std::printf("  t %.6f at (%.6f, %.6f): delta psi %+.9f, then %.6f\n", e.t_impulse, e.position.x(),
+                e.position.y(), e.delta_psi, e.duration);
   std::printf("whole path: %zu connections, %zu impulses, goal position error %.3g, orientation error %.3g\n",
               connections.size(), chained.size(), replay.position_error, replay.orientation_error);
   std::printf("smallest clearance from the disk along the motion: %.4f\n", min_clearance);

@@ -213,7 +213,8 @@ std::vector<ExactImpulse> ChainImpulses(const std::vector<Connection>& connectio
         // planned its first impulse from psi = problem.initial.psi (same theta, phi: z = A e3).
         const double psi_actual =
             AnglesFromState(connections[i - 1].end_state, connections[i - 1].problem.model).psi;
-        e.delta_psi += c.problem.initial.psi - psi_actual;
+        // psi is an angle: the re-based value is reduced to [-pi, pi].
+        e.delta_psi = std::remainder(e.delta_psi + c.problem.initial.psi - psi_actual, 2 * M_PI);
       }
       e.t_impulse += t0;
       out.push_back(e);

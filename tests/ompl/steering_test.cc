@@ -122,9 +122,15 @@ TEST(OmplSteering, RrtWithExactSteeringReachesTheGoalExactly) {
   ExactArrivalProblem whole = connections.front().problem;
   whole.x1 = p.goal_x;
   whole.A1 = p.goal_A;
-  const ReplayResult replay = ReplayExactArrival(whole, ChainImpulses(connections));
+  const std::vector<ExactImpulse> chained = ChainImpulses(connections);
+  const ReplayResult replay = ReplayExactArrival(whole, chained);
   EXPECT_LT(replay.position_error, kArrivalTolerance);
   EXPECT_LT(replay.orientation_error, kArrivalTolerance);
+  for (const ExactImpulse& e : chained) EXPECT_LE(std::abs(e.delta_psi), M_PI + 1e-12);
+  // A path with a connection that is not usable has no sequence.
+  std::vector<Connection> broken = connections;
+  broken.back().status = ConnectionStatus::kNotReached;
+  EXPECT_THROW(ChainImpulses(broken), std::invalid_argument);
 }
 
 TEST(OmplSteering, ThePlannedMotionAvoidsTheDiskAtDenseFreeMotionSamples) {

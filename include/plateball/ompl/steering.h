@@ -118,7 +118,7 @@ struct Connection {
 /// The impulses of consecutive connections as one sequence from the first connection's start: the
 /// impulse times are shifted by the earlier connections' durations, and the first impulse of each
 /// later connection gets the delta psi that takes the psi the ball actually has there (at the end of
-/// the previous connection) to the psi its connection planned. Throws std::invalid_argument when a
+/// the previous connection) to the psi its connection planned, reduced to [-pi, pi]. Throws std::invalid_argument when a
 /// connection is not usable.
 std::vector<ExactImpulse> ChainImpulses(const std::vector<Connection>& connections);
 
