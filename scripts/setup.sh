@@ -13,6 +13,7 @@ packages+=(python3 python3-jsonschema)  # output contract: schema validation (te
 packages+=(python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-matplotlib)  # Python bindings, pytest, gallery
 packages+=(libopenmpi-dev openmpi-bin)  # montecarlo: optional MPI component
 packages+=(libmujoco-dev)  # rig: optional MuJoCo digital twin (C API; Debian has no Python bindings)
+packages+=(libompl-dev)  # optional exact steering for OMPL's control-based planners (OMPL 1.5)
 packages+=(chromium)  # view: Debian's Chromium for the browser tests of `plateball view`
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)  # view: npm ci in web/ (below)
 packages+=(ccache)  # compiler cache for scripts/build.sh, sanitize.sh and fuzz.sh (scripts/compiler_cache.sh)
