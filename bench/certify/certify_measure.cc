@@ -48,8 +48,8 @@
 #include <string>
 #include <vector>
 
-#include "certify/vocabulary.h"
 #include "certify/tails.h"
+#include "certify/window.h"
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
 #include "positional_argument.h"

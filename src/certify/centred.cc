@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "elastica_closed_rolling.h"
 #include "certify/jacobian.h"
+#include "elastica_closed_rolling.h"
 #include "plateball/so3.h"
 
 namespace plateball::internal {

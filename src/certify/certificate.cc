@@ -8,9 +8,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "check.h"
-#include "certify/vocabulary.h"
 #include "certify/coverage.h"
+#include "certify/window.h"
+#include "check.h"
 #include "parallel_for.h"
 #include "plateball/so3.h"
 

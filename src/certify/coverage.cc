@@ -4,10 +4,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "check.h"
 #include "certify/loops.h"
 #include "certify/separatrix.h"
 #include "certify/tails.h"
+#include "check.h"
 #include "jacobi_elliptic.h"
 
 namespace plateball::internal {

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "certify/vocabulary.h"
+#include "certify/window.h"
 #include "plateball/elastica.h"
 #include "plateball/isoparallel.h"
 

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "check.h"
-#include "elastica_closed_rolling.h"
 #include "certify/separatrix.h"
 #include "certify/tails.h"
+#include "check.h"
+#include "elastica_closed_rolling.h"
 #include "jacobi_elliptic.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"

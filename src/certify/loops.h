@@ -25,8 +25,8 @@
 #include <string>
 #include <vector>
 
-#include "certify/vocabulary.h"
 #include "certify/bisection.h"
+#include "certify/vocabulary.h"
 #include "plateball/elastica.h"
 
 namespace plateball::internal {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "check.h"
 #include "certify/bisection.h"
 #include "certify/tails.h"
+#include "check.h"
 
 namespace plateball::internal {
 

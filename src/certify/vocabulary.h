@@ -1,7 +1,9 @@
-// Internal: rigorous exclusion bounds for the isoparallel residual over boxes of ALL shape
-// parameters (rate, modulus k, phase u0, length L) and a branch-and-bound certificate over a
-// bounded window of one regime ("General targets: certified, not statistical";
-// docs/paper_notes.md, "General targets: certified exclusion over parameter boxes").
+// Internal: the certificate's vocabulary, below every test and driver in src/certify/: parameter
+// boxes over ALL shape parameters (rate, modulus k, phase u0, length L), the target and residual
+// of an isoparallel problem, the rigorous zeroth-order exclusion bounds over a box, and the
+// window's options ("General targets: certified, not statistical"; docs/paper_notes.md, "General
+// targets: certified exclusion over parameter boxes"). The branch and bound that uses them is
+// certify/window.h.
 //
 // The residual is the rotation trick of section 2.2 with a free length: roll the ball along the
 // elastica (heading_w = pi/2, path from s = 0 to L), B = RotationZ(goal_angle - arg chord),
@@ -200,42 +202,9 @@ struct CertifyWindowOptions {
   std::string Validate() const;
 };
 
-enum class CertifyStatus { kNotRun, kCertified, kUnaccounted, kBudgetExhausted, kInvalidInput };
-std::string ToString(CertifyStatus status);
-
 /// Two proved solutions closer than this in every canonical coordinate (the phase modulo its
 /// period) are one path (Newton refines them to |F| < 1e-11).
 inline constexpr double kSamePathTolerance = 1e-6;
-
-struct CertifyWindowResult {
-  CertifyStatus status = CertifyStatus::kNotRun;
-  long boxes = 0;  // examined
-  long excluded_by_chord = 0;
-  long excluded_by_rotation = 0;
-  long excluded_by_costate = 0;
-  long excluded_by_closed_rolling = 0;  // of excluded_by_rotation: only with the closed-form bound
-  long excluded_by_chart_rolling = 0;   // of excluded_by_rotation: only with the theta/2 chart's bound
-  long excluded_by_centred_rolling = 0;  // of excluded_by_rotation: only with the centred form, after those
-  long excluded_by_fixed_periods = 0;   // of excluded_by_chord/rotation: only with the fixed-periods bounds
-  long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
-  long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
-  std::vector<int> matched;  // per known solution: how many accounted boxes it explains
-  long first_order_tried = 0;       // boxes given the first-order tests (with an enclosure)
-  long excluded_first_order = 0;    // by the mean-value form or a Krawczyk image disjoint from the box
-  /// One per path proved (Krawczyk) to be the only solution of its box (a box of the subdivision,
-/// or, for a solution on a face of the subdivision, a box of the same size centred at its Newton
-/// point: boxes inside it are then resolved), in canonical form
-  /// (CanonicalSolution); a path proved again in a box one phase period away (the same path, or
-  /// within kSamePathTolerance of it) is counted in found_repeated instead.
-  std::vector<CertifyPoint> found;
-  std::vector<int> found_known;     // per found solution: the known one whose neighbourhood holds it, or -1
-  long found_repeated = 0;
-  long inside_found = 0;  // boxes inside a box proved to hold exactly one found solution
-  double resolved_volume = 0.0;  // fraction of the window's volume excluded or accounted
-  CertifyBox first_unaccounted;
-  std::string message;
-  bool Certified() const { return status == CertifyStatus::kCertified; }
-};
 
 /// A solution (rate, modulus, phase, length) in the window's canonical form: k >= 0, the phase
 /// in [0, period) of v (4K oscillating, 2K rotating), an oscillating path with a negative rate
@@ -245,17 +214,5 @@ CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double leng
 /// Whether two canonical solutions are the same path: every coordinate within `tolerance`, the
 /// phase compared modulo its period (a path near the end of the period is also near its start).
 bool SamePath(PendulumRegime regime, const CertifyPoint& a, const CertifyPoint& b, double tolerance);
-
-/// Branch and bound over the window: every box lies inside the `match` neighbourhood of a known
-/// solution, or is excluded (TestBox, the chord part with the smaller of D and the closed-form
-/// chord bound; then the costate test, certify/costate.h), or is split along the axis with the largest share of D,
-/// until D <= accept_deviation; such a small undecided box must meet a known neighbourhood (phase
-/// modulo the period). kCertified: every solution of the window lies within `match` of a known
-/// one (rigorous up to `margin` on the centre residuals; uniqueness inside a neighbourhood is not
-/// proved). With first_order, kCertified means: every solution of the window lies within `match`
-/// of a known one or is one of `found`, each the only solution in its box (an empty known list
-/// is then allowed).
-CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector<CertifyPoint>& known,
-                                  const CertifyWindowOptions& options);
 
 }  // namespace plateball::internal

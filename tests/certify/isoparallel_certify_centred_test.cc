@@ -14,16 +14,17 @@
 #include <random>
 #include <vector>
 
-#include "elastica_closed_rolling.h"
 #include "certify/costate.h"
 #include "certify/rolling.h"
+#include "certify/support/dopri_rolling.h"
+#include "certify/support/made_certify_target.h"
+#include "certify/support/random_certify_box.h"
+#include "certify/window.h"
+#include "elastica_closed_rolling.h"
 #include "plateball/isoparallel.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
-#include "certify/support/dopri_rolling.h"
-#include "certify/support/made_certify_target.h"
-#include "certify/support/random_certify_box.h"
 #include "support/test_support.h"
 
 using namespace plateball;

@@ -14,13 +14,13 @@
 #include <random>
 #include <vector>
 
+#include "certify/support/dopri_rolling.h"
+#include "certify/support/made_certify_target.h"
 #include "elastica_rolling.h"
 #include "plateball/isoparallel.h"
 #include "plateball/isoparallel_families.h"
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
-#include "certify/support/dopri_rolling.h"
-#include "certify/support/made_certify_target.h"
 #include "support/test_support.h"
 
 using namespace plateball;

@@ -4,7 +4,7 @@
 // (dopri5 rollings of the closed-form tangent), and Newton's method recovering a made solution.
 #include "certify/jacobian.h"
 
-#include "certify/vocabulary.h"
+#include "certify/window.h"
 
 #include <gtest/gtest.h>
 
@@ -18,12 +18,12 @@
 #include <string>
 #include <vector>
 
+#include "certify/support/dopri_rolling.h"
 #include "elastica_rolling.h"
 #include "plateball/elastica.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
 #include "rotation_trick.h"
-#include "certify/support/dopri_rolling.h"
 
 using namespace plateball;
 using namespace plateball::internal;

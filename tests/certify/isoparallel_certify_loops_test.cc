@@ -11,15 +11,15 @@
 #include <random>
 #include <vector>
 
-#include "elastica_closed_rolling.h"
+#include "certify/support/dopri_rolling.h"
+#include "certify/support/made_certify_target.h"
+#include "certify/support/random_certify_box.h"
 #include "certify/tails.h"
+#include "elastica_closed_rolling.h"
 #include "jacobi_elliptic.h"
 #include "plateball/elastica.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
-#include "certify/support/dopri_rolling.h"
-#include "certify/support/made_certify_target.h"
-#include "certify/support/random_certify_box.h"
 
 using namespace plateball;
 using namespace plateball::internal;

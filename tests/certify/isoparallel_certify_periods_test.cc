@@ -15,9 +15,10 @@
 #include <random>
 #include <vector>
 
-#include "elastica_closed_rolling.h"
 #include "certify/costate.h"
 #include "certify/rolling.h"
+#include "certify/window.h"
+#include "elastica_closed_rolling.h"
 #include "jacobi_elliptic.h"
 #include "plateball/isoparallel.h"
 #include "plateball/problem_io.h"

@@ -15,15 +15,16 @@
 #include <random>
 #include <vector>
 
+#include "certify/costate.h"
+#include "certify/support/random_certify_box.h"
+#include "certify/window.h"
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
-#include "certify/costate.h"
 #include "plateball/isoparallel.h"
 #include "plateball/isoparallel_families.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
-#include "certify/support/random_certify_box.h"
 #include "support/test_support.h"
 
 using namespace plateball;

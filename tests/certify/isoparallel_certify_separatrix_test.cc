@@ -14,10 +14,10 @@
 #include <random>
 #include <vector>
 
+#include "certify/support/dopri_rolling.h"
 #include "certify/tails.h"
 #include "plateball/elastica.h"
 #include "plateball/so3.h"
-#include "certify/support/dopri_rolling.h"
 
 using namespace plateball;
 using namespace plateball::internal;

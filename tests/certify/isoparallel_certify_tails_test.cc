@@ -4,8 +4,8 @@
 // and their interval sups against sampled moduli; the drift deficit against the closed-form chord
 // per period; the rate bound a_max(k) against the known solutions, against dopri5 rollings of fast
 // paths ending on the circle |x| = |x1 - x0|, and finite up to the separatrix; the coverage statement.
-#include "certify/tails.h"
 #include "certify/separatrix.h"
+#include "certify/tails.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // rollings by dopri5 at sampled points of boxes, the centre residual against dopri5, and the
 // branch and bound on a small window of the rotation problem (certifies; fails without the
 // known solution; an invalid window is rejected by name).
-#include "certify/vocabulary.h"
+#include "certify/window.h"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "certify/support/made_certify_target.h"
 #include "jacobi_elliptic.h"
 #include "plateball/elastica.h"
 #include "plateball/isoparallel.h"
@@ -20,7 +21,6 @@
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
-#include "certify/support/made_certify_target.h"
 #include "support/test_support.h"
 
 using namespace plateball;

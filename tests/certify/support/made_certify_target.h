@@ -5,8 +5,8 @@
 #include <Eigen/Core>
 #include <cmath>
 
-#include "certify/vocabulary.h"
 #include "certify/support/dopri_rolling.h"
+#include "certify/vocabulary.h"
 
 namespace plateball::testing {
 
