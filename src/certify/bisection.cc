@@ -13,6 +13,7 @@ std::string ToString(ExclusionStatus status) {
     case ExclusionStatus::kUndecided: return "undecided boxes remain";
     case ExclusionStatus::kBudgetExhausted: return "budget exhausted";
     case ExclusionStatus::kInvalidInput: return "invalid input";
+    case ExclusionStatus::kInterrupted: return "interrupted";
   }
   return "unknown";
 }
@@ -43,7 +44,8 @@ BoxDecision DecideByVerdict(BoxVerdict verdict, double deviation, double accept_
 }
 
 ExclusionStatus BisectionTally::Status() const {
-  return !budget_left      ? ExclusionStatus::kBudgetExhausted
+  return interrupted      ? ExclusionStatus::kInterrupted
+         : !budget_left  ? ExclusionStatus::kBudgetExhausted
          : undecided > 0 ? ExclusionStatus::kUndecided
                          : ExclusionStatus::kExcluded;
 }

@@ -13,7 +13,7 @@
 namespace plateball::internal {
 
 /// The outcome of an exclusion certificate over a bounded window.
-enum class ExclusionStatus { kNotRun, kExcluded, kUndecided, kBudgetExhausted, kInvalidInput };
+enum class ExclusionStatus { kNotRun, kExcluded, kUndecided, kBudgetExhausted, kInvalidInput, kInterrupted };
 std::string ToString(ExclusionStatus status);
 
 /// The budget fields both certificates validate: "" when valid, else the message naming the field.
@@ -34,6 +34,7 @@ struct BisectionTally {
   long excluded_by_chord = 0, excluded_by_rotation = 0, outside_domain = 0, undecided = 0;
   double resolved_volume = 0.0;  // the excluded and outside boxes' shares of their windows, weighted
   bool budget_left = true;       // false when the budget ended with boxes left
+  bool interrupted = false;      // the CertifyInterrupt stopped the bisection
   ExclusionStatus Status() const;
 };
 
@@ -47,12 +48,14 @@ double BoxShare(const CertifyBox& box, const CertifyBox& window);
 /// boxes (counted over every call on `tally`) have been examined. `decide(box)` returns a
 /// BoxDecision; `keep(box)` is called for every kUndecided box. Each decided box adds `weight`
 /// times its BoxShare of the window to the resolved volume (weight 1/2 for each of two calls
-/// that make one whole, as the loop family's two senses).
+/// that make one whole, as the loop family's two senses). `interrupt` (InterruptRequested) stops
+/// it, and every later call on the same tally, with tally->interrupted set.
 template <class Decide, class Keep>
 void Bisect(const CertifyBox& window, double weight, long max_boxes, Decide&& decide, Keep&& keep,
-            BisectionTally* tally) {
+            const CertifyInterrupt& interrupt, BisectionTally* tally) {
   std::vector<CertifyBox> stack = {window};
   while (!stack.empty() && tally->boxes < max_boxes) {
+    if (tally->interrupted || (tally->interrupted = InterruptRequested(interrupt, tally->boxes))) break;
     const CertifyBox box = stack.back();
     stack.pop_back();
     ++tally->boxes;

@@ -1,6 +1,7 @@
 #include "plateball/isoparallel_certificate.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <iomanip>
 #include <ctime>
@@ -61,11 +62,21 @@ void RunPieces(const IsoparallelSummary& solved, const internal::CertifyTarget& 
   out->pieces.assign(plan.size(), {});
   std::mutex done_mutex;
   int done = 0;
+  // Once the caller's hook said stop, every piece's next question is answered without it.
+  std::atomic<bool> stopped{false};
+  const internal::CertifyInterrupt interrupt = [&] {
+    if (!stopped.load() && options.interrupted && options.interrupted()) stopped.store(true);
+    return stopped.load();
+  };
   internal::ParallelForDynamic(n, options.threads, [&](int i) {
-    const double cpu = ThreadCpuSeconds();
-    results[i] = internal::RunCoveragePiece(target, plan[i], out->length_cap, options.max_boxes);
     IsoparallelCertificatePiece& p = out->pieces[i];
     p.name = plan[i].Name();
+    if (interrupt()) {
+      p.result = "not run: interrupted";
+      return;
+    }
+    const double cpu = ThreadCpuSeconds();
+    results[i] = internal::RunCoveragePiece(target, plan[i], out->length_cap, options.max_boxes, interrupt);
     p.closed = results[i].closed;
     p.result = results[i].result;
     p.boxes = results[i].boxes;
@@ -83,6 +94,7 @@ void RunPieces(const IsoparallelSummary& solved, const internal::CertifyTarget& 
   }
   std::sort(out->solutions.begin(), out->solutions.end(),
             [](const CertifiedSolution& a, const CertifiedSolution& b) { return a.length < b.length; });
+  if (stopped.load()) out->status = IsoparallelCertificateStatus::kInterrupted;
 }
 
 // The status from the pieces and the solver's list.
@@ -95,6 +107,13 @@ void Conclude(const IsoparallelSummary& solved, IsoparallelCertificate* out) {
   }
   const auto open = std::find_if(out->pieces.begin(), out->pieces.end(),
                                  [](const IsoparallelCertificatePiece& p) { return !p.closed; });
+  if (out->status == IsoparallelCertificateStatus::kInterrupted) {
+    const long closed = std::count_if(out->pieces.begin(), out->pieces.end(),
+                                      [](const IsoparallelCertificatePiece& p) { return p.closed; });
+    out->message = "interrupted: " + std::to_string(closed) + " of " + std::to_string(out->pieces.size()) +
+                   " pieces closed before the stop; nothing is claimed about the others";
+    return;
+  }
   out->status = IsoparallelCertificateStatus::kIncomplete;
   if (open != out->pieces.end()) {
     out->message = "not closed: " + open->name + ": " + open->result;
@@ -117,6 +136,7 @@ std::string ToString(IsoparallelCertificateStatus status) {
     case IsoparallelCertificateStatus::kComplete: return "complete";
     case IsoparallelCertificateStatus::kIncomplete: return "incomplete";
     case IsoparallelCertificateStatus::kNotApplicable: return "not_applicable";
+    case IsoparallelCertificateStatus::kInterrupted: return "interrupted";
   }
   return "unknown";
 }
@@ -169,7 +189,8 @@ IsoparallelCertificate CertifyIsoparallel(const IsoparallelSummary& solved,
 std::string IsoparallelCertificate::BriefReport() const {
   std::ostringstream os;
   os << "Isoparallel certificate: " << ToString(status);
-  if (status == IsoparallelCertificateStatus::kComplete || status == IsoparallelCertificateStatus::kIncomplete)
+  if (status == IsoparallelCertificateStatus::kComplete || status == IsoparallelCertificateStatus::kIncomplete ||
+      status == IsoparallelCertificateStatus::kInterrupted)
     os << std::setprecision(10) << ", length cap " << length_cap << ", " << solutions.size() << " solution(s) proved, "
        << MissedBySolver() << " missed by the solver, " << boxes << " boxes in " << pieces.size() << " pieces"
        << std::setprecision(4) << ", " << cpu_seconds << " s CPU, " << time_seconds << " s";

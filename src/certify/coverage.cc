@@ -47,8 +47,9 @@ std::string Interval(double lo, double hi) {
 }
 
 CoveragePieceResult RunWindow(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
-                              double margin) {
+                              double margin, const CertifyInterrupt& interrupt) {
   CertifyWindowOptions o;
+  o.interrupted = interrupt;
   o.regime = piece.regime;
   o.max_boxes = max_boxes;
   o.margin = margin;
@@ -64,6 +65,7 @@ CoveragePieceResult RunWindow(const CertifyTarget& target, const CoveragePiece& 
   r.boxes = w.boxes;
   r.resolved_volume = w.resolved_volume;
   r.found = w.found;
+  r.interrupted = w.status == CertifyStatus::kInterrupted;
   return r;
 }
 
@@ -74,14 +76,16 @@ CoveragePieceResult FromExclusion(const Result& e) {
   r.result = ToString(e.status) + (e.message.empty() ? "" : ": " + e.message);
   r.boxes = e.boxes;
   r.resolved_volume = e.resolved_volume;
+  r.interrupted = e.status == ExclusionStatus::kInterrupted;
   return r;
 }
 
 // The fields the tail certificates share: regime, L in [|x1 - x0|, cap], budget and margin.
 template <class Options>
 Options ExclusionOptions(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
-                         double margin) {
+                         double margin, const CertifyInterrupt& interrupt) {
   Options o;
+  o.interrupted = interrupt;
   o.regime = piece.regime;
   o.length_lo = target.radius;
   o.cap = cap;
@@ -91,16 +95,16 @@ Options ExclusionOptions(const CertifyTarget& target, const CoveragePiece& piece
 }
 
 CoveragePieceResult RunSlowTail(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
-                                double margin) {
-  auto o = ExclusionOptions<SeparatrixTailOptions>(target, piece, cap, max_boxes, margin);
+                                double margin, const CertifyInterrupt& interrupt) {
+  auto o = ExclusionOptions<SeparatrixTailOptions>(target, piece, cap, max_boxes, margin, interrupt);
   o.k_lo = piece.k_lo;
   o.rate_max = piece.rate_hi;
   return FromExclusion(CertifySeparatrixTail(target, o));
 }
 
 CoveragePieceResult RunLoops(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
-                             double margin) {
-  auto o = ExclusionOptions<LoopFamilyOptions>(target, piece, cap, max_boxes, margin);
+                             double margin, const CertifyInterrupt& interrupt) {
+  auto o = ExclusionOptions<LoopFamilyOptions>(target, piece, cap, max_boxes, margin, interrupt);
   o.k_t = piece.k_lo;
   // The heading error eps decreases in W2: oscillating (larger gap G_t), cores as wide as their
   // cells (W2 = K(k_t), no run at k = k_t); rotating, the automatic W2 (2 asin(sech W2) = G_t).
@@ -154,11 +158,11 @@ CoveragePlan PlanCoverage(const CertifyTarget& target, double cap, double margin
 }
 
 CoveragePieceResult RunCoveragePiece(const CertifyTarget& target, const CoveragePiece& piece, double cap,
-                                     long max_boxes, double margin) {
+                                     long max_boxes, const CertifyInterrupt& interrupt, double margin) {
   switch (piece.kind) {
-    case CoveragePieceKind::kWindow: return RunWindow(target, piece, cap, max_boxes, margin);
-    case CoveragePieceKind::kSlowTail: return RunSlowTail(target, piece, cap, max_boxes, margin);
-    case CoveragePieceKind::kLoops: return RunLoops(target, piece, cap, max_boxes, margin);
+    case CoveragePieceKind::kWindow: return RunWindow(target, piece, cap, max_boxes, margin, interrupt);
+    case CoveragePieceKind::kSlowTail: return RunSlowTail(target, piece, cap, max_boxes, margin, interrupt);
+    case CoveragePieceKind::kLoops: return RunLoops(target, piece, cap, max_boxes, margin, interrupt);
   }
   return {};
 }

@@ -66,12 +66,14 @@ struct CoveragePieceResult {
   long boxes = 0;
   double resolved_volume = 0.0;
   std::vector<CertifyPoint> found;  // canonical (CanonicalSolution), windows only
+  bool interrupted = false;         // stopped by the interrupt (then not closed)
 };
 
 /// Runs the piece's certificate over lengths [target.radius, cap] with the given box budget,
-/// the first-order tests on and no known solution (every solution must be proved).
+/// the first-order tests on and no known solution (every solution must be proved). `interrupt`
+/// is asked from the piece's box loop (InterruptRequested): true stops it, not closed.
 CoveragePieceResult RunCoveragePiece(const CertifyTarget& target, const CoveragePiece& piece, double cap,
-                                     long max_boxes, double margin = 1e-7);
+                                     long max_boxes, const CertifyInterrupt& interrupt = {}, double margin = 1e-7);
 
 /// The index of the solution in `solutions` that is the path `p` (canonical, of this regime):
 /// the same regime and SamePath within `tolerance` of its CanonicalSolution; -1 when none.

@@ -232,7 +232,7 @@ LoopFamilyResult CertifyLoopFamily(const CertifyTarget& target, const LoopFamily
       result.undecided_boxes.push_back(box);
       result.undecided_senses.push_back(sense);
     };
-    Bisect(result.window, 0.5, options.max_boxes, decide, keep, &tally);
+    Bisect(result.window, 0.5, options.max_boxes, decide, keep, options.interrupted, &tally);
   }
   result.boxes = tally.boxes;
   result.excluded_by_chord = tally.excluded_by_chord;

@@ -117,6 +117,7 @@ struct LoopFamilyOptions {
   double accept_deviation = 1e-3;  // a box whose model part of D is below this is undecided, not split
   int keep_undecided = 16;
   double margin = 1e-7;            // on the centre residual
+  CertifyInterrupt interrupted;    // if set: asked every kInterruptPollBoxes boxes (kInterrupted)
   std::string Validate() const;
 };
 

@@ -92,7 +92,7 @@ SeparatrixTailResult CertifySeparatrixTail(const CertifyTarget& target, const Se
   const auto keep = [&](const CertifyBox& box) {
     if (static_cast<int>(result.undecided_boxes.size()) < options.keep_undecided) result.undecided_boxes.push_back(box);
   };
-  Bisect(result.window, 1.0, options.max_boxes, decide, keep, &tally);
+  Bisect(result.window, 1.0, options.max_boxes, decide, keep, options.interrupted, &tally);
   result.boxes = tally.boxes;
   result.excluded_by_chord = tally.excluded_by_chord;
   result.excluded_by_rotation = tally.excluded_by_rotation;

@@ -50,6 +50,7 @@ struct SeparatrixTailOptions {
   int keep_undecided = 16;         // how many undecided boxes to keep in the result
   double margin = 1e-7;            // on the centre residual (as CertifyWindowOptions)
   double max_step = 0.05;
+  CertifyInterrupt interrupted;    // if set: asked every kInterruptPollBoxes boxes (kInterrupted)
   std::string Validate() const;
 };
 

@@ -153,6 +153,18 @@ inline constexpr double kMaxWindowModulus = 1.0 - 1e-9;
 /// leaves the geometric one outside (k_lo, k_hi)).
 double ModulusSplitPoint(double k_lo, double k_hi, double log_split);
 
+/// A request to stop (Ctrl-C), asked by the box loops (CertifyWindow, Bisect) from the thread
+/// that runs them, before their first box and then every kInterruptPollBoxes boxes: true stops
+/// the loop at once with the status "interrupted" (nothing claimed). Empty: never asked.
+using CertifyInterrupt = std::function<bool()>;
+/// About 10 ms of boxes at the certificate's 2-10 us per box: the stop is prompt, the hook cheap.
+inline constexpr long kInterruptPollBoxes = 1024;
+/// Whether a loop that has examined `boxes` boxes must stop now (asks `interrupt` every
+/// kInterruptPollBoxes boxes, from 0 on).
+inline bool InterruptRequested(const CertifyInterrupt& interrupt, long boxes) {
+  return interrupt && boxes % kInterruptPollBoxes == 0 && interrupt();
+}
+
 struct CertifyWindowOptions {
   PendulumRegime regime = PendulumRegime::kOscillating;
   CertifyBox window;             // rate, k in [0, kMaxWindowModulus], phase, L > 0
@@ -199,6 +211,7 @@ struct CertifyWindowOptions {
   /// instead of the arithmetic midpoint; in [0, 1], 1 = never.
   double log_modulus_split = 1.0;
   std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
+  CertifyInterrupt interrupted;  // if set: asked every kInterruptPollBoxes boxes (kInterrupted)
   std::string Validate() const;
 };
 

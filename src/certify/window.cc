@@ -178,6 +178,7 @@ std::string ToString(CertifyStatus status) {
     case CertifyStatus::kUnaccounted: return "unaccounted box";
     case CertifyStatus::kBudgetExhausted: return "budget exhausted";
     case CertifyStatus::kInvalidInput: return "invalid input";
+    case CertifyStatus::kInterrupted: return "interrupted";
   }
   return "unknown";
 }
@@ -218,8 +219,10 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
   std::vector<CertifyBox> stack{options.window};  // depth first: memory ~ depth
   std::vector<CertifyBox> proved;                 // boxes proved to hold exactly one (found) solution
   const double window_volume = BoxVolume(options.window);
+  bool interrupted = false;
   while (!stack.empty()) {
     if (result.boxes >= options.max_boxes) break;
+    if ((interrupted = InterruptRequested(options.interrupted, result.boxes))) break;
     const CertifyBox box = stack.back();
     stack.pop_back();
     ++result.boxes;
@@ -292,9 +295,10 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     stack.push_back(right);
     stack.push_back(left);
   }
-  result.status = result.unaccounted > 0 ? CertifyStatus::kUnaccounted
-                  : stack.empty()        ? CertifyStatus::kCertified
-                                         : CertifyStatus::kBudgetExhausted;
+  result.status = interrupted               ? CertifyStatus::kInterrupted
+                  : result.unaccounted > 0 ? CertifyStatus::kUnaccounted
+                  : stack.empty()          ? CertifyStatus::kCertified
+                                           : CertifyStatus::kBudgetExhausted;
   result.message = CertifyMessage(result, options.first_order);
   return result;
 }

@@ -12,7 +12,7 @@
 
 namespace plateball::internal {
 
-enum class CertifyStatus { kNotRun, kCertified, kUnaccounted, kBudgetExhausted, kInvalidInput };
+enum class CertifyStatus { kNotRun, kCertified, kUnaccounted, kBudgetExhausted, kInvalidInput, kInterrupted };
 std::string ToString(CertifyStatus status);
 
 struct CertifyWindowResult {

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -250,6 +251,80 @@ TEST(IsoparallelCertificate, MatchesAProvedPathToTheSolversSolution) {
   EXPECT_EQ(internal::MatchingSolution({other}, PendulumRegime::kOscillating,
                                       internal::CanonicalSolution(shortest.parameters, shortest.length), 1e-6),
             -1);
+}
+
+
+// The rotation problem's whole certificate at 1.0001 x its shortest length costs 209M boxes
+// (minutes of CPU): a stop must end each piece within kInterruptPollBoxes boxes of the question
+// that said stop. Every piece of the plan, run alone with a hook that says stop at its second
+// question (the first is asked before the first box), examines exactly one round of boxes and
+// reports "interrupted", not closed: windows, slow tails and loop families alike. (The budget
+// of four rounds makes a piece that ignored the stop end "budget exhausted" at 4 rounds instead.)
+constexpr long kStopBudget = 4 * internal::kInterruptPollBoxes;
+
+TEST(IsoparallelCertificate, AStopEndsEveryKindOfPieceAtItsNextQuestion) {
+  const internal::CertifyTarget target = internal::CertifyTargetOf(RotationProblem());
+  const double cap = 1.0001 * kRotationShortest;
+  const CoveragePlan plan = internal::PlanCoverage(target, cap);
+  ASSERT_EQ(plan.pieces.size(), 10u);
+  std::vector<CoveragePieceKind> kinds;
+  for (const CoveragePiece& piece : plan.pieces) {
+    int asked = 0;
+    const internal::CoveragePieceResult r =
+        internal::RunCoveragePiece(target, piece, cap, kStopBudget, [&] { return ++asked == 2; });
+    EXPECT_EQ(asked, 2) << piece.Name();
+    EXPECT_TRUE(r.interrupted) << piece.Name() << ": " << r.result;
+    EXPECT_FALSE(r.closed) << piece.Name();
+    EXPECT_EQ(r.boxes, internal::kInterruptPollBoxes) << piece.Name();
+    EXPECT_EQ(r.result.rfind("interrupted", 0), 0u) << r.result;
+    kinds.push_back(piece.kind);
+  }
+  for (CoveragePieceKind kind : {CoveragePieceKind::kWindow, CoveragePieceKind::kSlowTail, CoveragePieceKind::kLoops})
+    EXPECT_NE(std::find(kinds.begin(), kinds.end(), kind), kinds.end()) << ToString(kind);
+}
+
+// The whole certificate, stopped while its first piece runs (one thread: the hook is asked before
+// the piece, at its first box and after one round of boxes, where it says stop): the first piece
+// ends after one round, the others are not run, nothing is claimed.
+TEST(IsoparallelCertificate, AStopWhileRunningClaimsNothing) {
+  IsoparallelCertificateOptions o;
+  o.length_cap = 1.0001 * kRotationShortest;
+  o.max_boxes = kStopBudget;
+  int asked = 0;
+  o.interrupted = [&] { return ++asked == 3; };
+  int ended = 0;
+  o.progress = [&](const IsoparallelCertificatePiece&, int, int) { ++ended; };
+  const IsoparallelCertificate c = CertifyIsoparallel(Unsolved(RotationProblem()), o);
+  EXPECT_EQ(asked, 3);
+  EXPECT_EQ(c.status, IsoparallelCertificateStatus::kInterrupted);
+  EXPECT_EQ(ToString(c.status), "interrupted");
+  EXPECT_FALSE(c.IsSolutionUsable());
+  EXPECT_EQ(c.message, "interrupted: 0 of 10 pieces closed before the stop; nothing is claimed about the others");
+  EXPECT_TRUE(c.solutions.empty());
+  ASSERT_EQ(c.pieces.size(), 10u);
+  EXPECT_EQ(c.boxes, internal::kInterruptPollBoxes);
+  EXPECT_EQ(c.pieces[0].boxes, internal::kInterruptPollBoxes);
+  EXPECT_EQ(ended, 1);  // the interrupted piece reports its end; the pieces not run do not
+  for (std::size_t i = 1; i < c.pieces.size(); ++i) {
+    EXPECT_FALSE(c.pieces[i].closed);
+    EXPECT_EQ(c.pieces[i].boxes, 0);
+    EXPECT_EQ(c.pieces[i].result, "not run: interrupted");
+    EXPECT_FALSE(c.pieces[i].name.empty());
+  }
+  EXPECT_NE(c.BriefReport().find("interrupted, length cap"), std::string::npos) << c.BriefReport();
+}
+
+// A stop requested before the start, on two threads: no piece runs, no box is examined.
+TEST(IsoparallelCertificate, AStopBeforeTheStartRunsNoPiece) {
+  IsoparallelCertificateOptions o;
+  o.length_cap = 1.0001 * kRotationShortest;
+  o.threads = 2;
+  o.interrupted = [] { return true; };
+  const IsoparallelCertificate c = CertifyIsoparallel(Unsolved(RotationProblem()), o);
+  EXPECT_EQ(c.status, IsoparallelCertificateStatus::kInterrupted);
+  EXPECT_EQ(c.boxes, 0);
+  ASSERT_EQ(c.pieces.size(), 10u);
+  for (const IsoparallelCertificatePiece& p : c.pieces) EXPECT_EQ(p.result, "not run: interrupted") << p.name;
 }
 
 }  // namespace
