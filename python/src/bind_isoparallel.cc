@@ -1,6 +1,7 @@
 // Python binding: the isoparallel problem (section 2.2), its impulsive approximation and the exact
 // arrival (exact_arrival.h).
 #include "bind_common.h"
+#include "interrupt.h"
 #include "plateball/elastica.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/impulse.h"
@@ -164,8 +165,17 @@ void BindIsoparallelCertificate(py::module_& m) {
       .def_readonly("time_seconds", &IsoparallelCertificate::time_seconds)
       .def_property_readonly("missed_by_solver", &IsoparallelCertificate::MissedBySolver)
       .def_property_readonly("full_report", &IsoparallelCertificate::FullReport);
-  m.def("_certify_isoparallel", &CertifyIsoparallel, py::arg("summary"), py::arg("options"),
-        py::call_guard<py::gil_scoped_release>());
+  // Ctrl-C stops every piece within about a thousand boxes (KeyboardInterrupt).
+  m.def(
+      "_certify_isoparallel",
+      [](const IsoparallelSummary& summary, IsoparallelCertificateOptions options) {
+        const Interruptible interrupt;
+        options.interrupted = [interrupt] { return interrupt.Requested(); };
+        IsoparallelCertificate certificate = CertifyIsoparallel(summary, options);
+        interrupt.RaiseIfRequested();
+        return certificate;
+      },
+      py::arg("summary"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
 }
 
 void BindExactInputs(py::module_& m) {
