@@ -1,7 +1,7 @@
 // Internal: the tails of the certified exclusion for general isoparallel targets
 // (docs/paper_notes.md, "General targets: the tails of the certificate window").
 //
-// The branch and bound of certify/vocabulary.h covers a BOUNDED window of elastica parameters.
+// The branch and bound of certify/window.h covers a BOUNDED window of elastica parameters.
 // This file bounds the large-rate tail rigorously (an averaging lemma):
 //
 //   for an elastica with heading period P in arc length (x(s + P) = x(s) + c_P), rolled over

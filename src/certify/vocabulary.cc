@@ -83,7 +83,7 @@ double HeadingModulusBound(PendulumRegime regime, double k_max, double v_max) {
   if (regime == PendulumRegime::kRotating) return 2.0 * am_k;
   // The oscillating form 2 (1 + k am_k) / k' of HeadingModulusFromAmplitude at every k: the zeta
   // form below takes the smaller one above k = 1/sqrt 2, and D the smaller of the two bounds; this
-  // one stays as tests/isoparallel_certify_tails_test.cc compares it with the separatrix bound.
+  // one stays as tests/certify/isoparallel_certify_tails_test.cc compares it with the separatrix bound.
   return 2.0 * (1.0 + k_max * am_k) / std::sqrt(kp2);
 }
 

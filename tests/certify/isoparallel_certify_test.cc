@@ -1,4 +1,4 @@
-// Certified exclusion for general isoparallel targets (src/certify/vocabulary.h): the heading
+// Certified exclusion for general isoparallel targets (src/certify/vocabulary.h, src/certify/window.h): the heading
 // derivative bounds against finite differences of the closed forms, the deviation bound against
 // rollings by dopri5 at sampled points of boxes, the centre residual against dopri5, and the
 // branch and bound on a small window of the rotation problem (certifies; fails without the
