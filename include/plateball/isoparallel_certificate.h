@@ -48,6 +48,11 @@ struct IsoparallelCertificateOptions {
   int threads = 1;             ///< pieces certified in parallel, [1, kMaxThreads]
   /// Called (serialised) as each piece ends: (piece, pieces ended, pieces in all).
   std::function<void(const IsoparallelCertificatePiece&, int, int)> progress;
+  /// A request to stop (Ctrl-C; Python sets it): asked before each piece starts and about every
+  /// thousand boxes of each running piece (milliseconds), from the threads that run them, so it
+  /// must be thread-safe and cheap. Once it returns true every piece stops at its next question,
+  /// pieces not started are not run, and the certificate is kInterrupted. Empty: never asked.
+  std::function<bool()> interrupted;
   /// Empty when valid, else a message naming the field, the value and the bound.
   std::string Validate() const;
 };
@@ -58,6 +63,7 @@ enum class IsoparallelCertificateStatus {
   kIncomplete,     ///< some piece did not close (budget, or an undecided box): see `pieces`
   kNotApplicable,  ///< identity target (the family enumeration is complete already), no solution
                    ///< to set the cap from, or a target the straight rolling reaches within the margin
+  kInterrupted,    ///< stopped by `interrupted` before every piece ended: nothing is claimed
 };
 /// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(IsoparallelCertificateStatus status);

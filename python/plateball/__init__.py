@@ -97,7 +97,8 @@ def isoparallel(problem=None, options=None, **kwargs):
 def certify_isoparallel(summary, options=None, **kwargs):
     """The certificate of an isoparallel summary of a general target: every solution up to the cap
     proved, or the piece of parameter space that did not close (an IsoparallelCertificate; minutes
-    at the shortest length). Keywords: the fields of IsoparallelCertificateOptions."""
+    at the shortest length). Keywords: the fields of IsoparallelCertificateOptions. Ctrl-C stops every
+    piece within about a thousand boxes and raises KeyboardInterrupt."""
     options = IsoparallelCertificateOptions() if options is None else options
     fields = _fields(IsoparallelCertificateOptions)
     for key, value in kwargs.items():

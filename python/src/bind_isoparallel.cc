@@ -1,6 +1,10 @@
 // Python binding: the isoparallel problem (section 2.2), its impulsive approximation and the exact
 // arrival (exact_arrival.h).
+#include <chrono>
+#include <future>
+
 #include "bind_common.h"
+#include "interrupt.h"
 #include "plateball/elastica.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/impulse.h"
@@ -164,8 +168,23 @@ void BindIsoparallelCertificate(py::module_& m) {
       .def_readonly("time_seconds", &IsoparallelCertificate::time_seconds)
       .def_property_readonly("missed_by_solver", &IsoparallelCertificate::MissedBySolver)
       .def_property_readonly("full_report", &IsoparallelCertificate::FullReport);
-  m.def("_certify_isoparallel", &CertifyIsoparallel, py::arg("summary"), py::arg("options"),
-        py::call_guard<py::gil_scoped_release>());
+  // Ctrl-C stops every piece within about a thousand boxes (KeyboardInterrupt). The pieces run on
+  // their own threads while the calling thread checks the signal handlers every kSignalPoll: a
+  // piece left running alone on a worker thread would otherwise never see them.
+  m.def(
+      "_certify_isoparallel",
+      [](const IsoparallelSummary& summary, IsoparallelCertificateOptions options) {
+        constexpr std::chrono::milliseconds kSignalPoll{20};
+        const Interruptible interrupt;
+        options.interrupted = [interrupt] { return interrupt.Requested(); };
+        std::future<IsoparallelCertificate> run =
+            std::async(std::launch::async, [&] { return CertifyIsoparallel(summary, options); });
+        while (run.wait_for(kSignalPoll) != std::future_status::ready) interrupt.Requested();
+        IsoparallelCertificate certificate = run.get();
+        interrupt.RaiseIfRequested();
+        return certificate;
+      },
+      py::arg("summary"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
 }
 
 void BindExactInputs(py::module_& m) {

@@ -30,6 +30,23 @@ class Interruptible {
     throw std::runtime_error("interrupted");
   }
 
+  /// The hook for a solver that asks whether to stop (and then returns with a status): true once a
+  /// handler raised (any thread, GIL not held).
+  bool Requested() const {
+    try {
+      Check();
+      return false;
+    } catch (const std::runtime_error&) {
+      return true;
+    }
+  }
+
+  /// After a solver that stopped on Requested() returned: re-raises the handler's Python
+  /// exception, if one was raised.
+  void RaiseIfRequested() const {
+    if (state_->raised.load()) std::rethrow_exception(state_->error);
+  }
+
   /// Runs `solve()`; when the hook fired, re-raises the handler's Python exception instead of
   /// the solver's unwinding.
   template <class Solve>

@@ -48,3 +48,14 @@ def test_ctrl_c_abandons_monte_carlo_on_every_thread(problems):
     # The module still works after an interrupted call.
     study.trials = 2
     assert pb.montecarlo(study, pb.MonteCarloOptions(plan=setup.options, threads=2)).usable
+
+
+def test_ctrl_c_stops_every_piece_of_the_certificate(problems):
+    # The rotation problem's certificate at 1.0001 x its shortest length: 209M boxes, minutes of CPU.
+    setup = pb.isoparallel_setup_for(pb.load_problem(problems / "isoparallel_rotation.json"))
+    summary = pb.isoparallel(setup.problem, setup.options)
+    assert summary.usable
+    latency = interrupted_after(0.5, lambda: pb.certify_isoparallel(summary, cap_factor=1.0, threads=2))
+    assert latency < LATENCY
+    # The module still works after an interrupted call.
+    assert pb.certify_isoparallel(summary, length_cap=summary.solutions[0].length, max_boxes=50).status == "incomplete"
