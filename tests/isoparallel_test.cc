@@ -578,7 +578,7 @@ TEST(Isoparallel, VerificationIntegratorAgreesWithDopri) {
   }
 }
 
-// A rotating family and its mirror image (rate -> -rate) are verified once (isoparallel.cc,
+// A rotating family and its mirror image (rate -> -rate) are verified once (isoparallel/verify.cc,
 // MirrorImages): rolling along the mirror path directly, with dopri5, gives the same distance
 // from the identity as the residual reported for it.
 TEST(Isoparallel, MirrorImagesShareTheVerifiedResidual) {
