@@ -17,7 +17,7 @@
 #include "chord_residual.h"
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
-#include "isoparallel_twin.h"
+#include "isoparallel/twins.h"
 #include "rotation_trick.h"
 #include "support/test_support.h"
 #include "plateball/elastica.h"

@@ -7,13 +7,14 @@
 //                  solution and start a free-length search from each;
 //   search.cc      the free-length search from a start, its hand-off to the polish, and the polish;
 //                  the identity target's comparison shooting from random starts;
-//   twins.cc       from each new solution, the continuation to its twin across a fold;
-//   merge.cc       polish the searched results that are new, keep the distinct solutions;
+//   merge.cc       after each batch: polish the searched results that are new, keep the distinct
+//                  solutions, and search from each new one of a general target for its twin;
+//   twins.cc       the twin search: the continuation from a solution to its twin across a fold;
 //   verify.cc      the solutions up to the cap, verified by rolling (VerifyRolling), conjugate
 //                  points, Maxwell pairs.
 // free_length.cc holds the rotation trick's evaluation (section 2.2) and the free-length residual
 // (FreeLengthFunctor) that the search, the polish and the twin search solve; report.cc the
-// summary's text. The tuning constants are in tuning.h.
+// summary's text. The tuning constants are in tuning.h; twins.h exposes the twin search to tests.
 #pragma once
 
 #include <Eigen/Core>

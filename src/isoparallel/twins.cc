@@ -9,7 +9,7 @@
 
 #include "check.h"
 #include "isoparallel/stages.h"
-#include "isoparallel_twin.h"
+#include "isoparallel/twins.h"
 
 namespace plateball::internal::isoparallel {
 namespace {
