@@ -44,13 +44,11 @@ double TriagedSearch(const FreeLengthFunctor& f, const IsoparallelOptions& optio
   double r0[4];
   if (f.Residual(v->data(), r0)) {
     const int total = solver.options.max_num_iterations;
-    const double hopeless = kHopelessResidual;
-    const int triage = kTriageIterations;
-    solver.options.max_num_iterations = std::min(total, triage);
+    solver.options.max_num_iterations = std::min(total, kTriageIterations);
     solver.Solve(f, v);
     if (v->allFinite() && solver.summary.final_cost > 0.5 * kSearchStop * kSearchStop &&
-        solver.summary.final_cost <= 0.5 * hopeless * hopeless && total > triage) {
-      solver.options.max_num_iterations = total - triage;
+        solver.summary.final_cost <= 0.5 * kHopelessResidual * kHopelessResidual && total > kTriageIterations) {
+      solver.options.max_num_iterations = total - kTriageIterations;
       solver.Solve(f, v);
     }
   }
@@ -63,7 +61,7 @@ double TriagedSearch(const FreeLengthFunctor& f, const IsoparallelOptions& optio
 // n: the crossing nearest to L on the search table, else on the polish table (a near-tangency, the
 // chord just reaching the radius between two coarse nodes), else (kTangentHandOff) the run's own
 // length.
-bool HandsOff(const Context& ctx, const Eigen::Vector4d& v, double cost, LocalResult* out) {
+bool GoesToPolish(const Context& ctx, const Eigen::Vector4d& v, double cost, LocalResult* out) {
   if (!(cost >= 0 && cost <= 0.5 * kHandOffResidual * kHandOffResidual)) return false;
   if (HandOff(ctx, v[3], kSearch, out) || HandOff(ctx, v[3], kPolish, out)) return true;
   return !ctx.identity && std::sqrt(2 * cost) <= kTangentHandOff &&  // cf. PolishLocal
@@ -161,7 +159,7 @@ LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, con
   std::copy(v.data(), v.data() + 3, out.x);
   if (out.duplicate || f.stalled) return out;
   if (!v.allFinite() || !(v[3] > 0) || std::abs(std::tanh(v[1])) >= 1.0) return out;
-  out.searched = HandsOff(ctx, v, cost, &out);
+  out.searched = GoesToPolish(ctx, v, cost, &out);
   return out;
 }
 
@@ -226,9 +224,9 @@ std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit,
     // u0: regime and sense (two quarters each).
     s.regime = u[0] < 0.5 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
     const double sign = std::fmod(2.0 * u[0], 1.0) < 0.5 ? 1.0 : -1.0;
-    // Shapes: denser towards the separatrix (k = 0.97 sin(pi u / 2)), where long solutions have
-    // narrow basins in atanh k; starts: uniform in k.
-    const double k = shapes ? 0.97 * std::sin(0.5 * M_PI * u[2]) : 0.97 * u[2];
+    // Shapes: denser towards the separatrix (k = kStartMaxModulus sin(pi u / 2)), where long
+    // solutions have narrow basins in atanh k; starts: uniform in k.
+    const double k = shapes ? kStartMaxModulus * std::sin(0.5 * M_PI * u[2]) : kStartMaxModulus * u[2];
     const double kk = internal::CompleteEllipticK(k);
     const double period = t_min * std::pow(t_max / t_min, u[1]);
     const double u_period = s.regime == PendulumRegime::kOscillating ? 4.0 * kk : 2.0 * kk;

@@ -29,7 +29,7 @@ constexpr double kDifferenceStep = 1e-6;
 constexpr double kSearchStop = 3e-6;
 // The crossing residual a handed-off run may have: the polish converges from there.
 constexpr double kSearchAccept = 1e-4;
-// Runs still searching after 20 iterations rarely converge, and longer runs double the cost.
+// Runs still searching after 20 iterations rarely converge, and a longer search costs up to twice the evaluations.
 constexpr int kSearchIterations = 20;
 // The iterations after which a run far from a root is judged (kHopelessResidual).
 constexpr int kTriageIterations = 8;
@@ -47,12 +47,15 @@ constexpr int kMaxCrossingsPerStart = 12;
 constexpr double kDuplicateResidual = 0.1;
 // Relative distance of "the same root" in (rate, atanh k, phase, L): well inside a root's basin.
 constexpr double kDuplicateTol = 3e-3;
-// Above this residual the rate and modulus columns are Broyden updates: far from a root exactness buys nothing.
+// Above this residual the rate and modulus columns are Broyden updates (two rollings fewer); at 0.1 a root is lost.
 constexpr double kSecantResidual = 0.3;
-// A run whose residual fell by less than this factor at each of its last two accepted points has stalled.
+// A run whose residual fell by less than this factor twice running has stalled: a root at a fold still halves it.
 constexpr double kStallRatio = 0.95;
-// Below this residual a slow run is kept: a root at a fold converges linearly and still halves its residual per step.
+// Below this residual no run counts as stalled: it is well within the hand-off (kHandOffResidual).
 constexpr double kStallFloor = 1e-5;
+
+// The largest modulus of a start or shape: the search (in atanh k) moves on towards the separatrix from there.
+constexpr double kStartMaxModulus = 0.97;
 
 // ---------------------------------------------------------------- polish (search.cc)
 // A polish that ended between the tolerance and this lies in the valley of nearly straight short arcs.
@@ -85,7 +88,7 @@ constexpr long kMinSkip = 3;
 // ---------------------------------------------------------------- twin search (twins.cc)
 // Continuation step in (rate, atanh k, phase, L): short enough for the corrector from the tangent predictor.
 constexpr double kTwinStep = 0.15;
-// Steps each way along the curve: 1.2 in the unknowns, beyond which a twin is no longer a fold pair's.
+// Steps each way along the curve (1.2 in the unknowns): a fold pair's twin lies near its solution.
 constexpr int kTwinSteps = 8;
 // The corrector's tolerance on |H|: the twin's search converges from there.
 constexpr double kTwinCurveTol = 1e-3;
