@@ -80,7 +80,6 @@ Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, c
   return c;
 }
 
-
 // `a` is a known (polished) candidate; `b` a new one, possibly rough (family not yet tested).
 bool SameSolution(const Candidate& a, const Candidate& b, double tol) {
   const IsoparallelSolution &x = a.solution, &y = b.solution;
@@ -124,7 +123,6 @@ Candidate StraightCandidate(const Context& ctx, const IsoparallelProblem& proble
   return c;
 }
 
-
 // Adds a search result to `found` when it polishes to a new solution; true if it did.
 bool MergeResult(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
                  LocalResult* r, std::vector<Candidate>* found, IsoparallelSummary* summary) {
@@ -156,7 +154,7 @@ double CapLength(const IsoparallelOptions& options, const std::vector<Candidate>
 }
 
 // Polishes the searched results that are not known yet and adds the new distinct solutions; for
-// a general target, each new solution's twin across a fold (TwinSearch) is tried at once, unless
+// a general target, each new solution's twin across a fold (TwinSearches) is tried at once, unless
 // the solution lies beyond the cap by more than kTwinReach.
 void MergeResults(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
                   std::vector<std::vector<LocalResult>> per_start, std::vector<Candidate>* found,

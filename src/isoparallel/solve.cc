@@ -58,7 +58,7 @@ std::vector<Candidate> SolveByFamilies(Context* ctx, const IsoparallelProblem& p
   fo.threads = options.threads;
   if (options.progress) fo.progress = [&options](int m) { options.progress(m, 0); };
   FamilySearch search;
-  for (int pass = 0; pass < 4; ++pass) {
+  for (int pass = 0; pass < kFamilyPasses; ++pass) {
     fo.max_length = ctx->s_limit;
     search = EnumerateIdentityFamilies(ctx->radius, fo);
     summary->evaluations += search.evaluations;
@@ -81,7 +81,7 @@ std::vector<Candidate> SolveByFamilies(Context* ctx, const IsoparallelProblem& p
 void SolveByShooting(Context* ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
                      std::vector<Candidate>* found, IsoparallelSummary* summary) {
   double covered = 0.0;  // crossings up to this length were already searched
-  for (int pass = 0; pass < 3; ++pass) {
+  for (int pass = 0; pass < kShootingPasses; ++pass) {
     if (ctx->identity)
       MergeResults(*ctx, problem, options, SearchStarts(*ctx, options, covered), found, summary);
     else

@@ -24,6 +24,12 @@ constexpr int kTableMaxSteps = 200000;
 // Relative forward-difference step: about the square root of the closed-form rolling's error (~1e-13).
 constexpr double kDifferenceStep = 1e-6;
 
+// ---------------------------------------------------------------- dispatch (solve.cc)
+// Family enumerations, the length doubled after an empty one: the first length already turns the ball any angle.
+constexpr int kFamilyPasses = 4;
+// Shooting passes, each lengthening the search to the cap found (or doubling it): the cap settles once one is found.
+constexpr int kShootingPasses = 3;
+
 // ---------------------------------------------------------------- free-length search (search.cc)
 // A run this close to a root is converged at the search accuracy: the polish finishes it.
 constexpr double kSearchStop = 3e-6;
