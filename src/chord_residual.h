@@ -1,5 +1,5 @@
 // Internal: the rotation trick's residual (rotation_trick.h) in the form the shape scan evaluates
-// it at many node pairs (isoparallel.cc, ScanShape): B = RotationZ(beta), beta = arg(x1 - x0) -
+// it at many node pairs (isoparallel/shape_scan.cc, ScanShape): B = RotationZ(beta), beta = arg(x1 - x0) -
 // arg(chord), with its cos and sin straight from the normalised chord (no atan2, no sincos), the
 // turn applied as column combinations, the logarithm by the quaternion's trace route, and exact
 // trace tests that a residual exceeds the scan's bound (LogNormBound: no logarithm there).

@@ -129,7 +129,7 @@ class ElasticaRollingTable {
 };
 
 /// How far the chord between two nodes of a table can move over k nodes, for scans that skip
-/// nodes (isoparallel.cc, ScanShape): reach[k] >= |x[j + k'] - x[j]| for every node j and every
+/// nodes (isoparallel/shape_scan.cc, ScanShape): reach[k] >= |x[j + k'] - x[j]| for every node j and every
 /// k' <= k, k = 0 .. count, given the nodes' positions x (ElasticaRollingTable::NodePositions),
 /// the nodes per period N and the spacing h. From the unit speed, k h; for a table of many periods
 /// (N <= count / 8, x holding at least 2 N nodes), also m |D| + M[r] (k = m N + r:

@@ -1,5 +1,5 @@
 // Internal: the rotation trick of section 2.2 (docs/paper_notes.md, "Isoparallel: the rotation
-// trick"), used by the solver (isoparallel.cc) and by the certificate (certify/vocabulary.cc).
+// trick"), used by the solver (src/isoparallel/) and by the certificate (certify/vocabulary.cc).
 // A path from x0 whose chord is c is turned about the vertical by B = RotationZ(beta),
 // beta = arg(x1 - x0) - arg(c), so that it ends on the goal's direction; rolling along the turned
 // path gives B Q B^-1, and the residual against the target rotation A1 A0^-1 is
