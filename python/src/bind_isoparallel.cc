@@ -14,6 +14,10 @@
 #include "plateball/so3.h"
 
 namespace plateball::python {
+
+void BindExactArrivalLimits(py::class_<ExactArrivalProblem>& problem, py::class_<ExactArrivalSummary>& summary,
+                            py::module_& m);  // bind_rig_limits.cc
+
 namespace {
 
 using Scalar1 = Eigen::Matrix<double, 1, 1>;
@@ -225,7 +229,8 @@ void BindExactInputs(py::module_& m) {
       .def_readonly("mu_after", &ExactImpulse::mu_after)
       .def_readonly("planned_position", &ExactImpulse::planned_position)
       .def_readonly("planned_delta_psi", &ExactImpulse::planned_delta_psi)
-      .def_readonly("planned_duration", &ExactImpulse::planned_duration);
+      .def_readonly("planned_duration", &ExactImpulse::planned_duration)
+      .def_readonly("tick", &ExactImpulse::tick, "with a rig tick: the index on the grid (t_impulse = tick x limits.tick), else -1");
   py::class_<ReplayResult>(m, "ReplayResult")
       .def_readonly("x", &ReplayResult::x)
       .def_readonly("orientation", &ReplayResult::A)
@@ -258,6 +263,8 @@ void BindIsoparallel(py::module_& m) {
 void BindExactArrival(py::module_& m) {
   BindExactInputs(m);
   py::class_<ExactArrivalSummary> summary(m, "ExactArrivalSummary");
+  auto problem = py::reinterpret_borrow<py::class_<ExactArrivalProblem>>(m.attr("ExactArrivalProblem"));
+  BindExactArrivalLimits(problem, summary, m);
   AddSummaryShape(summary);
   summary.def_readonly("impulses", &ExactArrivalSummary::impulses)
       .def_readonly("stop", &ExactArrivalSummary::stop, "the impulse at the goal with stop_at_goal, else None")

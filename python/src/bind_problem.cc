@@ -35,7 +35,15 @@ void BindTasks(py::module_& m) {
   WithKeywordInit(steer)
       .def_readwrite("goal", &SteerTask::goal)
       .def_readwrite("goal_orientation", &SteerTask::goal_orientation)
-      .def_readwrite("impulses", &SteerTask::impulses);
+      .def_readwrite("impulses", &SteerTask::impulses)
+      .def_property(
+          "objective", [](const SteerTask& t) { return ToString(t.objective); },
+          [](SteerTask& t, const std::string& w) {
+            const auto o = ArrivalObjectiveFromString(w);
+            if (!o) throw std::invalid_argument("steer.objective: value " + w + ": must be \"deviation\", \"time\" or \"impulse\"");
+            t.objective = *o;
+          },
+          "what the exact arrival minimises under the rig's limits: deviation, time or impulse");
   py::class_<ExpectedValue>(m, "ExpectedValue")
       .def_readonly("value", &ExpectedValue::value)
       .def_readonly("tolerance", &ExpectedValue::tolerance);
@@ -60,6 +68,7 @@ void BindProblemValue(py::module_& m) {
       .def_readwrite("plan", &Problem::plan)
       .def_readwrite("isoparallel", &Problem::isoparallel)
       .def_readwrite("steer", &Problem::steer)
+      .def_readwrite("rig", &Problem::rig, "the rig's limits (RigLimits), honoured by steer")
       .def_readwrite("expected", &Problem::expected)
       .def("__repr__", [](const Problem& p) { return "<plateball.Problem " + (p.name.empty() ? p.source : p.name) + ">"; });
   // plateball.MAX_...: the sizes of plateball/limits.h, the same numbers as the reader and the tools.

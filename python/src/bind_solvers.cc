@@ -298,6 +298,7 @@ void BindConvergence(py::module_& m) {
 
 void BindIsoparallel(py::module_& m);    // bind_isoparallel.cc
 void BindExactArrival(py::module_& m);   // bind_isoparallel.cc
+void BindRigLimits(py::module_& m);      // bind_rig_limits.cc
 void BindFewestImpulses(py::module_& m);  // bind_fewest.cc
 void BindIdentify(py::module_& m);        // bind_identify.cc
 
@@ -310,6 +311,7 @@ void BindSolvers(py::module_& m) {
   BindPlanSummary(m);
   BindConvergence(m);
   BindIsoparallel(m);
+  BindRigLimits(m);
   BindExactArrival(m);
   BindFewestImpulses(m);
   BindIdentify(m);

@@ -390,3 +390,26 @@ def test_exact_arrival_iteration_cap_is_the_tools():
     """Python's iteration cap is the tools' 50 (the exact arrival's work bound)."""
     assert pb.ExactArrivalOptions(max_iterations=50).validate() == ""
     assert "max_iterations: value 51" in pb.ExactArrivalOptions(max_iterations=51).validate()
+
+
+def test_steer_on_a_rig(problems, run_cli):
+    """`plateball steer` with a rig section: the same impulses, active limits and check as the library."""
+    doc = run_cli("plateball", "steer", problems / "figure7_rig.json")
+    problem = pb.load_problem(problems / "figure7_rig.json")
+    assert problem.rig.plate is not None and len(problem.rig.obstacles) == 1
+    iso = pb.isoparallel(*pb.isoparallel_setup_for(problem))
+    setup = pb.exact_arrival_setup_for(problem, iso.shortest())
+    assert setup.problem.limits.clearance == 0.05
+    summary = pb.steer(setup.problem, setup.options)
+    assert_same(doc, summary, "steer")
+    assert json_get(doc, "rig.active") == summary.limits.active
+    assert json_get(doc, "rig.constrained") is True
+    check = pb.check_rig_limits(setup.problem, summary)
+    assert check.passed and json_get(doc, "rig.check.passed")
+    assert json_get(doc, "rig.check.margins.plate") == check.margins["plate"]
+    # The free optimum leaves the plate: the check sees it.
+    free = setup.problem
+    free.limits = pb.RigLimits()
+    free_summary = pb.steer(free, setup.options)
+    free.limits = problem.rig
+    assert not pb.check_rig_limits(free, free_summary).passed

@@ -1,0 +1,78 @@
+// The rig's limits (rig_limits.h): plate shapes, the limits, what the solver did and the
+// independent check (CheckRigLimits).
+#include "bind_common.h"
+#include "plateball/exact_arrival.h"
+#include "plateball/rig_limits.h"
+
+namespace plateball::python {
+
+namespace {
+
+ArrivalObjective ObjectiveFromWord(const std::string& word) {
+  const auto o = ArrivalObjectiveFromString(word);
+  if (!o) throw std::invalid_argument("objective: value " + word + ": must be \"deviation\", \"time\" or \"impulse\"");
+  return *o;
+}
+
+void BindShapes(py::module_& m) {
+  py::class_<DiskShape> disk(m, "DiskShape", "A disk of the plate: |x - center| <= radius (ball radii).");
+  WithKeywordInit(disk)
+      .def_readwrite("center", &DiskShape::center, "the disk's center")
+      .def_readwrite("radius", &DiskShape::radius, "its radius (> 0)");
+  py::class_<PolygonShape> polygon(m, "PolygonShape", "A simple polygon (>= 3 vertices, either orientation).");
+  WithKeywordInit(polygon).def_readwrite("vertices", &PolygonShape::vertices, "the vertices, not repeated at the end");
+  m.def("signed_distance_inside", [](const PlateShape& s, const Eigen::Vector2d& x) { return SignedDistanceInside(s, x); },
+        py::arg("shape"), py::arg("x"), "Signed distance of x to the shape's boundary, positive inside.");
+}
+
+void BindLimits(py::module_& m) {
+  py::class_<RigLimits> limits(m, "RigLimits", "The limits of a physical rig that exact arrival honours (rig_limits.h).");
+  WithKeywordInit(limits)
+      .def_readwrite("plate", &RigLimits::plate, "the region the contact point stays in (DiskShape, PolygonShape or None)")
+      .def_readwrite("obstacles", &RigLimits::obstacles, "regions the contact point stays out of")
+      .def_readwrite("clearance", &RigLimits::clearance, "distance kept from the plate's edge and the obstacles")
+      .def_readwrite("stroke", &RigLimits::stroke, "half-ranges (s_x, s_y) of the upper plate's displacement 2 (x - x0), or None")
+      .def_readwrite("max_plate_velocity_change", &RigLimits::max_plate_velocity_change, "largest |2 delta_omega x e3| of one impulse")
+      .def_readwrite("max_plate_impulse", &RigLimits::max_plate_impulse, "largest |J| (needs physical parameters)")
+      .def_readwrite("max_force", &RigLimits::max_force, "largest mean force |J| / pulse_duration")
+      .def_readwrite("pulse_duration", &RigLimits::pulse_duration, "the pulse duration of max_force")
+      .def_readwrite("min_interval", &RigLimits::min_interval, "shortest time between two impulses")
+      .def_readwrite("tick", &RigLimits::tick, "impulse times are multiples of tick (0: any time)")
+      .def_property_readonly("empty", &RigLimits::Empty, "True when no limit is set")
+      .def("validate", &RigLimits::Validate, "Empty when valid; else a message naming the field.");
+  py::class_<RigLimitsReport>(m, "RigLimitsReport", "What the rig's limits did in an exact arrival.")
+      .def_readonly("constrained", &RigLimitsReport::constrained, "the limits cut the free optimum: the constrained solve ran")
+      .def_readonly("active", &RigLimitsReport::active, "limits active at the result")
+      .def_readonly("blocking", &RigLimitsReport::blocking, "with limits_not_met: the limits active at the closest feasible arrival")
+      .def_readonly("evaluations", &RigLimitsReport::evaluations, "SLSQP evaluations");
+  py::class_<RigCheck>(m, "RigCheck", "The independent replay check of a result against the limits.")
+      .def_readonly("passed", &RigCheck::passed, "every checked quantity within its limit and tolerance")
+      .def_readonly("samples", &RigCheck::samples, "contact points checked")
+      .def_readonly("margins", &RigCheck::margins, "per limit: the smallest bound - value")
+      .def_readonly("violations", &RigCheck::violations, "one line per limit exceeded");
+}
+
+}  // namespace
+
+void BindRigLimits(py::module_& m) {
+  BindShapes(m);
+  BindLimits(m);
+}
+
+void BindExactArrivalLimits(py::class_<ExactArrivalProblem>& problem, py::class_<ExactArrivalSummary>& summary,
+                            py::module_& m) {
+  problem.def_readwrite("limits", &ExactArrivalProblem::limits, "the rig's limits (RigLimits)")
+      .def_property(
+          "objective", [](const ExactArrivalProblem& p) { return ToString(p.objective); },
+          [](ExactArrivalProblem& p, const std::string& w) { p.objective = ObjectiveFromWord(w); },
+          "what is minimised under the limits: deviation, time or impulse")
+      .def_readwrite("physical", &ExactArrivalProblem::physical, "the masses behind the impulse bounds, or None");
+  summary.def_readonly("limits", &ExactArrivalSummary::limits, "what the rig's limits did (RigLimitsReport)");
+  m.def("check_rig_limits", [](const ExactArrivalProblem& p, const ExactArrivalSummary& s, int samples_per_arc) {
+        return CheckRigLimits(p, s, {}, samples_per_arc);
+      },
+        py::arg("problem"), py::arg("summary"), py::arg("samples_per_arc") = 64, py::call_guard<py::gil_scoped_release>(),
+        "Replays the result with FreeMotion and checks every sampled contact point, impulse, interval and grid time.");
+}
+
+}  // namespace plateball::python
