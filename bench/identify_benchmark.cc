@@ -41,7 +41,7 @@ void Run(benchmark::State& state, double sigma, bool profile, bool guess) {
   const IdentifyProblem p = Track(sigma);
   IdentifyOptions o;
   o.profile_interval = profile;
-  if (guess) o.guess = IdentifyGuess{1.0, 3.5, {0.7, 0.4, 0.1}, kX0};
+  if (guess) o.guess = IdentifyGuess{1.0, 3.5, {0.7, 0.4, 0.1}, kX0, {}};
   IdentifySummary s;
   for (auto _ : state) {
     s = Identify(p, o);

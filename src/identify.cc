@@ -19,6 +19,7 @@
 #include "check.h"
 #include "identify_fit.h"
 #include "identify_model.h"
+#include "kinematics.h"
 
 namespace plateball {
 
@@ -52,6 +53,42 @@ std::string ToString(IdentifyStatus status) {
   return "unknown";
 }
 
+namespace {
+
+/// The impulse times: finite, strictly increasing, inside (t.front(), t.back()), and at least
+/// kIdentifyMinFlightSamples samples in every flight.
+std::string ValidateImpulseTimes(const std::vector<double>& t, const std::vector<double>& impulses) {
+  using internal::FormatNumber;
+  using internal::InvalidValueMessage;
+  std::size_t first = 0;  // the first sample of the current flight
+  for (std::size_t k = 0; k <= impulses.size(); ++k) {
+    if (k < impulses.size()) {
+      const std::string field = "impulse_times[" + std::to_string(k) + "]";
+      const double v = impulses[k];
+      if (!std::isfinite(v)) return InvalidValueMessage(field, v, "must be finite");
+      if (k > 0 && !(v > impulses[k - 1]))
+        return InvalidValueMessage(field, v, "impulse times must be strictly increasing (previous " + FormatNumber(impulses[k - 1]) + ")");
+      if (!(v > t.front() && v < t.back()))
+        return InvalidValueMessage(field, v, "must be inside the track (" + FormatNumber(t.front()) + ", " + FormatNumber(t.back()) + ")");
+    }
+    std::size_t end = first;
+    while (end < t.size() && (k == impulses.size() || t[end] <= impulses[k])) ++end;
+    if (!impulses.empty() && end - first < static_cast<std::size_t>(kIdentifyMinFlightSamples)) {
+      // The flight before impulse k, or after the last one.
+      const bool last = k == impulses.size();
+      const std::size_t named = last ? k - 1 : k;
+      return InvalidValueMessage("impulse_times[" + std::to_string(named) + "]", impulses[named],
+                                 "too few samples in the flight " + std::string(last ? "after" : "before") + " it: " +
+                                     std::to_string(end - first) + " (at least " + std::to_string(kIdentifyMinFlightSamples) +
+                                     " per flight)");
+    }
+    first = end;
+  }
+  return {};
+}
+
+}  // namespace
+
 std::string IdentifyProblem::Validate() const {
   using internal::InvalidValueMessage;
   if (t.size() != x.size())
@@ -73,7 +110,7 @@ std::string IdentifyProblem::Validate() const {
     if (!sigma.empty() && !(std::isfinite(sigma[i]) && sigma[i] > 0))
       return InvalidValueMessage("sigma" + row, sigma[i], "must be finite and > 0");
   }
-  return {};
+  return ValidateImpulseTimes(t, impulse_times);
 }
 
 std::string IdentifyOptions::Validate() const {
@@ -141,6 +178,7 @@ TrackData MakeTrackData(const IdentifyProblem& problem, const IdentifyOptions& o
     d.x[2 * i + 1] = problem.x[i].y() / options.radius;
     if (!problem.sigma.empty()) d.weight[i] = options.radius / problem.sigma[i];
   }
+  for (double t : problem.impulse_times) d.impulse_tau.push_back(t - problem.t[0]);
   return d;
 }
 
@@ -177,56 +215,76 @@ void FillResiduals(const TrackData& d, const internal::TrackFit& fit, IdentifySu
 /// s^2 = chi^2 / (m - p) when sigma is estimated, 1 when given. Singular directions of the
 /// column-scaled J^T J get infinite errors for the parameters they involve.
 void FillCovariance(const internal::TrackFit& fit, double s2, IdentifySummary* s) {
+  const int np = static_cast<int>(fit.q.size());
   const Eigen::MatrixXd jtj = fit.jacobian.transpose() * fit.jacobian;
   Eigen::VectorXd scale = jtj.diagonal().cwiseSqrt();
-  for (int i = 0; i < kP; ++i)
+  for (int i = 0; i < np; ++i)
     if (!(scale[i] > 0)) scale[i] = 1.0;
   const Eigen::MatrixXd c = scale.cwiseInverse().asDiagonal() * jtj * scale.cwiseInverse().asDiagonal();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(c);
   const Eigen::VectorXd ev = eig.eigenvalues();
   s->scaled_condition = ev.maxCoeff() > 0 ? std::max(0.0, ev.minCoeff() / ev.maxCoeff()) : 0.0;
-  Eigen::MatrixXd inv = Eigen::MatrixXd::Zero(kP, kP);
-  std::vector<bool> singular(kP, false);
-  for (int k = 0; k < kP; ++k) {
+  Eigen::MatrixXd inv = Eigen::MatrixXd::Zero(np, np);
+  std::vector<bool> singular(static_cast<std::size_t>(np), false);
+  for (int k = 0; k < np; ++k) {
     const Eigen::VectorXd v = eig.eigenvectors().col(k);
     if (ev[k] > kSingularRatio * ev.maxCoeff()) {
       inv += v * v.transpose() / ev[k];
     } else {
-      for (int i = 0; i < kP; ++i)
+      for (int i = 0; i < np; ++i)
         if (std::abs(v[i]) > 1e-3) singular[static_cast<std::size_t>(i)] = true;
     }
   }
   const Eigen::MatrixXd cov = s2 * scale.cwiseInverse().asDiagonal() * inv * scale.cwiseInverse().asDiagonal();
-  s->standard_errors.assign(kP, 0.0);
-  s->correlation = Eigen::MatrixXd::Constant(kP, kP, kNaN);
-  for (int i = 0; i < kP; ++i) {
+  s->standard_errors.assign(static_cast<std::size_t>(np), 0.0);
+  s->correlation = Eigen::MatrixXd::Constant(np, np, kNaN);
+  for (int i = 0; i < np; ++i) {
     s->standard_errors[static_cast<std::size_t>(i)] = singular[static_cast<std::size_t>(i)] ? kInf : std::sqrt(cov(i, i));
-    for (int j = 0; j < kP; ++j)
+    for (int j = 0; j < np; ++j)
       if (!singular[static_cast<std::size_t>(i)] && !singular[static_cast<std::size_t>(j)])
         s->correlation(i, j) = cov(i, j) / std::sqrt(cov(i, i) * cov(j, j));
   }
 }
 
-/// path_deviation and straight_path of the fitted path (identify.h): the distance of the fitted
-/// points from their principal axis, against the noise.
-void FillStraightness(IdentifySummary* s) {
+/// The largest distance of the points [begin, end) from their principal axis.
+double LineDeviation(const std::vector<Eigen::Vector2d>& points, std::size_t begin, std::size_t end) {
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d& p : s->fitted) mean += p;
-  mean /= static_cast<double>(s->fitted.size());
+  for (std::size_t i = begin; i < end; ++i) mean += points[i];
+  mean /= static_cast<double>(end - begin);
   Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const Eigen::Vector2d& p : s->fitted) scatter += (p - mean) * (p - mean).transpose();
+  for (std::size_t i = begin; i < end; ++i) scatter += (points[i] - mean) * (points[i] - mean).transpose();
   const Eigen::Vector2d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(0);
+  double deviation = 0.0;
+  for (std::size_t i = begin; i < end; ++i) deviation = std::max(deviation, std::abs((points[i] - mean).dot(normal)));
+  return deviation;
+}
+
+/// path_deviation and straight_path of the fitted path (identify.h): the distance of each
+/// flight's fitted points from their principal axis, against the noise.
+void FillStraightness(const std::vector<double>& t, IdentifySummary* s) {
   s->path_deviation = 0.0;
-  for (const Eigen::Vector2d& p : s->fitted) s->path_deviation = std::max(s->path_deviation, std::abs((p - mean).dot(normal)));
+  std::size_t begin = 0;
+  for (std::size_t k = 0; k <= s->impulse_times.size(); ++k) {
+    std::size_t end = begin;
+    while (end < t.size() && (k == s->impulse_times.size() || t[end] <= s->impulse_times[k])) ++end;
+    if (end > begin) s->path_deviation = std::max(s->path_deviation, LineDeviation(s->fitted, begin, end));
+    begin = end;
+  }
   s->straight_path = s->path_deviation <= std::max(kStraightPathNoise * s->sigma, kNoiselessResidual);
+}
+
+/// The name of parameter i: kIdentifyParameterNames, then "delta_psi[k]".
+std::string ParameterName(std::size_t i) {
+  return i < static_cast<std::size_t>(kP) ? std::string(kIdentifyParameterNames[i]) : "delta_psi[" + std::to_string(i - kP) + "]";
 }
 
 void FillUnidentified(IdentifySummary* s) {
   const auto& e = s->standard_errors;
-  const double scaled[kP] = {e[0] / s->lambda, e[1] / s->mu, e[2], e[3], e[4],
+  std::vector<double> scaled{e[0] / s->lambda, e[1] / s->mu, e[2], e[3], e[4],
                              e[5] / std::max(s->track_spread, 1e-300), e[6] / std::max(s->track_spread, 1e-300)};
-  for (int i = 0; i < kP; ++i)
-    if (!(scaled[i] <= kHugeError) || (i == 0 && s->straight_path)) s->unidentified.emplace_back(kIdentifyParameterNames[i]);
+  scaled.insert(scaled.end(), e.begin() + kP, e.end());  // delta psi: radians, like the angles
+  for (std::size_t i = 0; i < scaled.size(); ++i)
+    if (!(scaled[i] <= kHugeError) || (i == 0 && s->straight_path)) s->unidentified.push_back(ParameterName(i));
 }
 
 /// The profile threshold of a 95% interval: chi^2_1 with given sigma, F(1, m - p) with estimated.
@@ -257,6 +315,22 @@ void FillFit(const internal::TrackFit& fit, IdentifySummary* s) {
   s->x0 = Eigen::Vector2d(fit.q[5], fit.q[6]);
   s->period = 2.0 * M_PI / std::sqrt(s->mu);
   s->iterations = fit.iterations;
+  s->delta_psi.clear();
+  for (std::size_t k = kP; k < fit.q.size(); ++k) s->delta_psi.push_back(internal::WrapPi(fit.q[k]));
+}
+
+/// The fitted state at each flight's start (the flights of the model at the optimum).
+void FillFlights(const TrackData& d, const internal::TrackFit& fit, const IntegrationOptions& integration, IdentifySummary* s) {
+  std::vector<double> model(d.x.size());
+  std::vector<internal::FlightStart> flights;
+  internal::EvaluateImpulsiveTrack(fit.q.data(), d.tau.data(), d.tau.size(), d.impulse_tau, integration, model.data(),
+                                   nullptr, nullptr, &flights);
+  const BallModel ball = BallModel::FromLambda(s->lambda);
+  s->flights.clear();
+  for (const internal::FlightStart& f : flights) {
+    const BallState state{f.z, OmegaFromMomentum(f.z, f.k, ball)};
+    s->flights.push_back({s->t_ref + f.tau, AnglesFromState(state, ball), f.x});
+  }
 }
 
 /// Decides identified / not identified from the standard error and the profile interval.
@@ -292,15 +366,24 @@ void Classify(const IdentifyOptions& o, IdentifySummary* s) {
 IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& options) {
   internal::ThrowIfInvalid(problem.Validate());
   internal::ThrowIfInvalid(options.Validate());
+  if (options.guess && options.guess->delta_psi.size() > problem.impulse_times.size())
+    internal::ThrowInvalid("guess.delta_psi (count)", static_cast<double>(options.guess->delta_psi.size()),
+                           "more values than impulse_times (" + std::to_string(problem.impulse_times.size()) + ")");
+  if (options.guess)
+    for (std::size_t k = 0; k < options.guess->delta_psi.size(); ++k)
+      if (!std::isfinite(options.guess->delta_psi[k]))
+        internal::ThrowInvalid("guess.delta_psi[" + std::to_string(k) + "]", options.guess->delta_psi[k], "must be finite");
   const TrackData data = MakeTrackData(problem, options);
   IdentifySummary s;
   s.t_ref = problem.t[0];
+  s.impulse_times = problem.impulse_times;
   s.sigma_estimated = problem.sigma.empty();
   try {
     internal::TrackFit fit = internal::FitTrack(data, options, &s.starts);
     FillFit(fit, &s);
+    FillFlights(data, fit, options.integration, &s);
     FillResiduals(data, fit, &s);
-    const int dof = s.residuals - kP;
+    const int dof = s.residuals - static_cast<int>(fit.q.size());
     const double s2 = s.sigma_estimated ? s.chi_square / dof : 1.0;
     s.sigma = s.sigma_estimated ? std::sqrt(s2) : 0.0;
     if (!s.sigma_estimated) {
@@ -314,7 +397,7 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
       return s;
     }
     FillCovariance(fit, s2, &s);
-    FillStraightness(&s);
+    FillStraightness(problem.t, &s);
     FillUnidentified(&s);
     s.lambda_low = s.lambda_high = kNaN;
     if (options.profile_interval && std::isfinite(s.standard_errors[0]) && s.rms_residual < kNoiselessResidual) {

@@ -124,15 +124,16 @@ inline double MinimumContactSpeed(double mu, double lambda) { return std::sqrt(m
 // ---------------------------------------------------------------------------------------------
 // The conserved vector K and the chart-free right-hand side.
 
-/// K = omega_h + (lambda - 1) v0 z_h for the axial spin v0 = <omega, z>.
-template <typename T, typename Z>
-inline void MomentumFromOmega(const Z* z, const T* w, const T& v0, double lambda, T* k) {
+/// K = omega_h + (lambda - 1) v0 z_h for the axial spin v0 = <omega, z> (lambda may be a
+/// ceres::Jet: identify differentiates the impulses with respect to it).
+template <typename T, typename Z, typename L>
+inline void MomentumFromOmega(const Z* z, const T* w, const T& v0, const L& lambda, T* k) {
   k[0] = w[0] + (lambda - 1.0) * v0 * z[0];
   k[1] = w[1] + (lambda - 1.0) * v0 * z[1];
 }
 /// The same with v0 = <omega_h, z_h> (omega_3 = 0).
-template <typename T, typename Z>
-inline void MomentumFromOmega(const Z* z, const T* w, double lambda, T* k) {
+template <typename T, typename Z, typename L>
+inline void MomentumFromOmega(const Z* z, const T* w, const L& lambda, T* k) {
   MomentumFromOmega(z, w, T(w[0] * z[0] + w[1] * z[1]), lambda, k);
 }
 
