@@ -14,7 +14,8 @@ namespace {
 /// (naming the argument); values by IdentifyProblem::Validate (naming the row).
 IdentifyProblem TrackFromArrays(const py::array_t<double, py::array::forcecast>& t,
                                 const py::array_t<double, py::array::forcecast>& xy,
-                                const std::optional<py::array_t<double, py::array::forcecast>>& sigma) {
+                                const std::optional<py::array_t<double, py::array::forcecast>>& sigma,
+                                const std::optional<py::array_t<double, py::array::forcecast>>& impulse_times) {
   if (t.ndim() != 1) throw std::invalid_argument("t: value (array of " + std::to_string(t.ndim()) + " dimensions): must be 1-dimensional");
   if (xy.ndim() != 2 || xy.shape(1) != 2)
     throw std::invalid_argument("xy: value (array of shape not (n, 2)): must have shape (n, 2)");
@@ -28,6 +29,13 @@ IdentifyProblem TrackFromArrays(const py::array_t<double, py::array::forcecast>&
     const auto sv = sigma->unchecked<1>();
     for (py::ssize_t i = 0; i < sv.shape(0); ++i) p.sigma.push_back(sv(i));
   }
+  if (impulse_times) {
+    if (impulse_times->ndim() != 1)
+      throw std::invalid_argument("impulse_times: value (array of " + std::to_string(impulse_times->ndim()) +
+                                  " dimensions): must be 1-dimensional");
+    const auto iv = impulse_times->unchecked<1>();
+    for (py::ssize_t i = 0; i < iv.shape(0); ++i) p.impulse_times.push_back(iv(i));
+  }
   return p;
 }
 
@@ -37,7 +45,9 @@ void BindIdentifyInputs(py::module_& m) {
       .def_readwrite("lambda_", &IdentifyGuess::lambda)
       .def_readwrite("mu", &IdentifyGuess::mu)
       .def_readwrite("angles", &IdentifyGuess::angles)
-      .def_readwrite("x0", &IdentifyGuess::x0);
+      .def_readwrite("x0", &IdentifyGuess::x0)
+      .def_readwrite("delta_psi", &IdentifyGuess::delta_psi,
+                     "The first delta psi of the impulses (at most one per impulse); the rest are chosen from the track.");
   py::class_<IdentifyOptions> options(m, "IdentifyOptions");
   WithKeywordInit(options)
       .def_readwrite("radius", &IdentifyOptions::radius)
@@ -60,6 +70,10 @@ void BindIdentifyInputs(py::module_& m) {
 
 void BindIdentify(py::module_& m) {
   BindIdentifyInputs(m);
+  py::class_<IdentifiedFlight> flight(m, "IdentifiedFlight", "The fitted state at the start of one flight (just after its impulse).");
+  flight.def_readonly("t_start", &IdentifiedFlight::t_start, "The flight's start time (the impulse's, or t_ref).")
+      .def_readonly("angles", &IdentifiedFlight::angles, "(theta, phi, psi) at the start, theta in [0, pi].")
+      .def_readonly("x", &IdentifiedFlight::x, "The contact point at the start (radii).");
   py::class_<IdentifySummary> summary(m, "IdentifySummary");
   AddSummaryShape(summary);
   summary.def_readonly("t_ref", &IdentifySummary::t_ref)
@@ -68,6 +82,10 @@ void BindIdentify(py::module_& m) {
       .def_readonly("angles", &IdentifySummary::angles)
       .def_readonly("x0", &IdentifySummary::x0)
       .def_readonly("period", &IdentifySummary::period)
+      .def_readonly("impulse_times", &IdentifySummary::impulse_times, "The times of the impulses between the flights.")
+      .def_readonly("delta_psi", &IdentifySummary::delta_psi,
+                    "The fitted delta psi of each impulse, in (-pi, pi]; standard errors from index 7 of standard_errors.")
+      .def_readonly("flights", &IdentifySummary::flights, "The fitted state at the start of each flight (IdentifiedFlight).")
       .def_readonly("standard_errors", &IdentifySummary::standard_errors)
       .def_readonly("correlation", &IdentifySummary::correlation)
       .def_property_readonly("lambda_interval", [](const IdentifySummary& s) { return py::make_tuple(s.lambda_low, s.lambda_high); })
@@ -99,11 +117,12 @@ void BindIdentify(py::module_& m) {
             return names;
           });
   m.def("_identify", [](const py::array_t<double, py::array::forcecast>& t, const py::array_t<double, py::array::forcecast>& xy,
-                        const std::optional<py::array_t<double, py::array::forcecast>>& sigma, const IdentifyOptions& options) {
-          const IdentifyProblem p = TrackFromArrays(t, xy, sigma);
+                        const std::optional<py::array_t<double, py::array::forcecast>>& sigma,
+                        const std::optional<py::array_t<double, py::array::forcecast>>& impulse_times, const IdentifyOptions& options) {
+          const IdentifyProblem p = TrackFromArrays(t, xy, sigma, impulse_times);
           py::gil_scoped_release release;
           return Identify(p, options);
-        }, py::arg("t"), py::arg("xy"), py::arg("sigma"), py::arg("options"));
+        }, py::arg("t"), py::arg("xy"), py::arg("sigma"), py::arg("impulse_times"), py::arg("options"));
 }
 
 }  // namespace plateball::python
