@@ -78,3 +78,49 @@ def test_the_binding_gives_the_cli_answer_on_the_example_track():
     # The CSV's numbers read by C++ strtod and NumPy are the same doubles: the same fit to the digit.
     assert s.lambda_ == doc["fit"]["lambda"] and s.mu == doc["fit"]["mu"]
     assert s.lambda_interval == (doc["fit"]["lambda_interval"]["low"], doc["fit"]["lambda_interval"]["high"])
+
+
+def impulse_track():
+    """The example track of eight flights between known impulses (the circle plan, noise 0.002)."""
+    path = os.path.join(ROOT, "tests", "data", "identify_impulses_track.csv")
+    with open(path) as f:
+        impulses = [float(v) for v in [line for line in f if line.startswith("#")][-1].lstrip("# ").split(",")]
+    data = np.loadtxt(path, delimiter=",", comments="#", skiprows=5)
+    return path, data[:, 0], data[:, 1:3], np.asarray(impulses)
+
+
+def test_impulses_at_known_times_give_lambda_and_each_delta_psi():
+    _, t, xy, impulses = impulse_track()
+    s = pb.identify(t, xy, impulse_times=impulses, profile_interval=False)
+    assert s.status == "identified"
+    # The plan's values (problems/circle.json with n = 8): lambda = 2 and the first delta psi.
+    assert abs(s.lambda_ - 2.0) < 4 * s.standard_errors[0]
+    assert abs(s.delta_psi[0] - 0.7486843166879056) < 4 * s.standard_errors[7]
+    assert len(s.delta_psi) == 7 and len(s.standard_errors) == 14 and s.correlation.shape == (14, 14)
+    assert list(s.impulse_times) == list(impulses)
+    assert [f.t_start for f in s.flights] == [t[0]] + list(impulses)
+    # Each flight starts at the sample at its impulse (noise 0.002): x is continuous across it.
+    for f in s.flights[1:]:
+        assert np.min(np.linalg.norm(xy - f.x, axis=1)) < 0.01
+
+
+def test_bad_impulse_times_raise_value_error_naming_the_field():
+    _, t, xy, impulses = impulse_track()
+    with pytest.raises(ValueError, match=r"^impulse_times\[1\]: value .*: impulse times must be strictly increasing"):
+        pb.identify(t, xy, impulse_times=impulses[::-1])
+    with pytest.raises(ValueError, match=r"^impulse_times\[0\]: value 99: must be inside the track"):
+        pb.identify(t, xy, impulse_times=[99.0])
+    with pytest.raises(ValueError, match=r"impulse_times: .*must be 1-dimensional"):
+        pb.identify(t, xy, impulse_times=np.zeros((2, 2)))
+
+
+def test_the_binding_gives_the_cli_answer_on_the_impulse_track():
+    cli = os.environ.get("PLATEBALL_CLI")
+    if not cli:
+        pytest.skip("PLATEBALL_CLI not set")
+    path, t, xy, impulses = impulse_track()
+    doc = json.loads(subprocess.run([cli, "identify", path, "--no-profile", "--impulses", ",".join(repr(v) for v in impulses)],
+                                    check=True, capture_output=True, text=True).stdout)
+    s = pb.identify(t, xy, impulse_times=impulses, profile_interval=False)
+    assert s.lambda_ == doc["fit"]["lambda"]
+    assert list(s.delta_psi) == [i["delta_psi"] for i in doc["fit"]["impulses"]]
