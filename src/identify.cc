@@ -321,6 +321,10 @@ void FillFit(const internal::TrackFit& fit, IdentifySummary* s) {
 
 /// The fitted state at each flight's start (the flights of the model at the optimum).
 void FillFlights(const TrackData& d, const internal::TrackFit& fit, const IntegrationOptions& integration, IdentifySummary* s) {
+  if (d.impulse_tau.empty()) {  // one flight: the state at t_ref
+    s->flights = {IdentifiedFlight{s->t_ref, s->angles, s->x0}};
+    return;
+  }
   std::vector<double> model(d.x.size());
   std::vector<internal::FlightStart> flights;
   internal::EvaluateImpulsiveTrack(fit.q.data(), d.tau.data(), d.tau.size(), d.impulse_tau, integration, model.data(),
