@@ -332,7 +332,9 @@ void FillFlights(const TrackData& d, const internal::TrackFit& fit, const Integr
   const BallModel ball = BallModel::FromLambda(s->lambda);
   s->flights.clear();
   for (const internal::FlightStart& f : flights) {
-    const BallState state{f.z, OmegaFromMomentum(f.z, f.k, ball)};
+    // The integrated axis drifts from unit length by the integration error: the chart wants |z| = 1.
+    const Eigen::Vector3d z = f.z.normalized();
+    const BallState state{z, OmegaFromMomentum(z, f.k, ball)};
     s->flights.push_back({s->t_ref + f.tau, AnglesFromState(state, ball), f.x});
   }
 }

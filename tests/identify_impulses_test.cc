@@ -205,6 +205,31 @@ TEST(IdentifyImpulses, JointFitGivesATighterLambdaThanTheFlightsSeparately) {
               joint.standard_errors[0], combined, best_single);
 }
 
+// Coverage of the 95% profile interval of lambda across impulses: the count of covering seeds is
+// Binomial(200, 0.95) when the interval is right; [179, 198] holds it with probability 0.999.
+// Short tracks (10 samples per flight, noise 3e-3, sigma given) fitted from the truth (the search
+// is tested above) so that the 200 fits stay cheap.
+constexpr int kCoverageSeeds = 200;
+constexpr int kCoverageLow = 179, kCoverageHigh = 198;
+
+TEST(IdentifyImpulses, ProfileIntervalCoversLambdaInAbout95PercentOfSeeds) {
+  int covered = 0;
+  for (int seed = 0; seed < kCoverageSeeds; ++seed) {
+    const ImpulsiveTrack track = MakeTrack(10, 3e-3, 5000u + static_cast<unsigned>(seed));
+    IdentifyOptions o;
+    o.integration = {1e-9, 1e-9, 2'000'000};
+    o.guess = IdentifyGuess{track.lambda, track.mu, track.start, Eigen::Vector2d::Zero(), track.delta_psi};
+    const IdentifySummary s = Identify(track.problem, o);
+    ASSERT_EQ(s.status, IdentifyStatus::kIdentified) << seed << ": " << s.BriefReport();
+    covered += s.lambda_low < track.lambda && track.lambda < s.lambda_high;
+  }
+  std::printf("the 95%% profile interval covered lambda in %d of %d seeds\n", covered, kCoverageSeeds);
+  EXPECT_GE(covered, kCoverageLow);
+  EXPECT_LE(covered, kCoverageHigh);
+}
+
+// Plans of 16 and 32 impulses: flights of 1/8 and 1/16 period with 8 samples each, so the
+// multi-start's first window spans several flights and each start chooses their delta psi.
 TEST(IdentifyImpulses, ManyShortFlightsFromTheMultiStart) {
   for (int n : {16, 32}) {
     for (unsigned seed : {31u, 32u}) {
