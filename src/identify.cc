@@ -87,6 +87,26 @@ std::string ValidateImpulseTimes(const std::vector<double>& t, const std::vector
   return {};
 }
 
+/// The spin columns: one finite v0 and one sigma_spin > 0 per sample, with sigma given.
+std::string ValidateSpin(const IdentifyProblem& p) {
+  using internal::InvalidValueMessage;
+  if (p.spin.empty() && p.sigma_spin.empty()) return {};
+  const std::string rows = "must have one row per time (" + std::to_string(p.t.size()) + ")";
+  if (p.spin.size() != p.t.size()) return InvalidValueMessage("spin (rows)", p.spin.size(), rows);
+  if (p.sigma_spin.size() != p.t.size())
+    return InvalidValueMessage("sigma_spin (rows)", p.sigma_spin.size(), rows + ": a measured spin needs its noise");
+  if (p.sigma.empty())
+    return InvalidValueMessage("sigma (rows)", p.sigma.size(),
+                               "a measured spin needs sigma given too (positions and spin share no common noise to estimate)");
+  for (std::size_t i = 0; i < p.t.size(); ++i) {
+    const std::string row = "[" + std::to_string(i) + "]";
+    if (!std::isfinite(p.spin[i])) return InvalidValueMessage("spin" + row, p.spin[i], "must be finite");
+    if (!(std::isfinite(p.sigma_spin[i]) && p.sigma_spin[i] > 0))
+      return InvalidValueMessage("sigma_spin" + row, p.sigma_spin[i], "must be finite and > 0");
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string IdentifyProblem::Validate() const {
@@ -110,7 +130,8 @@ std::string IdentifyProblem::Validate() const {
     if (!sigma.empty() && !(std::isfinite(sigma[i]) && sigma[i] > 0))
       return InvalidValueMessage("sigma" + row, sigma[i], "must be finite and > 0");
   }
-  return ValidateImpulseTimes(t, impulse_times);
+  const std::string impulses = ValidateImpulseTimes(t, impulse_times);
+  return impulses.empty() ? ValidateSpin(*this) : impulses;
 }
 
 std::string IdentifyOptions::Validate() const {
@@ -179,6 +200,8 @@ TrackData MakeTrackData(const IdentifyProblem& problem, const IdentifyOptions& o
     if (!problem.sigma.empty()) d.weight[i] = options.radius / problem.sigma[i];
   }
   for (double t : problem.impulse_times) d.impulse_tau.push_back(t - problem.t[0]);
+  d.spin = problem.spin;  // rad per time unit: the time is not scaled, nor is v0 by the radius
+  for (double sigma : problem.sigma_spin) d.spin_weight.push_back(1.0 / sigma);
   return d;
 }
 
@@ -204,10 +227,18 @@ void FillResiduals(const TrackData& d, const internal::TrackFit& fit, IdentifySu
     max_r = std::max(max_r, r);
   }
   s->samples = static_cast<int>(n);
-  s->residuals = static_cast<int>(2 * n);
   s->rms_residual = std::sqrt(sum2 / static_cast<double>(2 * n));
   s->max_residual = max_r;
+  s->residuals = static_cast<int>(2 * n + d.spin.size());
   s->chi_square = 2.0 * fit.cost;
+  s->fitted_spin = fit.spin;
+  double spin2 = 0.0;
+  s->spin_max_residual = 0.0;
+  for (std::size_t i = 0; i < d.spin.size(); ++i) {
+    spin2 += std::pow(fit.spin[i] - d.spin[i], 2);
+    s->spin_max_residual = std::max(s->spin_max_residual, std::abs(fit.spin[i] - d.spin[i]));
+  }
+  s->spin_rms_residual = d.spin.empty() ? 0.0 : std::sqrt(spin2 / static_cast<double>(d.spin.size()));
   s->track_spread = TrackSpread(d);
 }
 
@@ -278,13 +309,30 @@ std::string ParameterName(std::size_t i) {
   return i < static_cast<std::size_t>(kP) ? std::string(kIdentifyParameterNames[i]) : "delta_psi[" + std::to_string(i - kP) + "]";
 }
 
-void FillUnidentified(IdentifySummary* s) {
+/// With a measured spin: true when it shows v0 != 0, i.e. the hypothesis v0 = 0 at every sample
+/// is rejected against the fit at 95% (its spin chi-square exceeds the fit's by chi^2_1's
+/// quantile). A straight path with v0 != 0 is then the lambda = 1 one, not the v0 = 0 family in
+/// which every lambda gives the same motion, and lambda's verdict comes from its standard error.
+bool SpinShowsAxialSpin(const TrackData& d, const internal::TrackFit& fit) {
+  if (d.spin.empty()) return false;
+  double zero = 0.0, fitted = 0.0;
+  for (std::size_t i = 0; i < d.spin.size(); ++i) {
+    zero += std::pow(d.spin_weight[i] * d.spin[i], 2);
+    fitted += std::pow(d.spin_weight[i] * (fit.spin[i] - d.spin[i]), 2);
+  }
+  return zero - fitted > boost::math::quantile(boost::math::chi_squared_distribution<double>(1.0), 0.95);
+}
+
+/// True when the straight path leaves lambda unidentifiable (identify.h, straight_path).
+bool StraightBlocksLambda(const IdentifySummary& s, bool spin_shows_v0) { return s.straight_path && !spin_shows_v0; }
+
+void FillUnidentified(bool spin_shows_v0, IdentifySummary* s) {
   const auto& e = s->standard_errors;
   std::vector<double> scaled{e[0] / s->lambda, e[1] / s->mu, e[2], e[3], e[4],
                              e[5] / std::max(s->track_spread, 1e-300), e[6] / std::max(s->track_spread, 1e-300)};
   scaled.insert(scaled.end(), e.begin() + kP, e.end());  // delta psi: radians, like the angles
   for (std::size_t i = 0; i < scaled.size(); ++i)
-    if (!(scaled[i] <= kHugeError) || (i == 0 && s->straight_path)) s->unidentified.push_back(ParameterName(i));
+    if (!(scaled[i] <= kHugeError) || (i == 0 && StraightBlocksLambda(*s, spin_shows_v0))) s->unidentified.push_back(ParameterName(i));
 }
 
 /// The profile threshold of a 95% interval: chi^2_1 with given sigma, F(1, m - p) with estimated.
@@ -340,20 +388,21 @@ void FillFlights(const TrackData& d, const internal::TrackFit& fit, const Integr
 }
 
 /// Decides identified / not identified from the standard error and the profile interval.
-void Classify(const IdentifyOptions& o, IdentifySummary* s) {
+void Classify(const IdentifyOptions& o, bool spin_shows_v0, IdentifySummary* s) {
   s->lambda_relative_error = s->standard_errors[0] / s->lambda;
   const bool closed = s->lambda_low > 0 && std::isfinite(s->lambda_high);
-  s->lambda_identified =
-      !s->straight_path && s->lambda_relative_error <= o.max_lambda_relative_error && (closed || !o.profile_interval);
+  const bool straight = StraightBlocksLambda(*s, spin_shows_v0);
+  s->lambda_identified = !straight && s->lambda_relative_error <= o.max_lambda_relative_error && (closed || !o.profile_interval);
   std::ostringstream os;
-  if (s->straight_path) {
+  if (straight) {
     s->status = IdentifyStatus::kLambdaNotIdentified;
     os << "lambda not identified, not identifiable from the contact track alone: the fitted contact path is a straight line (largest "
           "deviation "
        << s->path_deviation << " radii, within the noise " << s->sigma
        << "). Every lambda gives a straight path when the axial spin v0 is 0, and every state gives one at lambda = 1 "
           "(the ball rolls like a sphere), so the track fixes the speed but not lambda; a track with a curved, "
-          "drifting contact path identifies lambda (docs/identify.md)";
+          "drifting contact path identifies lambda, and so does a measured spin v0 != 0 (docs/identify.md)"
+       << (s->fitted_spin.empty() ? "" : "; the measured spin does not show v0 != 0");
   } else if (s->lambda_identified) {
     s->status = IdentifyStatus::kIdentified;
     os << "lambda identified: relative standard error " << s->lambda_relative_error;
@@ -404,7 +453,8 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
     }
     FillCovariance(fit, s2, &s);
     FillStraightness(problem.t, &s);
-    FillUnidentified(&s);
+    const bool spin_shows_v0 = SpinShowsAxialSpin(data, fit);
+    FillUnidentified(spin_shows_v0, &s);
     s.lambda_low = s.lambda_high = kNaN;
     if (options.profile_interval && std::isfinite(s.standard_errors[0]) && s.rms_residual < kNoiselessResidual) {
       // A noiseless track: the profile would resolve the integration's round-off, not a noise.
@@ -423,7 +473,7 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
       s.lambda_high = kInf;
       s.interval_method = "profile";
     }
-    Classify(options, &s);
+    Classify(options, spin_shows_v0, &s);
   } catch (const std::exception& e) {
     s.status = IdentifyStatus::kFailed;
     s.message = std::string("the fit failed: ") + e.what();

@@ -56,37 +56,63 @@ IntegrationOptions JacobianOptions(const IntegrationOptions& o) {
   return {std::max(kJacobianTolerance, o.absolute_tolerance), std::max(kJacobianTolerance, o.relative_tolerance), o.max_steps};
 }
 
-/// The weighted residuals w_i (x(tau_i) - x_i) and their exact Jacobian, parameter blocks
-/// lambda (1) and (mu, theta, phi, psi, x0, y0, delta_psi...) (6 + m), so that the profile can
-/// hold lambda constant.
+/// The residual count: 2 per sample, and one per sample with a measured spin.
+std::size_t ResidualCount(const TrackData& d) { return 2 * d.tau.size() + d.spin.size(); }
+
+/// The model at q: x(tau_i) into *model (2n), v0(tau_i) into *spin (when the track has a spin),
+/// and with jacobian != nullptr the weighted Jacobian of the residuals, row-major
+/// (ResidualCount x ParameterCount). Throws when an integration fails.
+void EvaluateModel(const TrackData& d, const double* q, const IntegrationOptions& o, std::vector<double>* model,
+                   std::vector<double>* spin, std::vector<double>* jacobian) {
+  const std::size_t n = d.tau.size(), p = ParameterCount(d);
+  model->resize(2 * n);
+  spin->resize(d.spin.size());
+  if (jacobian != nullptr) jacobian->resize(ResidualCount(d) * p);
+  const IntegrationOptions jo = JacobianOptions(o);
+  const SpinOutput spin_out{spin->data(), jacobian != nullptr ? jacobian->data() + 2 * n * p : nullptr};
+  EvaluateImpulsiveTrack(q, d.tau.data(), n, d.impulse_tau, o, model->data(), jacobian != nullptr ? jacobian->data() : nullptr,
+                         &jo, nullptr, d.spin.empty() ? nullptr : &spin_out);
+  if (jacobian == nullptr) return;
+  for (std::size_t k = 0; k < ResidualCount(d); ++k) {
+    const double w = k < 2 * n ? d.weight[k / 2] : d.spin_weight[k - 2 * n];
+    for (std::size_t c = 0; c < p; ++c) (*jacobian)[k * p + c] *= w;
+  }
+}
+
+/// The weighted residuals w_i (x(tau_i) - x_i), then w_spin_i (v0(tau_i) - v0_i).
+std::vector<double> WeightedResiduals(const TrackData& d, const std::vector<double>& model, const std::vector<double>& spin) {
+  std::vector<double> r(ResidualCount(d));
+  for (std::size_t k = 0; k < model.size(); ++k) r[k] = d.weight[k / 2] * (model[k] - d.x[k]);
+  for (std::size_t i = 0; i < spin.size(); ++i) r[model.size() + i] = d.spin_weight[i] * (spin[i] - d.spin[i]);
+  return r;
+}
+
+/// The weighted residuals and their exact Jacobian, parameter blocks lambda (1) and (mu, theta,
+/// phi, psi, x0, y0, delta_psi...) (6 + m), so that the profile can hold lambda constant.
 class TrackCost final : public ceres::CostFunction {
  public:
-  TrackCost(const TrackData& data, const IntegrationOptions& options)
-      : data_(data), options_(options), jacobian_options_(JacobianOptions(options)), p_(ParameterCount(data)) {
-    set_num_residuals(static_cast<int>(2 * data.tau.size()));
+  TrackCost(const TrackData& data, const IntegrationOptions& options) : data_(data), options_(options), p_(ParameterCount(data)) {
+    set_num_residuals(static_cast<int>(ResidualCount(data)));
     mutable_parameter_block_sizes()->push_back(1);
     mutable_parameter_block_sizes()->push_back(static_cast<int>(p_ - 1));
   }
   bool Evaluate(double const* const* p, double* residuals, double** jacobians) const override {
     std::vector<double> q{p[0][0]};
     q.insert(q.end(), p[1], p[1] + (p_ - 1));
-    const std::size_t n = data_.tau.size();
-    std::vector<double> model(2 * n);
     const bool want_j = jacobians != nullptr && (jacobians[0] != nullptr || jacobians[1] != nullptr);
-    std::vector<double> j(want_j ? 2 * n * p_ : 0);
+    std::vector<double> model, spin, j;
     try {
-      EvaluateImpulsiveTrack(q.data(), data_.tau.data(), n, data_.impulse_tau, options_, model.data(),
-                             want_j ? j.data() : nullptr, &jacobian_options_);
+      EvaluateModel(data_, q.data(), options_, &model, &spin, want_j ? &j : nullptr);
     } catch (const std::exception&) {
       return false;  // an integration failure rejects the step (Ceres shrinks the trust region)
     }
-    for (std::size_t k = 0; k < 2 * n; ++k) {
-      const double w = data_.weight[k / 2];
-      residuals[k] = w * (model[k] - data_.x[k]);
-      if (!want_j) continue;
-      if (jacobians[0] != nullptr) jacobians[0][k] = w * j[k * p_];
+    const std::vector<double> r = WeightedResiduals(data_, model, spin);
+    std::copy(r.begin(), r.end(), residuals);
+    if (!want_j) return true;
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      if (jacobians[0] != nullptr) jacobians[0][k] = j[k * p_];
       if (jacobians[1] != nullptr)
-        for (std::size_t c = 1; c < p_; ++c) jacobians[1][k * (p_ - 1) + c - 1] = w * j[k * p_ + c];
+        for (std::size_t c = 1; c < p_; ++c) jacobians[1][k * (p_ - 1) + c - 1] = j[k * p_ + c];
     }
     return true;
   }
@@ -94,7 +120,6 @@ class TrackCost final : public ceres::CostFunction {
  private:
   const TrackData& data_;
   IntegrationOptions options_;
-  IntegrationOptions jacobian_options_;
   std::size_t p_;
 };
 
@@ -143,6 +168,9 @@ TrackData Window(const TrackData& d, double tau_max, std::size_t max_samples) {
     w.x.push_back(d.x[2 * i]);
     w.x.push_back(d.x[2 * i + 1]);
     w.weight.push_back(d.weight[i]);
+    if (d.spin.empty()) return;
+    w.spin.push_back(d.spin[i]);
+    w.spin_weight.push_back(d.spin_weight[i]);
   };
   for (std::size_t i = 0; i < end; i += stride) take(i);
   // With impulses the last sample is kept, so that the window sees every flight it reaches.
@@ -154,10 +182,10 @@ TrackData Window(const TrackData& d, double tau_max, std::size_t max_samples) {
 
 /// 1/2 sum of the squared weighted residuals at q.
 double Cost(const TrackData& d, const std::vector<double>& q, const IntegrationOptions& integration) {
-  std::vector<double> model(d.x.size());
-  EvaluateImpulsiveTrack(q.data(), d.tau.data(), d.tau.size(), d.impulse_tau, integration, model.data(), nullptr);
+  std::vector<double> model, spin;
+  EvaluateModel(d, q.data(), integration, &model, &spin, nullptr);
   double c = 0.0;
-  for (std::size_t k = 0; k < model.size(); ++k) c += std::pow(d.weight[k / 2] * (model[k] - d.x[k]), 2);
+  for (double r : WeightedResiduals(d, model, spin)) c += r * r;
   return 0.5 * c;
 }
 
@@ -277,16 +305,11 @@ double NextWindow(const TrackData& d, double tau_max) {
 
 /// Model and weighted Jacobian at fit.q on the whole track.
 void FinishFit(const TrackData& d, const IntegrationOptions& integration, TrackFit* fit) {
-  const std::size_t n = d.tau.size(), p = ParameterCount(d);
-  fit->model.resize(2 * n);
-  std::vector<double> j(2 * n * p);
-  const IntegrationOptions jacobian_options = JacobianOptions(integration);
-  EvaluateImpulsiveTrack(fit->q.data(), d.tau.data(), n, d.impulse_tau, integration, fit->model.data(), j.data(),
-                         &jacobian_options);
-  fit->jacobian.resize(static_cast<Eigen::Index>(2 * n), static_cast<Eigen::Index>(p));
-  for (std::size_t k = 0; k < 2 * n; ++k)
-    for (std::size_t c = 0; c < p; ++c)
-      fit->jacobian(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(c)) = d.weight[k / 2] * j[k * p + c];
+  const std::size_t p = ParameterCount(d);
+  std::vector<double> j;
+  EvaluateModel(d, fit->q.data(), integration, &fit->model, &fit->spin, &j);
+  fit->jacobian = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      j.data(), static_cast<Eigen::Index>(ResidualCount(d)), static_cast<Eigen::Index>(p));
 }
 
 }  // namespace
@@ -380,7 +403,7 @@ ProfileInterval ProfileLambda(const TrackData& data, const IdentifyOptions& opti
   // kProfileNoiseFraction x the RMS residual (at most kJacobianTolerance, never tighter than
   // asked). The optimum's cost is re-evaluated with the same tolerance so that the common part
   // of the integration error cancels in the differences.
-  const double rms = std::sqrt(2.0 * fit.cost / static_cast<double>(data.x.size()));
+  const double rms = std::sqrt(2.0 * fit.cost / static_cast<double>(ResidualCount(data)));
   const double tol = std::min(kProfileNoiseFraction * rms, kProfileMaxTolerance);
   const IntegrationOptions integration{std::max(tol, options.integration.absolute_tolerance),
                                        std::max(tol, options.integration.relative_tolerance), options.integration.max_steps};

@@ -17,6 +17,10 @@ struct TrackData {
   std::vector<double> x;
   std::vector<double> weight;
   std::vector<double> impulse_tau;
+  /// The measured axial spin v0 at each sample and its weight 1/sigma_spin (both empty: none).
+  /// Its residuals follow the 2n of the positions.
+  std::vector<double> spin;
+  std::vector<double> spin_weight;
 };
 
 struct TrackFit {
@@ -25,7 +29,8 @@ struct TrackFit {
   double cost = 0.0;          ///< 1/2 sum of the squared weighted residuals
   int iterations = 0;
   std::vector<double> model;  ///< x(tau_i) at q (after FinishFit)
-  Eigen::MatrixXd jacobian;   ///< weighted d residual / dq, (2n x (7 + m)) (after FinishFit)
+  std::vector<double> spin;   ///< v0(tau_i) at q when the track has a spin (after FinishFit)
+  Eigen::MatrixXd jacobian;   ///< weighted d residual / dq, ((2n + spin samples) x (7 + m)) (after FinishFit)
 };
 
 /// The best fit: the multi-start (or options.guess) on a short window, the window doubled to the

@@ -105,7 +105,7 @@ std::vector<double> FlightTimes(const double* tau, const std::vector<std::size_t
 /// The values: flight by flight, the impulse applied to K at each flight's end (z and x
 /// continuous); the flight starts into *flights.
 void ImpulsiveValues(const double* q, const double* tau, std::size_t n, const std::vector<double>& impulse_tau,
-                     const IntegrationOptions& options, double* x_out, std::vector<FlightStart>* flights) {
+                     const IntegrationOptions& options, double* x_out, std::vector<FlightStart>* flights, double* spin) {
   const std::array<double, 5> s = StartOf(q);
   FlightStart node{0.0, {s[0], s[1], s[2]}, {s[3], s[4]}, {q[5], q[6]}};
   const std::vector<std::size_t> first = FlightBounds(tau, n, impulse_tau);
@@ -122,6 +122,7 @@ void ImpulsiveValues(const double* q, const double* tau, std::size_t n, const st
       if (j < samples) {
         x_out[2 * (first[f] + j)] = node.x.x() + y[3];
         x_out[2 * (first[f] + j) + 1] = node.x.y() + y[4];
+        if (spin != nullptr) spin[first[f] + j] = AxialSpinFromZK(y.data(), node.k.data(), q[0]);
       } else {
         end = y;
       }
@@ -149,7 +150,8 @@ Eigen::Matrix<double, 2, 7> ImpulseDerivatives(const Eigen::Vector3d& z, const E
 /// start; each flight's variational equations give the derivatives of its samples and its end
 /// with respect to its start (z, K) and lambda: the local directions, mapped to q by L (6 x P).
 void ImpulsiveJacobian(const double* q, const double* tau, std::size_t n, const std::vector<double>& impulse_tau,
-                       const IntegrationOptions& options, const std::vector<FlightStart>& flights, double* jacobian) {
+                       const IntegrationOptions& options, const std::vector<FlightStart>& flights, double* jacobian,
+                       double* spin_jacobian) {
   using Rhs = SensitivityRhs<6>;
   const Eigen::Index p = kTrackParameters + static_cast<Eigen::Index>(impulse_tau.size());
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(7, p);
@@ -159,7 +161,9 @@ void ImpulsiveJacobian(const double* q, const double* tau, std::size_t n, const 
     for (int j = 0; j < kOde; ++j) d(i, j) = d0[i][j];
   d(5, 5) = d(6, 6) = 1.0;
   const std::vector<std::size_t> first = FlightBounds(tau, n, impulse_tau);
-  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> jac(jacobian, static_cast<Eigen::Index>(2 * n), p);
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  Eigen::Map<RowMajor> jac(jacobian, static_cast<Eigen::Index>(2 * n), p);
+  Eigen::Map<RowMajor> spin_jac(spin_jacobian, spin_jacobian != nullptr ? static_cast<Eigen::Index>(n) : 0, p);
   for (std::size_t f = 0; f < flights.size(); ++f) {
     const FlightStart& node = flights[f];
     Eigen::MatrixXd local(6, p);
@@ -184,6 +188,15 @@ void ImpulsiveJacobian(const double* q, const double* tau, std::size_t n, const 
         for (int k = 0; k < 6; ++k) g(i, k) = y[static_cast<std::size_t>(5 + 6 * i + k)];
       if (j < samples) {
         jac.middleRows(static_cast<Eigen::Index>(2 * (first[f] + j)), 2) = g.bottomRows(2) * local + d.bottomRows(2);
+        if (spin_jacobian != nullptr) {
+          // v0 on Jets of the local directions: z from the state, K and lambda the directions 3-5.
+          Rhs::J z[3];
+          for (int i = 0; i < 3; ++i) {
+            z[i].a = y[static_cast<std::size_t>(i)];
+            z[i].v = g.row(i).transpose();
+          }
+          spin_jac.row(static_cast<Eigen::Index>(first[f] + j)) = AxialSpinFromZK(z, rhs.k, rhs.lambda).v.transpose() * local;
+        }
       } else {
         end = g;
       }
@@ -234,16 +247,18 @@ void EvaluateTrack(const double* q, const double* tau, std::size_t n, const Inte
 
 void EvaluateImpulsiveTrack(const double* q, const double* tau, std::size_t n, const std::vector<double>& impulse_tau,
                             const IntegrationOptions& options, double* x_out, double* jacobian,
-                            const IntegrationOptions* jacobian_options, std::vector<FlightStart>* flights) {
-  if (impulse_tau.empty() && flights == nullptr) {
+                            const IntegrationOptions* jacobian_options, std::vector<FlightStart>* flights,
+                            const SpinOutput* spin) {
+  if (impulse_tau.empty() && flights == nullptr && spin == nullptr) {
     EvaluateTrack(q, tau, n, options, x_out, jacobian, jacobian_options);
     return;
   }
   std::vector<FlightStart> own;
   std::vector<FlightStart>* nodes = flights != nullptr ? flights : &own;
-  ImpulsiveValues(q, tau, n, impulse_tau, options, x_out, nodes);
+  ImpulsiveValues(q, tau, n, impulse_tau, options, x_out, nodes, spin != nullptr ? spin->values : nullptr);
   if (jacobian != nullptr)
-    ImpulsiveJacobian(q, tau, n, impulse_tau, jacobian_options != nullptr ? *jacobian_options : options, *nodes, jacobian);
+    ImpulsiveJacobian(q, tau, n, impulse_tau, jacobian_options != nullptr ? *jacobian_options : options, *nodes, jacobian,
+                      spin != nullptr ? spin->jacobian : nullptr);
 }
 
 }  // namespace plateball::internal

@@ -30,6 +30,11 @@ struct IdentifyProblem {
   /// contact point and the axis are continuous, lambda and mu shared, one delta_psi fitted per
   /// impulse. Empty: one free flight.
   std::vector<double> impulse_times;
+  /// The measured axial spin v0 = <omega, z> at each sample (an IMU's rate about the ball's
+  /// symmetry axis; rad per time unit of t), or empty. It needs sigma (the positions' noise) and
+  /// sigma_spin (its own, > 0, one per sample) given: two kinds of residual share no common noise.
+  std::vector<double> spin;
+  std::vector<double> sigma_spin;
   /// Empty when valid, else "FIELD: value V: what is wrong" naming the first bad row.
   std::string Validate() const;
 };
@@ -144,11 +149,12 @@ struct IdentifySummary {
   /// tell its path (every flight's) from a straight line. A straight path is what every lambda gives when the axial
   /// spin v0 is 0, and what every state gives at lambda = 1 (the ball rolls like a sphere), so
   /// lambda is then not identifiable from the contact track alone (status kLambdaNotIdentified,
-  /// "lambda" in unidentified, whatever its standard error).
+  /// "lambda" in unidentified, whatever its standard error) unless the track has a measured spin,
+  /// which tells the two causes apart (the verdict then comes from the standard error).
   bool straight_path = false;
   // Residuals.
   int samples = 0;
-  int residuals = 0;
+  int residuals = 0;  ///< 2 per sample, and one per measured spin
   double rms_residual = 0.0;      ///< sqrt(mean of the squared coordinate residuals), radii
   double max_residual = 0.0;      ///< largest |x_i - x(t_i)|, radii
   double sigma = 0.0;             ///< noise used for the errors (given mean or estimated)
@@ -156,6 +162,10 @@ struct IdentifySummary {
   double chi_square = 0.0;        ///< sum of squared weighted residuals
   double track_spread = 0.0;      ///< RMS distance of the track from its mean, radii
   std::vector<Eigen::Vector2d> fitted;  ///< the fitted x(t_i), radii
+  /// With a measured spin: the fitted v0(t_i), and the RMS and largest |v0(t_i) - v0_i|.
+  std::vector<double> fitted_spin;
+  double spin_rms_residual = 0.0;
+  double spin_max_residual = 0.0;
   int starts = 0;                 ///< multi-start fits run
   int iterations = 0;             ///< solver iterations of the final fit
   int profile_fits = 0;           ///< fits at fixed lambda for the profile interval
