@@ -124,3 +124,17 @@ def test_the_binding_gives_the_cli_answer_on_the_impulse_track():
     s = pb.identify(t, xy, impulse_times=impulses, profile_interval=False)
     assert s.lambda_ == doc["fit"]["lambda"]
     assert list(s.delta_psi) == [i["delta_psi"] for i in doc["fit"]["impulses"]]
+
+
+def test_a_measured_spin_identifies_lambda_on_a_straight_track():
+    # tests/data/identify_spin_track.csv: lambda = 1, a straight contact path; the axial spin
+    # v0 = <omega, z> (an IMU's rate about the symmetry axis) shows v0 != 0.
+    data = np.loadtxt(os.path.join(ROOT, "tests", "data", "identify_spin_track.csv"), delimiter=",", comments="#", skiprows=4)
+    t, xy, sigma, spin, sigma_spin = data[:, 0], data[:, 1:3], data[:, 3], data[:, 4], data[:, 5]
+    alone = pb.identify(t, xy, sigma=sigma, profile_interval=False)
+    assert alone.status == "lambda_not_identified" and alone.straight_path
+    s = pb.identify(t, xy, sigma=sigma, spin=spin, sigma_spin=sigma_spin, profile_interval=False)
+    assert s.status == "identified" and abs(s.lambda_ - 1.0) < 4 * s.standard_errors[0]
+    assert len(s.fitted_spin) == len(t) and abs(s.spin_rms_residual - 0.002) < 5e-4
+    with pytest.raises(ValueError, match=r"^sigma_spin \(rows\): value 0"):
+        pb.identify(t, xy, sigma=sigma, spin=spin)

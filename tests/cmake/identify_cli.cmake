@@ -85,6 +85,16 @@ plateball_cli_test(identify.impulses_few_samples 3 REGEX "impulse_times\\[1\\]: 
 plateball_cli_test(identify.impulses_twice 3 REGEX "--impulses.*impulse_times already"
   -- identify ${dir}/impulses_unsorted.json --impulses 3)
 
+# A measured axial spin (tests/data/identify_spin_track.csv, lambda = 1: a straight contact path):
+# the spin shows v0 != 0, so lambda = 1 is identified; the positions alone are not enough.
+plateball_cli_test(identify.spin 0
+  REGEX "\"spin_given\": true.*\"status\": \"identified\".*\"lambda\": 1\\.00.*\"spin\": {"
+  -- identify tests/data/identify_spin_track.csv --no-profile)
+string(REPLACE "\n" ",1\n" spin_rows "${rows}")
+file(WRITE ${dir}/spin_without_sigma.csv "t,x,y,spin\n${spin_rows}")
+plateball_cli_test(identify.spin_needs_its_sigma 3 REGEX "sigma_spin \\(rows\\): value 0: must have one row per time \\(10\\): a measured spin needs its noise"
+  -- identify ${dir}/spin_without_sigma.csv)
+
 # The fitted problem is a problem file: simulate reads it back and moves at the fitted period.
 if(EXISTS /usr/bin/python3)
   add_test(NAME cli.identify.fitted_problem_is_a_problem_file

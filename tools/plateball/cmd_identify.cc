@@ -70,14 +70,15 @@ std::vector<std::string> SplitCells(const std::string& line) {
   return cells;
 }
 
-/// CSV with a header line naming the columns t, x, y and optionally sigma ('#' lines are comments).
+/// CSV with a header line naming the columns t, x, y and optionally sigma, spin and sigma_spin ('#'
+/// lines are comments).
 IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
   std::stringstream in(text);
   std::string line;
   std::vector<std::string> columns;
   IdentifyProblem p;
-  int col[4] = {-1, -1, -1, -1};  // t, x, y, sigma
-  const char* names[4] = {"t", "x", "y", "sigma"};
+  int col[6] = {-1, -1, -1, -1, -1, -1};  // t, x, y, sigma, spin, sigma_spin
+  const char* names[6] = {"t", "x", "y", "sigma", "spin", "sigma_spin"};
   while (std::getline(in, line)) {
     const std::string trimmed = Trim(line);
     if (trimmed.empty() || trimmed[0] == '#') continue;
@@ -86,9 +87,11 @@ IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
       columns = cells;
       for (std::size_t c = 0; c < cells.size(); ++c) {
         int k = -1;
-        for (int m = 0; m < 4; ++m)
+        for (int m = 0; m < 6; ++m)
           if (cells[c] == names[m]) k = m;
-        if (k < 0) TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"", "unknown column (the columns are t, x, y and optionally sigma)");
+        if (k < 0)
+          TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"",
+                     "unknown column (the columns are t, x, y and optionally sigma, spin and sigma_spin)");
         if (col[k] >= 0) TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"", "repeated column");
         col[k] = static_cast<int>(c);
       }
@@ -104,12 +107,15 @@ IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
     p.x.emplace_back(ParseCell(file, "x" + r, cells[static_cast<std::size_t>(col[1])]),
                      ParseCell(file, "y" + r, cells[static_cast<std::size_t>(col[2])]));
     if (col[3] >= 0) p.sigma.push_back(ParseCell(file, "sigma" + r, cells[static_cast<std::size_t>(col[3])]));
+    if (col[4] >= 0) p.spin.push_back(ParseCell(file, "spin" + r, cells[static_cast<std::size_t>(col[4])]));
+    if (col[5] >= 0) p.sigma_spin.push_back(ParseCell(file, "sigma_spin" + r, cells[static_cast<std::size_t>(col[5])]));
   }
   if (columns.empty()) TrackError(file, "(document)", "(empty)", "no header line t,x,y");
   return p;
 }
 
-/// JSON {"t": [...], "x": [[x, y], ...], "sigma": [...], "impulse_times": [...]} (the last two optional).
+/// JSON {"t": [...], "x": [[x, y], ...], "sigma": [...], "impulse_times": [...], "spin": [...],
+/// "sigma_spin": [...]} (all but t and x optional).
 IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) {
   using nlohmann::json;
   json doc;
@@ -120,8 +126,9 @@ IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) 
   }
   if (!doc.is_object()) TrackError(file, "(document)", "(not an object)", "must be an object {\"t\": [...], \"x\": [[x, y], ...]}");
   for (auto it = doc.begin(); it != doc.end(); ++it)
-    if (it.key() != "t" && it.key() != "x" && it.key() != "sigma" && it.key() != "impulse_times")
-      TrackError(file, it.key(), "(any)", "unknown key (a track has t, x and optionally sigma and impulse_times)");
+    if (it.key() != "t" && it.key() != "x" && it.key() != "sigma" && it.key() != "impulse_times" && it.key() != "spin" &&
+        it.key() != "sigma_spin")
+      TrackError(file, it.key(), "(any)", "unknown key (a track has t, x and optionally sigma, impulse_times, spin and sigma_spin)");
   for (const char* key : {"t", "x"})
     if (!doc.contains(key) || !doc[key].is_array()) TrackError(file, key, "(missing)", "required array");
   IdentifyProblem p;
@@ -136,10 +143,14 @@ IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) 
     if (!q.is_array() || q.size() != 2) TrackError(file, f, q.dump(), "must be a point [x, y]");
     p.x.emplace_back(number(q[0], f + "[0]"), number(q[1], f + "[1]"));
   }
-  if (doc.contains("sigma")) {
-    if (!doc["sigma"].is_array()) TrackError(file, "sigma", doc["sigma"].dump(), "must be an array of numbers");
-    for (std::size_t i = 0; i < doc["sigma"].size(); ++i) p.sigma.push_back(number(doc["sigma"][i], "sigma[" + std::to_string(i) + "]"));
-  }
+  auto numbers = [&](const char* key, std::vector<double>* out) {
+    if (!doc.contains(key)) return;
+    if (!doc[key].is_array()) TrackError(file, key, doc[key].dump(), "must be an array of numbers");
+    for (std::size_t i = 0; i < doc[key].size(); ++i) out->push_back(number(doc[key][i], std::string(key) + "[" + std::to_string(i) + "]"));
+  };
+  numbers("sigma", &p.sigma);
+  numbers("spin", &p.spin);
+  numbers("sigma_spin", &p.sigma_spin);
   if (doc.contains("impulse_times")) {
     const json& times = doc["impulse_times"];
     if (!times.is_array()) TrackError(file, "impulse_times", times.dump(), "must be an array of times");
@@ -224,8 +235,10 @@ Json FitJson(const IdentifySummary& s) {
 }
 
 Json ResidualsJson(const IdentifySummary& s) {
-  return Json{{"samples", s.samples}, {"rms", s.rms_residual}, {"max", s.max_residual}, {"chi_square", s.chi_square},
-              {"sigma", s.sigma}, {"sigma_estimated", s.sigma_estimated}, {"track_spread", s.track_spread}};
+  Json j{{"samples", s.samples}, {"rms", s.rms_residual}, {"max", s.max_residual}, {"chi_square", s.chi_square},
+         {"sigma", s.sigma}, {"sigma_estimated", s.sigma_estimated}, {"track_spread", s.track_spread}};
+  if (!s.fitted_spin.empty()) j["spin"] = Json{{"rms", s.spin_rms_residual}, {"max", s.spin_max_residual}};
+  return j;
 }
 
 /// The fitted model as problem-file sections (ball, initial) that plan and steer read.
@@ -336,7 +349,8 @@ int RunIdentify(const IdentifyCliOptions& o) {
                         {"max_lambda_relative_error", opt.max_lambda_relative_error},
                         {"profile_interval", opt.profile_interval}, {"guess", o.guess}};
   doc["track"] = Json{{"file", o.track}, {"samples", track.t.size()}, {"t_first", track.t.front()}, {"t_last", track.t.back()},
-                      {"sigma_given", !track.sigma.empty()}, {"impulse_times", track.impulse_times}};
+                      {"sigma_given", !track.sigma.empty()}, {"spin_given", !track.spin.empty()},
+                      {"impulse_times", track.impulse_times}};
   Append(doc, ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport()));
   const bool fitted = s.status == IdentifyStatus::kIdentified || s.status == IdentifyStatus::kLambdaNotIdentified;
   if (fitted) doc["fit"] = FitJson(s);
@@ -353,7 +367,8 @@ int RunIdentify(const IdentifyCliOptions& o) {
 std::function<int()> SetupIdentify(CLI::App& sub) {
   auto o = std::make_shared<IdentifyCliOptions>();
   sub.add_option("TRACK", o->track,
-                 "the track: CSV with a header t,x,y[,sigma] or JSON {\"t\", \"x\", \"sigma\", \"impulse_times\"} (\"-\": standard input)")
+                 "the track: CSV with a header t,x,y[,sigma[,spin,sigma_spin]] or JSON {\"t\", \"x\", \"sigma\", "
+                 "\"impulse_times\", \"spin\", \"sigma_spin\"} (\"-\": standard input)")
       ->required();
   sub.add_option("PROBLEM.json", o->problem,
                  "optional problem file: its integration tolerances, ball.physical.radius (a track in metres) and, "

@@ -58,6 +58,7 @@ def package_stub():
               "def load_problem(path: \"str | os.PathLike[str]\") -> Problem: ...",
               "def identify(t: Sequence[float], xy: Sequence[Sequence[float]], sigma: Optional[Sequence[float]] = ..., "
               "options: Optional[IdentifyOptions] = ..., impulse_times: Optional[Sequence[float]] = ..., "
+              "spin: Optional[Sequence[float]] = ..., sigma_spin: Optional[Sequence[float]] = ..., "
               "**kwargs: Any) -> IdentifySummary: ...", ""]
     return "\n".join(lines)
 
