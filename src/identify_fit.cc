@@ -60,7 +60,7 @@ IntegrationOptions JacobianOptions(const IntegrationOptions& o) {
 std::size_t ResidualCount(const TrackData& d) { return 2 * d.tau.size() + d.spin.size(); }
 
 /// The model at q: x(tau_i) into *model (2n), v0(tau_i) into *spin (when the track has a spin),
-/// and with jacobian != nullptr the weighted Jacobian of the residuals, row-major
+/// and with jacobian != nullptr the (unweighted) Jacobian of the residuals, row-major
 /// (ResidualCount x ParameterCount). Throws when an integration fails.
 void EvaluateModel(const TrackData& d, const double* q, const IntegrationOptions& o, std::vector<double>* model,
                    std::vector<double>* spin, std::vector<double>* jacobian) {
@@ -72,19 +72,17 @@ void EvaluateModel(const TrackData& d, const double* q, const IntegrationOptions
   const SpinOutput spin_out{spin->data(), jacobian != nullptr ? jacobian->data() + 2 * n * p : nullptr};
   EvaluateImpulsiveTrack(q, d.tau.data(), n, d.impulse_tau, o, model->data(), jacobian != nullptr ? jacobian->data() : nullptr,
                          &jo, nullptr, d.spin.empty() ? nullptr : &spin_out);
-  if (jacobian == nullptr) return;
-  for (std::size_t k = 0; k < ResidualCount(d); ++k) {
-    const double w = k < 2 * n ? d.weight[k / 2] : d.spin_weight[k - 2 * n];
-    for (std::size_t c = 0; c < p; ++c) (*jacobian)[k * p + c] *= w;
-  }
 }
 
-/// The weighted residuals w_i (x(tau_i) - x_i), then w_spin_i (v0(tau_i) - v0_i).
-std::vector<double> WeightedResiduals(const TrackData& d, const std::vector<double>& model, const std::vector<double>& spin) {
-  std::vector<double> r(ResidualCount(d));
-  for (std::size_t k = 0; k < model.size(); ++k) r[k] = d.weight[k / 2] * (model[k] - d.x[k]);
-  for (std::size_t i = 0; i < spin.size(); ++i) r[model.size() + i] = d.spin_weight[i] * (spin[i] - d.spin[i]);
-  return r;
+/// The weight of residual k: 1/sigma of its sample's position, then 1/sigma_spin.
+double Weight(const TrackData& d, std::size_t k) {
+  const std::size_t n2 = 2 * d.tau.size();
+  return k < n2 ? d.weight[k / 2] : d.spin_weight[k - n2];
+}
+
+/// Residual k, unweighted: x(tau_i) - x_i, then v0(tau_i) - v0_i.
+double Difference(const TrackData& d, const std::vector<double>& model, const std::vector<double>& spin, std::size_t k) {
+  return k < model.size() ? model[k] - d.x[k] : spin[k - model.size()] - d.spin[k - model.size()];
 }
 
 /// The weighted residuals and their exact Jacobian, parameter blocks lambda (1) and (mu, theta,
@@ -106,13 +104,13 @@ class TrackCost final : public ceres::CostFunction {
     } catch (const std::exception&) {
       return false;  // an integration failure rejects the step (Ceres shrinks the trust region)
     }
-    const std::vector<double> r = WeightedResiduals(data_, model, spin);
-    std::copy(r.begin(), r.end(), residuals);
-    if (!want_j) return true;
-    for (std::size_t k = 0; k < r.size(); ++k) {
-      if (jacobians[0] != nullptr) jacobians[0][k] = j[k * p_];
+    for (std::size_t k = 0; k < ResidualCount(data_); ++k) {
+      const double w = Weight(data_, k);
+      residuals[k] = w * Difference(data_, model, spin, k);
+      if (!want_j) continue;
+      if (jacobians[0] != nullptr) jacobians[0][k] = w * j[k * p_];
       if (jacobians[1] != nullptr)
-        for (std::size_t c = 1; c < p_; ++c) jacobians[1][k * (p_ - 1) + c - 1] = j[k * p_ + c];
+        for (std::size_t c = 1; c < p_; ++c) jacobians[1][k * (p_ - 1) + c - 1] = w * j[k * p_ + c];
     }
     return true;
   }
@@ -185,7 +183,7 @@ double Cost(const TrackData& d, const std::vector<double>& q, const IntegrationO
   std::vector<double> model, spin;
   EvaluateModel(d, q.data(), integration, &model, &spin, nullptr);
   double c = 0.0;
-  for (double r : WeightedResiduals(d, model, spin)) c += r * r;
+  for (std::size_t k = 0; k < ResidualCount(d); ++k) c += std::pow(Weight(d, k) * Difference(d, model, spin, k), 2);
   return 0.5 * c;
 }
 
@@ -308,8 +306,10 @@ void FinishFit(const TrackData& d, const IntegrationOptions& integration, TrackF
   const std::size_t p = ParameterCount(d);
   std::vector<double> j;
   EvaluateModel(d, fit->q.data(), integration, &fit->model, &fit->spin, &j);
-  fit->jacobian = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-      j.data(), static_cast<Eigen::Index>(ResidualCount(d)), static_cast<Eigen::Index>(p));
+  fit->jacobian.resize(static_cast<Eigen::Index>(ResidualCount(d)), static_cast<Eigen::Index>(p));
+  for (std::size_t k = 0; k < ResidualCount(d); ++k)
+    for (std::size_t c = 0; c < p; ++c)
+      fit->jacobian(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(c)) = Weight(d, k) * j[k * p + c];
 }
 
 }  // namespace
