@@ -114,7 +114,7 @@ void BindIdentify(py::module_& m) {
           }, "The fitted contact points x(t_i), (n, 2), radii.")
       .def_readonly("fitted_spin", &IdentifySummary::fitted_spin, "With a measured spin: the fitted axial spin v0(t_i).")
       .def_readonly("spin_rms_residual", &IdentifySummary::spin_rms_residual, "RMS of the fitted - measured spin.")
-      .def_readonly("spin_max_residual", &IdentifySummary::spin_max_residual, "Largest |fitted - measured spin|.")
+      .def_readonly("spin_max_residual", &IdentifySummary::spin_max_residual, "Largest absolute difference of the fitted and the measured spin.")
       .def_readonly("starts", &IdentifySummary::starts)
       .def_readonly("iterations", &IdentifySummary::iterations)
       .def_readonly("profile_fits", &IdentifySummary::profile_fits)
