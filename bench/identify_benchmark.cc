@@ -5,15 +5,22 @@
 // (multi-start, fit, profile interval), the run without the profile interval, and the fit from a
 // given guess. Counters (outside the timed loop): lambda_error = |lambda - 1.3|, mu_error,
 // lambda_se (the standard error), x0_error and theta_error (the state), the 95% interval's half
-// width, starts and iterations.
+// width, starts and iterations. The impulse variant: 2,000 samples of the circle of
+// problems/circle.json planned with 8 impulses (lambda = 2, mu = 1; 250 per flight, each flight
+// FreeMotion from the plan's state after its impulse), noise 0.005, the 7 impulse times given;
+// counters lambda_error, lambda_se and the largest delta psi error over its standard error.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "kinematics.h"
 #include "plateball/free_motion.h"
 #include "plateball/identify.h"
+#include "plateball/impulse_planner.h"
+#include "plateball/problem_io.h"
+#include "plateball/task_adapters.h"
 
 namespace {
 
@@ -41,7 +48,7 @@ void Run(benchmark::State& state, double sigma, bool profile, bool guess) {
   const IdentifyProblem p = Track(sigma);
   IdentifyOptions o;
   o.profile_interval = profile;
-  if (guess) o.guess = IdentifyGuess{1.0, 3.5, {0.7, 0.4, 0.1}, kX0};
+  if (guess) o.guess = IdentifyGuess{1.0, 3.5, {0.7, 0.4, 0.1}, kX0, {}};
   IdentifySummary s;
   for (auto _ : state) {
     s = Identify(p, o);
@@ -60,6 +67,53 @@ void Run(benchmark::State& state, double sigma, bool profile, bool guess) {
   state.counters["profile_fits"] = s.profile_fits;
 }
 
+/// The circle plan's track (see the header) and the plan's delta psi of its impulses 1..7.
+IdentifyProblem ImpulseTrack(std::vector<double>* delta_psi) {
+  const Problem problem = ReadProblemFile(std::string(PLATEBALL_SOURCE_DIR) + "/problems/circle.json");
+  const PlanSetup setup = PlanSetupFor(problem, 8);
+  const PlanSummary plan = PlanImpulses(setup.problem, setup.options);
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  IdentifyProblem p;
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  constexpr int kPerFlight = 250;
+  for (std::size_t k = 0; k < plan.steps.size(); ++k) {
+    const PlanStep& step = plan.steps[k];
+    if (k > 0) {
+      p.impulse_times.push_back(step.t_impulse);
+      delta_psi->push_back(step.delta_psi);
+    }
+    const FreeMotion flight = FreeMotion::FromAngles(BallModel::FromLambda(2.0), step.impulse.after, step.mu, x);
+    for (int i = k == 0 ? 0 : 1; i <= kPerFlight; ++i) {
+      const double tau = step.duration * i / kPerFlight;
+      p.t.push_back(step.t_impulse + tau);
+      p.x.push_back(flight.PositionAt(tau) + 0.005 * Eigen::Vector2d(noise(rng), noise(rng)));
+    }
+    x = flight.PositionAt(step.duration);
+  }
+  return p;
+}
+
+void BM_IdentifyImpulsesFull(benchmark::State& state) {
+  std::vector<double> truth;
+  const IdentifyProblem p = ImpulseTrack(&truth);
+  IdentifySummary s;
+  for (auto _ : state) {
+    s = Identify(p);
+    benchmark::DoNotOptimize(s.status);
+  }
+  if (s.status != IdentifyStatus::kIdentified) state.SkipWithError(s.BriefReport().c_str());
+  state.counters["samples"] = static_cast<double>(p.t.size());
+  state.counters["lambda_error"] = std::abs(s.lambda - 2.0);
+  state.counters["lambda_se"] = s.standard_errors.empty() ? -1 : s.standard_errors[0];
+  double worst = 0.0;
+  for (std::size_t k = 0; k < s.delta_psi.size(); ++k)
+    worst = std::max(worst, std::abs(internal::WrapPi(s.delta_psi[k] - truth[k])) / s.standard_errors[7 + k]);
+  state.counters["delta_psi_error_over_se"] = worst;
+  state.counters["starts"] = s.starts;
+  state.counters["iterations"] = s.iterations;
+}
+
 void BM_IdentifyNoisyFull(benchmark::State& state) { Run(state, 0.005, true, false); }
 void BM_IdentifyNoisyNoProfile(benchmark::State& state) { Run(state, 0.005, false, false); }
 void BM_IdentifyNoisyFromGuess(benchmark::State& state) { Run(state, 0.005, false, true); }
@@ -69,6 +123,7 @@ BENCHMARK(BM_IdentifyNoisyFull)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyNoisyNoProfile)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyNoisyFromGuess)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyNoiselessFull)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyImpulsesFull)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -29,9 +29,10 @@
 
 namespace plateball::internal {
 
-/// K after the impulse s from the axis z and the conserved vector K before it (lambda given).
-template <typename T>
-void ImpulseMomentum(const T* z, const T* k_before, const T& s, double lambda, T* k_after) {
+/// K after the impulse s from the axis z and the conserved vector K before it (lambda given; a
+/// ceres::Jet too when its derivative is wanted).
+template <typename T, typename L = double>
+void ImpulseMomentum(const T* z, const T* k_before, const T& s, const L& lambda, T* k_after) {
   using std::cos;
   using std::sin;
   using std::sqrt;

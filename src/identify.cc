@@ -19,6 +19,7 @@
 #include "check.h"
 #include "identify_fit.h"
 #include "identify_model.h"
+#include "kinematics.h"
 
 namespace plateball {
 
@@ -52,6 +53,62 @@ std::string ToString(IdentifyStatus status) {
   return "unknown";
 }
 
+namespace {
+
+/// The impulse times: finite, strictly increasing, inside (t.front(), t.back()), and at least
+/// kIdentifyMinFlightSamples samples in every flight.
+std::string ValidateImpulseTimes(const std::vector<double>& t, const std::vector<double>& impulses) {
+  using internal::FormatNumber;
+  using internal::InvalidValueMessage;
+  std::size_t first = 0;  // the first sample of the current flight
+  for (std::size_t k = 0; k <= impulses.size(); ++k) {
+    if (k < impulses.size()) {
+      const std::string field = "impulse_times[" + std::to_string(k) + "]";
+      const double v = impulses[k];
+      if (!std::isfinite(v)) return InvalidValueMessage(field, v, "must be finite");
+      if (k > 0 && !(v > impulses[k - 1]))
+        return InvalidValueMessage(field, v, "impulse times must be strictly increasing (previous " + FormatNumber(impulses[k - 1]) + ")");
+      if (!(v > t.front() && v < t.back()))
+        return InvalidValueMessage(field, v, "must be inside the track (" + FormatNumber(t.front()) + ", " + FormatNumber(t.back()) + ")");
+    }
+    std::size_t end = first;
+    while (end < t.size() && (k == impulses.size() || t[end] <= impulses[k])) ++end;
+    if (!impulses.empty() && end - first < static_cast<std::size_t>(kIdentifyMinFlightSamples)) {
+      // The flight before impulse k, or after the last one.
+      const bool last = k == impulses.size();
+      const std::size_t named = last ? k - 1 : k;
+      return InvalidValueMessage("impulse_times[" + std::to_string(named) + "]", impulses[named],
+                                 "too few samples in the flight " + std::string(last ? "after" : "before") + " it: " +
+                                     std::to_string(end - first) + " (at least " + std::to_string(kIdentifyMinFlightSamples) +
+                                     " per flight)");
+    }
+    first = end;
+  }
+  return {};
+}
+
+/// The spin columns: one finite v0 and one sigma_spin > 0 per sample, with sigma given.
+std::string ValidateSpin(const IdentifyProblem& p) {
+  using internal::InvalidValueMessage;
+  if (p.spin.empty() && p.sigma_spin.empty()) return {};
+  const std::string rows = "must have one row per time (" + std::to_string(p.t.size()) + ")";
+  if (p.spin.size() != p.t.size()) return InvalidValueMessage("spin (rows)", p.spin.size(), rows);
+  if (p.sigma_spin.size() != p.t.size())
+    return InvalidValueMessage("sigma_spin (rows)", p.sigma_spin.size(), rows + ": a measured spin needs its noise");
+  if (p.sigma.empty())
+    return InvalidValueMessage("sigma (rows)", p.sigma.size(),
+                               "a measured spin needs sigma given too (positions and spin share no common noise to estimate)");
+  for (std::size_t i = 0; i < p.t.size(); ++i) {
+    const std::string row = "[" + std::to_string(i) + "]";
+    if (!std::isfinite(p.spin[i])) return InvalidValueMessage("spin" + row, p.spin[i], "must be finite");
+    if (!(std::isfinite(p.sigma_spin[i]) && p.sigma_spin[i] > 0))
+      return InvalidValueMessage("sigma_spin" + row, p.sigma_spin[i], "must be finite and > 0");
+  }
+  return {};
+}
+
+}  // namespace
+
 std::string IdentifyProblem::Validate() const {
   using internal::InvalidValueMessage;
   if (t.size() != x.size())
@@ -73,7 +130,8 @@ std::string IdentifyProblem::Validate() const {
     if (!sigma.empty() && !(std::isfinite(sigma[i]) && sigma[i] > 0))
       return InvalidValueMessage("sigma" + row, sigma[i], "must be finite and > 0");
   }
-  return {};
+  const std::string impulses = ValidateImpulseTimes(t, impulse_times);
+  return impulses.empty() ? ValidateSpin(*this) : impulses;
 }
 
 std::string IdentifyOptions::Validate() const {
@@ -141,6 +199,9 @@ TrackData MakeTrackData(const IdentifyProblem& problem, const IdentifyOptions& o
     d.x[2 * i + 1] = problem.x[i].y() / options.radius;
     if (!problem.sigma.empty()) d.weight[i] = options.radius / problem.sigma[i];
   }
+  for (double t : problem.impulse_times) d.impulse_tau.push_back(t - problem.t[0]);
+  d.spin = problem.spin;  // rad per time unit: the time is not scaled, nor is v0 by the radius
+  for (double sigma : problem.sigma_spin) d.spin_weight.push_back(1.0 / sigma);
   return d;
 }
 
@@ -166,10 +227,18 @@ void FillResiduals(const TrackData& d, const internal::TrackFit& fit, IdentifySu
     max_r = std::max(max_r, r);
   }
   s->samples = static_cast<int>(n);
-  s->residuals = static_cast<int>(2 * n);
   s->rms_residual = std::sqrt(sum2 / static_cast<double>(2 * n));
   s->max_residual = max_r;
+  s->residuals = static_cast<int>(2 * n + d.spin.size());
   s->chi_square = 2.0 * fit.cost;
+  s->fitted_spin = fit.spin;
+  double spin2 = 0.0;
+  s->spin_max_residual = 0.0;
+  for (std::size_t i = 0; i < d.spin.size(); ++i) {
+    spin2 += std::pow(fit.spin[i] - d.spin[i], 2);
+    s->spin_max_residual = std::max(s->spin_max_residual, std::abs(fit.spin[i] - d.spin[i]));
+  }
+  s->spin_rms_residual = d.spin.empty() ? 0.0 : std::sqrt(spin2 / static_cast<double>(d.spin.size()));
   s->track_spread = TrackSpread(d);
 }
 
@@ -177,56 +246,93 @@ void FillResiduals(const TrackData& d, const internal::TrackFit& fit, IdentifySu
 /// s^2 = chi^2 / (m - p) when sigma is estimated, 1 when given. Singular directions of the
 /// column-scaled J^T J get infinite errors for the parameters they involve.
 void FillCovariance(const internal::TrackFit& fit, double s2, IdentifySummary* s) {
+  const int np = static_cast<int>(fit.q.size());
   const Eigen::MatrixXd jtj = fit.jacobian.transpose() * fit.jacobian;
   Eigen::VectorXd scale = jtj.diagonal().cwiseSqrt();
-  for (int i = 0; i < kP; ++i)
+  for (int i = 0; i < np; ++i)
     if (!(scale[i] > 0)) scale[i] = 1.0;
   const Eigen::MatrixXd c = scale.cwiseInverse().asDiagonal() * jtj * scale.cwiseInverse().asDiagonal();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(c);
   const Eigen::VectorXd ev = eig.eigenvalues();
   s->scaled_condition = ev.maxCoeff() > 0 ? std::max(0.0, ev.minCoeff() / ev.maxCoeff()) : 0.0;
-  Eigen::MatrixXd inv = Eigen::MatrixXd::Zero(kP, kP);
-  std::vector<bool> singular(kP, false);
-  for (int k = 0; k < kP; ++k) {
+  Eigen::MatrixXd inv = Eigen::MatrixXd::Zero(np, np);
+  std::vector<bool> singular(static_cast<std::size_t>(np), false);
+  for (int k = 0; k < np; ++k) {
     const Eigen::VectorXd v = eig.eigenvectors().col(k);
     if (ev[k] > kSingularRatio * ev.maxCoeff()) {
       inv += v * v.transpose() / ev[k];
     } else {
-      for (int i = 0; i < kP; ++i)
+      for (int i = 0; i < np; ++i)
         if (std::abs(v[i]) > 1e-3) singular[static_cast<std::size_t>(i)] = true;
     }
   }
   const Eigen::MatrixXd cov = s2 * scale.cwiseInverse().asDiagonal() * inv * scale.cwiseInverse().asDiagonal();
-  s->standard_errors.assign(kP, 0.0);
-  s->correlation = Eigen::MatrixXd::Constant(kP, kP, kNaN);
-  for (int i = 0; i < kP; ++i) {
+  s->standard_errors.assign(static_cast<std::size_t>(np), 0.0);
+  s->correlation = Eigen::MatrixXd::Constant(np, np, kNaN);
+  for (int i = 0; i < np; ++i) {
     s->standard_errors[static_cast<std::size_t>(i)] = singular[static_cast<std::size_t>(i)] ? kInf : std::sqrt(cov(i, i));
-    for (int j = 0; j < kP; ++j)
+    for (int j = 0; j < np; ++j)
       if (!singular[static_cast<std::size_t>(i)] && !singular[static_cast<std::size_t>(j)])
         s->correlation(i, j) = cov(i, j) / std::sqrt(cov(i, i) * cov(j, j));
   }
 }
 
-/// path_deviation and straight_path of the fitted path (identify.h): the distance of the fitted
-/// points from their principal axis, against the noise.
-void FillStraightness(IdentifySummary* s) {
+/// The largest distance of the points [begin, end) from their principal axis.
+double LineDeviation(const std::vector<Eigen::Vector2d>& points, std::size_t begin, std::size_t end) {
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d& p : s->fitted) mean += p;
-  mean /= static_cast<double>(s->fitted.size());
+  for (std::size_t i = begin; i < end; ++i) mean += points[i];
+  mean /= static_cast<double>(end - begin);
   Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const Eigen::Vector2d& p : s->fitted) scatter += (p - mean) * (p - mean).transpose();
+  for (std::size_t i = begin; i < end; ++i) scatter += (points[i] - mean) * (points[i] - mean).transpose();
   const Eigen::Vector2d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(0);
+  double deviation = 0.0;
+  for (std::size_t i = begin; i < end; ++i) deviation = std::max(deviation, std::abs((points[i] - mean).dot(normal)));
+  return deviation;
+}
+
+/// path_deviation and straight_path of the fitted path (identify.h): the distance of each
+/// flight's fitted points from their principal axis, against the noise.
+void FillStraightness(const std::vector<double>& t, IdentifySummary* s) {
   s->path_deviation = 0.0;
-  for (const Eigen::Vector2d& p : s->fitted) s->path_deviation = std::max(s->path_deviation, std::abs((p - mean).dot(normal)));
+  std::size_t begin = 0;
+  for (std::size_t k = 0; k <= s->impulse_times.size(); ++k) {
+    std::size_t end = begin;
+    while (end < t.size() && (k == s->impulse_times.size() || t[end] <= s->impulse_times[k])) ++end;
+    if (end > begin) s->path_deviation = std::max(s->path_deviation, LineDeviation(s->fitted, begin, end));
+    begin = end;
+  }
   s->straight_path = s->path_deviation <= std::max(kStraightPathNoise * s->sigma, kNoiselessResidual);
 }
 
-void FillUnidentified(IdentifySummary* s) {
+/// The name of parameter i: kIdentifyParameterNames, then "delta_psi[k]".
+std::string ParameterName(std::size_t i) {
+  return i < static_cast<std::size_t>(kP) ? std::string(kIdentifyParameterNames[i]) : "delta_psi[" + std::to_string(i - kP) + "]";
+}
+
+/// With a measured spin: true when it shows v0 != 0, i.e. the hypothesis v0 = 0 at every sample
+/// is rejected against the fit at 95% (its spin chi-square exceeds the fit's by chi^2_1's
+/// quantile). A straight path with v0 != 0 is then the lambda = 1 one, not the v0 = 0 family in
+/// which every lambda gives the same motion, and lambda's verdict comes from its standard error.
+bool SpinShowsAxialSpin(const TrackData& d, const internal::TrackFit& fit) {
+  if (d.spin.empty()) return false;
+  double zero = 0.0, fitted = 0.0;
+  for (std::size_t i = 0; i < d.spin.size(); ++i) {
+    zero += std::pow(d.spin_weight[i] * d.spin[i], 2);
+    fitted += std::pow(d.spin_weight[i] * (fit.spin[i] - d.spin[i]), 2);
+  }
+  return zero - fitted > boost::math::quantile(boost::math::chi_squared_distribution<double>(1.0), 0.95);
+}
+
+/// True when the straight path leaves lambda unidentifiable (identify.h, straight_path).
+bool StraightBlocksLambda(const IdentifySummary& s, bool spin_shows_v0) { return s.straight_path && !spin_shows_v0; }
+
+void FillUnidentified(bool spin_shows_v0, IdentifySummary* s) {
   const auto& e = s->standard_errors;
-  const double scaled[kP] = {e[0] / s->lambda, e[1] / s->mu, e[2], e[3], e[4],
+  std::vector<double> scaled{e[0] / s->lambda, e[1] / s->mu, e[2], e[3], e[4],
                              e[5] / std::max(s->track_spread, 1e-300), e[6] / std::max(s->track_spread, 1e-300)};
-  for (int i = 0; i < kP; ++i)
-    if (!(scaled[i] <= kHugeError) || (i == 0 && s->straight_path)) s->unidentified.emplace_back(kIdentifyParameterNames[i]);
+  scaled.insert(scaled.end(), e.begin() + kP, e.end());  // delta psi: radians, like the angles
+  for (std::size_t i = 0; i < scaled.size(); ++i)
+    if (!(scaled[i] <= kHugeError) || (i == 0 && StraightBlocksLambda(*s, spin_shows_v0))) s->unidentified.push_back(ParameterName(i));
 }
 
 /// The profile threshold of a 95% interval: chi^2_1 with given sigma, F(1, m - p) with estimated.
@@ -257,23 +363,46 @@ void FillFit(const internal::TrackFit& fit, IdentifySummary* s) {
   s->x0 = Eigen::Vector2d(fit.q[5], fit.q[6]);
   s->period = 2.0 * M_PI / std::sqrt(s->mu);
   s->iterations = fit.iterations;
+  s->delta_psi.clear();
+  for (std::size_t k = kP; k < fit.q.size(); ++k) s->delta_psi.push_back(internal::WrapPi(fit.q[k]));
+}
+
+/// The fitted state at each flight's start (the flights of the model at the optimum).
+void FillFlights(const TrackData& d, const internal::TrackFit& fit, const IntegrationOptions& integration, IdentifySummary* s) {
+  if (d.impulse_tau.empty()) {  // one flight: the state at t_ref
+    s->flights = {IdentifiedFlight{s->t_ref, s->angles, s->x0}};
+    return;
+  }
+  std::vector<double> model(d.x.size());
+  std::vector<internal::FlightStart> flights;
+  internal::EvaluateImpulsiveTrack(fit.q.data(), d.tau.data(), d.tau.size(), d.impulse_tau, integration, model.data(),
+                                   nullptr, nullptr, &flights);
+  const BallModel ball = BallModel::FromLambda(s->lambda);
+  s->flights.clear();
+  for (const internal::FlightStart& f : flights) {
+    // The integrated axis drifts from unit length by the integration error: the chart wants |z| = 1.
+    const Eigen::Vector3d z = f.z.normalized();
+    const BallState state{z, OmegaFromMomentum(z, f.k, ball)};
+    s->flights.push_back({s->t_ref + f.tau, AnglesFromState(state, ball), f.x});
+  }
 }
 
 /// Decides identified / not identified from the standard error and the profile interval.
-void Classify(const IdentifyOptions& o, IdentifySummary* s) {
+void Classify(const IdentifyOptions& o, bool spin_shows_v0, IdentifySummary* s) {
   s->lambda_relative_error = s->standard_errors[0] / s->lambda;
   const bool closed = s->lambda_low > 0 && std::isfinite(s->lambda_high);
-  s->lambda_identified =
-      !s->straight_path && s->lambda_relative_error <= o.max_lambda_relative_error && (closed || !o.profile_interval);
+  const bool straight = StraightBlocksLambda(*s, spin_shows_v0);
+  s->lambda_identified = !straight && s->lambda_relative_error <= o.max_lambda_relative_error && (closed || !o.profile_interval);
   std::ostringstream os;
-  if (s->straight_path) {
+  if (straight) {
     s->status = IdentifyStatus::kLambdaNotIdentified;
     os << "lambda not identified, not identifiable from the contact track alone: the fitted contact path is a straight line (largest "
           "deviation "
        << s->path_deviation << " radii, within the noise " << s->sigma
        << "). Every lambda gives a straight path when the axial spin v0 is 0, and every state gives one at lambda = 1 "
           "(the ball rolls like a sphere), so the track fixes the speed but not lambda; a track with a curved, "
-          "drifting contact path identifies lambda (docs/identify.md)";
+          "drifting contact path identifies lambda, and so does a measured spin v0 != 0 (docs/identify.md)"
+       << (s->fitted_spin.empty() ? "" : "; the measured spin does not show v0 != 0");
   } else if (s->lambda_identified) {
     s->status = IdentifyStatus::kIdentified;
     os << "lambda identified: relative standard error " << s->lambda_relative_error;
@@ -292,15 +421,24 @@ void Classify(const IdentifyOptions& o, IdentifySummary* s) {
 IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& options) {
   internal::ThrowIfInvalid(problem.Validate());
   internal::ThrowIfInvalid(options.Validate());
+  if (options.guess && options.guess->delta_psi.size() > problem.impulse_times.size())
+    internal::ThrowInvalid("guess.delta_psi (count)", static_cast<double>(options.guess->delta_psi.size()),
+                           "more values than impulse_times (" + std::to_string(problem.impulse_times.size()) + ")");
+  if (options.guess)
+    for (std::size_t k = 0; k < options.guess->delta_psi.size(); ++k)
+      if (!std::isfinite(options.guess->delta_psi[k]))
+        internal::ThrowInvalid("guess.delta_psi[" + std::to_string(k) + "]", options.guess->delta_psi[k], "must be finite");
   const TrackData data = MakeTrackData(problem, options);
   IdentifySummary s;
   s.t_ref = problem.t[0];
+  s.impulse_times = problem.impulse_times;
   s.sigma_estimated = problem.sigma.empty();
   try {
     internal::TrackFit fit = internal::FitTrack(data, options, &s.starts);
     FillFit(fit, &s);
+    FillFlights(data, fit, options.integration, &s);
     FillResiduals(data, fit, &s);
-    const int dof = s.residuals - kP;
+    const int dof = s.residuals - static_cast<int>(fit.q.size());
     const double s2 = s.sigma_estimated ? s.chi_square / dof : 1.0;
     s.sigma = s.sigma_estimated ? std::sqrt(s2) : 0.0;
     if (!s.sigma_estimated) {
@@ -314,8 +452,9 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
       return s;
     }
     FillCovariance(fit, s2, &s);
-    FillStraightness(&s);
-    FillUnidentified(&s);
+    FillStraightness(problem.t, &s);
+    const bool spin_shows_v0 = SpinShowsAxialSpin(data, fit);
+    FillUnidentified(spin_shows_v0, &s);
     s.lambda_low = s.lambda_high = kNaN;
     if (options.profile_interval && std::isfinite(s.standard_errors[0]) && s.rms_residual < kNoiselessResidual) {
       // A noiseless track: the profile would resolve the integration's round-off, not a noise.
@@ -334,7 +473,7 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
       s.lambda_high = kInf;
       s.interval_method = "profile";
     }
-    Classify(options, &s);
+    Classify(options, spin_shows_v0, &s);
   } catch (const std::exception& e) {
     s.status = IdentifyStatus::kFailed;
     s.message = std::string("the fit failed: ") + e.what();

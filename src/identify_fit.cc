@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <stdexcept>
+#include <vector>
 
 #include "identify_model.h"
 #include "kinematics.h"
@@ -13,7 +15,7 @@
 namespace plateball::internal {
 namespace {
 
-constexpr int kP = kTrackParameters;
+constexpr int kP = kTrackParameters;  // the parameters without the impulses
 // The multi-start and the window continuation only have to land in the right basin: looser
 // tolerances, few samples per window.
 constexpr double kStartTolerance = 1e-6;
@@ -36,42 +38,79 @@ constexpr double kMuMin = 1e-12, kMuMax = 1e12;
 // The variational equations of the Jacobian: 1e-8 gives the derivatives to ~1e-7 relative, ample
 // for Levenberg-Marquardt and the standard errors; the residuals keep the full tolerance.
 constexpr double kJacobianTolerance = 1e-8;
+// The grid of delta psi tried for an impulse that enters the fit (ChooseImpulse): the contact
+// velocity after the impulse turns along its velocity ellipse with delta psi, so 24 values
+// (15 degrees apart) put one within the basin of the least-squares fit.
+constexpr int kImpulseGrid = 24;
+// Impulses a window may add to the last (NextWindow): each new flight's delta psi is chosen from
+// the states fitted so far, so the fit goes on after every few flights.
+constexpr std::size_t kImpulsesPerWindow = 2;
 // The profile refits' integration tolerance as a fraction of the RMS residual (ProfileLambda).
 constexpr double kProfileNoiseFraction = 1e-4;
 constexpr double kProfileMaxTolerance = 1e-7;
+
+/// The number of fitted parameters: the 7 of the start and one delta psi per impulse.
+std::size_t ParameterCount(const TrackData& d) { return kP + d.impulse_tau.size(); }
 
 IntegrationOptions JacobianOptions(const IntegrationOptions& o) {
   return {std::max(kJacobianTolerance, o.absolute_tolerance), std::max(kJacobianTolerance, o.relative_tolerance), o.max_steps};
 }
 
-/// The weighted residuals w_i (x(tau_i) - x_i) and their exact Jacobian, parameter blocks
-/// lambda (1) and (mu, theta, phi, psi, x0, y0) (6), so that the profile can hold lambda constant.
+/// The residual count: 2 per sample, and one per sample with a measured spin.
+std::size_t ResidualCount(const TrackData& d) { return 2 * d.tau.size() + d.spin.size(); }
+
+/// The model at q: x(tau_i) into *model (2n), v0(tau_i) into *spin (when the track has a spin),
+/// and with jacobian != nullptr the (unweighted) Jacobian of the residuals, row-major
+/// (ResidualCount x ParameterCount). Throws when an integration fails.
+void EvaluateModel(const TrackData& d, const double* q, const IntegrationOptions& o, std::vector<double>* model,
+                   std::vector<double>* spin, std::vector<double>* jacobian) {
+  const std::size_t n = d.tau.size(), p = ParameterCount(d);
+  model->resize(2 * n);
+  spin->resize(d.spin.size());
+  if (jacobian != nullptr) jacobian->resize(ResidualCount(d) * p);
+  const IntegrationOptions jo = JacobianOptions(o);
+  const SpinOutput spin_out{spin->data(), jacobian != nullptr ? jacobian->data() + 2 * n * p : nullptr};
+  EvaluateImpulsiveTrack(q, d.tau.data(), n, d.impulse_tau, o, model->data(), jacobian != nullptr ? jacobian->data() : nullptr,
+                         &jo, nullptr, d.spin.empty() ? nullptr : &spin_out);
+}
+
+/// The weight of residual k: 1/sigma of its sample's position, then 1/sigma_spin.
+double Weight(const TrackData& d, std::size_t k) {
+  const std::size_t n2 = 2 * d.tau.size();
+  return k < n2 ? d.weight[k / 2] : d.spin_weight[k - n2];
+}
+
+/// Residual k, unweighted: x(tau_i) - x_i, then v0(tau_i) - v0_i.
+double Difference(const TrackData& d, const std::vector<double>& model, const std::vector<double>& spin, std::size_t k) {
+  return k < model.size() ? model[k] - d.x[k] : spin[k - model.size()] - d.spin[k - model.size()];
+}
+
+/// The weighted residuals and their exact Jacobian, parameter blocks lambda (1) and (mu, theta,
+/// phi, psi, x0, y0, delta_psi...) (6 + m), so that the profile can hold lambda constant.
 class TrackCost final : public ceres::CostFunction {
  public:
-  TrackCost(const TrackData& data, const IntegrationOptions& options)
-      : data_(data), options_(options), jacobian_options_(JacobianOptions(options)) {
-    set_num_residuals(static_cast<int>(2 * data.tau.size()));
+  TrackCost(const TrackData& data, const IntegrationOptions& options) : data_(data), options_(options), p_(ParameterCount(data)) {
+    set_num_residuals(static_cast<int>(ResidualCount(data)));
     mutable_parameter_block_sizes()->push_back(1);
-    mutable_parameter_block_sizes()->push_back(kP - 1);
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(p_ - 1));
   }
   bool Evaluate(double const* const* p, double* residuals, double** jacobians) const override {
-    const double q[kP] = {p[0][0], p[1][0], p[1][1], p[1][2], p[1][3], p[1][4], p[1][5]};
-    const std::size_t n = data_.tau.size();
-    std::vector<double> model(2 * n);
+    std::vector<double> q{p[0][0]};
+    q.insert(q.end(), p[1], p[1] + (p_ - 1));
     const bool want_j = jacobians != nullptr && (jacobians[0] != nullptr || jacobians[1] != nullptr);
-    std::vector<double> j(want_j ? 2 * n * kP : 0);
+    std::vector<double> model, spin, j;
     try {
-      EvaluateTrack(q, data_.tau.data(), n, options_, model.data(), want_j ? j.data() : nullptr, &jacobian_options_);
+      EvaluateModel(data_, q.data(), options_, &model, &spin, want_j ? &j : nullptr);
     } catch (const std::exception&) {
       return false;  // an integration failure rejects the step (Ceres shrinks the trust region)
     }
-    for (std::size_t k = 0; k < 2 * n; ++k) {
-      const double w = data_.weight[k / 2];
-      residuals[k] = w * (model[k] - data_.x[k]);
+    for (std::size_t k = 0; k < ResidualCount(data_); ++k) {
+      const double w = Weight(data_, k);
+      residuals[k] = w * Difference(data_, model, spin, k);
       if (!want_j) continue;
-      if (jacobians[0] != nullptr) jacobians[0][k] = w * j[k * kP];
+      if (jacobians[0] != nullptr) jacobians[0][k] = w * j[k * p_];
       if (jacobians[1] != nullptr)
-        for (int c = 1; c < kP; ++c) jacobians[1][k * (kP - 1) + static_cast<std::size_t>(c - 1)] = w * j[k * kP + static_cast<std::size_t>(c)];
+        for (std::size_t c = 1; c < p_; ++c) jacobians[1][k * (p_ - 1) + c - 1] = w * j[k * p_ + c];
     }
     return true;
   }
@@ -79,14 +118,15 @@ class TrackCost final : public ceres::CostFunction {
  private:
   const TrackData& data_;
   IntegrationOptions options_;
-  IntegrationOptions jacobian_options_;
+  std::size_t p_;
 };
 
 /// One Levenberg-Marquardt fit from q (lambda held at q[0] when fixed).
-TrackFit Solve(const TrackData& data, const std::array<double, kP>& q0, const IdentifyOptions& o,
+TrackFit Solve(const TrackData& data, const std::vector<double>& q0, const IdentifyOptions& o,
                const IntegrationOptions& integration, int max_iterations, bool lambda_fixed) {
   TrackFit fit;
-  fit.q = q0;
+  if (q0.size() < ParameterCount(data)) throw std::logic_error("Solve: a delta psi of the window's impulses is not chosen");
+  fit.q.assign(q0.begin(), q0.begin() + static_cast<std::ptrdiff_t>(ParameterCount(data)));
   double* lambda = fit.q.data();
   double* rest = fit.q.data() + 1;
   ceres::Problem problem;
@@ -112,20 +152,67 @@ TrackFit Solve(const TrackData& data, const std::array<double, kP>& q0, const Id
   return fit;
 }
 
-/// The samples with tau <= tau_max (at least kMinWindowSamples), thinned evenly to <= max_samples.
+/// The samples with tau <= tau_max (at least kMinWindowSamples, or the first flight's samples when
+/// it has fewer), thinned evenly to <= max_samples, with the impulses before its last sample.
 TrackData Window(const TrackData& d, double tau_max, std::size_t max_samples) {
-  std::size_t end = 0;
+  std::size_t end = 0, first_flight = 0;
   while (end < d.tau.size() && d.tau[end] <= tau_max) ++end;
-  end = std::min(d.tau.size(), std::max(end, kMinWindowSamples));
+  while (first_flight < d.tau.size() && (d.impulse_tau.empty() || d.tau[first_flight] <= d.impulse_tau[0])) ++first_flight;
+  end = std::min(d.tau.size(), std::max(end, std::min(kMinWindowSamples, first_flight)));
   const std::size_t stride = (end + max_samples - 1) / max_samples;
   TrackData w;
-  for (std::size_t i = 0; i < end; i += stride) {
+  auto take = [&](std::size_t i) {
     w.tau.push_back(d.tau[i]);
     w.x.push_back(d.x[2 * i]);
     w.x.push_back(d.x[2 * i + 1]);
     w.weight.push_back(d.weight[i]);
-  }
+    if (d.spin.empty()) return;
+    w.spin.push_back(d.spin[i]);
+    w.spin_weight.push_back(d.spin_weight[i]);
+  };
+  for (std::size_t i = 0; i < end; i += stride) take(i);
+  // With impulses the last sample is kept, so that the window sees every flight it reaches.
+  if (!d.impulse_tau.empty() && w.tau.back() < d.tau[end - 1]) take(end - 1);
+  for (double t : d.impulse_tau)
+    if (t < w.tau.back()) w.impulse_tau.push_back(t);
   return w;
+}
+
+/// 1/2 sum of the squared weighted residuals at q.
+double Cost(const TrackData& d, const std::vector<double>& q, const IntegrationOptions& integration) {
+  std::vector<double> model, spin;
+  EvaluateModel(d, q.data(), integration, &model, &spin, nullptr);
+  double c = 0.0;
+  for (std::size_t k = 0; k < ResidualCount(d); ++k) c += std::pow(Weight(d, k) * Difference(d, model, spin, k), 2);
+  return 0.5 * c;
+}
+
+/// Extends q (the start and the delta psi of the impulses decided so far) to the first `count`
+/// impulses of d. Each new impulse gets the best of kImpulseGrid values of delta psi in
+/// [-pi, pi) by the cost of the samples up to the next impulse (whose delta psi is not known
+/// yet), the earlier parameters held: the least-squares fit then starts in its basin.
+void ChooseImpulses(const TrackData& d, std::size_t count, const IntegrationOptions& integration, std::vector<double>* q) {
+  while (q->size() < kP + count) {
+    const std::size_t f = q->size() - kP;
+    const double until = f + 1 < d.impulse_tau.size() ? d.impulse_tau[f + 1] : d.tau.back();
+    const TrackData w = Window(d, until, kWindowSamples);
+    double best_cost = std::numeric_limits<double>::infinity(), best = 0.0;
+    q->push_back(0.0);
+    for (int k = 0; k < kImpulseGrid; ++k) {
+      q->back() = -M_PI + kTwoPi * k / kImpulseGrid;
+      double c = std::numeric_limits<double>::infinity();
+      try {
+        c = Cost(w, *q, integration);
+      } catch (const std::exception&) {
+        continue;  // an integration failure: not a candidate
+      }
+      if (c < best_cost) {
+        best_cost = c;
+        best = q->back();
+      }
+    }
+    q->back() = best;
+  }
 }
 
 Eigen::Vector2d PointAt(const TrackData& d, std::size_t i) { return {d.x[2 * i], d.x[2 * i + 1]}; }
@@ -160,7 +247,7 @@ TrackGuess GuessFromTrack(const TrackData& d) {
 /// The start with the given (lambda, mu, theta, w = phi - psi), phi turned so that the contact
 /// velocity x'(0) = (omega_2, -omega_1) points along `direction` (the motion is invariant under
 /// turning phi and psi together about the vertical).
-std::array<double, kP> StartPoint(double lambda, double mu, double theta, double w, double direction,
+std::vector<double> StartPoint(double lambda, double mu, double theta, double w, double direction,
                                   const Eigen::Vector2d& x0) {
   const PhaseVariables p = PhaseFromTrig(TrigFromAngles(AngleState{theta, 0.0, -w}), mu, lambda);
   const double phi = WrapPi(direction - std::atan2(-p.omega.x(), p.omega.y()));
@@ -180,8 +267,9 @@ std::vector<TrackFit> MultiStart(const TrackData& d, const IdentifyOptions& o, c
       for (int b = 0; b < o.phase_starts; ++b) {
         const double theta = (a + 0.5) / o.theta_starts * M_PI / 2.0;
         const double phase = (b + 0.5) / o.phase_starts * kTwoPi;
-        fits.push_back(Solve(w, StartPoint(lambda, g.mu, theta, phase, g.direction, PointAt(d, 0)), o, coarse,
-                             kGridIterations, false));
+        std::vector<double> q = StartPoint(lambda, g.mu, theta, phase, g.direction, PointAt(d, 0));
+        ChooseImpulses(d, w.impulse_tau.size(), coarse, &q);
+        fits.push_back(Solve(w, q, o, coarse, kGridIterations, false));
         ++*starts;
       }
   std::sort(fits.begin(), fits.end(), [](const TrackFit& a, const TrackFit& b) { return a.cost < b.cost; });
@@ -191,11 +279,11 @@ std::vector<TrackFit> MultiStart(const TrackData& d, const IdentifyOptions& o, c
 /// The candidates carried to the whole track: the best start, and up to kMaxCandidates - 1 more
 /// within kStartCandidateCost x its cost whose lambda differs from every chosen one by more than
 /// kDistinctLambda (relative): the window decides the phase, the whole track decides lambda.
-std::vector<std::array<double, kP>> Candidates(const std::vector<TrackFit>& fits) {
-  std::vector<std::array<double, kP>> chosen;
+std::vector<std::vector<double>> Candidates(const std::vector<TrackFit>& fits) {
+  std::vector<std::vector<double>> chosen;
   for (const TrackFit& f : fits) {
     if (chosen.size() == kMaxCandidates || !(f.cost <= kStartCandidateCost * fits.front().cost)) break;
-    const bool distinct = std::all_of(chosen.begin(), chosen.end(), [&](const std::array<double, kP>& c) {
+    const bool distinct = std::all_of(chosen.begin(), chosen.end(), [&](const std::vector<double>& c) {
       return std::abs(f.q[0] - c[0]) > kDistinctLambda * c[0];
     });
     if (distinct) chosen.push_back(f.q);
@@ -203,44 +291,60 @@ std::vector<std::array<double, kP>> Candidates(const std::vector<TrackFit>& fits
   return chosen;
 }
 
+/// The next window after tau_max: twice as long, but with at most kImpulsesPerWindow more
+/// impulses (it then ends at the next one's time), at most the whole track.
+double NextWindow(const TrackData& d, double tau_max) {
+  const double doubled = std::min(d.tau.back(), 2.0 * tau_max);
+  const auto seen = static_cast<std::size_t>(std::lower_bound(d.impulse_tau.begin(), d.impulse_tau.end(), tau_max) - d.impulse_tau.begin());
+  if (seen + kImpulsesPerWindow < d.impulse_tau.size() && d.impulse_tau[seen + kImpulsesPerWindow] < doubled)
+    return d.impulse_tau[seen + kImpulsesPerWindow];
+  return doubled;
+}
+
 /// Model and weighted Jacobian at fit.q on the whole track.
 void FinishFit(const TrackData& d, const IntegrationOptions& integration, TrackFit* fit) {
-  const std::size_t n = d.tau.size();
-  fit->model.resize(2 * n);
-  std::vector<double> j(2 * n * kP);
-  const IntegrationOptions jacobian_options = JacobianOptions(integration);
-  EvaluateTrack(fit->q.data(), d.tau.data(), n, integration, fit->model.data(), j.data(), &jacobian_options);
-  fit->jacobian.resize(static_cast<Eigen::Index>(2 * n), kP);
-  for (std::size_t k = 0; k < 2 * n; ++k)
-    for (int c = 0; c < kP; ++c) fit->jacobian(static_cast<Eigen::Index>(k), c) = d.weight[k / 2] * j[k * kP + static_cast<std::size_t>(c)];
+  const std::size_t p = ParameterCount(d);
+  std::vector<double> j;
+  EvaluateModel(d, fit->q.data(), integration, &fit->model, &fit->spin, &j);
+  fit->jacobian.resize(static_cast<Eigen::Index>(ResidualCount(d)), static_cast<Eigen::Index>(p));
+  for (std::size_t k = 0; k < ResidualCount(d); ++k)
+    for (std::size_t c = 0; c < p; ++c)
+      fit->jacobian(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(c)) = Weight(d, k) * j[k * p + c];
 }
 
 }  // namespace
 
 TrackFit FitTrack(const TrackData& data, const IdentifyOptions& o, int* starts) {
   *starts = 0;
-  std::array<double, kP> q{};
+  std::vector<double> q;
   const double span = data.tau.back();
+  const IntegrationOptions mid{kStartTolerance / 10, kStartTolerance / 10, o.integration.max_steps};
   if (o.guess) {
     const IdentifyGuess& g = *o.guess;
     q = {g.lambda, g.mu, g.angles.theta, g.angles.phi, g.angles.psi, g.x0.x() / o.radius, g.x0.y() / o.radius};
+    q.insert(q.end(), g.delta_psi.begin(), g.delta_psi.end());
+    ChooseImpulses(data, data.impulse_tau.size(), mid, &q);
   } else {
     const TrackGuess g = GuessFromTrack(data);
+    // With impulses in the first window each start gets their delta psi from ChooseImpulses.
     const double first = std::min(span, kFirstWindowPeriods * kTwoPi / std::sqrt(g.mu));
-    // Doubling the window carries the phase from one window to the next without skipping a turn.
-    const IntegrationOptions mid{kStartTolerance / 10, kStartTolerance / 10, o.integration.max_steps};
+    // Doubling the window carries the phase from one window to the next without skipping a turn;
+    // each impulse that enters a window gets its delta psi from ChooseImpulses first.
     // The candidates go through the windows together; after each window those whose cost
     // exceeds kCandidateCost x the best are dropped (a wrong lambda shows as the window grows).
     std::vector<TrackFit> candidates;
-    for (const std::array<double, kP>& c : Candidates(MultiStart(data, o, g, first, starts))) {
+    for (const std::vector<double>& c : Candidates(MultiStart(data, o, g, first, starts))) {
       candidates.emplace_back();
       candidates.back().q = c;
     }
     double window = first;
     do {
-      window = std::min(span, 2.0 * window);
+      window = NextWindow(data, window);
       const TrackData w = Window(data, window, kWindowSamples);
-      for (TrackFit& c : candidates) c = Solve(w, c.q, o, mid, kStartIterations, false);
+      for (TrackFit& c : candidates) {
+        ChooseImpulses(data, w.impulse_tau.size(), mid, &c.q);
+        c = Solve(w, c.q, o, mid, kStartIterations, false);
+      }
       std::sort(candidates.begin(), candidates.end(), [](const TrackFit& a, const TrackFit& b) { return a.cost < b.cost; });
       const double keep = kCandidateCost * candidates.front().cost;
       candidates.erase(std::find_if(candidates.begin() + 1, candidates.end(), [&](const TrackFit& c) { return !(c.cost <= keep); }),
@@ -248,21 +352,13 @@ TrackFit FitTrack(const TrackData& data, const IdentifyOptions& o, int* starts) 
     } while (window < span);
     q = candidates.front().q;
   }
+  ChooseImpulses(data, data.impulse_tau.size(), mid, &q);
   TrackFit fit = Solve(data, q, o, o.integration, o.max_iterations, false);
   FinishFit(data, o.integration, &fit);
   return fit;
 }
 
 namespace {
-
-/// 1/2 sum of the squared weighted residuals at q.
-double Cost(const TrackData& d, const std::array<double, kP>& q, const IntegrationOptions& integration) {
-  std::vector<double> model(d.x.size());
-  EvaluateTrack(q.data(), d.tau.data(), d.tau.size(), integration, model.data(), nullptr);
-  double c = 0.0;
-  for (std::size_t k = 0; k < model.size(); ++k) c += std::pow(d.weight[k / 2] * (model[k] - d.x[k]), 2);
-  return 0.5 * c;
-}
 
 /// One side (dir = -1 or +1) of the profile interval: the secant method on the signed root
 /// r(lambda) = sqrt(2 (cost(lambda) - cost_min)), nearly linear in lambda, for r = sqrt(threshold).
@@ -275,10 +371,10 @@ double ProfileSide(const TrackData& d, const IdentifyOptions& o, const Integrati
   const double lam_hat = fit.q[0];
   double last_lam = lam_hat, last_r = 0.0;
   double lam = std::clamp(lam_hat + dir * 1.96 * se, o.lambda_min, o.lambda_max);
-  std::array<double, kP> warm = fit.q;
+  std::vector<double> warm = fit.q;
   if (lam == lam_hat) return dir < 0 ? 0.0 : std::numeric_limits<double>::infinity();  // at the bound
   for (int step = 0; step < kMaxSteps && lam != lam_hat; ++step) {
-    std::array<double, kP> q = warm;
+    std::vector<double> q = warm;
     q[0] = lam;
     const TrackFit f = Solve(d, q, o, integration, o.max_iterations, true);
     ++*fits;
@@ -307,7 +403,7 @@ ProfileInterval ProfileLambda(const TrackData& data, const IdentifyOptions& opti
   // kProfileNoiseFraction x the RMS residual (at most kJacobianTolerance, never tighter than
   // asked). The optimum's cost is re-evaluated with the same tolerance so that the common part
   // of the integration error cancels in the differences.
-  const double rms = std::sqrt(2.0 * fit.cost / static_cast<double>(data.x.size()));
+  const double rms = std::sqrt(2.0 * fit.cost / static_cast<double>(ResidualCount(data)));
   const double tol = std::min(kProfileNoiseFraction * rms, kProfileMaxTolerance);
   const IntegrationOptions integration{std::max(tol, options.integration.absolute_tolerance),
                                        std::max(tol, options.integration.relative_tolerance), options.integration.max_steps};

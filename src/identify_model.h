@@ -4,7 +4,9 @@
 // variational equations), read at the sample times from the dense output (dynamics.h).
 #pragma once
 
+#include <Eigen/Core>
 #include <cstddef>
+#include <vector>
 
 #include "plateball/integration_options.h"
 
@@ -19,5 +21,35 @@ inline constexpr int kTrackParameters = 7;  ///< (lambda, mu, theta, phi, psi, x
 /// optimum). Throws std::runtime_error (or StepLimitError) when an integration fails.
 void EvaluateTrack(const double* q, const double* tau, std::size_t n, const IntegrationOptions& options,
                    double* x_out, double* jacobian, const IntegrationOptions* jacobian_options = nullptr);
+
+/// The ball just after impulse k (k = 0: at the track's first time): axis z, conserved vector K
+/// of the flight that starts there, contact point x, and the flight's start time tau.
+struct FlightStart {
+  double tau = 0.0;
+  Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  Eigen::Vector2d k = Eigen::Vector2d::Zero();
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+};
+
+/// The axial spin v0 = <omega, z> of the model at the samples (an IMU's rate about the symmetry
+/// axis): values[i], and with jacobian != nullptr dv0(t_i)/dq row-major (n x (7 + m)).
+struct SpinOutput {
+  double* values = nullptr;
+  double* jacobian = nullptr;
+};
+
+/// EvaluateTrack across energy-preserving impulses psi -> psi + s_j at fixed (theta, phi, mu)
+/// (section 2.1, ImpulseMomentum of exact_chain.h) at the strictly increasing times
+/// impulse_tau[0..m) in (0, tau[n-1]): q = (lambda, mu, theta, phi, psi, x0, y0, s_0, ..,
+/// s_{m-1}), the contact point and the axis continuous across each impulse. A sample at an
+/// impulse's time belongs to the flight before it (x is continuous). jacobian: row-major
+/// (2n x (7 + m)), by the chain rule over the flights: each flight's variational equations with
+/// respect to its start (z, K) and lambda (ceres::Jet), each impulse differentiated by Jets.
+/// flights (optional) receives the m + 1 flight starts, spin (optional) the axial spin. With m = 0
+/// and neither, this is EvaluateTrack.
+void EvaluateImpulsiveTrack(const double* q, const double* tau, std::size_t n, const std::vector<double>& impulse_tau,
+                            const IntegrationOptions& options, double* x_out, double* jacobian,
+                            const IntegrationOptions* jacobian_options = nullptr,
+                            std::vector<FlightStart>* flights = nullptr, const SpinOutput* spin = nullptr);
 
 }  // namespace plateball::internal

@@ -124,23 +124,30 @@ inline double MinimumContactSpeed(double mu, double lambda) { return std::sqrt(m
 // ---------------------------------------------------------------------------------------------
 // The conserved vector K and the chart-free right-hand side.
 
-/// K = omega_h + (lambda - 1) v0 z_h for the axial spin v0 = <omega, z>.
-template <typename T, typename Z>
-inline void MomentumFromOmega(const Z* z, const T* w, const T& v0, double lambda, T* k) {
+/// K = omega_h + (lambda - 1) v0 z_h for the axial spin v0 = <omega, z> (lambda may be a
+/// ceres::Jet: identify differentiates the impulses with respect to it).
+template <typename T, typename Z, typename L>
+inline void MomentumFromOmega(const Z* z, const T* w, const T& v0, const L& lambda, T* k) {
   k[0] = w[0] + (lambda - 1.0) * v0 * z[0];
   k[1] = w[1] + (lambda - 1.0) * v0 * z[1];
 }
 /// The same with v0 = <omega_h, z_h> (omega_3 = 0).
-template <typename T, typename Z>
-inline void MomentumFromOmega(const Z* z, const T* w, double lambda, T* k) {
+template <typename T, typename Z, typename L>
+inline void MomentumFromOmega(const Z* z, const T* w, const L& lambda, T* k) {
   MomentumFromOmega(z, w, T(w[0] * z[0] + w[1] * z[1]), lambda, k);
 }
 
-/// omega_h from (z, K): v0 = <K, z_h>/(z3^2 + lambda |z_h|^2), omega_h = K - (lambda-1) v0 z_h.
+/// The axial spin v0 = <omega, z> from (z, K): v0 = <K, z_h>/(z3^2 + lambda |z_h|^2).
+template <typename T, typename L>
+inline T AxialSpinFromZK(const T* z, const T* k, const L& lambda) {
+  return (k[0] * z[0] + k[1] * z[1]) / (z[2] * z[2] + lambda * (z[0] * z[0] + z[1] * z[1]));
+}
+
+/// omega_h from (z, K): v0 = AxialSpinFromZK, omega_h = K - (lambda-1) v0 z_h.
 /// lambda may be a ceres::Jet too (identify.cc differentiates the motion with respect to it).
 template <typename T, typename L>
 inline void OmegaFromZK(const T* z, const T* k, const L& lambda, T* w) {
-  const T v0 = (k[0] * z[0] + k[1] * z[1]) / (z[2] * z[2] + lambda * (z[0] * z[0] + z[1] * z[1]));
+  const T v0 = AxialSpinFromZK(z, k, lambda);
   w[0] = k[0] - (lambda - 1.0) * v0 * z[0];
   w[1] = k[1] - (lambda - 1.0) * v0 * z[1];
 }

@@ -117,7 +117,7 @@ TEST(Identify, ProfileIntervalCoversTheTruthInAbout95PercentOfSeeds) {
       const IdentifyProblem p = MakeTrack(truth, 0.0, 1.5 * PeriodOf(truth), 40, 0.003, 1000u + static_cast<unsigned>(seed));
       IdentifyOptions o;
       o.integration = {1e-9, 1e-9, 2'000'000};
-      o.guess = IdentifyGuess{truth.lambda, truth.mu, truth.angles, truth.x0};
+      o.guess = IdentifyGuess{truth.lambda, truth.mu, truth.angles, truth.x0, {}};
       const IdentifySummary s = Identify(p, o);
       ASSERT_EQ(s.status, IdentifyStatus::kIdentified) << seed << ": " << s.BriefReport();
       EXPECT_LT(s.lambda_low, s.lambda);

@@ -15,13 +15,26 @@
 
 namespace plateball PLATEBALL_EXPORT {
 
-/// A measured track of one free flight: contact points x_i at strictly increasing times t_i.
+/// A measured track of the contact point: x_i at strictly increasing times t_i, over one free
+/// flight or several flights separated by energy-preserving impulses at known times.
 struct IdentifyProblem {
   std::vector<double> t;
   std::vector<Eigen::Vector2d> x;  ///< contact point (length unit: IdentifyOptions::radius)
   /// Per-sample standard deviation of each coordinate (> 0), or empty: then one common sigma is
   /// estimated from the residuals.
   std::vector<double> sigma;
+  /// Times of the impulses that separate the flights (strictly increasing, strictly inside
+  /// (t.front(), t.back()), at least kIdentifyMinFlightSamples samples in every flight; a sample at
+  /// an impulse's time belongs to the flight before it). Each is an energy-preserving impulse
+  /// psi -> psi + delta_psi at fixed (theta, phi, mu) (section 2.1, "Modeling an impulse"): the
+  /// contact point and the axis are continuous, lambda and mu shared, one delta_psi fitted per
+  /// impulse. Empty: one free flight.
+  std::vector<double> impulse_times;
+  /// The measured axial spin v0 = <omega, z> at each sample (an IMU's rate about the ball's
+  /// symmetry axis; rad per time unit of t), or empty. It needs sigma (the positions' noise) and
+  /// sigma_spin (its own, > 0, one per sample) given: two kinds of residual share no common noise.
+  std::vector<double> spin;
+  std::vector<double> sigma_spin;
   /// Empty when valid, else "FIELD: value V: what is wrong" naming the first bad row.
   std::string Validate() const;
 };
@@ -32,7 +45,14 @@ struct IdentifyGuess {
   double mu = 1.0;
   AngleState angles;
   Eigen::Vector2d x0 = Eigen::Vector2d::Zero();
+  /// The first delta_psi of the impulses (at most one per impulse); the rest are chosen from the
+  /// track, each from a grid of values by the cost of the flight after it.
+  std::vector<double> delta_psi;
 };
+
+/// Fewest samples in each flight of a track with impulses (the first flight's 8 residuals for its
+/// 7 start parameters).
+inline constexpr int kIdentifyMinFlightSamples = 4;
 
 struct IdentifyOptions {
   /// The ball's radius in the track's length unit: the track is divided by it (the model's unit is
@@ -76,8 +96,16 @@ enum class IdentifyStatus {
 /// The status as the JSON spells it (e.g. "identified", "lambda_not_identified").
 std::string ToString(IdentifyStatus status);
 
-/// Names of the fitted parameters, in the order of IdentifySummary::standard_errors.
+/// Names of the fitted parameters of the start, in the order of IdentifySummary::standard_errors
+/// (followed by "delta_psi[k]" of each impulse).
 inline constexpr const char* kIdentifyParameterNames[7] = {"lambda", "mu", "theta", "phi", "psi", "x0", "y0"};
+
+/// The fitted state at the start of one flight: just after its impulse (the first flight: at t_ref).
+struct IdentifiedFlight {
+  double t_start = 0.0;
+  AngleState angles;                          ///< canonical (theta in [0, pi])
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();  ///< contact point (radii)
+};
 
 /// A default-constructed summary says "not run".
 struct IdentifySummary {
@@ -90,9 +118,16 @@ struct IdentifySummary {
   AngleState angles;                          ///< (theta, phi, psi) at t_ref, theta in [0, pi]
   Eigen::Vector2d x0 = Eigen::Vector2d::Zero();  ///< contact point at t_ref (radii)
   double period = 0.0;                        ///< 2 pi / sqrt(mu)
-  /// Standard errors of (lambda, mu, theta, phi, psi, x0, y0); infinity where J^T J is singular.
+  /// The impulse times (IdentifyProblem::impulse_times) and the fitted delta_psi of each, in
+  /// (-pi, pi].
+  std::vector<double> impulse_times;
+  std::vector<double> delta_psi;
+  /// The fitted state at the start of each flight (1 + impulses entries).
+  std::vector<IdentifiedFlight> flights;
+  /// Standard errors of (lambda, mu, theta, phi, psi, x0, y0, delta_psi...); infinity where J^T J
+  /// is singular.
   std::vector<double> standard_errors;
-  /// Correlation matrix of the fitted parameters (7x7; NaN rows where singular).
+  /// Correlation matrix of the fitted parameters ((7 + impulses) square; NaN rows where singular).
   Eigen::MatrixXd correlation;
   /// 95% profile-likelihood interval of lambda. A side that does not close (the profile does not
   /// rise by the threshold before lambda_min / lambda_max) is 0 / infinity; NaN when not computed.
@@ -107,17 +142,19 @@ struct IdentifySummary {
   /// does not see at all).
   double scaled_condition = 0.0;
   std::vector<std::string> unidentified;  ///< parameters with a huge or infinite standard error
-  /// Largest distance of the fitted contact path from its least-squares line (radii).
+  /// Largest distance of the fitted contact path from its least-squares line (radii); with
+  /// impulses the largest over the flights, each from its own line.
   double path_deviation = 0.0;
   /// True when path_deviation is within the noise (sigma, at least 1e-8 radii): the track cannot
-  /// tell its path from a straight line. A straight path is what every lambda gives when the axial
+  /// tell its path (every flight's) from a straight line. A straight path is what every lambda gives when the axial
   /// spin v0 is 0, and what every state gives at lambda = 1 (the ball rolls like a sphere), so
   /// lambda is then not identifiable from the contact track alone (status kLambdaNotIdentified,
-  /// "lambda" in unidentified, whatever its standard error).
+  /// "lambda" in unidentified, whatever its standard error) unless the track has a measured spin,
+  /// which tells the two causes apart (the verdict then comes from the standard error).
   bool straight_path = false;
   // Residuals.
   int samples = 0;
-  int residuals = 0;
+  int residuals = 0;  ///< 2 per sample, and one per measured spin
   double rms_residual = 0.0;      ///< sqrt(mean of the squared coordinate residuals), radii
   double max_residual = 0.0;      ///< largest |x_i - x(t_i)|, radii
   double sigma = 0.0;             ///< noise used for the errors (given mean or estimated)
@@ -125,6 +162,10 @@ struct IdentifySummary {
   double chi_square = 0.0;        ///< sum of squared weighted residuals
   double track_spread = 0.0;      ///< RMS distance of the track from its mean, radii
   std::vector<Eigen::Vector2d> fitted;  ///< the fitted x(t_i), radii
+  /// With a measured spin: the fitted v0(t_i), and the RMS and largest |v0(t_i) - v0_i|.
+  std::vector<double> fitted_spin;
+  double spin_rms_residual = 0.0;
+  double spin_max_residual = 0.0;
   int starts = 0;                 ///< multi-start fits run
   int iterations = 0;             ///< solver iterations of the final fit
   int profile_fits = 0;           ///< fits at fixed lambda for the profile interval
@@ -136,7 +177,8 @@ struct IdentifySummary {
   std::string BriefReport() const;
 };
 
-/// Fits lambda, mu, (theta, phi, psi) and x0 at the track's first time to the track. Throws
+/// Fits lambda, mu, (theta, phi, psi) and x0 at the track's first time, and the delta_psi of each
+/// impulse, to the track. Throws
 /// std::invalid_argument naming the field and row for an invalid track or options; a track that
 /// no free motion fits is the status kNoFit with its residual.
 IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& options = {});

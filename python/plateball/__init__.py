@@ -119,17 +119,21 @@ def steer(problem=None, options=None, **kwargs):
     return _solve(_steer, ExactArrivalProblem, ExactArrivalOptions, problem, options, kwargs)
 
 
-def identify(t, xy, sigma=None, options=None, **kwargs):
+def identify(t, xy, sigma=None, options=None, impulse_times=None, spin=None, sigma_spin=None, **kwargs):
     """Fits lambda, mu and the state at t[0] to a track of the contact point: t (n,), xy (n, 2),
-    sigma (n,) or None (estimated); keywords name fields of IdentifyOptions (radius, guess, ...).
-    Returns IdentifySummary (status "identified", "lambda_not_identified", "no_fit", "failed")."""
+    sigma (n,) or None (estimated); impulse_times (m,) or None: known energy-preserving impulses
+    between the flights (one delta psi fitted per impulse, lambda and mu shared); spin (n,) and
+    sigma_spin (n,) or None: a measured axial spin v0 (an IMU's rate about the symmetry axis;
+    needs sigma given); keywords name
+    fields of IdentifyOptions (radius, guess, ...). Returns IdentifySummary (status "identified",
+    "lambda_not_identified", "no_fit", "failed")."""
     options = IdentifyOptions() if options is None else options
     fields = _fields(IdentifyOptions)
     for key, value in kwargs.items():
         if key not in fields:
             raise TypeError(f"identify(): unexpected keyword argument '{key}'")
         setattr(options, key, value)
-    return _identify(t, xy, sigma, options)
+    return _identify(t, xy, sigma, impulse_times, spin, sigma_spin, options)
 
 
 def fewest_impulses(problem=None, options=None, **kwargs):

@@ -10,11 +10,23 @@ namespace plateball::python {
 
 namespace {
 
-/// The track from NumPy arrays: t (n,), xy (n, 2), sigma (n,) or None. Shapes are checked here
-/// (naming the argument); values by IdentifyProblem::Validate (naming the row).
-IdentifyProblem TrackFromArrays(const py::array_t<double, py::array::forcecast>& t,
-                                const py::array_t<double, py::array::forcecast>& xy,
-                                const std::optional<py::array_t<double, py::array::forcecast>>& sigma) {
+using Array = py::array_t<double, py::array::forcecast>;
+
+/// A 1-dimensional array argument (or None) into out; `name` names it in the error.
+void ReadVector(const std::optional<Array>& a, const char* name, std::vector<double>* out) {
+  if (!a) return;
+  if (a->ndim() != 1)
+    throw std::invalid_argument(std::string(name) + ": value (array of " + std::to_string(a->ndim()) + " dimensions): must be 1-dimensional");
+  const auto v = a->unchecked<1>();
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) out->push_back(v(i));
+}
+
+/// The track from NumPy arrays: t (n,), xy (n, 2), sigma, impulse_times, spin, sigma_spin (each 1-d)
+/// or None. Shapes are checked here (naming the argument); values by IdentifyProblem::Validate
+/// (naming the row).
+IdentifyProblem TrackFromArrays(const Array& t, const Array& xy, const std::optional<Array>& sigma,
+                                const std::optional<Array>& impulse_times, const std::optional<Array>& spin,
+                                const std::optional<Array>& sigma_spin) {
   if (t.ndim() != 1) throw std::invalid_argument("t: value (array of " + std::to_string(t.ndim()) + " dimensions): must be 1-dimensional");
   if (xy.ndim() != 2 || xy.shape(1) != 2)
     throw std::invalid_argument("xy: value (array of shape not (n, 2)): must have shape (n, 2)");
@@ -23,11 +35,10 @@ IdentifyProblem TrackFromArrays(const py::array_t<double, py::array::forcecast>&
   const auto xv = xy.unchecked<2>();
   for (py::ssize_t i = 0; i < tv.shape(0); ++i) p.t.push_back(tv(i));
   for (py::ssize_t i = 0; i < xv.shape(0); ++i) p.x.emplace_back(xv(i, 0), xv(i, 1));
-  if (sigma) {
-    if (sigma->ndim() != 1) throw std::invalid_argument("sigma: value (array of " + std::to_string(sigma->ndim()) + " dimensions): must be 1-dimensional");
-    const auto sv = sigma->unchecked<1>();
-    for (py::ssize_t i = 0; i < sv.shape(0); ++i) p.sigma.push_back(sv(i));
-  }
+  ReadVector(sigma, "sigma", &p.sigma);
+  ReadVector(impulse_times, "impulse_times", &p.impulse_times);
+  ReadVector(spin, "spin", &p.spin);
+  ReadVector(sigma_spin, "sigma_spin", &p.sigma_spin);
   return p;
 }
 
@@ -37,7 +48,9 @@ void BindIdentifyInputs(py::module_& m) {
       .def_readwrite("lambda_", &IdentifyGuess::lambda)
       .def_readwrite("mu", &IdentifyGuess::mu)
       .def_readwrite("angles", &IdentifyGuess::angles)
-      .def_readwrite("x0", &IdentifyGuess::x0);
+      .def_readwrite("x0", &IdentifyGuess::x0)
+      .def_readwrite("delta_psi", &IdentifyGuess::delta_psi,
+                     "The first delta psi of the impulses (at most one per impulse); the rest are chosen from the track.");
   py::class_<IdentifyOptions> options(m, "IdentifyOptions");
   WithKeywordInit(options)
       .def_readwrite("radius", &IdentifyOptions::radius)
@@ -60,6 +73,10 @@ void BindIdentifyInputs(py::module_& m) {
 
 void BindIdentify(py::module_& m) {
   BindIdentifyInputs(m);
+  py::class_<IdentifiedFlight> flight(m, "IdentifiedFlight", "The fitted state at the start of one flight (just after its impulse).");
+  flight.def_readonly("t_start", &IdentifiedFlight::t_start, "The flight's start time (the impulse's, or t_ref).")
+      .def_readonly("angles", &IdentifiedFlight::angles, "(theta, phi, psi) at the start, theta in [0, pi].")
+      .def_readonly("x", &IdentifiedFlight::x, "The contact point at the start (radii).");
   py::class_<IdentifySummary> summary(m, "IdentifySummary");
   AddSummaryShape(summary);
   summary.def_readonly("t_ref", &IdentifySummary::t_ref)
@@ -68,6 +85,10 @@ void BindIdentify(py::module_& m) {
       .def_readonly("angles", &IdentifySummary::angles)
       .def_readonly("x0", &IdentifySummary::x0)
       .def_readonly("period", &IdentifySummary::period)
+      .def_readonly("impulse_times", &IdentifySummary::impulse_times, "The times of the impulses between the flights.")
+      .def_readonly("delta_psi", &IdentifySummary::delta_psi,
+                    "The fitted delta psi of each impulse, in (-pi, pi]; standard errors from index 7 of standard_errors.")
+      .def_readonly("flights", &IdentifySummary::flights, "The fitted state at the start of each flight (IdentifiedFlight).")
       .def_readonly("standard_errors", &IdentifySummary::standard_errors)
       .def_readonly("correlation", &IdentifySummary::correlation)
       .def_property_readonly("lambda_interval", [](const IdentifySummary& s) { return py::make_tuple(s.lambda_low, s.lambda_high); })
@@ -91,6 +112,9 @@ void BindIdentify(py::module_& m) {
       .def_property_readonly("fitted", [](const IdentifySummary& s) {
             return Stack<2>(s.fitted, [](const Eigen::Vector2d& v) { return v.transpose(); });
           }, "The fitted contact points x(t_i), (n, 2), radii.")
+      .def_readonly("fitted_spin", &IdentifySummary::fitted_spin, "With a measured spin: the fitted axial spin v0(t_i).")
+      .def_readonly("spin_rms_residual", &IdentifySummary::spin_rms_residual, "RMS of the fitted - measured spin.")
+      .def_readonly("spin_max_residual", &IdentifySummary::spin_max_residual, "Largest absolute difference of the fitted and the measured spin.")
       .def_readonly("starts", &IdentifySummary::starts)
       .def_readonly("iterations", &IdentifySummary::iterations)
       .def_readonly("profile_fits", &IdentifySummary::profile_fits)
@@ -98,12 +122,13 @@ void BindIdentify(py::module_& m) {
             std::vector<std::string> names(std::begin(kIdentifyParameterNames), std::end(kIdentifyParameterNames));
             return names;
           });
-  m.def("_identify", [](const py::array_t<double, py::array::forcecast>& t, const py::array_t<double, py::array::forcecast>& xy,
-                        const std::optional<py::array_t<double, py::array::forcecast>>& sigma, const IdentifyOptions& options) {
-          const IdentifyProblem p = TrackFromArrays(t, xy, sigma);
+  m.def("_identify", [](const Array& t, const Array& xy, const std::optional<Array>& sigma, const std::optional<Array>& impulse_times,
+                        const std::optional<Array>& spin, const std::optional<Array>& sigma_spin, const IdentifyOptions& options) {
+          const IdentifyProblem p = TrackFromArrays(t, xy, sigma, impulse_times, spin, sigma_spin);
           py::gil_scoped_release release;
           return Identify(p, options);
-        }, py::arg("t"), py::arg("xy"), py::arg("sigma"), py::arg("options"));
+        }, py::arg("t"), py::arg("xy"), py::arg("sigma"), py::arg("impulse_times"), py::arg("spin"), py::arg("sigma_spin"),
+        py::arg("options"));
 }
 
 }  // namespace plateball::python

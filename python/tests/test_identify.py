@@ -78,3 +78,63 @@ def test_the_binding_gives_the_cli_answer_on_the_example_track():
     # The CSV's numbers read by C++ strtod and NumPy are the same doubles: the same fit to the digit.
     assert s.lambda_ == doc["fit"]["lambda"] and s.mu == doc["fit"]["mu"]
     assert s.lambda_interval == (doc["fit"]["lambda_interval"]["low"], doc["fit"]["lambda_interval"]["high"])
+
+
+def impulse_track():
+    """The example track of eight flights between known impulses (the circle plan, noise 0.002)."""
+    path = os.path.join(ROOT, "tests", "data", "identify_impulses_track.csv")
+    with open(path) as f:
+        impulses = [float(v) for v in [line for line in f if line.startswith("#")][-1].lstrip("# ").split(",")]
+    data = np.loadtxt(path, delimiter=",", comments="#", skiprows=5)
+    return path, data[:, 0], data[:, 1:3], np.asarray(impulses)
+
+
+def test_impulses_at_known_times_give_lambda_and_each_delta_psi():
+    _, t, xy, impulses = impulse_track()
+    s = pb.identify(t, xy, impulse_times=impulses, profile_interval=False)
+    assert s.status == "identified"
+    # The plan's values (problems/circle.json with n = 8): lambda = 2 and the first delta psi.
+    assert abs(s.lambda_ - 2.0) < 4 * s.standard_errors[0]
+    assert abs(s.delta_psi[0] - 0.7486843166879056) < 4 * s.standard_errors[7]
+    assert len(s.delta_psi) == 7 and len(s.standard_errors) == 14 and s.correlation.shape == (14, 14)
+    assert list(s.impulse_times) == list(impulses)
+    assert [f.t_start for f in s.flights] == [t[0]] + list(impulses)
+    # Each flight starts at the sample at its impulse (noise 0.002): x is continuous across it.
+    for f in s.flights[1:]:
+        assert np.min(np.linalg.norm(xy - f.x, axis=1)) < 0.01
+
+
+def test_bad_impulse_times_raise_value_error_naming_the_field():
+    _, t, xy, impulses = impulse_track()
+    with pytest.raises(ValueError, match=r"^impulse_times\[1\]: value .*: impulse times must be strictly increasing"):
+        pb.identify(t, xy, impulse_times=impulses[::-1])
+    with pytest.raises(ValueError, match=r"^impulse_times\[0\]: value 99: must be inside the track"):
+        pb.identify(t, xy, impulse_times=[99.0])
+    with pytest.raises(ValueError, match=r"impulse_times: .*must be 1-dimensional"):
+        pb.identify(t, xy, impulse_times=np.zeros((2, 2)))
+
+
+def test_the_binding_gives_the_cli_answer_on_the_impulse_track():
+    cli = os.environ.get("PLATEBALL_CLI")
+    if not cli:
+        pytest.skip("PLATEBALL_CLI not set")
+    path, t, xy, impulses = impulse_track()
+    doc = json.loads(subprocess.run([cli, "identify", path, "--no-profile", "--impulses", ",".join(repr(v) for v in impulses)],
+                                    check=True, capture_output=True, text=True).stdout)
+    s = pb.identify(t, xy, impulse_times=impulses, profile_interval=False)
+    assert s.lambda_ == doc["fit"]["lambda"]
+    assert list(s.delta_psi) == [i["delta_psi"] for i in doc["fit"]["impulses"]]
+
+
+def test_a_measured_spin_identifies_lambda_on_a_straight_track():
+    # tests/data/identify_spin_track.csv: lambda = 1, a straight contact path; the axial spin
+    # v0 = <omega, z> (an IMU's rate about the symmetry axis) shows v0 != 0.
+    data = np.loadtxt(os.path.join(ROOT, "tests", "data", "identify_spin_track.csv"), delimiter=",", comments="#", skiprows=4)
+    t, xy, sigma, spin, sigma_spin = data[:, 0], data[:, 1:3], data[:, 3], data[:, 4], data[:, 5]
+    alone = pb.identify(t, xy, sigma=sigma, profile_interval=False)
+    assert alone.status == "lambda_not_identified" and alone.straight_path
+    s = pb.identify(t, xy, sigma=sigma, spin=spin, sigma_spin=sigma_spin, profile_interval=False)
+    assert s.status == "identified" and abs(s.lambda_ - 1.0) < 4 * s.standard_errors[0]
+    assert len(s.fitted_spin) == len(t) and abs(s.spin_rms_residual - 0.002) < 5e-4
+    with pytest.raises(ValueError, match=r"^sigma_spin \(rows\): value 0"):
+        pb.identify(t, xy, sigma=sigma, spin=spin)

@@ -65,6 +65,36 @@ plateball_cli_test(identify.bad_radius 3 REGEX "--radius: value -2" -- identify 
 plateball_cli_test(identify.guess_needs_problem 3 REGEX "--guess" -- identify tests/data/identify_track.csv --guess)
 plateball_cli_test(identify.missing_file 5 -- identify tests/data/no_such_track.csv)
 
+# Eight flights of the circle plan (lambda = 2, mu = 1) between known impulses, noise 0.002
+# (tests/data/identify_impulses_track.csv, its header): lambda to ~3e-3, each delta psi fitted.
+set(impulses "1.97971051947,4.11910028592,5.93450695524,7.6917274569,9.76605547974,11.8431439933,13.6016943332")
+plateball_cli_test(identify.impulses 0
+  REGEX "\"status\": \"identified\".*\"lambda\": 2\\.00.*\"impulses\": \\[.*\"delta_psi\": 0\\.74.*\"delta_psi\\[6\\]\""
+  -- identify tests/data/identify_impulses_track.csv --impulses ${impulses} --no-profile)
+plateball_cli_test(identify.impulses_svg 0 REGEX "<svg.*fitted free flights between the impulses"
+  --cat ${CMAKE_CURRENT_BINARY_DIR}/cli_identify_impulses.svg
+  -- identify tests/data/identify_impulses_track.csv --impulses ${impulses} --no-profile --out ${dir}/impulses.json
+     --svg ${CMAKE_CURRENT_BINARY_DIR}/cli_identify_impulses.svg)
+file(WRITE ${dir}/impulses_unsorted.json "{\"t\": [0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,15], \"x\": [[0,0],[1,0],[2,0],[3,0],[4,0],[5,0],[6,0],[7,0],[8,0],[9,0],[10,0],[11,0],[12,0],[13,0],[14,0],[15,0]], \"impulse_times\": [9.5, 4.5]}")
+plateball_cli_test(identify.impulses_unsorted 3 REGEX "impulses_unsorted.json: impulse_times\\[1\\]: value 4.5: impulse times must be strictly increasing"
+  -- identify ${dir}/impulses_unsorted.json)
+plateball_cli_test(identify.impulses_outside 3 REGEX "--impulses: impulse_times\\[0\\]: value 99: must be inside the track"
+  -- identify tests/data/identify_track.csv --impulses 99)
+plateball_cli_test(identify.impulses_few_samples 3 REGEX "impulse_times\\[1\\]: value 0.55: too few samples in the flight before it: 1"
+  -- identify tests/data/identify_impulses_track.csv --impulses 0.5,0.55)
+plateball_cli_test(identify.impulses_twice 3 REGEX "--impulses.*impulse_times already"
+  -- identify ${dir}/impulses_unsorted.json --impulses 3)
+
+# A measured axial spin (tests/data/identify_spin_track.csv, lambda = 1: a straight contact path):
+# the spin shows v0 != 0, so lambda = 1 is identified; the positions alone are not enough.
+plateball_cli_test(identify.spin 0
+  REGEX "\"spin_given\": true.*\"status\": \"identified\".*\"lambda\": 1\\.00.*\"spin\": {"
+  -- identify tests/data/identify_spin_track.csv --no-profile)
+string(REPLACE "\n" ",1\n" spin_rows "${rows}")
+file(WRITE ${dir}/spin_without_sigma.csv "t,x,y,spin\n${spin_rows}")
+plateball_cli_test(identify.spin_needs_its_sigma 3 REGEX "sigma_spin \\(rows\\): value 0: must have one row per time \\(10\\): a measured spin needs its noise"
+  -- identify ${dir}/spin_without_sigma.csv)
+
 # The fitted problem is a problem file: simulate reads it back and moves at the fitted period.
 if(EXISTS /usr/bin/python3)
   add_test(NAME cli.identify.fitted_problem_is_a_problem_file

@@ -1,5 +1,6 @@
 // `plateball identify TRACK [PROBLEM.json]`: fit lambda, mu and the initial state to a measured
 // track of the contact point (identify.h, docs/identify.md) and print the result as JSON.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -31,9 +32,11 @@ struct IdentifyCliOptions {
   std::string out;
   std::string svg;
   double radius = 1.0;
+  std::vector<double> impulses;
   bool guess = false;
   bool no_profile = false;
   CLI::Option* radius_opt = nullptr;
+  CLI::Option* impulses_opt = nullptr;
 };
 
 [[noreturn]] void TrackError(const std::string& file, const std::string& field, const std::string& value,
@@ -67,14 +70,15 @@ std::vector<std::string> SplitCells(const std::string& line) {
   return cells;
 }
 
-/// CSV with a header line naming the columns t, x, y and optionally sigma ('#' lines are comments).
+/// CSV with a header line naming the columns t, x, y and optionally sigma, spin and sigma_spin ('#'
+/// lines are comments).
 IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
   std::stringstream in(text);
   std::string line;
   std::vector<std::string> columns;
   IdentifyProblem p;
-  int col[4] = {-1, -1, -1, -1};  // t, x, y, sigma
-  const char* names[4] = {"t", "x", "y", "sigma"};
+  int col[6] = {-1, -1, -1, -1, -1, -1};  // t, x, y, sigma, spin, sigma_spin
+  const char* names[6] = {"t", "x", "y", "sigma", "spin", "sigma_spin"};
   while (std::getline(in, line)) {
     const std::string trimmed = Trim(line);
     if (trimmed.empty() || trimmed[0] == '#') continue;
@@ -83,9 +87,11 @@ IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
       columns = cells;
       for (std::size_t c = 0; c < cells.size(); ++c) {
         int k = -1;
-        for (int m = 0; m < 4; ++m)
+        for (int m = 0; m < 6; ++m)
           if (cells[c] == names[m]) k = m;
-        if (k < 0) TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"", "unknown column (the columns are t, x, y and optionally sigma)");
+        if (k < 0)
+          TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"",
+                     "unknown column (the columns are t, x, y and optionally sigma, spin and sigma_spin)");
         if (col[k] >= 0) TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"", "repeated column");
         col[k] = static_cast<int>(c);
       }
@@ -101,12 +107,15 @@ IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
     p.x.emplace_back(ParseCell(file, "x" + r, cells[static_cast<std::size_t>(col[1])]),
                      ParseCell(file, "y" + r, cells[static_cast<std::size_t>(col[2])]));
     if (col[3] >= 0) p.sigma.push_back(ParseCell(file, "sigma" + r, cells[static_cast<std::size_t>(col[3])]));
+    if (col[4] >= 0) p.spin.push_back(ParseCell(file, "spin" + r, cells[static_cast<std::size_t>(col[4])]));
+    if (col[5] >= 0) p.sigma_spin.push_back(ParseCell(file, "sigma_spin" + r, cells[static_cast<std::size_t>(col[5])]));
   }
   if (columns.empty()) TrackError(file, "(document)", "(empty)", "no header line t,x,y");
   return p;
 }
 
-/// JSON {"t": [...], "x": [[x, y], ...], "sigma": [...] (optional)}.
+/// JSON {"t": [...], "x": [[x, y], ...], "sigma": [...], "impulse_times": [...], "spin": [...],
+/// "sigma_spin": [...]} (all but t and x optional).
 IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) {
   using nlohmann::json;
   json doc;
@@ -117,8 +126,9 @@ IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) 
   }
   if (!doc.is_object()) TrackError(file, "(document)", "(not an object)", "must be an object {\"t\": [...], \"x\": [[x, y], ...]}");
   for (auto it = doc.begin(); it != doc.end(); ++it)
-    if (it.key() != "t" && it.key() != "x" && it.key() != "sigma")
-      TrackError(file, it.key(), "(any)", "unknown key (a track has t, x and optionally sigma)");
+    if (it.key() != "t" && it.key() != "x" && it.key() != "sigma" && it.key() != "impulse_times" && it.key() != "spin" &&
+        it.key() != "sigma_spin")
+      TrackError(file, it.key(), "(any)", "unknown key (a track has t, x and optionally sigma, impulse_times, spin and sigma_spin)");
   for (const char* key : {"t", "x"})
     if (!doc.contains(key) || !doc[key].is_array()) TrackError(file, key, "(missing)", "required array");
   IdentifyProblem p;
@@ -133,20 +143,36 @@ IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) 
     if (!q.is_array() || q.size() != 2) TrackError(file, f, q.dump(), "must be a point [x, y]");
     p.x.emplace_back(number(q[0], f + "[0]"), number(q[1], f + "[1]"));
   }
-  if (doc.contains("sigma")) {
-    if (!doc["sigma"].is_array()) TrackError(file, "sigma", doc["sigma"].dump(), "must be an array of numbers");
-    for (std::size_t i = 0; i < doc["sigma"].size(); ++i) p.sigma.push_back(number(doc["sigma"][i], "sigma[" + std::to_string(i) + "]"));
+  auto numbers = [&](const char* key, std::vector<double>* out) {
+    if (!doc.contains(key)) return;
+    if (!doc[key].is_array()) TrackError(file, key, doc[key].dump(), "must be an array of numbers");
+    for (std::size_t i = 0; i < doc[key].size(); ++i) out->push_back(number(doc[key][i], std::string(key) + "[" + std::to_string(i) + "]"));
+  };
+  numbers("sigma", &p.sigma);
+  numbers("spin", &p.spin);
+  numbers("sigma_spin", &p.sigma_spin);
+  if (doc.contains("impulse_times")) {
+    const json& times = doc["impulse_times"];
+    if (!times.is_array()) TrackError(file, "impulse_times", times.dump(), "must be an array of times");
+    for (std::size_t i = 0; i < times.size(); ++i)
+      p.impulse_times.push_back(number(times[i], "impulse_times[" + std::to_string(i) + "]"));
   }
   return p;
 }
 
-IdentifyProblem ReadTrack(const std::string& file) {
+/// The track and its impulse times (the JSON's impulse_times or --impulses, not both).
+IdentifyProblem ReadTrack(const std::string& file, const IdentifyCliOptions& o) {
   const std::string text = ReadInputText(file);
   const auto first = text.find_first_not_of(" \t\r\n");
   IdentifyProblem p = first != std::string::npos && (text[first] == '{' || text[first] == '[') ? ReadTrackJson(file, text)
                                                                                                  : ReadTrackCsv(file, text);
+  if (o.impulses_opt->count() > 0) {
+    if (!p.impulse_times.empty())
+      ThrowInvalidInput(CommandLineField("--impulses"), "(set)", "the track file " + file + " has impulse_times already: give them once");
+    p.impulse_times = o.impulses;
+  }
   const std::string error = p.Validate();
-  if (!error.empty()) throw std::invalid_argument(file + ": " + error);
+  if (!error.empty()) throw std::invalid_argument((error.rfind("impulse_times", 0) == 0 && o.impulses_opt->count() > 0 ? "--impulses: " : file + ": ") + error);
   return p;
 }
 
@@ -158,6 +184,10 @@ Json ErrorsJson(const IdentifySummary& s) {
   Json j = Json::object();
   for (int i = 0; i < 5; ++i) j[kIdentifyParameterNames[i]] = FiniteOrNull(s.standard_errors[static_cast<std::size_t>(i)]);
   j["x0"] = Json::array({FiniteOrNull(s.standard_errors[5]), FiniteOrNull(s.standard_errors[6])});
+  if (!s.delta_psi.empty()) {
+    j["delta_psi"] = Json::array();
+    for (std::size_t k = 0; k < s.delta_psi.size(); ++k) j["delta_psi"].push_back(FiniteOrNull(s.standard_errors[7 + k]));
+  }
   return j;
 }
 
@@ -169,6 +199,18 @@ Json CorrelationJson(const IdentifySummary& s) {
     rows.push_back(row);
   }
   return rows;
+}
+
+/// Each impulse: its time, the fitted delta psi with its standard error, and the state after it.
+Json ImpulsesJson(const IdentifySummary& s) {
+  Json impulses = Json::array();
+  for (std::size_t k = 0; k < s.delta_psi.size(); ++k) {
+    const IdentifiedFlight& after = s.flights[k + 1];
+    impulses.push_back(Json{{"t", s.impulse_times[k]}, {"delta_psi", s.delta_psi[k]},
+                            {"delta_psi_error", FiniteOrNull(s.standard_errors[7 + k])},
+                            {"angles_after", ToJson(after.angles)}, {"x", ToJson(after.x)}});
+  }
+  return impulses;
 }
 
 Json FitJson(const IdentifySummary& s) {
@@ -184,15 +226,19 @@ Json FitJson(const IdentifySummary& s) {
                               {"path_deviation", s.path_deviation},
                               {"straight_path", s.straight_path},
                               {"unidentified", s.unidentified}};
+  if (!s.delta_psi.empty()) j["impulses"] = ImpulsesJson(s);
   j["correlation"] = CorrelationJson(s);
   j["parameters"] = Json::array();
   for (const char* name : kIdentifyParameterNames) j["parameters"].push_back(name);
+  for (std::size_t k = 0; k < s.delta_psi.size(); ++k) j["parameters"].push_back("delta_psi[" + std::to_string(k) + "]");
   return j;
 }
 
 Json ResidualsJson(const IdentifySummary& s) {
-  return Json{{"samples", s.samples}, {"rms", s.rms_residual}, {"max", s.max_residual}, {"chi_square", s.chi_square},
-              {"sigma", s.sigma}, {"sigma_estimated", s.sigma_estimated}, {"track_spread", s.track_spread}};
+  Json j{{"samples", s.samples}, {"rms", s.rms_residual}, {"max", s.max_residual}, {"chi_square", s.chi_square},
+         {"sigma", s.sigma}, {"sigma_estimated", s.sigma_estimated}, {"track_spread", s.track_spread}};
+  if (!s.fitted_spin.empty()) j["spin"] = Json{{"rms", s.spin_rms_residual}, {"max", s.spin_max_residual}};
+  return j;
 }
 
 /// The fitted model as problem-file sections (ball, initial) that plan and steer read.
@@ -220,13 +266,18 @@ SvgFigure PlateFigure(const IdentifyProblem& track, const IdentifySummary& s, do
   for (const Eigen::Vector2d& x : track.x) fig.Marker(x / radius, 1.2, point);
   fig.Legend("measured track", point, SvgFigure::Swatch::kPoint);
   if (fitted) {
-    const FreeMotion motion = FreeMotion::FromAngles(BallModel::FromLambda(s.lambda), s.angles, s.mu, s.x0);
+    // Flight by flight (one without impulses), each from its fitted start to the next impulse.
     std::vector<Eigen::Vector2d> curve;
     constexpr int kCurvePoints = 600;
-    for (int i = 0; i <= kCurvePoints; ++i)
-      curve.push_back(motion.PositionAt((track.t.back() - track.t.front()) * i / kCurvePoints));
+    for (std::size_t f = 0; f < s.flights.size(); ++f) {
+      const IdentifiedFlight& flight = s.flights[f];
+      const double end = f + 1 < s.flights.size() ? s.flights[f + 1].t_start : track.t.back();
+      const FreeMotion motion = FreeMotion::FromAngles(BallModel::FromLambda(s.lambda), flight.angles, s.mu, flight.x);
+      const int points = std::max(2, static_cast<int>(kCurvePoints * (end - flight.t_start) / (track.t.back() - track.t.front())));
+      for (int i = 0; i <= points; ++i) curve.push_back(motion.PositionAt((end - flight.t_start) * i / points));
+    }
     fig.Polyline(curve, {"#1f77b4", 1.2, "", "none"});
-    fig.Legend("fitted free motion", {"#1f77b4", 1.2, "", "none"});
+    fig.Legend(s.flights.size() > 1 ? "fitted free flights between the impulses" : "fitted free motion", {"#1f77b4", 1.2, "", "none"});
   }
   return fig;
 }
@@ -272,7 +323,7 @@ void WriteFigure(const std::string& path, const IdentifyProblem& track, const Id
 
 int RunIdentify(const IdentifyCliOptions& o) {
   CheckOutputPaths({{"--out", o.out}, {"--svg", o.svg}}, {{"TRACK", o.track}, {"PROBLEM.json", o.problem}});
-  const IdentifyProblem track = ReadTrack(o.track);
+  const IdentifyProblem track = ReadTrack(o.track, o);
   Problem p;
   p.source = "(built-in defaults)";
   if (!o.problem.empty()) p = ReadProblemInput(o.problem);
@@ -286,7 +337,7 @@ int RunIdentify(const IdentifyCliOptions& o) {
   if (o.guess) {
     if (o.problem.empty())
       ThrowInvalidInput(CommandLineField("--guess"), "(set)", "needs PROBLEM.json (its ball.lambda and initial state)");
-    opt.guess = IdentifyGuess{p.model.lambda(), p.mu, p.initial_angles, p.x0 * opt.radius};
+    opt.guess = IdentifyGuess{p.model.lambda(), p.mu, p.initial_angles, p.x0 * opt.radius, {}};
   }
   const IdentifySummary s = Identify(track, opt);
 
@@ -298,7 +349,8 @@ int RunIdentify(const IdentifyCliOptions& o) {
                         {"max_lambda_relative_error", opt.max_lambda_relative_error},
                         {"profile_interval", opt.profile_interval}, {"guess", o.guess}};
   doc["track"] = Json{{"file", o.track}, {"samples", track.t.size()}, {"t_first", track.t.front()}, {"t_last", track.t.back()},
-                      {"sigma_given", !track.sigma.empty()}};
+                      {"sigma_given", !track.sigma.empty()}, {"spin_given", !track.spin.empty()},
+                      {"impulse_times", track.impulse_times}};
   Append(doc, ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport()));
   const bool fitted = s.status == IdentifyStatus::kIdentified || s.status == IdentifyStatus::kLambdaNotIdentified;
   if (fitted) doc["fit"] = FitJson(s);
@@ -314,7 +366,9 @@ int RunIdentify(const IdentifyCliOptions& o) {
 
 std::function<int()> SetupIdentify(CLI::App& sub) {
   auto o = std::make_shared<IdentifyCliOptions>();
-  sub.add_option("TRACK", o->track, "the track: CSV with a header t,x,y[,sigma] or JSON {\"t\", \"x\", \"sigma\"} (\"-\": standard input)")
+  sub.add_option("TRACK", o->track,
+                 "the track: CSV with a header t,x,y[,sigma[,spin,sigma_spin]] or JSON {\"t\", \"x\", \"sigma\", "
+                 "\"impulse_times\", \"spin\", \"sigma_spin\"} (\"-\": standard input)")
       ->required();
   sub.add_option("PROBLEM.json", o->problem,
                  "optional problem file: its integration tolerances, ball.physical.radius (a track in metres) and, "
@@ -322,11 +376,16 @@ std::function<int()> SetupIdentify(CLI::App& sub) {
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
   sub.add_option("--svg", o->svg, "draw the track, the fitted motion and the residuals to this SVG file");
   o->radius_opt = sub.add_option("--radius", o->radius, "the ball's radius in the track's length unit (default 1, or ball.physical.radius)");
+  o->impulses_opt = sub.add_option("--impulses", o->impulses,
+                                    "times of known energy-preserving impulses that separate the track's flights, "
+                                    "comma-separated (T1,T2,...): one delta psi fitted per impulse")
+                       ->delimiter(',');
   sub.add_flag("--guess", o->guess, "start from PROBLEM.json's ball.lambda and initial state instead of the multi-start");
   sub.add_flag("--no-profile", o->no_profile, "skip the profile-likelihood interval of lambda (faster)");
   sub.footer(
       "Fits lambda, mu and the state (angles, contact point) at the track's first time to a measured track of\n"
-      "the contact point (docs/identify.md). Prints JSON (docs/output_contract.md): status identified |\n"
+      "the contact point (docs/identify.md); with --impulses (or the JSON track's impulse_times) the flights\n"
+      "between known impulses share lambda and mu, and each impulse's delta psi is fitted. Prints JSON (docs/output_contract.md): status identified |\n"
       "lambda_not_identified | no_fit | failed, the fit with standard errors, the 95% profile interval of\n"
       "lambda, an identifiability report, the residuals and, when identified, fitted_problem: the ball and\n"
       "initial sections of a problem file for plan and steer.\n"

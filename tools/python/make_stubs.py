@@ -57,7 +57,9 @@ def package_stub():
               "integration: Optional[IntegrationOptions] = ...) -> numpy.typing.NDArray[numpy.float64]: ...",
               "def load_problem(path: \"str | os.PathLike[str]\") -> Problem: ...",
               "def identify(t: Sequence[float], xy: Sequence[Sequence[float]], sigma: Optional[Sequence[float]] = ..., "
-              "options: Optional[IdentifyOptions] = ..., **kwargs: Any) -> IdentifySummary: ...", ""]
+              "options: Optional[IdentifyOptions] = ..., impulse_times: Optional[Sequence[float]] = ..., "
+              "spin: Optional[Sequence[float]] = ..., sigma_spin: Optional[Sequence[float]] = ..., "
+              "**kwargs: Any) -> IdentifySummary: ...", ""]
     return "\n".join(lines)
 
 
