@@ -38,7 +38,7 @@ void BindIdentifyInputs(py::module_& m) {
       .def_readwrite("mu", &IdentifyGuess::mu)
       .def_readwrite("angles", &IdentifyGuess::angles)
       .def_readwrite("x0", &IdentifyGuess::x0);
-  py::class_<IdentifyOptions> options(m, "IdentifyOptions");
+  py::class_<IdentifyOptions> options(m, "IdentifyOptions", "Options of identify(): the ball's radius in the track's unit, the search range and multi-start grid of lambda and the angles, the identifiability thresholds and the fit's tolerances.");
   WithKeywordInit(options)
       .def_readwrite("radius", &IdentifyOptions::radius)
       .def_readwrite("lambda_min", &IdentifyOptions::lambda_min)
@@ -53,14 +53,14 @@ void BindIdentifyInputs(py::module_& m) {
       .def_readwrite("max_relative_residual", &IdentifyOptions::max_relative_residual)
       .def_readwrite("profile_interval", &IdentifyOptions::profile_interval)
       .def_readwrite("integration", &IdentifyOptions::integration)
-      .def("validate", &IdentifyOptions::Validate);
+      .def("validate", &IdentifyOptions::Validate, "Empty when valid, else the first offending field, its value and the bound.");
 }
 
 }  // namespace
 
 void BindIdentify(py::module_& m) {
   BindIdentifyInputs(m);
-  py::class_<IdentifySummary> summary(m, "IdentifySummary");
+  py::class_<IdentifySummary> summary(m, "IdentifySummary", "The result of identify(): the fitted lambda, mu, angles and start point with their standard errors and lambda's interval, the residuals and whether lambda is identified; status \"not run\" until fitted.");
   AddSummaryShape(summary);
   summary.def_readonly("t_ref", &IdentifySummary::t_ref)
       .def_readonly("lambda_", &IdentifySummary::lambda)
