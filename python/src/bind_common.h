@@ -81,11 +81,12 @@ py::array_t<double> StackMatrices(const Seq& seq, F&& f) {
 // status (word), usable, message, report: the shape every summary shares.
 template <typename S>
 void AddSummaryShape(py::class_<S>& cls) {
-  cls.def_property_readonly("status", [](const S& s) { return ToString(s.status); })
-      .def_readonly("message", &S::message)
-      .def_property_readonly("usable", &S::IsSolutionUsable)
-      .def_property_readonly("report", &S::BriefReport)
-      .def("__repr__", &S::BriefReport);
+  cls.def_property_readonly("status", [](const S& s) { return ToString(s.status); },
+                            "The outcome as the tools' \"status\" word (e.g. \"converged\", \"success\"; \"not run\" before a solve).")
+      .def_readonly("message", &S::message, "What went wrong or what limits the result, in words; empty when there is nothing to say.")
+      .def_property_readonly("usable", &S::IsSolutionUsable, "Whether the result can be used (the tools' \"usable\" field).")
+      .def_property_readonly("report", &S::BriefReport, "The status and the result's key numbers in one line (the tools' \"report\" field).")
+      .def("__repr__", &S::BriefReport, "The one-line report.");
 }
 
 void BindModel(py::module_& m);     // model, states, impulses, free motion, rolling, SO(3)

@@ -11,7 +11,7 @@ namespace plateball::python {
 namespace {
 
 void BindFewestInputs(py::module_& m) {
-  py::class_<FewestImpulsesOptions> options(m, "FewestImpulsesOptions");
+  py::class_<FewestImpulsesOptions> options(m, "FewestImpulsesOptions", "Options of fewest_impulses(): the counts searched, the starts per count, the search window and the tolerances of an exact arrival.");
   WithKeywordInit(options)
       .def_readwrite("max_impulses", &FewestImpulsesOptions::max_impulses)
       .def_readwrite("pareto_counts", &FewestImpulsesOptions::pareto_counts)
@@ -24,7 +24,7 @@ void BindFewestInputs(py::module_& m) {
       .def_readwrite("orientation_tolerance", &FewestImpulsesOptions::orientation_tolerance)
       .def_readwrite("integration", &FewestImpulsesOptions::integration)
       .def_readwrite("search_integration", &FewestImpulsesOptions::search_integration)
-      .def("validate", &FewestImpulsesOptions::Validate);
+      .def("validate", &FewestImpulsesOptions::Validate, "Empty when the options are valid; else a message naming the field and its value.");
   py::class_<FewestImpulsesProblem> problem(m, "FewestImpulsesProblem",
                                             "The fewest impulses that bring the ball to (x1, A1) exactly.");
   WithKeywordInit(problem)
@@ -65,7 +65,7 @@ void BindFewestCount(py::module_& m) {
 void BindFewestImpulses(py::module_& m) {
   BindFewestInputs(m);
   BindFewestCount(m);
-  py::class_<FewestImpulsesSummary> summary(m, "FewestImpulsesSummary");
+  py::class_<FewestImpulsesSummary> summary(m, "FewestImpulsesSummary", "The result of fewest_impulses(): the fewest impulse count found, one row per count searched (the Pareto table) and what was searched; status \"not run\" until solved.");
   AddSummaryShape(summary);
   summary.def_readonly("fewest", &FewestImpulsesSummary::fewest)
       .def_readonly("counts", &FewestImpulsesSummary::counts)

@@ -51,7 +51,7 @@ void BindIdentifyInputs(py::module_& m) {
       .def_readwrite("x0", &IdentifyGuess::x0)
       .def_readwrite("delta_psi", &IdentifyGuess::delta_psi,
                      "The first delta psi of the impulses (at most one per impulse); the rest are chosen from the track.");
-  py::class_<IdentifyOptions> options(m, "IdentifyOptions");
+  py::class_<IdentifyOptions> options(m, "IdentifyOptions", "Options of identify(): the ball's radius in the track's unit, the search range and multi-start grid of lambda and the angles, the identifiability thresholds and the fit's tolerances.");
   WithKeywordInit(options)
       .def_readwrite("radius", &IdentifyOptions::radius)
       .def_readwrite("lambda_min", &IdentifyOptions::lambda_min)
@@ -66,7 +66,7 @@ void BindIdentifyInputs(py::module_& m) {
       .def_readwrite("max_relative_residual", &IdentifyOptions::max_relative_residual)
       .def_readwrite("profile_interval", &IdentifyOptions::profile_interval)
       .def_readwrite("integration", &IdentifyOptions::integration)
-      .def("validate", &IdentifyOptions::Validate);
+      .def("validate", &IdentifyOptions::Validate, "Empty when valid, else the first offending field, its value and the bound.");
 }
 
 }  // namespace
@@ -77,7 +77,7 @@ void BindIdentify(py::module_& m) {
   flight.def_readonly("t_start", &IdentifiedFlight::t_start, "The flight's start time (the impulse's, or t_ref).")
       .def_readonly("angles", &IdentifiedFlight::angles, "(theta, phi, psi) at the start, theta in [0, pi].")
       .def_readonly("x", &IdentifiedFlight::x, "The contact point at the start (radii).");
-  py::class_<IdentifySummary> summary(m, "IdentifySummary");
+  py::class_<IdentifySummary> summary(m, "IdentifySummary", "The result of identify(): the fitted lambda, mu, angles and start point with their standard errors and lambda's interval, the residuals and whether lambda is identified; status \"not run\" until fitted.");
   AddSummaryShape(summary);
   summary.def_readonly("t_ref", &IdentifySummary::t_ref)
       .def_readonly("lambda_", &IdentifySummary::lambda)

@@ -24,12 +24,12 @@ void BindStates(py::module_& m) {
       .def_readwrite("ball_mass", &PhysicalParameters::ball_mass)
       .def_readwrite("radius", &PhysicalParameters::radius)
       .def_readwrite("plate_mass", &PhysicalParameters::plate_mass)
-      .def("validate", &PhysicalParameters::Validate);
+      .def("validate", &PhysicalParameters::Validate, "Empty when valid; otherwise names the first offending field, its value and the bound.");
   py::class_<BallModel>(m, "BallModel", "The ball parameter lambda = (alpha + beta)/(1 + beta), eq. (9).")
       .def(py::init(&BallModel::FromLambda), py::arg("lambda_"))
-      .def_static("from_lambda", &BallModel::FromLambda, py::arg("lambda_"))
-      .def_static("from_alpha_beta", &BallModel::FromAlphaBeta, py::arg("alpha"), py::arg("beta"))
-      .def_static("from_physical", &BallModel::FromPhysical, py::arg("physical"))
+      .def_static("from_lambda", &BallModel::FromLambda, py::arg("lambda_"), "The model of a given lambda in [1e-3, 1e3]; alpha and beta are then unknown (reported as 0).")
+      .def_static("from_alpha_beta", &BallModel::FromAlphaBeta, py::arg("alpha"), py::arg("beta"), "The model of alpha = I3/I1 and beta = M r^2 / I1 (section 2.1): 0 < alpha <= 2 (a rigid body has I3 <= 2 I1), beta >= 0.")
+      .def_static("from_physical", &BallModel::FromPhysical, py::arg("physical"), "The model of a ball's physical parameters (SI); raises ValueError naming the field when a parameter is invalid.")
       .def_property_readonly("lambda_", &BallModel::lambda)
       .def_property_readonly("has_inertia", &BallModel::has_inertia)
       .def_property_readonly("alpha", &BallModel::alpha)
@@ -44,7 +44,7 @@ void BindStates(py::module_& m) {
       .def_readwrite("theta", &AngleState::theta)
       .def_readwrite("phi", &AngleState::phi)
       .def_readwrite("psi", &AngleState::psi)
-      .def("canonicalize", &AngleState::Canonicalize)
+      .def("canonicalize", &AngleState::Canonicalize, "Same physical state with theta in [0, pi], phi and psi in (-pi, pi].")
       .def("__iter__", [](const AngleState& a) { return py::iter(py::make_tuple(a.theta, a.phi, a.psi)); })
       .def("__repr__", [](const AngleState& a) {
         return "AngleState(theta=" + std::string(py::repr(py::float_(a.theta))) + ", phi=" +
@@ -60,7 +60,7 @@ void BindStates(py::module_& m) {
       .def_readwrite("absolute_tolerance", &IntegrationOptions::absolute_tolerance)
       .def_readwrite("relative_tolerance", &IntegrationOptions::relative_tolerance)
       .def_readwrite("max_steps", &IntegrationOptions::max_steps)
-      .def("validate", &IntegrationOptions::Validate);
+      .def("validate", &IntegrationOptions::Validate, "Empty when valid, else a message naming the field, the value and the bound. Each tolerance must be in [1e-15, 1) (below, the step size underflows in double precision).");
   m.def("state_from_angles", &StateFromAngles, py::arg("angles"), py::arg("mu"), py::arg("model"), "The ball state of the angles (theta, phi, psi) and energy mu (section 2.1).");
   m.def("angles_from_state", &AnglesFromState, py::arg("state"), py::arg("model"), "The Euler angles (theta, phi, psi) of a ball state (section 2.1).");
   m.def("energy", &Energy, py::arg("state"), py::arg("model"), "The energy mu = ``|omega x z|^2 + lambda v0^2``, eq. (9).");
@@ -101,7 +101,7 @@ void BindTrajectory(py::module_& m) {
 }
 
 void BindFreeMotion(py::module_& m) {
-  py::class_<MotionSample>(m, "MotionSample")
+  py::class_<MotionSample>(m, "MotionSample", "Everything the library reports about the ball at one instant.")
       .def_readonly("t", &MotionSample::t)
       .def_readonly("state", &MotionSample::state)
       .def_readonly("x", &MotionSample::x)
@@ -131,19 +131,20 @@ void BindFreeMotion(py::module_& m) {
       .def_property_readonly("start_state", [](const FreeMotion& f) { return f.start().state; })
       .def_property_readonly("start_orientation", [](const FreeMotion& f) { return f.start().A0; })
       .def_property_readonly("stored_steps", &FreeMotion::StoredSteps)
-      .def("at", &FreeMotion::At, py::arg("t"))
-      .def("position_at", &FreeMotion::PositionAt, py::arg("t"))
+      .def("at", &FreeMotion::At, py::arg("t"), "The full sample (a MotionSample) at any real t (negative too) with ``|t| <= 1e12`` periods (beyond, ValueError: no significant digits would be left), accurate to the integration tolerance.")
+      .def("position_at", &FreeMotion::PositionAt, py::arg("t"), "The contact point x(t) only (cheaper than at(): no orientation).")
       .def("sample", [](const FreeMotion& f, double t0, double t1, int n) { return Trajectory{f.Sample(t0, t1, n)}; },
-           py::arg("t0"), py::arg("t1"), py::arg("n"), py::call_guard<py::gil_scoped_release>())
+           py::arg("t0"), py::arg("t1"), py::arg("n"), py::call_guard<py::gil_scoped_release>(),
+           "A Trajectory of n equally spaced samples from t0 to t1 (both included).")
       .def("sample_times", [](const FreeMotion& f, const std::vector<double>& times) {
              std::vector<MotionSample> s;
              for (double t : times) s.push_back(f.At(t));
              return Trajectory{s};
-           }, py::arg("times"), py::call_guard<py::gil_scoped_release>());
+           }, py::arg("times"), py::call_guard<py::gil_scoped_release>(), "A Trajectory sampled at the given times (any order, any real t).");
 }
 
 void BindAngleForm(py::module_& m) {
-  py::class_<AngleFormOptions> options(m, "AngleFormOptions");
+  py::class_<AngleFormOptions> options(m, "AngleFormOptions", "Options of integrate_angle_form(): the integration tolerances and how close to a pole (sin theta) the integration stops.");
   WithKeywordInit(options)
       .def_readwrite("integration", &AngleFormOptions::integration)
       .def_readwrite("pole_threshold", &AngleFormOptions::pole_threshold);
@@ -164,10 +165,10 @@ void BindAngleForm(py::module_& m) {
       .def(py::init<const BallModel&, const AngleState&, double>(), py::arg("model"), py::arg("angles"), py::arg("mu"))
       .def_property_readonly("period", &AppendixSolution::Period)
       .def_property_readonly("c", [](const AppendixSolution& a) { return a.constants().c; })
-      .def("theta", &AppendixSolution::Theta, py::arg("t"))
-      .def("w", &AppendixSolution::W, py::arg("t"))
-      .def("phi", &AppendixSolution::Phi, py::arg("t"))
-      .def("psi", &AppendixSolution::Psi, py::arg("t"));
+      .def("theta", &AppendixSolution::Theta, py::arg("t"), "(30), corrected branch; extended chart for c = 0.")
+      .def("w", &AppendixSolution::W, py::arg("t"), "(31) = phi - psi, continuous in t.")
+      .def("phi", &AppendixSolution::Phi, py::arg("t"), "from (33), sign corrected.")
+      .def("psi", &AppendixSolution::Psi, py::arg("t"), "psi = phi - w at t (from (31) and (33)).");
 }
 
 void BindRolling(py::module_& m) {

@@ -10,20 +10,20 @@ namespace plateball::python {
 namespace {
 
 void BindTasks(py::module_& m) {
-  py::class_<SimulateTask> simulate(m, "SimulateTask");
+  py::class_<SimulateTask> simulate(m, "SimulateTask", "`plateball simulate`: sample the free motion on [0, t_end].");
   WithKeywordInit(simulate).def_readwrite("t_end", &SimulateTask::t_end).def_readwrite("samples", &SimulateTask::samples);
-  py::class_<ReachTask> reach(m, "ReachTask");
+  py::class_<ReachTask> reach(m, "ReachTask", "`plateball join` / `plateball reach`: reach target points from the initial state.");
   WithKeywordInit(reach).def_readwrite("targets", &ReachTask::targets).def_readwrite("horizon_periods", &ReachTask::horizon_periods);
   py::class_<PathSpec>(m, "PathSpec", "A path of a problem file (JSON \"path\"); PathSpec.to_path() builds it.")
       .def_property_readonly("type", [](const PathSpec& s) { return ToString(s); })
-      .def("to_path", [](const PathSpec& s) { return PathFromSpec(s); });
-  py::class_<PlanTask> plan(m, "PlanTask");
+      .def("to_path", [](const PathSpec& s) { return PathFromSpec(s); }, "The Path this specification describes (what the solvers follow).");
+  py::class_<PlanTask> plan(m, "PlanTask", "`plateball plan` / `plateball converge`: follow a planned path with impulses.");
   WithKeywordInit(plan)
       .def_readwrite("path", &PlanTask::path)
       .def_readwrite("partition", &PlanTask::partition)
       .def_readwrite("energy_changes", &PlanTask::energy_changes)
       .def_readwrite("converge_n", &PlanTask::converge_n);
-  py::class_<IsoparallelTask> iso(m, "IsoparallelTask");
+  py::class_<IsoparallelTask> iso(m, "IsoparallelTask", "The isoparallel problem (section 2.2): shortest path from (start, A_start) to (goal, A_goal).");
   WithKeywordInit(iso)
       .def_readwrite("start", &IsoparallelTask::start)
       .def_readwrite("goal", &IsoparallelTask::goal)
@@ -31,7 +31,7 @@ void BindTasks(py::module_& m) {
       .def_readwrite("goal_orientation", &IsoparallelTask::goal_orientation)
       .def_readwrite("impulses", &IsoparallelTask::impulses)
       .def_readwrite("solver", &IsoparallelTask::solver);
-  py::class_<SteerTask> steer(m, "SteerTask");
+  py::class_<SteerTask> steer(m, "SteerTask", "`plateball steer` / `isoparallel_solve --exact`: exact arrival at (goal, goal_orientation) with `impulses` impulses along a reference: the plan section's path when the file has one, else the shortest isoparallel path.");
   WithKeywordInit(steer)
       .def_readwrite("goal", &SteerTask::goal)
       .def_readwrite("goal_orientation", &SteerTask::goal_orientation)
@@ -44,7 +44,7 @@ void BindTasks(py::module_& m) {
             t.objective = *o;
           },
           "what the exact arrival minimises under the rig's limits: deviation, time or impulse");
-  py::class_<ExpectedValue>(m, "ExpectedValue")
+  py::class_<ExpectedValue>(m, "ExpectedValue", "Golden values a problem file may carry (\"expected\"): name -> value, with a tolerance each.")
       .def_readonly("value", &ExpectedValue::value)
       .def_readonly("tolerance", &ExpectedValue::tolerance);
 }
@@ -92,7 +92,7 @@ void BindProblemValue(py::module_& m) {
 // One setup per task: problem and options, ready for the solver call (what the tools run).
 template <typename Setup>
 void BindSetup(py::module_& m, const char* name) {
-  py::class_<Setup>(m, name)
+  py::class_<Setup>(m, name, "A solver's (problem, options) made from a problem file by a task adapter; unpacks as a pair.")
       .def_readwrite("problem", &Setup::problem)
       .def_readwrite("options", &Setup::options)
       .def("__iter__", [](const Setup& s) { return py::iter(py::make_tuple(s.problem, s.options)); });

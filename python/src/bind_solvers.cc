@@ -22,13 +22,13 @@ namespace {
 using Scalar1 = Eigen::Matrix<double, 1, 1>;
 
 void BindJoin(py::module_& m) {
-  py::class_<JoinOptions> options(m, "JoinOptions");
+  py::class_<JoinOptions> options(m, "JoinOptions", "Options of join(): the tolerance, iterations and integration of joining a close target with one impulse.");
   WithKeywordInit(options)
       .def_readwrite("residual_tolerance", &JoinOptions::residual_tolerance)
       .def_readwrite("max_iterations", &JoinOptions::max_iterations)
       .def_readwrite("local_time_factor", &JoinOptions::local_time_factor)
       .def_readwrite("integration", &JoinOptions::integration)
-      .def("validate", &JoinOptions::Validate);
+      .def("validate", &JoinOptions::Validate, "Empty when valid, else names the field, the value and the bound.");
   py::class_<JoinProblem> problem(m, "JoinProblem", "Join x0 to a close target with one impulse (Lemma 2.1).");
   WithKeywordInit(problem)
       .def_readwrite("model", &JoinProblem::model)
@@ -36,7 +36,7 @@ void BindJoin(py::module_& m) {
       .def_readwrite("mu", &JoinProblem::mu)
       .def_readwrite("x0", &JoinProblem::x0)
       .def_readwrite("target", &JoinProblem::target);
-  py::class_<JoinSummary> summary(m, "JoinSummary");
+  py::class_<JoinSummary> summary(m, "JoinSummary", "The answer of Join, with what was asked. A default-constructed summary says \"not run\".");
   AddSummaryShape(summary);
   summary.def_readonly("start", &JoinSummary::start)
       .def_readonly("mu", &JoinSummary::mu)
@@ -57,7 +57,7 @@ void BindJoin(py::module_& m) {
 }
 
 void BindReachTypes(py::module_& m) {
-  py::class_<ReachOptions> options(m, "ReachOptions");
+  py::class_<ReachOptions> options(m, "ReachOptions", "Options of reach(): the horizon, the scan of (delta_psi, t), the global search and the refinement's tolerance.");
   WithKeywordInit(options)
       .def_readwrite("horizon_periods", &ReachOptions::horizon_periods)
       .def_readwrite("scan_directions", &ReachOptions::scan_directions)
@@ -67,7 +67,7 @@ void BindReachTypes(py::module_& m) {
       .def_readwrite("max_candidates", &ReachOptions::max_candidates)
       .def_readwrite("global_max_evaluations", &ReachOptions::global_max_evaluations)
       .def_readwrite("integration", &ReachOptions::integration)
-      .def("validate", &ReachOptions::Validate);
+      .def("validate", &ReachOptions::Validate, "Empty when valid; otherwise names the field, its value and the bound.");
   py::class_<ReachProblem> problem(m, "ReachProblem", "Reach a distant target with one impulse (section 2.3, Figure 8).");
   WithKeywordInit(problem)
       .def_readwrite("model", &ReachProblem::model)
@@ -76,7 +76,7 @@ void BindReachTypes(py::module_& m) {
       .def_readwrite("x0", &ReachProblem::x0)
       .def_readwrite("orientation", &ReachProblem::A0)
       .def_readwrite("target", &ReachProblem::target);
-  py::class_<ReachSolution>(m, "ReachSolution")
+  py::class_<ReachSolution>(m, "ReachSolution", "One way to reach the target: impulse psi -> psi + delta_psi, then free rolling for time t.")
       .def_readonly("delta_psi", &ReachSolution::delta_psi)
       .def_readonly("t", &ReachSolution::t)
       .def_readonly("periods", &ReachSolution::periods)
@@ -84,7 +84,7 @@ void BindReachTypes(py::module_& m) {
       .def_readonly("jacobian_determinant", &ReachSolution::jacobian_determinant)
       .def_readonly("impulse", &ReachSolution::impulse)
       .def_readonly("end", &ReachSolution::end);
-  py::class_<ClosestApproach>(m, "ClosestApproach")
+  py::class_<ClosestApproach>(m, "ClosestApproach", "The closest the ball comes to the target over s in [0, 2 pi), t in [0, horizon].")
       .def_readonly("distance", &ClosestApproach::distance)
       .def_readonly("delta_psi", &ClosestApproach::delta_psi)
       .def_readonly("t", &ClosestApproach::t);
@@ -92,7 +92,7 @@ void BindReachTypes(py::module_& m) {
 
 void BindReach(py::module_& m) {
   BindReachTypes(m);
-  py::class_<ReachSummary> summary(m, "ReachSummary");
+  py::class_<ReachSummary> summary(m, "ReachSummary", "The result of reach(): every (delta_psi, t) that reaches the target within the horizon, earliest first, or the closest approach; status \"not run\" until solved.");
   AddSummaryShape(summary);
   summary.def_readonly("problem", &ReachSummary::problem)
       .def_readonly("period", &ReachSummary::period)
@@ -112,7 +112,7 @@ void BindReach(py::module_& m) {
 }
 
 void BindBounds(py::module_& m) {
-  py::class_<ErrorBoundConstants>(m, "ErrorBoundConstants")
+  py::class_<ErrorBoundConstants>(m, "ErrorBoundConstants", "The constants of Lemmas 2.1-2.4 and Theorems 2.5-2.6, estimated over one plan.")
       .def_readonly("K_p", &ErrorBoundConstants::K_p)
       .def_readonly("M_prime_p", &ErrorBoundConstants::M_prime_p)
       .def_readonly("K_bar_p", &ErrorBoundConstants::K_bar_p)
@@ -141,14 +141,14 @@ void BindBounds(py::module_& m) {
 void BindPlanInputs(py::module_& m) {
   py::class_<EnergyChange> change(m, "EnergyChange", "An energy-changing impulse at partition index `index`.");
   WithKeywordInit(change).def_readwrite("index", &EnergyChange::index).def_readwrite("factor", &EnergyChange::factor);
-  py::class_<PlanOptions> options(m, "PlanOptions");
+  py::class_<PlanOptions> options(m, "PlanOptions", "Options of plan(): the join and reach options of each segment (reach as a fallback), the integration of the free arcs and the samples of the error bounds.");
   WithKeywordInit(options)
       .def_readwrite("join", &PlanOptions::join)
       .def_readwrite("reach_fallback", &PlanOptions::reach_fallback)
       .def_readwrite("reach", &PlanOptions::reach)
       .def_readwrite("integration", &PlanOptions::integration)
       .def_readwrite("bound_samples", &PlanOptions::bound_samples)
-      .def("validate", &PlanOptions::Validate);
+      .def("validate", &PlanOptions::Validate, "Empty when the options are valid; else a message naming the field and its value.");
   py::class_<PlanProblem> problem(m, "PlanProblem", "Follow a planned path with energy-preserving impulses (section 2.3).");
   WithKeywordInit(problem)
       .def_readwrite("model", &PlanProblem::model)
@@ -161,7 +161,7 @@ void BindPlanInputs(py::module_& m) {
 }
 
 void BindPlanStep(py::module_& m) {
-  py::class_<PlanStep>(m, "PlanStep")
+  py::class_<PlanStep>(m, "PlanStep", "One segment k: the impulse at p(tau_k) and the free arc to p(tau_k+1).")
       .def_readonly("piece", &PlanStep::piece)
       .def_readonly("index", &PlanStep::index)
       .def_readonly("global_index", &PlanStep::global_index)
@@ -219,7 +219,7 @@ Trajectory PlanTrajectory(const PlanSummary& plan, const BallModel& model, int p
 }
 
 void BindPlanSummary(py::module_& m) {
-  py::class_<PlanSummary> summary(m, "PlanSummary");
+  py::class_<PlanSummary> summary(m, "PlanSummary", "The result of plan(): one PlanStep per impulse, the measured error, the error bounds and the final orientations; status \"not run\" until planned.");
   AddSummaryShape(summary);
   summary.def_readonly("pieces", &PlanSummary::pieces)
       .def_readonly("segments", &PlanSummary::segments)
@@ -253,11 +253,11 @@ void BindPlanSummary(py::module_& m) {
 }
 
 void BindConvergence(py::module_& m) {
-  py::class_<ConvergenceProblem> problem(m, "ConvergenceProblem");
+  py::class_<ConvergenceProblem> problem(m, "ConvergenceProblem", "What is asked: the plan problem (its partition rules must be uniform; each n of `ns` replaces their n) and the distinct partition sizes.");
   WithKeywordInit(problem).def_readwrite("plan", &ConvergenceProblem::plan).def_readwrite("ns", &ConvergenceProblem::ns);
-  py::class_<ConvergenceOptions> options(m, "ConvergenceOptions");
+  py::class_<ConvergenceOptions> options(m, "ConvergenceOptions", "Options of converge(): the plan options of every row and whether plans are timed.");
   WithKeywordInit(options).def_readwrite("plan", &ConvergenceOptions::plan).def_readwrite("timings", &ConvergenceOptions::timings);
-  py::class_<ConvergenceRow>(m, "ConvergenceRow")
+  py::class_<ConvergenceRow>(m, "ConvergenceRow", "One row of a convergence study: the plan of one n, its measured error and the paper's bounds.")
       .def_readonly("n", &ConvergenceRow::n)
       .def_readonly("segments", &ConvergenceRow::segments)
       .def_readonly("plan_seconds", &ConvergenceRow::plan_seconds)
@@ -269,7 +269,7 @@ void BindConvergence(py::module_& m) {
       .def_readonly("max_pass_miss", &ConvergenceRow::max_pass_miss)
       .def_property_readonly("status", [](const ConvergenceRow& r) { return ToString(r.status); })
       .def_readonly("message", &ConvergenceRow::message);
-  py::class_<ConvergenceStudy>(m, "ConvergenceStudy")
+  py::class_<ConvergenceStudy>(m, "ConvergenceStudy", "The result of converge(): one row per n and the fitted slopes of the error, the bound and the time against n; status \"not run\" (no rows, no slopes) until run.")
       .def_readonly("rows", &ConvergenceStudy::rows)
       .def_readonly("error_slope", &ConvergenceStudy::error_slope)
       .def_readonly("bound_slope", &ConvergenceStudy::bound_slope)
@@ -278,7 +278,7 @@ void BindConvergence(py::module_& m) {
       .def_readonly("failed_rows", &ConvergenceStudy::failed_rows)
       .def_readonly("message", &ConvergenceStudy::message)
       .def_property_readonly("report", &ConvergenceStudy::BriefReport)
-      .def("__repr__", &ConvergenceStudy::BriefReport)
+      .def("__repr__", &ConvergenceStudy::BriefReport, "One line: the status, the slopes and the largest n.")
       .def("column", [](const ConvergenceStudy& s, const std::string& name) {
              static const std::map<std::string, double ConvergenceRow::*> kColumns{
                  {"plan_seconds", &ConvergenceRow::plan_seconds}, {"measured_error", &ConvergenceRow::measured_error},

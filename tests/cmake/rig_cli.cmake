@@ -67,3 +67,11 @@ add_test(NAME completion.rig_group
          COMMAND bash -c "source \"$1\"; COMP_WORDS=(\"$2\" rig ''); COMP_CWORD=2; _plateball; echo \"\${COMPREPLY[*]}\"; COMP_WORDS=(\"$2\" rig replay --p); COMP_CWORD=3; _plateball; echo \"\${COMPREPLY[*]}\""
                  bash ${PROJECT_SOURCE_DIR}/tools/completion/plateball.bash $<TARGET_FILE:plateball_cli>)
 set_tests_properties(completion.rig_group PROPERTIES PASS_REGULAR_EXPRESSION "^export replay\n--pulse-causal --pulse-duration\n" LABELS cli)
+
+# The tutorial "From a physical ball to a plan to the MuJoCo twin": its commands run in order and every
+# output line it shows is a line of the real output.
+add_test(NAME docs.tutorial_twin
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/scripts/check_tutorial.py
+                 --plateball $<TARGET_FILE:plateball_cli> ${PROJECT_SOURCE_DIR}/docs/tutorials/physical_ball_to_twin.md)
+set_tests_properties(docs.tutorial_twin PROPERTIES LABELS "docs;cli" TIMEOUT 300
+                     PASS_REGULAR_EXPRESSION "[1-9][0-9]* commands of [^\n]*, 0 failed")

@@ -6,8 +6,10 @@
 C++: Doxygen's XML of include/plateball/*.h (docs/Doxyfile.in); every function, free or a public
 member of a class, outside plateball::internal, needs a brief or detailed description (a `///`
 comment, or the `//` comment block Doxygen reads as one). Python: every public function, class and
-method of `plateball` (the wrappers and the pybind11 extension) needs a docstring beyond the
-signature line pybind11 writes itself (classes and their methods are not checked yet). Prints every one that is missing; exit 1 when any is."""
+method of `plateball` (the wrappers and the pybind11 extension), every public class and every public
+method (static ones included) of a class needs a docstring beyond the signature line pybind11 writes
+itself; the classes' properties (the bound fields) are counted and their undocumented ones reported,
+but not yet required. Prints every one that is missing; exit 1 when any required one is."""
 import argparse
 import inspect
 import pathlib
@@ -60,16 +62,33 @@ def has_doc(obj):
 
 
 def python_missing():
-    """The module's public functions (the wrappers of __init__.py and the extension's) without a docstring."""
+    """The module's public functions, classes and the classes' methods without a docstring, and its
+    classes' properties: (count, missing, property count, properties missing)."""
     import plateball
-    missing, count = [], 0
+    missing, count, properties, properties_missing = [], 0, 0, []
     for name, obj in sorted(vars(plateball).items()):
-        if name.startswith("_") or inspect.ismodule(obj) or inspect.isclass(obj) or not callable(obj):
+        if name.startswith("_") or inspect.ismodule(obj) or not callable(obj):
             continue
         count += 1
+        kind = "class" if inspect.isclass(obj) else "function"
         if not has_doc(obj):
-            missing.append(f"function plateball.{name}")
-    return count, missing
+            missing.append(f"{kind} plateball.{name}")
+        if kind == "function":
+            continue
+        for member_name, member in sorted(vars(obj).items()):
+            if member_name.startswith("_"):
+                continue
+            if isinstance(member, property):
+                properties += 1
+                if not has_doc(member):
+                    properties_missing.append(f"property plateball.{name}.{member_name}")
+                continue
+            function = member.__func__ if isinstance(member, (staticmethod, classmethod)) else member
+            if callable(function):
+                count += 1
+                if not has_doc(function):
+                    missing.append(f"method plateball.{name}.{member_name}")
+    return count, missing, properties, properties_missing
 
 
 def main():
@@ -86,10 +105,11 @@ def main():
     for line in missing:
         print(f"  missing: {line}")
     if args.python:
-        count, py_missing = python_missing()
-        print(f"Python: {count} public functions, {len(py_missing)} without a docstring")
+        count, py_missing, properties, properties_missing = python_missing()
+        print(f"Python: {count} public functions, classes and methods, {len(py_missing)} without a docstring")
         for line in py_missing:
             print(f"  missing: {line}")
+        print(f"Python: {properties} properties, {len(properties_missing)} without a docstring (not yet required)")
         failed = failed or bool(py_missing) or count == 0
     return 1 if failed else 0
 
