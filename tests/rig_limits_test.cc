@@ -13,6 +13,7 @@
 #include "plateball/isoparallel_plan.h"
 #include "plateball/plate_impulse.h"
 #include "plateball/problem_io.h"
+#include "plateball/rig_reference.h"
 #include "plateball/task_adapters.h"
 #include "support/test_support.h"
 
@@ -217,6 +218,49 @@ TEST(RigLimits, BadLimitsNameTheField) {
   q.impulses = 3;
   q.limits.tick = 0.01;
   EXPECT_NE(message(q).find("rig.tick: value 0.01: fixes the impulse times"), std::string::npos) << message(q);
+}
+
+const IsoparallelSummary& Figure7Solutions() {
+  static const IsoparallelSummary solved = [] {
+    const Problem file = ReadProblemFile(plateball::testing::SourcePath("problems/figure7.json"));
+    const IsoparallelSetup iso = IsoparallelSetupFor(file);
+    return SolveIsoparallel(iso.problem, iso.options);
+  }();
+  return solved;
+}
+
+// The farthest point of a path from c, by 20000 samples per piece (not PathLimitBreaks' 2000).
+double FarthestFrom(const Path& path, const Eigen::Vector2d& c) {
+  double far = 0.0;
+  for (const SmoothCurve& piece : path.pieces())
+    for (int i = 0; i <= 20000; ++i)
+      far = std::max(far, (piece.Value(piece.Begin() + (piece.End() - piece.Begin()) * i / 20000.0) - c).norm());
+  return far;
+}
+
+TEST(RigReference, TheShortestIsoparallelPathIsKeptWhenItMeetsTheLimitsAndReportedWhenNot) {
+  const IsoparallelSummary& solved = Figure7Solutions();
+  ASSERT_TRUE(solved.IsSolutionUsable());
+  const Eigen::Vector2d c(1.5, 1.5);
+  const double far = FarthestFrom(OptimalPath(solved.Shortest()), c);  // 3.69 (the free optimum's reach)
+  RigLimits roomy;
+  roomy.plate = DiskShape{c, far + 0.01};
+  ReferenceChoice choice = ChooseIsoparallelReference(solved, roomy, Eigen::Vector2d::Zero());
+  EXPECT_EQ(choice.index, 0u);
+  EXPECT_TRUE(choice.shortest_breaks.empty());
+  RigLimits tight;
+  tight.plate = DiskShape{c, far - 0.01};
+  choice = ChooseIsoparallelReference(solved, tight, Eigen::Vector2d::Zero());
+  EXPECT_EQ(choice.shortest_breaks, std::vector<std::string>{"plate"});
+  if (choice.index > 0) {  // a longer solution inside: it really is inside, and no shorter one is
+    EXPECT_TRUE(choice.chosen_breaks.empty());
+    EXPECT_LT(FarthestFrom(OptimalPath(solved.solutions[choice.index]), c), far - 0.01);
+    for (std::size_t k = 0; k < choice.index; ++k)
+      EXPECT_GT(FarthestFrom(OptimalPath(solved.solutions[k]), c), far - 0.01 - 1e-6) << k;
+  } else {  // none inside: every solution leaves the plate
+    for (const IsoparallelSolution& sol : solved.solutions)
+      EXPECT_GT(FarthestFrom(OptimalPath(sol), c), far - 0.01 - 1e-6);
+  }
 }
 
 TEST(RigLimits, SignedDistancesOfTheShapes) {

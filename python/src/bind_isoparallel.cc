@@ -230,7 +230,7 @@ void BindExactInputs(py::module_& m) {
       .def_readonly("planned_position", &ExactImpulse::planned_position)
       .def_readonly("planned_delta_psi", &ExactImpulse::planned_delta_psi)
       .def_readonly("planned_duration", &ExactImpulse::planned_duration)
-      .def_readonly("tick", &ExactImpulse::tick, "with a rig tick: the index on the grid (t_impulse = tick x limits.tick), else -1");
+      .def_readonly("tick", &ExactImpulse::tick, "the index on the rig's tick grid (t_impulse = tick x limits.tick), or -1 without a tick");
   py::class_<ReplayResult>(m, "ReplayResult", "Independent check: re-integrates the reported impulses with FreeMotion (one stored period per arc, its own tolerances) from the problem's start and returns the final position and orientation. Used by the tests and the tools.")
       .def_readonly("x", &ReplayResult::x)
       .def_readonly("orientation", &ReplayResult::A)

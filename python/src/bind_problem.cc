@@ -43,7 +43,7 @@ void BindTasks(py::module_& m) {
             if (!o) throw std::invalid_argument("steer.objective: value " + w + ": must be \"deviation\", \"time\" or \"impulse\"");
             t.objective = *o;
           },
-          "what the exact arrival minimises under the rig's limits: deviation, time or impulse");
+          "what the exact arrival minimises under the rig's limits (deviation, time or impulse)");
   py::class_<ExpectedValue>(m, "ExpectedValue", "Golden values a problem file may carry (\"expected\"): name -> value, with a tolerance each.")
       .def_readonly("value", &ExpectedValue::value)
       .def_readonly("tolerance", &ExpectedValue::tolerance);

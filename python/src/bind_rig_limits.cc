@@ -3,6 +3,7 @@
 #include "bind_common.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/rig_limits.h"
+#include "plateball/rig_reference.h"
 
 namespace plateball::python {
 
@@ -37,19 +38,30 @@ void BindLimits(py::module_& m) {
       .def_readwrite("max_force", &RigLimits::max_force, "largest mean force |J| / pulse_duration")
       .def_readwrite("pulse_duration", &RigLimits::pulse_duration, "the pulse duration of max_force")
       .def_readwrite("min_interval", &RigLimits::min_interval, "shortest time between two impulses")
-      .def_readwrite("tick", &RigLimits::tick, "impulse times are multiples of tick (0: any time)")
+      .def_readwrite("tick", &RigLimits::tick, "impulse times are multiples of tick (0 for any time)")
       .def_property_readonly("empty", &RigLimits::Empty, "True when no limit is set")
       .def("validate", &RigLimits::Validate, "Empty when valid; else a message naming the field.");
   py::class_<RigLimitsReport>(m, "RigLimitsReport", "What the rig's limits did in an exact arrival.")
-      .def_readonly("constrained", &RigLimitsReport::constrained, "the limits cut the free optimum: the constrained solve ran")
+      .def_readonly("constrained", &RigLimitsReport::constrained, "True when the limits cut the free optimum and the constrained solve ran")
       .def_readonly("active", &RigLimitsReport::active, "limits active at the result")
-      .def_readonly("blocking", &RigLimitsReport::blocking, "with limits_not_met: the limits active at the closest feasible arrival")
+      .def_readonly("blocking", &RigLimitsReport::blocking, "the limits active at the closest feasible arrival (status limits_not_met)")
       .def_readonly("evaluations", &RigLimitsReport::evaluations, "SLSQP evaluations");
   py::class_<RigCheck>(m, "RigCheck", "The independent replay check of a result against the limits.")
       .def_readonly("passed", &RigCheck::passed, "every checked quantity within its limit and tolerance")
       .def_readonly("samples", &RigCheck::samples, "contact points checked")
-      .def_readonly("margins", &RigCheck::margins, "per limit: the smallest bound - value")
+      .def_readonly("margins", &RigCheck::margins, "the smallest margin (bound - value) of each limit")
       .def_readonly("violations", &RigCheck::violations, "one line per limit exceeded");
+}
+
+void BindReference(py::module_& m) {
+  py::class_<ReferenceChoice>(m, "ReferenceChoice", "The isoparallel solution steered along on a rig (rig_reference.h).")
+      .def_readonly("index", &ReferenceChoice::index, "the solution steered along")
+      .def_readonly("shortest_breaks", &ReferenceChoice::shortest_breaks, "the limits the shortest solution's path breaks")
+      .def_readonly("chosen_breaks", &ReferenceChoice::chosen_breaks, "the limits the chosen one breaks (empty when it meets them)");
+  m.def("path_limit_breaks", &PathLimitBreaks, py::arg("path"), py::arg("limits"), py::arg("x0"),
+        py::arg("samples_per_piece") = 2000, "The plate, obstacle and stroke limits the path breaks at its samples.");
+  m.def("choose_isoparallel_reference", &ChooseIsoparallelReference, py::arg("summary"), py::arg("limits"), py::arg("x0"),
+        "The shortest isoparallel solution whose path meets the plate, obstacle and stroke limits, else the shortest.");
 }
 
 }  // namespace
@@ -57,6 +69,7 @@ void BindLimits(py::module_& m) {
 void BindRigLimits(py::module_& m) {
   BindShapes(m);
   BindLimits(m);
+  BindReference(m);
 }
 
 void BindExactArrivalLimits(py::class_<ExactArrivalProblem>& problem, py::class_<ExactArrivalSummary>& summary,
@@ -65,7 +78,7 @@ void BindExactArrivalLimits(py::class_<ExactArrivalProblem>& problem, py::class_
       .def_property(
           "objective", [](const ExactArrivalProblem& p) { return ToString(p.objective); },
           [](ExactArrivalProblem& p, const std::string& w) { p.objective = ObjectiveFromWord(w); },
-          "what is minimised under the limits: deviation, time or impulse")
+          "what is minimised under the limits (deviation, time or impulse)")
       .def_readwrite("physical", &ExactArrivalProblem::physical, "the masses behind the impulse bounds, or None");
   summary.def_readonly("limits", &ExactArrivalSummary::limits, "what the rig's limits did (RigLimitsReport)");
   m.def("check_rig_limits", [](const ExactArrivalProblem& p, const ExactArrivalSummary& s, int samples_per_arc) {

@@ -398,7 +398,11 @@ def test_steer_on_a_rig(problems, run_cli):
     problem = pb.load_problem(problems / "figure7_rig.json")
     assert problem.rig.plate is not None and len(problem.rig.obstacles) == 1
     iso = pb.isoparallel(*pb.isoparallel_setup_for(problem))
-    setup = pb.exact_arrival_setup_for(problem, iso.shortest())
+    choice = pb.choose_isoparallel_reference(iso, problem.rig, iso.shortest().start)
+    assert json_get(doc, "reference.limits.solution_index") == choice.index
+    assert json_get(doc, "reference.limits.shortest_breaks") == choice.shortest_breaks
+    assert pb.path_limit_breaks(pb.optimal_path(iso.shortest()), problem.rig, problem.x0) == choice.shortest_breaks
+    setup = pb.exact_arrival_setup_for(problem, iso.solutions[choice.index])
     assert setup.problem.limits.clearance == 0.05
     summary = pb.steer(setup.problem, setup.options)
     assert_same(doc, summary, "steer")

@@ -22,6 +22,7 @@
 #include "plateball/exact_arrival.h"
 #include "plateball/fewest_impulses.h"
 #include "plateball/isoparallel.h"
+#include "plateball/rig_reference.h"
 #include "plateball/task_adapters.h"
 
 namespace plateball::tools {
@@ -106,14 +107,24 @@ int RunSteer(const SteerCliOptions& o) {
   const std::string n_field = std::string(kCommandLine) + ": --impulses";
   ExactArrivalSetup setup;
   std::string reference = "plan.path";
+  Json reference_limits;  // with a rig: the limits the reference breaks
   if (p.plan || !p.isoparallel) {
     setup = ExactArrivalSetupFor(p, n, n_field);
+    if (!p.rig.Empty()) reference_limits = Json{{"breaks", PathLimitBreaks(setup.problem.reference, p.rig, p.x0)}};
   } else {
     const IsoparallelSetup iso = IsoparallelSetupFor(p);
     const IsoparallelSummary solved = SolveIsoparallel(iso.problem, iso.options);
     if (!solved.IsSolutionUsable()) throw std::runtime_error("isoparallel reference: " + solved.BriefReport());
-    setup = ExactArrivalSetupFor(p, solved.Shortest(), n, n_field);
-    reference = "isoparallel shortest path";
+    const ReferenceChoice choice = p.rig.Empty() ? ReferenceChoice{}
+                                                 : ChooseIsoparallelReference(solved, p.rig, solved.Shortest().start);
+    setup = ExactArrivalSetupFor(p, solved.solutions[choice.index], n, n_field);
+    reference = choice.index == 0 ? "isoparallel shortest path"
+                                  : "isoparallel solution " + std::to_string(choice.index) +
+                                        " (the shortest within the rig's plate, obstacles and stroke)";
+    if (!p.rig.Empty())
+      reference_limits = Json{{"solution_index", choice.index},
+                              {"shortest_breaks", choice.shortest_breaks},
+                              {"breaks", choice.chosen_breaks}};
   }
   setup.problem.stop_at_goal = setup.problem.stop_at_goal || o.stop_at_goal;
   setup.problem.start_at_rest = setup.problem.start_at_rest || o.start_at_rest;
@@ -127,6 +138,7 @@ int RunSteer(const SteerCliOptions& o) {
   Json doc = HeaderJson("plateball", "steer", p, o.problem.file());
   doc["initial"] = InitialJson(p);
   doc["reference"] = Json{{"source", reference}, {"length", setup.problem.reference.Length()}};
+  if (!reference_limits.is_null()) doc["reference"]["limits"] = reference_limits;
   doc["goal"] = Json{{"x", ToJson(setup.problem.x1)}, {"rotation", RotationToJson(setup.problem.A1)}};
   Append(doc, ExactArrivalToJson(s, replay, !o.summary_only, &actuator));
   std::optional<RigCheck> check;
