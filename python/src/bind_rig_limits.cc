@@ -16,7 +16,7 @@ ArrivalObjective ObjectiveFromWord(const std::string& word) {
 }
 
 void BindShapes(py::module_& m) {
-  py::class_<DiskShape> disk(m, "DiskShape", "A disk of the plate: |x - center| <= radius (ball radii).");
+  py::class_<DiskShape> disk(m, "DiskShape", "A disk of the plate, the points within radius of center (ball radii).");
   WithKeywordInit(disk)
       .def_readwrite("center", &DiskShape::center, "the disk's center")
       .def_readwrite("radius", &DiskShape::radius, "its radius (> 0)");
@@ -33,9 +33,9 @@ void BindLimits(py::module_& m) {
       .def_readwrite("obstacles", &RigLimits::obstacles, "regions the contact point stays out of")
       .def_readwrite("clearance", &RigLimits::clearance, "distance kept from the plate's edge and the obstacles")
       .def_readwrite("stroke", &RigLimits::stroke, "half-ranges (s_x, s_y) of the upper plate's displacement 2 (x - x0), or None")
-      .def_readwrite("max_plate_velocity_change", &RigLimits::max_plate_velocity_change, "largest |2 delta_omega x e3| of one impulse")
-      .def_readwrite("max_plate_impulse", &RigLimits::max_plate_impulse, "largest |J| (needs physical parameters)")
-      .def_readwrite("max_force", &RigLimits::max_force, "largest mean force |J| / pulse_duration")
+      .def_readwrite("max_plate_velocity_change", &RigLimits::max_plate_velocity_change, "largest norm of one impulse's plate velocity change 2 delta_omega x e3")
+      .def_readwrite("max_plate_impulse", &RigLimits::max_plate_impulse, "largest norm of J, the actuator's impulse (needs physical parameters)")
+      .def_readwrite("max_force", &RigLimits::max_force, "largest mean force, the norm of J over pulse_duration")
       .def_readwrite("pulse_duration", &RigLimits::pulse_duration, "the pulse duration of max_force")
       .def_readwrite("min_interval", &RigLimits::min_interval, "shortest time between two impulses")
       .def_readwrite("tick", &RigLimits::tick, "impulse times are multiples of tick (0 for any time)")
