@@ -479,8 +479,6 @@ bool SolveWithExchange(const ConstrainedSetup& s, Samples* sm, const std::vector
   return false;
 }
 
-}  // namespace
-
 // The start of the closest-arrival search: u, or u without its turns (s_k = 0: the ball rolls on
 // with impulses of zero size), whichever breaks the limits less (SLSQP may not find feasibility
 // from far outside).
@@ -490,10 +488,7 @@ Eigen::VectorXd LeastViolating(const ConstrainedSetup& s, const Samples& sm, con
   return MaxViolation(Evaluate(s, sm, unturned, rollouts)) < MaxViolation(Evaluate(s, sm, u, rollouts)) ? unturned : u;
 }
 
-double ObjectiveValue(const ConstrainedSetup& setup, const Eigen::VectorXd& u) {
-  int rollouts = 0;
-  return Evaluate(setup, Samples::Uniform(setup.n, setup.samples_per_arc), u, &rollouts).f;
-}
+}  // namespace
 
 ConstrainedOutcome SolveConstrainedArrival(const ConstrainedSetup& s, const Eigen::VectorXd& u0) {
   const bool grid = s.limits.tick > 0;

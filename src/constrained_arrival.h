@@ -66,7 +66,4 @@ bool LimitsAreSlack(const ConstrainedSetup& setup, const Eigen::VectorXd& u);
 /// integration fails and std::invalid_argument when the grid leaves fewer than five unknowns.
 ConstrainedOutcome SolveConstrainedArrival(const ConstrainedSetup& setup, const Eigen::VectorXd& u0);
 
-/// The value of the objective at u (for reports): deviation^2, total time or total impulse.
-double ObjectiveValue(const ConstrainedSetup& setup, const Eigen::VectorXd& u);
-
 }  // namespace plateball::internal

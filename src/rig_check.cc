@@ -6,6 +6,7 @@
 #include <set>
 
 #include "check.h"
+#include "rig_geometry.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
@@ -34,15 +35,9 @@ class Recorder {
 
 void CheckPoint(const RigLimits& l, const Eigen::Vector2d& x0, const Eigen::Vector2d& x, double tol,
                 const std::string& where, Recorder* rec) {
-  if (l.plate) rec->Margin("plate", SignedDistanceInside(*l.plate, x) - l.clearance, tol, where);
-  for (std::size_t i = 0; i < l.obstacles.size(); ++i)
-    rec->Margin("obstacles[" + std::to_string(i) + "]", -SignedDistanceInside(l.obstacles[i], x) - l.clearance, tol,
-                where);
-  if (l.stroke) {
-    const Eigen::Vector2d disp = 2.0 * (x - x0);
-    rec->Margin("stroke.x", l.stroke->x() - std::abs(disp.x()), tol, where);
-    rec->Margin("stroke.y", l.stroke->y() - std::abs(disp.y()), tol, where);
-  }
+  internal::VisitGeometricMargins(l, x0, x, [&](const std::string& name, double margin) {
+    rec->Margin(name, margin, tol, where);
+  });
 }
 
 void CheckImpulse(const ExactArrivalProblem& p, const Eigen::Vector3d& z, const Eigen::Vector3d& delta_omega,

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "rig_geometry.h"
 #include "plateball/isoparallel_plan.h"
 
 namespace plateball {
@@ -15,14 +16,9 @@ void AddOnce(std::vector<std::string>* names, const std::string& name) {
 }
 
 void CheckPoint(const RigLimits& l, const Eigen::Vector2d& x0, const Eigen::Vector2d& x, std::vector<std::string>* out) {
-  if (l.plate && SignedDistanceInside(*l.plate, x) < l.clearance) AddOnce(out, "plate");
-  for (std::size_t i = 0; i < l.obstacles.size(); ++i)
-    if (-SignedDistanceInside(l.obstacles[i], x) < l.clearance) AddOnce(out, "obstacles[" + std::to_string(i) + "]");
-  if (l.stroke) {
-    const Eigen::Vector2d disp = (2.0 * (x - x0)).cwiseAbs();
-    if (disp.x() > l.stroke->x()) AddOnce(out, "stroke.x");
-    if (disp.y() > l.stroke->y()) AddOnce(out, "stroke.y");
-  }
+  internal::VisitGeometricMargins(l, x0, x, [out](const std::string& name, double margin) {
+    if (margin < 0) AddOnce(out, name);
+  });
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
+#include "support/figure7_exact.h"
 #include "support/test_support.h"
 
 namespace plateball {
@@ -20,29 +21,8 @@ namespace {
 constexpr double kPositionTol = 1e-12;
 constexpr double kOrientationTol = 1e-10;
 
-// Figure 7 (problems/figure7.json): the shortest isoparallel path from (0, 0) to (3, 3) with the
-// identity reorientation, lambda = 2, mu = 1, through the task adapters the tools use.
-const ExactArrivalProblem& Figure7() {
-  static const ExactArrivalProblem problem = [] {
-    const Problem file = ReadProblemFile(plateball::testing::SourcePath("problems/figure7.json"));
-    const IsoparallelSetup iso = IsoparallelSetupFor(file);
-    const IsoparallelSummary solved = SolveIsoparallel(iso.problem, iso.options);
-    if (!solved.IsSolutionUsable()) throw std::runtime_error(solved.BriefReport());
-    const IsoparallelPlanSetup plan = IsoparallelPlanSetupFor(file, solved.Shortest());
-    ExactArrivalProblem p;
-    p.model = plan.problem.model;
-    p.initial = InitialAnglesFromOrientation(plan.problem.A0, plan.problem.psi);
-    p.mu = plan.problem.mu;
-    p.A0 = plan.problem.A0;
-    p.x0 = iso.problem.start;
-    p.reference = OptimalPath(solved.Shortest());
-    p.impulses = plan.problem.impulses;
-    p.x1 = iso.problem.goal;
-    p.A1 = iso.problem.goal_orientation;
-    return p;
-  }();
-  return problem;
-}
+// Figure 7 (problems/figure7.json) along its shortest isoparallel path (tests/support).
+const ExactArrivalProblem& Figure7() { return plateball::testing::Figure7ExactArrival(); }
 
 void ExpectArrivesByReplay(const ExactArrivalProblem& p, const ExactArrivalSummary& s) {
   ASSERT_TRUE(s.IsSolutionUsable()) << s.BriefReport();

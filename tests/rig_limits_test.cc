@@ -15,6 +15,7 @@
 #include "plateball/problem_io.h"
 #include "plateball/rig_reference.h"
 #include "plateball/task_adapters.h"
+#include "support/figure7_exact.h"
 #include "support/test_support.h"
 
 namespace plateball {
@@ -23,28 +24,8 @@ namespace {
 constexpr double kPositionTol = 1e-12;     // the arrival tolerances of exact arrival
 constexpr double kOrientationTol = 1e-10;
 
-// Figure 7 (problems/figure7.json) with the free optimum's reference, as the tools build it.
-const ExactArrivalProblem& Figure7() {
-  static const ExactArrivalProblem problem = [] {
-    const Problem file = ReadProblemFile(plateball::testing::SourcePath("problems/figure7.json"));
-    const IsoparallelSetup iso = IsoparallelSetupFor(file);
-    const IsoparallelSummary solved = SolveIsoparallel(iso.problem, iso.options);
-    if (!solved.IsSolutionUsable()) throw std::runtime_error(solved.BriefReport());
-    const IsoparallelPlanSetup plan = IsoparallelPlanSetupFor(file, solved.Shortest());
-    ExactArrivalProblem p;
-    p.model = plan.problem.model;
-    p.initial = InitialAnglesFromOrientation(plan.problem.A0, plan.problem.psi);
-    p.mu = plan.problem.mu;
-    p.A0 = plan.problem.A0;
-    p.x0 = iso.problem.start;
-    p.reference = OptimalPath(solved.Shortest());
-    p.impulses = plan.problem.impulses;
-    p.x1 = iso.problem.goal;
-    p.A1 = iso.problem.goal_orientation;
-    return p;
-  }();
-  return problem;
-}
+// Figure 7 (problems/figure7.json) along its shortest isoparallel path (tests/support).
+const ExactArrivalProblem& Figure7() { return plateball::testing::Figure7ExactArrival(); }
 
 const ExactArrivalSummary& FreeOptimum() {
   static const ExactArrivalSummary s = SolveExactArrival(Figure7());
@@ -220,14 +201,7 @@ TEST(RigLimits, BadLimitsNameTheField) {
   EXPECT_NE(message(q).find("rig.tick: value 0.01: fixes the impulse times"), std::string::npos) << message(q);
 }
 
-const IsoparallelSummary& Figure7Solutions() {
-  static const IsoparallelSummary solved = [] {
-    const Problem file = ReadProblemFile(plateball::testing::SourcePath("problems/figure7.json"));
-    const IsoparallelSetup iso = IsoparallelSetupFor(file);
-    return SolveIsoparallel(iso.problem, iso.options);
-  }();
-  return solved;
-}
+const IsoparallelSummary& Figure7Solutions() { return plateball::testing::Figure7Isoparallel(); }
 
 // The farthest point of a path from c, by 20000 samples per piece (not PathLimitBreaks' 2000).
 double FarthestFrom(const Path& path, const Eigen::Vector2d& c) {
