@@ -101,7 +101,7 @@ Z3Motion MotionOfZ3(double lambda, const Eigen::Vector3d& z, const Eigen::Vector
 // Arcs shorter than this (t sqrt(mu), about the distance rolled) take one or a few Dormand-Prince
 // 5(4) steps at tolerance 1e-12, cheaper than one Fehlberg 7(8) step (13 evaluations); longer
 // ones fewer evaluations with Fehlberg 7(8) (T2 n = 16: 61 dopri5 steps per arc, 4 rkf78 ones).
-constexpr double kShortArc = 0.05;
+constexpr double kDopriArcLength = 0.05;
 constexpr int kMaxEqualArcSteps = 64;
 // The error measure the equal steps aim at: close to 1 on short arcs (consecutive arcs are near
 // identical there and a refused dopri5 step costs little), with a margin on long ones (the state
@@ -197,7 +197,7 @@ ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vecto
   const ArcMaxima maxima = ArcDerivativeMaxima(lambda, z0, k, t);
   out.max_speed = maxima.speed;
   out.max_acceleration = maxima.acceleration;
-  const bool short_arc = t * std::sqrt(maxima.mu) <= kShortArc;
+  const bool short_arc = t * std::sqrt(maxima.mu) <= kDopriArcLength;
   if (t > 0 && hints == nullptr) {
     AdaptiveArc<odeint::runge_kutta_dopri5<FullState>>(rhs, &y, t, t, options, &out.steps);
   } else if (t > 0) {

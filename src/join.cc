@@ -26,7 +26,7 @@ using SensState = internal::SensitivityState;  // z[3], x[2], dz/ds[3], dx/ds[2]
 // covers them in about one step at tolerance 1e-12; longer ones Fehlberg 7(8), which needs far
 // fewer right-hand-side evaluations there (T1, |x - x0| = 0.05: 52 instead of 88 per join; 0.2:
 // 113 instead of 369).
-constexpr double kShortArc = 0.02;
+constexpr double kShortJoinArc = 0.02;
 // Up to this many equal steps a rollout tries the hand-written Fehlberg 7(8) kernel first.
 constexpr double kMaxEqualSteps = 16;
 
@@ -121,7 +121,7 @@ class JoinFunction {
     // tolerances, lengthened for the next rollout when their error allows; the adaptive loop only
     // when one is not (or the arc needs many steps).
     const double steps = std::ceil(std::abs(t) / dt0 - 1e-9);
-    if (steps == 1 && t * t * mu_ <= kShortArc * kShortArc && OneDopri5Step(rhs, t, y)) return true;
+    if (steps == 1 && t * t * mu_ <= kShortJoinArc * kShortJoinArc && OneDopri5Step(rhs, t, y)) return true;
     double err = 0.0;
     if (steps <= kMaxEqualSteps &&
         internal::IntegrateEqualSteps(rhs, *y, 0.0, t, static_cast<int>(steps), options_, &err)) {
@@ -130,7 +130,7 @@ class JoinFunction {
       return true;
     }
     try {
-      if (std::abs(t) * std::sqrt(mu_) <= kShortArc)
+      if (std::abs(t) * std::sqrt(mu_) <= kShortJoinArc)
         internal::IntegrateAdaptive<odeint::runge_kutta_dopri5<State>>(rhs, *y, 0.0, t, dt0, options_, observe);
       else
         internal::IntegrateAdaptive<odeint::runge_kutta_fehlberg78<State>>(rhs, *y, 0.0, t, dt0, options_, observe);

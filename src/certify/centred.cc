@@ -12,7 +12,6 @@ namespace plateball::internal {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Pieces of [0, Lc] for the Hessian term's upper Riemann sum (each piece at the sup of its integrand).
 constexpr int kHessianPieces = 16;
 

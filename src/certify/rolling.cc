@@ -14,7 +14,6 @@ namespace plateball::internal {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // The suprema over the box that the twist's derivatives use (notes), besides its extremes.
 struct TwistScales {

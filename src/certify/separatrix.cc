@@ -12,7 +12,6 @@ namespace plateball::internal {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The largest |v| a box reaches: its start phase plus rate times length.
 double MaxAbsV(const CertifyBox& box) {
@@ -30,14 +29,14 @@ double SeparatrixRunHeadingSpread(PendulumRegime regime, double w) {
 
 double SeparatrixRunDistance(const CertifyTarget& target, PendulumRegime regime, double cap, double margin) {
   const double delta = StraightResidual(target) - margin;
-  if (!(delta > 0.0)) return kInf;
+  if (!(delta > 0.0)) return kInfinity;
   const auto excluded = [&](double w) {
     return StraightRunDeviationBound(SeparatrixRunHeadingSpread(regime, w), cap, target.radius) < delta;
   };
   double lo = 0.0, hi = 1.0;
   while (!excluded(hi)) {
     hi *= 2.0;
-    if (hi > 700.0) return kInf;  // sech underflows: the bound cannot get below delta
+    if (hi > 700.0) return kInfinity;  // sech underflows: the bound cannot get below delta
   }
   for (int i = 0; i < 200 && hi - lo > 1e-9 * hi; ++i) {
     const double mid = 0.5 * (lo + hi);

@@ -13,7 +13,6 @@ namespace plateball::internal {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The drift ratio rho (signed): oscillating 2E/K - 1 (mean of cos theta), rotating 1 - 2D/K.
 // Both are decreasing in k (E/K and D/K are means of decreasing resp. increasing functions of
@@ -62,7 +61,7 @@ namespace {
 
 // Cauchy-Schwarz: n K sqrt(1 - rho^2); infinite at k = 1.
 double CauchySchwarzLength(PendulumRegime regime, double k) {
-  return k < 1.0 ? PhasePeriod(regime, k) * DriftDeficit(regime, k) : kInf;
+  return k < 1.0 ? PhasePeriod(regime, k) * DriftDeficit(regime, k) : kInfinity;
 }
 
 // Rotating, t at theta = pi: 2 |cos am| = 2 |cn| over [0, 2K] (int_0^K cn = asin(k) / k) plus
@@ -83,13 +82,13 @@ double OscillatingLengthAtPi(double k) {
 // Oscillating, t at theta = 0: 2 |sin(theta / 2)| = 2k |sn| over [0, 4K] (int_0^K sn = atanh(k) / k)
 // plus 4K (1 - rho) = 8 (K - E) = 8 k^2 D. Increasing with k; infinite at k = 1 (best at small k).
 double OscillatingLengthAtZero(double k) {
-  return k < 1.0 ? 8.0 * std::atanh(k) + 8.0 * k * k * CompleteEllipticD(k) : kInf;
+  return k < 1.0 ? 8.0 * std::atanh(k) + 8.0 * k * k * CompleteEllipticD(k) : kInfinity;
 }
 
 // The sup of the Cauchy-Schwarz form over [k_lo, k_hi]: K(k_hi) and the smallest |rho| (rho is
 // decreasing in k: 0 if it changes sign on the interval, else the smaller end value).
 double CauchySchwarzLengthOver(PendulumRegime regime, double k_lo, double k_hi) {
-  if (!(k_hi < 1.0)) return kInf;
+  if (!(k_hi < 1.0)) return kInfinity;
   const double r_lo = DriftRatio(regime, k_lo), r_hi = DriftRatio(regime, k_hi);
   const double m = (r_lo >= 0.0 && r_hi <= 0.0) ? 0.0 : std::min(std::abs(r_lo), std::abs(r_hi));
   return PhasePeriod(regime, k_hi) * std::sqrt(std::max(0.0, (1.0 - m) * (1.0 + m)));
@@ -98,7 +97,7 @@ double CauchySchwarzLengthOver(PendulumRegime regime, double k_lo, double k_hi) 
 }  // namespace
 
 double PeriodicPartLength(PendulumRegime regime, double k) {
-  if (!(k >= 0.0 && k <= 1.0)) return kInf;
+  if (!(k >= 0.0 && k <= 1.0)) return kInfinity;
   const double cs = CauchySchwarzLength(regime, k);
   if (regime == PendulumRegime::kRotating) return std::min(cs, RotatingLengthAtPi(k));
   return std::min({cs, OscillatingLengthAtPi(k), OscillatingLengthAtZero(k)});
@@ -134,7 +133,7 @@ double OverPieces(double k_lo, double k_hi, PieceSup piece_sup) {
 }  // namespace
 
 double PeriodicPartLengthOver(PendulumRegime regime, double k_lo, double k_hi) {
-  if (!(k_lo >= 0.0 && k_lo <= k_hi && k_hi <= 1.0)) return kInf;
+  if (!(k_lo >= 0.0 && k_lo <= k_hi && k_hi <= 1.0)) return kInfinity;
   if (k_lo == k_hi) return PeriodicPartLength(regime, k_lo);
   return OverPieces(k_lo, k_hi, [regime](double a, double b) { return PeriodicPartLengthOnPiece(regime, a, b); });
 }
@@ -163,19 +162,19 @@ double ZetaMaxOver(double a, double b) {
 double BoxDiagonalOver(PendulumRegime regime, double a, double b) {
   const double z = ZetaMaxOver(a, b);
   if (regime == PendulumRegime::kOscillating) return std::hypot(4.0 * z, 4.0 * b);
-  if (!(a > 0.0)) return kInf;  // Z / k^2 at k = 0: left to the other forms
+  if (!(a > 0.0)) return kInfinity;  // Z / k^2 at k = 0: left to the other forms
   return std::hypot(4.0 * z / (a * a), 2.0 / (1.0 + std::sqrt(OneMinusSquare(b))));
 }
 
 }  // namespace
 
 double PeriodicPartDiameter(PendulumRegime regime, double k) {
-  if (!(k >= 0.0 && k <= 1.0)) return kInf;
+  if (!(k >= 0.0 && k <= 1.0)) return kInfinity;
   return std::min(0.5 * PeriodicPartLength(regime, k), BoxDiagonalOver(regime, k, k));
 }
 
 double PeriodicPartDiameterOver(PendulumRegime regime, double k_lo, double k_hi) {
-  if (!(k_lo >= 0.0 && k_lo <= k_hi && k_hi <= 1.0)) return kInf;
+  if (!(k_lo >= 0.0 && k_lo <= k_hi && k_hi <= 1.0)) return kInfinity;
   if (k_lo == k_hi) return PeriodicPartDiameter(regime, k_lo);
   return OverPieces(k_lo, k_hi, [regime](double a, double b) {
     return std::min(0.5 * PeriodicPartLengthOnPiece(regime, a, b), BoxDiagonalOver(regime, a, b));
@@ -183,7 +182,7 @@ double PeriodicPartDiameterOver(PendulumRegime regime, double k_lo, double k_hi)
 }
 
 double AveragingDeviationBound(double diameter, double length, double chord) {
-  if (!std::isfinite(diameter)) return kInf;
+  if (!std::isfinite(diameter)) return kInfinity;
   const double c = std::min(std::abs(chord), length);
   return DeviationAngle(diameter * (std::sqrt((length - c) * (length + c)) + c));
 }
@@ -245,13 +244,13 @@ double SeparatrixHeadingGapSup(PendulumRegime regime, double k) {
 double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin) {
   const double scale = RateScale(target, cap, margin);
   // B = (diameter_v / |a|) h >= 2 sin(delta / 2) for a solution: |a| <= diameter_v h / (2 sin).
-  return scale == 0.0 ? kInf : 2.0 * PeriodicPartDiameter(regime, k) * scale;
+  return scale == 0.0 ? kInfinity : 2.0 * PeriodicPartDiameter(regime, k) * scale;
 }
 
 double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
                            double margin) {
   const double scale = RateScale(target, cap, margin);
-  return scale == 0.0 ? kInf : 2.0 * PeriodicPartDiameterOver(regime, k_lo, k_hi) * scale;
+  return scale == 0.0 ? kInfinity : 2.0 * PeriodicPartDiameterOver(regime, k_lo, k_hi) * scale;
 }
 
 }  // namespace plateball::internal

@@ -27,6 +27,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@
 #include "plateball/isoparallel.h"
 
 namespace plateball::internal {
+
+/// +infinity: the bound of a box or a piece that no test decided.
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// Coordinates of a parameter box: rate, modulus k (>= 0), phase u0, length L.
 enum CertifyAxis { kCertifyRate = 0, kCertifyModulus = 1, kCertifyPhase = 2, kCertifyLength = 3 };

@@ -6,12 +6,6 @@
 #include "problem_io/section_readers.h"
 
 namespace plateball::internal::problem_io {
-namespace {
-
-constexpr long long kMaxCount = limits::kMaxPartitionSteps;  // impulses
-
-}  // namespace
-
 IsoparallelTask IsoparallelReader::Isoparallel(const json& j, const std::string& path) const {
   Object(j, path, {"start", "goal", "start_orientation", "goal_orientation", "impulses", "solver"});
   IsoparallelTask t;
@@ -23,7 +17,7 @@ IsoparallelTask IsoparallelReader::Isoparallel(const json& j, const std::string&
                                             NumberText(internal::kMaxIsoparallelChord));
   if (const json* v = Find(j, "start_orientation")) t.start_orientation = Orientation(*v, Join(path, "start_orientation"));
   if (const json* v = Find(j, "goal_orientation")) t.goal_orientation = Orientation(*v, Join(path, "goal_orientation"));
-  if (const json* v = Find(j, "impulses")) t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 1, kMaxCount));
+  if (const json* v = Find(j, "impulses")) t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 1, kMaxPartitionCount));
   if (const json* v = Find(j, "solver")) Solver(*v, Join(path, "solver"), &t.solver);
   return t;
 }

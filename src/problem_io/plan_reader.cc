@@ -4,12 +4,6 @@
 #include "problem_io/section_readers.h"
 
 namespace plateball::internal::problem_io {
-namespace {
-
-constexpr long long kMaxCount = limits::kMaxPartitionSteps;  // partition n, impulse indices
-
-}  // namespace
-
 PlanTask PlanReader::Plan(const json& j, const std::string& path) const {
   Object(j, path, {"path", "partition", "energy_changes", "converge_n"});
   PlanTask t;
@@ -20,7 +14,7 @@ PlanTask PlanReader::Plan(const json& j, const std::string& path) const {
     const std::string cp = Join(path, "converge_n");
     Array(*v, cp, 0, limits::kMaxListLength);
     for (std::size_t i = 0; i < v->size(); ++i)
-      t.converge_n.push_back(static_cast<int>(Integer((*v)[i], Index(cp, i), 1, kMaxCount)));
+      t.converge_n.push_back(static_cast<int>(Integer((*v)[i], Index(cp, i), 1, kMaxPartitionCount)));
   }
   return t;
 }
@@ -32,7 +26,7 @@ PartitionSpec PlanReader::Partition(const json& j, const std::string& path) cons
   if (type == "explicit") {
     if (const json* v = Find(j, "n")) Fail(Join(path, "n"), *v, "not allowed for an explicit partition (n = taus - 1)");
     const std::string tp = Join(path, "taus");
-    const json& taus = Array(Require(j, path, "taus"), tp, 2, kMaxCount + 1);
+    const json& taus = Array(Require(j, path, "taus"), tp, 2, kMaxPartitionCount + 1);
     ExplicitTaus s;
     for (std::size_t i = 0; i < taus.size(); ++i) {
       s.taus.push_back(Number(taus[i], Index(tp, i)));
@@ -44,7 +38,7 @@ PartitionSpec PlanReader::Partition(const json& j, const std::string& path) cons
     Fail(Join(path, "type"), j["type"], "unknown partition type (one of uniform_parameter, uniform_arc_length, explicit)");
   if (const json* v = Find(j, "taus")) Fail(Join(path, "taus"), *v, "only allowed for an explicit partition");
   int n = UniformParameter{}.n;
-  if (const json* v = Find(j, "n")) n = static_cast<int>(Integer(*v, Join(path, "n"), 1, kMaxCount));
+  if (const json* v = Find(j, "n")) n = static_cast<int>(Integer(*v, Join(path, "n"), 1, kMaxPartitionCount));
   if (type == "uniform_parameter") return UniformParameter{n};
   return UniformArcLength{n};
 }
@@ -57,7 +51,7 @@ std::vector<EnergyChangeSpec> PlanReader::EnergyChanges(const json& v, const std
     const json& c = v[i];
     Object(c, e, {"index", "factor"});
     EnergyChangeSpec spec;
-    spec.index = static_cast<int>(Integer(Require(c, e, "index"), Join(e, "index"), 0, kMaxCount));
+    spec.index = static_cast<int>(Integer(Require(c, e, "index"), Join(e, "index"), 0, kMaxPartitionCount));
     spec.factor = Positive(Require(c, e, "factor"), Join(e, "factor"));
     out.push_back(spec);
   }

@@ -6,10 +6,14 @@
 #include <map>
 #include <string>
 
+#include "plateball/limits.h"
 #include "plateball/problem.h"
 #include "problem_io/field_reader.h"
 
 namespace plateball::internal::problem_io {
+
+/// The largest count a section accepts: partition n, impulse counts and indices.
+inline constexpr long long kMaxPartitionCount = limits::kMaxPartitionSteps;
 
 /// "integration", "ball" and "initial": the model and the start state.
 class StartStateReader : public FieldReader {
