@@ -80,10 +80,19 @@ void ValidatePartitionSizes(const std::vector<int>& ns, const std::string& field
   }
 }
 
+std::string ToString(ConvergenceStatus status) {
+  switch (status) {
+    case ConvergenceStatus::kNotRun: return "not_run";
+    case ConvergenceStatus::kCompleted: return "completed";
+    case ConvergenceStatus::kNoSlope: return "no_slope";
+  }
+  return "unknown";
+}
+
 std::string ConvergenceStudy::BriefReport() const {
   std::ostringstream os;
   os.precision(4);
-  os << "Convergence: " << rows.size() << " partitions";
+  os << "Convergence: " << ToString(status) << ", " << rows.size() << " partitions";
   AppendSlope(os, "error", error_slope);
   AppendSlope(os, "bound", bound_slope);
   if (time_slope) AppendSlope(os, "time", time_slope);
@@ -121,6 +130,7 @@ ConvergenceStudy RunConvergenceStudy(const ConvergenceProblem& problem, const Co
   out.error_slope = LogLogSlope(xn, err_y);
   out.bound_slope = LogLogSlope(xn, bound_y);
   if (options.timings) out.time_slope = LogLogSlope(xn, secs);
+  out.status = out.error_slope ? ConvergenceStatus::kCompleted : ConvergenceStatus::kNoSlope;
   out.message = out.error_slope ? "" : "no slope: needs at least 2 successful partition sizes";
   return out;
 }

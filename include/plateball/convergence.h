@@ -45,8 +45,17 @@ struct ConvergenceRow {
   std::string message = "not run";
 };
 
+enum class ConvergenceStatus {
+  kNotRun,     ///< default: nothing was planned
+  kCompleted,  ///< every n was planned and the slopes are fitted (rows may still have failed)
+  kNoSlope,    ///< fewer than 2 partition sizes planned successfully: no slope (message)
+};
+/// "not_run", "completed" or "no_slope", as in the JSON.
+std::string ToString(ConvergenceStatus status);
+
 /// A default-constructed study says "not run" (no rows, no slopes).
 struct ConvergenceStudy {
+  ConvergenceStatus status = ConvergenceStatus::kNotRun;
   std::vector<ConvergenceRow> rows;
   /// Least-squares slope of log(error) against log(n) over the successful rows; empty with
   /// fewer than 2 successful rows (a slope needs two distinct n).
@@ -57,7 +66,9 @@ struct ConvergenceStudy {
   int failed_rows = 0;
   std::string message = "not run";    ///< empty once run, or why there is no slope
 
-  /// One line: the status, the slopes and the largest n.
+  /// True when the slopes were fitted (status kCompleted).
+  bool IsSolutionUsable() const { return status == ConvergenceStatus::kCompleted; }
+  /// One line: the status, the number of partitions, the slopes and whether the bound holds.
   std::string BriefReport() const;
 };
 

@@ -269,16 +269,14 @@ void BindConvergence(py::module_& m) {
       .def_readonly("max_pass_miss", &ConvergenceRow::max_pass_miss)
       .def_property_readonly("status", [](const ConvergenceRow& r) { return ToString(r.status); })
       .def_readonly("message", &ConvergenceRow::message);
-  py::class_<ConvergenceStudy>(m, "ConvergenceStudy", "The result of converge(): one row per n and the fitted slopes of the error, the bound and the time against n; status \"not run\" (no rows, no slopes) until run.")
-      .def_readonly("rows", &ConvergenceStudy::rows)
+  py::class_<ConvergenceStudy> study(m, "ConvergenceStudy", "The result of converge(): one row per n and the fitted slopes of the error, the bound and the time against n; status \"not run\" (no rows, no slopes) until run, \"completed\" with the slopes, \"no_slope\" with fewer than 2 successful rows.");
+  AddSummaryShape(study);
+  study.def_readonly("rows", &ConvergenceStudy::rows)
       .def_readonly("error_slope", &ConvergenceStudy::error_slope)
       .def_readonly("bound_slope", &ConvergenceStudy::bound_slope)
       .def_readonly("time_slope", &ConvergenceStudy::time_slope)
       .def_readonly("bound_holds", &ConvergenceStudy::bound_holds)
       .def_readonly("failed_rows", &ConvergenceStudy::failed_rows)
-      .def_readonly("message", &ConvergenceStudy::message)
-      .def_property_readonly("report", &ConvergenceStudy::BriefReport)
-      .def("__repr__", &ConvergenceStudy::BriefReport, "One line: the status, the slopes and the largest n.")
       .def("column", [](const ConvergenceStudy& s, const std::string& name) {
              static const std::map<std::string, double ConvergenceRow::*> kColumns{
                  {"plan_seconds", &ConvergenceRow::plan_seconds}, {"measured_error", &ConvergenceRow::measured_error},

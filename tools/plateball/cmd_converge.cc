@@ -118,6 +118,7 @@ int RunConverge(const ConvergeCliOptions& o) {
     WriteOutput(o.out, Csv(s, o.timings));
   } else {
     Json doc = HeaderJson("plateball", "converge", p, o.problem.file());
+    Append(doc, Json{{"status", ToString(s.status)}, {"usable", s.IsSolutionUsable()}, {"message", s.message}});
     const Path& path = setup.problem.plan.path;
     doc["path"] = Json{{"type", ToString(p.plan->path)}, {"pieces", path.PieceCount()}, {"length", path.Length()}};
     doc["partition"] = Json{{"type", ToString(p.plan->partition)}};
