@@ -38,12 +38,12 @@ class TrialErrors {
 
 /// The end of a closed loop: the controller's last status and the true ball at the last tick.
 struct SimulatedLoopResult {
-  ControllerStatus status = ControllerStatus::kNotRun;
+  ControllerStatus status = ControllerStatus::kNotRun;  ///< the controller's last status
   int impulses = 0;           ///< impulses the controller gave
   long ticks = 0;             ///< Updates called
   int rejected = 0;           ///< ticks whose measurement was rejected
-  Eigen::Vector2d x = Eigen::Vector2d::Zero();
-  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();      ///< the true contact point at the last tick
+  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();  ///< the true orientation then
   double position_error = 0.0;     ///< |x - goal| (radii)
   double orientation_error = 0.0;  ///< angle of goal_orientation^T A (rad)
   double lambda = 0.0;             ///< the simulated ball's true lambda
