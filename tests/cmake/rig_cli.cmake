@@ -93,3 +93,10 @@ plateball_cli_test(rig.loop_step_above_tick 3 REGEX "command line: --dt: value 0
 plateball_cli_test(rig.loop_open_loop_strategy 3 REGEX "command line: --strategy: value open_loop: the controller feeds back"
   -- rig loop ${loop_problem} --strategy open_loop)
 plateball_cli_test(rig.loop_no_physical_ball 3 REGEX "ball.physical: value \\(missing\\)" -- rig loop problems/circle.json)
+# Causal pulses of 10 ms from each decision: the loop still arrives (measured 5.6e-4 r under the errors).
+plateball_cli_test(rig.loop_causal_pulses 0
+  REGEX "\"kind\": \"causal_pulses\".*\"closed_loop\": {\n *\"status\": \"done\",[^[]*\"position_error\": (0\\.00(0|1[0-4])[0-9]*|[0-9.]+e-0[4-9]),"
+  -- rig loop ${loop_problem} --tick 1e-3 --dt 1e-3 --pulse-duration 0.01 --noise ${loop_errors})
+plateball_cli_test(rig.loop_overlapping_pulses 3
+  REGEX "command line: --pulse-duration: value 1: longer than the flight of [0-9.e-]+ s after impulse 0"
+  -- rig loop ${loop_problem} --pulse-duration 1)

@@ -30,6 +30,7 @@ struct LoopCliOptions {
   double tick = 1e-4;
   double dt = 1e-4;
   bool contact_point_only = false;
+  double pulse_duration = 0.0;
   std::string out;
 };
 
@@ -55,7 +56,7 @@ Json SettingsJson(const rig::TwinSettings& s) {
               {"mujoco_version", mj_versionString()}};
 }
 
-Json RunJson(const rig::TwinLoopRun& r, bool closed) {
+Json RunJson(const rig::TwinLoopRun& r, bool closed, bool pulsed) {
   Json impulses = Json::array();
   for (const rig::TwinLoopImpulse& i : r.impulses)
     impulses.push_back(Json{{"k", i.k},
@@ -65,6 +66,7 @@ Json RunJson(const rig::TwinLoopRun& r, bool closed) {
                             {"delta_omega", ToJson(i.delta_omega)},
                             {"applied_delta_omega", ToJson(i.applied)},
                             {"plate_impulse", ToJson(i.plate_impulse)},
+                            {"pulse_impulse", pulsed ? ToJson(i.pulse_impulse) : Json(nullptr)},
                             {"exact_replan", i.exact_replan},
                             {"late", i.late}});
   Json j{{"status", ToString(r.status)},
@@ -120,10 +122,18 @@ LoopSetup BuildLoop(const LoopCliOptions& o, const Problem& p) {
   s.controller.physical = *p.physical;
   s.twin.settings.timestep = o.dt;
   s.twin.contact_point_only = o.contact_point_only;
+  if (!(std::isfinite(o.pulse_duration) && o.pulse_duration >= 0))
+    ThrowInvalidInput(Option("--pulse-duration"), FormatNumber(o.pulse_duration), "must be finite and >= 0 s (0: ideal jumps)");
+  s.twin.pulse_duration = o.pulse_duration;
   const PlanSetup setup = PlanSetupFor(p, n, Option("--impulses"));
   auto nominal = std::make_shared<NominalPlan>(MakeNominalPlan(setup.problem, setup.options));
   if (!nominal->plan.IsSolutionUsable())
     throw std::runtime_error("the nominal plan failed: " + nominal->plan.BriefReport());
+  if (o.pulse_duration > 0) {
+    const rig::RigPlan plan = rig::RigPlanOf(*nominal, *p.physical);
+    rig::CheckPulseWindows(plan, o.pulse_duration, Option("--pulse-duration"));
+    rig::CheckPulseFriction(plan, o.pulse_duration, s.twin.settings, Option("--pulse-duration"));
+  }
   if (s.errors.lambda != 0.0)
     rig::BallWithLambda(*p.physical, TrialErrors(s.errors, p.seed, s.trial).TrueLambda(nominal->model.lambda()),
                         Option("--noise") + " lambda");
@@ -154,13 +164,16 @@ int RunLoop(const LoopCliOptions& o) {
   doc["initial"]["orientation"] = ToJson(s.nominal->plan.A0);
   doc["settings"] = SettingsJson(s.twin.settings);
   doc["loop"] = Json{{"strategy", ToString(s.controller.strategy)}, {"tick_period", s.controller.tick_period},
-                     {"contact_point_only", s.twin.contact_point_only}, {"trial", s.trial},
+                     {"contact_point_only", s.twin.contact_point_only},
+                     {"execution", Json{{"kind", o.pulse_duration > 0 ? "causal_pulses" : "ideal_jumps"},
+                                        {"pulse_duration", o.pulse_duration}}},
+                     {"trial", s.trial},
                      {"errors", ErrorsJson(s.errors)}, {"true_lambda", errors.TrueLambda(s.nominal->model.lambda())}};
   doc["nominal"] = Json{{"impulse_count", s.nominal->plan.steps.size()}, {"total_time", s.nominal->plan.total_time},
                         {"goal", ToJson(s.nominal->goal)},
                         {"plan_orientation_error", s.nominal->plan_orientation_error}};
-  doc["closed_loop"] = RunJson(closed, true);
-  doc["open_loop"] = RunJson(open, false);
+  doc["closed_loop"] = RunJson(closed, true, o.pulse_duration > 0);
+  doc["open_loop"] = RunJson(open, false, o.pulse_duration > 0);
   doc["simulated_rig"] = SimulatedJson(sim);
   const bool done = closed.status == ControllerStatus::kDone;
   Append(doc, ResultJson(ToString(closed.status), done, done ? "" : closed.message, Brief(closed, open, sim)));
@@ -183,6 +196,8 @@ std::function<int()> SetupRigLoop(CLI::App& sub) {
   sub.add_option("--tick", o->tick, "the loop's tick period in s (default 1e-4)");
   sub.add_option("--dt", o->dt, "the engine's RK4 timestep in s, at most the tick (default 1e-4)");
   sub.add_flag("--contact-point-only", o->contact_point_only, "measure the contact point alone (a camera without orientation)");
+  sub.add_option("--pulse-duration", o->pulse_duration,
+                 "causal pulses: a force J/D on the plate over [t_k, t_k + D] s from each decision (default 0: ideal jumps)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   return [o] { return RunLoop(*o); };
 }

@@ -32,20 +32,68 @@ double PlateHalfSize(const NominalPlan& nominal, const TwinSettings& settings) {
   return std::max(settings.plate_half_size_radii, 2 * (extent + speed * flight) + 10);
 }
 
-// The engine, its step and what it saw.
+// The engine, its step and what it saw; a causal pulse in progress.
 class Plant {
  public:
-  Plant(const NominalPlan& nominal, const PhysicalParameters& ball, const TwinSettings& settings, TwinLoopRun* run)
-      : twin_(ball, settings), run_(run) {
+  Plant(const NominalPlan& nominal, const PhysicalParameters& ball, const TwinSettings& settings, double pulse_duration,
+        TwinLoopRun* run)
+      : twin_(ball, settings), ball_(ball), pulse_duration_(pulse_duration), run_(run) {
     const BallState start = StateFromAngles(nominal.initial, nominal.mu, nominal.model);
     twin_.SetState(0.0, nominal.pass_points.front(), nominal.plan.A0, start.omega);
   }
-  // Free motion over `duration` in equal steps of at most the settings' timestep.
+  // Motion over `duration`: the pulse's force until its end, then none; each part in equal steps of
+  // at most the settings' timestep. The restitution follows a pulse at its end.
   void Advance(double duration) {
+    const double end = t_ + duration;
+    while (pulse_end_ > t_ && pulse_end_ <= end) {
+      Steps(pulse_end_ - t_, force_);
+      if (restitution_ != 1.0) twin_.SetAngularVelocity(restitution_ * twin_.State().omega);
+      pulse_end_ = -1.0;
+    }
+    Steps(end - t_, pulse_end_ > t_ ? force_ : Eigen::Vector2d::Zero());
+  }
+  // Impulse k: the jump the plate gives (the errors' draw for k), then the restitution; an ideal
+  // jump, or a pulse J/D of the applied jump's plate impulse from now on.
+  TwinLoopImpulse Impulse(int k, const Eigen::Vector3d& commanded, const TrialErrors& errors,
+                          const PhysicalParameters& physical) {
+    const TwinState s = twin_.State();
+    TwinLoopImpulse r;
+    r.k = k;
+    r.t = t_;
+    r.x = s.x;
+    r.delta_omega = commanded;
+    r.applied = errors.PerturbImpulse(k, commanded);
+    r.plate_impulse = PlateImpulseFor(physical, s.A.col(2), commanded).plate;
+    if (pulse_duration_ == 0.0) {
+      twin_.SetAngularVelocity(errors.Restitution() * (s.omega + r.applied));
+      return r;
+    }
+    if (pulse_end_ > t_)
+      throw std::runtime_error("impulse " + std::to_string(k) + " at t = " + FormatNumber(t_) +
+                               " s fires before the pulse of the previous one ends (pulse_duration too long)");
+    r.pulse_impulse = PlateImpulseFor(ball_, s.A.col(2), r.applied).plate;
+    force_ = r.pulse_impulse.head<2>() / pulse_duration_;
+    pulse_end_ = t_ + pulse_duration_;
+    restitution_ = errors.Restitution();
+    return r;
+  }
+  void Finish(const NominalPlan& nominal) {
+    const TwinState s = twin_.State();
+    run_->t_end = t_;
+    run_->x = s.x;
+    run_->A = s.A;
+    run_->position_error = (s.x - nominal.goal).norm();
+    run_->orientation_error = RotationAngle(nominal.goal_orientation, s.A);
+  }
+  TwinState State() const { return twin_.State(); }
+  double time() const { return t_; }
+
+ private:
+  void Steps(double duration, const Eigen::Vector2d& force) {
     if (!(duration > 0)) return;
     const int n = std::max(1, static_cast<int>(std::ceil(duration / twin_.settings().timestep - 1e-9)));
     for (int i = 0; i < n; ++i) {
-      twin_.Step(duration / n, Eigen::Vector2d::Zero());
+      twin_.Step(duration / n, force);
       const TwinState s = twin_.State();
       if (s.contacts < 2)
         throw std::runtime_error("the ball left the plates in the engine at t = " + FormatNumber(s.t) + " s (" +
@@ -54,34 +102,17 @@ class Plant {
       run_->max_spin_rate = std::max(run_->max_spin_rate, s.spin_rate);
     }
     run_->steps += n;
+    t_ += duration;
   }
-  // An ideal impulse: the jump the plate gives (the errors' draw for k), then the restitution.
-  TwinLoopImpulse Impulse(int k, const Eigen::Vector3d& commanded, const TrialErrors& errors,
-                          const PhysicalParameters& physical) {
-    const TwinState s = twin_.State();
-    TwinLoopImpulse r;
-    r.k = k;
-    r.t = s.t;
-    r.x = s.x;
-    r.delta_omega = commanded;
-    r.applied = errors.PerturbImpulse(k, commanded);
-    r.plate_impulse = PlateImpulseFor(physical, s.A.col(2), commanded).plate;
-    twin_.SetAngularVelocity(errors.Restitution() * (s.omega + r.applied));
-    return r;
-  }
-  void Finish(const NominalPlan& nominal) {
-    const TwinState s = twin_.State();
-    run_->t_end = s.t;
-    run_->x = s.x;
-    run_->A = s.A;
-    run_->position_error = (s.x - nominal.goal).norm();
-    run_->orientation_error = RotationAngle(nominal.goal_orientation, s.A);
-  }
-  TwinState State() const { return twin_.State(); }
 
- private:
   MujocoTwin twin_;
+  PhysicalParameters ball_;
+  double pulse_duration_;
   TwinLoopRun* run_;
+  double t_ = 0.0;             // the run's time: the sum of the steps (the engine's clock rounds)
+  double pulse_end_ = -1.0;    // the running pulse's end (none when <= t_)
+  Eigen::Vector2d force_ = Eigen::Vector2d::Zero();
+  double restitution_ = 1.0;
 };
 
 // The twin's settings for a run, the ball with the trial's lambda, and the step count's bound.
@@ -97,6 +128,13 @@ Setup SetupFor(const NominalPlan& nominal, const PhysicalParameters& physical, c
   if (span / options.settings.timestep > kMaxSteps)
     throw std::invalid_argument(Bad("timestep", options.settings.timestep,
                                     "the run would take more than 1e8 engine steps over " + FormatNumber(span) + " s"));
+  if (!(std::isfinite(options.pulse_duration) && options.pulse_duration >= 0))
+    throw std::invalid_argument(Bad("pulse_duration", options.pulse_duration, "must be finite and >= 0 s (0: ideal jumps)"));
+  if (options.pulse_duration > 0) {
+    const RigPlan plan = RigPlanOf(nominal, physical);
+    CheckPulseWindows(plan, options.pulse_duration, "pulse_duration");
+    CheckPulseFriction(plan, options.pulse_duration, options.settings, "pulse_duration");
+  }
   Setup s;
   s.settings = options.settings;
   s.settings.plate_half_size_radii = PlateHalfSize(nominal, options.settings);
@@ -132,6 +170,26 @@ PhysicalParameters BallWithLambda(const PhysicalParameters& p, double lambda, co
   return out;
 }
 
+RigPlan RigPlanOf(const NominalPlan& nominal, const PhysicalParameters& physical) {
+  RigPlan plan;
+  plan.physical = physical;
+  plan.model = nominal.model;
+  plan.integration = nominal.options.integration;
+  plan.start = StateFromAngles(nominal.initial, nominal.mu, nominal.model);
+  plan.x0 = nominal.pass_points.front();
+  plan.A0 = nominal.plan.A0;
+  plan.t_end = nominal.plan.total_time;
+  for (const PlanStep& step : nominal.plan.steps) {
+    RigImpulse k;
+    k.t = step.t_impulse;
+    k.z = step.state_before.z;
+    k.delta_omega = step.delta_omega;
+    k.omega_after = step.state_before.omega + step.delta_omega;
+    plan.impulses.push_back(k);
+  }
+  return plan;
+}
+
 TwinLoopRun RunTwinClosedLoop(Controller& controller, const PhysicalParameters& physical, const TrialErrors& errors,
                               const TwinLoopOptions& options) {
   const NominalPlan& nominal = controller.nominal();
@@ -139,7 +197,7 @@ TwinLoopRun RunTwinClosedLoop(Controller& controller, const PhysicalParameters& 
   const long max_ticks = std::lround(2.0 * nominal.plan.total_time / tick) + 2;
   const Setup setup = SetupFor(nominal, physical, errors, options, static_cast<double>(max_ticks) * tick);
   TwinLoopRun run;
-  Plant plant(nominal, setup.ball, setup.settings, &run);
+  Plant plant(nominal, setup.ball, setup.settings, options.pulse_duration, &run);
   for (long i = 0; i < max_ticks; ++i) {
     const TwinState s = plant.State();
     ControllerMeasurement m;
@@ -174,15 +232,13 @@ TwinLoopRun RunTwinOpenLoop(const NominalPlan& nominal, const PhysicalParameters
                             const TwinLoopOptions& options) {
   const Setup setup = SetupFor(nominal, physical, errors, options, nominal.plan.total_time);
   TwinLoopRun run;
-  Plant plant(nominal, setup.ball, setup.settings, &run);
-  double t = 0.0;
+  Plant plant(nominal, setup.ball, setup.settings, options.pulse_duration, &run);
   const std::vector<PlanStep>& steps = nominal.plan.steps;
   for (std::size_t k = 0; k < steps.size(); ++k) {
-    plant.Advance(steps[k].t_impulse - t);
-    t = steps[k].t_impulse;
+    plant.Advance(steps[k].t_impulse - plant.time());
     run.impulses.push_back(plant.Impulse(static_cast<int>(k), steps[k].delta_omega, errors, physical));
   }
-  plant.Advance(nominal.plan.total_time - t);
+  plant.Advance(nominal.plan.total_time - plant.time());
   run.status = ControllerStatus::kDone;
   plant.Finish(nominal);
   return run;

@@ -22,9 +22,17 @@ struct TwinLoopOptions {
   TwinSettings settings;
   /// Measurements without the orientation and angular velocity (a camera that sees the contact point).
   bool contact_point_only = false;
+  /// s; 0: ideal velocity jumps. > 0: causal pulses, a constant force J/D on the upper plate over
+  /// [t_k, t_k + D] (the controller decides at t_k), J the plate impulse of the applied jump; shorter
+  /// than every planned flight, and held by the engine's friction (CheckPulseFriction).
+  double pulse_duration = 0.0;
   /// Empty when valid, else "FIELD: value V: what is wrong".
   std::string Validate() const;
 };
+
+/// The nominal plan as the twin's replay reads a result (impulse times, axes, jumps): for the pulse
+/// checks and for ReplayInTwin.
+RigPlan RigPlanOf(const NominalPlan& nominal, const PhysicalParameters& physical);
 
 /// One impulse of a run in the twin.
 struct TwinLoopImpulse {
@@ -35,6 +43,7 @@ struct TwinLoopImpulse {
   Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();   ///< commanded jump, rad/s
   Eigen::Vector3d applied = Eigen::Vector3d::Zero();       ///< the jump the plate gave (errors), rad/s
   Eigen::Vector3d plate_impulse = Eigen::Vector3d::Zero(); ///< J for the commanded jump (PlateImpulseFor), N s
+  Eigen::Vector3d pulse_impulse = Eigen::Vector3d::Zero(); ///< with pulses: J of the applied jump on the twin's ball, N s
   bool exact_replan = false;
   bool late = false;
 };
