@@ -1,7 +1,8 @@
 // The Controller (controller.h) with the MuJoCo twin as its plant: each tick the twin's ball (contact
 // point, orientation, angular velocity) is the measurement, and the commanded jump, perturbed by the
 // trial's errors (closed_loop.h: the draws of Execute and Monte Carlo for the same seed), is given to
-// the twin as an ideal impulse. The open loop fires the planned jumps at the planned times instead.
+// the twin as an ideal impulse or as a causal force pulse on the upper plate. The open loop fires the
+// planned jumps at the planned times instead.
 #pragma once
 
 #include <Eigen/Core>
@@ -77,8 +78,9 @@ PhysicalParameters BallWithLambda(const PhysicalParameters& p, double lambda, co
 
 /// The closed loop: ticks 0, 1, ... of controller.options().tick_period until the controller is
 /// done, lost or fails (at most 2 total_time / tick + 2 ticks). Throws std::invalid_argument for
-/// invalid options or errors the twin does not model (timing, pulses, observation noise: the same
-/// as the library's simulated rig), std::runtime_error when the engine fails.
+/// invalid options, pulses that overlap a flight or slip, or errors the twin does not model (the
+/// error model's timing, pulse_duration and observation: RequireTwinModelled), std::runtime_error
+/// when the engine fails or a pulse is still running when the next impulse is due.
 TwinLoopRun RunTwinClosedLoop(Controller& controller, const PhysicalParameters& physical, const TrialErrors& errors,
                               const TwinLoopOptions& options);
 
