@@ -17,11 +17,12 @@ if(PLATEBALL_MUJOCO AND TARGET plateball_cli AND NOT PLATEBALL_SANITIZE AND NOT 
     endforeach()
     set_target_properties(mujoco::mujoco PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_mujoco_existing}")
     add_library(plateball_rig STATIC ${PROJECT_SOURCE_DIR}/tools/rig/rig_plan.cc
-                                     ${PROJECT_SOURCE_DIR}/tools/rig/mujoco_twin.cc)
+                                     ${PROJECT_SOURCE_DIR}/tools/rig/mujoco_twin.cc
+                                     ${PROJECT_SOURCE_DIR}/tools/rig/twin_loop.cc)
     target_include_directories(plateball_rig PUBLIC ${PROJECT_SOURCE_DIR}/tools)
     target_link_libraries(plateball_rig PUBLIC plateball_tool_common mujoco::mujoco)
     target_compile_options(plateball_rig PRIVATE ${PLATEBALL_WARNINGS})
-    target_sources(plateball_cli PRIVATE ${PROJECT_SOURCE_DIR}/tools/rig/cmd_rig.cc)
+    target_sources(plateball_cli PRIVATE ${PROJECT_SOURCE_DIR}/tools/rig/cmd_rig.cc ${PROJECT_SOURCE_DIR}/tools/rig/loop_command.cc)
     target_link_libraries(plateball_cli PRIVATE plateball_rig)
     set(PLATEBALL_WITH_MUJOCO ON)
     message(STATUS "plateball rig: MuJoCo ${mujoco_VERSION} found, the digital twin is built")

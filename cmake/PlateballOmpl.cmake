@@ -18,12 +18,28 @@ if(PLATEBALL_OMPL AND NOT PLATEBALL_SANITIZE AND NOT PLATEBALL_FUZZ)
       endif()
     endforeach()
     add_library(plateball_ompl STATIC ${PROJECT_SOURCE_DIR}/src/ompl/steering.cc)
+    add_library(plateball::ompl ALIAS plateball_ompl)
     target_include_directories(plateball_ompl PRIVATE ${PROJECT_SOURCE_DIR}/src)
-    # OMPL's headers as system headers: their warnings are not plateball's.
-    target_include_directories(plateball_ompl SYSTEM PUBLIC ${OMPL_INCLUDE_DIRS})
-    target_link_libraries(plateball_ompl PUBLIC plateball ${_ompl_libraries})
+    # OMPL's headers as system headers: their warnings are not plateball's. OMPL's paths are the
+    # build's only: the installed package finds OMPL again (plateballConfig.cmake, component ompl).
+    foreach(_dir IN LISTS OMPL_INCLUDE_DIRS)
+      target_include_directories(plateball_ompl SYSTEM PUBLIC $<BUILD_INTERFACE:${_dir}>)
+    endforeach()
+    target_link_libraries(plateball_ompl PUBLIC plateball)
+    foreach(_lib IN LISTS _ompl_libraries)
+      target_link_libraries(plateball_ompl PUBLIC $<BUILD_INTERFACE:${_lib}>)
+    endforeach()
     target_compile_options(plateball_ompl PRIVATE ${PLATEBALL_WARNINGS})
-    set_target_properties(plateball_ompl PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    set_target_properties(plateball_ompl PROPERTIES POSITION_INDEPENDENT_CODE ON EXPORT_NAME ompl)
+    # Installed as the package's component `ompl`: find_package(plateball COMPONENTS ompl) gives
+    # plateball::ompl (the static library, the header plateball/ompl/steering.h and OMPL's usage).
+    install(TARGETS plateball_ompl EXPORT plateballOmplTargets
+      ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+      INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    install(FILES ${PROJECT_SOURCE_DIR}/include/plateball/ompl/steering.h
+      DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/plateball/ompl)
+    install(EXPORT plateballOmplTargets NAMESPACE plateball::
+      DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/plateball)
     add_executable(ompl_plan_around_disk ${PROJECT_SOURCE_DIR}/examples/ompl/plan_around_disk.cc)
     target_link_libraries(ompl_plan_around_disk PRIVATE plateball_ompl)
     target_compile_options(ompl_plan_around_disk PRIVATE ${PLATEBALL_WARNINGS})

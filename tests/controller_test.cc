@@ -10,10 +10,12 @@
 #include <limits>
 #include <memory>
 
+#include "plateball/closed_loop.h"
 #include "plateball/monte_carlo.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
+#include "execution_noise.h"
 #include "simulated_rig.h"
 #include "support/test_support.h"
 
@@ -229,6 +231,36 @@ TEST(Controller, AMissedImpulseTickFiresLateAtTheNextUpdate) {
   EXPECT_TRUE(late.late);
   EXPECT_EQ(late.impulse_index, 1);
   EXPECT_GT(late.next_impulse_tick, now);
+}
+
+// closed_loop.h gives a plant outside the library the same trial and the same loop.
+TEST(Controller, ThePublicTrialErrorsAndSimulatedLoopAreExecutesDrawsAndTheRigsLoop) {
+  ControllerOptions o = LoopOptions();
+  o.tick_period = 1e-3;  // the same loop on a coarser tick: a tenth of the work
+  const SimulatedLoopResult pub = RunSimulatedClosedLoop(Circle(), o, RigErrors(), 11, 1);
+  Controller controller(Circle(), o);
+  internal::SimulatedRig rig(*Circle(), RigErrors(), 11, 1);
+  const internal::ClosedLoopResult loop =
+      internal::RunClosedLoop(controller, rig, std::lround(2.0 * Circle()->plan.total_time / o.tick_period) + 2);
+  EXPECT_EQ(pub.status, loop.status);
+  EXPECT_EQ(pub.impulses, loop.impulses);
+  EXPECT_EQ(pub.ticks, loop.ticks);
+  EXPECT_EQ(pub.x, loop.x);
+  EXPECT_EQ(pub.A, loop.A);
+  EXPECT_EQ(pub.position_error, (loop.x - Circle()->goal).norm());
+  EXPECT_EQ(pub.orientation_error, RotationAngle(Circle()->goal_orientation, loop.A));
+  const TrialErrors errors(RigErrors(), 11, 1);
+  const internal::ExecutionNoise noise(RigErrors(), 11, 1);
+  const Eigen::Vector3d d(0.3, -0.2, 0.0);
+  for (int k : {0, 7, 31}) EXPECT_EQ(errors.PerturbImpulse(k, d), noise.PerturbImpulse(k, d));
+  EXPECT_NE(errors.PerturbImpulse(7, d), d);
+  EXPECT_EQ(errors.TrueLambda(2.0), noise.TrueLambda(2.0));
+  EXPECT_EQ(pub.lambda, errors.TrueLambda(2.0));
+  EXPECT_EQ(errors.Restitution(), std::sqrt(1 - RigErrors().energy_loss));
+  ErrorModel bad;
+  bad.impulse_angle = -1.0;
+  EXPECT_NE(plateball::testing::InvalidArgumentMessage([&] { TrialErrors e(bad, 1, 0); }).find("impulse_angle: value -1"),
+            std::string::npos);
 }
 
 TEST(Controller, InvalidOptionsNameTheField) {

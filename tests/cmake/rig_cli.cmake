@@ -75,3 +75,28 @@ add_test(NAME docs.tutorial_twin
                  --plateball $<TARGET_FILE:plateball_cli> ${PROJECT_SOURCE_DIR}/docs/tutorials/physical_ball_to_twin.md)
 set_tests_properties(docs.tutorial_twin PROPERTIES LABELS "docs;cli" TIMEOUT 300
                      PASS_REGULAR_EXPRESSION "[1-9][0-9]* commands of [^\n]*, 0 failed")
+
+# The real-time controller with the twin as its plant (`rig loop`, tests/rig/twin_loop_test.cc for the
+# agreement with the library): under 2 % impulse and lambda errors the closed loop arrives (measured
+# 3.2e-4 r from the goal at a 1 ms tick, within a tick's travel of 1.5e-3) and the open loop does not (0.12 r).
+set(loop_problem tests/data/rig_loop_physical.json)
+set(loop_errors impulse_magnitude=0.02,impulse_angle=0.02,lambda=0.02,energy_loss=0.001)
+# (The numbers are matched by the regular expression: ctest ignores check_cli.sh's exit code when a
+# test has PASS_REGULAR_EXPRESSION.) Closed loop below 1.5e-3 r, the open loop beyond 0.1 r.
+plateball_cli_test(rig.loop_closes_the_loop 0
+  REGEX "\"command\": \"rig_loop\".*\"closed_loop\": {\n *\"status\": \"done\",[^[]*\"position_error\": (0\\.00(0|1[0-4])[0-9]*|[0-9.]+e-0[4-9]),.*\"open_loop\": {[^[]*\"position_error\": 0\\.[1-9].*\"report\": \"closed loop in the twin done after 16 impulses"
+  -- rig loop ${loop_problem} --tick 1e-3 --dt 1e-3 --noise ${loop_errors})
+plateball_cli_test(rig.loop_untwinned_errors 3 REGEX "command line: --noise.timing: value 0.001: the twin's loop fires on ticks: no jitter"
+  -- rig loop ${loop_problem} --noise timing=1e-3)
+plateball_cli_test(rig.loop_step_above_tick 3 REGEX "command line: --dt: value 0.01: must be in \\(0, --tick\\] s"
+  -- rig loop ${loop_problem} --tick 1e-3 --dt 1e-2)
+plateball_cli_test(rig.loop_open_loop_strategy 3 REGEX "command line: --strategy: value open_loop: the controller feeds back"
+  -- rig loop ${loop_problem} --strategy open_loop)
+plateball_cli_test(rig.loop_no_physical_ball 3 REGEX "ball.physical: value \\(missing\\)" -- rig loop problems/circle.json)
+# Causal pulses of 10 ms from each decision: the loop still arrives (measured 5.6e-4 r under the errors).
+plateball_cli_test(rig.loop_causal_pulses 0
+  REGEX "\"kind\": \"causal_pulses\".*\"closed_loop\": {\n *\"status\": \"done\",[^[]*\"position_error\": (0\\.00(0|1[0-4])[0-9]*|[0-9.]+e-0[4-9]),"
+  -- rig loop ${loop_problem} --tick 1e-3 --dt 1e-3 --pulse-duration 0.01 --noise ${loop_errors})
+plateball_cli_test(rig.loop_overlapping_pulses 3
+  REGEX "command line: --pulse-duration: value 1: longer than the flight of [0-9.e-]+ s after impulse 0"
+  -- rig loop ${loop_problem} --pulse-duration 1)

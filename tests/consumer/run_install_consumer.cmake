@@ -1,7 +1,8 @@
 # cmake -DBUILD_DIR=... -DCONSUMER_SOURCE=... -DWORK_DIR=... -DGENERATOR=... [-DCXX_COMPILER=...]
-#       [-DSANITIZE=ON] -P run_install_consumer.cmake
+#       [-DSANITIZE=ON] [-DOMPL_CONSUMER_SOURCE=...] -P run_install_consumer.cmake
 # Installs the plateball build tree into WORK_DIR/prefix, configures and builds the consumer
-# project against it (CMAKE_PREFIX_PATH = the prefix only), runs it and checks its output.
+# project against it (CMAKE_PREFIX_PATH = the prefix only), runs it and checks its output. With
+# OMPL_CONSUMER_SOURCE (a build with OMPL) it does the same for the OMPL component's consumer.
 foreach(v BUILD_DIR CONSUMER_SOURCE WORK_DIR GENERATOR)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "run_install_consumer.cmake: -D${v}=... is required")
@@ -51,4 +52,30 @@ run("run consumer" ${consumer_build}/consumer)
 message(STATUS "${step_output}")
 if(NOT step_output MATCHES "consumer: period 3\\.14159265358979")
   message(FATAL_ERROR "unexpected consumer output: ${step_output}")
+endif()
+
+if(NOT OMPL_CONSUMER_SOURCE)
+  return()
+endif()
+# The OMPL component: its header and static library installed, plateball::ompl exported.
+if(NOT EXISTS ${prefix}/include/plateball/ompl/steering.h)
+  message(FATAL_ERROR "install: no plateball/ompl/steering.h under ${prefix}/include")
+endif()
+file(GLOB_RECURSE ompl_targets ${prefix}/*/plateballOmplTargets.cmake)
+if(NOT ompl_targets)
+  message(FATAL_ERROR "install: no plateballOmplTargets.cmake under ${prefix}")
+endif()
+set(ompl_args ${configure_args})
+list(TRANSFORM ompl_args REPLACE "^${CONSUMER_SOURCE}$" "${OMPL_CONSUMER_SOURCE}")
+list(TRANSFORM ompl_args REPLACE "^${consumer_build}$" "${WORK_DIR}/ompl_build")
+run("configure OMPL consumer" ${CMAKE_COMMAND} ${ompl_args})
+string(FIND "${step_output}" "plateball_DIR=${prefix}/" found)
+if(found EQUAL -1)
+  message(FATAL_ERROR "OMPL consumer found plateball outside ${prefix}:\n${step_output}")
+endif()
+run("build OMPL consumer" ${CMAKE_COMMAND} --build ${WORK_DIR}/ompl_build)
+run("run OMPL consumer" ${WORK_DIR}/ompl_build/ompl_consumer)
+message(STATUS "${step_output}")
+if(NOT step_output MATCHES "ompl consumer: steer exact")
+  message(FATAL_ERROR "unexpected OMPL consumer output: ${step_output}")
 endif()

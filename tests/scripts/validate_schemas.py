@@ -118,7 +118,8 @@ def rig_built(run):
 
 
 def check_rig(run, rel, tmp):
-    """The MuJoCo twin's replay (standard output) and export (the schedule beside the MJCF) of a plan."""
+    """The MuJoCo twin's replay (standard output), export (the schedule beside the MJCF) and closed loop
+    of a plan."""
     plan = os.path.join(tmp, "rig_plan.json")
     if run.tool(["plateball", "plan", rel, "--impulses", "16", "--out", plan]) is None:
         return
@@ -128,6 +129,9 @@ def check_rig(run, rel, tmp):
         with open(os.path.join(tmp, "rig.pulses.json")) as f:
             run.expect_valid("output/rig_export.schema.json", json.load(f), f"plateball rig export {rel}")
     run.output(["plateball", "rig", "replay", plan, "--pulse-duration", "0.01", "--pulse-causal"])
+    # The controller's loop with the twin as its plant (a coarse tick: the shape, not the numbers).
+    run.output(["plateball", "rig", "loop", rel, "--impulses", "16", "--tick", "1e-3", "--dt", "1e-3",
+                "--noise", "impulse_magnitude=0.01"])
 
 
 def check_tool_outputs(run, problems):

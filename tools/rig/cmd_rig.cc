@@ -1,7 +1,8 @@
 // `plateball rig export|replay RESULT.json`: the MuJoCo digital twin of a plan (rig/mujoco_twin.h), from
 // a result of `plan`, `steer` or `isoparallel`.
 // export writes the machine as MJCF and the pulse schedule beside it; replay runs the plan in MuJoCo
-// and reports how far the engine's ball ends from the plan.
+// and reports how far the engine's ball ends from the plan. `rig loop PROBLEM.json` runs the
+// real-time controller with the twin as its plant (rig/loop_command.h).
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 #include "common/output_file.h"
 #include "common/units.h"
 #include "plateball/actuator_command.h"
+#include "rig/loop_command.h"
 #include "rig/mujoco_twin.h"
 #include "rig/rig_plan.h"
 
@@ -189,18 +191,25 @@ std::function<int()> SetupRig(CLI::App& sub) {
   o->replay_cmd = sub.add_subcommand("replay", "run a plan in MuJoCo and report how far the engine ends from it (JSON)");
   AddCommon(*o->replay_cmd, *o);
   o->replay_cmd->add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
+  CLI::App* loop_cmd = sub.add_subcommand(
+      "loop", "run the real-time controller with the twin as its plant, beside the open loop and the library's simulated loop (JSON)");
+  const std::function<int()> run_loop = SetupRigLoop(*loop_cmd);
   sub.footer(
       "The MuJoCo digital twin (docs/mujoco_twin.md): a fixed lower plate, the ball (inertia I1 I1 I3 along its\n"
       "symmetry axis) and the upper plate on slide joints pressed by its weight; condim 4 contacts with high\n"
       "sliding and torsional friction, elliptic cones, no-slip iterations, RK4, contact time constant 2 dt.\n"
       "Example: plateball plan problems/circle_physical.json --out circle.json && plateball rig replay circle.json\n"
+      "Closed loop: plateball rig loop tests/data/rig_loop_physical.json --noise impulse_magnitude=0.02,lambda=0.02\n"
       "Exit codes: 0 ok, 2 usage, 3 invalid input (no ball.physical, a ball MuJoCo cannot build, overlapping\n"
-      "pulses, too little friction), 4 the engine failed, 5 unreadable or unwritable file.");
-  return [o] { return o->export_cmd->parsed() ? RunExport(*o) : RunReplay(*o); };
+      "pulses, too little friction), 4 the engine failed or the loop lost the ball, 5 unreadable or unwritable file.");
+  return [o, loop_cmd, run_loop] {
+    if (loop_cmd->parsed()) return run_loop();
+    return o->export_cmd->parsed() ? RunExport(*o) : RunReplay(*o);
+  };
 }
 
 const CommandRegistrar kRegistrar{
-    {"rig", "the MuJoCo digital twin: export a plan's machine (MJCF) or replay the plan in MuJoCo (JSON)", SetupRig}};
+    {"rig", "the MuJoCo digital twin: export a plan's machine (MJCF), replay the plan in MuJoCo or close the controller's loop on it (JSON)", SetupRig}};
 
 }  // namespace
 }  // namespace plateball::tools
