@@ -1,6 +1,7 @@
 # Command-line tests of `plateball simulate` and `plateball roll`: exact exit codes (through
 # tests/scripts/check_cli.sh), messages (PASS_REGULAR_EXPRESSION) and numbers checked against
-# independent values (closed forms) within stated tolerances.
+# independent values (closed forms) within stated tolerances. The exit code and the numbers are
+# checked also when a message is (FAIL_REGULAR_EXPRESSION on check_cli.sh's FAIL lines).
 if(NOT TARGET plateball_cli)
   return()
 endif()
@@ -21,7 +22,10 @@ function(plateball_cli_test name exit_code)
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   set_tests_properties(cli.${name} PROPERTIES TIMEOUT 120 LABELS cli)
   if(T_REGEX)
-    set_tests_properties(cli.${name} PROPERTIES PASS_REGULAR_EXPRESSION "${T_REGEX}")
+    # A pass expression makes ctest ignore the exit status: the script's own verdict (exit code,
+    # numbers) must then fail the test through its FAIL lines.
+    set_tests_properties(cli.${name} PROPERTIES PASS_REGULAR_EXPRESSION "${T_REGEX}"
+                         FAIL_REGULAR_EXPRESSION "check_cli.sh: FAIL")
   endif()
 endfunction()
 

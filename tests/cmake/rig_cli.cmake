@@ -81,8 +81,8 @@ set_tests_properties(docs.tutorial_twin PROPERTIES LABELS "docs;cli" TIMEOUT 300
 # 3.2e-4 r from the goal at a 1 ms tick, within a tick's travel of 1.5e-3) and the open loop does not (0.12 r).
 set(loop_problem tests/data/rig_loop_physical.json)
 set(loop_errors impulse_magnitude=0.02,impulse_angle=0.02,lambda=0.02,energy_loss=0.001)
-# (The numbers are matched by the regular expression: ctest ignores check_cli.sh's exit code when a
-# test has PASS_REGULAR_EXPRESSION.) Closed loop below 1.5e-3 r, the open loop beyond 0.1 r.
+# The numbers are matched by the regular expression:
+# the closed loop below 1.5e-3 r, the open loop beyond 0.1 r.
 plateball_cli_test(rig.loop_closes_the_loop 0
   REGEX "\"command\": \"rig_loop\".*\"closed_loop\": {\n *\"status\": \"done\",[^[]*\"position_error\": (0\\.00(0|1[0-4])[0-9]*|[0-9.]+e-0[4-9]),.*\"open_loop\": {[^[]*\"position_error\": 0\\.[1-9].*\"report\": \"closed loop in the twin done after 16 impulses"
   -- rig loop ${loop_problem} --tick 1e-3 --dt 1e-3 --noise ${loop_errors})

@@ -40,12 +40,13 @@ plateball_cli_test(steer.stop_at_goal 0 REGEX "\"kind\": \"stop\",[ \n]*\"t_impu
 
 # isoparallel_solve --exact: the built-in Figure 7 problem arrives exactly with its 12 impulses.
 if(TARGET isoparallel_solve)
-  add_test(NAME IsoparallelCli.ExactArrivesWith12Impulses COMMAND isoparallel_solve --exact)
+  add_test(NAME IsoparallelCli.ExactArrivesWith12Impulses COMMAND bash ${PROJECT_SOURCE_DIR}/tests/scripts/check_cli.sh 0 -- $<TARGET_FILE:isoparallel_solve> --exact)
   set_tests_properties(IsoparallelCli.ExactArrivesWith12Impulses PROPERTIES
-    PASS_REGULAR_EXPRESSION "exact arrival: arrived with 12 impulses, re-integrated errors: position [0-9.]+e-1[3-9], orientation [0-9.]+e-1[1-9] rad")
-  add_test(NAME IsoparallelCli.ExactNeedsThreeImpulses COMMAND isoparallel_solve --exact --impulses 2)
+    FAIL_REGULAR_EXPRESSION "check_cli.sh: FAIL" PASS_REGULAR_EXPRESSION "exact arrival: arrived with 12 impulses, re-integrated errors: position [0-9.]+e-1[3-9], orientation [0-9.]+e-1[1-9] rad")
+  add_test(NAME IsoparallelCli.ExactNeedsThreeImpulses
+           COMMAND bash ${PROJECT_SOURCE_DIR}/tests/scripts/check_cli.sh 3 -- $<TARGET_FILE:isoparallel_solve> --exact --impulses 2)
   set_tests_properties(IsoparallelCli.ExactNeedsThreeImpulses PROPERTIES
-    PASS_REGULAR_EXPRESSION "--impulses: value 2: --exact needs 3 ")
+    FAIL_REGULAR_EXPRESSION "check_cli.sh: FAIL" PASS_REGULAR_EXPRESSION "--impulses: value 2: --exact needs 3 ")
 endif()
 # mu only rescales time by 1/sqrt(mu): at mu = 1e12 and 1e-8 the same deviation as at mu = 1
 # (0.2130914...), the total time 11.365464870055014 / sqrt(mu), arrived (exit 0).
