@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "common/command_registry.h"
@@ -119,6 +120,21 @@ void CheckDrawable(const std::string& file, const view::ViewData& d) {
   check("planned path", d.planned);
   for (const auto& [label, points] : d.spread) check(("Monte Carlo final points of " + label).c_str(), points);
   if (d.has_goal) check("goal", {d.goal});
+  if (d.rig) {  // the farthest points of the rig's shapes and of the stroke box
+    const RigLimits& l = d.rig->limits;
+    std::vector<Eigen::Vector2d> far;
+    const auto add = [&](const PlateShape& shape) {
+      if (const auto* disk = std::get_if<DiskShape>(&shape))
+        far.push_back(disk->center.cwiseAbs() + Eigen::Vector2d::Constant(disk->radius + l.clearance));
+      else
+        for (const Eigen::Vector2d& v : std::get<PolygonShape>(shape).vertices)
+          far.push_back(v.cwiseAbs() + Eigen::Vector2d::Constant(l.clearance));
+    };
+    if (l.plate) add(*l.plate);
+    for (const PlateShape& o : l.obstacles) add(o);
+    if (l.stroke) far.push_back(d.rig->stroke_origin.cwiseAbs() + *l.stroke);
+    check("rig shape (plate, obstacles, stroke box)", far);
+  }
 }
 
 int RunView(const ViewCliOptions& o) {
