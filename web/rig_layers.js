@@ -68,7 +68,10 @@ const PlateballRigLayers = (function () {
       const len = Math.hypot(b[0] - a[0], b[1] - a[1]);
       return [(side * orient * (b[1] - a[1])) / len, (-side * orient * (b[0] - a[0])) / len];
     };
-    const tolerance = 1e-9 * Math.max(1, d);
+    // Rounding of the distances (a few ulps of the coordinates), so that the shifted edges count as
+    // the level set they are; a trimmed end found by bisection is this close to it.
+    const scale = Math.max(1, d, ...v.map((p) => Math.max(Math.abs(p[0]), Math.abs(p[1]))));
+    const tolerance = 1e-12 * scale;
     const keep = (p) => edgeDistance(v, p) >= d - tolerance && inside(v, p) === inward;
     const pieces = [];  // parametric pieces u in [0, 1] -> point, with a sample count
     let perimeter = 0;
