@@ -75,6 +75,14 @@ run(P, ["montecarlo", problem("circle.json"), "--trials", "40", "--noise", "impu
 const testData = (name) => path.join(args.problems, "..", "tests", "data", name);
 run(P, ["steer", problem("figure7_rig.json"), "--out", work("rig.json")]);
 run(P, ["steer", testData("view_rig_shapes.json"), "--out", work("rig_shapes.json")]);
+// A rig verdict whose margin name and violation attack the page.
+{
+  const doc = readJson(work("rig.json"));
+  doc.rig.check.margins = { [hostileName]: -0.5 };
+  doc.rig.check.violations = [hostileName];
+  doc.rig.check.passed = false;
+  fs.writeFileSync(work("rig_hostile.json"), JSON.stringify(doc));
+}
 const pages = {
   simulate: ["simulate.json"],
   plan: ["plan.json"],  // the problem file named in the result's header
@@ -86,6 +94,7 @@ const pages = {
   montecarlo: ["montecarlo.json"],
   rig: ["rig.json"],
   rig_shapes: ["rig_shapes.json"],
+  rig_hostile: ["rig_hostile.json"],
 };
 for (const [name, [result, ...rest]] of Object.entries(pages))
   run(P, ["view", work(result), "--html", work(name + ".html"), ...rest]);
@@ -331,6 +340,24 @@ for (const [name, file, problemFile] of [["rig", "rig.json", problem("figure7_ri
   const withoutRig = await page.screenshot({ clip });
   check(!withRig.equals(withoutRig), name + ": the rig layers draw (the picture changes when they are switched off)");
   check(log.errors.length === 0 && log.requests.length === 0, name + ": no console errors, no network requests",
+    log.errors.concat(log.requests).join(" | "));
+  await context.close();
+}
+
+{
+  const { page, log, context } = await open("rig_hostile");
+  const shown = await page.evaluate(() => ({
+    margins: [...document.querySelectorAll("#rig-margins tr")].slice(1).map((tr) => [...tr.cells].map((c) => c.textContent)),
+    facts: [...document.querySelectorAll("#rig-facts dd")].map((d) => d.textContent),
+    verdict: document.getElementById("rig-verdict").textContent,
+    failClass: document.querySelector("#rig-margins td.fail") !== null,
+    scripts: document.scripts.length,
+  }));
+  check(shown.margins.length === 1 && shown.margins[0][0] === hostileName && shown.facts.includes(hostileName) &&
+    shown.verdict.startsWith("Replay check FAILED") && shown.failClass && shown.scripts === 3,
+    "rig_hostile: a margin name and a violation with \"<!--<script>\" are shown verbatim as text, the negative margin marked",
+    JSON.stringify(shown));
+  check(log.errors.length === 0 && log.requests.length === 0, "rig_hostile: no console errors, no network requests",
     log.errors.concat(log.requests).join(" | "));
   await context.close();
 }
