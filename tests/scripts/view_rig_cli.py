@@ -159,5 +159,15 @@ code, err = run("view", f"{work}/bad.json", "--html", f"{work}/bad.html")
 check(code == 3 and 'rig.check.margins.plate: value "wide": must be a finite number' in err,
       "a margin that is not a number: exit 3 naming rig.check.margins.plate", err.strip())
 
+# ---------------------------------------------------------------- a rig beyond what the page can draw
+# The page draws coordinates up to 1e6 ball radii (single-precision WebGL): a plate of radius 2e6 is refused.
+huge = copy.deepcopy(problem)
+huge["rig"] = {"plate": {"type": "disk", "center": [1.5, 1.5], "radius": 2e6}}
+json.dump(huge, open(f"{work}/huge.json", "w"))
+run("steer", f"{work}/huge.json", "--out", f"{work}/huge_result.json", "--quiet")
+code, err = run("view", f"{work}/huge_result.json", "--html", f"{work}/huge.html")
+check(code == 3 and "rig shape (plate, obstacles, stroke box)[0]: value 2000001.5: the page draws coordinates up to 1e6" in err,
+      "a plate reaching beyond 1e6 ball radii: exit 3 naming the rig shape", err.strip())
+
 print(f"{passed} passed, {failed} failed")
 sys.exit(1 if failed else 0)
