@@ -59,7 +59,10 @@ const PlateballRigLayers = (function () {
   // and arcs of radius d about the vertices; each piece is kept where no other part of the edge is
   // nearer than d (there it is the level set; elsewhere, at reflex corners, another edge is
   // nearer), the ends of the kept runs found by bisection.
-  function polygonOffset(v, d, inward) {
+  // `budget` {left}: distance evaluations still allowed (each costs one pass over the edges); a
+  // polygon whose curve would take more gets none (null), so that a rig of many large polygons
+  // cannot stall the page.
+  function polygonOffset(v, d, inward, budget = { left: Infinity }) {
     const n = v.length;
     const orient = signedArea(v) > 0 ? 1 : -1;  // +1 counter-clockwise
     const side = inward ? -1 : 1;
@@ -97,9 +100,13 @@ const PlateballRigLayers = (function () {
       });
     }
     const step = Math.min(d, perimeter / n) / 8;  // samples finer than the features
+    const samples = (piece) => Math.max(8, Math.min(2048, Math.ceil(piece.length / step)));
+    const cost = n * pieces.reduce((sum, piece) => sum + samples(piece) + 1, 0);
+    if (cost > budget.left) return null;
+    budget.left -= cost;
     const curves = [];
     for (const piece of pieces) {
-      const m = Math.max(8, Math.min(2048, Math.ceil(piece.length / step)));
+      const m = samples(piece);
       let run = null;
       let prevU = 0, prevKept = false;
       for (let k = 0; k <= m; ++k) {
@@ -136,7 +143,7 @@ const PlateballRigLayers = (function () {
   // ------------------------------------------------------------ shapes
   // The outline of a shape (a closed loop, the first point not repeated) and the clearance curves
   // (polylines; none for clearance 0 or an empty inner region).
-  function shapeLayer(shape, clearance, inward) {
+  function shapeLayer(shape, clearance, inward, budget) {
     if (shape.type === "disk") {
       const r = inward ? shape.radius - clearance : shape.radius + clearance;
       return {
@@ -146,10 +153,12 @@ const PlateballRigLayers = (function () {
       };
     }
     const vertices = shape.vertices.map((p) => p.slice());
+    const curves = clearance > 0 ? polygonOffset(vertices, clearance, inward, budget) : [];
     return {
       type: "polygon", vertices,
       outline: vertices.map((p) => p.slice()),
-      clearance: clearance > 0 ? polygonOffset(vertices, clearance, inward) : [],
+      clearance: curves || [],
+      clearanceSkipped: curves === null,  // over the work budget: the outline only
     };
   }
 
@@ -158,11 +167,16 @@ const PlateballRigLayers = (function () {
     return [[c[0] - h[0], c[1] - h[1]], [c[0] + h[0], c[1] - h[1]], [c[0] + h[0], c[1] + h[1]], [c[0] - h[0], c[1] + h[1]]];
   }
 
-  function build(rig) {
+  // Point-to-edge distances for all clearance curves of a page: 10^7, about a second of script (a
+  // 1000-gon's curve takes 1.8e7; the largest rig a problem file may hold, 1000 polygons of 1000
+  // vertices, would take 10^10).
+  const kClearanceBudget = 1e7;
+
+  function build(rig, budget = { left: kClearanceBudget }) {
     const clearance = rig.clearance || 0;
     const layers = {
-      plate: rig.plate ? shapeLayer(rig.plate, clearance, true) : null,
-      obstacles: (rig.obstacles || []).map((o) => shapeLayer(o, clearance, false)),
+      plate: rig.plate ? shapeLayer(rig.plate, clearance, true, budget) : null,
+      obstacles: (rig.obstacles || []).map((o) => shapeLayer(o, clearance, false, budget)),
       stroke: null,
       points: [],  // every point drawn, for the view's extent
     };
@@ -184,6 +198,6 @@ const PlateballRigLayers = (function () {
     return layers;
   }
 
-  return Object.freeze({ build, polygonOffset, edgeDistance, inside, kDiskSegments });
+  return Object.freeze({ build, polygonOffset, edgeDistance, inside, kDiskSegments, kClearanceBudget });
 })();
 if (typeof module !== "undefined" && module.exports) module.exports = PlateballRigLayers;

@@ -574,8 +574,12 @@
     }
     if (rig.obstacles.length)
       legendItem("obstacles: the contact point stays outside", { height: "8px", borderTopColor: hex(rigColours.obstacle), background: hex(rigColours.obstacleFill) });
-    if (c > 0 && (rig.plate || rig.obstacles.length))
-      legendItem("clearance " + c.toPrecision(3) + " r from the plate edge and the obstacles", { borderColor: "#555", borderTopStyle: "dashed" });
+    if (c > 0 && (rig.plate || rig.obstacles.length)) {
+      const skipped = [rig.plate, ...rig.obstacles].filter((l) => l && l.clearanceSkipped).length;
+      legendItem("clearance " + c.toPrecision(3) + " r from the plate edge and the obstacles"
+        + (skipped ? " (not drawn for " + skipped + " large polygons: over the page's work budget)" : ""),
+        { borderColor: "#555", borderTopStyle: "dashed" });
+    }
     if (rig.stroke) {
       legendItem("upper plate's stroke (at z = 2): its reference point (cross, above x0 at the start) stays in x0 \u00b1 ("
         + rig.stroke.half.map((v) => v.toPrecision(3)).join(", ") + ")", { borderColor: hex(rigColours.stroke) });
