@@ -565,7 +565,7 @@
     $("legend").append(li);
   }
   function showRig() {
-    $("show-rig-label").hidden = false;
+    $("show-rig-label").hidden = !(rig.plate || rig.obstacles.length || rig.stroke);
     const hex = (c) => "#" + c.toString(16).padStart(6, "0");
     const c = D.rig.clearance || 0;
     if (rig.plate) {
@@ -594,8 +594,8 @@
       verdict.textContent = "This result carries no rig check: the limits are drawn, not checked.";
       return;
     }
-    verdict.textContent = (k.passed ? "Replay check passed: " : "Replay check FAILED: ") + k.samples
-      + " contact points and every impulse and time of an independent replay checked against the limits.";
+    verdict.textContent = (k.passed ? "Limits met in the replay check: " : "Limits NOT met in the replay check: ") + k.samples
+      + " contact points and every impulse and time of an independent replay checked (whether the goal is reached: the report).";
     verdict.className = k.passed ? "pass" : "fail";
     const table = $("rig-margins");
     for (const [name, margin] of k.margins) {

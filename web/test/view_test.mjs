@@ -325,7 +325,7 @@ for (const [name, file, problemFile] of [["rig", "rig.json", problem("figure7_ri
   const stroke = !rigFile.stroke ? shown.layers.stroke === null && !shown.legend.includes("stroke")
     : shown.layers.stroke.half.join() === rigFile.stroke.join() && shown.legend.includes("upper plate's stroke");
   check(plate && stroke && shown.layers.obstacles.length === rigFile.obstacles.length && marginsShown &&
-    shown.verdict.startsWith("Replay check passed: " + doc.rig.check.samples + " contact points"),
+    shown.verdict.startsWith("Limits met in the replay check: " + doc.rig.check.samples + " contact points"),
     name + ": the rig's plate, obstacles and stroke drawn, the replay check's verdict and margins in the panel",
     JSON.stringify(shown.margins) + " " + shown.verdict);
   const clip = await page.evaluate(() => {
@@ -354,7 +354,7 @@ for (const [name, file, problemFile] of [["rig", "rig.json", problem("figure7_ri
     scripts: document.scripts.length,
   }));
   check(shown.margins.length === 1 && shown.margins[0][0] === hostileName && shown.facts.includes(hostileName) &&
-    shown.verdict.startsWith("Replay check FAILED") && shown.failClass && shown.scripts === 3,
+    shown.verdict.startsWith("Limits NOT met in the replay check") && shown.failClass && shown.scripts === 3,
     "rig_hostile: a margin name and a violation with \"<!--<script>\" are shown verbatim as text, the negative margin marked",
     JSON.stringify(shown));
   check(log.errors.length === 0 && log.requests.length === 0, "rig_hostile: no console errors, no network requests",
