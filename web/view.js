@@ -8,6 +8,9 @@
 //   planned[2m]          the planned path (polyline), impulses [{t, x, dv}], goal [2]
 //   spread [{label, x}]  Monte Carlo: final contact points of the trials, per (strategy, scenario)
 //   kind, title, facts [[label, value]], generator
+//   rig                  a steer result's rig (optional): shapes and stroke for rig_layers.js, and
+//                        check {passed, samples, margins [[limit, margin]], violations, active,
+//                        blocking, constrained, objective} when the result carries its replay check
 // World frame as the library's: the plates are z = 0 and z = 2, the ball (radius 1) centred at
 // (x, y, 1).
 (function () {
@@ -94,6 +97,8 @@
   addPoints(D.planned || []);
   for (const cell of D.spread) addPoints(cell.x);
   if (D.goal) addPoints(D.goal);
+  const rig = D.rig ? PlateballRigLayers.build(D.rig) : null;
+  if (rig) addPoints(rig.points.flat());
   box.expandByScalar(1.6);
   const centre = box.getCenter(new THREE.Vector2());
   const size = box.getSize(new THREE.Vector2());
@@ -128,6 +133,83 @@
   upper.add(upperGrid);
   scene.add(upper);
   const x0 = [D.x[0], D.x[1]];
+
+  // The rig's limits: the plate's edge with the outside shaded, the obstacles, the clearance curves
+  // dashed, and the stroke: the box of the upper plate's reference point on the upper plate's plane
+  // (that point is marked with a cross on the upper plate) and the same limit for the contact point.
+  const rigGroup = new THREE.Group();
+  scene.add(rigGroup);
+  const rigColours = { plate: 0x444444, outside: 0x77736a, obstacle: 0x8e2b2b, obstacleFill: 0xe8b4b4, stroke: 0x8a5a00 };
+  const bandWidth = 0.004 * extent + 0.03;
+  // A closed loop as a flat band of `width` (mitred corners), at height z.
+  function band(loop, width, colour, z) {
+    const m = loop.length;
+    const a = new Float32Array(6 * m);
+    for (let k = 0; k < m; ++k) {
+      const p = loop[k], b = loop[(k + m - 1) % m], f = loop[(k + 1) % m];
+      const n0 = [b[1] - p[1], p[0] - b[0]], n1 = [p[1] - f[1], f[0] - p[0]];
+      const l0 = Math.hypot(n0[0], n0[1]) || 1, l1 = Math.hypot(n1[0], n1[1]) || 1;
+      let nx = n0[0] / l0 + n1[0] / l1, ny = n0[1] / l0 + n1[1] / l1;
+      const ln = Math.hypot(nx, ny) || 1;
+      const miter = Math.min(3, 1 / Math.max(1e-3, (nx * n1[0] / l1 + ny * n1[1] / l1) / ln));
+      nx = (nx / ln) * miter * width / 2;
+      ny = (ny / ln) * miter * width / 2;
+      a.set([p[0] + nx, p[1] + ny, z, p[0] - nx, p[1] - ny, z], 6 * k);
+    }
+    const index = new Uint32Array(6 * m);
+    for (let k = 0; k < m; ++k) {
+      const j = (k + 1) % m;
+      index.set([2 * k, 2 * k + 1, 2 * j, 2 * k + 1, 2 * j + 1, 2 * j], 6 * k);
+    }
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.BufferAttribute(a, 3));
+    geometry.setIndex(new THREE.BufferAttribute(index, 1));
+    return new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color: colour, side: THREE.DoubleSide }));
+  }
+  function dashed(polyline, colour, z) {
+    const geometry = new THREE.BufferGeometry();
+    const a = new Float32Array(3 * polyline.length);
+    polyline.forEach((p, k) => a.set([p[0], p[1], z], 3 * k));
+    geometry.setAttribute("position", new THREE.BufferAttribute(a, 3));
+    const object = new THREE.Line(geometry, new THREE.LineDashedMaterial({ color: colour, dashSize: 0.008 * extent + 0.04, gapSize: 0.006 * extent + 0.03 }));
+    object.computeLineDistances();
+    return object;
+  }
+  const shapeOf = (loop) => new THREE.Shape(loop.map((p) => new THREE.Vector2(p[0], p[1])));
+  let referenceMarker = null;
+  if (rig) {
+    if (rig.plate) {
+      const outside = shapeOf([[centre.x - plateSize / 2, centre.y - plateSize / 2], [centre.x + plateSize / 2, centre.y - plateSize / 2],
+        [centre.x + plateSize / 2, centre.y + plateSize / 2], [centre.x - plateSize / 2, centre.y + plateSize / 2]]);
+      outside.holes.push(new THREE.Path(rig.plate.outline.map((p) => new THREE.Vector2(p[0], p[1]))));
+      const shade = new THREE.Mesh(new THREE.ShapeGeometry(outside), new THREE.MeshBasicMaterial({
+        color: rigColours.outside, transparent: true, opacity: 0.35, depthWrite: false }));
+      shade.position.z = 0.0005;
+      rigGroup.add(shade);
+      rigGroup.add(band(rig.plate.outline, bandWidth, rigColours.plate, 0.001));
+      for (const c of rig.plate.clearance) rigGroup.add(dashed(c, rigColours.plate, 0.0015));
+    }
+    for (const o of rig.obstacles) {
+      const fill = new THREE.Mesh(new THREE.ShapeGeometry(shapeOf(o.outline)), new THREE.MeshBasicMaterial({ color: rigColours.obstacleFill }));
+      fill.position.z = 0.0008;
+      rigGroup.add(fill);
+      rigGroup.add(band(o.outline, bandWidth, rigColours.obstacle, 0.001));
+      for (const c of o.clearance) rigGroup.add(dashed(c, rigColours.obstacle, 0.0015));
+    }
+    if (rig.stroke) {
+      rigGroup.add(band(rig.stroke.upper, bandWidth, rigColours.stroke, 2.002));
+      rigGroup.add(dashed(rig.stroke.contact.concat([rig.stroke.contact[0]]), rigColours.stroke, 0.002));
+      // The upper plate's reference point (above x0 at the start): a cross that moves with it.
+      referenceMarker = new THREE.Group();
+      const arm = 0.03 * extent + 0.15;
+      for (const [w, h] of [[2 * arm, bandWidth], [bandWidth, 2 * arm]]) {
+        const bar = new THREE.Mesh(new THREE.PlaneGeometry(w, h), new THREE.MeshBasicMaterial({ color: rigColours.stroke, side: THREE.DoubleSide }));
+        bar.position.z = 0.003;
+        referenceMarker.add(bar);
+      }
+      upper.add(referenceMarker);
+    }
+  }
 
   // The ball: poles on its body axis e3 (red: +e3, the symmetry axis z = A e3; blue: -e3),
   // eight coloured octants and a dark equator, so that every rotation shows.
@@ -412,10 +494,11 @@
     last = null;
     requestRender();
   });
-  const layers = { "show-upper": upper, "show-trace": trace, "show-ghost": ghost, "show-planned": planned, "show-arrows": arrows };
+  const layers = { "show-rig": rig ? rigGroup : null, "show-upper": upper, "show-trace": trace, "show-ghost": ghost, "show-planned": planned, "show-arrows": arrows };
   for (const [id, object] of Object.entries(layers)) {
     $(id).addEventListener("change", (e) => {
       if (object) object.visible = e.target.checked && (object !== ghost || !!D.ghost);
+      if (object === rigGroup && referenceMarker) referenceMarker.visible = e.target.checked;
       requestRender();
     });
   }
@@ -469,6 +552,71 @@
   addFact("re-simulation", "matches the result's orientations to " + D.resimulation_mismatch.toExponential(1));
   if (D.impulses.length) addFact("impulses", String(D.impulses.length));
   $("generator").textContent = "Written by " + D.generator + ".";
+  if (rig) showRig();
+
+  // The rig's legend entries and the verdict of the result's independent replay check. Every
+  // string of the data goes in as text (textContent, append), never as markup.
+  function legendItem(text, style) {
+    const li = document.createElement("li");
+    const swatch = document.createElement("span");
+    swatch.className = "swatch";
+    Object.assign(swatch.style, style);
+    li.append(swatch, text);
+    $("legend").append(li);
+  }
+  function showRig() {
+    $("show-rig-label").hidden = !(rig.plate || rig.obstacles.length || rig.stroke);
+    const hex = (c) => "#" + c.toString(16).padStart(6, "0");
+    const c = D.rig.clearance || 0;
+    if (rig.plate) {
+      legendItem("plate edge: the contact point stays inside", { borderColor: hex(rigColours.plate) });
+      legendItem("outside the plate", { height: "10px", borderTop: "0", background: hex(rigColours.outside), opacity: "0.6" });
+    }
+    if (rig.obstacles.length)
+      legendItem("obstacles: the contact point stays outside", { height: "8px", borderTopColor: hex(rigColours.obstacle), background: hex(rigColours.obstacleFill) });
+    if (c > 0 && (rig.plate || rig.obstacles.length)) {
+      const skipped = [rig.plate, ...rig.obstacles].filter((l) => l && l.clearanceSkipped).length;
+      legendItem("clearance " + c.toPrecision(3) + " r from the plate edge and the obstacles"
+        + (skipped ? " (not drawn for " + skipped + " large polygons: over the page's work budget)" : ""),
+        { borderColor: "#555", borderTopStyle: "dashed" });
+    }
+    if (rig.stroke) {
+      legendItem("upper plate's stroke (at z = 2): its reference point (cross, above x0 at the start) stays in x0 \u00b1 ("
+        + rig.stroke.half.map((v) => v.toPrecision(3)).join(", ") + ")", { borderColor: hex(rigColours.stroke) });
+      legendItem("the same stroke for the contact point: x0 \u00b1 s / 2 (the upper plate moves 2 (x - x0))",
+        { borderColor: hex(rigColours.stroke), borderTopStyle: "dashed" });
+    }
+    const section = $("rig-section");
+    section.hidden = false;
+    const k = D.rig.check;
+    const verdict = $("rig-verdict");
+    if (!k) {
+      verdict.textContent = "This result carries no rig check: the limits are drawn, not checked.";
+      return;
+    }
+    verdict.textContent = (k.passed ? "Limits met in the replay check: " : "Limits NOT met in the replay check: ") + k.samples
+      + " contact points and every impulse and time of an independent replay checked (whether the goal is reached: the report).";
+    verdict.className = k.passed ? "pass" : "fail";
+    const table = $("rig-margins");
+    for (const [name, margin] of k.margins) {
+      const row = table.insertRow();
+      row.insertCell().textContent = name;
+      const cell = row.insertCell();
+      cell.textContent = margin.toPrecision(4);
+      cell.className = margin >= 0 ? "pass" : "fail";
+    }
+    const rigFact = (label, value) => {
+      const dt = document.createElement("dt"), dd = document.createElement("dd");
+      dt.textContent = label;
+      dd.textContent = value;
+      $("rig-facts").append(dt, dd);
+    };
+    rigFact("objective", k.objective);
+    rigFact("constrained", k.constrained ? "yes: the limits cut the free optimum" : "no: the free optimum meets them");
+    rigFact("active", k.active.length ? k.active.join(", ") : "none");
+    if (k.blocking.length) rigFact("blocking", k.blocking.join(", "));
+    for (const v of k.violations) rigFact("violation", v);
+  }
 
   drawChartBase();
   drawSpread();
@@ -501,6 +649,8 @@
     contactPoint: () => current.x.slice(),
     spread: () => D.spread.map((cell) => ({ label: cell.label, x: cell.x.slice() })),
     goal: () => (D.goal ? D.goal.slice() : null),
+    // The rig's layers as drawn (rig_layers.js), or null.
+    rigLayers: () => (rig ? JSON.parse(JSON.stringify(rig)) : null),
     // Lines of the lower plate's grid (two vertices each).
     gridLines: () => grid.geometry.attributes.position.count / 2,
     // The ball's bounding box on the screen (CSS pixels): the projections of its bounding cube.

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "common/command_registry.h"
@@ -107,18 +108,34 @@ std::string HtmlEscape(const std::string& text) {
 constexpr double kMaxDrawnCoordinate = 1e6;
 
 void CheckDrawable(const std::string& file, const view::ViewData& d) {
-  const auto check = [&](const char* what, const std::vector<Eigen::Vector2d>& points) {
+  const auto check = [&](const char* what, const std::vector<Eigen::Vector2d>& points,
+                         const char* advice = "shorten the motion") {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const double r = points[i].cwiseAbs().maxCoeff();
       if (!(r <= kMaxDrawnCoordinate))
         ThrowInvalidInput(file + ": " + what + "[" + std::to_string(i) + "]", FormatNumber(r),
-                          "the page draws coordinates up to 1e6 ball radii; shorten the motion");
+                          std::string("the page draws coordinates up to 1e6 ball radii; ") + advice);
     }
   };
   check("contact path (re-simulated)", d.x);
   check("planned path", d.planned);
   for (const auto& [label, points] : d.spread) check(("Monte Carlo final points of " + label).c_str(), points);
   if (d.has_goal) check("goal", {d.goal});
+  if (d.rig) {  // the farthest points of the rig's shapes and of the stroke box
+    const RigLimits& l = d.rig->limits;
+    std::vector<Eigen::Vector2d> far;
+    const auto add = [&](const PlateShape& shape) {
+      if (const auto* disk = std::get_if<DiskShape>(&shape))
+        far.push_back(disk->center.cwiseAbs() + Eigen::Vector2d::Constant(disk->radius + l.clearance));
+      else
+        for (const Eigen::Vector2d& v : std::get<PolygonShape>(shape).vertices)
+          far.push_back(v.cwiseAbs() + Eigen::Vector2d::Constant(l.clearance));
+    };
+    if (l.plate) add(*l.plate);
+    for (const PlateShape& o : l.obstacles) add(o);
+    if (l.stroke) far.push_back(d.rig->stroke_origin.cwiseAbs() + *l.stroke);
+    check("rig shape (plate, obstacles, stroke box)", far, "the rig reaches farther");
+  }
 }
 
 int RunView(const ViewCliOptions& o) {
@@ -155,7 +172,9 @@ std::function<int()> SetupView(CLI::App& sub) {
       "the plates, the ball with markings (orientation A(t) from the library, slerp between dense samples),\n"
       "the upper plate moving at twice the ball's speed, the traced contact path, the planned path dashed,\n"
       "the impulses with the plate velocity change as arrows, a ghost ball rolling along the planned path,\n"
-      "a time slider, play/pause, speed, and the orientation error against time.\n"
+      "a time slider, play/pause, speed, and the orientation error against time. For a steer result with a\n"
+      "rig: the plate region, the obstacles with their clearance, the upper plate's stroke box and the replay\n"
+      "check's verdict and margins.\n"
       "Example: plateball plan problems/circle.json --out circle.json && plateball view circle.json --html circle.html\n"
       "Exit codes: 0 ok, 2 usage, 3 invalid result (the field is named), 5 unreadable or unwritable file.");
   return [o] { return RunView(*o); };

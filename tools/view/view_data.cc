@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
+#include <variant>
 
 #include "common/invalid_input.h"
 #include "common/limits.h"
@@ -433,6 +434,61 @@ SteerStart SteerStartOf(const ResultReader& r, const Problem& problem) {
   return {setup.problem.x0, setup.problem.A0, setup.problem.mu, SamplePath(setup.problem.reference)};
 }
 
+// An array of strings of the result's rig object (limit names, violation lines).
+std::vector<std::string> Strings(const ResultReader& r, const json& at, const std::string& where,
+                                 const std::string& concept_name) {
+  const json& list = r.Array(at, where, concept_name, 0, kMaxSteps);
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (!list[i].is_string())
+      r.Fail(where + "." + r.fields().Paths(concept_name).front().get<std::string>() + "[" + std::to_string(i) + "]",
+             ValueText(list[i]), "must be a string");
+    out.push_back(list[i].get<std::string>());
+  }
+  return out;
+}
+
+bool Boolean(const ResultReader& r, const json& at, const std::string& where, const std::string& concept_name) {
+  const json& j = r.Get(at, where, concept_name);
+  if (!j.is_boolean())
+    r.Fail(where + "." + r.fields().Paths(concept_name).front().get<std::string>(), ValueText(j), "must be true or false");
+  return j.get<bool>();
+}
+
+// The rig the page draws: the problem's limits around the stroke's origin x0 and, when the result
+// carries it, the verdict of its independent replay check (exact_output.h RigJson).
+ViewRig RigOf(const ResultReader& r, const RigLimits& limits, const Eigen::Vector2d& x0) {
+  ViewRig rig;
+  rig.limits = limits;
+  rig.stroke_origin = x0;
+  const json* result = r.Find(r.doc(), "rig");
+  if (!result) return rig;
+  if (!result->is_object()) r.Fail("rig", ValueText(*result), "must be an object (the rig's verdict)");
+  const json& check = r.Get(*result, "rig", "rig_check");
+  if (!check.is_object()) r.Fail("rig.check", ValueText(check), "must be an object (the replay check)");
+  rig.checked = true;
+  rig.passed = Boolean(r, check, "rig.check", "rig_passed");
+  const double samples = r.Number(check, "rig.check", "rig_samples");
+  if (!(samples >= 0 && std::floor(samples) == samples && samples <= 1e15))
+    r.Fail("rig.check.samples", FormatNumber(samples), "must be an integer >= 0");
+  rig.samples = static_cast<long long>(samples);
+  const json& margins = r.Get(check, "rig.check", "rig_margins");
+  if (!margins.is_object()) r.Fail("rig.check.margins", ValueText(margins), "must be an object of numbers");
+  for (const auto& [name, value] : margins.items()) {
+    if (!value.is_number() || !std::isfinite(value.get<double>()))
+      r.Fail("rig.check.margins." + name, ValueText(value), "must be a finite number");
+    rig.margins.emplace_back(name, value.get<double>());
+  }
+  rig.violations = Strings(r, check, "rig.check", "rig_violations");
+  rig.active = Strings(r, *result, "rig", "rig_active");
+  rig.blocking = Strings(r, *result, "rig", "rig_blocking");
+  rig.constrained = Boolean(r, *result, "rig", "rig_constrained");
+  const json& objective = r.Get(*result, "rig", "rig_objective");
+  if (!objective.is_string()) r.Fail("rig.objective", ValueText(objective), "must be a string");
+  rig.objective = objective.get<std::string>();
+  return rig;
+}
+
 void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out) {
   const Problem problem = LoadProblem(r, options);
   const SteerStart begin = SteerStartOf(r, problem);  // reference; start state when the result lacks it
@@ -476,6 +532,7 @@ void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out
   AddPlanned(begin.reference, keys, out);
   out->goal = r.Vector2(doc, "", "goal");
   out->has_goal = true;
+  if (!problem.rig.Empty() || r.Find(doc, "rig")) out->rig = RigOf(r, problem.rig, begin.x0);
 }
 
 // ---------------------------------------------------------------- montecarlo
@@ -672,6 +729,32 @@ json Quaternions(const std::vector<Eigen::Matrix3d>& rotations) {
   }
   return a;
 }
+json ShapeToJson(const PlateShape& shape) {
+  if (const auto* disk = std::get_if<DiskShape>(&shape))
+    return json{{"type", "disk"}, {"center", {disk->center.x(), disk->center.y()}}, {"radius", disk->radius}};
+  json vertices = json::array();
+  for (const Eigen::Vector2d& v : std::get<PolygonShape>(shape).vertices) vertices.push_back({v.x(), v.y()});
+  return json{{"type", "polygon"}, {"vertices", vertices}};
+}
+// The page's rig object (web/rig_layers.js): the shapes in ball radii, and the verdict with the
+// margins as [name, value] pairs (names from the data never become object keys of the page).
+json RigToJson(const ViewRig& rig) {
+  const RigLimits& l = rig.limits;
+  json j{{"clearance", l.clearance}, {"x0", {rig.stroke_origin.x(), rig.stroke_origin.y()}}};
+  if (l.plate) j["plate"] = ShapeToJson(*l.plate);
+  json obstacles = json::array();
+  for (const PlateShape& o : l.obstacles) obstacles.push_back(ShapeToJson(o));
+  j["obstacles"] = obstacles;
+  if (l.stroke) j["stroke"] = {l.stroke->x(), l.stroke->y()};
+  if (rig.checked) {
+    json margins = json::array();
+    for (const auto& [name, value] : rig.margins) margins.push_back(json::array({name, value}));
+    j["check"] = json{{"passed", rig.passed}, {"samples", rig.samples}, {"margins", margins},
+                      {"violations", rig.violations}, {"active", rig.active}, {"blocking", rig.blocking},
+                      {"constrained", rig.constrained}, {"objective", rig.objective}};
+  }
+  return j;
+}
 }  // namespace
 
 json ViewDataToJson(const ViewData& d) {
@@ -695,6 +778,7 @@ json ViewDataToJson(const ViewData& d) {
                             {"dv", {i.plate_velocity_change.x(), i.plate_velocity_change.y(), i.plate_velocity_change.z()}}});
   j["impulses"] = impulses;
   if (d.has_goal) j["goal"] = {d.goal.x(), d.goal.y()};
+  if (d.rig) j["rig"] = RigToJson(*d.rig);
   return j;
 }
 

@@ -7,11 +7,13 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "common/json_output.h"
+#include "plateball/rig_limits.h"
 
 namespace plateball::tools::view {
 
@@ -62,6 +64,22 @@ struct ViewImpulse {
   Eigen::Vector3d plate_velocity_change = Eigen::Vector3d::Zero();
 };
 
+/// A steer result's rig (rig_limits.h): the problem's limits, drawn on the plates, and the verdict of
+/// the result's independent replay check (CheckRigLimits), shown in the info panel.
+struct ViewRig {
+  RigLimits limits;  ///< from the problem file, lengths in ball radii
+  /// x0, where the stroke is measured from: the upper plate's reference point (the point above
+  /// the contact point's start) stays in x0 + [-s_x, s_x] x [-s_y, s_y].
+  Eigen::Vector2d stroke_origin = Eigen::Vector2d::Zero();
+  bool checked = false;  ///< the result carries the rig object (the fields below)
+  bool passed = false;
+  long long samples = 0;  ///< contact points the replay checked
+  bool constrained = false;
+  std::string objective;
+  std::vector<std::pair<std::string, double>> margins;  ///< limit, smallest bound - value
+  std::vector<std::string> violations, active, blocking;
+};
+
 /// Everything the page draws; times are the motion's own (normalised units).
 struct ViewData {
   std::string kind;   ///< "simulate", "plan", "isoparallel", "steer", "montecarlo"
@@ -81,6 +99,7 @@ struct ViewData {
   /// Largest |A - A_result| (max entry) where the re-simulation meets an orientation the result
   /// reports (arc ends, samples): how well the view reproduces the file.
   double resimulation_mismatch = 0.0;
+  std::optional<ViewRig> rig;  ///< a steer result whose problem has a rig section
 };
 
 /// Options of the view: a problem file for results whose planned path is not in the JSON

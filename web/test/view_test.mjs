@@ -2,7 +2,7 @@
 // chromium and web/node_modules/playwright-core are found:
 //   node web/test/view_test.mjs --plateball BIN --chromium /usr/bin/chromium
 //                               --problems DIR --work DIR [--screenshots DIR]
-// For each example (simulate, plan, isoparallel, steer, montecarlo) the tools write a result, `plateball view`
+// For each example (simulate, plan, isoparallel, steer, steer with a rig, montecarlo) the tools write a result, `plateball view`
 // writes the page, and headless chromium checks it: no console error, no request but the page
 // itself; after seeking to time t the ball's orientation equals A(t) of the result JSON to 1e-9;
 // two screenshots differ where the ball is and nowhere else; a 10,000-sample page stays
@@ -70,6 +70,19 @@ run(P, ["simulate", problem("simulate_example.json"), "--t-end", "1e5", "--sampl
 run(P, ["simulate", problem("simulate_example.json"), "--t-end", "1e8", "--samples", "2000", "--out", work("too_far.json")]);
 run(P, ["montecarlo", problem("circle.json"), "--trials", "40", "--noise", "impulse_magnitude=1e-3", "--noise", "timing=1e-3",
   "--threads", "1", "--quiet", "--out", work("montecarlo.json")]);
+// Steer results with a rig: Figure 7 on a disk plate with an obstacle, and every kind of shape with
+// the stroke (tests/data/view_rig_shapes.json).
+const testData = (name) => path.join(args.problems, "..", "tests", "data", name);
+run(P, ["steer", problem("figure7_rig.json"), "--out", work("rig.json")]);
+run(P, ["steer", testData("view_rig_shapes.json"), "--out", work("rig_shapes.json")]);
+// A rig verdict whose margin name and violation attack the page.
+{
+  const doc = readJson(work("rig.json"));
+  doc.rig.check.margins = { [hostileName]: -0.5 };
+  doc.rig.check.violations = [hostileName];
+  doc.rig.check.passed = false;
+  fs.writeFileSync(work("rig_hostile.json"), JSON.stringify(doc));
+}
 const pages = {
   simulate: ["simulate.json"],
   plan: ["plan.json"],  // the problem file named in the result's header
@@ -79,6 +92,9 @@ const pages = {
   hostile: ["hostile.json"],
   far: ["far.json"],
   montecarlo: ["montecarlo.json"],
+  rig: ["rig.json"],
+  rig_shapes: ["rig_shapes.json"],
+  rig_hostile: ["rig_hostile.json"],
 };
 for (const [name, [result, ...rest]] of Object.entries(pages))
   run(P, ["view", work(result), "--html", work(name + ".html"), ...rest]);
@@ -281,6 +297,68 @@ for (const name of ["simulate", "plan", "isoparallel", "steer"]) {
   const lines = await page.evaluate(() => window.plateballView.gridLines());
   check(log.errors.length === 0 && lines > 0 && lines <= 2 * 201,
     "far: a motion over 1e5 ball radii draws with a scaled grid", lines + " grid lines, " + log.errors.join(" | "));
+  await context.close();
+}
+
+// ------------------------------------------------------------ rig limits
+// The layers drawn are the problem file's shapes; the panel's margins are the result's replay
+// check, as text; switching the rig layers off changes the picture.
+for (const [name, file, problemFile] of [["rig", "rig.json", problem("figure7_rig.json")],
+  ["rig_shapes", "rig_shapes.json", testData("view_rig_shapes.json")]]) {
+  const { page, log, context } = await open(name);
+  const doc = readJson(work(file));
+  const rigFile = readJson(problemFile).rig;
+  const [, t1] = await page.evaluate(() => window.plateballView.range());
+  await seek(page, 0.6 * t1);
+  const shown = await page.evaluate(() => ({
+    layers: window.plateballView.rigLayers(),
+    margins: [...document.querySelectorAll("#rig-margins tr")].slice(1).map((tr) => [...tr.cells].map((c) => c.textContent)),
+    verdict: document.getElementById("rig-verdict").textContent,
+    legend: document.getElementById("legend").textContent,
+  }));
+  const margins = Object.entries(doc.rig.check.margins);
+  const marginsShown = margins.length === shown.margins.length &&
+    margins.every(([k, v], i) => shown.margins[i][0] === k && Math.abs(Number(shown.margins[i][1]) - v) <= 1e-3 * Math.abs(v));
+  const plate = rigFile.plate.type === "disk"
+    ? shown.layers.plate.type === "disk" && shown.layers.plate.radius === rigFile.plate.radius
+    : JSON.stringify(shown.layers.plate.vertices) === JSON.stringify(rigFile.plate.vertices);
+  const stroke = !rigFile.stroke ? shown.layers.stroke === null && !shown.legend.includes("stroke")
+    : shown.layers.stroke.half.join() === rigFile.stroke.join() && shown.legend.includes("upper plate's stroke");
+  check(plate && stroke && shown.layers.obstacles.length === rigFile.obstacles.length && marginsShown &&
+    shown.verdict.startsWith("Limits met in the replay check: " + doc.rig.check.samples + " contact points"),
+    name + ": the rig's plate, obstacles and stroke drawn, the replay check's verdict and margins in the panel",
+    JSON.stringify(shown.margins) + " " + shown.verdict);
+  const clip = await page.evaluate(() => {
+    const r = document.querySelector("#scene canvas").getBoundingClientRect();
+    return { x: r.left, y: r.top, width: r.width, height: r.height };
+  });
+  const withRig = await page.screenshot({ clip });
+  if (args.screenshots && name === "rig_shapes") await page.screenshot({ path: path.join(args.screenshots, "view_rig.png") });
+  const frames = await page.evaluate(() => window.plateballView.frames());
+  await page.uncheck("#show-rig");
+  await page.waitForFunction((f) => window.plateballView.frames() > f, frames);
+  const withoutRig = await page.screenshot({ clip });
+  check(!withRig.equals(withoutRig), name + ": the rig layers draw (the picture changes when they are switched off)");
+  check(log.errors.length === 0 && log.requests.length === 0, name + ": no console errors, no network requests",
+    log.errors.concat(log.requests).join(" | "));
+  await context.close();
+}
+
+{
+  const { page, log, context } = await open("rig_hostile");
+  const shown = await page.evaluate(() => ({
+    margins: [...document.querySelectorAll("#rig-margins tr")].slice(1).map((tr) => [...tr.cells].map((c) => c.textContent)),
+    facts: [...document.querySelectorAll("#rig-facts dd")].map((d) => d.textContent),
+    verdict: document.getElementById("rig-verdict").textContent,
+    failClass: document.querySelector("#rig-margins td.fail") !== null,
+    scripts: document.scripts.length,
+  }));
+  check(shown.margins.length === 1 && shown.margins[0][0] === hostileName && shown.facts.includes(hostileName) &&
+    shown.verdict.startsWith("Limits NOT met in the replay check") && shown.failClass && shown.scripts === 3,
+    "rig_hostile: a margin name and a violation with \"<!--<script>\" are shown verbatim as text, the negative margin marked",
+    JSON.stringify(shown));
+  check(log.errors.length === 0 && log.requests.length === 0, "rig_hostile: no console errors, no network requests",
+    log.errors.concat(log.requests).join(" | "));
   await context.close();
 }
 
