@@ -154,4 +154,22 @@ print('fitted problem read back: period', sim['period'])
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   set_tests_properties(cli.identify.fitted_problem_is_a_problem_file PROPERTIES TIMEOUT 120 LABELS cli
                        PASS_REGULAR_EXPRESSION "fitted problem read back")
+  # With orientations the fitted problem carries the fitted frame: simulate starts from it.
+  add_test(NAME cli.identify.fitted_orientation_is_the_problem_start
+    COMMAND /usr/bin/python3 -c "
+import json, subprocess, sys
+exe, out = sys.argv[1], sys.argv[2]
+doc = json.loads(subprocess.run([exe, 'identify', 'tests/data/identify_orientation_track.csv', '--no-profile'], check=True, capture_output=True, text=True).stdout)
+json.dump(doc['fitted_problem'], open(out, 'w'))
+sim = json.loads(subprocess.run([exe, 'simulate', out, '--samples', '2'], check=True, capture_output=True, text=True).stdout)
+w, x, y, z = doc['fit']['orientation']
+a = [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+err = max(abs(a[i][j] - sim['initial']['orientation'][i][j]) for i in range(3) for j in range(3))
+assert err < 1e-12, err
+print('fitted orientation read back: largest entry difference', err)
+" $<TARGET_FILE:plateball_cli> ${dir}/fitted_orientation_problem.json
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(cli.identify.fitted_orientation_is_the_problem_start PROPERTIES TIMEOUT 120 LABELS cli
+                       PASS_REGULAR_EXPRESSION "fitted orientation read back")
 endif()
