@@ -271,7 +271,7 @@ void ImpulsiveJacobian(const double* q, const double* tau, std::size_t n, const 
         return;
       }
       const auto i = static_cast<Eigen::Index>(first[f] + j);
-      jac.middleRows(2 * i, 2) = g.template middleRows<2>(3) * local + d.bottomRows(2);
+      jac.middleRows(2 * i, 2) = g.middleRows(3, 2) * local + d.bottomRows(2);
       // omega and v0 on Jets of the local directions: z from the state, K and lambda the directions 3-5.
       typename Rhs::J z[3];
       for (int c = 0; c < 3; ++c) {
@@ -302,11 +302,11 @@ void ImpulsiveJacobian(const double* q, const double* tau, std::size_t n, const 
     const FlightStart& next = flights[f + 1];
     const Eigen::Matrix<double, 2, 7> gi = ImpulseDerivatives(next.z, node.k, q[kImpulse0 + static_cast<Eigen::Index>(f)], q[0]);
     Eigen::MatrixXd dn(7, p);
-    dn.topRows(3) = end.template topRows<3>() * local;
+    dn.topRows(3) = end.topRows(3) * local;
     dn.middleRows(3, 2) = gi.leftCols(3) * dn.topRows(3) + gi.middleCols(3, 2) * d.middleRows(3, 2);
     dn.middleRows(3, 2).col(kImpulse0 + static_cast<Eigen::Index>(f)) += gi.col(5);
     dn.middleRows(3, 2).col(0) += gi.col(6);
-    dn.bottomRows(2) = d.bottomRows(2) + end.template middleRows<2>(3) * local;
+    dn.bottomRows(2) = d.bottomRows(2) + end.middleRows(3, 2) * local;
     if constexpr (Frame) {
       const Eigen::Matrix<double, 9, Eigen::Dynamic> dphi = end.template bottomRows<9>() * local;
       Eigen::MatrixXd dan(9, p);
