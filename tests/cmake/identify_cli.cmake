@@ -104,6 +104,9 @@ plateball_cli_test(identify.orientation 0
 plateball_cli_test(identify.body_rate 0
   REGEX "\"body_rate_given\": true.*\"status\": \"identified\".*\"lambda\": 1\\.29.*\"body_rate\": {[^}]*\"rms\""
   -- identify tests/data/identify_imu_track.csv --no-profile)
+# The same body-rate track as JSON ("body_rate": [[wx, wy, wz], ...]): the same fit to the last digit.
+plateball_cli_test(identify.body_rate_json 0 REGEX "\"body_rate_given\": true.*\"lambda\": 1\\.2992705109732285,"
+  -- identify tests/data/identify_imu_track.json --no-profile)
 # Bad orientation and body-rate columns: exit 3 naming the column and the row.
 set(q_rows "")
 set(w_rows "")
