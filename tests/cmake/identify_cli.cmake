@@ -104,6 +104,10 @@ plateball_cli_test(identify.orientation 0
 plateball_cli_test(identify.body_rate 0
   REGEX "\"body_rate_given\": true.*\"status\": \"identified\".*\"lambda\": 1\\.29.*\"body_rate\": {[^}]*\"rms\""
   -- identify tests/data/identify_imu_track.csv --no-profile)
+plateball_cli_test(identify.orientation_svg 0 REGEX "<svg.*residuals, rms.*orientation residuals, rms"
+  --cat ${CMAKE_CURRENT_BINARY_DIR}/cli_identify_orientation.svg
+  -- identify tests/data/identify_orientation_track.csv --no-profile --out ${dir}/orientation.json
+     --svg ${CMAKE_CURRENT_BINARY_DIR}/cli_identify_orientation.svg)
 # The same body-rate track as JSON ("body_rate": [[wx, wy, wz], ...]): the same fit to the last digit.
 plateball_cli_test(identify.body_rate_json 0 REGEX "\"body_rate_given\": true.*\"lambda\": 1\\.2992705109732285,"
   -- identify tests/data/identify_imu_track.json --no-profile)

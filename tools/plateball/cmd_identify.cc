@@ -22,6 +22,7 @@
 #include "plateball/free_motion.h"
 #include "plateball/identify.h"
 #include "plateball/problem.h"
+#include "plateball/so3.h"
 
 namespace plateball::tools {
 namespace {
@@ -357,11 +358,42 @@ SvgFigure ResidualFigure(const IdentifyProblem& track, const IdentifySummary& s,
   return fig;
 }
 
-/// The two panels stacked in one SVG (each rendered by SvgFigure, nested at its offset).
+/// With orientations: the angle |LogSO3(A_i^T A(t_i))| (rad) against time; with body rates the
+/// components of measured - fitted A^T omega.
+SvgFigure FrameResidualFigure(const IdentifyProblem& track, const IdentifySummary& s) {
+  SvgFigure fig(640, 340);
+  fig.EqualAspect(false);
+  const bool orientation = !s.fitted_orientation.empty();
+  fig.Title(orientation ? "orientation residuals, rms " + Short(s.orientation_rms_residual) + " rad"
+                        : "body-rate residuals, rms " + Short(s.body_rate_rms_residual));
+  fig.AxisLabels("t", orientation ? "angle between measured and fitted (rad)" : "measured - fitted (rad per time unit)");
+  fig.Polyline({{track.t.front(), 0.0}, {track.t.back(), 0.0}}, {"gray", 1.0, "4,3", "none"});
+  const char* colours[3] = {"#d62728", "#2ca02c", "#1f77b4"};
+  if (orientation) {
+    std::vector<Eigen::Vector2d> angle;
+    for (std::size_t i = 0; i < track.t.size(); ++i) {
+      const Eigen::Vector4d& q = s.fitted_orientation[i];
+      angle.emplace_back(track.t[i], RotationAngle(QuaternionToRotation(track.orientation[i]), QuaternionToRotation(q)));
+    }
+    fig.Polyline(angle, {colours[0], 1.0, "", "none"});
+    fig.Legend("orientation residual angle", {colours[0], 1.0, "", "none"});
+    return fig;
+  }
+  for (int c = 0; c < 3; ++c) {
+    std::vector<Eigen::Vector2d> r;
+    for (std::size_t i = 0; i < track.t.size(); ++i) r.emplace_back(track.t[i], track.body_rate[i][c] - s.fitted_body_rate[i][c]);
+    fig.Polyline(r, {colours[c], 1.0, "", "none"});
+    fig.Legend(std::string("body rate ") + "xyz"[c] + " residual", {colours[c], 1.0, "", "none"});
+  }
+  return fig;
+}
+
+/// The panels stacked in one SVG (each rendered by SvgFigure, nested at its offset).
 void WriteFigure(const std::string& path, const IdentifyProblem& track, const IdentifySummary& s, double radius) {
   const bool fitted = !s.fitted.empty() && s.mu > 0;
   std::vector<std::string> panels{PlateFigure(track, s, radius, fitted).Render()};
   if (fitted) panels.push_back(ResidualFigure(track, s, radius).Render());
+  if (fitted && (!s.fitted_orientation.empty() || !s.fitted_body_rate.empty())) panels.push_back(FrameResidualFigure(track, s).Render());
   double height = 0;
   std::string body;
   for (std::string& panel : panels) {
