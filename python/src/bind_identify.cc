@@ -152,7 +152,7 @@ void BindIdentify(py::module_& m) {
       .def_readonly("orientation_rms_residual", &IdentifySummary::orientation_rms_residual,
                     "RMS component of the rotation vectors LogSO3(A_i^T A(t_i)) (rad).")
       .def_readonly("orientation_max_residual", &IdentifySummary::orientation_max_residual,
-                    "Largest angle |LogSO3(A_i^T A(t_i))| (rad).")
+                    "Largest angle of the rotation LogSO3(A_i^T A(t_i)) (rad).")
       .def_property_readonly("fitted_body_rate", [](const IdentifySummary& s) {
             return Stack<3>(s.fitted_body_rate, [](const Eigen::Vector3d& v) { return v.transpose(); });
           }, "With measured body rates: the fitted A^T omega (t_i), (n, 3).")
