@@ -192,6 +192,26 @@ TEST(IdentifyFrame, OrientationsIdentifyLambdaOnAShortFlightThatPositionsDoNot) 
   }
 }
 
+// At lambda = 1 every state rolls on a straight line that shows only the period: the contact track
+// is reported not identifying lambda; its orientations show the turn about the axis (v0 != 0) and
+// identify lambda = 1 within its standard error.
+TEST(IdentifyFrame, OrientationsIdentifyLambdaOnTheStraightTrackOfLambdaOne) {
+  TrackSpec spec;
+  spec.lambda = 1.0;
+  spec.sigma = 2e-3;
+  spec.sigma_frame = 2e-3;
+  spec.seed = 9;
+  const IdentifySummary contact = Identify(MakeTrack(spec), NoProfile());
+  EXPECT_EQ(contact.status, IdentifyStatus::kLambdaNotIdentified) << contact.BriefReport();
+  EXPECT_TRUE(contact.straight_path);
+  spec.orientation = true;
+  const IdentifySummary s = Identify(MakeTrack(spec), NoProfile());
+  ASSERT_EQ(s.status, IdentifyStatus::kIdentified) << s.BriefReport();
+  EXPECT_TRUE(s.straight_path);
+  EXPECT_LT(std::abs(s.lambda - 1.0), 4.0 * s.standard_errors[0]);
+  std::printf("straight track of lambda = 1: lambda %.6f +- %.2g with orientations\n", s.lambda, s.standard_errors[0]);
+}
+
 /// Seeds whose 95% profile interval of lambda covers the truth, over `seeds` noisy short tracks.
 int Coverage(TrackSpec spec, int seeds) {
   int covered = 0;
