@@ -9,8 +9,12 @@
 // problems/circle.json planned with 8 impulses (lambda = 2, mu = 1; 250 per flight, each flight
 // FreeMotion from the plan's state after its impulse), noise 0.005, the 7 impulse times given;
 // counters lambda_error, lambda_se and the largest delta psi error over its standard error.
+// The frame variants: the same 2,000 samples with measured orientations (the motion's A(t) from
+// A0 = identity turned onto the axis, times exp(hat(e)), e ~ N(0, 0.005^2 I)) or body rates A^T
+// omega (noise 0.005), sigma given; counters lambda_error and lambda_se.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -20,6 +24,7 @@
 #include "plateball/identify.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/problem_io.h"
+#include "plateball/so3.h"
 #include "plateball/task_adapters.h"
 
 namespace {
@@ -114,6 +119,49 @@ void BM_IdentifyImpulsesFull(benchmark::State& state) {
   state.counters["iterations"] = s.iterations;
 }
 
+/// The 2,000-sample track with sigma 0.005 given and orientations or body rates (see the header).
+IdentifyProblem FrameTrack(bool orientation) {
+  const FreeMotion motion = FreeMotion::FromAngles(BallModel::FromLambda(kLambda), kAngles, kMu, kX0);
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  IdentifyProblem p;
+  constexpr int kSamples = 2000;
+  constexpr double kSigma = 0.005;
+  for (int i = 0; i < kSamples; ++i) {
+    const double t = 2.0 * motion.Period() * i / (kSamples - 1);
+    const MotionSample m = motion.At(t);
+    p.t.push_back(t);
+    p.x.push_back(m.x + kSigma * Eigen::Vector2d(noise(rng), noise(rng)));
+    p.sigma.push_back(kSigma);
+    const Eigen::Vector3d e(noise(rng), noise(rng), noise(rng));
+    if (orientation) {
+      const Eigen::Quaterniond q(Eigen::Matrix3d(m.A * ExpSO3(kSigma * e)));
+      p.orientation.emplace_back(q.w(), q.x(), q.y(), q.z());
+      p.sigma_orientation.push_back(kSigma);
+    } else {
+      p.body_rate.push_back(m.A.transpose() * m.state.omega + kSigma * e);
+      p.sigma_body_rate.push_back(kSigma);
+    }
+  }
+  return p;
+}
+
+void RunFrame(benchmark::State& state, bool orientation) {
+  const IdentifyProblem p = FrameTrack(orientation);
+  IdentifySummary s;
+  for (auto _ : state) {
+    s = Identify(p);
+    benchmark::DoNotOptimize(s.status);
+  }
+  if (s.status != IdentifyStatus::kIdentified) state.SkipWithError(s.BriefReport().c_str());
+  state.counters["lambda_error"] = std::abs(s.lambda - kLambda);
+  state.counters["lambda_se"] = s.standard_errors.empty() ? -1 : s.standard_errors[0];
+  state.counters["interval_half_width"] = 0.5 * (s.lambda_high - s.lambda_low);
+  state.counters["starts"] = s.starts;
+}
+
+void BM_IdentifyOrientationFull(benchmark::State& state) { RunFrame(state, true); }
+void BM_IdentifyBodyRateFull(benchmark::State& state) { RunFrame(state, false); }
 void BM_IdentifyNoisyFull(benchmark::State& state) { Run(state, 0.005, true, false); }
 void BM_IdentifyNoisyNoProfile(benchmark::State& state) { Run(state, 0.005, false, false); }
 void BM_IdentifyNoisyFromGuess(benchmark::State& state) { Run(state, 0.005, false, true); }
@@ -124,6 +172,8 @@ BENCHMARK(BM_IdentifyNoisyNoProfile)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyNoisyFromGuess)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyNoiselessFull)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyImpulsesFull)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyOrientationFull)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyBodyRateFull)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -20,6 +20,7 @@
 #include "identify_fit.h"
 #include "identify_model.h"
 #include "kinematics.h"
+#include "plateball/so3.h"
 
 namespace plateball {
 
@@ -107,6 +108,78 @@ std::string ValidateSpin(const IdentifyProblem& p) {
   return {};
 }
 
+/// A column of one row per time (or empty when optional): its row count.
+std::string RowsMessage(const char* field, std::size_t rows, std::size_t times, const std::string& why = {}) {
+  return internal::InvalidValueMessage(std::string(field) + " (rows)", rows,
+                                       "must have one row per time (" + std::to_string(times) + ")" + why);
+}
+
+/// One noise value: finite and > 0.
+std::string NoiseMessage(const std::string& field, double v) {
+  return std::isfinite(v) && v > 0 ? std::string() : internal::InvalidValueMessage(field, v, "must be finite and > 0");
+}
+
+/// The orientation columns: one unit quaternion per sample (to kIdentifyQuaternionTolerance), and
+/// sigma_orientation with sigma (both or neither).
+std::string ValidateOrientation(const IdentifyProblem& p) {
+  using internal::FormatNumber;
+  using internal::InvalidValueMessage;
+  if (p.orientation.empty() && p.sigma_orientation.empty()) return {};
+  const std::size_t n = p.t.size();
+  if (p.orientation.size() != n) return RowsMessage("orientation", p.orientation.size(), n);
+  if (!p.sigma_orientation.empty() && p.sigma_orientation.size() != n)
+    return RowsMessage("sigma_orientation", p.sigma_orientation.size(), n, " or be empty");
+  if (p.sigma_orientation.empty() && !p.sigma.empty())
+    return InvalidValueMessage("sigma_orientation (rows)", 0, "sigma is given: give the orientations' noise too (positions and "
+                                                              "orientations then share no common noise to estimate)");
+  if (!p.sigma_orientation.empty() && p.sigma.empty())
+    return InvalidValueMessage("sigma (rows)", 0, "sigma_orientation is given: give the positions' noise too (or neither, for one "
+                                                  "common sigma estimated in radii and radians)");
+  const char* names[4] = {"w", "x", "y", "z"};
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string row = "[" + std::to_string(i) + "]";
+    for (int c = 0; c < 4; ++c)
+      if (!std::isfinite(p.orientation[i][c]))
+        return InvalidValueMessage("orientation" + row + "." + names[c], p.orientation[i][c], "must be finite");
+    const double norm = p.orientation[i].norm();
+    if (!(std::abs(norm - 1.0) <= kIdentifyQuaternionTolerance))
+      return InvalidValueMessage("orientation" + row, "[" + FormatNumber(p.orientation[i][0]) + ", " + FormatNumber(p.orientation[i][1]) +
+                                                          ", " + FormatNumber(p.orientation[i][2]) + ", " +
+                                                          FormatNumber(p.orientation[i][3]) + "]",
+                                 "not a unit quaternion (w, x, y, z): norm " + FormatNumber(norm) + ", allowed 1 +- " +
+                                     FormatNumber(kIdentifyQuaternionTolerance));
+    if (!p.sigma_orientation.empty()) {
+      const std::string e = NoiseMessage("sigma_orientation" + row, p.sigma_orientation[i]);
+      if (!e.empty()) return e;
+    }
+  }
+  return {};
+}
+
+/// The body-rate columns: three finite rates and one sigma_body_rate > 0 per sample, sigma given,
+/// and no spin column besides (the third rate is the axial spin).
+std::string ValidateBodyRate(const IdentifyProblem& p) {
+  using internal::InvalidValueMessage;
+  if (p.body_rate.empty() && p.sigma_body_rate.empty()) return {};
+  const std::size_t n = p.t.size();
+  if (!p.spin.empty())
+    return InvalidValueMessage("body_rate (rows)", p.body_rate.size(),
+                               "give either spin or body_rate, not both (the third body rate is the axial spin)");
+  if (p.body_rate.size() != n) return RowsMessage("body_rate", p.body_rate.size(), n);
+  if (p.sigma_body_rate.size() != n) return RowsMessage("sigma_body_rate", p.sigma_body_rate.size(), n, ": measured body rates need their noise");
+  if (p.sigma.empty())
+    return InvalidValueMessage("sigma (rows)", 0, "measured body rates need sigma given too (positions and rates share no common noise to estimate)");
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string row = "[" + std::to_string(i) + "]";
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(p.body_rate[i][c]))
+        return InvalidValueMessage("body_rate" + row + "[" + std::to_string(c) + "]", p.body_rate[i][c], "must be finite");
+    const std::string e = NoiseMessage("sigma_body_rate" + row, p.sigma_body_rate[i]);
+    if (!e.empty()) return e;
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string IdentifyProblem::Validate() const {
@@ -130,8 +203,9 @@ std::string IdentifyProblem::Validate() const {
     if (!sigma.empty() && !(std::isfinite(sigma[i]) && sigma[i] > 0))
       return InvalidValueMessage("sigma" + row, sigma[i], "must be finite and > 0");
   }
-  const std::string impulses = ValidateImpulseTimes(t, impulse_times);
-  return impulses.empty() ? ValidateSpin(*this) : impulses;
+  for (const std::string& e : {ValidateImpulseTimes(t, impulse_times), ValidateSpin(*this), ValidateOrientation(*this), ValidateBodyRate(*this)})
+    if (!e.empty()) return e;
+  return {};
 }
 
 std::string IdentifyOptions::Validate() const {
@@ -202,6 +276,17 @@ TrackData MakeTrackData(const IdentifyProblem& problem, const IdentifyOptions& o
   for (double t : problem.impulse_times) d.impulse_tau.push_back(t - problem.t[0]);
   d.spin = problem.spin;  // rad per time unit: the time is not scaled, nor is v0 by the radius
   for (double sigma : problem.sigma_spin) d.spin_weight.push_back(1.0 / sigma);
+  for (std::size_t i = 0; i < problem.orientation.size(); ++i) {
+    const Eigen::Vector4d& q = problem.orientation[i];
+    double a[9];
+    internal::RowMajorFromMatrix(QuaternionToRotation(q, "orientation[" + std::to_string(i) + "]"), a);
+    d.orientation.insert(d.orientation.end(), a, a + 9);
+    d.orientation_weight.push_back(problem.sigma_orientation.empty() ? 1.0 : 1.0 / problem.sigma_orientation[i]);
+  }
+  for (std::size_t i = 0; i < problem.body_rate.size(); ++i) {
+    d.body_rate.insert(d.body_rate.end(), problem.body_rate[i].data(), problem.body_rate[i].data() + 3);
+    d.body_rate_weight.push_back(1.0 / problem.sigma_body_rate[i]);
+  }
   return d;
 }
 
@@ -213,6 +298,42 @@ double TrackSpread(const TrackData& d) {
   double s = 0;
   for (std::size_t i = 0; i < n; ++i) s += (Eigen::Vector2d(d.x[2 * i], d.x[2 * i + 1]) - mean).squaredNorm();
   return std::sqrt(s / static_cast<double>(n));
+}
+
+/// R as the unit quaternion (w, x, y, z) with w >= 0.
+Eigen::Vector4d QuaternionOf(const Eigen::Matrix3d& r) {
+  Eigen::Quaterniond q(r);
+  q.normalize();
+  const double sign = q.w() < 0 ? -1.0 : 1.0;
+  return sign * Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+}
+
+/// The orientation and body-rate parts of the residual statistics.
+void FillFrameResiduals(const TrackData& d, const internal::TrackFit& fit, IdentifySummary* s) {
+  using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  const std::size_t no = d.orientation.size() / 9, nb = d.body_rate.size() / 3;
+  double sum2 = 0.0;
+  s->fitted_orientation.clear();
+  s->orientation_max_residual = 0.0;
+  for (std::size_t i = 0; i < no; ++i) {
+    const Eigen::Matrix3d model = Eigen::Map<const RowMajor3>(fit.orientation.data() + 9 * i);
+    const Eigen::Matrix3d measured = Eigen::Map<const RowMajor3>(d.orientation.data() + 9 * i);
+    s->fitted_orientation.push_back(QuaternionOf(model));
+    const double angle = LogSO3(measured.transpose() * model).norm();
+    sum2 += angle * angle;
+    s->orientation_max_residual = std::max(s->orientation_max_residual, angle);
+  }
+  s->orientation_rms_residual = no > 0 ? std::sqrt(sum2 / static_cast<double>(3 * no)) : 0.0;
+  sum2 = 0.0;
+  s->fitted_body_rate.clear();
+  s->body_rate_max_residual = 0.0;
+  for (std::size_t i = 0; i < nb; ++i) {
+    const Eigen::Vector3d model(fit.body_rate.data() + 3 * i), measured(d.body_rate.data() + 3 * i);
+    s->fitted_body_rate.push_back(model);
+    sum2 += (model - measured).squaredNorm();
+    s->body_rate_max_residual = std::max(s->body_rate_max_residual, (model - measured).norm());
+  }
+  s->body_rate_rms_residual = nb > 0 ? std::sqrt(sum2 / static_cast<double>(3 * nb)) : 0.0;
 }
 
 /// Residual statistics of the fit at q (unweighted residuals in radii, chi^2 weighted).
@@ -229,7 +350,7 @@ void FillResiduals(const TrackData& d, const internal::TrackFit& fit, IdentifySu
   s->samples = static_cast<int>(n);
   s->rms_residual = std::sqrt(sum2 / static_cast<double>(2 * n));
   s->max_residual = max_r;
-  s->residuals = static_cast<int>(2 * n + d.spin.size());
+  s->residuals = static_cast<int>(internal::ResidualCount(d));
   s->chi_square = 2.0 * fit.cost;
   s->fitted_spin = fit.spin;
   double spin2 = 0.0;
@@ -239,6 +360,7 @@ void FillResiduals(const TrackData& d, const internal::TrackFit& fit, IdentifySu
     s->spin_max_residual = std::max(s->spin_max_residual, std::abs(fit.spin[i] - d.spin[i]));
   }
   s->spin_rms_residual = d.spin.empty() ? 0.0 : std::sqrt(spin2 / static_cast<double>(d.spin.size()));
+  FillFrameResiduals(d, fit, s);
   s->track_spread = TrackSpread(d);
 }
 
@@ -304,9 +426,13 @@ void FillStraightness(const std::vector<double>& t, IdentifySummary* s) {
   s->straight_path = s->path_deviation <= std::max(kStraightPathNoise * s->sigma, kNoiselessResidual);
 }
 
-/// The name of parameter i: kIdentifyParameterNames, then "delta_psi[k]".
-std::string ParameterName(std::size_t i) {
-  return i < static_cast<std::size_t>(kP) ? std::string(kIdentifyParameterNames[i]) : "delta_psi[" + std::to_string(i - kP) + "]";
+/// The names of the p fitted parameters: kIdentifyParameterNames, "chi" with the frame, then
+/// "delta_psi[k]".
+std::vector<std::string> ParameterNames(bool frame, std::size_t p) {
+  std::vector<std::string> names(kIdentifyParameterNames, kIdentifyParameterNames + kP);
+  if (frame) names.emplace_back("chi");
+  for (std::size_t k = 0; names.size() < p; ++k) names.push_back("delta_psi[" + std::to_string(k) + "]");
+  return names;
 }
 
 /// With a measured spin: true when it shows v0 != 0, i.e. the hypothesis v0 = 0 at every sample
@@ -330,9 +456,9 @@ void FillUnidentified(bool spin_shows_v0, IdentifySummary* s) {
   const auto& e = s->standard_errors;
   std::vector<double> scaled{e[0] / s->lambda, e[1] / s->mu, e[2], e[3], e[4],
                              e[5] / std::max(s->track_spread, 1e-300), e[6] / std::max(s->track_spread, 1e-300)};
-  scaled.insert(scaled.end(), e.begin() + kP, e.end());  // delta psi: radians, like the angles
+  scaled.insert(scaled.end(), e.begin() + kP, e.end());  // chi and delta psi: radians, like the angles
   for (std::size_t i = 0; i < scaled.size(); ++i)
-    if (!(scaled[i] <= kHugeError) || (i == 0 && StraightBlocksLambda(*s, spin_shows_v0))) s->unidentified.push_back(ParameterName(i));
+    if (!(scaled[i] <= kHugeError) || (i == 0 && StraightBlocksLambda(*s, spin_shows_v0))) s->unidentified.push_back(s->parameters[i]);
 }
 
 /// The profile threshold of a 95% interval: chi^2_1 with given sigma, F(1, m - p) with estimated.
@@ -356,7 +482,7 @@ bool RejectsFit(const IdentifySummary& s, const IdentifyOptions& o, int dof, std
   return s.rms_residual > o.max_relative_residual * s.track_spread;
 }
 
-void FillFit(const internal::TrackFit& fit, IdentifySummary* s) {
+void FillFit(const internal::TrackFit& fit, bool frame, IdentifySummary* s) {
   s->lambda = fit.q[0];
   s->mu = fit.q[1];
   s->angles = AngleState{fit.q[2], fit.q[3], fit.q[4]}.Canonicalize();
@@ -364,7 +490,11 @@ void FillFit(const internal::TrackFit& fit, IdentifySummary* s) {
   s->period = 2.0 * M_PI / std::sqrt(s->mu);
   s->iterations = fit.iterations;
   s->delta_psi.clear();
-  for (std::size_t k = kP; k < fit.q.size(); ++k) s->delta_psi.push_back(internal::WrapPi(fit.q[k]));
+  const std::size_t first_impulse = kP + (frame ? 1 : 0);
+  for (std::size_t k = first_impulse; k < fit.q.size(); ++k) s->delta_psi.push_back(internal::WrapPi(fit.q[k]));
+  s->frame_fitted = frame;
+  s->parameters = ParameterNames(frame, fit.q.size());
+  if (frame) s->orientation = QuaternionOf(internal::StartFrame(fit.q[2], fit.q[3], fit.q[7]));
 }
 
 /// The fitted state at each flight's start (the flights of the model at the optimum).
@@ -401,7 +531,7 @@ void Classify(const IdentifyOptions& o, bool spin_shows_v0, IdentifySummary* s) 
        << s->path_deviation << " radii, within the noise " << s->sigma
        << "). Every lambda gives a straight path when the axial spin v0 is 0, and every state gives one at lambda = 1 "
           "(the ball rolls like a sphere), so the track fixes the speed but not lambda; a track with a curved, "
-          "drifting contact path identifies lambda, and so does a measured spin v0 != 0 (docs/identify.md)"
+          "drifting contact path identifies lambda, and so do a measured spin v0 != 0, orientations or body rates (docs/identify.md)"
        << (s->fitted_spin.empty() ? "" : "; the measured spin does not show v0 != 0");
   } else if (s->lambda_identified) {
     s->status = IdentifyStatus::kIdentified;
@@ -411,7 +541,8 @@ void Classify(const IdentifyOptions& o, bool spin_shows_v0, IdentifySummary* s) 
     os << "lambda not identified: relative standard error " << s->lambda_relative_error
        << (closed || !o.profile_interval ? "" : ", the 95% profile interval does not close in [lambda_min, lambda_max]")
        << "; the track fixes mu (the period 2 pi/sqrt(mu)) and the state but carries (almost) no information on "
-          "lambda (docs/identify.md: a track with axial spin v0 != 0, i.e. a curved, drifting contact path, does)";
+          "lambda (docs/identify.md: a track with axial spin v0 != 0, i.e. a curved, drifting contact path, does, and so do "
+          "measured orientations or body rates, whose reorientation along the path depends on lambda)";
   }
   s->message = os.str();
 }
@@ -435,7 +566,7 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
   s.sigma_estimated = problem.sigma.empty();
   try {
     internal::TrackFit fit = internal::FitTrack(data, options, &s.starts);
-    FillFit(fit, &s);
+    FillFit(fit, data.HasFrame(), &s);
     FillFlights(data, fit, options.integration, &s);
     FillResiduals(data, fit, &s);
     const int dof = s.residuals - static_cast<int>(fit.q.size());
@@ -453,7 +584,8 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
     }
     FillCovariance(fit, s2, &s);
     FillStraightness(problem.t, &s);
-    const bool spin_shows_v0 = SpinShowsAxialSpin(data, fit);
+    // Orientations and body rates see v0 and the reorientation themselves: the standard error decides.
+    const bool spin_shows_v0 = data.HasFrame() || SpinShowsAxialSpin(data, fit);
     FillUnidentified(spin_shows_v0, &s);
     s.lambda_low = s.lambda_high = kNaN;
     if (options.profile_interval && std::isfinite(s.standard_errors[0]) && s.rms_residual < kNoiselessResidual) {

@@ -11,11 +11,13 @@
 
 #include "identify_model.h"
 #include "kinematics.h"
+#include "plateball/so3.h"
 
 namespace plateball::internal {
 namespace {
 
-constexpr int kP = kTrackParameters;  // the parameters without the impulses
+constexpr int kP = kTrackParameters;  // the parameters without chi and the impulses
+constexpr double kInf = std::numeric_limits<double>::infinity();
 // The multi-start and the window continuation only have to land in the right basin: looser
 // tolerances, few samples per window.
 constexpr double kStartTolerance = 1e-6;
@@ -49,40 +51,83 @@ constexpr std::size_t kImpulsesPerWindow = 2;
 constexpr double kProfileNoiseFraction = 1e-4;
 constexpr double kProfileMaxTolerance = 1e-7;
 
-/// The number of fitted parameters: the 7 of the start and one delta psi per impulse.
-std::size_t ParameterCount(const TrackData& d) { return kP + d.impulse_tau.size(); }
+/// The parameters of the start: the 7, and chi with the frame.
+std::size_t StartCount(const TrackData& d) { return kP + (d.HasFrame() ? 1 : 0); }
+
+/// The number of fitted parameters: those of the start and one delta psi per impulse.
+std::size_t ParameterCount(const TrackData& d) { return StartCount(d) + d.impulse_tau.size(); }
 
 IntegrationOptions JacobianOptions(const IntegrationOptions& o) {
   return {std::max(kJacobianTolerance, o.absolute_tolerance), std::max(kJacobianTolerance, o.relative_tolerance), o.max_steps};
 }
 
-/// The residual count: 2 per sample, and one per sample with a measured spin.
-std::size_t ResidualCount(const TrackData& d) { return 2 * d.tau.size() + d.spin.size(); }
+/// The model's values at q (TrackFit's model, spin, orientation, body_rate).
+struct ModelValues {
+  std::vector<double> x, spin, orientation, body_rate;
+};
 
-/// The model at q: x(tau_i) into *model (2n), v0(tau_i) into *spin (when the track has a spin),
-/// and with jacobian != nullptr the (unweighted) Jacobian of the residuals, row-major
-/// (ResidualCount x ParameterCount). Throws when an integration fails.
-void EvaluateModel(const TrackData& d, const double* q, const IntegrationOptions& o, std::vector<double>* model,
-                   std::vector<double>* spin, std::vector<double>* jacobian) {
-  const std::size_t n = d.tau.size(), p = ParameterCount(d);
-  model->resize(2 * n);
-  spin->resize(d.spin.size());
-  if (jacobian != nullptr) jacobian->resize(ResidualCount(d) * p);
-  const IntegrationOptions jo = JacobianOptions(o);
-  const SpinOutput spin_out{spin->data(), jacobian != nullptr ? jacobian->data() + 2 * n * p : nullptr};
-  EvaluateImpulsiveTrack(q, d.tau.data(), n, d.impulse_tau, o, model->data(), jacobian != nullptr ? jacobian->data() : nullptr,
-                         &jo, nullptr, d.spin.empty() ? nullptr : &spin_out);
+/// The inverse of SO(3)'s right Jacobian at the rotation vector e: Log(R Exp(d)) = Log(R) +
+/// JrInv(Log R) d + O(d^2).
+Eigen::Matrix3d RightJacobianInverse(const Eigen::Vector3d& e) {
+  const double a = e.norm();
+  // (1/a^2 - (1 + cos a)/(2 a sin a)), its series 1/12 + a^2/720 near 0 (cancellation).
+  const double c = a < 1e-4 ? 1.0 / 12.0 + a * a / 720.0 : 1.0 / (a * a) - (1.0 + std::cos(a)) / (2.0 * a * std::sin(a));
+  const Eigen::Matrix3d h = Hat(e);
+  return Eigen::Matrix3d::Identity() + 0.5 * h + c * h * h;
 }
 
-/// The weight of residual k: 1/sigma of its sample's position, then 1/sigma_spin.
+/// The unweighted residuals at q into *r (model - measured; for the orientation
+/// LogSO3(A_i^T A(tau_i))), the model's values into *m, and with jacobian != nullptr dr/dq
+/// row-major (ResidualCount x ParameterCount). Throws when an integration fails.
+void EvaluateModel(const TrackData& d, const double* q, const IntegrationOptions& o, ModelValues* m, std::vector<double>* r,
+                   std::vector<double>* jacobian) {
+  const std::size_t n = d.tau.size(), p = ParameterCount(d), ns = d.spin.size();
+  const std::size_t no = d.orientation.size() / 9, nb = d.body_rate.size() / 3;
+  m->x.resize(2 * n);
+  m->spin.resize(ns);
+  m->orientation.resize(9 * no);
+  m->body_rate.resize(3 * nb);
+  if (jacobian != nullptr) jacobian->resize(ResidualCount(d) * p);
+  double* j = jacobian != nullptr ? jacobian->data() : nullptr;
+  const std::size_t row_spin = 2 * n, row_orientation = row_spin + ns, row_rate = row_orientation + 3 * no;
+  auto part = [&](std::vector<double>& v, std::size_t row) { return v.empty() ? nullptr : (j != nullptr ? j + row * p : nullptr); };
+  BodyOutput body;
+  body.spin = ns > 0 ? m->spin.data() : nullptr;
+  body.spin_jacobian = ns > 0 ? part(m->spin, row_spin) : nullptr;
+  body.orientation = no > 0 ? m->orientation.data() : nullptr;
+  body.orientation_jacobian = no > 0 ? part(m->orientation, row_orientation) : nullptr;
+  body.body_rate = nb > 0 ? m->body_rate.data() : nullptr;
+  body.body_rate_jacobian = nb > 0 ? part(m->body_rate, row_rate) : nullptr;
+  const IntegrationOptions jo = JacobianOptions(o);
+  EvaluateImpulsiveTrack(q, d.tau.data(), n, d.impulse_tau, o, m->x.data(), j, &jo, nullptr,
+                         ns + no + nb > 0 ? &body : nullptr);
+  r->resize(ResidualCount(d));
+  for (std::size_t k = 0; k < 2 * n; ++k) (*r)[k] = m->x[k] - d.x[k];
+  for (std::size_t k = 0; k < ns; ++k) (*r)[row_spin + k] = m->spin[k] - d.spin[k];
+  using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  for (std::size_t i = 0; i < no; ++i) {
+    const Eigen::Matrix3d measured = Eigen::Map<const RowMajor3>(d.orientation.data() + 9 * i);
+    const Eigen::Matrix3d model = Eigen::Map<const RowMajor3>(m->orientation.data() + 9 * i);
+    const Eigen::Vector3d e = LogSO3(measured.transpose() * model);
+    Eigen::Map<Eigen::Vector3d>(r->data() + row_orientation + 3 * i) = e;
+    if (j == nullptr) continue;
+    using Rows = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::RowMajor>;
+    Eigen::Map<Rows> rows(j + (row_orientation + 3 * i) * p, 3, static_cast<Eigen::Index>(p));
+    rows = RightJacobianInverse(e) * Rows(rows);
+  }
+  for (std::size_t k = 0; k < 3 * nb; ++k) (*r)[row_rate + k] = m->body_rate[k] - d.body_rate[k];
+}
+
+/// The weight of residual k: 1/sigma of its sample's position, then 1/sigma_spin,
+/// 1/sigma_orientation, 1/sigma_body_rate.
 double Weight(const TrackData& d, std::size_t k) {
   const std::size_t n2 = 2 * d.tau.size();
-  return k < n2 ? d.weight[k / 2] : d.spin_weight[k - n2];
-}
-
-/// Residual k, unweighted: x(tau_i) - x_i, then v0(tau_i) - v0_i.
-double Difference(const TrackData& d, const std::vector<double>& model, const std::vector<double>& spin, std::size_t k) {
-  return k < model.size() ? model[k] - d.x[k] : spin[k - model.size()] - d.spin[k - model.size()];
+  if (k < n2) return d.weight[k / 2];
+  k -= n2;
+  if (k < d.spin.size()) return d.spin_weight[k];
+  k -= d.spin.size();
+  if (k < d.orientation.size() / 3) return d.orientation_weight[k / 3];
+  return d.body_rate_weight[(k - d.orientation.size() / 3) / 3];
 }
 
 /// The weighted residuals and their exact Jacobian, parameter blocks lambda (1) and (mu, theta,
@@ -98,15 +143,16 @@ class TrackCost final : public ceres::CostFunction {
     std::vector<double> q{p[0][0]};
     q.insert(q.end(), p[1], p[1] + (p_ - 1));
     const bool want_j = jacobians != nullptr && (jacobians[0] != nullptr || jacobians[1] != nullptr);
-    std::vector<double> model, spin, j;
+    ModelValues model;
+    std::vector<double> r, j;
     try {
-      EvaluateModel(data_, q.data(), options_, &model, &spin, want_j ? &j : nullptr);
+      EvaluateModel(data_, q.data(), options_, &model, &r, want_j ? &j : nullptr);
     } catch (const std::exception&) {
       return false;  // an integration failure rejects the step (Ceres shrinks the trust region)
     }
     for (std::size_t k = 0; k < ResidualCount(data_); ++k) {
       const double w = Weight(data_, k);
-      residuals[k] = w * Difference(data_, model, spin, k);
+      residuals[k] = w * r[k];
       if (!want_j) continue;
       if (jacobians[0] != nullptr) jacobians[0][k] = w * j[k * p_];
       if (jacobians[1] != nullptr)
@@ -166,9 +212,20 @@ TrackData Window(const TrackData& d, double tau_max, std::size_t max_samples) {
     w.x.push_back(d.x[2 * i]);
     w.x.push_back(d.x[2 * i + 1]);
     w.weight.push_back(d.weight[i]);
-    if (d.spin.empty()) return;
-    w.spin.push_back(d.spin[i]);
-    w.spin_weight.push_back(d.spin_weight[i]);
+    if (!d.spin.empty()) {
+      w.spin.push_back(d.spin[i]);
+      w.spin_weight.push_back(d.spin_weight[i]);
+    }
+    if (!d.orientation.empty()) {
+      w.orientation.insert(w.orientation.end(), d.orientation.begin() + static_cast<std::ptrdiff_t>(9 * i),
+                           d.orientation.begin() + static_cast<std::ptrdiff_t>(9 * i + 9));
+      w.orientation_weight.push_back(d.orientation_weight[i]);
+    }
+    if (!d.body_rate.empty()) {
+      w.body_rate.insert(w.body_rate.end(), d.body_rate.begin() + static_cast<std::ptrdiff_t>(3 * i),
+                         d.body_rate.begin() + static_cast<std::ptrdiff_t>(3 * i + 3));
+      w.body_rate_weight.push_back(d.body_rate_weight[i]);
+    }
   };
   for (std::size_t i = 0; i < end; i += stride) take(i);
   // With impulses the last sample is kept, so that the window sees every flight it reaches.
@@ -180,10 +237,11 @@ TrackData Window(const TrackData& d, double tau_max, std::size_t max_samples) {
 
 /// 1/2 sum of the squared weighted residuals at q.
 double Cost(const TrackData& d, const std::vector<double>& q, const IntegrationOptions& integration) {
-  std::vector<double> model, spin;
-  EvaluateModel(d, q.data(), integration, &model, &spin, nullptr);
+  ModelValues model;
+  std::vector<double> r;
+  EvaluateModel(d, q.data(), integration, &model, &r, nullptr);
   double c = 0.0;
-  for (std::size_t k = 0; k < ResidualCount(d); ++k) c += std::pow(Weight(d, k) * Difference(d, model, spin, k), 2);
+  for (std::size_t k = 0; k < ResidualCount(d); ++k) c += std::pow(Weight(d, k) * r[k], 2);
   return 0.5 * c;
 }
 
@@ -192,8 +250,8 @@ double Cost(const TrackData& d, const std::vector<double>& q, const IntegrationO
 /// [-pi, pi) by the cost of the samples up to the next impulse (whose delta psi is not known
 /// yet), the earlier parameters held: the least-squares fit then starts in its basin.
 void ChooseImpulses(const TrackData& d, std::size_t count, const IntegrationOptions& integration, std::vector<double>* q) {
-  while (q->size() < kP + count) {
-    const std::size_t f = q->size() - kP;
+  while (q->size() < StartCount(d) + count) {
+    const std::size_t f = q->size() - StartCount(d);
     const double until = f + 1 < d.impulse_tau.size() ? d.impulse_tau[f + 1] : d.tau.back();
     const TrackData w = Window(d, until, kWindowSamples);
     double best_cost = std::numeric_limits<double>::infinity(), best = 0.0;
@@ -254,6 +312,58 @@ std::vector<double> StartPoint(double lambda, double mu, double theta, double w,
   return {lambda, mu, theta, phi, WrapPi(phi - w), x0.x(), x0.y()};
 }
 
+/// The w = phi - psi at which the contact velocity x'(0) of (theta, phi, mu, lambda) points along
+/// `direction` (x' turns once round the velocity ellipse as w goes round): the best of a grid.
+double PhaseAlong(double lambda, double mu, double theta, double phi, double direction) {
+  constexpr int kPhaseGrid = 360;
+  double best = 0.0, best_distance = kInf;
+  for (int k = 0; k < kPhaseGrid; ++k) {
+    const double w = kTwoPi * k / kPhaseGrid;
+    const PhaseVariables p = PhaseFromTrig(TrigFromAngles(AngleState{theta, phi, phi - w}), mu, lambda);
+    const double distance = CircularDistance(std::atan2(-p.omega.x(), p.omega.y()), direction);
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = w;
+    }
+  }
+  return best;
+}
+
+/// Inserts chi (q[7]) into the start q (7 values) from the first sample's frame data: the
+/// measured orientation A_0 ~ Rz(phi) Ry(theta) Rz(chi), else the measured body rate
+/// b_0 = Rz(chi)^T v with v = (Rz(phi) Ry(theta))^T omega(0).
+void InsertChi(const TrackData& d, std::vector<double>* q) {
+  const Eigen::Matrix3d axis_frame = StartFrame((*q)[2], (*q)[3], 0.0);
+  double chi = 0.0;
+  if (!d.orientation.empty()) {
+    const Eigen::Matrix3d b = axis_frame.transpose() * Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d.orientation.data());
+    chi = std::atan2(b(1, 0), b(0, 0));
+  } else {
+    const double* q0 = q->data();
+    const Eigen::Vector3d v =
+        axis_frame.transpose() * PhaseFromTrig(TrigFromAngles(AngleState{q0[2], q0[3], q0[4]}), q0[1], q0[0]).omega;
+    chi = std::atan2(v.y(), v.x()) - std::atan2(d.body_rate[1], d.body_rate[0]);
+  }
+  q->insert(q->begin() + kP, WrapPi(chi));
+}
+
+/// The start with the given (lambda, mu, w): with measured orientations (theta, phi) are those of
+/// the first sample's axis and w the grid's offset from the phase along the first chord;
+/// otherwise StartPoint at the grid's theta. With frame data, chi is inserted (InsertChi).
+std::vector<double> GridStart(const TrackData& d, double lambda, const TrackGuess& g, double theta, double w) {
+  std::vector<double> q;
+  if (!d.orientation.empty()) {
+    const Eigen::Vector3d z(d.orientation[2], d.orientation[5], d.orientation[8]);  // A_0 e3
+    const double th = std::acos(std::clamp(z.z(), -1.0, 1.0)), phi = std::atan2(z.y(), z.x());
+    const double phase = PhaseAlong(lambda, g.mu, th, phi, g.direction) + w;
+    q = {lambda, g.mu, th, phi, WrapPi(phi - phase), d.x[0], d.x[1]};
+  } else {
+    q = StartPoint(lambda, g.mu, theta, w, g.direction, PointAt(d, 0));
+  }
+  if (d.HasFrame()) InsertChi(d, &q);
+  return q;
+}
+
 /// The grid of starts on the first window, each stopped after kGridIterations: enough to fall
 /// into a basin, not to converge in it (on half a period lambda is weakly determined, and the
 /// minima of different lambda have nearly the same cost there). Sorted by cost.
@@ -262,12 +372,17 @@ std::vector<TrackFit> MultiStart(const TrackData& d, const IdentifyOptions& o, c
   const TrackData w = Window(d, window, kStartSamples);
   const IntegrationOptions coarse{kGridTolerance, kGridTolerance, o.integration.max_steps};
   std::vector<TrackFit> fits;
+  // z -> -z gives the same contact track: theta in (0, pi/2] is enough, but not with body rates
+  // (v0 changes sign); measured orientations fix the axis (one theta).
+  const int theta_starts = d.orientation.empty() ? o.theta_starts : 1;
+  const double theta_range = d.body_rate.empty() ? M_PI / 2.0 : M_PI;
   for (double lambda : o.lambda_starts)
-    for (int a = 0; a < o.theta_starts; ++a)
+    for (int a = 0; a < theta_starts; ++a)
       for (int b = 0; b < o.phase_starts; ++b) {
-        const double theta = (a + 0.5) / o.theta_starts * M_PI / 2.0;
-        const double phase = (b + 0.5) / o.phase_starts * kTwoPi;
-        std::vector<double> q = StartPoint(lambda, g.mu, theta, phase, g.direction, PointAt(d, 0));
+        const double theta = (a + 0.5) / theta_starts * theta_range;
+        // With orientations the offset from the phase along the first chord, 0 first.
+        const double phase = (d.orientation.empty() ? b + 0.5 : b) / o.phase_starts * kTwoPi;
+        std::vector<double> q = GridStart(d, lambda, g, theta, phase);
         ChooseImpulses(d, w.impulse_tau.size(), coarse, &q);
         fits.push_back(Solve(w, q, o, coarse, kGridIterations, false));
         ++*starts;
@@ -304,8 +419,13 @@ double NextWindow(const TrackData& d, double tau_max) {
 /// Model and weighted Jacobian at fit.q on the whole track.
 void FinishFit(const TrackData& d, const IntegrationOptions& integration, TrackFit* fit) {
   const std::size_t p = ParameterCount(d);
-  std::vector<double> j;
-  EvaluateModel(d, fit->q.data(), integration, &fit->model, &fit->spin, &j);
+  std::vector<double> j, r;
+  ModelValues m;
+  EvaluateModel(d, fit->q.data(), integration, &m, &r, &j);
+  fit->model = std::move(m.x);
+  fit->spin = std::move(m.spin);
+  fit->orientation = std::move(m.orientation);
+  fit->body_rate = std::move(m.body_rate);
   fit->jacobian.resize(static_cast<Eigen::Index>(ResidualCount(d)), static_cast<Eigen::Index>(p));
   for (std::size_t k = 0; k < ResidualCount(d); ++k)
     for (std::size_t c = 0; c < p; ++c)
@@ -313,6 +433,10 @@ void FinishFit(const TrackData& d, const IntegrationOptions& integration, TrackF
 }
 
 }  // namespace
+
+std::size_t ResidualCount(const TrackData& d) {
+  return 2 * d.tau.size() + d.spin.size() + d.orientation.size() / 3 + d.body_rate.size();
+}
 
 TrackFit FitTrack(const TrackData& data, const IdentifyOptions& o, int* starts) {
   *starts = 0;
@@ -322,6 +446,7 @@ TrackFit FitTrack(const TrackData& data, const IdentifyOptions& o, int* starts) 
   if (o.guess) {
     const IdentifyGuess& g = *o.guess;
     q = {g.lambda, g.mu, g.angles.theta, g.angles.phi, g.angles.psi, g.x0.x() / o.radius, g.x0.y() / o.radius};
+    if (data.HasFrame()) InsertChi(data, &q);
     q.insert(q.end(), g.delta_psi.begin(), g.delta_psi.end());
     ChooseImpulses(data, data.impulse_tau.size(), mid, &q);
   } else {

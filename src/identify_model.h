@@ -29,14 +29,32 @@ struct FlightStart {
   Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
   Eigen::Vector2d k = Eigen::Vector2d::Zero();
   Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  Eigen::Matrix3d a = Eigen::Matrix3d::Identity();  ///< the frame A (when BodyOutput::HasFrame)
 };
 
-/// The axial spin v0 = <omega, z> of the model at the samples (an IMU's rate about the symmetry
-/// axis): values[i], and with jacobian != nullptr dv0(t_i)/dq row-major (n x (7 + m)).
-struct SpinOutput {
-  double* values = nullptr;
-  double* jacobian = nullptr;
+/// What the model gives besides the contact point, each pointer nullptr when not wanted:
+/// - the axial spin v0 = <omega, z> (an IMU's rate about the symmetry axis): spin[i], and
+///   dv0(t_i)/dq row-major (n x P) into spin_jacobian;
+/// - the orientation A(t_i) = R_WB (z = A e3), row-major 9 per sample, and (3n x P) its body-frame
+///   derivative: column j of rows 3i..3i+2 is vee(A^T dA(t_i)/dq_j);
+/// - the body angular velocity A^T omega (an IMU's three rates), 3 per sample, and (3n x P) its
+///   derivatives.
+/// P = 7 + m, plus one when orientation or body_rate is wanted: then q = (lambda, mu, theta, phi,
+/// psi, x0, y0, chi, s_0, .., s_{m-1}) with the start frame A(0) = Rz(phi) Ry(theta) Rz(chi) (its third column the axis of (theta, phi), eqs. (12)-(14);
+/// chi turns the frame about the axis, which the contact track does not see).
+struct BodyOutput {
+  double* spin = nullptr;
+  double* spin_jacobian = nullptr;
+  double* orientation = nullptr;
+  double* orientation_jacobian = nullptr;
+  double* body_rate = nullptr;
+  double* body_rate_jacobian = nullptr;
+  /// True when the frame (and with it chi) enters the model.
+  bool HasFrame() const { return orientation != nullptr || body_rate != nullptr; }
 };
+
+/// The start frame Rz(phi) Ry(theta) Rz(chi) (BodyOutput).
+Eigen::Matrix3d StartFrame(double theta, double phi, double chi);
 
 /// EvaluateTrack across energy-preserving impulses psi -> psi + s_j at fixed (theta, phi, mu)
 /// (section 2.1, ImpulseMomentum of exact_chain.h) at the strictly increasing times
@@ -45,11 +63,12 @@ struct SpinOutput {
 /// impulse's time belongs to the flight before it (x is continuous). jacobian: row-major
 /// (2n x (7 + m)), by the chain rule over the flights: each flight's variational equations with
 /// respect to its start (z, K) and lambda (ceres::Jet), each impulse differentiated by Jets.
-/// flights (optional) receives the m + 1 flight starts, spin (optional) the axial spin. With m = 0
-/// and neither, this is EvaluateTrack.
+/// flights (optional) receives the m + 1 flight starts, body (optional) the axial spin, the
+/// orientation and the body rates (BodyOutput; the frame is continuous across the impulses). With
+/// m = 0 and neither, this is EvaluateTrack.
 void EvaluateImpulsiveTrack(const double* q, const double* tau, std::size_t n, const std::vector<double>& impulse_tau,
                             const IntegrationOptions& options, double* x_out, double* jacobian,
                             const IntegrationOptions* jacobian_options = nullptr,
-                            std::vector<FlightStart>* flights = nullptr, const SpinOutput* spin = nullptr);
+                            std::vector<FlightStart>* flights = nullptr, const BodyOutput* body = nullptr);
 
 }  // namespace plateball::internal

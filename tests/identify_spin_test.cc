@@ -48,14 +48,18 @@ TEST(IdentifySpin, ModelSpinAndItsJacobianMatchFreeMotionAndCentralDifferences) 
   for (const std::vector<double>& impulses : {std::vector<double>{}, std::vector<double>{1.2}}) {
     const std::size_t n = tau.size(), p = 7 + impulses.size();
     std::vector<double> x(2 * n), jac(2 * n * p), v(n), vj(n * p), vp(n), vm(n);
-    const internal::SpinOutput out{v.data(), vj.data()};
+    internal::BodyOutput out;
+    out.spin = v.data();
+    out.spin_jacobian = vj.data();
     internal::EvaluateImpulsiveTrack(q.data(), tau.data(), n, impulses, tight, x.data(), jac.data(), &tight, nullptr, &out);
     for (std::size_t j = 0; j < p; ++j) {
       const double h = 1e-5;
       std::vector<double> qp = q, qm = q;
       qp[j] += h;
       qm[j] -= h;
-      const internal::SpinOutput op{vp.data(), nullptr}, om{vm.data(), nullptr};
+      internal::BodyOutput op, om;
+      op.spin = vp.data();
+      om.spin = vm.data();
       internal::EvaluateImpulsiveTrack(qp.data(), tau.data(), n, impulses, tight, x.data(), nullptr, nullptr, nullptr, &op);
       internal::EvaluateImpulsiveTrack(qm.data(), tau.data(), n, impulses, tight, x.data(), nullptr, nullptr, nullptr, &om);
       for (std::size_t i = 0; i < n; ++i)  // central difference: h^2 ~ 1e-10 truncation, 1e-13/h rounding

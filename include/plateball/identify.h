@@ -35,6 +35,22 @@ struct IdentifyProblem {
   /// sigma_spin (its own, > 0, one per sample) given: two kinds of residual share no common noise.
   std::vector<double> spin;
   std::vector<double> sigma_spin;
+  /// The measured orientation of the ball at each sample (markers), or empty: the unit quaternion
+  /// (w, x, y, z) of A = R_WB (body to world; z = A e3 is the symmetry axis, as in MotionSample),
+  /// its norm within kIdentifyQuaternionTolerance of 1 (it is normalised). Its residual is the
+  /// rotation vector LogSO3(A_i^T A(t_i)) (3 per sample). The reorientation along the path depends
+  /// on lambda, so orientations identify lambda even from a short flight.
+  std::vector<Eigen::Vector4d> orientation;
+  /// The standard deviation (rad) of each component of that rotation vector, one per sample
+  /// (> 0). Needed when sigma is given; when neither is given one common sigma is estimated for
+  /// the positions (radii) and the orientations (radians: rolling one radius turns the ball by one
+  /// radian).
+  std::vector<double> sigma_orientation;
+  /// The measured body angular velocity A^T omega at each sample (an IMU inside the ball; rad per
+  /// time unit of t), or empty. Its third component is the axial spin, so it replaces spin (not
+  /// both). Like spin it needs sigma and sigma_body_rate (> 0, one per sample, each component).
+  std::vector<Eigen::Vector3d> body_rate;
+  std::vector<double> sigma_body_rate;
   /// Empty when valid, else "FIELD: value V: what is wrong" naming the first bad row.
   std::string Validate() const;
 };
@@ -53,6 +69,11 @@ struct IdentifyGuess {
 /// Fewest samples in each flight of a track with impulses (the first flight's 8 residuals for its
 /// 7 start parameters).
 inline constexpr int kIdentifyMinFlightSamples = 4;
+
+/// How far the norm of a measured orientation quaternion may be from 1: | |q| - 1 | <= 1e-5 (a
+/// quaternion printed with 6 decimals is off by up to ~2e-6; a larger error is not a rotation
+/// but a wrong column).
+inline constexpr double kIdentifyQuaternionTolerance = 1e-5;
 
 struct IdentifyOptions {
   /// The ball's radius in the track's length unit: the track is divided by it (the model's unit is
@@ -97,7 +118,8 @@ enum class IdentifyStatus {
 std::string ToString(IdentifyStatus status);
 
 /// Names of the fitted parameters of the start, in the order of IdentifySummary::standard_errors
-/// (followed by "delta_psi[k]" of each impulse).
+/// (followed by "chi" with orientations or body rates, then "delta_psi[k]" of each impulse;
+/// IdentifySummary::parameters).
 inline constexpr const char* kIdentifyParameterNames[7] = {"lambda", "mu", "theta", "phi", "psi", "x0", "y0"};
 
 /// The fitted state at the start of one flight: just after its impulse (the first flight: at t_ref).
@@ -124,10 +146,19 @@ struct IdentifySummary {
   std::vector<double> delta_psi;
   /// The fitted state at the start of each flight (1 + impulses entries).
   std::vector<IdentifiedFlight> flights;
-  /// Standard errors of (lambda, mu, theta, phi, psi, x0, y0, delta_psi...); infinity where J^T J
-  /// is singular.
+  /// With orientations or body rates the frame is fitted too: A(t_ref) = Rz(phi) Ry(theta)
+  /// Rz(chi) with one more parameter chi (the turn about the axis, which the contact track does
+  /// not see). orientation is A(t_ref) as the unit quaternion (w, x, y, z), w >= 0.
+  bool frame_fitted = false;
+  Eigen::Vector4d orientation{1.0, 0.0, 0.0, 0.0};
+  /// The names of the fitted parameters, in the order of standard_errors: kIdentifyParameterNames,
+  /// "chi" when frame_fitted, "delta_psi[k]" of each impulse.
+  std::vector<std::string> parameters;
+  /// Standard errors of the parameters (in the order of parameters); infinity where J^T J is
+  /// singular.
   std::vector<double> standard_errors;
-  /// Correlation matrix of the fitted parameters ((7 + impulses) square; NaN rows where singular).
+  /// Correlation matrix of the fitted parameters (square, in the order of parameters; NaN rows
+  /// where singular).
   Eigen::MatrixXd correlation;
   /// 95% profile-likelihood interval of lambda. A side that does not close (the profile does not
   /// rise by the threshold before lambda_min / lambda_max) is 0 / infinity; NaN when not computed.
@@ -154,7 +185,7 @@ struct IdentifySummary {
   bool straight_path = false;
   // Residuals.
   int samples = 0;
-  int residuals = 0;  ///< 2 per sample, and one per measured spin
+  int residuals = 0;  ///< 2 per sample, one per measured spin, 3 per orientation, 3 per body rate
   double rms_residual = 0.0;      ///< sqrt(mean of the squared coordinate residuals), radii
   double max_residual = 0.0;      ///< largest |x_i - x(t_i)|, radii
   double sigma = 0.0;             ///< noise used for the errors (given mean or estimated)
@@ -166,6 +197,17 @@ struct IdentifySummary {
   std::vector<double> fitted_spin;
   double spin_rms_residual = 0.0;
   double spin_max_residual = 0.0;
+  /// With measured orientations: the fitted A(t_i) as unit quaternions (w, x, y, z), w >= 0, the
+  /// RMS component of the rotation-vector residuals LogSO3(A_i^T A(t_i)) and the largest angle
+  /// |LogSO3(..)| (rad).
+  std::vector<Eigen::Vector4d> fitted_orientation;
+  double orientation_rms_residual = 0.0;
+  double orientation_max_residual = 0.0;
+  /// With measured body rates: the fitted A^T omega (t_i), the RMS component and the largest norm
+  /// of A^T omega (t_i) - b_i.
+  std::vector<Eigen::Vector3d> fitted_body_rate;
+  double body_rate_rms_residual = 0.0;
+  double body_rate_max_residual = 0.0;
   int starts = 0;                 ///< multi-start fits run
   int iterations = 0;             ///< solver iterations of the final fit
   int profile_fits = 0;           ///< fits at fixed lambda for the profile interval

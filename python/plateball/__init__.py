@@ -119,12 +119,18 @@ def steer(problem=None, options=None, **kwargs):
     return _solve(_steer, ExactArrivalProblem, ExactArrivalOptions, problem, options, kwargs)
 
 
-def identify(t, xy, sigma=None, options=None, impulse_times=None, spin=None, sigma_spin=None, **kwargs):
+def identify(t, xy, sigma=None, options=None, impulse_times=None, spin=None, sigma_spin=None, orientation=None,
+             sigma_orientation=None, body_rate=None, sigma_body_rate=None, **kwargs):
     """Fits lambda, mu and the state at t[0] to a track of the contact point: t (n,), xy (n, 2),
     sigma (n,) or None (estimated); impulse_times (m,) or None: known energy-preserving impulses
     between the flights (one delta psi fitted per impulse, lambda and mu shared); spin (n,) and
     sigma_spin (n,) or None: a measured axial spin v0 (an IMU's rate about the symmetry axis;
-    needs sigma given); keywords name
+    needs sigma given); orientation (n, 4) or None: measured unit quaternions (w, x, y, z) of the
+    body-to-world rotation (norm within 1e-5 of 1), sigma_orientation (n,) their noise in rad
+    (with sigma, or neither: one common sigma); body_rate (n, 3) and sigma_body_rate (n,) or None:
+    an IMU's three rates A^T omega in the body frame (needs sigma; not with spin). Orientations and
+    body rates fit the frame too (the parameter chi) and identify lambda even on a short flight.
+    Keywords name
     fields of IdentifyOptions (radius, guess, ...). Returns IdentifySummary (status "identified",
     "lambda_not_identified", "no_fit", "failed")."""
     options = IdentifyOptions() if options is None else options
@@ -133,7 +139,8 @@ def identify(t, xy, sigma=None, options=None, impulse_times=None, spin=None, sig
         if key not in fields:
             raise TypeError(f"identify(): unexpected keyword argument '{key}'")
         setattr(options, key, value)
-    return _identify(t, xy, sigma, impulse_times, spin, sigma_spin, options)
+    return _identify(t, xy, sigma, impulse_times, spin, sigma_spin, orientation, sigma_orientation, body_rate,
+                     sigma_body_rate, options)
 
 
 def fewest_impulses(problem=None, options=None, **kwargs):

@@ -1,5 +1,6 @@
 // Python binding: identification of lambda, mu and the state from a track (identify.h):
-// identify(t, xy, sigma=None, options=None, **option_keywords) with NumPy arrays in.
+// identify(t, xy, sigma=None, options=None, ..., orientation=None, body_rate=None, **option_keywords)
+// with NumPy arrays in.
 #include "bind_common.h"
 
 #include <optional>
@@ -21,12 +22,30 @@ void ReadVector(const std::optional<Array>& a, const char* name, std::vector<dou
   for (py::ssize_t i = 0; i < v.shape(0); ++i) out->push_back(v(i));
 }
 
-/// The track from NumPy arrays: t (n,), xy (n, 2), sigma, impulse_times, spin, sigma_spin (each 1-d)
-/// or None. Shapes are checked here (naming the argument); values by IdentifyProblem::Validate
-/// (naming the row).
-IdentifyProblem TrackFromArrays(const Array& t, const Array& xy, const std::optional<Array>& sigma,
-                                const std::optional<Array>& impulse_times, const std::optional<Array>& spin,
-                                const std::optional<Array>& sigma_spin) {
+/// A 2-dimensional (n, cols) array argument (or None), row by row into push(row pointer).
+template <typename Push>
+void ReadRows(const std::optional<Array>& a, const char* name, int cols, Push push) {
+  if (!a) return;
+  if (a->ndim() != 2 || a->shape(1) != cols)
+    throw std::invalid_argument(std::string(name) + ": value (array of shape not (n, " + std::to_string(cols) + ")): must have shape (n, " +
+                                std::to_string(cols) + ")");
+  const auto v = a->unchecked<2>();
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) {
+    double row[4] = {0, 0, 0, 0};
+    for (int c = 0; c < cols; ++c) row[c] = v(i, c);
+    push(row);
+  }
+}
+
+/// The optional columns of a track besides t, xy and sigma (each None or an array).
+struct TrackColumns {
+  std::optional<Array> impulse_times, spin, sigma_spin, orientation, sigma_orientation, body_rate, sigma_body_rate;
+};
+
+/// The track from NumPy arrays: t (n,), xy (n, 2), orientation (n, 4), body_rate (n, 3), the others
+/// 1-d, or None. Shapes are checked here (naming the argument); values by
+/// IdentifyProblem::Validate (naming the row).
+IdentifyProblem TrackFromArrays(const Array& t, const Array& xy, const std::optional<Array>& sigma, const TrackColumns& c) {
   if (t.ndim() != 1) throw std::invalid_argument("t: value (array of " + std::to_string(t.ndim()) + " dimensions): must be 1-dimensional");
   if (xy.ndim() != 2 || xy.shape(1) != 2)
     throw std::invalid_argument("xy: value (array of shape not (n, 2)): must have shape (n, 2)");
@@ -36,9 +55,13 @@ IdentifyProblem TrackFromArrays(const Array& t, const Array& xy, const std::opti
   for (py::ssize_t i = 0; i < tv.shape(0); ++i) p.t.push_back(tv(i));
   for (py::ssize_t i = 0; i < xv.shape(0); ++i) p.x.emplace_back(xv(i, 0), xv(i, 1));
   ReadVector(sigma, "sigma", &p.sigma);
-  ReadVector(impulse_times, "impulse_times", &p.impulse_times);
-  ReadVector(spin, "spin", &p.spin);
-  ReadVector(sigma_spin, "sigma_spin", &p.sigma_spin);
+  ReadVector(c.impulse_times, "impulse_times", &p.impulse_times);
+  ReadVector(c.spin, "spin", &p.spin);
+  ReadVector(c.sigma_spin, "sigma_spin", &p.sigma_spin);
+  ReadRows(c.orientation, "orientation", 4, [&](const double* r) { p.orientation.emplace_back(r[0], r[1], r[2], r[3]); });
+  ReadVector(c.sigma_orientation, "sigma_orientation", &p.sigma_orientation);
+  ReadRows(c.body_rate, "body_rate", 3, [&](const double* r) { p.body_rate.emplace_back(r[0], r[1], r[2]); });
+  ReadVector(c.sigma_body_rate, "sigma_body_rate", &p.sigma_body_rate);
   return p;
 }
 
@@ -87,7 +110,15 @@ void BindIdentify(py::module_& m) {
       .def_readonly("period", &IdentifySummary::period)
       .def_readonly("impulse_times", &IdentifySummary::impulse_times, "The times of the impulses between the flights.")
       .def_readonly("delta_psi", &IdentifySummary::delta_psi,
-                    "The fitted delta psi of each impulse, in (-pi, pi]; standard errors from index 7 of standard_errors.")
+                    "The fitted delta psi of each impulse, in (-pi, pi]; their standard errors follow chi (when frame_fitted) "
+                    "in standard_errors (see parameters).")
+      .def_readonly("frame_fitted", &IdentifySummary::frame_fitted,
+                    "True with orientations or body rates: the frame is fitted, with one more parameter chi (the turn "
+                    "about the axis at t_ref).")
+      .def_readonly("orientation", &IdentifySummary::orientation,
+                    "With frame_fitted: the fitted orientation A(t_ref) = R_WB as the unit quaternion (w, x, y, z), w >= 0.")
+      .def_readonly("parameters", &IdentifySummary::parameters,
+                    "The names of the fitted parameters in the order of standard_errors (parameter_names, chi, delta_psi[k]).")
       .def_readonly("flights", &IdentifySummary::flights, "The fitted state at the start of each flight (IdentifiedFlight).")
       .def_readonly("standard_errors", &IdentifySummary::standard_errors)
       .def_readonly("correlation", &IdentifySummary::correlation)
@@ -115,6 +146,19 @@ void BindIdentify(py::module_& m) {
       .def_readonly("fitted_spin", &IdentifySummary::fitted_spin, "With a measured spin: the fitted axial spin v0(t_i).")
       .def_readonly("spin_rms_residual", &IdentifySummary::spin_rms_residual, "RMS of the fitted - measured spin.")
       .def_readonly("spin_max_residual", &IdentifySummary::spin_max_residual, "Largest absolute difference of the fitted and the measured spin.")
+      .def_property_readonly("fitted_orientation", [](const IdentifySummary& s) {
+            return Stack<4>(s.fitted_orientation, [](const Eigen::Vector4d& v) { return v.transpose(); });
+          }, "With measured orientations: the fitted A(t_i) as unit quaternions (w, x, y, z), (n, 4).")
+      .def_readonly("orientation_rms_residual", &IdentifySummary::orientation_rms_residual,
+                    "RMS component of the rotation vectors LogSO3(A_i^T A(t_i)) (rad).")
+      .def_readonly("orientation_max_residual", &IdentifySummary::orientation_max_residual,
+                    "Largest angle of the rotation LogSO3(A_i^T A(t_i)) (rad).")
+      .def_property_readonly("fitted_body_rate", [](const IdentifySummary& s) {
+            return Stack<3>(s.fitted_body_rate, [](const Eigen::Vector3d& v) { return v.transpose(); });
+          }, "With measured body rates: the fitted A^T omega (t_i), (n, 3).")
+      .def_readonly("body_rate_rms_residual", &IdentifySummary::body_rate_rms_residual, "RMS component of the fitted - measured body rates.")
+      .def_readonly("body_rate_max_residual", &IdentifySummary::body_rate_max_residual,
+                    "Largest norm of the fitted - measured body rate.")
       .def_readonly("starts", &IdentifySummary::starts)
       .def_readonly("iterations", &IdentifySummary::iterations)
       .def_readonly("profile_fits", &IdentifySummary::profile_fits)
@@ -123,12 +167,16 @@ void BindIdentify(py::module_& m) {
             return names;
           });
   m.def("_identify", [](const Array& t, const Array& xy, const std::optional<Array>& sigma, const std::optional<Array>& impulse_times,
-                        const std::optional<Array>& spin, const std::optional<Array>& sigma_spin, const IdentifyOptions& options) {
-          const IdentifyProblem p = TrackFromArrays(t, xy, sigma, impulse_times, spin, sigma_spin);
+                        const std::optional<Array>& spin, const std::optional<Array>& sigma_spin,
+                        const std::optional<Array>& orientation, const std::optional<Array>& sigma_orientation,
+                        const std::optional<Array>& body_rate, const std::optional<Array>& sigma_body_rate, const IdentifyOptions& options) {
+          const IdentifyProblem p = TrackFromArrays(
+              t, xy, sigma, {impulse_times, spin, sigma_spin, orientation, sigma_orientation, body_rate, sigma_body_rate});
           py::gil_scoped_release release;
           return Identify(p, options);
         }, py::arg("t"), py::arg("xy"), py::arg("sigma"), py::arg("impulse_times"), py::arg("spin"), py::arg("sigma_spin"),
-        py::arg("options"));
+        py::arg("orientation"), py::arg("sigma_orientation"), py::arg("body_rate"), py::arg("sigma_body_rate"), py::arg("options"),
+        "The native identify(): the track's arrays (None when absent) and IdentifyOptions; use plateball.identify.");
 }
 
 }  // namespace plateball::python

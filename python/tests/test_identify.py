@@ -138,3 +138,59 @@ def test_a_measured_spin_identifies_lambda_on_a_straight_track():
     assert len(s.fitted_spin) == len(t) and abs(s.spin_rms_residual - 0.002) < 5e-4
     with pytest.raises(ValueError, match=r"^sigma_spin \(rows\): value 0"):
         pb.identify(t, xy, sigma=sigma, spin=spin)
+
+
+def quaternions(rotations):
+    """Unit quaternions (w, x, y, z), w >= 0, of an (n, 3, 3) array of rotations (Shepperd's method
+    on the trace branch: every rotation here turns by less than pi)."""
+    r = np.asarray(rotations)
+    w = 0.5 * np.sqrt(1.0 + np.trace(r, axis1=1, axis2=2))
+    q = np.stack([w, (r[:, 2, 1] - r[:, 1, 2]) / (4 * w), (r[:, 0, 2] - r[:, 2, 0]) / (4 * w),
+                  (r[:, 1, 0] - r[:, 0, 1]) / (4 * w)], axis=1)
+    return q / np.linalg.norm(q, axis=1)[:, None]
+
+
+def frame_track(periods=0.15, n=60):
+    motion, traj = pb.simulate(model=pb.BallModel(1.3), angles=(0.8, 0.3, 0.2), mu=4.0,
+                               t_end=periods * math.pi, samples=n)
+    rates = np.einsum("nji,nj->ni", np.asarray(traj.orientation), np.asarray(traj.omega))  # A^T omega
+    return np.asarray(traj.t), np.asarray(traj.x), quaternions(traj.orientation), rates
+
+
+def test_orientations_identify_lambda_and_the_frame_on_a_short_flight():
+    t, xy, q, _ = frame_track()
+    s = pb.identify(t, xy, orientation=q, profile_interval=False)
+    assert s.status == "identified" and s.frame_fitted
+    assert abs(s.lambda_ - 1.3) < 1e-8
+    assert s.parameters[7] == "chi" and len(s.standard_errors) == 8
+    assert s.fitted_orientation.shape == (60, 4)
+    assert np.max(np.abs(s.fitted_orientation - q)) < 1e-8
+    assert np.max(np.abs(np.asarray(s.orientation) - q[0])) < 1e-8
+    # The same positions alone: lambda not identified on 0.15 period (noise 0.002 on both).
+    rng = np.random.default_rng(5)
+    noisy = xy + 0.002 * rng.standard_normal(xy.shape)
+    contact = pb.identify(t, noisy, sigma=np.full(len(t), 0.002))
+    assert contact.status == "lambda_not_identified"
+
+
+def test_body_rates_identify_lambda():
+    t, xy, _, rates = frame_track()
+    rng = np.random.default_rng(6)
+    sigma = np.full(len(t), 0.002)
+    s = pb.identify(t, xy + 0.002 * rng.standard_normal(xy.shape), sigma=sigma,
+                    body_rate=rates + 0.002 * rng.standard_normal(rates.shape), sigma_body_rate=sigma)
+    low, high = s.lambda_interval
+    assert s.status == "identified" and low < 1.3 < high
+    assert s.fitted_body_rate.shape == (60, 3) and s.body_rate_rms_residual < 0.004
+
+
+def test_bad_orientation_raises_value_error_naming_the_row():
+    t, xy, q, rates = frame_track(n=20)
+    with pytest.raises(ValueError, match=r"^orientation: value \(array of shape not \(n, 4\)\)"):
+        pb.identify(t, xy, orientation=q[:, :3])
+    q[2] *= 1.01
+    with pytest.raises(ValueError, match=r"^orientation\[2\]: value .*not a unit quaternion \(w, x, y, z\): norm 1.01"):
+        pb.identify(t, xy, orientation=q)
+    with pytest.raises(ValueError, match=r"give either spin or body_rate, not both"):
+        pb.identify(t, xy, sigma=np.ones(20), spin=np.zeros(20), sigma_spin=np.ones(20), body_rate=rates,
+                    sigma_body_rate=np.ones(20))

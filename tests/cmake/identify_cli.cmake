@@ -36,7 +36,7 @@ file(WRITE ${dir}/duplicate.csv "${head}0,0,0\n1,1,0\n1,2,0\n3,3,0\n4,4,0\n5,5,0
 file(WRITE ${dir}/nan.csv "${head}0,0,0\n1,1,0\n2,nan,0\n3,3,0\n4,4,0\n5,5,0\n6,6,0\n7,7,0\n8,8,0\n")
 file(WRITE ${dir}/text.csv "${head}0,0,0\n1,one,0\n")
 file(WRITE ${dir}/few.csv "${head}0,0,0\n1,1,0\n2,2,0\n")
-file(WRITE ${dir}/column.csv "t,x,y,qw\n0,0,0,1\n")
+file(WRITE ${dir}/column.csv "t,x,y,speed\n0,0,0,1\n")
 file(WRITE ${dir}/sigma.csv "t,x,y,sigma\n${rows}")
 file(WRITE ${dir}/negative_sigma.csv "t,x,y,sigma\n0,0,0,0.1\n1,1,0,0.1\n2,2,0,0.1\n3,3,0,-1\n4,4,0,0.1\n5,5,0,0.1\n6,6,0,0.1\n7,7,0,0.1\n8,8,0,0.1\n")
 # A zigzag: the contact point reverses every 10 samples, which no free motion does.
@@ -57,7 +57,7 @@ plateball_cli_test(identify.duplicate 3 REGEX "t\\[2\\]: value 1: duplicate time
 plateball_cli_test(identify.nan 3 REGEX "x\\[2\\]: value nan: must be finite" -- identify ${dir}/nan.csv)
 plateball_cli_test(identify.not_a_number 3 REGEX "x\\[1\\]: value \"one\": not a number" -- identify ${dir}/text.csv)
 plateball_cli_test(identify.too_few 3 REGEX "t \\(rows\\): value 3: too few samples" -- identify ${dir}/few.csv)
-plateball_cli_test(identify.unknown_column 3 REGEX "header column 3: value \"qw\": unknown column" -- identify ${dir}/column.csv)
+plateball_cli_test(identify.unknown_column 3 REGEX "header column 3: value \"speed\": unknown column" -- identify ${dir}/column.csv)
 plateball_cli_test(identify.cells 3 REGEX "row\\[0\\]: value 3 cells: must have 4 cells" -- identify ${dir}/sigma.csv)
 plateball_cli_test(identify.negative_sigma 3 REGEX "sigma\\[3\\]: value -1: must be finite and > 0" -- identify ${dir}/negative_sigma.csv)
 plateball_cli_test(identify.no_fit 4 REGEX "\"status\": \"no_fit\".*no free motion fits the track: rms residual" -- identify ${dir}/zigzag.csv)
@@ -95,6 +95,57 @@ file(WRITE ${dir}/spin_without_sigma.csv "t,x,y,spin\n${spin_rows}")
 plateball_cli_test(identify.spin_needs_its_sigma 3 REGEX "sigma_spin \\(rows\\): value 0: must have one row per time \\(10\\): a measured spin needs its noise"
   -- identify ${dir}/spin_without_sigma.csv)
 
+# Measured orientations and body rates on a flight of 0.15 period (tests/data/identify_orientation_track.csv
+# and identify_imu_track.csv, their headers: lambda = 1.3, noise 0.002): lambda identified (1.317 +- 0.014
+# and 1.2993 +- 0.0014), the frame fitted (chi), the orientation in fitted_problem.
+plateball_cli_test(identify.orientation 0
+  REGEX "\"orientation_given\": true.*\"status\": \"identified\".*\"lambda\": 1\\.3.*\"chi\".*\"orientation\": \\[.*\"orientation\": {[^}]*\"rms\".*\"orientation\": {[^}]*\"quaternion\""
+  -- identify tests/data/identify_orientation_track.csv)
+plateball_cli_test(identify.body_rate 0
+  REGEX "\"body_rate_given\": true.*\"status\": \"identified\".*\"lambda\": 1\\.29.*\"body_rate\": {[^}]*\"rms\""
+  -- identify tests/data/identify_imu_track.csv --no-profile)
+plateball_cli_test(identify.orientation_svg 0 REGEX "<svg.*residuals, rms.*orientation residuals, rms"
+  --cat ${CMAKE_CURRENT_BINARY_DIR}/cli_identify_orientation.svg
+  -- identify tests/data/identify_orientation_track.csv --no-profile --out ${dir}/orientation.json
+     --svg ${CMAKE_CURRENT_BINARY_DIR}/cli_identify_orientation.svg)
+# The same body-rate track as JSON ("body_rate": [[wx, wy, wz], ...]): the same fit to the last digit.
+plateball_cli_test(identify.body_rate_json 0 REGEX "\"body_rate_given\": true.*\"lambda\": 1\\.2992705109732285,"
+  -- identify tests/data/identify_imu_track.json --no-profile)
+# Bad orientation and body-rate columns: exit 3 naming the column and the row.
+set(q_rows "")
+set(w_rows "")
+set(sw_rows "")
+foreach(i RANGE 0 9)
+  if(i EQUAL 3)
+    string(APPEND q_rows "${i},0.${i},0,0.5,0,0,0\n")
+  else()
+    string(APPEND q_rows "${i},0.${i},0,1,0,0,0\n")
+  endif()
+  string(APPEND w_rows "${i},0.${i},0,0.1,0,0,1\n")
+  string(APPEND sw_rows "${i},0.${i},0,0.1,1,0.1,0,0,1,0.1\n")
+endforeach()
+file(WRITE ${dir}/quaternion_norm.csv "t,x,y,qw,qx,qy,qz\n${q_rows}")
+string(REPLACE "2,0.2,0,1,0,0,0" "2,0.2,0,1,nan,0,0" q_nan "${q_rows}")
+file(WRITE ${dir}/quaternion_nan.csv "t,x,y,qw,qx,qy,qz\n${q_nan}")
+file(WRITE ${dir}/quaternion_mixed.csv "t,x,y,qw,qx,qy\n0,0,0,1,0,0\n")
+file(WRITE ${dir}/rate_without_sigma.csv "t,x,y,sigma,wx,wy,wz\n${w_rows}")
+file(WRITE ${dir}/spin_and_rate.csv "t,x,y,sigma,spin,sigma_spin,wx,wy,wz,sigma_body_rate\n${sw_rows}")
+file(WRITE ${dir}/quaternion_short.json "{\"t\": [0,1,2,3,4,5,6,7], \"x\": [[0,0],[1,0],[2,0],[3,0],[4,0],[5,0],[6,0],[7,0]], \"orientation\": [[1,0,0,0],[1,0,0]]}")
+plateball_cli_test(identify.quaternion_not_unit 3
+  REGEX "quaternion_norm.csv: orientation\\[3\\]: value \\[0.5, 0, 0, 0\\]: not a unit quaternion \\(w, x, y, z\\): norm 0.5, allowed 1 \\+- 1e-05"
+  -- identify ${dir}/quaternion_norm.csv)
+plateball_cli_test(identify.quaternion_nan 3 REGEX "orientation\\[2\\].x: value nan: must be finite" -- identify ${dir}/quaternion_nan.csv)
+plateball_cli_test(identify.quaternion_mixed_columns 3
+  REGEX "header column qz: value \\(missing\\): column qw is given: an orientation is the unit quaternion qw, qx, qy, qz"
+  -- identify ${dir}/quaternion_mixed.csv)
+plateball_cli_test(identify.body_rate_needs_its_sigma 3
+  REGEX "sigma_body_rate \\(rows\\): value 0: must have one row per time \\(10\\): measured body rates need their noise"
+  -- identify ${dir}/rate_without_sigma.csv)
+plateball_cli_test(identify.spin_and_body_rate 3 REGEX "body_rate \\(rows\\): value 10: give either spin or body_rate, not both"
+  -- identify ${dir}/spin_and_rate.csv)
+plateball_cli_test(identify.quaternion_json_row 3 REGEX "quaternion_short.json: orientation\\[1\\]: value \\[1,0,0\\]: must be a unit quaternion \\[w, x, y, z\\]"
+  -- identify ${dir}/quaternion_short.json)
+
 # The fitted problem is a problem file: simulate reads it back and moves at the fitted period.
 if(EXISTS /usr/bin/python3)
   add_test(NAME cli.identify.fitted_problem_is_a_problem_file
@@ -110,4 +161,22 @@ print('fitted problem read back: period', sim['period'])
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   set_tests_properties(cli.identify.fitted_problem_is_a_problem_file PROPERTIES TIMEOUT 120 LABELS cli
                        PASS_REGULAR_EXPRESSION "fitted problem read back")
+  # With orientations the fitted problem carries the fitted frame: simulate starts from it.
+  add_test(NAME cli.identify.fitted_orientation_is_the_problem_start
+    COMMAND /usr/bin/python3 -c "
+import json, subprocess, sys
+exe, out = sys.argv[1], sys.argv[2]
+doc = json.loads(subprocess.run([exe, 'identify', 'tests/data/identify_orientation_track.csv', '--no-profile'], check=True, capture_output=True, text=True).stdout)
+json.dump(doc['fitted_problem'], open(out, 'w'))
+sim = json.loads(subprocess.run([exe, 'simulate', out, '--samples', '2'], check=True, capture_output=True, text=True).stdout)
+w, x, y, z = doc['fit']['orientation']
+a = [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+err = max(abs(a[i][j] - sim['initial']['orientation'][i][j]) for i in range(3) for j in range(3))
+assert err < 1e-12, err
+print('fitted orientation read back: largest entry difference', err)
+" $<TARGET_FILE:plateball_cli> ${dir}/fitted_orientation_problem.json
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(cli.identify.fitted_orientation_is_the_problem_start PROPERTIES TIMEOUT 120 LABELS cli
+                       PASS_REGULAR_EXPRESSION "fitted orientation read back")
 endif()

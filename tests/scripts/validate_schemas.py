@@ -187,6 +187,12 @@ def check_tool_outputs(run, problems):
             impulses = [line for line in track if line.startswith("#")][-1].lstrip("# ").strip()
         run.output(["plateball", "identify", "tests/data/identify_impulses_track.csv", "--impulses", impulses, "--no-profile"])
         run.output(["plateball", "identify", "tests/data/identify_spin_track.csv", "--no-profile"])
+        # Measured orientations (the frame fitted: chi, fit.orientation, the orientation in fitted_problem) and body rates.
+        doc = run.output(["plateball", "identify", "tests/data/identify_orientation_track.csv", "--no-profile"])
+        if doc is not None:
+            run.expect_valid(os.path.join("input", "problem.schema.json"), doc["fitted_problem"],
+                             "identify tests/data/identify_orientation_track.csv: fitted_problem")
+        run.output(["plateball", "identify", "tests/data/identify_imu_track.csv", "--no-profile"])
         run.output(["plateball", "steer", "problems/figure7_exact.json", "--summary-only"])
         run.output(["plateball", "montecarlo", "problems/circle.json", "--impulses", "8", "--trials", "2", "--quiet",
                     "--strategy", "open_loop,feedback", "--noise", "timing=1e-3", "--noise", "pulse_duration=0.05",

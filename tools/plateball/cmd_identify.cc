@@ -22,6 +22,7 @@
 #include "plateball/free_motion.h"
 #include "plateball/identify.h"
 #include "plateball/problem.h"
+#include "plateball/so3.h"
 
 namespace plateball::tools {
 namespace {
@@ -70,15 +71,31 @@ std::vector<std::string> SplitCells(const std::string& line) {
   return cells;
 }
 
-/// CSV with a header line naming the columns t, x, y and optionally sigma, spin and sigma_spin ('#'
-/// lines are comments).
+/// The CSV columns: t, x, y required, the rest optional; an orientation (qw, qx, qy, qz) and a
+/// body rate (wx, wy, wz) come with all their columns or none.
+enum CsvColumn { kT, kX, kY, kSigma, kSpin, kSigmaSpin, kQw, kQx, kQy, kQz, kSigmaOrientation, kWx, kWy, kWz, kSigmaBodyRate, kColumns };
+constexpr const char* kCsvNames[kColumns] = {"t",  "x",  "y",  "sigma", "spin", "sigma_spin", "qw", "qx",
+                                             "qy", "qz", "sigma_orientation", "wx", "wy", "wz", "sigma_body_rate"};
+constexpr const char* kCsvColumnList =
+    "t, x, y and optionally sigma, spin, sigma_spin, qw, qx, qy, qz, sigma_orientation, wx, wy, wz and sigma_body_rate";
+
+/// Every column of a group [first, last] or none (the header's mixed columns).
+void RequireGroup(const std::string& file, const int* col, int first, int last, const char* what) {
+  for (int m = first; m <= last; ++m)
+    for (int k = first; k <= last; ++k)
+      if (col[m] >= 0 && col[k] < 0)
+        TrackError(file, std::string("header column ") + kCsvNames[k], "(missing)",
+                   std::string("column ") + kCsvNames[m] + " is given: " + what);
+}
+
+/// CSV with a header line naming the columns (kCsvColumnList; '#' lines are comments).
 IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
   std::stringstream in(text);
   std::string line;
   std::vector<std::string> columns;
   IdentifyProblem p;
-  int col[6] = {-1, -1, -1, -1, -1, -1};  // t, x, y, sigma, spin, sigma_spin
-  const char* names[6] = {"t", "x", "y", "sigma", "spin", "sigma_spin"};
+  int col[kColumns];
+  std::fill(col, col + kColumns, -1);
   while (std::getline(in, line)) {
     const std::string trimmed = Trim(line);
     if (trimmed.empty() || trimmed[0] == '#') continue;
@@ -87,35 +104,46 @@ IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
       columns = cells;
       for (std::size_t c = 0; c < cells.size(); ++c) {
         int k = -1;
-        for (int m = 0; m < 6; ++m)
-          if (cells[c] == names[m]) k = m;
+        for (int m = 0; m < kColumns; ++m)
+          if (cells[c] == kCsvNames[m]) k = m;
         if (k < 0)
           TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"",
-                     "unknown column (the columns are t, x, y and optionally sigma, spin and sigma_spin)");
+                     std::string("unknown column (the columns are ") + kCsvColumnList + ")");
         if (col[k] >= 0) TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"", "repeated column");
         col[k] = static_cast<int>(c);
       }
       for (int m = 0; m < 3; ++m)
-        if (col[m] < 0) TrackError(file, std::string("header column ") + names[m], "(missing)", "the columns t, x and y are required");
+        if (col[m] < 0) TrackError(file, std::string("header column ") + kCsvNames[m], "(missing)", "the columns t, x and y are required");
+      RequireGroup(file, col, kQw, kQz, "an orientation is the unit quaternion qw, qx, qy, qz (all four columns)");
+      RequireGroup(file, col, kWx, kWz, "a body rate has the three columns wx, wy, wz");
+      if (col[kSigmaOrientation] >= 0 && col[kQw] < 0)
+        TrackError(file, "header column sigma_orientation", "(given)", "needs the orientation columns qw, qx, qy, qz");
+      if (col[kSigmaBodyRate] >= 0 && col[kWx] < 0)
+        TrackError(file, "header column sigma_body_rate", "(given)", "needs the body-rate columns wx, wy, wz");
       continue;
     }
     const std::size_t row = p.t.size();
     const std::string r = "[" + std::to_string(row) + "]";
     if (cells.size() != columns.size())
       TrackError(file, "row" + r, std::to_string(cells.size()) + " cells", "must have " + std::to_string(columns.size()) + " cells like the header");
-    p.t.push_back(ParseCell(file, "t" + r, cells[static_cast<std::size_t>(col[0])]));
-    p.x.emplace_back(ParseCell(file, "x" + r, cells[static_cast<std::size_t>(col[1])]),
-                     ParseCell(file, "y" + r, cells[static_cast<std::size_t>(col[2])]));
-    if (col[3] >= 0) p.sigma.push_back(ParseCell(file, "sigma" + r, cells[static_cast<std::size_t>(col[3])]));
-    if (col[4] >= 0) p.spin.push_back(ParseCell(file, "spin" + r, cells[static_cast<std::size_t>(col[4])]));
-    if (col[5] >= 0) p.sigma_spin.push_back(ParseCell(file, "sigma_spin" + r, cells[static_cast<std::size_t>(col[5])]));
+    auto cell = [&](int k) { return ParseCell(file, kCsvNames[k] + r, cells[static_cast<std::size_t>(col[k])]); };
+    p.t.push_back(cell(kT));
+    p.x.emplace_back(cell(kX), cell(kY));
+    if (col[kSigma] >= 0) p.sigma.push_back(cell(kSigma));
+    if (col[kSpin] >= 0) p.spin.push_back(cell(kSpin));
+    if (col[kSigmaSpin] >= 0) p.sigma_spin.push_back(cell(kSigmaSpin));
+    if (col[kQw] >= 0) p.orientation.emplace_back(cell(kQw), cell(kQx), cell(kQy), cell(kQz));
+    if (col[kSigmaOrientation] >= 0) p.sigma_orientation.push_back(cell(kSigmaOrientation));
+    if (col[kWx] >= 0) p.body_rate.emplace_back(cell(kWx), cell(kWy), cell(kWz));
+    if (col[kSigmaBodyRate] >= 0) p.sigma_body_rate.push_back(cell(kSigmaBodyRate));
   }
   if (columns.empty()) TrackError(file, "(document)", "(empty)", "no header line t,x,y");
   return p;
 }
 
 /// JSON {"t": [...], "x": [[x, y], ...], "sigma": [...], "impulse_times": [...], "spin": [...],
-/// "sigma_spin": [...]} (all but t and x optional).
+/// "sigma_spin": [...], "orientation": [[w, x, y, z], ...], "sigma_orientation": [...],
+/// "body_rate": [[wx, wy, wz], ...], "sigma_body_rate": [...]} (all but t and x optional).
 IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) {
   using nlohmann::json;
   json doc;
@@ -125,10 +153,13 @@ IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) 
     TrackError(file, "(document)", "(see message)", std::string("malformed JSON: ") + e.what());
   }
   if (!doc.is_object()) TrackError(file, "(document)", "(not an object)", "must be an object {\"t\": [...], \"x\": [[x, y], ...]}");
+  const char* keys[] = {"t", "x", "sigma", "impulse_times", "spin", "sigma_spin", "orientation", "sigma_orientation", "body_rate",
+                        "sigma_body_rate"};
   for (auto it = doc.begin(); it != doc.end(); ++it)
-    if (it.key() != "t" && it.key() != "x" && it.key() != "sigma" && it.key() != "impulse_times" && it.key() != "spin" &&
-        it.key() != "sigma_spin")
-      TrackError(file, it.key(), "(any)", "unknown key (a track has t, x and optionally sigma, impulse_times, spin and sigma_spin)");
+    if (std::find(std::begin(keys), std::end(keys), it.key()) == std::end(keys))
+      TrackError(file, it.key(), "(any)",
+                 "unknown key (a track has t, x and optionally sigma, impulse_times, spin, sigma_spin, orientation, "
+                 "sigma_orientation, body_rate and sigma_body_rate)");
   for (const char* key : {"t", "x"})
     if (!doc.contains(key) || !doc[key].is_array()) TrackError(file, key, "(missing)", "required array");
   IdentifyProblem p;
@@ -151,6 +182,23 @@ IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) 
   numbers("sigma", &p.sigma);
   numbers("spin", &p.spin);
   numbers("sigma_spin", &p.sigma_spin);
+  numbers("sigma_orientation", &p.sigma_orientation);
+  numbers("sigma_body_rate", &p.sigma_body_rate);
+  // Rows of k numbers: the quaternions [w, x, y, z] and the body rates [wx, wy, wz].
+  auto tuples = [&](const char* key, int k, const char* what, auto push) {
+    if (!doc.contains(key)) return;
+    if (!doc[key].is_array()) TrackError(file, key, doc[key].dump(), std::string("must be an array of ") + what);
+    for (std::size_t i = 0; i < doc[key].size(); ++i) {
+      const json& v = doc[key][i];
+      const std::string f = std::string(key) + "[" + std::to_string(i) + "]";
+      if (!v.is_array() || v.size() != static_cast<std::size_t>(k)) TrackError(file, f, v.dump(), std::string("must be ") + what);
+      double c[4] = {0, 0, 0, 0};
+      for (int m = 0; m < k; ++m) c[m] = number(v[static_cast<std::size_t>(m)], f + "[" + std::to_string(m) + "]");
+      push(c);
+    }
+  };
+  tuples("orientation", 4, "a unit quaternion [w, x, y, z]", [&](const double* c) { p.orientation.emplace_back(c[0], c[1], c[2], c[3]); });
+  tuples("body_rate", 3, "a body rate [wx, wy, wz]", [&](const double* c) { p.body_rate.emplace_back(c[0], c[1], c[2]); });
   if (doc.contains("impulse_times")) {
     const json& times = doc["impulse_times"];
     if (!times.is_array()) TrackError(file, "impulse_times", times.dump(), "must be an array of times");
@@ -180,13 +228,17 @@ IdentifyProblem ReadTrack(const std::string& file, const IdentifyCliOptions& o) 
 
 Json FiniteOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
+/// The index of the first delta psi in standard_errors (after chi when the frame is fitted).
+std::size_t FirstImpulse(const IdentifySummary& s) { return s.frame_fitted ? 8 : 7; }
+
 Json ErrorsJson(const IdentifySummary& s) {
   Json j = Json::object();
   for (int i = 0; i < 5; ++i) j[kIdentifyParameterNames[i]] = FiniteOrNull(s.standard_errors[static_cast<std::size_t>(i)]);
   j["x0"] = Json::array({FiniteOrNull(s.standard_errors[5]), FiniteOrNull(s.standard_errors[6])});
+  if (s.frame_fitted) j["chi"] = FiniteOrNull(s.standard_errors[7]);
   if (!s.delta_psi.empty()) {
     j["delta_psi"] = Json::array();
-    for (std::size_t k = 0; k < s.delta_psi.size(); ++k) j["delta_psi"].push_back(FiniteOrNull(s.standard_errors[7 + k]));
+    for (std::size_t k = 0; k < s.delta_psi.size(); ++k) j["delta_psi"].push_back(FiniteOrNull(s.standard_errors[FirstImpulse(s) + k]));
   }
   return j;
 }
@@ -207,7 +259,7 @@ Json ImpulsesJson(const IdentifySummary& s) {
   for (std::size_t k = 0; k < s.delta_psi.size(); ++k) {
     const IdentifiedFlight& after = s.flights[k + 1];
     impulses.push_back(Json{{"t", s.impulse_times[k]}, {"delta_psi", s.delta_psi[k]},
-                            {"delta_psi_error", FiniteOrNull(s.standard_errors[7 + k])},
+                            {"delta_psi_error", FiniteOrNull(s.standard_errors[FirstImpulse(s) + k])},
                             {"angles_after", ToJson(after.angles)}, {"x", ToJson(after.x)}});
   }
   return impulses;
@@ -227,10 +279,9 @@ Json FitJson(const IdentifySummary& s) {
                               {"straight_path", s.straight_path},
                               {"unidentified", s.unidentified}};
   if (!s.delta_psi.empty()) j["impulses"] = ImpulsesJson(s);
+  if (s.frame_fitted) j["orientation"] = Json::array({s.orientation[0], s.orientation[1], s.orientation[2], s.orientation[3]});
   j["correlation"] = CorrelationJson(s);
-  j["parameters"] = Json::array();
-  for (const char* name : kIdentifyParameterNames) j["parameters"].push_back(name);
-  for (std::size_t k = 0; k < s.delta_psi.size(); ++k) j["parameters"].push_back("delta_psi[" + std::to_string(k) + "]");
+  j["parameters"] = s.parameters;
   return j;
 }
 
@@ -238,14 +289,19 @@ Json ResidualsJson(const IdentifySummary& s) {
   Json j{{"samples", s.samples}, {"rms", s.rms_residual}, {"max", s.max_residual}, {"chi_square", s.chi_square},
          {"sigma", s.sigma}, {"sigma_estimated", s.sigma_estimated}, {"track_spread", s.track_spread}};
   if (!s.fitted_spin.empty()) j["spin"] = Json{{"rms", s.spin_rms_residual}, {"max", s.spin_max_residual}};
+  if (!s.fitted_orientation.empty()) j["orientation"] = Json{{"rms", s.orientation_rms_residual}, {"max", s.orientation_max_residual}};
+  if (!s.fitted_body_rate.empty()) j["body_rate"] = Json{{"rms", s.body_rate_rms_residual}, {"max", s.body_rate_max_residual}};
   return j;
 }
 
 /// The fitted model as problem-file sections (ball, initial) that plan and steer read.
 Json FittedProblemJson(const IdentifySummary& s) {
-  return Json{{"ball", Json{{"lambda", s.lambda}}},
-              {"initial", Json{{"theta", s.angles.theta}, {"phi", s.angles.phi}, {"psi", s.angles.psi}, {"mu", s.mu},
-                               {"x0", ToJson(s.x0)}}}};
+  Json j{{"ball", Json{{"lambda", s.lambda}}},
+         {"initial", Json{{"theta", s.angles.theta}, {"phi", s.angles.phi}, {"psi", s.angles.psi}, {"mu", s.mu}, {"x0", ToJson(s.x0)}}}};
+  // With the frame fitted: the orientation at t_ref too (its third column is the fitted axis).
+  if (s.frame_fitted)
+    j["initial"]["orientation"] = Json{{"quaternion", Json::array({s.orientation[0], s.orientation[1], s.orientation[2], s.orientation[3]})}};
+  return j;
 }
 
 /// Six significant digits for a title.
@@ -302,11 +358,42 @@ SvgFigure ResidualFigure(const IdentifyProblem& track, const IdentifySummary& s,
   return fig;
 }
 
-/// The two panels stacked in one SVG (each rendered by SvgFigure, nested at its offset).
+/// With orientations: the angle |LogSO3(A_i^T A(t_i))| (rad) against time; with body rates the
+/// components of measured - fitted A^T omega.
+SvgFigure FrameResidualFigure(const IdentifyProblem& track, const IdentifySummary& s) {
+  SvgFigure fig(640, 340);
+  fig.EqualAspect(false);
+  const bool orientation = !s.fitted_orientation.empty();
+  fig.Title(orientation ? "orientation residuals, rms " + Short(s.orientation_rms_residual) + " rad"
+                        : "body-rate residuals, rms " + Short(s.body_rate_rms_residual));
+  fig.AxisLabels("t", orientation ? "angle between measured and fitted (rad)" : "measured - fitted (rad per time unit)");
+  fig.Polyline({{track.t.front(), 0.0}, {track.t.back(), 0.0}}, {"gray", 1.0, "4,3", "none"});
+  const char* colours[3] = {"#d62728", "#2ca02c", "#1f77b4"};
+  if (orientation) {
+    std::vector<Eigen::Vector2d> angle;
+    for (std::size_t i = 0; i < track.t.size(); ++i) {
+      const Eigen::Vector4d& q = s.fitted_orientation[i];
+      angle.emplace_back(track.t[i], RotationAngle(QuaternionToRotation(track.orientation[i]), QuaternionToRotation(q)));
+    }
+    fig.Polyline(angle, {colours[0], 1.0, "", "none"});
+    fig.Legend("orientation residual angle", {colours[0], 1.0, "", "none"});
+    return fig;
+  }
+  for (int c = 0; c < 3; ++c) {
+    std::vector<Eigen::Vector2d> r;
+    for (std::size_t i = 0; i < track.t.size(); ++i) r.emplace_back(track.t[i], track.body_rate[i][c] - s.fitted_body_rate[i][c]);
+    fig.Polyline(r, {colours[c], 1.0, "", "none"});
+    fig.Legend(std::string("body rate ") + "xyz"[c] + " residual", {colours[c], 1.0, "", "none"});
+  }
+  return fig;
+}
+
+/// The panels stacked in one SVG (each rendered by SvgFigure, nested at its offset).
 void WriteFigure(const std::string& path, const IdentifyProblem& track, const IdentifySummary& s, double radius) {
   const bool fitted = !s.fitted.empty() && s.mu > 0;
   std::vector<std::string> panels{PlateFigure(track, s, radius, fitted).Render()};
   if (fitted) panels.push_back(ResidualFigure(track, s, radius).Render());
+  if (fitted && (!s.fitted_orientation.empty() || !s.fitted_body_rate.empty())) panels.push_back(FrameResidualFigure(track, s).Render());
   double height = 0;
   std::string body;
   for (std::string& panel : panels) {
@@ -350,6 +437,7 @@ int RunIdentify(const IdentifyCliOptions& o) {
                         {"profile_interval", opt.profile_interval}, {"guess", o.guess}};
   doc["track"] = Json{{"file", o.track}, {"samples", track.t.size()}, {"t_first", track.t.front()}, {"t_last", track.t.back()},
                       {"sigma_given", !track.sigma.empty()}, {"spin_given", !track.spin.empty()},
+                      {"orientation_given", !track.orientation.empty()}, {"body_rate_given", !track.body_rate.empty()},
                       {"impulse_times", track.impulse_times}};
   Append(doc, ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport()));
   const bool fitted = s.status == IdentifyStatus::kIdentified || s.status == IdentifyStatus::kLambdaNotIdentified;
@@ -367,8 +455,9 @@ int RunIdentify(const IdentifyCliOptions& o) {
 std::function<int()> SetupIdentify(CLI::App& sub) {
   auto o = std::make_shared<IdentifyCliOptions>();
   sub.add_option("TRACK", o->track,
-                 "the track: CSV with a header t,x,y[,sigma[,spin,sigma_spin]] or JSON {\"t\", \"x\", \"sigma\", "
-                 "\"impulse_times\", \"spin\", \"sigma_spin\"} (\"-\": standard input)")
+                 "the track: CSV with a header t,x,y[,sigma][,spin,sigma_spin][,qw,qx,qy,qz[,sigma_orientation]]"
+                 "[,wx,wy,wz,sigma_body_rate] or JSON {\"t\", \"x\", \"sigma\", \"impulse_times\", \"spin\", \"sigma_spin\", "
+                 "\"orientation\", \"sigma_orientation\", \"body_rate\", \"sigma_body_rate\"} (\"-\": standard input)")
       ->required();
   sub.add_option("PROBLEM.json", o->problem,
                  "optional problem file: its integration tolerances, ball.physical.radius (a track in metres) and, "
@@ -385,7 +474,10 @@ std::function<int()> SetupIdentify(CLI::App& sub) {
   sub.footer(
       "Fits lambda, mu and the state (angles, contact point) at the track's first time to a measured track of\n"
       "the contact point (docs/identify.md); with --impulses (or the JSON track's impulse_times) the flights\n"
-      "between known impulses share lambda and mu, and each impulse's delta psi is fitted. Prints JSON (docs/output_contract.md): status identified |\n"
+      "between known impulses share lambda and mu, and each impulse's delta psi is fitted. Measured orientations\n"
+      "(unit quaternions qw,qx,qy,qz of the body-to-world rotation, norm within 1e-5 of 1) and body angular\n"
+      "velocities (wx,wy,wz, an IMU's rates in the body frame) are fitted too and identify lambda even from a\n"
+      "short flight. Prints JSON (docs/output_contract.md): status identified |\n"
       "lambda_not_identified | no_fit | failed, the fit with standard errors, the 95% profile interval of\n"
       "lambda, an identifiability report, the residuals and, when identified, fitted_problem: the ball and\n"
       "initial sections of a problem file for plan and steer.\n"

@@ -59,6 +59,8 @@ def package_stub():
               "def identify(t: Sequence[float], xy: Sequence[Sequence[float]], sigma: Optional[Sequence[float]] = ..., "
               "options: Optional[IdentifyOptions] = ..., impulse_times: Optional[Sequence[float]] = ..., "
               "spin: Optional[Sequence[float]] = ..., sigma_spin: Optional[Sequence[float]] = ..., "
+              "orientation: Optional[Sequence[Sequence[float]]] = ..., sigma_orientation: Optional[Sequence[float]] = ..., "
+              "body_rate: Optional[Sequence[Sequence[float]]] = ..., sigma_body_rate: Optional[Sequence[float]] = ..., "
               "**kwargs: Any) -> IdentifySummary: ...", ""]
     return "\n".join(lines)
 
