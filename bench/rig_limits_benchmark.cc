@@ -5,11 +5,18 @@
 // 0.05. Timed: SolveExactArrival (the free optimum, then SLSQP under the limits); the isoparallel
 // solve is done once outside the loop. Counters: the replayed arrival errors, the independent check
 // (passed, the smallest plate and obstacle margins), the deviation, the SLSQP evaluations.
+//
+// T12: the constrained fewest-impulse search on the same goal (problems/figure7_fewest_rig.json:
+// rolling, stop at the goal) with the same disk plate, which cuts the free fewest answer (two
+// straight rolls reaching 5.9 from the plate's centre), and one disk obstacle. Timed:
+// SolveFewestImpulses. Counters: the fewest count within the limits, its total time, its
+// independent check, the constrained solves and their SLSQP evaluations.
 #include <benchmark/benchmark.h>
 
 #include <string>
 
 #include "plateball/exact_arrival.h"
+#include "plateball/fewest_impulses.h"
 #include "plateball/isoparallel.h"
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
@@ -44,6 +51,30 @@ void BM_T11ConstrainedSteerFigure7(benchmark::State& state) {
   state.counters["evaluations"] = s.limits.evaluations;
 }
 BENCHMARK(BM_T11ConstrainedSteerFigure7)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+
+void BM_T12ConstrainedFewestFigure7(benchmark::State& state) {
+  const Problem file = ReadProblemFile(std::string(PLATEBALL_SOURCE_DIR) + "/problems/figure7_fewest_rig.json");
+  const FewestImpulsesSetup setup = FewestImpulsesSetupFor(file);
+  FewestImpulsesSummary s;
+  for (auto _ : state) {
+    s = SolveFewestImpulses(setup.problem, setup.options);
+    benchmark::DoNotOptimize(s.counts.data());
+  }
+  const FewestImpulsesCount* f = s.Fewest();
+  state.counters["found"] = s.IsSolutionUsable() ? 1 : 0;
+  state.counters["fewest"] = s.fewest;
+  state.counters["total_time"] = f ? f->total_time : 0.0;
+  state.counters["check_passed"] = f && f->check && f->check->passed ? 1 : 0;
+  if (f) {
+    const ReplayResult replay = ReplayExactArrival(ReplayProblemFor(setup.problem, f->impulses), f->plan);
+    state.counters["position_error"] = replay.position_error;
+    state.counters["orientation_error"] = replay.orientation_error;
+  }
+  state.counters["constrained_solves"] = s.constrained_solves;
+  state.counters["evaluations"] = s.evaluations;
+  state.counters["rollouts"] = s.rollouts;
+}
+BENCHMARK(BM_T12ConstrainedFewestFigure7)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 }  // namespace
 

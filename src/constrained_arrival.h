@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "exact_chain.h"
+#include "plateball/exact_arrival.h"
 #include "plateball/rig_limits.h"
 
 namespace plateball::internal {
@@ -58,9 +59,28 @@ struct ConstrainedOutcome {
   int rollouts = 0;
 };
 
-/// True when u meets every limit at the sample nodes with the sampling margin, the objective is the
-/// deviation and there is no tick: the free optimum is then the answer, unchanged.
+/// True when u meets every limit but the tick at the sample nodes with the sampling margin and at
+/// the dense points between them.
+bool MeetsLimits(const ConstrainedSetup& setup, const Eigen::VectorXd& u);
+
+/// True when u meets every limit (MeetsLimits), the objective is the deviation and there is no
+/// tick: the free optimum is then the answer, unchanged.
 bool LimitsAreSlack(const ConstrainedSetup& setup, const Eigen::VectorXd& u);
+
+/// The limits active at u (within 1e-6 of their bound at the sample nodes, "min_interval" for a
+/// flight at its lower bound), each named once.
+std::vector<std::string> ActiveLimits(const ConstrainedSetup& setup, const Eigen::VectorXd& u);
+
+/// Throws std::invalid_argument naming the field when the limits are invalid, an impulse bound
+/// lacks the physical parameters, or the start x0 or the goal x1 breaks the plate, an obstacle or
+/// the stroke.
+void ValidateRigProblem(const RigLimits& limits, const std::optional<PhysicalParameters>& physical,
+                        const Eigen::Vector2d& x0, const Eigen::Vector2d& x1);
+
+/// Puts the impulse times exactly on the grid (t_impulse = tick index x tick, the flights their
+/// differences) when the impulses carry tick indices; returns the total time (unchanged otherwise).
+double PlaceOnGrid(double tick, std::vector<ExactImpulse>* impulses, std::optional<ExactImpulse>* stop,
+                   double total_time);
 
 /// The constrained solve from u0 (the free optimum). Throws std::runtime_error when an
 /// integration fails and std::invalid_argument when the grid leaves fewer than five unknowns.

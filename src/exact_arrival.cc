@@ -131,31 +131,12 @@ bool Arrived(const Eigen::VectorXd& r, const ExactArrivalOptions& o) {
 // the deviation counts once they are met.
 double Merit(const Eigen::VectorXd& r) { return r.head<5>().norm(); }
 
-std::string PointText(const Eigen::Vector2d& x) {
-  return "(" + internal::FormatNumber(x.x()) + ", " + internal::FormatNumber(x.y()) + ")";
-}
-
-// The start and the goal must themselves meet the plate and obstacle limits.
-void RequireAdmissiblePoint(const char* field, const Eigen::Vector2d& x, const RigLimits& l) {
-  if (l.plate && SignedDistanceInside(*l.plate, x) < l.clearance)
-    internal::ThrowInvalid(field, PointText(x), "lies outside rig.plate (or within rig.clearance of its edge)");
-  for (std::size_t i = 0; i < l.obstacles.size(); ++i)
-    if (-SignedDistanceInside(l.obstacles[i], x) < l.clearance)
-      internal::ThrowInvalid(field, PointText(x),
-                             "lies inside rig.obstacles[" + std::to_string(i) + "] (or within rig.clearance of it)");
-}
-
 void ValidateLimits(const ExactArrivalProblem& p) {
-  internal::ThrowIfInvalid(p.limits.Validate());
-  if (p.limits.NeedsPhysical() && !p.physical)
-    internal::ThrowInvalid(std::isinf(p.limits.max_plate_impulse) ? "rig.max_force" : "rig.max_plate_impulse",
-                           std::min(p.limits.max_plate_impulse, p.limits.max_force),
-                           "needs ball.physical (a bare lambda fixes no masses)");
-  if (p.physical) internal::ThrowIfInvalid(p.physical->Validate());
-  RequireAdmissiblePoint("x0", p.x0, p.limits);
-  RequireAdmissiblePoint("x1", p.x1, p.limits);
-  if (p.limits.stroke && ((2.0 * (p.x1 - p.x0)).cwiseAbs().array() > p.limits.stroke->array()).any())
-    internal::ThrowInvalid("x1", PointText(p.x1), "needs a plate displacement 2 (x1 - x0) beyond rig.stroke");
+  internal::ValidateRigProblem(p.limits, p.physical, p.x0, p.x1);
+  if (p.objective == ArrivalObjective::kFewest)
+    internal::ThrowInvalid("objective", ToString(p.objective),
+                           "asks for the fewest impulses: that is the fewest-impulse search (SolveFewestImpulses), "
+                           "not an exact arrival along a reference");
 }
 
 void ValidateProblem(const ExactArrivalProblem& p) {
@@ -406,14 +387,7 @@ RigLimits NormalisedLimits(RigLimits l, double mu) {
 
 // Impulse times on the grid exactly (t_impulse = index x tick), the flights their differences.
 void PlaceOnGrid(double tick, ExactArrivalSummary* out) {
-  if (!(tick > 0) || out->impulses.empty() || out->impulses.front().tick < 0) return;
-  std::vector<ExactImpulse*> all;
-  for (ExactImpulse& e : out->impulses) all.push_back(&e);
-  if (out->stop) all.push_back(&*out->stop);
-  for (ExactImpulse* e : all) e->t_impulse = static_cast<double>(e->tick) * tick;
-  for (std::size_t k = 0; k + 1 < all.size(); ++k) all[k]->duration = all[k + 1]->t_impulse - all[k]->t_impulse;
-  const ExactImpulse& last = out->impulses.back();
-  out->total_time = last.t_impulse + last.duration;
+  out->total_time = internal::PlaceOnGrid(tick, &out->impulses, &out->stop, out->total_time);
 }
 
 }  // namespace

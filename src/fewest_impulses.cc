@@ -11,8 +11,10 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "constrained_arrival.h"
 #include "exact_chain.h"
 #include "plateball/limits.h"
+#include "plateball/plate_impulse.h"
 #include "plateball/so3.h"
 
 namespace plateball {
@@ -22,6 +24,7 @@ std::string ToString(FewestImpulsesStatus status) {
     case FewestImpulsesStatus::kNotRun: return "not_run";
     case FewestImpulsesStatus::kFound: return "found";
     case FewestImpulsesStatus::kNotFound: return "not_found";
+    case FewestImpulsesStatus::kLimitsNotMet: return "limits_not_met";
   }
   return "unknown";
 }
@@ -96,6 +99,8 @@ struct Search {
   int conditions = 5;  // 3 with orientation_only
   int* rollouts = nullptr;
   int* starts = nullptr;  // starts tried in all counts, for the progress hook
+  bool limited = false;   // the problem has limits (rows are reached only within them)
+  FewestImpulsesSummary* summary = nullptr;  // for the constrained solver's counters
 };
 
 // The arrival conditions (the orientation's three first with orientation_only) at the chain's end.
@@ -275,31 +280,121 @@ Eigen::VectorXd Split(const Eigen::VectorXd& u) {
   return v;
 }
 
-// The row of count n from its best parameters.
-void Describe(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes,
-              FewestImpulsesCount* row) {
+// The best of a count so far: the arrival of shortest total time, else the closest point.
+struct CountBest {
+  double time = std::numeric_limits<double>::infinity();
+  double closest = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd u;
+  std::vector<ChainNode> nodes;
+  std::vector<long long> ticks;  // with a rig tick: the grid index of every impulse (and the stop)
+  // With limits, while no arrival within them: u is the closest feasible arrival (or an exact
+  // arrival the grid cannot hold), `blocking` the limits that stop it.
+  bool feasible_closest = false;
+  std::vector<std::string> blocking;
+  int failed = 0;  // constrained solves of the count that did not arrive
+};
+
+// Keeps the arrival u (on the grid `ticks` with a rig tick) if it is the shortest of the count so
+// far; an equal time keeps the earlier one.
+void Consider(const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, const std::vector<long long>& ticks,
+              CountBest* best) {
+  const double t = u.tail(u.size() / 2).sum();
+  if (t >= best->time) return;
+  best->time = t;
+  best->u = u;
+  best->nodes = nodes;
+  best->ticks = ticks;
+  best->blocking.clear();
+}
+
+// The constrained exact arrival of count n (constrained_arrival.h) at the problem's mu: the
+// limits in the problem's time unit, the total time minimised, the pass points of the deviation
+// the straight line x0 -> x1 cut into n equal parts.
+internal::ConstrainedSetup ConstrainedFor(const Search& s, int n) {
+  const FewestImpulsesProblem& p = *s.problem;
+  internal::ConstrainedSetup cs;
+  cs.lambda = p.model.lambda();
+  cs.n = n;
+  cs.start = s.start;
+  cs.x1 = p.x1;
+  cs.A1 = p.A1;
+  for (int k = 0; k <= n; ++k) cs.planned.push_back(p.x0 + (p.x1 - p.x0) * (static_cast<double>(k) / n));
+  cs.limits = p.limits;
+  cs.physical = p.physical;
+  cs.objective = ArrivalObjective::kTotalTime;
+  cs.start_at_rest = p.start_at_rest;
+  cs.stop_at_goal = p.stop_at_goal;
+  cs.integration = s.options->integration;
+  cs.jacobian_integration = s.options->search_integration;
+  cs.position_tolerance = s.options->position_tolerance;
+  cs.orientation_tolerance = s.options->orientation_tolerance;
+  return cs;
+}
+
+// The impulses of u (rolled into `nodes`), the stop with stop_at_goal, on the grid with `ticks`;
+// returns the total time.
+double Impulses(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes,
+                const std::vector<long long>& ticks, std::vector<ExactImpulse>* plan, std::optional<ExactImpulse>* stop) {
   const FewestImpulsesProblem& p = *s.problem;
   const int n = static_cast<int>(u.size() / 2);
-  row->plan = internal::ReportImpulses(p.model, p.mu, nodes, u, p.start_at_rest);
-  row->total_time = u.tail(n).sum();
+  *plan = internal::ReportImpulses(p.model, p.mu, nodes, u, p.start_at_rest);
+  stop->reset();
+  if (p.stop_at_goal) *stop = internal::StopImpulse(p.model, p.mu, nodes.back(), u.tail(n).sum());
+  for (std::size_t k = 0; k < ticks.size(); ++k) (k < plan->size() ? (*plan)[k] : **stop).tick = ticks[k];
+  return internal::PlaceOnGrid(p.limits.tick, plan, stop, u.tail(n).sum());
+}
+
+// The independent check of an arrival against the limits (CheckRigLimits: a FreeMotion replay).
+RigCheck CheckArrival(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes,
+                      const std::vector<long long>& ticks) {
+  ExactArrivalSummary summary;
+  Impulses(s, u, nodes, ticks, &summary.impulses, &summary.stop);
+  return CheckRigLimits(ReplayProblemFor(*s.problem, static_cast<int>(u.size() / 2)), summary);
+}
+
+// Sum of |J| with the physical parameters, else of the plate velocity changes, over the impulses.
+double TotalImpulse(const FewestImpulsesProblem& p, const std::vector<ExactImpulse>& plan,
+                    const std::optional<ExactImpulse>& stop) {
+  double sum = 0.0;
+  const auto add = [&](const ExactImpulse& e) {
+    if (!p.physical) {
+      sum += e.plate_velocity_change.norm();
+      return;
+    }
+    const Eigen::Vector3d z = StateFromAngles(e.angles_before, p.mu, p.model).z;
+    sum += PlateImpulseFor(*p.physical, z, e.delta_omega).plate.norm();
+  };
+  for (const ExactImpulse& e : plan) add(e);
+  if (stop) add(*stop);
+  return sum;
+}
+
+// The row of count n from its best parameters.
+void Describe(const Search& s, const CountBest& best, FewestImpulsesCount* row) {
+  const FewestImpulsesProblem& p = *s.problem;
+  const Eigen::VectorXd& u = best.u;
+  const std::vector<ChainNode>& nodes = best.nodes;
+  const int n = static_cast<int>(u.size() / 2);
+  row->total_time = Impulses(s, u, nodes, best.ticks, &row->plan, &row->stop);
+  if (!row->reached) row->stop.reset();
   row->path_length = internal::ChainPathLength(p.model.lambda(), nodes, u, s.options->integration);
   const Eigen::Matrix<double, 5, 1> r = internal::ArrivalResidual(nodes.back(), p.x1, p.A1);
   row->position_error = s.conditions == 5 ? r.head<2>().norm() : 0.0;
   row->orientation_error = r.tail<3>().norm();
   row->x_final = nodes.back().x;
   row->A_final = nodes.back().A;
-  row->stop.reset();
-  if (row->reached && p.stop_at_goal) row->stop = internal::StopImpulse(p.model, p.mu, nodes.back(), row->total_time);
-}
-
-// Keeps the arrival u if it is the shortest of the count so far.
-void Consider(const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, double* best_time, Eigen::VectorXd* best_u,
-              std::vector<ChainNode>* best_nodes) {
-  const double t = u.tail(u.size() / 2).sum();
-  if (t >= *best_time) return;
-  *best_time = t;
-  *best_u = u;
-  *best_nodes = nodes;
+  row->total_impulse = TotalImpulse(p, row->plan, row->stop);
+  double deviation = 0.0;
+  for (int k = 1; k < n; ++k)
+    deviation += (row->plan[static_cast<std::size_t>(k)].position - (p.x0 + (p.x1 - p.x0) * (static_cast<double>(k) / n)))
+                     .squaredNorm();
+  row->deviation = std::sqrt(deviation);
+  if (!s.limited) return;
+  row->blocking = row->reached ? std::vector<std::string>{} : best.blocking;
+  if (!row->reached) return;
+  row->active = internal::ActiveLimits(ConstrainedFor(s, n), u);
+  if (p.limits.tick > 0) row->active.push_back("tick");
+  row->check = CheckArrival(s, u, nodes, best.ticks);
 }
 
 // The solver of count n's starts.
@@ -313,13 +408,64 @@ ceres::TinySolver<ArrivalFunctor> CountSolver(const Search& s) {
   return solver;
 }
 
-// The best of a count so far: the arrival of shortest total time, else the closest point.
-struct CountBest {
-  double time = std::numeric_limits<double>::infinity();
-  double closest = std::numeric_limits<double>::infinity();
-  Eigen::VectorXd u;
+// The arrivals that count for the row: those within the limits with limits, else all.
+int Met(const Search& s, const FewestImpulsesCount& row) { return s.limited ? row.within_limits : row.arrived; }
+
+// Keeps u (rolled into `nodes`) as the count's closest feasible arrival while none is within the
+// limits, when it is closer than the one kept.
+void KeepClosestFeasible(const Search& s, const Eigen::VectorXd& u, const std::vector<long long>& ticks,
+                         const std::vector<std::string>& blocking, CountBest* best) {
+  if (std::isfinite(best->time)) return;
   std::vector<ChainNode> nodes;
-};
+  const Eigen::VectorXd r = Evaluate(s, u, s.options->integration, &nodes, nullptr);
+  if (best->feasible_closest && !(r.norm() < best->closest)) return;
+  best->feasible_closest = true;
+  best->closest = r.norm();
+  best->u = u;
+  best->nodes = nodes;
+  best->ticks = ticks;
+  best->blocking = blocking;
+}
+
+// Constrained solves per count that may fail before its further arrivals are no longer tried
+// under the limits (each failure costs a full SLSQP run and its closest feasible arrival).
+constexpr int kMaxFailedSolves = 2;
+
+// An exact arrival u under the limits: kept unchanged when it meets them (without a tick), else
+// the constrained solver's arrival from it; either counts only when the independent check passes.
+void Admit(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, FewestImpulsesCount* row,
+           CountBest* best) {
+  const internal::ConstrainedSetup cs = ConstrainedFor(s, row->impulses);
+  Eigen::VectorXd v = u;
+  std::vector<ChainNode> v_nodes = nodes;
+  std::vector<long long> ticks;
+  if (!(cs.limits.tick == 0 && internal::MeetsLimits(cs, u))) {
+    if (best->failed >= kMaxFailedSolves) return;
+    internal::ConstrainedOutcome c;
+    ++s.summary->constrained_solves;
+    try {
+      c = internal::SolveConstrainedArrival(cs, u);
+    } catch (const std::invalid_argument&) {  // fewer free unknowns (with the grid) than conditions
+      std::vector<std::string> broken = internal::ActiveLimits(cs, u);
+      if (cs.limits.tick > 0) broken.push_back("tick");
+      KeepClosestFeasible(s, u, {}, broken, best);
+      return;
+    }
+    s.summary->evaluations += c.evaluations;
+    *s.rollouts += c.rollouts;
+    if (!c.arrived) {
+      ++best->failed;
+      if (c.feasible) KeepClosestFeasible(s, c.u, c.ticks, c.blocking, best);
+      return;
+    }
+    v = c.u;
+    ticks = c.ticks;
+    Evaluate(s, v, s.options->integration, &v_nodes, nullptr);
+  }
+  if (!CheckArrival(s, v, v_nodes, ticks).passed) return;
+  ++row->within_limits;
+  Consider(v, v_nodes, ticks, best);
+}
 
 // Rolls the refined point u (flight times, not logs) of count row->impulses; counts it as an
 // arrival when it polishes to the tolerances within the window, else keeps it as the closest.
@@ -331,8 +477,11 @@ void Try(const Search& s, Eigen::VectorXd u, FewestImpulsesCount* row, CountBest
     r = Evaluate(s, u, s.options->search_integration, &nodes, nullptr);
     if (r.norm() < 1e-2 && Polish(s, &u, &nodes, &r)) {
       ++row->arrived;
-      Consider(u, nodes, &best->time, &best->u, &best->nodes);
-    } else if (!std::isfinite(best->time) && r.allFinite() && r.norm() < best->closest) {
+      if (s.limited)
+        Admit(s, u, nodes, row, best);
+      else
+        Consider(u, nodes, {}, best);
+    } else if (!std::isfinite(best->time) && !best->feasible_closest && r.allFinite() && r.norm() < best->closest) {
       best->closest = r.norm();
       best->u = u;
       best->nodes = nodes;
@@ -353,25 +502,37 @@ void Refine(const Search& s, Eigen::VectorXd v, FewestImpulsesCount* row, CountB
   Try(s, u, row, best);
 }
 
-// The row from the count's best: an arrival is shortened along the arrival manifold first.
+// The unknowns a rig tick leaves free for count n: every flight time ends at a grid time except the
+// last without a stop, so n turns (+ 1). The grid times are countably many choices, each leaving
+// fewer unknowns than conditions a null set of goals: such a count reaches no generic goal.
+int FreeOnGrid(const Search& s, int n) {
+  if (!(s.limited && s.problem->limits.tick > 0)) return 2 * n;
+  return n + (s.problem->stop_at_goal ? 0 : 1);
+}
+
+// The row from the count's best: an arrival is shortened along the arrival manifold first (with
+// limits only when the shortened arrival still meets them, and never with a tick).
 void Conclude(const Search& s, CountBest* best, FewestImpulsesCount* row) {
-  row->reached = row->arrived > 0;
-  const bool generic = 2 * row->impulses < s.conditions;
+  row->reached = Met(s, *row) > 0;
+  const bool generic = 2 * row->impulses < s.conditions || FreeOnGrid(s, row->impulses) < s.conditions;
   row->verdict = row->reached ? FewestCountVerdict::kReached
                  : generic    ? FewestCountVerdict::kGenericallyImpossible
                               : FewestCountVerdict::kNotFound;
-  if (row->reached) {
+  if (row->reached && !(s.limited && s.problem->limits.tick > 0)) {
     Eigen::VectorXd u = best->u;
     std::vector<ChainNode> nodes;
     Eigen::VectorXd r;
     try {
       Shorten(s, &u);
-      if (Polish(s, &u, &nodes, &r)) Consider(u, nodes, &best->time, &best->u, &best->nodes);
+      if (Polish(s, &u, &nodes, &r) &&
+          (!s.limited ||
+           (internal::MeetsLimits(ConstrainedFor(s, row->impulses), u) && CheckArrival(s, u, nodes, {}).passed)))
+        Consider(u, nodes, {}, best);
     } catch (const std::runtime_error&) {
       // keep the arrival found before shortening
     }
   }
-  if (best->u.size() > 0) Describe(s, best->u, best->nodes, row);
+  if (best->u.size() > 0) Describe(s, *best, row);
   row->parameters = best->u;
 }
 
@@ -385,7 +546,7 @@ FewestImpulsesCount SearchCount(const Search& s, int n, const Eigen::VectorXd& p
   if (seeded) Try(s, Split(previous), &row, &best);
   const int budget = 2 * n >= s.conditions ? std::max(s.options->starts, s.options->adaptive_starts) : s.options->starts;
   for (int i = 0; row.starts < budget && row.arrived < s.options->arrivals_per_count; ++i) {
-    if (row.starts >= s.options->starts && row.arrived > 0) break;  // settled: the count is reached
+    if (row.starts >= s.options->starts && Met(s, row) > 0) break;  // settled: the count is reached
     if (s.options->progress) s.options->progress(n, (*s.starts)++);
     Refine(s, StartPoint(s, n, i), &row, &best);
   }
@@ -464,9 +625,9 @@ std::optional<FewestImpulsesCount> Continue(const Search& s, int n, const Eigen:
       continue;
     }
     Refine(s, Merge(w, k), &row, &best);
-    if (row.arrived > 0) break;
+    if (Met(s, row) > 0) break;
   }
-  if (row.arrived == 0) return std::nullopt;
+  if (Met(s, row) == 0) return std::nullopt;
   Conclude(s, &best, &row);
   row.by_continuation = true;
   return row;
@@ -477,6 +638,12 @@ void ValidateProblem(const FewestImpulsesProblem& p) {
   internal::RequireFinite("initial.phi", p.initial.phi);
   internal::RequireFinite("initial.psi", p.initial.psi);
   internal::ValidateStartAndGoal(p.mu, p.x0, p.x1, p.A0, p.A1);
+  if (p.limits.Empty()) return;
+  if (p.orientation_only)
+    internal::ThrowInvalid("orientation_only", "true",
+                           "the rig's limits need the goal position (the plate, obstacle and stroke limits hold "
+                           "along a path to x1)");
+  internal::ValidateRigProblem(p.limits, p.physical, p.x0, p.x1);
 }
 
 // The search window's rolling length sqrt(mu) T must stay within limits::kMaxFewestWindowLength: named by
@@ -522,6 +689,29 @@ void ContinueDown(const Search& s, std::vector<FewestImpulsesCount>* counts) {
   }
 }
 
+// The counts with exact arrivals (within the limits or not), "2, 3"; empty when none.
+std::string ArrivedWithoutLimits(const std::vector<FewestImpulsesCount>& counts) {
+  std::string out;
+  for (const FewestImpulsesCount& c : counts)
+    if (c.arrived > 0) out += (out.empty() ? "" : ", ") + std::to_string(c.impulses);
+  return out;
+}
+
+// The limits that block the counts with exact arrivals, each once, in the order met.
+std::vector<std::string> Blocking(const std::vector<FewestImpulsesCount>& counts) {
+  std::vector<std::string> out;
+  for (const FewestImpulsesCount& c : counts)
+    for (const std::string& name : c.blocking)
+      if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+  return out;
+}
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "none found (the constrained solver found no feasible point)" : out;
+}
+
 // The goal is met at the start (within the tolerances): the fewest count is 0, the only row
 // the start itself (a rolling start with stop_at_goal stops there).
 FewestImpulsesSummary MetAtStart(const Search& s, double turn, FewestImpulsesSummary out) {
@@ -534,6 +724,7 @@ FewestImpulsesSummary MetAtStart(const Search& s, double turn, FewestImpulsesSum
   row.x_final = p.x0;
   row.A_final = s.start.A;
   if (p.stop_at_goal && !p.start_at_rest) row.stop = internal::StopImpulse(p.model, p.mu, s.start, 0.0);
+  row.total_impulse = TotalImpulse(p, {}, row.stop);
   out.counts.push_back(row);
   out.fewest = 0;
   out.minimal_for_generic_goal = true;  // no count is smaller than 0
@@ -557,6 +748,9 @@ FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem, 
   s.start = internal::StartNode(problem.model, problem.initial, problem.mu, problem.x0, problem.A0);
   s.conditions = problem.orientation_only ? 3 : 5;
   s.rollouts = &out.rollouts;
+  s.limited = !problem.limits.Empty();
+  s.summary = &out;
+  out.limited = s.limited;
   const double turn = LogSO3(problem.A1.transpose() * s.start.A).norm();
   const double distance = problem.orientation_only ? 0.0 : (problem.x1 - problem.x0).norm();
   s.max_total_time = options.max_total_time > 0 ? options.max_total_time
@@ -585,6 +779,13 @@ FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem, 
   if (out.fewest > 0) {
     out.status = FewestImpulsesStatus::kFound;
     out.message.clear();
+  } else if (s.limited && !ArrivedWithoutLimits(out.counts).empty()) {
+    out.status = FewestImpulsesStatus::kLimitsNotMet;
+    out.blocking = Blocking(out.counts);
+    out.message = "no count up to max_impulses = " + std::to_string(options.max_impulses) +
+                  " arrived within the rig's limits (counts that arrive without them: " +
+                  ArrivedWithoutLimits(out.counts) + "); blocked by " + Join(out.blocking) +
+                  " (closest feasible arrival per count reported)";
   } else {
     out.status = FewestImpulsesStatus::kNotFound;
     out.message = "no count up to max_impulses = " + std::to_string(options.max_impulses) +
@@ -607,6 +808,8 @@ ExactArrivalProblem ReplayProblemFor(const FewestImpulsesProblem& problem, int i
   p.A1 = problem.A1;
   p.start_at_rest = problem.start_at_rest;
   p.stop_at_goal = problem.stop_at_goal;
+  p.limits = problem.limits;
+  p.physical = problem.physical;
   return p;
 }
 

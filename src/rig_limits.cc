@@ -93,12 +93,14 @@ std::string ToString(ArrivalObjective objective) {
     case ArrivalObjective::kDeviation: return "deviation";
     case ArrivalObjective::kTotalTime: return "time";
     case ArrivalObjective::kTotalImpulse: return "impulse";
+    case ArrivalObjective::kFewest: return "fewest";
   }
   return "unknown";
 }
 
 std::optional<ArrivalObjective> ArrivalObjectiveFromString(const std::string& word) {
-  for (ArrivalObjective o : {ArrivalObjective::kDeviation, ArrivalObjective::kTotalTime, ArrivalObjective::kTotalImpulse})
+  for (ArrivalObjective o : {ArrivalObjective::kDeviation, ArrivalObjective::kTotalTime, ArrivalObjective::kTotalImpulse,
+                            ArrivalObjective::kFewest})
     if (ToString(o) == word) return o;
   return std::nullopt;
 }

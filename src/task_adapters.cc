@@ -290,6 +290,8 @@ FewestImpulsesSetup FewestImpulsesSetupFor(const Problem& problem) {
   s.options.starts = f.starts;
   s.options.pareto_counts = f.pareto_counts;
   s.options.max_total_time = f.max_total_time;
+  s.problem.limits = problem.rig;
+  s.problem.physical = problem.physical;
   return s;
 }
 

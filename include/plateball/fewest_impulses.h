@@ -39,6 +39,26 @@
 // (projected descent of T); count n + 1 is first seeded by count n's arrival with its longest
 // flight split by a zero impulse, so the times do not grow with the count. A count stops after
 // `arrivals_per_count` arrivals.
+//
+// Under a rig's limits (`limits`, rig_limits.h). Every exact arrival the search finds is a
+// candidate: one that meets every limit (at sample nodes and dense points, without a tick) is kept
+// unchanged; any other, and every arrival with a tick, is taken through the constrained solver
+// (SLSQP with the arrival as equalities and the limits as inequalities, minimising the total time,
+// times snapped to the tick grid) from it. A count is reached only when a candidate arrives exactly
+// within the limits AND the independent replay check (CheckRigLimits: FreeMotion, 64 samples per
+// flight) passes; the row keeps that check. The shortening along the arrival manifold is kept only
+// when the shortened arrival still meets the limits (and never with a tick). A count with exact
+// arrivals but none within the limits is not reached: its verdict is kNotFound (kGenericallyImpossible
+// when 2n < m), its row the closest feasible arrival of the constrained solver with the limits that
+// block it. With a tick, a count whose free unknowns (n turns, + 1 for the last flight without a
+// stop) are fewer than m is kGenericallyImpossible: each of the countably many choices of grid
+// times leaves a null set of goals. Limits that every candidate meets change nothing: the summary is the one without them,
+// bit for bit. When no count is reached within the limits but some count arrives without them, the
+// status is kLimitsNotMet naming the blocking limits.
+//
+// The objective "fewest" (ArrivalObjective::kFewest) is this search: the fewest count reached; ties
+// within that count (several arrivals) are broken by the shortest total time found, then by the
+// order of discovery (the split seed, the Halton starts in order, the continuation).
 #pragma once
 
 #include <Eigen/Core>
@@ -52,6 +72,7 @@
 #include "plateball/exact_arrival.h"
 #include "plateball/export.h"
 #include "plateball/integration_options.h"
+#include "plateball/rig_limits.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
@@ -59,6 +80,9 @@ enum class FewestImpulsesStatus {
   kNotRun,    ///< default: nothing was solved
   kFound,     ///< an exact arrival with `fewest` impulses (and none with fewer within the search)
   kNotFound,  ///< no count up to max_impulses arrived within the search (closest arrival reported)
+  /// With limits: some count arrives exactly, but none within the limits (blocking limits named,
+  /// closest feasible arrival per count reported).
+  kLimitsNotMet,
 };
 /// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(FewestImpulsesStatus status);
@@ -66,7 +90,9 @@ std::string ToString(FewestImpulsesStatus status);
 /// What is known of one impulse count after the search (see the header comment, "What is proved").
 enum class FewestCountVerdict {
   kReached,                ///< an arrival within the window was found and re-integrated
-  kGenericallyImpossible,  ///< 2n < conditions: no generic goal is reachable (Sard); none found
+  /// 2n < conditions, or with a rig tick fewer free unknowns than conditions (n turns, + 1 for the
+  /// last flight without a stop; the grid times are countably many): no generic goal is reachable (Sard)
+  kGenericallyImpossible,
   kNotFound,               ///< 2n >= conditions and no start arrived: not found, NOT proved impossible
 };
 /// "reached", "generically_impossible" or "not_found", as in the JSON.
@@ -83,6 +109,11 @@ struct FewestImpulsesProblem {
   Eigen::Vector2d x1 = Eigen::Vector2d::UnitX();     ///< goal position (ignored with orientation_only)
   Eigen::Matrix3d A1 = Eigen::Matrix3d::Identity();  ///< goal orientation
   bool orientation_only = false;  ///< only the orientation is prescribed (three conditions)
+  /// The rig's limits (rig_limits.h; needs the goal position: not with orientation_only); empty: none.
+  RigLimits limits;
+  /// The masses behind the impulse bounds (limits.max_plate_impulse, limits.max_force) and the
+  /// total impulse sum |J| of the Pareto table; without them the table sums the plate velocity changes.
+  std::optional<PhysicalParameters> physical;
 };
 
 struct FewestImpulsesOptions {
@@ -133,6 +164,17 @@ struct FewestImpulsesCount {
   Eigen::Vector2d x_final = Eigen::Vector2d::Zero();
   Eigen::Matrix3d A_final = Eigen::Matrix3d::Identity();
   Eigen::VectorXd parameters;  ///< (delta psi_0..n-1, t_0..n-1) of `plan`
+  /// Sum over the impulses (start and stop included) of |J| with the physical parameters, else of
+  /// the plate velocity change |2 delta omega x e3|.
+  double total_impulse = 0.0;
+  /// sqrt(sum_{k=1}^{n-1} |x_k - (x0 + k (x1 - x0) / n)|^2): the interior impulse points against
+  /// the straight line x0 -> x1 cut into n equal parts (exact_arrival.h's deviation for that line).
+  double deviation = 0.0;
+  // With limits:
+  int within_limits = 0;             ///< arrivals that met the limits (reached = within_limits > 0)
+  std::vector<std::string> active;   ///< limits active at the row's arrival (when reached)
+  std::vector<std::string> blocking;  ///< not reached: limits active at the closest feasible arrival
+  std::optional<RigCheck> check;     ///< when reached: the independent replay check (passed)
 };
 
 /// A default-constructed summary says "not run".
@@ -147,6 +189,10 @@ struct FewestImpulsesSummary {
   double max_total_time = 0.0;              ///< the window used
   std::string searched;                     ///< what was searched, in words
   int rollouts = 0;                         ///< trajectories integrated
+  bool limited = false;     ///< the problem had limits: rows are reached only within them
+  int constrained_solves = 0;  ///< constrained solver runs (candidates that needed it)
+  int evaluations = 0;         ///< SLSQP evaluations of those runs
+  std::vector<std::string> blocking;  ///< kLimitsNotMet: the limits that blocked the counts that arrived
 
   /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == FewestImpulsesStatus::kFound; }
@@ -161,8 +207,9 @@ struct FewestImpulsesSummary {
 FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem,
                                           const FewestImpulsesOptions& options = {});
 
-/// The same problem as an exact-arrival problem with the found impulses (for ReplayExactArrival):
-/// the reference is the straight line x0 -> x1 (x0 -> x0 + e1 when they coincide).
+/// The same problem as an exact-arrival problem with the found impulses (for ReplayExactArrival
+/// and CheckRigLimits, with the problem's limits and physical parameters): the reference is the
+/// straight line x0 -> x1 (x0 -> x0 + e1 when they coincide).
 ExactArrivalProblem ReplayProblemFor(const FewestImpulsesProblem& problem, int impulses);
 
 }  // namespace plateball

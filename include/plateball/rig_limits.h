@@ -42,10 +42,10 @@ double SignedDistanceInside(const PlateShape& shape, const Eigen::Vector2d& x, E
 
 /// What a constrained exact arrival minimises besides arriving and meeting the limits: the
 /// deviation from the reference (as without limits), the total time, or the total impulse (sum of
-/// |J| with physical parameters, else of the plate velocity changes). The fewest impulses is the
-/// fewest-impulse search (fewest_impulses.h).
-enum class ArrivalObjective { kDeviation, kTotalTime, kTotalImpulse };
-/// "deviation", "time" or "impulse", as in the problem file and the JSON.
+/// |J| with physical parameters, else of the plate velocity changes). kFewest asks for the fewest
+/// impulses: the fewest-impulse search (fewest_impulses.h), not an exact arrival along a reference.
+enum class ArrivalObjective { kDeviation, kTotalTime, kTotalImpulse, kFewest };
+/// "deviation", "time", "impulse" or "fewest", as in the problem file and the JSON.
 std::string ToString(ArrivalObjective objective);
 /// The objective of a word of ToString; empty for another word.
 std::optional<ArrivalObjective> ArrivalObjectiveFromString(const std::string& word);

@@ -107,7 +107,8 @@ struct FewestImpulsesSetup {
 /// `plateball steer` on a file whose steer section asks for the fewest impulses: the ball, mu,
 /// start (the isoparallel section's start and start orientation when the file has one and no
 /// plan, else the initial section's x0 and orientation), the steer section's goal, start at rest,
-/// stop at the goal and `fewest` settings (defaults when absent).
+/// stop at the goal and `fewest` settings (defaults when absent), the rig section's limits and the
+/// physical ball's masses.
 FewestImpulsesSetup FewestImpulsesSetupFor(const Problem& problem);
 
 }  // namespace plateball

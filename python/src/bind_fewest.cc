@@ -37,7 +37,11 @@ void BindFewestInputs(py::module_& m) {
       .def_readwrite("stop_at_goal", &FewestImpulsesProblem::stop_at_goal)
       .def_readwrite("x1", &FewestImpulsesProblem::x1)
       .def_readwrite("goal_orientation", &FewestImpulsesProblem::A1)
-      .def_readwrite("orientation_only", &FewestImpulsesProblem::orientation_only);
+      .def_readwrite("orientation_only", &FewestImpulsesProblem::orientation_only)
+      .def_readwrite("limits", &FewestImpulsesProblem::limits,
+                     "the rig's limits (RigLimits): only arrivals within them count; empty: none")
+      .def_readwrite("physical", &FewestImpulsesProblem::physical,
+                     "the masses behind the impulse bounds and the total impulse (PhysicalParameters or None)");
 }
 
 void BindFewestCount(py::module_& m) {
@@ -57,7 +61,17 @@ void BindFewestCount(py::module_& m) {
       .def_readonly("orientation_error", &FewestImpulsesCount::orientation_error)
       .def_readonly("x_final", &FewestImpulsesCount::x_final)
       .def_readonly("orientation_final", &FewestImpulsesCount::A_final)
-      .def_readonly("parameters", &FewestImpulsesCount::parameters);
+      .def_readonly("parameters", &FewestImpulsesCount::parameters)
+      .def_readonly("total_impulse", &FewestImpulsesCount::total_impulse,
+                    "sum of the norm of J over the impulses with physical parameters, else of the plate velocity changes")
+      .def_readonly("deviation", &FewestImpulsesCount::deviation,
+                    "the interior impulse points against the straight line x0 -> x1 cut into n equal parts (root of the sum of squares)")
+      .def_readonly("within_limits", &FewestImpulsesCount::within_limits, "arrivals that met the rig's limits")
+      .def_readonly("active", &FewestImpulsesCount::active, "limits active at the row's arrival (with limits, when reached)")
+      .def_readonly("blocking", &FewestImpulsesCount::blocking,
+                    "not reached under limits: the limits active at the closest feasible arrival")
+      .def_readonly("check", &FewestImpulsesCount::check,
+                    "with limits, when reached: the independent replay check (RigCheck)");
 }
 
 }  // namespace
@@ -74,6 +88,12 @@ void BindFewestImpulses(py::module_& m) {
       .def_readonly("max_total_time", &FewestImpulsesSummary::max_total_time)
       .def_readonly("searched", &FewestImpulsesSummary::searched)
       .def_readonly("rollouts", &FewestImpulsesSummary::rollouts)
+      .def_readonly("limited", &FewestImpulsesSummary::limited, "True when the problem had rig limits")
+      .def_readonly("constrained_solves", &FewestImpulsesSummary::constrained_solves,
+                    "arrivals taken through the constrained solver (SLSQP)")
+      .def_readonly("evaluations", &FewestImpulsesSummary::evaluations, "SLSQP evaluations of those solves")
+      .def_readonly("blocking", &FewestImpulsesSummary::blocking,
+                    "status limits_not_met: the limits that block the counts that arrive without them")
       .def_property_readonly("fewest_count", [](const FewestImpulsesSummary& s) -> std::optional<FewestImpulsesCount> {
             const FewestImpulsesCount* f = s.Fewest();
             return f ? std::optional<FewestImpulsesCount>(*f) : std::nullopt;

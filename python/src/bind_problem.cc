@@ -40,7 +40,7 @@ void BindTasks(py::module_& m) {
           "objective", [](const SteerTask& t) { return ToString(t.objective); },
           [](SteerTask& t, const std::string& w) {
             const auto o = ArrivalObjectiveFromString(w);
-            if (!o) throw std::invalid_argument("steer.objective: value " + w + ": must be \"deviation\", \"time\" or \"impulse\"");
+            if (!o) throw std::invalid_argument("steer.objective: value " + w + ": must be \"deviation\", \"time\", \"impulse\" or \"fewest\"");
             t.objective = *o;
           },
           "what the exact arrival minimises under the rig's limits (deviation, time or impulse)");

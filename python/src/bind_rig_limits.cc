@@ -11,7 +11,7 @@ namespace {
 
 ArrivalObjective ObjectiveFromWord(const std::string& word) {
   const auto o = ArrivalObjectiveFromString(word);
-  if (!o) throw std::invalid_argument("objective: value " + word + ": must be \"deviation\", \"time\" or \"impulse\"");
+  if (!o) throw std::invalid_argument("objective: value " + word + ": must be \"deviation\", \"time\", \"impulse\" or \"fewest\"");
   return *o;
 }
 

@@ -183,3 +183,18 @@ def test_plate_impulses_balance_the_momenta_of_ball_and_plate(problems, run_cli)
     np.testing.assert_allclose([f.sliding_friction_needed for f in forces],
                                [st["actuator"]["pulse"]["sliding_friction_needed"] for st in doc["steps"]],
                                rtol=MOMENTUM_BALANCE_TOLERANCE, atol=0)
+
+
+def test_fewest_impulses_on_a_rig_stay_on_the_plate(problems):
+    """problems/figure7_fewest_rig.json: the disk plate of radius 3 about (1.5, 1.5) cuts the free answer
+    (two straight rolls reaching 5.9 from its centre). The fewest count within the limits has its arrival
+    checked by the independent replay (FreeMotion, 64 samples per flight), with the plate active; the
+    counts below it are not reached and name the plate as what blocks them."""
+    setup = pb.fewest_impulses_setup_for(pb.load_problem(problems / "figure7_fewest_rig.json"))
+    s = pb.fewest_impulses(*setup)
+    assert (s.status, s.limited) == ("found", True)
+    f = s.fewest_count
+    assert f.check.passed and f.check.margins["plate"] >= -1e-9
+    assert "plate" in f.active
+    assert all("plate" in c.blocking for c in s.counts[1:f.impulses - 1])
+    assert s.constrained_solves > 0

@@ -16,7 +16,7 @@ SteerTask SteerReader::Steer(const json& j, const std::string& path) const {
   if (const json* v = Find(j, "stop_at_goal")) t.stop_at_goal = Boolean(*v, Join(path, "stop_at_goal"));
   if (const json* v = Find(j, "objective")) {
     const auto o = ArrivalObjectiveFromString(String(*v, Join(path, "objective")));
-    if (!o) Fail(Join(path, "objective"), *v, "must be \"deviation\", \"time\" or \"impulse\"");
+    if (!o) Fail(Join(path, "objective"), *v, "must be \"deviation\", \"time\", \"impulse\" or \"fewest\"");
     t.objective = *o;
   }
   if (const json* v = Find(j, "fewest")) t.fewest = Fewest(*v, Join(path, "fewest"));

@@ -90,3 +90,17 @@ plateball_cli_test(steer.rig_svg 0 REGEX "<svg.*plate edge.*obstacles"
 plateball_cli_test(steer.rig_limits_not_met 4
   REGEX "\"status\": \"limits_not_met\".*\"blocking\": \\[[^]]*\"max_plate_velocity_change\""
   -- steer tests/data/rig_unreachable.json --summary-only)
+
+# The fewest-impulse search on a rig: slack limits give the result without them, byte for byte
+# (tests/scripts/fewest_slack_rig.py); limits that no arrival meets are the status limits_not_met
+# naming them (the stop at the goal alone changes the plate's velocity by 2 |omega_h| > 0.05).
+add_test(NAME cli.steer.fewest_slack_rig_identical
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/scripts/fewest_slack_rig.py
+                 $<TARGET_FILE:plateball_cli> ${PROJECT_SOURCE_DIR})
+set_tests_properties(cli.steer.fewest_slack_rig_identical PROPERTIES TIMEOUT 120 LABELS cli
+                     PASS_REGULAR_EXPRESSION "fewest search: identical with slack rig limits")
+plateball_cli_test(steer.fewest_rig_limits_not_met 4
+  REGEX "\"status\": \"limits_not_met\".*blocked by [^\"]*max_plate_velocity_change"
+  -- steer tests/data/fewest_rig_unreachable.json --max-impulses 2 --summary-only)
+plateball_cli_test(steer.fewest_objective_impulse 3 REGEX "steer.objective: value \"impulse\": the fewest-impulse search ranks"
+  -- steer tests/data/fewest_objective_impulse.json)

@@ -21,6 +21,28 @@ std::vector<double> ImpulseTimes(const std::vector<ExactImpulse>& impulses, cons
   return times;
 }
 
+// The independent check's record: {"passed", "samples", "tolerances", "margins", "violations"}.
+Json CheckJson(const RigCheck& check) {
+  const RigCheckTolerances tol;
+  Json margins = Json::object();
+  for (const auto& [name, margin] : check.margins) margins[name] = margin;
+  return Json{{"passed", check.passed},
+              {"samples", check.samples},
+              {"tolerances", Json{{"position", tol.position},
+                                  {"impulse_relative", tol.impulse},
+                                  {"interval_relative", tol.time},
+                                  {"tick", 0.0}}},
+              {"margins", margins},
+              {"violations", check.violations}};
+}
+
+// What the limits did to one count of the fewest search.
+Json FewestRowRigJson(const FewestImpulsesCount& c) {
+  Json j{{"within_limits", c.within_limits}, {"active", c.active}, {"blocking", c.blocking}};
+  if (c.check) j["check"] = CheckJson(*c.check);
+  return j;
+}
+
 }  // namespace
 
 Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, const ActuatorContext* actuator) {
@@ -86,7 +108,9 @@ Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpu
     Json row{{"impulse_count", c.impulses}, {"reached", c.reached},   {"verdict", ToString(c.verdict)},
              {"by_continuation", c.by_continuation}, {"starts", c.starts},
              {"arrived", c.arrived},        {"total_time", c.total_time}, {"path_length", c.path_length},
-             {"position_error", c.position_error}, {"orientation_error", c.orientation_error}};
+             {"position_error", c.position_error}, {"orientation_error", c.orientation_error},
+             {"total_impulse", c.total_impulse}, {"deviation", c.deviation}};
+    if (s.limited) row["rig"] = FewestRowRigJson(c);
     if (!c.plan.empty()) {  // the independent re-integration of the row's impulses
       const ReplayResult r = ReplayExactArrival(ReplayProblemFor(problem, c.impulses), c.plan);
       row["replay"] = Json{{"x", ToJson(r.x)},
@@ -105,7 +129,21 @@ Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpu
          {"start_at_rest", problem.start_at_rest},
          {"stop_at_goal", problem.stop_at_goal},
          {"orientation_only", problem.orientation_only},
+         {"total_impulse_measure", problem.physical ? "sum_abs_J" : "sum_plate_velocity_change"},
+         {"deviation_definition",
+          "sqrt(sum_k |x_k - (x0 + k (x1 - x0) / n)|^2) over the interior impulse points: the straight line x0 -> x1 "
+          "cut into n equal parts"},
          {"pareto", rows}});
+  if (s.limited)
+    j["rig"] = Json{{"objective", "fewest"},
+                    {"tie_break", "the fewest count reached within the limits; within it the shortest total time found, "
+                                  "then the first found"},
+                    {"method", "each exact arrival found is kept when it meets the limits (no tick), else taken through "
+                               "SLSQP under the limits minimising the total time (times on the tick grid); a count is "
+                               "reached only when an arrival within the limits passes the independent replay check"},
+                    {"constrained_solves", s.constrained_solves},
+                    {"evaluations", s.evaluations},
+                    {"blocking", s.blocking}};
   const FewestImpulsesCount* f = s.Fewest();
   if (actuator && f) CheckPulseFlights(ImpulseTimes(f->plan, f->stop), f->total_time, actuator->request, actuator->prefix + "impulses");
   if (with_impulses && f) {
@@ -122,22 +160,12 @@ bool HasRigSection(const ExactArrivalProblem& problem) {
 }
 
 Json RigJson(const ExactArrivalProblem& problem, const ExactArrivalSummary& s, const RigCheck& check) {
-  const RigCheckTolerances tol;
-  Json margins = Json::object();
-  for (const auto& [name, margin] : check.margins) margins[name] = margin;
   return Json{{"objective", ToString(problem.objective)},
               {"constrained", s.limits.constrained},
               {"active", s.limits.active},
               {"blocking", s.limits.blocking},
               {"evaluations", s.limits.evaluations},
-              {"check", Json{{"passed", check.passed},
-                             {"samples", check.samples},
-                             {"tolerances", Json{{"position", tol.position},
-                                                 {"impulse_relative", tol.impulse},
-                                                 {"interval_relative", tol.time},
-                                                 {"tick", 0.0}}},
-                             {"margins", margins},
-                             {"violations", check.violations}}}};
+              {"check", CheckJson(check)}};
 }
 
 namespace {

@@ -40,7 +40,10 @@ Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, co
 /// The fewest-impulse search: {"status", "usable", "message", "report", "fewest_impulses", "searched",
 /// "max_total_time", "rollouts", "start_at_rest", "stop_at_goal", "orientation_only", "pareto" (per
 /// count searched: impulse_count, reached, starts, arrived, total_time, path_length, position_error,
-/// orientation_error, replay (an independent re-integration)), with `with_impulses` "impulses" of the
+/// orientation_error, total_impulse, deviation, replay (an independent re-integration) and with
+/// limits "rig" ({"within_limits", "active", "blocking", "check"})), "total_impulse_measure",
+/// "deviation_definition", with limits "rig" ({"objective", "tie_break", "method",
+/// "constrained_solves", "evaluations", "blocking"}), with `with_impulses` "impulses" of the
 /// fewest count (the stop impulse last), each with `actuator` as ExactImpulseToJson's}.
 Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses,
                           const ActuatorContext* actuator = nullptr);

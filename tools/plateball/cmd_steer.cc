@@ -57,6 +57,10 @@ std::string FileFieldsOfSearch(const std::string& message, const std::string& fi
 // The fewest-impulse search (steer.fewest in the file, or --fewest-impulses).
 int RunFewest(const SteerCliOptions& o, const Problem& p) {
   FewestImpulsesSetup setup = FewestImpulsesSetupFor(p);
+  if (p.steer && p.steer->objective == ArrivalObjective::kTotalImpulse)
+    ThrowInvalidInput(o.problem.file() + ": steer.objective", "\"impulse\"",
+                      "the fewest-impulse search ranks the arrivals of a count by total time (the Pareto table "
+                      "reports each count's total impulse): use \"fewest\" or \"time\"");
   using O = FewestImpulsesOptions;
   if (o.max_impulses_opt->count() > 0)
     setup.options.max_impulses = static_cast<int>(RequireIntegerInRange("--max-impulses", o.max_impulses, 1, O::kMaxImpulses));
@@ -96,7 +100,8 @@ int RunFewest(const SteerCliOptions& o, const Problem& p) {
 int RunSteer(const SteerCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
-  if (o.fewest || (p.steer && p.steer->fewest)) return RunFewest(o, p);
+  if (o.fewest || (p.steer && (p.steer->fewest || p.steer->objective == ArrivalObjective::kFewest)))
+    return RunFewest(o, p);
   for (const CLI::Option* search : {o.max_impulses_opt, o.starts_opt})  // options of the search only
     if (search->count() > 0)
       ThrowInvalidInput(CommandLineField(search->get_name()), search->as<std::string>(),
@@ -180,7 +185,10 @@ std::function<int()> SetupSteer(CLI::App& sub) {
       "arrival errors, those of an independent re-integration, the deviation from the reference.\n"
       "With steer.fewest in the file or --fewest-impulses: the fewest impulses that reach the goal exactly\n"
       "(a systematic multi-start search over n = 1, 2, ...; the JSON says what was searched) and a Pareto\n"
-      "table of impulse count against total time and path length.\n"
+      "table of impulse count against total time, path length, total impulse and deviation.\n"
+      "With steer.objective \"fewest\": the same search. With a rig section the search keeps only\n"
+      "arrivals within the limits (each through the constrained solver when needed) and checks each\n"
+      "reached count by an independent replay.\n"
       "With a rig section (plate region, obstacles, stroke, impulse bounds, shortest interval, tick) or\n"
       "steer.objective: the arrival that meets the limits (SLSQP from the free optimum; unchanged when\n"
       "they are slack), the active limits and an independent replay check (docs/guide/steer.md).\n"
