@@ -608,6 +608,35 @@ std::string TitleOf(const ResultReader& r, const std::string& kind) {
 
 }  // namespace
 
+json ParseResult(const std::string& file, const std::string& text) {
+  const json::parser_callback_t depth_limit = [&](int depth, json::parse_event_t, json&) {
+    if (depth > kMaxJsonDepth)
+      ThrowInvalidInput(file + ": (document)", "(nested deeper than " + std::to_string(kMaxJsonDepth) + ")",
+                        "arrays and objects may be nested at most that deep");
+    return true;
+  };
+  try {
+    return json::parse(text, depth_limit);
+  } catch (const json::exception& e) {
+    throw std::invalid_argument(file + ": (document): value (see message): malformed JSON: " + e.what());
+  }
+}
+
+void CheckDrawable(const std::string& file, const ViewData& d) {
+  const auto check = [&](const char* what, const std::vector<Eigen::Vector2d>& points) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double r = points[i].cwiseAbs().maxCoeff();
+      if (!(r <= kMaxDrawnCoordinate))
+        ThrowInvalidInput(file + ": " + what + "[" + std::to_string(i) + "]", FormatNumber(r),
+                          "the page draws coordinates up to 1e6 ball radii; shorten the motion");
+    }
+  };
+  check("contact path (re-simulated)", d.x);
+  check("planned path", d.planned);
+  for (const auto& [label, points] : d.spread) check(("Monte Carlo final points of " + label).c_str(), points);
+  if (d.has_goal) check("goal", {d.goal});
+}
+
 ViewData BuildView(const ResultReader& r, const ViewOptions& options) {
   const json& doc = r.doc();
   if (!doc.is_object()) r.Fail("(document)", ValueText(doc), "a result is a JSON object");
