@@ -498,6 +498,9 @@ ErrorModel ErrorsFrom(const ResultReader& r, const json& errors, const std::stri
     e.pulse_duration = r.Number(errors, where, "error_pulse_duration");
     e.pulse_causal = r.Number(errors, where, "error_pulse_causal");
   }
+  // The model's own range checks name its member ("impulse_magnitude: value ..."): name the field.
+  if (const std::string invalid = e.Validate(); !invalid.empty())
+    throw std::invalid_argument(r.file() + ": " + where + "." + invalid);
   return e;
 }
 
