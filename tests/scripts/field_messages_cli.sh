@@ -24,6 +24,15 @@ d = load("circle.json"); d["plan"]["path"]["radius"] = 1e-300; save(d, "radius.j
 d = load("piecewise.json"); d["plan"]["path"]["pieces"][2]["wavelength"] = 1e-300; save(d, "wavelength.json")
 d = load("figure7_rig.json"); d["rig"]["plate"]["center"] = [0.0, 0.0]; save(d, "rig_goal.json")
 d = load("figure7_rig.json"); d["rig"]["obstacles"][0]["center"] = [0.0, 0.0]; save(d, "rig_start.json")
+# A real isoparallel result (fuzz/seeds/view_input_fuzzer) with one bad value each, for `view`.
+def result(change, name):
+    d = json.load(open(f"{src}/fuzz/seeds/view_input_fuzzer/isoparallel.json"))
+    change(d)
+    save(d, name)
+result(lambda d: d["model"].update({"lambda": 0}), "view_lambda.json")
+result(lambda d: d["plan"]["steps"][0].update(duration=1e300), "view_duration.json")
+result(lambda d: d["plan"]["steps"][0]["omega_after_impulse"].__setitem__(2, -1.0), "view_omega.json")
+result(lambda d: d["optimal_path"][0].__setitem__(0, 1e300), "view_path.json")
 PY
 
 # name | expected exit code | start of the message after "plateball TOOL: invalid input: " | arguments...
@@ -34,6 +43,10 @@ cases=(
   "sine wavelength 1e-300 (was: plan.path.pieces[2].speed (speed at tau = 0))|3|$work/wavelength.json: plan.path.pieces[2].wavelength: value 1e-300: the path's speed|plan|$work/wavelength.json|--summary-only"
   "steer goal outside the rig's plate (was: x1)|3|$work/rig_goal.json: steer.goal: value (3, 3): lies outside rig.plate|steer|$work/rig_goal.json|--summary-only"
   "steer start in an obstacle (was: x0)|3|$work/rig_start.json: isoparallel.start: value (0, 0): lies inside rig.obstacles[0]|steer|$work/rig_start.json|--summary-only"
+  "view: model.lambda 0 (was: lambda)|3|$work/view_lambda.json: model.lambda: value 0:|view|$work/view_lambda.json|--html|$work/v.html"
+  "view: a step's duration 1e300 (was: t)|3|$work/view_duration.json: plan.steps[0].duration: value |view|$work/view_duration.json|--html|$work/v.html"
+  "view: omega_after_impulse with spin (was: start.state.omega[2])|3|$work/view_omega.json: plan.steps[0].omega_after_impulse[2]: value -1:|view|$work/view_omega.json|--html|$work/v.html"
+  "view: optimal_path point 1e300 (was: points)|3|$work/view_path.json: optimal_path: value |view|$work/view_path.json|--html|$work/v.html"
 )
 
 for entry in "${cases[@]}"; do

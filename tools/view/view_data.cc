@@ -137,15 +137,36 @@ constexpr int kPathPoints = 4000;                 // dense polyline of a planned
 
 Problem LoadProblem(const ResultReader& r, const ViewOptions& options);
 
+// A library message names its own variable ("t: value 1e+298: ...", "start.state.omega[2]: value
+// -1: ..."): reported with the result's field that holds it instead (`fields`: library name ->
+// field); other messages pass unchanged.
+template <class Make>
+auto InResultFields(const ResultReader& r, const std::vector<std::pair<std::string, std::string>>& fields, Make make) {
+  try {
+    return make();
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    for (const auto& [name, field] : fields)
+      if (m.rfind(name, 0) == 0 && m.size() > name.size() + 1 &&
+          (m.compare(name.size(), 2, ": ") == 0 || m[name.size()] == '[' || m[name.size()] == '.'))
+        throw std::invalid_argument(r.file() + ": " + field + m.substr(name.size()));
+    throw;
+  }
+}
+
 // The result's model; a result without one (isoparallel_solve before the output contract) takes
 // the problem file's.
 BallModel ModelFrom(const ResultReader& r, const ViewOptions& options) {
   if (!r.Find(r.doc(), "model") && (!options.problem_file.empty() || r.Find(r.doc(), "problem_file")))
     return LoadProblem(r, options).model;
   const json& m = r.Get(r.doc(), "", "model");
-  if (r.Find(m, "alpha") && r.Find(m, "beta"))
-    return BallModel::FromAlphaBeta(r.Number(m, "model", "alpha"), r.Number(m, "model", "beta"));
-  return BallModel::FromLambda(r.Number(m, "model", "lambda"));
+  if (r.Find(m, "alpha") && r.Find(m, "beta")) {
+    const double alpha = r.Number(m, "model", "alpha"), beta = r.Number(m, "model", "beta");
+    return InResultFields(r, {{"alpha", "model.alpha"}, {"beta", "model.beta"}},
+                          [&] { return BallModel::FromAlphaBeta(alpha, beta); });
+  }
+  const double lambda = r.Number(m, "model", "lambda");
+  return InResultFields(r, {{"lambda", "model.lambda"}}, [&] { return BallModel::FromLambda(lambda); });
 }
 
 IntegrationOptions IntegrationFrom(const ResultReader& r) {
@@ -279,8 +300,10 @@ PlanSteps BuildPlanTrajectory(const ResultReader& r, const json& steps, const st
     out->impulses.push_back({t, x, r.Vector3(s, where, "plate_velocity_change")});
     plan.t.push_back(t);
     plan.p.push_back(r.Vector2(s, where, "p_begin"));
-    const MotionSample end = AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples),
-                                       integration, out);
+    const std::string x_field = k == 0 ? "initial.x0" : steps_field + "[" + std::to_string(k - 1) + "].x_end";
+    const MotionSample end = InResultFields(
+        r, {{"t", where + ".duration"}, {"start.state.omega", where + ".omega_after_impulse"}, {"start.x0", x_field}},
+        [&] { return AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples), integration, out); });
     x = r.Vector2(s, where, "x_end");
     A = r.Rotation(s, where, "orientation_impulsive");
     plan.A_planned.push_back(r.Rotation(s, where, "orientation_planned"));
@@ -667,7 +690,8 @@ ViewData BuildView(const ResultReader& r, const ViewOptions& options) {
       path.push_back({pts[i][0].get<double>(), pts[i][1].get<double>()});
     }
     // The optimal path's samples through a C^2 spline, sampled densely for the ghost's rolling.
-    AddPlanned(SamplePath(Path({SmoothCurve::Samples(path)})), plan, &out);
+    AddPlanned(SamplePath(InResultFields(r, {{"points", "optimal_path"}}, [&] { return Path({SmoothCurve::Samples(path)}); })),
+               plan, &out);
     out.goal = r.Vector2(doc, "", "goal");
     out.has_goal = true;
   } else if (out.kind == "steer") {
