@@ -5,5 +5,5 @@ if(TARGET plateball_cli)
     COMMAND bash ${PROJECT_SOURCE_DIR}/tests/scripts/field_messages_cli.sh $<TARGET_FILE:plateball_cli>
             ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/field_messages_cli)
   set_tests_properties(Hardening.FieldMessages PROPERTIES
-    PASS_REGULAR_EXPRESSION "10 passed, 0 failed" FAIL_REGULAR_EXPRESSION "FAIL:" TIMEOUT 300 LABELS cli)
+    PASS_REGULAR_EXPRESSION "11 passed, 0 failed" FAIL_REGULAR_EXPRESSION "FAIL:" TIMEOUT 300 LABELS cli)
 endif()

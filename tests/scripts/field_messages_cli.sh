@@ -33,6 +33,8 @@ result(lambda d: d["model"].update({"lambda": 0}), "view_lambda.json")
 result(lambda d: d["plan"]["steps"][0].update(duration=1e300), "view_duration.json")
 result(lambda d: d["plan"]["steps"][0]["omega_after_impulse"].__setitem__(2, -1.0), "view_omega.json")
 result(lambda d: d["optimal_path"][0].__setitem__(0, 1e300), "view_path.json")
+d = json.load(open(f"{src}/fuzz/seeds/view_input_fuzzer/montecarlo.json")); d["options"]["miss_tolerance"] = 0
+save(d, "view_miss_tolerance.json")
 PY
 
 # name | expected exit code | start of the message after "plateball TOOL: invalid input: " | arguments...
@@ -47,6 +49,7 @@ cases=(
   "view: a step's duration 1e300 (was: t)|3|$work/view_duration.json: plan.steps[0].duration: value |view|$work/view_duration.json|--html|$work/v.html"
   "view: omega_after_impulse with spin (was: start.state.omega[2])|3|$work/view_omega.json: plan.steps[0].omega_after_impulse[2]: value -1:|view|$work/view_omega.json|--html|$work/v.html"
   "view: optimal_path point 1e300 (was: points)|3|$work/view_path.json: optimal_path: value |view|$work/view_path.json|--html|$work/v.html"
+  "view: Monte Carlo miss_tolerance 0 (was: miss_tolerance)|3|$work/view_miss_tolerance.json: options.miss_tolerance: value 0:|view|$work/view_miss_tolerance.json|--problem|$src/problems/circle.json|--html|$work/v.html"
 )
 
 for entry in "${cases[@]}"; do

@@ -579,6 +579,9 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
   ExecutionOptions eo;
   eo.miss_tolerance = r.Number(o, "options", "mc_miss_tolerance");
   eo.exact_window = static_cast<int>(std::clamp(r.Number(o, "options", "mc_exact_window"), 3.0, 64.0));
+  // The options' own range checks name their member ("miss_tolerance: value 0: ..."): name the field.
+  if (const std::string invalid = eo.Validate(); !invalid.empty())
+    throw std::invalid_argument(r.file() + ": options." + invalid);
   const json& seed = r.Get(doc, "", "seed");
   if (!seed.is_number_unsigned()) r.Fail("seed", ValueText(seed), "must be an integer in [0, 2^64 - 1]");
   const json& scenarios = r.Array(o, "options", "mc_scenarios", 1, 64);
