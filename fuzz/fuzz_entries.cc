@@ -1,5 +1,6 @@
 #include "fuzz_entries.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,8 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/exact_arrival.h"
+#include "plateball/fewest_impulses.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/impulse_planner.h"
@@ -18,6 +21,7 @@
 #include "plateball/path.h"
 #include "plateball/problem_io.h"
 #include "plateball/reach.h"
+#include "plateball/rig_reference.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
 
@@ -193,6 +197,98 @@ void IsoparallelEntry(const std::uint8_t* data, std::size_t size) {
       RequireFiniteResult("isoparallel.orientation_error", r.orientation_error);
     }
   } catch (const std::invalid_argument&) {
+  }
+}
+
+namespace {
+
+// Caps of the steer entry: small enough that one input (under ASan + UBSan) takes milliseconds to
+// a few tenths of a second, large enough that the solvers converge on the seeds.
+constexpr int kSteerMaxImpulses = 6;
+constexpr int kSteerMaxIterations = 6;
+constexpr int kSteerMaxStarts = 3;
+constexpr long kSteerMaxSteps = 100'000;
+
+void CapIntegration(IntegrationOptions* o) { o->max_steps = std::min(o->max_steps, kSteerMaxSteps); }
+
+void RequireFiniteImpulses(const std::vector<ExactImpulse>& impulses) {
+  for (const ExactImpulse& k : impulses) {
+    RequireFiniteResult("steer impulse t", k.t_impulse);
+    RequireFiniteResult("steer impulse position", k.position);
+    RequireFiniteResult("steer impulse delta_psi", k.delta_psi);
+    RequireFiniteResult("steer impulse duration", k.duration);
+    RequireFiniteResult("steer impulse delta_omega", k.delta_omega);
+    RequireFiniteResult("steer impulse mu_after", k.mu_after);
+  }
+}
+
+void SteerExact(const Problem& p) {
+  ExactArrivalSetup setup;
+  IsoparallelSummary solved;
+  if (p.plan || !p.isoparallel) {
+    setup = ExactArrivalSetupFor(p);
+  } else {
+    IsoparallelSetup iso = IsoparallelSetupFor(p);
+    iso.options.starts = std::min(iso.options.starts, 8);
+    iso.options.max_iterations = std::min(iso.options.max_iterations, 20);
+    solved = SolveIsoparallel(iso.problem, iso.options);
+    if (!solved.IsSolutionUsable()) return;
+    const ReferenceChoice choice = p.rig.Empty() ? ReferenceChoice{}
+                                                 : ChooseIsoparallelReference(solved, p.rig, solved.Shortest().start);
+    setup = ExactArrivalSetupFor(p, solved.solutions.at(choice.index));
+  }
+  setup.problem.impulses = std::min(setup.problem.impulses, kSteerMaxImpulses);
+  setup.options.max_iterations = std::min(setup.options.max_iterations, kSteerMaxIterations);
+  setup.options.warm_start.integration.max_steps = std::min(setup.options.warm_start.integration.max_steps, kSteerMaxSteps);
+  CapIntegration(&setup.options.integration);
+  CapIntegration(&setup.options.jacobian_integration);
+  const ExactArrivalSummary s = SolveExactArrival(setup.problem, setup.options);
+  if (!s.IsSolutionUsable()) return;
+  RequireFiniteImpulses(s.impulses);
+  RequireFiniteResult("steer total_time", s.total_time);
+  RequireFiniteResult("steer deviation", s.deviation);
+  RequireFiniteResult("steer position_error", s.position_error);
+  RequireFiniteResult("steer orientation_error", s.orientation_error);
+  const ReplayResult replay = ReplayExactArrival(setup.problem, s.impulses, {1e-12, 1e-12, kSteerMaxSteps});
+  RequireFiniteResult("steer replay position_error", replay.position_error);
+  if (!setup.problem.limits.Empty()) CheckRigLimits(setup.problem, s, {}, 8);
+}
+
+void SteerFewest(const Problem& p) {
+  FewestImpulsesSetup setup = FewestImpulsesSetupFor(p);
+  FewestImpulsesOptions& o = setup.options;
+  o.max_impulses = std::min(o.max_impulses, kSteerMaxImpulses / 2);
+  o.pareto_counts = std::min(o.pareto_counts, 2);
+  o.starts = std::min(o.starts, kSteerMaxStarts);
+  o.adaptive_starts = std::min(o.adaptive_starts, kSteerMaxStarts);
+  o.arrivals_per_count = 1;
+  o.max_iterations = std::min(o.max_iterations, kSteerMaxIterations);
+  CapIntegration(&o.integration);
+  CapIntegration(&o.search_integration);
+  const FewestImpulsesSummary s = SolveFewestImpulses(setup.problem, o);
+  if (!s.IsSolutionUsable()) return;
+  RequireFiniteResult("fewest max_total_time", s.max_total_time);
+  for (const FewestImpulsesCount& c : s.counts) {
+    if (!c.reached) continue;
+    RequireFiniteImpulses(c.plan);
+    RequireFiniteResult("fewest total_time", c.total_time);
+    RequireFiniteResult("fewest path_length", c.path_length);
+    RequireFiniteResult("fewest position_error", c.position_error);
+    RequireFiniteResult("fewest orientation_error", c.orientation_error);
+  }
+}
+
+}  // namespace
+
+void SteerEntry(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    const Problem p = ParseProblem(text, "fuzz.json");
+    if (!p.steer) return;
+    if (p.steer->fewest) SteerFewest(p);
+    else SteerExact(p);
+  } catch (const std::invalid_argument&) {
+  } catch (const std::runtime_error&) {  // a reported failure (an integration over its step bound)
   }
 }
 

@@ -15,7 +15,8 @@ if [[ "${1:-}" == "--ci" ]]; then
 else
   seconds="${1:-30}"
 fi
-declare -A ci_runs=([problem_reader_fuzzer]=20000 [solve_entries_fuzzer]=1500 [reach_fuzzer]=300 [isoparallel_fuzzer]=100)
+declare -A ci_runs=([problem_reader_fuzzer]=20000 [solve_entries_fuzzer]=1500 [reach_fuzzer]=300 [isoparallel_fuzzer]=100
+                   [steer_fuzzer]=150 [view_input_fuzzer]=1000)
 bash scripts/setup.sh
 if ! command -v clang++ >/dev/null; then
   apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq clang libclang-rt-14-dev
@@ -39,7 +40,7 @@ for fuzzer in build-fuzz/fuzz/*_fuzzer; do
   fi
   mkdir -p "$corpus" "build-fuzz/crashes/$name"
   seeds=(fuzz/seeds/$name)
-  [[ "$name" == problem_reader_fuzzer ]] && seeds+=(problems)
+  [[ "$name" == problem_reader_fuzzer || "$name" == steer_fuzzer ]] && seeds+=(problems)
   [[ -d fuzz/regressions/$name ]] && seeds+=(fuzz/regressions/$name)
   echo "fuzz: $name for ${seconds}s"
   if ! "$fuzzer" "${extra[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \

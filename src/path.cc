@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "check.h"
@@ -24,9 +26,17 @@ Eigen::Matrix2d Rot(double a) {
   return r;
 }
 
+// Largest |tau_begin|, |tau_end| of a circle, ellipse or lemniscate (cos and sin of tau): doubles
+// near 10^6 are 1.2e-10 apart, so a larger parameter places the points only to worse than 1e-10 of
+// the curve's size (and merges partition points); 10^6 is already 1.6 x 10^5 laps.
+constexpr double kMaxCurveParameter = 1e6;
+
 void RequireRange(double tau_begin, double tau_end) {
   RequireFinite("tau_begin", tau_begin);
   RequireFinite("tau_end", tau_end);
+  for (const auto& [name, tau] : {std::pair<const char*, double>{"tau_begin", tau_begin}, {"tau_end", tau_end}})
+    if (!(std::abs(tau) <= kMaxCurveParameter))
+      ThrowInvalid(name, tau, "must be in [-1e6, 1e6] (cos and sin of a larger parameter lose their accuracy)");
   if (tau_end == tau_begin) ThrowInvalid("tau_end", tau_end, "must differ from tau_begin (an empty curve)");
 }
 
@@ -81,6 +91,25 @@ double PanelLength(const Speed& speed, double lo, double hi, unsigned depth) {
   return PanelLength(speed, lo, mid, depth - 1) + PanelLength(speed, mid, hi, depth - 1);
 }
 
+// A regular curve: |p'| > 0, checked on a fine grid against the curve's mean speed. `field` is the
+// parameter that sets the speed (a radius, a scale), named with its value in the message.
+void RequireRegular(const SmoothCurve& c, const std::string& field, const std::string& value_text) {
+  constexpr int kGrid = 1024;
+  double mean = 0.0, least = INFINITY, at = c.Begin();
+  for (int i = 0; i <= kGrid; ++i) {
+    const double tau = c.Begin() + (c.End() - c.Begin()) * i / kGrid;
+    const double v = c.Derivative(tau).norm();
+    if (!std::isfinite(v))
+      ThrowInvalid(field, value_text, "the path's speed |p'| at tau = " + internal::FormatNumber(tau) + " is " +
+                                          internal::FormatNumber(v) + ": must be finite");
+    mean += v / (kGrid + 1);
+    if (v < least) least = v, at = tau;
+  }
+  if (!(least > 1e-9 * mean && least > 0.0))
+    ThrowInvalid(field, value_text, "the path's speed |p'| at tau = " + internal::FormatNumber(at) + " is " +
+                                        internal::FormatNumber(least) + ": must be nonzero everywhere");
+}
+
 }  // namespace
 
 std::string ToString(CurveKind kind) {
@@ -118,7 +147,7 @@ SmoothCurve SmoothCurve::Circle(const Eigen::Vector2d& center, double radius, do
   c.origin_ = center;
   c.scale_ = radius;
   c.SetRange(tau_begin, tau_end);
-  c.CheckSpeed("speed");
+  RequireRegular(c, "radius", internal::FormatNumber(radius));
   return c;
 }
 
@@ -135,7 +164,8 @@ SmoothCurve SmoothCurve::Ellipse(const Eigen::Vector2d& center, const Eigen::Vec
   c.vec_ = semi_axes;
   c.rot_ = Rot(rotation);
   c.SetRange(tau_begin, tau_end);
-  c.CheckSpeed("speed");
+  const int smaller = semi_axes.y() < semi_axes.x() ? 1 : 0;
+  RequireRegular(c, "semi_axes[" + std::to_string(smaller) + "]", internal::FormatNumber(semi_axes[smaller]));
   return c;
 }
 
@@ -151,7 +181,7 @@ SmoothCurve SmoothCurve::Lemniscate(const Eigen::Vector2d& center, double scale,
   c.scale_ = scale;
   c.rot_ = Rot(rotation);
   c.SetRange(tau_begin, tau_end);
-  c.CheckSpeed("speed");
+  RequireRegular(c, "scale", internal::FormatNumber(scale));
   return c;
 }
 
@@ -170,7 +200,10 @@ SmoothCurve SmoothCurve::Sine(const Eigen::Vector2d& from, double rotation, doub
   c.wavenumber_ = 2.0 * M_PI / wavelength;
   c.tau_begin_ = 0.0;
   c.tau_end_ = length;
-  c.CheckSpeed("speed");
+  // |p'| = sqrt(1 + (2 pi amplitude / wavelength)^2 cos^2) >= 1: only an overflow of the ratio fails,
+  // blamed on the wavelength when it is below 1, else on the amplitude.
+  if (wavelength < 1.0) RequireRegular(c, "wavelength", internal::FormatNumber(wavelength));
+  else RequireRegular(c, "amplitude", internal::FormatNumber(amplitude));
   return c;
 }
 
@@ -180,7 +213,7 @@ SmoothCurve SmoothCurve::Samples(const std::vector<Eigen::Vector2d>& points) {
   c.spline_ = std::make_shared<const CubicSpline2d>(points);
   c.tau_begin_ = c.spline_->ParameterBegin();
   c.tau_end_ = c.spline_->ParameterEnd();
-  c.CheckSpeed("points (spline speed)");
+  RequireRegular(c, "points", "(" + std::to_string(points.size()) + " points)");
   return c;
 }
 
@@ -197,7 +230,7 @@ SmoothCurve SmoothCurve::Custom(CurveFunction value, CurveFunction derivative, C
       CustomFunctions{std::move(value), std::move(derivative), std::move(second_derivative)});
   c.tau_begin_ = tau_begin;
   c.tau_end_ = tau_end;
-  c.CheckSpeed("speed");
+  c.CheckSpeed("custom");
   return c;
 }
 
@@ -340,21 +373,7 @@ std::vector<double> SmoothCurve::PanelBreaks(double a, double b) const {
   return breaks;
 }
 
-void SmoothCurve::CheckSpeed(const std::string& field) const {
-  // A regular curve: |p'| > 0. Checked on a fine grid against the curve's mean speed.
-  constexpr int kGrid = 1024;
-  double mean = 0.0, least = INFINITY, at = tau_begin_;
-  for (int i = 0; i <= kGrid; ++i) {
-    const double tau = tau_begin_ + (tau_end_ - tau_begin_) * i / kGrid;
-    const double v = Derivative(tau).norm();
-    if (!std::isfinite(v)) ThrowInvalid(field + " (speed at tau = " + internal::FormatNumber(tau) + ")", v, "must be finite");
-    mean += v / (kGrid + 1);
-    if (v < least) least = v, at = tau;
-  }
-  if (!(least > 1e-9 * mean))
-    ThrowInvalid(field + " (speed |p'| at tau = " + internal::FormatNumber(at) + ")", least,
-                 "the path must have nonzero speed everywhere");
-}
+void SmoothCurve::CheckSpeed(const std::string& field) const { RequireRegular(*this, field, "(" + field + ")"); }
 
 Path::Path(std::vector<SmoothCurve> pieces) : pieces_(std::move(pieces)) {
   if (pieces_.empty()) ThrowInvalid("pieces (count)", 0, "a path needs at least one piece");

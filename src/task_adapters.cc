@@ -129,7 +129,7 @@ PlanSetup PlanSetupFor(const Problem& problem, int n, const std::string& n_field
   s.problem.initial = problem.initial_angles;
   s.problem.mu = problem.mu;
   s.problem.A0 = problem.A0;
-  s.problem.path = PathFromSpec(task.path, "plan.path");
+  s.problem.path = PathFromSpec(task.path, problem.source + ": plan.path");
   PartitionSpec spec = task.partition;
   if (n > 0) {
     if (auto* u = std::get_if<UniformParameter>(&spec)) u->n = n;
@@ -231,7 +231,7 @@ ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, int impulses, con
   s.problem.mu = problem.mu;
   s.problem.A0 = problem.A0;
   s.problem.x0 = problem.x0;
-  s.problem.reference = PathFromSpec(task.path, "plan.path");
+  s.problem.reference = PathFromSpec(task.path, problem.source + ": plan.path");
   RequireStartOnPath(problem, s.problem.reference);
   s.problem.x1 = steer.goal;
   s.problem.A1 = steer.goal_orientation;

@@ -56,3 +56,15 @@ TEST(FuzzRegression, IsoparallelInputsNeverCrash) {
   ASSERT_GE(inputs.size(), 3u);
   for (const auto& in : inputs) plateball::fuzz::IsoparallelEntry(in.data(), in.size());
 }
+
+TEST(FuzzRegression, SteerInputsNeverCrash) {
+  const auto inputs = Inputs({"fuzz/regressions/steer_fuzzer", "fuzz/seeds/steer_fuzzer", "problems"});
+  ASSERT_GE(inputs.size(), 3u);
+  for (const auto& in : inputs) plateball::fuzz::SteerEntry(in.data(), in.size());
+}
+
+TEST(FuzzRegression, ViewInputsNeverCrash) {
+  const auto inputs = Inputs({"fuzz/regressions/view_input_fuzzer", "fuzz/seeds/view_input_fuzzer"});
+  ASSERT_GE(inputs.size(), 3u);
+  for (const auto& in : inputs) plateball::fuzz::ViewEntry(in.data(), in.size());
+}

@@ -54,7 +54,7 @@ long long RequireIntegerInRange(const std::string& option, long long v, long lon
 
 void RequirePartitionSteps(const std::string& option, long long n, const Problem& p) {
   if (!p.plan) return;
-  const long long pieces = static_cast<long long>(PathFromSpec(p.plan->path, "plan.path").PieceCount());
+  const long long pieces = static_cast<long long>(PathFromSpec(p.plan->path, p.source + ": plan.path").PieceCount());
   if (n * pieces > kMaxPartitionSteps)
     Fail(option, std::to_string(n),
          "must be <= " + std::to_string(kMaxPartitionSteps / pieces) + " (n x " + std::to_string(pieces) +

@@ -137,7 +137,7 @@ Json RollAlongProblemPath(const RollOptions& o, const Problem& p, Eigen::Matrix3
   if (!p.plan)
     ThrowInvalidInput(o.problem_file + ": plan.path", "(missing)", "roll needs a problem with a plan.path");
   const IntegrationOptions integration = RollIntegration(o, p.integration);
-  const Path path = PathFromSpec(p.plan->path, "plan.path");
+  const Path path = PathFromSpec(p.plan->path, p.source + ": plan.path");
   *r = Eigen::Matrix3d::Identity();
   for (const SmoothCurve& piece : path.pieces()) {
     const PlanarVelocity velocity = [&piece](double tau) { return piece.Derivative(tau); };

@@ -45,10 +45,14 @@ struct SteerCliOptions {
   ActuatorOptions actuator;
 };
 
-// A message of the search about its window ("x1: ...", "max_total_time: ...") with the problem
-// file's field instead: "FILE: steer.goal: ...", "FILE: steer.fewest.max_total_time: ...".
-std::string FileFieldsOfSearch(const std::string& message, const std::string& file) {
+// A message of the solvers about the start, the goal or the search window ("x1: ...",
+// "max_total_time: ...") with the problem file's field instead: "FILE: steer.goal: ...",
+// "FILE: initial.x0: ...", "FILE: steer.fewest.max_total_time: ...". The start is the isoparallel
+// section's when the file has one and no plan (task_adapters.h), else initial.x0.
+std::string FileFieldsOfSearch(const std::string& message, const Problem& p, const std::string& file) {
+  const std::string start = p.isoparallel && !p.plan ? "isoparallel.start" : "initial.x0";
   for (const auto& [name, field] : {std::pair<std::string, std::string>{"x1", "steer.goal"},
+                                    {"x0", start},
                                     {"max_total_time", "steer.fewest.max_total_time"}})
     if (message.rfind(name + ": ", 0) == 0) return file + ": " + field + message.substr(name.size());
   return message;
@@ -74,7 +78,7 @@ int RunFewest(const SteerCliOptions& o, const Problem& p) {
     try {
       return SolveFewestImpulses(setup.problem, setup.options);
     } catch (const std::invalid_argument& e) {  // the search's own limits name the file's fields
-      throw std::invalid_argument(FileFieldsOfSearch(e.what(), o.problem.file()));
+      throw std::invalid_argument(FileFieldsOfSearch(e.what(), p, o.problem.file()));
     }
   }();
   Json doc = HeaderJson("plateball", "steer", p, o.problem.file());
@@ -136,7 +140,11 @@ int RunSteer(const SteerCliOptions& o) {
   const ActuatorContext actuator{p, o.actuator.Request(), ""};
   const ExactArrivalSummary s = [&] {
     Progress progress("plateball steer", 0);  // one solve: the elapsed time
-    return SolveExactArrival(setup.problem, setup.options);
+    try {
+      return SolveExactArrival(setup.problem, setup.options);
+    } catch (const std::invalid_argument& e) {  // the start and goal checks name the file's fields
+      throw std::invalid_argument(FileFieldsOfSearch(e.what(), p, o.problem.file()));
+    }
   }();
   const ReplayResult replay = ReplayExactArrival(setup.problem, s.impulses);
 

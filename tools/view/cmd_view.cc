@@ -33,20 +33,6 @@ struct ViewCliOptions {
   long long samples = 4000;
 };
 
-nlohmann::json ParseResult(const std::string& file, const std::string& text) {
-  const nlohmann::json::parser_callback_t depth_limit = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-    if (depth > kMaxJsonDepth)
-      ThrowInvalidInput(file + ": (document)", "(nested deeper than " + std::to_string(kMaxJsonDepth) + ")",
-                        "arrays and objects may be nested at most that deep");
-    return true;
-  };
-  try {
-    return nlohmann::json::parse(text, depth_limit);
-  } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(file + ": (document): value (see message): malformed JSON: " + e.what());
-  }
-}
-
 // Fills every marker of the template in one pass over the template: each marker is found in the
 // template itself, never in text already filled in, so data that contains a marker stays data.
 std::string FillTemplate(const std::string& page, const std::vector<std::pair<std::string, std::string>>& fills) {
@@ -102,53 +88,17 @@ std::string HtmlEscape(const std::string& text) {
   return out;
 }
 
-// The page draws in single precision (WebGL): a float resolves a position to 1/16 ball radius up to
-// 10^6, and the grid of the plate is scaled to at most 200 lines. Motions reaching farther than
-// this are refused rather than drawn as jitter (or not at all, once coordinates overflow a float).
-constexpr double kMaxDrawnCoordinate = 1e6;
-
-void CheckDrawable(const std::string& file, const view::ViewData& d) {
-  const auto check = [&](const char* what, const std::vector<Eigen::Vector2d>& points,
-                         const char* advice = "shorten the motion") {
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const double r = points[i].cwiseAbs().maxCoeff();
-      if (!(r <= kMaxDrawnCoordinate))
-        ThrowInvalidInput(file + ": " + what + "[" + std::to_string(i) + "]", FormatNumber(r),
-                          std::string("the page draws coordinates up to 1e6 ball radii; ") + advice);
-    }
-  };
-  check("contact path (re-simulated)", d.x);
-  check("planned path", d.planned);
-  for (const auto& [label, points] : d.spread) check(("Monte Carlo final points of " + label).c_str(), points);
-  if (d.has_goal) check("goal", {d.goal});
-  if (d.rig) {  // the farthest points of the rig's shapes and of the stroke box
-    const RigLimits& l = d.rig->limits;
-    std::vector<Eigen::Vector2d> far;
-    const auto add = [&](const PlateShape& shape) {
-      if (const auto* disk = std::get_if<DiskShape>(&shape))
-        far.push_back(disk->center.cwiseAbs() + Eigen::Vector2d::Constant(disk->radius + l.clearance));
-      else
-        for (const Eigen::Vector2d& v : std::get<PolygonShape>(shape).vertices)
-          far.push_back(v.cwiseAbs() + Eigen::Vector2d::Constant(l.clearance));
-    };
-    if (l.plate) add(*l.plate);
-    for (const PlateShape& o : l.obstacles) add(o);
-    if (l.stroke) far.push_back(d.rig->stroke_origin.cwiseAbs() + *l.stroke);
-    check("rig shape (plate, obstacles, stroke box)", far, "the rig reaches farther");
-  }
-}
-
 int RunView(const ViewCliOptions& o) {
   CheckOutputPaths({{"--html", o.html}}, {{"RESULT.json", o.result}, {"--problem", o.problem}});
   const long long samples = RequireIntegerInRange("--samples", o.samples, 100, 100'000);
-  const nlohmann::json doc = ParseResult(o.result, ReadInputText(o.result));
+  const nlohmann::json doc = view::ParseResult(o.result, ReadInputText(o.result));
   const view::ResultFields fields(nlohmann::json::parse(view::kResultFields));
   const view::ResultReader reader(o.result, doc, fields);
   view::ViewOptions options;
   options.problem_file = o.problem;
   options.samples = static_cast<int>(samples);
   const view::ViewData data = view::BuildView(reader, options);
-  CheckDrawable(o.result, data);
+  view::CheckDrawable(o.result, data);
   nlohmann::json page_data = view::ViewDataToJson(data);
   page_data["generator"] = std::string("plateball ") + PLATEBALL_VERSION_STRING + ", three.js " + view::kThreeVersion;
   const std::string page = FillTemplate(view::kViewTemplate, {{"@TITLE@", HtmlEscape(data.title)},

@@ -138,15 +138,36 @@ constexpr int kPathPoints = 4000;                 // dense polyline of a planned
 
 Problem LoadProblem(const ResultReader& r, const ViewOptions& options);
 
+// A library message names its own variable ("t: value 1e+298: ...", "start.state.omega[2]: value
+// -1: ..."): reported with the result's field that holds it instead (`fields`: library name ->
+// field); other messages pass unchanged.
+template <class Make>
+auto InResultFields(const ResultReader& r, const std::vector<std::pair<std::string, std::string>>& fields, Make make) {
+  try {
+    return make();
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    for (const auto& [name, field] : fields)
+      if (m.rfind(name, 0) == 0 && m.size() > name.size() + 1 &&
+          (m.compare(name.size(), 2, ": ") == 0 || m[name.size()] == '[' || m[name.size()] == '.'))
+        throw std::invalid_argument(r.file() + ": " + field + m.substr(name.size()));
+    throw;
+  }
+}
+
 // The result's model; a result without one (isoparallel_solve before the output contract) takes
 // the problem file's.
 BallModel ModelFrom(const ResultReader& r, const ViewOptions& options) {
   if (!r.Find(r.doc(), "model") && (!options.problem_file.empty() || r.Find(r.doc(), "problem_file")))
     return LoadProblem(r, options).model;
   const json& m = r.Get(r.doc(), "", "model");
-  if (r.Find(m, "alpha") && r.Find(m, "beta"))
-    return BallModel::FromAlphaBeta(r.Number(m, "model", "alpha"), r.Number(m, "model", "beta"));
-  return BallModel::FromLambda(r.Number(m, "model", "lambda"));
+  if (r.Find(m, "alpha") && r.Find(m, "beta")) {
+    const double alpha = r.Number(m, "model", "alpha"), beta = r.Number(m, "model", "beta");
+    return InResultFields(r, {{"alpha", "model.alpha"}, {"beta", "model.beta"}},
+                          [&] { return BallModel::FromAlphaBeta(alpha, beta); });
+  }
+  const double lambda = r.Number(m, "model", "lambda");
+  return InResultFields(r, {{"lambda", "model.lambda"}}, [&] { return BallModel::FromLambda(lambda); });
 }
 
 IntegrationOptions IntegrationFrom(const ResultReader& r) {
@@ -280,8 +301,10 @@ PlanSteps BuildPlanTrajectory(const ResultReader& r, const json& steps, const st
     out->impulses.push_back({t, x, r.Vector3(s, where, "plate_velocity_change")});
     plan.t.push_back(t);
     plan.p.push_back(r.Vector2(s, where, "p_begin"));
-    const MotionSample end = AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples),
-                                       integration, out);
+    const std::string x_field = k == 0 ? "initial.x0" : steps_field + "[" + std::to_string(k - 1) + "].x_end";
+    const MotionSample end = InResultFields(
+        r, {{"t", where + ".duration"}, {"start.state.omega", where + ".omega_after_impulse"}, {"start.x0", x_field}},
+        [&] { return AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples), integration, out); });
     x = r.Vector2(s, where, "x_end");
     A = r.Rotation(s, where, "orientation_impulsive");
     plan.A_planned.push_back(r.Rotation(s, where, "orientation_planned"));
@@ -555,6 +578,9 @@ ErrorModel ErrorsFrom(const ResultReader& r, const json& errors, const std::stri
     e.pulse_duration = r.Number(errors, where, "error_pulse_duration");
     e.pulse_causal = r.Number(errors, where, "error_pulse_causal");
   }
+  // The model's own range checks name its member ("impulse_magnitude: value ..."): name the field.
+  if (const std::string invalid = e.Validate(); !invalid.empty())
+    throw std::invalid_argument(r.file() + ": " + where + "." + invalid);
   return e;
 }
 
@@ -610,6 +636,9 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
   ExecutionOptions eo;
   eo.miss_tolerance = r.Number(o, "options", "mc_miss_tolerance");
   eo.exact_window = static_cast<int>(std::clamp(r.Number(o, "options", "mc_exact_window"), 3.0, 64.0));
+  // The options' own range checks name their member ("miss_tolerance: value 0: ..."): name the field.
+  if (const std::string invalid = eo.Validate(); !invalid.empty())
+    throw std::invalid_argument(r.file() + ": options." + invalid);
   const json& seed = r.Get(doc, "", "seed");
   if (!seed.is_number_unsigned()) r.Fail("seed", ValueText(seed), "must be an integer in [0, 2^64 - 1]");
   const json& scenarios = r.Array(o, "options", "mc_scenarios", 1, 64);
@@ -665,6 +694,51 @@ std::string TitleOf(const ResultReader& r, const std::string& kind) {
 
 }  // namespace
 
+json ParseResult(const std::string& file, const std::string& text) {
+  const json::parser_callback_t depth_limit = [&](int depth, json::parse_event_t, json&) {
+    if (depth > kMaxJsonDepth)
+      ThrowInvalidInput(file + ": (document)", "(nested deeper than " + std::to_string(kMaxJsonDepth) + ")",
+                        "arrays and objects may be nested at most that deep");
+    return true;
+  };
+  try {
+    return json::parse(text, depth_limit);
+  } catch (const json::exception& e) {
+    throw std::invalid_argument(file + ": (document): value (see message): malformed JSON: " + e.what());
+  }
+}
+
+void CheckDrawable(const std::string& file, const ViewData& d) {
+  const auto check = [&](const char* what, const std::vector<Eigen::Vector2d>& points,
+                         const char* advice = "shorten the motion") {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double r = points[i].cwiseAbs().maxCoeff();
+      if (!(r <= kMaxDrawnCoordinate))
+        ThrowInvalidInput(file + ": " + what + "[" + std::to_string(i) + "]", FormatNumber(r),
+                          std::string("the page draws coordinates up to 1e6 ball radii; ") + advice);
+    }
+  };
+  check("contact path (re-simulated)", d.x);
+  check("planned path", d.planned);
+  for (const auto& [label, points] : d.spread) check(("Monte Carlo final points of " + label).c_str(), points);
+  if (d.has_goal) check("goal", {d.goal});
+  if (d.rig) {  // the farthest points of the rig's shapes and of the stroke box
+    const RigLimits& l = d.rig->limits;
+    std::vector<Eigen::Vector2d> far;
+    const auto add = [&](const PlateShape& shape) {
+      if (const auto* disk = std::get_if<DiskShape>(&shape))
+        far.push_back(disk->center.cwiseAbs() + Eigen::Vector2d::Constant(disk->radius + l.clearance));
+      else
+        for (const Eigen::Vector2d& v : std::get<PolygonShape>(shape).vertices)
+          far.push_back(v.cwiseAbs() + Eigen::Vector2d::Constant(l.clearance));
+    };
+    if (l.plate) add(*l.plate);
+    for (const PlateShape& o : l.obstacles) add(o);
+    if (l.stroke) far.push_back(d.rig->stroke_origin.cwiseAbs() + *l.stroke);
+    check("rig shape (plate, obstacles, stroke box)", far, "the rig reaches farther");
+  }
+}
+
 ViewData BuildView(const ResultReader& r, const ViewOptions& options) {
   const json& doc = r.doc();
   if (!doc.is_object()) r.Fail("(document)", ValueText(doc), "a result is a JSON object");
@@ -692,7 +766,8 @@ ViewData BuildView(const ResultReader& r, const ViewOptions& options) {
       path.push_back({pts[i][0].get<double>(), pts[i][1].get<double>()});
     }
     // The optimal path's samples through a C^2 spline, sampled densely for the ghost's rolling.
-    AddPlanned(SamplePath(Path({SmoothCurve::Samples(path)})), plan, &out);
+    AddPlanned(SamplePath(InResultFields(r, {{"points", "optimal_path"}}, [&] { return Path({SmoothCurve::Samples(path)}); })),
+               plan, &out);
     out.goal = r.Vector2(doc, "", "goal");
     out.has_goal = true;
   } else if (out.kind == "steer") {

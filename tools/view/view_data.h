@@ -109,8 +109,20 @@ struct ViewOptions {
   int samples = 4000;  ///< target number of samples of the ball's motion (at least)
 };
 
+/// A result document's text as JSON (nested at most limits::kMaxJsonDepth deep); throws
+/// std::invalid_argument naming `file` for malformed JSON.
+nlohmann::json ParseResult(const std::string& file, const std::string& text);
+
 /// Builds the view of a result document; throws std::invalid_argument naming the file and field.
 ViewData BuildView(const ResultReader& reader, const ViewOptions& options);
+
+/// The page draws in single precision (WebGL): a float resolves a position to 1/16 ball radius up
+/// to 10^6, and the grid of the plate is scaled to at most 200 lines. Motions reaching farther are
+/// refused rather than drawn as jitter (or not at all, once coordinates overflow a float).
+inline constexpr double kMaxDrawnCoordinate = 1e6;
+/// Refuses (std::invalid_argument naming `file` and the point) a view with a point the page cannot
+/// draw: a coordinate beyond kMaxDrawnCoordinate ball radii, or not finite.
+void CheckDrawable(const std::string& file, const ViewData& data);
 
 /// The page data as JSON (the page's own format, see web/view.js).
 nlohmann::json ViewDataToJson(const ViewData& data);

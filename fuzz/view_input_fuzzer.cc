@@ -1,0 +1,10 @@
+// libFuzzer target: see fuzz_entries.h (ViewEntry).
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_entries.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  plateball::fuzz::ViewEntry(data, size);
+  return 0;
+}
