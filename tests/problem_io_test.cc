@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
@@ -322,6 +323,28 @@ TEST(ProblemIo, EveryRepositoryProblemFileParsesAndRoundTrips) {
     ExpectSameProblem(p, ParseProblem(WriteProblemJson(p)));
   }
   EXPECT_GE(files, 1);
+}
+
+// The writer's bytes are a contract (tools write problems back, the byte-identical tool outputs
+// compare them): every repository problem file, and the full document, read and written again
+// must give the bytes committed in tests/data/written/ (written by the writer before the field
+// lists drove it). A mismatch leaves the new text beside the build as NAME.actual.
+TEST(ProblemIo, WrittenProblemFilesKeepTheirBytes) {
+  std::vector<std::pair<std::string, std::string>> cases;  // (name, written text)
+  for (const auto& entry : std::filesystem::directory_iterator(plateball::testing::SourcePath("problems"))) {
+    if (entry.path().extension() != ".json") continue;
+    cases.emplace_back(entry.path().filename().string(), WriteProblemJson(ReadProblemFile(entry.path().string())));
+  }
+  cases.emplace_back("full_document.json", WriteProblemJson(ParseProblem(FullDocument().dump(), "full.json")));
+  EXPECT_GE(cases.size(), 2u);
+  for (const auto& [name, text] : cases) {
+    SCOPED_TRACE(name);
+    std::ifstream in(plateball::testing::SourcePath("tests/data/written/" + name), std::ios::binary);
+    const std::string expected((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text != expected) std::ofstream(name + ".actual", std::ios::binary) << text;
+    EXPECT_TRUE(in) << "no committed text for " << name;
+    EXPECT_EQ(text, expected);
+  }
 }
 
 // ------------------------------------------------------------------ errors
