@@ -17,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "problem_io/field_archive.h"
 #include "support/test_support.h"
 
 using namespace plateball;
@@ -344,6 +345,31 @@ TEST(ProblemIo, WrittenProblemFilesKeepTheirBytes) {
     if (text != expected) std::ofstream(name + ".actual", std::ios::binary) << text;
     EXPECT_TRUE(in) << "no committed text for " << name;
     EXPECT_EQ(text, expected);
+  }
+}
+
+// The sections read by field lists (field_list.h): the schema fragment generated from each list
+// is the one committed in schemas/input/problem.schema.json, so the schema cannot drift from the
+// reader's keys, types and ranges.
+TEST(ProblemIo, FieldListSchemasMatchTheCommittedSchema) {
+  using plateball::internal::problem_io::SchemaOfSection;
+  std::ifstream in(plateball::testing::SourcePath("schemas/input/problem.schema.json"));
+  const json schema = json::parse(in);
+  const json& p = schema.at("properties");
+  const std::vector<std::pair<std::string, json>> cases = {
+      {"integration", p.at("integration")},
+      {"simulate", p.at("simulate")},
+      {"isoparallel.solver", p.at("isoparallel").at("properties").at("solver")},
+      {"steer.fewest", p.at("steer").at("properties").at("fewest")}};
+  const std::vector<json> generated = {json::parse(SchemaOfSection<IntegrationOptions>().dump()),
+                                       json::parse(SchemaOfSection<SimulateTask>().dump()),
+                                       json::parse(SchemaOfSection<IsoparallelOptions>().dump()),
+                                       json::parse(SchemaOfSection<SteerTask::Fewest>().dump())};
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE(cases[i].first);
+    json committed = cases[i].second;
+    committed.erase("description");  // the section's own description is not part of its list
+    EXPECT_EQ(generated[i], committed) << "generated:\n" << generated[i].dump(2);
   }
 }
 
