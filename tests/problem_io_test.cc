@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
@@ -16,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "problem_io/field_archive.h"
 #include "support/test_support.h"
 
 using namespace plateball;
@@ -322,6 +324,53 @@ TEST(ProblemIo, EveryRepositoryProblemFileParsesAndRoundTrips) {
     ExpectSameProblem(p, ParseProblem(WriteProblemJson(p)));
   }
   EXPECT_GE(files, 1);
+}
+
+// The writer's bytes are a contract (tools write problems back, the byte-identical tool outputs
+// compare them): every repository problem file, and the full document, read and written again
+// must give the bytes committed in tests/data/written/ (written by the writer before the field
+// lists drove it). A mismatch leaves the new text beside the build as NAME.actual.
+TEST(ProblemIo, WrittenProblemFilesKeepTheirBytes) {
+  std::vector<std::pair<std::string, std::string>> cases;  // (name, written text)
+  for (const auto& entry : std::filesystem::directory_iterator(plateball::testing::SourcePath("problems"))) {
+    if (entry.path().extension() != ".json") continue;
+    cases.emplace_back(entry.path().filename().string(), WriteProblemJson(ReadProblemFile(entry.path().string())));
+  }
+  cases.emplace_back("full_document.json", WriteProblemJson(ParseProblem(FullDocument().dump(), "full.json")));
+  EXPECT_GE(cases.size(), 2u);
+  for (const auto& [name, text] : cases) {
+    SCOPED_TRACE(name);
+    std::ifstream in(plateball::testing::SourcePath("tests/data/written/" + name), std::ios::binary);
+    const std::string expected((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text != expected) std::ofstream(name + ".actual", std::ios::binary) << text;
+    EXPECT_TRUE(in) << "no committed text for " << name;
+    EXPECT_EQ(text, expected);
+  }
+}
+
+// The sections read by field lists (field_list.h): the schema fragment generated from each list
+// is the one committed in schemas/input/problem.schema.json, so the schema cannot drift from the
+// reader's keys, types and ranges.
+TEST(ProblemIo, FieldListSchemasMatchTheCommittedSchema) {
+  using plateball::internal::problem_io::SchemaOfSection;
+  std::ifstream in(plateball::testing::SourcePath("schemas/input/problem.schema.json"));
+  const json schema = json::parse(in);
+  const json& p = schema.at("properties");
+  const std::vector<std::pair<std::string, json>> cases = {
+      {"integration", p.at("integration")},
+      {"simulate", p.at("simulate")},
+      {"isoparallel.solver", p.at("isoparallel").at("properties").at("solver")},
+      {"steer.fewest", p.at("steer").at("properties").at("fewest")}};
+  const std::vector<json> generated = {json::parse(SchemaOfSection<IntegrationOptions>().dump()),
+                                       json::parse(SchemaOfSection<SimulateTask>().dump()),
+                                       json::parse(SchemaOfSection<IsoparallelOptions>().dump()),
+                                       json::parse(SchemaOfSection<SteerTask::Fewest>().dump())};
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE(cases[i].first);
+    json committed = cases[i].second;
+    committed.erase("description");  // the section's own description is not part of its list
+    EXPECT_EQ(generated[i], committed) << "generated:\n" << generated[i].dump(2);
+  }
 }
 
 // ------------------------------------------------------------------ errors

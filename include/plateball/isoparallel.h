@@ -45,6 +45,7 @@
 
 #include "plateball/elastica.h"
 #include "plateball/export.h"
+#include "plateball/field_list.h"
 #include "plateball/integration_options.h"
 
 namespace plateball PLATEBALL_EXPORT {
@@ -84,6 +85,24 @@ struct IsoparallelOptions {
   std::function<void(int, int)> progress;
   /// Empty when valid, else a message naming the field, the value and the bound.
   std::string Validate() const;
+
+  /// The field list (field_list.h): the problem file's "isoparallel.solver" section (seed,
+  /// max_length and integration come from elsewhere in a file).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(PLATEBALL_FIELD(starts, "shapes scanned (general targets) or shooting starts (identity targets)")
+                 .Counts(1, kMaxStarts),
+             PLATEBALL_FIELD(length_cap_factor, "report solutions up to this times the shortest length")
+                 .Closed(1.0, kMaxLengthCapFactor),
+             PLATEBALL_FIELD(max_iterations, "Levenberg-Marquardt iterations per local solve").Counts(1, kMaxIterations),
+             PLATEBALL_FIELD(tolerance, "accepted |LogSO3| orientation residual (radians)").Tolerance(),
+             PLATEBALL_FIELD(threads, "worker threads (results do not depend on it)").Counts(1, kMaxThreads),
+             PLATEBALL_FIELD(seed, "scrambles the shooting's start sequence at an identity target").NotInFile(),
+             PLATEBALL_FIELD(max_length, "longest path searched before a shortest one is known; 0: automatic")
+                 .NotInFile(),
+             PLATEBALL_FIELD(enumerate_families, "identity targets: enumerate the families (false: multi-start shooting)"),
+             PLATEBALL_FIELD(integration, "tolerances and step bound of the verification by rolling").NotInFile());
+  }
 };
 
 /// Boundary data: x0 = start, x1 = goal, A0 = start_orientation, A1 = goal_orientation.

@@ -15,9 +15,12 @@
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/export.h"
+#include "plateball/fewest_impulses.h"
+#include "plateball/field_list.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/integration_options.h"
 #include "plateball/isoparallel.h"
+#include "plateball/limits.h"
 #include "plateball/partition.h"
 #include "plateball/rig_limits.h"
 
@@ -92,6 +95,13 @@ using EnergyChangeSpec = EnergyChange;
 struct SimulateTask {
   double t_end = 10.0;
   int samples = 101;
+
+  /// The field list (field_list.h): the problem file's "simulate" section.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(PLATEBALL_FIELD(t_end, "end of the sampled time span [0, t_end]").Positive(),
+             PLATEBALL_FIELD(samples, "number of samples, both ends included").Counts(2, limits::kMaxSamples));
+  }
 };
 
 /// `plateball join` / `plateball reach`: reach target points from the initial state.
@@ -139,6 +149,20 @@ struct SteerTask {
     int pareto_counts = 3;
     double max_total_time = 0.0;  ///< 0: automatic
     bool orientation_only = false;
+
+    /// The field list (field_list.h): the problem file's "steer.fewest" section.
+    template <class Archive>
+    void Serialize(Archive* a) {
+      using O = FewestImpulsesOptions;
+      a->Visit(PLATEBALL_FIELD(max_impulses, "largest impulse count searched").Counts(1, O::kMaxImpulses),
+               PLATEBALL_FIELD(starts, "starts per count").Counts(1, O::kMaxStarts),
+               PLATEBALL_FIELD(pareto_counts, "rows of the Pareto table from the fewest count up").Counts(1, O::kMaxImpulses),
+               PLATEBALL_FIELD(max_total_time, "search window: total time T <= max_total_time")
+                   .NonNegative(kMaxTotalTime, "0: automatic"),
+               PLATEBALL_FIELD(orientation_only, "only the goal orientation is prescribed (three conditions)"));
+    }
+    /// The largest search window a problem file may ask for.
+    static constexpr double kMaxTotalTime = 1e6;
   };
   std::optional<Fewest> fewest;
 };

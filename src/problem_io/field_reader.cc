@@ -18,7 +18,7 @@ void FieldReader::Fail(const std::string& path, const json& value, const std::st
   Fail(path, ValueText(value), what);
 }
 
-void FieldReader::Object(const json& j, const std::string& path, std::initializer_list<const char*> allowed) const {
+void FieldReader::Object(const json& j, const std::string& path, const std::vector<const char*>& allowed) const {
   if (!j.is_object()) Fail(path, j, "must be a JSON object");
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool ok = false;

@@ -5,7 +5,6 @@
 
 #include <Eigen/Core>
 #include <cstdint>
-#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -26,7 +25,7 @@ class FieldReader {
   [[noreturn]] void Fail(const std::string& path, const json& value, const std::string& what) const;
 
   /// An object whose keys are all in `allowed`.
-  void Object(const json& j, const std::string& path, std::initializer_list<const char*> allowed) const;
+  void Object(const json& j, const std::string& path, const std::vector<const char*>& allowed) const;
 
   static std::string Join(const std::string& path, const std::string& key) {
     return path.empty() ? key : path + "." + key;

@@ -1,14 +1,13 @@
 // The "simulate", "reach" and "expected" sections.
 #include "plateball/limits.h"
+#include "problem_io/field_archive.h"
 #include "problem_io/section_readers.h"
 
 namespace plateball::internal::problem_io {
 
 SimulateTask RunSectionsReader::Simulate(const json& j, const std::string& path) const {
-  Object(j, path, {"t_end", "samples"});
   SimulateTask t;
-  if (const json* v = Find(j, "t_end")) t.t_end = Positive(*v, Join(path, "t_end"));
-  if (const json* v = Find(j, "samples")) t.samples = static_cast<int>(Integer(*v, Join(path, "samples"), 2, limits::kMaxSamples));
+  ReadSection(*this, j, path, &t);
   return t;
 }
 

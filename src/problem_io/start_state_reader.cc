@@ -5,16 +5,13 @@
 
 #include "check.h"
 #include "kinematics.h"
+#include "problem_io/field_archive.h"
 #include "problem_io/section_readers.h"
 
 namespace plateball::internal::problem_io {
 
 void StartStateReader::Integration(const json& j, const std::string& path, IntegrationOptions* o) const {
-  Object(j, path, {"absolute_tolerance", "relative_tolerance", "max_steps"});
-  if (const json* v = Find(j, "absolute_tolerance")) o->absolute_tolerance = Tolerance(*v, Join(path, "absolute_tolerance"));
-  if (const json* v = Find(j, "relative_tolerance")) o->relative_tolerance = Tolerance(*v, Join(path, "relative_tolerance"));
-  if (const json* v = Find(j, "max_steps"))
-    o->max_steps = static_cast<long>(Integer(*v, Join(path, "max_steps"), 1, std::numeric_limits<long>::max()));
+  ReadSection(*this, j, path, o);
 }
 
 void StartStateReader::Ball(const json& j, const std::string& path, Problem* p) const {

@@ -1,6 +1,7 @@
 // The "steer" section: the goal, exact arrival's impulses and the fewest-impulses options.
 #include "plateball/exact_arrival.h"
 #include "plateball/fewest_impulses.h"
+#include "problem_io/field_archive.h"
 #include "problem_io/section_readers.h"
 
 namespace plateball::internal::problem_io {
@@ -24,17 +25,8 @@ SteerTask SteerReader::Steer(const json& j, const std::string& path) const {
 }
 
 SteerTask::Fewest SteerReader::Fewest(const json& j, const std::string& path) const {
-  Object(j, path, {"max_impulses", "starts", "pareto_counts", "max_total_time", "orientation_only"});
   SteerTask::Fewest f;
-  using O = FewestImpulsesOptions;
-  if (const json* v = Find(j, "max_impulses")) f.max_impulses = static_cast<int>(Integer(*v, Join(path, "max_impulses"), 1, O::kMaxImpulses));
-  if (const json* v = Find(j, "starts")) f.starts = static_cast<int>(Integer(*v, Join(path, "starts"), 1, O::kMaxStarts));
-  if (const json* v = Find(j, "pareto_counts")) f.pareto_counts = static_cast<int>(Integer(*v, Join(path, "pareto_counts"), 1, O::kMaxImpulses));
-  if (const json* v = Find(j, "max_total_time")) {
-    f.max_total_time = NonNegative(*v, Join(path, "max_total_time"));
-    if (f.max_total_time > 1e6) Fail(Join(path, "max_total_time"), *v, "must be in [0, 1e6] (0: automatic)");
-  }
-  if (const json* v = Find(j, "orientation_only")) f.orientation_only = Boolean(*v, Join(path, "orientation_only"));
+  ReadSection(*this, j, path, &f);
   return f;
 }
 

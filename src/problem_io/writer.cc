@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <variant>
 
+#include "problem_io/field_archive.h"
 #include "problem_io/value_text.h"
 
 namespace plateball::internal::problem_io {
@@ -13,11 +14,7 @@ namespace {
 
 class Writer {
  public:
-  double Num(const std::string& path, double v) const {
-    if (!std::isfinite(v))
-      throw std::invalid_argument("WriteProblemJson: " + path + ": value " + NumberText(v) + ": must be finite");
-    return v;
-  }
+  double Num(const std::string& path, double v) const { return WrittenNumber(path, v); }
   ojson Vec(const std::string& path, const Eigen::Vector2d& v) const { return ojson::array({Num(path, v.x()), Num(path, v.y())}); }
   ojson Mat(const std::string& path, const Eigen::Matrix3d& m) const {
     ojson rows = ojson::array();
@@ -118,12 +115,7 @@ class Writer {
         {"start_orientation", Mat("isoparallel.start_orientation.matrix", t.start_orientation)},
         {"goal_orientation", Mat("isoparallel.goal_orientation.matrix", t.goal_orientation)},
         {"impulses", t.impulses},
-        {"solver", ojson{{"starts", t.solver.starts},
-                         {"length_cap_factor", Num("isoparallel.solver.length_cap_factor", t.solver.length_cap_factor)},
-                         {"max_iterations", t.solver.max_iterations},
-                         {"tolerance", Num("isoparallel.solver.tolerance", t.solver.tolerance)},
-                         {"threads", t.solver.threads},
-                         {"enumerate_families", t.solver.enumerate_families}}}};
+        {"solver", WriteSection(t.solver, "isoparallel.solver")}};
   }
 
   ojson Steer(const SteerTask& task) const {
@@ -134,11 +126,7 @@ class Writer {
                     {"stop_at_goal", task.stop_at_goal},
                     {"objective", ToString(task.objective)}};
     if (const auto& f = task.fewest)
-      s["fewest"] = ojson{{"max_impulses", f->max_impulses},
-                        {"starts", f->starts},
-                        {"pareto_counts", f->pareto_counts},
-                        {"max_total_time", Num("steer.fewest.max_total_time", f->max_total_time)},
-                        {"orientation_only", f->orientation_only}};
+      s["fewest"] = WriteSection(*f, "steer.fewest");
     return s;
   }
 
@@ -184,9 +172,7 @@ class Writer {
     if (!p.name.empty()) d["name"] = p.name;
     if (!p.description.empty()) d["description"] = p.description;
     d["seed"] = p.seed;
-    d["integration"] = ojson{{"absolute_tolerance", Num("integration.absolute_tolerance", p.integration.absolute_tolerance)},
-                             {"relative_tolerance", Num("integration.relative_tolerance", p.integration.relative_tolerance)},
-                             {"max_steps", p.integration.max_steps}};
+    d["integration"] = WriteSection(p.integration, "integration");
     d["ball"] = Ball(p);
     d["initial"] = ojson{{"theta", Num("initial.theta", p.initial_angles.theta)},
                          {"phi", Num("initial.phi", p.initial_angles.phi)},
@@ -195,7 +181,7 @@ class Writer {
                          {"x0", Vec("initial.x0", p.x0)},
                          {"orientation", Mat("initial.orientation.matrix", p.A0)}};
     if (p.simulate)
-      d["simulate"] = ojson{{"t_end", Num("simulate.t_end", p.simulate->t_end)}, {"samples", p.simulate->samples}};
+      d["simulate"] = WriteSection(*p.simulate, "simulate");
     if (p.reach)
       d["reach"] = ojson{{"targets", Points("reach.targets", p.reach->targets)},
                          {"horizon_periods", Num("reach.horizon_periods", p.reach->horizon_periods)}};

@@ -1,0 +1,85 @@
+// One list of a struct's fields, declared once in the struct:
+//
+//   template <class Archive>
+//   void Serialize(Archive* a) {
+//     a->Visit(PLATEBALL_FIELD(max_impulses, "largest count searched").Counts(1, kMaxImpulses),
+//              PLATEBALL_FIELD(max_total_time, "search window; 0: automatic").NonNegative());
+//   }
+//
+// Each field is a name, a pointer to the value, a documentation line and the range a problem file
+// enforces. Archives walk the list: the problem-file section reader and writer and the section's
+// input-schema fragment (src/problem_io/field_archive.h). This is the name-value pattern of
+// Drake's Serialize(Archive*). Pure C++: no JSON types here.
+#pragma once
+
+#include <limits>
+#include <type_traits>
+
+namespace plateball {
+
+/// The range a problem file enforces on a number field: the reader's message and the schema's
+/// bounds both follow from it. Integer fields use Field::Counts instead.
+enum class FieldCheck {
+  kFinite,       ///< any finite number
+  kPositive,     ///< > 0
+  kNonNegative,  ///< >= 0, and <= `upper` when it is finite
+  kTolerance,    ///< in [1e-15, 1): below, the step size underflows in double precision
+  kClosed,       ///< in [lower, upper]
+};
+
+/// One named field of a struct: see the header comment.
+template <class T>
+struct Field {
+  const char* name;
+  T* value;
+  const char* doc;
+  FieldCheck check = FieldCheck::kFinite;
+  double lower = -std::numeric_limits<double>::infinity();
+  double upper = std::numeric_limits<double>::infinity();
+  /// Integer fields: [min_count, max_count]; the type's largest value means no upper bound.
+  long long min_count = std::numeric_limits<long long>::min();
+  long long max_count = std::numeric_limits<long long>::max();
+  /// Said after an out-of-range message and in the schema, e.g. "0: automatic".
+  const char* hint = nullptr;
+  /// false: a library option that a problem file does not set.
+  bool in_file = true;
+
+  /// An integer in [lo, hi].
+  Field& Counts(long long lo, long long hi = static_cast<long long>(std::numeric_limits<T>::max())) {
+    static_assert(std::is_integral_v<T> && !std::is_same_v<T, bool>, "Counts() is for integer fields");
+    min_count = lo;
+    max_count = hi;
+    return *this;
+  }
+  Field& Positive() { return Check(FieldCheck::kPositive, 0.0, upper); }
+  Field& NonNegative(double hi = std::numeric_limits<double>::infinity(), const char* why = nullptr) {
+    hint = why;
+    return Check(FieldCheck::kNonNegative, 0.0, hi);
+  }
+  Field& Tolerance() { return Check(FieldCheck::kTolerance, 1e-15, 1.0); }
+  Field& Closed(double lo, double hi) { return Check(FieldCheck::kClosed, lo, hi); }
+  Field& NotInFile() {
+    in_file = false;
+    return *this;
+  }
+
+ private:
+  Field& Check(FieldCheck c, double lo, double hi) {
+    static_assert(std::is_floating_point_v<T>, "number checks are for floating-point fields");
+    check = c;
+    lower = lo;
+    upper = hi;
+    return *this;
+  }
+};
+
+/// The field `name` of value `*value`, documented by `doc` (one line, no trailing period).
+template <class T>
+Field<T> MakeField(const char* name, T* value, const char* doc) {
+  return Field<T>{name, value, doc};
+}
+
+}  // namespace plateball
+
+/// A field of the struct whose Serialize() lists it, named as the member.
+#define PLATEBALL_FIELD(member, doc) ::plateball::MakeField(#member, &(member), doc)
