@@ -18,7 +18,7 @@
 namespace plateball {
 
 /// The range a problem file enforces on a number field: the reader's message and the schema's
-/// bounds both follow from it. Integer fields use Field::Counts instead.
+/// bounds both follow from it. Integer fields use FieldSpec::Counts instead.
 enum class FieldCheck {
   kFinite,       ///< any finite number
   kPositive,     ///< > 0
@@ -29,7 +29,7 @@ enum class FieldCheck {
 
 /// One named field of a struct: see the header comment.
 template <class T>
-struct Field {
+struct FieldSpec {
   const char* name;
   T* value;
   const char* doc;
@@ -45,26 +45,26 @@ struct Field {
   bool in_file = true;
 
   /// An integer in [lo, hi].
-  Field& Counts(long long lo, long long hi = static_cast<long long>(std::numeric_limits<T>::max())) {
+  FieldSpec& Counts(long long lo, long long hi = static_cast<long long>(std::numeric_limits<T>::max())) {
     static_assert(std::is_integral_v<T> && !std::is_same_v<T, bool>, "Counts() is for integer fields");
     min_count = lo;
     max_count = hi;
     return *this;
   }
-  Field& Positive() { return Check(FieldCheck::kPositive, 0.0, upper); }
-  Field& NonNegative(double hi = std::numeric_limits<double>::infinity(), const char* why = nullptr) {
+  FieldSpec& Positive() { return Check(FieldCheck::kPositive, 0.0, upper); }
+  FieldSpec& NonNegative(double hi = std::numeric_limits<double>::infinity(), const char* why = nullptr) {
     hint = why;
     return Check(FieldCheck::kNonNegative, 0.0, hi);
   }
-  Field& Tolerance() { return Check(FieldCheck::kTolerance, 1e-15, 1.0); }
-  Field& Closed(double lo, double hi) { return Check(FieldCheck::kClosed, lo, hi); }
-  Field& NotInFile() {
+  FieldSpec& Tolerance() { return Check(FieldCheck::kTolerance, 1e-15, 1.0); }
+  FieldSpec& Closed(double lo, double hi) { return Check(FieldCheck::kClosed, lo, hi); }
+  FieldSpec& NotInFile() {
     in_file = false;
     return *this;
   }
 
  private:
-  Field& Check(FieldCheck c, double lo, double hi) {
+  FieldSpec& Check(FieldCheck c, double lo, double hi) {
     static_assert(std::is_floating_point_v<T>, "number checks are for floating-point fields");
     check = c;
     lower = lo;
@@ -75,11 +75,11 @@ struct Field {
 
 /// The field `name` of value `*value`, documented by `doc` (one line, no trailing period).
 template <class T>
-Field<T> MakeField(const char* name, T* value, const char* doc) {
-  return Field<T>{name, value, doc};
+FieldSpec<T> MakeFieldSpec(const char* name, T* value, const char* doc) {
+  return FieldSpec<T>{name, value, doc};
 }
 
 }  // namespace plateball
 
 /// A field of the struct whose Serialize() lists it, named as the member.
-#define PLATEBALL_FIELD(member, doc) ::plateball::MakeField(#member, &(member), doc)
+#define PLATEBALL_FIELD(member, doc) ::plateball::MakeFieldSpec(#member, &(member), doc)

@@ -43,7 +43,7 @@ class SectionReader {
   SectionReader(const FieldReader& r, const json& j, std::string path) : r_(r), j_(j), path_(std::move(path)) {}
 
   template <class... T>
-  void Visit(const Field<T>&... f) {
+  void Visit(const FieldSpec<T>&... f) {
     std::vector<const char*> keys;
     ((f.in_file ? keys.push_back(f.name) : void()), ...);
     r_.Object(j_, path_, keys);
@@ -52,7 +52,7 @@ class SectionReader {
 
  private:
   template <class T>
-  void Read(const Field<T>& f) const {
+  void Read(const FieldSpec<T>& f) const {
     if (!f.in_file) return;
     const json* v = FieldReader::Find(j_, f.name);
     if (!v) return;
@@ -68,7 +68,7 @@ class SectionReader {
     }
   }
 
-  double Number(const json& v, const std::string& path, const Field<double>& f) const {
+  double Number(const json& v, const std::string& path, const FieldSpec<double>& f) const {
     switch (f.check) {
       case FieldCheck::kFinite: return r_.Number(v, path);
       case FieldCheck::kPositive: return r_.Positive(v, path);
@@ -95,14 +95,14 @@ class SectionWriter {
   explicit SectionWriter(std::string path) : path_(std::move(path)) {}
 
   template <class... T>
-  void Visit(const Field<T>&... f) {
+  void Visit(const FieldSpec<T>&... f) {
     (Write(f), ...);
   }
   const ojson& section() const { return out_; }
 
  private:
   template <class T>
-  void Write(const Field<T>& f) {
+  void Write(const FieldSpec<T>& f) {
     if (!f.in_file) return;
     if constexpr (std::is_floating_point_v<T>)
       out_[f.name] = WrittenNumber(path_ + "." + f.name, *f.value);
@@ -120,7 +120,7 @@ class SectionWriter {
 class SectionSchema {
  public:
   template <class... T>
-  void Visit(const Field<T>&... f) {
+  void Visit(const FieldSpec<T>&... f) {
     (Describe(f), ...);
   }
   /// {"type": "object", "properties": ..., "required": [], "additionalProperties": false}
@@ -131,7 +131,7 @@ class SectionSchema {
 
  private:
   template <class T>
-  void Describe(const Field<T>& f) {
+  void Describe(const FieldSpec<T>& f) {
     if (!f.in_file) return;
     ojson p;
     if constexpr (std::is_same_v<T, bool>) {
@@ -149,7 +149,7 @@ class SectionSchema {
     p["description"] = f.hint ? std::string(f.doc) + "; " + f.hint : std::string(f.doc);
     properties_[f.name] = p;
   }
-  static void Bounds(const Field<double>& f, ojson* p) {
+  static void Bounds(const FieldSpec<double>& f, ojson* p) {
     switch (f.check) {
       case FieldCheck::kFinite: return;
       case FieldCheck::kPositive: (*p)["exclusiveMinimum"] = 0; return;
