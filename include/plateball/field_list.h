@@ -51,13 +51,18 @@ struct FieldSpec {
     max_count = hi;
     return *this;
   }
+  /// A number > 0.
   FieldSpec& Positive() { return Check(FieldCheck::kPositive, 0.0, upper); }
+  /// A number >= 0, and <= `hi` when finite; `why` is said after an out-of-range message.
   FieldSpec& NonNegative(double hi = std::numeric_limits<double>::infinity(), const char* why = nullptr) {
     hint = why;
     return Check(FieldCheck::kNonNegative, 0.0, hi);
   }
+  /// An integration tolerance, in [1e-15, 1).
   FieldSpec& Tolerance() { return Check(FieldCheck::kTolerance, 1e-15, 1.0); }
+  /// A number in [lo, hi].
   FieldSpec& Closed(double lo, double hi) { return Check(FieldCheck::kClosed, lo, hi); }
+  /// A library option that a problem file does not set (the section reader rejects its key).
   FieldSpec& NotInFile() {
     in_file = false;
     return *this;

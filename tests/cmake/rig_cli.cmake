@@ -66,7 +66,7 @@ set_tests_properties(cli.rig.not_a_plan PROPERTIES FIXTURES_REQUIRED rig_simulat
 add_test(NAME completion.rig_group
          COMMAND bash -c "source \"$1\"; COMP_WORDS=(\"$2\" rig ''); COMP_CWORD=2; _plateball; echo \"\${COMPREPLY[*]}\"; COMP_WORDS=(\"$2\" rig replay --p); COMP_CWORD=3; _plateball; echo \"\${COMPREPLY[*]}\""
                  bash ${PROJECT_SOURCE_DIR}/tools/completion/plateball.bash $<TARGET_FILE:plateball_cli>)
-set_tests_properties(completion.rig_group PROPERTIES PASS_REGULAR_EXPRESSION "^export replay\n--pulse-causal --pulse-duration\n" LABELS cli)
+set_tests_properties(completion.rig_group PROPERTIES PASS_REGULAR_EXPRESSION "^export replay loop\n--pulse-causal --pulse-duration\n" LABELS cli)
 
 # The tutorial "From a physical ball to a plan to the MuJoCo twin": its commands run in order and every
 # output line it shows is a line of the real output.

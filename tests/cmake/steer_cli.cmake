@@ -9,7 +9,8 @@ plateball_cli_test(steer.help 0 REGEX "--impulses.*--svg" -- steer --help)
 # Figure 7 goal with 12 impulses along the shortest isoparallel path: arrives; the paper's plan
 # ends 0.3 rad off.
 plateball_cli_test(steer.figure7_exact 0
-  --number position_error 0 1e-12 --number orientation_error 0 1e-10 --number impulse_count 12 0
+  --at arrival.position_error 0 1e-12 --at replay.position_error 0 1e-12 --at arrival.orientation_error 0 1e-10
+  --at replay.orientation_error 0 1e-10 --number impulse_count 12 0
   REGEX "\"status\": \"arrived\""
   -- steer problems/figure7_exact.json --summary-only)
 plateball_cli_test(steer.figure7_exact_svg 0 REGEX "<svg.*stroke-dasharray"
@@ -23,7 +24,7 @@ plateball_cli_test(steer.missing_file 5 -- steer problems/no_such_problem.json)
 
 # Fewest impulses (T5b): the certified files; every arrival's replay error is checked by --number.
 plateball_cli_test(steer.figure7_fewest 0
-  --number fewest_impulses 2 0 --number total_time 12.566370614359172 1e-9
+  --number fewest_impulses 2 0 --at pareto[1].impulse_count 2 0 --at pareto[1].total_time 12.566370614359172 1e-9
   REGEX "\"status\": \"found\".*\"kind\": \"stop\""
   -- steer problems/figure7_fewest.json --max-impulses 2)
 plateball_cli_test(steer.rotation_fewest_from_rest 0 --number fewest_impulses 3 0
@@ -51,10 +52,10 @@ endif()
 # mu only rescales time by 1/sqrt(mu): at mu = 1e12 and 1e-8 the same deviation as at mu = 1
 # (0.2130914...), the total time 11.365464870055014 / sqrt(mu), arrived (exit 0).
 plateball_cli_test(steer.exact_large_mu_is_time_scaled 0
-  --number total_time 1.1365464870055014e-05 1e-18 REGEX "\"value\": 0.21309140"
+  --at total_time 1.1365464870055014e-05 1e-18 REGEX "\"value\": 0.21309140"
   -- steer problems/figure7_exact.json --mu 1e12 --summary-only)
 plateball_cli_test(steer.exact_small_mu_is_time_scaled 0
-  --number total_time 113654.64870055014 1e-7 REGEX "\"value\": 0.21309140"
+  --at total_time 113654.64870055014 1e-7 REGEX "\"value\": 0.21309140"
   -- steer problems/figure7_exact.json --mu 1e-8 --summary-only)
 # The search's options without the search are an error naming both options.
 plateball_cli_test(steer.max_impulses_needs_fewest 3 REGEX "--max-impulses: value 3: needs --fewest-impulses"
@@ -81,7 +82,8 @@ plateball_cli_test(steer.fewest_progress 0 REGEX "fewest-impulse search, starts 
 # path. The shortest isoparallel path breaks both, a longer solution meets them and is the reference;
 # the arrival meets the limits and the independent replay check passes.
 plateball_cli_test(steer.rig_figure7 0
-  --number position_error 0 1e-12 --number orientation_error 0 1e-10
+  --at arrival.position_error 0 1e-12 --at replay.position_error 0 1e-12 --at arrival.orientation_error 0 1e-10
+  --at replay.orientation_error 0 1e-10
   REGEX "\"solution_index\": [1-9].*\"shortest_breaks\": \\[\"obstacles\\[0\\]\", \"plate\"\\].*\"constrained\": true.*\"passed\": true"
   -- steer problems/figure7_rig.json --summary-only)
 plateball_cli_test(steer.rig_svg 0 REGEX "<svg.*plate edge.*obstacles"

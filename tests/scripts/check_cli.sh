@@ -6,6 +6,8 @@
 # CHECKs (every occurrence of "KEY" in the output must match; at least one must exist):
 #   --number KEY VALUE TOL          |value - VALUE| <= TOL
 #   --vector KEY "V1,V2,..." TOL    element-wise, for a flat array [v1, v2, ...]
+#   --at PATH VALUE TOL             the one number at PATH (e.g. arrival.position_error,
+#                                   pareto[1].total_time) of the first JSON document in the output
 #   --cat FILE                      append FILE (e.g. an --out file) to the output before checking
 # The command's standard output and error are printed, so ctest's PASS_REGULAR_EXPRESSION can
 # check messages too. Exits 0 when everything matches, 1 otherwise.
@@ -20,7 +22,7 @@ checks=()
 cat_files=()
 while [[ $# -gt 0 && $1 != "--" ]]; do
   case $1 in
-    --number | --vector) checks+=("$1" "$2" "$3" "$4"); shift 4 ;;
+    --number | --vector | --at) checks+=("$1" "$2" "$3" "$4"); shift 4 ;;
     --cat) cat_files+=("$2"); shift 2 ;;
     *) echo "check_cli.sh: unknown check $1" >&2; exit 1 ;;
   esac
@@ -43,7 +45,18 @@ i=0
 while [[ $i -lt ${#checks[@]} ]]; do
   kind=${checks[$i]} key=${checks[$((i + 1))]} want=${checks[$((i + 2))]} tol=${checks[$((i + 3))]}
   i=$((i + 4))
-  if [[ $kind == --number ]]; then
+  if [[ $kind == --at ]]; then
+    found=$(printf '%s' "$output" | python3 -c '
+import json, re, sys
+text = sys.stdin.read()
+try:
+    doc, _ = json.JSONDecoder().raw_decode(text[text.index("{"):])
+    for part in re.findall(r"[^.\[\]]+|\[\d+\]", sys.argv[1]):
+        doc = doc[int(part[1:-1])] if part.startswith("[") else doc[part]
+    print(repr(float(doc)) if isinstance(doc, (int, float)) and not isinstance(doc, bool) else "")
+except (ValueError, KeyError, IndexError, TypeError):
+    print("")' "$key")
+  elif [[ $kind == --number ]]; then
     found=$(printf '%s' "$compact" | grep -oE "\"$key\":$number" | sed "s/^\"$key\"://")
   else
     found=$(printf '%s' "$compact" | grep -oE "\"$key\":\[$number(,$number)*\]" | sed "s/^\"$key\":\[//; s/\]$//")
