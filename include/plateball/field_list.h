@@ -51,18 +51,13 @@ struct FieldSpec {
     max_count = hi;
     return *this;
   }
-  /// A number > 0.
-  FieldSpec& Positive() { return Check(FieldCheck::kPositive, 0.0, upper); }
-  /// A number >= 0, and <= `hi` when finite; `why` is said after an out-of-range message.
+  FieldSpec& Positive() { return Check(FieldCheck::kPositive, 0.0, upper); }  ///< A number > 0.
   FieldSpec& NonNegative(double hi = std::numeric_limits<double>::infinity(), const char* why = nullptr) {
     hint = why;
     return Check(FieldCheck::kNonNegative, 0.0, hi);
   }
-  /// An integration tolerance, in [1e-15, 1).
-  FieldSpec& Tolerance() { return Check(FieldCheck::kTolerance, 1e-15, 1.0); }
-  /// A number in [lo, hi].
-  FieldSpec& Closed(double lo, double hi) { return Check(FieldCheck::kClosed, lo, hi); }
-  /// A library option that a problem file does not set (the section reader rejects its key).
+  FieldSpec& Tolerance() { return Check(FieldCheck::kTolerance, 1e-15, 1.0); }  ///< An integration tolerance, in [1e-15, 1).
+  FieldSpec& Closed(double lo, double hi) { return Check(FieldCheck::kClosed, lo, hi); }  ///< A number in [lo, hi].
   FieldSpec& NotInFile() {
     in_file = false;
     return *this;
@@ -88,3 +83,9 @@ FieldSpec<T> MakeFieldSpec(const char* name, T* value, const char* doc) {
 
 /// A field of the struct whose Serialize() lists it, named as the member.
 #define PLATEBALL_FIELD(member, doc) ::plateball::MakeFieldSpec(#member, &(member), doc)
+
+/// \fn plateball::FieldSpec::NonNegative(double hi, const char *why)
+/// A number >= 0, and <= `hi` when finite; `why` is said after an out-of-range message.
+
+/// \fn plateball::FieldSpec::NotInFile()
+/// A library option that a problem file does not set (the section reader rejects its key).
