@@ -69,20 +69,6 @@ auto WithOptionNames(F f) {
   }
 }
 
-Json SettingsJson(const rig::TwinSettings& s) {
-  return Json{{"integrator", "RK4"},
-              {"timestep", s.timestep},
-              {"cone", "elliptic"},
-              {"condim", 4},
-              {"contact_time_constant", s.time_constant_steps * s.timestep},
-              {"contact_damping_ratio", 1.0},
-              {"sliding_friction", s.sliding_friction},
-              {"torsional_friction", s.torsional_friction},
-              {"noslip_iterations", s.noslip_iterations},
-              {"gravity", s.gravity},
-              {"mujoco_version", mj_versionString()}};
-}
-
 std::string ScheduleFileFor(const std::string& mjcf) {
   std::filesystem::path p(mjcf);
   p.replace_extension(".pulses.json");
@@ -95,7 +81,7 @@ Json ScheduleJson(const RigCliOptions& o, const rig::RigPlan& plan, const std::s
   doc["result"] = o.result;
   doc["mjcf"] = o.mjcf;
   doc["schedule"] = schedule_file;
-  doc["settings"] = SettingsJson(ReplayOptionsOf(o).settings);
+  doc["settings"] = TwinSettingsJson(ReplayOptionsOf(o).settings);
   doc["pulse_duration"] = D;
   doc["pulse_alignment"] = D > 0 ? Json(PulseAlignmentName(o.causal ? PulseAlignment::kCausal : PulseAlignment::kCentred))
                                  : Json(nullptr);
@@ -155,7 +141,7 @@ int RunReplay(const RigCliOptions& o) {
   Json doc = HeaderJson("plateball", "rig_replay", plan.problem, plan.problem.source);
   doc["result"] = Json{{"file", o.result}, {"command", plan.command}, {"impulse_count", plan.impulses.size()},
                        {"total_time", plan.t_end}};
-  doc["settings"] = SettingsJson(options.settings);
+  doc["settings"] = TwinSettingsJson(options.settings);
   doc["execution"] = Json{{"kind", o.pulse_duration == 0 ? "ideal_jumps" : o.causal ? "causal_pulses" : "centred_pulses"},
                           {"pulse_duration", o.pulse_duration}};
   doc["replay"] = Json{{"t_begin", r.t_begin},

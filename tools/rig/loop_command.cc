@@ -42,20 +42,6 @@ Json ErrorsJson(const ErrorModel& e) {
               {"pulse_duration", e.pulse_duration}, {"pulse_causal", e.pulse_causal}};
 }
 
-Json SettingsJson(const rig::TwinSettings& s) {
-  return Json{{"integrator", "RK4"},
-              {"timestep", s.timestep},
-              {"cone", "elliptic"},
-              {"condim", 4},
-              {"contact_time_constant", s.time_constant_steps * s.timestep},
-              {"contact_damping_ratio", 1.0},
-              {"sliding_friction", s.sliding_friction},
-              {"torsional_friction", s.torsional_friction},
-              {"noslip_iterations", s.noslip_iterations},
-              {"gravity", s.gravity},
-              {"mujoco_version", mj_versionString()}};
-}
-
 Json RunJson(const rig::TwinLoopRun& r, bool closed, bool pulsed) {
   Json impulses = Json::array();
   for (const rig::TwinLoopImpulse& i : r.impulses)
@@ -162,7 +148,7 @@ int RunLoop(const LoopCliOptions& o) {
   Json doc = HeaderJson("plateball", "rig_loop", p, o.problem.file());
   doc["initial"] = InitialJson(p);
   doc["initial"]["orientation"] = ToJson(s.nominal->plan.A0);
-  doc["settings"] = SettingsJson(s.twin.settings);
+  doc["settings"] = TwinSettingsJson(s.twin.settings);
   doc["loop"] = Json{{"strategy", ToString(s.controller.strategy)}, {"tick_period", s.controller.tick_period},
                      {"contact_point_only", s.twin.contact_point_only},
                      {"execution", Json{{"kind", o.pulse_duration > 0 ? "causal_pulses" : "ideal_jumps"},
@@ -183,6 +169,20 @@ int RunLoop(const LoopCliOptions& o) {
 }
 
 }  // namespace
+
+Json TwinSettingsJson(const rig::TwinSettings& s) {
+  return Json{{"integrator", "RK4"},
+              {"timestep", s.timestep},
+              {"cone", "elliptic"},
+              {"condim", 4},
+              {"contact_time_constant", s.time_constant_steps * s.timestep},
+              {"contact_damping_ratio", 1.0},
+              {"sliding_friction", s.sliding_friction},
+              {"torsional_friction", s.torsional_friction},
+              {"noslip_iterations", s.noslip_iterations},
+              {"gravity", s.gravity},
+              {"mujoco_version", mj_versionString()}};
+}
 
 std::function<int()> SetupRigLoop(CLI::App& sub) {
   auto o = std::make_shared<LoopCliOptions>();

@@ -6,7 +6,13 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 
+#include "common/json_output.h"
+#include "rig/mujoco_twin.h"
+
 namespace plateball::tools {
+
+/// The twin's integrator and contact settings: the `settings` object of every `rig` output.
+Json TwinSettingsJson(const rig::TwinSettings& s);
 
 /// Adds the options of `rig loop` to `sub`; the returned function runs it.
 std::function<int()> SetupRigLoop(CLI::App& sub);
