@@ -39,6 +39,10 @@ constexpr double kMaxLevelChange = 0.25 * 2.0 * M_PI;
 constexpr double kMaxMidpointBend = (1.0 / 32.0) * 2.0 * M_PI;
 constexpr int kMaxDepth = 40;
 constexpr int kPolishIterations = 8;
+// A family within this (relative) of the chord is the straight segment: only a straight path is
+// as short as its chord. When the chord is a multiple of 2 pi, m phi vanishes at k = 0 for every m,
+// and the polish finds that degenerate root (k ~ 1e-5 and below) at every period count.
+constexpr double kStraightFamilyTol = 1e-9;
 
 struct Shape {
   double T1 = 0.0;   // curvature period in the Jacobi argument u: 4K (oscillating), 2K (rotating)
@@ -358,7 +362,7 @@ FamilySearch EnumerateIdentityFamilies(double chord, const FamilySearchOptions& 
                 [&](int i) { ok[i] = Polish(roots[i], chord, options.tolerance, &polished[i], &evals[i]); });
     for (std::size_t i = 0; i < roots.size(); ++i) {
       out.evaluations += evals[i];
-      if (!ok[i] || polished[i].length > cap) continue;
+      if (!ok[i] || polished[i].length > cap || polished[i].length <= chord * (1 + kStraightFamilyTol)) continue;
       bool duplicate = false;  // two brackets that polished onto one root
       for (const ElasticaFamily& f : out.families)
         duplicate = duplicate || (f.regime == polished[i].regime && f.periods == polished[i].periods &&

@@ -235,6 +235,10 @@ TEST(IdentityFamilies, ChordOfTwoPiGivesTheStraightSegmentFirst) {
   EXPECT_EQ(f.families.front().periods, 0);
   EXPECT_NEAR(f.families.front().length, 2.0 * M_PI, 1e-15);
   EXPECT_FALSE(f.complete) << "no certificate when the chord is a multiple of 2 pi";
+  // m phi vanishes at k = 0 for every m here: the degenerate roots near k = 0 are the straight
+  // segment again (as long as the chord), never a family of their own.
+  for (std::size_t i = 1; i < f.families.size(); ++i)
+    EXPECT_GT(f.families[i].length, 2.0 * M_PI * (1 + 1e-9)) << "family " << i << " of k " << f.families[i].modulus;
   IsoparallelProblem p;
   p.goal = {2.0 * M_PI, 0.0};
   IsoparallelOptions so;
@@ -243,6 +247,10 @@ TEST(IdentityFamilies, ChordOfTwoPiGivesTheStraightSegmentFirst) {
   ASSERT_TRUE(s.IsSolutionUsable());
   EXPECT_NEAR(s.Shortest().length, 2.0 * M_PI, 1e-12);
   EXPECT_LT(s.Shortest().orientation_residual, 1e-9);
+  // Every family within the 1.2 cap is a distinct path: the straight one is listed once.
+  int straight = 0;
+  for (const IsoparallelSolution& sol : s.solutions) straight += sol.length <= 2.0 * M_PI * (1 + 1e-9);
+  EXPECT_EQ(straight, 1);
 }
 
 TEST(IdentityFamilies, ShortCapsFindNothingAndSayComplete) {
