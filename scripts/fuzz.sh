@@ -4,6 +4,7 @@
 #        scripts/fuzz.sh --ci                    (what CI runs: a deterministic run, seed 1, a fixed
 #                                                 number of inputs per target, fresh corpus, each
 #                                                 target also capped at 120 s)
+# -g1 (line tables) is enough for the crash reports and builds faster than -g.
 # Longer exploratory runs: scripts/fuzz.sh 3600. Crashes are written to build-fuzz/crashes/<target>/; copy each
 # into fuzz/regressions/<target>/ so tests/fuzz_regression_test.cc replays it forever.
 set -euo pipefail
@@ -25,6 +26,7 @@ dpkg-query -W -f='${Status}' libclang-rt-14-dev 2>/dev/null | grep -q "install o
   { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libclang-rt-14-dev; }
 source scripts/compiler_cache.sh
 cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPLATEBALL_FUZZ=ON \
+      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
       -DPLATEBALL_BUILD_TESTS=OFF -DPLATEBALL_BUILD_BENCHMARKS=OFF -DPLATEBALL_BUILD_TOOLS=OFF "${compiler_cache[@]}"
 cmake --build build-fuzz -j "$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
