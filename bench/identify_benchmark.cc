@@ -2,8 +2,8 @@
 // the contact point over two periods. The track is the library's FreeMotion (lambda = 1.3, mu = 4,
 // (theta, phi, psi) = (0.8, 0.3, 0.2), x0 = (0.5, -0.2)) with seeded Gaussian noise sigma = 0.005
 // (seed 1), or without noise. Timed: the whole Identify call; the variants are the full run
-// (multi-start, fit, profile interval), the run without the profile interval, and the fit from a
-// given guess. Counters (outside the timed loop): lambda_error = |lambda - 1.3|, mu_error,
+// (multi-start, fit, profile interval; also on two threads, wall time), the run without the profile
+// interval, and the fit from a given guess. Counters (outside the timed loop): lambda_error = |lambda - 1.3|, mu_error,
 // lambda_se (the standard error), x0_error and theta_error (the state), the 95% interval's half
 // width, starts and iterations. The impulse variant: 2,000 samples of the circle of
 // problems/circle.json planned with 8 impulses (lambda = 2, mu = 1; 250 per flight, each flight
@@ -49,10 +49,11 @@ IdentifyProblem Track(double sigma) {
   return p;
 }
 
-void Run(benchmark::State& state, double sigma, bool profile, bool guess) {
+void Run(benchmark::State& state, double sigma, bool profile, bool guess, int threads = 1) {
   const IdentifyProblem p = Track(sigma);
   IdentifyOptions o;
   o.profile_interval = profile;
+  o.threads = threads;
   if (guess) o.guess = IdentifyGuess{1.0, 3.5, {0.7, 0.4, 0.1}, kX0, {}};
   IdentifySummary s;
   for (auto _ : state) {
@@ -166,8 +167,11 @@ void BM_IdentifyNoisyFull(benchmark::State& state) { Run(state, 0.005, true, fal
 void BM_IdentifyNoisyNoProfile(benchmark::State& state) { Run(state, 0.005, false, false); }
 void BM_IdentifyNoisyFromGuess(benchmark::State& state) { Run(state, 0.005, false, true); }
 void BM_IdentifyNoiselessFull(benchmark::State& state) { Run(state, 0.0, true, false); }
+// The full run on two threads (the CLI's default on a 2-core machine): wall time.
+void BM_IdentifyNoisyFullTwoThreads(benchmark::State& state) { Run(state, 0.005, true, false, 2); }
 
 BENCHMARK(BM_IdentifyNoisyFull)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyNoisyFullTwoThreads)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_IdentifyNoisyNoProfile)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyNoisyFromGuess)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyNoiselessFull)->Unit(benchmark::kMillisecond);

@@ -231,6 +231,8 @@ std::string IdentifyOptions::Validate() const {
       if (!std::isfinite(g[i])) return InvalidValueMessage(names[i], g[i], "must be finite");
   }
   if (max_iterations < 1 || max_iterations > 10000) return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, 10000]");
+  if (threads < 1 || threads > kMaxThreads)
+    return InvalidValueMessage("threads", threads, "must be in [1, " + std::to_string(kMaxThreads) + "]");
   if (!(max_lambda_relative_error > 0 && max_lambda_relative_error <= 1e6))
     return InvalidValueMessage("max_lambda_relative_error", max_lambda_relative_error, "must be in (0, 1e6]");
   if (!(no_fit_significance > 0 && no_fit_significance < 1))

@@ -11,6 +11,7 @@
 
 #include "identify_model.h"
 #include "kinematics.h"
+#include "parallel_for.h"
 #include "plateball/so3.h"
 
 namespace plateball::internal {
@@ -376,17 +377,21 @@ std::vector<TrackFit> MultiStart(const TrackData& d, const IdentifyOptions& o, c
   // (v0 changes sign); measured orientations fix the axis (one theta).
   const int theta_starts = d.orientation.empty() ? o.theta_starts : 1;
   const double theta_range = d.body_rate.empty() ? M_PI / 2.0 : M_PI;
-  for (double lambda : o.lambda_starts)
-    for (int a = 0; a < theta_starts; ++a)
-      for (int b = 0; b < o.phase_starts; ++b) {
-        const double theta = (a + 0.5) / theta_starts * theta_range;
-        // With orientations the offset from the phase along the first chord, 0 first.
-        const double phase = (d.orientation.empty() ? b + 0.5 : b) / o.phase_starts * kTwoPi;
-        std::vector<double> q = GridStart(d, lambda, g, theta, phase);
-        ChooseImpulses(d, w.impulse_tau.size(), coarse, &q);
-        fits.push_back(Solve(w, q, o, coarse, kGridIterations, false));
-        ++*starts;
-      }
+  const int per_lambda = theta_starts * o.phase_starts;
+  const int count = static_cast<int>(o.lambda_starts.size()) * per_lambda;
+  // Grid point i: lambda_starts[i / per_lambda], theta a, phase b; each start is independent and
+  // lands in fits[i], so the order (and the sort below) does not depend on the threads.
+  fits.resize(static_cast<std::size_t>(count));
+  ParallelFor(count, o.threads, [&](int i) {
+    const int a = (i % per_lambda) / o.phase_starts, b = i % o.phase_starts;
+    const double theta = (a + 0.5) / theta_starts * theta_range;
+    // With orientations the offset from the phase along the first chord, 0 first.
+    const double phase = (d.orientation.empty() ? b + 0.5 : b) / o.phase_starts * kTwoPi;
+    std::vector<double> q = GridStart(d, o.lambda_starts[static_cast<std::size_t>(i / per_lambda)], g, theta, phase);
+    ChooseImpulses(d, w.impulse_tau.size(), coarse, &q);
+    fits[static_cast<std::size_t>(i)] = Solve(w, q, o, coarse, kGridIterations, false);
+  });
+  *starts += count;
   std::sort(fits.begin(), fits.end(), [](const TrackFit& a, const TrackFit& b) { return a.cost < b.cost; });
   return fits;
 }
@@ -535,8 +540,15 @@ ProfileInterval ProfileLambda(const TrackData& data, const IdentifyOptions& opti
   TrackFit optimum = fit;
   optimum.cost = Cost(data, fit.q, integration);
   ProfileInterval p;
-  p.low = ProfileSide(data, options, integration, optimum, se, threshold, -1.0, &p.fits);
-  p.high = ProfileSide(data, options, integration, optimum, se, threshold, +1.0, &p.fits);
+  // The two sides are independent refits: in parallel when there are threads.
+  double side[2];
+  int fits[2] = {0, 0};
+  ParallelFor(2, options.threads, [&](int i) {
+    side[i] = ProfileSide(data, options, integration, optimum, se, threshold, i == 0 ? -1.0 : 1.0, &fits[i]);
+  });
+  p.low = side[0];
+  p.high = side[1];
+  p.fits = fits[0] + fits[1];
   return p;
 }
 

@@ -147,6 +147,30 @@ TEST(Identify, NoisyTrackWithGivenSigmaFromTheMultiStart) {
   EXPECT_NEAR(s.correlation(0, 0), 1.0, 1e-12);
 }
 
+// The multi-start's grid points and the profile's two sides on two threads: the same fit, the same
+// interval and the same counts to the last bit (each start is independent, and its result keeps its
+// grid index whatever thread ran it).
+TEST(Identify, ThreadsDoNotChangeTheResult) {
+  Truth truth;
+  IdentifyProblem p = MakeTrack(truth, 0.0, 2.0 * PeriodOf(truth), 300, 0.005, 3);
+  IdentifyOptions one, two;
+  two.threads = 2;
+  const IdentifySummary a = Identify(p, one), b = Identify(p, two);
+  ASSERT_EQ(a.status, IdentifyStatus::kIdentified) << a.BriefReport();
+  EXPECT_EQ(b.status, a.status);
+  EXPECT_EQ(b.lambda, a.lambda);
+  EXPECT_EQ(b.mu, a.mu);
+  EXPECT_EQ(b.lambda_low, a.lambda_low);
+  EXPECT_EQ(b.lambda_high, a.lambda_high);
+  EXPECT_EQ(b.standard_errors, a.standard_errors);
+  EXPECT_EQ(b.starts, a.starts);
+  EXPECT_EQ(b.iterations, a.iterations);
+  EXPECT_EQ(b.profile_fits, a.profile_fits);
+  IdentifyOptions bad;
+  bad.threads = 0;
+  EXPECT_EQ(bad.Validate(), "threads: value 0: must be in [1, 256]");
+}
+
 // A straight track: with w = phi - psi = pi/2 the axial spin v0 stays 0, K is perpendicular to
 // z_h, the ball tumbles about a fixed horizontal axis and x moves on a line at speed sqrt(mu),
 // the same for every lambda. The track shows the speed (the period), never lambda.

@@ -76,6 +76,7 @@ inline constexpr int kIdentifyMinFlightSamples = 4;
 inline constexpr double kIdentifyQuaternionTolerance = 1e-5;
 
 struct IdentifyOptions {
+  static constexpr int kMaxThreads = 256;
   /// The ball's radius in the track's length unit: the track is divided by it (the model's unit is
   /// the radius). 1 when the track is already in radii.
   double radius = 1.0;
@@ -101,7 +102,11 @@ struct IdentifyOptions {
   double max_relative_residual = 0.05;
   /// Compute the profile-likelihood interval of lambda (the costliest part).
   bool profile_interval = true;
-  /// Tolerances of the final fit (the multi-start uses 1e-8).
+  /// Worker threads in [1, kMaxThreads]: the multi-start's grid points and the profile interval's two
+  /// sides run in parallel. The results do not depend on it.
+  int threads = 1;
+  /// Tolerances of the final fit (the multi-start and the windows use looser ones: they only have to
+  /// land in the optimum's basin).
   IntegrationOptions integration{1e-11, 1e-11, 2'000'000};
   /// Empty when valid, else the first offending field, its value and the bound.
   std::string Validate() const;

@@ -657,6 +657,7 @@ class IdentifyOptions:
     profile_interval: bool
     radius: float
     theta_starts: int
+    threads: int
     def __init__(self, **kwargs) -> None: ...
     def validate(self) -> str: ...
 

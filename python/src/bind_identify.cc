@@ -88,6 +88,7 @@ void BindIdentifyInputs(py::module_& m) {
       .def_readwrite("no_fit_significance", &IdentifyOptions::no_fit_significance)
       .def_readwrite("max_relative_residual", &IdentifyOptions::max_relative_residual)
       .def_readwrite("profile_interval", &IdentifyOptions::profile_interval)
+      .def_readwrite("threads", &IdentifyOptions::threads)
       .def_readwrite("integration", &IdentifyOptions::integration)
       .def("validate", &IdentifyOptions::Validate, "Empty when valid, else the first offending field, its value and the bound.");
 }

@@ -1,10 +1,12 @@
 #include "common/problem_options.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "common/command_line.h"
 #include "common/input_file.h"
@@ -50,6 +52,11 @@ long long RequireIntegerInRange(const std::string& option, long long v, long lon
   if (v < lo) Fail(option, std::to_string(v), "must be >= " + std::to_string(lo));
   if (v > hi) Fail(option, std::to_string(v), "must be <= " + std::to_string(hi));
   return v;
+}
+
+int ThreadsOption(long long requested) {
+  if (requested == 0) return static_cast<int>(std::min(256u, std::max(1u, std::thread::hardware_concurrency())));
+  return static_cast<int>(RequireIntegerInRange("--threads", requested, 1, 256));
 }
 
 void RequirePartitionSteps(const std::string& option, long long n, const Problem& p) {

@@ -66,6 +66,8 @@ class ProblemOptions {
 double RequireFiniteOption(const std::string& option, double v);
 double RequirePositiveOption(const std::string& option, double v);
 long long RequireIntegerInRange(const std::string& option, long long v, long long lo, long long hi);
+/// A --threads value: 0 for the hardware's threads (at most 256), else checked in [1, 256].
+int ThreadsOption(long long requested);
 /// A number n of impulses per smooth piece of the problem's plan.path (--impulses of plan and
 /// converge): n x pieces must be <= 10^4, the reader's limit (README, "Limits"). Nothing is checked
 /// without a plan section (the task adapter names it).

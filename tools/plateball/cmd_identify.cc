@@ -36,6 +36,7 @@ struct IdentifyCliOptions {
   std::vector<double> impulses;
   bool guess = false;
   bool no_profile = false;
+  long long threads = 0;
   CLI::Option* radius_opt = nullptr;
   CLI::Option* impulses_opt = nullptr;
 };
@@ -421,6 +422,7 @@ int RunIdentify(const IdentifyCliOptions& o) {
   if (p.physical) opt.radius = p.physical->radius;
   if (o.radius_opt->count() > 0) opt.radius = RequirePositiveOption("--radius", o.radius);
   opt.profile_interval = !o.no_profile;
+  opt.threads = ThreadsOption(o.threads);
   if (o.guess) {
     if (o.problem.empty())
       ThrowInvalidInput(CommandLineField("--guess"), "(set)", "needs PROBLEM.json (its ball.lambda and initial state)");
@@ -471,6 +473,8 @@ std::function<int()> SetupIdentify(CLI::App& sub) {
                        ->delimiter(',');
   sub.add_flag("--guess", o->guess, "start from PROBLEM.json's ball.lambda and initial state instead of the multi-start");
   sub.add_flag("--no-profile", o->no_profile, "skip the profile-likelihood interval of lambda (faster)");
+  sub.add_option("--threads", o->threads, "threads for the multi-start and the profile (default: the hardware's; "
+                                          "results do not depend on it)");
   sub.footer(
       "Fits lambda, mu and the state (angles, contact point) at the track's first time to a measured track of\n"
       "the contact point (docs/identify.md); with --impulses (or the JSON track's impulse_times) the flights\n"

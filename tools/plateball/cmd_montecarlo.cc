@@ -10,7 +10,6 @@
 #include <memory>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "common/command_registry.h"
@@ -71,8 +70,7 @@ std::pair<MonteCarloProblem, MonteCarloOptions> BuildStudy(const MonteCarloCliOp
   mo.execution.miss_tolerance = o.miss_tolerance;
   mo.execution.exact_window = static_cast<int>(
       RequireIntegerInRange("--exact-window", o.exact_window, 3, ExecutionOptions::kMaxExactWindow));
-  const long long hw = std::max(1u, std::thread::hardware_concurrency());
-  mo.threads = static_cast<int>(o.threads == 0 ? std::min(hw, 256LL) : RequireIntegerInRange("--threads", o.threads, 1, 256));
+  mo.threads = ThreadsOption(o.threads);
   return {mp, mo};
 }
 
