@@ -95,7 +95,7 @@ struct RigCheck {
   /// Per limit ("plate", "obstacles[0]", "stroke.x", "max_plate_impulse", "min_interval", ...): the
   /// smallest margin (bound - value, in the limit's unit) over everything checked; >= 0 when met.
   std::map<std::string, double> margins;
-  std::vector<std::string> violations;  ///< one line per limit that is exceeded beyond its tolerance
+  std::vector<std::string> violations;  ///< one line per limit exceeded beyond its tolerance: its largest excess, and where
 };
 
 /// Tolerances of the check: positions and impulses to these; the grid exactly (tolerance zero).

@@ -1,7 +1,8 @@
 // The rig's limits (rig_limits.h): plate shapes, the limits, what the solver did and the
-// independent check (CheckRigLimits).
+// independent checks (CheckRigLimits, CheckPlanRigLimits).
 #include "bind_common.h"
 #include "plateball/exact_arrival.h"
+#include "plateball/plan_rig_check.h"
 #include "plateball/rig_limits.h"
 #include "plateball/rig_reference.h"
 
@@ -70,6 +71,16 @@ void BindRigLimits(py::module_& m) {
   BindShapes(m);
   BindLimits(m);
   BindReference(m);
+  m.def("check_plan_rig_limits",
+        [](const PlanProblem& p, const PlanSummary& plan, const RigLimits& limits,
+           const std::optional<PhysicalParameters>& physical, int samples_per_arc) {
+          return CheckPlanRigLimits(p, plan, limits, physical, {}, samples_per_arc);
+        },
+        py::arg("problem"), py::arg("plan"), py::arg("limits"), py::arg("physical") = py::none(),
+        py::arg("samples_per_arc") = 64, py::call_guard<py::gil_scoped_release>(),
+        "Checks a path-following plan against a rig's limits: replays every flight with FreeMotion and checks "
+        "every sampled contact point, every actuation (the impulses at one partition point together), interval "
+        "and grid time; the impulse bound only with `physical`.");
 }
 
 void BindExactArrivalLimits(py::class_<ExactArrivalProblem>& problem, py::class_<ExactArrivalSummary>& summary,

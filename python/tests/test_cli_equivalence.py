@@ -392,6 +392,24 @@ def test_exact_arrival_iteration_cap_is_the_tools():
     assert "max_iterations: value 51" in pb.ExactArrivalOptions(max_iterations=51).validate()
 
 
+def test_plan_on_a_rig(problems, run_cli):
+    """`plateball plan` with a rig section: the library's check of the same plan, margin for margin."""
+    doc = run_cli("plateball", "plan", problems / "plan_rig_circle.json", "--summary-only")
+    problem = pb.load_problem(problems / "plan_rig_circle.json")
+    setup = pb.plan_setup_for(problem)
+    plan = pb.plan(setup.problem, setup.options)
+    check = pb.check_plan_rig_limits(setup.problem, plan, problem.rig, problem.physical)
+    assert check.passed and json_get(doc, "rig.check.passed") and doc["status"] == "success"
+    assert check.samples == 64 * len(plan.steps) == json_get(doc, "rig.check.samples")
+    for name, margin in check.margins.items():
+        assert json_get(doc, "rig.check.margins")[name] == margin
+    # An obstacle in the flights' inward bow: the library and the tool both see it.
+    problem.rig.obstacles = [pb.DiskShape(center=[-2.0, 0.0], radius=1.998)]
+    blocked = pb.check_plan_rig_limits(setup.problem, plan, problem.rig)
+    assert not blocked.passed and blocked.violations[0].startswith("obstacles[0] exceeded by ")
+    assert blocked.margins["obstacles[0]"] == pytest.approx(-0.0028, abs=1e-4)
+
+
 def test_steer_on_a_rig(problems, run_cli):
     """`plateball steer` with a rig section: the same impulses, active limits and check as the library."""
     doc = run_cli("plateball", "steer", problems / "figure7_rig.json")

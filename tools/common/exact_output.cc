@@ -21,8 +21,16 @@ std::vector<double> ImpulseTimes(const std::vector<ExactImpulse>& impulses, cons
   return times;
 }
 
-// The independent check's record: {"passed", "samples", "tolerances", "margins", "violations"}.
-Json CheckJson(const RigCheck& check) {
+// What the limits did to one count of the fewest search.
+Json FewestRowRigJson(const FewestImpulsesCount& c) {
+  Json j{{"within_limits", c.within_limits}, {"active", c.active}, {"blocking", c.blocking}};
+  if (c.check) j["check"] = RigCheckJson(*c.check);
+  return j;
+}
+
+}  // namespace
+
+Json RigCheckJson(const RigCheck& check) {
   const RigCheckTolerances tol;
   Json margins = Json::object();
   for (const auto& [name, margin] : check.margins) margins[name] = margin;
@@ -35,15 +43,6 @@ Json CheckJson(const RigCheck& check) {
               {"margins", margins},
               {"violations", check.violations}};
 }
-
-// What the limits did to one count of the fewest search.
-Json FewestRowRigJson(const FewestImpulsesCount& c) {
-  Json j{{"within_limits", c.within_limits}, {"active", c.active}, {"blocking", c.blocking}};
-  if (c.check) j["check"] = CheckJson(*c.check);
-  return j;
-}
-
-}  // namespace
 
 Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, const ActuatorContext* actuator) {
   Json j{{"k", k},
@@ -165,7 +164,7 @@ Json RigJson(const ExactArrivalProblem& problem, const ExactArrivalSummary& s, c
               {"active", s.limits.active},
               {"blocking", s.limits.blocking},
               {"evaluations", s.limits.evaluations},
-              {"check", CheckJson(check)}};
+              {"check", RigCheckJson(check)}};
 }
 
 namespace {

@@ -23,6 +23,10 @@ namespace plateball::tools {
 Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses = true,
                         const ActuatorContext* actuator = nullptr);
 
+/// The independent check's record (CheckRigLimits, CheckPlanRigLimits): {"passed", "samples",
+/// "tolerances", "margins", "violations"}.
+Json RigCheckJson(const RigCheck& check);
+
 /// True when the problem has rig limits or an objective other than the deviation: the output then
 /// carries RigJson.
 bool HasRigSection(const ExactArrivalProblem& problem);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/actuator_json.h"
+#include "common/exact_output.h"
 #include "common/command_registry.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
@@ -22,6 +23,7 @@
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/path.h"
+#include "plateball/plan_rig_check.h"
 #include "plateball/task_adapters.h"
 
 namespace plateball::tools {
@@ -111,6 +113,26 @@ void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const
   fig.Write(file);
 }
 
+// With a rig section: the plan checked against the limits by an independent replay
+// (CheckPlanRigLimits). A plan the rig cannot execute is the status limits_not_met (not usable).
+// True when the limits are met (or there are none).
+bool AddRigCheck(const Problem& p, const PlanSetup& setup, const PlanSummary& plan, Json* doc) {
+  if (p.rig.Empty() || !plan.IsSolutionUsable()) return true;
+  const RigCheck check = CheckPlanRigLimits(setup.problem, plan, p.rig, p.physical);
+  (*doc)["rig"] = Json{{"check", RigCheckJson(check)}};
+  if (check.passed) {
+    (*doc)["report"] = (*doc)["report"].get<std::string>() + "; rig limits met";
+    return true;
+  }
+  std::string message = "the plan exceeds the rig's limits (problem file's rig section): ";
+  for (std::size_t i = 0; i < check.violations.size(); ++i) message += (i ? "; " : "") + check.violations[i];
+  (*doc)["status"] = "limits_not_met";
+  (*doc)["usable"] = false;
+  (*doc)["message"] = message;
+  (*doc)["report"] = "limits_not_met: " + message;
+  return false;
+}
+
 int RunPlan(const PlanCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
@@ -145,10 +167,11 @@ int RunPlan(const PlanCliOptions& o) {
   }
   const ActuatorContext actuator{p, request, ""};
   Append(doc, PlanSummaryToJson(plan, !o.summary_only, &actuator));
+  const bool within_limits = AddRigCheck(p, setup, plan, &doc);
   AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) DrawPlan(p, path, plan, o.svg);
-  return plan.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
+  return plan.IsSolutionUsable() && within_limits ? kExitSuccess : kExitNoSolution;
 }
 
 std::function<int()> SetupPlan(CLI::App& sub) {
@@ -174,7 +197,10 @@ std::function<int()> SetupPlan(CLI::App& sub) {
       "impulse J, contact impulses and, with --pulse-duration or --pulse-error, each pulse's force and the\n"
       "friction it needs (with ball.physical, docs/rig.md).\n"
       "Example: plateball plan problems/circle.json --summary-only --svg circle.svg\n"
-      "Exit codes: 0 ok, 2 usage, 3 invalid input (also: friction below a pulse's need), 4 a segment could not be joined, 5 unreadable file.");
+      "With a rig section the plan is checked against its limits (plate, obstacles, stroke, impulse bounds,\n"
+      "shortest interval, tick) by an independent replay: \"rig\": {\"check\"}, status limits_not_met when exceeded.\n"
+      "Exit codes: 0 ok, 2 usage, 3 invalid input (also: friction below a pulse's need), 4 a segment could not be joined\n"
+      "or the plan exceeds the rig's limits, 5 unreadable file.");
   return [o] { return RunPlan(*o); };
 }
 
