@@ -1,4 +1,4 @@
-# plateball_view_reader: the reader of `plateball view` (tools/view/view_data.cc, the
+# plateball_view_reader: the reader of `plateball view` (tools/view/view_data.cc and result_reader.cc, the
 # tools/common sources it uses and the field mapping web/result_fields.json) built on the static
 # plateball_testing, for the view fuzzer (fuzz/) and the replay of its inputs in the tests. The
 # tools' own plateball_tool_common links the shared library instead, and the fuzz build does not
@@ -19,6 +19,7 @@ const char* const kResultFields = R\"pbfields(@PLATEBALL_RESULT_FIELDS@)pbfields
 }  // namespace plateball::tools::view
 " @ONLY)
 add_library(plateball_view_reader STATIC ${view_reader_common} ${PROJECT_SOURCE_DIR}/tools/view/view_data.cc
+            ${PROJECT_SOURCE_DIR}/tools/view/result_reader.cc
             ${PROJECT_BINARY_DIR}/view_reader/result_fields.cc)
 target_include_directories(plateball_view_reader PUBLIC ${PROJECT_SOURCE_DIR}/tools)
 target_link_libraries(plateball_view_reader PUBLIC plateball_testing CLI11::CLI11 nlohmann_json::nlohmann_json)

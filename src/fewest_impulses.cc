@@ -1,3 +1,8 @@
+// SolveFewestImpulses (fewest_impulses.h): the driver over counts n = 1, 2, ... and the free
+// search of one count: quasi-random starts refined by Levenberg-Marquardt in (s_k, log t_k),
+// Newton polish to the tolerances, shortening along the arrival manifold, and the continuation
+// of an arrival to fewer impulses by merging its shortest flight. The rig-limits side and the
+// description of a count's row are in fewest_limits.cc (shared declarations: fewest_search.h).
 #include "plateball/fewest_impulses.h"
 
 #include <ceres/tiny_solver.h>
@@ -13,6 +18,7 @@
 #include "check.h"
 #include "constrained_arrival.h"
 #include "exact_chain.h"
+#include "fewest_search.h"
 #include "plateball/limits.h"
 #include "plateball/plate_impulse.h"
 #include "plateball/so3.h"
@@ -90,24 +96,25 @@ namespace {
 
 using internal::ChainNode;
 
-// The fixed data of the search.
-struct Search {
-  const FewestImpulsesProblem* problem = nullptr;
-  const FewestImpulsesOptions* options = nullptr;
-  ChainNode start;
-  double max_total_time = 0.0;
-  int conditions = 5;  // 3 with orientation_only
-  int* rollouts = nullptr;
-  int* starts = nullptr;  // starts tried in all counts, for the progress hook
-  bool limited = false;   // the problem has limits (rows are reached only within them)
-  FewestImpulsesSummary* summary = nullptr;  // for the constrained solver's counters
-};
+using internal::fewest::Admit;
+using internal::fewest::CheckArrival;
+using internal::fewest::ConstrainedFor;
+using internal::fewest::Consider;
+using internal::fewest::CountBest;
+using internal::fewest::Describe;
+using internal::fewest::Evaluate;
+using internal::fewest::Search;
+using internal::fewest::TotalImpulse;
 
 // The arrival conditions (the orientation's three first with orientation_only) at the chain's end.
 Eigen::VectorXd Conditions(const Search& s, const ChainNode& end) {
   const Eigen::Matrix<double, 5, 1> r = internal::ArrivalResidual(end, s.problem->x1, s.problem->A1);
   return s.conditions == 5 ? Eigen::VectorXd(r) : Eigen::VectorXd(r.tail<3>());
 }
+
+}  // namespace
+
+namespace internal::fewest {
 
 // Rolls u at `integration`; with `jac` also the Jacobian of the conditions (m x 2n).
 Eigen::VectorXd Evaluate(const Search& s, const Eigen::VectorXd& u, const IntegrationOptions& integration,
@@ -123,6 +130,34 @@ Eigen::VectorXd Evaluate(const Search& s, const Eigen::VectorXd& u, const Integr
   }
   return Conditions(s, nodes->back());
 }
+
+// Keeps the arrival u (on the grid `ticks` with a rig tick) if it is the shortest of the count so
+// far; an equal time keeps the earlier one.
+void Consider(const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, const std::vector<long long>& ticks,
+              CountBest* best) {
+  const double t = u.tail(u.size() / 2).sum();
+  if (t >= best->time) return;
+  best->time = t;
+  best->u = u;
+  best->nodes = nodes;
+  best->ticks = ticks;
+  best->blocking.clear();
+}
+
+}  // namespace internal::fewest
+
+namespace {
+
+using internal::ChainNode;
+using internal::fewest::Admit;
+using internal::fewest::CheckArrival;
+using internal::fewest::ConstrainedFor;
+using internal::fewest::Consider;
+using internal::fewest::CountBest;
+using internal::fewest::Describe;
+using internal::fewest::Evaluate;
+using internal::fewest::Search;
+using internal::fewest::TotalImpulse;
 
 // The arrival conditions in v = (s_k, log t_k) for ceres::TinySolver, exact Jacobian. A point
 // outside the window (a flight longer than the window, a failed integration) gives NaN, which
@@ -280,123 +315,6 @@ Eigen::VectorXd Split(const Eigen::VectorXd& u) {
   return v;
 }
 
-// The best of a count so far: the arrival of shortest total time, else the closest point.
-struct CountBest {
-  double time = std::numeric_limits<double>::infinity();
-  double closest = std::numeric_limits<double>::infinity();
-  Eigen::VectorXd u;
-  std::vector<ChainNode> nodes;
-  std::vector<long long> ticks;  // with a rig tick: the grid index of every impulse (and the stop)
-  // With limits, while no arrival within them: u is the closest feasible arrival (or an exact
-  // arrival the grid cannot hold), `blocking` the limits that stop it.
-  bool feasible_closest = false;
-  std::vector<std::string> blocking;
-  int failed = 0;  // constrained solves of the count that did not arrive
-};
-
-// Keeps the arrival u (on the grid `ticks` with a rig tick) if it is the shortest of the count so
-// far; an equal time keeps the earlier one.
-void Consider(const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, const std::vector<long long>& ticks,
-              CountBest* best) {
-  const double t = u.tail(u.size() / 2).sum();
-  if (t >= best->time) return;
-  best->time = t;
-  best->u = u;
-  best->nodes = nodes;
-  best->ticks = ticks;
-  best->blocking.clear();
-}
-
-// The constrained exact arrival of count n (constrained_arrival.h) at the problem's mu: the
-// limits in the problem's time unit, the total time minimised, the pass points of the deviation
-// the straight line x0 -> x1 cut into n equal parts.
-internal::ConstrainedSetup ConstrainedFor(const Search& s, int n) {
-  const FewestImpulsesProblem& p = *s.problem;
-  internal::ConstrainedSetup cs;
-  cs.lambda = p.model.lambda();
-  cs.n = n;
-  cs.start = s.start;
-  cs.x1 = p.x1;
-  cs.A1 = p.A1;
-  for (int k = 0; k <= n; ++k) cs.planned.push_back(p.x0 + (p.x1 - p.x0) * (static_cast<double>(k) / n));
-  cs.limits = p.limits;
-  cs.physical = p.physical;
-  cs.objective = ArrivalObjective::kTotalTime;
-  cs.start_at_rest = p.start_at_rest;
-  cs.stop_at_goal = p.stop_at_goal;
-  cs.integration = s.options->integration;
-  cs.jacobian_integration = s.options->search_integration;
-  cs.position_tolerance = s.options->position_tolerance;
-  cs.orientation_tolerance = s.options->orientation_tolerance;
-  return cs;
-}
-
-// The impulses of u (rolled into `nodes`), the stop with stop_at_goal, on the grid with `ticks`;
-// returns the total time.
-double Impulses(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes,
-                const std::vector<long long>& ticks, std::vector<ExactImpulse>* plan, std::optional<ExactImpulse>* stop) {
-  const FewestImpulsesProblem& p = *s.problem;
-  const int n = static_cast<int>(u.size() / 2);
-  *plan = internal::ReportImpulses(p.model, p.mu, nodes, u, p.start_at_rest);
-  stop->reset();
-  if (p.stop_at_goal) *stop = internal::StopImpulse(p.model, p.mu, nodes.back(), u.tail(n).sum());
-  for (std::size_t k = 0; k < ticks.size(); ++k) (k < plan->size() ? (*plan)[k] : **stop).tick = ticks[k];
-  return internal::PlaceOnGrid(p.limits.tick, plan, stop, u.tail(n).sum());
-}
-
-// The independent check of an arrival against the limits (CheckRigLimits: a FreeMotion replay).
-RigCheck CheckArrival(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes,
-                      const std::vector<long long>& ticks) {
-  ExactArrivalSummary summary;
-  Impulses(s, u, nodes, ticks, &summary.impulses, &summary.stop);
-  return CheckRigLimits(ReplayProblemFor(*s.problem, static_cast<int>(u.size() / 2)), summary);
-}
-
-// Sum of |J| with the physical parameters, else of the plate velocity changes, over the impulses.
-double TotalImpulse(const FewestImpulsesProblem& p, const std::vector<ExactImpulse>& plan,
-                    const std::optional<ExactImpulse>& stop) {
-  double sum = 0.0;
-  const auto add = [&](const ExactImpulse& e) {
-    if (!p.physical) {
-      sum += e.plate_velocity_change.norm();
-      return;
-    }
-    const Eigen::Vector3d z = StateFromAngles(e.angles_before, p.mu, p.model).z;
-    sum += PlateImpulseFor(*p.physical, z, e.delta_omega).plate.norm();
-  };
-  for (const ExactImpulse& e : plan) add(e);
-  if (stop) add(*stop);
-  return sum;
-}
-
-// The row of count n from its best parameters.
-void Describe(const Search& s, const CountBest& best, FewestImpulsesCount* row) {
-  const FewestImpulsesProblem& p = *s.problem;
-  const Eigen::VectorXd& u = best.u;
-  const std::vector<ChainNode>& nodes = best.nodes;
-  const int n = static_cast<int>(u.size() / 2);
-  row->total_time = Impulses(s, u, nodes, best.ticks, &row->plan, &row->stop);
-  if (!row->reached) row->stop.reset();
-  row->path_length = internal::ChainPathLength(p.model.lambda(), nodes, u, s.options->integration);
-  const Eigen::Matrix<double, 5, 1> r = internal::ArrivalResidual(nodes.back(), p.x1, p.A1);
-  row->position_error = s.conditions == 5 ? r.head<2>().norm() : 0.0;
-  row->orientation_error = r.tail<3>().norm();
-  row->x_final = nodes.back().x;
-  row->A_final = nodes.back().A;
-  row->total_impulse = TotalImpulse(p, row->plan, row->stop);
-  double deviation = 0.0;
-  for (int k = 1; k < n; ++k)
-    deviation += (row->plan[static_cast<std::size_t>(k)].position - (p.x0 + (p.x1 - p.x0) * (static_cast<double>(k) / n)))
-                     .squaredNorm();
-  row->deviation = std::sqrt(deviation);
-  if (!s.limited) return;
-  row->blocking = row->reached ? std::vector<std::string>{} : best.blocking;
-  if (!row->reached) return;
-  row->active = internal::ActiveLimits(ConstrainedFor(s, n), u);
-  if (p.limits.tick > 0) row->active.push_back("tick");
-  row->check = CheckArrival(s, u, nodes, best.ticks);
-}
-
 // The solver of count n's starts.
 ceres::TinySolver<ArrivalFunctor> CountSolver(const Search& s) {
   ceres::TinySolver<ArrivalFunctor> solver;
@@ -410,62 +328,6 @@ ceres::TinySolver<ArrivalFunctor> CountSolver(const Search& s) {
 
 // The arrivals that count for the row: those within the limits with limits, else all.
 int Met(const Search& s, const FewestImpulsesCount& row) { return s.limited ? row.within_limits : row.arrived; }
-
-// Keeps u (rolled into `nodes`) as the count's closest feasible arrival while none is within the
-// limits, when it is closer than the one kept.
-void KeepClosestFeasible(const Search& s, const Eigen::VectorXd& u, const std::vector<long long>& ticks,
-                         const std::vector<std::string>& blocking, CountBest* best) {
-  if (std::isfinite(best->time)) return;
-  std::vector<ChainNode> nodes;
-  const Eigen::VectorXd r = Evaluate(s, u, s.options->integration, &nodes, nullptr);
-  if (best->feasible_closest && !(r.norm() < best->closest)) return;
-  best->feasible_closest = true;
-  best->closest = r.norm();
-  best->u = u;
-  best->nodes = nodes;
-  best->ticks = ticks;
-  best->blocking = blocking;
-}
-
-// Constrained solves per count that may fail before its further arrivals are no longer tried
-// under the limits (each failure costs a full SLSQP run and its closest feasible arrival).
-constexpr int kMaxFailedSolves = 2;
-
-// An exact arrival u under the limits: kept unchanged when it meets them (without a tick), else
-// the constrained solver's arrival from it; either counts only when the independent check passes.
-void Admit(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, FewestImpulsesCount* row,
-           CountBest* best) {
-  const internal::ConstrainedSetup cs = ConstrainedFor(s, row->impulses);
-  Eigen::VectorXd v = u;
-  std::vector<ChainNode> v_nodes = nodes;
-  std::vector<long long> ticks;
-  if (!(cs.limits.tick == 0 && internal::MeetsLimits(cs, u))) {
-    if (best->failed >= kMaxFailedSolves) return;
-    internal::ConstrainedOutcome c;
-    ++s.summary->constrained_solves;
-    try {
-      c = internal::SolveConstrainedArrival(cs, u);
-    } catch (const std::invalid_argument&) {  // fewer free unknowns (with the grid) than conditions
-      std::vector<std::string> broken = internal::ActiveLimits(cs, u);
-      if (cs.limits.tick > 0) broken.push_back("tick");
-      KeepClosestFeasible(s, u, {}, broken, best);
-      return;
-    }
-    s.summary->evaluations += c.evaluations;
-    *s.rollouts += c.rollouts;
-    if (!c.arrived) {
-      ++best->failed;
-      if (c.feasible) KeepClosestFeasible(s, c.u, c.ticks, c.blocking, best);
-      return;
-    }
-    v = c.u;
-    ticks = c.ticks;
-    Evaluate(s, v, s.options->integration, &v_nodes, nullptr);
-  }
-  if (!CheckArrival(s, v, v_nodes, ticks).passed) return;
-  ++row->within_limits;
-  Consider(v, v_nodes, ticks, best);
-}
 
 // Rolls the refined point u (flight times, not logs) of count row->impulses; counts it as an
 // arrival when it polishes to the tolerances within the window, else keeps it as the closest.

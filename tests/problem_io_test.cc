@@ -373,6 +373,32 @@ TEST(ProblemIo, FieldListSchemasMatchTheCommittedSchema) {
   }
 }
 
+// The rig section's scalar limits come from RigLimits' field list; its nested shapes, stroke,
+// length_unit and pulse_duration are described by hand (with the dependency max_force <->
+// pulse_duration), so the list's properties are compared one by one.
+TEST(ProblemIo, RigFieldListMatchesTheCommittedSchema) {
+  using plateball::internal::problem_io::SchemaOfSection;
+  std::ifstream in(plateball::testing::SourcePath("schemas/input/problem.schema.json"));
+  const json committed = json::parse(in).at("properties").at("rig");
+  const json generated = json::parse(SchemaOfSection<plateball::RigLimits>().dump());
+  const std::vector<std::string> by_hand = {"length_unit", "plate", "obstacles", "stroke", "pulse_duration"};
+  std::vector<std::string> listed;
+  for (const auto& [key, value] : generated.at("properties").items()) {
+    listed.push_back(key);
+    SCOPED_TRACE(key);
+    ASSERT_TRUE(committed.at("properties").contains(key));
+    EXPECT_EQ(value, committed.at("properties").at(key)) << "generated:\n" << value.dump(2);
+  }
+  // json keeps keys sorted: the list's file fields in alphabetical order.
+  EXPECT_EQ(listed, (std::vector<std::string>{"clearance", "max_force", "max_plate_impulse",
+                                              "max_plate_velocity_change", "min_interval", "tick"}));
+  std::vector<std::string> all = listed;
+  all.insert(all.end(), by_hand.begin(), by_hand.end());
+  EXPECT_EQ(all.size(), committed.at("properties").size()) << "a rig key neither in the list nor read by hand";
+  for (const std::string& key : by_hand) EXPECT_TRUE(committed.at("properties").contains(key)) << key;
+  EXPECT_EQ(committed.at("additionalProperties"), false);
+}
+
 // ------------------------------------------------------------------ errors
 struct ErrorCase {
   const char* what;
@@ -529,6 +555,96 @@ TEST(ProblemIo, EveryErrorNamesFileFieldAndValue) {
       const std::string head = std::string("case.json: ") + c.field + ": value " + c.value;
       EXPECT_EQ(msg.rfind(head, 0), 0u) << "message: " << msg << "\nexpected to start with: " << head;
       EXPECT_NE(msg.find(c.reason), std::string::npos) << "message: " << msg << "\nexpected reason: " << c.reason;
+    }
+  }
+}
+
+// The rig section (scalar limits by RigLimits' field list, the rest by hand): every key, in
+// metres, read and written back in the order plate, obstacles, clearance, stroke, the actuator
+// bounds, pulse_duration, min_interval, tick; unset limits are left out.
+json RigDocument() {
+  json d = FullDocument();
+  // A ball of radius 0.02 m (50 ball radii per metre), its inertia scaled with radius^2.
+  d["ball"]["physical"] = {{"inertia_1", 1.6e-4}, {"inertia_3", 1.2e-4}, {"ball_mass", 1.0}, {"radius", 0.02},
+                           {"plate_mass", 0.25}};
+  d["rig"] = json::parse(R"({"length_unit": "m",
+      "plate": {"type": "rectangle", "min": [-1, -1], "max": [1, 1]},
+      "obstacles": [{"type": "disk", "center": [0.5, 0.5], "radius": 0.1}],
+      "clearance": 0.01, "stroke": [0.4, 0.6], "max_plate_velocity_change": 3,
+      "max_plate_impulse": 0.2, "max_force": 40, "pulse_duration": 0.005, "min_interval": 0.1, "tick": 0.02})");
+  return d;
+}
+
+TEST(ProblemIo, RigSectionReadsEveryKeyAndWritesItBackInRadii) {
+  const Problem p = ParseProblem(RigDocument().dump(), "rig.json");
+  const double per_metre = 1.0 / 0.02;  // lengths scale, times and bounds do not
+  EXPECT_DOUBLE_EQ(p.rig.clearance, 0.01 * per_metre);
+  ASSERT_TRUE(p.rig.stroke);
+  EXPECT_DOUBLE_EQ(p.rig.stroke->x(), 0.4 * per_metre);
+  EXPECT_DOUBLE_EQ(p.rig.max_plate_velocity_change, 3.0);
+  EXPECT_DOUBLE_EQ(p.rig.max_plate_impulse, 0.2);
+  EXPECT_DOUBLE_EQ(p.rig.max_force, 40.0);
+  EXPECT_DOUBLE_EQ(p.rig.pulse_duration, 0.005);
+  EXPECT_DOUBLE_EQ(p.rig.min_interval, 0.1);
+  EXPECT_DOUBLE_EQ(p.rig.tick, 0.02);
+  const nlohmann::ordered_json written = nlohmann::ordered_json::parse(WriteProblemJson(p)).at("rig");
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : written.items()) keys.push_back(key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"plate", "obstacles", "clearance", "stroke", "max_plate_velocity_change",
+                                            "max_plate_impulse", "max_force", "pulse_duration", "min_interval",
+                                            "tick"}));
+  EXPECT_DOUBLE_EQ(written.at("clearance").get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(written.at("tick").get<double>(), 0.02);
+  // Unset limits are left out; clearance is always written; pulse_duration only with max_force.
+  Problem bare = p;
+  bare.rig = RigLimits{};
+  bare.rig.stroke = Eigen::Vector2d(1, 2);
+  bare.rig.pulse_duration = 0.5;  // valid without max_force, but a file has it only with max_force
+  keys.clear();
+  const nlohmann::ordered_json bare_written = nlohmann::ordered_json::parse(WriteProblemJson(bare));
+  for (const auto& [key, value] : bare_written.at("rig").items()) keys.push_back(key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"clearance", "stroke"}));
+}
+
+TEST(ProblemIo, RigErrorsNameTheirField) {
+  const std::vector<ErrorCase> cases = {
+      {"negative clearance", [](json& d) { d["rig"]["clearance"] = -1; }, nullptr, "rig.clearance", "-1",
+       "must be >= 0"},
+      {"zero tick", [](json& d) { d["rig"]["tick"] = 0; }, nullptr, "rig.tick", "0", "must be > 0"},
+      {"negative interval", [](json& d) { d["rig"]["min_interval"] = -0.5; }, nullptr, "rig.min_interval", "-0.5",
+       "must be >= 0"},
+      {"string bound", [](json& d) { d["rig"]["max_plate_velocity_change"] = "fast"; }, nullptr,
+       "rig.max_plate_velocity_change", "\"fast\"", "must be a number"},
+      {"force without pulse", [](json& d) { d["rig"].erase("pulse_duration"); }, nullptr, "rig.pulse_duration",
+       "(missing)", "required field is missing"},
+      {"pulse without force", [](json& d) { d["rig"].erase("max_force"); }, nullptr, "rig.pulse_duration", "0.005",
+       "is used only with max_force (the mean force is |J| / pulse_duration)"},
+      {"negative pulse", [](json& d) { d["rig"]["pulse_duration"] = -1; }, nullptr, "rig.pulse_duration", "-1",
+       "must be > 0"},
+      {"bad unit", [](json& d) { d["rig"]["length_unit"] = "ft"; }, nullptr, "rig.length_unit", "\"ft\"",
+       "must be \"radius\" or \"m\""},
+      {"zero stroke", [](json& d) { d["rig"]["stroke"] = {0.4, 0}; }, nullptr, "rig.stroke[1]", "0", "must be > 0"},
+      {"unknown key", [](json& d) { d["rig"]["colour"] = 1; }, nullptr, "rig.colour", "1",
+       "unknown key (allowed here: length_unit, plate, obstacles, clearance, stroke, max_plate_velocity_change, "
+       "max_plate_impulse, max_force, pulse_duration, min_interval, tick)"},
+      {"impulse without masses",
+       [](json& d) {
+         d["ball"] = {{"lambda", 1.5}};
+         d["rig"].erase("length_unit");
+       },
+       nullptr, "rig.max_plate_impulse", "0.2", "needs ball.physical (a bare lambda fixes no masses)"},
+  };
+  for (const ErrorCase& c : cases) {
+    SCOPED_TRACE(c.what);
+    json d = RigDocument();
+    c.mutate(d);
+    try {
+      ParseProblem(d.dump(), "case.json");
+      ADD_FAILURE() << "no error for: " << d.dump();
+    } catch (const std::invalid_argument& e) {
+      const std::string msg = e.what();
+      const std::string head = std::string("case.json: ") + c.field + ": value " + c.value + ": " + c.reason;
+      EXPECT_EQ(msg.rfind(head, 0), 0u) << "message: " << msg << "\nexpected to start with: " << head;
     }
   }
 }

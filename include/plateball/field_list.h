@@ -6,6 +6,9 @@
 //              PLATEBALL_FIELD(max_total_time, "search window; 0: automatic").NonNegative());
 //   }
 //
+// A field the archives cannot express (a nested object, a field present only with another) is
+// listed ByHand(): its key keeps its place, and the section's own code reads and writes it.
+//
 // Each field is a name, a pointer to the value, a documentation line and the range a problem file
 // enforces. Archives walk the list: the problem-file section reader and writer and the section's
 // input-schema fragment (src/problem_io/field_archive.h). This is the name-value pattern of
@@ -43,6 +46,12 @@ struct FieldSpec {
   const char* hint = nullptr;
   /// false: a library option that a problem file does not set.
   bool in_file = true;
+  /// true: the section's own code reads, writes and describes the field (a nested object, or a
+  /// field whose presence depends on another); the archives only admit its key in list order.
+  bool by_hand = false;
+  /// true: `unset` means "no limit" and the writer leaves the field out when the value equals it.
+  bool omittable = false;
+  T unset{};
 
   /// An integer in [lo, hi].
   FieldSpec& Counts(long long lo, long long hi = static_cast<long long>(std::numeric_limits<T>::max())) {
@@ -60,6 +69,15 @@ struct FieldSpec {
   FieldSpec& Closed(double lo, double hi) { return Check(FieldCheck::kClosed, lo, hi); }  ///< A number in [lo, hi].
   FieldSpec& NotInFile() {
     in_file = false;
+    return *this;
+  }
+  FieldSpec& ByHand() {
+    by_hand = true;
+    return *this;
+  }
+  FieldSpec& OmittedAt(T value) {
+    omittable = true;
+    unset = value;
     return *this;
   }
 
@@ -89,3 +107,11 @@ FieldSpec<T> MakeFieldSpec(const char* name, T* value, const char* doc) {
 
 /// \fn plateball::FieldSpec::NotInFile()
 /// A library option that a problem file does not set (the section reader rejects its key).
+
+/// \fn plateball::FieldSpec::ByHand()
+/// A field the section's own code reads, writes and describes (a nested object, or a field that
+/// depends on another); the archives only admit its key, in list order.
+
+/// \fn plateball::FieldSpec::OmittedAt(T value)
+/// `value` means "not set" (an infinite bound, a zero interval): the writer leaves the field out
+/// when it holds it, and a file without the field keeps it.

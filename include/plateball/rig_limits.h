@@ -21,6 +21,7 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/export.h"
+#include "plateball/field_list.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
@@ -76,6 +77,32 @@ struct RigLimits {
   bool NeedsPhysical() const;
   /// Empty when valid; else a message naming the field (rig.plate.radius, rig.obstacles[1], ...).
   std::string Validate() const;
+
+  /// The fields of a problem file's "rig" section, in its key order (field_list.h). The shapes
+  /// and the stroke (nested, scaled by the section's length_unit) and pulse_duration (present
+  /// exactly when max_force is) are read and written by the section's own code.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+    a->Visit(PLATEBALL_FIELD(plate, "the region the contact point stays in").ByHand(),
+             PLATEBALL_FIELD(obstacles, "regions the contact point stays out of").ByHand(),
+             PLATEBALL_FIELD(clearance, "distance kept from the edges of the plate and the obstacles").NonNegative(),
+             PLATEBALL_FIELD(stroke, "half-ranges of the upper plate's displacement 2 (x - x0) from its start").ByHand(),
+             PLATEBALL_FIELD(max_plate_velocity_change, "largest plate velocity change |2 delta_omega x e3| of one impulse")
+                 .Positive()
+                 .OmittedAt(kUnbounded),
+             PLATEBALL_FIELD(max_plate_impulse, "largest |J| (N s with SI physical parameters); needs ball.physical")
+                 .Positive()
+                 .OmittedAt(kUnbounded),
+             PLATEBALL_FIELD(max_force, "largest mean force |J| / pulse_duration; needs ball.physical and pulse_duration")
+                 .Positive()
+                 .OmittedAt(kUnbounded),
+             PLATEBALL_FIELD(pulse_duration, "duration of a pulse; only with max_force").ByHand(),
+             PLATEBALL_FIELD(min_interval, "shortest time between two impulses").NonNegative().OmittedAt(0.0),
+             PLATEBALL_FIELD(tick, "impulse times are multiples of tick (the control loop's period)")
+                 .Positive()
+                 .OmittedAt(0.0));
+  }
 };
 
 /// What the solver reports about the limits in its result.

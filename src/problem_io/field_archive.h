@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -37,14 +38,16 @@ inline std::string BoundText(double v) {
 }
 
 /// Reads one section into a struct: `value.Serialize(&reader)`. Keys outside the list's file
-/// fields are an error; each field present is checked and stored, absent ones keep their value.
+/// fields (and the caller's `leading` keys) are an error; each field present is checked and
+/// stored, absent ones keep their value; ByHand fields are left to the caller.
 class SectionReader {
  public:
-  SectionReader(const FieldReader& r, const json& j, std::string path) : r_(r), j_(j), path_(std::move(path)) {}
+  SectionReader(const FieldReader& r, const json& j, std::string path, std::vector<const char*> leading = {})
+      : r_(r), j_(j), path_(std::move(path)), leading_(std::move(leading)) {}
 
   template <class... T>
   void Visit(const FieldSpec<T>&... f) {
-    std::vector<const char*> keys;
+    std::vector<const char*> keys = leading_;
     ((f.in_file ? keys.push_back(f.name) : void()), ...);
     r_.Object(j_, path_, keys);
     (Read(f), ...);
@@ -53,7 +56,7 @@ class SectionReader {
  private:
   template <class T>
   void Read(const FieldSpec<T>& f) const {
-    if (!f.in_file) return;
+    if (!f.in_file || f.by_hand) return;
     const json* v = FieldReader::Find(j_, f.name);
     if (!v) return;
     const std::string path = FieldReader::Join(path_, f.name);
@@ -87,12 +90,16 @@ class SectionReader {
   const FieldReader& r_;
   const json& j_;
   std::string path_;
+  std::vector<const char*> leading_;
 };
 
-/// Writes a section's file fields in list order, numbers checked finite.
+/// Writes a section's file fields in list order, numbers checked finite; a field at its
+/// OmittedAt value is left out, a ByHand field is written by `by_hand(name, &section)` in its place.
 class SectionWriter {
  public:
-  explicit SectionWriter(std::string path) : path_(std::move(path)) {}
+  using HandWriter = std::function<void(const std::string& name, ojson* section)>;
+  explicit SectionWriter(std::string path, HandWriter by_hand = nullptr)
+      : path_(std::move(path)), by_hand_(std::move(by_hand)) {}
 
   template <class... T>
   void Visit(const FieldSpec<T>&... f) {
@@ -104,19 +111,29 @@ class SectionWriter {
   template <class T>
   void Write(const FieldSpec<T>& f) {
     if (!f.in_file) return;
-    if constexpr (std::is_floating_point_v<T>)
-      out_[f.name] = WrittenNumber(path_ + "." + f.name, *f.value);
-    else if constexpr (std::is_arithmetic_v<T>)
-      out_[f.name] = *f.value;
-    else
+    if (f.by_hand) {
+      if (!by_hand_) throw std::logic_error(path_ + "." + f.name + ": no writer for this field");
+      by_hand_(f.name, &out_);
+      return;
+    }
+    if constexpr (std::is_arithmetic_v<T>) {
+      if (f.omittable && *f.value == f.unset) return;
+      if constexpr (std::is_floating_point_v<T>)
+        out_[f.name] = WrittenNumber(path_ + "." + f.name, *f.value);
+      else
+        out_[f.name] = *f.value;
+    } else {
       throw std::logic_error(path_ + "." + f.name + ": a problem file has no form for this field");
+    }
   }
 
   std::string path_;
+  HandWriter by_hand_;
   ojson out_ = ojson::object();
 };
 
-/// The JSON-schema fragment of a section: its file fields with type, bounds and description.
+/// The JSON-schema fragment of a section: its file fields with type, bounds and description
+/// (ByHand fields are described in the committed schema by hand).
 class SectionSchema {
  public:
   template <class... T>
@@ -132,7 +149,7 @@ class SectionSchema {
  private:
   template <class T>
   void Describe(const FieldSpec<T>& f) {
-    if (!f.in_file) return;
+    if (!f.in_file || f.by_hand) return;
     ojson p;
     if constexpr (std::is_same_v<T, bool>) {
       p["type"] = "boolean";
@@ -168,17 +185,19 @@ class SectionSchema {
   ojson properties_ = ojson::object();
 };
 
-/// Reads `*value` from section `j` at `path` by its field list.
+/// Reads `*value` from section `j` at `path` by its field list; `leading`: keys of the section
+/// that are not the struct's fields (the caller reads them), admitted before the list's.
 template <class S>
-void ReadSection(const FieldReader& r, const json& j, const std::string& path, S* value) {
-  SectionReader reader(r, j, path);
+void ReadSection(const FieldReader& r, const json& j, const std::string& path, S* value,
+                 std::vector<const char*> leading = {}) {
+  SectionReader reader(r, j, path, std::move(leading));
   value->Serialize(&reader);
 }
 
-/// The section of `value` by its field list.
+/// The section of `value` by its field list; `by_hand` writes the ByHand fields.
 template <class S>
-ojson WriteSection(const S& value, const std::string& path) {
-  SectionWriter writer(path);
+ojson WriteSection(const S& value, const std::string& path, SectionWriter::HandWriter by_hand = nullptr) {
+  SectionWriter writer(path, std::move(by_hand));
   // Serialize only takes the members' addresses; the writer reads through them (as Drake's
   // YamlWriteArchive does with its const_cast).
   const_cast<S&>(value).Serialize(&writer);

@@ -1,13 +1,16 @@
 // The "rig" section: the limits of a physical rig (rig_limits.h).
 #include "plateball/rig_limits.h"
+#include "problem_io/field_archive.h"
 #include "problem_io/section_readers.h"
 
 namespace plateball::internal::problem_io {
 
 RigLimits RigReader::Rig(const json& j, const std::string& path,
                          const std::optional<PhysicalParameters>& physical) const {
-  Object(j, path, {"length_unit", "plate", "obstacles", "clearance", "stroke", "max_plate_velocity_change",
-                   "max_plate_impulse", "max_force", "pulse_duration", "min_interval", "tick"});
+  // The key set and the scalar limits by RigLimits' field list; its ByHand fields (the shapes,
+  // the stroke and pulse_duration) below, as the list cannot express them.
+  RigLimits l;
+  ReadSection(*this, j, path, &l, {"length_unit"});
   double scale = 1.0;  // ball radii per unit of the section's lengths
   if (const json* v = Find(j, "length_unit")) {
     const std::string unit = String(*v, Join(path, "length_unit"));
@@ -18,20 +21,22 @@ RigLimits RigReader::Rig(const json& j, const std::string& path,
       Fail(Join(path, "length_unit"), *v, "must be \"radius\" or \"m\"");
     }
   }
-  RigLimits l;
   if (const json* v = Find(j, "plate")) l.plate = Shape(*v, Join(path, "plate"), scale);
   if (const json* v = Find(j, "obstacles")) {
     const json& a = Array(*v, Join(path, "obstacles"), 0, 1000);
     for (std::size_t i = 0; i < a.size(); ++i) l.obstacles.push_back(Shape(a[i], Index(Join(path, "obstacles"), i), scale));
   }
-  if (const json* v = Find(j, "clearance")) l.clearance = scale * NonNegative(*v, Join(path, "clearance"));
+  l.clearance *= scale;
   if (const json* v = Find(j, "stroke")) {
     const Eigen::Vector2d stroke = Vector<2>(*v, Join(path, "stroke"));
     for (std::size_t i = 0; i < 2; ++i)
       if (!(stroke[static_cast<Eigen::Index>(i)] > 0)) Fail(Index(Join(path, "stroke"), i), (*v)[i], "must be > 0");
     l.stroke = scale * stroke;
   }
-  Actuator(j, path, &l);
+  if (Find(j, "max_force"))
+    l.pulse_duration = Positive(Require(j, path, "pulse_duration"), Join(path, "pulse_duration"));
+  else if (const json* d = Find(j, "pulse_duration"))
+    Fail(Join(path, "pulse_duration"), *d, "is used only with max_force (the mean force is |J| / pulse_duration)");
   if (l.NeedsPhysical() && !physical)
     Fail(Join(path, Find(j, "max_plate_impulse") ? "max_plate_impulse" : "max_force"),
          *Find(j, Find(j, "max_plate_impulse") ? "max_plate_impulse" : "max_force"),
@@ -39,20 +44,6 @@ RigLimits RigReader::Rig(const json& j, const std::string& path,
   const std::string e = l.Validate();
   if (!e.empty()) throw std::invalid_argument(source() + ": " + e);
   return l;
-}
-
-void RigReader::Actuator(const json& j, const std::string& path, RigLimits* l) const {
-  if (const json* v = Find(j, "max_plate_velocity_change"))
-    l->max_plate_velocity_change = Positive(*v, Join(path, "max_plate_velocity_change"));
-  if (const json* v = Find(j, "max_plate_impulse")) l->max_plate_impulse = Positive(*v, Join(path, "max_plate_impulse"));
-  if (const json* v = Find(j, "max_force")) {
-    l->max_force = Positive(*v, Join(path, "max_force"));
-    l->pulse_duration = Positive(Require(j, path, "pulse_duration"), Join(path, "pulse_duration"));
-  } else if (const json* d = Find(j, "pulse_duration")) {
-    Fail(Join(path, "pulse_duration"), *d, "is used only with max_force (the mean force is |J| / pulse_duration)");
-  }
-  if (const json* v = Find(j, "min_interval")) l->min_interval = NonNegative(*v, Join(path, "min_interval"));
-  if (const json* v = Find(j, "tick")) l->tick = Positive(*v, Join(path, "tick"));
 }
 
 PlateShape RigReader::Shape(const json& j, const std::string& path, double scale) const {

@@ -98,7 +98,6 @@ class RigReader : public FieldReader {
 
  private:
   PlateShape Shape(const json& j, const std::string& path, double scale) const;
-  void Actuator(const json& j, const std::string& path, RigLimits* l) const;
 };
 
 /// The whole document: its top-level keys, each section by its reader.

@@ -137,26 +137,19 @@ class Writer {
   }
 
   // The rig in ball radii (a file in metres is written in radii); unset bounds are left out.
+  // RigLimits' field list gives the key order and the scalar limits; its ByHand fields here.
   ojson Rig(const RigLimits& l) const {
-    ojson r = ojson::object();
-    if (l.plate) r["plate"] = Shape("rig.plate", *l.plate);
-    if (!l.obstacles.empty()) {
-      r["obstacles"] = ojson::array();
-      for (std::size_t i = 0; i < l.obstacles.size(); ++i)
-        r["obstacles"].push_back(Shape("rig.obstacles[" + std::to_string(i) + "]", l.obstacles[i]));
-    }
-    r["clearance"] = Num("rig.clearance", l.clearance);
-    if (l.stroke) r["stroke"] = Vec("rig.stroke", *l.stroke);
-    const auto bound = [&](const char* key, double v) {
-      if (!std::isinf(v)) r[key] = Num(std::string("rig.") + key, v);
-    };
-    bound("max_plate_velocity_change", l.max_plate_velocity_change);
-    bound("max_plate_impulse", l.max_plate_impulse);
-    bound("max_force", l.max_force);
-    if (!std::isinf(l.max_force)) r["pulse_duration"] = Num("rig.pulse_duration", l.pulse_duration);
-    if (l.min_interval > 0) r["min_interval"] = Num("rig.min_interval", l.min_interval);
-    if (l.tick > 0) r["tick"] = Num("rig.tick", l.tick);
-    return r;
+    return WriteSection(l, "rig", [&](const std::string& key, ojson* r) {
+      if (key == "plate" && l.plate) (*r)["plate"] = Shape("rig.plate", *l.plate);
+      if (key == "obstacles" && !l.obstacles.empty()) {
+        (*r)["obstacles"] = ojson::array();
+        for (std::size_t i = 0; i < l.obstacles.size(); ++i)
+          (*r)["obstacles"].push_back(Shape("rig.obstacles[" + std::to_string(i) + "]", l.obstacles[i]));
+      }
+      if (key == "stroke" && l.stroke) (*r)["stroke"] = Vec("rig.stroke", *l.stroke);
+      if (key == "pulse_duration" && !std::isinf(l.max_force))
+        (*r)["pulse_duration"] = Num("rig.pulse_duration", l.pulse_duration);
+    });
   }
 
   ojson Expected(const std::map<std::string, ExpectedValue>& expected) const {

@@ -58,6 +58,9 @@ class ResultReader {
   const ResultFields& fields_;
 };
 
+/// A JSON value as text for a message: compact, cut to kMaxValueTextChars characters.
+std::string ValueText(const nlohmann::json& j);
+
 struct ViewImpulse {
   double t = 0.0;
   Eigen::Vector2d x = Eigen::Vector2d::Zero();
