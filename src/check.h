@@ -83,7 +83,7 @@ inline void RequireFinite(const std::string& field, const Eigen::MatrixBase<Deri
 // ------------------------------------------------------------------ documented input ranges
 // Beyond these the double arithmetic of the solvers loses the digits the answer needs (README,
 // "Limits"); each is checked where the value enters the library.
-constexpr double kMaxCoordinate = 1e6;    ///< |x|, |y| of positions and targets (absolute accuracy ~2e-16 |x|)
+constexpr double kMaxCoordinate = limits::kMaxCoordinate;  ///< |x|, |y| of positions and targets (limits.h)
 constexpr double kMinLambda = 1e-3;       ///< lambda: stiffness and drift beyond these
 constexpr double kMaxLambda = 1e3;
 constexpr double kMinMu = 1e-12;          ///< energy mu

@@ -1,6 +1,7 @@
 #include "plateball/cubic_spline.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -13,16 +14,31 @@ std::vector<double> ChordKnots(const std::vector<Eigen::Vector2d>& p) {
   for (std::size_t i = 1; i < p.size(); ++i) s[i] = s[i - 1] + (p[i] - p[i - 1]).norm();
   return s;
 }
+std::string SamplePointText(const Eigen::Vector2d& p) {
+  return "(" + internal::FormatNumber(p.x()) + ", " + internal::FormatNumber(p.y()) + ")";
+}
 void CheckPoints(const std::vector<Eigen::Vector2d>& p) {
   if (p.size() < 2) internal::ThrowInvalid("points (count)", static_cast<double>(p.size()), "a path needs at least 2 samples");
+  double length = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     internal::RequireFinite("points[" + std::to_string(i) + "]", p[i]);
-    if (i > 0 && p[i] == p[i - 1])
-      internal::ThrowInvalid("points[" + std::to_string(i) + "]", p[i].x(), "repeats the previous sample point");
-    if (i > 0 && !((p[i] - p[i - 1]).norm() > 0.0))  // distinct, but the distance underflows
-      internal::ThrowInvalid("points[" + std::to_string(i) + "]", p[i].x(),
+    if (i == 0) continue;
+    const double step = (p[i] - p[i - 1]).norm();
+    if (p[i] == p[i - 1])
+      internal::ThrowInvalid("points[" + std::to_string(i) + "]", SamplePointText(p[i]), "repeats the previous sample point");
+    if (!std::isfinite(step)) {  // the chord lengths are the spline's knots: name the larger point
+      const std::size_t far = p[i - 1].cwiseAbs().maxCoeff() > p[i].cwiseAbs().maxCoeff() ? i - 1 : i;
+      internal::ThrowInvalid("points[" + std::to_string(far) + "]", SamplePointText(p[far]),
+                             "too far from sample point " + std::to_string(far == i ? i - 1 : i) +
+                                 " (the distance overflows a double)");
+    }
+    if (!(step > 0.0))  // distinct, but the distance underflows
+      internal::ThrowInvalid("points[" + std::to_string(i) + "]", SamplePointText(p[i]),
                              "distinct from the previous sample point but closer than double precision resolves");
+    length += step;
   }
+  if (!std::isfinite(length))
+    internal::ThrowInvalid("points", "[array of " + std::to_string(p.size()) + "]", "the path length overflows a double");
 }
 }  // namespace
 

@@ -46,7 +46,7 @@ void ParseItem(const std::string& item, const std::string& field, std::set<std::
   const std::string value = Trim(item.substr(eq + 1));
   for (const ErrorField& f : kFields) {
     if (key != f.name) continue;
-    const std::string name = field + "." + key;
+    const std::string name = ErrorModelKeyField(field, key);
     if (!seen->insert(key).second) internal::ThrowInvalid(name, "'" + value + "'", "given twice");
     double v = 0.0;
     const auto res = std::from_chars(value.data(), value.data() + value.size(), v);
@@ -89,6 +89,12 @@ std::string ToString(const ErrorModel& model) {
     out += std::string(f.name) + "=" + internal::FormatNumber(model.*f.member);
   }
   return out.empty() ? "none" : out;
+}
+
+std::string ErrorModelKeyField(const std::string& field, const std::string& key) {
+  const auto word = field.find_last_of(" ");
+  const bool option = field.compare(word == std::string::npos ? 0 : word + 1, 2, "--") == 0;
+  return field + (option ? " " : ".") + key;
 }
 
 ErrorModel ParseErrorModel(const std::string& text, const std::string& field) {

@@ -10,6 +10,7 @@
 
 #include "check.h"
 #include "parallel_for.h"
+#include "partition_internal.h"
 #include "plateball/convergence.h"
 
 namespace plateball {
@@ -104,6 +105,10 @@ void ValidateProblem(const MonteCarloProblem& p, const MonteCarloOptions& o) {
   const bool uniform = p.plan.partition.size() == 1 && !std::holds_alternative<ExplicitTaus>(p.plan.partition.front());
   if (!uniform)
     internal::ThrowInvalid("sweep_n", p.sweep_n.front(), "needs a single uniform partition rule to vary n");
+  // An n too small for a closed path (or too large for a short one) is named by its entry.
+  for (std::size_t i = 0; i < p.sweep_n.size(); ++i)
+    internal::MakePartition(p.plan.path, WithN(p.plan, p.sweep_n[i]).partition, "plan.partition",
+                            "sweep_n[" + std::to_string(i) + "]");
 }
 
 // Main n: the partition's (for a sweep a single uniform rule), else the nominal plan's segments.

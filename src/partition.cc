@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "partition_internal.h"
 
 namespace plateball {
 namespace {
@@ -31,45 +32,48 @@ double CellLength(const SmoothCurve& curve, double a, double b, double scale) {
 }
 }  // namespace
 
-void ValidatePartition(const SmoothCurve& curve, const std::vector<double>& taus, const std::string& field) {
-  if (taus.size() < 2)
-    ThrowInvalid(field + " (point count)", static_cast<double>(taus.size()), "a partition needs at least 2 points");
-  const double span = curve.End() - curve.Begin();
-  // Element names are built only for a bad value (a plan validates every partition point).
-  const auto element = [&field](std::size_t k) { return field + "[" + std::to_string(k) + "]"; };
-  for (std::size_t k = 0; k < taus.size(); ++k) {
-    if (!std::isfinite(taus[k])) internal::RequireFinite(element(k), taus[k]);
-    if (k > 0 && !(taus[k] > taus[k - 1]))
-      ThrowInvalid(element(k), taus[k], "partition values must increase strictly (previous " + internal::FormatNumber(taus[k - 1]) + ")");
-  }
-  if (std::abs(taus.front() - curve.Begin()) > 1e-12 * std::max(1.0, std::abs(span)))
-    ThrowInvalid(field + "[0]", taus.front(), "must equal the start of the parameter interval " + internal::FormatNumber(curve.Begin()));
-  if (std::abs(taus.back() - curve.End()) > 1e-12 * std::max(1.0, std::abs(span)))
-    ThrowInvalid(field + "[" + std::to_string(taus.size() - 1) + "]", taus.back(),
-                 "must equal the end of the parameter interval " + internal::FormatNumber(curve.End()));
+namespace {
+
+// The first k > 0 whose point p(tau_k) lies within 1e-12 x the path length of p(tau_{k-1}) (0: none);
+// `step` gets that distance.
+std::size_t CoincidentPoint(const SmoothCurve& curve, const std::vector<double>& taus, double* step) {
   const double size = std::max(1.0, curve.Length());
   Eigen::Vector2d previous = curve.Value(taus.front());
   for (std::size_t k = 1; k < taus.size(); ++k) {
     const Eigen::Vector2d point = curve.Value(taus[k]);
-    const double step = (point - previous).norm();
+    *step = (point - previous).norm();
     previous = point;
-    if (!(step > 1e-12 * size))
-      ThrowInvalid(field + "[" + std::to_string(k) + "] (|p(tau_k) - p(tau_k-1)|)", step,
-                   "consecutive partition points must be more than 1e-12 x the path length apart on the plate");
+    if (!(*step > 1e-12 * size)) return k;
   }
+  return 0;
 }
 
-std::vector<double> UniformParameterPartition(const SmoothCurve& curve, int n) {
-  RequireCount(n, "partition.n");
+std::string CoincidentText(std::size_t k, double step) {
+  return "partition points " + std::to_string(k - 1) + " and " + std::to_string(k) + " are " + internal::FormatNumber(step) +
+         " apart on the plate: consecutive partition points must be more than 1e-12 x the path length apart";
+}
+
+// The points of a uniform partition follow from n alone: a fault is named by `n_field` and n.
+void ValidateUniform(const SmoothCurve& curve, const std::vector<double>& taus, int n, const std::string& n_field) {
+  for (std::size_t k = 1; k < taus.size(); ++k)
+    if (!(taus[k] > taus[k - 1]))
+      ThrowInvalid(n_field, n, "the parameter interval [" + internal::FormatNumber(curve.Begin()) + ", " +
+                                   internal::FormatNumber(curve.End()) + "] is too short for n steps in double precision");
+  double step = 0.0;
+  if (const std::size_t k = CoincidentPoint(curve, taus, &step); k > 0) ThrowInvalid(n_field, n, CoincidentText(k, step));
+}
+
+std::vector<double> UniformParameterNamed(const SmoothCurve& curve, int n, const std::string& n_field) {
+  RequireCount(n, n_field);
   std::vector<double> t(static_cast<std::size_t>(n) + 1);
   for (int k = 0; k <= n; ++k) t[k] = curve.Begin() + (curve.End() - curve.Begin()) * k / n;
   t.back() = curve.End();
-  ValidatePartition(curve, t, "partition (uniform_parameter, n = " + std::to_string(n) + ")");
+  ValidateUniform(curve, t, n, n_field);
   return t;
 }
 
-std::vector<double> UniformArcLengthPartition(const SmoothCurve& curve, int n) {
-  RequireCount(n, "partition.n");
+std::vector<double> UniformArcLengthNamed(const SmoothCurve& curve, int n, const std::string& n_field) {
+  RequireCount(n, n_field);
   // Cumulative length on a grid, then Newton on L(tau) = target inside the bracketing cell.
   constexpr int kGrid = 256;
   std::vector<double> grid(kGrid + 1), cum(kGrid + 1, 0.0);
@@ -95,8 +99,38 @@ std::vector<double> UniformArcLengthPartition(const SmoothCurve& curve, int n) {
     }
     t[k] = tau;
   }
-  ValidatePartition(curve, t, "partition (uniform_arc_length, n = " + std::to_string(n) + ")");
+  ValidateUniform(curve, t, n, n_field);
   return t;
+}
+
+}  // namespace
+
+void ValidatePartition(const SmoothCurve& curve, const std::vector<double>& taus, const std::string& field) {
+  if (taus.size() < 2)
+    ThrowInvalid(field + " (point count)", static_cast<double>(taus.size()), "a partition needs at least 2 points");
+  const double span = curve.End() - curve.Begin();
+  // Element names are built only for a bad value (a plan validates every partition point).
+  const auto element = [&field](std::size_t k) { return field + "[" + std::to_string(k) + "]"; };
+  for (std::size_t k = 0; k < taus.size(); ++k) {
+    if (!std::isfinite(taus[k])) internal::RequireFinite(element(k), taus[k]);
+    if (k > 0 && !(taus[k] > taus[k - 1]))
+      ThrowInvalid(element(k), taus[k], "partition values must increase strictly (previous " + internal::FormatNumber(taus[k - 1]) + ")");
+  }
+  if (std::abs(taus.front() - curve.Begin()) > 1e-12 * std::max(1.0, std::abs(span)))
+    ThrowInvalid(field + "[0]", taus.front(), "must equal the start of the parameter interval " + internal::FormatNumber(curve.Begin()));
+  if (std::abs(taus.back() - curve.End()) > 1e-12 * std::max(1.0, std::abs(span)))
+    ThrowInvalid(field + "[" + std::to_string(taus.size() - 1) + "]", taus.back(),
+                 "must equal the end of the parameter interval " + internal::FormatNumber(curve.End()));
+  double step = 0.0;
+  if (const std::size_t k = CoincidentPoint(curve, taus, &step); k > 0) ThrowInvalid(element(k), taus[k], CoincidentText(k, step));
+}
+
+std::vector<double> UniformParameterPartition(const SmoothCurve& curve, int n) {
+  return UniformParameterNamed(curve, n, "partition.n");
+}
+
+std::vector<double> UniformArcLengthPartition(const SmoothCurve& curve, int n) {
+  return UniformArcLengthNamed(curve, n, "partition.n");
 }
 
 std::vector<double> ExplicitPartition(const SmoothCurve& curve, const std::vector<double>& taus) {
@@ -118,6 +152,13 @@ std::string ToString(const PartitionRule& rule) {
 
 std::vector<std::vector<double>> MakePartition(const Path& path, const std::vector<PartitionRule>& rules,
                                                const std::string& field) {
+  return internal::MakePartition(path, rules, field, "");
+}
+
+namespace internal {
+
+std::vector<std::vector<double>> MakePartition(const Path& path, const std::vector<PartitionRule>& rules,
+                                               const std::string& field, const std::string& n_field) {
   const std::size_t pieces = static_cast<std::size_t>(path.PieceCount());
   if (rules.size() != 1 && rules.size() != pieces)
     ThrowInvalid(field + " (rule count)", static_cast<double>(rules.size()),
@@ -130,19 +171,18 @@ std::vector<std::vector<double>> MakePartition(const Path& path, const std::vect
     else if (const auto* a = std::get_if<UniformArcLength>(&rule)) steps += a->n;
     else steps += static_cast<long long>(std::get<ExplicitTaus>(rule).taus.size()) - 1;
   }
-  if (steps > internal::kMaxPartitionSteps)
+  if (steps > kMaxPartitionSteps)
     ThrowInvalid(rules.size() == 1 ? field + " (n x " + std::to_string(pieces) + " pieces)" : field + " (steps)", steps,
-                 "steps over all pieces must be <= " + std::to_string(internal::kMaxPartitionSteps));
+                 "steps over all pieces must be <= " + std::to_string(kMaxPartitionSteps));
   for (std::size_t i = 0; i < pieces; ++i) {
     const PartitionRule& rule = rules.size() == 1 ? rules.front() : rules[i];
     const SmoothCurve& curve = path.pieces()[i];
     const std::string f = rules.size() == 1 ? field : field + "[" + std::to_string(i) + "]";
+    const std::string nf = n_field.empty() || rules.size() != 1 ? f + ".n" : n_field;
     if (const auto* u = std::get_if<UniformParameter>(&rule)) {
-      RequireCount(u->n, f + ".n");
-      out.push_back(UniformParameterPartition(curve, u->n));
+      out.push_back(UniformParameterNamed(curve, u->n, nf));
     } else if (const auto* a = std::get_if<UniformArcLength>(&rule)) {
-      RequireCount(a->n, f + ".n");
-      out.push_back(UniformArcLengthPartition(curve, a->n));
+      out.push_back(UniformArcLengthNamed(curve, a->n, nf));
     } else {
       const std::vector<double>& taus = std::get<ExplicitTaus>(rule).taus;
       ValidatePartition(curve, taus, f + ".taus");
@@ -151,6 +191,8 @@ std::vector<std::vector<double>> MakePartition(const Path& path, const std::vect
   }
   return out;
 }
+
+}  // namespace internal
 
 double PointNorm(const SmoothCurve& curve, const std::vector<double>& taus) {
   double m = 0.0;

@@ -76,7 +76,7 @@ Eigen::Matrix3d ParseOrientation(const std::string& json_text, const std::string
                                  const std::string& source_name) {
   const FieldReader reader(source_name);
   try {
-    const json root = ParseJson(json_text, reader);
+    const json root = ParseJson(json_text, reader, field);
     return reader.Orientation(root, field);
   } catch (const std::invalid_argument&) {
     throw;

@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "check.h"
+#include "partition_internal.h"
 
 namespace plateball {
 namespace {
@@ -136,7 +137,10 @@ PlanSetup PlanSetupFor(const Problem& problem, int n, const std::string& n_field
     else if (auto* a = std::get_if<UniformArcLength>(&spec)) a->n = n;
     else internal::ThrowInvalid(n_field, n, "not allowed with an explicit partition (plan.partition.type explicit)");
   }
-  s.problem.partition = PartitionFromSpec(spec, s.problem.path, "plan.partition");
+  const std::string field = problem.source + ": plan.partition";
+  s.problem.partition = PartitionFromSpec(spec, s.problem.path, field);
+  // Checked here, where the fields are known: n too small for a closed path names the n given.
+  internal::MakePartition(s.problem.path, s.problem.partition, field, n > 0 ? n_field : std::string());
   s.problem.energy_changes = task.energy_changes;
   RequireStartOnPath(problem, s.problem.path);
   s.options = PlanOptionsFor(problem);
@@ -147,18 +151,27 @@ ConvergenceSetup ConvergenceSetupFor(const Problem& problem, const std::vector<i
                                      bool timings) {
   const PlanTask& task = RequirePlan(problem);
   ConvergenceSetup s;
+  const std::string list_field = ns.empty() ? problem.source + ": plan.converge_n" : ns_field;
   if (!ns.empty()) {
     ValidatePartitionSizes(ns, ns_field);
     s.problem.ns = ns;
   } else if (!task.converge_n.empty()) {
-    ValidatePartitionSizes(task.converge_n, "plan.converge_n");
+    ValidatePartitionSizes(task.converge_n, list_field);
     s.problem.ns = task.converge_n;
   }
   if (const auto* e = std::get_if<ExplicitTaus>(&task.partition))
-    internal::ThrowInvalid(ns.empty() ? std::string("plan.partition.taus (count)") : ns_field,
+    internal::ThrowInvalid(ns.empty() ? problem.source + ": plan.partition.taus (count)" : ns_field,
                            ns.empty() ? static_cast<double>(e->taus.size()) : ns.front(),
                            "a convergence study varies n: it needs a uniform partition, not an explicit one");
   PlanSetup plan = PlanSetupFor(problem);
+  // Each n of the study, named by its entry (the default list has no entries to name).
+  for (std::size_t i = 0; i < s.problem.ns.size() && (!ns.empty() || !task.converge_n.empty()); ++i) {
+    PartitionRule rule = task.partition;
+    if (auto* u = std::get_if<UniformParameter>(&rule)) u->n = s.problem.ns[i];
+    if (auto* a = std::get_if<UniformArcLength>(&rule)) a->n = s.problem.ns[i];
+    internal::MakePartition(plan.problem.path, {rule}, problem.source + ": plan.partition",
+                            list_field + "[" + std::to_string(i) + "]");
+  }
   s.problem.plan = std::move(plan.problem);
   s.options.plan = std::move(plan.options);
   s.options.timings = timings;

@@ -227,7 +227,7 @@ TEST(Execution, BadInputNamesTheFieldAndTheValue) {
   EXPECT_EQ(InvalidArgumentMessage([] { ParseErrorModel("timing=0.5"); }),
             "noise.timing: value 0.5: must be a number in [0, 0.1]");
   EXPECT_EQ(InvalidArgumentMessage([] { ParseErrorModel("impulse_magnitude=-1e-3", "--noise"); }),
-            "--noise.impulse_magnitude: value -0.001: must be a number in [0, 0.5]");
+            "--noise impulse_magnitude: value -0.001: must be a number in [0, 0.5]");
   EXPECT_EQ(InvalidArgumentMessage([] { ParseErrorModel("timing=abc"); }),
             "noise.timing: value 'abc': must be a number in [0, 0.1]");
   EXPECT_EQ(InvalidArgumentMessage([] { ParseErrorModel("timing=nan"); }),

@@ -57,8 +57,13 @@ struct ErrorModel {
 std::string ToString(const ErrorModel& model);
 
 /// Reads "KEY=VALUE[,KEY=VALUE...]" (keys: the field names above; "none" or "" is the zero model).
-/// Throws std::invalid_argument naming `field`.KEY and the value for an unknown key, a repeated
-/// key, a value that is not a number or one out of its range.
+/// Throws std::invalid_argument naming the key (ErrorModelKeyField) and the value for an unknown
+/// key, a repeated key, a value that is not a number or one out of its range.
 ErrorModel ParseErrorModel(const std::string& text, const std::string& field = "noise");
+
+/// The name of KEY of the error model given as `field`, as the user spelled it: "noise.timing" for
+/// a field, "--noise timing" for a command-line option's KEY=VALUE list (`field` ending in a word
+/// that starts with "--", e.g. "command line: --noise").
+std::string ErrorModelKeyField(const std::string& field, const std::string& key);
 
 }  // namespace plateball

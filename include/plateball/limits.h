@@ -26,6 +26,9 @@ inline constexpr std::size_t kMaxPoints = 1'000'000;
 /// Steps of a plan over all smooth pieces (partition n x pieces) and impulse indices: `plan --n
 /// 10000` takes 1.2 s and 116 MB; the bound keeps one call under ~10 s and ~1 GB.
 inline constexpr int kMaxPartitionSteps = 10'000;
+/// |x|, |y| of positions and targets: beyond it the solvers' absolute accuracy (about 2e-16 |x|)
+/// no longer resolves the joins.
+inline constexpr double kMaxCoordinate = 1e6;
 /// Elements of a list in a problem file (reach targets, path pieces, energy changes, converge_n):
 /// each element costs a solve, so 10^5 already means hours.
 inline constexpr long long kMaxListLength = 100'000;

@@ -17,6 +17,7 @@ library's message (FIELD: value V: what). The solvers release the GIL. For examp
 
 import functools
 import os
+import re
 import sys
 
 from ._build_info import PYTHON_EXECUTABLE as _BUILT_FOR, PYTHON_VERSION as _BUILT_VERSION
@@ -51,6 +52,16 @@ def _fields(cls):
     return frozenset(k for k in dir(cls) if not k.startswith("_"))
 
 
+def _set(caller, target, key, value):
+    """setattr naming the keyword and the value when the type is wrong (pybind11's setter names neither)."""
+    try:
+        setattr(target, key, value)
+    except TypeError as error:
+        expected = re.search(r"arg0: (.*?)\) ->", str(error))
+        raise TypeError(f"{caller}(): {key}: value {value!r}: "
+                        + (f"must be {expected.group(1)}" if expected else "has the wrong type")) from None
+
+
 def _solve(native, problem_type, options_type, problem, options, kwargs):
     """Builds the problem and options from objects and/or keywords, then calls the solver."""
     if not kwargs and problem is not None and options is not None:
@@ -60,9 +71,9 @@ def _solve(native, problem_type, options_type, problem, options, kwargs):
     problem_fields, options_fields = _fields(problem_type), _fields(options_type)
     for key, value in kwargs.items():
         if key in problem_fields:
-            setattr(problem, key, value)
+            _set(native.__name__.lstrip('_'), problem, key, value)
         elif key in options_fields:
-            setattr(options, key, value)
+            _set(native.__name__.lstrip('_'), options, key, value)
         else:
             raise TypeError(f"{native.__name__.lstrip('_')}(): unexpected keyword argument '{key}' "
                             f"(not a field of {problem_type.__name__} or {options_type.__name__})")
@@ -105,7 +116,7 @@ def certify_isoparallel(summary, options=None, **kwargs):
         if key not in fields:
             raise TypeError(f"certify_isoparallel(): unexpected keyword argument '{key}' "
                             f"(not a field of IsoparallelCertificateOptions)")
-        setattr(options, key, value)
+        _set("certify_isoparallel", options, key, value)
     return _certify_isoparallel(summary, options)
 
 
@@ -138,7 +149,7 @@ def identify(t, xy, sigma=None, options=None, impulse_times=None, spin=None, sig
     for key, value in kwargs.items():
         if key not in fields:
             raise TypeError(f"identify(): unexpected keyword argument '{key}'")
-        setattr(options, key, value)
+        _set("identify", options, key, value)
     return _identify(t, xy, sigma, impulse_times, spin, sigma_spin, orientation, sigma_orientation, body_rate,
                      sigma_body_rate, options)
 

@@ -19,6 +19,14 @@ namespace plateball::python {
 
 namespace py = pybind11;
 
+// "must be TYPE" from pybind11's message about a setter's argument ("... (self: C, arg0: TYPE) -> None").
+inline std::string WrongTypeText(const std::string& pybind_message) {
+  const auto at = pybind_message.find("arg0: ");
+  const auto end = at == std::string::npos ? at : pybind_message.find(") ->", at);
+  if (end == std::string::npos) return "has the wrong type";
+  return "must be " + pybind_message.substr(at + 6, end - at - 6);
+}
+
 // Adds `T(**kwargs)`: a default value whose attributes are set from the keywords, so that
 // `JoinOptions(max_iterations=50)` works; an unknown keyword is a TypeError naming it.
 template <typename T, typename... Extra>
@@ -32,7 +40,14 @@ py::class_<T, Extra...>& WithKeywordInit(py::class_<T, Extra...>& cls) {
                 if (key.rfind("_", 0) == 0 || !py::hasattr(py::type::of(view), key.c_str()))
                   throw py::type_error(std::string(py::str(py::type::of(view).attr("__name__"))) +
                                        "(): unexpected keyword argument '" + key + "'");
-                py::setattr(view, item.first, item.second);
+                try {
+                  py::setattr(view, item.first, item.second);
+                } catch (py::error_already_set& e) {
+                  if (!e.matches(PyExc_TypeError)) throw;
+                  // pybind11's setter names neither the attribute nor the value: "CLS(): KEY: value V: ...".
+                  throw py::type_error(std::string(py::str(py::type::of(view).attr("__name__"))) + "(): " + key + ": value " +
+                                       std::string(py::repr(item.second)) + ": " + WrongTypeText(e.what()));
+                }
               }
             }
             return value;

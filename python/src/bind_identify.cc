@@ -3,7 +3,12 @@
 // with NumPy arrays in.
 #include "bind_common.h"
 
+#include <charconv>
+#include <cmath>
 #include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "plateball/identify.h"
 
@@ -37,6 +42,20 @@ void ReadRows(const std::optional<Array>& a, const char* name, int cols, Push pu
   }
 }
 
+/// "NAME[i][c]: value V: must be finite" for the first non-finite entry of rows of `cols` numbers:
+/// the arguments' own names (the library names the track file's columns: "y[5]", "orientation[2].w").
+template <typename Row>
+void RequireFiniteRows(const std::vector<Row>& rows, const char* name) {
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (Eigen::Index c = 0; c < rows[i].size(); ++c)
+      if (!std::isfinite(rows[i][c])) {
+        char buf[32];
+        const auto end = std::to_chars(buf, buf + sizeof buf, rows[i][c]).ptr;
+        throw std::invalid_argument(std::string(name) + "[" + std::to_string(i) + "][" + std::to_string(c) + "]: value " +
+                                    std::string(buf, end) + ": must be finite");
+      }
+}
+
 /// The optional columns of a track besides t, xy and sigma (each None or an array).
 struct TrackColumns {
   std::optional<Array> impulse_times, spin, sigma_spin, orientation, sigma_orientation, body_rate, sigma_body_rate;
@@ -54,11 +73,16 @@ IdentifyProblem TrackFromArrays(const Array& t, const Array& xy, const std::opti
   const auto xv = xy.unchecked<2>();
   for (py::ssize_t i = 0; i < tv.shape(0); ++i) p.t.push_back(tv(i));
   for (py::ssize_t i = 0; i < xv.shape(0); ++i) p.x.emplace_back(xv(i, 0), xv(i, 1));
+  if (p.x.size() != p.t.size())
+    throw std::invalid_argument("xy (rows): value " + std::to_string(p.x.size()) + ": must have one row per time (" +
+                                std::to_string(p.t.size()) + ")");
+  RequireFiniteRows(p.x, "xy");
   ReadVector(sigma, "sigma", &p.sigma);
   ReadVector(c.impulse_times, "impulse_times", &p.impulse_times);
   ReadVector(c.spin, "spin", &p.spin);
   ReadVector(c.sigma_spin, "sigma_spin", &p.sigma_spin);
   ReadRows(c.orientation, "orientation", 4, [&](const double* r) { p.orientation.emplace_back(r[0], r[1], r[2], r[3]); });
+  RequireFiniteRows(p.orientation, "orientation");
   ReadVector(c.sigma_orientation, "sigma_orientation", &p.sigma_orientation);
   ReadRows(c.body_rate, "body_rate", 3, [&](const double* r) { p.body_rate.emplace_back(r[0], r[1], r[2]); });
   ReadVector(c.sigma_body_rate, "sigma_body_rate", &p.sigma_body_rate);

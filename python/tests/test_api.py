@@ -132,6 +132,52 @@ def test_limits_are_the_readers():
         pb.parse_problem(json.dumps(deep))
 
 
+def test_messages_name_the_python_argument_and_the_value(problems):
+    """Each message names the argument or attribute as the call spells it, never a variable of the
+    library ("y[5]", "orientation[2].w", "b", "partition (uniform_parameter, n = 1)[1]")."""
+    t = np.linspace(0.0, 10.0, 40)
+    xy = np.c_[np.cos(t), np.sin(t)]
+    bad = xy.copy()
+    bad[5, 1] = np.inf
+    with pytest.raises(ValueError, match=r"^xy\[5\]\[1\]: value inf: must be finite$"):
+        pb.identify(t, bad)
+    with pytest.raises(ValueError, match=r"^xy \(rows\): value 39: must have one row per time \(40\)$"):
+        pb.identify(t, xy[1:])
+    quaternions = np.tile([1.0, 0.0, 0.0, 0.0], (40, 1))
+    quaternions[2, 0] = np.nan
+    with pytest.raises(ValueError, match=r"^orientation\[2\]\[0\]: value nan: must be finite$"):
+        pb.identify(t, xy, sigma=np.full(40, 0.01), orientation=quaternions, sigma_orientation=np.ones(40))
+    # A spline whose chord overflows: the point, not the integration's end "b".
+    with pytest.raises(ValueError, match=r"^points\[1\]: value \(1e\+300, 1\): too far from sample point 0 \(the distance overflows"):
+        pb.roll([(0.0, 0.0), (1e300, 1.0)])
+    with pytest.raises(ValueError, match=r"^points\[1\]: value \(0, 0\): repeats the previous sample point$"):
+        pb.roll([(0.0, 0.0), (0.0, 0.0)])
+    # One step around the closed circle: start and end coincide, the fault of the n given.
+    circle = pb.load_problem(problems / "circle.json")
+    with pytest.raises(ValueError, match=r"^n: value 1: partition points 0 and 1 are [0-9.e-]+ apart on the plate"):
+        pb.plan_setup_for(circle, 1)
+    setup = pb.plan_setup_for(circle, 16)
+    with pytest.raises(ValueError, match=r"^partition\.n: value 1: partition points 0 and 1 are "):
+        pb.plan(setup.problem, setup.options, partition=[pb.UniformParameter(n=1)])
+    with pytest.raises(ValueError, match=r"^sweep_n\[1\]: value 1: partition points 0 and 1 are "):
+        pb.montecarlo(plan=setup.problem, sweep_n=[8, 1], scenarios=[pb.MonteCarloScenario("none")])
+    with pytest.raises(ValueError, match=r"^ns\[0\]: value 1: partition points 0 and 1 are "):
+        pb.convergence_setup_for(circle, [1, 2])
+    with pytest.raises(ValueError, match=r"^<python>: orientation: value 'x': malformed JSON at line 1, column 1"):
+        pb.parse_orientation("x")
+    with pytest.raises(ValueError, match=r"^--noise timing: value 0\.5: must be a number in \[0, 0\.1\]$"):
+        pb.parse_error_model("timing=0.5", "--noise")
+
+
+def test_wrong_type_names_the_keyword_and_the_value():
+    with pytest.raises(TypeError, match=r"^JoinOptions\(\): max_iterations: value 'x': must be int$"):
+        pb.JoinOptions(max_iterations="x")
+    with pytest.raises(TypeError, match=r"^join\(\): max_iterations: value 'x': must be int$"):
+        pb.join(target=(0.05, 0.0), max_iterations="x")
+    with pytest.raises(TypeError, match=r"^identify\(\): radius: value 'r': must be float$"):
+        pb.identify(np.linspace(0.0, 1.0, 10), np.zeros((10, 2)), radius="r")
+
+
 def test_montecarlo_scenario_positional_as_in_the_readme():
     errors = pb.ErrorModel(timing=1e-3)
     s = pb.MonteCarloScenario("late", errors=errors)

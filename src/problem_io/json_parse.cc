@@ -99,12 +99,21 @@ class DomBuilder {
 
 }  // namespace
 
-json ParseJson(const std::string& text, const FieldReader& reader) {
+namespace {
+// A path inside the document under its root's name ("" is the root itself).
+std::string UnderRoot(const std::string& root, const std::string& path) {
+  if (path.empty()) return root;
+  if (root == "(document)") return path;
+  return root + (path[0] == '[' ? "" : ".") + path;
+}
+}  // namespace
+
+json ParseJson(const std::string& text, const FieldReader& reader, const std::string& root_field) {
   // nlohmann's lexer reads a NUL byte as the end of the input: anything after it would be
   // ignored silently.
   const std::size_t nul = text.find('\0');
   if (nul != std::string::npos)
-    reader.Fail("(document)", "(NUL byte at offset " + std::to_string(nul) + ")",
+    reader.Fail(root_field, "(NUL byte at offset " + std::to_string(nul) + ")",
                 "a problem file is JSON text; it must not contain a NUL byte");
   json root;
   DomBuilder detector(&root);
@@ -133,7 +142,7 @@ json ParseJson(const std::string& text, const FieldReader& reader) {
     std::string excerpt = text.substr(begin, end - begin);
     for (char& c : excerpt)
       if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = ' ';
-    reader.Fail("(document)", "'" + excerpt + "'", "malformed JSON at " + what);
+    reader.Fail(root_field, "'" + excerpt + "'", "malformed JSON at " + what);
   } catch (const json::exception& e) {
     // e.g. out_of_range.406, a number that overflows a double: name the field being parsed and
     // the offending token.
@@ -145,13 +154,13 @@ json ParseJson(const std::string& text, const FieldReader& reader) {
     const auto q1 = q0 == std::string::npos ? q0 : what.find('\'', q0 + 1);
     if (q1 != std::string::npos) value = what.substr(q0 + 1, q1 - q0 - 1);
     const std::string field = detector.CurrentPath();
-    reader.Fail(field.empty() ? "(document)" : field, value, "malformed JSON: " + what);
+    reader.Fail(UnderRoot(root_field, field), value, "malformed JSON: " + what);
   }
   if (detector.depth_exceeded())
-    reader.Fail(detector.CurrentPath().empty() ? "(document)" : detector.CurrentPath(), "(nested arrays/objects)",
+    reader.Fail(UnderRoot(root_field, detector.CurrentPath()), "(nested arrays/objects)",
                 "nested deeper than " + std::to_string(limits::kMaxJsonDepth) + " levels (the limit of a problem file)");
   if (!detector.duplicate_path().empty())
-    reader.Fail(detector.duplicate_path(), "(duplicate)", "key given more than once in the same object");
+    reader.Fail(UnderRoot(root_field, detector.duplicate_path()), "(duplicate)", "key given more than once in the same object");
   return root;
 }
 

@@ -8,7 +8,9 @@
 
 namespace plateball::internal::problem_io {
 
-/// The document of `text`; malformed JSON is reported through `reader` (its source name).
-json ParseJson(const std::string& text, const FieldReader& reader);
+/// The document of `text`; malformed JSON is reported through `reader` (its source name), naming
+/// the document `root_field` ("(document)" for a file, the option or argument that gave the text else)
+/// and a value inside it by its path under `root_field`.
+json ParseJson(const std::string& text, const FieldReader& reader, const std::string& root_field = "(document)");
 
 }  // namespace plateball::internal::problem_io

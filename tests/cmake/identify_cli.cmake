@@ -80,9 +80,9 @@ plateball_cli_test(identify.impulses_svg 0 REGEX "<svg.*fitted free flights betw
 file(WRITE ${dir}/impulses_unsorted.json "{\"t\": [0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,15], \"x\": [[0,0],[1,0],[2,0],[3,0],[4,0],[5,0],[6,0],[7,0],[8,0],[9,0],[10,0],[11,0],[12,0],[13,0],[14,0],[15,0]], \"impulse_times\": [9.5, 4.5]}")
 plateball_cli_test(identify.impulses_unsorted 3 REGEX "impulses_unsorted.json: impulse_times\\[1\\]: value 4.5: impulse times must be strictly increasing"
   -- identify ${dir}/impulses_unsorted.json)
-plateball_cli_test(identify.impulses_outside 3 REGEX "--impulses: impulse_times\\[0\\]: value 99: must be inside the track"
+plateball_cli_test(identify.impulses_outside 3 REGEX "command line: --impulses\\[0\\]: value 99: must be inside the track"
   -- identify tests/data/identify_track.csv --impulses 99)
-plateball_cli_test(identify.impulses_few_samples 3 REGEX "impulse_times\\[1\\]: value 0.55: too few samples in the flight before it: 1"
+plateball_cli_test(identify.impulses_few_samples 3 REGEX "command line: --impulses\\[1\\]: value 0.55: too few samples in the flight before it: 1"
   -- identify tests/data/identify_impulses_track.csv --impulses 0.5,0.55)
 plateball_cli_test(identify.impulses_twice 3 REGEX "--impulses.*impulse_times already"
   -- identify ${dir}/impulses_unsorted.json --impulses 3)

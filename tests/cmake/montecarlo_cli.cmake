@@ -20,9 +20,9 @@ plateball_cli_test(montecarlo.too_many_trials 3 REGEX "--trials: value 2000000"
   -- montecarlo problems/circle.json --trials 2000000)
 plateball_cli_test(montecarlo.bad_strategy 3 REGEX "--strategy: value 'closed_loop': unknown strategy"
   -- montecarlo problems/circle.json --strategy closed_loop)
-plateball_cli_test(montecarlo.noise_out_of_range 3 REGEX "--noise.timing: value 0.5: must be a number in \\[0, 0.1\\]"
+plateball_cli_test(montecarlo.noise_out_of_range 3 REGEX "command line: --noise timing: value 0.5: must be a number in \\[0, 0.1\\]"
   -- montecarlo problems/circle.json --noise timing=0.5)
-plateball_cli_test(montecarlo.noise_not_a_number 3 REGEX "--noise.impulse_angle: value 'x'"
+plateball_cli_test(montecarlo.noise_not_a_number 3 REGEX "command line: --noise impulse_angle: value 'x'"
   -- montecarlo problems/circle.json --noise impulse_angle=x)
 plateball_cli_test(montecarlo.noise_unknown 3 REGEX "--noise: value 'spin': unknown error model"
   -- montecarlo problems/circle.json --noise spin=1)

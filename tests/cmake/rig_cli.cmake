@@ -86,7 +86,7 @@ set(loop_errors impulse_magnitude=0.02,impulse_angle=0.02,lambda=0.02,energy_los
 plateball_cli_test(rig.loop_closes_the_loop 0
   REGEX "\"command\": \"rig_loop\".*\"closed_loop\": {\n *\"status\": \"done\",[^[]*\"position_error\": (0\\.00(0|1[0-4])[0-9]*|[0-9.]+e-0[4-9]),.*\"open_loop\": {[^[]*\"position_error\": 0\\.[1-9].*\"report\": \"closed loop in the twin done after 16 impulses"
   -- rig loop ${loop_problem} --tick 1e-3 --dt 1e-3 --noise ${loop_errors})
-plateball_cli_test(rig.loop_untwinned_errors 3 REGEX "command line: --noise.timing: value 0.001: the twin's loop fires on ticks: no jitter"
+plateball_cli_test(rig.loop_untwinned_errors 3 REGEX "command line: --noise timing: value 0.001: the twin's loop fires on ticks: no jitter"
   -- rig loop ${loop_problem} --noise timing=1e-3)
 plateball_cli_test(rig.loop_step_above_tick 3 REGEX "command line: --dt: value 0.01: must be in \\(0, --tick\\] s"
   -- rig loop ${loop_problem} --tick 1e-3 --dt 1e-2)

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Messages about bad problem-file values name the file's field and the value ("FILE: FIELD: value V:
-# what is wrong"), not a variable of the code ("partition (uniform_parameter, n = 64)[1]", "speed",
-# "x1", "x0"): each case with its exit code and the exact start of its message.
+# Messages about bad values name the field as the user wrote it and the value ("FILE: FIELD: value V:
+# what is wrong", "command line: --OPTION: value V: ..."), not a variable of the code ("partition
+# (uniform_parameter, n = 64)[1]", "speed", "x1", "x0", "target[0]", "absolute_tolerance"), with no
+# doubled prefix: each case with its exit code and the exact start of its message.
 # Usage: field_messages_cli.sh PLATEBALL SOURCE_DIR WORKDIR
 set -u
 pb=$(realpath "$1")
@@ -35,6 +36,10 @@ result(lambda d: d["plan"]["steps"][0]["omega_after_impulse"].__setitem__(2, -1.
 result(lambda d: d["optimal_path"][0].__setitem__(0, 1e300), "view_path.json")
 d = json.load(open(f"{src}/fuzz/seeds/view_input_fuzzer/montecarlo.json")); d["options"]["miss_tolerance"] = 0
 save(d, "view_miss_tolerance.json")
+result(lambda d: d["integration"].update(absolute_tolerance=1e-30), "view_integration.json")
+# One step around the closed circle: its two partition points coincide, a fault of the n given.
+d = load("circle.json"); d["plan"]["partition"]["n"] = 1; save(d, "one_step.json")
+d = load("circle.json"); d["plan"]["converge_n"] = [16, 16]; save(d, "converge_twice.json")
 PY
 
 # name | expected exit code | start of the message after "plateball TOOL: invalid input: " | arguments...
@@ -48,8 +53,20 @@ cases=(
   "view: model.lambda 0 (was: lambda)|3|$work/view_lambda.json: model.lambda: value 0:|view|$work/view_lambda.json|--html|$work/v.html"
   "view: a step's duration 1e300 (was: t)|3|$work/view_duration.json: plan.steps[0].duration: value |view|$work/view_duration.json|--html|$work/v.html"
   "view: omega_after_impulse with spin (was: start.state.omega[2])|3|$work/view_omega.json: plan.steps[0].omega_after_impulse[2]: value -1:|view|$work/view_omega.json|--html|$work/v.html"
-  "view: optimal_path point 1e300 (was: points)|3|$work/view_path.json: optimal_path: value |view|$work/view_path.json|--html|$work/v.html"
+  "view: optimal_path point 1e300 (was: points)|3|$work/view_path.json: optimal_path[0]: value (1e+300, |view|$work/view_path.json|--html|$work/v.html"
   "view: Monte Carlo miss_tolerance 0 (was: miss_tolerance)|3|$work/view_miss_tolerance.json: options.miss_tolerance: value 0:|view|$work/view_miss_tolerance.json|--problem|$src/problems/circle.json|--html|$work/v.html"
+  "view: integration.absolute_tolerance 1e-30 (was: integration: value (see message))|3|$work/view_integration.json: integration.absolute_tolerance: value 1e-30: must be in [1e-15, 1)|view|$work/view_integration.json|--html|$work/v.html"
+  "plan: partition.n 1 on a closed path (was: partition (uniform_parameter, n = 1)[1] (p(tau_k) - p(tau_k-1)))|3|$work/one_step.json: plan.partition.n: value 1: partition points 0 and 1 are |plan|$work/one_step.json|--summary-only"
+  "plan --impulses 1 on a closed path (was: partition (uniform_parameter, n = 1)[1])|3|command line: --impulses: value 1: partition points 0 and 1 are |plan|$src/problems/circle.json|--impulses|1|--summary-only"
+  "converge --impulses 1,2 (was: partition (uniform_parameter, n = 1)[1])|3|command line: --impulses[0]: value 1: partition points 0 and 1 are |converge|$src/problems/circle.json|--impulses|1,2"
+  "converge: converge_n repeated (was: no file name)|3|$work/converge_twice.json: plan.converge_n[1]: value 16: repeated|converge|$work/converge_twice.json"
+  "montecarlo --sweep-n 1 (was: partition (uniform_parameter, n = 1)[1])|3|command line: --sweep-n: value 1: partition points 0 and 1 are |montecarlo|$src/problems/circle.json|--trials|1|--sweep-n|1"
+  "montecarlo --noise timing=0.5 (was: --noise.timing)|3|command line: --noise timing: value 0.5: must be a number in [0, 0.1]|montecarlo|$src/problems/circle.json|--noise|timing=0.5"
+  "join --targets 1e300,0 (was: target[0])|3|command line: --targets[0]: value 1e+300,0: |join|$src/problems/circle.json|--targets|1e300,0"
+  "reach --targets 0,1e300 (was: target[1])|3|command line: --targets[0]: value 0,1e+300: |reach|$src/problems/figure8_reach.json|--targets|0,1e300"
+  "roll --atol -1 (was: --atol/--rtol: value (-1, 1e-12): absolute_tolerance: value -1)|3|command line: --atol: value -1: must be in [1e-15, 1)|roll|--points|0,0;1,1|--atol|-1"
+  "roll --orientation x (was: command line: (document))|3|command line: --orientation: value 'x': malformed JSON|roll|--points|0,0;1,1|--orientation|x"
+  "identify --impulses 100 (was: --impulses: impulse_times[0])|3|command line: --impulses[0]: value 100: must be inside the track|identify|$src/tests/data/identify_track.csv|--impulses|100"
 )
 
 for entry in "${cases[@]}"; do

@@ -10,6 +10,7 @@
 
 namespace plateball::tools {
 
+using limits::kMaxCoordinate;
 using limits::kMaxJsonDepth;
 using limits::kMaxPartitionSteps;
 using limits::kMaxPoints;

@@ -69,6 +69,13 @@ void RequirePartitionSteps(const std::string& option, long long n, const Problem
              " impulses; at most " + std::to_string(kMaxPartitionSteps) + ")");
 }
 
+void RequireCoordinatesOption(const std::string& option, const std::vector<Eigen::Vector2d>& points) {
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!(points[i].cwiseAbs().maxCoeff() <= kMaxCoordinate))
+      Fail(option + "[" + std::to_string(i) + "]", FormatNumber(points[i].x()) + "," + FormatNumber(points[i].y()),
+           "|coordinate| must be <= " + FormatNumber(kMaxCoordinate) + " (precision limit)");
+}
+
 Eigen::Vector2d ParsePointOption(const std::string& option, const std::string& text) {
   const auto comma = text.find(',');
   Eigen::Vector2d p;

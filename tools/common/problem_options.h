@@ -72,6 +72,8 @@ int ThreadsOption(long long requested);
 /// converge): n x pieces must be <= 10^4, the reader's limit (README, "Limits"). Nothing is checked
 /// without a plan section (the task adapter names it).
 void RequirePartitionSteps(const std::string& option, long long n, const Problem& p);
+/// Targets of a command-line option: |x|, |y| <= kMaxCoordinate (limits.h), each named OPTION[i].
+void RequireCoordinatesOption(const std::string& option, const std::vector<Eigen::Vector2d>& points);
 /// "X,Y" (two finite numbers separated by a comma).
 Eigen::Vector2d ParsePointOption(const std::string& option, const std::string& text);
 /// "X1,Y1;X2,Y2;..." or "X1,Y1 X2,Y2 ..." (separated by ';' or white space; at least

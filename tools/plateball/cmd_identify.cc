@@ -220,8 +220,11 @@ IdentifyProblem ReadTrack(const std::string& file, const IdentifyCliOptions& o) 
       ThrowInvalidInput(CommandLineField("--impulses"), "(set)", "the track file " + file + " has impulse_times already: give them once");
     p.impulse_times = o.impulses;
   }
-  const std::string error = p.Validate();
-  if (!error.empty()) throw std::invalid_argument((error.rfind("impulse_times", 0) == 0 && o.impulses_opt->count() > 0 ? "--impulses: " : file + ": ") + error);
+  // The library names its field ("impulse_times[0]: value ..."): times from --impulses are named so.
+  const std::string error = p.Validate(), times = "impulse_times";
+  if (!error.empty() && error.rfind(times, 0) == 0 && o.impulses_opt->count() > 0)
+    throw std::invalid_argument(CommandLineField("--impulses") + error.substr(times.size()));
+  if (!error.empty()) throw std::invalid_argument(file + ": " + error);
   return p;
 }
 

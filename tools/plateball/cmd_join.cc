@@ -59,7 +59,7 @@ int RunJoin(const JoinCliOptions& o) {
   CheckOutputPaths({{"--out", o.out}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   std::vector<Eigen::Vector2d> targets;
-  if (!o.targets.empty()) targets = ParsePointsOption("--targets", o.targets);
+  if (!o.targets.empty()) RequireCoordinatesOption("--targets", targets = ParsePointsOption("--targets", o.targets));
   else if (p.reach) targets = p.reach->targets;
   if (targets.empty())
     ThrowInvalidInput(CommandLineField("--targets"), "(missing)",

@@ -63,7 +63,11 @@ std::pair<MonteCarloProblem, MonteCarloOptions> BuildStudy(const MonteCarloCliOp
     const ErrorModel e = ParseErrorModel(spec, Option("--noise"));
     mp.scenarios.push_back({ToString(e), e});
   }
-  for (long long v : o.sweep_n) mp.sweep_n.push_back(static_cast<int>(RequireIntegerInRange("--sweep-n", v, 1, 10'000)));
+  for (long long v : o.sweep_n) {
+    mp.sweep_n.push_back(static_cast<int>(RequireIntegerInRange("--sweep-n", v, 1, 10'000)));
+    RequirePartitionSteps("--sweep-n", v, p);
+    PlanSetupFor(p, static_cast<int>(v), Option("--sweep-n"));  // an n too small for a closed path
+  }
   mo.sweep_trials = static_cast<int>(RequireIntegerInRange("--sweep-trials", o.sweep_trials, 0, MonteCarloOptions::kMaxTrials));
   if (!(o.miss_tolerance > 0 && o.miss_tolerance <= 1e6))
     ThrowInvalidInput(Option("--miss-tolerance"), FormatNumber(o.miss_tolerance), "must be a number in (0, 1e6]");

@@ -142,7 +142,7 @@ int RunReach(const ReachCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem problem = o.problem.Load();
   ReachTask task = problem.reach.value_or(ReachTask{});
-  if (o.targets_opt->count() > 0) task.targets = ParsePointsOption("--targets", o.targets);
+  if (o.targets_opt->count() > 0) RequireCoordinatesOption("--targets", task.targets = ParsePointsOption("--targets", o.targets));
   if (o.horizon_opt->count() > 0) {
     task.horizon_periods = RequirePositiveOption("--horizon-periods", o.horizon_periods);
     if (task.horizon_periods > limits::kMaxHorizonPeriods)

@@ -6,7 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/command_registry.h"
@@ -123,11 +125,14 @@ double PolylineLength(const std::vector<Eigen::Vector2d>& pts) {
 IntegrationOptions RollIntegration(const RollOptions& o, IntegrationOptions integration) {
   if (o.atol_opt->count() > 0) integration.absolute_tolerance = o.atol;
   if (o.rtol_opt->count() > 0) integration.relative_tolerance = o.rtol;
-  if (const std::string err = integration.Validate(); !err.empty())
-    ThrowInvalidInput(CommandLineField("--atol/--rtol"),
-                      "(" + FormatNumber(integration.absolute_tolerance) + ", " +
-                          FormatNumber(integration.relative_tolerance) + ")",
-                      err);
+  // The message names the library's field ("absolute_tolerance: value V: ..."): name the option
+  // that gave it (a problem file's tolerances were checked by the reader).
+  if (const std::string err = integration.Validate(); !err.empty()) {
+    for (const auto& [field, option] : {std::pair<std::string, std::string>{"absolute_tolerance", "--atol"},
+                                        std::pair<std::string, std::string>{"relative_tolerance", "--rtol"}})
+      if (err.rfind(field + ": ", 0) == 0) throw std::invalid_argument(CommandLineField(option) + err.substr(field.size()));
+    throw std::invalid_argument(err);
+  }
   return integration;
 }
 

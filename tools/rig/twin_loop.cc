@@ -6,6 +6,7 @@
 
 #include "common/number_format.h"
 #include "plateball/ball_state.h"
+#include "plateball/error_model.h"
 #include "plateball/plate_impulse.h"
 #include "plateball/so3.h"
 
@@ -150,7 +151,7 @@ std::string TwinLoopOptions::Validate() const { return settings.Validate(); }
 
 void RequireTwinModelled(const ErrorModel& e, const std::string& field) {
   const auto no = [&](const char* key, double v, const char* what) {
-    if (v != 0.0) throw std::invalid_argument(Bad(field + "." + key, v, what));
+    if (v != 0.0) throw std::invalid_argument(Bad(ErrorModelKeyField(field, key), v, what));
   };
   no("timing", e.timing, "the twin's loop fires on ticks: no jitter");
   no("pulse_duration", e.pulse_duration, "the twin's loop gives ideal impulses");

@@ -78,9 +78,12 @@ IntegrationOptions IntegrationFrom(const ResultReader& r) {
     if (r.Find(*i, "absolute_tolerance")) o.absolute_tolerance = r.Number(*i, "integration", "absolute_tolerance");
     if (r.Find(*i, "relative_tolerance")) o.relative_tolerance = r.Number(*i, "integration", "relative_tolerance");
   }
-  const std::string bad = o.Validate();
-  if (!bad.empty()) r.Fail("integration", "(see message)", bad);
-  return o;
+  return InResultFields(r, {{"absolute_tolerance", "integration.absolute_tolerance"},
+                            {"relative_tolerance", "integration.relative_tolerance"}},
+                        [&] {
+                          if (const std::string bad = o.Validate(); !bad.empty()) throw std::invalid_argument(bad);
+                          return o;
+                        });
 }
 
 AngleState AnglesFrom(const ResultReader& r, const json& at, const std::string& where) {
