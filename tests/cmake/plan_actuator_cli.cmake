@@ -15,16 +15,16 @@ endif()
 # slip. The 16-impulse circle's 10 ms pulses need mu_s 0.5476 at the first impulse, then 0.109 to 0.113: with 0.5 only steps[0] slips.
 if(COMMAND plateball_cli_test)
   plateball_cli_test(plan.pulse_would_slip 3
-    REGEX "--static-friction: value 0.5: impulse steps\\[0\\] would slip: its pulse of 0.01 s needs mu_s >= 0.5475"
+    REGEX "command line: --static-friction: value 0.5: impulse steps\\[0\\] would slip: its pulse of 0.01 s needs mu_s >= 0.5475"
     -- plan problems/circle_physical.json --impulses 16 --pulse-duration 0.01 --static-friction 0.5)
   plateball_cli_test(plan.pulse_would_spin 3
-    REGEX "--torsional-friction: value 1e-04: impulse steps\\[0\\] would spin: its pulse of 0.01 s needs ell >= 0.000172"
+    REGEX "command line: --torsional-friction: value 1e-04: impulse steps\\[0\\] would spin: its pulse of 0.01 s needs ell >= 0.000172"
     -- plan problems/circle_physical.json --impulses 16 --pulse-duration 0.01 --torsional-friction 1e-4)
   # Pulses longer than a flight would overlap: the 16-impulse circle's first flight is 0.772 s.
   plateball_cli_test(plan.pulse_longer_than_flight 3
-    REGEX "--pulse-duration: value 1: longer than the flight of 0.772[0-9]* s after impulse steps\\[0\\]: its pulse would overlap the next one's"
+    REGEX "command line: --pulse-duration: value 1: longer than the flight of 0.772[0-9]* s after impulse steps\\[0\\]: its pulse would overlap the next one's"
     -- plan problems/circle_physical.json --impulses 16 --pulse-duration 1)
-  plateball_cli_test(steer.friction_needs_pulse 3 REGEX "--static-friction: value 0.6: needs --pulse-duration"
+  plateball_cli_test(steer.friction_needs_pulse 3 REGEX "command line: --static-friction: value 0.6: needs --pulse-duration"
     -- steer problems/figure7_exact.json --static-friction 0.6)
   plateball_cli_test(plan.pulse_error_excludes_duration 2 REGEX "--pulse-error excludes --pulse-duration"
     -- plan problems/circle.json --pulse-error 1e-3 --pulse-duration 0.1)

@@ -28,7 +28,7 @@ plateball_cli_test(rig.replay_centred_pulses 0 REGEX "\"kind\": \"centred_pulses
 # thousand times the centred pulses' 8.9e-6; within 10 % of the measurement.
 plateball_cli_test(rig.replay_causal_pulses 0 REGEX "\"kind\": \"causal_pulses\""
   --number orientation_error 9.91e-3 1e-3 -- rig replay ${rig}/plan16.json --pulse-duration 0.01 --pulse-causal)
-plateball_cli_test(rig.causal_needs_duration 3 REGEX "--pulse-causal: value true: needs --pulse-duration > 0"
+plateball_cli_test(rig.causal_needs_duration 3 REGEX "command line: --pulse-causal: value true: needs --pulse-duration > 0"
   -- rig replay ${rig}/plan16.json --pulse-causal)
 # An isoparallel result's plan (Figure 7 with a physical ball): measured 7.7e-8 r, 7.1e-7 rad.
 plateball_cli_test(rig.replay_isoparallel 0 REGEX "\"command\": \"isoparallel\""
@@ -42,15 +42,15 @@ plateball_cli_test(rig.export_schedule 0 REGEX "\"command\": \"rig_export\".*\"m
 # Bad input: exit 3 naming the field.
 plateball_cli_test(rig.no_physical_ball 3 REGEX "ball.physical: value \\(missing\\)"
   -- rig replay ${rig}/plan_lambda.json)
-plateball_cli_test(rig.overlapping_pulses 3 REGEX "--pulse-duration: value 1: longer than the flight of [0-9.e-]+ s after impulse 0: the pulses of impulses 0 and 1 overlap"
+plateball_cli_test(rig.overlapping_pulses 3 REGEX "command line: --pulse-duration: value 1: longer than the flight of [0-9.e-]+ s after impulse 0: the pulses of impulses 0 and 1 overlap"
   -- rig replay ${rig}/plan16.json --pulse-duration 1)
-plateball_cli_test(rig.export_overlapping_pulses 3 REGEX "--pulse-duration: value 1: longer than the flight"
+plateball_cli_test(rig.export_overlapping_pulses 3 REGEX "command line: --pulse-duration: value 1: longer than the flight"
   -- rig export ${rig}/plan16.json --mjcf ${rig}/bad.xml --pulse-duration 1)
 # A 1 us pulse needs 2.7 kN of friction at the top, where mu_s = 100 holds 49 N.
 plateball_cli_test(rig.pulse_would_slip 3
-  REGEX "--pulse-duration: value 1e-06: too short: impulse 0 would slip: the contacts need mu_s >= [0-9.e+]+ \\(top [0-9.e+]+ N"
+  REGEX "command line: --pulse-duration: value 1e-06: too short: impulse 0 would slip: the contacts need mu_s >= [0-9.e+]+ \\(top [0-9.e+]+ N"
   -- rig export ${rig}/plan16.json --mjcf ${rig}/slip.xml --pulse-duration 1e-6)
-plateball_cli_test(rig.bad_timestep 3 REGEX "--dt: value 0: must be in \\(0, 0.1\\] s"
+plateball_cli_test(rig.bad_timestep 3 REGEX "command line: --dt: value 0: must be in \\(0, 0.1\\] s"
   -- rig replay ${rig}/plan16.json --dt 0)
 plateball_cli_test(rig.not_a_plan 3 REGEX "command: value \"simulate\": the rig replays results of"
   -- rig replay ${rig}/simulate.json)

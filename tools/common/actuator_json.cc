@@ -39,11 +39,11 @@ Json PulseJson(const PulseForces& f, const PulseOptions& o) {
 // Too little friction for the pulse's force is invalid input naming the option and the impulse.
 void ThrowIfSlips(const PulseForces& f, const PulseOptions& o, const std::string& where) {
   if (f.slides)
-    ThrowInvalidInput("--static-friction", FormatNumber(o.static_friction),
+    ThrowInvalidInput(CommandLineField("--static-friction"), FormatNumber(o.static_friction),
                       "impulse " + where + " would slip: its pulse of " + FormatNumber(o.duration) +
                           " s needs mu_s >= " + FormatNumber(f.sliding_friction_needed));
   if (f.spins)
-    ThrowInvalidInput("--torsional-friction", FormatNumber(o.torsional_friction),
+    ThrowInvalidInput(CommandLineField("--torsional-friction"), FormatNumber(o.torsional_friction),
                       "impulse " + where + " would spin: its pulse of " + FormatNumber(o.duration) +
                           " s needs ell >= " + FormatNumber(f.torsional_friction_needed) + " m");
 }
@@ -77,11 +77,11 @@ ActuatorRequest ActuatorOptions::Request() const {
   const bool pulse = duration_opt_->count() > 0 || (pulse_error_opt_ && pulse_error_opt_->count() > 0);
   for (const CLI::Option* opt : extras_)
     if (opt->count() > 0 && !pulse)
-      ThrowInvalidInput(opt->get_name(), opt->as<std::string>(),
+      ThrowInvalidInput(CommandLineField(opt->get_name()), opt->as<std::string>(),
                         std::string("needs --pulse-duration") + (pulse_error_opt_ ? " or --pulse-error" : ""));
   if (duration_opt_ && duration_opt_->count() > 0) {
     if (!(std::isfinite(duration_) && duration_ > 0))
-      ThrowInvalidInput("--pulse-duration", FormatNumber(duration_), "must be finite and > 0 s");
+      ThrowInvalidInput(CommandLineField("--pulse-duration"), FormatNumber(duration_), "must be finite and > 0 s");
     r.pulse.duration = duration_;
     r.has_pulse = true;
   }
@@ -125,7 +125,7 @@ void CheckPulseFlights(const std::vector<double>& times, double final_time, cons
     const double flight = (last ? final_time : times[k + 1]) - times[k];
     if (last && flight <= 0) continue;  // an impulse at the end (a stop)
     if (d > flight)
-      ThrowInvalidInput("--pulse-duration", FormatNumber(d),
+      ThrowInvalidInput(CommandLineField("--pulse-duration"), FormatNumber(d),
                         "longer than the flight of " + FormatNumber(flight) + " s after impulse " + list + "[" +
                             std::to_string(k) + "]: " +
                             (last ? "its pulse would run past the end" : "its pulse would overlap the next one's"));

@@ -377,7 +377,7 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
   if (cli.certify) CheckCertifyOptions(cli, prob);
   // Exact arrival needs 2n unknowns >= 5 conditions (exact_arrival.h): checked before the solve.
   if (cli.exact && impulses != 0 && (impulses < 3 || impulses > plateball::kMaxExactImpulses))
-    ThrowInvalidInput("--impulses", std::to_string(impulses),
+    ThrowInvalidInput(CommandLineField("--impulses"), std::to_string(impulses),
                       "--exact needs 3 ... " + std::to_string(plateball::kMaxExactImpulses) + " impulses");
   const IsoparallelSummary summary = SolveWithProgress(setup, cli.program);
 

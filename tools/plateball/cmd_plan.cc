@@ -142,7 +142,7 @@ int RunPlan(const PlanCliOptions& o) {
   ActuatorRequest request = o.actuator.Request();
   const bool schedule = o.pulse_error_opt->count() > 0;
   if (schedule && !(std::isfinite(o.pulse_error) && o.pulse_error > 0))
-    throw std::invalid_argument("--pulse-error: value " + FormatNumber(o.pulse_error) + ": must be finite and > 0");
+    ThrowInvalidInput(CommandLineField("--pulse-error"), FormatNumber(o.pulse_error), "must be finite and > 0");
   // With --pulse-error the plan is executed (execution.h), which needs its pass points and goal.
   const auto nominal = std::make_shared<const NominalPlan>([&] {
     Progress progress("plateball plan", 0);  // one solve: the elapsed time

@@ -44,11 +44,11 @@ rig::ReplayOptions ReplayOptionsOf(const RigCliOptions& o) {
   r.pulse_duration = o.pulse_duration;
   r.causal = o.causal;
   if (!(std::isfinite(o.dt) && o.dt > 0 && o.dt <= 0.1))
-    ThrowInvalidInput("--dt", FormatNumber(o.dt), "must be in (0, 0.1] s");
+    ThrowInvalidInput(CommandLineField("--dt"), FormatNumber(o.dt), "must be in (0, 0.1] s");
   if (!(std::isfinite(o.pulse_duration) && o.pulse_duration >= 0))
-    ThrowInvalidInput("--pulse-duration", FormatNumber(o.pulse_duration), "must be finite and >= 0 s (0: ideal velocity jumps)");
+    ThrowInvalidInput(CommandLineField("--pulse-duration"), FormatNumber(o.pulse_duration), "must be finite and >= 0 s (0: ideal velocity jumps)");
   if (o.causal && o.pulse_duration == 0)
-    ThrowInvalidInput("--pulse-causal", "true", "needs --pulse-duration > 0 (ideal jumps have no window)");
+    ThrowInvalidInput(CommandLineField("--pulse-causal"), "true", "needs --pulse-duration > 0 (ideal jumps have no window)");
   return r;
 }
 
@@ -64,7 +64,7 @@ auto WithOptionNames(F f) {
     return f();
   } catch (const std::invalid_argument& e) {
     std::string m = e.what();
-    if (m.rfind("pulse_duration:", 0) == 0) m = "--pulse-duration" + m.substr(std::string("pulse_duration").size());
+    if (m.rfind("pulse_duration:", 0) == 0) m = CommandLineField("--pulse-duration") + m.substr(std::string("pulse_duration").size());
     throw std::invalid_argument(m);
   }
 }
