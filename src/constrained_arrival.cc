@@ -518,6 +518,9 @@ bool SolveWithExchange(const ConstrainedSetup& s, Samples* sm, const std::vector
     Stage st(s, *sm, *u, free, false);
     *u = RunSlsqp(&st, &out->evaluations);
     out->rollouts += st.rollouts;
+    // Infeasible at its own sample nodes: more nodes only add constraints, so no round can help.
+    const Evaluation& at_u = st.last.u == *u ? st.last : Evaluate(s, *sm, *u, &out->rollouts);
+    if (MaxViolation(at_u) > kFeasibilityTolerance) return false;
     const auto missed = MissedPoints(s, *u, kDenseSamples, &out->rollouts);
     if (std::all_of(missed.begin(), missed.end(), [](const auto& m) { return m.empty(); })) return true;
     auto fractions = sm->fractions;
@@ -561,7 +564,10 @@ ConstrainedOutcome SolveConstrainedArrival(const ConstrainedSetup& s, const Eige
   Evaluation e = Evaluate(s, sm, u, &out.rollouts);
   out.feasible = covered && MaxViolation(e) <= kFeasibilityTolerance;
   out.arrived = out.feasible && Arrived(s, u, &out.rollouts);
-  if (!out.arrived) {  // the closest feasible arrival, and the limits that stop it
+  if (!out.arrived && !s.closest_arrival) {  // the limits that stop it at the solver's end point
+    out.blocking = ActiveNames(s, e);
+    if (grid) out.blocking.push_back("tick");
+  } else if (!out.arrived) {  // the closest feasible arrival, and the limits that stop it
     u = LeastViolating(s, sm, u, &out.rollouts);
     Stage closest(s, sm, u, free, true);
     u = RunSlsqp(&closest, &out.evaluations);

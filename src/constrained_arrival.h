@@ -46,6 +46,9 @@ struct ConstrainedSetup {
   int samples_per_arc = 4;
   double sampling_margin = 2e-3;  ///< ball radii: the sag of the path between samples
   int max_evaluations = 200;
+  /// When no arrival meets the limits, search the closest feasible arrival (else the outcome is
+  /// the solver's end point, `feasible` as found there).
+  bool closest_arrival = true;
 };
 
 struct ConstrainedOutcome {

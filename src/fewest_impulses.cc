@@ -101,6 +101,7 @@ struct Search {
   int* starts = nullptr;  // starts tried in all counts, for the progress hook
   bool limited = false;   // the problem has limits (rows are reached only within them)
   FewestImpulsesSummary* summary = nullptr;  // for the constrained solver's counters
+  bool closest_wanted = true;  // a count's closest feasible arrival is reported (not in a continuation)
 };
 
 // The arrival conditions (the orientation's three first with orientation_only) at the chain's end.
@@ -435,7 +436,8 @@ constexpr int kMaxFailedSolves = 2;
 // the constrained solver's arrival from it; either counts only when the independent check passes.
 void Admit(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, FewestImpulsesCount* row,
            CountBest* best) {
-  const internal::ConstrainedSetup cs = ConstrainedFor(s, row->impulses);
+  internal::ConstrainedSetup cs = ConstrainedFor(s, row->impulses);
+  cs.closest_arrival = s.closest_wanted && !std::isfinite(best->time);  // else KeepClosestFeasible keeps nothing
   Eigen::VectorXd v = u;
   std::vector<ChainNode> v_nodes = nodes;
   std::vector<long long> ticks;
@@ -617,6 +619,8 @@ std::optional<FewestImpulsesCount> Continue(const Search& s, int n, const Eigen:
   FewestImpulsesCount row;
   row.impulses = n;
   CountBest best;
+  Search merged = s;  // the row is dropped unless it arrives: no closest feasible arrival is reported
+  merged.closest_wanted = false;
   for (int k : order) {
     Eigen::VectorXd w = u;
     try {
@@ -624,7 +628,7 @@ std::optional<FewestImpulsesCount> Continue(const Search& s, int n, const Eigen:
     } catch (const std::runtime_error&) {
       continue;
     }
-    Refine(s, Merge(w, k), &row, &best);
+    Refine(merged, Merge(w, k), &row, &best);
     if (Met(s, row) > 0) break;
   }
   if (Met(s, row) == 0) return std::nullopt;
