@@ -73,6 +73,19 @@ struct Samples {
     }
     offset.push_back(nodes);
   }
+  // The sub-chain's parameters as functions of u (the Jacobian's columns).
+  ChainColumns Columns() const {
+    const int n = static_cast<int>(fractions.size());
+    ChainColumns c;
+    c.columns = 2 * n;
+    for (int k = 0; k < n; ++k)
+      for (std::size_t j = 0; j < fractions[static_cast<std::size_t>(k)].size(); ++j) {
+        c.s_column.push_back(j == 0 ? k : -1);
+        c.t_column.push_back(n + k);
+        c.t_scale.push_back(Width(k, static_cast<int>(j)));
+      }
+    return c;
+  }
   static Samples Uniform(int n, int m) {
     std::vector<double> f;
     for (int j = 1; j <= m; ++j) f.push_back(static_cast<double>(j) / m);
@@ -83,20 +96,6 @@ struct Samples {
     return f[static_cast<std::size_t>(j)] - (j == 0 ? 0.0 : f[static_cast<std::size_t>(j) - 1]);
   }
 };
-
-// Derivatives with respect to the sub-chain's parameters as derivatives with respect to u: s_k is
-// the sub-chain's s at impulse k's node, and t_k splits by the fractions.
-Eigen::MatrixXd Reduce(const Eigen::MatrixXd& d_sub, const Samples& sm) {
-  const int n = static_cast<int>(sm.fractions.size());
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(d_sub.rows(), 2 * n);
-  for (int k = 0; k < n; ++k) {
-    const int o = sm.offset[static_cast<std::size_t>(k)];
-    d.col(k) = d_sub.col(o);
-    for (std::size_t j = 0; j < sm.fractions[static_cast<std::size_t>(k)].size(); ++j)
-      d.col(n + k) += d_sub.col(sm.nodes + o + static_cast<int>(j)) * sm.Width(k, static_cast<int>(j));
-  }
-  return d;
-}
 
 Eigen::VectorXd SubParameters(const Eigen::VectorXd& u, const Samples& sm) {
   const int n = static_cast<int>(sm.fractions.size());
@@ -170,7 +169,7 @@ ImpulseTerm Impulse(const ConstrainedSetup& s, const Samples& sm, const std::vec
   ImpulseTerm t;
   t.value = ImpulseMagnitude(s, nodes[node].z, nodes[node].k, turn, role, as_impulse);
   const Eigen::Matrix<double, 1, 6> g = ImpulseGradient(s, nodes[node].z, nodes[node].k, turn, role, as_impulse);
-  t.gradient = g.head<3>() * Reduce(cj.dz[node], sm) + g.segment<2>(3) * Reduce(cj.dk[node], sm);
+  t.gradient = g.head<3>() * cj.dz[node] + g.segment<2>(3) * cj.dk[node];
   if (k < s.n) t.gradient[k] += g[5];
   return t;
 }
@@ -209,7 +208,7 @@ void AddObjective(const ConstrainedSetup& s, const Samples& sm, const std::vecto
       const std::size_t node = static_cast<std::size_t>(sm.offset[static_cast<std::size_t>(k)]);
       const Eigen::Vector2d d = nodes[node].x - s.planned[static_cast<std::size_t>(k)];
       e->f += d.squaredNorm();
-      e->df += 2.0 * d.transpose() * Reduce(cj.dx[node], sm);
+      e->df += 2.0 * d.transpose() * cj.dx[node];
     }
   }
 }
@@ -218,15 +217,16 @@ Evaluation Evaluate(const ConstrainedSetup& s, const Samples& sm, const Eigen::V
   std::vector<ChainNode> nodes(static_cast<std::size_t>(sm.nodes) + 1);
   nodes[0] = s.start;
   ChainJacobian cj;
-  RollChain(s.lambda, SubParameters(u, sm), s.jacobian_integration, &nodes, &s.jacobian_integration, &cj);
+  const ChainColumns columns = sm.Columns();
+  RollChain(s.lambda, SubParameters(u, sm), s.jacobian_integration, &nodes, &s.jacobian_integration, &cj, &columns);
   ++*rollouts;
   Evaluation e;
   e.u = u;
   e.r = ArrivalResidual(nodes.back(), s.x1, s.A1);
-  e.dr = Reduce(ArrivalJacobian(cj, nodes.back(), s.A1), sm);
+  e.dr = ArrivalJacobian(cj, nodes.back(), s.A1);
   e.df = Eigen::RowVectorXd::Zero(2 * s.n);
   AddObjective(s, sm, nodes, cj, &e);
-  for (std::size_t i = 1; i < nodes.size(); ++i) AddPositionConstraints(s, nodes[i].x, Reduce(cj.dx[i], sm), &e);
+  for (std::size_t i = 1; i < nodes.size(); ++i) AddPositionConstraints(s, nodes[i].x, cj.dx[i], &e);
   AddImpulseTerms(s, sm, nodes, cj, u, &e);
   return e;
 }
