@@ -22,6 +22,8 @@ constexpr double kFeasibilityTolerance = 1e-7;
 // Points per flight of the dense look between sample nodes, and the rounds of adding missed points.
 constexpr int kDenseSamples = 32;
 constexpr int kExchangeRounds = 3;
+// An SLSQP round that ends farther outside than this fraction of the sampling margin is not run again.
+constexpr double kRestartViolation = 0.5;
 
 enum class ImpulseRole { kTurn, kStart, kStop };
 
@@ -375,14 +377,58 @@ std::vector<std::string> ActiveNames(const ConstrainedSetup& s, const Evaluation
   return out;
 }
 
+// The free entries that Newton steps move: flight times held at their lower bound stay there.
+std::vector<int> NewtonEntries(const ConstrainedSetup& s, const std::vector<int>& free_entries, const Eigen::VectorXd& u) {
+  std::vector<int> free;
+  for (int j : free_entries)
+    if (j < s.n || FlightLowerBound(s, j - s.n) <= kMinFlight || u[j] > FlightLowerBound(s, j - s.n) * (1 + 1e-9))
+      free.push_back(j);
+  return free;
+}
+
+// |arrival residual| + the sum of the violations: what RestoreFeasibility reduces.
+double FeasibilityMerit(const Evaluation& e) {
+  double sum = e.r.norm();
+  for (double g : e.g) sum += std::max(g, 0.0);
+  return sum;
+}
+
+// From a point SLSQP left just outside its tolerance (round-off): Newton steps (minimum norm) on
+// the arrival conditions together with the violated inequalities, each pulled onto its bound,
+// kept while they reduce FeasibilityMerit. A point within the tolerance is left unchanged.
+void RestoreFeasibility(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free_entries,
+                        Eigen::VectorXd* u, int* rollouts) {
+  constexpr int kSteps = 6;
+  Evaluation e = Evaluate(s, sm, *u, rollouts);
+  const std::vector<int> free = NewtonEntries(s, free_entries, *u);
+  for (int i = 0; i < kSteps && MaxViolation(e) > kFeasibilityTolerance; ++i) {
+    std::vector<Eigen::RowVectorXd> rows;
+    std::vector<double> rhs;
+    for (int c = 0; c < 5; ++c) rows.push_back(e.dr.row(c)), rhs.push_back(-e.r[c]);
+    for (std::size_t c = 0; c < e.g.size(); ++c)
+      if (e.g[c] > 0) rows.push_back(e.dg[c]), rhs.push_back(-e.g[c]);
+    Eigen::MatrixXd J(rows.size(), free.size());
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (std::size_t c = 0; c < free.size(); ++c)
+        J(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][free[c]];
+    const Eigen::VectorXd step =
+        J.completeOrthogonalDecomposition().solve(Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size())));
+    Eigen::VectorXd trial = *u;
+    for (std::size_t c = 0; c < free.size(); ++c) trial[free[c]] += step[static_cast<Eigen::Index>(c)];
+    for (int k = 0; k < s.n; ++k)
+      if (trial[s.n + k] < FlightLowerBound(s, k)) return;
+    Evaluation next = Evaluate(s, sm, trial, rollouts);
+    if (!(FeasibilityMerit(next) < FeasibilityMerit(e))) return;
+    *u = trial;
+    e = std::move(next);
+  }
+}
+
 // Newton steps (minimum norm) on the arrival conditions over the free entries, rolled at the final
 // tolerance; flight times held at their lower bound stay there.
 void Polish(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free_entries, Eigen::VectorXd* u,
             int* rollouts) {
-  std::vector<int> free;
-  for (int j : free_entries)
-    if (j < s.n || FlightLowerBound(s, j - s.n) <= kMinFlight || (*u)[j] > FlightLowerBound(s, j - s.n) * (1 + 1e-9))
-      free.push_back(j);
+  const std::vector<int> free = NewtonEntries(s, free_entries, *u);
   std::vector<ChainNode> nodes(static_cast<std::size_t>(s.n) + 1);
   nodes[0] = s.start;
   RollChain(s.lambda, *u, s.integration, &nodes);
@@ -518,9 +564,11 @@ bool SolveWithExchange(const ConstrainedSetup& s, Samples* sm, const std::vector
     Stage st(s, *sm, *u, free, false);
     *u = RunSlsqp(&st, &out->evaluations);
     out->rollouts += st.rollouts;
-    // Infeasible at its own sample nodes: more nodes only add constraints, so no round can help.
+    // Far outside at its own sample nodes (more than the sampling margin's half, the largest miss
+    // the exchange adds): more nodes only add constraints, so a further round would repeat the
+    // failure. A round that ends just outside (round-off, the evaluation limit) is run again.
     const Evaluation& at_u = st.last.u == *u ? st.last : Evaluate(s, *sm, *u, &out->rollouts);
-    if (MaxViolation(at_u) > kFeasibilityTolerance) return false;
+    if (MaxViolation(at_u) > kRestartViolation * s.sampling_margin) return false;
     const auto missed = MissedPoints(s, *u, kDenseSamples, &out->rollouts);
     if (std::all_of(missed.begin(), missed.end(), [](const auto& m) { return m.empty(); })) return true;
     auto fractions = sm->fractions;
@@ -560,6 +608,7 @@ ConstrainedOutcome SolveConstrainedArrival(const ConstrainedSetup& s, const Eige
     out.ticks = SnapToGrid(s, &u);
     covered = SolveWithExchange(s, &sm, free, &u, &out);
   }
+  if (covered) RestoreFeasibility(s, sm, free, &u, &out.rollouts);
   Polish(s, sm, free, &u, &out.rollouts);
   Evaluation e = Evaluate(s, sm, u, &out.rollouts);
   out.feasible = covered && MaxViolation(e) <= kFeasibilityTolerance;
