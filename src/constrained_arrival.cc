@@ -24,6 +24,8 @@ constexpr int kDenseSamples = 32;
 constexpr int kExchangeRounds = 3;
 // An SLSQP round that ends farther outside than this fraction of the sampling margin is not run again.
 constexpr double kRestartViolation = 0.5;
+// RestoreFeasibility also acts on a point whose arrival residual (at the Jacobian's tolerance) is above this.
+constexpr double kRestoreResidual = 1e-9;
 
 enum class ImpulseRole { kTurn, kStart, kStop };
 
@@ -393,15 +395,16 @@ double FeasibilityMerit(const Evaluation& e) {
   return sum;
 }
 
-// From a point SLSQP left just outside its tolerance (round-off): Newton steps (minimum norm) on
-// the arrival conditions together with the violated inequalities, each pulled onto its bound,
-// kept while they reduce FeasibilityMerit. A point within the tolerance is left unchanged.
-void RestoreFeasibility(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free_entries,
-                        Eigen::VectorXd* u, int* rollouts) {
+// From a point SLSQP left off the arrival or just outside its tolerance (round-off, e.g. on the
+// kinks of the total impulse at zero impulses): Newton steps (minimum norm) on the arrival
+// conditions together with the violated inequalities, each pulled onto its bound, kept while they
+// reduce FeasibilityMerit. A point within both tolerances is left unchanged.
+Evaluation RestoreFeasibility(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free_entries,
+                              Eigen::VectorXd* u, int* rollouts) {
   constexpr int kSteps = 6;
   Evaluation e = Evaluate(s, sm, *u, rollouts);
   const std::vector<int> free = NewtonEntries(s, free_entries, *u);
-  for (int i = 0; i < kSteps && MaxViolation(e) > kFeasibilityTolerance; ++i) {
+  for (int i = 0; i < kSteps && (MaxViolation(e) > kFeasibilityTolerance || e.r.norm() > kRestoreResidual); ++i) {
     std::vector<Eigen::RowVectorXd> rows;
     std::vector<double> rhs;
     for (int c = 0; c < 5; ++c) rows.push_back(e.dr.row(c)), rhs.push_back(-e.r[c]);
@@ -416,12 +419,13 @@ void RestoreFeasibility(const ConstrainedSetup& s, const Samples& sm, const std:
     Eigen::VectorXd trial = *u;
     for (std::size_t c = 0; c < free.size(); ++c) trial[free[c]] += step[static_cast<Eigen::Index>(c)];
     for (int k = 0; k < s.n; ++k)
-      if (trial[s.n + k] < FlightLowerBound(s, k)) return;
+      if (trial[s.n + k] < FlightLowerBound(s, k)) return e;
     Evaluation next = Evaluate(s, sm, trial, rollouts);
-    if (!(FeasibilityMerit(next) < FeasibilityMerit(e))) return;
+    if (!(FeasibilityMerit(next) < FeasibilityMerit(e))) return e;
     *u = trial;
     e = std::move(next);
   }
+  return e;
 }
 
 // Newton steps (minimum norm) on the arrival conditions over the free entries, rolled at the final
@@ -564,10 +568,10 @@ bool SolveWithExchange(const ConstrainedSetup& s, Samples* sm, const std::vector
     Stage st(s, *sm, *u, free, false);
     *u = RunSlsqp(&st, &out->evaluations);
     out->rollouts += st.rollouts;
-    // Far outside at its own sample nodes (more than the sampling margin's half, the largest miss
-    // the exchange adds): more nodes only add constraints, so a further round would repeat the
-    // failure. A round that ends just outside (round-off, the evaluation limit) is run again.
-    const Evaluation& at_u = st.last.u == *u ? st.last : Evaluate(s, *sm, *u, &out->rollouts);
+    // Still far outside at its own sample nodes (more than the sampling margin's half, the largest
+    // miss the exchange adds): more nodes only add constraints, so a further round would repeat
+    // the failure. A round that ends just outside is run again.
+    const Evaluation at_u = RestoreFeasibility(s, *sm, free, u, &out->rollouts);
     if (MaxViolation(at_u) > kRestartViolation * s.sampling_margin) return false;
     const auto missed = MissedPoints(s, *u, kDenseSamples, &out->rollouts);
     if (std::all_of(missed.begin(), missed.end(), [](const auto& m) { return m.empty(); })) return true;
@@ -608,7 +612,6 @@ ConstrainedOutcome SolveConstrainedArrival(const ConstrainedSetup& s, const Eige
     out.ticks = SnapToGrid(s, &u);
     covered = SolveWithExchange(s, &sm, free, &u, &out);
   }
-  if (covered) RestoreFeasibility(s, sm, free, &u, &out.rollouts);
   Polish(s, sm, free, &u, &out.rollouts);
   Evaluation e = Evaluate(s, sm, u, &out.rollouts);
   out.feasible = covered && MaxViolation(e) <= kFeasibilityTolerance;
