@@ -39,7 +39,6 @@ struct ArcSensRhs {
 
 // The arc's end and its 14 x 6 Jacobian with respect to (z0, K, t).
 struct ArcDerivative {
-  FullState end;
   Eigen::Matrix<double, kValues, kParams + 1> d;
 };
 
@@ -57,7 +56,6 @@ ArcDerivative DifferentiateArc(double lambda, const Eigen::Vector3d& z0, const E
   ArcSensState f{};
   rhs(y, f, t);
   ArcDerivative out;
-  for (int i = 0; i < kValues; ++i) out.end[static_cast<std::size_t>(i)] = y[static_cast<std::size_t>(i)];
   for (int i = 0; i < kValues; ++i) {
     for (int j = 0; j < kParams; ++j) out.d(i, j) = y[kValues + kParams * i + j];
     out.d(i, kParams) = f[i];
@@ -163,10 +161,7 @@ void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions
     ChainNode& a = (*nodes)[static_cast<std::size_t>(k)];
     Eigen::Vector2d k_after;
     ImpulseMomentum(a.z.data(), a.k.data(), u[k], lambda, k_after.data());
-    // With the Jacobian, the arc's end comes from the same integration as its derivatives.
-    ArcDerivative arc_d;
-    if (jacobian) arc_d = DifferentiateArc(lambda, a.z, k_after, u[n + k], *jacobian_integration);
-    const FullState arc = jacobian ? arc_d.end : RollArc(lambda, a.z, k_after, u[n + k], integration);
+    const FullState arc = RollArc(lambda, a.z, k_after, u[n + k], integration);
     const Eigen::Matrix3d phi = MatrixFromRowMajor(arc.data() + 5);
     ChainNode& b = (*nodes)[static_cast<std::size_t>(k) + 1];
     b.z = Eigen::Vector3d(arc[0], arc[1], arc[2]).normalized();
@@ -177,6 +172,7 @@ void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions
     const Eigen::Matrix<double, 2, 6> g = DifferentiateImpulse(a.z, a.k, u[k], lambda);
     Eigen::MatrixXd dk_after = g.leftCols<3>() * dz + g.middleCols<2>(3) * dk;
     if (s_column(k) >= 0) dk_after.col(s_column(k)) += g.col(5);
+    const ArcDerivative arc_d = DifferentiateArc(lambda, a.z, k_after, u[n + k], *jacobian_integration);
     Eigen::MatrixXd dy = arc_d.d.leftCols<3>() * dz + arc_d.d.middleCols<2>(3) * dk_after;  // 14 x cols
     dy.col(t_column(k)) += arc_d.d.col(kParams) * t_scale(k);
     // A_{k+1} = Phi A_k: dA = dPhi A_k + Phi dA_k, row-major.

@@ -83,9 +83,8 @@ struct ChainColumns {
 
 /// Rolls the chain from nodes[0] with u = (s, t) (n = u.size() / 2), filling nodes[1..n] (A
 /// re-projected onto SO(3) after every arc). With `jacobian`, also the exact Jacobian (the arcs are
-/// then integrated with their variational equations at `jacobian_integration`, which then gives
-/// the nodes too, instead of `integration`), with respect to u, or to the unknowns of `columns`
-/// when given.
+/// then integrated once more with their variational equations at `jacobian_integration`), with
+/// respect to u, or to the unknowns of `columns` when given.
 /// Throws std::runtime_error when an integration fails.
 void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions& integration,
                std::vector<ChainNode>* nodes, const IntegrationOptions* jacobian_integration = nullptr,
