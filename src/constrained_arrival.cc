@@ -22,6 +22,10 @@ constexpr double kFeasibilityTolerance = 1e-7;
 // Points per flight of the dense look between sample nodes, and the rounds of adding missed points.
 constexpr int kDenseSamples = 32;
 constexpr int kExchangeRounds = 3;
+// An SLSQP round that ends farther outside than this fraction of the sampling margin is not run again.
+constexpr double kRestartViolation = 0.5;
+// RestoreFeasibility also acts on a point whose arrival residual (at the Jacobian's tolerance) is above this.
+constexpr double kRestoreResidual = 1e-9;
 
 enum class ImpulseRole { kTurn, kStart, kStop };
 
@@ -73,6 +77,19 @@ struct Samples {
     }
     offset.push_back(nodes);
   }
+  // The sub-chain's parameters as functions of u (the Jacobian's columns).
+  ChainColumns Columns() const {
+    const int n = static_cast<int>(fractions.size());
+    ChainColumns c;
+    c.columns = 2 * n;
+    for (int k = 0; k < n; ++k)
+      for (std::size_t j = 0; j < fractions[static_cast<std::size_t>(k)].size(); ++j) {
+        c.s_column.push_back(j == 0 ? k : -1);
+        c.t_column.push_back(n + k);
+        c.t_scale.push_back(Width(k, static_cast<int>(j)));
+      }
+    return c;
+  }
   static Samples Uniform(int n, int m) {
     std::vector<double> f;
     for (int j = 1; j <= m; ++j) f.push_back(static_cast<double>(j) / m);
@@ -83,20 +100,6 @@ struct Samples {
     return f[static_cast<std::size_t>(j)] - (j == 0 ? 0.0 : f[static_cast<std::size_t>(j) - 1]);
   }
 };
-
-// Derivatives with respect to the sub-chain's parameters as derivatives with respect to u: s_k is
-// the sub-chain's s at impulse k's node, and t_k splits by the fractions.
-Eigen::MatrixXd Reduce(const Eigen::MatrixXd& d_sub, const Samples& sm) {
-  const int n = static_cast<int>(sm.fractions.size());
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(d_sub.rows(), 2 * n);
-  for (int k = 0; k < n; ++k) {
-    const int o = sm.offset[static_cast<std::size_t>(k)];
-    d.col(k) = d_sub.col(o);
-    for (std::size_t j = 0; j < sm.fractions[static_cast<std::size_t>(k)].size(); ++j)
-      d.col(n + k) += d_sub.col(sm.nodes + o + static_cast<int>(j)) * sm.Width(k, static_cast<int>(j));
-  }
-  return d;
-}
 
 Eigen::VectorXd SubParameters(const Eigen::VectorXd& u, const Samples& sm) {
   const int n = static_cast<int>(sm.fractions.size());
@@ -170,7 +173,7 @@ ImpulseTerm Impulse(const ConstrainedSetup& s, const Samples& sm, const std::vec
   ImpulseTerm t;
   t.value = ImpulseMagnitude(s, nodes[node].z, nodes[node].k, turn, role, as_impulse);
   const Eigen::Matrix<double, 1, 6> g = ImpulseGradient(s, nodes[node].z, nodes[node].k, turn, role, as_impulse);
-  t.gradient = g.head<3>() * Reduce(cj.dz[node], sm) + g.segment<2>(3) * Reduce(cj.dk[node], sm);
+  t.gradient = g.head<3>() * cj.dz[node] + g.segment<2>(3) * cj.dk[node];
   if (k < s.n) t.gradient[k] += g[5];
   return t;
 }
@@ -209,7 +212,7 @@ void AddObjective(const ConstrainedSetup& s, const Samples& sm, const std::vecto
       const std::size_t node = static_cast<std::size_t>(sm.offset[static_cast<std::size_t>(k)]);
       const Eigen::Vector2d d = nodes[node].x - s.planned[static_cast<std::size_t>(k)];
       e->f += d.squaredNorm();
-      e->df += 2.0 * d.transpose() * Reduce(cj.dx[node], sm);
+      e->df += 2.0 * d.transpose() * cj.dx[node];
     }
   }
 }
@@ -218,15 +221,16 @@ Evaluation Evaluate(const ConstrainedSetup& s, const Samples& sm, const Eigen::V
   std::vector<ChainNode> nodes(static_cast<std::size_t>(sm.nodes) + 1);
   nodes[0] = s.start;
   ChainJacobian cj;
-  RollChain(s.lambda, SubParameters(u, sm), s.jacobian_integration, &nodes, &s.jacobian_integration, &cj);
+  const ChainColumns columns = sm.Columns();
+  RollChain(s.lambda, SubParameters(u, sm), s.jacobian_integration, &nodes, &s.jacobian_integration, &cj, &columns);
   ++*rollouts;
   Evaluation e;
   e.u = u;
   e.r = ArrivalResidual(nodes.back(), s.x1, s.A1);
-  e.dr = Reduce(ArrivalJacobian(cj, nodes.back(), s.A1), sm);
+  e.dr = ArrivalJacobian(cj, nodes.back(), s.A1);
   e.df = Eigen::RowVectorXd::Zero(2 * s.n);
   AddObjective(s, sm, nodes, cj, &e);
-  for (std::size_t i = 1; i < nodes.size(); ++i) AddPositionConstraints(s, nodes[i].x, Reduce(cj.dx[i], sm), &e);
+  for (std::size_t i = 1; i < nodes.size(); ++i) AddPositionConstraints(s, nodes[i].x, cj.dx[i], &e);
   AddImpulseTerms(s, sm, nodes, cj, u, &e);
   return e;
 }
@@ -375,14 +379,60 @@ std::vector<std::string> ActiveNames(const ConstrainedSetup& s, const Evaluation
   return out;
 }
 
+// The free entries that Newton steps move: flight times held at their lower bound stay there.
+std::vector<int> NewtonEntries(const ConstrainedSetup& s, const std::vector<int>& free_entries, const Eigen::VectorXd& u) {
+  std::vector<int> free;
+  for (int j : free_entries)
+    if (j < s.n || FlightLowerBound(s, j - s.n) <= kMinFlight || u[j] > FlightLowerBound(s, j - s.n) * (1 + 1e-9))
+      free.push_back(j);
+  return free;
+}
+
+// |arrival residual| + the sum of the violations: what RestoreFeasibility reduces.
+double FeasibilityMerit(const Evaluation& e) {
+  double sum = e.r.norm();
+  for (double g : e.g) sum += std::max(g, 0.0);
+  return sum;
+}
+
+// From a point SLSQP left off the arrival or just outside its tolerance (round-off, e.g. on the
+// kinks of the total impulse at zero impulses): Newton steps (minimum norm) on the arrival
+// conditions together with the violated inequalities, each pulled onto its bound, kept while they
+// reduce FeasibilityMerit. A point within both tolerances is left unchanged.
+Evaluation RestoreFeasibility(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free_entries,
+                              Eigen::VectorXd* u, int* rollouts) {
+  constexpr int kSteps = 6;
+  Evaluation e = Evaluate(s, sm, *u, rollouts);
+  const std::vector<int> free = NewtonEntries(s, free_entries, *u);
+  for (int i = 0; i < kSteps && (MaxViolation(e) > kFeasibilityTolerance || e.r.norm() > kRestoreResidual); ++i) {
+    std::vector<Eigen::RowVectorXd> rows;
+    std::vector<double> rhs;
+    for (int c = 0; c < 5; ++c) rows.push_back(e.dr.row(c)), rhs.push_back(-e.r[c]);
+    for (std::size_t c = 0; c < e.g.size(); ++c)
+      if (e.g[c] > 0) rows.push_back(e.dg[c]), rhs.push_back(-e.g[c]);
+    Eigen::MatrixXd J(rows.size(), free.size());
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (std::size_t c = 0; c < free.size(); ++c)
+        J(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][free[c]];
+    const Eigen::VectorXd step =
+        J.completeOrthogonalDecomposition().solve(Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size())));
+    Eigen::VectorXd trial = *u;
+    for (std::size_t c = 0; c < free.size(); ++c) trial[free[c]] += step[static_cast<Eigen::Index>(c)];
+    for (int k = 0; k < s.n; ++k)
+      if (trial[s.n + k] < FlightLowerBound(s, k)) return e;
+    Evaluation next = Evaluate(s, sm, trial, rollouts);
+    if (!(FeasibilityMerit(next) < FeasibilityMerit(e))) return e;
+    *u = trial;
+    e = std::move(next);
+  }
+  return e;
+}
+
 // Newton steps (minimum norm) on the arrival conditions over the free entries, rolled at the final
 // tolerance; flight times held at their lower bound stay there.
 void Polish(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free_entries, Eigen::VectorXd* u,
             int* rollouts) {
-  std::vector<int> free;
-  for (int j : free_entries)
-    if (j < s.n || FlightLowerBound(s, j - s.n) <= kMinFlight || (*u)[j] > FlightLowerBound(s, j - s.n) * (1 + 1e-9))
-      free.push_back(j);
+  const std::vector<int> free = NewtonEntries(s, free_entries, *u);
   std::vector<ChainNode> nodes(static_cast<std::size_t>(s.n) + 1);
   nodes[0] = s.start;
   RollChain(s.lambda, *u, s.integration, &nodes);
@@ -518,6 +568,11 @@ bool SolveWithExchange(const ConstrainedSetup& s, Samples* sm, const std::vector
     Stage st(s, *sm, *u, free, false);
     *u = RunSlsqp(&st, &out->evaluations);
     out->rollouts += st.rollouts;
+    // Still far outside at its own sample nodes (more than the sampling margin's half, the largest
+    // miss the exchange adds): more nodes only add constraints, so a further round would repeat
+    // the failure. A round that ends just outside is run again.
+    const Evaluation at_u = RestoreFeasibility(s, *sm, free, u, &out->rollouts);
+    if (MaxViolation(at_u) > kRestartViolation * s.sampling_margin) return false;
     const auto missed = MissedPoints(s, *u, kDenseSamples, &out->rollouts);
     if (std::all_of(missed.begin(), missed.end(), [](const auto& m) { return m.empty(); })) return true;
     auto fractions = sm->fractions;
@@ -561,7 +616,10 @@ ConstrainedOutcome SolveConstrainedArrival(const ConstrainedSetup& s, const Eige
   Evaluation e = Evaluate(s, sm, u, &out.rollouts);
   out.feasible = covered && MaxViolation(e) <= kFeasibilityTolerance;
   out.arrived = out.feasible && Arrived(s, u, &out.rollouts);
-  if (!out.arrived) {  // the closest feasible arrival, and the limits that stop it
+  if (!out.arrived && !s.closest_arrival) {  // the limits that stop it at the solver's end point
+    out.blocking = ActiveNames(s, e);
+    if (grid) out.blocking.push_back("tick");
+  } else if (!out.arrived) {  // the closest feasible arrival, and the limits that stop it
     u = LeastViolating(s, sm, u, &out.rollouts);
     Stage closest(s, sm, u, free, true);
     u = RunSlsqp(&closest, &out.evaluations);

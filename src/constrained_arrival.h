@@ -9,7 +9,10 @@
 //   - the plate velocity change and |J| of every impulse, differentiated through the chain's dz, dK;
 //   - the shortest interval between impulses as bounds on the flight times.
 // The method is NLopt's SLSQP (sequential quadratic programming: equality and inequality
-// constraints with exact gradients; Ceres has bounds only), from the free optimum. The impulse
+// constraints with exact gradients; Ceres has bounds only), from the free optimum; Newton steps on
+// the arrival conditions and the violated inequalities finish a point an SLSQP run left just off
+// (round-off), and a dense look adds each flight's worst missed point as a node for another run
+// (an exchange method), unless the run ended far outside, which more nodes cannot mend. The impulse
 // times on a tick grid are then fixed to the nearest admissible multiples and the other unknowns
 // (every s_k and the last flight time) absorb the grid in a second solve. The arrival is finished
 // by chord steps at the rollout tolerance. When no arrival meets the limits, the closest feasible
@@ -46,6 +49,9 @@ struct ConstrainedSetup {
   int samples_per_arc = 4;
   double sampling_margin = 2e-3;  ///< ball radii: the sag of the path between samples
   int max_evaluations = 200;
+  /// When no arrival meets the limits, search the closest feasible arrival (else the outcome is
+  /// the solver's end point, `feasible` as found there).
+  bool closest_arrival = true;
 };
 
 struct ConstrainedOutcome {

@@ -142,12 +142,16 @@ Eigen::MatrixXd ArrivalJacobian(const ChainJacobian& jacobian, const ChainNode& 
 
 void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions& integration,
                std::vector<ChainNode>* nodes, const IntegrationOptions* jacobian_integration,
-               ChainJacobian* jacobian) {
+               ChainJacobian* jacobian, const ChainColumns* columns) {
   const int n = static_cast<int>(u.size() / 2);
   nodes->resize(static_cast<std::size_t>(n) + 1);
+  const int cols = columns ? columns->columns : 2 * n;
+  const auto s_column = [&](int k) { return columns ? columns->s_column[static_cast<std::size_t>(k)] : k; };
+  const auto t_column = [&](int k) { return columns ? columns->t_column[static_cast<std::size_t>(k)] : n + k; };
+  const auto t_scale = [&](int k) { return columns ? columns->t_scale[static_cast<std::size_t>(k)] : 1.0; };
   // Derivatives of the node state: z (3), K before (2), x (2), A row-major (9).
-  Eigen::MatrixXd dz = Eigen::MatrixXd::Zero(3, 2 * n), dk = Eigen::MatrixXd::Zero(2, 2 * n);
-  Eigen::MatrixXd dxk = Eigen::MatrixXd::Zero(2, 2 * n), da = Eigen::MatrixXd::Zero(9, 2 * n);
+  Eigen::MatrixXd dz = Eigen::MatrixXd::Zero(3, cols), dk = Eigen::MatrixXd::Zero(2, cols);
+  Eigen::MatrixXd dxk = Eigen::MatrixXd::Zero(2, cols), da = Eigen::MatrixXd::Zero(9, cols);
   if (jacobian) {
     jacobian->dx.assign(1, dxk);
     jacobian->dz.assign(1, dz);
@@ -167,13 +171,13 @@ void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions
     if (!jacobian) continue;
     const Eigen::Matrix<double, 2, 6> g = DifferentiateImpulse(a.z, a.k, u[k], lambda);
     Eigen::MatrixXd dk_after = g.leftCols<3>() * dz + g.middleCols<2>(3) * dk;
-    dk_after.col(k) += g.col(5);
+    if (s_column(k) >= 0) dk_after.col(s_column(k)) += g.col(5);
     const ArcDerivative arc_d = DifferentiateArc(lambda, a.z, k_after, u[n + k], *jacobian_integration);
-    Eigen::MatrixXd dy = arc_d.d.leftCols<3>() * dz + arc_d.d.middleCols<2>(3) * dk_after;  // 14 x 2n
-    dy.col(n + k) += arc_d.d.col(kParams);
+    Eigen::MatrixXd dy = arc_d.d.leftCols<3>() * dz + arc_d.d.middleCols<2>(3) * dk_after;  // 14 x cols
+    dy.col(t_column(k)) += arc_d.d.col(kParams) * t_scale(k);
     // A_{k+1} = Phi A_k: dA = dPhi A_k + Phi dA_k, row-major.
-    Eigen::MatrixXd da_next(9, 2 * n);
-    for (int j = 0; j < 2 * n; ++j) {
+    Eigen::MatrixXd da_next(9, cols);
+    for (int j = 0; j < cols; ++j) {
       const Eigen::Matrix3d dphi = MatrixFromRowMajor(dy.col(j).data() + 5);
       const Eigen::Matrix3d dak = MatrixFromRowMajor(da.col(j).data());
       RowMajorFromMatrix(dphi * a.A + phi * dak, da_next.col(j).data());
@@ -188,8 +192,8 @@ void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions
   }
   if (!jacobian) return;
   const Eigen::Matrix3d& an = nodes->back().A;
-  jacobian->rotation.resize(3, 2 * n);
-  for (int j = 0; j < 2 * n; ++j)
+  jacobian->rotation.resize(3, cols);
+  for (int j = 0; j < cols; ++j)
     jacobian->rotation.col(j) = Vee(MatrixFromRowMajor(da.col(j).data()) * an.transpose());
 }
 

@@ -62,7 +62,7 @@ struct ChainNode {
   Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
 };
 
-/// Derivatives of the chain with respect to u (2n columns).
+/// Derivatives of the chain with respect to u (2n columns; see ChainColumns).
 struct ChainJacobian {
   std::vector<Eigen::MatrixXd> dx;  ///< dx_k/du, k = 0..n (2 x 2n each)
   std::vector<Eigen::MatrixXd> dz;  ///< dz_k/du, k = 0..n (3 x 2n each): the axis at node k
@@ -70,13 +70,25 @@ struct ChainJacobian {
   Eigen::MatrixXd rotation;         ///< 3 x 2n: column j is delta with dA_n/du_j = hat(delta) A_n
 };
 
+/// The chain's parameters as functions of fewer unknowns (the Jacobian's columns): the turn of arc
+/// i is unknown s_column[i] (-1: held at zero), its duration t_scale[i] times unknown t_column[i].
+/// A chain whose arcs are cut into sub-arcs by zero impulses is then differentiated directly with
+/// respect to the unknowns of the uncut chain.
+struct ChainColumns {
+  int columns = 0;
+  std::vector<int> s_column;
+  std::vector<int> t_column;
+  std::vector<double> t_scale;
+};
+
 /// Rolls the chain from nodes[0] with u = (s, t) (n = u.size() / 2), filling nodes[1..n] (A
 /// re-projected onto SO(3) after every arc). With `jacobian`, also the exact Jacobian (the arcs are
-/// then integrated once more with their variational equations at `jacobian_integration`).
+/// then integrated once more with their variational equations at `jacobian_integration`), with
+/// respect to u, or to the unknowns of `columns` when given.
 /// Throws std::runtime_error when an integration fails.
 void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions& integration,
                std::vector<ChainNode>* nodes, const IntegrationOptions* jacobian_integration = nullptr,
-               ChainJacobian* jacobian = nullptr);
+               ChainJacobian* jacobian = nullptr, const ChainColumns* columns = nullptr);
 
 /// The five arrival conditions at the chain's end: (x_n - x1, LogSO3(A1^T A_n)).
 Eigen::Matrix<double, 5, 1> ArrivalResidual(const ChainNode& end, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A1);

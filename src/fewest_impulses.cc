@@ -479,6 +479,8 @@ std::optional<FewestImpulsesCount> Continue(const Search& s, int n, const Eigen:
   FewestImpulsesCount row;
   row.impulses = n;
   CountBest best;
+  Search merged = s;  // the row is dropped unless it arrives: no closest feasible arrival is reported
+  merged.closest_wanted = false;
   for (int k : order) {
     Eigen::VectorXd w = u;
     try {
@@ -486,7 +488,7 @@ std::optional<FewestImpulsesCount> Continue(const Search& s, int n, const Eigen:
     } catch (const std::runtime_error&) {
       continue;
     }
-    Refine(s, Merge(w, k), &row, &best);
+    Refine(merged, Merge(w, k), &row, &best);
     if (Met(s, row) > 0) break;
   }
   if (Met(s, row) == 0) return std::nullopt;

@@ -134,7 +134,8 @@ constexpr int kMaxFailedSolves = 2;
 // the constrained solver's arrival from it; either counts only when the independent check passes.
 void Admit(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, FewestImpulsesCount* row,
            CountBest* best) {
-  const internal::ConstrainedSetup cs = ConstrainedFor(s, row->impulses);
+  internal::ConstrainedSetup cs = ConstrainedFor(s, row->impulses);
+  cs.closest_arrival = s.closest_wanted && !std::isfinite(best->time);  // else KeepClosestFeasible keeps nothing
   Eigen::VectorXd v = u;
   std::vector<ChainNode> v_nodes = nodes;
   std::vector<long long> ticks;

@@ -28,6 +28,7 @@ struct Search {
   int* starts = nullptr;  // starts tried in all counts, for the progress hook
   bool limited = false;   // the problem has limits (rows are reached only within them)
   FewestImpulsesSummary* summary = nullptr;  // for the constrained solver's counters
+  bool closest_wanted = true;  // a count's closest feasible arrival is reported (not in a continuation)
 };
 
 // The best of a count so far: the arrival of shortest total time, else the closest point.
