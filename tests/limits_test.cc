@@ -125,7 +125,7 @@ TEST(Limits, JoinResidualToleranceHasARange) {
 
 TEST(Limits, DistinctSamplePointsAreNotCalledRepeated) {
   const std::string m = InvalidArgumentMessage([] { SmoothCurve::Samples({{0, 0}, {1e-170, 0}, {1, 1}}); });
-  ExpectNames(m, {"points[1]: value 1e-170", "distinct from the previous sample point"});
+  ExpectNames(m, {"points[1]: value (1e-170, 0)", "distinct from the previous sample point"});
   EXPECT_EQ(m.find("repeats"), std::string::npos) << m;
   ExpectNames(InvalidArgumentMessage([] { SmoothCurve::Samples({{0, 0}, {0, 0}, {1, 1}}); }), {"repeats the previous"});
 }
