@@ -146,18 +146,7 @@ void Consider(const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, con
 
 }  // namespace internal::fewest
 
-namespace {
-
-using internal::ChainNode;
-using internal::fewest::Admit;
-using internal::fewest::CheckArrival;
-using internal::fewest::ConstrainedFor;
-using internal::fewest::Consider;
-using internal::fewest::CountBest;
-using internal::fewest::Describe;
-using internal::fewest::Evaluate;
-using internal::fewest::Search;
-using internal::fewest::TotalImpulse;
+namespace {  // the unnamed namespace above, reopened: its using-declarations hold here
 
 // The arrival conditions in v = (s_k, log t_k) for ceres::TinySolver, exact Jacobian. A point
 // outside the window (a flight longer than the window, a failed integration) gives NaN, which
