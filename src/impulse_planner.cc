@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,6 +13,7 @@
 #include "check.h"
 #include "connect.h"
 #include "dynamics.h"
+#include "plan_partitioned.h"
 #include "plateball/partition.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
@@ -117,6 +120,15 @@ struct PlanCursor {
   // Rz(tau_k+1)), each computed once instead of once per segment.
   double circle_radius = 0.0;
   Eigen::Matrix3d rz = Eigen::Matrix3d::Identity();
+  long long tick_index = 0;  // with a grid: the tick of the next impulse (-1: off the grid)
+};
+
+// A grid for the impulse times and where the segment's end may slide (tau_next: the next
+// partition point; NaN: the end is a fixed point of the path).
+struct SegmentGrid {
+  const internal::PlanGrid* grid = nullptr;
+  internal::PlanGridReport* report = nullptr;
+  double tau_next = std::numeric_limits<double>::quiet_NaN();
 };
 
 // "segment g (piece p, k = k): " and the like, for the failure messages.
@@ -246,17 +258,100 @@ void AddBounds(const SmoothCurve& curve, const internal::ArcEnd& arc, const Join
   AccumulateSegment(m, b);
 }
 
+// The flight time from the cursor's state (after the energy changes) to p(tau): the join's t, NaN
+// when no join connects them. The trial joins start from a copy of the cursor's join carry.
+double FlightTimeTo(const BallModel& model, const SmoothCurve& curve, const PlanOptions& options, const PlanCursor& cur,
+                    const PlanStep& s, double tau) {
+  internal::JoinCarry carry = cur.join_carry;
+  const JoinSummary j = internal::ConnectPoints(model, s.angles_before, cur.mu, cur.x, curve.Value(tau), options.join,
+                                                options.reach_fallback ? &options.reach : nullptr, nullptr, &carry);
+  return j.IsSolutionUsable() ? j.t : std::numeric_limits<double>::quiet_NaN();
+}
+
+// A partition point slid onto the grid: its tau, its tick index and the flight's duration.
+struct GridSlide {
+  double tau = 0.0;
+  long long index = 0;
+  double duration = 0.0;
+};
+
+// Slides the end of segment s along the curve, strictly between tau_begin and tau_next, so that the
+// flight to it lasts D = m tick - t_impulse: m the multiple nearest the unslid arrival, at least
+// min_interval after the impulse. The flight time t(tau) is monotone on the local branch; its root
+// t(tau) = D is bracketed between tau_begin (t = 0) and the unslid end or tau_next, and found by
+// regula falsi with the Illinois modification, to rounding of tau or of t. Empty (with *why) when
+// the join fails or D is beyond the next partition point.
+std::optional<GridSlide> SlideOntoGrid(const BallModel& model, const SmoothCurve& curve, const PlanOptions& options,
+                                       const internal::PlanGrid& grid, double tau_next, const PlanCursor& cur,
+                                       const PlanStep& s, std::string* why) {
+  const auto t_of = [&](double tau) { return FlightTimeTo(model, curve, options, cur, s, tau); };
+  const double t_nominal = t_of(s.tau_end);
+  if (std::isnan(t_nominal)) return *why = "no join reaches the unslid point", std::nullopt;
+  const double start = cur.time;
+  long long m = std::max(std::llround((start + t_nominal) / grid.tick), static_cast<long long>(std::floor(start / grid.tick)));
+  while (!(static_cast<double>(m) * grid.tick - start > 0.0 && static_cast<double>(m) * grid.tick - start >= grid.min_interval)) ++m;
+  const double d = static_cast<double>(m) * grid.tick - start;
+  double a = s.tau_begin, fa = -d, b = s.tau_end, fb = t_nominal - d;
+  if (fb < 0) {
+    a = b, fa = fb, b = tau_next, fb = t_of(tau_next) - d;
+    if (!(fb >= 0)) {
+      *why = "the tick multiple " + internal::FormatNumber(static_cast<double>(m) * grid.tick) +
+             " lies beyond the arrival at the next partition point";
+      return std::nullopt;
+    }
+  }
+  // |t(tau) - D| at the rounding of t: the join's t carries noise of its residual, so the bracket
+  // collapsing to adjacent doubles ends the search too.
+  const double tolerance = 4 * std::numeric_limits<double>::epsilon() * d;
+  constexpr int kMaxIterations = 200;  // Illinois converges superlinearly: ~10 joins in practice
+  int side = 0;
+  for (int it = 0; it < kMaxIterations; ++it) {
+    double c = (a * fb - b * fa) / (fb - fa);
+    if (!(c > a && c < b)) c = 0.5 * (a + b);
+    if (!(c > a && c < b)) break;
+    const double t = t_of(c);
+    if (std::isnan(t)) return *why = "no join reaches p(tau = " + internal::FormatNumber(c) + ")", std::nullopt;
+    const double fc = t - d;
+    if (std::abs(fc) <= tolerance) return GridSlide{c, m, d};
+    if ((fc > 0) == (fb > 0)) {
+      b = c, fb = fc;
+      if (side == -1) fa /= 2;
+      side = -1;
+    } else {
+      a = c, fa = fc;
+      if (side == 1) fb /= 2;
+      side = 1;
+    }
+  }
+  const double c = a > s.tau_begin && std::abs(fa) < std::abs(fb) ? a : b;
+  if (!(c < tau_next)) return *why = "the root lies at the next partition point", std::nullopt;
+  return GridSlide{c, m, d};
+}
+
 // One segment k of a piece: energy changes, the join to p(tau_k+1), the arc, the references and
 // the bounds. False (with out->status and out->message set) when the plan cannot go on.
 bool PlanSegment(const BallModel& model, const SmoothCurve& curve, const std::vector<double>& factors,
-                 const PlanOptions& options, PlanCursor* cur, PlanStep* s, PlanSummary* out) {
+                 const PlanOptions& options, const SegmentGrid& grid, PlanCursor* cur, PlanStep* s, PlanSummary* out) {
   s->p_begin = cur->p;
-  s->p_end = cur->p = curve.Value(s->tau_end);
   s->t_impulse = cur->time;
   s->state_before = cur->state;
   s->angles_before = cur->angles;
   ApplyEnergyChanges(model, factors, cur, s);
-  const JoinSummary j = internal::ConnectPoints(model, s->angles_before, cur->mu, cur->x, s->p_end, options.join,
+  std::optional<GridSlide> slide;
+  if (grid.grid && grid.grid->tick > 0 && !std::isnan(grid.tau_next)) {
+    std::string why;
+    slide = SlideOntoGrid(model, curve, options, *grid.grid, grid.tau_next, *cur, *s, &why);
+    if (slide) {
+      s->tau_end = slide->tau;
+      ++grid.report->slid;
+    } else {
+      grid.report->missed.push_back("partition point " + std::to_string(s->global_index + 1) + " (piece " +
+                                    std::to_string(s->piece) + ", tau = " + internal::FormatNumber(s->tau_end) +
+                                    "): " + why);
+    }
+  }
+  s->p_end = cur->p = curve.Value(s->tau_end);
+  JoinSummary j = internal::ConnectPoints(model, s->angles_before, cur->mu, cur->x, s->p_end, options.join,
                                                 options.reach_fallback ? &options.reach : nullptr,
                                                 &s->reached_globally, &cur->join_carry);
   s->join_status = j.status;
@@ -268,6 +363,7 @@ bool PlanSegment(const BallModel& model, const SmoothCurve& curve, const std::ve
     out->message = SegmentName(*s) + ": " + j.BriefReport();
     return false;
   }
+  if (slide) j.t = slide->duration;  // the grid's difference; the join's t is within the root find's tolerance
   internal::ArcEnd arc;
   try {
     arc = FlyArc(model, j, options, cur, s);
@@ -284,7 +380,13 @@ bool PlanSegment(const BallModel& model, const SmoothCurve& curve, const std::ve
     return false;
   }
   AddBounds(curve, arc, j, options, s, &out->bounds);
-  cur->time += j.t;
+  if (slide) {
+    cur->time = static_cast<double>(slide->index) * grid.grid->tick;  // exactly on the grid
+    cur->tick_index = slide->index;
+  } else {
+    cur->time += j.t;
+    cur->tick_index = -1;
+  }
   out->max_pass_miss = std::max(out->max_pass_miss, s->pass_miss);
   out->max_join_residual = std::max(out->max_join_residual, j.residual);
   return true;
@@ -303,10 +405,17 @@ void FinishPlan(const PlanCursor& cur, int n_total, PlanSummary* out) {
   out->mu_final = cur.mu;
 }
 
-// The plan for explicit per-piece partitions (PlanImpulses unpacks its problem into this).
+}  // namespace
+
+namespace internal {
+
 PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
                             const Path& path, const std::vector<std::vector<double>>& partition,
-                            const std::vector<EnergyChange>& energy_changes, const PlanOptions& options) {
+                            const std::vector<EnergyChange>& energy_changes, const PlanOptions& options,
+                            const PlanGrid& grid, PlanGridReport* report) {
+  PlanGridReport unused;
+  if (!report) report = &unused;
+  *report = {};
   const PlanInput in = ValidatePlan(initial, mu, path, partition, energy_changes, options);
   PlanSummary out;
   out.status = PlanStatus::kSuccess;  // until a segment fails
@@ -325,7 +434,7 @@ PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, d
   int g = 0;
   for (int piece = 0; piece < path.PieceCount() && out.status == PlanStatus::kSuccess; ++piece) {
     const SmoothCurve& curve = path.pieces()[piece];
-    const std::vector<double>& taus = partition[piece];
+    std::vector<double> taus = partition[piece];  // the interior points slide onto a grid
     internal::RowMajorFromMatrix(cur.a_ref, cur.ref.data());
     cur.ref_dt = taus[1] - taus[0];
     cur.p = curve.Value(taus[0]);
@@ -337,7 +446,10 @@ PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, d
       s.global_index = g;
       s.tau_begin = taus[k];
       s.tau_end = taus[k + 1];
-      const bool ok = PlanSegment(model, curve, in.factors[static_cast<std::size_t>(g)], options, &cur, &s, &out);
+      SegmentGrid sg{&grid, report};
+      if (k + 2 < taus.size()) sg.tau_next = taus[k + 2];
+      const bool ok = PlanSegment(model, curve, in.factors[static_cast<std::size_t>(g)], options, sg, &cur, &s, &out);
+      taus[k + 1] = s.tau_end;
       out.steps.push_back(std::move(s));
       if (!ok) break;
     }
@@ -346,11 +458,11 @@ PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, d
   return out;
 }
 
-}  // namespace
+}  // namespace internal
 
 PlanSummary PlanImpulses(const PlanProblem& problem, const PlanOptions& options) {
   const std::vector<std::vector<double>> partition = MakePartition(problem.path, problem.partition, "partition");
-  return PlanPartitioned(problem.model, problem.initial, problem.mu, problem.A0, problem.path, partition,
+  return internal::PlanPartitioned(problem.model, problem.initial, problem.mu, problem.A0, problem.path, partition,
                          problem.energy_changes, options);
 }
 

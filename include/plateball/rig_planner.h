@@ -1,0 +1,86 @@
+// A path-following plan (impulse_planner.h) that honours a rig's limits (rig_limits.h) where the
+// planner can: the partition is refined where a flight leaves the plate, enters an obstacle or
+// leaves the stroke box, and its points slide along the path onto the tick grid. The limits the
+// partition cannot change (the path itself outside, the shortest interval, the impulse bounds)
+// are reported by name. The independent check (CheckPlanRigLimits, plan_rig_check.h) is the judge.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plateball/ball_model.h"
+#include "plateball/export.h"
+#include "plateball/impulse_planner.h"
+#include "plateball/rig_limits.h"
+
+namespace plateball PLATEBALL_EXPORT {
+
+struct RigPlanOptions {
+  /// Rounds of refinement: each bisects, in tau, every segment whose flight exceeds a geometric
+  /// limit, and plans again (a flight deviates from its chord by O(h^2), so a round cuts the bow
+  /// by about 4).
+  int max_rounds = 8;
+  /// Partition points the refinement may add over all rounds (the plan stays within the
+  /// partition's step limit as well).
+  int max_added_points = 4096;
+  /// Samples per flight at which the planner looks for the flight's smallest geometric margin (the
+  /// smallest is then located between its neighbours by golden-section search); the path itself
+  /// is sampled as densely per segment of the given partition.
+  int samples_per_flight = 32;
+  /// Samples per flight of the final independent check (CheckPlanRigLimits).
+  int check_samples_per_flight = 64;
+  RigCheckTolerances tolerances;  ///< of the final check and of the path's own margins
+
+  /// Empty when the options are valid; else a message naming the field and its value.
+  std::string Validate() const;
+};
+
+enum class RigPlanStatus {
+  kNotRun,        ///< default: nothing planned
+  kSuccess,       ///< the plan meets every limit (the independent check passed)
+  kPlanFailed,    ///< the planner failed (plan.status and plan.message say why)
+  kLimitsNotMet,  ///< a limit cannot be met: `blocking` names it, `message` says why
+};
+/// "not_run", "success", "plan_failed", "limits_not_met".
+std::string ToString(RigPlanStatus status);
+
+struct RigPlanSummary {
+  RigPlanStatus status = RigPlanStatus::kNotRun;
+  std::string message = "not run";
+  PlanSummary plan;            ///< the plan of the final partition (its steps carry their taus)
+  RigCheck check;              ///< the independent check of `plan` (CheckPlanRigLimits)
+  int segments_initial = 0;    ///< partition segments asked for
+  int points_added = 0;        ///< partition points the refinement added
+  int points_slid = 0;         ///< partition points slid onto the tick grid (final plan)
+  int rounds = 0;              ///< refinement rounds run (0: the given partition was enough)
+  /// Limits that shaped the plan: the geometric limits refined against ("plate", "obstacles[0]",
+  /// "stroke.x", ...) and "tick" when points slid onto the grid.
+  std::vector<std::string> active;
+  /// Limits that cannot be met, each once; the message says where and why.
+  std::vector<std::string> blocking;
+
+  bool IsSolutionUsable() const { return status == RigPlanStatus::kSuccess; }
+  /// One line: the status, the refinement and the plan's report.
+  std::string BriefReport() const;
+};
+
+/// Plans problem.path under `limits`. The path itself is first checked against the geometric
+/// limits (sampled): a path that leaves the plate or the stroke box or crosses an obstacle's
+/// clearance is reported blocked at its worst point, and planned as given. Otherwise, round by
+/// round, every flight is replayed (FreeMotion) and its smallest margin to the plate, the
+/// obstacles and the stroke located; the segments of the flights below zero are bisected in tau
+/// and the path planned again, until none is (or the rounds or points run out: limits_not_met;
+/// or a bisected flight would be shorter than min_interval: blocked by min_interval). With a tick
+/// every interior point of a piece slides along the path onto the grid (the flight's duration is
+/// the grid's difference; the ends of a piece stay fixed, and an impulse at a junction of pieces
+/// that falls off the grid is blocked by "tick"). Energy changes keep their partition points.
+/// The final plan is checked by CheckPlanRigLimits; a limit it reports exceeded (the impulse
+/// bounds, min_interval, ...) is blocking. Slack limits leave the plan bit for bit as
+/// PlanImpulses(problem, options) gives it. Throws std::invalid_argument for invalid input
+/// (as PlanImpulses, limits.Validate(), options.Validate()).
+RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem, const RigLimits& limits,
+                                 const std::optional<PhysicalParameters>& physical, const PlanOptions& options = {},
+                                 const RigPlanOptions& rig_options = {});
+
+}  // namespace plateball

@@ -1,0 +1,351 @@
+#include "plateball/rig_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "check.h"
+#include "plan_partitioned.h"
+#include "plateball/free_motion.h"
+#include "plateball/partition.h"
+#include "plateball/plan_rig_check.h"
+#include "plateball/so3.h"
+#include "rig_geometry.h"
+
+namespace plateball {
+
+std::string ToString(RigPlanStatus status) {
+  switch (status) {
+    case RigPlanStatus::kNotRun: return "not_run";
+    case RigPlanStatus::kSuccess: return "success";
+    case RigPlanStatus::kPlanFailed: return "plan_failed";
+    case RigPlanStatus::kLimitsNotMet: return "limits_not_met";
+  }
+  return "unknown";
+}
+
+std::string RigPlanOptions::Validate() const {
+  if (max_rounds < 0 || max_rounds > 64) return internal::InvalidValueMessage("max_rounds", max_rounds, "must be in [0, 64]");
+  if (max_added_points < 0 || max_added_points > internal::kMaxPartitionSteps)
+    return internal::InvalidValueMessage("max_added_points", max_added_points,
+                                         "must be in [0, " + std::to_string(internal::kMaxPartitionSteps) + "]");
+  if (samples_per_flight < 2 || samples_per_flight > 100000)
+    return internal::InvalidValueMessage("samples_per_flight", samples_per_flight, "must be in [2, 100000]");
+  if (check_samples_per_flight < 1 || check_samples_per_flight > 100000)
+    return internal::InvalidValueMessage("check_samples_per_flight", check_samples_per_flight, "must be in [1, 100000]");
+  if (!(tolerances.position >= 0) || !std::isfinite(tolerances.position))
+    return internal::InvalidValueMessage("tolerances.position", tolerances.position, "must be finite and >= 0");
+  if (!(tolerances.impulse >= 0) || !std::isfinite(tolerances.impulse))
+    return internal::InvalidValueMessage("tolerances.impulse", tolerances.impulse, "must be finite and >= 0");
+  if (!(tolerances.time >= 0) || !std::isfinite(tolerances.time))
+    return internal::InvalidValueMessage("tolerances.time", tolerances.time, "must be finite and >= 0");
+  return {};
+}
+
+std::string RigPlanSummary::BriefReport() const {
+  std::ostringstream os;
+  os << "Rig plan: " << ToString(status) << ", " << plan.segments << " segments (" << segments_initial << " asked, "
+     << points_added << " added in " << rounds << " round" << (rounds == 1 ? "" : "s") << ", " << points_slid
+     << " slid onto the tick grid)";
+  if (!message.empty()) os << " (" << message << ")";
+  os << "; " << plan.BriefReport();
+  return os.str();
+}
+
+namespace {
+
+// The smallest geometric margin (plate, obstacles, stroke) at a contact point and its limit.
+struct Margin {
+  double value = std::numeric_limits<double>::infinity();
+  std::string limit;
+};
+
+Margin SmallestMargin(const RigLimits& limits, const Eigen::Vector2d& x0, const Eigen::Vector2d& x) {
+  Margin m;
+  internal::VisitGeometricMargins(limits, x0, x, [&](const std::string& name, double margin) {
+    if (margin < m.value) m = {margin, name};
+  });
+  return m;
+}
+
+bool HasGeometricLimits(const RigLimits& l) { return l.plate || !l.obstacles.empty() || l.stroke; }
+
+// "leaves the plate", "enters obstacles[1]", "leaves the stroke box (x)".
+std::string Crossing(const std::string& limit) {
+  if (limit == "plate") return "leaves the plate";
+  if (limit.rfind("stroke", 0) == 0) return "leaves the stroke box (" + limit.substr(7) + ")";
+  return "enters " + limit;
+}
+
+std::string Point(const Eigen::Vector2d& x) {
+  return "(" + internal::FormatNumber(x.x()) + ", " + internal::FormatNumber(x.y()) + ")";
+}
+
+void AddOnce(const std::string& name, std::vector<std::string>* names) {
+  if (std::find(names->begin(), names->end(), name) == names->end()) names->push_back(name);
+}
+
+// The path itself against the geometric limits, sampled at `samples` points per segment of the
+// given partition: one line per limit it exceeds beyond the tolerance, at its worst point. No
+// partition can keep the flights inside where the pass points themselves lie outside.
+std::vector<std::pair<std::string, std::string>> PathCrossings(const RigLimits& limits, const Path& path,
+                                                               const std::vector<std::vector<double>>& partition,
+                                                               int samples, double tolerance) {
+  struct Worst {
+    double margin;
+    std::string where;
+  };
+  std::map<std::string, Worst> worst;
+  const Eigen::Vector2d x0 = path.StartPoint();
+  for (int piece = 0; piece < path.PieceCount(); ++piece) {
+    const SmoothCurve& curve = path.pieces()[piece];
+    const std::vector<double>& taus = partition[piece];
+    for (std::size_t k = 0; k + 1 < taus.size(); ++k)
+      for (int j = 0; j <= samples; ++j) {
+        const double tau = taus[k] + (taus[k + 1] - taus[k]) * j / samples;
+        const Eigen::Vector2d p = curve.Value(tau);
+        internal::VisitGeometricMargins(limits, x0, p, [&](const std::string& name, double margin) {
+          if (margin >= -tolerance) return;
+          auto it = worst.find(name);
+          if (it != worst.end() && !(margin < it->second.margin)) return;
+          worst[name] = {margin, "by " + internal::FormatNumber(-margin) + " at p(tau = " + internal::FormatNumber(tau) +
+                                     ") = " + Point(p) + " (piece " + std::to_string(piece) + ")"};
+        });
+      }
+  }
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [name, w] : worst)
+    out.emplace_back(name, "the path itself " + Crossing(name) + " " + w.where + ": no partition keeps the flights out");
+  return out;
+}
+
+// Golden-section search for the minimum of f on [a, b] (f unimodal there: the bracket around the
+// smallest of the flight's samples).
+template <typename F>
+double GoldenMinimum(F f, double a, double b) {
+  constexpr double kInvPhi = 0.6180339887498949;
+  constexpr int kIterations = 60;  // 0.618^60 ~ 3e-13 of the bracket
+  double c = b - kInvPhi * (b - a), d = a + kInvPhi * (b - a);
+  double fc = f(c), fd = f(d);
+  for (int i = 0; i < kIterations && c < d; ++i) {
+    if (fc < fd) {
+      b = d, d = c, fd = fc;
+      c = b - kInvPhi * (b - a), fc = f(c);
+    } else {
+      a = c, c = d, fc = fd;
+      d = a + kInvPhi * (b - a), fd = f(d);
+    }
+  }
+  return std::min(fc, fd);
+}
+
+// Each flight's smallest geometric margin and its limit: the flight replayed with FreeMotion from
+// its impulse (at the planner's arrival at its pass point), sampled at `samples` points, and the
+// smallest sample refined by golden-section search between its neighbours.
+std::vector<Margin> FlightMargins(const PlanProblem& problem, const PlanSummary& plan, const RigLimits& limits,
+                                  const IntegrationOptions& integration, int samples) {
+  const Eigen::Vector2d x0 = problem.path.StartPoint();
+  std::vector<Margin> out;
+  out.reserve(plan.steps.size());
+  Eigen::Vector2d x = x0;
+  for (const PlanStep& s : plan.steps) {
+    // The orientation does not move the contact point: any with A e3 = z.
+    const Eigen::Matrix3d a = AlignOrientationToAxis(Eigen::Matrix3d::Identity(), s.impulse.state_after.z);
+    const FreeMotion motion(problem.model, FreeMotionStart{s.impulse.state_after, x, a}, integration);
+    const auto margin_at = [&](double t) { return SmallestMargin(limits, x0, motion.PositionAt(t)); };
+    Margin least;
+    int at = 0;
+    for (int j = 1; j <= samples; ++j) {
+      const Margin m = margin_at(s.duration * j / samples);
+      if (m.value < least.value) least = m, at = j;
+    }
+    const double lo = s.duration * (at - 1) / samples, hi = s.duration * std::min(at + 1, samples) / samples;
+    const double refined = GoldenMinimum([&](double t) { return margin_at(t).value; }, lo, hi);
+    if (refined < least.value) least.value = refined;  // the limit of the smallest sample (the bow's)
+    out.push_back(least);
+    x = s.x_end;
+  }
+  return out;
+}
+
+// The partition points as the plan used them (slid onto a grid or not), per piece.
+std::vector<std::vector<double>> PlannedPartition(const PlanSummary& plan, int pieces) {
+  std::vector<std::vector<double>> out(static_cast<std::size_t>(pieces));
+  for (const PlanStep& s : plan.steps) {
+    std::vector<double>& taus = out[static_cast<std::size_t>(s.piece)];
+    if (taus.empty()) taus.push_back(s.tau_begin);
+    taus.push_back(s.tau_end);
+  }
+  return out;
+}
+
+// The energy changes at their partition points: `owners[piece][k]` lists the problem's energy
+// changes at point k of the piece (in the problem's order); their global indices follow the
+// partition as it is refined.
+std::vector<EnergyChange> PlacedEnergyChanges(const PlanProblem& problem,
+                                              const std::vector<std::vector<std::vector<int>>>& owners) {
+  std::vector<std::pair<int, EnergyChange>> placed;  // (position in the problem's list, change)
+  int offset = 0;
+  for (const auto& piece : owners) {
+    for (std::size_t k = 0; k < piece.size(); ++k)
+      for (int i : piece[k])
+        placed.push_back({i, EnergyChange{offset + static_cast<int>(k), problem.energy_changes[static_cast<std::size_t>(i)].factor}});
+    offset += static_cast<int>(piece.size()) - 1;
+  }
+  std::sort(placed.begin(), placed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<EnergyChange> out;
+  for (const auto& p : placed) out.push_back(p.second);
+  return out;
+}
+
+// Per piece and partition point, the problem's energy changes there.
+std::vector<std::vector<std::vector<int>>> EnergyChangeOwners(const PlanProblem& problem,
+                                                              const std::vector<std::vector<double>>& partition) {
+  std::vector<std::vector<std::vector<int>>> owners;
+  std::vector<std::pair<int, int>> at;  // global index -> (piece, k)
+  for (std::size_t piece = 0; piece < partition.size(); ++piece) {
+    owners.emplace_back(partition[piece].size());
+    for (std::size_t k = 0; k + 1 < partition[piece].size(); ++k) at.push_back({static_cast<int>(piece), static_cast<int>(k)});
+  }
+  for (std::size_t i = 0; i < problem.energy_changes.size(); ++i) {
+    const int g = problem.energy_changes[i].index;
+    if (g < 0 || g >= static_cast<int>(at.size()))  // as the planner says it
+      internal::ThrowInvalid("energy_changes[" + std::to_string(i) + "].index", g,
+                             "must be a partition index in [0, " + std::to_string(at.size()) + ")");
+    owners[static_cast<std::size_t>(at[static_cast<std::size_t>(g)].first)]
+          [static_cast<std::size_t>(at[static_cast<std::size_t>(g)].second)]
+              .push_back(static_cast<int>(i));
+  }
+  return owners;
+}
+
+// The refinement's state and its decisions.
+struct Refinement {
+  std::vector<std::vector<double>> partition;
+  std::vector<std::vector<std::vector<int>>> owners;
+  std::vector<std::string> reasons;  // why a limit blocks
+};
+
+// Bisects the segments of the flights below zero. False (with the blocking limits and reasons)
+// when a bisection would break min_interval, reach the resolution of tau or exceed the budget.
+bool Bisect(const PlanSummary& plan, const std::vector<Margin>& margins, const RigLimits& limits,
+            const RigPlanOptions& options, Refinement* r, RigPlanSummary* out) {
+  std::vector<std::size_t> bad;
+  for (std::size_t k = 0; k < margins.size(); ++k)
+    if (margins[k].value < 0) bad.push_back(k);
+  const int added = static_cast<int>(bad.size());
+  if (out->points_added + added > options.max_added_points || plan.segments + added > internal::kMaxPartitionSteps) {
+    for (std::size_t k : bad) AddOnce(margins[k].limit, &out->blocking);
+    r->reasons.push_back("refining " + std::to_string(added) + " more segments would exceed the refinement's budget (" +
+                         std::to_string(out->points_added) + " of max_added_points " +
+                         std::to_string(options.max_added_points) + " added, " + std::to_string(plan.segments) +
+                         " segments)");
+    return false;
+  }
+  r->partition = PlannedPartition(plan, plan.pieces);
+  for (auto it = bad.rbegin(); it != bad.rend(); ++it) {  // from the back: the indices of the earlier stay valid
+    const PlanStep& s = plan.steps[*it];
+    const Margin& m = margins[*it];
+    if (limits.min_interval > 0 && s.duration / 2 < limits.min_interval) {
+      AddOnce("min_interval", &out->blocking);
+      r->reasons.push_back("flight " + std::to_string(*it) + " " + Crossing(m.limit) + " by " + internal::FormatNumber(-m.value) +
+                           ", and bisecting it (t_k = " + internal::FormatNumber(s.duration) +
+                           ") would make flights shorter than min_interval " + internal::FormatNumber(limits.min_interval));
+      return false;
+    }
+    const double mid = 0.5 * (s.tau_begin + s.tau_end);
+    if (!(mid > s.tau_begin && mid < s.tau_end)) {
+      AddOnce(m.limit, &out->blocking);
+      r->reasons.push_back("flight " + std::to_string(*it) + " " + Crossing(m.limit) + " with its segment at the resolution of tau");
+      return false;
+    }
+    std::vector<double>& taus = r->partition[static_cast<std::size_t>(s.piece)];
+    taus.insert(taus.begin() + s.index + 1, mid);
+    auto& owners = r->owners[static_cast<std::size_t>(s.piece)];
+    owners.insert(owners.begin() + s.index + 1, std::vector<int>{});
+  }
+  out->points_added += added;
+  return true;
+}
+
+// The final verdict: the independent check, the grid's misses and the refinement's reasons.
+void Conclude(const PlanProblem& problem, const RigLimits& limits, const std::optional<PhysicalParameters>& physical,
+              const RigPlanOptions& options, const internal::PlanGridReport& grid, Refinement* r, RigPlanSummary* out) {
+  if (!out->plan.IsSolutionUsable()) {
+    out->status = RigPlanStatus::kPlanFailed;
+    out->message = ToString(out->plan.status) + ": " + out->plan.message;
+    return;
+  }
+  out->points_slid = grid.slid;
+  if (grid.slid > 0) AddOnce("tick", &out->active);
+  if (!grid.missed.empty()) AddOnce("tick", &out->blocking);
+  for (const std::string& m : grid.missed) r->reasons.push_back("tick: " + m);
+  // An impulse at a junction of pieces is at a fixed point: the grid cannot absorb its time.
+  if (limits.tick > 0)
+    for (const PlanStep& s : out->plan.steps)
+      if (s.piece > 0 && s.index == 0 && s.t_impulse != std::round(s.t_impulse / limits.tick) * limits.tick) {
+        AddOnce("tick", &out->blocking);
+        r->reasons.push_back("tick: the impulse at the junction of pieces " + std::to_string(s.piece - 1) + " and " +
+                             std::to_string(s.piece) + " (a fixed point of the path) falls at t = " +
+                             internal::FormatNumber(s.t_impulse) + ", off the grid");
+      }
+  out->check = CheckPlanRigLimits(problem, out->plan, limits, physical, options.tolerances,
+                                  options.check_samples_per_flight);
+  for (const std::string& v : out->check.violations) AddOnce(v.substr(0, v.find(" exceeded")), &out->blocking);
+  if (out->check.passed && out->blocking.empty()) {
+    out->status = RigPlanStatus::kSuccess;
+    out->message.clear();
+    return;
+  }
+  out->status = RigPlanStatus::kLimitsNotMet;
+  std::vector<std::string> lines = r->reasons;
+  lines.insert(lines.end(), out->check.violations.begin(), out->check.violations.end());
+  out->message.clear();
+  for (std::size_t i = 0; i < lines.size(); ++i) out->message += (i ? "; " : "") + lines[i];
+}
+
+}  // namespace
+
+RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem, const RigLimits& limits,
+                                 const std::optional<PhysicalParameters>& physical, const PlanOptions& options,
+                                 const RigPlanOptions& rig_options) {
+  internal::ThrowIfInvalid(rig_options.Validate());
+  internal::ThrowIfInvalid(limits.Validate());
+  RigPlanSummary out;
+  Refinement r;
+  r.partition = MakePartition(problem.path, problem.partition, "partition");
+  r.owners = EnergyChangeOwners(problem, r.partition);
+  for (const auto& taus : r.partition) out.segments_initial += static_cast<int>(taus.size()) - 1;
+  const auto crossings = PathCrossings(limits, problem.path, r.partition, rig_options.samples_per_flight,
+                                       rig_options.tolerances.position);
+  for (const auto& [name, reason] : crossings) AddOnce(name, &out.blocking), r.reasons.push_back(reason);
+  const internal::PlanGrid grid{limits.tick, limits.min_interval};
+  internal::PlanGridReport grid_report;
+  for (int round = 0;; ++round) {
+    out.plan = internal::PlanPartitioned(problem.model, problem.initial, problem.mu, problem.A0, problem.path,
+                                         r.partition, PlacedEnergyChanges(problem, r.owners), options, grid, &grid_report);
+    // A path outside the limits is planned as given; refinement cannot help it.
+    if (!out.plan.IsSolutionUsable() || !crossings.empty() || !HasGeometricLimits(limits)) break;
+    const std::vector<Margin> margins = FlightMargins(problem, out.plan, limits, options.integration,
+                                                      rig_options.samples_per_flight);
+    bool inside = true;
+    for (const Margin& m : margins)
+      if (m.value < 0) inside = false, AddOnce(m.limit, &out.active);
+    if (inside) break;
+    if (round == rig_options.max_rounds) {
+      for (std::size_t k = 0; k < margins.size(); ++k)
+        if (margins[k].value < 0) AddOnce(margins[k].limit, &out.blocking);
+      r.reasons.push_back("after " + std::to_string(round) + " rounds of refinement (max_rounds) flights still exceed the limits");
+      break;
+    }
+    if (!Bisect(out.plan, margins, limits, rig_options, &r, &out)) break;
+    out.rounds = round + 1;
+  }
+  Conclude(problem, limits, physical, rig_options, grid_report, &r, &out);
+  return out;
+}
+
+}  // namespace plateball
