@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "arc.h"
 #include "check.h"
@@ -76,12 +77,16 @@ std::string ExecutionSummary::BriefReport() const {
 }
 
 NominalPlan MakeNominalPlan(const PlanProblem& problem, const PlanOptions& options) {
+  return MakeNominalPlan(problem, options, PlanImpulses(problem, options));
+}
+
+NominalPlan MakeNominalPlan(const PlanProblem& problem, const PlanOptions& options, PlanSummary plan) {
   NominalPlan n;
   n.model = problem.model;
   n.initial = problem.initial;
   n.mu = problem.mu;
   n.options = options;
-  n.plan = PlanImpulses(problem, options);
+  n.plan = std::move(plan);
   if (n.plan.steps.empty()) return n;
   for (const PlanStep& s : n.plan.steps) n.pass_points.push_back(s.p_begin);
   n.pass_points.push_back(n.plan.steps.back().p_end);

@@ -61,6 +61,9 @@ struct NominalPlan {
 /// Plans problem (throws std::invalid_argument as PlanImpulses); a failed plan is kept in
 /// `plan.status` and may not be executed.
 NominalPlan MakeNominalPlan(const PlanProblem& problem, const PlanOptions& options = {});
+/// The nominal plan of `plan`, already planned for problem with options (e.g. by
+/// PlanImpulsesOnRig, rig_planner.h, on a refined partition): its pass points are the plan's.
+NominalPlan MakeNominalPlan(const PlanProblem& problem, const PlanOptions& options, PlanSummary plan);
 
 /// What is asked: one trial, i.e. one realisation of `errors` drawn from (seed, trial).
 struct ExecutionProblem {

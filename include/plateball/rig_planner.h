@@ -60,6 +60,7 @@ struct RigPlanSummary {
   /// Limits that cannot be met, each once; the message says where and why.
   std::vector<std::string> blocking;
 
+  /// True when the plan meets every limit (status kSuccess).
   bool IsSolutionUsable() const { return status == RigPlanStatus::kSuccess; }
   /// One line: the status, the refinement and the plan's report.
   std::string BriefReport() const;

@@ -4,6 +4,7 @@
 #include "plateball/exact_arrival.h"
 #include "plateball/plan_rig_check.h"
 #include "plateball/rig_limits.h"
+#include "plateball/rig_planner.h"
 #include "plateball/rig_reference.h"
 
 namespace plateball::python {
@@ -65,12 +66,38 @@ void BindReference(py::module_& m) {
         "The shortest isoparallel solution whose path meets the plate, obstacle and stroke limits, else the shortest.");
 }
 
+void BindRigPlanner(py::module_& m) {
+  py::class_<RigPlanOptions> options(m, "RigPlanOptions", "Options of plan_on_rig (rig_planner.h); the check's tolerances are the defaults.");
+  WithKeywordInit(options)
+      .def_readwrite("max_rounds", &RigPlanOptions::max_rounds, "refinement rounds, each bisecting the segments whose flights exceed a geometric limit")
+      .def_readwrite("max_added_points", &RigPlanOptions::max_added_points, "partition points the refinement may add over all rounds")
+      .def_readwrite("samples_per_flight", &RigPlanOptions::samples_per_flight, "samples per flight at which the planner looks for its smallest margin")
+      .def_readwrite("check_samples_per_flight", &RigPlanOptions::check_samples_per_flight, "samples per flight of the final independent check")
+      .def("validate", &RigPlanOptions::Validate, "Empty when valid; else a message naming the field.");
+  py::class_<RigPlanSummary> summary(m, "RigPlanSummary", "The result of plan_on_rig(): the plan, its independent check and what the limits did.");
+  AddSummaryShape(summary);
+  summary.def_readonly("plan", &RigPlanSummary::plan, "the plan of the final partition (PlanSummary)")
+      .def_readonly("check", &RigPlanSummary::check, "the independent check of the plan (RigCheck)")
+      .def_readonly("segments_initial", &RigPlanSummary::segments_initial, "partition segments asked for")
+      .def_readonly("points_added", &RigPlanSummary::points_added, "partition points the refinement added")
+      .def_readonly("points_slid", &RigPlanSummary::points_slid, "partition points slid onto the tick grid")
+      .def_readonly("rounds", &RigPlanSummary::rounds, "refinement rounds run")
+      .def_readonly("active", &RigPlanSummary::active, "the limits that shaped the plan (refined against, or tick)")
+      .def_readonly("blocking", &RigPlanSummary::blocking, "the limits that cannot be met");
+  m.def("plan_on_rig", &PlanImpulsesOnRig, py::arg("problem"), py::arg("limits"), py::arg("physical") = py::none(),
+        py::arg("options") = PlanOptions{}, py::arg("rig_options") = RigPlanOptions{}, py::call_guard<py::gil_scoped_release>(),
+        "Plans the path under a rig's limits: refines the partition where a flight leaves the plate or the stroke "
+        "box or enters an obstacle, slides the partition points onto the tick grid, and names the limits it "
+        "cannot meet; the final plan is checked by check_plan_rig_limits.");
+}
+
 }  // namespace
 
 void BindRigLimits(py::module_& m) {
   BindShapes(m);
   BindLimits(m);
   BindReference(m);
+  BindRigPlanner(m);
   m.def("check_plan_rig_limits",
         [](const PlanProblem& p, const PlanSummary& plan, const RigLimits& limits,
            const std::optional<PhysicalParameters>& physical, int samples_per_arc) {

@@ -410,6 +410,30 @@ def test_plan_on_a_rig(problems, run_cli):
     assert blocked.margins["obstacles[0]"] == pytest.approx(-0.0028, abs=1e-4)
 
 
+def test_plan_honours_a_rig(problems, run_cli):
+    """`plateball plan` with an obstacle in the flights' bow: the library's plan_on_rig refines the same
+    partition, and the tool's JSON carries its steps, counts, active limits and check."""
+    data = problems.parent / "tests" / "data"
+    doc = run_cli("plateball", "plan", data / "plan_rig_tick.json")
+    problem = pb.load_problem(data / "plan_rig_tick.json")
+    setup = pb.plan_setup_for(problem)
+    honoured = pb.plan_on_rig(setup.problem, problem.rig, problem.physical, setup.options)
+    assert honoured.usable and doc["status"] == "success"
+    assert json_get(doc, "rig.mode") == "honour"
+    assert json_get(doc, "partition.segments") == honoured.plan.segments == 128
+    for key in ("segments_initial", "points_added", "points_slid", "rounds", "active", "blocking"):
+        assert json_get(doc, "rig." + key) == getattr(honoured, key), key
+    assert honoured.active == ["obstacles[0]", "tick"]
+    times = [s["t_impulse"] for s in doc["steps"]]
+    assert times == list(honoured.plan.t_impulse)
+    assert all(t == round(t / problem.rig.tick) * problem.rig.tick for t in times)
+    for name, margin in honoured.check.margins.items():
+        assert json_get(doc, "rig.check.margins")[name] == margin
+    # The plan as given enters the obstacle and is off the grid.
+    given = pb.check_plan_rig_limits(setup.problem, pb.plan(setup.problem, setup.options), problem.rig)
+    assert sorted(v.split(" ")[0] for v in given.violations) == ["obstacles[0]", "tick"]
+
+
 def test_steer_on_a_rig(problems, run_cli):
     """`plateball steer` with a rig section: the same impulses, active limits and check as the library."""
     doc = run_cli("plateball", "steer", problems / "figure7_rig.json")

@@ -3,6 +3,7 @@
 // planned path dashed, impulsive trajectory solid, impulse points marked).
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "plateball/impulse_planner.h"
 #include "plateball/path.h"
 #include "plateball/plan_rig_check.h"
+#include "plateball/rig_planner.h"
 #include "plateball/task_adapters.h"
 
 namespace plateball::tools {
@@ -39,6 +41,7 @@ struct PlanCliOptions {
   ActuatorOptions actuator;
   double pulse_error = 0.0;
   CLI::Option* pulse_error_opt = nullptr;
+  bool rig_check_only = false;
 };
 
 // The pulse schedule for a stated error: ChoosePulseDuration's duration (centred pulses, executed open
@@ -113,19 +116,45 @@ void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const
   fig.Write(file);
 }
 
-// With a rig section: the plan checked against the limits by an independent replay
-// (CheckPlanRigLimits). A plan the rig cannot execute is the status limits_not_met (not usable).
-// True when the limits are met (or there are none).
-bool AddRigCheck(const Problem& p, const PlanSetup& setup, const PlanSummary& plan, Json* doc) {
+// With a rig section: the rig's record and the status. Honoured (PlanImpulsesOnRig): the refinement,
+// the limits that shaped the plan and those that block it, and the final independent check;
+// checked only (--rig-check-only): the check of the plan as given (CheckPlanRigLimits). A plan the
+// rig cannot execute is the status limits_not_met (not usable). True when the limits are met (or
+// there are none).
+bool AddRigSection(const Problem& p, const PlanSetup& setup, const std::optional<RigPlanSummary>& honoured,
+                   const PlanSummary& plan, Json* doc) {
   if (p.rig.Empty() || !plan.IsSolutionUsable()) return true;
-  const RigCheck check = CheckPlanRigLimits(setup.problem, plan, p.rig, p.physical);
-  (*doc)["rig"] = Json{{"check", RigCheckJson(check)}};
-  if (check.passed) {
-    (*doc)["report"] = (*doc)["report"].get<std::string>() + "; rig limits met";
+  std::string message;
+  bool met = false;
+  if (honoured) {
+    (*doc)["rig"] = Json{{"mode", "honour"},
+                         {"segments_initial", honoured->segments_initial},
+                         {"points_added", honoured->points_added},
+                         {"points_slid", honoured->points_slid},
+                         {"rounds", honoured->rounds},
+                         {"active", honoured->active},
+                         {"blocking", honoured->blocking},
+                         {"check", RigCheckJson(honoured->check)}};
+    met = honoured->IsSolutionUsable();
+    message = "the plan cannot meet the rig's limits (problem file's rig section): " + honoured->message;
+  } else {
+    const RigCheck check = CheckPlanRigLimits(setup.problem, plan, p.rig, p.physical);
+    (*doc)["rig"] = Json{{"mode", "check"}, {"check", RigCheckJson(check)}};
+    met = check.passed;
+    message = "the plan exceeds the rig's limits (problem file's rig section): ";
+    for (std::size_t i = 0; i < check.violations.size(); ++i) message += (i ? "; " : "") + check.violations[i];
+  }
+  if (met) {
+    std::string report = (*doc)["report"].get<std::string>() + "; rig limits met";
+    if (honoured && !honoured->active.empty()) {
+      report += " (active:";
+      for (const std::string& a : honoured->active) report += " " + a;
+      report += "; " + std::to_string(honoured->points_added) + " partition points added, " +
+                std::to_string(honoured->points_slid) + " slid onto the tick grid)";
+    }
+    (*doc)["report"] = report;
     return true;
   }
-  std::string message = "the plan exceeds the rig's limits (problem file's rig section): ";
-  for (std::size_t i = 0; i < check.violations.size(); ++i) message += (i ? "; " : "") + check.violations[i];
   (*doc)["status"] = "limits_not_met";
   (*doc)["usable"] = false;
   (*doc)["message"] = message;
@@ -144,11 +173,20 @@ int RunPlan(const PlanCliOptions& o) {
   if (schedule && !(std::isfinite(o.pulse_error) && o.pulse_error > 0))
     ThrowInvalidInput(CommandLineField("--pulse-error"), FormatNumber(o.pulse_error), "must be finite and > 0");
   // With --pulse-error the plan is executed (execution.h), which needs its pass points and goal.
+  // With a rig section the plan honours it (PlanImpulsesOnRig) unless --rig-check-only.
+  std::optional<RigPlanSummary> honoured;
   const auto nominal = std::make_shared<const NominalPlan>([&] {
     Progress progress("plateball plan", 0);  // one solve: the elapsed time
-    if (schedule) return MakeNominalPlan(setup.problem, setup.options);
+    PlanSummary planned;
+    if (!p.rig.Empty() && !o.rig_check_only) {
+      honoured = PlanImpulsesOnRig(setup.problem, p.rig, p.physical, setup.options);
+      planned = honoured->plan;
+    } else {
+      planned = PlanImpulses(setup.problem, setup.options);
+    }
+    if (schedule) return MakeNominalPlan(setup.problem, setup.options, std::move(planned));
     NominalPlan n;
-    n.plan = PlanImpulses(setup.problem, setup.options);
+    n.plan = std::move(planned);
     return n;
   }());
   const PlanSummary& plan = nominal->plan;
@@ -167,7 +205,7 @@ int RunPlan(const PlanCliOptions& o) {
   }
   const ActuatorContext actuator{p, request, ""};
   Append(doc, PlanSummaryToJson(plan, !o.summary_only, &actuator));
-  const bool within_limits = AddRigCheck(p, setup, plan, &doc);
+  const bool within_limits = AddRigSection(p, setup, honoured, plan, &doc);
   AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) DrawPlan(p, path, plan, o.svg);
@@ -189,6 +227,9 @@ std::function<int()> SetupPlan(CLI::App& sub) {
                                       "the impulses' pulse records use it");
   o->actuator.Add(sub, o->pulse_error_opt);
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
+  sub.add_flag("--rig-check-only", o->rig_check_only,
+               "with a rig section: plan the partition as given and only check it against the limits "
+               "(default: honour them, refining the partition and sliding its points onto the tick grid)");
   sub.footer(
       "Plans one energy-preserving impulse per partition point of plan.path (section 2.3): per impulse the\n"
       "time, p(tau_k), delta psi, delta omega, the upper plate's velocity change, the states and the\n"
@@ -197,8 +238,11 @@ std::function<int()> SetupPlan(CLI::App& sub) {
       "impulse J, contact impulses and, with --pulse-duration or --pulse-error, each pulse's force and the\n"
       "friction it needs (with ball.physical, docs/rig.md).\n"
       "Example: plateball plan problems/circle.json --summary-only --svg circle.svg\n"
-      "With a rig section the plan is checked against its limits (plate, obstacles, stroke, impulse bounds,\n"
-      "shortest interval, tick) by an independent replay: \"rig\": {\"check\"}, status limits_not_met when exceeded.\n"
+      "With a rig section the plan honours its limits: the partition is refined where a flight leaves the plate\n"
+      "or the stroke box or enters an obstacle, and its points slide along the path onto the tick grid; the\n"
+      "limits it cannot change (the path itself outside, shortest interval, impulse bounds) are named in\n"
+      "\"rig\": {\"blocking\"} with status limits_not_met. An independent replay checks every limit (\"rig\":\n"
+      "{\"check\"}); --rig-check-only plans the partition as given and only checks it.\n"
       "Exit codes: 0 ok, 2 usage, 3 invalid input (also: friction below a pulse's need), 4 a segment could not be joined\n"
       "or the plan exceeds the rig's limits, 5 unreadable file.");
   return [o] { return RunPlan(*o); };
