@@ -229,13 +229,13 @@ struct Refinement {
   std::vector<std::string> reasons;  // why a limit blocks
 };
 
-// Bisects the segments of the flights below zero. False (with the blocking limits and reasons)
+// Bisects the segments of the flights below -tolerances.position. False (with the blocking limits and reasons)
 // when a bisection would break min_interval, reach the resolution of tau or exceed the budget.
 bool Bisect(const PlanSummary& plan, const std::vector<Margin>& margins, const RigLimits& limits,
             const RigPlanOptions& options, Refinement* r, RigPlanSummary* out) {
   std::vector<std::size_t> bad;
   for (std::size_t k = 0; k < margins.size(); ++k)
-    if (margins[k].value < 0) bad.push_back(k);
+    if (margins[k].value < -options.tolerances.position) bad.push_back(k);
   const int added = static_cast<int>(bad.size());
   if (out->points_added + added > options.max_added_points || plan.segments + added > internal::kMaxPartitionSteps) {
     for (std::size_t k : bad) AddOnce(margins[k].limit, &out->blocking);
@@ -333,11 +333,11 @@ RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem, const RigLimits& li
                                                       rig_options.samples_per_flight);
     bool inside = true;
     for (const Margin& m : margins)
-      if (m.value < 0) inside = false, AddOnce(m.limit, &out.active);
+      if (m.value < -rig_options.tolerances.position) inside = false, AddOnce(m.limit, &out.active);
     if (inside) break;
     if (round == rig_options.max_rounds) {
       for (std::size_t k = 0; k < margins.size(); ++k)
-        if (margins[k].value < 0) AddOnce(margins[k].limit, &out.blocking);
+        if (margins[k].value < -rig_options.tolerances.position) AddOnce(margins[k].limit, &out.blocking);
       r.reasons.push_back("after " + std::to_string(round) + " rounds of refinement (max_rounds) flights still exceed the limits");
       break;
     }

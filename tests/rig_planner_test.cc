@@ -128,6 +128,36 @@ TEST(RigPlanner, ImpulseTimesSlideOntoTheTickAndStillMeetThePartitionPoints) {
   EXPECT_NEAR(r.plan.steps.back().p_end.x(), 0.0, 1e-12) << "the path's end is fixed";
 }
 
+TEST(RigPlanner, PassPointsOnThePlatesEdgeAreMetWithoutRefinement) {
+  // The flights bow inwards, so a plate of the circle's own radius is touched at the pass points
+  // only (to the joins' 1e-13), within the check's tolerance.
+  const BlockedCircle& c = Blocked();
+  RigLimits l;
+  l.plate = DiskShape{kCentre, 2.0};
+  const RigPlanSummary r = PlanImpulsesOnRig(c.setup.problem, l, std::nullopt, c.setup.options);
+  ASSERT_TRUE(r.IsSolutionUsable()) << r.BriefReport();
+  EXPECT_EQ(r.points_added, 0);
+  EXPECT_LE(std::abs(r.check.margins.at("plate")), RigCheckTolerances{}.position);
+}
+
+TEST(RigPlanner, AnImpulseAtAJunctionOfPiecesCannotSlideOntoTheTick) {
+  // problems/piecewise.json: a line, a half circle and a sine wave, 16 impulses each. The interior
+  // points slide; the two junctions are fixed points of the path and are named.
+  const PlanSetup setup = PlanSetupFor(ReadProblemFile(std::string(PLATEBALL_SOURCE_DIR) + "/problems/piecewise.json"));
+  RigLimits l;
+  l.tick = 1e-3;
+  const RigPlanSummary r = PlanImpulsesOnRig(setup.problem, l, std::nullopt, setup.options);
+  EXPECT_EQ(r.status, RigPlanStatus::kLimitsNotMet);
+  EXPECT_EQ(r.blocking, std::vector<std::string>{"tick"});
+  EXPECT_EQ(r.points_slid, 3 * 15);
+  EXPECT_NE(r.message.find("the impulse at the junction of pieces 0 and 1"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("the impulse at the junction of pieces 1 and 2"), std::string::npos) << r.message;
+  for (const PlanStep& s : r.plan.steps)
+    if (s.index > 0) {
+      EXPECT_EQ(s.t_impulse, static_cast<double>(std::llround(s.t_impulse / l.tick)) * l.tick) << s.global_index;
+    }
+}
+
 TEST(RigPlanner, SlackLimitsLeaveThePlanBitForBit) {
   const BlockedCircle& c = Blocked();
   RigLimits l;

@@ -70,7 +70,8 @@ struct RigPlanSummary {
 /// limits (sampled): a path that leaves the plate or the stroke box or crosses an obstacle's
 /// clearance is reported blocked at its worst point, and planned as given. Otherwise, round by
 /// round, every flight is replayed (FreeMotion) and its smallest margin to the plate, the
-/// obstacles and the stroke located; the segments of the flights below zero are bisected in tau
+/// obstacles and the stroke located; the segments of the flights below -tolerances.position (the
+/// check's tolerance: a pass point on the edge is met) are bisected in tau
 /// and the path planned again, until none is (or the rounds or points run out: limits_not_met;
 /// or a bisected flight would be shorter than min_interval: blocked by min_interval). With a tick
 /// every interior point of a piece slides along the path onto the grid (the flight's duration is
