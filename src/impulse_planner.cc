@@ -120,7 +120,6 @@ struct PlanCursor {
   // Rz(tau_k+1)), each computed once instead of once per segment.
   double circle_radius = 0.0;
   Eigen::Matrix3d rz = Eigen::Matrix3d::Identity();
-  long long tick_index = 0;  // with a grid: the tick of the next impulse (-1: off the grid)
 };
 
 // A grid for the impulse times and where the segment's end may slide (tau_next: the next
@@ -303,7 +302,7 @@ std::optional<GridSlide> SlideOntoGrid(const BallModel& model, const SmoothCurve
   // |t(tau) - D| at the rounding of t: the join's t carries noise of its residual, so the bracket
   // collapsing to adjacent doubles ends the search too.
   const double tolerance = 4 * std::numeric_limits<double>::epsilon() * d;
-  constexpr int kMaxIterations = 200;  // Illinois converges superlinearly: ~10 joins in practice
+  constexpr int kMaxIterations = 200;  // Illinois converges superlinearly: 4 to 6 joins on the circle at 1 kHz
   int side = 0;
   for (int it = 0; it < kMaxIterations; ++it) {
     double c = (a * fb - b * fa) / (fb - fa);
@@ -380,13 +379,7 @@ bool PlanSegment(const BallModel& model, const SmoothCurve& curve, const std::ve
     return false;
   }
   AddBounds(curve, arc, j, options, s, &out->bounds);
-  if (slide) {
-    cur->time = static_cast<double>(slide->index) * grid.grid->tick;  // exactly on the grid
-    cur->tick_index = slide->index;
-  } else {
-    cur->time += j.t;
-    cur->tick_index = -1;
-  }
+  cur->time = slide ? static_cast<double>(slide->index) * grid.grid->tick : cur->time + j.t;  // on the grid exactly
   out->max_pass_miss = std::max(out->max_pass_miss, s->pass_miss);
   out->max_join_residual = std::max(out->max_join_residual, j.residual);
   return true;
