@@ -12,7 +12,6 @@
 #include "plateball/free_motion.h"
 #include "plateball/partition.h"
 #include "plateball/plan_rig_check.h"
-#include "plateball/so3.h"
 #include "rig_geometry.h"
 
 namespace plateball {
@@ -127,7 +126,7 @@ std::vector<std::pair<std::string, std::string>> PathCrossings(const RigLimits& 
 template <typename F>
 double GoldenMinimum(F f, double a, double b) {
   constexpr double kInvPhi = 0.6180339887498949;
-  constexpr int kIterations = 60;  // 0.618^60 ~ 3e-13 of the bracket
+  constexpr int kIterations = 40;  // 0.618^40 ~ 4e-9 of the bracket: the margin's error ~ its curvature x that^2
   double c = b - kInvPhi * (b - a), d = a + kInvPhi * (b - a);
   double fc = f(c), fd = f(d);
   for (int i = 0; i < kIterations && c < d; ++i) {
@@ -142,31 +141,39 @@ double GoldenMinimum(F f, double a, double b) {
   return std::min(fc, fd);
 }
 
-// Each flight's smallest geometric margin and its limit: the flight replayed with FreeMotion from
-// its impulse (at the planner's arrival at its pass point), sampled at `samples` points, and the
-// smallest sample refined by golden-section search between its neighbours.
+// Each flight's smallest geometric margin and its limit: the flight integrated (IntegrateFreeMotion)
+// from its impulse at the planner's arrival at its pass point, sampled at `samples` points, and
+// the smallest sample refined by golden-section search between its neighbours (each evaluation
+// integrated from the sample before).
 std::vector<Margin> FlightMargins(const PlanProblem& problem, const PlanSummary& plan, const RigLimits& limits,
                                   const IntegrationOptions& integration, int samples) {
   const Eigen::Vector2d x0 = problem.path.StartPoint();
   std::vector<Margin> out;
   out.reserve(plan.steps.size());
   Eigen::Vector2d x = x0;
+  Eigen::Matrix3d a = plan.A0;
+  std::vector<double> times(static_cast<std::size_t>(samples) + 1);
   for (const PlanStep& s : plan.steps) {
-    // The orientation does not move the contact point: any with A e3 = z.
-    const Eigen::Matrix3d a = AlignOrientationToAxis(Eigen::Matrix3d::Identity(), s.impulse.state_after.z);
-    const FreeMotion motion(problem.model, FreeMotionStart{s.impulse.state_after, x, a}, integration);
-    const auto margin_at = [&](double t) { return SmallestMargin(limits, x0, motion.PositionAt(t)); };
+    for (int j = 0; j <= samples; ++j) times[static_cast<std::size_t>(j)] = s.duration * j / samples;
+    const std::vector<MotionSample> q =
+        IntegrateFreeMotion(problem.model, FreeMotionStart{s.impulse.state_after, x, a}, times, integration);
     Margin least;
-    int at = 0;
-    for (int j = 1; j <= samples; ++j) {
-      const Margin m = margin_at(s.duration * j / samples);
+    std::size_t at = 1;
+    for (std::size_t j = 1; j < q.size(); ++j) {
+      const Margin m = SmallestMargin(limits, x0, q[j].x);
       if (m.value < least.value) least = m, at = j;
     }
-    const double lo = s.duration * (at - 1) / samples, hi = s.duration * std::min(at + 1, samples) / samples;
-    const double refined = GoldenMinimum([&](double t) { return margin_at(t).value; }, lo, hi);
+    const MotionSample& before = q[at - 1];
+    const FreeMotionStart from{before.state, before.x, before.A};
+    const auto margin_at = [&](double dt) {
+      return SmallestMargin(limits, x0, IntegrateFreeMotion(problem.model, from, {0.0, dt}, integration)[1].x).value;
+    };
+    const double span = q[std::min(at + 1, q.size() - 1)].t - before.t;
+    const double refined = GoldenMinimum(margin_at, 0.0, span);
     if (refined < least.value) least.value = refined;  // the limit of the smallest sample (the bow's)
     out.push_back(least);
     x = s.x_end;
+    a = s.A_impulsive;
   }
   return out;
 }
