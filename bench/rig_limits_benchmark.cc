@@ -11,6 +11,13 @@
 // straight rolls reaching 5.9 from the plate's centre), and one disk obstacle. Timed:
 // SolveFewestImpulses. Counters: the fewest count within the limits, its total time, its
 // independent check, the constrained solves and their SLSQP evaluations.
+//
+// T13: the path-following plan honouring a rig (PlanImpulsesOnRig) on T2's circle, 64 impulses:
+// tests/data/plan_rig_blocked.json (an obstacle of radius 1.998 inside the flights' inward bow:
+// the partition is refined) and tests/data/plan_rig_tick.json (the same with a 1 kHz tick: the
+// partition points slide onto the grid). Timed: PlanImpulsesOnRig, its final independent check
+// included. Counters: the final segments, points added and slid, rounds, the check and its
+// obstacle margin, the largest miss of a partition point.
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -19,6 +26,7 @@
 #include "plateball/fewest_impulses.h"
 #include "plateball/isoparallel.h"
 #include "plateball/problem_io.h"
+#include "plateball/rig_planner.h"
 #include "plateball/task_adapters.h"
 
 namespace {
@@ -75,6 +83,26 @@ void BM_T12ConstrainedFewestFigure7(benchmark::State& state) {
   state.counters["rollouts"] = s.rollouts;
 }
 BENCHMARK(BM_T12ConstrainedFewestFigure7)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+
+void BM_T13PlanOnRig(benchmark::State& state) {
+  const char* files[] = {"/tests/data/plan_rig_blocked.json", "/tests/data/plan_rig_tick.json"};
+  const Problem file = ReadProblemFile(std::string(PLATEBALL_SOURCE_DIR) + files[state.range(0)]);
+  const PlanSetup setup = PlanSetupFor(file);
+  RigPlanSummary s;
+  for (auto _ : state) {
+    s = PlanImpulsesOnRig(setup.problem, file.rig, file.physical, setup.options);
+    benchmark::DoNotOptimize(s.plan.steps.data());
+  }
+  state.counters["ok"] = s.IsSolutionUsable() ? 1 : 0;
+  state.counters["segments"] = s.plan.segments;
+  state.counters["points_added"] = s.points_added;
+  state.counters["points_slid"] = s.points_slid;
+  state.counters["rounds"] = s.rounds;
+  state.counters["check_passed"] = s.check.passed ? 1 : 0;
+  state.counters["obstacle_margin"] = s.check.margins.count("obstacles[0]") ? s.check.margins.at("obstacles[0]") : 0.0;
+  state.counters["max_pass_miss"] = s.plan.max_pass_miss;
+}
+BENCHMARK(BM_T13PlanOnRig)->DenseRange(0, 1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 }  // namespace
 
