@@ -116,6 +116,28 @@ void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const
   fig.Write(file);
 }
 
+// The record of a plan that honoured the rig (PlanImpulsesOnRig).
+Json HonouredRigJson(const RigPlanSummary& r) {
+  return Json{{"mode", "honour"},
+              {"segments_initial", r.segments_initial},
+              {"points_added", r.points_added},
+              {"points_slid", r.points_slid},
+              {"rounds", r.rounds},
+              {"active", r.active},
+              {"blocking", r.blocking},
+              {"check", RigCheckJson(r.check)}};
+}
+
+// " (active: obstacles[0] tick; 64 partition points added, 127 slid onto the tick grid)", or
+// nothing when no limit shaped the plan.
+std::string ActiveNote(const RigPlanSummary& r) {
+  if (r.active.empty()) return "";
+  std::string note = " (active:";
+  for (const std::string& a : r.active) note += " " + a;
+  return note + "; " + std::to_string(r.points_added) + " partition points added, " + std::to_string(r.points_slid) +
+         " slid onto the tick grid)";
+}
+
 // With a rig section: the rig's record and the status. Honoured (PlanImpulsesOnRig): the refinement,
 // the limits that shaped the plan and those that block it, and the final independent check;
 // checked only (--rig-check-only): the check of the plan as given (CheckPlanRigLimits). A plan the
@@ -127,14 +149,7 @@ bool AddRigSection(const Problem& p, const PlanSetup& setup, const std::optional
   std::string message;
   bool met = false;
   if (honoured) {
-    (*doc)["rig"] = Json{{"mode", "honour"},
-                         {"segments_initial", honoured->segments_initial},
-                         {"points_added", honoured->points_added},
-                         {"points_slid", honoured->points_slid},
-                         {"rounds", honoured->rounds},
-                         {"active", honoured->active},
-                         {"blocking", honoured->blocking},
-                         {"check", RigCheckJson(honoured->check)}};
+    (*doc)["rig"] = HonouredRigJson(*honoured);
     met = honoured->IsSolutionUsable();
     message = "the plan cannot meet the rig's limits (problem file's rig section): " + honoured->message;
   } else {
@@ -145,14 +160,7 @@ bool AddRigSection(const Problem& p, const PlanSetup& setup, const std::optional
     for (std::size_t i = 0; i < check.violations.size(); ++i) message += (i ? "; " : "") + check.violations[i];
   }
   if (met) {
-    std::string report = (*doc)["report"].get<std::string>() + "; rig limits met";
-    if (honoured && !honoured->active.empty()) {
-      report += " (active:";
-      for (const std::string& a : honoured->active) report += " " + a;
-      report += "; " + std::to_string(honoured->points_added) + " partition points added, " +
-                std::to_string(honoured->points_slid) + " slid onto the tick grid)";
-    }
-    (*doc)["report"] = report;
+    (*doc)["report"] = (*doc)["report"].get<std::string>() + "; rig limits met" + (honoured ? ActiveNote(*honoured) : "");
     return true;
   }
   (*doc)["status"] = "limits_not_met";
