@@ -87,6 +87,25 @@ TEST(RigPlanner, TheObstacleInTheBowIsAvoidedByRefiningThePartition) {
   EXPECT_LT(LeastDistance(c.setup.problem, unrefined), 1.998);
 }
 
+TEST(RigPlanner, AFlightOutOfTheStrokeBoxIsRefinedWhereItLeavesIt) {
+  // The segment from the origin to (2, 0) with 8 impulses: the flights leave the line sideways; on
+  // flight 7 the upper plate's displacement 2 y reaches 0.0045, against a stroke of 1e-3.
+  const BlockedCircle& c = Blocked();
+  PlanProblem p = c.setup.problem;
+  p.path = Path({SmoothCurve::Line(Eigen::Vector2d::Zero(), Eigen::Vector2d(2.0, 0.0))});
+  p.partition = {UniformParameter{8}};
+  RigLimits l;
+  l.stroke = Eigen::Vector2d(100.0, 1e-3);
+  ASSERT_FALSE(CheckPlanRigLimits(p, PlanImpulses(p, c.setup.options), l, std::nullopt).passed);
+  const RigPlanSummary r = PlanImpulsesOnRig(p, l, std::nullopt, c.setup.options);
+  ASSERT_TRUE(r.IsSolutionUsable()) << r.BriefReport();
+  EXPECT_EQ(r.active, std::vector<std::string>{"stroke.y"});
+  EXPECT_GT(r.points_added, 0);
+  EXPECT_LT(r.points_added, 8) << "only the flights that leave the box are bisected";
+  const RigCheck dense = CheckPlanRigLimits(p, r.plan, l, std::nullopt, {}, kDenseCheckSamples);
+  EXPECT_TRUE(dense.passed) << (dense.violations.empty() ? "" : dense.violations[0]);
+}
+
 TEST(RigPlanner, APathThroughAnObstacleIsBlockedNamingTheObstacleAndThePoint) {
   const BlockedCircle& c = Blocked();
   RigLimits l;
