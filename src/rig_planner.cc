@@ -88,8 +88,11 @@ void AddOnce(const std::string& name, std::vector<std::string>* names) {
 }
 
 // The path itself against the geometric limits, sampled at `samples` points per segment of the
-// given partition: one line per limit it exceeds beyond the tolerance, at its worst point. No
-// partition can keep the flights inside where the pass points themselves lie outside.
+// given partition and at least kPathSamplesPerPiece per piece (as PathLimitBreaks samples a
+// reference): one line per limit it exceeds beyond the tolerance, at its worst point. No partition
+// can keep the flights inside where the pass points themselves lie outside.
+constexpr int kPathSamplesPerPiece = 2000;
+
 std::vector<std::pair<std::string, std::string>> PathCrossings(const RigLimits& limits, const Path& path,
                                                                const std::vector<std::vector<double>>& partition,
                                                                int samples, double tolerance) {
@@ -102,9 +105,11 @@ std::vector<std::pair<std::string, std::string>> PathCrossings(const RigLimits& 
   for (int piece = 0; piece < path.PieceCount(); ++piece) {
     const SmoothCurve& curve = path.pieces()[piece];
     const std::vector<double>& taus = partition[piece];
+    const int segments = static_cast<int>(taus.size()) - 1;
+    const int per_segment = std::max(samples, (kPathSamplesPerPiece + segments - 1) / segments);
     for (std::size_t k = 0; k + 1 < taus.size(); ++k)
-      for (int j = 0; j <= samples; ++j) {
-        const double tau = taus[k] + (taus[k + 1] - taus[k]) * j / samples;
+      for (int j = 0; j <= per_segment; ++j) {
+        const double tau = taus[k] + (taus[k + 1] - taus[k]) * j / per_segment;
         const Eigen::Vector2d p = curve.Value(tau);
         internal::VisitGeometricMargins(limits, x0, p, [&](const std::string& name, double margin) {
           if (margin >= -tolerance) return;
@@ -236,6 +241,20 @@ struct Refinement {
   std::vector<std::string> reasons;  // why a limit blocks
 };
 
+// When flights exceed the `exceeded` limits and the path itself exceeds one of them, refinement
+// cannot help (the pass points converge to the path): true, with the limit blocking and the path's
+// worst point as the reason.
+bool PathBlocks(const RigLimits& limits, const Path& path, const std::vector<std::vector<double>>& partition,
+                const RigPlanOptions& options, const std::vector<std::string>& exceeded, Refinement* r,
+                RigPlanSummary* out) {
+  bool blocked = false;
+  for (const auto& [name, reason] : PathCrossings(limits, path, partition, options.samples_per_flight,
+                                                  options.tolerances.position))
+    if (std::find(exceeded.begin(), exceeded.end(), name) != exceeded.end())
+      AddOnce(name, &out->blocking), r->reasons.push_back(reason), blocked = true;
+  return blocked;
+}
+
 // Bisects the segments of the flights below -tolerances.position. False (with the blocking limits and reasons)
 // when a bisection would break min_interval, reach the resolution of tau or exceed the budget.
 bool Bisect(const PlanSummary& plan, const std::vector<Margin>& margins, const RigLimits& limits,
@@ -326,25 +345,21 @@ RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem, const RigLimits& li
   r.partition = MakePartition(problem.path, problem.partition, "partition");
   r.owners = EnergyChangeOwners(problem, r.partition);
   for (const auto& taus : r.partition) out.segments_initial += static_cast<int>(taus.size()) - 1;
-  const auto crossings = PathCrossings(limits, problem.path, r.partition, rig_options.samples_per_flight,
-                                       rig_options.tolerances.position);
-  for (const auto& [name, reason] : crossings) AddOnce(name, &out.blocking), r.reasons.push_back(reason);
   const internal::PlanGrid grid{limits.tick, limits.min_interval};
   internal::PlanGridReport grid_report;
   for (int round = 0;; ++round) {
     out.plan = internal::PlanPartitioned(problem.model, problem.initial, problem.mu, problem.A0, problem.path,
                                          r.partition, PlacedEnergyChanges(problem, r.owners), options, grid, &grid_report);
-    // A path outside the limits is planned as given; refinement cannot help it.
-    if (!out.plan.IsSolutionUsable() || !crossings.empty() || !HasGeometricLimits(limits)) break;
+    if (!out.plan.IsSolutionUsable() || !HasGeometricLimits(limits)) break;
     const std::vector<Margin> margins = FlightMargins(problem, out.plan, limits, options.integration,
                                                       rig_options.samples_per_flight);
-    bool inside = true;
+    std::vector<std::string> exceeded;
     for (const Margin& m : margins)
-      if (m.value < -rig_options.tolerances.position) inside = false, AddOnce(m.limit, &out.active);
-    if (inside) break;
+      if (m.value < -rig_options.tolerances.position) AddOnce(m.limit, &exceeded), AddOnce(m.limit, &out.active);
+    if (exceeded.empty()) break;
+    if (PathBlocks(limits, problem.path, r.partition, rig_options, exceeded, &r, &out)) break;
     if (round == rig_options.max_rounds) {
-      for (std::size_t k = 0; k < margins.size(); ++k)
-        if (margins[k].value < -rig_options.tolerances.position) AddOnce(margins[k].limit, &out.blocking);
+      for (const std::string& name : exceeded) AddOnce(name, &out.blocking);
       r.reasons.push_back("after " + std::to_string(round) + " rounds of refinement (max_rounds) flights still exceed the limits");
       break;
     }

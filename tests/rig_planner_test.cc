@@ -118,6 +118,32 @@ TEST(RigPlanner, APathThroughAnObstacleIsBlockedNamingTheObstacleAndThePoint) {
   EXPECT_NE(r.message.find("at p(tau = 1.5707963267948966) = (-1.9999999999999998, 2) (piece 0)"), std::string::npos)
       << r.message;
   EXPECT_EQ(r.points_added, 0) << "refinement cannot help a path through an obstacle";
+  // A coarse partition (4 segments) and a wall 0.01 thick across the ring at angle 0.3 about the
+  // centre, from radius 1.3 to 2.5: every flight round the circle crosses it, and so does the path,
+  // which is sampled at least 2000 times (0.0063 apart), not only at the planner's 32 per segment.
+  PlanProblem coarse = c.setup.problem;
+  coarse.partition = {UniformParameter{4}};
+  const Eigen::Vector2d u(std::cos(0.3), std::sin(0.3)), v(-u.y(), u.x());
+  l.obstacles = {PolygonShape{{kCentre + 1.3 * u - 0.005 * v, kCentre + 2.5 * u - 0.005 * v,
+                               kCentre + 2.5 * u + 0.005 * v, kCentre + 1.3 * u + 0.005 * v}}};
+  const RigPlanSummary wall = PlanImpulsesOnRig(coarse, l, std::nullopt, c.setup.options);
+  EXPECT_EQ(wall.blocking, std::vector<std::string>{"obstacles[0]"});
+  EXPECT_NE(wall.message.find("the path itself enters obstacles[0] by 0.00"), std::string::npos) << wall.message;
+  EXPECT_EQ(wall.points_added, 0) << "found on the given partition, before any refinement";
+}
+
+TEST(RigPlanner, ThePlanIsJudgedByItsFlightsNotByThePath) {
+  // An obstacle of radius 0.01 on the path at p(0.3), with 4 segments: the path crosses it, but the
+  // flights, bowing inwards by up to 0.59, pass it: the plan meets the limits and nothing is refined.
+  const BlockedCircle& c = Blocked();
+  PlanProblem coarse = c.setup.problem;
+  coarse.partition = {UniformParameter{4}};
+  RigLimits l;
+  l.obstacles = {DiskShape{c.setup.problem.path.pieces()[0].Value(0.3), 0.01}};
+  const RigPlanSummary r = PlanImpulsesOnRig(coarse, l, std::nullopt, c.setup.options);
+  ASSERT_TRUE(r.IsSolutionUsable()) << r.BriefReport();
+  EXPECT_EQ(r.points_added, 0);
+  EXPECT_TRUE(CheckPlanRigLimits(coarse, r.plan, l, std::nullopt, {}, kDenseCheckSamples).passed);
 }
 
 TEST(RigPlanner, ImpulseTimesSlideOntoTheTickAndStillMeetThePartitionPoints) {

@@ -26,7 +26,7 @@ struct RigPlanOptions {
   int max_added_points = 4096;
   /// Samples per flight at which the planner looks for the flight's smallest geometric margin (the
   /// smallest is then located between its neighbours by golden-section search); the path itself
-  /// is sampled as densely per segment of the given partition.
+  /// is sampled as densely per segment of the given partition, and at least 2000 times per piece.
   int samples_per_flight = 32;
   /// Samples per flight of the final independent check (CheckPlanRigLimits).
   int check_samples_per_flight = 64;
@@ -66,17 +66,17 @@ struct RigPlanSummary {
   std::string BriefReport() const;
 };
 
-/// Plans problem.path under `limits`. The path itself is first checked against the geometric
-/// limits (sampled): a path that leaves the plate or the stroke box or crosses an obstacle's
-/// clearance is reported blocked at its worst point, and planned as given. Otherwise, round by
-/// round, every flight is replayed (FreeMotion) and its smallest margin to the plate, the
-/// obstacles and the stroke located; the segments of the flights below -tolerances.position (the
-/// check's tolerance: a pass point on the edge is met) are bisected in tau
-/// and the path planned again, until none is (or the rounds or points run out: limits_not_met;
-/// or a bisected flight would be shorter than min_interval: blocked by min_interval). With a tick
-/// every interior point of a piece slides along the path onto the grid (the flight's duration is
-/// the grid's difference; the ends of a piece stay fixed, and an impulse at a junction of pieces
-/// that falls off the grid is blocked by "tick"). Energy changes keep their partition points.
+/// Plans problem.path under `limits`, round by round: every flight is replayed (IntegrateFreeMotion)
+/// and its smallest margin to the plate, the obstacles and the stroke located; the segments of the
+/// flights below -tolerances.position (the check's tolerance: a pass point on the edge is met) are
+/// bisected in tau and the path planned again, until none is. The flights are the judge, not the
+/// path: a path that crosses an obstacle its flights pass is planned as it is. Refinement stops
+/// with limits_not_met when the path itself (sampled) exceeds a limit the flights exceed (the pass
+/// points converge to the path: blocked at the path's worst point), when the rounds or points run
+/// out, or when a bisected flight would be shorter than min_interval (blocked by min_interval).
+/// With a tick every interior point of a piece slides along the path onto the grid (the flight's
+/// duration is the grid's difference; the ends of a piece stay fixed, and an impulse at a junction
+/// of pieces that falls off the grid is blocked by "tick"). Energy changes keep their partition points.
 /// The final plan is checked by CheckPlanRigLimits; a limit it reports exceeded (the impulse
 /// bounds, min_interval, ...) is blocking. Slack limits leave the plan bit for bit as
 /// PlanImpulses(problem, options) gives it. Throws std::invalid_argument for invalid input
