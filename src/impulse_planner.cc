@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -276,18 +275,31 @@ struct GridSlide {
 };
 
 // Slides the end of segment s along the curve, strictly between tau_begin and tau_next, so that the
-// flight to it lasts d (t_nominal: the flight to the unslid end). The flight time t(tau) is
-// monotone on the local branch; its root t(tau) = d is bracketed between tau_begin (t = 0) and the
-// unslid end or tau_next, and found by regula falsi with the Illinois modification, to rounding of
-// tau or of t. Empty (with *why) when the join fails or d is beyond the next partition point.
-std::optional<double> SlideToDuration(double d, double t_nominal, double tau_next, const std::function<double(double)>& t_of,
-                                      const PlanStep& s, std::string* why) {
+// flight to it lasts D = m tick - t_impulse: m the multiple nearest the unslid arrival, at least
+// min_interval after the impulse. The flight time t(tau) is monotone on the local branch; its root
+// t(tau) = D is bracketed between tau_begin (t = 0) and the unslid end or tau_next, and found by
+// regula falsi with the Illinois modification, to rounding of tau or of t. Empty (with *why) when
+// the join fails or D is beyond the next partition point.
+std::optional<GridSlide> SlideOntoGrid(const BallModel& model, const SmoothCurve& curve, const PlanOptions& options,
+                                       const internal::PlanGrid& grid, double tau_next, const PlanCursor& cur,
+                                       const PlanStep& s, std::string* why) {
+  const auto t_of = [&](double tau) { return FlightTimeTo(model, curve, options, cur, s, tau); };
+  const double t_nominal = t_of(s.tau_end);
+  if (std::isnan(t_nominal)) return *why = "no join reaches the unslid point", std::nullopt;
+  const double start = cur.time;
+  long long m = std::max(std::llround((start + t_nominal) / grid.tick), static_cast<long long>(std::floor(start / grid.tick)));
+  while (!(static_cast<double>(m) * grid.tick - start > 0.0 && static_cast<double>(m) * grid.tick - start >= grid.min_interval)) ++m;
+  const double d = static_cast<double>(m) * grid.tick - start;
   double a = s.tau_begin, fa = -d, b = s.tau_end, fb = t_nominal - d;
   if (fb < 0) {
     a = b, fa = fb, b = tau_next, fb = t_of(tau_next) - d;
-    if (!(fb >= 0)) return *why = "lies beyond the arrival at the next partition point", std::nullopt;
+    if (!(fb >= 0)) {
+      *why = "the tick multiple " + internal::FormatNumber(static_cast<double>(m) * grid.tick) +
+             " lies beyond the arrival at the next partition point";
+      return std::nullopt;
+    }
   }
-  // |t(tau) - d| at the rounding of t: the join's t carries noise of its residual, so the bracket
+  // |t(tau) - D| at the rounding of t: the join's t carries noise of its residual, so the bracket
   // collapsing to adjacent doubles ends the search too.
   const double tolerance = 4 * std::numeric_limits<double>::epsilon() * d;
   constexpr int kMaxIterations = 200;  // Illinois converges superlinearly: 4 to 6 joins on the circle at 1 kHz
@@ -299,7 +311,7 @@ std::optional<double> SlideToDuration(double d, double t_nominal, double tau_nex
     const double t = t_of(c);
     if (std::isnan(t)) return *why = "no join reaches p(tau = " + internal::FormatNumber(c) + ")", std::nullopt;
     const double fc = t - d;
-    if (std::abs(fc) <= tolerance) return c;
+    if (std::abs(fc) <= tolerance) return GridSlide{c, m, d};
     if ((fc > 0) == (fb > 0)) {
       b = c, fb = fc;
       if (side == -1) fa /= 2;
@@ -311,38 +323,8 @@ std::optional<double> SlideToDuration(double d, double t_nominal, double tau_nex
     }
   }
   const double c = a > s.tau_begin && std::abs(fa) < std::abs(fb) ? a : b;
-  if (!(c < tau_next)) return *why = "has its root at the next partition point", std::nullopt;
-  return c;
-}
-
-// Slides the end of segment s onto the grid: the flight lasts D = m tick - t_impulse, m the
-// multiple nearest the unslid arrival, else the one on the other side of it (when the nearest lies
-// beyond the next partition point), each at least min_interval after the impulse.
-std::optional<GridSlide> SlideOntoGrid(const BallModel& model, const SmoothCurve& curve, const PlanOptions& options,
-                                       const internal::PlanGrid& grid, double tau_next, const PlanCursor& cur,
-                                       const PlanStep& s, std::string* why) {
-  const std::function<double(double)> t_of = [&](double tau) { return FlightTimeTo(model, curve, options, cur, s, tau); };
-  const double t_nominal = t_of(s.tau_end);
-  if (std::isnan(t_nominal)) return *why = "no join reaches the unslid point", std::nullopt;
-  const double start = cur.time, arrival = start + t_nominal;
-  const auto duration = [&](long long m) { return static_cast<double>(m) * grid.tick - start; };
-  const auto allowed = [&](long long m) { return duration(m) > 0.0 && duration(m) >= grid.min_interval; };
-  const long long nearest = std::llround(arrival / grid.tick);
-  const long long other = static_cast<double>(nearest) * grid.tick > arrival ? nearest - 1 : nearest + 1;
-  long long first = std::max(nearest, static_cast<long long>(std::floor(start / grid.tick)));
-  while (!allowed(first)) ++first;
-  std::vector<long long> candidates{first};
-  if (other != first && allowed(other)) candidates.push_back(other);
-  std::string tried;
-  for (const long long m : candidates) {
-    std::string reason;
-    if (const auto tau = SlideToDuration(duration(m), t_nominal, tau_next, t_of, s, &reason))
-      return GridSlide{*tau, m, duration(m)};
-    tried += (tried.empty() ? "" : "; ") + std::string("the tick multiple ") +
-             internal::FormatNumber(static_cast<double>(m) * grid.tick) + " " + reason;
-  }
-  *why = tried;
-  return std::nullopt;
+  if (!(c < tau_next)) return *why = "the root lies at the next partition point", std::nullopt;
+  return GridSlide{c, m, d};
 }
 
 // One segment k of a piece: energy changes, the join to p(tau_k+1), the arc, the references and
