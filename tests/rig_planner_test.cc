@@ -173,6 +173,20 @@ TEST(RigPlanner, ImpulseTimesSlideOntoTheTickAndStillMeetThePartitionPoints) {
   EXPECT_NEAR(r.plan.steps.back().p_end.x(), 0.0, 1e-12) << "the path's end is fixed";
 }
 
+TEST(RigPlanner, ATickCoarserThanTheFlightsIsBlocking) {
+  // Flights of about 0.257 on a grid of 0.3: the drift of the arrivals grows until a multiple lies
+  // beyond the next partition point's arrival, where the point cannot slide.
+  const BlockedCircle& c = Blocked();
+  RigLimits l;
+  l.tick = 0.3;
+  const RigPlanSummary r = PlanImpulsesOnRig(c.setup.problem, l, std::nullopt, c.setup.options);
+  EXPECT_EQ(r.status, RigPlanStatus::kLimitsNotMet);
+  EXPECT_EQ(r.blocking, std::vector<std::string>{"tick"});
+  EXPECT_NE(r.message.find("lies beyond the arrival at the next partition point"), std::string::npos) << r.message;
+  EXPECT_LT(r.points_slid, 63);
+  EXPECT_LT(r.check.margins.at("tick"), 0.0);
+}
+
 TEST(RigPlanner, PassPointsOnThePlatesEdgeAreMetWithoutRefinement) {
   // The flights bow inwards, so a plate of the circle's own radius is touched at the pass points
   // only (to the joins' 1e-13), within the check's tolerance.
