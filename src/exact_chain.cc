@@ -20,33 +20,47 @@ constexpr int kParams = 5;
 constexpr int kTracked = 8;  // z (3), x (2), eta (3)
 using ArcSensState = std::array<double, kValues + kTracked * kParams>;
 
+// The right-hand side written out in forward mode for the five parameters at once, line by line
+// as SensitivityRhs (dynamics.h) does for one: OmegaFromZK, ZxRhs and RotationRhs for the values,
+// their derivatives for z and x, and eta' = d omega + omega x eta (ExactChain tests check the
+// Jacobian against central differences).
 struct ArcSensRhs {
   double lambda;
   double k[2];
   void operator()(const ArcSensState& y, ArcSensState& dy, double /*t*/) const {
-    using Jet = ceres::Jet<double, kParams>;
-    Jet v[5], kk[2], w[2], d[5];
-    for (int i = 0; i < 5; ++i) {
-      v[i].a = y[i];
-      for (int j = 0; j < kParams; ++j) v[i].v[j] = y[kValues + kParams * i + j];
-    }
-    for (int i = 0; i < 2; ++i) kk[i] = Jet(k[i], 3 + i);
-    OmegaFromZK(v, kk, lambda, w);
-    ZxRhs(v, w, d, d + 3);
-    RotationRhs(w[0].a, w[1].a, y.data() + 5, dy.data() + 5);
-    for (int i = 0; i < 5; ++i) {
-      dy[i] = d[i].a;
-      for (int j = 0; j < kParams; ++j) dy[kValues + kParams * i + j] = d[i].v[j];
-    }
-    // eta' = d omega + omega x eta with omega = (w0, w1, 0).
-    const double w0 = w[0].a, w1 = w[1].a;
-    const double* eta = y.data() + kValues + kParams * 5;
-    double* deta = dy.data() + kValues + kParams * 5;
+    const double z0 = y[0], z1 = y[1], z2 = y[2];
+    // v0 = p / q with p = <K, z_h>, q = z3^2 + lambda |z_h|^2 (OmegaFromZK).
+    const double p = k[0] * z0 + k[1] * z1;
+    const double q = z2 * z2 + lambda * (z0 * z0 + z1 * z1);
+    const double inv_q = 1.0 / q;
+    const double v0 = p * inv_q;
+    const double c = lambda - 1.0;
+    const double w0 = k[0] - c * v0 * z0, w1 = k[1] - c * v0 * z1;
+    dy[0] = w1 * z2;
+    dy[1] = -w0 * z2;
+    dy[2] = w0 * z1 - w1 * z0;
+    dy[3] = w1;
+    dy[4] = -w0;
+    RotationRhs(w0, w1, y.data() + 5, dy.data() + 5);
+    const double* d = y.data() + kValues;  // d[kParams * i + j] = d y_i / d p_j
+    double* dd = dy.data() + kValues;
     for (int j = 0; j < kParams; ++j) {
-      const double e0 = eta[j], e1 = eta[kParams + j], e2 = eta[2 * kParams + j];
-      deta[j] = w[0].v[j] + w1 * e2;
-      deta[kParams + j] = w[1].v[j] - w0 * e2;
-      deta[2 * kParams + j] = w0 * e1 - w1 * e0;
+      const double d0 = d[j], d1 = d[kParams + j], d2 = d[2 * kParams + j];
+      const double dk0 = j == 3 ? 1.0 : 0.0, dk1 = j == 4 ? 1.0 : 0.0;  // p_3, p_4 = K
+      const double dp = dk0 * z0 + k[0] * d0 + dk1 * z1 + k[1] * d1;
+      const double dq = 2.0 * (z2 * d2 + lambda * (z0 * d0 + z1 * d1));
+      const double dv0 = (dp - v0 * dq) * inv_q;
+      const double dw0 = dk0 - c * (dv0 * z0 + v0 * d0), dw1 = dk1 - c * (dv0 * z1 + v0 * d1);
+      dd[j] = dw1 * z2 + w1 * d2;
+      dd[kParams + j] = -(dw0 * z2 + w0 * d2);
+      dd[2 * kParams + j] = dw0 * z1 + w0 * d1 - (dw1 * z0 + w1 * d0);
+      dd[3 * kParams + j] = dw1;
+      dd[4 * kParams + j] = -dw0;
+      // eta' = d omega + omega x eta with omega = (w0, w1, 0).
+      const double e0 = d[5 * kParams + j], e1 = d[6 * kParams + j], e2 = d[7 * kParams + j];
+      dd[5 * kParams + j] = dw0 + w1 * e2;
+      dd[6 * kParams + j] = dw1 - w0 * e2;
+      dd[7 * kParams + j] = w0 * e1 - w1 * e0;
     }
   }
 };
