@@ -24,6 +24,8 @@ constexpr int kDenseSamples = 32;
 constexpr int kExchangeRounds = 3;
 // An SLSQP round that ends farther outside than this fraction of the sampling margin is not run again.
 constexpr double kRestartViolation = 0.5;
+// Halvings of the turns tried for the start of the closest feasible arrival search.
+constexpr int kTurnHalvings = 6;
 // SLSQP runs of the closest feasible arrival search, each from the last one's end.
 constexpr int kClosestRuns = 2;
 // RestoreFeasibility also acts on a point whose arrival residual (at the Jacobian's tolerance) is above this.
@@ -588,13 +590,21 @@ bool SolveWithExchange(const ConstrainedSetup& s, Samples* sm, const std::vector
   return false;
 }
 
-// The start of the closest-arrival search: u, or u without its turns (s_k = 0: the ball rolls on
-// with impulses of zero size), whichever breaks the limits less (SLSQP may not find feasibility
-// from far outside).
+// The start of the closest-arrival search: u, or u with its turns scaled by 1/2, 1/4, ... (the
+// impulses shrink with them) down to none (s_k = 0: the ball rolls on with impulses of zero size),
+// the first that meets the limits, else the one that breaks them least (SLSQP may not find
+// feasibility from far outside). A scaled turn keeps the impulse bounds off their kink at s = 0,
+// where the central differences of |impulse| give no direction.
 Eigen::VectorXd LeastViolating(const ConstrainedSetup& s, const Samples& sm, const Eigen::VectorXd& u, int* rollouts) {
-  Eigen::VectorXd unturned = u;
-  unturned.head(s.n).setZero();
-  return MaxViolation(Evaluate(s, sm, unturned, rollouts)) < MaxViolation(Evaluate(s, sm, u, rollouts)) ? unturned : u;
+  Eigen::VectorXd best = u;
+  double least = MaxViolation(Evaluate(s, sm, u, rollouts));
+  for (int halvings = 1; halvings <= kTurnHalvings + 1 && least > 0; ++halvings) {
+    Eigen::VectorXd scaled = u;
+    scaled.head(s.n) *= halvings > kTurnHalvings ? 0.0 : std::ldexp(1.0, -halvings);
+    const double violation = MaxViolation(Evaluate(s, sm, scaled, rollouts));
+    if (violation < least) best = scaled, least = violation;
+  }
+  return best;
 }
 
 }  // namespace
