@@ -26,8 +26,6 @@ constexpr int kExchangeRounds = 3;
 constexpr double kRestartViolation = 0.5;
 // Halvings of the turns tried for the start of the closest feasible arrival search.
 constexpr int kTurnHalvings = 6;
-// SLSQP runs of the closest feasible arrival search, each from the last one's end.
-constexpr int kClosestRuns = 2;
 // RestoreFeasibility also acts on a point whose arrival residual (at the Jacobian's tolerance) is above this.
 constexpr double kRestoreResidual = 1e-9;
 
@@ -633,14 +631,9 @@ ConstrainedOutcome SolveConstrainedArrival(const ConstrainedSetup& s, const Eige
     if (grid) out.blocking.push_back("tick");
   } else if (!out.arrived) {  // the closest feasible arrival, and the limits that stop it
     u = LeastViolating(s, sm, u, &out.rollouts);
-    // Two runs: the second, with a fresh quasi-Newton model, settles the limits that stop the
-    // arrival onto their bounds where the first may end short of them (1e-5 on
-    // tests/data/rig_unreachable.json, beyond the active tolerance).
-    for (int run = 0; run < kClosestRuns; ++run) {
-      Stage closest(s, sm, u, free, true);
-      u = RunSlsqp(&closest, &out.evaluations);
-      out.rollouts += closest.rollouts;
-    }
+    Stage closest(s, sm, u, free, true);
+    u = RunSlsqp(&closest, &out.evaluations);
+    out.rollouts += closest.rollouts;
     e = Evaluate(s, sm, u, &out.rollouts);
     out.feasible = MaxViolation(e) <= kFeasibilityTolerance;
     out.blocking = ActiveNames(s, e);
