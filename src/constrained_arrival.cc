@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "dense_qp.h"
 #include "plateball/plate_impulse.h"
 
 namespace plateball::internal {
@@ -24,6 +25,19 @@ constexpr int kDenseSamples = 32;
 constexpr int kExchangeRounds = 3;
 // An SLSQP round that ends farther outside than this fraction of the sampling margin is not run again.
 constexpr double kRestartViolation = 0.5;
+// The Gauss-Newton SQP before SLSQP: its steps (a few bring the start near the solution and near
+// feasibility, from where SLSQP finishes in a handful of evaluations; further steps converge only
+// linearly, the Gauss-Newton model lacking the constraints' curvature), the Levenberg damping
+// (relative to the largest curvature), the step below which it has converged (relative to u), the
+// shortest line-search step.
+constexpr int kSqpIterations = 4;
+constexpr double kSqpDamping = 1e-8;
+constexpr double kSqpStep = 1e-10;
+constexpr double kSqpSmallestStep = 1.0 / 16;
+// The sufficient decrease of the merit along a step (Armijo).
+constexpr double kArmijo = 1e-4;
+// Halvings of the turns tried for the start of the closest feasible arrival search.
+constexpr int kTurnHalvings = 6;
 // RestoreFeasibility also acts on a point whose arrival residual (at the Jacobian's tolerance) is above this.
 constexpr double kRestoreResidual = 1e-9;
 
@@ -121,6 +135,7 @@ struct Evaluation {
   Eigen::MatrixXd dr;
   double f = 0.0;
   Eigen::RowVectorXd df;
+  Eigen::MatrixXd gauss_newton;  // the deviation's Gauss-Newton Hessian (zero for the other objectives)
   std::vector<double> g;
   std::vector<Eigen::RowVectorXd> dg;
   std::vector<std::string> names;
@@ -213,6 +228,7 @@ void AddObjective(const ConstrainedSetup& s, const Samples& sm, const std::vecto
       const Eigen::Vector2d d = nodes[node].x - s.planned[static_cast<std::size_t>(k)];
       e->f += d.squaredNorm();
       e->df += 2.0 * d.transpose() * cj.dx[node];
+      e->gauss_newton += 2.0 * cj.dx[node].transpose() * cj.dx[node];
     }
   }
 }
@@ -222,13 +238,14 @@ Evaluation Evaluate(const ConstrainedSetup& s, const Samples& sm, const Eigen::V
   nodes[0] = s.start;
   ChainJacobian cj;
   const ChainColumns columns = sm.Columns();
-  RollChain(s.lambda, SubParameters(u, sm), s.jacobian_integration, &nodes, &s.jacobian_integration, &cj, &columns);
+  RollChain(s.lambda, SubParameters(u, sm), s.jacobian_integration, &nodes, &cj, &columns);
   ++*rollouts;
   Evaluation e;
   e.u = u;
   e.r = ArrivalResidual(nodes.back(), s.x1, s.A1);
   e.dr = ArrivalJacobian(cj, nodes.back(), s.A1);
   e.df = Eigen::RowVectorXd::Zero(2 * s.n);
+  e.gauss_newton = Eigen::MatrixXd::Zero(2 * s.n, 2 * s.n);
   AddObjective(s, sm, nodes, cj, &e);
   for (std::size_t i = 1; i < nodes.size(); ++i) AddPositionConstraints(s, nodes[i].x, cj.dx[i], &e);
   AddImpulseTerms(s, sm, nodes, cj, u, &e);
@@ -559,12 +576,85 @@ bool MeetsLimits(const ConstrainedSetup& setup, const Eigen::VectorXd& u) {
 
 namespace {
 
+// The L1 merit of the Gauss-Newton steps: the deviation + rho (|r|_1 + the violations).
+double Merit(const Evaluation& e, double rho) {
+  double violation = e.r.lpNorm<1>();
+  for (double g : e.g) violation += std::max(g, 0.0);
+  return e.f + rho * violation;
+}
+
+// Sequential quadratic programming steps with the Gauss-Newton Hessian of the deviation (a sum of
+// squares), which SLSQP's quasi-Newton model would have to learn from its iterates: each solves the
+// QP of the deviation's Gauss-Newton model (Levenberg-damped) under the linearised arrival
+// conditions, limits and flight bounds (dense_qp.h), and a backtracking line search on the L1 merit
+// accepts it. Returns the last accepted u, from which SLSQP finishes.
+Eigen::VectorXd GaussNewtonSqp(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free,
+                               Eigen::VectorXd u, int* evaluations, int* rollouts) {
+  const Eigen::Index nv = static_cast<Eigen::Index>(free.size());
+  const auto at = [&free](Eigen::Index i) { return free[static_cast<std::size_t>(i)]; };
+  Evaluation e = Evaluate(s, sm, u, rollouts);
+  ++*evaluations;
+  double rho = 1.0, damping = kSqpDamping;
+  for (int it = 0; it < kSqpIterations; ++it) {
+    // The QP over the free entries: min 1/2 d^T H d + df d, dr d = -r, dg d <= -g, t + d_t >= bound.
+    Eigen::MatrixXd H(nv, nv), E(5, nv);
+    Eigen::VectorXd c(nv);
+    std::vector<Eigen::Index> times;
+    for (Eigen::Index i = 0; i < nv; ++i) {
+      c[i] = e.df[at(i)];
+      for (Eigen::Index k = 0; k < nv; ++k) H(i, k) = e.gauss_newton(at(i), at(k));
+      E.col(i) = e.dr.col(at(i));
+      if (at(i) >= s.n) times.push_back(i);
+    }
+    H.diagonal().array() += damping * (1.0 + H.diagonal().maxCoeff());
+    const Eigen::Index m = static_cast<Eigen::Index>(e.g.size()), mt = static_cast<Eigen::Index>(times.size());
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m + mt, nv);
+    Eigen::VectorXd b(m + mt);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      for (Eigen::Index k = 0; k < nv; ++k) A(i, k) = e.dg[static_cast<std::size_t>(i)][at(k)];
+      b[i] = -e.g[static_cast<std::size_t>(i)];
+    }
+    for (Eigen::Index i = 0; i < mt; ++i) {
+      const Eigen::Index col = times[static_cast<std::size_t>(i)];
+      A(m + i, col) = -1.0;
+      b[m + i] = u[at(col)] - FlightLowerBound(s, at(col) - s.n);
+    }
+    const DenseQpResult qp = SolveDenseQp(H, c, E, -e.r, A, b);
+    if (!qp.solved) break;
+    const Eigen::VectorXd& d = qp.d;
+    if (d.cwiseAbs().maxCoeff() <= kSqpStep * (1.0 + u.cwiseAbs().maxCoeff())) break;
+    double multiplier = qp.equality_multipliers.cwiseAbs().maxCoeff();
+    if (m + mt > 0) multiplier = std::max(multiplier, qp.inequality_multipliers.maxCoeff());
+    rho = std::max(rho, 2.0 * multiplier);
+    double violation = e.r.lpNorm<1>();
+    for (double g : e.g) violation += std::max(g, 0.0);
+    const double slope = std::min(c.dot(d) - rho * violation, 0.0);  // the merit's derivative along d
+    const double merit = Merit(e, rho);
+    bool accepted = false;
+    for (double alpha = 1.0; alpha >= kSqpSmallestStep && !accepted; alpha *= 0.5) {
+      Eigen::VectorXd trial = u;
+      for (Eigen::Index i = 0; i < nv; ++i) trial[at(i)] += alpha * d[i];
+      Evaluation next = Evaluate(s, sm, trial, rollouts);
+      ++*evaluations;
+      if (Merit(next, rho) <= merit + kArmijo * alpha * slope) {
+        u = trial;
+        e = std::move(next);
+        accepted = true;
+      }
+    }
+    damping = accepted ? std::max(kSqpDamping, damping * 0.1) : damping * 100.0;
+  }
+  return u;
+}
+
 // SLSQP rounds, each followed by a dense look at the flights; a flight whose worst point breaks a
 // limit between the sample nodes gets that point as a new node (an exchange method for the
 // semi-infinite constraint "every point of the path"). Returns true when no point was missed.
 bool SolveWithExchange(const ConstrainedSetup& s, Samples* sm, const std::vector<int>& free, Eigen::VectorXd* u,
                        ConstrainedOutcome* out) {
   for (int round = 0; round < kExchangeRounds; ++round) {
+    if (s.objective == ArrivalObjective::kDeviation)
+      *u = GaussNewtonSqp(s, *sm, free, *u, &out->evaluations, &out->rollouts);
     Stage st(s, *sm, *u, free, false);
     *u = RunSlsqp(&st, &out->evaluations);
     out->rollouts += st.rollouts;
@@ -586,13 +676,21 @@ bool SolveWithExchange(const ConstrainedSetup& s, Samples* sm, const std::vector
   return false;
 }
 
-// The start of the closest-arrival search: u, or u without its turns (s_k = 0: the ball rolls on
-// with impulses of zero size), whichever breaks the limits less (SLSQP may not find feasibility
-// from far outside).
+// The start of the closest-arrival search: u, or u with its turns scaled by 1/2, 1/4, ... (the
+// impulses shrink with them) down to none (s_k = 0: the ball rolls on with impulses of zero size),
+// the first that meets the limits, else the one that breaks them least (SLSQP may not find
+// feasibility from far outside). A scaled turn keeps the impulse bounds off their kink at s = 0,
+// where the central differences of |impulse| give no direction.
 Eigen::VectorXd LeastViolating(const ConstrainedSetup& s, const Samples& sm, const Eigen::VectorXd& u, int* rollouts) {
-  Eigen::VectorXd unturned = u;
-  unturned.head(s.n).setZero();
-  return MaxViolation(Evaluate(s, sm, unturned, rollouts)) < MaxViolation(Evaluate(s, sm, u, rollouts)) ? unturned : u;
+  Eigen::VectorXd best = u;
+  double least = MaxViolation(Evaluate(s, sm, u, rollouts));
+  for (int halvings = 1; halvings <= kTurnHalvings + 1 && least > 0; ++halvings) {
+    Eigen::VectorXd scaled = u;
+    scaled.head(s.n) *= halvings > kTurnHalvings ? 0.0 : std::ldexp(1.0, -halvings);
+    const double violation = MaxViolation(Evaluate(s, sm, scaled, rollouts));
+    if (violation < least) best = scaled, least = violation;
+  }
+  return best;
 }
 
 }  // namespace

@@ -9,7 +9,10 @@
 //   - the plate velocity change and |J| of every impulse, differentiated through the chain's dz, dK;
 //   - the shortest interval between impulses as bounds on the flight times.
 // The method is NLopt's SLSQP (sequential quadratic programming: equality and inequality
-// constraints with exact gradients; Ceres has bounds only), from the free optimum; Newton steps on
+// constraints with exact gradients; Ceres has bounds only), from the free optimum, which for the
+// deviation objective first takes four Gauss-Newton SQP steps (the QP of the deviation's
+// Gauss-Newton model under the linearised constraints, dense_qp.h, with a line search on the L1
+// merit) so that SLSQP starts near the solution and near feasibility; Newton steps on
 // the arrival conditions and the violated inequalities finish a point an SLSQP run left just off
 // (round-off), and a dense look adds each flight's worst missed point as a node for another run
 // (an exchange method), unless the run ended far outside, which more nodes cannot mend. The impulse
@@ -43,7 +46,7 @@ struct ConstrainedSetup {
   bool start_at_rest = false;
   bool stop_at_goal = false;
   IntegrationOptions integration;           ///< the final rollouts (chord steps)
-  IntegrationOptions jacobian_integration;  ///< the SLSQP evaluations
+  IntegrationOptions jacobian_integration;  ///< the evaluations (SQP steps and SLSQP)
   double position_tolerance = 1e-12;
   double orientation_tolerance = 1e-10;
   int samples_per_arc = 4;

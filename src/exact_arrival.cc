@@ -98,7 +98,7 @@ Eigen::MatrixXd Jacobian(const Setup& s, const Eigen::VectorXd& u, const Integra
   std::vector<ChainNode> nodes(static_cast<std::size_t>(s.n) + 1);
   nodes[0] = s.start;
   internal::ChainJacobian cj;
-  internal::RollChain(s.model->lambda(), u, integration, &nodes, &integration, &cj);
+  internal::RollChain(s.model->lambda(), u, integration, &nodes, &cj);
   ++*rollouts;
   Eigen::MatrixXd jac(5 + 2 * (s.n - 1), 2 * s.n);
   jac.topRows<5>() = internal::ArrivalJacobian(cj, nodes.back(), s.A1);

@@ -82,13 +82,12 @@ struct ChainColumns {
 };
 
 /// Rolls the chain from nodes[0] with u = (s, t) (n = u.size() / 2), filling nodes[1..n] (A
-/// re-projected onto SO(3) after every arc). With `jacobian`, also the exact Jacobian (the arcs are
-/// then integrated once more with their variational equations at `jacobian_integration`), with
-/// respect to u, or to the unknowns of `columns` when given.
+/// re-projected onto SO(3) after every arc). With `jacobian`, also the exact Jacobian, with respect
+/// to u, or to the unknowns of `columns` when given: each arc is then integrated once, its values
+/// together with their variational equations (the step control over both).
 /// Throws std::runtime_error when an integration fails.
 void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions& integration,
-               std::vector<ChainNode>* nodes, const IntegrationOptions* jacobian_integration = nullptr,
-               ChainJacobian* jacobian = nullptr, const ChainColumns* columns = nullptr);
+               std::vector<ChainNode>* nodes, ChainJacobian* jacobian = nullptr, const ChainColumns* columns = nullptr);
 
 /// The five arrival conditions at the chain's end: (x_n - x1, LogSO3(A1^T A_n)).
 Eigen::Matrix<double, 5, 1> ArrivalResidual(const ChainNode& end, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A1);

@@ -121,8 +121,7 @@ Eigen::VectorXd Evaluate(const Search& s, const Eigen::VectorXd& u, const Integr
                          std::vector<ChainNode>* nodes, Eigen::MatrixXd* jac) {
   nodes->assign(static_cast<std::size_t>(u.size() / 2) + 1, s.start);
   internal::ChainJacobian cj;
-  internal::RollChain(s.problem->model.lambda(), u, integration, nodes, jac ? &integration : nullptr,
-                      jac ? &cj : nullptr);
+  internal::RollChain(s.problem->model.lambda(), u, integration, nodes, jac ? &cj : nullptr);
   ++*s.rollouts;
   if (jac) {
     const Eigen::MatrixXd full = internal::ArrivalJacobian(cj, nodes->back(), s.problem->A1);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -30,11 +31,14 @@ void ExpectArrivesByReplay(const ExactArrivalProblem& p, const ExactArrivalSumma
   const ReplayResult replay = ReplayExactArrival(p, s.impulses);
   EXPECT_LE(replay.position_error, kPositionTol) << s.BriefReport();
   EXPECT_LE(replay.orientation_error, kOrientationTol) << s.BriefReport();
+  // The total against the sum of the rounded durations: a few roundings of the total (relative, as
+  // the total reaches 1e5 at mu = 1e-8, where one ulp is 1.5e-11).
+  constexpr double kSumTol = 1e-13;
   EXPECT_NEAR(s.total_time, [&] {
     double t = 0;
     for (const ExactImpulse& e : s.impulses) t += e.duration;
     return t;
-  }(), 1e-12);
+  }(), kSumTol * std::max(1.0, s.total_time));
   for (const ExactImpulse& e : s.impulses) EXPECT_GT(e.duration, 0.0);
 }
 
@@ -316,7 +320,7 @@ TEST(ExactChain, JacobianMatchesCentralDifferences) {
   const Eigen::Matrix3d A1 = ExpSO3({0.5, 1.0, -0.3});
   std::vector<internal::ChainNode> nodes(5, start);
   internal::ChainJacobian jac;
-  internal::RollChain(model.lambda(), u, tight, &nodes, &tight, &jac);
+  internal::RollChain(model.lambda(), u, tight, &nodes, &jac);
   const Eigen::MatrixXd arrival = internal::ArrivalJacobian(jac, nodes.back(), A1);
   const double h = 1e-6;
   for (int j = 0; j < 8; ++j) {

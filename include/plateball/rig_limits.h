@@ -112,7 +112,7 @@ struct RigLimitsReport {
   /// When the limits could not be met together with the arrival: the limits active at the closest
   /// feasible arrival, which block the goal.
   std::vector<std::string> blocking;
-  int evaluations = 0;  ///< SLSQP evaluations of the constrained solve(s)
+  int evaluations = 0;  ///< evaluations of the constrained solve(s) (Gauss-Newton SQP steps and SLSQP)
 };
 
 /// The independent check of a result: a replay with FreeMotion sampled densely on every arc.

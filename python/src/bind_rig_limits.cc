@@ -47,7 +47,7 @@ void BindLimits(py::module_& m) {
       .def_readonly("constrained", &RigLimitsReport::constrained, "True when the limits cut the free optimum and the constrained solve ran")
       .def_readonly("active", &RigLimitsReport::active, "limits active at the result")
       .def_readonly("blocking", &RigLimitsReport::blocking, "the limits active at the closest feasible arrival (status limits_not_met)")
-      .def_readonly("evaluations", &RigLimitsReport::evaluations, "SLSQP evaluations");
+      .def_readonly("evaluations", &RigLimitsReport::evaluations, "evaluations of the constrained solve(s) (Gauss-Newton SQP steps and SLSQP)");
   py::class_<RigCheck>(m, "RigCheck", "The independent replay check of a result against the limits.")
       .def_readonly("passed", &RigCheck::passed, "every checked quantity within its limit and tolerance")
       .def_readonly("samples", &RigCheck::samples, "contact points checked")

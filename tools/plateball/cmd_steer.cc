@@ -198,7 +198,7 @@ std::function<int()> SetupSteer(CLI::App& sub) {
       "arrivals within the limits (each through the constrained solver when needed) and checks each\n"
       "reached count by an independent replay.\n"
       "With a rig section (plate region, obstacles, stroke, impulse bounds, shortest interval, tick) or\n"
-      "steer.objective: the arrival that meets the limits (SLSQP from the free optimum; unchanged when\n"
+      "steer.objective: the arrival that meets the limits (SQP from the free optimum; unchanged when\n"
       "they are slack), the active limits and an independent replay check (docs/guide/steer.md).\n"
       "Example: plateball steer problems/figure7_exact.json --summary-only\n"
       "Exit codes: 0 arrived, 2 usage, 3 invalid input, 4 goal not reached or the limits not met\n"
