@@ -8,6 +8,7 @@
 
 #include "check.h"
 #include "constrained_arrival.h"
+#include "dense_solve.h"
 #include "exact_chain.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
@@ -120,7 +121,7 @@ Eigen::VectorXd KktStep(const Eigen::MatrixXd& jac, const Eigen::VectorXd& res) 
   Eigen::VectorXd rhs(p + 5);
   rhs.head(p) = -D.transpose() * res.tail(res.size() - 5);
   rhs.tail<5>() = -res.head<5>();
-  return kkt.fullPivLu().solve(rhs).head(p);
+  return internal::FullPivLuSolve(kkt, rhs).head(p);
 }
 
 bool Arrived(const Eigen::VectorXd& r, const ExactArrivalOptions& o) {
@@ -227,9 +228,8 @@ void Polish(const Setup& s, const Eigen::MatrixXd& jac, Eigen::VectorXd* u, std:
             Eigen::VectorXd* r, int* rollouts) {
   const Eigen::MatrixXd J = jac.topRows(5);
   const Eigen::MatrixXd jjt = J * J.transpose();
-  const auto lu = jjt.fullPivLu();
   for (int i = 0; i < 8 && Merit(*r) > 0.0; ++i) {
-    const Eigen::VectorXd u_new = *u - J.transpose() * lu.solve(r->head<5>());
+    const Eigen::VectorXd u_new = *u - J.transpose() * internal::FullPivLuSolve(jjt, r->head<5>());
     if ((u_new.tail(s.n).array() <= 0).any()) return;
     std::vector<ChainNode> trial;
     RollOut(s, u_new, trial);
@@ -423,7 +423,7 @@ ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::v
   out.A = AlignOrientationToAxis(problem.A0, state.z);
   for (std::size_t k = 0; k < impulses.size(); ++k) {
     const AngleState angles = AnglesFromState(state, problem.model);
-    const Impulse imp = EnergyPreservingImpulse(angles, problem.mu, impulses[k].delta_psi, problem.model);
+    const plateball::Impulse imp = EnergyPreservingImpulse(angles, problem.mu, impulses[k].delta_psi, problem.model);
     const FreeMotion motion(problem.model, FreeMotionStart{imp.state_after, out.x, out.A}, integration);
     const MotionSample end = motion.At(impulses[k].duration);
     state = end.state;
@@ -480,7 +480,7 @@ std::vector<ExactImpulse> ReportImpulses(const BallModel& model, double mu, cons
     e.delta_psi = u[k];
     e.duration = u[n + k];
     e.angles_before = AnglesFromState({a.z, OmegaFromMomentum(a.z, a.k, model)}, model);
-    const Impulse imp = EnergyPreservingImpulse(e.angles_before, mu, e.delta_psi, model);
+    const plateball::Impulse imp = EnergyPreservingImpulse(e.angles_before, mu, e.delta_psi, model);
     e.delta_omega = imp.delta_omega;
     e.plate_velocity_change = imp.plate_velocity_change;
     e.mu_before = e.mu_after = mu;

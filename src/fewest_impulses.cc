@@ -17,6 +17,7 @@
 
 #include "check.h"
 #include "constrained_arrival.h"
+#include "dense_solve.h"
 #include "exact_chain.h"
 #include "fewest_search.h"
 #include "plateball/limits.h"
@@ -228,7 +229,7 @@ bool Restore(const Search& s, const IntegrationOptions& values, double position_
     Eigen::MatrixXd jac;
     std::vector<ChainNode> trial;
     Evaluate(s, *u, s.options->search_integration, &trial, &jac);
-    const Eigen::VectorXd du = -jac.completeOrthogonalDecomposition().solve(*r);
+    const Eigen::VectorXd du = -internal::MinimumNormSolve(jac, *r);
     bool reduced = false;
     for (double alpha = 1.0; alpha > 0.05 && !reduced; alpha *= 0.5) {
       const Eigen::VectorXd u_new = *u + alpha * du;
@@ -266,7 +267,7 @@ void Shorten(const Search& s, Eigen::VectorXd* u) {
     jac.rightCols(n) = jac.rightCols(n) * t.asDiagonal();
     Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * n);
     g.tail(n) = t;  // dT/d log t_k
-    Eigen::VectorXd d = -(g - jac.completeOrthogonalDecomposition().solve(jac * g));
+    Eigen::VectorXd d = -(g - internal::MinimumNormSolve(jac, jac * g));
     if (d.norm() < 1e-9) return;
     d *= step / d.norm();
     Eigen::VectorXd trial = *u;
@@ -420,7 +421,7 @@ bool ShrinkFlight(const Search& s, int k, Eigen::VectorXd* u) {
     jac.rightCols(n) = jac.rightCols(n) * t.asDiagonal();
     Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * n);
     g[n + k] = 1.0;  // d log t_k
-    Eigen::VectorXd d = -(g - jac.completeOrthogonalDecomposition().solve(jac * g));
+    Eigen::VectorXd d = -(g - internal::MinimumNormSolve(jac, jac * g));
     if (d.norm() < 1e-9) return false;
     d *= step / d.norm();
     Eigen::VectorXd trial = *u;

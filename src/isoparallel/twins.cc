@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "check.h"
+#include "dense_solve.h"
 #include "isoparallel/stages.h"
 #include "isoparallel/twins.h"
 
@@ -38,8 +39,7 @@ double TangentOrientation(const CurveFrame& w, const Eigen::Matrix4d& jac, const
 // angle within a step and its dot product with the previous tangent is no guide (T4's pair).
 Eigen::Vector4d CurveTangent(const CurveFrame& w, const Eigen::Matrix4d& jac, double orientation) {
   const Eigen::Matrix<double, 3, 4> a = w.transpose() * jac;
-  const Eigen::JacobiSVD<Eigen::Matrix<double, 3, 4>> svd(a, Eigen::ComputeFullV);
-  const Eigen::Vector4d t = svd.matrixV().col(3);
+  const Eigen::Vector4d t = internal::OrientedNullVector(a);
   return TangentOrientation(w, jac, t) * orientation < 0 ? -t : t;
 }
 
