@@ -15,8 +15,6 @@ namespace {
 // Pieces of [0, Lc] for the Hessian term's upper Riemann sum (each piece at the sup of its integrand).
 constexpr int kHessianPieces = 16;
 
-double MaxAbs(double a, double b) { return std::max(std::abs(a), std::abs(b)); }
-
 // The smallest |rate| over the box (0 when it meets rate 0).
 double RateMin(const CertifyBox& box) {
   return box.lo[kCertifyRate] > 0.0 ? box.lo[kCertifyRate] : box.hi[kCertifyRate] < 0.0 ? -box.hi[kCertifyRate] : 0.0;

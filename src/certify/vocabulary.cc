@@ -14,8 +14,6 @@ namespace plateball::internal {
 
 namespace {
 
-double MaxAbs(double a, double b) { return std::max(std::abs(a), std::abs(b)); }
-
 // int_0^length min(alpha + beta s, cap) ds for alpha >= 0 and alpha + beta length >= 0.
 double IntegralOfCappedLine(double alpha, double beta, double cap, double length) {
   if (alpha >= cap) return cap * length;

@@ -25,7 +25,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
@@ -231,5 +233,8 @@ CertifyPoint CanonicalSolution(const ElasticaParameters& parameters, double leng
 /// Whether two canonical solutions are the same path: every coordinate within `tolerance`, the
 /// phase compared modulo its period (a path near the end of the period is also near its start).
 bool SamePath(PendulumRegime regime, const CertifyPoint& a, const CertifyPoint& b, double tolerance);
+
+/// The largest magnitude over the interval with ends a and b.
+inline double MaxAbs(double a, double b) { return std::max(std::abs(a), std::abs(b)); }
 
 }  // namespace plateball::internal
