@@ -20,7 +20,7 @@ if(PLATEBALL_MUJOCO AND TARGET plateball_cli AND NOT PLATEBALL_SANITIZE AND NOT 
                                      ${PROJECT_SOURCE_DIR}/tools/rig/mujoco_twin.cc
                                      ${PROJECT_SOURCE_DIR}/tools/rig/twin_loop.cc)
     target_include_directories(plateball_rig PUBLIC ${PROJECT_SOURCE_DIR}/tools)
-    target_link_libraries(plateball_rig PUBLIC plateball_tool_common mujoco::mujoco)
+    target_link_libraries(plateball_rig PUBLIC plateball_tool_common plateball mujoco::mujoco)
     target_compile_options(plateball_rig PRIVATE ${PLATEBALL_WARNINGS})
     target_sources(plateball_cli PRIVATE ${PROJECT_SOURCE_DIR}/tools/rig/cmd_rig.cc ${PROJECT_SOURCE_DIR}/tools/rig/loop_command.cc)
     target_link_libraries(plateball_cli PRIVATE plateball_rig)

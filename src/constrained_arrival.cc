@@ -8,6 +8,7 @@
 
 #include "check.h"
 #include "dense_qp.h"
+#include "dense_solve.h"
 #include "plateball/plate_impulse.h"
 
 namespace plateball::internal {
@@ -178,8 +179,8 @@ struct ImpulseTerm {
 };
 
 // The bounded magnitude of impulse k (k = n: the stop) and its gradient with respect to u.
-ImpulseTerm Impulse(const ConstrainedSetup& s, const Samples& sm, const std::vector<ChainNode>& nodes,
-                    const ChainJacobian& cj, const Eigen::VectorXd& u, int k, bool as_impulse) {
+ImpulseTerm ImpulseTermAt(const ConstrainedSetup& s, const Samples& sm, const std::vector<ChainNode>& nodes,
+                          const ChainJacobian& cj, const Eigen::VectorXd& u, int k, bool as_impulse) {
   const std::size_t node = static_cast<std::size_t>(sm.offset[static_cast<std::size_t>(k)]);
   const ImpulseRole role = k == s.n ? ImpulseRole::kStop
                            : (k == 0 && s.start_at_rest) ? ImpulseRole::kStart
@@ -202,15 +203,15 @@ void AddImpulseTerms(const ConstrainedSetup& s, const Samples& sm, const std::ve
   const bool objective = s.objective == ArrivalObjective::kTotalImpulse;
   for (int k = 0; k < ImpulseCount(s); ++k) {
     if (limit_v) {
-      const ImpulseTerm t = Impulse(s, sm, nodes, cj, u, k, false);
+      const ImpulseTerm t = ImpulseTermAt(s, sm, nodes, cj, u, k, false);
       AddConstraint(e, "max_plate_velocity_change", t.value - l.max_plate_velocity_change, t.gradient);
     }
     if (limit_j) {
-      const ImpulseTerm t = Impulse(s, sm, nodes, cj, u, k, true);
+      const ImpulseTerm t = ImpulseTermAt(s, sm, nodes, cj, u, k, true);
       AddConstraint(e, "max_plate_impulse", t.value - l.ImpulseBound(), t.gradient);
     }
     if (objective) {
-      const ImpulseTerm t = Impulse(s, sm, nodes, cj, u, k, s.physical.has_value());
+      const ImpulseTerm t = ImpulseTermAt(s, sm, nodes, cj, u, k, s.physical.has_value());
       e->f += t.value;
       e->df += t.gradient;
     }
@@ -432,7 +433,7 @@ Evaluation RestoreFeasibility(const ConstrainedSetup& s, const Samples& sm, cons
       for (std::size_t c = 0; c < free.size(); ++c)
         J(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][free[c]];
     const Eigen::VectorXd step =
-        J.completeOrthogonalDecomposition().solve(Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size())));
+        internal::MinimumNormSolve(J, Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size())));
     Eigen::VectorXd trial = *u;
     for (std::size_t c = 0; c < free.size(); ++c) trial[free[c]] += step[static_cast<Eigen::Index>(c)];
     for (int k = 0; k < s.n; ++k)
@@ -460,7 +461,7 @@ void Polish(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>
     const Eigen::MatrixXd dr = Evaluate(s, sm, *u, rollouts).dr;
     Eigen::MatrixXd J(5, free.size());
     for (std::size_t c = 0; c < free.size(); ++c) J.col(static_cast<Eigen::Index>(c)) = dr.col(free[c]);
-    const Eigen::VectorXd step = -J.transpose() * (J * J.transpose()).fullPivLu().solve(r);
+    const Eigen::VectorXd step = -J.transpose() * internal::FullPivLuSolve(J * J.transpose(), r);
     Eigen::VectorXd trial = *u;
     for (std::size_t c = 0; c < free.size(); ++c) trial[free[c]] += step[static_cast<Eigen::Index>(c)];
     if ((trial.tail(s.n).array() <= 0).any()) return;

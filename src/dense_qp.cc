@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include "dense_solve.h"
+
 namespace plateball::internal {
 
 namespace {
@@ -37,7 +39,7 @@ DenseQpResult SolveDenseQp(const Eigen::MatrixXd& H, const Eigen::VectorXd& c, c
   {
     Eigen::VectorXd rhs(n + ne);
     rhs << -c, e;
-    const Eigen::VectorXd sol = Kkt(H, E, A, active).fullPivLu().solve(rhs);
+    const Eigen::VectorXd sol = FullPivLuSolve(Kkt(H, E, A, active), rhs);
     out.d = sol.head(n);
     out.equality_multipliers = sol.tail(ne);
     if (ne > 0 && (E * out.d - e).cwiseAbs().maxCoeff() > 1e-8 * (1.0 + e.cwiseAbs().maxCoeff())) return out;
@@ -68,7 +70,7 @@ DenseQpResult SolveDenseQp(const Eigen::MatrixXd& H, const Eigen::VectorXd& c, c
       const Eigen::Index na = static_cast<Eigen::Index>(active.size());
       Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + ne + na);
       rhs.head(n) = -A.row(p).transpose();
-      const Eigen::VectorXd sol = Kkt(H, E, A, active).fullPivLu().solve(rhs);
+      const Eigen::VectorXd sol = FullPivLuSolve(Kkt(H, E, A, active), rhs);
       const Eigen::VectorXd z = sol.head(n);
       const double curvature = z.dot(H * z);  // = -a_p^T z: the violation falls by t z^T H z
       const double violation = A.row(p).dot(d) - b[p];
