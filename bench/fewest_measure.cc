@@ -61,7 +61,7 @@ double Objective(const std::vector<double>& v, std::vector<double>& grad, void* 
   internal::ChainJacobian cj;
   const IntegrationOptions io{1e-10, 1e-10, 2'000'000};
   try {
-    internal::RollChain(d->p->model.lambda(), u, io, &nodes, grad.empty() ? nullptr : &io, grad.empty() ? nullptr : &cj);
+    internal::RollChain(d->p->model.lambda(), u, io, &nodes, grad.empty() ? nullptr : &cj);
   } catch (const std::runtime_error&) {
     return 1e3;
   }
