@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "golden_section.h"
 #include "reach_internal.h"
 
 namespace plateball {
@@ -315,32 +316,6 @@ class ReachResidual {
   mutable internal::TightPoint cache_;
 };
 
-// Golden-section search (40 steps) for the minimum of a unimodal f on [lo, hi]: the smaller of
-// the last two probes, and where it is.
-template <typename F>
-double GoldenSection(const F& f, double lo, double hi, double* x_min) {
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-  double fa = f(a), fb = f(b);
-  for (int it = 0; it < 40; ++it) {
-    if (fa < fb) {
-      hi = b;
-      b = a;
-      fb = fa;
-      a = hi - g * (hi - lo);
-      fa = f(a);
-    } else {
-      lo = a;
-      a = b;
-      fa = fb;
-      b = lo + g * (hi - lo);
-      fb = f(b);
-    }
-  }
-  *x_min = fa < fb ? a : b;
-  return std::min(fa, fb);
-}
-
 // Cheap closest approach along the direction s: min over t in [0, horizon] of |x_s(t) - target|
 // from the RK4 table, refined on the cubic Hermite interpolant around the best node.
 struct CheapDistance {
@@ -385,8 +360,8 @@ struct CheapDistance {
     }
     // Golden-section search on the interpolant over the two neighbouring steps.
     double t_min = 0.0;
-    const double f_min = GoldenSection([&](double t) { return (at(t) - rel).norm(); }, std::max(0.0, tb - h),
-                                       std::min(horizon, tb + h), &t_min);
+    const double f_min = internal::GoldenSection([&](double t) { return (at(t) - rel).norm(); },
+                                                 std::max(0.0, tb - h), std::min(horizon, tb + h), &t_min);
     if (f_min < best) {
       best = f_min;
       tb = t_min;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "golden_section.h"
 #include "plan_partitioned.h"
 #include "plateball/free_motion.h"
 #include "plateball/partition.h"
@@ -126,26 +127,6 @@ std::vector<std::pair<std::string, std::string>> PathCrossings(const RigLimits& 
   return out;
 }
 
-// Golden-section search for the minimum of f on [a, b] (f unimodal there: the bracket around the
-// smallest of the flight's samples).
-template <typename F>
-double GoldenMinimum(F f, double a, double b) {
-  constexpr double kInvPhi = 0.6180339887498949;
-  constexpr int kIterations = 40;  // 0.618^40 ~ 4e-9 of the bracket: the margin's error ~ its curvature x that^2
-  double c = b - kInvPhi * (b - a), d = a + kInvPhi * (b - a);
-  double fc = f(c), fd = f(d);
-  for (int i = 0; i < kIterations && c < d; ++i) {
-    if (fc < fd) {
-      b = d, d = c, fd = fc;
-      c = b - kInvPhi * (b - a), fc = f(c);
-    } else {
-      a = c, c = d, fc = fd;
-      d = a + kInvPhi * (b - a), fd = f(d);
-    }
-  }
-  return std::min(fc, fd);
-}
-
 // Each flight's smallest geometric margin and its limit: the flight integrated (IntegrateFreeMotion)
 // from its impulse at the planner's arrival at its pass point, sampled at `samples` points, and
 // the smallest sample refined by golden-section search between its neighbours (each evaluation
@@ -174,7 +155,7 @@ std::vector<Margin> FlightMargins(const PlanProblem& problem, const PlanSummary&
       return SmallestMargin(limits, x0, IntegrateFreeMotion(problem.model, from, {0.0, dt}, integration)[1].x).value;
     };
     const double span = q[std::min(at + 1, q.size() - 1)].t - before.t;
-    const double refined = GoldenMinimum(margin_at, 0.0, span);
+    const double refined = internal::GoldenSection(margin_at, 0.0, span);
     if (refined < least.value) least.value = refined;  // the limit of the smallest sample (the bow's)
     out.push_back(least);
     x = s.x_end;
