@@ -8,7 +8,6 @@
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,11 +16,11 @@
 
 #include "plateball/exact_arrival.h"
 #include "plateball/fewest_impulses.h"
-#include "plateball/isoparallel_plan.h"
-#include "plateball/so3.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/isoparallel.h"
+#include "plateball/isoparallel_plan.h"
+#include "plateball/so3.h"
 #include "plateball/task_adapters.h"
 
 namespace {

@@ -9,11 +9,10 @@
 // uniformly random starts (std::mt19937, not the solver's Halton points), a found point accepted
 // only when the reported impulses replay (ReplayExactArrival, FreeMotion's integrator) to the goal
 // within 1e-8. Prints one line per goal that disagrees and the counts. Run with `nice -n 10`.
-#include <nlopt.hpp>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <nlopt.hpp>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -143,22 +142,29 @@ int main(int argc, char** argv) try {
     independent_three += three ? 1 : 0;
     if (three && s.fewest != 3) {
       ++missed;
-      std::printf("goal %d: independent 3-impulse arrival (start %d) but fewest = %d: %s\n", g, used, s.fewest,
+      std::printf("goal %d: independent 3-impulse arrival (start %d) but fewest = %d: %s\n",
+                  g,
+                  used,
+                  s.fewest,
                   s.BriefReport().c_str());
     }
-    if (!three) std::printf("goal %d: no independent 3-impulse arrival in %d starts; fewest = %d\n", g, starts, s.fewest);
+    if (!three)
+      std::printf("goal %d: no independent 3-impulse arrival in %d starts; fewest = %d\n", g, starts, s.fewest);
   }
   std::printf("%d goals (seed %u): fewest histogram:", goals, seed);
   for (int n = 0; n <= FewestImpulsesOptions::kMaxImpulses; ++n)
     if (histogram[n] > 0) std::printf(" n=%d: %d", n, histogram[n]);
   std::printf("\nminimal_for_generic_goal: %d; count 3 reached only after adaptive starts: %d; by continuation: %d\n",
-              minimal, adaptive, by_continuation);
-  std::printf("independent search found a 3-impulse arrival for %d goals; the solver reported fewest != 3 for %d of them\n",
-              independent_three, missed);
+              minimal,
+              adaptive,
+              by_continuation);
+  std::printf(
+      "independent search found a 3-impulse arrival for %d goals; the solver reported fewest != 3 for %d of them\n",
+      independent_three,
+      missed);
   std::printf("solver time: %.3f s in all, mean %.1f ms, worst %.1f ms\n", seconds, 1e3 * seconds / goals, 1e3 * worst);
   return missed == 0 ? 0 : 1;
-}
-catch (const std::exception& e) {
+} catch (const std::exception& e) {
   std::fprintf(stderr, "fewest_measure: %s\n", e.what());
   return 2;
 }

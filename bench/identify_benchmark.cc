@@ -65,7 +65,8 @@ void Run(benchmark::State& state, double sigma, bool profile, bool guess, int th
   state.counters["mu_error"] = std::abs(s.mu - kMu);
   // The state: x0 (radii) and theta up to z -> -z (theta -> pi - theta gives the same track).
   state.counters["x0_error"] = (s.x0 - kX0).norm();
-  state.counters["theta_error"] = std::min(std::abs(s.angles.theta - kAngles.theta), std::abs(M_PI - s.angles.theta - kAngles.theta));
+  state.counters["theta_error"] =
+      std::min(std::abs(s.angles.theta - kAngles.theta), std::abs(M_PI - s.angles.theta - kAngles.theta));
   state.counters["lambda_se"] = s.standard_errors.empty() ? -1 : s.standard_errors[0];
   state.counters["interval_half_width"] = profile ? 0.5 * (s.lambda_high - s.lambda_low) : 0.0;
   state.counters["starts"] = s.starts;

@@ -106,8 +106,9 @@ void BM_ConjugateTimesFigure7(benchmark::State& state) {
     local = 0;
     end_gap = 0.0;
     for (const IsoparallelSolution& s : summary.solutions) {
-      const internal::ConjugateTime c = internal::FirstConjugateTime(
-          internal::ConjugateProblem::kPlateBall, internal::ExtremalDataOf(s.parameters), kConjugateSearchFactor * s.length);
+      const internal::ConjugateTime c = internal::FirstConjugateTime(internal::ConjugateProblem::kPlateBall,
+                                                                     internal::ExtremalDataOf(s.parameters),
+                                                                     kConjugateSearchFactor * s.length);
       if (c.found && c.time >= s.length * (1 - kConjugateEndTolerance)) {
         ++local;
         end_gap = std::max(end_gap, std::abs(c.time - s.length) / s.length);

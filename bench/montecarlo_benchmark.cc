@@ -65,8 +65,8 @@ void BM_T6Study(benchmark::State& state) {
   for (auto _ : state) s = RunMonteCarlo(p, o);
   const MonteCarloCell& fb = s.cells.at(0);
   const MonteCarloCell& ol = s.cells.at(1);
-  state.counters["us_per_trial"] = benchmark::Counter(2.0 * p.trials * 1e-6, benchmark::Counter::kIsIterationInvariantRate |
-                                                                              benchmark::Counter::kInvert);
+  state.counters["us_per_trial"] = benchmark::Counter(
+      2.0 * p.trials * 1e-6, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   // A cell where no trial completed has no distribution: NaN counters say so.
   const Distribution none{NAN, NAN, NAN, NAN};
   const Distribution fo = fb.orientation_error.value_or(none), fp = fb.position_error.value_or(none);

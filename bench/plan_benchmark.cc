@@ -31,7 +31,8 @@ void BM_T2Plan(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const BallModel model = BallModel::FromLambda(2.0);
   const Path path({SmoothCurve::Circle({-2, 0}, 2, 0, 2 * M_PI)});
-  const PlanProblem problem{model, {M_PI / 3, 0.4, 0.1}, 1.0, Eigen::Matrix3d::Identity(), path, {UniformParameter{n}}, {}};
+  const PlanProblem problem{
+      model, {M_PI / 3, 0.4, 0.1}, 1.0, Eigen::Matrix3d::Identity(), path, {UniformParameter{n}}, {}};
   PlanSummary plan;
   for (auto _ : state) {
     plan = PlanImpulses(problem);

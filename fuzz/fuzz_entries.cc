@@ -233,13 +233,14 @@ void SteerExact(const Problem& p) {
     iso.options.max_iterations = std::min(iso.options.max_iterations, 20);
     solved = SolveIsoparallel(iso.problem, iso.options);
     if (!solved.IsSolutionUsable()) return;
-    const ReferenceChoice choice = p.rig.Empty() ? ReferenceChoice{}
-                                                 : ChooseIsoparallelReference(solved, p.rig, solved.Shortest().start);
+    const ReferenceChoice choice =
+        p.rig.Empty() ? ReferenceChoice{} : ChooseIsoparallelReference(solved, p.rig, solved.Shortest().start);
     setup = ExactArrivalSetupFor(p, solved.solutions.at(choice.index));
   }
   setup.problem.impulses = std::min(setup.problem.impulses, kSteerMaxImpulses);
   setup.options.max_iterations = std::min(setup.options.max_iterations, kSteerMaxIterations);
-  setup.options.warm_start.integration.max_steps = std::min(setup.options.warm_start.integration.max_steps, kSteerMaxSteps);
+  setup.options.warm_start.integration.max_steps =
+      std::min(setup.options.warm_start.integration.max_steps, kSteerMaxSteps);
   CapIntegration(&setup.options.integration);
   CapIntegration(&setup.options.jacobian_integration);
   const ExactArrivalSummary s = SolveExactArrival(setup.problem, setup.options);
@@ -285,8 +286,10 @@ void SteerEntry(const std::uint8_t* data, std::size_t size) {
   try {
     const Problem p = ParseProblem(text, "fuzz.json");
     if (!p.steer) return;
-    if (p.steer->fewest) SteerFewest(p);
-    else SteerExact(p);
+    if (p.steer->fewest)
+      SteerFewest(p);
+    else
+      SteerExact(p);
   } catch (const std::invalid_argument&) {
   } catch (const std::runtime_error&) {  // a reported failure (an integration over its step bound)
   }

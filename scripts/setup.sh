@@ -17,6 +17,7 @@ packages+=(libompl-dev)  # optional exact steering for OMPL's control-based plan
 packages+=(chromium)  # view: Debian's Chromium for the browser tests of `plateball view`
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)  # view: npm ci in web/ (below)
 packages+=(ccache)  # compiler cache for scripts/build.sh, sanitize.sh and fuzz.sh (scripts/compiler_cache.sh)
+packages+=(clang-format)  # the format check (tests/scripts/check_format.sh)
 packages+=(help2man)  # man pages of the tools (tools/man/make_man.sh)
 # The documentation site (docs/, the `docs` target): Sphinx, breathe (C++ API from Doxygen's XML),
 # MyST (Markdown), sphinx-gallery; the notebooks (docs/notebooks/) run by nbclient on ipykernel;

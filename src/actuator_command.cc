@@ -55,7 +55,9 @@ const char* PulseAlignmentName(PulseAlignment alignment) {
   return alignment == PulseAlignment::kCentred ? "centred" : "causal";
 }
 
-std::string CheckPulseSchedule(const std::vector<double>& times, double final_time, double duration,
+std::string CheckPulseSchedule(const std::vector<double>& times,
+                               double final_time,
+                               double duration,
                                PulseAlignment alignment) {
   if (!(std::isfinite(duration) && duration > 0))
     return internal::InvalidValueMessage("pulse.duration", duration, "must be finite and > 0");
@@ -65,16 +67,19 @@ std::string CheckPulseSchedule(const std::vector<double>& times, double final_ti
     const double t = times[k];
     if (!std::isfinite(t)) return internal::InvalidValueMessage(Field(k), t, "must be finite");
     if (t - before < 0)
-      return internal::InvalidValueMessage(Field(k), t, "its pulse of duration " + internal::FormatNumber(duration) +
-                                                             " starts before time 0");
-    if (t + after > final_time)
-      return internal::InvalidValueMessage(Field(k), t, "its pulse of duration " + internal::FormatNumber(duration) +
-                                                             " ends after the final time " +
-                                                             internal::FormatNumber(final_time));
-    if (k > 0 && t - times[k - 1] < duration)
       return internal::InvalidValueMessage(
-          Field(k), t, "its pulse of duration " + internal::FormatNumber(duration) + " overlaps the previous one: the flight " +
-                           internal::FormatNumber(t - times[k - 1]) + " is shorter than the pulse");
+          Field(k), t, "its pulse of duration " + internal::FormatNumber(duration) + " starts before time 0");
+    if (t + after > final_time)
+      return internal::InvalidValueMessage(Field(k),
+                                           t,
+                                           "its pulse of duration " + internal::FormatNumber(duration) +
+                                               " ends after the final time " + internal::FormatNumber(final_time));
+    if (k > 0 && t - times[k - 1] < duration)
+      return internal::InvalidValueMessage(Field(k),
+                                           t,
+                                           "its pulse of duration " + internal::FormatNumber(duration) +
+                                               " overlaps the previous one: the flight " +
+                                               internal::FormatNumber(t - times[k - 1]) + " is shorter than the pulse");
   }
   return {};
 }

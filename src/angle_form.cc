@@ -43,10 +43,14 @@ AngleFormSample MakeSample(double t, const AngleY& y) {
 
 std::string ToString(AngleFormStatus status) {
   switch (status) {
-    case AngleFormStatus::kCompleted: return "completed";
-    case AngleFormStatus::kReachedPole: return "reached_pole";
-    case AngleFormStatus::kStepLimit: return "step_limit";
-    case AngleFormStatus::kFailed: return "failed";
+    case AngleFormStatus::kCompleted:
+      return "completed";
+    case AngleFormStatus::kReachedPole:
+      return "reached_pole";
+    case AngleFormStatus::kStepLimit:
+      return "step_limit";
+    case AngleFormStatus::kFailed:
+      return "failed";
   }
   return "unknown";
 }
@@ -59,10 +63,11 @@ std::string AngleFormOptions::Validate() const {
   return {};
 }
 
-void AngleFormDerivative(const AngleState& s, double mu, const BallModel& model, AngleState* d_angles,
-                         Eigen::Vector2d* d_x) {
+void AngleFormDerivative(
+    const AngleState& s, double mu, const BallModel& model, AngleState* d_angles, Eigen::Vector2d* d_x) {
   internal::RequirePositive("mu", mu);
-  if (std::sin(s.theta) == 0.0) internal::ThrowInvalid("theta", s.theta, "the angle form (19)-(21) is singular at the poles");
+  if (std::sin(s.theta) == 0.0)
+    internal::ThrowInvalid("theta", s.theta, "the angle form (19)-(21) is singular at the poles");
   const AngleRhs rhs{model.lambda(), std::sqrt(mu)};
   const AngleY y{s.theta, s.phi, s.psi, 0.0, 0.0};
   AngleY dy{};
@@ -71,8 +76,11 @@ void AngleFormDerivative(const AngleState& s, double mu, const BallModel& model,
   if (d_x) *d_x = {dy[3], dy[4]};
 }
 
-AngleFormResult IntegrateAngleForm(const BallModel& model, const AngleState& angles, double mu,
-                                   const Eigen::Vector2d& x0, const std::vector<double>& times,
+AngleFormResult IntegrateAngleForm(const BallModel& model,
+                                   const AngleState& angles,
+                                   double mu,
+                                   const Eigen::Vector2d& x0,
+                                   const std::vector<double>& times,
                                    const AngleFormOptions& options) {
   internal::ThrowIfInvalid(options.Validate());
   internal::RequireFinite("theta", angles.theta);
@@ -116,15 +124,17 @@ AngleFormResult IntegrateAngleForm(const BallModel& model, const AngleState& ang
         const double sn = std::sin(y[0]);
         if (at_pole(sn) || (sn > 0) != (sin_prev > 0)) {
           result.status = AngleFormStatus::kReachedPole;
-          result.message = "|sin theta| = " + std::to_string(std::abs(sn)) + " < pole_threshold at t = " + std::to_string(t);
+          result.message =
+              "|sin theta| = " + std::to_string(std::abs(sn)) + " < pole_threshold at t = " + std::to_string(t);
           break;
         }
         sin_prev = sn;
         // One budget for the whole integration: chunks plus accepted steps <= max_steps.
         chunk_options.max_steps = options.integration.max_steps - result.steps - ++chunks;
         if (chunk_options.max_steps < 1)
-          throw internal::StepLimitError("angle form exceeded max_steps = " + std::to_string(options.integration.max_steps) +
-                                         " at t = " + std::to_string(t));
+          throw internal::StepLimitError(
+              "angle form exceeded max_steps = " + std::to_string(options.integration.max_steps) +
+              " at t = " + std::to_string(t));
         const double t_end = std::min(target, t + 0.5 * std::abs(sn) / rhs.b);
         internal::IntegrateAdaptive(rhs, y, t, t_end, dt, chunk_options, [&](double tt, const AngleY&) {
           ++result.steps;

@@ -127,9 +127,15 @@ int PredictedSteps(const EqualStepHint& last, double t, int order, double target
 // dopri5.h: odeint's tableau and error measure without its stepper's overhead), as few as the
 // last arc's error predicts; false (y unchanged) when a step is refused, no hint is at hand or too
 // many steps (or more than options.max_steps) would be needed. On success *hint is this arc's.
-bool EqualArcSteps(const FullRhs& rhs, FullState* y, double t, bool short_arc, const IntegrationOptions& options,
-                   EqualStepHint* hint, int* steps) {
-  const int n = !(hint->h > 0) ? (short_arc ? 1 : 0) : PredictedSteps(*hint, t, short_arc ? 4 : 7, short_arc ? kShortTarget : kLongTarget);
+bool EqualArcSteps(const FullRhs& rhs,
+                   FullState* y,
+                   double t,
+                   bool short_arc,
+                   const IntegrationOptions& options,
+                   EqualStepHint* hint,
+                   int* steps) {
+  const int n = !(hint->h > 0) ? (short_arc ? 1 : 0)
+                               : PredictedSteps(*hint, t, short_arc ? 4 : 7, short_arc ? kShortTarget : kLongTarget);
   if (n == 0 || n > options.max_steps) return false;
   double err = 0.0;
   if (short_arc) {
@@ -148,8 +154,8 @@ bool EqualArcSteps(const FullRhs& rhs, FullState* y, double t, bool short_arc, c
 // The arc adaptively (odeint's dopri5 or Fehlberg 7(8)) from the step dt0; returns the largest
 // step taken.
 template <typename Stepper>
-double AdaptiveArc(const FullRhs& rhs, FullState* y, double t, double dt0, const IntegrationOptions& options,
-                   int* steps) {
+double AdaptiveArc(
+    const FullRhs& rhs, FullState* y, double t, double dt0, const IntegrationOptions& options, int* steps) {
   double last = 0.0, largest = 0.0;
   IntegrateAdaptive<Stepper>(rhs, *y, 0.0, t, dt0, options, [&](double tt, const FullState&) {
     largest = std::max(largest, tt - last);
@@ -165,7 +171,7 @@ ArcMaxima ArcDerivativeMaxima(double lambda, const Eigen::Vector3d& z0, const Ei
   const Z3Motion m = MotionOfZ3(lambda, z0, k);
   ArcMaxima out;
   out.mu = m.mu;
-  if (!(m.mu > 0)) return out;  // mu = 0 only for omega = 0: the ball is at rest
+  if (!(m.mu > 0)) return out;                      // mu = 0 only for omega = 0: the ball is at rest
   const double b = std::sqrt(m.mu), a = m.dz3 / b;  // z3(tau) = z3 cos(b tau) + a sin(b tau)
   // |x''| at N + 1 equally spaced times, cos and sin of b tau_i by turning (cos, sin) of b t / N.
   const int n = std::clamp(static_cast<int>(std::ceil(b * t / kArcSamplePhase)), 2, kArcAccelerationSamples);
@@ -188,8 +194,12 @@ ArcMaxima ArcDerivativeMaxima(double lambda, const Eigen::Vector3d& z0, const Ei
   return out;
 }
 
-ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
-                    const IntegrationOptions& options, ArcStepHints* hints) {
+ArcEnd IntegrateArc(double lambda,
+                    const Eigen::Vector3d& z0,
+                    const Eigen::Vector2d& k,
+                    double t,
+                    const IntegrationOptions& options,
+                    ArcStepHints* hints) {
   namespace odeint = boost::numeric::odeint;
   const FullRhs rhs{lambda, {k.x(), k.y()}};
   FullState y = InitialFullState(z0);

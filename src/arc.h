@@ -36,8 +36,8 @@ ReachDirection DirectionFor(const AngleState& start, double mu, double lambda, d
 
 /// Result of integrating one arc of the free motion over [0, t] from the axis z0 and momentum K.
 struct ArcEnd {
-  Eigen::Vector3d z;                              ///< axis at t (renormalised)
-  Eigen::Vector2d dx = Eigen::Vector2d::Zero();   ///< x(t) - x(0)
+  Eigen::Vector3d z;                                  ///< axis at t (renormalised)
+  Eigen::Vector2d dx = Eigen::Vector2d::Zero();       ///< x(t) - x(0)
   Eigen::Matrix3d phi = Eigen::Matrix3d::Identity();  ///< A(t) A(0)^-1 (when asked)
   /// max |x'| over the arc (ArcDerivativeMaxima: exact up to rounding).
   double max_speed = 0.0;
@@ -62,8 +62,12 @@ struct ArcStepHints {
 /// ones, each step within the tolerances), odeint's adaptive stepper of the same method when a
 /// step is refused; the hints become this arc's steps.
 /// Throws std::runtime_error on failure.
-ArcEnd IntegrateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
-                    const IntegrationOptions& options, ArcStepHints* hints = nullptr);
+ArcEnd IntegrateArc(double lambda,
+                    const Eigen::Vector3d& z0,
+                    const Eigen::Vector2d& k,
+                    double t,
+                    const IntegrationOptions& options,
+                    ArcStepHints* hints = nullptr);
 
 /// The largest |x'| and |x''| over a free arc of length t >= 0 from (z0, K), without integrating:
 /// with omega_3 = 0, v0^2 (z3^2 + lambda |z_h|^2) is conserved and z3(t) = z3(0) cos(b t) +

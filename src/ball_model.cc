@@ -33,7 +33,8 @@ std::string PhysicalParameters::Validate() const {
   // Sum of the principal moments = 2 * integral of rho |x|^2 <= 2 M_ball r^2 for a body within radius r.
   const double moment_sum = 2.0 * inertia_1 + inertia_3, moment_bound = 2.0 * ball_mass * radius * radius;
   if (!(moment_sum <= moment_bound * (1.0 + kRigidTolerance)))
-    return bad("ball_mass", ball_mass,
+    return bad("ball_mass",
+               ball_mass,
                "a rigid ball holds its mass within its radius, 2 I1 + I3 <= 2 M_ball r^2 (2 I1 + I3 = " +
                    internal::FormatNumber(moment_sum) + ", 2 M_ball r^2 = " + internal::FormatNumber(moment_bound) +
                    ")");
@@ -55,7 +56,8 @@ BallModel BallModel::FromLambda(double lambda) {
 BallModel BallModel::FromAlphaBeta(double alpha, double beta) {
   internal::RequirePositive("alpha", alpha);
   // A rigid body has I3 <= I1 + I2 = 2 I1 (docs/paper_notes.md, "Physical range of lambda").
-  if (alpha > 2.0 * (1.0 + kRigidTolerance)) internal::ThrowInvalid("alpha", alpha, "a rigid body has alpha = I3/I1 <= 2");
+  if (alpha > 2.0 * (1.0 + kRigidTolerance))
+    internal::ThrowInvalid("alpha", alpha, "a rigid body has alpha = I3/I1 <= 2");
   internal::RequireNonNegative("beta", beta);
   const double lambda = (alpha + beta) / (1.0 + beta);
   RequireLambda(lambda);
@@ -63,7 +65,8 @@ BallModel BallModel::FromAlphaBeta(double alpha, double beta) {
 }
 
 bool BallModel::IsRealisable() const {
-  if (has_inertia_) return alpha_ <= 2.0 * (1.0 + kRigidTolerance) && beta_ >= (1.0 + 0.5 * alpha_) * (1.0 - kRigidTolerance);
+  if (has_inertia_)
+    return alpha_ <= 2.0 * (1.0 + kRigidTolerance) && beta_ >= (1.0 + 0.5 * alpha_) * (1.0 - kRigidTolerance);
   return lambda_ > kMinRealisableLambda && lambda_ <= kMaxRealisableLambda * (1.0 + kRigidTolerance);
 }
 

@@ -38,11 +38,11 @@ PhaseVariables PhaseFromTrig(const AngleTrig& g, double mu, double lambda) {
   const double a = internal::SemiAxisFromTrig(st, ct, mu, lambda);
   const double b = std::sqrt(mu);
   PhaseVariables p;
-  p.z = {st * cp, st * sp, ct};                               // (12)-(14)
-  p.u = {-a * cw * ct * ct * cp - b * sw * sp,                // (15)
-         -a * cw * ct * ct * sp + b * sw * cp,                // (16)
-         a * cw * ct * st};                                   // (17)
-  p.v0 = a * cw * st;                                         // (18)
+  p.z = {st * cp, st * sp, ct};                 // (12)-(14)
+  p.u = {-a * cw * ct * ct * cp - b * sw * sp,  // (15)
+         -a * cw * ct * ct * sp + b * sw * cp,  // (16)
+         a * cw * ct * st};                     // (17)
+  p.v0 = a * cw * st;                           // (18)
   p.omega = p.v0 * p.z - p.u;
   p.omega.z() = 0.0;  // exactly zero in exact arithmetic (eq. (8)); remove round-off
   return p;
@@ -93,10 +93,10 @@ Eigen::Vector3d OmegaFromMomentum(const Eigen::Vector3d& z, const Eigen::Vector2
 }
 
 Eigen::Vector4d ConstraintResiduals(const PhaseVariables& p, double mu, const BallModel& model) {
-  return {p.u.z() - p.v0 * p.z.z(),                                     // (8)
-          p.u.squaredNorm() + model.lambda() * p.v0 * p.v0 - mu,        // (9)
-          p.z.squaredNorm() - 1.0,                                      // (10)
-          p.z.dot(p.u)};                                                // (11)
+  return {p.u.z() - p.v0 * p.z.z(),                               // (8)
+          p.u.squaredNorm() + model.lambda() * p.v0 * p.v0 - mu,  // (9)
+          p.z.squaredNorm() - 1.0,                                // (10)
+          p.z.dot(p.u)};                                          // (11)
 }
 
 void ValidateState(const BallState& s, const char* field) {

@@ -23,7 +23,8 @@ inline std::string FormatNumber(double value) {
 }
 
 /// The one message for an invalid value: "FIELD: value V: WHAT".
-inline std::string InvalidValueMessage(const std::string& field, const std::string& value_text,
+inline std::string InvalidValueMessage(const std::string& field,
+                                       const std::string& value_text,
                                        const std::string& what) {
   return field + ": value " + value_text + ": " + what;
 }
@@ -36,7 +37,8 @@ std::string InvalidValueMessage(const std::string& field, Int value, const std::
   return InvalidValueMessage(field, std::to_string(value), what);
 }
 
-[[noreturn]] inline void ThrowInvalid(const std::string& field, const std::string& value_text,
+[[noreturn]] inline void ThrowInvalid(const std::string& field,
+                                      const std::string& value_text,
                                       const std::string& what) {
   throw std::invalid_argument(InvalidValueMessage(field, value_text, what));
 }
@@ -70,8 +72,7 @@ inline void RequireNonNegative(const Field& field, double v) {
 /// lo <= v <= hi (both finite), with the range named in the message.
 template <typename Field>
 inline void RequireInRange(const Field& field, double v, double lo, double hi) {
-  if (!(v >= lo && v <= hi))
-    ThrowInvalid(field, v, "must be in [" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
+  if (!(v >= lo && v <= hi)) ThrowInvalid(field, v, "must be in [" + FormatNumber(lo) + ", " + FormatNumber(hi) + "]");
 }
 template <typename Derived>
 inline void RequireFinite(const std::string& field, const Eigen::MatrixBase<Derived>& m) {
@@ -84,18 +85,18 @@ inline void RequireFinite(const std::string& field, const Eigen::MatrixBase<Deri
 // Beyond these the double arithmetic of the solvers loses the digits the answer needs (README,
 // "Limits"); each is checked where the value enters the library.
 constexpr double kMaxCoordinate = limits::kMaxCoordinate;  ///< |x|, |y| of positions and targets (limits.h)
-constexpr double kMinLambda = 1e-3;       ///< lambda: stiffness and drift beyond these
+constexpr double kMinLambda = 1e-3;                        ///< lambda: stiffness and drift beyond these
 constexpr double kMaxLambda = 1e3;
-constexpr double kMinMu = 1e-12;          ///< energy mu
+constexpr double kMinMu = 1e-12;  ///< energy mu
 constexpr double kMaxMu = 1e12;
-constexpr double kMinTolerance = 1e-15;   ///< integration tolerances
+constexpr double kMinTolerance = 1e-15;  ///< integration tolerances
 
 // Sizes that drive the work (README, "Limits"): each keeps one call under ~10 s and ~1 GB.
 constexpr int kMaxPartitionSteps = limits::kMaxPartitionSteps;  ///< partition n, impulses of a plan (limits.h)
 constexpr int kMaxSamples = limits::kMaxSamples;  ///< samples of a simulation, path sample points (limits.h)
-constexpr double kMaxIsoparallelChord = 40;  ///< |goal - start| of the isoparallel problem
+constexpr double kMaxIsoparallelChord = 40;       ///< |goal - start| of the isoparallel problem
 constexpr double kMaxStartsTimesChord = 3.5e5;  ///< multi-start: starts x |goal - start| (default 8192 x chord 40 fits)
-constexpr double kMaxLengthCapFactor = 10;   ///< family search (= IsoparallelOptions::kMaxLengthCapFactor)
+constexpr double kMaxLengthCapFactor = 10;      ///< family search (= IsoparallelOptions::kMaxLengthCapFactor)
 
 /// 1 <= n <= hi for a count.
 inline void RequireCount(const std::string& field, long long n, long long hi) {
@@ -112,7 +113,8 @@ template <typename Derived>
 inline void RequireCoordinates(const std::string& field, const Eigen::MatrixBase<Derived>& m) {
   const auto e = m.eval();
   for (Eigen::Index i = 0; i < e.size(); ++i)  // the element name is built only for a bad value (hot path)
-    if (!(std::abs(e.data()[i]) <= kMaxCoordinate)) RequireCoordinate(field + "[" + std::to_string(i) + "]", e.data()[i]);
+    if (!(std::abs(e.data()[i]) <= kMaxCoordinate))
+      RequireCoordinate(field + "[" + std::to_string(i) + "]", e.data()[i]);
 }
 /// mu in [kMinMu, kMaxMu].
 template <typename Field>

@@ -41,8 +41,10 @@ inline GoalDirection ChordTurnDirection(const GoalDirection& goal, const Eigen::
 
 /// ChordResidual's rotation before the logarithm: target^-1 B q B^-1, given target^T and the goal's
 /// direction; a zero chord turns by the goal angle (atan2(0, 0) = 0).
-inline Eigen::Matrix3d ChordRotation(const Eigen::Matrix3d& target_t, const GoalDirection& goal,
-                                     const Eigen::Vector2d& chord, const Eigen::Matrix3d& q) {
+inline Eigen::Matrix3d ChordRotation(const Eigen::Matrix3d& target_t,
+                                     const GoalDirection& goal,
+                                     const Eigen::Vector2d& chord,
+                                     const Eigen::Matrix3d& q) {
   const GoalDirection beta = ChordTurnDirection(goal, chord);
   const double c = beta.c, s = beta.s;
   Eigen::Matrix3d g;  // target^T B
@@ -58,16 +60,20 @@ inline Eigen::Matrix3d ChordRotation(const Eigen::Matrix3d& target_t, const Goal
 }
 
 /// RotationTrickResidual(target, ChordTurn(goal angle, chord), q) = Log(target^-1 B q B^-1).
-inline Eigen::Vector3d ChordResidual(const Eigen::Matrix3d& target_t, const GoalDirection& goal,
-                                     const Eigen::Vector2d& chord, const Eigen::Matrix3d& q) {
+inline Eigen::Vector3d ChordResidual(const Eigen::Matrix3d& target_t,
+                                     const GoalDirection& goal,
+                                     const Eigen::Vector2d& chord,
+                                     const Eigen::Matrix3d& q) {
   return TraceLogSO3(ChordRotation(target_t, goal, chord, q));
 }
 
 /// ChordRotation in quaternions: target^-1 B q B^-1 given target's conjugate and q as quaternions.
 /// B q B^-1 keeps q's scalar and turns its vector by B (about e3), straight from cos and sin of
 /// beta (no half angles): 4 + 16 multiplications instead of ChordRotation's 51.
-inline Eigen::Quaterniond ChordQuaternion(const Eigen::Quaterniond& target_conj, const GoalDirection& goal,
-                                          const Eigen::Vector2d& chord, const Eigen::Quaterniond& q) {
+inline Eigen::Quaterniond ChordQuaternion(const Eigen::Quaterniond& target_conj,
+                                          const GoalDirection& goal,
+                                          const Eigen::Vector2d& chord,
+                                          const Eigen::Quaterniond& q) {
   const GoalDirection beta = ChordTurnDirection(goal, chord);
   const double c = beta.c, s = beta.s;
   const Eigen::Quaterniond turned(q.w(), c * q.x() - s * q.y(), s * q.x() + c * q.y(), q.z());
@@ -89,7 +95,8 @@ class LogNormBound {
   explicit LogNormBound(double bound) : single_(1.0 + 2.0 * std::cos(bound + kMargin)) {
     for (std::size_t k = 0; k < kTiers; ++k) {
       const double phi = kPhi[k];
-      tiers_[k] = {1.0 + 2.0 * std::cos(phi), 1.0 + 2.0 * std::cos(bound + M_PI * phi / 4 + kMargin),
+      tiers_[k] = {1.0 + 2.0 * std::cos(phi),
+                   1.0 + 2.0 * std::cos(bound + M_PI * phi / 4 + kMargin),
                    1.0 + 2.0 * std::cos(M_PI - phi / 2 - kMargin)};
     }
   }

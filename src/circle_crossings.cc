@@ -33,8 +33,7 @@ struct Counter {
     const int change = (a.f > 0) != (b.f > 0) ? 1 : 0;
     const double m = 2.0 * (1.0 + kappa_max * (0.5 * (a.norm + b.norm + width)));
     if ((a.df > 0) == (b.df > 0) && std::abs(a.df) + std::abs(b.df) > m * width) return change;
-    if (!change && a.f != 0.0 && b.f != 0.0 && KeepsSign(a.f, a.df, m) + KeepsSign(b.f, -b.df, m) > width)
-      return 0;
+    if (!change && a.f != 0.0 && b.f != 0.0 && KeepsSign(a.f, a.df, m) + KeepsSign(b.f, -b.df, m) > width) return 0;
     if (width <= 1e-13 * (1.0 + b.s)) return change;
     const Sample mid = At(a.s + 0.5 * width);
     return Count(a, mid) + Count(mid, b);

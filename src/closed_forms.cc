@@ -9,9 +9,12 @@ namespace plateball {
 
 std::string ToString(ClosedFormFamily family) {
   switch (family) {
-    case ClosedFormFamily::kPositiveC: return "positive_c";
-    case ClosedFormFamily::kNegativeC: return "negative_c";
-    case ClosedFormFamily::kThroughPoles: return "through_poles";
+    case ClosedFormFamily::kPositiveC:
+      return "positive_c";
+    case ClosedFormFamily::kNegativeC:
+      return "negative_c";
+    case ClosedFormFamily::kThroughPoles:
+      return "through_poles";
   }
   return "unknown";
 }
@@ -23,7 +26,9 @@ double AppendixResidual34(const AngleState& s, double d, const BallModel& model)
   return std::sqrt((model.lambda() - 1.0) * c * c + 1.0) * std::sin(s.phi - d) + std::sin(s.phi - s.psi);
 }
 
-AppendixSolution::AppendixSolution(const BallModel& model, const AngleState& initial, double mu,
+AppendixSolution::AppendixSolution(const BallModel& model,
+                                   const AngleState& initial,
+                                   double mu,
                                    double pole_family_tolerance)
     : model_(model), mu_(mu) {
   internal::RequireFinite("theta", initial.theta);

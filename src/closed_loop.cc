@@ -25,8 +25,11 @@ Eigen::Vector3d TrialErrors::PerturbImpulse(int k, const Eigen::Vector3d& comman
 
 double TrialErrors::Restitution() const { return internal::ExecutionNoise(errors_, seed_, trial_).Restitution(); }
 
-SimulatedLoopResult RunSimulatedClosedLoop(std::shared_ptr<const NominalPlan> nominal, const ControllerOptions& options,
-                                           const ErrorModel& errors, std::uint64_t seed, std::uint64_t trial,
+SimulatedLoopResult RunSimulatedClosedLoop(std::shared_ptr<const NominalPlan> nominal,
+                                           const ControllerOptions& options,
+                                           const ErrorModel& errors,
+                                           std::uint64_t seed,
+                                           std::uint64_t trial,
                                            bool contact_point_only) {
   Controller controller(nominal, options);
   internal::SimulatedRig rig(*nominal, errors, seed, trial);

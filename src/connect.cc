@@ -6,9 +6,15 @@
 
 namespace plateball::internal {
 
-JoinSummary ConnectPoints(const BallModel& model, const AngleState& angles, double mu, const Eigen::Vector2d& x0,
-                          const Eigen::Vector2d& target, const JoinOptions& options,
-                          const ReachOptions* reach_fallback, bool* reached_globally, JoinCarry* carry) {
+JoinSummary ConnectPoints(const BallModel& model,
+                          const AngleState& angles,
+                          double mu,
+                          const Eigen::Vector2d& x0,
+                          const Eigen::Vector2d& target,
+                          const JoinOptions& options,
+                          const ReachOptions* reach_fallback,
+                          bool* reached_globally,
+                          JoinCarry* carry) {
   if (reached_globally != nullptr) *reached_globally = false;
   JoinSummary join = JoinValidated(model, angles, mu, x0, target, options, carry);
   if (join.status != JoinStatus::kTargetBeyondLocalRadius || reach_fallback == nullptr) return join;

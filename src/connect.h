@@ -25,8 +25,12 @@ struct JoinCarry {
 /// Join (join.h) for input already validated by the caller: options valid, mu > 0, finite
 /// points, angles reduced (|angle| <= pi or canonical). The planner checks all of it once.
 /// carry: see JoinCarry (nullptr: a join on its own).
-JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduced, double mu,
-                          const Eigen::Vector2d& x0, const Eigen::Vector2d& target, const JoinOptions& options,
+JoinSummary JoinValidated(const BallModel& model,
+                          const AngleState& start_reduced,
+                          double mu,
+                          const Eigen::Vector2d& x0,
+                          const Eigen::Vector2d& target,
+                          const JoinOptions& options,
                           JoinCarry* carry = nullptr);
 
 /// The planner's input is validated once (PlanImpulses); the join is JoinValidated.
@@ -34,9 +38,14 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
 /// retried with Reach (earliest solution, converted to a JoinSummary with status kConverged and
 /// a message saying so); *reached_globally (when given) tells which one answered. carry: as
 /// JoinValidated's.
-JoinSummary ConnectPoints(const BallModel& model, const AngleState& angles, double mu, const Eigen::Vector2d& x0,
-                          const Eigen::Vector2d& target, const JoinOptions& options,
-                          const ReachOptions* reach_fallback = nullptr, bool* reached_globally = nullptr,
+JoinSummary ConnectPoints(const BallModel& model,
+                          const AngleState& angles,
+                          double mu,
+                          const Eigen::Vector2d& x0,
+                          const Eigen::Vector2d& target,
+                          const JoinOptions& options,
+                          const ReachOptions* reach_fallback = nullptr,
+                          bool* reached_globally = nullptr,
                           JoinCarry* carry = nullptr);
 
 }  // namespace plateball::internal

@@ -46,8 +46,12 @@ enum class ImpulseRole { kTurn, kStart, kStop };
 
 // The magnitude the limits bound of one impulse at (z, K) turning psi by s: |J| with physical
 // parameters, else the plate's velocity change 2 |delta omega_h|.
-double ImpulseMagnitude(const ConstrainedSetup& s, Eigen::Vector3d z, const Eigen::Vector2d& k, double turn,
-                        ImpulseRole role, bool as_impulse) {
+double ImpulseMagnitude(const ConstrainedSetup& s,
+                        Eigen::Vector3d z,
+                        const Eigen::Vector2d& k,
+                        double turn,
+                        ImpulseRole role,
+                        bool as_impulse) {
   z.normalize();
   Eigen::Vector2d w_before, k_after, w_after;
   OmegaFromZK(z.data(), k.data(), s.lambda, w_before.data());
@@ -61,8 +65,12 @@ double ImpulseMagnitude(const ConstrainedSetup& s, Eigen::Vector3d z, const Eige
 }
 
 // Its gradient with respect to (z, K, s) by central differences of the closed form (no integration).
-Eigen::Matrix<double, 1, 6> ImpulseGradient(const ConstrainedSetup& s, const Eigen::Vector3d& z,
-                                            const Eigen::Vector2d& k, double turn, ImpulseRole role, bool as_impulse) {
+Eigen::Matrix<double, 1, 6> ImpulseGradient(const ConstrainedSetup& s,
+                                            const Eigen::Vector3d& z,
+                                            const Eigen::Vector2d& k,
+                                            double turn,
+                                            ImpulseRole role,
+                                            bool as_impulse) {
   Eigen::Matrix<double, 6, 1> v;
   v << z, k, turn;
   Eigen::Matrix<double, 1, 6> g;
@@ -149,7 +157,9 @@ void AddConstraint(Evaluation* e, const std::string& name, double g, const Eigen
 }
 
 // The plate, obstacles and stroke at one sample point x (with dx/du).
-void AddPositionConstraints(const ConstrainedSetup& s, const Eigen::Vector2d& x, const Eigen::MatrixXd& dx,
+void AddPositionConstraints(const ConstrainedSetup& s,
+                            const Eigen::Vector2d& x,
+                            const Eigen::MatrixXd& dx,
                             Evaluation* e) {
   const RigLimits& l = s.limits;
   const double keep = l.clearance + s.sampling_margin;
@@ -179,10 +189,15 @@ struct ImpulseTerm {
 };
 
 // The bounded magnitude of impulse k (k = n: the stop) and its gradient with respect to u.
-ImpulseTerm ImpulseTermAt(const ConstrainedSetup& s, const Samples& sm, const std::vector<ChainNode>& nodes,
-                          const ChainJacobian& cj, const Eigen::VectorXd& u, int k, bool as_impulse) {
+ImpulseTerm ImpulseTermAt(const ConstrainedSetup& s,
+                          const Samples& sm,
+                          const std::vector<ChainNode>& nodes,
+                          const ChainJacobian& cj,
+                          const Eigen::VectorXd& u,
+                          int k,
+                          bool as_impulse) {
   const std::size_t node = static_cast<std::size_t>(sm.offset[static_cast<std::size_t>(k)]);
-  const ImpulseRole role = k == s.n ? ImpulseRole::kStop
+  const ImpulseRole role = k == s.n                      ? ImpulseRole::kStop
                            : (k == 0 && s.start_at_rest) ? ImpulseRole::kStart
                                                          : ImpulseRole::kTurn;
   const double turn = k < s.n ? u[k] : 0.0;
@@ -196,8 +211,12 @@ ImpulseTerm ImpulseTermAt(const ConstrainedSetup& s, const Samples& sm, const st
 
 int ImpulseCount(const ConstrainedSetup& s) { return s.n + (s.stop_at_goal ? 1 : 0); }
 
-void AddImpulseTerms(const ConstrainedSetup& s, const Samples& sm, const std::vector<ChainNode>& nodes,
-                     const ChainJacobian& cj, const Eigen::VectorXd& u, Evaluation* e) {
+void AddImpulseTerms(const ConstrainedSetup& s,
+                     const Samples& sm,
+                     const std::vector<ChainNode>& nodes,
+                     const ChainJacobian& cj,
+                     const Eigen::VectorXd& u,
+                     Evaluation* e) {
   const RigLimits& l = s.limits;
   const bool limit_v = !std::isinf(l.max_plate_velocity_change), limit_j = !std::isinf(l.ImpulseBound());
   const bool objective = s.objective == ArrivalObjective::kTotalImpulse;
@@ -218,8 +237,11 @@ void AddImpulseTerms(const ConstrainedSetup& s, const Samples& sm, const std::ve
   }
 }
 
-void AddObjective(const ConstrainedSetup& s, const Samples& sm, const std::vector<ChainNode>& nodes,
-                  const ChainJacobian& cj, Evaluation* e) {
+void AddObjective(const ConstrainedSetup& s,
+                  const Samples& sm,
+                  const std::vector<ChainNode>& nodes,
+                  const ChainJacobian& cj,
+                  Evaluation* e) {
   if (s.objective == ArrivalObjective::kTotalTime) {
     e->f = e->u.tail(s.n).sum();
     e->df.tail(s.n).setOnes();
@@ -256,7 +278,9 @@ Evaluation Evaluate(const ConstrainedSetup& s, const Samples& sm, const Eigen::V
 // The plate, obstacle and stroke constraints at `dense` points per flight of u (values only): for
 // each flight, the fraction of its worst point when that point breaks a limit by more than half
 // the sampling margin (the sample nodes missed it), else nothing.
-std::vector<std::vector<double>> MissedPoints(const ConstrainedSetup& s, const Eigen::VectorXd& u, int dense,
+std::vector<std::vector<double>> MissedPoints(const ConstrainedSetup& s,
+                                              const Eigen::VectorXd& u,
+                                              int dense,
                                               int* rollouts) {
   const Samples sm = Samples::Uniform(s.n, dense);
   std::vector<ChainNode> nodes(static_cast<std::size_t>(sm.nodes) + 1);
@@ -268,7 +292,8 @@ std::vector<std::vector<double>> MissedPoints(const ConstrainedSetup& s, const E
     double worst = 0.5 * s.sampling_margin;
     for (int j = 0; j < dense; ++j) {
       Evaluation e;
-      AddPositionConstraints(s, nodes[static_cast<std::size_t>(k * dense + j + 1)].x, Eigen::MatrixXd::Zero(2, 2 * s.n), &e);
+      AddPositionConstraints(
+          s, nodes[static_cast<std::size_t>(k * dense + j + 1)].x, Eigen::MatrixXd::Zero(2, 2 * s.n), &e);
       for (double g : e.g)
         if (g > worst) worst = g, missed[static_cast<std::size_t>(k)] = {static_cast<double>(j + 1) / dense};
     }
@@ -278,7 +303,10 @@ std::vector<std::vector<double>> MissedPoints(const ConstrainedSetup& s, const E
 
 // The optimisation over the free entries of u (the others fixed at `base`).
 struct Stage {
-  Stage(const ConstrainedSetup& setup, const Samples& samples, Eigen::VectorXd start, std::vector<int> free_entries,
+  Stage(const ConstrainedSetup& setup,
+        const Samples& samples,
+        Eigen::VectorXd start,
+        std::vector<int> free_entries,
         bool closest_arrival)
       : s(&setup), sm(&samples), base(std::move(start)), free(std::move(free_entries)), closest(closest_arrival) {}
   const ConstrainedSetup* s;
@@ -361,8 +389,7 @@ Eigen::VectorXd RunSlsqp(Stage* st, int* evaluations) {
   opt.set_lower_bounds(lb);
   opt.set_min_objective(ObjectiveCallback, st);
   if (!st->closest) opt.add_equality_mconstraint(ArrivalCallback, st, std::vector<double>(5, 1e-12));
-  if (!first.g.empty())
-    opt.add_inequality_mconstraint(LimitsCallback, st, std::vector<double>(first.g.size(), 1e-10));
+  if (!first.g.empty()) opt.add_inequality_mconstraint(LimitsCallback, st, std::vector<double>(first.g.size(), 1e-10));
   opt.set_xtol_rel(1e-9);
   opt.set_ftol_rel(1e-9);
   opt.set_maxeval(s.max_evaluations);
@@ -398,7 +425,9 @@ std::vector<std::string> ActiveNames(const ConstrainedSetup& s, const Evaluation
 }
 
 // The free entries that Newton steps move: flight times held at their lower bound stay there.
-std::vector<int> NewtonEntries(const ConstrainedSetup& s, const std::vector<int>& free_entries, const Eigen::VectorXd& u) {
+std::vector<int> NewtonEntries(const ConstrainedSetup& s,
+                               const std::vector<int>& free_entries,
+                               const Eigen::VectorXd& u) {
   std::vector<int> free;
   for (int j : free_entries)
     if (j < s.n || FlightLowerBound(s, j - s.n) <= kMinFlight || u[j] > FlightLowerBound(s, j - s.n) * (1 + 1e-9))
@@ -417,8 +446,11 @@ double FeasibilityMerit(const Evaluation& e) {
 // kinks of the total impulse at zero impulses): Newton steps (minimum norm) on the arrival
 // conditions together with the violated inequalities, each pulled onto its bound, kept while they
 // reduce FeasibilityMerit. A point within both tolerances is left unchanged.
-Evaluation RestoreFeasibility(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free_entries,
-                              Eigen::VectorXd* u, int* rollouts) {
+Evaluation RestoreFeasibility(const ConstrainedSetup& s,
+                              const Samples& sm,
+                              const std::vector<int>& free_entries,
+                              Eigen::VectorXd* u,
+                              int* rollouts) {
   constexpr int kSteps = 6;
   Evaluation e = Evaluate(s, sm, *u, rollouts);
   const std::vector<int> free = NewtonEntries(s, free_entries, *u);
@@ -432,8 +464,8 @@ Evaluation RestoreFeasibility(const ConstrainedSetup& s, const Samples& sm, cons
     for (std::size_t r = 0; r < rows.size(); ++r)
       for (std::size_t c = 0; c < free.size(); ++c)
         J(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][free[c]];
-    const Eigen::VectorXd step =
-        internal::MinimumNormSolve(J, Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size())));
+    const Eigen::VectorXd step = internal::MinimumNormSolve(
+        J, Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size())));
     Eigen::VectorXd trial = *u;
     for (std::size_t c = 0; c < free.size(); ++c) trial[free[c]] += step[static_cast<Eigen::Index>(c)];
     for (int k = 0; k < s.n; ++k)
@@ -448,7 +480,10 @@ Evaluation RestoreFeasibility(const ConstrainedSetup& s, const Samples& sm, cons
 
 // Newton steps (minimum norm) on the arrival conditions over the free entries, rolled at the final
 // tolerance; flight times held at their lower bound stay there.
-void Polish(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free_entries, Eigen::VectorXd* u,
+void Polish(const ConstrainedSetup& s,
+            const Samples& sm,
+            const std::vector<int>& free_entries,
+            Eigen::VectorXd* u,
             int* rollouts) {
   const std::vector<int> free = NewtonEntries(s, free_entries, *u);
   std::vector<ChainNode> nodes(static_cast<std::size_t>(s.n) + 1);
@@ -484,11 +519,11 @@ std::vector<long long> SnapToGrid(const ConstrainedSetup& s, Eigen::VectorXd* u)
   double t = 0.0;
   for (int k = 1; k < count; ++k) {
     t += (*u)[s.n + k - 1];
-    index[static_cast<std::size_t>(k)] =
-        std::max(std::llround(t / tick), index[static_cast<std::size_t>(k) - 1] + gap);
+    index[static_cast<std::size_t>(k)] = std::max(std::llround(t / tick), index[static_cast<std::size_t>(k) - 1] + gap);
   }
   for (int k = 0; k + 1 < count; ++k)
-    (*u)[s.n + k] = static_cast<double>(index[static_cast<std::size_t>(k) + 1] - index[static_cast<std::size_t>(k)]) * tick;
+    (*u)[s.n + k] =
+        static_cast<double>(index[static_cast<std::size_t>(k) + 1] - index[static_cast<std::size_t>(k)]) * tick;
   return index;
 }
 
@@ -524,9 +559,7 @@ std::vector<std::string> ActiveLimits(const ConstrainedSetup& setup, const Eigen
 
 namespace {
 
-std::string PointText(const Eigen::Vector2d& x) {
-  return "(" + FormatNumber(x.x()) + ", " + FormatNumber(x.y()) + ")";
-}
+std::string PointText(const Eigen::Vector2d& x) { return "(" + FormatNumber(x.x()) + ", " + FormatNumber(x.y()) + ")"; }
 
 // The start and the goal must themselves meet the plate and obstacle limits.
 void RequireAdmissiblePoint(const char* field, const Eigen::Vector2d& x, const RigLimits& l) {
@@ -534,18 +567,21 @@ void RequireAdmissiblePoint(const char* field, const Eigen::Vector2d& x, const R
     ThrowInvalid(field, PointText(x), "lies outside rig.plate (or within rig.clearance of its edge)");
   for (std::size_t i = 0; i < l.obstacles.size(); ++i)
     if (-SignedDistanceInside(l.obstacles[i], x) < l.clearance)
-      ThrowInvalid(field, PointText(x),
-                   "lies inside rig.obstacles[" + std::to_string(i) + "] (or within rig.clearance of it)");
+      ThrowInvalid(
+          field, PointText(x), "lies inside rig.obstacles[" + std::to_string(i) + "] (or within rig.clearance of it)");
 }
 
 }  // namespace
 
-void ValidateRigProblem(const RigLimits& l, const std::optional<PhysicalParameters>& physical,
-                        const Eigen::Vector2d& x0, const Eigen::Vector2d& x1) {
+void ValidateRigProblem(const RigLimits& l,
+                        const std::optional<PhysicalParameters>& physical,
+                        const Eigen::Vector2d& x0,
+                        const Eigen::Vector2d& x1) {
   ThrowIfInvalid(l.Validate());
   if (l.NeedsPhysical() && !physical)
     ThrowInvalid(std::isinf(l.max_plate_impulse) ? "rig.max_force" : "rig.max_plate_impulse",
-                 std::min(l.max_plate_impulse, l.max_force), "needs ball.physical (a bare lambda fixes no masses)");
+                 std::min(l.max_plate_impulse, l.max_force),
+                 "needs ball.physical (a bare lambda fixes no masses)");
   if (physical) ThrowIfInvalid(physical->Validate());
   RequireAdmissiblePoint("x0", x0, l);
   RequireAdmissiblePoint("x1", x1, l);
@@ -553,7 +589,9 @@ void ValidateRigProblem(const RigLimits& l, const std::optional<PhysicalParamete
     ThrowInvalid("x1", PointText(x1), "needs a plate displacement 2 (x1 - x0) beyond rig.stroke");
 }
 
-double PlaceOnGrid(double tick, std::vector<ExactImpulse>* impulses, std::optional<ExactImpulse>* stop,
+double PlaceOnGrid(double tick,
+                   std::vector<ExactImpulse>* impulses,
+                   std::optional<ExactImpulse>* stop,
                    double total_time) {
   if (!(tick > 0) || impulses->empty() || impulses->front().tick < 0) return total_time;
   std::vector<ExactImpulse*> all;
@@ -589,8 +627,12 @@ double Merit(const Evaluation& e, double rho) {
 // QP of the deviation's Gauss-Newton model (Levenberg-damped) under the linearised arrival
 // conditions, limits and flight bounds (dense_qp.h), and a backtracking line search on the L1 merit
 // accepts it. Returns the last accepted u, from which SLSQP finishes.
-Eigen::VectorXd GaussNewtonSqp(const ConstrainedSetup& s, const Samples& sm, const std::vector<int>& free,
-                               Eigen::VectorXd u, int* evaluations, int* rollouts) {
+Eigen::VectorXd GaussNewtonSqp(const ConstrainedSetup& s,
+                               const Samples& sm,
+                               const std::vector<int>& free,
+                               Eigen::VectorXd u,
+                               int* evaluations,
+                               int* rollouts) {
   const Eigen::Index nv = static_cast<Eigen::Index>(free.size());
   const auto at = [&free](Eigen::Index i) { return free[static_cast<std::size_t>(i)]; };
   Evaluation e = Evaluate(s, sm, u, rollouts);
@@ -651,8 +693,8 @@ Eigen::VectorXd GaussNewtonSqp(const ConstrainedSetup& s, const Samples& sm, con
 // SLSQP rounds, each followed by a dense look at the flights; a flight whose worst point breaks a
 // limit between the sample nodes gets that point as a new node (an exchange method for the
 // semi-infinite constraint "every point of the path"). Returns true when no point was missed.
-bool SolveWithExchange(const ConstrainedSetup& s, Samples* sm, const std::vector<int>& free, Eigen::VectorXd* u,
-                       ConstrainedOutcome* out) {
+bool SolveWithExchange(
+    const ConstrainedSetup& s, Samples* sm, const std::vector<int>& free, Eigen::VectorXd* u, ConstrainedOutcome* out) {
   for (int round = 0; round < kExchangeRounds; ++round) {
     if (s.objective == ArrivalObjective::kDeviation)
       *u = GaussNewtonSqp(s, *sm, free, *u, &out->evaluations, &out->rollouts);
@@ -700,7 +742,8 @@ ConstrainedOutcome SolveConstrainedArrival(const ConstrainedSetup& s, const Eige
   const bool grid = s.limits.tick > 0;
   const std::vector<int> free = FreeEntries(s, grid);
   if (free.size() < 5)
-    ThrowInvalid("rig.tick", s.limits.tick,
+    ThrowInvalid("rig.tick",
+                 s.limits.tick,
                  "fixes the impulse times, which leaves " + std::to_string(free.size()) +
                      " unknowns for the five arrival conditions: needs impulses >= 4 (>= 5 with stop_at_goal)");
   ConstrainedOutcome out;

@@ -83,12 +83,16 @@ std::vector<std::string> ActiveLimits(const ConstrainedSetup& setup, const Eigen
 /// Throws std::invalid_argument naming the field when the limits are invalid, an impulse bound
 /// lacks the physical parameters, or the start x0 or the goal x1 breaks the plate, an obstacle or
 /// the stroke.
-void ValidateRigProblem(const RigLimits& limits, const std::optional<PhysicalParameters>& physical,
-                        const Eigen::Vector2d& x0, const Eigen::Vector2d& x1);
+void ValidateRigProblem(const RigLimits& limits,
+                        const std::optional<PhysicalParameters>& physical,
+                        const Eigen::Vector2d& x0,
+                        const Eigen::Vector2d& x1);
 
 /// Puts the impulse times exactly on the grid (t_impulse = tick index x tick, the flights their
 /// differences) when the impulses carry tick indices; returns the total time (unchanged otherwise).
-double PlaceOnGrid(double tick, std::vector<ExactImpulse>* impulses, std::optional<ExactImpulse>* stop,
+double PlaceOnGrid(double tick,
+                   std::vector<ExactImpulse>* impulses,
+                   std::optional<ExactImpulse>* stop,
                    double total_time);
 
 /// The constrained solve from u0 (the free optimum). Throws std::runtime_error when an

@@ -15,13 +15,20 @@ namespace plateball {
 
 std::string ToString(ControllerStatus status) {
   switch (status) {
-    case ControllerStatus::kNotRun: return "not_run";
-    case ControllerStatus::kOk: return "ok";
-    case ControllerStatus::kMeasurementRejected: return "measurement_rejected";
-    case ControllerStatus::kTimeOutOfOrder: return "time_out_of_order";
-    case ControllerStatus::kDone: return "done";
-    case ControllerStatus::kLost: return "lost";
-    case ControllerStatus::kIntegrationFailure: return "integration_failure";
+    case ControllerStatus::kNotRun:
+      return "not_run";
+    case ControllerStatus::kOk:
+      return "ok";
+    case ControllerStatus::kMeasurementRejected:
+      return "measurement_rejected";
+    case ControllerStatus::kTimeOutOfOrder:
+      return "time_out_of_order";
+    case ControllerStatus::kDone:
+      return "done";
+    case ControllerStatus::kLost:
+      return "lost";
+    case ControllerStatus::kIntegrationFailure:
+      return "integration_failure";
   }
   return "unknown";
 }
@@ -52,7 +59,8 @@ Controller::Controller(std::shared_ptr<const NominalPlan> nominal, const Control
     : nominal_(std::move(nominal)), options_(options) {
   if (!nominal_) internal::ThrowInvalid("nominal", "null", "a nominal plan is required (MakeNominalPlan)");
   if (!nominal_->plan.IsSolutionUsable())
-    internal::ThrowInvalid("nominal.plan.status", "'" + ToString(nominal_->plan.status) + "'",
+    internal::ThrowInvalid("nominal.plan.status",
+                           "'" + ToString(nominal_->plan.status) + "'",
                            "the nominal plan must be usable: " + nominal_->plan.message);
   internal::ThrowIfInvalid(options_.Validate());
   policy_ = std::make_unique<internal::FeedbackPolicy>(*nominal_, options_.strategy, options_.execution);
@@ -71,7 +79,9 @@ int Controller::exact_failures() const { return policy_->exact_failures(); }
 
 namespace {
 // The free motion of the estimate over `duration` (nominal lambda).
-ControllerEstimate Roll(const ControllerEstimate& e, double duration, const BallModel& model,
+ControllerEstimate Roll(const ControllerEstimate& e,
+                        double duration,
+                        const BallModel& model,
                         const IntegrationOptions& integration) {
   if (duration <= 0.0) return e;
   const Eigen::Vector2d k = ConservedMomentum(e.state, model);
@@ -142,7 +152,7 @@ void Controller::Fire(long tick, std::chrono::steady_clock::time_point start) {
   internal::FeedbackCommand c;
   if (!policy_->Decide(k, obs, exact_allowed, &c)) {
     out_.status = policy_->status() == ExecutionStatus::kIntegrationFailure ? ControllerStatus::kIntegrationFailure
-                                                                           : ControllerStatus::kLost;
+                                                                            : ControllerStatus::kLost;
     out_.reason = "the next pass point cannot be joined from the estimate (message())";
     message_ = policy_->message();
     return;
@@ -192,14 +202,14 @@ const ControllerOutput& Controller::Update(double time, const ControllerMeasurem
     out_.now = estimate_;
     out_.next_impulse_tick = next_impulse_ < n ? next_impulse_tick_ : -1;
     const long ahead = std::max(0L, next_impulse_tick_ - tick);
-    out_.at_next_impulse = Roll(estimate_, static_cast<double>(ahead) * options_.tick_period, nominal_->model,
-                                nominal_->options.integration);
+    out_.at_next_impulse = Roll(
+        estimate_, static_cast<double>(ahead) * options_.tick_period, nominal_->model, nominal_->options.integration);
     out_.at_next_impulse.tick = tick + ahead;
   } catch (const std::exception& e) {
     // An integration that failed (runtime_error) or an estimate the model rejects (invalid_argument,
     // e.g. an energy below the join's range after lossy impulses).
     out_.status = dynamic_cast<const std::runtime_error*>(&e) != nullptr ? ControllerStatus::kIntegrationFailure
-                                                                          : ControllerStatus::kLost;
+                                                                         : ControllerStatus::kLost;
     out_.reason = "the estimate left what the model can integrate or join (message())";
     message_ = e.what();
     return out_;

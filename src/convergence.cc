@@ -19,10 +19,13 @@ PlanProblem WithPartitionSize(const PlanProblem& plan, int n) {
   PlanProblem p = plan;
   for (std::size_t i = 0; i < p.partition.size(); ++i) {
     PartitionRule& rule = p.partition[i];
-    if (auto* u = std::get_if<UniformParameter>(&rule)) u->n = n;
-    else if (auto* a = std::get_if<UniformArcLength>(&rule)) a->n = n;
+    if (auto* u = std::get_if<UniformParameter>(&rule))
+      u->n = n;
+    else if (auto* a = std::get_if<UniformArcLength>(&rule))
+      a->n = n;
     else
-      internal::ThrowInvalid("plan.partition[" + std::to_string(i) + "]", "explicit",
+      internal::ThrowInvalid("plan.partition[" + std::to_string(i) + "]",
+                             "explicit",
                              "a convergence study needs uniform partitions (n varies)");
   }
   return p;
@@ -46,8 +49,10 @@ ConvergenceRow RowOf(int n, const PlanSummary& plan, double seconds) {
 
 void AppendSlope(std::ostream& os, const char* name, const std::optional<double>& slope) {
   os << ", " << name << " slope ";
-  if (slope) os << *slope;
-  else os << "none";
+  if (slope)
+    os << *slope;
+  else
+    os << "none";
 }
 
 }  // namespace
@@ -82,9 +87,12 @@ void ValidatePartitionSizes(const std::vector<int>& ns, const std::string& field
 
 std::string ToString(ConvergenceStatus status) {
   switch (status) {
-    case ConvergenceStatus::kNotRun: return "not_run";
-    case ConvergenceStatus::kCompleted: return "completed";
-    case ConvergenceStatus::kNoSlope: return "no_slope";
+    case ConvergenceStatus::kNotRun:
+      return "not_run";
+    case ConvergenceStatus::kCompleted:
+      return "completed";
+    case ConvergenceStatus::kNoSlope:
+      return "no_slope";
   }
   return "unknown";
 }

@@ -27,9 +27,7 @@ class CounterRandom {
   std::uint64_t Bits(std::uint64_t counter) const { return SplitMix64(SplitMix64(key_ ^ counter) + counter); }
 
   /// Uniform in the open interval (0, 1), 53 random bits.
-  double Uniform(std::uint64_t counter) const {
-    return (static_cast<double>(Bits(counter) >> 11) + 0.5) * 0x1.0p-53;
-  }
+  double Uniform(std::uint64_t counter) const { return (static_cast<double>(Bits(counter) >> 11) + 0.5) * 0x1.0p-53; }
 
   /// A standard normal deviate for `counter` (Box-Muller on the uniforms of 2 counter and 2 counter + 1).
   double Normal(std::uint64_t counter) const {

@@ -18,27 +18,32 @@ std::string SamplePointText(const Eigen::Vector2d& p) {
   return "(" + internal::FormatNumber(p.x()) + ", " + internal::FormatNumber(p.y()) + ")";
 }
 void CheckPoints(const std::vector<Eigen::Vector2d>& p) {
-  if (p.size() < 2) internal::ThrowInvalid("points (count)", static_cast<double>(p.size()), "a path needs at least 2 samples");
+  if (p.size() < 2)
+    internal::ThrowInvalid("points (count)", static_cast<double>(p.size()), "a path needs at least 2 samples");
   double length = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     internal::RequireFinite("points[" + std::to_string(i) + "]", p[i]);
     if (i == 0) continue;
     const double step = (p[i] - p[i - 1]).norm();
     if (p[i] == p[i - 1])
-      internal::ThrowInvalid("points[" + std::to_string(i) + "]", SamplePointText(p[i]), "repeats the previous sample point");
+      internal::ThrowInvalid(
+          "points[" + std::to_string(i) + "]", SamplePointText(p[i]), "repeats the previous sample point");
     if (!std::isfinite(step)) {  // the chord lengths are the spline's knots: name the larger point
       const std::size_t far = p[i - 1].cwiseAbs().maxCoeff() > p[i].cwiseAbs().maxCoeff() ? i - 1 : i;
-      internal::ThrowInvalid("points[" + std::to_string(far) + "]", SamplePointText(p[far]),
-                             "too far from sample point " + std::to_string(far == i ? i - 1 : i) +
-                                 " (the distance overflows a double)");
+      internal::ThrowInvalid(
+          "points[" + std::to_string(far) + "]",
+          SamplePointText(p[far]),
+          "too far from sample point " + std::to_string(far == i ? i - 1 : i) + " (the distance overflows a double)");
     }
     if (!(step > 0.0))  // distinct, but the distance underflows
-      internal::ThrowInvalid("points[" + std::to_string(i) + "]", SamplePointText(p[i]),
+      internal::ThrowInvalid("points[" + std::to_string(i) + "]",
+                             SamplePointText(p[i]),
                              "distinct from the previous sample point but closer than double precision resolves");
     length += step;
   }
   if (!std::isfinite(length))
-    internal::ThrowInvalid("points", "[array of " + std::to_string(p.size()) + "]", "the path length overflows a double");
+    internal::ThrowInvalid(
+        "points", "[array of " + std::to_string(p.size()) + "]", "the path length overflows a double");
 }
 }  // namespace
 
@@ -55,7 +60,8 @@ CubicSpline2d::CubicSpline2d(const std::vector<double>& knots, const std::vector
     internal::ThrowInvalid("knots (count)", static_cast<double>(knots.size()), "must equal the number of samples");
   for (std::size_t i = 0; i < knots.size(); ++i) {
     internal::RequireFinite("knots[" + std::to_string(i) + "]", knots[i]);
-    if (i > 0 && !(knots[i] > knots[i - 1])) internal::ThrowInvalid("knots[" + std::to_string(i) + "]", knots[i], "knots must increase strictly");
+    if (i > 0 && !(knots[i] > knots[i - 1]))
+      internal::ThrowInvalid("knots[" + std::to_string(i) + "]", knots[i], "knots must increase strictly");
   }
   Build();
 }

@@ -12,7 +12,9 @@ namespace plateball::internal {
 namespace {
 
 // The KKT matrix of the equalities and the active rows W of A.
-Eigen::MatrixXd Kkt(const Eigen::MatrixXd& H, const Eigen::MatrixXd& E, const Eigen::MatrixXd& A,
+Eigen::MatrixXd Kkt(const Eigen::MatrixXd& H,
+                    const Eigen::MatrixXd& E,
+                    const Eigen::MatrixXd& A,
                     const std::vector<int>& active) {
   const Eigen::Index n = H.rows(), ne = E.rows(), na = static_cast<Eigen::Index>(active.size());
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n + ne + na, n + ne + na);
@@ -28,9 +30,14 @@ Eigen::MatrixXd Kkt(const Eigen::MatrixXd& H, const Eigen::MatrixXd& E, const Ei
 
 }  // namespace
 
-DenseQpResult SolveDenseQp(const Eigen::MatrixXd& H, const Eigen::VectorXd& c, const Eigen::MatrixXd& E,
-                           const Eigen::VectorXd& e, const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
-                           double tolerance, int max_changes) {
+DenseQpResult SolveDenseQp(const Eigen::MatrixXd& H,
+                           const Eigen::VectorXd& c,
+                           const Eigen::MatrixXd& E,
+                           const Eigen::VectorXd& e,
+                           const Eigen::MatrixXd& A,
+                           const Eigen::VectorXd& b,
+                           double tolerance,
+                           int max_changes) {
   const Eigen::Index n = H.rows(), ne = E.rows();
   DenseQpResult out;
   out.inequality_multipliers = Eigen::VectorXd::Zero(A.rows());
@@ -74,9 +81,10 @@ DenseQpResult SolveDenseQp(const Eigen::MatrixXd& H, const Eigen::VectorXd& c, c
       const Eigen::VectorXd z = sol.head(n);
       const double curvature = z.dot(H * z);  // = -a_p^T z: the violation falls by t z^T H z
       const double violation = A.row(p).dot(d) - b[p];
-      const double full = curvature > 1e-14 * (1.0 + H.diagonal().cwiseAbs().maxCoeff()) * z.squaredNorm() && z.norm() > 0
-                              ? violation / curvature
-                              : std::numeric_limits<double>::infinity();
+      const double full =
+          curvature > 1e-14 * (1.0 + H.diagonal().cwiseAbs().maxCoeff()) * z.squaredNorm() && z.norm() > 0
+              ? violation / curvature
+              : std::numeric_limits<double>::infinity();
       double partial = std::numeric_limits<double>::infinity();
       int drop = -1;
       for (Eigen::Index i = 0; i < na; ++i) {

@@ -22,8 +22,13 @@ struct DenseQpResult {
 
 /// Solves the QP above; rows of A with b = +inf are ignored. `tolerance` is the violation of
 /// A d <= b accepted as met.
-DenseQpResult SolveDenseQp(const Eigen::MatrixXd& H, const Eigen::VectorXd& c, const Eigen::MatrixXd& E,
-                           const Eigen::VectorXd& e, const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
-                           double tolerance = 1e-12, int max_changes = 500);
+DenseQpResult SolveDenseQp(const Eigen::MatrixXd& H,
+                           const Eigen::VectorXd& c,
+                           const Eigen::MatrixXd& E,
+                           const Eigen::VectorXd& e,
+                           const Eigen::MatrixXd& A,
+                           const Eigen::VectorXd& b,
+                           double tolerance = 1e-12,
+                           int max_changes = 500);
 
 }  // namespace plateball::internal

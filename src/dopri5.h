@@ -17,8 +17,8 @@ namespace plateball::internal {
 /// t + h (7 evaluations). Returns odeint's error measure max_i |err_i| / (abs_tol + rel_tol (|y_i|
 /// + |h| |y'_i|)) (y and y' at the start of the step): within the tolerances when <= 1.
 template <std::size_t N, typename Rhs>
-double DormandPrince5Step(const Rhs& rhs, std::array<double, N>& y, double t, double h, double abs_tol,
-                          double rel_tol) {
+double DormandPrince5Step(
+    const Rhs& rhs, std::array<double, N>& y, double t, double h, double abs_tol, double rel_tol) {
   using State = std::array<double, N>;
   State k1, k2, k3, k4, k5, k6, k7, tmp, y5;
   rhs(y, k1, t);

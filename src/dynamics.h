@@ -3,9 +3,10 @@
 // by hand (tests/fehlberg78_test.cc checks them against ceres::Jet on the kinematics kernel).
 #pragma once
 
+#include <ceres/jet.h>
+
 #include <algorithm>
 #include <array>
-#include <ceres/jet.h>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <stdexcept>
@@ -125,8 +126,13 @@ inline FullState InitialFullState(const Eigen::Vector3d& z0) {
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 template <typename Stepper = void, typename State, typename Rhs, typename Observer>
-double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double dt0,
-                         const IntegrationOptions& options, Observer&& observer) {
+double IntegrateAdaptive(const Rhs& rhs,
+                         State& y,
+                         double t0,
+                         double t1,
+                         double dt0,
+                         const IntegrationOptions& options,
+                         Observer&& observer) {
   namespace odeint = boost::numeric::odeint;
   using ErrorStepper = std::conditional_t<std::is_void_v<Stepper>, odeint::runge_kutta_dopri5<State>, Stepper>;
   auto stepper = odeint::make_controlled(options.absolute_tolerance, options.relative_tolerance, ErrorStepper());
@@ -139,11 +145,12 @@ double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double 
     if (dir * (t + dt - t1) > 0) dt = t1 - t;
     if (++steps > options.max_steps)
       throw StepLimitError("integration exceeded max_steps = " + std::to_string(options.max_steps) +
-                               " at t = " + std::to_string(t));
+                           " at t = " + std::to_string(t));
     const double t_before = t;
     if (stepper.try_step(rhs, y, t, dt) == odeint::success) {
       for (double v : y)
-        if (!std::isfinite(v)) throw std::runtime_error("integration produced a non-finite state at t = " + std::to_string(t_before));
+        if (!std::isfinite(v))
+          throw std::runtime_error("integration produced a non-finite state at t = " + std::to_string(t_before));
       if constexpr (std::is_same_v<decltype(observer(t, y)), bool>) {
         if (!observer(t, y)) return t;
       } else {
@@ -158,8 +165,8 @@ double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double 
 #pragma GCC diagnostic pop
 
 template <typename State, typename Rhs>
-double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double dt0,
-                         const IntegrationOptions& options) {
+double IntegrateAdaptive(
+    const Rhs& rhs, State& y, double t0, double t1, double dt0, const IntegrationOptions& options) {
   return IntegrateAdaptive(rhs, y, t0, t1, dt0, options, [](double, const State&) {});
 }
 
@@ -169,12 +176,17 @@ double IntegrateAdaptive(const Rhs& rhs, State& y, double t0, double t1, double 
 /// the times (IntegrateAdaptive would stop at every time). The same step limit and finiteness
 /// checks as IntegrateAdaptive.
 template <typename State, typename Rhs, typename Observer>
-void IntegrateDenseAtTimes(const Rhs& rhs, const State& y0, const double* times, std::size_t n, double dt0,
-                           const IntegrationOptions& options, Observer&& observer) {
+void IntegrateDenseAtTimes(const Rhs& rhs,
+                           const State& y0,
+                           const double* times,
+                           std::size_t n,
+                           double dt0,
+                           const IntegrationOptions& options,
+                           Observer&& observer) {
   namespace odeint = boost::numeric::odeint;
   if (n == 0) return;
-  auto stepper = odeint::make_dense_output(options.absolute_tolerance, options.relative_tolerance,
-                                           odeint::runge_kutta_dopri5<State>());
+  auto stepper = odeint::make_dense_output(
+      options.absolute_tolerance, options.relative_tolerance, odeint::runge_kutta_dopri5<State>());
   std::size_t i = 0;
   for (; i < n && times[i] == times[0]; ++i) observer(i, y0);
   if (i == n) return;
@@ -187,7 +199,9 @@ void IntegrateDenseAtTimes(const Rhs& rhs, const State& y0, const double* times,
                            " at t = " + std::to_string(stepper.current_time()));
     stepper.do_step(rhs);
     for (double v : stepper.current_state())
-      if (!std::isfinite(v)) throw std::runtime_error("integration produced a non-finite state at t = " + std::to_string(stepper.previous_time()));
+      if (!std::isfinite(v))
+        throw std::runtime_error("integration produced a non-finite state at t = " +
+                                 std::to_string(stepper.previous_time()));
     for (; i < n && times[i] <= stepper.current_time(); ++i) {
       stepper.calc_state(times[i], y);
       observer(i, static_cast<const State&>(y));

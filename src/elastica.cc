@@ -128,7 +128,8 @@ Elastica::Elastica(const ElasticaParameters& parameters) : p_(parameters) {
   internal::RequireFinite("phase", p_.phase);
   internal::RequireFinite("heading_w", p_.heading_w);
   if (!(std::abs(p_.modulus) < 1.0))
-    internal::ThrowInvalid("modulus", p_.modulus, "|modulus| must be < 1 (the separatrix k = 1 has an infinite period)");
+    internal::ThrowInvalid(
+        "modulus", p_.modulus, "|modulus| must be < 1 (the separatrix k = 1 has an infinite period)");
   k_ = std::abs(p_.modulus);
   agm_ = std::make_shared<const internal::JacobiAgm>(k_);
   kc2_ = internal::OneMinusSquare(k_);
@@ -166,7 +167,7 @@ void Elastica::SetRateTerms() {
     // Over one period u advances by 4K (oscillating) or 2K (rotating); int sn^2 by 4D(k) or
     // 2D(k); the transverse coordinate returns. (Position(Period()) agrees: elastica_test.)
     const double x = p_.regime == PendulumRegime::kOscillating ? period_ - 8.0 * k_ * k_ * dk_ / std::abs(r)
-                                                                : period_ - 4.0 * dk_ / std::abs(r);
+                                                               : period_ - 4.0 * dk_ / std::abs(r);
     drift_ = Eigen::Vector2d(cos_w_ * x, sin_w_ * x);
   }
 }
@@ -301,7 +302,8 @@ Eigen::Vector2d Elastica::PositionAt(double s, Jacobi* jacobi, double* integral_
     // Short arc (or straight line): 8-point Gauss-Legendre quadrature of the closed-form
     // tangent; the tangent is analytic, so the error is O(du^16) relative (2 points: O(du^4)).
     const double half = 0.5 * s;
-    if (std::abs(du) < kTinyArcArgument) return half * (Tangent(half * (1.0 - kGl2Node)) + Tangent(half * (1.0 + kGl2Node)));
+    if (std::abs(du) < kTinyArcArgument)
+      return half * (Tangent(half * (1.0 - kGl2Node)) + Tangent(half * (1.0 + kGl2Node)));
     Eigen::Vector2d acc = Eigen::Vector2d::Zero();
     for (int i = 0; i < 4; ++i) {
       acc += kGlWeights[i] * (Tangent(half * (1.0 - kGlNodes[i])) + Tangent(half * (1.0 + kGlNodes[i])));

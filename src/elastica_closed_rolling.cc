@@ -20,8 +20,8 @@ ElasticaClosedRolling::ElasticaClosedRolling(const Elastica& e)
       complete_k_(e.kk_),
       agm_(*e.agm_) {
   if (!(std::abs(rate_) <= kMaxRate))
-    ThrowInvalid("rate", rate_,
-                 "|rate| must be <= " + FormatNumber(kMaxRate) + " for the closed-form rolling (G, V^2 finite)");
+    ThrowInvalid(
+        "rate", rate_, "|rate| must be <= " + FormatNumber(kMaxRate) + " for the closed-form rolling (G, V^2 finite)");
   const bool oscillating = regime_ == PendulumRegime::kOscillating;
   const double k = std::abs(modulus_);
   // G = b^2 (oscillating) or (a k)^2 (rotating); 1 - G as a product, exact near G = 1.
@@ -97,7 +97,8 @@ ElasticaClosedRolling::Node ElasticaClosedRolling::At(double s, const char* fiel
   return NodeFrom(m, sn, cn, dn, with_pi);
 }
 
-ElasticaClosedRolling::Node ElasticaClosedRolling::NodeFrom(double m, double sn, double cn, double dn, bool with_pi) const {
+ElasticaClosedRolling::Node ElasticaClosedRolling::NodeFrom(
+    double m, double sn, double cn, double dn, bool with_pi) const {
   Node j;
   j.m = m;
   j.sn = sn;
@@ -130,8 +131,7 @@ Eigen::Vector3d ElasticaClosedRolling::Costate(double s) const {
 Eigen::Matrix3d ElasticaClosedRolling::FrameAt(const Node& j) const {
   const Eigen::Vector3d v = PendulumCostate(j);
   const double norm = v.stableNorm();  // no overflow for |rate| up to kMaxRate
-  if (!(norm > 0.0))
-    ThrowInvalid("rate", rate_, "the costate vanishes (straight line with G = 1): no costate frame");
+  if (!(norm > 0.0)) ThrowInvalid("rate", rate_, "the costate vanishes (straight line with G = 1): no costate frame");
   const Eigen::Vector3d u = v / norm;
   Eigen::Vector2d f;  // f1, horizontal
   if (unit_chart_) {
@@ -228,8 +228,8 @@ ElasticaClosedRolling::Direction ElasticaClosedRolling::MakeDirection(double dra
   return d;
 }
 
-ElasticaClosedRolling::NodeDerivative ElasticaClosedRolling::Differentiate(const Node& j, double w, double integral_sn2,
-                                                                           double dw, const Direction& d) const {
+ElasticaClosedRolling::NodeDerivative ElasticaClosedRolling::Differentiate(
+    const Node& j, double w, double integral_sn2, double dw, const Direction& d) const {
   const double k = modulus_, k2 = k * k, kc2 = kc2_, sc = j.sn * j.cn;
   // am(w, k) at fixed w: F(am, k) = w, dF/dk = E/(k k'^2) - F/k - k sin cos/(k'^2 Delta) with
   // F = w and E(am w) = w - k^2 D(am w): d am/dk = (k/k'^2)(sn cn - dn (w - D)).
@@ -267,7 +267,8 @@ Eigen::Vector3d ElasticaClosedRolling::FrameSpin(const Node& j, const NodeDeriva
   const double norm = v.norm(), rho2 = v.x() * v.x() + v.y() * v.y(), rho = std::sqrt(rho2);
   const Eigen::Vector3d u = v / norm, du = (dv - u * u.dot(dv)) / norm;
   const Eigen::Vector3d f1(-v.y() / rho, v.x() / rho, 0.0);
-  const Eigen::Vector3d df1 = Eigen::Vector3d(-dv.y(), dv.x(), 0.0) / rho - f1 * (v.x() * dv.x() + v.y() * dv.y()) / rho2;
+  const Eigen::Vector3d df1 =
+      Eigen::Vector3d(-dv.y(), dv.x(), 0.0) / rho - f1 * (v.x() * dv.x() + v.y() * dv.y()) / rho2;
   const Eigen::Vector3d f2 = u.cross(f1), df2 = du.cross(f1) + u.cross(df1);
   const Eigen::Vector3d omega = 0.5 * (f1.cross(df1) + f2.cross(df2) + u.cross(du));  // pendulum frame
   return {cos_w_ * omega.x() - sin_w_ * omega.y(), sin_w_ * omega.x() + cos_w_ * omega.y(), omega.z()};
@@ -275,8 +276,8 @@ Eigen::Vector3d ElasticaClosedRolling::FrameSpin(const Node& j, const NodeDeriva
 
 // d(x(s) - x(0)) from the positions' closed forms (Elastica::Position) in the pendulum frame
 // (a = origin_, di = int_{u0}^{w} sn^2).
-Eigen::Vector2d ElasticaClosedRolling::ChordDerivative(const Node& b, const NodeDerivative& da, const NodeDerivative& db,
-                                                       double di, const Direction& d) const {
+Eigen::Vector2d ElasticaClosedRolling::ChordDerivative(
+    const Node& b, const NodeDerivative& da, const NodeDerivative& db, double di, const Direction& d) const {
   const Node& a = origin_;
   const double ddi = db.dintegral - da.dintegral;
   double dx = 0.0, dy = 0.0;

@@ -26,9 +26,9 @@ namespace plateball::internal {
 class ElasticaClosedRolling {
   // The Jacobi functions at w = rate s + u0 = 2 K m + r, |r| <= K.
   struct Node {
-    double m = 0.0;                  // number of half periods 2K (an integer)
+    double m = 0.0;                       // number of half periods 2K (an integer)
     double sn = 0.0, cn = 1.0, dn = 1.0;  // at w
-    double pi = 0.0;                 // Pi(n; am(r), k), when asked for and n != 0
+    double pi = 0.0;                      // Pi(n; am(r), k), when asked for and n != 0
   };
 
  public:
@@ -113,8 +113,8 @@ class ElasticaClosedRolling {
   NodeDerivative Differentiate(const Node& j, double w, double integral_sn2, double dw, const Direction& d) const;
   Direction MakeDirection(double drate, double dk) const;
   Eigen::Vector3d FrameSpin(const Node& j, const NodeDerivative& dj, const Direction& d) const;
-  Eigen::Vector2d ChordDerivative(const Node& b, const NodeDerivative& da, const NodeDerivative& db, double di,
-                                  const Direction& d) const;
+  Eigen::Vector2d ChordDerivative(
+      const Node& b, const NodeDerivative& da, const NodeDerivative& db, double di, const Direction& d) const;
   Eigen::Matrix3d RollingTo(const Node& b, double s) const;
 
   PendulumRegime regime_;
@@ -127,14 +127,14 @@ class ElasticaClosedRolling {
   double complete_pi_ = 0.0;       // Pi(n; pi/2, k)
   struct {
     double n_big = 0.0, one_minus_n_big = 0.0, c1 = 0.0, c2 = 0.0, c3 = 0.0, p2 = 0.0;
-  } third_;                        // Pi(n) through Pi(N), 0 < N < 1 (ThirdKind)
-  double twist_factor_ = 0.0;      // (1 + G) / ((1 - G) rate): (1 - G^2) J = twist_factor_ Delta Pi
+  } third_;                    // Pi(n) through Pi(N), 0 < N < 1 (ThirdKind)
+  double twist_factor_ = 0.0;  // (1 + G) / ((1 - G) rate): (1 - G^2) J = twist_factor_ Delta Pi
   bool straight_, unit_chart_;
   JacobiAgm agm_;
-  Eigen::Vector3d straight_omega_;  // e3 x x' on a straight line
-  double kc2_ = 1.0;                // k'^2
-  double integral_sn2_origin_ = 0.0;  // int_0^u0 sn^2
-  Node origin_;                     // at s = 0, with Pi
+  Eigen::Vector3d straight_omega_;                                // e3 x x' on a straight line
+  double kc2_ = 1.0;                                              // k'^2
+  double integral_sn2_origin_ = 0.0;                              // int_0^u0 sn^2
+  Node origin_;                                                   // at s = 0, with Pi
   Eigen::Matrix3d origin_frame_t_ = Eigen::Matrix3d::Identity();  // F(0)^T (not for straight lines)
 };
 

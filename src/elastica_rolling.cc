@@ -29,7 +29,8 @@ struct Sncndn {
 // Addition theorem: f(u + v) from f(u), f(v) (Abramowitz and Stegun 16.17).
 Sncndn Add(const Sncndn& a, const Sncndn& b, double k2) {
   const double den = 1.0 / (1.0 - k2 * a.sn * a.sn * b.sn * b.sn);
-  return {(a.sn * b.cn * b.dn + b.sn * a.cn * a.dn) * den, (a.cn * b.cn - a.sn * b.sn * a.dn * b.dn) * den,
+  return {(a.sn * b.cn * b.dn + b.sn * a.cn * a.dn) * den,
+          (a.cn * b.cn - a.sn * b.sn * a.dn * b.dn) * den,
           (a.dn * b.dn - k2 * a.sn * b.sn * a.cn * b.cn) * den};
 }
 
@@ -49,7 +50,9 @@ static Eigen::Vector2d ElasticaTangentOf(const Elastica& e, const Sncndn& s) { r
 
 // x(s0 + h) - x(s0) from the tangents at the step's three Gauss nodes: three-point
 // Gauss-Legendre quadrature of x' (order 6).
-static Eigen::Vector2d GaussDisplacement(const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3,
+static Eigen::Vector2d GaussDisplacement(const Eigen::Vector2d& t1,
+                                         const Eigen::Vector2d& t2,
+                                         const Eigen::Vector2d& t3,
                                          double h) {
   return (h / 18.0) * (5.0 * t1 + 8.0 * t2 + 5.0 * t3);
 }
@@ -61,7 +64,9 @@ static Eigen::Vector2d GaussDisplacement(const Eigen::Vector2d& t1, const Eigen:
 //   c2 = -a1 x (2 a3 + c1) / 60, omega = a1 + a3 / 12 + (-20 a1 - a3 + c1) x (a2 + c2) / 240,
 // written out for w = e3 x t in the plane (a1, a2, a3 in the plane, c1 along e3): the cross
 // products' terms with a zero factor are left out (each is an exact zero: the same bits).
-static Eigen::Vector3d MagnusVector(const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3,
+static Eigen::Vector3d MagnusVector(const Eigen::Vector2d& t1,
+                                    const Eigen::Vector2d& t2,
+                                    const Eigen::Vector2d& t3,
                                     double h) {
   const Eigen::Vector2d w1(-t1.y(), t1.x()), w2(-t2.y(), t2.x()), w3(-t3.y(), t3.x());
   const Eigen::Vector2d a1 = h * w2;
@@ -70,28 +75,37 @@ static Eigen::Vector3d MagnusVector(const Eigen::Vector2d& t1, const Eigen::Vect
   const double c1 = a1.x() * a2.y() - a1.y() * a2.x();  // along e3
   // c2 = -(1/60) a1 x d, d = (2 a3, c1): in the plane a1 x (0, 0, c1) = (a1.y c1, -a1.x c1), along e3 a1 x 2 a3.
   const Eigen::Vector2d d = 2.0 * a3;
-  const Eigen::Vector3d c2 = -(1.0 / 60.0) * Eigen::Vector3d(a1.y() * c1, -(a1.x() * c1), a1.x() * d.y() - a1.y() * d.x());
+  const Eigen::Vector3d c2 =
+      -(1.0 / 60.0) * Eigen::Vector3d(a1.y() * c1, -(a1.x() * c1), a1.x() * d.y() - a1.y() * d.x());
   const Eigen::Vector3d f(-20.0 * a1.x() - a3.x(), -20.0 * a1.y() - a3.y(), c1);  // -20 a1 - a3 + c1
   const Eigen::Vector3d g(a2.x() + c2.x(), a2.y() + c2.y(), c2.z());              // a2 + c2
   return Eigen::Vector3d(a1.x() + a3.x() / 12.0, a1.y() + a3.y() / 12.0, 0.0) + (1.0 / 240.0) * f.cross(g);
 }
 
 // The Magnus step from the tangents at the three Gauss nodes.
-static Eigen::Matrix3d MagnusFromTangents(const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3,
-                                          double h, Eigen::Vector2d* displacement) {
+static Eigen::Matrix3d MagnusFromTangents(const Eigen::Vector2d& t1,
+                                          const Eigen::Vector2d& t2,
+                                          const Eigen::Vector2d& t3,
+                                          double h,
+                                          Eigen::Vector2d* displacement) {
   if (displacement) *displacement = GaussDisplacement(t1, t2, t3, h);  // same Gauss nodes
   return ExpSO3(MagnusVector(t1, t2, t3, h));
 }
 
 Eigen::Quaterniond QuaternionExp(const Eigen::Vector3d& w) {
   const double t2 = w.squaredNorm();
-  double c, a;  // cos(t / 2) and sin(t / 2) / t
+  double c, a;      // cos(t / 2) and sin(t / 2) / t
   if (t2 < 0.36) {  // Taylor series in x = (t / 2)^2 < 0.09: the first term left out is below 1e-20
     const double x = t2 / 4.0;
-    c = 1.0 + x * (-1.0 / 2 + x * (1.0 / 24 + x * (-1.0 / 720 + x * (1.0 / 40320 + x * (-1.0 / 3628800 +
-        x * (1.0 / 479001600 - x / 87178291200.0))))));
-    a = 0.5 * (1.0 + x * (-1.0 / 6 + x * (1.0 / 120 + x * (-1.0 / 5040 + x * (1.0 / 362880 + x * (-1.0 / 39916800 +
-        x * (1.0 / 6227020800.0 - x / 1307674368000.0)))))));
+    c = 1.0 +
+        x * (-1.0 / 2 +
+             x * (1.0 / 24 + x * (-1.0 / 720 + x * (1.0 / 40320 + x * (-1.0 / 3628800 +
+                                                                       x * (1.0 / 479001600 - x / 87178291200.0))))));
+    a = 0.5 *
+        (1.0 + x * (-1.0 / 6 +
+                    x * (1.0 / 120 +
+                         x * (-1.0 / 5040 + x * (1.0 / 362880 + x * (-1.0 / 39916800 + x * (1.0 / 6227020800.0 -
+                                                                                            x / 1307674368000.0)))))));
   } else {
     const double t = std::sqrt(t2);
     c = std::cos(0.5 * t);
@@ -107,17 +121,25 @@ Eigen::Matrix3d MagnusRollingStep(const Elastica& e, double s0, double s1, Eigen
     return Eigen::Matrix3d::Identity();
   }
   const double c = kGaussOffset;
-  return MagnusFromTangents(e.Tangent(s0 + (0.5 - c) * h), e.Tangent(s0 + 0.5 * h), e.Tangent(s0 + (0.5 + c) * h), h,
-                            displacement);
+  return MagnusFromTangents(
+      e.Tangent(s0 + (0.5 - c) * h), e.Tangent(s0 + 0.5 * h), e.Tangent(s0 + (0.5 + c) * h), h, displacement);
 }
 
-ElasticaRollingTable::ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
-                                           int max_total_steps, bool positions_only)
-    : ElasticaRollingTable(e, s_limit, steps_per_period, max_step, max_total_steps,
+ElasticaRollingTable::ElasticaRollingTable(
+    const Elastica& e, double s_limit, int steps_per_period, double max_step, int max_total_steps, bool positions_only)
+    : ElasticaRollingTable(e,
+                           s_limit,
+                           steps_per_period,
+                           max_step,
+                           max_total_steps,
                            positions_only ? TableRotations::kNone : TableRotations::kMatrices) {}
 
-ElasticaRollingTable::ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
-                                           int max_total_steps, TableRotations rotations)
+ElasticaRollingTable::ElasticaRollingTable(const Elastica& e,
+                                           double s_limit,
+                                           int steps_per_period,
+                                           double max_step,
+                                           int max_total_steps,
+                                           TableRotations rotations)
     : e_(&e), s_limit_(s_limit), max_total_steps_(max_total_steps), rotations_(rotations) {
   steps_per_period = std::max(4, steps_per_period);
   straight_ = e.IsStraight();
@@ -188,40 +210,40 @@ void ElasticaRollingTable::Build(int steps) {
   pos_.resize(steps + 1);
   pos_[0].setZero();
   if (rotations_ == TableRotations::kNone) {  // the displacement of MagnusFromTangents, without the rotation
-    MarchGaussTangents(*e_, h_, steps,
-                       [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
-                         pos_[j + 1] = pos_[j] + GaussDisplacement(t1, t2, t3, h_);
-                       });
+    MarchGaussTangents(
+        *e_, h_, steps, [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
+          pos_[j + 1] = pos_[j] + GaussDisplacement(t1, t2, t3, h_);
+        });
     return;
   }
   if (rotations_ == TableRotations::kQuaternions) {  // the same steps, exp and products as quaternions
     quat_.resize(steps + 1);
     quat_[0].setIdentity();
-    MarchGaussTangents(*e_, h_, steps,
-                       [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
-                         quat_[j + 1] = QuaternionExp(MagnusVector(t1, t2, t3, h_)) * quat_[j];
-                         pos_[j + 1] = pos_[j] + GaussDisplacement(t1, t2, t3, h_);
-                       });
+    MarchGaussTangents(
+        *e_, h_, steps, [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
+          quat_[j + 1] = QuaternionExp(MagnusVector(t1, t2, t3, h_)) * quat_[j];
+          pos_[j + 1] = pos_[j] + GaussDisplacement(t1, t2, t3, h_);
+        });
     return;
   }
   rot_.resize(steps + 1);
   rot_[0].setIdentity();
-  MarchGaussTangents(*e_, h_, steps,
-                     [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
-                       Eigen::Vector2d dx;
-                       rot_[j + 1] = MagnusFromTangents(t1, t2, t3, h_, &dx) * rot_[j];
-                       pos_[j + 1] = pos_[j] + dx;
-                     });
+  MarchGaussTangents(
+      *e_, h_, steps, [this](int j, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
+        Eigen::Vector2d dx;
+        rot_[j + 1] = MagnusFromTangents(t1, t2, t3, h_, &dx) * rot_[j];
+        pos_[j + 1] = pos_[j] + dx;
+      });
 }
 
 Eigen::Matrix3d PeriodRolling(const Elastica& e, int steps) {
   steps = std::max(steps, 1);
   const double h = e.Period() / steps;
   Eigen::Matrix3d q = Eigen::Matrix3d::Identity();
-  MarchGaussTangents(e, h, steps,
-                     [&q, h](int, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
-                       q = MagnusFromTangents(t1, t2, t3, h, nullptr) * q;
-                     });
+  MarchGaussTangents(
+      e, h, steps, [&q, h](int, const Eigen::Vector2d& t1, const Eigen::Vector2d& t2, const Eigen::Vector2d& t3) {
+        q = MagnusFromTangents(t1, t2, t3, h, nullptr) * q;
+      });
   return q;
 }
 
@@ -347,7 +369,9 @@ void ElasticaRollingTable::Nodes(std::vector<Eigen::Matrix3d>* rolling, std::vec
 }
 
 template <class Pred>
-int ElasticaRollingTable::ScanCrossings(double radius, int max_count, Pred&& refine,
+int ElasticaRollingTable::ScanCrossings(double radius,
+                                        int max_count,
+                                        Pred&& refine,
                                         std::vector<std::pair<int, double>>* out) const {
   if (!valid_) return 0;
   const double r2 = radius * radius;
@@ -385,7 +409,8 @@ int ElasticaRollingTable::ScanCrossings(double radius, int max_count, Pred&& ref
 
 std::vector<double> ElasticaRollingTable::Crossings(double radius, int max_count) const {
   std::vector<std::pair<int, double>> found;
-  ScanCrossings(radius, max_count, [](int, double, double) { return true; }, &found);
+  ScanCrossings(
+      radius, max_count, [](int, double, double) { return true; }, &found);
   std::vector<double> out;
   for (const auto& c : found) out.push_back(c.second);
   return out;
@@ -393,14 +418,16 @@ std::vector<double> ElasticaRollingTable::Crossings(double radius, int max_count
 
 bool ElasticaRollingTable::FindCrossing(double radius, int n, double* s) const {
   std::vector<std::pair<int, double>> c;
-  if (ScanCrossings(radius, n, [n](int count, double, double) { return count == n; }, &c) != n || c.empty())
+  if (ScanCrossings(
+          radius, n, [n](int count, double, double) { return count == n; }, &c) != n ||
+      c.empty())
     return false;
   *s = c.back().second;
   return true;
 }
 
-bool ElasticaRollingTable::NearestCrossing(double radius, double s, double tol, int max_count, int* n,
-                                           double* root) const {
+bool ElasticaRollingTable::NearestCrossing(
+    double radius, double s, double tol, int max_count, int* n, double* root) const {
   std::vector<std::pair<int, double>> c;
   // A root within tol of s lies in a bracket that reaches into [s - tol, s + tol].
   const auto near = [s, tol](int, double sa, double sb) { return sb >= s - tol && sa <= s + tol; };

@@ -43,12 +43,20 @@ class ElasticaRollingTable {
   /// positions only (positions_only) has the same nodes and positions (bit for bit: the crossings
   /// are the same) without the Magnus rotations: Rolling and Nodes throw std::logic_error on it
   /// (the rolling then comes from ElasticaClosedRolling, elastica_closed_rolling.h).
-  ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step,
-                       int max_total_steps = 200000, bool positions_only = false);
+  ElasticaRollingTable(const Elastica& e,
+                       double s_limit,
+                       int steps_per_period,
+                       double max_step,
+                       int max_total_steps = 200000,
+                       bool positions_only = false);
   /// The same table keeping `rotations` (kNone: positions_only; kQuaternions: the same Magnus steps
   /// composed as unit quaternions, read by NodeQuaternion only: Rolling, Nodes, MonodromyPowers
   /// throw std::logic_error on it). Nodes and positions are the same bit for bit in every form.
-  ElasticaRollingTable(const Elastica& e, double s_limit, int steps_per_period, double max_step, int max_total_steps,
+  ElasticaRollingTable(const Elastica& e,
+                       double s_limit,
+                       int steps_per_period,
+                       double max_step,
+                       int max_total_steps,
                        TableRotations rotations);
   bool Valid() const { return valid_; }
   bool PositionsOnly() const { return rotations_ == TableRotations::kNone; }
@@ -125,7 +133,7 @@ class ElasticaRollingTable {
   Eigen::Quaterniond monodromy_quat_;
   std::vector<Eigen::Matrix3d> rot_;      // Q(0, j h), j = 0..steps_ (kMatrices)
   std::vector<Eigen::Quaterniond> quat_;  // the same as unit quaternions (kQuaternions)
-  std::vector<Eigen::Vector2d> pos_;  // x(j h)
+  std::vector<Eigen::Vector2d> pos_;      // x(j h)
 };
 
 /// How far the chord between two nodes of a table can move over k nodes, for scans that skip
@@ -160,6 +168,8 @@ inline long FirstReachAtLeast(const std::vector<double>& reach, double gap, doub
 /// inward) by `gap`: the largest k with reach[k] < gap (-1: none, gap <= reach[0]). Nodes l - 1 ..
 /// l + k then keep their chords beyond the edge (|x[l + d] - x[l]| <= reach[|d|] < gap for
 /// |d| <= k) when k >= 1 (node l - 1 needs reach[1] < gap).
-inline long ReachSkip(const std::vector<double>& reach, double gap, double h) { return FirstReachAtLeast(reach, gap, h) - 1; }
+inline long ReachSkip(const std::vector<double>& reach, double gap, double h) {
+  return FirstReachAtLeast(reach, gap, h) - 1;
+}
 
 }  // namespace plateball::internal

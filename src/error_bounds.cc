@@ -83,8 +83,8 @@ std::string ErrorBounds::BriefReport() const {
   os.precision(4);
   os << "bounds: a-posteriori " << a_posteriori << " (path " << a_posteriori_path << ", arcs " << a_posteriori_arcs
      << "), Theorem 2.6 " << theorem_2_6 << ", Corollary 3 " << corollary_3 << ", Theorem 2.5 " << theorem_2_5
-     << "; K_p " << constants.K_p << ", M'_p " << constants.M_prime_p << ", Ktilde " << constants.K_tilde
-     << ", K1 " << constants.K1 << ", D_p " << constants.D_p;
+     << "; K_p " << constants.K_p << ", M'_p " << constants.M_prime_p << ", Ktilde " << constants.K_tilde << ", K1 "
+     << constants.K1 << ", D_p " << constants.D_p;
   return os.str();
 }
 

@@ -40,8 +40,10 @@ std::string Trim(const std::string& s) {
 void ParseItem(const std::string& item, const std::string& field, std::set<std::string>* seen, ErrorModel* model) {
   const auto eq = item.find('=');
   if (eq == std::string::npos)
-    internal::ThrowInvalid(field, "'" + item + "'", "expected KEY=VALUE (keys: impulse_magnitude, impulse_angle, "
-                                                    "timing, energy_loss, lambda, observation, pulse_duration, pulse_causal)");
+    internal::ThrowInvalid(field,
+                           "'" + item + "'",
+                           "expected KEY=VALUE (keys: impulse_magnitude, impulse_angle, "
+                           "timing, energy_loss, lambda, observation, pulse_duration, pulse_causal)");
   const std::string key = Trim(item.substr(0, eq));
   const std::string value = Trim(item.substr(eq + 1));
   for (const ErrorField& f : kFields) {
@@ -58,9 +60,11 @@ void ParseItem(const std::string& item, const std::string& field, std::set<std::
     model->*f.member = v;
     return;
   }
-  internal::ThrowInvalid(field, "'" + key + "'", "unknown error model (keys: impulse_magnitude, impulse_angle, "
-                                                 "timing, energy_loss, lambda, observation, pulse_duration, "
-                                                 "pulse_causal)");
+  internal::ThrowInvalid(field,
+                         "'" + key + "'",
+                         "unknown error model (keys: impulse_magnitude, impulse_angle, "
+                         "timing, energy_loss, lambda, observation, pulse_duration, "
+                         "pulse_causal)");
 }
 
 }  // namespace
@@ -71,7 +75,8 @@ std::string ErrorModel::Validate() const {
     if (!(v >= 0.0 && v <= f.max)) return internal::InvalidValueMessage(f.name, v, RangeText(f.max));
   }
   if (pulse_causal != 0.0 && pulse_causal != 1.0)
-    return internal::InvalidValueMessage("pulse_causal", pulse_causal, "must be 0 (centred pulses) or 1 (causal pulses)");
+    return internal::InvalidValueMessage(
+        "pulse_causal", pulse_causal, "must be 0 (centred pulses) or 1 (causal pulses)");
   return "";
 }
 

@@ -18,21 +18,30 @@ namespace plateball {
 
 std::string ToString(ExactArrivalStatus status) {
   switch (status) {
-    case ExactArrivalStatus::kNotRun: return "not_run";
-    case ExactArrivalStatus::kArrived: return "arrived";
-    case ExactArrivalStatus::kNotReached: return "not_reached";
-    case ExactArrivalStatus::kWarmStartFailed: return "warm_start_failed";
-    case ExactArrivalStatus::kIntegrationFailure: return "integration_failure";
-    case ExactArrivalStatus::kLimitsNotMet: return "limits_not_met";
+    case ExactArrivalStatus::kNotRun:
+      return "not_run";
+    case ExactArrivalStatus::kArrived:
+      return "arrived";
+    case ExactArrivalStatus::kNotReached:
+      return "not_reached";
+    case ExactArrivalStatus::kWarmStartFailed:
+      return "warm_start_failed";
+    case ExactArrivalStatus::kIntegrationFailure:
+      return "integration_failure";
+    case ExactArrivalStatus::kLimitsNotMet:
+      return "limits_not_met";
   }
   return "unknown";
 }
 
 std::string ToString(ExactImpulseKind kind) {
   switch (kind) {
-    case ExactImpulseKind::kEnergyPreserving: return "energy_preserving";
-    case ExactImpulseKind::kStart: return "start";
-    case ExactImpulseKind::kStop: return "stop";
+    case ExactImpulseKind::kEnergyPreserving:
+      return "energy_preserving";
+    case ExactImpulseKind::kStart:
+      return "start";
+    case ExactImpulseKind::kStop:
+      return "stop";
   }
   return "unknown";
 }
@@ -42,7 +51,8 @@ std::string ExactArrivalOptions::Validate() const {
   std::string e = internal::ValidateArrivalTolerances(position_tolerance, orientation_tolerance);
   if (!e.empty()) return e;
   if (max_iterations < 1 || max_iterations > kMaxIterations)
-    return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, " + std::to_string(kMaxIterations) + "]");
+    return InvalidValueMessage(
+        "max_iterations", max_iterations, "must be in [1, " + std::to_string(kMaxIterations) + "]");
   if (!(std::isfinite(deviation_tolerance) && deviation_tolerance >= 0))
     return InvalidValueMessage("deviation_tolerance", deviation_tolerance, "must be finite and >= 0");
   e = integration.Validate();
@@ -56,8 +66,8 @@ std::string ExactArrivalSummary::BriefReport() const {
   std::ostringstream os;
   os.precision(3);
   os << "ExactArrival: " << ToString(status) << ", n = " << impulses.size() << ", position error = " << position_error
-     << ", orientation error = " << orientation_error << " rad, deviation = " << deviation
-     << ", T = " << total_time << ", iterations = " << iterations;
+     << ", orientation error = " << orientation_error << " rad, deviation = " << deviation << ", T = " << total_time
+     << ", iterations = " << iterations;
   if (!message.empty()) os << " (" << message << ")";
   return os.str();
 }
@@ -94,7 +104,9 @@ Eigen::VectorXd Residuals(const Setup& s, const std::vector<ChainNode>& nodes) {
 }
 
 // The exact Jacobian of Residuals (variational equations, src/exact_chain.h).
-Eigen::MatrixXd Jacobian(const Setup& s, const Eigen::VectorXd& u, const IntegrationOptions& integration,
+Eigen::MatrixXd Jacobian(const Setup& s,
+                         const Eigen::VectorXd& u,
+                         const IntegrationOptions& integration,
                          int* rollouts) {
   std::vector<ChainNode> nodes(static_cast<std::size_t>(s.n) + 1);
   nodes[0] = s.start;
@@ -135,27 +147,34 @@ double Merit(const Eigen::VectorXd& r) { return r.head<5>().norm(); }
 void ValidateLimits(const ExactArrivalProblem& p) {
   internal::ValidateRigProblem(p.limits, p.physical, p.x0, p.x1);
   if (p.objective == ArrivalObjective::kFewest)
-    internal::ThrowInvalid("objective", ToString(p.objective),
+    internal::ThrowInvalid("objective",
+                           ToString(p.objective),
                            "asks for the fewest impulses: that is the fewest-impulse search (SolveFewestImpulses), "
                            "not an exact arrival along a reference");
 }
 
 void ValidateProblem(const ExactArrivalProblem& p) {
   if (p.impulses < 3 || p.impulses > kMaxExactImpulses)
-    internal::ThrowInvalid("impulses", p.impulses,
+    internal::ThrowInvalid("impulses",
+                           p.impulses,
                            "must be in [3, " + std::to_string(kMaxExactImpulses) +
                                "] (2n unknowns for the 5 arrival conditions; the Jacobian costs n^2 arcs)");
   internal::ValidateStartAndGoal(p.mu, p.x0, p.x1, p.A0, p.A1);
   const double miss = (p.reference.StartPoint() - p.x0).norm();
   if (!(miss <= 1e-9 * std::max(1.0, p.reference.Length())))
-    internal::ThrowInvalid("x0", "(" + internal::FormatNumber(p.x0.x()) + ", " + internal::FormatNumber(p.x0.y()) + ")",
+    internal::ThrowInvalid("x0",
+                           "(" + internal::FormatNumber(p.x0.x()) + ", " + internal::FormatNumber(p.x0.y()) + ")",
                            "must equal the reference's start point (to 1e-9 of its length)");
   ValidateLimits(p);
 }
 
 // The summary's per-impulse report and errors from the final parameters.
-void Report(const Setup& s, const ExactArrivalProblem& p, const Eigen::VectorXd& u,
-            const std::vector<ChainNode>& nodes, const PlanSummary& plan, ExactArrivalSummary& out) {
+void Report(const Setup& s,
+            const ExactArrivalProblem& p,
+            const Eigen::VectorXd& u,
+            const std::vector<ChainNode>& nodes,
+            const PlanSummary& plan,
+            ExactArrivalSummary& out) {
   out.impulses = internal::ReportImpulses(*s.model, s.mu, nodes, u, p.start_at_rest);
   for (int k = 0; k < s.n; ++k) {
     ExactImpulse& e = out.impulses[static_cast<std::size_t>(k)];
@@ -205,8 +224,14 @@ Setup MakeSetup(const ExactArrivalProblem& p, const ExactArrivalOptions& o, cons
 // Backtracking from the longest admissible step: at most kMaxStep long (a trust region for goals
 // far from the warm start) and keeping every flight time above half its value; shortened while
 // it worsens the arrival.
-bool TryStep(const Setup& s, const Eigen::VectorXd& u, const Eigen::VectorXd& du, double merit, Eigen::VectorXd* u_new,
-             std::vector<ChainNode>* nodes, Eigen::VectorXd* r_new, int* rollouts) {
+bool TryStep(const Setup& s,
+             const Eigen::VectorXd& u,
+             const Eigen::VectorXd& du,
+             double merit,
+             Eigen::VectorXd* u_new,
+             std::vector<ChainNode>* nodes,
+             Eigen::VectorXd* r_new,
+             int* rollouts) {
   constexpr double kMaxStep = 1.0;
   double alpha = std::min(1.0, kMaxStep / std::max(du.norm(), 1e-300));
   for (int k = 0; k < s.n; ++k)
@@ -224,8 +249,12 @@ bool TryStep(const Setup& s, const Eigen::VectorXd& u, const Eigen::VectorXd& du
 
 // Polish with the last Jacobian (chord steps): the minimum-norm correction of the five arrival
 // conditions only, J^T (J J^T)^-1 r, while it reduces them; it moves the pass points by O(|r|).
-void Polish(const Setup& s, const Eigen::MatrixXd& jac, Eigen::VectorXd* u, std::vector<ChainNode>* nodes,
-            Eigen::VectorXd* r, int* rollouts) {
+void Polish(const Setup& s,
+            const Eigen::MatrixXd& jac,
+            Eigen::VectorXd* u,
+            std::vector<ChainNode>* nodes,
+            Eigen::VectorXd* r,
+            int* rollouts) {
   const Eigen::MatrixXd J = jac.topRows(5);
   const Eigen::MatrixXd jjt = J * J.transpose();
   for (int i = 0; i < 8 && Merit(*r) > 0.0; ++i) {
@@ -244,8 +273,13 @@ void Polish(const Setup& s, const Eigen::MatrixXd& jac, Eigen::VectorXd* u, std:
 
 // The rig's limits at mu = 1: the free optimum u when it meets them, else the constrained solve's
 // result (constrained_arrival.h). Returns false when no exact arrival meets them.
-bool ApplyLimits(const ExactArrivalProblem& p, const ExactArrivalOptions& o, const Setup& s, Eigen::VectorXd* u,
-                 std::vector<ChainNode>* nodes, ExactArrivalSummary* out, std::vector<long long>* ticks) {
+bool ApplyLimits(const ExactArrivalProblem& p,
+                 const ExactArrivalOptions& o,
+                 const Setup& s,
+                 Eigen::VectorXd* u,
+                 std::vector<ChainNode>* nodes,
+                 ExactArrivalSummary* out,
+                 std::vector<long long>* ticks) {
   internal::ConstrainedSetup cs;
   cs.lambda = p.model.lambda();
   cs.n = s.n;
@@ -340,8 +374,8 @@ ExactArrivalSummary SolveNormalised(const ExactArrivalProblem& problem, const Ex
       (k < out.impulses.size() ? out.impulses[k] : *out.stop).tick = ticks[k];
     if (!limits_met) {
       out.status = ExactArrivalStatus::kLimitsNotMet;
-      out.message = "no exact arrival found that meets the rig's limits; blocked by " +
-                    JoinNames(out.limits.blocking) + " (closest feasible arrival reported)";
+      out.message = "no exact arrival found that meets the rig's limits; blocked by " + JoinNames(out.limits.blocking) +
+                    " (closest feasible arrival reported)";
     } else if (Arrived(r, options)) {
       out.status = ExactArrivalStatus::kArrived;
       out.message.clear();
@@ -415,7 +449,8 @@ ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const 
   return out;
 }
 
-ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
+ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem,
+                                const std::vector<ExactImpulse>& impulses,
                                 const IntegrationOptions& integration) {
   BallState state = StateFromAngles(problem.initial, problem.mu, problem.model);
   ReplayResult out;
@@ -437,7 +472,10 @@ ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::v
 
 namespace internal {
 
-void ValidateStartAndGoal(double mu, const Eigen::Vector2d& x0, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A0,
+void ValidateStartAndGoal(double mu,
+                          const Eigen::Vector2d& x0,
+                          const Eigen::Vector2d& x1,
+                          const Eigen::Matrix3d& A0,
                           const Eigen::Matrix3d& A1) {
   RequireEnergy("mu", mu);
   RequireCoordinates("x0", x0);
@@ -456,7 +494,10 @@ std::string ValidateArrivalTolerances(double position_tolerance, double orientat
   return "";
 }
 
-ChainNode StartNode(const BallModel& model, const AngleState& initial, double mu, const Eigen::Vector2d& x0,
+ChainNode StartNode(const BallModel& model,
+                    const AngleState& initial,
+                    double mu,
+                    const Eigen::Vector2d& x0,
                     const Eigen::Matrix3d& A0) {
   const BallState state = StateFromAngles(initial, mu, model);
   ChainNode start;
@@ -467,8 +508,11 @@ ChainNode StartNode(const BallModel& model, const AngleState& initial, double mu
   return start;
 }
 
-std::vector<ExactImpulse> ReportImpulses(const BallModel& model, double mu, const std::vector<ChainNode>& nodes,
-                                         const Eigen::VectorXd& u, bool start_at_rest) {
+std::vector<ExactImpulse> ReportImpulses(const BallModel& model,
+                                         double mu,
+                                         const std::vector<ChainNode>& nodes,
+                                         const Eigen::VectorXd& u,
+                                         bool start_at_rest) {
   const int n = static_cast<int>(u.size() / 2);
   std::vector<ExactImpulse> out;
   double t = 0.0;

@@ -72,8 +72,8 @@ struct ArcDerivative {
   Eigen::Matrix<double, kTracked, kParams + 1> d;
 };
 
-ArcDerivative DifferentiateArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
-                               const IntegrationOptions& options) {
+ArcDerivative DifferentiateArc(
+    double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t, const IntegrationOptions& options) {
   ArcSensState y{};
   for (int i = 0; i < 3; ++i) {
     y[i] = z0[i];
@@ -82,7 +82,9 @@ ArcDerivative DifferentiateArc(double lambda, const Eigen::Vector3d& z0, const E
   y[5] = y[9] = y[13] = 1.0;
   const ArcSensRhs rhs{lambda, {k.x(), k.y()}};
   namespace odeint = boost::numeric::odeint;
-  if (t > 0) IntegrateAdaptive<odeint::runge_kutta_fehlberg78<ArcSensState>>(rhs, y, 0.0, t, t, options, [](double, const auto&) {});
+  if (t > 0)
+    IntegrateAdaptive<odeint::runge_kutta_fehlberg78<ArcSensState>>(
+        rhs, y, 0.0, t, t, options, [](double, const auto&) {});
   ArcSensState f{};
   rhs(y, f, t);
   ArcDerivative out;
@@ -97,7 +99,9 @@ ArcDerivative DifferentiateArc(double lambda, const Eigen::Vector3d& z0, const E
 }
 
 // dK_after / d(z (3), K_before (2), s) of the impulse.
-Eigen::Matrix<double, 2, 6> DifferentiateImpulse(const Eigen::Vector3d& z, const Eigen::Vector2d& k, double s,
+Eigen::Matrix<double, 2, 6> DifferentiateImpulse(const Eigen::Vector3d& z,
+                                                 const Eigen::Vector2d& k,
+                                                 double s,
                                                  double lambda) {
   using Jet = ceres::Jet<double, 6>;
   const Jet zj[3] = {Jet(z.x(), 0), Jet(z.y(), 1), Jet(z.z(), 2)};
@@ -111,12 +115,14 @@ Eigen::Matrix<double, 2, 6> DifferentiateImpulse(const Eigen::Vector3d& z, const
 
 // One free arc from (z0, K) over [0, t]: Fehlberg 7(8) (the rollouts run at 1e-14, where an
 // eighth-order method takes a fraction of dopri5's steps), no speed tracking.
-FullState RollArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t,
-                  const IntegrationOptions& options) {
+FullState RollArc(
+    double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t, const IntegrationOptions& options) {
   namespace odeint = boost::numeric::odeint;
   FullState y = InitialFullState(z0);
   const FullRhs rhs{lambda, {k.x(), k.y()}};
-  if (t > 0) IntegrateAdaptive<odeint::runge_kutta_fehlberg78<FullState>>(rhs, y, 0.0, t, t, options, [](double, const auto&) {});
+  if (t > 0)
+    IntegrateAdaptive<odeint::runge_kutta_fehlberg78<FullState>>(
+        rhs, y, 0.0, t, t, options, [](double, const auto&) {});
   return y;
 }
 
@@ -134,7 +140,9 @@ struct LengthRhs {
 
 }  // namespace
 
-double ChainPathLength(double lambda, const std::vector<ChainNode>& nodes, const Eigen::VectorXd& u,
+double ChainPathLength(double lambda,
+                       const std::vector<ChainNode>& nodes,
+                       const Eigen::VectorXd& u,
                        const IntegrationOptions& integration) {
   const int n = static_cast<int>(u.size() / 2);
   double length = 0.0;
@@ -152,12 +160,13 @@ Eigen::Matrix3d LeftJacobianInverse(const Eigen::Vector3d& phi) {
   const double th = phi.norm();
   const Eigen::Matrix3d h = Hat(phi);
   // 1/th^2 - (1 + cos th)/(2 th sin th) -> 1/12 as th -> 0.
-  const double c = th < 1e-4 ? 1.0 / 12.0 + th * th / 720.0
-                             : 1.0 / (th * th) - (1.0 + std::cos(th)) / (2.0 * th * std::sin(th));
+  const double c =
+      th < 1e-4 ? 1.0 / 12.0 + th * th / 720.0 : 1.0 / (th * th) - (1.0 + std::cos(th)) / (2.0 * th * std::sin(th));
   return Eigen::Matrix3d::Identity() - 0.5 * h + c * h * h;
 }
 
-Eigen::Matrix<double, 5, 1> ArrivalResidual(const ChainNode& end, const Eigen::Vector2d& x1,
+Eigen::Matrix<double, 5, 1> ArrivalResidual(const ChainNode& end,
+                                            const Eigen::Vector2d& x1,
                                             const Eigen::Matrix3d& A1) {
   Eigen::Matrix<double, 5, 1> r;
   r.head<2>() = end.x - x1;
@@ -173,8 +182,12 @@ Eigen::MatrixXd ArrivalJacobian(const ChainJacobian& jacobian, const ChainNode& 
   return j;
 }
 
-void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions& integration,
-               std::vector<ChainNode>* nodes, ChainJacobian* jacobian, const ChainColumns* columns) {
+void RollChain(double lambda,
+               const Eigen::VectorXd& u,
+               const IntegrationOptions& integration,
+               std::vector<ChainNode>* nodes,
+               ChainJacobian* jacobian,
+               const ChainColumns* columns) {
   const int n = static_cast<int>(u.size() / 2);
   nodes->resize(static_cast<std::size_t>(n) + 1);
   const int cols = columns ? columns->columns : 2 * n;

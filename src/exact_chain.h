@@ -42,7 +42,7 @@ void ImpulseMomentum(const T* z, const T* k_before, const T& s, const L& lambda,
   const T rq = sqrt(q);
   const T c1 = (lambda - 1.0) / (rq + 1.0);
   const T c2 = c1 / rq;
-  const T jz[2] = {-z[1], z[0]};  // J z_h
+  const T jz[2] = {-z[1], z[0]};              // J z_h
   const T zw = z[0] * w[0] + z[1] * w[1];     // z_h . omega_h
   const T jzw = jz[0] * w[0] + jz[1] * w[1];  // (J z_h) . omega_h
   const T cs = cos(s), sn = sin(s);
@@ -86,8 +86,12 @@ struct ChainColumns {
 /// to u, or to the unknowns of `columns` when given: each arc is then integrated once, its values
 /// together with their variational equations (the step control over both).
 /// Throws std::runtime_error when an integration fails.
-void RollChain(double lambda, const Eigen::VectorXd& u, const IntegrationOptions& integration,
-               std::vector<ChainNode>* nodes, ChainJacobian* jacobian = nullptr, const ChainColumns* columns = nullptr);
+void RollChain(double lambda,
+               const Eigen::VectorXd& u,
+               const IntegrationOptions& integration,
+               std::vector<ChainNode>* nodes,
+               ChainJacobian* jacobian = nullptr,
+               const ChainColumns* columns = nullptr);
 
 /// The five arrival conditions at the chain's end: (x_n - x1, LogSO3(A1^T A_n)).
 Eigen::Matrix<double, 5, 1> ArrivalResidual(const ChainNode& end, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A1);
@@ -96,23 +100,31 @@ Eigen::MatrixXd ArrivalJacobian(const ChainJacobian& jacobian, const ChainNode& 
 
 /// The checks shared by exact arrival and the fewest-impulse search: mu, x0, x1 (fields named so),
 /// A0 and A1 rotations; throws std::invalid_argument naming the field.
-void ValidateStartAndGoal(double mu, const Eigen::Vector2d& x0, const Eigen::Vector2d& x1, const Eigen::Matrix3d& A0,
+void ValidateStartAndGoal(double mu,
+                          const Eigen::Vector2d& x0,
+                          const Eigen::Vector2d& x1,
+                          const Eigen::Matrix3d& A0,
                           const Eigen::Matrix3d& A1);
 /// "" or the message naming position_tolerance / orientation_tolerance (finite, > 0).
 std::string ValidateArrivalTolerances(double position_tolerance, double orientation_tolerance);
 
 /// The start node: the state of `initial` at energy mu (its K), x0 and A0 turned onto its axis.
-ChainNode StartNode(const BallModel& model, const AngleState& initial, double mu, const Eigen::Vector2d& x0,
-                    const Eigen::Matrix3d& A0);
+ChainNode StartNode(
+    const BallModel& model, const AngleState& initial, double mu, const Eigen::Vector2d& x0, const Eigen::Matrix3d& A0);
 /// The impulses of u along the rolled nodes (time, position, angles before, delta omega, the plate's
 /// velocity change); the first is kStart when the ball starts at rest (exact_arrival.cc).
-std::vector<ExactImpulse> ReportImpulses(const BallModel& model, double mu, const std::vector<ChainNode>& nodes,
-                                         const Eigen::VectorXd& u, bool start_at_rest);
+std::vector<ExactImpulse> ReportImpulses(const BallModel& model,
+                                         double mu,
+                                         const std::vector<ChainNode>& nodes,
+                                         const Eigen::VectorXd& u,
+                                         bool start_at_rest);
 /// The impulse at the chain's end that brings omega to zero ("arrive and stop").
 ExactImpulse StopImpulse(const BallModel& model, double mu, const ChainNode& end, double total_time);
 
 /// The length of the contact point's path over the rolled chain (integral of |x'| per arc).
-double ChainPathLength(double lambda, const std::vector<ChainNode>& nodes, const Eigen::VectorXd& u,
+double ChainPathLength(double lambda,
+                       const std::vector<ChainNode>& nodes,
+                       const Eigen::VectorXd& u,
                        const IntegrationOptions& integration);
 
 /// The inverse left Jacobian of SO(3) at the rotation vector phi: Log(exp(hat e) exp(hat phi)) =

@@ -22,9 +22,12 @@ namespace plateball {
 
 std::string ToString(ExecutionStrategy strategy) {
   switch (strategy) {
-    case ExecutionStrategy::kOpenLoop: return "open_loop";
-    case ExecutionStrategy::kFeedback: return "feedback";
-    case ExecutionStrategy::kFeedbackExact: return "feedback_exact";
+    case ExecutionStrategy::kOpenLoop:
+      return "open_loop";
+    case ExecutionStrategy::kFeedback:
+      return "feedback";
+    case ExecutionStrategy::kFeedbackExact:
+      return "feedback_exact";
   }
   return "unknown";
 }
@@ -38,10 +41,14 @@ ExecutionStrategy ParseExecutionStrategy(const std::string& text, const std::str
 
 std::string ToString(ExecutionStatus status) {
   switch (status) {
-    case ExecutionStatus::kNotRun: return "not_run";
-    case ExecutionStatus::kCompleted: return "completed";
-    case ExecutionStatus::kLost: return "lost";
-    case ExecutionStatus::kIntegrationFailure: return "integration_failure";
+    case ExecutionStatus::kNotRun:
+      return "not_run";
+    case ExecutionStatus::kCompleted:
+      return "completed";
+    case ExecutionStatus::kLost:
+      return "lost";
+    case ExecutionStatus::kIntegrationFailure:
+      return "integration_failure";
   }
   return "unknown";
 }
@@ -60,8 +67,8 @@ std::string ExecutionOptions::Validate() const {
   if (!(miss_tolerance > 0 && miss_tolerance <= 1e6))
     return internal::InvalidValueMessage("miss_tolerance", miss_tolerance, "must be in (0, 1e6]");
   if (exact_window < 3 || exact_window > kMaxExactWindow)
-    return internal::InvalidValueMessage("exact_window", exact_window,
-                                         "must be in [3, " + std::to_string(kMaxExactWindow) + "]");
+    return internal::InvalidValueMessage(
+        "exact_window", exact_window, "must be in [3, " + std::to_string(kMaxExactWindow) + "]");
   const std::string e = exact.Validate();
   return e.empty() ? "" : "exact: " + e;
 }
@@ -112,7 +119,11 @@ using Observation = internal::FeedbackObservation;
 class Trial {
  public:
   Trial(const ExecutionProblem& p, const ExecutionOptions& o)
-      : nominal_(*p.nominal), strategy_(p.strategy), errors_(p.errors), options_(o), noise_(p.errors, p.seed, p.trial),
+      : nominal_(*p.nominal),
+        strategy_(p.strategy),
+        errors_(p.errors),
+        options_(o),
+        noise_(p.errors, p.seed, p.trial),
         ball_model_(BallModel::FromLambda(noise_.TrueLambda(nominal_.model.lambda()))),
         pulse_before_(errors_.pulse_causal != 0.0 ? 0.0 : 0.5 * errors_.pulse_duration),
         pulse_after_(errors_.pulse_duration - pulse_before_),
@@ -158,8 +169,9 @@ Observation Trial::Observe(int k) const {
   const double s = errors_.observation;
   if (s == 0.0) return o;
   o.x += Eigen::Vector2d(Draw(k, kObsX, s), Draw(k, kObsY, s));
-  o.angles = internal::ReduceAngles("observed", {o.angles.theta + Draw(k, kObsTheta, s),
-                                                 o.angles.phi + Draw(k, kObsPhi, s), o.angles.psi + Draw(k, kObsPsi, s)});
+  o.angles = internal::ReduceAngles(
+      "observed",
+      {o.angles.theta + Draw(k, kObsTheta, s), o.angles.phi + Draw(k, kObsPhi, s), o.angles.psi + Draw(k, kObsPsi, s)});
   o.mu *= 1.0 + Draw(k, kObsMu, s);
   const Eigen::Vector3d w(Draw(k, kObsRot, s), Draw(k, kObsRot + 1, s), Draw(k, kObsRot + 2, s));
   o.A = ExpSO3(w) * o.A;
@@ -213,9 +225,12 @@ void Trial::Fly(double duration) {
 
 // A segment of constant K rate (zero: free flight; negative duration: back in time).
 void Trial::Forced(const Eigen::Vector2d& k_rate, double duration) {
-  const internal::ForcedArcEnd arc = internal::IntegrateForcedArc(
-      ball_model_.lambda(), state_.z, ConservedMomentum(state_, ball_model_), k_rate, duration,
-      nominal_.options.integration);
+  const internal::ForcedArcEnd arc = internal::IntegrateForcedArc(ball_model_.lambda(),
+                                                                  state_.z,
+                                                                  ConservedMomentum(state_, ball_model_),
+                                                                  k_rate,
+                                                                  duration,
+                                                                  nominal_.options.integration);
   x_ += arc.dx;
   A_ = arc.phi * A_;
   state_ = {arc.z, OmegaFromMomentum(arc.z, arc.k, ball_model_)};
@@ -286,7 +301,8 @@ ExecutionSummary Trial::Run() {
         const double flight = ArcDuration(k, c) - (k + 1 < n ? pulse_before_ : 0.0) -
                               (strategy_ == ExecutionStrategy::kOpenLoop ? 0.0 : pulse_after_);
         if (flight < 0.0)
-          internal::ThrowInvalid("pulse_duration", errors_.pulse_duration,
+          internal::ThrowInvalid("pulse_duration",
+                                 errors_.pulse_duration,
                                  "the pulse of impulse " + std::to_string(k) + " overlaps the next one or the end");
         if (flight > 0.0) Fly(flight);
       }
@@ -320,10 +336,11 @@ std::string PulseScheduleError(const NominalPlan& nominal, const ErrorModel& err
     const bool last = k + 1 == steps.size();
     const double flight = (last ? nominal.plan.total_time : steps[k + 1].t_impulse) - steps[k].t_impulse;
     if (flight < (last ? after : d))
-      return internal::InvalidValueMessage(
-          "pulse_duration", d,
-          "longer than the flight " + std::to_string(k) + (last ? " -> end (" : " -> " + std::to_string(k + 1) + " (") +
-              internal::FormatNumber(flight) + "): the pulses would overlap");
+      return internal::InvalidValueMessage("pulse_duration",
+                                           d,
+                                           "longer than the flight " + std::to_string(k) +
+                                               (last ? " -> end (" : " -> " + std::to_string(k + 1) + " (") +
+                                               internal::FormatNumber(flight) + "): the pulses would overlap");
   }
   return {};
 }
@@ -331,7 +348,8 @@ std::string PulseScheduleError(const NominalPlan& nominal, const ErrorModel& err
 ExecutionSummary Execute(const ExecutionProblem& problem, const ExecutionOptions& options) {
   if (!problem.nominal) internal::ThrowInvalid("nominal", "null", "a nominal plan is required (MakeNominalPlan)");
   if (!problem.nominal->plan.IsSolutionUsable())
-    internal::ThrowInvalid("nominal.plan.status", "'" + ToString(problem.nominal->plan.status) + "'",
+    internal::ThrowInvalid("nominal.plan.status",
+                           "'" + ToString(problem.nominal->plan.status) + "'",
                            "the nominal plan must be usable: " + problem.nominal->plan.message);
   internal::ThrowIfInvalid(problem.errors.Validate());
   internal::ThrowIfInvalid(PulseScheduleError(*problem.nominal, problem.errors));
@@ -343,8 +361,10 @@ namespace {
 constexpr double kPulseAim = 0.9;
 
 // Final deviation of an open-loop execution with the given pulses from `ideal`.
-double PulsedDeviation(const std::shared_ptr<const NominalPlan>& nominal, const ExecutionSummary& ideal,
-                       double duration, bool causal) {
+double PulsedDeviation(const std::shared_ptr<const NominalPlan>& nominal,
+                       const ExecutionSummary& ideal,
+                       double duration,
+                       bool causal) {
   ExecutionProblem p;
   p.nominal = nominal;
   p.strategy = ExecutionStrategy::kOpenLoop;
@@ -356,7 +376,8 @@ double PulsedDeviation(const std::shared_ptr<const NominalPlan>& nominal, const 
 }
 }  // namespace
 
-PulseDurationChoice ChoosePulseDuration(const std::shared_ptr<const NominalPlan>& nominal, double tolerance,
+PulseDurationChoice ChoosePulseDuration(const std::shared_ptr<const NominalPlan>& nominal,
+                                        double tolerance,
                                         bool causal) {
   internal::RequirePositive("tolerance", tolerance);
   if (!nominal) internal::ThrowInvalid("nominal", "null", "a nominal plan is required (MakeNominalPlan)");
@@ -365,7 +386,8 @@ PulseDurationChoice ChoosePulseDuration(const std::shared_ptr<const NominalPlan>
   const ExecutionSummary ideal = Execute(ideal_problem);
   const auto& steps = nominal->plan.steps;
   double shortest = nominal->plan.total_time - (steps.empty() ? 0.0 : steps.back().t_impulse);
-  for (std::size_t k = 0; k + 1 < steps.size(); ++k) shortest = std::min(shortest, steps[k + 1].t_impulse - steps[k].t_impulse);
+  for (std::size_t k = 0; k + 1 < steps.size(); ++k)
+    shortest = std::min(shortest, steps[k + 1].t_impulse - steps[k].t_impulse);
   PulseDurationChoice c;
   const double d0 = 0.1 * shortest;
   const double e0 = PulsedDeviation(nominal, ideal, d0, causal);

@@ -15,7 +15,17 @@
 namespace plateball::internal {
 
 enum ExecutionSlot {
-  kMagnitude, kAngle, kTiming, kObsX, kObsY, kObsTheta, kObsPhi, kObsPsi, kObsMu, kObsRot, kSlots = 16
+  kMagnitude,
+  kAngle,
+  kTiming,
+  kObsX,
+  kObsY,
+  kObsTheta,
+  kObsPhi,
+  kObsPsi,
+  kObsMu,
+  kObsRot,
+  kSlots = 16
 };
 constexpr std::uint64_t kLambdaCounter = 0xffffffffULL;
 

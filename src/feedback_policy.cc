@@ -19,12 +19,16 @@ bool FeedbackPolicy::WantsExact(int k) const {
 // Join the observed state to the next pass point (the planner's connection).
 bool FeedbackPolicy::Join(int k, const FeedbackObservation& obs, FeedbackCommand* command) {
   const PlanOptions& po = nominal_.options;
-  const JoinSummary j = ConnectPoints(nominal_.model, obs.angles, obs.mu, obs.x,
-                                      nominal_.pass_points[static_cast<std::size_t>(k) + 1], po.join,
+  const JoinSummary j = ConnectPoints(nominal_.model,
+                                      obs.angles,
+                                      obs.mu,
+                                      obs.x,
+                                      nominal_.pass_points[static_cast<std::size_t>(k) + 1],
+                                      po.join,
                                       po.reach_fallback ? &po.reach : nullptr);
   if (!j.IsSolutionUsable()) {
-    status_ = j.status == JoinStatus::kIntegrationFailure ? ExecutionStatus::kIntegrationFailure
-                                                          : ExecutionStatus::kLost;
+    status_ =
+        j.status == JoinStatus::kIntegrationFailure ? ExecutionStatus::kIntegrationFailure : ExecutionStatus::kLost;
     message_ = "impulse " + std::to_string(k) + ": " + j.BriefReport();
     return false;
   }

@@ -49,13 +49,34 @@ double Fehlberg78Step(const Rhs& rhs, std::array<double, N>& y, double t, double
   rhs(tmp, k[7], t + h / 6);
   stage(T{0, 2.0}, T{3, -53.0 / 6}, T{4, 704.0 / 45}, T{5, -107.0 / 9}, T{6, 67.0 / 90}, T{7, 3.0});
   rhs(tmp, k[8], t + h * (2.0 / 3));
-  stage(T{0, -91.0 / 108}, T{3, 23.0 / 108}, T{4, -976.0 / 135}, T{5, 311.0 / 54}, T{6, -19.0 / 60}, T{7, 17.0 / 6}, T{8, -1.0 / 12});
+  stage(T{0, -91.0 / 108},
+        T{3, 23.0 / 108},
+        T{4, -976.0 / 135},
+        T{5, 311.0 / 54},
+        T{6, -19.0 / 60},
+        T{7, 17.0 / 6},
+        T{8, -1.0 / 12});
   rhs(tmp, k[9], t + h / 3);
-  stage(T{0, 2383.0 / 4100}, T{3, -341.0 / 164}, T{4, 4496.0 / 1025}, T{5, -301.0 / 82}, T{6, 2133.0 / 4100}, T{7, 45.0 / 82}, T{8, 45.0 / 164}, T{9, 18.0 / 41});
+  stage(T{0, 2383.0 / 4100},
+        T{3, -341.0 / 164},
+        T{4, 4496.0 / 1025},
+        T{5, -301.0 / 82},
+        T{6, 2133.0 / 4100},
+        T{7, 45.0 / 82},
+        T{8, 45.0 / 164},
+        T{9, 18.0 / 41});
   rhs(tmp, k[10], t + h);
   stage(T{0, 3.0 / 205}, T{5, -6.0 / 41}, T{6, -3.0 / 205}, T{7, -3.0 / 41}, T{8, 3.0 / 41}, T{9, 6.0 / 41});
   rhs(tmp, k[11], t);
-  stage(T{0, -1777.0 / 4100}, T{3, -341.0 / 164}, T{4, 4496.0 / 1025}, T{5, -289.0 / 82}, T{6, 2193.0 / 4100}, T{7, 51.0 / 82}, T{8, 33.0 / 164}, T{9, 12.0 / 41}, T{11, 1.0});
+  stage(T{0, -1777.0 / 4100},
+        T{3, -341.0 / 164},
+        T{4, 4496.0 / 1025},
+        T{5, -289.0 / 82},
+        T{6, 2193.0 / 4100},
+        T{7, 51.0 / 82},
+        T{8, 33.0 / 164},
+        T{9, 12.0 / 41},
+        T{11, 1.0});
   rhs(tmp, k[12], t + h);
   double err = 0.0;
   for (std::size_t i = 0; i < N; ++i) {
@@ -100,8 +121,13 @@ bool EqualSteps(const Step& step, std::array<double, N>& y, double t0, double t1
 
 /// EqualSteps of Fehlberg 7(8) within the tolerances of `options`.
 template <std::size_t N, typename Rhs>
-bool IntegrateEqualSteps(const Rhs& rhs, std::array<double, N>& y, double t0, double t1, int n,
-                         const IntegrationOptions& options, double* largest_error = nullptr) {
+bool IntegrateEqualSteps(const Rhs& rhs,
+                         std::array<double, N>& y,
+                         double t0,
+                         double t1,
+                         int n,
+                         const IntegrationOptions& options,
+                         double* largest_error = nullptr) {
   const auto step = [&](std::array<double, N>& w, double t, double h) {
     return Fehlberg78Step(rhs, w, t, h, options.absolute_tolerance, options.relative_tolerance);
   };

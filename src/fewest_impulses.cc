@@ -28,19 +28,26 @@ namespace plateball {
 
 std::string ToString(FewestImpulsesStatus status) {
   switch (status) {
-    case FewestImpulsesStatus::kNotRun: return "not_run";
-    case FewestImpulsesStatus::kFound: return "found";
-    case FewestImpulsesStatus::kNotFound: return "not_found";
-    case FewestImpulsesStatus::kLimitsNotMet: return "limits_not_met";
+    case FewestImpulsesStatus::kNotRun:
+      return "not_run";
+    case FewestImpulsesStatus::kFound:
+      return "found";
+    case FewestImpulsesStatus::kNotFound:
+      return "not_found";
+    case FewestImpulsesStatus::kLimitsNotMet:
+      return "limits_not_met";
   }
   return "unknown";
 }
 
 std::string ToString(FewestCountVerdict verdict) {
   switch (verdict) {
-    case FewestCountVerdict::kReached: return "reached";
-    case FewestCountVerdict::kGenericallyImpossible: return "generically_impossible";
-    case FewestCountVerdict::kNotFound: return "not_found";
+    case FewestCountVerdict::kReached:
+      return "reached";
+    case FewestCountVerdict::kGenericallyImpossible:
+      return "generically_impossible";
+    case FewestCountVerdict::kNotFound:
+      return "not_found";
   }
   return "unknown";
 }
@@ -48,15 +55,18 @@ std::string ToString(FewestCountVerdict verdict) {
 std::string FewestImpulsesOptions::Validate() const {
   using internal::InvalidValueMessage;
   const std::string n_range = "must be in [1, " + std::to_string(kMaxImpulses) + "]";
-  if (max_impulses < 1 || max_impulses > kMaxImpulses) return InvalidValueMessage("max_impulses", max_impulses, n_range);
+  if (max_impulses < 1 || max_impulses > kMaxImpulses)
+    return InvalidValueMessage("max_impulses", max_impulses, n_range);
   if (pareto_counts < 1 || pareto_counts > kMaxImpulses)
     return InvalidValueMessage("pareto_counts", pareto_counts, n_range);
   if (starts < 1 || starts > kMaxStarts)
     return InvalidValueMessage("starts", starts, "must be in [1, " + std::to_string(kMaxStarts) + "]");
   if (arrivals_per_count < 1 || arrivals_per_count > kMaxStarts)
-    return InvalidValueMessage("arrivals_per_count", arrivals_per_count, "must be in [1, " + std::to_string(kMaxStarts) + "]");
+    return InvalidValueMessage(
+        "arrivals_per_count", arrivals_per_count, "must be in [1, " + std::to_string(kMaxStarts) + "]");
   if (adaptive_starts < 0 || adaptive_starts > kMaxStarts)
-    return InvalidValueMessage("adaptive_starts", adaptive_starts, "must be in [0, " + std::to_string(kMaxStarts) + "]");
+    return InvalidValueMessage(
+        "adaptive_starts", adaptive_starts, "must be in [0, " + std::to_string(kMaxStarts) + "]");
   if (!(std::isfinite(max_total_time) && max_total_time >= 0 && max_total_time <= 1e6))
     return InvalidValueMessage("max_total_time", max_total_time, "must be in [0, 1e6] (0: automatic)");
   if (max_iterations < 1 || max_iterations > 10000)
@@ -99,8 +109,8 @@ using internal::ChainNode;
 
 using internal::fewest::Admit;
 using internal::fewest::CheckArrival;
-using internal::fewest::ConstrainedFor;
 using internal::fewest::Consider;
+using internal::fewest::ConstrainedFor;
 using internal::fewest::CountBest;
 using internal::fewest::Describe;
 using internal::fewest::Evaluate;
@@ -118,8 +128,11 @@ Eigen::VectorXd Conditions(const Search& s, const ChainNode& end) {
 namespace internal::fewest {
 
 // Rolls u at `integration`; with `jac` also the Jacobian of the conditions (m x 2n).
-Eigen::VectorXd Evaluate(const Search& s, const Eigen::VectorXd& u, const IntegrationOptions& integration,
-                         std::vector<ChainNode>* nodes, Eigen::MatrixXd* jac) {
+Eigen::VectorXd Evaluate(const Search& s,
+                         const Eigen::VectorXd& u,
+                         const IntegrationOptions& integration,
+                         std::vector<ChainNode>* nodes,
+                         Eigen::MatrixXd* jac) {
   nodes->assign(static_cast<std::size_t>(u.size() / 2) + 1, s.start);
   internal::ChainJacobian cj;
   internal::RollChain(s.problem->model.lambda(), u, integration, nodes, jac ? &cj : nullptr);
@@ -133,7 +146,9 @@ Eigen::VectorXd Evaluate(const Search& s, const Eigen::VectorXd& u, const Integr
 
 // Keeps the arrival u (on the grid `ticks` with a rig tick) if it is the shortest of the count so
 // far; an equal time keeps the earlier one.
-void Consider(const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, const std::vector<long long>& ticks,
+void Consider(const Eigen::VectorXd& u,
+              const std::vector<ChainNode>& nodes,
+              const std::vector<long long>& ticks,
               CountBest* best) {
   const double t = u.tail(u.size() / 2).sum();
   if (t >= best->time) return;
@@ -200,9 +215,9 @@ double RadicalInverse(int i, int base) {
 // Start i for n impulses: directions s_k in [-pi, pi), total time in the window's (0.1, 1]
 // scaled by the i-th point, split by weights in [0.25, 1.25).
 Eigen::VectorXd StartPoint(const Search& s, int n, int i) {
-  static constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71,
-                                    73, 79, 83, 89, 97, 101, 103, 107, 109, 113, 127, 131, 137, 139, 149, 151,
-                                    157, 163, 167, 173, 179};
+  static constexpr int kPrimes[] = {2,   3,   5,   7,   11,  13,  17,  19,  23,  29,  31,  37,  41,  43,
+                                    47,  53,  59,  61,  67,  71,  73,  79,  83,  89,  97,  101, 103, 107,
+                                    109, 113, 127, 131, 137, 139, 149, 151, 157, 163, 167, 173, 179};
   Eigen::VectorXd v(2 * n);
   Eigen::VectorXd w(n);
   for (int k = 0; k < n; ++k) {
@@ -221,8 +236,13 @@ bool MeetsTolerances(const Search& s, const Eigen::VectorXd& r, double position_
 
 // Newton steps (minimum-norm, fresh exact Jacobians at the search tolerance, halved while they do
 // not reduce |r|) on the values rolled at `values` until |r| meets (position_tol, orientation_tol).
-bool Restore(const Search& s, const IntegrationOptions& values, double position_tol, double orientation_tol,
-             Eigen::VectorXd* u, std::vector<ChainNode>* nodes, Eigen::VectorXd* r) {
+bool Restore(const Search& s,
+             const IntegrationOptions& values,
+             double position_tol,
+             double orientation_tol,
+             Eigen::VectorXd* u,
+             std::vector<ChainNode>* nodes,
+             Eigen::VectorXd* r) {
   const int n = static_cast<int>(u->size() / 2);
   *r = Evaluate(s, *u, values, nodes, nullptr);
   for (int i = 0; i < 8 && !MeetsTolerances(s, *r, position_tol, orientation_tol); ++i) {
@@ -248,8 +268,8 @@ bool Restore(const Search& s, const IntegrationOptions& values, double position_
 
 // To the final tolerances with the 1e-14 rollouts.
 bool Polish(const Search& s, Eigen::VectorXd* u, std::vector<ChainNode>* nodes, Eigen::VectorXd* r) {
-  return Restore(s, s.options->integration, s.options->position_tolerance, s.options->orientation_tolerance, u, nodes,
-                 r);
+  return Restore(
+      s, s.options->integration, s.options->position_tolerance, s.options->orientation_tolerance, u, nodes, r);
 }
 
 // Shortens the total time of an arrival along the arrival manifold (2n > conditions): steps
@@ -375,9 +395,8 @@ void Conclude(const Search& s, CountBest* best, FewestImpulsesCount* row) {
     Eigen::VectorXd r;
     try {
       Shorten(s, &u);
-      if (Polish(s, &u, &nodes, &r) &&
-          (!s.limited ||
-           (internal::MeetsLimits(ConstrainedFor(s, row->impulses), u) && CheckArrival(s, u, nodes, {}).passed)))
+      if (Polish(s, &u, &nodes, &r) && (!s.limited || (internal::MeetsLimits(ConstrainedFor(s, row->impulses), u) &&
+                                                       CheckArrival(s, u, nodes, {}).passed)))
         Consider(u, nodes, {}, best);
     } catch (const std::runtime_error&) {
       // keep the arrival found before shortening
@@ -395,7 +414,8 @@ FewestImpulsesCount SearchCount(const Search& s, int n, const Eigen::VectorXd& p
   CountBest best;
   const int seeded = previous.size() > 0 ? 1 : 0;
   if (seeded) Try(s, Split(previous), &row, &best);
-  const int budget = 2 * n >= s.conditions ? std::max(s.options->starts, s.options->adaptive_starts) : s.options->starts;
+  const int budget =
+      2 * n >= s.conditions ? std::max(s.options->starts, s.options->adaptive_starts) : s.options->starts;
   for (int i = 0; row.starts < budget && row.arrived < s.options->arrivals_per_count; ++i) {
     if (row.starts >= s.options->starts && Met(s, row) > 0) break;  // settled: the count is reached
     if (s.options->progress) s.options->progress(n, (*s.starts)++);
@@ -493,7 +513,8 @@ void ValidateProblem(const FewestImpulsesProblem& p) {
   internal::ValidateStartAndGoal(p.mu, p.x0, p.x1, p.A0, p.A1);
   if (p.limits.Empty()) return;
   if (p.orientation_only)
-    internal::ThrowInvalid("orientation_only", "true",
+    internal::ThrowInvalid("orientation_only",
+                           "true",
                            "the rig's limits need the goal position (the plate, obstacle and stroke limits hold "
                            "along a path to x1)");
   internal::ValidateRigProblem(p.limits, p.physical, p.x0, p.x1);
@@ -508,7 +529,8 @@ void RequireBoundedWindow(const FewestImpulsesProblem& p, const FewestImpulsesOp
                           " radii, more than the limit " + internal::FormatNumber(limits::kMaxFewestWindowLength) +
                           ": plan along a path and steer piece by piece";
   if (o.max_total_time > 0) internal::ThrowInvalid("max_total_time", internal::FormatNumber(o.max_total_time), why);
-  internal::ThrowInvalid("x1", "(" + internal::FormatNumber(p.x1.x()) + ", " + internal::FormatNumber(p.x1.y()) + ")",
+  internal::ThrowInvalid("x1",
+                         "(" + internal::FormatNumber(p.x1.x()) + ", " + internal::FormatNumber(p.x1.y()) + ")",
                          "the goal is " + internal::FormatNumber((p.x1 - p.x0).norm()) + " radii from x0: " + why);
 }
 
@@ -516,7 +538,8 @@ std::string Searched(const Search& s, int last) {
   std::ostringstream os;
   os << "n = 1.." << last << ", " << s.options->starts << " Halton starts per n (up to "
      << std::max(s.options->starts, s.options->adaptive_starts)
-     << " while a count with 2n >= conditions has no arrival, then continuation from count n + 1; directions in [-pi, pi), total time in ["
+     << " while a count with 2n >= conditions has no arrival, then continuation from count n + 1; directions in [-pi, "
+        "pi), total time in ["
      << 0.1 * s.max_total_time << ", " << 0.9 * s.max_total_time << "]), Levenberg-Marquardt (ceres::TinySolver, exact"
      << " Jacobian) in (delta psi, log t), window T <= " << s.max_total_time << "; " << s.conditions
      << " conditions on 2n unknowns";
@@ -606,8 +629,9 @@ FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem, 
   out.limited = s.limited;
   const double turn = LogSO3(problem.A1.transpose() * s.start.A).norm();
   const double distance = problem.orientation_only ? 0.0 : (problem.x1 - problem.x0).norm();
-  s.max_total_time = options.max_total_time > 0 ? options.max_total_time
-                                                : kWindowFactor * (distance + turn + 2.0 * M_PI) / std::sqrt(problem.mu);
+  s.max_total_time = options.max_total_time > 0
+                         ? options.max_total_time
+                         : kWindowFactor * (distance + turn + 2.0 * M_PI) / std::sqrt(problem.mu);
   RequireBoundedWindow(problem, options, s.max_total_time);
   out.max_total_time = s.max_total_time;
   int starts = 0;
@@ -635,10 +659,10 @@ FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem, 
   } else if (s.limited && !ArrivedWithoutLimits(out.counts).empty()) {
     out.status = FewestImpulsesStatus::kLimitsNotMet;
     out.blocking = Blocking(out.counts);
-    out.message = "no count up to max_impulses = " + std::to_string(options.max_impulses) +
-                  " arrived within the rig's limits (counts that arrive without them: " +
-                  ArrivedWithoutLimits(out.counts) + "); blocked by " + Join(out.blocking) +
-                  " (closest feasible arrival per count reported)";
+    out.message =
+        "no count up to max_impulses = " + std::to_string(options.max_impulses) +
+        " arrived within the rig's limits (counts that arrive without them: " + ArrivedWithoutLimits(out.counts) +
+        "); blocked by " + Join(out.blocking) + " (closest feasible arrival per count reported)";
   } else {
     out.status = FewestImpulsesStatus::kNotFound;
     out.message = "no count up to max_impulses = " + std::to_string(options.max_impulses) +

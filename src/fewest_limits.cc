@@ -46,8 +46,12 @@ internal::ConstrainedSetup ConstrainedFor(const Search& s, int n) {
 
 // The impulses of u (rolled into `nodes`), the stop with stop_at_goal, on the grid with `ticks`;
 // returns the total time.
-double Impulses(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes,
-                const std::vector<long long>& ticks, std::vector<ExactImpulse>* plan, std::optional<ExactImpulse>* stop) {
+double Impulses(const Search& s,
+                const Eigen::VectorXd& u,
+                const std::vector<ChainNode>& nodes,
+                const std::vector<long long>& ticks,
+                std::vector<ExactImpulse>* plan,
+                std::optional<ExactImpulse>* stop) {
   const FewestImpulsesProblem& p = *s.problem;
   const int n = static_cast<int>(u.size() / 2);
   *plan = internal::ReportImpulses(p.model, p.mu, nodes, u, p.start_at_rest);
@@ -58,7 +62,9 @@ double Impulses(const Search& s, const Eigen::VectorXd& u, const std::vector<Cha
 }
 
 // The independent check of an arrival against the limits (CheckRigLimits: a FreeMotion replay).
-RigCheck CheckArrival(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes,
+RigCheck CheckArrival(const Search& s,
+                      const Eigen::VectorXd& u,
+                      const std::vector<ChainNode>& nodes,
                       const std::vector<long long>& ticks) {
   ExactArrivalSummary summary;
   Impulses(s, u, nodes, ticks, &summary.impulses, &summary.stop);
@@ -66,7 +72,8 @@ RigCheck CheckArrival(const Search& s, const Eigen::VectorXd& u, const std::vect
 }
 
 // Sum of |J| with the physical parameters, else of the plate velocity changes, over the impulses.
-double TotalImpulse(const FewestImpulsesProblem& p, const std::vector<ExactImpulse>& plan,
+double TotalImpulse(const FewestImpulsesProblem& p,
+                    const std::vector<ExactImpulse>& plan,
                     const std::optional<ExactImpulse>& stop) {
   double sum = 0.0;
   const auto add = [&](const ExactImpulse& e) {
@@ -99,8 +106,9 @@ void Describe(const Search& s, const CountBest& best, FewestImpulsesCount* row) 
   row->total_impulse = TotalImpulse(p, row->plan, row->stop);
   double deviation = 0.0;
   for (int k = 1; k < n; ++k)
-    deviation += (row->plan[static_cast<std::size_t>(k)].position - (p.x0 + (p.x1 - p.x0) * (static_cast<double>(k) / n)))
-                     .squaredNorm();
+    deviation +=
+        (row->plan[static_cast<std::size_t>(k)].position - (p.x0 + (p.x1 - p.x0) * (static_cast<double>(k) / n)))
+            .squaredNorm();
   row->deviation = std::sqrt(deviation);
   if (!s.limited) return;
   row->blocking = row->reached ? std::vector<std::string>{} : best.blocking;
@@ -112,8 +120,11 @@ void Describe(const Search& s, const CountBest& best, FewestImpulsesCount* row) 
 
 // Keeps u (rolled into `nodes`) as the count's closest feasible arrival while none is within the
 // limits, when it is closer than the one kept.
-void KeepClosestFeasible(const Search& s, const Eigen::VectorXd& u, const std::vector<long long>& ticks,
-                         const std::vector<std::string>& blocking, CountBest* best) {
+void KeepClosestFeasible(const Search& s,
+                         const Eigen::VectorXd& u,
+                         const std::vector<long long>& ticks,
+                         const std::vector<std::string>& blocking,
+                         CountBest* best) {
   if (std::isfinite(best->time)) return;
   std::vector<ChainNode> nodes;
   const Eigen::VectorXd r = Evaluate(s, u, s.options->integration, &nodes, nullptr);
@@ -132,7 +143,10 @@ constexpr int kMaxFailedSolves = 2;
 
 // An exact arrival u under the limits: kept unchanged when it meets them (without a tick), else
 // the constrained solver's arrival from it; either counts only when the independent check passes.
-void Admit(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, FewestImpulsesCount* row,
+void Admit(const Search& s,
+           const Eigen::VectorXd& u,
+           const std::vector<ChainNode>& nodes,
+           FewestImpulsesCount* row,
            CountBest* best) {
   internal::ConstrainedSetup cs = ConstrainedFor(s, row->impulses);
   cs.closest_arrival = s.closest_wanted && !std::isfinite(best->time);  // else KeepClosestFeasible keeps nothing

@@ -25,10 +25,10 @@ struct Search {
   double max_total_time = 0.0;
   int conditions = 5;  // 3 with orientation_only
   int* rollouts = nullptr;
-  int* starts = nullptr;  // starts tried in all counts, for the progress hook
-  bool limited = false;   // the problem has limits (rows are reached only within them)
+  int* starts = nullptr;                     // starts tried in all counts, for the progress hook
+  bool limited = false;                      // the problem has limits (rows are reached only within them)
   FewestImpulsesSummary* summary = nullptr;  // for the constrained solver's counters
-  bool closest_wanted = true;  // a count's closest feasible arrival is reported (not in a continuation)
+  bool closest_wanted = true;                // a count's closest feasible arrival is reported (not in a continuation)
 };
 
 // The best of a count so far: the arrival of shortest total time, else the closest point.
@@ -46,23 +46,31 @@ struct CountBest {
 };
 
 // Rolls u at `integration`; with `jac` also the Jacobian of the conditions (m x 2n).
-Eigen::VectorXd Evaluate(const Search& s, const Eigen::VectorXd& u, const IntegrationOptions& integration,
-                         std::vector<ChainNode>* nodes, Eigen::MatrixXd* jac);
+Eigen::VectorXd Evaluate(const Search& s,
+                         const Eigen::VectorXd& u,
+                         const IntegrationOptions& integration,
+                         std::vector<ChainNode>* nodes,
+                         Eigen::MatrixXd* jac);
 
 // Keeps the arrival u (on the grid `ticks` with a rig tick) if it is the shortest of the count so
 // far; an equal time keeps the earlier one.
-void Consider(const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, const std::vector<long long>& ticks,
+void Consider(const Eigen::VectorXd& u,
+              const std::vector<ChainNode>& nodes,
+              const std::vector<long long>& ticks,
               CountBest* best);
 
 // The constrained exact arrival of count n (constrained_arrival.h) at the problem's mu.
 ConstrainedSetup ConstrainedFor(const Search& s, int n);
 
 // The independent check of an arrival against the limits (CheckRigLimits: a FreeMotion replay).
-RigCheck CheckArrival(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes,
+RigCheck CheckArrival(const Search& s,
+                      const Eigen::VectorXd& u,
+                      const std::vector<ChainNode>& nodes,
                       const std::vector<long long>& ticks);
 
 // Sum of |J| with the physical parameters, else of the plate velocity changes, over the impulses.
-double TotalImpulse(const FewestImpulsesProblem& p, const std::vector<ExactImpulse>& plan,
+double TotalImpulse(const FewestImpulsesProblem& p,
+                    const std::vector<ExactImpulse>& plan,
                     const std::optional<ExactImpulse>& stop);
 
 // The row of count n from its best parameters.
@@ -70,7 +78,10 @@ void Describe(const Search& s, const CountBest& best, FewestImpulsesCount* row);
 
 // An exact arrival u under the limits: kept unchanged when it meets them (without a tick), else
 // the constrained solver's arrival from it; either counts only when the independent check passes.
-void Admit(const Search& s, const Eigen::VectorXd& u, const std::vector<ChainNode>& nodes, FewestImpulsesCount* row,
+void Admit(const Search& s,
+           const Eigen::VectorXd& u,
+           const std::vector<ChainNode>& nodes,
+           FewestImpulsesCount* row,
            CountBest* best);
 
 }  // namespace plateball::internal::fewest

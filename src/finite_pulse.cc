@@ -29,8 +29,12 @@ struct ForcedRhs {
 };
 }  // namespace
 
-ForcedArcEnd IntegrateForcedArc(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k0,
-                                const Eigen::Vector2d& k_rate, double t, const IntegrationOptions& options) {
+ForcedArcEnd IntegrateForcedArc(double lambda,
+                                const Eigen::Vector3d& z0,
+                                const Eigen::Vector2d& k0,
+                                const Eigen::Vector2d& k_rate,
+                                double t,
+                                const IntegrationOptions& options) {
   ForcedState y{};
   const FullState start = InitialFullState(z0);
   std::copy(start.begin(), start.end(), y.begin());
@@ -56,18 +60,20 @@ void CheckPulses(const std::vector<Pulse>& pulses, double t0, double t1) {
     internal::RequirePositive(field + ".duration", p.duration);
     internal::RequireFinite(field + ".impulse", p.impulse);
     if (!(p.start >= previous_end))
-      internal::ThrowInvalid(field + ".start", p.start,
+      internal::ThrowInvalid(field + ".start",
+                             p.start,
                              "must be >= " + internal::FormatNumber(previous_end) +
                                  " (the start time or the previous pulse's end: pulses may not overlap)");
     previous_end = p.start + p.duration;
     if (previous_end > t1)
-      internal::ThrowInvalid(field + ".start", p.start, "the pulse ends after the final time " + internal::FormatNumber(t1));
+      internal::ThrowInvalid(
+          field + ".start", p.start, "the pulse ends after the final time " + internal::FormatNumber(t1));
   }
 }
 
 // One segment of constant K rate from `s`.
-void Segment(double lambda, const Eigen::Vector2d& rate, double duration, const IntegrationOptions& options,
-             PulsedState* s) {
+void Segment(
+    double lambda, const Eigen::Vector2d& rate, double duration, const IntegrationOptions& options, PulsedState* s) {
   if (duration <= 0.0) return;
   const internal::ForcedArcEnd end = internal::IntegrateForcedArc(lambda, s->z, s->k, rate, duration, options);
   s->z = end.z;
@@ -84,8 +90,12 @@ Eigen::Vector2d MomentumRate(const PhysicalParameters& p, const Eigen::Vector3d&
          (p.inertia_1 + p.EffectiveMass() * p.radius * p.radius);
 }
 
-PulsedState RunPulsed(const PhysicalParameters& p, const PulsedState& initial, double t0, double t1,
-                      const std::vector<Pulse>& pulses, const IntegrationOptions& options) {
+PulsedState RunPulsed(const PhysicalParameters& p,
+                      const PulsedState& initial,
+                      double t0,
+                      double t1,
+                      const std::vector<Pulse>& pulses,
+                      const IntegrationOptions& options) {
   internal::ThrowIfInvalid(p.Validate());
   internal::ThrowIfInvalid(options.Validate());
   internal::RequireFinite("t0", t0);

@@ -21,12 +21,17 @@ void ValidateStart(const FreeMotionStart& s, const IntegrationOptions& options) 
   if (!IsRotation(s.A0, 1e-9))
     internal::ThrowInvalid("start.A0", "(matrix)", "not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
   if (std::abs(s.A0.col(2).dot(s.state.z) - 1.0) > 1e-9)
-    internal::ThrowInvalid("start.A0 (|A0 e3 - z|)", (s.A0.col(2) - s.state.z).norm(),
+    internal::ThrowInvalid("start.A0 (|A0 e3 - z|)",
+                           (s.A0.col(2) - s.state.z).norm(),
                            "A0 e3 must equal start.state.z (the symmetry axis)");
 }
 
-MotionSample MakeSample(double t, const double* y, const Eigen::Vector2d& x, const Eigen::Matrix3d& A,
-                        const Eigen::Vector2d& k, const BallModel& model) {
+MotionSample MakeSample(double t,
+                        const double* y,
+                        const Eigen::Vector2d& x,
+                        const Eigen::Matrix3d& A,
+                        const Eigen::Vector2d& k,
+                        const BallModel& model) {
   MotionSample s;
   s.t = t;
   s.state.z = Eigen::Vector3d(y[0], y[1], y[2]).normalized();
@@ -44,7 +49,8 @@ FreeMotion::FreeMotion(const BallModel& model, const FreeMotionStart& start, con
     : model_(model), start_(start), options_(options) {
   ValidateStart(start, options);
   mu_ = Energy(start.state, model);
-  if (!(mu_ > 1e-300)) internal::ThrowInvalid("mu (energy of start.state)", mu_, "must be > 0: a ball at rest has no period");
+  if (!(mu_ > 1e-300))
+    internal::ThrowInvalid("mu (energy of start.state)", mu_, "must be > 0: a ball at rest has no period");
   period_ = 2.0 * M_PI / std::sqrt(mu_);
   k_ = ConservedMomentum(start.state, model);
   internal::FullRhs rhs{model.lambda(), {k_.x(), k_.y()}};
@@ -61,8 +67,11 @@ FreeMotion::FreeMotion(const BallModel& model, const FreeMotionStart& start, con
   monodromy_log_ = LogSO3(monodromy_);
 }
 
-FreeMotion FreeMotion::FromAngles(const BallModel& model, const AngleState& angles, double mu,
-                                  const Eigen::Vector2d& x0, const Eigen::Matrix3d& A0,
+FreeMotion FreeMotion::FromAngles(const BallModel& model,
+                                  const AngleState& angles,
+                                  double mu,
+                                  const Eigen::Vector2d& x0,
+                                  const Eigen::Matrix3d& A0,
                                   const IntegrationOptions& options) {
   FreeMotionStart s;
   s.state = StateFromAngles(angles, mu, model);
@@ -135,12 +144,15 @@ std::vector<MotionSample> FreeMotion::Sample(double t0, double t1, int n) const 
   return out;
 }
 
-std::vector<MotionSample> IntegrateFreeMotion(const BallModel& model, const FreeMotionStart& start,
-                                              const std::vector<double>& times, const IntegrationOptions& options) {
+std::vector<MotionSample> IntegrateFreeMotion(const BallModel& model,
+                                              const FreeMotionStart& start,
+                                              const std::vector<double>& times,
+                                              const IntegrationOptions& options) {
   ValidateStart(start, options);
   for (std::size_t i = 0; i < times.size(); ++i) {
     internal::RequireFinite("times[" + std::to_string(i) + "]", times[i]);
-    if (i > 0 && times[i] < times[i - 1]) internal::ThrowInvalid("times[" + std::to_string(i) + "]", times[i], "times must be non-decreasing");
+    if (i > 0 && times[i] < times[i - 1])
+      internal::ThrowInvalid("times[" + std::to_string(i) + "]", times[i], "times must be non-decreasing");
   }
   const Eigen::Vector2d k = ConservedMomentum(start.state, model);
   internal::FullRhs rhs{model.lambda(), {k.x(), k.y()}};

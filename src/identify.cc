@@ -45,11 +45,16 @@ constexpr double kStraightPathNoise = 1.0;
 
 std::string ToString(IdentifyStatus status) {
   switch (status) {
-    case IdentifyStatus::kNotRun: return "not_run";
-    case IdentifyStatus::kIdentified: return "identified";
-    case IdentifyStatus::kLambdaNotIdentified: return "lambda_not_identified";
-    case IdentifyStatus::kNoFit: return "no_fit";
-    case IdentifyStatus::kFailed: return "failed";
+    case IdentifyStatus::kNotRun:
+      return "not_run";
+    case IdentifyStatus::kIdentified:
+      return "identified";
+    case IdentifyStatus::kLambdaNotIdentified:
+      return "lambda_not_identified";
+    case IdentifyStatus::kNoFit:
+      return "no_fit";
+    case IdentifyStatus::kFailed:
+      return "failed";
   }
   return "unknown";
 }
@@ -68,9 +73,11 @@ std::string ValidateImpulseTimes(const std::vector<double>& t, const std::vector
       const double v = impulses[k];
       if (!std::isfinite(v)) return InvalidValueMessage(field, v, "must be finite");
       if (k > 0 && !(v > impulses[k - 1]))
-        return InvalidValueMessage(field, v, "impulse times must be strictly increasing (previous " + FormatNumber(impulses[k - 1]) + ")");
+        return InvalidValueMessage(
+            field, v, "impulse times must be strictly increasing (previous " + FormatNumber(impulses[k - 1]) + ")");
       if (!(v > t.front() && v < t.back()))
-        return InvalidValueMessage(field, v, "must be inside the track (" + FormatNumber(t.front()) + ", " + FormatNumber(t.back()) + ")");
+        return InvalidValueMessage(
+            field, v, "must be inside the track (" + FormatNumber(t.front()) + ", " + FormatNumber(t.back()) + ")");
     }
     std::size_t end = first;
     while (end < t.size() && (k == impulses.size() || t[end] <= impulses[k])) ++end;
@@ -78,10 +85,11 @@ std::string ValidateImpulseTimes(const std::vector<double>& t, const std::vector
       // The flight before impulse k, or after the last one.
       const bool last = k == impulses.size();
       const std::size_t named = last ? k - 1 : k;
-      return InvalidValueMessage("impulse_times[" + std::to_string(named) + "]", impulses[named],
-                                 "too few samples in the flight " + std::string(last ? "after" : "before") + " it: " +
-                                     std::to_string(end - first) + " (at least " + std::to_string(kIdentifyMinFlightSamples) +
-                                     " per flight)");
+      return InvalidValueMessage("impulse_times[" + std::to_string(named) + "]",
+                                 impulses[named],
+                                 "too few samples in the flight " + std::string(last ? "after" : "before") +
+                                     " it: " + std::to_string(end - first) + " (at least " +
+                                     std::to_string(kIdentifyMinFlightSamples) + " per flight)");
     }
     first = end;
   }
@@ -97,8 +105,10 @@ std::string ValidateSpin(const IdentifyProblem& p) {
   if (p.sigma_spin.size() != p.t.size())
     return InvalidValueMessage("sigma_spin (rows)", p.sigma_spin.size(), rows + ": a measured spin needs its noise");
   if (p.sigma.empty())
-    return InvalidValueMessage("sigma (rows)", p.sigma.size(),
-                               "a measured spin needs sigma given too (positions and spin share no common noise to estimate)");
+    return InvalidValueMessage(
+        "sigma (rows)",
+        p.sigma.size(),
+        "a measured spin needs sigma given too (positions and spin share no common noise to estimate)");
   for (std::size_t i = 0; i < p.t.size(); ++i) {
     const std::string row = "[" + std::to_string(i) + "]";
     if (!std::isfinite(p.spin[i])) return InvalidValueMessage("spin" + row, p.spin[i], "must be finite");
@@ -110,8 +120,8 @@ std::string ValidateSpin(const IdentifyProblem& p) {
 
 /// A column of one row per time (or empty when optional): its row count.
 std::string RowsMessage(const char* field, std::size_t rows, std::size_t times, const std::string& why = {}) {
-  return internal::InvalidValueMessage(std::string(field) + " (rows)", rows,
-                                       "must have one row per time (" + std::to_string(times) + ")" + why);
+  return internal::InvalidValueMessage(
+      std::string(field) + " (rows)", rows, "must have one row per time (" + std::to_string(times) + ")" + why);
 }
 
 /// One noise value: finite and > 0.
@@ -130,11 +140,15 @@ std::string ValidateOrientation(const IdentifyProblem& p) {
   if (!p.sigma_orientation.empty() && p.sigma_orientation.size() != n)
     return RowsMessage("sigma_orientation", p.sigma_orientation.size(), n, " or be empty");
   if (p.sigma_orientation.empty() && !p.sigma.empty())
-    return InvalidValueMessage("sigma_orientation (rows)", 0, "sigma is given: give the orientations' noise too (positions and "
-                                                              "orientations then share no common noise to estimate)");
+    return InvalidValueMessage("sigma_orientation (rows)",
+                               0,
+                               "sigma is given: give the orientations' noise too (positions and "
+                               "orientations then share no common noise to estimate)");
   if (!p.sigma_orientation.empty() && p.sigma.empty())
-    return InvalidValueMessage("sigma (rows)", 0, "sigma_orientation is given: give the positions' noise too (or neither, for one "
-                                                  "common sigma estimated in radii and radians)");
+    return InvalidValueMessage("sigma (rows)",
+                               0,
+                               "sigma_orientation is given: give the positions' noise too (or neither, for one "
+                               "common sigma estimated in radii and radians)");
   const char* names[4] = {"w", "x", "y", "z"};
   for (std::size_t i = 0; i < n; ++i) {
     const std::string row = "[" + std::to_string(i) + "]";
@@ -143,9 +157,10 @@ std::string ValidateOrientation(const IdentifyProblem& p) {
         return InvalidValueMessage("orientation" + row + "." + names[c], p.orientation[i][c], "must be finite");
     const double norm = p.orientation[i].norm();
     if (!(std::abs(norm - 1.0) <= kIdentifyQuaternionTolerance))
-      return InvalidValueMessage("orientation" + row, "[" + FormatNumber(p.orientation[i][0]) + ", " + FormatNumber(p.orientation[i][1]) +
-                                                          ", " + FormatNumber(p.orientation[i][2]) + ", " +
-                                                          FormatNumber(p.orientation[i][3]) + "]",
+      return InvalidValueMessage("orientation" + row,
+                                 "[" + FormatNumber(p.orientation[i][0]) + ", " + FormatNumber(p.orientation[i][1]) +
+                                     ", " + FormatNumber(p.orientation[i][2]) + ", " +
+                                     FormatNumber(p.orientation[i][3]) + "]",
                                  "not a unit quaternion (w, x, y, z): norm " + FormatNumber(norm) + ", allowed 1 +- " +
                                      FormatNumber(kIdentifyQuaternionTolerance));
     if (!p.sigma_orientation.empty()) {
@@ -163,17 +178,23 @@ std::string ValidateBodyRate(const IdentifyProblem& p) {
   if (p.body_rate.empty() && p.sigma_body_rate.empty()) return {};
   const std::size_t n = p.t.size();
   if (!p.spin.empty())
-    return InvalidValueMessage("body_rate (rows)", p.body_rate.size(),
+    return InvalidValueMessage("body_rate (rows)",
+                               p.body_rate.size(),
                                "give either spin or body_rate, not both (the third body rate is the axial spin)");
   if (p.body_rate.size() != n) return RowsMessage("body_rate", p.body_rate.size(), n);
-  if (p.sigma_body_rate.size() != n) return RowsMessage("sigma_body_rate", p.sigma_body_rate.size(), n, ": measured body rates need their noise");
+  if (p.sigma_body_rate.size() != n)
+    return RowsMessage("sigma_body_rate", p.sigma_body_rate.size(), n, ": measured body rates need their noise");
   if (p.sigma.empty())
-    return InvalidValueMessage("sigma (rows)", 0, "measured body rates need sigma given too (positions and rates share no common noise to estimate)");
+    return InvalidValueMessage(
+        "sigma (rows)",
+        0,
+        "measured body rates need sigma given too (positions and rates share no common noise to estimate)");
   for (std::size_t i = 0; i < n; ++i) {
     const std::string row = "[" + std::to_string(i) + "]";
     for (int c = 0; c < 3; ++c)
       if (!std::isfinite(p.body_rate[i][c]))
-        return InvalidValueMessage("body_rate" + row + "[" + std::to_string(c) + "]", p.body_rate[i][c], "must be finite");
+        return InvalidValueMessage(
+            "body_rate" + row + "[" + std::to_string(c) + "]", p.body_rate[i][c], "must be finite");
     const std::string e = NoiseMessage("sigma_body_rate" + row, p.sigma_body_rate[i]);
     if (!e.empty()) return e;
   }
@@ -187,23 +208,31 @@ std::string IdentifyProblem::Validate() const {
   if (t.size() != x.size())
     return InvalidValueMessage("x (rows)", x.size(), "must have one row per time (" + std::to_string(t.size()) + ")");
   if (t.size() < static_cast<std::size_t>(kMinSamples))
-    return InvalidValueMessage("t (rows)", t.size(), "too few samples: at least " + std::to_string(kMinSamples) +
-                                                         " are needed for 7 parameters and a noise estimate");
+    return InvalidValueMessage("t (rows)",
+                               t.size(),
+                               "too few samples: at least " + std::to_string(kMinSamples) +
+                                   " are needed for 7 parameters and a noise estimate");
   if (!sigma.empty() && sigma.size() != t.size())
-    return InvalidValueMessage("sigma (rows)", sigma.size(), "must be empty or have one row per time (" + std::to_string(t.size()) + ")");
+    return InvalidValueMessage(
+        "sigma (rows)", sigma.size(), "must be empty or have one row per time (" + std::to_string(t.size()) + ")");
   for (std::size_t i = 0; i < t.size(); ++i) {
     const std::string row = "[" + std::to_string(i) + "]";
     if (!std::isfinite(t[i])) return InvalidValueMessage("t" + row, t[i], "must be finite");
     if (i > 0 && !(t[i] > t[i - 1]))
-      return InvalidValueMessage("t" + row, t[i], t[i] == t[i - 1] ? "duplicate time (times must be strictly increasing)"
-                                                                   : "times must be strictly increasing (previous " +
-                                                                         internal::FormatNumber(t[i - 1]) + ")");
+      return InvalidValueMessage(
+          "t" + row,
+          t[i],
+          t[i] == t[i - 1] ? "duplicate time (times must be strictly increasing)"
+                           : "times must be strictly increasing (previous " + internal::FormatNumber(t[i - 1]) + ")");
     for (int c = 0; c < 2; ++c)
       if (!std::isfinite(x[i][c])) return InvalidValueMessage((c == 0 ? "x" : "y") + row, x[i][c], "must be finite");
     if (!sigma.empty() && !(std::isfinite(sigma[i]) && sigma[i] > 0))
       return InvalidValueMessage("sigma" + row, sigma[i], "must be finite and > 0");
   }
-  for (const std::string& e : {ValidateImpulseTimes(t, impulse_times), ValidateSpin(*this), ValidateOrientation(*this), ValidateBodyRate(*this)})
+  for (const std::string& e : {ValidateImpulseTimes(t, impulse_times),
+                               ValidateSpin(*this),
+                               ValidateOrientation(*this),
+                               ValidateBodyRate(*this)})
     if (!e.empty()) return e;
   return {};
 }
@@ -211,26 +240,32 @@ std::string IdentifyProblem::Validate() const {
 std::string IdentifyOptions::Validate() const {
   using internal::InvalidValueMessage;
   if (!(std::isfinite(radius) && radius > 0)) return InvalidValueMessage("radius", radius, "must be finite and > 0");
-  if (!(lambda_min >= 1e-3 && lambda_min <= 1e3)) return InvalidValueMessage("lambda_min", lambda_min, "must be in [0.001, 1000]");
+  if (!(lambda_min >= 1e-3 && lambda_min <= 1e3))
+    return InvalidValueMessage("lambda_min", lambda_min, "must be in [0.001, 1000]");
   if (!(lambda_max >= lambda_min && lambda_max <= 1e3))
     return InvalidValueMessage("lambda_max", lambda_max, "must be in [lambda_min, 1000]");
-  if (theta_starts < 1 || theta_starts > 50) return InvalidValueMessage("theta_starts", theta_starts, "must be in [1, 50]");
-  if (phase_starts < 1 || phase_starts > 50) return InvalidValueMessage("phase_starts", phase_starts, "must be in [1, 50]");
+  if (theta_starts < 1 || theta_starts > 50)
+    return InvalidValueMessage("theta_starts", theta_starts, "must be in [1, 50]");
+  if (phase_starts < 1 || phase_starts > 50)
+    return InvalidValueMessage("phase_starts", phase_starts, "must be in [1, 50]");
   if (lambda_starts.empty() || lambda_starts.size() > 20)
     return InvalidValueMessage("lambda_starts (count)", lambda_starts.size(), "must be 1 ... 20 values");
   for (std::size_t i = 0; i < lambda_starts.size(); ++i)
     if (!(lambda_starts[i] >= lambda_min && lambda_starts[i] <= lambda_max))
-      return InvalidValueMessage("lambda_starts[" + std::to_string(i) + "]", lambda_starts[i], "must be in [lambda_min, lambda_max]");
+      return InvalidValueMessage(
+          "lambda_starts[" + std::to_string(i) + "]", lambda_starts[i], "must be in [lambda_min, lambda_max]");
   if (guess) {
     if (!(guess->lambda >= lambda_min && guess->lambda <= lambda_max))
       return InvalidValueMessage("guess.lambda", guess->lambda, "must be in [lambda_min, lambda_max]");
-    if (!(std::isfinite(guess->mu) && guess->mu > 0)) return InvalidValueMessage("guess.mu", guess->mu, "must be finite and > 0");
+    if (!(std::isfinite(guess->mu) && guess->mu > 0))
+      return InvalidValueMessage("guess.mu", guess->mu, "must be finite and > 0");
     const double g[5] = {guess->angles.theta, guess->angles.phi, guess->angles.psi, guess->x0.x(), guess->x0.y()};
     const char* names[5] = {"guess.theta", "guess.phi", "guess.psi", "guess.x0[0]", "guess.x0[1]"};
     for (int i = 0; i < 5; ++i)
       if (!std::isfinite(g[i])) return InvalidValueMessage(names[i], g[i], "must be finite");
   }
-  if (max_iterations < 1 || max_iterations > 10000) return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, 10000]");
+  if (max_iterations < 1 || max_iterations > 10000)
+    return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, 10000]");
   if (threads < 1 || threads > kMaxThreads)
     return InvalidValueMessage("threads", threads, "must be in [1, " + std::to_string(kMaxThreads) + "]");
   if (!(max_lambda_relative_error > 0 && max_lambda_relative_error <= 1e6))
@@ -394,7 +429,8 @@ void FillCovariance(const internal::TrackFit& fit, double s2, IdentifySummary* s
   s->standard_errors.assign(static_cast<std::size_t>(np), 0.0);
   s->correlation = Eigen::MatrixXd::Constant(np, np, kNaN);
   for (int i = 0; i < np; ++i) {
-    s->standard_errors[static_cast<std::size_t>(i)] = singular[static_cast<std::size_t>(i)] ? kInf : std::sqrt(cov(i, i));
+    s->standard_errors[static_cast<std::size_t>(i)] =
+        singular[static_cast<std::size_t>(i)] ? kInf : std::sqrt(cov(i, i));
     for (int j = 0; j < np; ++j)
       if (!singular[static_cast<std::size_t>(i)] && !singular[static_cast<std::size_t>(j)])
         s->correlation(i, j) = cov(i, j) / std::sqrt(cov(i, i) * cov(j, j));
@@ -456,11 +492,17 @@ bool StraightBlocksLambda(const IdentifySummary& s, bool spin_shows_v0) { return
 
 void FillUnidentified(bool spin_shows_v0, IdentifySummary* s) {
   const auto& e = s->standard_errors;
-  std::vector<double> scaled{e[0] / s->lambda, e[1] / s->mu, e[2], e[3], e[4],
-                             e[5] / std::max(s->track_spread, 1e-300), e[6] / std::max(s->track_spread, 1e-300)};
+  std::vector<double> scaled{e[0] / s->lambda,
+                             e[1] / s->mu,
+                             e[2],
+                             e[3],
+                             e[4],
+                             e[5] / std::max(s->track_spread, 1e-300),
+                             e[6] / std::max(s->track_spread, 1e-300)};
   scaled.insert(scaled.end(), e.begin() + kP, e.end());  // chi and delta psi: radians, like the angles
   for (std::size_t i = 0; i < scaled.size(); ++i)
-    if (!(scaled[i] <= kHugeError) || (i == 0 && StraightBlocksLambda(*s, spin_shows_v0))) s->unidentified.push_back(s->parameters[i]);
+    if (!(scaled[i] <= kHugeError) || (i == 0 && StraightBlocksLambda(*s, spin_shows_v0)))
+      s->unidentified.push_back(s->parameters[i]);
 }
 
 /// The profile threshold of a 95% interval: chi^2_1 with given sigma, F(1, m - p) with estimated.
@@ -473,13 +515,15 @@ double ProfileThreshold(bool sigma_estimated, int dof) {
 bool RejectsFit(const IdentifySummary& s, const IdentifyOptions& o, int dof, std::string* why) {
   std::ostringstream os;
   if (!s.sigma_estimated) {
-    const double p = boost::math::cdf(boost::math::complement(boost::math::chi_squared_distribution<double>(dof), s.chi_square));
+    const double p =
+        boost::math::cdf(boost::math::complement(boost::math::chi_squared_distribution<double>(dof), s.chi_square));
     os << "chi-square " << s.chi_square << " on " << dof << " degrees of freedom (p = " << p << " < "
        << o.no_fit_significance << ")";
     *why = os.str();
     return p < o.no_fit_significance;
   }
-  os << "rms residual " << s.rms_residual << " radii > " << o.max_relative_residual << " x the track's spread " << s.track_spread;
+  os << "rms residual " << s.rms_residual << " radii > " << o.max_relative_residual << " x the track's spread "
+     << s.track_spread;
   *why = os.str();
   return s.rms_residual > o.max_relative_residual * s.track_spread;
 }
@@ -500,15 +544,18 @@ void FillFit(const internal::TrackFit& fit, bool frame, IdentifySummary* s) {
 }
 
 /// The fitted state at each flight's start (the flights of the model at the optimum).
-void FillFlights(const TrackData& d, const internal::TrackFit& fit, const IntegrationOptions& integration, IdentifySummary* s) {
+void FillFlights(const TrackData& d,
+                 const internal::TrackFit& fit,
+                 const IntegrationOptions& integration,
+                 IdentifySummary* s) {
   if (d.impulse_tau.empty()) {  // one flight: the state at t_ref
     s->flights = {IdentifiedFlight{s->t_ref, s->angles, s->x0}};
     return;
   }
   std::vector<double> model(d.x.size());
   std::vector<internal::FlightStart> flights;
-  internal::EvaluateImpulsiveTrack(fit.q.data(), d.tau.data(), d.tau.size(), d.impulse_tau, integration, model.data(),
-                                   nullptr, nullptr, &flights);
+  internal::EvaluateImpulsiveTrack(
+      fit.q.data(), d.tau.data(), d.tau.size(), d.impulse_tau, integration, model.data(), nullptr, nullptr, &flights);
   const BallModel ball = BallModel::FromLambda(s->lambda);
   s->flights.clear();
   for (const internal::FlightStart& f : flights) {
@@ -524,16 +571,19 @@ void Classify(const IdentifyOptions& o, bool spin_shows_v0, IdentifySummary* s) 
   s->lambda_relative_error = s->standard_errors[0] / s->lambda;
   const bool closed = s->lambda_low > 0 && std::isfinite(s->lambda_high);
   const bool straight = StraightBlocksLambda(*s, spin_shows_v0);
-  s->lambda_identified = !straight && s->lambda_relative_error <= o.max_lambda_relative_error && (closed || !o.profile_interval);
+  s->lambda_identified =
+      !straight && s->lambda_relative_error <= o.max_lambda_relative_error && (closed || !o.profile_interval);
   std::ostringstream os;
   if (straight) {
     s->status = IdentifyStatus::kLambdaNotIdentified;
-    os << "lambda not identified, not identifiable from the contact track alone: the fitted contact path is a straight line (largest "
+    os << "lambda not identified, not identifiable from the contact track alone: the fitted contact path is a straight "
+          "line (largest "
           "deviation "
        << s->path_deviation << " radii, within the noise " << s->sigma
        << "). Every lambda gives a straight path when the axial spin v0 is 0, and every state gives one at lambda = 1 "
           "(the ball rolls like a sphere), so the track fixes the speed but not lambda; a track with a curved, "
-          "drifting contact path identifies lambda, and so do a measured spin v0 != 0, orientations or body rates (docs/identify.md)"
+          "drifting contact path identifies lambda, and so do a measured spin v0 != 0, orientations or body rates "
+          "(docs/identify.md)"
        << (s->fitted_spin.empty() ? "" : "; the measured spin does not show v0 != 0");
   } else if (s->lambda_identified) {
     s->status = IdentifyStatus::kIdentified;
@@ -543,7 +593,8 @@ void Classify(const IdentifyOptions& o, bool spin_shows_v0, IdentifySummary* s) 
     os << "lambda not identified: relative standard error " << s->lambda_relative_error
        << (closed || !o.profile_interval ? "" : ", the 95% profile interval does not close in [lambda_min, lambda_max]")
        << "; the track fixes mu (the period 2 pi/sqrt(mu)) and the state but carries (almost) no information on "
-          "lambda (docs/identify.md: a track with axial spin v0 != 0, i.e. a curved, drifting contact path, does, and so do "
+          "lambda (docs/identify.md: a track with axial spin v0 != 0, i.e. a curved, drifting contact path, does, and "
+          "so do "
           "measured orientations or body rates, whose reorientation along the path depends on lambda)";
   }
   s->message = os.str();
@@ -555,12 +606,14 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
   internal::ThrowIfInvalid(problem.Validate());
   internal::ThrowIfInvalid(options.Validate());
   if (options.guess && options.guess->delta_psi.size() > problem.impulse_times.size())
-    internal::ThrowInvalid("guess.delta_psi (count)", static_cast<double>(options.guess->delta_psi.size()),
+    internal::ThrowInvalid("guess.delta_psi (count)",
+                           static_cast<double>(options.guess->delta_psi.size()),
                            "more values than impulse_times (" + std::to_string(problem.impulse_times.size()) + ")");
   if (options.guess)
     for (std::size_t k = 0; k < options.guess->delta_psi.size(); ++k)
       if (!std::isfinite(options.guess->delta_psi[k]))
-        internal::ThrowInvalid("guess.delta_psi[" + std::to_string(k) + "]", options.guess->delta_psi[k], "must be finite");
+        internal::ThrowInvalid(
+            "guess.delta_psi[" + std::to_string(k) + "]", options.guess->delta_psi[k], "must be finite");
   const TrackData data = MakeTrackData(problem, options);
   IdentifySummary s;
   s.t_ref = problem.t[0];
@@ -596,8 +649,8 @@ IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& 
       s.lambda_high = s.lambda + 1.96 * s.standard_errors[0];
       s.interval_method = "wald";
     } else if (options.profile_interval && std::isfinite(s.standard_errors[0])) {
-      const internal::ProfileInterval pi = internal::ProfileLambda(data, options, fit, s.standard_errors[0],
-                                                                   ProfileThreshold(s.sigma_estimated, dof) * s2);
+      const internal::ProfileInterval pi = internal::ProfileLambda(
+          data, options, fit, s.standard_errors[0], ProfileThreshold(s.sigma_estimated, dof) * s2);
       s.lambda_low = pi.low;
       s.lambda_high = pi.high;
       s.profile_fits = pi.fits;

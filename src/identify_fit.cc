@@ -59,7 +59,9 @@ std::size_t StartCount(const TrackData& d) { return kP + (d.HasFrame() ? 1 : 0);
 std::size_t ParameterCount(const TrackData& d) { return StartCount(d) + d.impulse_tau.size(); }
 
 IntegrationOptions JacobianOptions(const IntegrationOptions& o) {
-  return {std::max(kJacobianTolerance, o.absolute_tolerance), std::max(kJacobianTolerance, o.relative_tolerance), o.max_steps};
+  return {std::max(kJacobianTolerance, o.absolute_tolerance),
+          std::max(kJacobianTolerance, o.relative_tolerance),
+          o.max_steps};
 }
 
 /// The model's values at q (TrackFit's model, spin, orientation, body_rate).
@@ -72,7 +74,8 @@ struct ModelValues {
 Eigen::Matrix3d RightJacobianInverse(const Eigen::Vector3d& e) {
   const double a = e.norm();
   // (1/a^2 - (1 + cos a)/(2 a sin a)), its series 1/12 + a^2/720 near 0 (cancellation).
-  const double c = a < 1e-4 ? 1.0 / 12.0 + a * a / 720.0 : 1.0 / (a * a) - (1.0 + std::cos(a)) / (2.0 * a * std::sin(a));
+  const double c =
+      a < 1e-4 ? 1.0 / 12.0 + a * a / 720.0 : 1.0 / (a * a) - (1.0 + std::cos(a)) / (2.0 * a * std::sin(a));
   const Eigen::Matrix3d h = Hat(e);
   return Eigen::Matrix3d::Identity() + 0.5 * h + c * h * h;
 }
@@ -80,7 +83,11 @@ Eigen::Matrix3d RightJacobianInverse(const Eigen::Vector3d& e) {
 /// The unweighted residuals at q into *r (model - measured; for the orientation
 /// LogSO3(A_i^T A(tau_i))), the model's values into *m, and with jacobian != nullptr dr/dq
 /// row-major (ResidualCount x ParameterCount). Throws when an integration fails.
-void EvaluateModel(const TrackData& d, const double* q, const IntegrationOptions& o, ModelValues* m, std::vector<double>* r,
+void EvaluateModel(const TrackData& d,
+                   const double* q,
+                   const IntegrationOptions& o,
+                   ModelValues* m,
+                   std::vector<double>* r,
                    std::vector<double>* jacobian) {
   const std::size_t n = d.tau.size(), p = ParameterCount(d), ns = d.spin.size();
   const std::size_t no = d.orientation.size() / 9, nb = d.body_rate.size() / 3;
@@ -91,7 +98,9 @@ void EvaluateModel(const TrackData& d, const double* q, const IntegrationOptions
   if (jacobian != nullptr) jacobian->resize(ResidualCount(d) * p);
   double* j = jacobian != nullptr ? jacobian->data() : nullptr;
   const std::size_t row_spin = 2 * n, row_orientation = row_spin + ns, row_rate = row_orientation + 3 * no;
-  auto part = [&](std::vector<double>& v, std::size_t row) { return v.empty() ? nullptr : (j != nullptr ? j + row * p : nullptr); };
+  auto part = [&](std::vector<double>& v, std::size_t row) {
+    return v.empty() ? nullptr : (j != nullptr ? j + row * p : nullptr);
+  };
   BodyOutput body;
   body.spin = ns > 0 ? m->spin.data() : nullptr;
   body.spin_jacobian = ns > 0 ? part(m->spin, row_spin) : nullptr;
@@ -100,8 +109,8 @@ void EvaluateModel(const TrackData& d, const double* q, const IntegrationOptions
   body.body_rate = nb > 0 ? m->body_rate.data() : nullptr;
   body.body_rate_jacobian = nb > 0 ? part(m->body_rate, row_rate) : nullptr;
   const IntegrationOptions jo = JacobianOptions(o);
-  EvaluateImpulsiveTrack(q, d.tau.data(), n, d.impulse_tau, o, m->x.data(), j, &jo, nullptr,
-                         ns + no + nb > 0 ? &body : nullptr);
+  EvaluateImpulsiveTrack(
+      q, d.tau.data(), n, d.impulse_tau, o, m->x.data(), j, &jo, nullptr, ns + no + nb > 0 ? &body : nullptr);
   r->resize(ResidualCount(d));
   for (std::size_t k = 0; k < 2 * n; ++k) (*r)[k] = m->x[k] - d.x[k];
   for (std::size_t k = 0; k < ns; ++k) (*r)[row_spin + k] = m->spin[k] - d.spin[k];
@@ -135,7 +144,8 @@ double Weight(const TrackData& d, std::size_t k) {
 /// phi, psi, x0, y0, delta_psi...) (6 + m), so that the profile can hold lambda constant.
 class TrackCost final : public ceres::CostFunction {
  public:
-  TrackCost(const TrackData& data, const IntegrationOptions& options) : data_(data), options_(options), p_(ParameterCount(data)) {
+  TrackCost(const TrackData& data, const IntegrationOptions& options)
+      : data_(data), options_(options), p_(ParameterCount(data)) {
     set_num_residuals(static_cast<int>(ResidualCount(data)));
     mutable_parameter_block_sizes()->push_back(1);
     mutable_parameter_block_sizes()->push_back(static_cast<int>(p_ - 1));
@@ -169,10 +179,15 @@ class TrackCost final : public ceres::CostFunction {
 };
 
 /// One Levenberg-Marquardt fit from q (lambda held at q[0] when fixed).
-TrackFit Solve(const TrackData& data, const std::vector<double>& q0, const IdentifyOptions& o,
-               const IntegrationOptions& integration, int max_iterations, bool lambda_fixed) {
+TrackFit Solve(const TrackData& data,
+               const std::vector<double>& q0,
+               const IdentifyOptions& o,
+               const IntegrationOptions& integration,
+               int max_iterations,
+               bool lambda_fixed) {
   TrackFit fit;
-  if (q0.size() < ParameterCount(data)) throw std::logic_error("Solve: a delta psi of the window's impulses is not chosen");
+  if (q0.size() < ParameterCount(data))
+    throw std::logic_error("Solve: a delta psi of the window's impulses is not chosen");
   fit.q.assign(q0.begin(), q0.begin() + static_cast<std::ptrdiff_t>(ParameterCount(data)));
   double* lambda = fit.q.data();
   double* rest = fit.q.data() + 1;
@@ -204,7 +219,8 @@ TrackFit Solve(const TrackData& data, const std::vector<double>& q0, const Ident
 TrackData Window(const TrackData& d, double tau_max, std::size_t max_samples) {
   std::size_t end = 0, first_flight = 0;
   while (end < d.tau.size() && d.tau[end] <= tau_max) ++end;
-  while (first_flight < d.tau.size() && (d.impulse_tau.empty() || d.tau[first_flight] <= d.impulse_tau[0])) ++first_flight;
+  while (first_flight < d.tau.size() && (d.impulse_tau.empty() || d.tau[first_flight] <= d.impulse_tau[0]))
+    ++first_flight;
   end = std::min(d.tau.size(), std::max(end, std::min(kMinWindowSamples, first_flight)));
   const std::size_t stride = (end + max_samples - 1) / max_samples;
   TrackData w;
@@ -218,12 +234,14 @@ TrackData Window(const TrackData& d, double tau_max, std::size_t max_samples) {
       w.spin_weight.push_back(d.spin_weight[i]);
     }
     if (!d.orientation.empty()) {
-      w.orientation.insert(w.orientation.end(), d.orientation.begin() + static_cast<std::ptrdiff_t>(9 * i),
+      w.orientation.insert(w.orientation.end(),
+                           d.orientation.begin() + static_cast<std::ptrdiff_t>(9 * i),
                            d.orientation.begin() + static_cast<std::ptrdiff_t>(9 * i + 9));
       w.orientation_weight.push_back(d.orientation_weight[i]);
     }
     if (!d.body_rate.empty()) {
-      w.body_rate.insert(w.body_rate.end(), d.body_rate.begin() + static_cast<std::ptrdiff_t>(3 * i),
+      w.body_rate.insert(w.body_rate.end(),
+                         d.body_rate.begin() + static_cast<std::ptrdiff_t>(3 * i),
                          d.body_rate.begin() + static_cast<std::ptrdiff_t>(3 * i + 3));
       w.body_rate_weight.push_back(d.body_rate_weight[i]);
     }
@@ -250,7 +268,10 @@ double Cost(const TrackData& d, const std::vector<double>& q, const IntegrationO
 /// impulses of d. Each new impulse gets the best of kImpulseGrid values of delta psi in
 /// [-pi, pi) by the cost of the samples up to the next impulse (whose delta psi is not known
 /// yet), the earlier parameters held: the least-squares fit then starts in its basin.
-void ChooseImpulses(const TrackData& d, std::size_t count, const IntegrationOptions& integration, std::vector<double>* q) {
+void ChooseImpulses(const TrackData& d,
+                    std::size_t count,
+                    const IntegrationOptions& integration,
+                    std::vector<double>* q) {
   while (q->size() < StartCount(d) + count) {
     const std::size_t f = q->size() - StartCount(d);
     const double until = f + 1 < d.impulse_tau.size() ? d.impulse_tau[f + 1] : d.tau.back();
@@ -306,8 +327,8 @@ TrackGuess GuessFromTrack(const TrackData& d) {
 /// The start with the given (lambda, mu, theta, w = phi - psi), phi turned so that the contact
 /// velocity x'(0) = (omega_2, -omega_1) points along `direction` (the motion is invariant under
 /// turning phi and psi together about the vertical).
-std::vector<double> StartPoint(double lambda, double mu, double theta, double w, double direction,
-                                  const Eigen::Vector2d& x0) {
+std::vector<double> StartPoint(
+    double lambda, double mu, double theta, double w, double direction, const Eigen::Vector2d& x0) {
   const PhaseVariables p = PhaseFromTrig(TrigFromAngles(AngleState{theta, 0.0, -w}), mu, lambda);
   const double phi = WrapPi(direction - std::atan2(-p.omega.x(), p.omega.y()));
   return {lambda, mu, theta, phi, WrapPi(phi - w), x0.x(), x0.y()};
@@ -337,7 +358,8 @@ void InsertChi(const TrackData& d, std::vector<double>* q) {
   const Eigen::Matrix3d axis_frame = StartFrame((*q)[2], (*q)[3], 0.0);
   double chi = 0.0;
   if (!d.orientation.empty()) {
-    const Eigen::Matrix3d b = axis_frame.transpose() * Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d.orientation.data());
+    const Eigen::Matrix3d b =
+        axis_frame.transpose() * Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d.orientation.data());
     chi = std::atan2(b(1, 0), b(0, 0));
   } else {
     const double* q0 = q->data();
@@ -368,8 +390,8 @@ std::vector<double> GridStart(const TrackData& d, double lambda, const TrackGues
 /// The grid of starts on the first window, each stopped after kGridIterations: enough to fall
 /// into a basin, not to converge in it (on half a period lambda is weakly determined, and the
 /// minima of different lambda have nearly the same cost there). Sorted by cost.
-std::vector<TrackFit> MultiStart(const TrackData& d, const IdentifyOptions& o, const TrackGuess& g, double window,
-                                 int* starts) {
+std::vector<TrackFit> MultiStart(
+    const TrackData& d, const IdentifyOptions& o, const TrackGuess& g, double window, int* starts) {
   const TrackData w = Window(d, window, kStartSamples);
   const IntegrationOptions coarse{kGridTolerance, kGridTolerance, o.integration.max_steps};
   std::vector<TrackFit> fits;
@@ -415,7 +437,8 @@ std::vector<std::vector<double>> Candidates(const std::vector<TrackFit>& fits) {
 /// impulses (it then ends at the next one's time), at most the whole track.
 double NextWindow(const TrackData& d, double tau_max) {
   const double doubled = std::min(d.tau.back(), 2.0 * tau_max);
-  const auto seen = static_cast<std::size_t>(std::lower_bound(d.impulse_tau.begin(), d.impulse_tau.end(), tau_max) - d.impulse_tau.begin());
+  const auto seen = static_cast<std::size_t>(std::lower_bound(d.impulse_tau.begin(), d.impulse_tau.end(), tau_max) -
+                                             d.impulse_tau.begin());
   if (seen + kImpulsesPerWindow < d.impulse_tau.size() && d.impulse_tau[seen + kImpulsesPerWindow] < doubled)
     return d.impulse_tau[seen + kImpulsesPerWindow];
   return doubled;
@@ -475,10 +498,12 @@ TrackFit FitTrack(const TrackData& data, const IdentifyOptions& o, int* starts) 
         ChooseImpulses(data, w.impulse_tau.size(), mid, &c.q);
         c = Solve(w, c.q, o, mid, kStartIterations, false);
       }
-      std::sort(candidates.begin(), candidates.end(), [](const TrackFit& a, const TrackFit& b) { return a.cost < b.cost; });
+      std::sort(
+          candidates.begin(), candidates.end(), [](const TrackFit& a, const TrackFit& b) { return a.cost < b.cost; });
       const double keep = kCandidateCost * candidates.front().cost;
-      candidates.erase(std::find_if(candidates.begin() + 1, candidates.end(), [&](const TrackFit& c) { return !(c.cost <= keep); }),
-                       candidates.end());
+      candidates.erase(
+          std::find_if(candidates.begin() + 1, candidates.end(), [&](const TrackFit& c) { return !(c.cost <= keep); }),
+          candidates.end());
     } while (window < span);
     q = candidates.front().q;
   }
@@ -492,8 +517,14 @@ namespace {
 
 /// One side (dir = -1 or +1) of the profile interval: the secant method on the signed root
 /// r(lambda) = sqrt(2 (cost(lambda) - cost_min)), nearly linear in lambda, for r = sqrt(threshold).
-double ProfileSide(const TrackData& d, const IdentifyOptions& o, const IntegrationOptions& integration,
-                   const TrackFit& fit, double se, double threshold, double dir, int* fits) {
+double ProfileSide(const TrackData& d,
+                   const IdentifyOptions& o,
+                   const IntegrationOptions& integration,
+                   const TrackFit& fit,
+                   double se,
+                   double threshold,
+                   double dir,
+                   int* fits) {
   constexpr int kMaxSteps = 16;
   constexpr double kRootTolerance = 1e-3;  // relative on r: ~0.1% of the interval's half-width
   const double target = std::sqrt(threshold);
@@ -526,8 +557,8 @@ double ProfileSide(const TrackData& d, const IdentifyOptions& o, const Integrati
 
 }  // namespace
 
-ProfileInterval ProfileLambda(const TrackData& data, const IdentifyOptions& options, const TrackFit& fit, double se,
-                              double threshold) {
+ProfileInterval ProfileLambda(
+    const TrackData& data, const IdentifyOptions& options, const TrackFit& fit, double se, double threshold) {
   // The profile's cost differences are ~threshold ~ sigma^2 per residual: an integration error
   // delta moves them by ~sum r_i delta_i, negligible when delta << sigma, so the refits use
   // kProfileNoiseFraction x the RMS residual (at most kJacobianTolerance, never tighter than
@@ -536,7 +567,8 @@ ProfileInterval ProfileLambda(const TrackData& data, const IdentifyOptions& opti
   const double rms = std::sqrt(2.0 * fit.cost / static_cast<double>(ResidualCount(data)));
   const double tol = std::min(kProfileNoiseFraction * rms, kProfileMaxTolerance);
   const IntegrationOptions integration{std::max(tol, options.integration.absolute_tolerance),
-                                       std::max(tol, options.integration.relative_tolerance), options.integration.max_steps};
+                                       std::max(tol, options.integration.relative_tolerance),
+                                       options.integration.max_steps};
   TrackFit optimum = fit;
   optimum.cost = Cost(data, fit.q, integration);
   ProfileInterval p;

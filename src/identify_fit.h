@@ -38,13 +38,13 @@ struct TrackFit {
   /// (lambda, mu, theta, phi, psi, x0, y0, [chi,] delta_psi_0, .., delta_psi_{m-1}), chi with
   /// TrackData::HasFrame() (identify_model.h, BodyOutput)
   std::vector<double> q = std::vector<double>(7, 0.0);
-  double cost = 0.0;          ///< 1/2 sum of the squared weighted residuals
+  double cost = 0.0;  ///< 1/2 sum of the squared weighted residuals
   int iterations = 0;
-  std::vector<double> model;  ///< x(tau_i) at q (after FinishFit)
-  std::vector<double> spin;   ///< v0(tau_i) at q when the track has a spin (after FinishFit)
+  std::vector<double> model;        ///< x(tau_i) at q (after FinishFit)
+  std::vector<double> spin;         ///< v0(tau_i) at q when the track has a spin (after FinishFit)
   std::vector<double> orientation;  ///< A(tau_i) row-major at q when the track has orientations (after FinishFit)
   std::vector<double> body_rate;    ///< A^T omega at tau_i when the track has body rates (after FinishFit)
-  Eigen::MatrixXd jacobian;   ///< weighted d residual / dq (ResidualCount x parameters) (after FinishFit)
+  Eigen::MatrixXd jacobian;         ///< weighted d residual / dq (ResidualCount x parameters) (after FinishFit)
 };
 
 /// The best fit: the multi-start (or options.guess) on a short window, the window doubled to the
@@ -61,7 +61,7 @@ struct ProfileInterval {
 };
 /// The lambda where the profile 2 (cost(lambda) - cost_min), every other parameter refitted,
 /// reaches `threshold` on each side of the optimum `fit` (standard error `se` sets the first step).
-ProfileInterval ProfileLambda(const TrackData& data, const IdentifyOptions& options, const TrackFit& fit, double se,
-                              double threshold);
+ProfileInterval ProfileLambda(
+    const TrackData& data, const IdentifyOptions& options, const TrackFit& fit, double se, double threshold);
 
 }  // namespace plateball::internal

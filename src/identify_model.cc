@@ -77,7 +77,7 @@ template <int N>
 struct FrameSensitivityRhs {
   using J = ceres::Jet<double, N>;
   static constexpr int kS = 14;
-  using State = std::array<double, kS * (1 + N)>;
+  using State = std::array<double, kS*(1 + N)>;
   J lambda;
   J k[2];
   void operator()(const State& y, State& dy, double /*t*/) const {
@@ -104,8 +104,12 @@ using TrackSensitivityRhs = MotionSensitivityRhs<kOde>;
 
 using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 
-Eigen::Matrix3d Rz(double a) { return (Eigen::Matrix3d() << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1).finished(); }
-Eigen::Matrix3d Ry(double a) { return (Eigen::Matrix3d() << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a)).finished(); }
+Eigen::Matrix3d Rz(double a) {
+  return (Eigen::Matrix3d() << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1).finished();
+}
+Eigen::Matrix3d Ry(double a) {
+  return (Eigen::Matrix3d() << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a)).finished();
+}
 
 /// vee of the skew part of m.
 Eigen::Vector3d VeeSkew(const Eigen::Matrix3d& m) {
@@ -159,8 +163,11 @@ std::vector<std::size_t> FlightBounds(const double* tau, std::size_t n, const st
 
 /// The times of flight f relative to its start: 0 (IntegrateDenseAtTimes starts at the first
 /// time), its samples, then the next impulse (if any).
-std::vector<double> FlightTimes(const double* tau, const std::vector<std::size_t>& first,
-                                const std::vector<double>& impulse_tau, std::size_t f, double start) {
+std::vector<double> FlightTimes(const double* tau,
+                                const std::vector<std::size_t>& first,
+                                const std::vector<double>& impulse_tau,
+                                std::size_t f,
+                                double start) {
   std::vector<double> times{0.0};
   for (std::size_t i = first[f]; i < first[f + 1]; ++i) times.push_back(tau[i] - start);
   if (f < impulse_tau.size()) times.push_back(impulse_tau[f] - start);
@@ -170,40 +177,59 @@ std::vector<double> FlightTimes(const double* tau, const std::vector<std::size_t
 /// One flight of ImpulsiveValues on the state (z, x) (MotionRhs) or (z, x, Phi) (FullRhs): the
 /// samples first .. first + samples - 1 from the flight's times, the state at its end into *end.
 template <typename State, typename Rhs>
-void ValuesOfFlight(const double* q, const Rhs& rhs, const State& y0, const FlightStart& node, const std::vector<double>& times,
-                    std::size_t first, std::size_t samples, double* x_out, const BodyOutput* body, State* end,
+void ValuesOfFlight(const double* q,
+                    const Rhs& rhs,
+                    const State& y0,
+                    const FlightStart& node,
+                    const std::vector<double>& times,
+                    std::size_t first,
+                    std::size_t samples,
+                    double* x_out,
+                    const BodyOutput* body,
+                    State* end,
                     const IntegrationOptions& options) {
-  IntegrateDenseAtTimes(rhs, y0, times.data(), times.size(), FirstStep(q[1]), options, [&](std::size_t j, const State& y) {
-    if (j-- == 0) return;  // the flight's start
-    if (j >= samples) {
-      *end = y;
-      return;
-    }
-    const std::size_t i = first + j;
-    x_out[2 * i] = node.x.x() + y[3];
-    x_out[2 * i + 1] = node.x.y() + y[4];
-    if (body == nullptr) return;
-    if (body->spin != nullptr) body->spin[i] = AxialSpinFromZK(y.data(), node.k.data(), q[0]);
-    if constexpr (std::tuple_size_v<State> == 14) {
-      const Eigen::Matrix3d a = MatrixFromRowMajor(y.data() + 5) * node.a;
-      if (body->orientation != nullptr) RowMajorFromMatrix(a, body->orientation + 9 * i);
-      double w[2];
-      OmegaFromZK(y.data(), node.k.data(), q[0], w);
-      if (body->body_rate != nullptr)
-        Eigen::Map<Eigen::Vector3d>(body->body_rate + 3 * i) = a.transpose() * Eigen::Vector3d(w[0], w[1], 0.0);
-    }
-  });
+  IntegrateDenseAtTimes(
+      rhs, y0, times.data(), times.size(), FirstStep(q[1]), options, [&](std::size_t j, const State& y) {
+        if (j-- == 0) return;  // the flight's start
+        if (j >= samples) {
+          *end = y;
+          return;
+        }
+        const std::size_t i = first + j;
+        x_out[2 * i] = node.x.x() + y[3];
+        x_out[2 * i + 1] = node.x.y() + y[4];
+        if (body == nullptr) return;
+        if (body->spin != nullptr) body->spin[i] = AxialSpinFromZK(y.data(), node.k.data(), q[0]);
+        if constexpr (std::tuple_size_v<State> == 14) {
+          const Eigen::Matrix3d a = MatrixFromRowMajor(y.data() + 5) * node.a;
+          if (body->orientation != nullptr) RowMajorFromMatrix(a, body->orientation + 9 * i);
+          double w[2];
+          OmegaFromZK(y.data(), node.k.data(), q[0], w);
+          if (body->body_rate != nullptr)
+            Eigen::Map<Eigen::Vector3d>(body->body_rate + 3 * i) = a.transpose() * Eigen::Vector3d(w[0], w[1], 0.0);
+        }
+      });
 }
 
 /// The values: flight by flight, the impulse applied to K at each flight's end (z, x and the
 /// frame continuous); the flight starts into *flights. With body->HasFrame() the fundamental
 /// matrix Phi rides along (FullRhs): A(t) = Phi(t) A(flight start).
-void ImpulsiveValues(const double* q, const double* tau, std::size_t n, const std::vector<double>& impulse_tau,
-                     const IntegrationOptions& options, double* x_out, std::vector<FlightStart>* flights, const BodyOutput* body) {
+void ImpulsiveValues(const double* q,
+                     const double* tau,
+                     std::size_t n,
+                     const std::vector<double>& impulse_tau,
+                     const IntegrationOptions& options,
+                     double* x_out,
+                     std::vector<FlightStart>* flights,
+                     const BodyOutput* body) {
   const std::array<double, 5> s = StartOf(q);
   const bool frame = body != nullptr && body->HasFrame();
   const std::size_t impulse0 = kTrackParameters + (frame ? 1 : 0);  // the first delta psi
-  FlightStart node{0.0, {s[0], s[1], s[2]}, {s[3], s[4]}, {q[5], q[6]}, frame ? StartFrame(q[2], q[3], q[7]) : Eigen::Matrix3d::Identity()};
+  FlightStart node{0.0,
+                   {s[0], s[1], s[2]},
+                   {s[3], s[4]},
+                   {q[5], q[6]},
+                   frame ? StartFrame(q[2], q[3], q[7]) : Eigen::Matrix3d::Identity()};
   const std::vector<std::size_t> first = FlightBounds(tau, n, impulse_tau);
   flights->clear();
   for (std::size_t f = 0; f <= impulse_tau.size(); ++f) {
@@ -214,15 +240,33 @@ void ImpulsiveValues(const double* q, const double* tau, std::size_t n, const st
     next.tau = f < impulse_tau.size() ? impulse_tau[f] : 0.0;
     if (frame) {
       FullState end{};
-      ValuesOfFlight(q, FullRhs{q[0], {node.k.x(), node.k.y()}}, InitialFullState(node.z), node, times, first[f], samples, x_out,
-                     body, &end, options);
+      ValuesOfFlight(q,
+                     FullRhs{q[0], {node.k.x(), node.k.y()}},
+                     InitialFullState(node.z),
+                     node,
+                     times,
+                     first[f],
+                     samples,
+                     x_out,
+                     body,
+                     &end,
+                     options);
       next.z = {end[0], end[1], end[2]};
       next.x = node.x + Eigen::Vector2d(end[3], end[4]);
       next.a = MatrixFromRowMajor(end.data() + 5) * node.a;
     } else {
       MotionState end{};
-      ValuesOfFlight(q, MotionRhs{q[0], {node.k.x(), node.k.y()}}, MotionState{node.z.x(), node.z.y(), node.z.z(), 0.0, 0.0}, node,
-                     times, first[f], samples, x_out, body, &end, options);
+      ValuesOfFlight(q,
+                     MotionRhs{q[0], {node.k.x(), node.k.y()}},
+                     MotionState{node.z.x(), node.z.y(), node.z.z(), 0.0, 0.0},
+                     node,
+                     times,
+                     first[f],
+                     samples,
+                     x_out,
+                     body,
+                     &end,
+                     options);
       next.z = {end[0], end[1], end[2]};
       next.x = node.x + Eigen::Vector2d(end[3], end[4]);
     }
@@ -233,7 +277,10 @@ void ImpulsiveValues(const double* q, const double* tau, std::size_t n, const st
 }
 
 /// d K_after / d(z (3), K_before (2), s, lambda) of the impulse (ImpulseMomentum on Jets).
-Eigen::Matrix<double, 2, 7> ImpulseDerivatives(const Eigen::Vector3d& z, const Eigen::Vector2d& k, double s, double lambda) {
+Eigen::Matrix<double, 2, 7> ImpulseDerivatives(const Eigen::Vector3d& z,
+                                               const Eigen::Vector2d& k,
+                                               double s,
+                                               double lambda) {
   using J = ceres::Jet<double, 7>;
   const J zj[3] = {J(z.x(), 0), J(z.y(), 1), J(z.z(), 2)};
   const J kj[2] = {J(k.x(), 3), J(k.y(), 4)};
@@ -249,8 +296,13 @@ Eigen::Matrix<double, 2, 7> ImpulseDerivatives(const Eigen::Vector3d& z, const E
 /// flight's variational equations give the derivatives of its samples and its end with respect
 /// to its start (z, K) and lambda: the local directions, mapped to q by L (6 x P).
 template <bool Frame>
-void ImpulsiveJacobian(const double* q, const double* tau, std::size_t n, const std::vector<double>& impulse_tau,
-                       const IntegrationOptions& options, const std::vector<FlightStart>& flights, double* jacobian,
+void ImpulsiveJacobian(const double* q,
+                       const double* tau,
+                       std::size_t n,
+                       const std::vector<double>& impulse_tau,
+                       const IntegrationOptions& options,
+                       const std::vector<FlightStart>& flights,
+                       double* jacobian,
                        const BodyOutput* body) {
   using Rhs = SensitivityRhs<6, Frame>;
   constexpr int kS = Rhs::kS;
@@ -291,47 +343,57 @@ void ImpulsiveJacobian(const double* q, const double* tau, std::size_t n, const 
     const std::size_t samples = first[f + 1] - first[f];
     Eigen::Matrix<double, kS, 6> end = Eigen::Matrix<double, kS, 6>::Zero();  // d(z, x[, Phi])_end / d local
     RowMajor3 phi_end = RowMajor3::Identity();
-    IntegrateDenseAtTimes(rhs, y0, times.data(), times.size(), FirstStep(q[1]), options, [&](std::size_t j, const typename Rhs::State& y) {
-      if (j-- == 0) return;  // the flight's start
-      Eigen::Matrix<double, kS, 6> g;
-      for (int i = 0; i < kS; ++i)
-        for (int k = 0; k < 6; ++k) g(i, k) = y[static_cast<std::size_t>(kS + 6 * i + k)];
-      if (j >= samples) {
-        end = g;
-        if constexpr (Frame) phi_end = MatrixFromRowMajor(y.data() + 5);
-        return;
-      }
-      const auto i = static_cast<Eigen::Index>(first[f] + j);
-      jac.middleRows(2 * i, 2) = g.middleRows(3, 2) * local + d.bottomRows(2);
-      // omega and v0 on Jets of the local directions: z from the state, K and lambda the directions 3-5.
-      typename Rhs::J z[3];
-      for (int c = 0; c < 3; ++c) {
-        z[c].a = y[static_cast<std::size_t>(c)];
-        z[c].v = g.row(c).transpose();
-      }
-      if (spin_jac.rows() > 0) spin_jac.row(i) = AxialSpinFromZK(z, rhs.k, rhs.lambda).v.transpose() * local;
-      if constexpr (Frame) {
-        // A = Phi A_start: dA/dq_c = dPhi_c A_start + Phi dA_start_c.
-        const Eigen::Matrix3d phi = MatrixFromRowMajor(y.data() + 5), a = phi * node.a;
-        const Eigen::Matrix<double, 9, Eigen::Dynamic> dphi = g.template bottomRows<9>() * local;
-        typename Rhs::J w[2];
-        OmegaFromZK(z, rhs.k, rhs.lambda, w);
-        const Eigen::Vector3d omega(w[0].a, w[1].a, 0.0);
-        for (Eigen::Index c = 0; c < p; ++c) {
-          RowMajor3 dp;
-          for (int e = 0; e < 9; ++e) dp.data()[e] = dphi(e, c);
-          const Eigen::Matrix3d dac = dp * node.a + phi * EntryColumn(da, c);
-          if (frame_jac.rows() > 0) frame_jac.block(3 * i, c, 3, 1) = VeeSkew(a.transpose() * dac);
-          if (rate_jac.rows() > 0) {
-            const Eigen::Vector3d dw(w[0].v.dot(local.col(c)), w[1].v.dot(local.col(c)), 0.0);
-            rate_jac.block(3 * i, c, 3, 1) = dac.transpose() * omega + a.transpose() * dw;
-          }
-        }
-      }
-    });
+    IntegrateDenseAtTimes(rhs,
+                          y0,
+                          times.data(),
+                          times.size(),
+                          FirstStep(q[1]),
+                          options,
+                          [&](std::size_t j, const typename Rhs::State& y) {
+                            if (j-- == 0) return;  // the flight's start
+                            Eigen::Matrix<double, kS, 6> g;
+                            for (int i = 0; i < kS; ++i)
+                              for (int k = 0; k < 6; ++k) g(i, k) = y[static_cast<std::size_t>(kS + 6 * i + k)];
+                            if (j >= samples) {
+                              end = g;
+                              if constexpr (Frame) phi_end = MatrixFromRowMajor(y.data() + 5);
+                              return;
+                            }
+                            const auto i = static_cast<Eigen::Index>(first[f] + j);
+                            jac.middleRows(2 * i, 2) = g.middleRows(3, 2) * local + d.bottomRows(2);
+                            // omega and v0 on Jets of the local directions: z from the state, K and lambda the
+                            // directions 3-5.
+                            typename Rhs::J z[3];
+                            for (int c = 0; c < 3; ++c) {
+                              z[c].a = y[static_cast<std::size_t>(c)];
+                              z[c].v = g.row(c).transpose();
+                            }
+                            if (spin_jac.rows() > 0)
+                              spin_jac.row(i) = AxialSpinFromZK(z, rhs.k, rhs.lambda).v.transpose() * local;
+                            if constexpr (Frame) {
+                              // A = Phi A_start: dA/dq_c = dPhi_c A_start + Phi dA_start_c.
+                              const Eigen::Matrix3d phi = MatrixFromRowMajor(y.data() + 5), a = phi * node.a;
+                              const Eigen::Matrix<double, 9, Eigen::Dynamic> dphi = g.template bottomRows<9>() * local;
+                              typename Rhs::J w[2];
+                              OmegaFromZK(z, rhs.k, rhs.lambda, w);
+                              const Eigen::Vector3d omega(w[0].a, w[1].a, 0.0);
+                              for (Eigen::Index c = 0; c < p; ++c) {
+                                RowMajor3 dp;
+                                for (int e = 0; e < 9; ++e) dp.data()[e] = dphi(e, c);
+                                const Eigen::Matrix3d dac = dp * node.a + phi * EntryColumn(da, c);
+                                if (frame_jac.rows() > 0)
+                                  frame_jac.block(3 * i, c, 3, 1) = VeeSkew(a.transpose() * dac);
+                                if (rate_jac.rows() > 0) {
+                                  const Eigen::Vector3d dw(w[0].v.dot(local.col(c)), w[1].v.dot(local.col(c)), 0.0);
+                                  rate_jac.block(3 * i, c, 3, 1) = dac.transpose() * omega + a.transpose() * dw;
+                                }
+                              }
+                            }
+                          });
     if (f + 1 == flights.size()) break;
     const FlightStart& next = flights[f + 1];
-    const Eigen::Matrix<double, 2, 7> gi = ImpulseDerivatives(next.z, node.k, q[kImpulse0 + static_cast<Eigen::Index>(f)], q[0]);
+    const Eigen::Matrix<double, 2, 7> gi =
+        ImpulseDerivatives(next.z, node.k, q[kImpulse0 + static_cast<Eigen::Index>(f)], q[0]);
     Eigen::MatrixXd dn(7, p);
     dn.topRows(3) = end.topRows(3) * local;
     dn.middleRows(3, 2) = gi.leftCols(3) * dn.topRows(3) + gi.middleCols(3, 2) * d.middleRows(3, 2);
@@ -355,8 +417,13 @@ void ImpulsiveJacobian(const double* q, const double* tau, std::size_t n, const 
 
 }  // namespace
 
-void EvaluateTrack(const double* q, const double* tau, std::size_t n, const IntegrationOptions& options,
-                   double* x_out, double* jacobian, const IntegrationOptions* jacobian_options) {
+void EvaluateTrack(const double* q,
+                   const double* tau,
+                   std::size_t n,
+                   const IntegrationOptions& options,
+                   double* x_out,
+                   double* jacobian,
+                   const IntegrationOptions* jacobian_options) {
   ValuesOnly(q, tau, n, options, x_out);
   if (jacobian == nullptr) return;
   const std::array<double, 5> s = StartOf(q);
@@ -373,20 +440,31 @@ void EvaluateTrack(const double* q, const double* tau, std::size_t n, const Inte
     y0[i] = s[i];
     for (int j = 0; j < kOde; ++j) y0[5 + kOde * i + j] = d[i][j];
   }
-  IntegrateDenseAtTimes(rhs, y0, tau, n, FirstStep(q[1]), jacobian_options != nullptr ? *jacobian_options : options,
+  IntegrateDenseAtTimes(rhs,
+                        y0,
+                        tau,
+                        n,
+                        FirstStep(q[1]),
+                        jacobian_options != nullptr ? *jacobian_options : options,
                         [&](std::size_t i, const TrackSensitivityRhs::State& y) {
-    for (int c = 0; c < 2; ++c) {
-      double* row = jacobian + (2 * i + c) * kTrackParameters;
-      for (int j = 0; j < kOde; ++j) row[j] = y[5 + kOde * (3 + c) + j];
-      row[5] = c == 0 ? 1.0 : 0.0;
-      row[6] = c == 1 ? 1.0 : 0.0;
-    }
-  });
+                          for (int c = 0; c < 2; ++c) {
+                            double* row = jacobian + (2 * i + c) * kTrackParameters;
+                            for (int j = 0; j < kOde; ++j) row[j] = y[5 + kOde * (3 + c) + j];
+                            row[5] = c == 0 ? 1.0 : 0.0;
+                            row[6] = c == 1 ? 1.0 : 0.0;
+                          }
+                        });
 }
 
-void EvaluateImpulsiveTrack(const double* q, const double* tau, std::size_t n, const std::vector<double>& impulse_tau,
-                            const IntegrationOptions& options, double* x_out, double* jacobian,
-                            const IntegrationOptions* jacobian_options, std::vector<FlightStart>* flights,
+void EvaluateImpulsiveTrack(const double* q,
+                            const double* tau,
+                            std::size_t n,
+                            const std::vector<double>& impulse_tau,
+                            const IntegrationOptions& options,
+                            double* x_out,
+                            double* jacobian,
+                            const IntegrationOptions* jacobian_options,
+                            std::vector<FlightStart>* flights,
                             const BodyOutput* body) {
   if (impulse_tau.empty() && flights == nullptr && body == nullptr) {
     EvaluateTrack(q, tau, n, options, x_out, jacobian, jacobian_options);

@@ -19,8 +19,13 @@ inline constexpr int kTrackParameters = 7;  ///< (lambda, mu, theta, phi, psi, x
 /// matrix jacobian, integrated with jacobian_options when given (the derivatives need fewer
 /// digits than the values: a looser tolerance only slows Gauss-Newton down, it does not move the
 /// optimum). Throws std::runtime_error (or StepLimitError) when an integration fails.
-void EvaluateTrack(const double* q, const double* tau, std::size_t n, const IntegrationOptions& options,
-                   double* x_out, double* jacobian, const IntegrationOptions* jacobian_options = nullptr);
+void EvaluateTrack(const double* q,
+                   const double* tau,
+                   std::size_t n,
+                   const IntegrationOptions& options,
+                   double* x_out,
+                   double* jacobian,
+                   const IntegrationOptions* jacobian_options = nullptr);
 
 /// The ball just after impulse k (k = 0: at the track's first time): axis z, conserved vector K
 /// of the flight that starts there, contact point x, and the flight's start time tau.
@@ -40,8 +45,8 @@ struct FlightStart {
 /// - the body angular velocity A^T omega (an IMU's three rates), 3 per sample, and (3n x P) its
 ///   derivatives.
 /// P = 7 + m, plus one when orientation or body_rate is wanted: then q = (lambda, mu, theta, phi,
-/// psi, x0, y0, chi, s_0, .., s_{m-1}) with the start frame A(0) = Rz(phi) Ry(theta) Rz(chi) (its third column the axis of (theta, phi), eqs. (12)-(14);
-/// chi turns the frame about the axis, which the contact track does not see).
+/// psi, x0, y0, chi, s_0, .., s_{m-1}) with the start frame A(0) = Rz(phi) Ry(theta) Rz(chi) (its third column the axis
+/// of (theta, phi), eqs. (12)-(14); chi turns the frame about the axis, which the contact track does not see).
 struct BodyOutput {
   double* spin = nullptr;
   double* spin_jacobian = nullptr;
@@ -66,9 +71,15 @@ Eigen::Matrix3d StartFrame(double theta, double phi, double chi);
 /// flights (optional) receives the m + 1 flight starts, body (optional) the axial spin, the
 /// orientation and the body rates (BodyOutput; the frame is continuous across the impulses). With
 /// m = 0 and neither, this is EvaluateTrack.
-void EvaluateImpulsiveTrack(const double* q, const double* tau, std::size_t n, const std::vector<double>& impulse_tau,
-                            const IntegrationOptions& options, double* x_out, double* jacobian,
+void EvaluateImpulsiveTrack(const double* q,
+                            const double* tau,
+                            std::size_t n,
+                            const std::vector<double>& impulse_tau,
+                            const IntegrationOptions& options,
+                            double* x_out,
+                            double* jacobian,
                             const IntegrationOptions* jacobian_options = nullptr,
-                            std::vector<FlightStart>* flights = nullptr, const BodyOutput* body = nullptr);
+                            std::vector<FlightStart>* flights = nullptr,
+                            const BodyOutput* body = nullptr);
 
 }  // namespace plateball::internal

@@ -8,8 +8,12 @@
 
 namespace plateball {
 namespace internal {
-Impulse ImpulseFromPhases(const AngleState& before, double mu, const AngleState& after, double mu_after,
-                          const PhaseVariables& p0, const PhaseVariables& p1) {
+Impulse ImpulseFromPhases(const AngleState& before,
+                          double mu,
+                          const AngleState& after,
+                          double mu_after,
+                          const PhaseVariables& p0,
+                          const PhaseVariables& p1) {
   Impulse imp;
   imp.before = before;
   imp.after = after;
@@ -18,7 +22,7 @@ Impulse ImpulseFromPhases(const AngleState& before, double mu, const AngleState&
   imp.delta_u = p1.u - p0.u;
   imp.delta_v0 = p1.v0 - p0.v0;
   imp.delta_omega = imp.delta_v0 * p0.z - imp.delta_u;  // z is unchanged by the impulse
-  imp.delta_omega.z() = 0.0;                             // exactly 0 by (8)
+  imp.delta_omega.z() = 0.0;                            // exactly 0 by (8)
   imp.plate_velocity_change = 2.0 * imp.delta_omega.cross(Eigen::Vector3d::UnitZ());
   imp.state_before = {p0.z, p0.omega};
   imp.state_after = {p1.z, p1.omega};
@@ -28,8 +32,8 @@ Impulse ImpulseFromPhases(const AngleState& before, double mu, const AngleState&
 
 namespace {
 Impulse Make(const AngleState& before, double mu, const AngleState& after, double mu_after, const BallModel& model) {
-  return internal::ImpulseFromPhases(before, mu, after, mu_after, PhaseFromAngles(before, mu, model),
-                                     PhaseFromAngles(after, mu_after, model));
+  return internal::ImpulseFromPhases(
+      before, mu, after, mu_after, PhaseFromAngles(before, mu, model), PhaseFromAngles(after, mu_after, model));
 }
 }  // namespace
 

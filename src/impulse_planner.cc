@@ -31,10 +31,14 @@ Eigen::Matrix3d Reorthonormalize(const Eigen::Matrix3d& r) {
 
 std::string ToString(PlanStatus status) {
   switch (status) {
-    case PlanStatus::kNotRun: return "not_run";
-    case PlanStatus::kSuccess: return "success";
-    case PlanStatus::kSegmentBeyondLocalRadius: return "segment_beyond_local_radius";
-    case PlanStatus::kIntegrationFailure: return "integration_failure";
+    case PlanStatus::kNotRun:
+      return "not_run";
+    case PlanStatus::kSuccess:
+      return "success";
+    case PlanStatus::kSegmentBeyondLocalRadius:
+      return "segment_beyond_local_radius";
+    case PlanStatus::kIntegrationFailure:
+      return "integration_failure";
   }
   return "unknown";
 }
@@ -56,8 +60,8 @@ std::string PlanSummary::BriefReport() const {
   os.precision(4);
   os << "Plan: " << ToString(status) << ", n = " << segments << " (" << pieces << " piece" << (pieces == 1 ? "" : "s")
      << "), measured error " << measured_error << " <= bound " << bounds.a_posteriori << " (Theorem 2.6 "
-     << bounds.theorem_2_6 << "), polyline error " << polyline_error << ", max pass miss " << max_pass_miss
-     << ", time " << total_time;
+     << bounds.theorem_2_6 << "), polyline error " << polyline_error << ", max pass miss " << max_pass_miss << ", time "
+     << total_time;
   if (!message.empty()) os << " (" << message << ")";
   return os.str();
 }
@@ -74,27 +78,33 @@ struct PlanInput {
 
 // The public boundary, checked once: options, mu, angles (reduced mod 2 pi), the step count of
 // the partition (MakePartition validated each piece's points), the energy-change indices and factors.
-PlanInput ValidatePlan(const AngleState& initial, double mu, const Path& path,
+PlanInput ValidatePlan(const AngleState& initial,
+                       double mu,
+                       const Path& path,
                        const std::vector<std::vector<double>>& partition,
-                       const std::vector<EnergyChange>& energy_changes, const PlanOptions& options) {
+                       const std::vector<EnergyChange>& energy_changes,
+                       const PlanOptions& options) {
   internal::ThrowIfInvalid(options.Validate());
   internal::RequireEnergy("mu", mu);
   PlanInput in;
   in.initial = internal::ReduceAngles("initial", initial);
   if (static_cast<int>(partition.size()) != path.PieceCount())
-    internal::ThrowInvalid("partition (piece count)", static_cast<double>(partition.size()),
+    internal::ThrowInvalid("partition (piece count)",
+                           static_cast<double>(partition.size()),
                            "must equal the number of path pieces " + std::to_string(path.PieceCount()));
   for (int i = 0; i < path.PieceCount(); ++i) {  // each piece's partition validated by MakePartition
     in.n_total += static_cast<int>(partition[i].size()) - 1;
     if (in.n_total > internal::kMaxPartitionSteps)  // README, "Limits"
-      internal::ThrowInvalid("partition (steps)", in.n_total, "must be <= " + std::to_string(internal::kMaxPartitionSteps));
+      internal::ThrowInvalid(
+          "partition (steps)", in.n_total, "must be <= " + std::to_string(internal::kMaxPartitionSteps));
   }
   in.factors.resize(static_cast<std::size_t>(in.n_total));
   for (std::size_t i = 0; i < energy_changes.size(); ++i) {
     const std::string f = "energy_changes[" + std::to_string(i) + "]";
     const EnergyChange& e = energy_changes[i];
     if (e.index < 0 || e.index >= in.n_total)
-      internal::ThrowInvalid(f + ".index", e.index, "must be a partition index in [0, " + std::to_string(in.n_total) + ")");
+      internal::ThrowInvalid(
+          f + ".index", e.index, "must be a partition index in [0, " + std::to_string(in.n_total) + ")");
     internal::RequirePositive(f + ".factor", e.factor);
     in.factors[static_cast<std::size_t>(e.index)].push_back(e.factor);
   }
@@ -111,10 +121,10 @@ struct PlanCursor {
   Eigen::Vector2d x = Eigen::Vector2d::Zero();
   double time = 0.0;
   Eigen::Matrix3d a_ref, a_poly, a_imp;
-  internal::RowMajor3x3 ref{};  // A(tau) integrated along the current piece
-  double ref_dt = 0.0;          // its step size, carried from segment to segment
-  internal::ArcStepHints arc_steps;  // the free arcs' integration steps, carried from arc to arc
-  internal::JoinCarry join_carry{false, 0.0};  // the joins' step; no arrival angles (FlyArc's)
+  internal::RowMajor3x3 ref{};                  // A(tau) integrated along the current piece
+  double ref_dt = 0.0;                          // its step size, carried from segment to segment
+  internal::ArcStepHints arc_steps;             // the free arcs' integration steps, carried from arc to arc
+  internal::JoinCarry join_carry{false, 0.0};   // the joins' step; no arrival angles (FlyArc's)
   Eigen::Vector2d p = Eigen::Vector2d::Zero();  // p(tau_k): the last segment's end on this piece
   // On a circle piece rolled in closed form: its radius |p'| and Rz(tau_k) (the last segment's
   // Rz(tau_k+1)), each computed once instead of once per segment.
@@ -132,8 +142,8 @@ struct SegmentGrid {
 
 // "segment g (piece p, k = k): " and the like, for the failure messages.
 std::string SegmentName(const PlanStep& s) {
-  return "segment " + std::to_string(s.global_index) + " (piece " + std::to_string(s.piece) + ", k = " +
-         std::to_string(s.index) + ")";
+  return "segment " + std::to_string(s.global_index) + " (piece " + std::to_string(s.piece) +
+         ", k = " + std::to_string(s.index) + ")";
 }
 
 // Energy-changing impulses at p(tau_k) (the paper's remark): scale |omega|, keep its direction
@@ -151,8 +161,8 @@ void ApplyEnergyChanges(const BallModel& model, const std::vector<double>& facto
 
 // The impulse at p(tau_k) and the free arc with its orientation, integrated directly over
 // [0, t_k]. Returns the arc; the step records the join and the arrival.
-internal::ArcEnd FlyArc(const BallModel& model, const JoinSummary& j, const PlanOptions& options, PlanCursor* cur,
-                        PlanStep* s) {
+internal::ArcEnd FlyArc(
+    const BallModel& model, const JoinSummary& j, const PlanOptions& options, PlanCursor* cur, PlanStep* s) {
   s->delta_psi = j.delta_psi;
   s->duration = j.t;
   s->impulse = j.impulse;
@@ -241,8 +251,12 @@ void AdvanceReferences(const SmoothCurve& curve, const PlanOptions& options, Pla
 }
 
 // The measured derivative maxima of the segment and its terms of the bounds.
-void AddBounds(const SmoothCurve& curve, const internal::ArcEnd& arc, const JoinSummary& j, const PlanOptions& options,
-               PlanStep* s, ErrorBounds* b) {
+void AddBounds(const SmoothCurve& curve,
+               const internal::ArcEnd& arc,
+               const JoinSummary& j,
+               const PlanOptions& options,
+               PlanStep* s,
+               ErrorBounds* b) {
   SegmentMeasures m;
   m.h = s->tau_end - s->tau_begin;
   m.chord = (s->p_end - s->p_begin).norm();
@@ -259,11 +273,22 @@ void AddBounds(const SmoothCurve& curve, const internal::ArcEnd& arc, const Join
 
 // The flight time from the cursor's state (after the energy changes) to p(tau): the join's t, NaN
 // when no join connects them. The trial joins start from a copy of the cursor's join carry.
-double FlightTimeTo(const BallModel& model, const SmoothCurve& curve, const PlanOptions& options, const PlanCursor& cur,
-                    const PlanStep& s, double tau) {
+double FlightTimeTo(const BallModel& model,
+                    const SmoothCurve& curve,
+                    const PlanOptions& options,
+                    const PlanCursor& cur,
+                    const PlanStep& s,
+                    double tau) {
   internal::JoinCarry carry = cur.join_carry;
-  const JoinSummary j = internal::ConnectPoints(model, s.angles_before, cur.mu, cur.x, curve.Value(tau), options.join,
-                                                options.reach_fallback ? &options.reach : nullptr, nullptr, &carry);
+  const JoinSummary j = internal::ConnectPoints(model,
+                                                s.angles_before,
+                                                cur.mu,
+                                                cur.x,
+                                                curve.Value(tau),
+                                                options.join,
+                                                options.reach_fallback ? &options.reach : nullptr,
+                                                nullptr,
+                                                &carry);
   return j.IsSolutionUsable() ? j.t : std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -280,15 +305,23 @@ struct GridSlide {
 // t(tau) = D is bracketed between tau_begin (t = 0) and the unslid end or tau_next, and found by
 // regula falsi with the Illinois modification, to rounding of tau or of t. Empty (with *why) when
 // the join fails or D is beyond the next partition point.
-std::optional<GridSlide> SlideOntoGrid(const BallModel& model, const SmoothCurve& curve, const PlanOptions& options,
-                                       const internal::PlanGrid& grid, double tau_next, const PlanCursor& cur,
-                                       const PlanStep& s, std::string* why) {
+std::optional<GridSlide> SlideOntoGrid(const BallModel& model,
+                                       const SmoothCurve& curve,
+                                       const PlanOptions& options,
+                                       const internal::PlanGrid& grid,
+                                       double tau_next,
+                                       const PlanCursor& cur,
+                                       const PlanStep& s,
+                                       std::string* why) {
   const auto t_of = [&](double tau) { return FlightTimeTo(model, curve, options, cur, s, tau); };
   const double t_nominal = t_of(s.tau_end);
   if (std::isnan(t_nominal)) return *why = "no join reaches the unslid point", std::nullopt;
   const double start = cur.time;
-  long long m = std::max(std::llround((start + t_nominal) / grid.tick), static_cast<long long>(std::floor(start / grid.tick)));
-  while (!(static_cast<double>(m) * grid.tick - start > 0.0 && static_cast<double>(m) * grid.tick - start >= grid.min_interval)) ++m;
+  long long m =
+      std::max(std::llround((start + t_nominal) / grid.tick), static_cast<long long>(std::floor(start / grid.tick)));
+  while (!(static_cast<double>(m) * grid.tick - start > 0.0 &&
+           static_cast<double>(m) * grid.tick - start >= grid.min_interval))
+    ++m;
   const double d = static_cast<double>(m) * grid.tick - start;
   double a = s.tau_begin, fa = -d, b = s.tau_end, fb = t_nominal - d;
   if (fb < 0) {
@@ -329,8 +362,14 @@ std::optional<GridSlide> SlideOntoGrid(const BallModel& model, const SmoothCurve
 
 // One segment k of a piece: energy changes, the join to p(tau_k+1), the arc, the references and
 // the bounds. False (with out->status and out->message set) when the plan cannot go on.
-bool PlanSegment(const BallModel& model, const SmoothCurve& curve, const std::vector<double>& factors,
-                 const PlanOptions& options, const SegmentGrid& grid, PlanCursor* cur, PlanStep* s, PlanSummary* out) {
+bool PlanSegment(const BallModel& model,
+                 const SmoothCurve& curve,
+                 const std::vector<double>& factors,
+                 const PlanOptions& options,
+                 const SegmentGrid& grid,
+                 PlanCursor* cur,
+                 PlanStep* s,
+                 PlanSummary* out) {
   s->p_begin = cur->p;
   s->t_impulse = cur->time;
   s->state_before = cur->state;
@@ -350,9 +389,15 @@ bool PlanSegment(const BallModel& model, const SmoothCurve& curve, const std::ve
     }
   }
   s->p_end = cur->p = curve.Value(s->tau_end);
-  JoinSummary j = internal::ConnectPoints(model, s->angles_before, cur->mu, cur->x, s->p_end, options.join,
-                                                options.reach_fallback ? &options.reach : nullptr,
-                                                &s->reached_globally, &cur->join_carry);
+  JoinSummary j = internal::ConnectPoints(model,
+                                          s->angles_before,
+                                          cur->mu,
+                                          cur->x,
+                                          s->p_end,
+                                          options.join,
+                                          options.reach_fallback ? &options.reach : nullptr,
+                                          &s->reached_globally,
+                                          &cur->join_carry);
   s->join_status = j.status;
   s->join_residual = j.residual;
   s->join_iterations = j.iterations;
@@ -402,10 +447,16 @@ void FinishPlan(const PlanCursor& cur, int n_total, PlanSummary* out) {
 
 namespace internal {
 
-PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
-                            const Path& path, const std::vector<std::vector<double>>& partition,
-                            const std::vector<EnergyChange>& energy_changes, const PlanOptions& options,
-                            const PlanGrid& grid, PlanGridReport* report) {
+PlanSummary PlanPartitioned(const BallModel& model,
+                            const AngleState& initial,
+                            double mu,
+                            const Eigen::Matrix3d& A0,
+                            const Path& path,
+                            const std::vector<std::vector<double>>& partition,
+                            const std::vector<EnergyChange>& energy_changes,
+                            const PlanOptions& options,
+                            const PlanGrid& grid,
+                            PlanGridReport* report) {
   PlanGridReport unused;
   if (!report) report = &unused;
   *report = {};
@@ -455,8 +506,8 @@ PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, d
 
 PlanSummary PlanImpulses(const PlanProblem& problem, const PlanOptions& options) {
   const std::vector<std::vector<double>> partition = MakePartition(problem.path, problem.partition, "partition");
-  return internal::PlanPartitioned(problem.model, problem.initial, problem.mu, problem.A0, problem.path, partition,
-                         problem.energy_changes, options);
+  return internal::PlanPartitioned(
+      problem.model, problem.initial, problem.mu, problem.A0, problem.path, partition, problem.energy_changes, options);
 }
 
 }  // namespace plateball

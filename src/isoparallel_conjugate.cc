@@ -29,7 +29,8 @@ constexpr int kMinGrid = 96;
 constexpr int kRootIterations = 60;
 constexpr double kTimeTolerance = 1e-12;  // relative width of the root's bracket
 constexpr double kFirstStep = 0.01;
-constexpr long kMaxSteps = 1'000'000;     // per call; a stalled integration is an error, never a hang       // the first trial step (the controller adapts it)
+constexpr long kMaxSteps = 1'000'000;  // per call; a stalled integration is an error, never a hang       // the first
+                                       // trial step (the controller adapts it)
 
 struct Rhs {
   Eigen::Vector2d w;
@@ -114,8 +115,15 @@ double Determinant(ConjugateProblem problem, const State& y) {
 // The zero of f = sign det in [lo, hi] (f(lo) > 0 >= f(hi)), y the state at lo: Illinois
 // regula falsi (the secant of the bracket, the retained end's value halved when one end stays
 // twice), each trial integrated from the bracket's lower end.
-double Refine(ConjugateProblem problem, const Rhs& rhs, State y, double lo, double f_lo, double hi, double f_hi,
-              double sign, double step) {
+double Refine(ConjugateProblem problem,
+              const Rhs& rhs,
+              State y,
+              double lo,
+              double f_lo,
+              double hi,
+              double f_hi,
+              double sign,
+              double step) {
   int side = 0;
   for (int k = 0; k < kRootIterations && hi - lo > kTimeTolerance * hi; ++k) {
     double mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);

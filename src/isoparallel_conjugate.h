@@ -38,8 +38,8 @@ struct ExtremalData {
 ExtremalData ExtremalDataOf(const ElasticaParameters& parameters);
 
 enum class ConjugateProblem {
-  kPlateBall,        ///< length-minimising rolling: (x, y, R) from (W, g0, kappa0, s), 5 x 5
-  kPlanarElastica,   ///< Euler's elastica: (x, y, g) from (W, kappa0) at fixed s, 3 x 3
+  kPlateBall,       ///< length-minimising rolling: (x, y, R) from (W, g0, kappa0, s), 5 x 5
+  kPlanarElastica,  ///< Euler's elastica: (x, y, g) from (W, kappa0) at fixed s, 3 x 3
 };
 
 /// det of the Jacobian at s with unit columns (sign and zeros of the exponential map's Jacobian).

@@ -88,8 +88,8 @@ std::vector<std::pair<double, double>> AllowedIntervals(PendulumRegime regime, d
     // L - max_length changes sign on [a, b] unless the cap lies beyond the far end's length.
     if (!(excess(a) * excess(b) < 0)) return excess(a) <= 0 ? b : a;
     std::uintmax_t iters = 200;
-    const auto r = boost::math::tools::toms748_solve(excess, a, b, boost::math::tools::eps_tolerance<double>(50),
-                                                      iters);
+    const auto r =
+        boost::math::tools::toms748_solve(excess, a, b, boost::math::tools::eps_tolerance<double>(50), iters);
     return 0.5 * (r.first + r.second);
   };
   std::vector<std::pair<double, double>> out;
@@ -97,7 +97,8 @@ std::vector<std::pair<double, double>> AllowedIntervals(PendulumRegime regime, d
     // Figure-eight modulus: rho(k*) = 0, i.e. 2 E(k) = K(k).
     auto rho = [](double xi) { return ShapeOf(PendulumRegime::kOscillating, std::tanh(xi)).rho; };
     std::uintmax_t iters = 200;
-    const auto r8 = boost::math::tools::toms748_solve(rho, 0.5, 3.0, boost::math::tools::eps_tolerance<double>(50), iters);
+    const auto r8 =
+        boost::math::tools::toms748_solve(rho, 0.5, 3.0, boost::math::tools::eps_tolerance<double>(50), iters);
     const double xi8 = 0.5 * (r8.first + r8.second);
     if (excess(0.0) < 0) out.push_back({0.0, solve(0.0, xi8 * (1 - 1e-12))});
     if (excess(kXiMax) < 0) out.push_back({solve(xi8 * (1 + 1e-12), kXiMax), kXiMax});
@@ -121,7 +122,8 @@ Point EvaluatePhi(PendulumRegime regime, double chord, int m, double xi, bool ac
   // Steps short in arc length and in the Jacobi argument (near the separatrix the turning
   // concentrates in a few units of u out of a period of 4K or 2K).
   const double max_step = accurate ? kAccurateMaxStep : kCoarseMaxStep;
-  const int steps = std::max({accurate ? kAccurateSteps : kCoarseSteps, static_cast<int>(std::ceil(e.Period() / max_step)),
+  const int steps = std::max({accurate ? kAccurateSteps : kCoarseSteps,
+                              static_cast<int>(std::ceil(e.Period() / max_step)),
                               static_cast<int>(std::ceil(shape.T1 / (accurate ? kAccurateMaxU : kCoarseMaxU)))});
   const Eigen::Matrix3d p = internal::PeriodRolling(e, steps);
   const Eigen::Vector3d v = ElasticaCostate(e, 0.0);
@@ -215,8 +217,8 @@ class PeriodScan {
       double xi = flo == 0.0 ? a.xi : b.xi;
       if (flo != 0.0 && fhi != 0.0) {
         std::uintmax_t iters = 60;
-        const auto r = boost::math::tools::toms748_solve(f, a.xi, b.xi, flo, fhi,
-                                                          boost::math::tools::eps_tolerance<double>(30), iters);
+        const auto r = boost::math::tools::toms748_solve(
+            f, a.xi, b.xi, flo, fhi, boost::math::tools::eps_tolerance<double>(30), iters);
         xi = 0.5 * (r.first + r.second);
       }
       roots.push_back({regime_, m_, static_cast<int>(j), xi, a.xi, b.xi, LengthOf(regime_, std::tanh(xi), chord_)});
@@ -280,12 +282,15 @@ std::string FamilySearchOptions::Validate() const {
   if (!(std::isfinite(max_length) && max_length > 0))
     return InvalidValueMessage("max_length", max_length, "must be finite and > 0");
   if (!(length_cap_factor == 0 || (length_cap_factor >= 1 && length_cap_factor <= internal::kMaxLengthCapFactor)))
-    return InvalidValueMessage("length_cap_factor", length_cap_factor,
-                               "must be 0 (no cap) or in [1, " + internal::FormatNumber(internal::kMaxLengthCapFactor) + "]");
+    return InvalidValueMessage(
+        "length_cap_factor",
+        length_cap_factor,
+        "must be 0 (no cap) or in [1, " + internal::FormatNumber(internal::kMaxLengthCapFactor) + "]");
   if (!(tolerance >= internal::kMinTolerance && tolerance < 1))
     return InvalidValueMessage("tolerance", tolerance, "must be in [1e-15, 1)");
   if (!(cell >= 1e-4 && cell <= 2.0)) return InvalidValueMessage("cell", cell, "must be in [1e-4, 2]");
-  if (max_periods < 1 || max_periods > 100000) return InvalidValueMessage("max_periods", max_periods, "must be in [1, 100000]");
+  if (max_periods < 1 || max_periods > 100000)
+    return InvalidValueMessage("max_periods", max_periods, "must be in [1, 100000]");
   if (certified_run < 1 || certified_run > 1000)
     return InvalidValueMessage("certified_run", certified_run, "must be in [1, 1000]");
   if (threads < 1 || threads > 256) return InvalidValueMessage("threads", threads, "must be in [1, 256]");
@@ -358,16 +363,17 @@ FamilySearch EnumerateIdentityFamilies(double chord, const FamilySearchOptions& 
     std::vector<ElasticaFamily> polished(roots.size());
     std::vector<char> ok(roots.size(), 0);
     std::vector<long> evals(roots.size(), 0);
-    internal::ParallelFor(static_cast<int>(roots.size()), options.threads,
-                [&](int i) { ok[i] = Polish(roots[i], chord, options.tolerance, &polished[i], &evals[i]); });
+    internal::ParallelFor(static_cast<int>(roots.size()), options.threads, [&](int i) {
+      ok[i] = Polish(roots[i], chord, options.tolerance, &polished[i], &evals[i]);
+    });
     for (std::size_t i = 0; i < roots.size(); ++i) {
       out.evaluations += evals[i];
       if (!ok[i] || polished[i].length > cap || polished[i].length <= chord * (1 + kStraightFamilyTol)) continue;
       bool duplicate = false;  // two brackets that polished onto one root
       for (const ElasticaFamily& f : out.families)
-        duplicate = duplicate || (f.regime == polished[i].regime && f.periods == polished[i].periods &&
-                                  f.winding == polished[i].winding &&
-                                  std::abs(f.modulus - polished[i].modulus) <= 1e-10);
+        duplicate =
+            duplicate || (f.regime == polished[i].regime && f.periods == polished[i].periods &&
+                          f.winding == polished[i].winding && std::abs(f.modulus - polished[i].modulus) <= 1e-10);
       if (duplicate) continue;
       out.families.push_back(polished[i]);
       if (options.length_cap_factor > 0) cap = std::min(cap, options.length_cap_factor * polished[i].length);
@@ -376,8 +382,9 @@ FamilySearch EnumerateIdentityFamilies(double chord, const FamilySearchOptions& 
   }
   out.complete = done[0] && done[1] && (options.max_length <= search_limit || cap < search_limit);
   out.searched_length = cap;
-  std::stable_sort(out.families.begin(), out.families.end(),
-                   [](const ElasticaFamily& a, const ElasticaFamily& b) { return a.length < b.length; });
+  std::stable_sort(out.families.begin(), out.families.end(), [](const ElasticaFamily& a, const ElasticaFamily& b) {
+    return a.length < b.length;
+  });
   // Families found before the cap shrank may lie beyond it.
   while (!out.families.empty() && out.families.back().length > cap) out.families.pop_back();
   return out;

@@ -52,7 +52,10 @@ class JoinFunction {
   using Scalar = double;
   enum { NUM_RESIDUALS = 2, NUM_PARAMETERS = 2 };
 
-  JoinFunction(const internal::ImpulseBasis& basis, double mu, double lambda, const Eigen::Vector2d& d,
+  JoinFunction(const internal::ImpulseBasis& basis,
+               double mu,
+               double lambda,
+               const Eigen::Vector2d& d,
                const IntegrationOptions& options)
       : basis_(basis), mu_(mu), lambda_(lambda), d_(d), options_(options) {}
 
@@ -147,8 +150,8 @@ class JoinFunction {
   template <typename State, typename Rhs>
   bool OneDopri5Step(const Rhs& rhs, double t, State* y) const {
     State w = *y;
-    const double err = internal::DormandPrince5Step(rhs, w, 0.0, t, options_.absolute_tolerance,
-                                                    options_.relative_tolerance);
+    const double err =
+        internal::DormandPrince5Step(rhs, w, 0.0, t, options_.absolute_tolerance, options_.relative_tolerance);
     if (!(err <= 1.0)) return false;
     for (double v : w)
       if (!std::isfinite(v)) return false;
@@ -191,8 +194,8 @@ class JoinFunction {
     has_cache_ = true;
     cache_p_[0] = s;
     cache_p_[1] = t;
-    const internal::ReachDirection dir = std::isnan(cos_w) ? internal::DirectionFor(basis_, s)
-                                                           : internal::DirectionFromTrig(basis_, s, cos_w, sin_w);
+    const internal::ReachDirection dir =
+        std::isnan(cos_w) ? internal::DirectionFor(basis_, s) : internal::DirectionFromTrig(basis_, s, cos_w, sin_w);
     k_ = dir.k;
     failed_ = false;
     return dir;
@@ -237,8 +240,11 @@ class JoinFunction {
 
 // The public boundary: options, finite input, mu and coordinates in range (check.h); the angles come back reduced once
 // (kinematics.h, ReduceAngles) so that a psi of 1e6 is answered like psi mod 2 pi.
-AngleState ValidateJoinInput(const AngleState& start, double mu, const Eigen::Vector2d& x0,
-                             const Eigen::Vector2d& target, const JoinOptions& options) {
+AngleState ValidateJoinInput(const AngleState& start,
+                             double mu,
+                             const Eigen::Vector2d& x0,
+                             const Eigen::Vector2d& target,
+                             const JoinOptions& options) {
   internal::ThrowIfInvalid(options.Validate());
   const AngleState reduced = internal::ReduceAngles("start", start);
   internal::RequireEnergy("mu", mu);
@@ -254,8 +260,8 @@ struct Guess {
   Eigen::Vector2d p;  ///< (s, t)
   double cos_w = 1.0, sin_w = 0.0;
 };
-Guess EllipseGuess(const AngleState& start, const internal::AngleTrig& g, double mu, double lambda,
-                   const Eigen::Vector2d& d) {
+Guess EllipseGuess(
+    const AngleState& start, const internal::AngleTrig& g, double mu, double lambda, const Eigen::Vector2d& d) {
   const double a = internal::SemiAxisFromTrig(g.sin_theta, g.cos_theta, mu, lambda), b = std::sqrt(mu);
   const Eigen::Vector2d er(g.cos_phi, g.sin_phi), ephi(-er.y(), er.x());
   // w = atan2(y, x) and the speed from (cos w, sin w) = (x, y) / |(x, y)| without their libm calls.
@@ -289,8 +295,11 @@ internal::ImpulseBasis BasisFromTrig(const AngleState& start, const internal::An
 // mode): the correction delta with x(p - delta) ~ x0 + d to the model's accuracy; false when the
 // model's Jacobian is singular.
 template <int M, int D>
-bool SeriesNewtonStep(const internal::ImpulseBasis& basis, const Eigen::Vector2d& d, const Guess& g,
-                      Eigen::Vector2d* delta, Eigen::Vector2d* dx_ds) {
+bool SeriesNewtonStep(const internal::ImpulseBasis& basis,
+                      const Eigen::Vector2d& d,
+                      const Guess& g,
+                      Eigen::Vector2d* delta,
+                      Eigen::Vector2d* dx_ds) {
   using Dual = internal::SeriesDual;
   const double z0[3] = {basis.z0.x(), basis.z0.y(), basis.z0.z()};
   const Eigen::Vector2d& p = g.p;
@@ -339,8 +348,8 @@ constexpr double kSeriesArc = 0.2;
 constexpr double kSeriesGuessArc = 3.0;
 constexpr double kHighOrderArcs[2] = {0.5, 1.5};
 enum class SeriesUse { kNone, kGuess, kChecked };
-SeriesUse RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Guess* guess,
-                         Eigen::Vector2d* dx_ds) {
+SeriesUse RefineOnSeries(
+    const internal::ImpulseBasis& basis, double mu, const Eigen::Vector2d& d, Guess* guess, Eigen::Vector2d* dx_ds) {
   const double root_mu = std::sqrt(mu);
   const double arc0 = guess->p[1] * root_mu;
   Eigen::Vector2d delta;
@@ -350,8 +359,8 @@ SeriesUse RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const E
   const double arc = g.p[1] * root_mu, first = delta.squaredNorm();
   if (!(g.p[1] > 0 && arc <= kSeriesGuessArc)) return SeriesUse::kNone;
   const bool high = arc > kHighOrderArcs[0] && arc <= kHighOrderArcs[1];
-  const bool stepped = high ? SeriesNewtonStep<13, 6>(basis, d, g, &delta, dx_ds)
-                            : SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds);
+  const bool stepped =
+      high ? SeriesNewtonStep<13, 6>(basis, d, g, &delta, dx_ds) : SeriesNewtonStep<7, 4>(basis, d, g, &delta, dx_ds);
   if (!stepped) return SeriesUse::kNone;
   // On a short arc the second step is the model's quadratic convergence; a large one means the
   // model is no guide there.
@@ -376,8 +385,8 @@ SeriesUse RefineOnSeries(const internal::ImpulseBasis& basis, double mu, const E
 int SolveLocal(JoinFunction& fn, const JoinOptions& options, int max_iterations, Eigen::Vector2d* params) {
   ceres::TinySolver<JoinFunction> solver;
   solver.options.max_num_iterations = max_iterations;
-  solver.options.gradient_tolerance = 0.0;       // stop on the residual, not the gradient
-  solver.options.function_tolerance = 0.0;       // (an absolute test in Ceres 2.1)
+  solver.options.gradient_tolerance = 0.0;  // stop on the residual, not the gradient
+  solver.options.function_tolerance = 0.0;  // (an absolute test in Ceres 2.1)
   solver.options.parameter_tolerance = 1e-15;
   solver.options.cost_threshold = 0.5 * options.residual_tolerance * options.residual_tolerance;
   solver.options.initial_trust_region_radius = 1e12;  // Gauss-Newton while the model is good
@@ -437,8 +446,8 @@ bool QuasiNewton(JoinFunction& fn, const JoinOptions& options, int max_steps, Gu
 // at the answer. step: the rollouts' step to try first (0: the guess's t, i.e. one step). True
 // when the quasi-Newton steps (or the check alone) gave the answer (guess then holds it, with the
 // trig of its w).
-bool SolveFromGuess(JoinFunction& fn, double mu, const JoinOptions& options, double step, Guess* guess,
-                    JoinSummary* out) {
+bool SolveFromGuess(
+    JoinFunction& fn, double mu, const JoinOptions& options, double step, Guess* guess, JoinSummary* out) {
   Eigen::Vector2d dx_ds;
   const bool modelled = RefineOnSeries(fn.basis(), mu, fn.d(), guess, &dx_ds) == SeriesUse::kChecked;
   fn.set_dt_hint(step > 0 ? step : guess->p[1]);
@@ -450,8 +459,8 @@ bool SolveFromGuess(JoinFunction& fn, double mu, const JoinOptions& options, dou
   // The quasi-Newton steps and LM's iterations share options.max_iterations.
   int steps = 0;
   const int budget = std::min(kMaxQuasiNewtonSteps, options.max_iterations);
-  const bool converged = !fn.failed() && (fn.Residual() <= options.residual_tolerance ||
-                                          QuasiNewton(fn, options, budget, guess, &steps));
+  const bool converged =
+      !fn.failed() && (fn.Residual() <= options.residual_tolerance || QuasiNewton(fn, options, budget, guess, &steps));
   Eigen::Vector2d params = guess->p;
   out->iterations = steps;
   if (!converged) {
@@ -478,8 +487,8 @@ std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, dou
   std::ostringstream os;
   os.precision(6);
   if (!(out.residual <= options.residual_tolerance)) {
-    os << "no solution found within " << out.iterations << " iterations: residual " << out.residual
-       << " > tolerance " << options.residual_tolerance << " (|target - x0| = " << dist << ")";
+    os << "no solution found within " << out.iterations << " iterations: residual " << out.residual << " > tolerance "
+       << options.residual_tolerance << " (|target - x0| = " << dist << ")";
   } else if (out.t > out.time_limit) {
     os << "the solution found has t = " << out.t << " > K1 |target - x0| = " << out.time_limit
        << ": not the local branch of Lemma 2.1 (|target - x0| = " << dist << ")";
@@ -493,9 +502,16 @@ std::string LocalFailure(const JoinSummary& out, const JoinOptions& options, dou
 // start's trig.
 // cos_w, sin_w: of w = phi - (psi + s) after the impulse when at hand (else NaN: computed here).
 // end_angles: false leaves angles_after unset (the planner takes them from its own arc).
-void FinishState(const BallModel& model, const internal::AngleTrig& g, double s, const Eigen::Vector3d& z,
-                 const Eigen::Vector2d& k, const Eigen::Vector2d& x, JoinSummary* out, double cos_w = NAN,
-                 double sin_w = NAN, bool end_angles = true) {
+void FinishState(const BallModel& model,
+                 const internal::AngleTrig& g,
+                 double s,
+                 const Eigen::Vector3d& z,
+                 const Eigen::Vector2d& k,
+                 const Eigen::Vector2d& x,
+                 JoinSummary* out,
+                 double cos_w = NAN,
+                 double sin_w = NAN,
+                 bool end_angles = true) {
   // EnergyPreservingImpulse (impulse.h) with each sine and cosine once: theta and phi are those of
   // the start, only w = phi - psi changes.
   internal::RequireEnergy("mu", out->mu);  // as EnergyPreservingImpulse would (a ball too slow to join)
@@ -507,8 +523,8 @@ void FinishState(const BallModel& model, const internal::AngleTrig& g, double s,
   const double w1 = after.phi - after.psi;
   trig.sin_w = std::isnan(sin_w) ? std::sin(w1) : sin_w;
   trig.cos_w = std::isnan(cos_w) ? std::cos(w1) : cos_w;
-  out->impulse = internal::ImpulseFromPhases(a, out->mu, after, out->mu, p0,
-                                             internal::PhaseFromTrig(trig, out->mu, model.lambda()));
+  out->impulse = internal::ImpulseFromPhases(
+      a, out->mu, after, out->mu, p0, internal::PhaseFromTrig(trig, out->mu, model.lambda()));
   out->state_after.z = z.normalized();
   out->state_after.omega = OmegaFromMomentum(out->state_after.z, k, model);
   if (end_angles) out->angles_after = AnglesFromState(out->state_after, model);
@@ -525,11 +541,16 @@ void FinishAtStart(const BallModel& model, const internal::AngleTrig& g, JoinSum
 
 std::string ToString(JoinStatus status) {
   switch (status) {
-    case JoinStatus::kNotRun: return "not_run";
-    case JoinStatus::kConverged: return "converged";
-    case JoinStatus::kTargetEqualsStart: return "target_equals_start";
-    case JoinStatus::kTargetBeyondLocalRadius: return "target_beyond_local_radius";
-    case JoinStatus::kIntegrationFailure: return "integration_failure";
+    case JoinStatus::kNotRun:
+      return "not_run";
+    case JoinStatus::kConverged:
+      return "converged";
+    case JoinStatus::kTargetEqualsStart:
+      return "target_equals_start";
+    case JoinStatus::kTargetBeyondLocalRadius:
+      return "target_beyond_local_radius";
+    case JoinStatus::kIntegrationFailure:
+      return "integration_failure";
   }
   return "unknown";
 }
@@ -553,8 +574,8 @@ std::string JoinOptions::Validate() const {
 std::string JoinSummary::BriefReport() const {
   std::ostringstream os;
   os.precision(6);
-  os << "Join: " << ToString(status) << ", delta_psi = " << delta_psi << ", t = " << t
-     << ", residual = " << residual << ", iterations = " << iterations;
+  os << "Join: " << ToString(status) << ", delta_psi = " << delta_psi << ", t = " << t << ", residual = " << residual
+     << ", iterations = " << iterations;
   if (!message.empty()) os << " (" << message << ")";
   return os.str();
 }
@@ -565,15 +586,18 @@ double MinimumContactSpeed(double mu, const BallModel& model) {
 }
 
 JoinSummary Join(const JoinProblem& problem, const JoinOptions& options) {
-  const AngleState start_reduced =
-      ValidateJoinInput(problem.start, problem.mu, problem.x0, problem.target, options);
+  const AngleState start_reduced = ValidateJoinInput(problem.start, problem.mu, problem.x0, problem.target, options);
   return internal::JoinValidated(problem.model, start_reduced, problem.mu, problem.x0, problem.target, options);
 }
 
 namespace internal {
 
-JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduced, double mu,
-                          const Eigen::Vector2d& x0, const Eigen::Vector2d& target, const JoinOptions& options,
+JoinSummary JoinValidated(const BallModel& model,
+                          const AngleState& start_reduced,
+                          double mu,
+                          const Eigen::Vector2d& x0,
+                          const Eigen::Vector2d& target,
+                          const JoinOptions& options,
                           JoinCarry* carry) {
   const double lambda = model.lambda();
   JoinSummary out;
@@ -620,8 +644,16 @@ JoinSummary JoinValidated(const BallModel& model, const AngleState& start_reduce
     return out;
   }
   // After a check within the tolerance, the trig of the impulse is the check's (guess.p unchanged).
-  FinishState(model, trig, out.delta_psi, fn.z_end(), fn.k(), target + fn.residual_vector(), &out,
-              checked ? guess.cos_w : NAN, checked ? guess.sin_w : NAN, carry == nullptr || carry->end_angles);
+  FinishState(model,
+              trig,
+              out.delta_psi,
+              fn.z_end(),
+              fn.k(),
+              target + fn.residual_vector(),
+              &out,
+              checked ? guess.cos_w : NAN,
+              checked ? guess.sin_w : NAN,
+              carry == nullptr || carry->end_angles);
   out.message = LocalFailure(out, options, dist);
   out.status = out.message.empty() ? JoinStatus::kConverged : JoinStatus::kTargetBeyondLocalRadius;
   return out;

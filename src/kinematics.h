@@ -30,7 +30,7 @@ constexpr double kTwoPi = 2.0 * M_PI;
 /// a reduced to (-pi, pi].
 inline double WrapPi(double a) {
   if (a > -M_PI && a <= M_PI) return a;  // what remainder returns there, without its cost
-  a = std::remainder(a, kTwoPi);  // [-pi, pi]
+  a = std::remainder(a, kTwoPi);         // [-pi, pi]
   return a <= -M_PI ? a + kTwoPi : a;
 }
 
@@ -93,8 +93,12 @@ inline double SemiAxisFromTrig(double sin_theta, double cos_theta, double mu, do
 /// and cosines and the boundary checks.
 PhaseVariables PhaseFromTrig(const AngleTrig& trig, double mu, double lambda);
 /// The impulse (impulse.h) between two states of the same axis given by their phase variables.
-Impulse ImpulseFromPhases(const AngleState& before, double mu, const AngleState& after, double mu_after,
-                          const PhaseVariables& p0, const PhaseVariables& p1);
+Impulse ImpulseFromPhases(const AngleState& before,
+                          double mu,
+                          const AngleState& after,
+                          double mu_after,
+                          const PhaseVariables& p0,
+                          const PhaseVariables& p1);
 
 /// Horizontal angular velocity on the velocity ellipse of semi-axes (a, b) at the azimuth phi
 /// (cp = cos phi, sp = sin phi) and the phase w = phi - psi (cw = cos w, sw = sin w), section 2.1:

@@ -17,9 +17,12 @@ namespace plateball {
 
 std::string ToString(MonteCarloStatus status) {
   switch (status) {
-    case MonteCarloStatus::kNotRun: return "not_run";
-    case MonteCarloStatus::kCompleted: return "completed";
-    case MonteCarloStatus::kNominalPlanFailed: return "nominal_plan_failed";
+    case MonteCarloStatus::kNotRun:
+      return "not_run";
+    case MonteCarloStatus::kCompleted:
+      return "completed";
+    case MonteCarloStatus::kNominalPlanFailed:
+      return "nominal_plan_failed";
   }
   return "unknown";
 }
@@ -27,8 +30,8 @@ std::string ToString(MonteCarloStatus status) {
 std::string MonteCarloOptions::Validate() const {
   if (threads < 1 || threads > 256) return internal::InvalidValueMessage("threads", threads, "must be in [1, 256]");
   if (sweep_trials < 0 || sweep_trials > kMaxTrials)
-    return internal::InvalidValueMessage("sweep_trials", sweep_trials,
-                                         "must be in [0, " + std::to_string(kMaxTrials) + "] (0: trials)");
+    return internal::InvalidValueMessage(
+        "sweep_trials", sweep_trials, "must be in [0, " + std::to_string(kMaxTrials) + "] (0: trials)");
   std::string e = plan.Validate();
   if (!e.empty()) return "plan: " + e;
   e = execution.Validate();
@@ -81,8 +84,10 @@ namespace {
 // The partition of `plan` with n segments (a single uniform rule), for the sweep.
 PlanProblem WithN(const PlanProblem& plan, int n) {
   PlanProblem p = plan;
-  if (std::holds_alternative<UniformParameter>(p.partition.front())) p.partition = {UniformParameter{n}};
-  else p.partition = {UniformArcLength{n}};
+  if (std::holds_alternative<UniformParameter>(p.partition.front()))
+    p.partition = {UniformParameter{n}};
+  else
+    p.partition = {UniformArcLength{n}};
   return p;
 }
 
@@ -103,12 +108,11 @@ void ValidateProblem(const MonteCarloProblem& p, const MonteCarloOptions& o) {
   if (p.sweep_n.empty()) return;
   ValidatePartitionSizes(p.sweep_n, "sweep_n");
   const bool uniform = p.plan.partition.size() == 1 && !std::holds_alternative<ExplicitTaus>(p.plan.partition.front());
-  if (!uniform)
-    internal::ThrowInvalid("sweep_n", p.sweep_n.front(), "needs a single uniform partition rule to vary n");
+  if (!uniform) internal::ThrowInvalid("sweep_n", p.sweep_n.front(), "needs a single uniform partition rule to vary n");
   // An n too small for a closed path (or too large for a short one) is named by its entry.
   for (std::size_t i = 0; i < p.sweep_n.size(); ++i)
-    internal::MakePartition(p.plan.path, WithN(p.plan, p.sweep_n[i]).partition, "plan.partition",
-                            "sweep_n[" + std::to_string(i) + "]");
+    internal::MakePartition(
+        p.plan.path, WithN(p.plan, p.sweep_n[i]).partition, "plan.partition", "sweep_n[" + std::to_string(i) + "]");
 }
 
 // Main n: the partition's (for a sweep a single uniform rule), else the nominal plan's segments.
@@ -135,8 +139,9 @@ MonteCarloWork::MonteCarloWork(const MonteCarloProblem& problem, const MonteCarl
   for (int n : others) ns_.push_back(n);
   // The tasks and the work up front, before the sweep's plans (each n also plans once, about n
   // impulses of work: fewer than its trials execute).
-  const bool exact = std::find(problem.strategies.begin(), problem.strategies.end(),
-                               ExecutionStrategy::kFeedbackExact) != problem.strategies.end();
+  const bool exact =
+      std::find(problem.strategies.begin(), problem.strategies.end(), ExecutionStrategy::kFeedbackExact) !=
+      problem.strategies.end();
   const long long w = options.execution.exact_window, per_trial_exact = exact ? w * w * w : 0;
   const long long scenarios = static_cast<long long>(problem.scenarios.size());
   const long long strategies = static_cast<long long>(problem.strategies.size());
@@ -148,17 +153,24 @@ MonteCarloWork::MonteCarloWork(const MonteCarloProblem& problem, const MonteCarl
     work += scenarios * t * (strategies * ns_[i] + per_trial_exact);
   }
   if (total_ > MonteCarloOptions::kMaxTasks)
-    internal::ThrowInvalid("trials", problem.trials,
-                           "the study would run " + std::to_string(total_) + " trials (cells x trials over all n), more than " +
+    internal::ThrowInvalid("trials",
+                           problem.trials,
+                           "the study would run " + std::to_string(total_) +
+                               " trials (cells x trials over all n), more than " +
                                std::to_string(MonteCarloOptions::kMaxTasks));
   if (work > MonteCarloOptions::kMaxWork)
-    internal::ThrowInvalid("trials", problem.trials,
+    internal::ThrowInvalid("trials",
+                           problem.trials,
                            "the study would execute about " + std::to_string(work) +
                                " impulses (the sum over cells of trials x (n + W^3 with feedback_exact)), more than " +
                                std::to_string(MonteCarloOptions::kMaxWork) + ": fewer trials, n or sweep_n");
   for (std::size_t i = 0; i < ns_.size(); ++i) {
     const std::shared_ptr<const NominalPlan> p = Plan(i);  // the sweep's plans one at a time
-    info_.push_back({ns_[i], p->plan.status, p->plan.message, p->plan_orientation_error, p->plan.measured_error,
+    info_.push_back({ns_[i],
+                     p->plan.status,
+                     p->plan.message,
+                     p->plan_orientation_error,
+                     p->plan.measured_error,
                      p->plan.total_time});
     planned_ = planned_ && p->plan.IsSolutionUsable();
     // Pulses longer than a flight are invalid input, found before any trial runs.
@@ -176,7 +188,9 @@ std::shared_ptr<const NominalPlan> MonteCarloWork::Plan(std::size_t i) const {
   return std::make_shared<NominalPlan>(MakeNominalPlan(WithN(problem_.plan, ns_[i]), options_.plan));
 }
 
-TrialRecord MonteCarloWork::RunTask(long long task, std::size_t i, const std::shared_ptr<const NominalPlan>& nominal) const {
+TrialRecord MonteCarloWork::RunTask(long long task,
+                                    std::size_t i,
+                                    const std::shared_ptr<const NominalPlan>& nominal) const {
   const long long trials = i == 0 || options_.sweep_trials == 0 ? problem_.trials : options_.sweep_trials;
   const long long local = task - offsets_[i];
   const long long cell = local / trials;
@@ -288,7 +302,8 @@ MonteCarloSummary MonteCarloWork::Summarize(std::vector<TrialRecord> records) co
   }
   if (s.empty_cells > 0 && s.message.empty())
     s.message = "no trial completed in " + std::to_string(s.empty_cells) + " cell" + (s.empty_cells > 1 ? "s" : "") +
-                (ns_.size() > 1 ? " (no distribution; missing from the sweep's fits): " : " (no distribution): ") + empty;
+                (ns_.size() > 1 ? " (no distribution; missing from the sweep's fits): " : " (no distribution): ") +
+                empty;
   if (planned_ && ns_.size() > 1) s.sweeps = MakeSweeps(s);
   if (options_.keep_trials) s.records = std::move(records);
   return s;
@@ -311,8 +326,8 @@ std::vector<SweepSeries> MonteCarloWork::MakeSweeps(const MonteCarloSummary& s) 
       xn.push_back(ns_[i]);
       series.median_orientation_error.push_back(
           cell.orientation_error ? std::optional<double>(cell.orientation_error->median) : std::nullopt);
-      series.median_position_error.push_back(
-          cell.position_error ? std::optional<double>(cell.position_error->median) : std::nullopt);
+      series.median_position_error.push_back(cell.position_error ? std::optional<double>(cell.position_error->median)
+                                                                 : std::nullopt);
       series.plan_orientation_error.push_back(info_[i].orientation_error);
     }
     std::vector<double> x_data, y_data;  // the n with data: a missing n is left out of the fit

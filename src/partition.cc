@@ -49,7 +49,8 @@ std::size_t CoincidentPoint(const SmoothCurve& curve, const std::vector<double>&
 }
 
 std::string CoincidentText(std::size_t k, double step) {
-  return "partition points " + std::to_string(k - 1) + " and " + std::to_string(k) + " are " + internal::FormatNumber(step) +
+  return "partition points " + std::to_string(k - 1) + " and " + std::to_string(k) + " are " +
+         internal::FormatNumber(step) +
          " apart on the plate: consecutive partition points must be more than 1e-12 x the path length apart";
 }
 
@@ -57,10 +58,13 @@ std::string CoincidentText(std::size_t k, double step) {
 void ValidateUniform(const SmoothCurve& curve, const std::vector<double>& taus, int n, const std::string& n_field) {
   for (std::size_t k = 1; k < taus.size(); ++k)
     if (!(taus[k] > taus[k - 1]))
-      ThrowInvalid(n_field, n, "the parameter interval [" + internal::FormatNumber(curve.Begin()) + ", " +
-                                   internal::FormatNumber(curve.End()) + "] is too short for n steps in double precision");
+      ThrowInvalid(n_field,
+                   n,
+                   "the parameter interval [" + internal::FormatNumber(curve.Begin()) + ", " +
+                       internal::FormatNumber(curve.End()) + "] is too short for n steps in double precision");
   double step = 0.0;
-  if (const std::size_t k = CoincidentPoint(curve, taus, &step); k > 0) ThrowInvalid(n_field, n, CoincidentText(k, step));
+  if (const std::size_t k = CoincidentPoint(curve, taus, &step); k > 0)
+    ThrowInvalid(n_field, n, CoincidentText(k, step));
 }
 
 std::vector<double> UniformParameterNamed(const SmoothCurve& curve, int n, const std::string& n_field) {
@@ -92,7 +96,10 @@ std::vector<double> UniformArcLengthNamed(const SmoothCurve& curve, int n, const
     for (int it = 0; it < 50; ++it) {  // safeguarded Newton: L'(tau) = |p'(tau)| > 0
       const double f = cum[cell] + CellLength(curve, grid[cell], tau, cum[cell + 1] - cum[cell]) - target;
       if (std::abs(f) <= 1e-14 * std::max(1.0, total)) break;
-      if (f > 0) hi = tau; else lo = tau;
+      if (f > 0)
+        hi = tau;
+      else
+        lo = tau;
       double next = tau - f / curve.Derivative(tau).norm();
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
       tau = next;
@@ -114,15 +121,21 @@ void ValidatePartition(const SmoothCurve& curve, const std::vector<double>& taus
   for (std::size_t k = 0; k < taus.size(); ++k) {
     if (!std::isfinite(taus[k])) internal::RequireFinite(element(k), taus[k]);
     if (k > 0 && !(taus[k] > taus[k - 1]))
-      ThrowInvalid(element(k), taus[k], "partition values must increase strictly (previous " + internal::FormatNumber(taus[k - 1]) + ")");
+      ThrowInvalid(element(k),
+                   taus[k],
+                   "partition values must increase strictly (previous " + internal::FormatNumber(taus[k - 1]) + ")");
   }
   if (std::abs(taus.front() - curve.Begin()) > 1e-12 * std::max(1.0, std::abs(span)))
-    ThrowInvalid(field + "[0]", taus.front(), "must equal the start of the parameter interval " + internal::FormatNumber(curve.Begin()));
+    ThrowInvalid(field + "[0]",
+                 taus.front(),
+                 "must equal the start of the parameter interval " + internal::FormatNumber(curve.Begin()));
   if (std::abs(taus.back() - curve.End()) > 1e-12 * std::max(1.0, std::abs(span)))
-    ThrowInvalid(field + "[" + std::to_string(taus.size() - 1) + "]", taus.back(),
+    ThrowInvalid(field + "[" + std::to_string(taus.size() - 1) + "]",
+                 taus.back(),
                  "must equal the end of the parameter interval " + internal::FormatNumber(curve.End()));
   double step = 0.0;
-  if (const std::size_t k = CoincidentPoint(curve, taus, &step); k > 0) ThrowInvalid(element(k), taus[k], CoincidentText(k, step));
+  if (const std::size_t k = CoincidentPoint(curve, taus, &step); k > 0)
+    ThrowInvalid(element(k), taus[k], CoincidentText(k, step));
 }
 
 std::vector<double> UniformParameterPartition(const SmoothCurve& curve, int n) {
@@ -150,29 +163,37 @@ std::string ToString(const PartitionRule& rule) {
   return std::visit(Name{}, rule);
 }
 
-std::vector<std::vector<double>> MakePartition(const Path& path, const std::vector<PartitionRule>& rules,
+std::vector<std::vector<double>> MakePartition(const Path& path,
+                                               const std::vector<PartitionRule>& rules,
                                                const std::string& field) {
   return internal::MakePartition(path, rules, field, "");
 }
 
 namespace internal {
 
-std::vector<std::vector<double>> MakePartition(const Path& path, const std::vector<PartitionRule>& rules,
-                                               const std::string& field, const std::string& n_field) {
+std::vector<std::vector<double>> MakePartition(const Path& path,
+                                               const std::vector<PartitionRule>& rules,
+                                               const std::string& field,
+                                               const std::string& n_field) {
   const std::size_t pieces = static_cast<std::size_t>(path.PieceCount());
   if (rules.size() != 1 && rules.size() != pieces)
-    ThrowInvalid(field + " (rule count)", static_cast<double>(rules.size()),
+    ThrowInvalid(field + " (rule count)",
+                 static_cast<double>(rules.size()),
                  "must be 1 or the number of path pieces " + std::to_string(pieces));
   std::vector<std::vector<double>> out;
   long long steps = 0;  // every piece gets its rule's steps (README, "Limits")
   for (std::size_t i = 0; i < pieces; ++i) {
     const PartitionRule& rule = rules.size() == 1 ? rules.front() : rules[i];
-    if (const auto* u = std::get_if<UniformParameter>(&rule)) steps += u->n;
-    else if (const auto* a = std::get_if<UniformArcLength>(&rule)) steps += a->n;
-    else steps += static_cast<long long>(std::get<ExplicitTaus>(rule).taus.size()) - 1;
+    if (const auto* u = std::get_if<UniformParameter>(&rule))
+      steps += u->n;
+    else if (const auto* a = std::get_if<UniformArcLength>(&rule))
+      steps += a->n;
+    else
+      steps += static_cast<long long>(std::get<ExplicitTaus>(rule).taus.size()) - 1;
   }
   if (steps > kMaxPartitionSteps)
-    ThrowInvalid(rules.size() == 1 ? field + " (n x " + std::to_string(pieces) + " pieces)" : field + " (steps)", steps,
+    ThrowInvalid(rules.size() == 1 ? field + " (n x " + std::to_string(pieces) + " pieces)" : field + " (steps)",
+                 steps,
                  "steps over all pieces must be <= " + std::to_string(kMaxPartitionSteps));
   for (std::size_t i = 0; i < pieces; ++i) {
     const PartitionRule& rule = rules.size() == 1 ? rules.front() : rules[i];
@@ -196,7 +217,8 @@ std::vector<std::vector<double>> MakePartition(const Path& path, const std::vect
 
 double PointNorm(const SmoothCurve& curve, const std::vector<double>& taus) {
   double m = 0.0;
-  for (std::size_t k = 1; k < taus.size(); ++k) m = std::max(m, (curve.Value(taus[k]) - curve.Value(taus[k - 1])).norm());
+  for (std::size_t k = 1; k < taus.size(); ++k)
+    m = std::max(m, (curve.Value(taus[k]) - curve.Value(taus[k - 1])).norm());
   return m;
 }
 

@@ -100,27 +100,38 @@ void RequireRegular(const SmoothCurve& c, const std::string& field, const std::s
     const double tau = c.Begin() + (c.End() - c.Begin()) * i / kGrid;
     const double v = c.Derivative(tau).norm();
     if (!std::isfinite(v))
-      ThrowInvalid(field, value_text, "the path's speed |p'| at tau = " + internal::FormatNumber(tau) + " is " +
-                                          internal::FormatNumber(v) + ": must be finite");
+      ThrowInvalid(field,
+                   value_text,
+                   "the path's speed |p'| at tau = " + internal::FormatNumber(tau) + " is " +
+                       internal::FormatNumber(v) + ": must be finite");
     mean += v / (kGrid + 1);
     if (v < least) least = v, at = tau;
   }
   if (!(least > 1e-9 * mean && least > 0.0))
-    ThrowInvalid(field, value_text, "the path's speed |p'| at tau = " + internal::FormatNumber(at) + " is " +
-                                        internal::FormatNumber(least) + ": must be nonzero everywhere");
+    ThrowInvalid(field,
+                 value_text,
+                 "the path's speed |p'| at tau = " + internal::FormatNumber(at) + " is " +
+                     internal::FormatNumber(least) + ": must be nonzero everywhere");
 }
 
 }  // namespace
 
 std::string ToString(CurveKind kind) {
   switch (kind) {
-    case CurveKind::kLine: return "line";
-    case CurveKind::kCircle: return "circle";
-    case CurveKind::kEllipse: return "ellipse";
-    case CurveKind::kLemniscate: return "lemniscate";
-    case CurveKind::kSine: return "sine";
-    case CurveKind::kSamples: return "samples";
-    case CurveKind::kCustom: return "custom";
+    case CurveKind::kLine:
+      return "line";
+    case CurveKind::kCircle:
+      return "circle";
+    case CurveKind::kEllipse:
+      return "ellipse";
+    case CurveKind::kLemniscate:
+      return "lemniscate";
+    case CurveKind::kSine:
+      return "sine";
+    case CurveKind::kSamples:
+      return "samples";
+    case CurveKind::kCustom:
+      return "custom";
   }
   return "unknown";
 }
@@ -128,7 +139,8 @@ std::string ToString(CurveKind kind) {
 SmoothCurve SmoothCurve::Line(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
   RequireFinite("from", from);
   RequireFinite("to", to);
-  if ((to - from).norm() == 0.0) ThrowInvalid("to", to.x(), "equals 'from': a line needs two distinct points (zero speed)");
+  if ((to - from).norm() == 0.0)
+    ThrowInvalid("to", to.x(), "equals 'from': a line needs two distinct points (zero speed)");
   SmoothCurve c;
   c.kind_ = CurveKind::kLine;
   c.origin_ = from;
@@ -151,8 +163,11 @@ SmoothCurve SmoothCurve::Circle(const Eigen::Vector2d& center, double radius, do
   return c;
 }
 
-SmoothCurve SmoothCurve::Ellipse(const Eigen::Vector2d& center, const Eigen::Vector2d& semi_axes, double rotation,
-                                 double tau_begin, double tau_end) {
+SmoothCurve SmoothCurve::Ellipse(const Eigen::Vector2d& center,
+                                 const Eigen::Vector2d& semi_axes,
+                                 double rotation,
+                                 double tau_begin,
+                                 double tau_end) {
   RequireFinite("center", center);
   internal::RequirePositive("semi_axes[0]", semi_axes.x());
   internal::RequirePositive("semi_axes[1]", semi_axes.y());
@@ -169,8 +184,8 @@ SmoothCurve SmoothCurve::Ellipse(const Eigen::Vector2d& center, const Eigen::Vec
   return c;
 }
 
-SmoothCurve SmoothCurve::Lemniscate(const Eigen::Vector2d& center, double scale, double rotation, double tau_begin,
-                                    double tau_end) {
+SmoothCurve SmoothCurve::Lemniscate(
+    const Eigen::Vector2d& center, double scale, double rotation, double tau_begin, double tau_end) {
   RequireFinite("center", center);
   internal::RequirePositive("scale", scale);
   RequireFinite("rotation", rotation);
@@ -185,8 +200,8 @@ SmoothCurve SmoothCurve::Lemniscate(const Eigen::Vector2d& center, double scale,
   return c;
 }
 
-SmoothCurve SmoothCurve::Sine(const Eigen::Vector2d& from, double rotation, double length, double amplitude,
-                              double wavelength) {
+SmoothCurve SmoothCurve::Sine(
+    const Eigen::Vector2d& from, double rotation, double length, double amplitude, double wavelength) {
   RequireFinite("from", from);
   RequireFinite("rotation", rotation);
   internal::RequirePositive("length", length);
@@ -202,8 +217,10 @@ SmoothCurve SmoothCurve::Sine(const Eigen::Vector2d& from, double rotation, doub
   c.tau_end_ = length;
   // |p'| = sqrt(1 + (2 pi amplitude / wavelength)^2 cos^2) >= 1: only an overflow of the ratio fails,
   // blamed on the wavelength when it is below 1, else on the amplitude.
-  if (wavelength < 1.0) RequireRegular(c, "wavelength", internal::FormatNumber(wavelength));
-  else RequireRegular(c, "amplitude", internal::FormatNumber(amplitude));
+  if (wavelength < 1.0)
+    RequireRegular(c, "wavelength", internal::FormatNumber(wavelength));
+  else
+    RequireRegular(c, "amplitude", internal::FormatNumber(amplitude));
   return c;
 }
 
@@ -217,8 +234,8 @@ SmoothCurve SmoothCurve::Samples(const std::vector<Eigen::Vector2d>& points) {
   return c;
 }
 
-SmoothCurve SmoothCurve::Custom(CurveFunction value, CurveFunction derivative, CurveFunction second_derivative,
-                                double tau_begin, double tau_end) {
+SmoothCurve SmoothCurve::Custom(
+    CurveFunction value, CurveFunction derivative, CurveFunction second_derivative, double tau_begin, double tau_end) {
   RequireFinite("tau_begin", tau_begin);
   RequireFinite("tau_end", tau_end);
   if (!(tau_end > tau_begin)) ThrowInvalid("tau_end", tau_end, "must be > tau_begin");
@@ -236,25 +253,34 @@ SmoothCurve SmoothCurve::Custom(CurveFunction value, CurveFunction derivative, C
 
 Eigen::Vector2d SmoothCurve::RawValue(double tau) const {
   switch (kind_) {
-    case CurveKind::kLine: return origin_ + tau * vec_;
-    case CurveKind::kCircle: return origin_ + scale_ * Eigen::Vector2d(std::cos(tau), std::sin(tau));
-    case CurveKind::kEllipse: return origin_ + rot_ * Eigen::Vector2d(vec_.x() * std::cos(tau), vec_.y() * std::sin(tau));
+    case CurveKind::kLine:
+      return origin_ + tau * vec_;
+    case CurveKind::kCircle:
+      return origin_ + scale_ * Eigen::Vector2d(std::cos(tau), std::sin(tau));
+    case CurveKind::kEllipse:
+      return origin_ + rot_ * Eigen::Vector2d(vec_.x() * std::cos(tau), vec_.y() * std::sin(tau));
     case CurveKind::kLemniscate: {
       const double s = std::sin(tau), c = std::cos(tau);
       return origin_ + rot_ * (scale_ / (1.0 + s * s) * Eigen::Vector2d(c, s * c));
     }
-    case CurveKind::kSine: return origin_ + rot_ * Eigen::Vector2d(tau, scale_ * std::sin(wavenumber_ * tau));
-    case CurveKind::kSamples: return spline_->Value(tau);
-    case CurveKind::kCustom: return custom_->value(tau);
+    case CurveKind::kSine:
+      return origin_ + rot_ * Eigen::Vector2d(tau, scale_ * std::sin(wavenumber_ * tau));
+    case CurveKind::kSamples:
+      return spline_->Value(tau);
+    case CurveKind::kCustom:
+      return custom_->value(tau);
   }
   return origin_;
 }
 
 Eigen::Vector2d SmoothCurve::RawDerivative(double tau) const {
   switch (kind_) {
-    case CurveKind::kLine: return vec_;
-    case CurveKind::kCircle: return scale_ * Eigen::Vector2d(-std::sin(tau), std::cos(tau));
-    case CurveKind::kEllipse: return rot_ * Eigen::Vector2d(-vec_.x() * std::sin(tau), vec_.y() * std::cos(tau));
+    case CurveKind::kLine:
+      return vec_;
+    case CurveKind::kCircle:
+      return scale_ * Eigen::Vector2d(-std::sin(tau), std::cos(tau));
+    case CurveKind::kEllipse:
+      return rot_ * Eigen::Vector2d(-vec_.x() * std::sin(tau), vec_.y() * std::cos(tau));
     case CurveKind::kLemniscate: {
       // p = f / g, f = (cos, sin cos), g = 1 + sin^2: p' = f'/g - f g'/g^2.
       const double s = std::sin(tau), c = std::cos(tau);
@@ -264,28 +290,36 @@ Eigen::Vector2d SmoothCurve::RawDerivative(double tau) const {
     }
     case CurveKind::kSine:
       return rot_ * Eigen::Vector2d(1.0, scale_ * wavenumber_ * std::cos(wavenumber_ * tau));
-    case CurveKind::kSamples: return spline_->Derivative(tau);
-    case CurveKind::kCustom: return custom_->derivative(tau);
+    case CurveKind::kSamples:
+      return spline_->Derivative(tau);
+    case CurveKind::kCustom:
+      return custom_->derivative(tau);
   }
   return vec_;
 }
 
 Eigen::Vector2d SmoothCurve::RawSecondDerivative(double tau) const {
   switch (kind_) {
-    case CurveKind::kLine: return Eigen::Vector2d::Zero();
-    case CurveKind::kCircle: return -scale_ * Eigen::Vector2d(std::cos(tau), std::sin(tau));
-    case CurveKind::kEllipse: return rot_ * Eigen::Vector2d(-vec_.x() * std::cos(tau), -vec_.y() * std::sin(tau));
+    case CurveKind::kLine:
+      return Eigen::Vector2d::Zero();
+    case CurveKind::kCircle:
+      return -scale_ * Eigen::Vector2d(std::cos(tau), std::sin(tau));
+    case CurveKind::kEllipse:
+      return rot_ * Eigen::Vector2d(-vec_.x() * std::cos(tau), -vec_.y() * std::sin(tau));
     case CurveKind::kLemniscate: {
       // p'' = f''/g - 2 f' g'/g^2 - f g''/g^2 + 2 f g'^2/g^3.
       const double s = std::sin(tau), c = std::cos(tau);
       const double g = 1.0 + s * s, gp = 2.0 * s * c, gpp = 2.0 * (c * c - s * s);
       const Eigen::Vector2d f(c, s * c), fp(-s, c * c - s * s), fpp(-c, -4.0 * s * c);
-      return rot_ * (scale_ * (fpp / g - 2.0 * fp * gp / (g * g) - f * gpp / (g * g) + 2.0 * f * gp * gp / (g * g * g)));
+      return rot_ *
+             (scale_ * (fpp / g - 2.0 * fp * gp / (g * g) - f * gpp / (g * g) + 2.0 * f * gp * gp / (g * g * g)));
     }
     case CurveKind::kSine:
       return rot_ * Eigen::Vector2d(0.0, -scale_ * wavenumber_ * wavenumber_ * std::sin(wavenumber_ * tau));
-    case CurveKind::kSamples: return spline_->SecondDerivative(tau);
-    case CurveKind::kCustom: return custom_->second_derivative(tau);
+    case CurveKind::kSamples:
+      return spline_->SecondDerivative(tau);
+    case CurveKind::kCustom:
+      return custom_->second_derivative(tau);
   }
   return Eigen::Vector2d::Zero();
 }
@@ -341,11 +375,15 @@ double SmoothCurve::PanelWidth() const {
   switch (kind_) {
     case CurveKind::kCircle:
     case CurveKind::kEllipse:
-    case CurveKind::kLemniscate: return 0.5 * M_PI;
-    case CurveKind::kSine: return wavenumber_ > 0.0 ? 0.5 * M_PI / wavenumber_ : INFINITY;
-    case CurveKind::kCustom: return (tau_end_ - tau_begin_) / 64.0;
+    case CurveKind::kLemniscate:
+      return 0.5 * M_PI;
+    case CurveKind::kSine:
+      return wavenumber_ > 0.0 ? 0.5 * M_PI / wavenumber_ : INFINITY;
+    case CurveKind::kCustom:
+      return (tau_end_ - tau_begin_) / 64.0;
     case CurveKind::kLine:
-    case CurveKind::kSamples: break;
+    case CurveKind::kSamples:
+      break;
   }
   return INFINITY;
 }
@@ -382,7 +420,8 @@ Path::Path(std::vector<SmoothCurve> pieces) : pieces_(std::move(pieces)) {
   for (std::size_t i = 1; i < pieces_.size(); ++i) {
     const double gap = (pieces_[i].StartPoint() - pieces_[i - 1].EndPoint()).norm();
     if (gap > 1e-9 * std::max(1.0, size))
-      ThrowInvalid("pieces[" + std::to_string(i) + "] (gap to the end of the previous piece)", gap,
+      ThrowInvalid("pieces[" + std::to_string(i) + "] (gap to the end of the previous piece)",
+                   gap,
                    "consecutive pieces must share their end points");
   }
 }

@@ -30,9 +30,15 @@ struct PlanGridReport {
 /// The plan for explicit per-piece partitions (validated as PlanImpulses validates its problem).
 /// With grid.tick > 0 the steps' tau_begin/tau_end are the slid partition points; `report` (may
 /// be null) tells what the grid did.
-PlanSummary PlanPartitioned(const BallModel& model, const AngleState& initial, double mu, const Eigen::Matrix3d& A0,
-                            const Path& path, const std::vector<std::vector<double>>& partition,
-                            const std::vector<EnergyChange>& energy_changes, const PlanOptions& options,
-                            const PlanGrid& grid = {}, PlanGridReport* report = nullptr);
+PlanSummary PlanPartitioned(const BallModel& model,
+                            const AngleState& initial,
+                            double mu,
+                            const Eigen::Matrix3d& A0,
+                            const Path& path,
+                            const std::vector<std::vector<double>>& partition,
+                            const std::vector<EnergyChange>& energy_changes,
+                            const PlanOptions& options,
+                            const PlanGrid& grid = {},
+                            PlanGridReport* report = nullptr);
 
 }  // namespace plateball::internal

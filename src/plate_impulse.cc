@@ -1,10 +1,7 @@
 #include "plateball/plate_impulse.h"
 
 #include <Eigen/Geometry>
-
 #include <cmath>
-
-#include <Eigen/Geometry>
 
 #include "check.h"
 
@@ -26,15 +23,17 @@ void RequireHorizontal(const Eigen::Vector3d& delta_omega) {
 }
 }  // namespace
 
-PlateImpulse PlateImpulseFor(const PhysicalParameters& p, const Eigen::Vector3d& z, const Eigen::Vector3d& delta_omega) {
+PlateImpulse PlateImpulseFor(const PhysicalParameters& p,
+                             const Eigen::Vector3d& z,
+                             const Eigen::Vector3d& delta_omega) {
   internal::ThrowIfInvalid(p.Validate());
   RequireUnitAxis(z);
   RequireHorizontal(delta_omega);
   const Eigen::Vector3d e3 = Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d w(delta_omega.x(), delta_omega.y(), 0.0);
   const Eigen::Vector3d i_w = p.inertia_1 * w + (p.inertia_3 - p.inertia_1) * z.dot(w) * z;
-  const Eigen::Vector3d a(i_w.x() + p.ball_mass * p.radius * p.radius * w.x(),
-                          i_w.y() + p.ball_mass * p.radius * p.radius * w.y(), 0.0);
+  const Eigen::Vector3d a(
+      i_w.x() + p.ball_mass * p.radius * p.radius * w.x(), i_w.y() + p.ball_mass * p.radius * p.radius * w.y(), 0.0);
   const Eigen::Vector3d dv = p.radius * w.cross(e3);  // the centre's velocity change
   PlateImpulse out;
   out.top_contact = a.cross(e3) / (2.0 * p.radius);  // solves 2 r e3 x Q = a for horizontal Q

@@ -80,7 +80,10 @@ void Store(const V& v, double* out) {
   for (int i = 0; i < v.size(); ++i) out[i] = v[i];
 }
 
-pb_impulse ToC(double t_impulse, double duration, double delta_psi, const Eigen::Vector3d& delta_omega,
+pb_impulse ToC(double t_impulse,
+               double duration,
+               double delta_psi,
+               const Eigen::Vector3d& delta_omega,
                const Eigen::Vector2d& position) {
   pb_impulse c{};
   c.t_impulse = t_impulse;
@@ -116,7 +119,8 @@ pb_status pb_plan_create(const pb_problem* problem, int n, pb_plan** out) {
   if (out == nullptr) return Null("out");
   *out = nullptr;
   return Guard([&] {
-    if (n < 0) return Fail(PB_INVALID_INPUT, "n: value " + std::to_string(n) + ": must be >= 0 (0: the file's partition)");
+    if (n < 0)
+      return Fail(PB_INVALID_INPUT, "n: value " + std::to_string(n) + ": must be >= 0 (0: the file's partition)");
     const plateball::PlanSetup setup = plateball::PlanSetupFor(problem->problem, n);
     auto nominal = std::make_shared<plateball::NominalPlan>(plateball::MakeNominalPlan(setup.problem, setup.options));
     if (!nominal->plan.IsSolutionUsable()) return Fail(PB_NO_SOLUTION, nominal->plan.BriefReport());
@@ -141,16 +145,22 @@ pb_status pb_plan_impulse(const pb_plan* plan, int k, pb_impulse* out) {
   if (out == nullptr) return Null("out");
   return Guard([&] {
     if (k < 0 || k >= pb_plan_impulse_count(plan))
-      return Fail(PB_INVALID_INPUT, "k: value " + std::to_string(k) + ": must be in [0, " +
-                                        std::to_string(pb_plan_impulse_count(plan)) + ")");
+      return Fail(
+          PB_INVALID_INPUT,
+          "k: value " + std::to_string(k) + ": must be in [0, " + std::to_string(pb_plan_impulse_count(plan)) + ")");
     const plateball::PlanStep& s = plan->nominal->plan.steps[static_cast<std::size_t>(k)];
     *out = ToC(s.t_impulse, s.duration, s.delta_psi, s.delta_omega, s.p_begin);
     return PB_OK;
   });
 }
 
-pb_status pb_steer(double lambda, const pb_ball_state* start, const double goal_x[2], const double goal_A[9],
-                   int impulses, pb_impulse* out, int capacity) {
+pb_status pb_steer(double lambda,
+                   const pb_ball_state* start,
+                   const double goal_x[2],
+                   const double goal_A[9],
+                   int impulses,
+                   pb_impulse* out,
+                   int capacity) {
   if (start == nullptr) return Null("start");
   if (goal_x == nullptr) return Null("goal_x");
   if (goal_A == nullptr) return Null("goal_A");
@@ -200,8 +210,9 @@ pb_status pb_controller_create(const pb_plan* plan, const pb_controller_options*
     plateball::ControllerOptions o;
     o.tick_period = options->tick_period;
     if (options->strategy != PB_FEEDBACK && options->strategy != PB_FEEDBACK_EXACT)
-      return Fail(PB_INVALID_INPUT, "strategy: value " + std::to_string(static_cast<int>(options->strategy)) +
-                                        ": must be PB_FEEDBACK or PB_FEEDBACK_EXACT");
+      return Fail(PB_INVALID_INPUT,
+                  "strategy: value " + std::to_string(static_cast<int>(options->strategy)) +
+                      ": must be PB_FEEDBACK or PB_FEEDBACK_EXACT");
     o.strategy = options->strategy == PB_FEEDBACK ? plateball::ExecutionStrategy::kFeedback
                                                   : plateball::ExecutionStrategy::kFeedbackExact;
     o.time_budget = options->time_budget;
@@ -221,7 +232,9 @@ pb_status pb_controller_create(const pb_plan* plan, const pb_controller_options*
   });
 }
 
-pb_status pb_controller_update(pb_controller* controller, double time, const pb_measurement* measurement,
+pb_status pb_controller_update(pb_controller* controller,
+                               double time,
+                               const pb_measurement* measurement,
                                pb_command* command) {
   if (controller == nullptr) return Null("controller");
   if (measurement == nullptr) return Null("measurement");

@@ -25,7 +25,8 @@ using json = nlohmann::json;
 // or a string).
 std::string TooLargeMessage(const std::string& source_name) {
   return source_name + ": (file): value (more than " + std::to_string(limits::kMaxProblemFileBytes) +
-         " bytes): larger than the " + std::to_string(limits::kMaxProblemFileBytes >> 20) + " MiB limit of a problem file";
+         " bytes): larger than the " + std::to_string(limits::kMaxProblemFileBytes >> 20) +
+         " MiB limit of a problem file";
 }
 
 }  // namespace
@@ -72,7 +73,8 @@ Problem ReadProblemFile(const std::string& path) {
 
 std::string WriteProblemJson(const Problem& p) { return internal::problem_io::WriteDocument(p); }
 
-Eigen::Matrix3d ParseOrientation(const std::string& json_text, const std::string& field,
+Eigen::Matrix3d ParseOrientation(const std::string& json_text,
+                                 const std::string& field,
                                  const std::string& source_name) {
   const FieldReader reader(source_name);
   try {

@@ -26,7 +26,7 @@ constexpr double kSameSolution = 1e-7;
 // Cells of the scan grid in each time block tested against the target together.
 constexpr int kBlockSteps = 16;
 // Work budgets of one Reach call (README, "Limits"), checked up front by ReachOptions::Validate.
-constexpr double kMaxReachScanNodes = 1e8;      // horizon_periods x scan_directions x scan_steps_per_period
+constexpr double kMaxReachScanNodes = 1e8;        // horizon_periods x scan_directions x scan_steps_per_period
 constexpr double kMaxReachRefinePeriods = 25600;  // horizon_periods x max_candidates
 
 double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -61,14 +61,16 @@ class Scan {
     m_ = std::max(m_, 1);
     tab_.resize(static_cast<std::size_t>(ns_));
     std::vector<internal::ReachDirection> dirs(static_cast<std::size_t>(ns_));
-    for (int i = 0; i < ns_; ++i) dirs[static_cast<std::size_t>(i)] = internal::DirectionFor(p.start, p.mu, p.model.lambda(), i * ds_);
+    for (int i = 0; i < ns_; ++i)
+      dirs[static_cast<std::size_t>(i)] = internal::DirectionFor(p.start, p.mu, p.model.lambda(), i * ds_);
     internal::TabulatePeriods(dirs.data(), ns_, p.model.lambda(), period, n_, tab_.data());
     blocks_ = (n_ + kBlockSteps - 1) / kBlockSteps;
     boxes_.assign(static_cast<std::size_t>(ns_ * blocks_), Box());
     for (int i = 0; i < ns_; ++i)
       for (int b = 0; b < blocks_; ++b) {
         Box& box = boxes_[static_cast<std::size_t>(i * blocks_ + b)];
-        for (int r = b * kBlockSteps; r <= std::min((b + 1) * kBlockSteps, n_); ++r) box.Add(Tab(i).x[static_cast<std::size_t>(r)]);
+        for (int r = b * kBlockSteps; r <= std::min((b + 1) * kBlockSteps, n_); ++r)
+          box.Add(Tab(i).x[static_cast<std::size_t>(r)]);
       }
   }
 
@@ -103,8 +105,13 @@ class Scan {
 };
 
 // Barycentric coordinates of q in triangle (a, b, c); false for a degenerate triangle.
-bool Barycentric(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
-                 const Eigen::Vector2d& q, double* l1, double* l2, double* l3) {
+bool Barycentric(const Eigen::Vector2d& a,
+                 const Eigen::Vector2d& b,
+                 const Eigen::Vector2d& c,
+                 const Eigen::Vector2d& q,
+                 double* l1,
+                 double* l2,
+                 double* l3) {
   const double area = Cross(b - a, c - a);
   if (!(std::abs(area) > 1e-300)) return false;
   *l1 = Cross(b - q, c - q) / area;
@@ -120,8 +127,12 @@ int QuadSign(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
 }
 
 // Distance from q to the convex hull-ish neighbourhood of a quad: distance to its bounding box.
-double BoxDistance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
-                   const Eigen::Vector2d& d, const Eigen::Vector2d& q, double* diameter) {
+double BoxDistance(const Eigen::Vector2d& a,
+                   const Eigen::Vector2d& b,
+                   const Eigen::Vector2d& c,
+                   const Eigen::Vector2d& d,
+                   const Eigen::Vector2d& q,
+                   double* diameter) {
   Box box;
   box.Add(a);
   box.Add(b);
@@ -144,7 +155,9 @@ double CellDistance(const Eigen::Vector2d* c, const Eigen::Vector2d& q) {
   double l1, l2, l3;
   if (Barycentric(c[0], c[1], c[2], q, &l1, &l2, &l3) && l1 >= 0 && l2 >= 0 && l3 >= 0) return 0.0;
   if (Barycentric(c[0], c[2], c[3], q, &l1, &l2, &l3) && l1 >= 0 && l2 >= 0 && l3 >= 0) return 0.0;
-  return std::min({SegmentDistance(c[0], c[1], q), SegmentDistance(c[1], c[2], q), SegmentDistance(c[2], c[3], q),
+  return std::min({SegmentDistance(c[0], c[1], q),
+                   SegmentDistance(c[1], c[2], q),
+                   SegmentDistance(c[2], c[3], q),
                    SegmentDistance(c[3], c[0], q)});
 }
 
@@ -158,8 +171,8 @@ void CellCorners(const Scan& scan, int i, int j, Eigen::Vector2d* c) {
 
 // A hit: the cell's piecewise-linear image contains the target; (s, t) from its barycentric
 // coordinates. Triangle (a, b, c): (u, v) = l2 (1, 0) + l3 (1, 1); triangle (a, c, d): l2 (1, 1) + l3 (0, 1).
-bool CellHit(const Scan& scan, int i, int j, const Eigen::Vector2d* c, const Eigen::Vector2d& q, int sign,
-             Candidate* hit) {
+bool CellHit(
+    const Scan& scan, int i, int j, const Eigen::Vector2d* c, const Eigen::Vector2d& q, int sign, Candidate* hit) {
   constexpr double kBarySlack = 1e-9;
   double l1, l2, l3;
   auto inside = [&] { return l1 >= -kBarySlack && l2 >= -kBarySlack && l3 >= -kBarySlack; };
@@ -179,7 +192,12 @@ bool CellHit(const Scan& scan, int i, int j, const Eigen::Vector2d* c, const Eig
 // map and its piecewise-linear image may cover the target a different number of times (a close
 // pair of solutions): when the target is within the linearisation error of either image and
 // neither cell caught it, both sides are seeded.
-void FoldSeeds(const Scan& scan, int i, int j, const Eigen::Vector2d* c, int sign, const Eigen::Vector2d& q,
+void FoldSeeds(const Scan& scan,
+               int i,
+               int j,
+               const Eigen::Vector2d* c,
+               int sign,
+               const Eigen::Vector2d& q,
                std::vector<Candidate>* folds) {
   if (j == 0 || sign == 0) return;
   const double d_here = CellDistance(c, q);
@@ -215,7 +233,12 @@ bool BlockMayHold(const Scan& scan, int i, int b, int k, const Eigen::Vector2d& 
 }
 
 // Hits and fold seeds of the cells j0 .. j1-1 between directions i and i+1.
-void ScanCells(const Scan& scan, int i, int j0, int j1, const Eigen::Vector2d& q, std::vector<Candidate>* hits,
+void ScanCells(const Scan& scan,
+               int i,
+               int j0,
+               int j1,
+               const Eigen::Vector2d& q,
+               std::vector<Candidate>* hits,
                std::vector<Candidate>* folds) {
   for (int j = j0; j < j1; ++j) {
     Eigen::Vector2d c[4];
@@ -260,7 +283,8 @@ std::vector<Candidate> FindCandidates(const Scan& scan, const Eigen::Vector2d& r
   std::vector<Candidate> out = Thin(scan, hits, 1.0);
   // Along one fold many cell pairs may qualify; the pair nearest the target stands for the
   // others within a few cells (a close pair of solutions lies next to the nearest one).
-  std::stable_sort(folds.begin(), folds.end(), [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
+  std::stable_sort(
+      folds.begin(), folds.end(), [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
   const std::vector<Candidate> kept = Thin(scan, folds, 3.0);
   out.insert(out.end(), kept.begin(), kept.end());
   return out;
@@ -326,12 +350,15 @@ struct CheapDistance {
   double operator()(double s, double* t_best) const {
     internal::ScanPeriod tab;
     const double lambda = problem->model.lambda();
-    internal::TabulatePeriod(internal::DirectionFor(problem->start, problem->mu, lambda, s), lambda, period, steps, &tab);
+    internal::TabulatePeriod(
+        internal::DirectionFor(problem->start, problem->mu, lambda, s), lambda, period, steps, &tab);
     ++*periods_integrated;
     const Eigen::Vector2d rel = problem->target - problem->x0;
     const double h = period / steps;
     const int m = static_cast<int>(std::floor(horizon / h + 1e-9));
-    auto node = [&](int j) { return tab.x[static_cast<std::size_t>(j % steps)] + static_cast<double>(j / steps) * tab.drift; };
+    auto node = [&](int j) {
+      return tab.x[static_cast<std::size_t>(j % steps)] + static_cast<double>(j / steps) * tab.drift;
+    };
     auto vel = [&](int j) { return tab.v[static_cast<std::size_t>(j % steps)]; };
     auto at = [&](double t) {  // cubic Hermite between the two nodes around t
       int j = std::min(static_cast<int>(std::floor(t / h)), std::max(m - 1, 0));
@@ -360,8 +387,8 @@ struct CheapDistance {
     }
     // Golden-section search on the interpolant over the two neighbouring steps.
     double t_min = 0.0;
-    const double f_min = internal::GoldenSection([&](double t) { return (at(t) - rel).norm(); },
-                                                 std::max(0.0, tb - h), std::min(horizon, tb + h), &t_min);
+    const double f_min = internal::GoldenSection(
+        [&](double t) { return (at(t) - rel).norm(); }, std::max(0.0, tb - h), std::min(horizon, tb + h), &t_min);
     if (f_min < best) {
       best = f_min;
       tb = t_min;
@@ -422,13 +449,15 @@ std::string ReachOptions::Validate() const {
   // candidate is refined by integrations over up to the whole horizon.
   const double scan_nodes = horizon_periods * scan_directions * scan_steps_per_period;
   if (scan_nodes > kMaxReachScanNodes)
-    return InvalidValueMessage("horizon_periods", horizon_periods,
-                               "horizon_periods x scan_directions x scan_steps_per_period = " +
-                                   internal::FormatNumber(scan_nodes) + " exceeds the scan budget " +
-                                   internal::FormatNumber(kMaxReachScanNodes));
+    return InvalidValueMessage(
+        "horizon_periods",
+        horizon_periods,
+        "horizon_periods x scan_directions x scan_steps_per_period = " + internal::FormatNumber(scan_nodes) +
+            " exceeds the scan budget " + internal::FormatNumber(kMaxReachScanNodes));
   const double refine_periods = horizon_periods * max_candidates;
   if (refine_periods > kMaxReachRefinePeriods)
-    return InvalidValueMessage("horizon_periods", horizon_periods,
+    return InvalidValueMessage("horizon_periods",
+                               horizon_periods,
                                "horizon_periods x max_candidates = " + internal::FormatNumber(refine_periods) +
                                    " exceeds the refinement budget " + internal::FormatNumber(kMaxReachRefinePeriods));
   return integration.Validate();
@@ -451,7 +480,8 @@ std::string ToString(ReachStatus status) {
 }
 
 const ReachSolution& ReachSummary::Earliest() const {
-  if (solutions.empty()) throw std::logic_error("ReachSummary::Earliest: no solution (status " + ToString(status) + ")");
+  if (solutions.empty())
+    throw std::logic_error("ReachSummary::Earliest: no solution (status " + ToString(status) + ")");
   return solutions.front();
 }
 
@@ -523,8 +553,12 @@ GlobalMinimum GlobalSearch(const CheapDistance& cheap, const ReachOptions& optio
 
 // The refinement seeds in order: the global minimiser, the scan's hits and folds, and (when there
 // are none) the paper's uniform drift towards the target; at most options.max_candidates.
-std::vector<Candidate> CollectCandidates(const Scan& scan, const ReachProblem& problem, const ReachOptions& options,
-                                         const GlobalMinimum& global, double period, double horizon,
+std::vector<Candidate> CollectCandidates(const Scan& scan,
+                                         const ReachProblem& problem,
+                                         const ReachOptions& options,
+                                         const GlobalMinimum& global,
+                                         double period,
+                                         double horizon,
                                          ReachSummary* summary) {
   const Eigen::Vector2d rel = problem.target - problem.x0;
   const double lambda = problem.model.lambda();
@@ -533,8 +567,11 @@ std::vector<Candidate> CollectCandidates(const Scan& scan, const ReachProblem& p
   if (candidates.empty() && std::isfinite(summary->drift_guess_delta_psi)) {
     const double s = summary->drift_guess_delta_psi;
     internal::ScanPeriod tab;
-    internal::TabulatePeriod(internal::DirectionFor(problem.start, problem.mu, lambda, s), lambda, period,
-                             options.scan_steps_per_period, &tab);
+    internal::TabulatePeriod(internal::DirectionFor(problem.start, problem.mu, lambda, s),
+                             lambda,
+                             period,
+                             options.scan_steps_per_period,
+                             &tab);
     ++summary->scan_periods_integrated;
     const double t = rel.norm() / std::max(tab.drift.norm(), 1e-300) * period;
     if (t <= horizon) candidates.push_back({s, t, 0});
@@ -553,8 +590,13 @@ bool NearSolution(const std::vector<ReachSolution>& found, double s, double t, d
 
 // Levenberg-Marquardt (Ceres TinySolver) from every candidate on the tight integration; the
 // distinct solutions with 0 < t <= horizon and residual <= tolerance, earliest first.
-void RefineCandidates(const Scan& scan, const ReachProblem& problem, const ReachOptions& options,
-                      const std::vector<Candidate>& candidates, double period, double horizon, ReachSummary* summary) {
+void RefineCandidates(const Scan& scan,
+                      const ReachProblem& problem,
+                      const ReachOptions& options,
+                      const std::vector<Candidate>& candidates,
+                      double period,
+                      double horizon,
+                      ReachSummary* summary) {
   ReachResidual residual(problem, period, options.integration, &summary->tight_evaluations);
   ceres::TinySolver<ReachResidual> solver;
   solver.options.max_num_iterations = options.max_refine_iterations;
@@ -575,8 +617,7 @@ void RefineCandidates(const Scan& scan, const ReachProblem& problem, const Reach
     const double s = WrapTwoPi(x[0]);
     const double res = (problem.x0 + tp.x - problem.target).norm();
     if (!(res <= options.tolerance)) continue;
-    if (NearSolution(summary->solutions, s, t, kSameSolution, kSameSolution * std::max(1.0, t)))
-      continue;
+    if (NearSolution(summary->solutions, s, t, kSameSolution, kSameSolution * std::max(1.0, t))) continue;
     ReachSolution sol;
     sol.delta_psi = s;
     sol.t = t;
@@ -585,8 +626,9 @@ void RefineCandidates(const Scan& scan, const ReachProblem& problem, const Reach
     sol.jacobian_determinant = Cross(tp.dx_ds, tp.velocity);
     summary->solutions.push_back(sol);
   }
-  std::sort(summary->solutions.begin(), summary->solutions.end(),
-            [](const ReachSolution& a, const ReachSolution& b) { return a.t < b.t; });
+  std::sort(summary->solutions.begin(), summary->solutions.end(), [](const ReachSolution& a, const ReachSolution& b) {
+    return a.t < b.t;
+  });
 }
 
 // The impulse and the end state (tight free motion with the orientation) of every solution.
@@ -595,7 +637,8 @@ void FinishSolutions(const ReachProblem& problem, const ReachOptions& options, R
     sol.impulse = EnergyPreservingImpulse(problem.start, problem.mu, sol.delta_psi, problem.model);
     AngleState after = problem.start;
     after.psi += sol.delta_psi;
-    const FreeMotion motion = FreeMotion::FromAngles(problem.model, after, problem.mu, problem.x0, problem.A0, options.integration);
+    const FreeMotion motion =
+        FreeMotion::FromAngles(problem.model, after, problem.mu, problem.x0, problem.A0, options.integration);
     sol.end = motion.At(sol.t);
   }
   const ReachSolution& e = summary->solutions.front();
@@ -605,9 +648,14 @@ void FinishSolutions(const ReachProblem& problem, const ReachOptions& options, R
 // Unreachable within the horizon: the closest approach. The global minimum competes with the scan
 // grid's best node (DIRECT may stop on its budget first), then a bounded polish of (s, t) on the
 // tight integration (NLopt BOBYQA, deterministic).
-ClosestApproach PolishClosestApproach(const Scan& scan, const CheapDistance& cheap, const ReachProblem& problem,
-                                      const ReachOptions& options, const GlobalMinimum& global, double period,
-                                      double horizon, ReachSummary* summary) {
+ClosestApproach PolishClosestApproach(const Scan& scan,
+                                      const CheapDistance& cheap,
+                                      const ReachProblem& problem,
+                                      const ReachOptions& options,
+                                      const GlobalMinimum& global,
+                                      double period,
+                                      double horizon,
+                                      ReachSummary* summary) {
   const Eigen::Vector2d rel = problem.target - problem.x0;
   const double lambda = problem.model.lambda();
   double best_d = global.d;
@@ -623,8 +671,8 @@ ClosestApproach PolishClosestApproach(const Scan& scan, const CheapDistance& che
   double best_t = 0.0;
   cheap(best_s, &best_t);
   std::function<double(double, double)> dist2 = [&](double s, double t) {
-    const internal::TightPoint tp = internal::EvaluateTight(internal::DirectionFor(problem.start, problem.mu, lambda, s),
-                                                            lambda, period, t, false, options.integration);
+    const internal::TightPoint tp = internal::EvaluateTight(
+        internal::DirectionFor(problem.start, problem.mu, lambda, s), lambda, period, t, false, options.integration);
     ++summary->tight_evaluations;
     return (problem.x0 + tp.x - problem.target).squaredNorm();
   };
@@ -666,9 +714,11 @@ ReachSummary Reach(const ReachProblem& problem_in, const ReachOptions& options) 
     const Scan scan(problem, options, period, horizon);
     summary.scan_periods_integrated = scan.ns();
     summary.drift_guess_delta_psi = DriftGuess(scan, rel);
-    const CheapDistance cheap{&problem, period, horizon, options.scan_steps_per_period, &summary.scan_periods_integrated};
+    const CheapDistance cheap{
+        &problem, period, horizon, options.scan_steps_per_period, &summary.scan_periods_integrated};
     const GlobalMinimum global = GlobalSearch(cheap, options, &summary);
-    const std::vector<Candidate> candidates = CollectCandidates(scan, problem, options, global, period, horizon, &summary);
+    const std::vector<Candidate> candidates =
+        CollectCandidates(scan, problem, options, global, period, horizon, &summary);
     summary.candidates = static_cast<int>(candidates.size());
     RefineCandidates(scan, problem, options, candidates, period, horizon, &summary);
     if (!summary.solutions.empty()) {

@@ -10,7 +10,7 @@
 namespace plateball::internal {
 namespace {
 
-using ZxState = std::array<double, 5>;           // z[3], x[2]
+using ZxState = std::array<double, 5>;  // z[3], x[2]
 
 struct ZxOnlyRhs {
   double lambda;
@@ -21,7 +21,6 @@ struct ZxOnlyRhs {
     ZxRhs(y.data(), w, dy.data(), dy.data() + 3);
   }
 };
-
 
 Eigen::Vector2d VelocityAt(const double* z, const Eigen::Vector2d& k, double lambda) {
   const double kk[2] = {k.x(), k.y()};
@@ -71,7 +70,7 @@ void TabulatePeriods(const ReachDirection* d, int count, double lambda, double p
       out[first + l].x.resize(static_cast<std::size_t>(steps) + 1);
       out[first + l].v.resize(static_cast<std::size_t>(steps) + 1);
     }
-    auto rhs = [&](const double (*in)[5], double (*o)[5]) {
+    auto rhs = [&](const double(*in)[5], double(*o)[5]) {
       for (int l = 0; l < kLanes; ++l) {
         double w[2];
         OmegaFromZK(in[l], kk[l], lambda, w);
@@ -103,8 +102,8 @@ void TabulatePeriods(const ReachDirection* d, int count, double lambda, double p
   for (; first < count; ++first) TabulatePeriod(d[first], lambda, period, steps, &out[first]);
 }
 
-TightPoint EvaluateTight(const ReachDirection& d, double lambda, double period, double t, bool with_ds,
-                         const IntegrationOptions& options) {
+TightPoint EvaluateTight(
+    const ReachDirection& d, double lambda, double period, double t, bool with_ds, const IntegrationOptions& options) {
   const double kf = std::floor(t / period);
   const double tau = std::min(std::max(t - kf * period, 0.0), period);
   const double dt0 = period / 64.0;

@@ -35,7 +35,7 @@ struct TightPoint {
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
   Eigen::Vector2d dx_ds = Eigen::Vector2d::Zero();
 };
-TightPoint EvaluateTight(const ReachDirection& d, double lambda, double period, double t, bool with_ds,
-                         const IntegrationOptions& options);
+TightPoint EvaluateTight(
+    const ReachDirection& d, double lambda, double period, double t, bool with_ds, const IntegrationOptions& options);
 
 }  // namespace plateball::internal

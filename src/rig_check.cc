@@ -8,12 +8,12 @@
 #include <string>
 
 #include "check.h"
-#include "rig_geometry.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/plan_rig_check.h"
 #include "plateball/plate_impulse.h"
+#include "rig_geometry.h"
 
 namespace plateball {
 
@@ -33,7 +33,8 @@ class Recorder {
   }
   void Finish() {
     for (const auto& [limit, where] : worst_)
-      out_->violations.push_back(limit + " exceeded by " + internal::FormatNumber(-out_->margins.at(limit)) + " at " + where);
+      out_->violations.push_back(limit + " exceeded by " + internal::FormatNumber(-out_->margins.at(limit)) + " at " +
+                                 where);
     out_->passed = out_->violations.empty();
   }
 
@@ -42,20 +43,29 @@ class Recorder {
   std::map<std::string, std::string> worst_;  // limit -> where its margin is smallest
 };
 
-void CheckPoint(const RigLimits& l, const Eigen::Vector2d& x0, const Eigen::Vector2d& x, double tol,
-                const std::string& where, Recorder* rec) {
-  internal::VisitGeometricMargins(l, x0, x, [&](const std::string& name, double margin) {
-    rec->Margin(name, margin, tol, where);
-  });
+void CheckPoint(const RigLimits& l,
+                const Eigen::Vector2d& x0,
+                const Eigen::Vector2d& x,
+                double tol,
+                const std::string& where,
+                Recorder* rec) {
+  internal::VisitGeometricMargins(
+      l, x0, x, [&](const std::string& name, double margin) { rec->Margin(name, margin, tol, where); });
 }
 
-void CheckImpulse(const RigLimits& l, const std::optional<PhysicalParameters>& physical, const Eigen::Vector3d& z,
-                  const Eigen::Vector3d& delta_omega, const RigCheckTolerances& tol, const std::string& where,
+void CheckImpulse(const RigLimits& l,
+                  const std::optional<PhysicalParameters>& physical,
+                  const Eigen::Vector3d& z,
+                  const Eigen::Vector3d& delta_omega,
+                  const RigCheckTolerances& tol,
+                  const std::string& where,
                   Recorder* rec) {
   const double dv = 2.0 * delta_omega.cross(Eigen::Vector3d::UnitZ()).norm();
   if (!std::isinf(l.max_plate_velocity_change))
-    rec->Margin("max_plate_velocity_change", l.max_plate_velocity_change - dv,
-                tol.impulse * l.max_plate_velocity_change, where);
+    rec->Margin("max_plate_velocity_change",
+                l.max_plate_velocity_change - dv,
+                tol.impulse * l.max_plate_velocity_change,
+                where);
   if (!std::isinf(l.ImpulseBound()) && physical) {
     const double j = PlateImpulseFor(*physical, z, delta_omega).plate.norm();
     rec->Margin("max_plate_impulse", l.ImpulseBound() - j, tol.impulse * l.ImpulseBound(), where);
@@ -64,8 +74,14 @@ void CheckImpulse(const RigLimits& l, const std::optional<PhysicalParameters>& p
 
 // An impulse at t_impulse, `tick` its index on the grid (-1: none claimed), followed by a flight of
 // `duration` that ends at another impulse when `ends_at_impulse`.
-void CheckTiming(const RigLimits& l, double t_impulse, long long tick, double duration, bool ends_at_impulse,
-                 const RigCheckTolerances& tol, const std::string& where, Recorder* rec) {
+void CheckTiming(const RigLimits& l,
+                 double t_impulse,
+                 long long tick,
+                 double duration,
+                 bool ends_at_impulse,
+                 const RigCheckTolerances& tol,
+                 const std::string& where,
+                 Recorder* rec) {
   if (l.min_interval > 0 && ends_at_impulse)
     rec->Margin("min_interval", duration - l.min_interval, tol.time * l.min_interval, where);
   if (l.tick > 0) {  // exactly on the grid: tolerance zero
@@ -76,8 +92,10 @@ void CheckTiming(const RigLimits& l, double t_impulse, long long tick, double du
 
 }  // namespace
 
-RigCheck CheckRigLimits(const ExactArrivalProblem& p, const ExactArrivalSummary& summary,
-                        const RigCheckTolerances& tolerances, int samples_per_arc) {
+RigCheck CheckRigLimits(const ExactArrivalProblem& p,
+                        const ExactArrivalSummary& summary,
+                        const RigCheckTolerances& tolerances,
+                        int samples_per_arc) {
   if (samples_per_arc < 1) internal::ThrowInvalid("samples_per_arc", samples_per_arc, "must be >= 1");
   RigCheck out;
   Recorder rec(&out);
@@ -90,10 +108,12 @@ RigCheck CheckRigLimits(const ExactArrivalProblem& p, const ExactArrivalSummary&
     const ExactImpulse& e = summary.impulses[k];
     const std::string where = "impulse " + std::to_string(k);
     const Impulse imp = EnergyPreservingImpulse(AnglesFromState(state, p.model), p.mu, e.delta_psi, p.model);
-    const Eigen::Vector3d dw =
-        e.kind == ExactImpulseKind::kStart ? imp.state_after.omega : Eigen::Vector3d(imp.state_after.omega - state.omega);
+    const Eigen::Vector3d dw = e.kind == ExactImpulseKind::kStart
+                                   ? imp.state_after.omega
+                                   : Eigen::Vector3d(imp.state_after.omega - state.omega);
     CheckImpulse(p.limits, p.physical, state.z, dw, tolerances, where, &rec);
-    CheckTiming(p.limits, e.t_impulse, e.tick, e.duration, k + 1 < n || summary.stop.has_value(), tolerances, where, &rec);
+    CheckTiming(
+        p.limits, e.t_impulse, e.tick, e.duration, k + 1 < n || summary.stop.has_value(), tolerances, where, &rec);
     const FreeMotion motion(p.model, FreeMotionStart{imp.state_after, x, A});
     for (int j = 1; j <= samples_per_arc; ++j) {
       const MotionSample sample = motion.At(e.duration * j / samples_per_arc);
@@ -104,15 +124,24 @@ RigCheck CheckRigLimits(const ExactArrivalProblem& p, const ExactArrivalSummary&
   }
   if (summary.stop) {
     CheckImpulse(p.limits, p.physical, state.z, -state.omega, tolerances, "the stop", &rec);
-    CheckTiming(p.limits, summary.stop->t_impulse, summary.stop->tick, summary.stop->duration, false, tolerances,
-                "the stop", &rec);
+    CheckTiming(p.limits,
+                summary.stop->t_impulse,
+                summary.stop->tick,
+                summary.stop->duration,
+                false,
+                tolerances,
+                "the stop",
+                &rec);
   }
   rec.Finish();
   return out;
 }
 
-RigCheck CheckPlanRigLimits(const PlanProblem& problem, const PlanSummary& plan, const RigLimits& limits,
-                            const std::optional<PhysicalParameters>& physical, const RigCheckTolerances& tolerances,
+RigCheck CheckPlanRigLimits(const PlanProblem& problem,
+                            const PlanSummary& plan,
+                            const RigLimits& limits,
+                            const std::optional<PhysicalParameters>& physical,
+                            const RigCheckTolerances& tolerances,
                             int samples_per_arc) {
   if (samples_per_arc < 1) internal::ThrowInvalid("samples_per_arc", samples_per_arc, "must be >= 1");
   RigCheck out;

@@ -11,7 +11,9 @@ namespace plateball {
 namespace {
 
 // Distance from x to the segment [a, b] and the nearest point on it.
-double SegmentDistance(const Eigen::Vector2d& x, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+double SegmentDistance(const Eigen::Vector2d& x,
+                       const Eigen::Vector2d& a,
+                       const Eigen::Vector2d& b,
                        Eigen::Vector2d* nearest) {
   const Eigen::Vector2d ab = b - a;
   const double len2 = ab.squaredNorm();
@@ -90,17 +92,23 @@ std::string ValidateShape(const std::string& field, const PlateShape& shape) {
 
 std::string ToString(ArrivalObjective objective) {
   switch (objective) {
-    case ArrivalObjective::kDeviation: return "deviation";
-    case ArrivalObjective::kTotalTime: return "time";
-    case ArrivalObjective::kTotalImpulse: return "impulse";
-    case ArrivalObjective::kFewest: return "fewest";
+    case ArrivalObjective::kDeviation:
+      return "deviation";
+    case ArrivalObjective::kTotalTime:
+      return "time";
+    case ArrivalObjective::kTotalImpulse:
+      return "impulse";
+    case ArrivalObjective::kFewest:
+      return "fewest";
   }
   return "unknown";
 }
 
 std::optional<ArrivalObjective> ArrivalObjectiveFromString(const std::string& word) {
-  for (ArrivalObjective o : {ArrivalObjective::kDeviation, ArrivalObjective::kTotalTime, ArrivalObjective::kTotalImpulse,
-                            ArrivalObjective::kFewest})
+  for (ArrivalObjective o : {ArrivalObjective::kDeviation,
+                             ArrivalObjective::kTotalTime,
+                             ArrivalObjective::kTotalImpulse,
+                             ArrivalObjective::kFewest})
     if (ToString(o) == word) return o;
   return std::nullopt;
 }
@@ -111,8 +119,8 @@ double SignedDistanceInside(const PlateShape& shape, const Eigen::Vector2d& x, E
 }
 
 bool RigLimits::Empty() const {
-  return !plate && obstacles.empty() && !stroke && std::isinf(max_plate_velocity_change) && std::isinf(ImpulseBound()) &&
-         min_interval == 0.0 && tick == 0.0;
+  return !plate && obstacles.empty() && !stroke && std::isinf(max_plate_velocity_change) &&
+         std::isinf(ImpulseBound()) && min_interval == 0.0 && tick == 0.0;
 }
 
 double RigLimits::ImpulseBound() const {
@@ -135,9 +143,10 @@ std::string RigLimits::Validate() const {
   if (!(std::isfinite(clearance) && clearance >= 0))
     return InvalidValueMessage("rig.clearance", clearance, "must be finite and >= 0");
   if (stroke && !(std::isfinite(stroke->x()) && std::isfinite(stroke->y()) && stroke->minCoeff() > 0))
-    return InvalidValueMessage("rig.stroke", "(" + internal::FormatNumber(stroke->x()) + ", " +
-                                                 internal::FormatNumber(stroke->y()) + ")",
-                               "both half-ranges must be finite and > 0");
+    return InvalidValueMessage(
+        "rig.stroke",
+        "(" + internal::FormatNumber(stroke->x()) + ", " + internal::FormatNumber(stroke->y()) + ")",
+        "both half-ranges must be finite and > 0");
   const auto positive_or_inf = [](double v) { return v > 0 && !std::isnan(v); };
   if (!positive_or_inf(max_plate_velocity_change))
     return InvalidValueMessage("rig.max_plate_velocity_change", max_plate_velocity_change, "must be > 0");
@@ -147,7 +156,8 @@ std::string RigLimits::Validate() const {
   if (!(std::isfinite(pulse_duration) && pulse_duration >= 0))
     return InvalidValueMessage("rig.pulse_duration", pulse_duration, "must be finite and >= 0");
   if (!std::isinf(max_force) && pulse_duration == 0)
-    return InvalidValueMessage("rig.pulse_duration", pulse_duration,
+    return InvalidValueMessage("rig.pulse_duration",
+                               pulse_duration,
                                "must be > 0 with rig.max_force (the mean force is |J| / pulse_duration)");
   if (!(std::isfinite(min_interval) && min_interval >= 0))
     return InvalidValueMessage("rig.min_interval", min_interval, "must be finite and >= 0");

@@ -19,23 +19,29 @@ namespace plateball {
 
 std::string ToString(RigPlanStatus status) {
   switch (status) {
-    case RigPlanStatus::kNotRun: return "not_run";
-    case RigPlanStatus::kSuccess: return "success";
-    case RigPlanStatus::kPlanFailed: return "plan_failed";
-    case RigPlanStatus::kLimitsNotMet: return "limits_not_met";
+    case RigPlanStatus::kNotRun:
+      return "not_run";
+    case RigPlanStatus::kSuccess:
+      return "success";
+    case RigPlanStatus::kPlanFailed:
+      return "plan_failed";
+    case RigPlanStatus::kLimitsNotMet:
+      return "limits_not_met";
   }
   return "unknown";
 }
 
 std::string RigPlanOptions::Validate() const {
-  if (max_rounds < 0 || max_rounds > 64) return internal::InvalidValueMessage("max_rounds", max_rounds, "must be in [0, 64]");
+  if (max_rounds < 0 || max_rounds > 64)
+    return internal::InvalidValueMessage("max_rounds", max_rounds, "must be in [0, 64]");
   if (max_added_points < 0 || max_added_points > internal::kMaxPartitionSteps)
-    return internal::InvalidValueMessage("max_added_points", max_added_points,
-                                         "must be in [0, " + std::to_string(internal::kMaxPartitionSteps) + "]");
+    return internal::InvalidValueMessage(
+        "max_added_points", max_added_points, "must be in [0, " + std::to_string(internal::kMaxPartitionSteps) + "]");
   if (samples_per_flight < 2 || samples_per_flight > 100000)
     return internal::InvalidValueMessage("samples_per_flight", samples_per_flight, "must be in [2, 100000]");
   if (check_samples_per_flight < 1 || check_samples_per_flight > 100000)
-    return internal::InvalidValueMessage("check_samples_per_flight", check_samples_per_flight, "must be in [1, 100000]");
+    return internal::InvalidValueMessage(
+        "check_samples_per_flight", check_samples_per_flight, "must be in [1, 100000]");
   if (!(tolerances.position >= 0) || !std::isfinite(tolerances.position))
     return internal::InvalidValueMessage("tolerances.position", tolerances.position, "must be finite and >= 0");
   if (!(tolerances.impulse >= 0) || !std::isfinite(tolerances.impulse))
@@ -94,9 +100,11 @@ void AddOnce(const std::string& name, std::vector<std::string>* names) {
 // can keep the flights inside where the pass points themselves lie outside.
 constexpr int kPathSamplesPerPiece = 2000;
 
-std::vector<std::pair<std::string, std::string>> PathCrossings(const RigLimits& limits, const Path& path,
+std::vector<std::pair<std::string, std::string>> PathCrossings(const RigLimits& limits,
+                                                               const Path& path,
                                                                const std::vector<std::vector<double>>& partition,
-                                                               int samples, double tolerance) {
+                                                               int samples,
+                                                               double tolerance) {
   struct Worst {
     double margin;
     std::string where;
@@ -116,14 +124,16 @@ std::vector<std::pair<std::string, std::string>> PathCrossings(const RigLimits& 
           if (margin >= -tolerance) return;
           auto it = worst.find(name);
           if (it != worst.end() && !(margin < it->second.margin)) return;
-          worst[name] = {margin, "by " + internal::FormatNumber(-margin) + " at p(tau = " + internal::FormatNumber(tau) +
-                                     ") = " + Point(p) + " (piece " + std::to_string(piece) + ")"};
+          worst[name] = {margin,
+                         "by " + internal::FormatNumber(-margin) + " at p(tau = " + internal::FormatNumber(tau) +
+                             ") = " + Point(p) + " (piece " + std::to_string(piece) + ")"};
         });
       }
   }
   std::vector<std::pair<std::string, std::string>> out;
   for (const auto& [name, w] : worst)
-    out.emplace_back(name, "the path itself " + Crossing(name) + " " + w.where + ": no partition keeps the flights out");
+    out.emplace_back(name,
+                     "the path itself " + Crossing(name) + " " + w.where + ": no partition keeps the flights out");
   return out;
 }
 
@@ -131,8 +141,11 @@ std::vector<std::pair<std::string, std::string>> PathCrossings(const RigLimits& 
 // from its impulse at the planner's arrival at its pass point, sampled at `samples` points, and
 // the smallest sample refined by golden-section search between its neighbours (each evaluation
 // integrated from the sample before).
-std::vector<Margin> FlightMargins(const PlanProblem& problem, const PlanSummary& plan, const RigLimits& limits,
-                                  const IntegrationOptions& integration, int samples) {
+std::vector<Margin> FlightMargins(const PlanProblem& problem,
+                                  const PlanSummary& plan,
+                                  const RigLimits& limits,
+                                  const IntegrationOptions& integration,
+                                  int samples) {
   const Eigen::Vector2d x0 = problem.path.StartPoint();
   std::vector<Margin> out;
   out.reserve(plan.steps.size());
@@ -185,7 +198,9 @@ std::vector<EnergyChange> PlacedEnergyChanges(const PlanProblem& problem,
   for (const auto& piece : owners) {
     for (std::size_t k = 0; k < piece.size(); ++k)
       for (int i : piece[k])
-        placed.push_back({i, EnergyChange{offset + static_cast<int>(k), problem.energy_changes[static_cast<std::size_t>(i)].factor}});
+        placed.push_back(
+            {i,
+             EnergyChange{offset + static_cast<int>(k), problem.energy_changes[static_cast<std::size_t>(i)].factor}});
     offset += static_cast<int>(piece.size()) - 1;
   }
   std::sort(placed.begin(), placed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -201,12 +216,14 @@ std::vector<std::vector<std::vector<int>>> EnergyChangeOwners(const PlanProblem&
   std::vector<std::pair<int, int>> at;  // global index -> (piece, k)
   for (std::size_t piece = 0; piece < partition.size(); ++piece) {
     owners.emplace_back(partition[piece].size());
-    for (std::size_t k = 0; k + 1 < partition[piece].size(); ++k) at.push_back({static_cast<int>(piece), static_cast<int>(k)});
+    for (std::size_t k = 0; k + 1 < partition[piece].size(); ++k)
+      at.push_back({static_cast<int>(piece), static_cast<int>(k)});
   }
   for (std::size_t i = 0; i < problem.energy_changes.size(); ++i) {
     const int g = problem.energy_changes[i].index;
     if (g < 0 || g >= static_cast<int>(at.size()))  // as the planner says it
-      internal::ThrowInvalid("energy_changes[" + std::to_string(i) + "].index", g,
+      internal::ThrowInvalid("energy_changes[" + std::to_string(i) + "].index",
+                             g,
                              "must be a partition index in [0, " + std::to_string(at.size()) + ")");
     owners[static_cast<std::size_t>(at[static_cast<std::size_t>(g)].first)]
           [static_cast<std::size_t>(at[static_cast<std::size_t>(g)].second)]
@@ -225,12 +242,16 @@ struct Refinement {
 // When flights exceed the `exceeded` limits and the path itself exceeds one of them, refinement
 // cannot help (the pass points converge to the path): true, with the limit blocking and the path's
 // worst point as the reason.
-bool PathBlocks(const RigLimits& limits, const Path& path, const std::vector<std::vector<double>>& partition,
-                const RigPlanOptions& options, const std::vector<std::string>& exceeded, Refinement* r,
+bool PathBlocks(const RigLimits& limits,
+                const Path& path,
+                const std::vector<std::vector<double>>& partition,
+                const RigPlanOptions& options,
+                const std::vector<std::string>& exceeded,
+                Refinement* r,
                 RigPlanSummary* out) {
   bool blocked = false;
-  for (const auto& [name, reason] : PathCrossings(limits, path, partition, options.samples_per_flight,
-                                                  options.tolerances.position))
+  for (const auto& [name, reason] :
+       PathCrossings(limits, path, partition, options.samples_per_flight, options.tolerances.position))
     if (std::find(exceeded.begin(), exceeded.end(), name) != exceeded.end())
       AddOnce(name, &out->blocking), r->reasons.push_back(reason), blocked = true;
   return blocked;
@@ -238,8 +259,12 @@ bool PathBlocks(const RigLimits& limits, const Path& path, const std::vector<std
 
 // Bisects the segments of the flights below -tolerances.position. False (with the blocking limits and reasons)
 // when a bisection would break min_interval, reach the resolution of tau or exceed the budget.
-bool Bisect(const PlanSummary& plan, const std::vector<Margin>& margins, const RigLimits& limits,
-            const RigPlanOptions& options, Refinement* r, RigPlanSummary* out) {
+bool Bisect(const PlanSummary& plan,
+            const std::vector<Margin>& margins,
+            const RigLimits& limits,
+            const RigPlanOptions& options,
+            Refinement* r,
+            RigPlanSummary* out) {
   std::vector<std::size_t> bad;
   for (std::size_t k = 0; k < margins.size(); ++k)
     if (margins[k].value < -options.tolerances.position) bad.push_back(k);
@@ -258,15 +283,17 @@ bool Bisect(const PlanSummary& plan, const std::vector<Margin>& margins, const R
     const Margin& m = margins[*it];
     if (limits.min_interval > 0 && s.duration / 2 < limits.min_interval) {
       AddOnce("min_interval", &out->blocking);
-      r->reasons.push_back("flight " + std::to_string(*it) + " " + Crossing(m.limit) + " by " + internal::FormatNumber(-m.value) +
-                           ", and bisecting it (t_k = " + internal::FormatNumber(s.duration) +
-                           ") would make flights shorter than min_interval " + internal::FormatNumber(limits.min_interval));
+      r->reasons.push_back(
+          "flight " + std::to_string(*it) + " " + Crossing(m.limit) + " by " + internal::FormatNumber(-m.value) +
+          ", and bisecting it (t_k = " + internal::FormatNumber(s.duration) +
+          ") would make flights shorter than min_interval " + internal::FormatNumber(limits.min_interval));
       return false;
     }
     const double mid = 0.5 * (s.tau_begin + s.tau_end);
     if (!(mid > s.tau_begin && mid < s.tau_end)) {
       AddOnce(m.limit, &out->blocking);
-      r->reasons.push_back("flight " + std::to_string(*it) + " " + Crossing(m.limit) + " with its segment at the resolution of tau");
+      r->reasons.push_back("flight " + std::to_string(*it) + " " + Crossing(m.limit) +
+                           " with its segment at the resolution of tau");
       return false;
     }
     std::vector<double>& taus = r->partition[static_cast<std::size_t>(s.piece)];
@@ -279,8 +306,13 @@ bool Bisect(const PlanSummary& plan, const std::vector<Margin>& margins, const R
 }
 
 // The final verdict: the independent check, the grid's misses and the refinement's reasons.
-void Conclude(const PlanProblem& problem, const RigLimits& limits, const std::optional<PhysicalParameters>& physical,
-              const RigPlanOptions& options, const internal::PlanGridReport& grid, Refinement* r, RigPlanSummary* out) {
+void Conclude(const PlanProblem& problem,
+              const RigLimits& limits,
+              const std::optional<PhysicalParameters>& physical,
+              const RigPlanOptions& options,
+              const internal::PlanGridReport& grid,
+              Refinement* r,
+              RigPlanSummary* out) {
   if (!out->plan.IsSolutionUsable()) {
     out->status = RigPlanStatus::kPlanFailed;
     out->message = ToString(out->plan.status) + ": " + out->plan.message;
@@ -299,8 +331,8 @@ void Conclude(const PlanProblem& problem, const RigLimits& limits, const std::op
                              std::to_string(s.piece) + " (a fixed point of the path) falls at t = " +
                              internal::FormatNumber(s.t_impulse) + ", off the grid");
       }
-  out->check = CheckPlanRigLimits(problem, out->plan, limits, physical, options.tolerances,
-                                  options.check_samples_per_flight);
+  out->check =
+      CheckPlanRigLimits(problem, out->plan, limits, physical, options.tolerances, options.check_samples_per_flight);
   for (const std::string& v : out->check.violations) AddOnce(v.substr(0, v.find(" exceeded")), &out->blocking);
   if (out->check.passed && out->blocking.empty()) {
     out->status = RigPlanStatus::kSuccess;
@@ -316,8 +348,10 @@ void Conclude(const PlanProblem& problem, const RigLimits& limits, const std::op
 
 }  // namespace
 
-RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem, const RigLimits& limits,
-                                 const std::optional<PhysicalParameters>& physical, const PlanOptions& options,
+RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem,
+                                 const RigLimits& limits,
+                                 const std::optional<PhysicalParameters>& physical,
+                                 const PlanOptions& options,
                                  const RigPlanOptions& rig_options) {
   internal::ThrowIfInvalid(rig_options.Validate());
   internal::ThrowIfInvalid(limits.Validate());
@@ -329,11 +363,19 @@ RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem, const RigLimits& li
   const internal::PlanGrid grid{limits.tick, limits.min_interval};
   internal::PlanGridReport grid_report;
   for (int round = 0;; ++round) {
-    out.plan = internal::PlanPartitioned(problem.model, problem.initial, problem.mu, problem.A0, problem.path,
-                                         r.partition, PlacedEnergyChanges(problem, r.owners), options, grid, &grid_report);
+    out.plan = internal::PlanPartitioned(problem.model,
+                                         problem.initial,
+                                         problem.mu,
+                                         problem.A0,
+                                         problem.path,
+                                         r.partition,
+                                         PlacedEnergyChanges(problem, r.owners),
+                                         options,
+                                         grid,
+                                         &grid_report);
     if (!out.plan.IsSolutionUsable() || !HasGeometricLimits(limits)) break;
-    const std::vector<Margin> margins = FlightMargins(problem, out.plan, limits, options.integration,
-                                                      rig_options.samples_per_flight);
+    const std::vector<Margin> margins =
+        FlightMargins(problem, out.plan, limits, options.integration, rig_options.samples_per_flight);
     std::vector<std::string> exceeded;
     for (const Margin& m : margins)
       if (m.value < -rig_options.tolerances.position) AddOnce(m.limit, &exceeded), AddOnce(m.limit, &out.active);
@@ -341,7 +383,8 @@ RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem, const RigLimits& li
     if (PathBlocks(limits, problem.path, r.partition, rig_options, exceeded, &r, &out)) break;
     if (round == rig_options.max_rounds) {
       for (const std::string& name : exceeded) AddOnce(name, &out.blocking);
-      r.reasons.push_back("after " + std::to_string(round) + " rounds of refinement (max_rounds) flights still exceed the limits");
+      r.reasons.push_back("after " + std::to_string(round) +
+                          " rounds of refinement (max_rounds) flights still exceed the limits");
       break;
     }
     if (!Bisect(out.plan, margins, limits, rig_options, &r, &out)) break;

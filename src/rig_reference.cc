@@ -4,8 +4,8 @@
 #include <stdexcept>
 
 #include "check.h"
-#include "rig_geometry.h"
 #include "plateball/isoparallel_plan.h"
+#include "rig_geometry.h"
 
 namespace plateball {
 
@@ -15,7 +15,10 @@ void AddOnce(std::vector<std::string>* names, const std::string& name) {
   if (std::find(names->begin(), names->end(), name) == names->end()) names->push_back(name);
 }
 
-void CheckPoint(const RigLimits& l, const Eigen::Vector2d& x0, const Eigen::Vector2d& x, std::vector<std::string>* out) {
+void CheckPoint(const RigLimits& l,
+                const Eigen::Vector2d& x0,
+                const Eigen::Vector2d& x,
+                std::vector<std::string>* out) {
   internal::VisitGeometricMargins(l, x0, x, [out](const std::string& name, double margin) {
     if (margin < 0) AddOnce(out, name);
   });
@@ -23,7 +26,9 @@ void CheckPoint(const RigLimits& l, const Eigen::Vector2d& x0, const Eigen::Vect
 
 }  // namespace
 
-std::vector<std::string> PathLimitBreaks(const Path& path, const RigLimits& limits, const Eigen::Vector2d& x0,
+std::vector<std::string> PathLimitBreaks(const Path& path,
+                                         const RigLimits& limits,
+                                         const Eigen::Vector2d& x0,
                                          int samples_per_piece) {
   if (samples_per_piece < 1 || samples_per_piece > 1'000'000)
     internal::ThrowInvalid("samples_per_piece", samples_per_piece, "must be in [1, 1000000]");
@@ -34,7 +39,8 @@ std::vector<std::string> PathLimitBreaks(const Path& path, const RigLimits& limi
   return out;
 }
 
-ReferenceChoice ChooseIsoparallelReference(const IsoparallelSummary& summary, const RigLimits& limits,
+ReferenceChoice ChooseIsoparallelReference(const IsoparallelSummary& summary,
+                                           const RigLimits& limits,
                                            const Eigen::Vector2d& x0) {
   if (summary.solutions.empty()) internal::ThrowInvalid("summary.solutions", "(empty)", "holds no solution to choose");
   ReferenceChoice choice;

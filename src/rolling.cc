@@ -11,8 +11,11 @@
 #include "plateball/so3.h"
 
 namespace plateball {
-Eigen::Matrix3d RollingReorientation(const PlanarVelocity& velocity, double a, double b,
-                                     const std::vector<double>& breakpoints, const IntegrationOptions& options) {
+Eigen::Matrix3d RollingReorientation(const PlanarVelocity& velocity,
+                                     double a,
+                                     double b,
+                                     const std::vector<double>& breakpoints,
+                                     const IntegrationOptions& options) {
   internal::RequireFinite("a", a);
   internal::RequireFinite("b", b);
   internal::ThrowIfInvalid(options.Validate());

@@ -12,8 +12,11 @@ namespace {
 constexpr std::uint64_t kMeasurementStream = 0x6d65617375726531ULL;
 }  // namespace
 
-SimulatedRig::SimulatedRig(const NominalPlan& nominal, const ErrorModel& errors, std::uint64_t seed,
-                           std::uint64_t trial, double measurement_noise)
+SimulatedRig::SimulatedRig(const NominalPlan& nominal,
+                           const ErrorModel& errors,
+                           std::uint64_t seed,
+                           std::uint64_t trial,
+                           double measurement_noise)
     : nominal_(nominal),
       noise_(errors, seed, trial),
       measurement_random_(seed ^ kMeasurementStream, trial),

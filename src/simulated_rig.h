@@ -20,7 +20,10 @@ class SimulatedRig {
   /// The ball at the plan's start. Throws std::invalid_argument naming the field for errors this rig
   /// does not model (timing jitter, finite pulses and Execute's observation noise: the controller's
   /// measurements carry their own noise, `measurement_noise`) or a negative measurement_noise.
-  SimulatedRig(const NominalPlan& nominal, const ErrorModel& errors, std::uint64_t seed, std::uint64_t trial,
+  SimulatedRig(const NominalPlan& nominal,
+               const ErrorModel& errors,
+               std::uint64_t seed,
+               std::uint64_t trial,
                double measurement_noise = 0.0);
 
   /// Free rolling over `duration` >= 0 with the true lambda (throws std::runtime_error when the
@@ -54,9 +57,9 @@ class SimulatedRig {
 struct ClosedLoopResult {
   ControllerStatus status = ControllerStatus::kNotRun;
   int impulses = 0;
-  long ticks = 0;             ///< Updates called
-  int rejected = 0;           ///< ticks whose measurement was rejected
-  int budget_exhausted = 0;   ///< ticks that flagged it
+  long ticks = 0;            ///< Updates called
+  int rejected = 0;          ///< ticks whose measurement was rejected
+  int budget_exhausted = 0;  ///< ticks that flagged it
   Eigen::Vector2d x = Eigen::Vector2d::Zero();
   Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
 };
@@ -64,7 +67,9 @@ struct ClosedLoopResult {
 /// Ticks 0, 1, ...: measure the rig (contact point only when asked), Update the controller, apply
 /// its impulse to the rig, roll one tick; until the controller reports done, lost or an integration
 /// failure, or max_ticks.
-ClosedLoopResult RunClosedLoop(Controller& controller, SimulatedRig& rig, long max_ticks,
+ClosedLoopResult RunClosedLoop(Controller& controller,
+                               SimulatedRig& rig,
+                               long max_ticks,
                                bool contact_point_only = false);
 
 }  // namespace plateball::internal

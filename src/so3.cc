@@ -61,9 +61,7 @@ double OperatorNormDistance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) 
   return std::sqrt(std::max(0.0, es.eigenvalues()(2)));
 }
 
-double RotationAngle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
-  return LogSO3(a.transpose() * b).norm();
-}
+double RotationAngle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) { return LogSO3(a.transpose() * b).norm(); }
 
 Eigen::Matrix3d ProjectToSO3(const Eigen::Matrix3d& m) {
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -113,8 +111,9 @@ Eigen::Matrix3d QuaternionToRotation(const Eigen::Vector4d& wxyz, const std::str
   const double n = wxyz.norm();
   if (!wxyz.allFinite() || !(n > 1e-12)) {
     using internal::FormatNumber;
-    internal::ThrowInvalid(field, "[" + FormatNumber(wxyz(0)) + ", " + FormatNumber(wxyz(1)) + ", " + FormatNumber(wxyz(2)) +
-                                      ", " + FormatNumber(wxyz(3)) + "]",
+    internal::ThrowInvalid(field,
+                           "[" + FormatNumber(wxyz(0)) + ", " + FormatNumber(wxyz(1)) + ", " + FormatNumber(wxyz(2)) +
+                               ", " + FormatNumber(wxyz(3)) + "]",
                            "not a finite non-zero quaternion [w, x, y, z]");
   }
   const Eigen::Quaterniond q(wxyz(0) / n, wxyz(1) / n, wxyz(2) / n, wxyz(3) / n);

@@ -44,7 +44,8 @@ void RequireStartOnPath(const Problem& problem, const Path& path) {
   auto pair = [](const Eigen::Vector2d& v) {
     return "(" + internal::FormatNumber(v.x()) + ", " + internal::FormatNumber(v.y()) + ")";
   };
-  internal::ThrowInvalid(problem.source + ": initial.x0", pair(problem.x0),
+  internal::ThrowInvalid(problem.source + ": initial.x0",
+                         pair(problem.x0),
                          "must equal the path start p(tau_0) = " + pair(path.StartPoint()));
 }
 
@@ -93,14 +94,15 @@ Path PathFromSpec(const PathSpec& spec, const std::string& field) {
 
 std::vector<PartitionRule> PartitionFromSpec(const PartitionSpec& spec, const Path& path, const std::string& field) {
   if (std::holds_alternative<ExplicitTaus>(spec) && path.PieceCount() != 1)
-    internal::ThrowInvalid(field + ".taus (pieces)", path.PieceCount(),
+    internal::ThrowInvalid(field + ".taus (pieces)",
+                           path.PieceCount(),
                            "explicit partitions are for single-piece paths; use a uniform type for piecewise paths");
   return {spec};
 }
 
 FreeMotion FreeMotionFor(const Problem& problem) {
-  return FreeMotion::FromAngles(problem.model, problem.initial_angles, problem.mu, problem.x0, problem.A0,
-                                problem.integration);
+  return FreeMotion::FromAngles(
+      problem.model, problem.initial_angles, problem.mu, problem.x0, problem.A0, problem.integration);
 }
 
 JoinSetup JoinSetupFor(const Problem& problem, const Eigen::Vector2d& target) {
@@ -133,9 +135,12 @@ PlanSetup PlanSetupFor(const Problem& problem, int n, const std::string& n_field
   s.problem.path = PathFromSpec(task.path, problem.source + ": plan.path");
   PartitionSpec spec = task.partition;
   if (n > 0) {
-    if (auto* u = std::get_if<UniformParameter>(&spec)) u->n = n;
-    else if (auto* a = std::get_if<UniformArcLength>(&spec)) a->n = n;
-    else internal::ThrowInvalid(n_field, n, "not allowed with an explicit partition (plan.partition.type explicit)");
+    if (auto* u = std::get_if<UniformParameter>(&spec))
+      u->n = n;
+    else if (auto* a = std::get_if<UniformArcLength>(&spec))
+      a->n = n;
+    else
+      internal::ThrowInvalid(n_field, n, "not allowed with an explicit partition (plan.partition.type explicit)");
   }
   const std::string field = problem.source + ": plan.partition";
   s.problem.partition = PartitionFromSpec(spec, s.problem.path, field);
@@ -147,7 +152,9 @@ PlanSetup PlanSetupFor(const Problem& problem, int n, const std::string& n_field
   return s;
 }
 
-ConvergenceSetup ConvergenceSetupFor(const Problem& problem, const std::vector<int>& ns, const std::string& ns_field,
+ConvergenceSetup ConvergenceSetupFor(const Problem& problem,
+                                     const std::vector<int>& ns,
+                                     const std::string& ns_field,
                                      bool timings) {
   const PlanTask& task = RequirePlan(problem);
   ConvergenceSetup s;
@@ -169,8 +176,8 @@ ConvergenceSetup ConvergenceSetupFor(const Problem& problem, const std::vector<i
     PartitionRule rule = task.partition;
     if (auto* u = std::get_if<UniformParameter>(&rule)) u->n = s.problem.ns[i];
     if (auto* a = std::get_if<UniformArcLength>(&rule)) a->n = s.problem.ns[i];
-    internal::MakePartition(plan.problem.path, {rule}, problem.source + ": plan.partition",
-                            list_field + "[" + std::to_string(i) + "]");
+    internal::MakePartition(
+        plan.problem.path, {rule}, problem.source + ": plan.partition", list_field + "[" + std::to_string(i) + "]");
   }
   s.problem.plan = std::move(plan.problem);
   s.options.plan = std::move(plan.options);
@@ -191,7 +198,8 @@ IsoparallelSetup IsoparallelSetupFor(const Problem& problem) {
   return s;
 }
 
-IsoparallelPlanSetup IsoparallelPlanSetupFor(const Problem& problem, const IsoparallelSolution& solution,
+IsoparallelPlanSetup IsoparallelPlanSetupFor(const Problem& problem,
+                                             const IsoparallelSolution& solution,
                                              int impulses) {
   const IsoparallelTask& task = RequireIsoparallel(problem);
   IsoparallelPlanSetup s;
@@ -221,8 +229,10 @@ ExactArrivalOptions ExactOptionsFor(const Problem& problem) {
 void SetImpulses(int impulses, const std::string& n_field, ExactArrivalProblem* p) {
   if (impulses == 0) return;
   if (impulses < 3 || impulses > kMaxExactImpulses)
-    internal::ThrowInvalid(n_field, impulses, "must be in [3, " + std::to_string(kMaxExactImpulses) +
-                                                  "] (2n unknowns for the 5 arrival conditions)");
+    internal::ThrowInvalid(
+        n_field,
+        impulses,
+        "must be in [3, " + std::to_string(kMaxExactImpulses) + "] (2n unknowns for the 5 arrival conditions)");
   p->impulses = impulses;
 }
 
@@ -257,7 +267,9 @@ ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, int impulses, con
   return s;
 }
 
-ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, const IsoparallelSolution& solution, int impulses,
+ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem,
+                                       const IsoparallelSolution& solution,
+                                       int impulses,
                                        const std::string& n_field) {
   const IsoparallelTask& task = RequireIsoparallel(problem);
   const IsoparallelPlanSetup plan = IsoparallelPlanSetupFor(problem, solution);

@@ -57,7 +57,8 @@ TEST(ActuatorCommand, SlipAndSpinAreFlaggedAgainstTheGivenFriction) {
   const PulseForces need = PulseForcesFor(p, j, o);
   const double torque = 0.5 * (p.inertia_1 - p.inertia_3) / o.duration;
   EXPECT_NEAR(need.torsional_torque, torque, kRelative * torque);
-  EXPECT_NEAR(need.torsional_friction_needed, torque / ((2 * p.plate_mass + p.ball_mass) * 9.80665),
+  EXPECT_NEAR(need.torsional_friction_needed,
+              torque / ((2 * p.plate_mass + p.ball_mass) * 9.80665),
               kRelative * need.torsional_friction_needed);
   for (const double factor : {0.99, 1.01}) {
     o.static_friction = factor * need.sliding_friction_needed;
@@ -68,7 +69,8 @@ TEST(ActuatorCommand, SlipAndSpinAreFlaggedAgainstTheGivenFriction) {
   }
   // A longer pulse needs proportionally less friction.
   o.duration *= 4;
-  EXPECT_NEAR(PulseForcesFor(p, j, o).sliding_friction_needed, need.sliding_friction_needed / 4,
+  EXPECT_NEAR(PulseForcesFor(p, j, o).sliding_friction_needed,
+              need.sliding_friction_needed / 4,
               kRelative * need.sliding_friction_needed);
 }
 

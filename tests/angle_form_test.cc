@@ -4,8 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_support.h"
-
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -13,6 +11,7 @@
 
 #include "plateball/ball_state.h"
 #include "plateball/free_motion.h"
+#include "support/test_support.h"
 
 namespace plateball {
 namespace {
@@ -32,8 +31,10 @@ struct Case {
 std::vector<Case> AgreementCases() {
   std::vector<Case> cases;
   for (double lambda : {0.3, 0.5, 0.9, 1.0, 1.5, 2.0, 5.0})
-    for (const AngleState& a : {AngleState{M_PI / 3, 0.4, 0.1}, AngleState{2.4, -1.2, 0.7},
-                                AngleState{1.1, 2.0, -2.5}, AngleState{0.5, 0.0, 1.2}})
+    for (const AngleState& a : {AngleState{M_PI / 3, 0.4, 0.1},
+                                AngleState{2.4, -1.2, 0.7},
+                                AngleState{1.1, 2.0, -2.5},
+                                AngleState{0.5, 0.0, 1.2}})
       for (double mu : {1.0, 0.37, 4.2}) cases.push_back({lambda, a, mu});
   return cases;
 }
@@ -186,12 +187,24 @@ TEST(AngleForm, StepLimitIsAStatus) {
 TEST(AngleForm, RejectsInvalidInputNamingTheField) {
   const BallModel model = BallModel::FromLambda(2.0);
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
-  EXPECT_NE(message([&] { IntegrateAngleForm(model, {1.0, 0.0, 0.0}, 0.0, {0, 0}, {1.0}); }).find("mu"), std::string::npos);
-  EXPECT_NE(message([&] { IntegrateAngleForm(model, {NAN, 0.0, 0.0}, 1.0, {0, 0}, {1.0}); }).find("theta"), std::string::npos);
-  EXPECT_NE(message([&] { IntegrateAngleForm(model, {1.0, 0.0, 0.0}, 1.0, {0, 0}, {2.0, 1.0}); }).find("times[1]"), std::string::npos);
+  EXPECT_NE(message([&] {
+              IntegrateAngleForm(model, {1.0, 0.0, 0.0}, 0.0, {0, 0}, {1.0});
+            }).find("mu"),
+            std::string::npos);
+  EXPECT_NE(message([&] {
+              IntegrateAngleForm(model, {NAN, 0.0, 0.0}, 1.0, {0, 0}, {1.0});
+            }).find("theta"),
+            std::string::npos);
+  EXPECT_NE(message([&] {
+              IntegrateAngleForm(model, {1.0, 0.0, 0.0}, 1.0, {0, 0}, {2.0, 1.0});
+            }).find("times[1]"),
+            std::string::npos);
   AngleFormOptions bad;
   bad.pole_threshold = -1.0;
-  EXPECT_NE(message([&] { IntegrateAngleForm(model, {1.0, 0.0, 0.0}, 1.0, {0, 0}, {1.0}, bad); }).find("pole_threshold"), std::string::npos);
+  EXPECT_NE(message([&] {
+              IntegrateAngleForm(model, {1.0, 0.0, 0.0}, 1.0, {0, 0}, {1.0}, bad);
+            }).find("pole_threshold"),
+            std::string::npos);
 }
 
 TEST(AngleForm, DerivativeMatchesEquations19To21) {

@@ -24,8 +24,7 @@ constexpr double kRelativeTolerance = 1e-12;
 double SineArcLength(double amplitude, double wavelength, double a, double b) {
   const double k = 2.0 * M_PI / wavelength, m = amplitude * amplitude * k * k;
   const double kappa = std::sqrt(m / (1.0 + m));
-  return std::sqrt(1.0 + m) / k *
-         (boost::math::ellint_2(kappa, k * b) - boost::math::ellint_2(kappa, k * a));
+  return std::sqrt(1.0 + m) / k * (boost::math::ellint_2(kappa, k * b) - boost::math::ellint_2(kappa, k * a));
 }
 
 // Second method for a spline: chord sums with `per_knot` chords per knot interval (error
@@ -43,7 +42,8 @@ double ChordLength(const SmoothCurve& c, const std::vector<double>& knots, int p
 
 std::vector<Eigen::Vector2d> CircleSamples(double radius, int n) {
   std::vector<Eigen::Vector2d> pts;
-  for (int i = 0; i <= n; ++i) pts.emplace_back(radius * std::cos(2 * M_PI * i / n), radius * std::sin(2 * M_PI * i / n));
+  for (int i = 0; i <= n; ++i)
+    pts.emplace_back(radius * std::cos(2 * M_PI * i / n), radius * std::sin(2 * M_PI * i / n));
   return pts;
 }
 
@@ -62,7 +62,7 @@ TEST(ArcLength, LongShortWavelengthSineMatchesTheEllipticIntegral) {
   const double k = 2.0 * M_PI / wavelength, m = amplitude * amplitude * k * k;
   const double whole = 400.0 * 4.0 * std::sqrt(1.0 + m) * boost::math::ellint_2(std::sqrt(m / (1.0 + m))) / k;
   EXPECT_NEAR(whole, SineArcLength(amplitude, wavelength, 0.0, 200.0), 1e-12 * whole);  // the two forms agree
-  EXPECT_NEAR(whole, 1622.36572376791, 1e-10);  // mpmath.ellipe, 15 digits
+  EXPECT_NEAR(whole, 1622.36572376791, 1e-10);                                          // mpmath.ellipe, 15 digits
   EXPECT_NEAR(c.Length(), whole, kRelativeTolerance * whole);
   // Arbitrary sub-ranges (not whole wavelengths), and the reverse direction.
   for (const auto& [a, b] : {std::pair{0.1, 37.3}, std::pair{12.345, 12.4}, std::pair{3.0, 199.9}}) {

@@ -1,8 +1,9 @@
 // The contact-point velocity and acceleration of a free arc (src/arc.h), as the planner's arcs
 // measure them for the bounds: checked against forward-mode Jets and central differences.
-#include <gtest/gtest.h>
+#include "arc.h"
 
 #include <ceres/jet.h>
+#include <gtest/gtest.h>
 
 #include <array>
 #include <boost/numeric/odeint.hpp>
@@ -10,7 +11,6 @@
 #include <string>
 #include <utility>
 
-#include "arc.h"
 #include "kinematics.h"
 
 TEST(ContactVelocityAndAcceleration, HandDerivativeEqualsJetForwardModeAndFiniteDifferences) {
@@ -40,8 +40,8 @@ TEST(ContactVelocityAndAcceleration, HandDerivativeEqualsJetForwardModeAndFinite
       plateball::internal::OmegaFromZK(zm, k, lambda, wm);
       EXPECT_NEAR(acc[0], (wp[1] - wm[1]) / (2 * h), 1e-8);
       EXPECT_NEAR(acc[1], -(wp[0] - wm[0]) / (2 * h), 1e-8);
-      const Eigen::Vector2d a = plateball::internal::ContactAcceleration(lambda, Eigen::Vector3d(z[0], z[1], z[2]),
-                                                                         Eigen::Vector2d(k[0], k[1]));
+      const Eigen::Vector2d a = plateball::internal::ContactAcceleration(
+          lambda, Eigen::Vector3d(z[0], z[1], z[2]), Eigen::Vector2d(k[0], k[1]));
       EXPECT_EQ(a.x(), acc[0]);
       EXPECT_EQ(a.y(), acc[1]);
     }
@@ -52,7 +52,9 @@ namespace {
 
 // The largest |x'| and |x''| of the arc from (z0, K) over [0, t] at 2001 equally spaced times,
 // z integrated between them by odeint's dopri5 at 1e-13 (independent of arc.cc's closed forms).
-std::pair<double, double> DenselySampledMaxima(double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k,
+std::pair<double, double> DenselySampledMaxima(double lambda,
+                                               const Eigen::Vector3d& z0,
+                                               const Eigen::Vector2d& k,
                                                double t) {
   namespace odeint = boost::numeric::odeint;
   using State = std::array<double, 3>;
@@ -65,8 +67,13 @@ std::pair<double, double> DenselySampledMaxima(double lambda, const Eigen::Vecto
   double max_v = 0.0, max_a = 0.0;
   constexpr int kPoints = 2000;
   for (int i = 0; i <= kPoints; ++i) {
-    if (i > 0) odeint::integrate_adaptive(odeint::make_controlled(1e-13, 1e-13, odeint::runge_kutta_dopri5<State>()),
-                                          rhs, z, t * (i - 1) / kPoints, t * i / kPoints, t / kPoints);
+    if (i > 0)
+      odeint::integrate_adaptive(odeint::make_controlled(1e-13, 1e-13, odeint::runge_kutta_dopri5<State>()),
+                                 rhs,
+                                 z,
+                                 t * (i - 1) / kPoints,
+                                 t * i / kPoints,
+                                 t / kPoints);
     double w[2], acc[2];
     plateball::internal::ContactVelocityAndAcceleration(lambda, z.data(), k.data(), w, acc);
     max_v = std::max(max_v, std::hypot(w[0], w[1]));
@@ -87,7 +94,8 @@ TEST(ArcDerivativeMaxima, NeverBelowADenseIndependentSampling) {
       const Eigen::Vector3d z0(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
       const Eigen::Vector2d k(0.7 - 0.25 * trial, 0.4 + 0.15 * trial);
       for (double t : {0.01, 0.13, 0.8, 2.5, 7.0}) {
-        SCOPED_TRACE("lambda " + std::to_string(lambda) + ", trial " + std::to_string(trial) + ", t " + std::to_string(t));
+        SCOPED_TRACE("lambda " + std::to_string(lambda) + ", trial " + std::to_string(trial) + ", t " +
+                     std::to_string(t));
         const auto [v, a] = DenselySampledMaxima(lambda, z0, k, t);
         const plateball::internal::ArcMaxima m = plateball::internal::ArcDerivativeMaxima(lambda, z0, k, t);
         EXPECT_GE(m.speed, v - 1e-12);

@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "plateball/task_adapters.h"
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/cubic_spline.h"
@@ -22,6 +21,7 @@
 #include "plateball/problem_io.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball {
 namespace {
@@ -53,8 +53,8 @@ PhysicalParameters GoodPhysical() {
 PathSpec Circle(double radius) { return {CircleSpec{{-radius, 0.0}, radius, 0.0, 1.0}}; }
 
 std::string MinimalProblem(const std::string& initial_extra, const std::string& top_extra = "") {
-  return R"({"ball": {"lambda": 2}, "initial": {"theta": 1.0, "phi": 0.4, "psi": 0.1, "mu": 1)" + initial_extra +
-         "}" + top_extra + "}";
+  return R"({"ball": {"lambda": 2}, "initial": {"theta": 1.0, "phi": 0.4, "psi": 0.1, "mu": 1)" + initial_extra + "}" +
+         top_extra + "}";
 }
 
 std::vector<BadInputCase> Cases() {
@@ -63,14 +63,40 @@ std::vector<BadInputCase> Cases() {
   c.push_back({"lambda negative", [] { BallModel::FromLambda(-1.5); }, {"lambda", "-1.5"}});
   c.push_back({"lambda NaN", [] { BallModel::FromLambda(kNaN); }, {"lambda", "nan"}});
   c.push_back({"lambda infinite", [] { BallModel::FromLambda(kInf); }, {"lambda", "inf"}});
-  c.push_back({"negative ball mass", [] { auto p = GoodPhysical(); p.ball_mass = -2; BallModel::FromPhysical(p); },
+  c.push_back({"negative ball mass",
+               [] {
+                 auto p = GoodPhysical();
+                 p.ball_mass = -2;
+                 BallModel::FromPhysical(p);
+               },
                {"ball_mass", "-2"}});
-  c.push_back({"negative plate mass", [] { auto p = GoodPhysical(); p.plate_mass = -0.5; BallModel::FromPhysical(p); },
+  c.push_back({"negative plate mass",
+               [] {
+                 auto p = GoodPhysical();
+                 p.plate_mass = -0.5;
+                 BallModel::FromPhysical(p);
+               },
                {"plate_mass", "-0.5"}});
-  c.push_back({"I3 above I1 + I2", [] { auto p = GoodPhysical(); p.inertia_3 = 0.9; BallModel::FromPhysical(p); },
+  c.push_back({"I3 above I1 + I2",
+               [] {
+                 auto p = GoodPhysical();
+                 p.inertia_3 = 0.9;
+                 BallModel::FromPhysical(p);
+               },
                {"inertia_3", "0.9"}});
-  c.push_back({"zero radius", [] { auto p = GoodPhysical(); p.radius = 0; BallModel::FromPhysical(p); }, {"radius", "0"}});
-  c.push_back({"NaN inertia", [] { auto p = GoodPhysical(); p.inertia_1 = kNaN; BallModel::FromPhysical(p); },
+  c.push_back({"zero radius",
+               [] {
+                 auto p = GoodPhysical();
+                 p.radius = 0;
+                 BallModel::FromPhysical(p);
+               },
+               {"radius", "0"}});
+  c.push_back({"NaN inertia",
+               [] {
+                 auto p = GoodPhysical();
+                 p.inertia_1 = kNaN;
+                 BallModel::FromPhysical(p);
+               },
                {"inertia_1", "nan"}});
   c.push_back({"negative energy", [] { StateFromAngles({1.0, 0.4, 0.1}, -1.0, Model()); }, {"mu", "-1"}});
   c.push_back({"zero energy", [] { StateFromAngles({1.0, 0.4, 0.1}, 0.0, Model()); }, {"mu", "0"}});
@@ -98,10 +124,19 @@ std::vector<BadInputCase> Cases() {
                },
                {"mu", "0"}});
   c.push_back({"initial orientation not a rotation",
-               [] { FreeMotion::FromAngles(Model(), {1.0, 0.4, 0.1}, 1.0, {0, 0}, 2.0 * Eigen::Matrix3d::Identity()); },
+               [] {
+                 FreeMotion::FromAngles(Model(), {1.0, 0.4, 0.1}, 1.0, {0, 0}, 2.0 * Eigen::Matrix3d::Identity());
+               },
                {"A0"}});
-  c.push_back({"NaN evaluation time", [] { FreeMotion::FromAngles(Model(), {1.0, 0.4, 0.1}, 1.0).At(kNaN); }, {"t", "nan"}});
-  c.push_back({"absurd evaluation time", [] { FreeMotion::FromAngles(Model(), {1.0, 0.4, 0.1}, 1.0).At(1e200); },
+  c.push_back({"NaN evaluation time",
+               [] {
+                 FreeMotion::FromAngles(Model(), {1.0, 0.4, 0.1}, 1.0).At(kNaN);
+               },
+               {"t", "nan"}});
+  c.push_back({"absurd evaluation time",
+               [] {
+                 FreeMotion::FromAngles(Model(), {1.0, 0.4, 0.1}, 1.0).At(1e200);
+               },
                {"t", "1e+200"}});
   c.push_back({"negative tolerance",
                [] {
@@ -117,7 +152,10 @@ std::vector<BadInputCase> Cases() {
                  FreeMotion::FromAngles(Model(), {1.0, 0.4, 0.1}, 1.0, {0, 0}, Eigen::Matrix3d::Identity(), o);
                },
                {"max_steps", "0"}});
-  c.push_back({"NaN join target", [] { Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {kNaN, 0.0}}); },
+  c.push_back({"NaN join target",
+               [] {
+                 Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {kNaN, 0.0}});
+               },
                {"target", "nan"}});
   c.push_back({"zero join iterations",
                [] {
@@ -133,9 +171,15 @@ std::vector<BadInputCase> Cases() {
                  Join(JoinProblem{Model(), AngleState{1.0, 0.4, 0.1}, 1.0, {0, 0}, {0.01, 0.0}}, o);
                },
                {"residual_tolerance", "-1"}});
-  c.push_back({"zero speed-up factor", [] { EnergyChangingImpulse({1.0, 0.4, 0.1}, 1.0, 0.0, Model()); },
+  c.push_back({"zero speed-up factor",
+               [] {
+                 EnergyChangingImpulse({1.0, 0.4, 0.1}, 1.0, 0.0, Model());
+               },
                {"factor", "0"}});
-  c.push_back({"infinite impulse", [] { EnergyPreservingImpulse({1.0, 0.4, 0.1}, 1.0, kInf, Model()); },
+  c.push_back({"infinite impulse",
+               [] {
+                 EnergyPreservingImpulse({1.0, 0.4, 0.1}, 1.0, kInf, Model());
+               },
                {"delta_psi", "inf"}});
   c.push_back({"negative circle radius", [] { PathFromSpec(Circle(-1.0)); }, {"radius", "-1"}});
   c.push_back({"repeated sample points",
@@ -149,46 +193,49 @@ std::vector<BadInputCase> Cases() {
                },
                {"points[1]", "nan"}});
   c.push_back({"single sample point", [] { CubicSpline2d({Eigen::Vector2d(1, 2)}); }, {"points", "1"}});
-  c.push_back({"zero-speed line",
-               [] {
-                 PathFromSpec(PathSpec{LineSpec{{1, 1}, {1, 1}}});
-               },
-               {"path"}});
+  c.push_back({"zero-speed line", [] { PathFromSpec(PathSpec{LineSpec{{1, 1}, {1, 1}}}); }, {"path"}});
   c.push_back({"zero wavelength sine",
                [] {
                  PathFromSpec(PathSpec{SineSpec{{0, 0}, 0.0, 2, 0.5, 0}});
                },
                {"wavelength", "0"}});
-  c.push_back({"partition of one point",
-               [] {
-                 MakePartition(PathFromSpec(Circle(1.0)), {UniformParameter{0}});
-               },
-               {"n", "0"}});
+  c.push_back(
+      {"partition of one point", [] { MakePartition(PathFromSpec(Circle(1.0)), {UniformParameter{0}}); }, {"n", "0"}});
   c.push_back({"non-increasing explicit partition",
                [] {
                  MakePartition(PathFromSpec(Circle(1.0)), {ExplicitTaus{{0.0, 0.5, 0.4, 1.0}}});
                },
                {"taus"}});
-  c.push_back({"zero quaternion", [] { QuaternionToRotation(Eigen::Vector4d::Zero(), "goal_orientation"); },
+  c.push_back({"zero quaternion",
+               [] { QuaternionToRotation(Eigen::Vector4d::Zero(), "goal_orientation"); },
                {"goal_orientation"}});
   c.push_back({"NaN polyline point", [] { RollAlongPolyline({{0, 0}, {kNaN, 1}}); }, {"points[1]", "nan"}});
-  c.push_back({"malformed problem file", [] { ParseProblem("{\"ball\": {\"lambda\": 2,,}", "bad.json"); },
-               {"bad.json"}});
-  c.push_back({"unknown key in problem file", [] { ParseProblem(MinimalProblem("", R"(, "colour": "red")"), "p.json"); },
+  c.push_back(
+      {"malformed problem file", [] { ParseProblem("{\"ball\": {\"lambda\": 2,,}", "bad.json"); }, {"bad.json"}});
+  c.push_back({"unknown key in problem file",
+               [] { ParseProblem(MinimalProblem("", R"(, "colour": "red")"), "p.json"); },
                {"p.json", "colour"}});
   c.push_back({"negative energy in problem file",
-               [] { ParseProblem(R"({"ball": {"lambda": 2}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": -3}})", "p.json"); },
-               {"p.json", "initial.mu", "-3"}});
-  c.push_back({"orientation matrix that is not a rotation",
                [] {
-                 ParseProblem(MinimalProblem(R"(, "orientation": {"matrix": [[1,0,0],[0,1,0],[0,0,-1]]})"), "p.json");
+                 ParseProblem(R"({"ball": {"lambda": 2}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": -3}})",
+                              "p.json");
                },
-               {"p.json", "orientation"}});
+               {"p.json", "initial.mu", "-3"}});
+  c.push_back(
+      {"orientation matrix that is not a rotation",
+       [] { ParseProblem(MinimalProblem(R"(, "orientation": {"matrix": [[1,0,0],[0,1,0],[0,0,-1]]})"), "p.json"); },
+       {"p.json", "orientation"}});
   c.push_back({"wrong type in problem file",
-               [] { ParseProblem(R"({"ball": {"lambda": "two"}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": 1}})", "p.json"); },
+               [] {
+                 ParseProblem(R"({"ball": {"lambda": "two"}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": 1}})",
+                              "p.json");
+               },
                {"p.json", "ball.lambda"}});
   c.push_back({"non-finite number in problem file",
-               [] { ParseProblem(R"({"ball": {"lambda": 1e999}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": 1}})", "p.json"); },
+               [] {
+                 ParseProblem(R"({"ball": {"lambda": 1e999}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": 1}})",
+                              "p.json");
+               },
                {"p.json"}});
   return c;
 }
@@ -204,7 +251,8 @@ TEST(BadInput, EveryCaseThrowsInvalidArgumentNamingFieldAndValue) {
     } catch (const std::invalid_argument& e) {
       const std::string what = e.what();
       for (const std::string& needle : bad.message_must_contain)
-        EXPECT_NE(what.find(needle), std::string::npos) << "message '" << what << "' does not contain '" << needle << "'";
+        EXPECT_NE(what.find(needle), std::string::npos)
+            << "message '" << what << "' does not contain '" << needle << "'";
     } catch (const std::exception& e) {
       ADD_FAILURE() << "case '" << bad.name << "' threw a non-input error: " << e.what();
     }

@@ -5,16 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-
-#include "plateball/ball_state.h"
-#include "plateball/free_motion.h"
-
-#include "support/test_support.h"
-
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "plateball/ball_state.h"
+#include "plateball/free_motion.h"
+#include "support/test_support.h"
 
 namespace plateball {
 namespace {
@@ -151,8 +149,8 @@ TEST(BallModel, NewtonEulerOfBallAndPlateFollowsTheEffectiveMass) {
   constexpr double kAgreement = 1e-9;
   IntegrationOptions tight;
   tight.absolute_tolerance = tight.relative_tolerance = 1e-13;
-  const MotionSample lib = FreeMotion::FromAngles(model, angles, mu, {0, 0}, Eigen::Matrix3d::Identity(), tight)
-                               .At(2.0 * period);
+  const MotionSample lib =
+      FreeMotion::FromAngles(model, angles, mu, {0, 0}, Eigen::Matrix3d::Identity(), tight).At(2.0 * period);
   EXPECT_NEAR(ne.Energy(y.head<3>(), y.segment<3>(3)) / energy0, 1.0, kAgreement);
   EXPECT_LT((y.head<3>() - lib.state.z).norm(), kAgreement);
   EXPECT_LT((y.segment<3>(3) - lib.state.omega).norm(), kAgreement);
@@ -160,8 +158,8 @@ TEST(BallModel, NewtonEulerOfBallAndPlateFollowsTheEffectiveMass) {
   // The paper's M = M_ball + 2 M_plate gives lambda = 5.75/6 and a visibly different motion.
   const BallModel paper = BallModel::FromAlphaBeta(0.75, (0.1 + 2 * 0.05) * 4e-4 / 1.6e-5);
   EXPECT_NEAR(paper.lambda(), 5.75 / 6.0, 1e-15);
-  const MotionSample wrong = FreeMotion::FromAngles(paper, angles, mu, {0, 0}, Eigen::Matrix3d::Identity(), tight)
-                                 .At(2.0 * period);
+  const MotionSample wrong =
+      FreeMotion::FromAngles(paper, angles, mu, {0, 0}, Eigen::Matrix3d::Identity(), tight).At(2.0 * period);
   EXPECT_GT((y.tail<2>() - wrong.x).norm(), 1e-2);
 }
 

@@ -4,13 +4,13 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_support.h"
-
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 #include <stdexcept>
 #include <string>
+
+#include "support/test_support.h"
 
 namespace plateball {
 namespace {
@@ -30,7 +30,7 @@ TEST(BallState, PhaseFromAnglesSatisfiesConstraints8To11) {
     const double mu = pos(rng);
     const PhaseVariables p = PhaseFromAngles({angle(rng), angle(rng), angle(rng)}, mu, model);
     EXPECT_LT(ConstraintResiduals(p, mu, model).cwiseAbs().maxCoeff(), kRoundOff * std::max(1.0, mu));
-    EXPECT_NEAR(p.omega.z(), 0.0, kRoundOff);                         // omega = v0 z - u has omega_3 = 0
+    EXPECT_NEAR(p.omega.z(), 0.0, kRoundOff);                        // omega = v0 z - u has omega_3 = 0
     EXPECT_NEAR(p.omega.dot(p.z), p.v0, kRoundOff * std::sqrt(mu));  // v0 = <omega, z>
     // u = z' x z with z' = omega x z (the definition of u in (4)-(7)).
     EXPECT_LT((p.omega.cross(p.z).cross(p.z) - p.u).norm(), kRoundOff * std::sqrt(mu));
@@ -42,7 +42,8 @@ TEST(BallState, PhaseFromAnglesSatisfiesConstraints8To11) {
 TEST(BallState, NegativeThetaIsTheSamePhysicalState) {
   // (theta, phi, psi) ~ (-theta, phi + pi, psi) and ~ (theta + 2 pi, phi, psi) in (12)-(18).
   const BallModel model = BallModel::FromLambda(2.0);
-  for (const AngleState& a : {AngleState{M_PI / 3, M_PI / 2, 0.0}, AngleState{1.0, -0.3, 2.0}, AngleState{2.8, 4.0, -5.0}}) {
+  for (const AngleState& a :
+       {AngleState{M_PI / 3, M_PI / 2, 0.0}, AngleState{1.0, -0.3, 2.0}, AngleState{2.8, 4.0, -5.0}}) {
     const PhaseVariables p = PhaseFromAngles(a, 1.3, model);
     EXPECT_TRUE(SamePhase(p, PhaseFromAngles({-a.theta, a.phi + M_PI, a.psi}, 1.3, model), kRoundOff));
     EXPECT_TRUE(SamePhase(p, PhaseFromAngles({a.theta + 2 * M_PI, a.phi, a.psi}, 1.3, model), kRoundOff));
@@ -114,11 +115,17 @@ TEST(BallState, InvalidStatesAreRejectedNamingTheField) {
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   EXPECT_NE(message([&] { StateFromAngles({1.0, 0.0, 0.0}, 0.0, model); }).find("mu: value"), std::string::npos);
   EXPECT_NE(message([&] { StateFromAngles({1.0, NAN, 0.0}, 1.0, model); }).find("phi: value"), std::string::npos);
-  EXPECT_NE(message([&] { ValidateState({Eigen::Vector3d(0, 0, 2), Eigen::Vector3d::Zero()}); }).find("z norm"),
+  EXPECT_NE(message([&] {
+              ValidateState({Eigen::Vector3d(0, 0, 2), Eigen::Vector3d::Zero()});
+            }).find("z norm"),
             std::string::npos);
-  EXPECT_NE(message([&] { ValidateState({Eigen::Vector3d::UnitZ(), Eigen::Vector3d(1, 0, 1)}); }).find("omega[2]"),
+  EXPECT_NE(message([&] {
+              ValidateState({Eigen::Vector3d::UnitZ(), Eigen::Vector3d(1, 0, 1)});
+            }).find("omega[2]"),
             std::string::npos);
-  EXPECT_NE(message([&] { AnglesFromState({Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()}, model); }).find("mu"),
+  EXPECT_NE(message([&] {
+              AnglesFromState({Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()}, model);
+            }).find("mu"),
             std::string::npos);
 }
 

@@ -2,8 +2,8 @@
 // ellint_rf / ellint_rd / ellint_rj / ellint_rc evaluated in 50-digit arithmetic
 // (boost::multiprecision::cpp_bin_float_50), over the argument ranges of the closed-form elastica
 // and rolling (x = cn^2, y = dn^2 = cn^2 + k'^2 sn^2, z = 1, p = cn^2 + (1 - N) sn^2, with k' down
-// to 1e-12 and 1 - N down to ~1e-324, the characteristic n down to -1e300 near G = 1), and against closed forms (DLMF 19.20) and Legendre's
-// relation. Errors are measured in units of eps = 2^-52 relative to the reference.
+// to 1e-12 and 1 - N down to ~1e-324, the characteristic n down to -1e300 near G = 1), and against closed forms
+// (DLMF 19.20) and Legendre's relation. Errors are measured in units of eps = 2^-52 relative to the reference.
 #include "carlson.h"
 
 #include <gtest/gtest.h>
@@ -77,8 +77,11 @@ TEST(Carlson, RfRdRjMatchFiftyDigitBoostOverTheLibrarysRanges) {
   EXPECT_LE(worst_fj, 3.0);
   EXPECT_LE(worst_d, 4.0);
   EXPECT_LE(worst_j, 6.0);
-  std::printf("worst relative error in eps: R_F %.2f, R_F (with R_J) %.2f, R_D %.2f, R_J %.2f\n", worst_f, worst_fj,
-              worst_d, worst_j);
+  std::printf("worst relative error in eps: R_F %.2f, R_F (with R_J) %.2f, R_D %.2f, R_J %.2f\n",
+              worst_f,
+              worst_fj,
+              worst_d,
+              worst_j);
 }
 
 TEST(Carlson, GeneralArgumentsMatchFiftyDigitBoost) {

@@ -5,8 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_support.h"
-
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -16,6 +14,7 @@
 #include "plateball/angle_form.h"
 #include "plateball/ball_state.h"
 #include "plateball/free_motion.h"
+#include "support/test_support.h"
 
 namespace plateball {
 namespace {
@@ -29,9 +28,17 @@ constexpr double kClearlyWrong = 1e-2;
 // c > 0 and c < 0 starts, w0 beyond (-pi, pi], theta0 < 0, near the poles, and Figure 8's
 // start (-pi/3, pi/2, 0), which has w0 = pi/2 and so lies on the pole family c = 0.
 std::vector<AngleState> States() {
-  return {{M_PI / 3, 0.4, 0.1},   {2.5, 0.4, 2.9},   {1.0, -1.0, 2.0},   {2.0, 3.0, -0.7},
-          {0.3, 7.0, 7.5},        {-M_PI / 3, M_PI / 2, 0.0},            {1.2, 0.0, 6.0},
-          {M_PI / 2, 0.0, 0.0},   {0.05, 1.0, 0.9},  {3.0, -2.0, 1.0},   {-2.0, 0.5, 0.2}};
+  return {{M_PI / 3, 0.4, 0.1},
+          {2.5, 0.4, 2.9},
+          {1.0, -1.0, 2.0},
+          {2.0, 3.0, -0.7},
+          {0.3, 7.0, 7.5},
+          {-M_PI / 3, M_PI / 2, 0.0},
+          {1.2, 0.0, 6.0},
+          {M_PI / 2, 0.0, 0.0},
+          {0.05, 1.0, 0.9},
+          {3.0, -2.0, 1.0},
+          {-2.0, 0.5, 0.2}};
 }
 
 AngleFormResult Integrate(const BallModel& model, const AngleState& a, double mu, const std::vector<double>& times) {
@@ -91,15 +98,15 @@ TEST(ClosedForms, ConstantsFollowFromTheInitialState) {
     const AngleState a = sol.initial();
     if (k.family == ClosedFormFamily::kThroughPoles) continue;
     const double w0 = a.phi - a.psi;
-    EXPECT_NEAR(k.c, std::sin(a.theta) * std::cos(w0), 1e-15);                   // (32)
-    EXPECT_NEAR(k.c_bar, 1.0 / std::abs(k.c), 1e-12 * k.c_bar);                   // c = 1/c_bar
+    EXPECT_NEAR(k.c, std::sin(a.theta) * std::cos(w0), 1e-15);   // (32)
+    EXPECT_NEAR(k.c_bar, 1.0 / std::abs(k.c), 1e-12 * k.c_bar);  // c = 1/c_bar
     EXPECT_NEAR(k.m * k.m, model.lambda() - 1.0 + k.c_bar * k.c_bar, 1e-12 * k.m * k.m);
-    EXPECT_NEAR(k.s, k.m / k.c_bar, 1e-14);                                       // (33) -> (34)
+    EXPECT_NEAR(k.s, k.m / k.c_bar, 1e-14);  // (33) -> (34)
     // (30)-(31) at t = 0 on the c > 0 representative: C1(0) = -c2, C2(0) = c1.
     const double theta_r = k.c > 0 ? a.theta : M_PI - a.theta;
     const double w_r = k.c > 0 ? w0 : w0 + M_PI;
-    EXPECT_NEAR(std::tan(w_r), k.c2, 1e-12 * std::max(1.0, std::abs(k.c2)));     // w(0) = -arctan(-c2)
-    EXPECT_NEAR(std::atan2(std::sqrt(1 + k.c2 * k.c2), k.c1), theta_r, 1e-14);    // (30) at t = 0
+    EXPECT_NEAR(std::tan(w_r), k.c2, 1e-12 * std::max(1.0, std::abs(k.c2)));    // w(0) = -arctan(-c2)
+    EXPECT_NEAR(std::atan2(std::sqrt(1 + k.c2 * k.c2), k.c1), theta_r, 1e-14);  // (30) at t = 0
   }
 }
 
@@ -113,8 +120,8 @@ TEST(ClosedForms, Equations32And34HoldAlongIntegratedTrajectoriesWithTheDerivedD
       const AngleFormResult r = Integrate(model, sol.initial(), 1.7, Times(sol.Period()));
       for (const AngleFormSample& s : r.samples) {
         const double w = s.angles.phi - s.angles.psi;
-        EXPECT_NEAR(AppendixC(s.angles), k.c, kAgreement);                        // (32)
-        EXPECT_NEAR(AppendixResidual34(s.angles, k.d34, model), 0.0, kAgreement);  // (34)
+        EXPECT_NEAR(AppendixC(s.angles), k.c, kAgreement);                                      // (32)
+        EXPECT_NEAR(AppendixResidual34(s.angles, k.d34, model), 0.0, kAgreement);               // (34)
         EXPECT_NEAR(-std::sin(s.angles.phi - k.d34), k.c_bar * std::sin(w) / k.m, kAgreement);  // (33)
       }
     }
@@ -157,7 +164,7 @@ TEST(ClosedForms, PaperSignOfPhiAndTheInitialValueDOf34FailAlongTheTrajectory) {
   ASSERT_EQ(k.family, ClosedFormFamily::kPositiveC);
   const double w0 = a.phi - a.psi;
   const double d_paper = a.phi - std::asin(-k.c_bar * std::sin(w0) / k.m);  // phi(0) = arcsin(z(0)/m) + d
-  const double d0 = a.phi + std::asin(std::sin(w0) / k.s);                 // (34) at t = 0 only
+  const double d0 = a.phi + std::asin(std::sin(w0) / k.s);                  // (34) at t = 0 only
   EXPECT_NEAR(AppendixResidual34(a, d0, model), 0.0, 1e-14);
   EXPECT_NEAR(std::remainder(k.d34 - (a.phi + M_PI - std::asin(std::sin(w0) / k.s)), 2 * M_PI), 0.0, 1e-14);
   const AngleFormResult r = Integrate(model, a, 1.0, Times(sol.Period()));
@@ -168,7 +175,7 @@ TEST(ClosedForms, PaperSignOfPhiAndTheInitialValueDOf34FailAlongTheTrajectory) {
     const double phi_paper = std::asin(k.c_bar * std::sin(u) / k.m) + d_paper;
     paper_miss = std::max(paper_miss, std::abs(phi_paper - s.angles.phi));
     d0_miss = std::max(d0_miss, std::abs(AppendixResidual34(s.angles, d0, model)));
-    EXPECT_NEAR(sol.Phi(s.t), s.angles.phi, kAgreement);                      // corrected
+    EXPECT_NEAR(sol.Phi(s.t), s.angles.phi, kAgreement);                       // corrected
     EXPECT_NEAR(AppendixResidual34(s.angles, k.d34, model), 0.0, kAgreement);  // corrected d
   }
   EXPECT_GT(paper_miss, kClearlyWrong);
@@ -218,8 +225,10 @@ TEST(ClosedForms, ThroughPolesFamilyMatchesChartFreeIntegrationAcrossBothPoles) 
   // theta = 0 and theta = pi every period. Compared on z and omega (chart-free, no angles).
   for (double lambda : {0.5, 2.0}) {
     const BallModel model = BallModel::FromLambda(lambda);
-    for (const AngleState& a : {AngleState{1.0, M_PI / 2 + 0.3, 0.3}, AngleState{0.0, 1.7, 0.4},
-                                AngleState{M_PI, -0.2, 2.0}, AngleState{2.0, -0.5, M_PI / 2 - 0.5}}) {
+    for (const AngleState& a : {AngleState{1.0, M_PI / 2 + 0.3, 0.3},
+                                AngleState{0.0, 1.7, 0.4},
+                                AngleState{M_PI, -0.2, 2.0},
+                                AngleState{2.0, -0.5, M_PI / 2 - 0.5}}) {
       const double mu = 2.0;
       const AppendixSolution sol(model, a, mu);
       ASSERT_EQ(sol.constants().family, ClosedFormFamily::kThroughPoles);
@@ -233,7 +242,7 @@ TEST(ClosedForms, ThroughPolesFamilyMatchesChartFreeIntegrationAcrossBothPoles) 
         const MotionSample m = motion.At(t);
         EXPECT_LT((c.z - m.state.z).norm(), kAgreement) << "t " << t;
         EXPECT_LT((c.omega - m.state.omega).norm(), kAgreement) << "t " << t;
-        EXPECT_NEAR(AppendixC(sol.At(t)), 0.0, 1e-15);                                          // (32)
+        EXPECT_NEAR(AppendixC(sol.At(t)), 0.0, 1e-15);                                       // (32)
         EXPECT_NEAR(AppendixResidual34(sol.At(t), sol.constants().d34, model), 0.0, 1e-15);  // (34)
       }
     }
@@ -259,8 +268,9 @@ TEST(ClosedForms, RejectsInvalidInputNamingTheField) {
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   EXPECT_NE(message([&] { AppendixSolution(model, {1.0, 0.0, 0.0}, 0.0); }).find("mu: value"), std::string::npos);
   EXPECT_NE(message([&] { AppendixSolution(model, {1.0, NAN, 0.0}, 1.0); }).find("phi: value"), std::string::npos);
-  EXPECT_NE(message([&] { AppendixSolution(model, {1.0, 0.0, 0.0}, 1.0).At(std::numeric_limits<double>::infinity()); })
-                .find("t: value"),
+  EXPECT_NE(message([&] {
+              AppendixSolution(model, {1.0, 0.0, 0.0}, 1.0).At(std::numeric_limits<double>::infinity());
+            }).find("t: value"),
             std::string::npos);
   EXPECT_EQ(ToString(ClosedFormFamily::kThroughPoles), "through_poles");
 }

@@ -40,8 +40,9 @@ void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 // Over-aligned types (none in the controller, but a counted allocation must not slip past).
 void* operator new(std::size_t size, std::align_val_t a) {
   if (counting) ++allocations;
-  if (void* p = std::aligned_alloc(static_cast<std::size_t>(a), (size + static_cast<std::size_t>(a) - 1) /
-                                                                     static_cast<std::size_t>(a) * static_cast<std::size_t>(a)))
+  if (void* p = std::aligned_alloc(
+          static_cast<std::size_t>(a),
+          (size + static_cast<std::size_t>(a) - 1) / static_cast<std::size_t>(a) * static_cast<std::size_t>(a)))
     return p;
   throw std::bad_alloc();
 }
@@ -51,8 +52,8 @@ void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::fre
 namespace plateball {
 namespace {
 
-constexpr double kTick = 1e-3;                 // a 1 kHz loop: the circle takes ~1.26e4 ticks
-constexpr double kMeasurementNoise = 1e-4;     // per tick, on x, A (rotation vector) and omega
+constexpr double kTick = 1e-3;              // a 1 kHz loop: the circle takes ~1.26e4 ticks
+constexpr double kMeasurementNoise = 1e-4;  // per tick, on x, A (rotation vector) and omega
 
 std::shared_ptr<const NominalPlan> Circle() {
   const Problem problem = ReadProblemFile(plateball::testing::SourcePath("problems/circle.json"));
@@ -71,9 +72,9 @@ ErrorModel RigErrors() {
 
 struct Counts {
   long ticks = 0, impulse_ticks = 0, exact_ticks = 0;
-  long quiet_allocations = 0;   // on ticks without an impulse
-  long join_allocations = 0;    // on ticks whose impulse is a re-join (or a continued exact tail)
-  long exact_allocations = 0;   // on ticks with a new exact re-plan
+  long quiet_allocations = 0;  // on ticks without an impulse
+  long join_allocations = 0;   // on ticks whose impulse is a re-join (or a continued exact tail)
+  long exact_allocations = 0;  // on ticks with a new exact re-plan
   ControllerStatus last = ControllerStatus::kNotRun;
 };
 

@@ -10,12 +10,12 @@
 #include <limits>
 #include <memory>
 
+#include "execution_noise.h"
 #include "plateball/closed_loop.h"
 #include "plateball/monte_carlo.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
-#include "execution_noise.h"
 #include "simulated_rig.h"
 #include "support/test_support.h"
 
@@ -70,8 +70,11 @@ ControllerOptions LoopOptions(ExecutionStrategy strategy = ExecutionStrategy::kF
   return o;
 }
 
-internal::ClosedLoopResult Loop(const ErrorModel& errors, std::uint64_t seed, std::uint64_t trial,
-                                const ControllerOptions& options, bool contact_point_only = false) {
+internal::ClosedLoopResult Loop(const ErrorModel& errors,
+                                std::uint64_t seed,
+                                std::uint64_t trial,
+                                const ControllerOptions& options,
+                                bool contact_point_only = false) {
   Controller controller(Circle(), options);
   internal::SimulatedRig rig(*Circle(), errors, seed, trial);
   const long max_ticks = std::lround(2.0 * Circle()->plan.total_time / kTick);
@@ -259,8 +262,9 @@ TEST(Controller, ThePublicTrialErrorsAndSimulatedLoopAreExecutesDrawsAndTheRigsL
   EXPECT_EQ(errors.Restitution(), std::sqrt(1 - RigErrors().energy_loss));
   ErrorModel bad;
   bad.impulse_angle = -1.0;
-  EXPECT_NE(plateball::testing::InvalidArgumentMessage([&] { TrialErrors e(bad, 1, 0); }).find("impulse_angle: value -1"),
-            std::string::npos);
+  EXPECT_NE(
+      plateball::testing::InvalidArgumentMessage([&] { TrialErrors e(bad, 1, 0); }).find("impulse_angle: value -1"),
+      std::string::npos);
 }
 
 TEST(Controller, InvalidOptionsNameTheField) {

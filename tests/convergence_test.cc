@@ -58,8 +58,12 @@ TEST(Convergence, LogLogSlopeOfAPowerLawIsItsExponent) {
   EXPECT_FALSE(LogLogSlope({4, 4}, {1, 2}).has_value());  // one distinct x: no line
 }
 
-TEST(Convergence, CircleErrorFallsAsInverseSquareOfImpulseCount) { ExpectConverges(FileProblem(Closed("circle")), true); }
-TEST(Convergence, EllipseErrorFallsAsInverseSquareOfImpulseCount) { ExpectConverges(FileProblem(Closed("ellipse")), true); }
+TEST(Convergence, CircleErrorFallsAsInverseSquareOfImpulseCount) {
+  ExpectConverges(FileProblem(Closed("circle")), true);
+}
+TEST(Convergence, EllipseErrorFallsAsInverseSquareOfImpulseCount) {
+  ExpectConverges(FileProblem(Closed("ellipse")), true);
+}
 TEST(Convergence, LemniscateErrorFallsAsInverseSquareOfImpulseCount) {
   ExpectConverges(FileProblem(Closed("lemniscate")), true);
 }

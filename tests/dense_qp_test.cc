@@ -46,8 +46,8 @@ Qp RandomQp(std::mt19937& rng, int n, int ne, int m) {
 
 void ExpectKkt(const Qp& q, const DenseQpResult& r) {
   ASSERT_TRUE(r.solved);
-  const Eigen::VectorXd stationarity = q.H * r.d + q.c + q.E.transpose() * r.equality_multipliers +
-                                       q.A.transpose() * r.inequality_multipliers;
+  const Eigen::VectorXd stationarity =
+      q.H * r.d + q.c + q.E.transpose() * r.equality_multipliers + q.A.transpose() * r.inequality_multipliers;
   EXPECT_LE(stationarity.cwiseAbs().maxCoeff(), kKktTolerance);
   if (q.E.rows() > 0) {
     EXPECT_LE((q.E * r.d - q.e).cwiseAbs().maxCoeff(), kKktTolerance);

@@ -4,11 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cstdlib>
-
 #include <Eigen/Dense>
 #include <Eigen/SVD>
+#include <algorithm>
+#include <cstdlib>
 
 namespace plateball::internal {
 namespace {

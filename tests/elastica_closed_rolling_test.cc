@@ -76,8 +76,8 @@ std::vector<ElasticaParameters> RandomShapes(int count, unsigned seed) {
     const auto regime = i % 2 == 0 ? PendulumRegime::kOscillating : PendulumRegime::kRotating;
     const double k = i % 5 == 4 ? 0.999 : 0.999 * unit(gen);
     const double rate = (unit(gen) < 0.5 ? -1.0 : 1.0) * (0.2 + 1.8 * unit(gen));
-    out.push_back(Params(regime, rate, (unit(gen) < 0.3 ? -1.0 : 1.0) * k, 6.0 * unit(gen) - 3.0,
-                         6.0 * unit(gen) - 3.0));
+    out.push_back(
+        Params(regime, rate, (unit(gen) < 0.3 ? -1.0 : 1.0) * k, 6.0 * unit(gen) - 3.0, 6.0 * unit(gen) - 3.0));
   }
   return out;
 }
@@ -108,9 +108,10 @@ TEST(ElasticaClosedRollingTest, MatchesDopri5NearAndAtUnitG) {
     for (double k : {0.3, 0.8, 0.999}) {
       const double b = std::sqrt(1.0 + delta);
       const double a = std::sqrt(1.0 + delta) / k;
-      for (const ElasticaParameters& p :
-           {Params(PendulumRegime::kOscillating, b, k, 0.0, 0.4), Params(PendulumRegime::kOscillating, -b, k, 1e-7, 0.4),
-            Params(PendulumRegime::kRotating, a, k, 0.0, -1.0), Params(PendulumRegime::kRotating, -a, k, 0.3, -1.0)}) {
+      for (const ElasticaParameters& p : {Params(PendulumRegime::kOscillating, b, k, 0.0, 0.4),
+                                          Params(PendulumRegime::kOscillating, -b, k, 1e-7, 0.4),
+                                          Params(PendulumRegime::kRotating, a, k, 0.0, -1.0),
+                                          Params(PendulumRegime::kRotating, -a, k, 0.3, -1.0)}) {
         const Elastica e(p);
         const ElasticaClosedRolling closed(e);
         for (double s0 : {0.0, 1e-6, 0.9}) {
@@ -260,9 +261,10 @@ TEST(ElasticaClosedRollingTest, TwistMatchesQuadratureOfItsRate) {
 // Straight lines (rate 0; oscillating k = 0, including G = 1 where the costate vanishes) and
 // circles (rotating k = 0), whose rollings are exponentials / known products.
 TEST(ElasticaClosedRollingTest, StraightLinesAndCircles) {
-  for (const ElasticaParameters& p :
-       {Params(PendulumRegime::kOscillating, 0.0, 0.5, 0.3, 1.0), Params(PendulumRegime::kRotating, 0.0, 0.2, 0.0, -2.0),
-        Params(PendulumRegime::kOscillating, 1.0, 0.0, 0.7, 0.5), Params(PendulumRegime::kOscillating, -0.6, 0.0, 0.1, 0.5)}) {
+  for (const ElasticaParameters& p : {Params(PendulumRegime::kOscillating, 0.0, 0.5, 0.3, 1.0),
+                                      Params(PendulumRegime::kRotating, 0.0, 0.2, 0.0, -2.0),
+                                      Params(PendulumRegime::kOscillating, 1.0, 0.0, 0.7, 0.5),
+                                      Params(PendulumRegime::kOscillating, -0.6, 0.0, 0.1, 0.5)}) {
     const Elastica e(p);
     const ElasticaClosedRolling closed(e);
     EXPECT_TRUE(closed.IsStraight());
@@ -353,7 +355,8 @@ TEST(ElasticaClosedRollingTest, BadInputNamesTheField) {
   // Extreme but accepted rates: rotations, never NaN.
   for (double rate : {1e-300, 1e150, -1e150})
     for (auto regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating})
-      EXPECT_TRUE(IsRotation(ElasticaClosedRolling(Elastica(Params(regime, rate, 0.9, 0.1, 0.0))).Rolling(0.0, 3e-150), 1e-12))
+      EXPECT_TRUE(
+          IsRotation(ElasticaClosedRolling(Elastica(Params(regime, rate, 0.9, 0.1, 0.0))).Rolling(0.0, 3e-150), 1e-12))
           << rate;
   // The straight line with G = 1 has no costate frame (v = 0), but a rolling.
   const ElasticaClosedRolling line(Elastica(Params(PendulumRegime::kOscillating, 1.0, 0.0, 0.0, 0.0)));
@@ -411,7 +414,8 @@ TEST(ElasticaClosedRollingTest, SensitivityMatchesCentralDifferences) {
         (j == 0 ? pm.rate : pm.modulus) -= h;
         const Elastica ep(pp), em(pm);
         *chord = (ep.Position(s) - em.Position(s)) / (2 * h);
-        *spin = Vee(q.transpose() * (ElasticaClosedRolling(ep).Rolling(s) - ElasticaClosedRolling(em).Rolling(s)) / (2 * h));
+        *spin = Vee(q.transpose() * (ElasticaClosedRolling(ep).Rolling(s) - ElasticaClosedRolling(em).Rolling(s)) /
+                    (2 * h));
       };
       Eigen::Vector2d chord, chord_half;
       Eigen::Vector3d spin, spin_half;
@@ -444,11 +448,11 @@ TEST(ElasticaClosedRollingTest, SensitivityDeclinesOutsideItsForms) {
     const ElasticaClosedRolling closed(e);
     return !closed.Sensitivity(closed.Path(e, s), &sens);
   };
-  EXPECT_TRUE(declines(Params(PendulumRegime::kOscillating, 0.0, 0.5, 0.3, 0.0), 2.0));   // straight
-  EXPECT_TRUE(declines(Params(PendulumRegime::kRotating, 0.7, 0.0, 0.3, 0.0), 2.0));      // circle
-  EXPECT_TRUE(declines(Params(PendulumRegime::kOscillating, 0.7, -0.5, 0.3, 0.0), 2.0));  // negative modulus
+  EXPECT_TRUE(declines(Params(PendulumRegime::kOscillating, 0.0, 0.5, 0.3, 0.0), 2.0));         // straight
+  EXPECT_TRUE(declines(Params(PendulumRegime::kRotating, 0.7, 0.0, 0.3, 0.0), 2.0));            // circle
+  EXPECT_TRUE(declines(Params(PendulumRegime::kOscillating, 0.7, -0.5, 0.3, 0.0), 2.0));        // negative modulus
   EXPECT_TRUE(declines(Params(PendulumRegime::kOscillating, 1.0 + 1e-4, 0.5, 0.3, 0.0), 2.0));  // |1 - G| ~ 2e-4
-  EXPECT_TRUE(declines(Params(PendulumRegime::kRotating, 0.7, 0.5, 0.3, 0.0), 0.01));            // short arc
+  EXPECT_TRUE(declines(Params(PendulumRegime::kRotating, 0.7, 0.5, 0.3, 0.0), 0.01));           // short arc
   EXPECT_FALSE(declines(Params(PendulumRegime::kRotating, 0.7, 0.5, 0.3, 0.0), 2.0));
 }
 

@@ -3,15 +3,13 @@
 // against classical complete-integral formulas.
 #include "plateball/elastica.h"
 
-#include <boost/math/special_functions/jacobi_elliptic.hpp>
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <array>
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/ellint_2.hpp>
+#include <boost/math/special_functions/jacobi_elliptic.hpp>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <limits>
@@ -56,8 +54,8 @@ State Integrate(const Case& c, double s_end) {
     dq[2] = std::cos(q[0]);
     dq[3] = std::sin(q[0]);
   };
-  odeint::integrate_adaptive(odeint::make_controlled(1e-13, 1e-13, odeint::runge_kutta_dopri5<State>()), rhs, y,
-                             0.0, s_end, 1e-3);
+  odeint::integrate_adaptive(
+      odeint::make_controlled(1e-13, 1e-13, odeint::runge_kutta_dopri5<State>()), rhs, y, 0.0, s_end, 1e-3);
   return y;
 }
 
@@ -213,7 +211,8 @@ TEST(Elastica, TangentCurvaturePositionAreFiniteAndRightAtTinyArcLengths) {
       const Eigen::Vector2d t0 = e.Tangent(0.0);
       const double kappa0 = e.Curvature(0.0);
       for (double s : {1e-300, -1e-300, 4e-310, -1e-160, 1e-30}) {
-        const std::string what = ToString(regime) + " k " + std::to_string(k) + " s " + std::to_string(std::log10(std::abs(s)));
+        const std::string what =
+            ToString(regime) + " k " + std::to_string(k) + " s " + std::to_string(std::log10(std::abs(s)));
         EXPECT_LT((e.Tangent(s) - t0).norm(), 1e-15) << what;
         EXPECT_NEAR(e.Curvature(s), kappa0, 1e-15) << what;
         EXPECT_NEAR(e.Heading(s), e.Heading(0.0), 1e-15) << what;
@@ -253,8 +252,20 @@ LongDoubleKE AgmKE(long double k, long double kc) {
 TEST(Elastica, HalfPeriodParityMatchesFmod) {
   // The sign flip of odd half periods (Position, the closed rolling): IsOddInteger(m) against
   // std::fmod(m, 2) != 0 for the integer-valued m the reductions produce.
-  for (double m : {0.0, -0.0, 1.0, -1.0, 2.0, -3.0, 7.0, 1e6 + 1, -(1e6 + 1), 9007199254740991.0, 9007199254740992.0,
-                   -9007199254740990.0, 1e300, -1e300}) {
+  for (double m : {0.0,
+                   -0.0,
+                   1.0,
+                   -1.0,
+                   2.0,
+                   -3.0,
+                   7.0,
+                   1e6 + 1,
+                   -(1e6 + 1),
+                   9007199254740991.0,
+                   9007199254740992.0,
+                   -9007199254740990.0,
+                   1e300,
+                   -1e300}) {
     EXPECT_EQ(internal::IsOddInteger(m), std::fmod(m, 2.0) != 0.0) << m;
   }
   EXPECT_TRUE(internal::IsOddInteger(9007199254740991.0));  // 2^53 - 1
@@ -342,11 +353,13 @@ TEST(Elastica, IncompleteIntegralsAreAccurateNearTheSeparatrix) {
   EXPECT_NEAR(internal::CompleteEllipticK(k), static_cast<double>(ref.kk), 4e-15 * static_cast<double>(ref.kk));
   const double dd = static_cast<double>((ref.kk - ref.ee) / (kd * kd));
   EXPECT_NEAR(internal::CompleteEllipticD(k), dd, 4e-15 * dd);
-  EXPECT_NEAR(internal::EllipticFSinCos(1.0, 0.0, kc2), static_cast<double>(ref.kk), 4e-15 * static_cast<double>(ref.kk));
+  EXPECT_NEAR(
+      internal::EllipticFSinCos(1.0, 0.0, kc2), static_cast<double>(ref.kk), 4e-15 * static_cast<double>(ref.kk));
   EXPECT_NEAR(internal::EllipticDSinCos(1.0, 0.0, kc2), dd, 4e-15 * dd);
   for (double phi : {0.3, 1.0, 1.4}) {
     EXPECT_NEAR(internal::EllipticFSinCos(std::sin(phi), std::cos(phi), kc2), std::atanh(std::sin(phi)), 1e-10) << phi;
-    EXPECT_NEAR(internal::EllipticDSinCos(std::sin(phi), std::cos(phi), kc2), std::atanh(std::sin(phi)) - std::sin(phi), 1e-10)
+    EXPECT_NEAR(
+        internal::EllipticDSinCos(std::sin(phi), std::cos(phi), kc2), std::atanh(std::sin(phi)) - std::sin(phi), 1e-10)
         << phi;
   }
 }

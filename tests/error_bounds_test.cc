@@ -15,7 +15,7 @@ constexpr double kRoundOff = 1e-14;  // relative: a few products of exact decima
 void ExpectRel(double actual, double expected) { EXPECT_NEAR(actual, expected, kRoundOff * std::abs(expected)); }
 
 TEST(ErrorBounds, ConstantsAreThePapersProducts) {
-  ExpectRel(KBarP(2.0, 3.0), 6.0);    // Kbar_p = K_p M'_p
+  ExpectRel(KBarP(2.0, 3.0), 6.0);     // Kbar_p = K_p M'_p
   ExpectRel(KTilde(0.25, 1.5), 0.75);  // Ktilde = 2 K_(1,0) M'
   // Ktilde_p = Ktilde (K^1 D_p)^3 = 0.75 (2 * 3)^3 = 162; the printed Ktilde K^1 D_p would be 4.5.
   ExpectRel(KTildeP(0.75, 2.0, 3.0), 162.0);
@@ -25,9 +25,9 @@ TEST(ErrorBounds, ConstantsAreThePapersProducts) {
 TEST(ErrorBounds, TheoremsAndCorollariesByHand) {
   // Kbar_p = 6, Ktilde_p = 162, sum dtau^3 = 1e-3, n = 10, ||P|| = 0.1.
   ExpectRel(Theorem25Bound(6.0, 1e-3), 6e-3);
-  ExpectRel(Corollary2Bound(6.0, 10, 0.1), 6.0 * 10 * 1e-3);             // 0.06
-  ExpectRel(Theorem26Bound(6.0, 162.0, 1e-3), 168.0 * 1e-3);             // 0.168
-  ExpectRel(Corollary3Bound(6.0, 162.0, 10, 0.1), 168.0 * 10 * 1e-3);    // 1.68
+  ExpectRel(Corollary2Bound(6.0, 10, 0.1), 6.0 * 10 * 1e-3);           // 0.06
+  ExpectRel(Theorem26Bound(6.0, 162.0, 1e-3), 168.0 * 1e-3);           // 0.168
+  ExpectRel(Corollary3Bound(6.0, 162.0, 10, 0.1), 168.0 * 10 * 1e-3);  // 1.68
   // A uniform partition has sum dtau^3 = n ||P||^3: the corollaries equal the theorems.
   ExpectRel(Corollary2Bound(6.0, 10, 0.1), Theorem25Bound(6.0, 10 * 1e-3));
   ExpectRel(Corollary3Bound(6.0, 162.0, 10, 0.1), Theorem26Bound(6.0, 162.0, 10 * 1e-3));
@@ -49,20 +49,20 @@ TEST(ErrorBounds, TwoSegmentsAccumulateToTheHandComputedBounds) {
   ExpectRel(c.K_p, 6.0);        // max |p''|
   ExpectRel(c.M_prime_p, 2.0);  // max |p'|
   ExpectRel(c.D_p, 2.0);
-  ExpectRel(c.C_p, 2.0);        // max h / chord = max(2, 2)
-  ExpectRel(c.M_prime, 2.0);    // max |x'|
-  ExpectRel(c.K_10, 1.5);       // max |x''| / 2
-  ExpectRel(c.K1, 4.0);         // max t / chord = max(4, 1)
+  ExpectRel(c.C_p, 2.0);      // max h / chord = max(2, 2)
+  ExpectRel(c.M_prime, 2.0);  // max |x'|
+  ExpectRel(c.K_10, 1.5);     // max |x''| / 2
+  ExpectRel(c.K1, 4.0);       // max t / chord = max(4, 1)
   ExpectRel(c.K_bar_p, 12.0);
-  ExpectRel(c.K_tilde, 6.0);              // 2 * 1.5 * 2
-  ExpectRel(c.K_tilde_p, 6.0 * 512.0);    // 6 (4 * 2)^3 = 3072
+  ExpectRel(c.K_tilde, 6.0);            // 2 * 1.5 * 2
+  ExpectRel(c.K_tilde_p, 6.0 * 512.0);  // 6 (4 * 2)^3 = 3072
   EXPECT_EQ(e.segments, 2);
   ExpectRel(e.sum_dtau_cubed, 0.009);
   ExpectRel(e.parameter_norm, 0.2);
-  ExpectRel(e.theorem_2_5, 12.0 * 0.009);             // 0.108
-  ExpectRel(e.corollary_2, 12.0 * 2 * 0.008);         // 0.192
-  ExpectRel(e.theorem_2_6, 3084.0 * 0.009);           // 27.756
-  ExpectRel(e.corollary_3, 3084.0 * 2 * 0.008);       // 49.344
+  ExpectRel(e.theorem_2_5, 12.0 * 0.009);        // 0.108
+  ExpectRel(e.corollary_2, 12.0 * 2 * 0.008);    // 0.192
+  ExpectRel(e.theorem_2_6, 3084.0 * 0.009);      // 27.756
+  ExpectRel(e.corollary_3, 3084.0 * 2 * 0.008);  // 49.344
   // a-posteriori: (2*4*0.001 + 1*6*0.008)/12 for the path, (1*3*0.008 + 2*1*0.001)/12 for the arcs.
   ExpectRel(e.a_posteriori_path, 0.056 / 12.0);
   ExpectRel(e.a_posteriori_arcs, 0.026 / 12.0);

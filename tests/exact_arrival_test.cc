@@ -34,11 +34,14 @@ void ExpectArrivesByReplay(const ExactArrivalProblem& p, const ExactArrivalSumma
   // The total against the sum of the rounded durations: a few roundings of the total (relative, as
   // the total reaches 1e5 at mu = 1e-8, where one ulp is 1.5e-11).
   constexpr double kSumTol = 1e-13;
-  EXPECT_NEAR(s.total_time, [&] {
-    double t = 0;
-    for (const ExactImpulse& e : s.impulses) t += e.duration;
-    return t;
-  }(), kSumTol * std::max(1.0, s.total_time));
+  EXPECT_NEAR(
+      s.total_time,
+      [&] {
+        double t = 0;
+        for (const ExactImpulse& e : s.impulses) t += e.duration;
+        return t;
+      }(),
+      kSumTol * std::max(1.0, s.total_time));
   for (const ExactImpulse& e : s.impulses) EXPECT_GT(e.duration, 0.0);
 }
 
@@ -158,10 +161,14 @@ void CheckSteerProblem(const std::string& file) {
   int checked = 0;
   for (const auto& [name, e] : p.expected) {
     double value = NAN;
-    if (name == "position_error") value = replay.position_error;
-    else if (name == "orientation_error") value = replay.orientation_error;
-    else if (name == "shortest_length") value = solved.Shortest().length;
-    else ADD_FAILURE() << file << ": unknown expected value '" << name << "'";
+    if (name == "position_error")
+      value = replay.position_error;
+    else if (name == "orientation_error")
+      value = replay.orientation_error;
+    else if (name == "shortest_length")
+      value = solved.Shortest().length;
+    else
+      ADD_FAILURE() << file << ": unknown expected value '" << name << "'";
     EXPECT_NEAR(value, e.value, e.tolerance) << file << ": " << name;
     ++checked;
   }
@@ -230,7 +237,8 @@ TEST(ExactArrivalProblems, AdapterRejectsTooFewImpulsesNamingTheField) {
   const Problem p = ReadProblemFile(plateball::testing::SourcePath("problems/figure7_exact.json"));
   IsoparallelSolution fake;
   fake.length = 1.0;
-  const std::string m = plateball::testing::InvalidArgumentMessage([&] { ExactArrivalSetupFor(p, fake, 2, "--impulses"); });
+  const std::string m =
+      plateball::testing::InvalidArgumentMessage([&] { ExactArrivalSetupFor(p, fake, 2, "--impulses"); });
   EXPECT_NE(m.find("--impulses"), std::string::npos) << m;
   const std::string missing = plateball::testing::InvalidArgumentMessage([&] { ExactArrivalSetupFor(p); });
   EXPECT_NE(missing.find("figure7_exact.json"), std::string::npos) << missing;
@@ -257,8 +265,9 @@ TEST(ExactArrivalProblems, PlanPathReferenceFromAFileArrives) {
   ExpectArrivesByReplay(setup.problem, s);
   // The command line's count replaces the file's, and a bad one names the option.
   EXPECT_EQ(ExactArrivalSetupFor(p, 5).problem.impulses, 5);
-  EXPECT_NE(plateball::testing::InvalidArgumentMessage([&] { ExactArrivalSetupFor(p, 201, "--impulses"); })
-                .find("--impulses: value 201"),
+  EXPECT_NE(plateball::testing::InvalidArgumentMessage([&] {
+              ExactArrivalSetupFor(p, 201, "--impulses");
+            }).find("--impulses: value 201"),
             std::string::npos);
 }
 
@@ -274,7 +283,7 @@ TEST(ExactArrival, Figure7WithThreeImpulsesReportsTheClosestArrival) {
   }
   EXPECT_EQ(s.status, ExactArrivalStatus::kNotReached) << s.BriefReport();
   ASSERT_EQ(s.impulses.size(), 3u);
-  EXPECT_LT(s.orientation_error, s.planned_orientation_error);  // closer than the warm start
+  EXPECT_LT(s.orientation_error, s.planned_orientation_error);    // closer than the warm start
   const ReplayResult replay = ReplayExactArrival(p, s.impulses);  // the reported arrival is real
   EXPECT_NEAR(replay.position_error, s.position_error, 1e-9);
   EXPECT_NEAR(replay.orientation_error, s.orientation_error, 1e-9);
@@ -330,12 +339,14 @@ TEST(ExactChain, JacobianMatchesCentralDifferences) {
     std::vector<internal::ChainNode> np(5, start), nm(5, start);
     internal::RollChain(model.lambda(), up, tight, &np);
     internal::RollChain(model.lambda(), um, tight, &nm);
-    const Eigen::Matrix<double, 5, 1> fd =
-        (internal::ArrivalResidual(np.back(), Eigen::Vector2d(1, 1), A1) - internal::ArrivalResidual(nm.back(), Eigen::Vector2d(1, 1), A1)) / (2 * h);
+    const Eigen::Matrix<double, 5, 1> fd = (internal::ArrivalResidual(np.back(), Eigen::Vector2d(1, 1), A1) -
+                                            internal::ArrivalResidual(nm.back(), Eigen::Vector2d(1, 1), A1)) /
+                                           (2 * h);
     EXPECT_LE((fd - arrival.col(j)).norm(), 1e-7 * (1 + fd.norm())) << "column " << j;
     for (int k = 1; k <= 4; ++k) {
       const Eigen::Vector2d fdx = (np[static_cast<std::size_t>(k)].x - nm[static_cast<std::size_t>(k)].x) / (2 * h);
-      EXPECT_LE((fdx - jac.dx[static_cast<std::size_t>(k)].col(j)).norm(), 1e-7 * (1 + fdx.norm())) << "node " << k << ", column " << j;
+      EXPECT_LE((fdx - jac.dx[static_cast<std::size_t>(k)].col(j)).norm(), 1e-7 * (1 + fdx.norm()))
+          << "node " << k << ", column " << j;
     }
   }
 }
@@ -354,7 +365,8 @@ TEST(ExactArrival, StartAtRestAndStopAtTheGoal) {
   EXPECT_EQ(first.mu_after, p.mu);
   const Impulse imp = EnergyPreservingImpulse(first.angles_before, p.mu, first.delta_psi, p.model);
   EXPECT_LE((first.delta_omega - imp.state_after.omega).norm(), 1e-15);
-  for (std::size_t k = 1; k < s.impulses.size(); ++k) EXPECT_EQ(s.impulses[k].kind, ExactImpulseKind::kEnergyPreserving);
+  for (std::size_t k = 1; k < s.impulses.size(); ++k)
+    EXPECT_EQ(s.impulses[k].kind, ExactImpulseKind::kEnergyPreserving);
   ASSERT_TRUE(s.stop.has_value());
   EXPECT_EQ(s.stop->kind, ExactImpulseKind::kStop);
   EXPECT_NEAR(s.stop->t_impulse, s.total_time, 1e-12);
@@ -362,8 +374,12 @@ TEST(ExactArrival, StartAtRestAndStopAtTheGoal) {
   // Independent: the last arc re-integrated by FreeMotion ends with omega = -delta omega of the stop.
   const ExactImpulse& last = s.impulses.back();
   const Impulse li = EnergyPreservingImpulse(last.angles_before, p.mu, last.delta_psi, p.model);
-  const MotionSample end = FreeMotion(p.model, FreeMotionStart{li.state_after, last.position, AlignOrientationToAxis(Eigen::Matrix3d::Identity(), li.state_after.z)})
-                               .At(last.duration);
+  const MotionSample end =
+      FreeMotion(
+          p.model,
+          FreeMotionStart{
+              li.state_after, last.position, AlignOrientationToAxis(Eigen::Matrix3d::Identity(), li.state_after.z)})
+          .At(last.duration);
   EXPECT_LE((end.state.omega + s.stop->delta_omega).norm(), 1e-10);
   // The rolling start gives the same trajectory.
   ExactArrivalProblem rolling = Figure7();

@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <memory>
-#include <chrono>
-#include <map>
 #include <iostream>
+#include <map>
+#include <memory>
 #include <numeric>
 
 #include "plateball/problem_io.h"
@@ -32,8 +32,11 @@ std::shared_ptr<const NominalPlan> Circle(int n = 64) {
   return p;
 }
 
-ExecutionSummary RunTrial(ExecutionStrategy strategy, const ErrorModel& errors, std::uint64_t trial = 0, int n = 64,
-                     const ExecutionOptions& options = {}) {
+ExecutionSummary RunTrial(ExecutionStrategy strategy,
+                          const ErrorModel& errors,
+                          std::uint64_t trial = 0,
+                          int n = 64,
+                          const ExecutionOptions& options = {}) {
   ExecutionProblem p;
   p.nominal = Circle(n);
   p.strategy = strategy;
@@ -85,7 +88,8 @@ TEST(Execution, ZeroNoiseExactResolveArrivesExactly) {
 
 TEST(Execution, SameTrialSameResultOtherTrialOtherResult) {
   const ErrorModel e = Only(&ErrorModel::impulse_magnitude, 1e-3);
-  const ExecutionSummary a = RunTrial(ExecutionStrategy::kFeedback, e, 3), b = RunTrial(ExecutionStrategy::kFeedback, e, 3);
+  const ExecutionSummary a = RunTrial(ExecutionStrategy::kFeedback, e, 3),
+                         b = RunTrial(ExecutionStrategy::kFeedback, e, 3);
   const ExecutionSummary c = RunTrial(ExecutionStrategy::kFeedback, e, 4);
   EXPECT_EQ(a.position_error, b.position_error);
   EXPECT_EQ(a.pass_misses, b.pass_misses);
@@ -107,7 +111,8 @@ TEST(Execution, TimingJitterMissesAreSigmaTimesContactSpeed) {
   for (std::uint64_t t = 0; t < 10; ++t) {
     const ExecutionSummary r = RunTrial(ExecutionStrategy::kFeedback, Only(&ErrorModel::timing, sigma), t);
     ASSERT_TRUE(r.IsSolutionUsable());
-    for (std::size_t k = 0; k + 1 < r.pass_misses.size(); ++k) ratios.push_back(r.pass_misses[k] / (sigma * r.pass_speeds[k]));
+    for (std::size_t k = 0; k + 1 < r.pass_misses.size(); ++k)
+      ratios.push_back(r.pass_misses[k] / (sigma * r.pass_speeds[k]));
     EXPECT_LT(r.position_error, 1e-10);  // the end is measured, not fired: no jitter
   }
   EXPECT_NEAR(Mean(ratios), std::sqrt(2 / M_PI), 0.08);
@@ -152,12 +157,13 @@ TEST_P(ErrorMagnitude, DoublingTheMagnitudeDoublesTheMisses) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Models, ErrorMagnitude,
-    ::testing::Values(std::make_pair("impulse_magnitude", &ErrorModel::impulse_magnitude),
-                      std::make_pair("impulse_angle", &ErrorModel::impulse_angle),
-                      std::make_pair("timing", &ErrorModel::timing), std::make_pair("lambda", &ErrorModel::lambda),
-                      std::make_pair("observation", &ErrorModel::observation)));
+INSTANTIATE_TEST_SUITE_P(Models,
+                         ErrorMagnitude,
+                         ::testing::Values(std::make_pair("impulse_magnitude", &ErrorModel::impulse_magnitude),
+                                           std::make_pair("impulse_angle", &ErrorModel::impulse_angle),
+                                           std::make_pair("timing", &ErrorModel::timing),
+                                           std::make_pair("lambda", &ErrorModel::lambda),
+                                           std::make_pair("observation", &ErrorModel::observation)));
 
 // Feedback under an impulse magnitude error sigma: the contact velocity is off by
 // sigma N |delta omega_k| for the flight time t_k, so the miss is about |N| sigma |delta omega_k| t_k.
@@ -192,9 +198,12 @@ TEST(Execution, ObservationNoiseMissesAreOfOrderSigma) {
 TEST(Execution, FeedbackBeatsOpenLoopOnTheCircleUnderEveryModel) {
   ErrorModel with_observation = Only(&ErrorModel::impulse_magnitude, 1e-3);
   with_observation.observation = 1e-6;
-  for (const ErrorModel& e : {Only(&ErrorModel::impulse_magnitude, 1e-3), Only(&ErrorModel::impulse_angle, 1e-3),
-                              Only(&ErrorModel::timing, 1e-3), Only(&ErrorModel::energy_loss, 1e-3),
-                              Only(&ErrorModel::lambda, 1e-3), with_observation}) {
+  for (const ErrorModel& e : {Only(&ErrorModel::impulse_magnitude, 1e-3),
+                              Only(&ErrorModel::impulse_angle, 1e-3),
+                              Only(&ErrorModel::timing, 1e-3),
+                              Only(&ErrorModel::energy_loss, 1e-3),
+                              Only(&ErrorModel::lambda, 1e-3),
+                              with_observation}) {
     std::vector<double> open_pos, fb_pos, open_ori, fb_ori, open_miss, fb_miss;
     for (std::uint64_t t = 0; t < 8; ++t) {
       const ExecutionSummary o = RunTrial(ExecutionStrategy::kOpenLoop, e, t);
@@ -252,7 +261,6 @@ TEST(Execution, BadInputNamesTheFieldAndTheValue) {
   EXPECT_EQ(ToString(ParseErrorModel("timing=1e-4, impulse_magnitude=0.001")), "impulse_magnitude=0.001,timing=1e-04");
 }
 
-
 // Final-state difference of pulsed from ideal open-loop execution of the 16-impulse circle, fitted as
 // C delta^slope over delta = f * (shortest flight), f = 0.4 ... 0.05.
 double PulseOrder(bool causal, std::vector<double>* errors) {
@@ -301,12 +309,12 @@ TEST(Execution, PulsesLongerThanTheirFlightAreRejected) {
   EXPECT_EQ(PulseScheduleError(*Circle(16), e), message);
   e.pulse_duration = 0.9 * shortest;
   EXPECT_EQ(PulseScheduleError(*Circle(16), e), "");
-  EXPECT_NE(plateball::testing::InvalidArgumentMessage([] { ParseErrorModel("pulse_causal=0.5"); })
-                .find("noise.pulse_causal: value 0.5: must be 0 (centred pulses) or 1"),
+  EXPECT_NE(plateball::testing::InvalidArgumentMessage([] {
+              ParseErrorModel("pulse_causal=0.5");
+            }).find("noise.pulse_causal: value 0.5: must be 0 (centred pulses) or 1"),
             std::string::npos);
   EXPECT_EQ(ToString(ParseErrorModel("pulse_duration=0.01,pulse_causal=1")), "pulse_duration=0.01,pulse_causal=1");
 }
-
 
 TEST(Execution, FeedbackWithCentredPulsesEndsNearerThanOpenLoop) {
   // Feedback decides at each pulse's start for the state predicted at its centre, so it corrects the
@@ -321,14 +329,16 @@ TEST(Execution, FeedbackWithCentredPulsesEndsNearerThanOpenLoop) {
   EXPECT_LT(feedback.position_error, open.position_error);
 }
 
-
 TEST(Execution, ChosenPulseDurationStaysWithinTheToleranceAndIsNotFarBelowIt) {
   // The error is C d^2 (centred): the choice from one measurement lands near the tolerance, so the
   // verified error lies within it and above half of it (the choice aims at 0.9 of it).
   for (const double tolerance : {1e-3, 1e-5}) {
     const PulseDurationChoice c = ChoosePulseDuration(Circle(16), tolerance);
-    std::printf("tolerance %.0e: duration %.4g, error %.3e, %d executions\n", tolerance, c.duration,
-                c.measured_error, c.executions);
+    std::printf("tolerance %.0e: duration %.4g, error %.3e, %d executions\n",
+                tolerance,
+                c.duration,
+                c.measured_error,
+                c.executions);
     EXPECT_TRUE(c.within) << tolerance;
     EXPECT_LE(c.measured_error, tolerance);
     EXPECT_GT(c.measured_error, 0.5 * tolerance) << c.duration;
@@ -337,8 +347,9 @@ TEST(Execution, ChosenPulseDurationStaysWithinTheToleranceAndIsNotFarBelowIt) {
   const PulseDurationChoice causal = ChoosePulseDuration(Circle(16), 1e-3, true);
   EXPECT_TRUE(causal.within);
   EXPECT_LT(causal.duration, ChoosePulseDuration(Circle(16), 1e-3).duration);
-  EXPECT_NE(plateball::testing::InvalidArgumentMessage([] { ChoosePulseDuration(Circle(16), 0.0); })
-                .find("tolerance: value 0"),
+  EXPECT_NE(plateball::testing::InvalidArgumentMessage([] {
+              ChoosePulseDuration(Circle(16), 0.0);
+            }).find("tolerance: value 0"),
             std::string::npos);
 }
 

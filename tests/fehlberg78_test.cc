@@ -3,9 +3,10 @@
 // and the Taylor model of the join's first guess (src/contact_series.h), each against an
 // independent computation: ceres::Jet forward mode, odeint's steppers, odeint's adaptive dopri5 at
 // a tolerance 100 times tighter, a closed form.
-#include <gtest/gtest.h>
+#include "fehlberg78.h"
 
 #include <ceres/jet.h>
+#include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
@@ -15,7 +16,6 @@
 #include "contact_series.h"
 #include "dopri5.h"
 #include "dynamics.h"
-#include "fehlberg78.h"
 
 namespace {
 
@@ -62,7 +62,8 @@ double OdeintErrorMeasure(const Arc& a, double h, const SensitivityState& err) {
   a.rhs(a.y0, dydt, 0.0);
   double measure = 0.0;
   for (std::size_t i = 0; i < err.size(); ++i)
-    measure = std::max(measure, std::abs(err[i]) / (1e-12 + 1e-12 * (std::abs(a.y0[i]) + std::abs(h) * std::abs(dydt[i]))));
+    measure =
+        std::max(measure, std::abs(err[i]) / (1e-12 + 1e-12 * (std::abs(a.y0[i]) + std::abs(h) * std::abs(dydt[i]))));
   return measure;
 }
 
@@ -71,8 +72,16 @@ TEST(SensitivityRhs, HandWrittenVariationalEquationsEqualJetForwardMode) {
   for (double lambda : {0.5, 1.0, 2.0, 7.0}) {
     for (int trial = 0; trial < 8; ++trial) {
       const double th = 0.3 + 0.37 * trial, ph = -1.0 + 0.61 * trial;
-      const SensitivityState y{std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th), 0.1, -0.2,
-                               0.3 - 0.1 * trial, 0.05 * trial, -0.4, 0.2, 0.7};
+      const SensitivityState y{std::sin(th) * std::cos(ph),
+                               std::sin(th) * std::sin(ph),
+                               std::cos(th),
+                               0.1,
+                               -0.2,
+                               0.3 - 0.1 * trial,
+                               0.05 * trial,
+                               -0.4,
+                               0.2,
+                               0.7};
       const SensitivityRhs rhs{lambda, {0.8 - 0.1 * trial, 0.3 + 0.2 * trial}, {-0.5, 0.25 * trial}};
       SensitivityState dy{};
       rhs(y, dy, 0.0);
@@ -99,7 +108,6 @@ TEST(SensitivityRhs, HandWrittenVariationalEquationsEqualJetForwardMode) {
     }
   }
 }
-
 
 // y' = y: one step of length h leaves exp(h) to O(h^(order + 1)), so halving h divides the
 // error by ~2^(order + 1) (checked between 0.6 and 1.4 times that).
@@ -158,7 +166,9 @@ TEST(DormandPrince5, OneStepEqualsOdeintsDopri5StepAndErrorMeasure) {
   CheckStepEqualsOdeints<boost::numeric::odeint::runge_kutta_dopri5<SensitivityState>>(kDormandPrince5);
 }
 
-TEST(DormandPrince5, OneStepOnAnExponentialIsFifthOrder) { CheckOrderOnExponential(kDormandPrince5, 5, {0.4, 0.2, 0.1}); }
+TEST(DormandPrince5, OneStepOnAnExponentialIsFifthOrder) {
+  CheckOrderOnExponential(kDormandPrince5, 5, {0.4, 0.2, 0.1});
+}
 
 TEST(Fehlberg78, ShortAndLongArcsAgreeWithAdaptiveDopri5) {
   const IntegrationOptions options;  // 1e-12, as the join
@@ -169,11 +179,11 @@ TEST(Fehlberg78, ShortAndLongArcsAgreeWithAdaptiveDopri5) {
     int steps;
   };
   const Case cases[] = {
-      {2.0, {M_PI / 3, 0.4, 0.1}, 1.0, 1.36, 0.0528, 1},    // T1
-      {2.0, {M_PI / 3, 0.4, 0.1}, 1.0, -2.0, 0.2, 2},       // a longer arc in two steps
-      {0.5, {2.5, -1.2, 0.7}, 4.0, 0.3, -0.15, 2},          // backwards in time, lambda < 1
-      {7.0, {0.05, 2.0, -0.4}, 0.25, 1.0, 3.0, 48},         // near the pole, a long arc
-      {1.0, {M_PI / 2, 0.0, 0.0}, 1.0, 0.5, 1.5, 16},       // homogeneous ball
+      {2.0, {M_PI / 3, 0.4, 0.1}, 1.0, 1.36, 0.0528, 1},  // T1
+      {2.0, {M_PI / 3, 0.4, 0.1}, 1.0, -2.0, 0.2, 2},     // a longer arc in two steps
+      {0.5, {2.5, -1.2, 0.7}, 4.0, 0.3, -0.15, 2},        // backwards in time, lambda < 1
+      {7.0, {0.05, 2.0, -0.4}, 0.25, 1.0, 3.0, 48},       // near the pole, a long arc
+      {1.0, {M_PI / 2, 0.0, 0.0}, 1.0, 0.5, 1.5, 16},     // homogeneous ball
   };
   for (const Case& c : cases) {
     const Arc a = MakeArc(c.lambda, c.angles, c.mu, c.s);
@@ -183,7 +193,6 @@ TEST(Fehlberg78, ShortAndLongArcsAgreeWithAdaptiveDopri5) {
     EXPECT_LT(MaxDifference(y, Reference(a, c.t)), kAgreement) << "lambda " << c.lambda << ", t " << c.t;
   }
 }
-
 
 TEST(Fehlberg78, ATooLongStepIsRefusedAndLeavesTheStateUnchanged) {
   const Arc a = MakeArc(2.0, {M_PI / 3, 0.4, 0.1}, 1.0, 1.0);
@@ -201,8 +210,6 @@ TEST(Fehlberg78, ATooLongStepIsRefusedAndLeavesTheStateUnchanged) {
   EXPECT_FALSE(plateball::internal::IntegrateEqualSteps(nan_rhs, u, 0.0, 0.1, 1, options));
   EXPECT_EQ(u[0], 1.0);
 }
-
-
 
 TEST(ContactSeries, TaylorModelMatchesTheRolloutAndItsSensitivity) {
   using Dual = plateball::internal::SeriesDual;

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <random>
 #include <string>
@@ -115,7 +114,7 @@ TEST(FewestImpulses, GoalMetAtTheStartIsZeroImpulses) {
   FewestImpulsesProblem p = StraightRollProblem();
   p.orientation_only = true;
   p.A1 = internal::StartNode(p.model, p.initial, p.mu, p.x0, p.A0).A;  // the start orientation on the axis
-  p.x1 = Eigen::Vector2d(5, -3);  // free with orientation_only
+  p.x1 = Eigen::Vector2d(5, -3);                                       // free with orientation_only
   FewestImpulsesSummary s = SolveFewestImpulses(p);
   ASSERT_TRUE(s.IsSolutionUsable()) << s.BriefReport();
   EXPECT_EQ(s.fewest, 0) << s.BriefReport();
@@ -206,11 +205,16 @@ FewestRun CheckFewestProblem(const std::string& file, int fewest) {
   int checked = 0;
   for (const auto& [name, e] : f.expected) {
     double value = NAN;
-    if (name == "fewest_impulses") value = s.fewest;
-    else if (name == "total_time") value = row.total_time;
-    else if (name == "position_error") value = replay.position_error;
-    else if (name == "orientation_error") value = replay.orientation_error;
-    else ADD_FAILURE() << file << ": unknown expected value '" << name << "'";
+    if (name == "fewest_impulses")
+      value = s.fewest;
+    else if (name == "total_time")
+      value = row.total_time;
+    else if (name == "position_error")
+      value = replay.position_error;
+    else if (name == "orientation_error")
+      value = replay.orientation_error;
+    else
+      ADD_FAILURE() << file << ": unknown expected value '" << name << "'";
     EXPECT_NEAR(value, e.value, e.tolerance) << file << ": " << name;
     ++checked;
   }
@@ -232,11 +236,16 @@ TEST(FewestImpulsesProblems, Figure7FewestIsTwoStraightRollsAndStops) {
   EXPECT_EQ(row.stop->kind, ExactImpulseKind::kStop);
   EXPECT_EQ(row.stop->mu_after, 0.0);
   const ExactImpulse& last = row.plan.back();
-  const Impulse imp = EnergyPreservingImpulse(last.angles_before, setup.problem.mu, last.delta_psi, setup.problem.model);
-  const FreeMotion motion(setup.problem.model, FreeMotionStart{imp.state_after, last.position, AlignOrientationToAxis(Eigen::Matrix3d::Identity(), imp.state_after.z)});
+  const Impulse imp =
+      EnergyPreservingImpulse(last.angles_before, setup.problem.mu, last.delta_psi, setup.problem.model);
+  const FreeMotion motion(
+      setup.problem.model,
+      FreeMotionStart{
+          imp.state_after, last.position, AlignOrientationToAxis(Eigen::Matrix3d::Identity(), imp.state_after.z)});
   const MotionSample end = motion.At(last.duration);
   EXPECT_LE((end.state.omega + row.stop->delta_omega).norm(), 1e-10);
-  EXPECT_LE((row.stop->plate_velocity_change - 2.0 * row.stop->delta_omega.cross(Eigen::Vector3d::UnitZ())).norm(), 1e-15);
+  EXPECT_LE((row.stop->plate_velocity_change - 2.0 * row.stop->delta_omega.cross(Eigen::Vector3d::UnitZ())).norm(),
+            1e-15);
   EXPECT_NEAR(row.stop->t_impulse, row.total_time, 1e-12);
 }
 
@@ -248,7 +257,8 @@ TEST(FewestImpulsesProblems, RotationFromRestNeedsThreeImpulses) {
   EXPECT_EQ(first.kind, ExactImpulseKind::kStart);
   EXPECT_EQ(first.mu_before, 0.0);
   // From rest the change of omega is the whole omega after the impulse, of energy mu.
-  const Impulse imp = EnergyPreservingImpulse(first.angles_before, setup.problem.mu, first.delta_psi, setup.problem.model);
+  const Impulse imp =
+      EnergyPreservingImpulse(first.angles_before, setup.problem.mu, first.delta_psi, setup.problem.model);
   EXPECT_LE((first.delta_omega - imp.state_after.omega).norm(), 1e-15);
   EXPECT_NEAR(Energy(imp.state_after, setup.problem.model), setup.problem.mu, 1e-12);
 }
@@ -316,15 +326,18 @@ TEST(FewestImpulses, SearchWindowBeyondTheLimitIsRefusedUpFront) {
   for (double mu : {1e-4, 1.0, 1e4}) {
     p.mu = mu;
     p.x1 = {330.0, 0.0};
-    EXPECT_NE(InvalidArgumentMessage([&] { SolveFewestImpulses(p, o); }).find("x1: value (330, 0): the goal is 330 radii"),
-              std::string::npos) << "mu " << mu;
+    EXPECT_NE(
+        InvalidArgumentMessage([&] { SolveFewestImpulses(p, o); }).find("x1: value (330, 0): the goal is 330 radii"),
+        std::string::npos)
+        << "mu " << mu;
     p.x1 = {320.0, 0.0};
     EXPECT_EQ(InvalidArgumentMessage([&] { SolveFewestImpulses(p, o); }), "") << "mu " << mu;
   }
   p.mu = 4.0;
   p.x1 = {3.0, 0.0};
   o.max_total_time = 251.0;  // sqrt(4) 251 = 502 radii
-  EXPECT_NE(InvalidArgumentMessage([&] { SolveFewestImpulses(p, o); }).find("max_total_time: value 251"), std::string::npos);
+  EXPECT_NE(InvalidArgumentMessage([&] { SolveFewestImpulses(p, o); }).find("max_total_time: value 251"),
+            std::string::npos);
 }
 
 // The progress hook is called on every start, with the count searched; throwing abandons the search.
@@ -344,7 +357,9 @@ TEST(FewestImpulses, ProgressHookSeesEveryStartAndCanAbandonTheSearch) {
   };
   SolveFewestImpulses(p, o);
   EXPECT_EQ(calls, 2 * o.starts);  // counts 1 and 2 (both unreachable for a generic goal), 3 starts each
-  o.progress = [](int n, int) { if (n == 2) throw std::runtime_error("stop"); };
+  o.progress = [](int n, int) {
+    if (n == 2) throw std::runtime_error("stop");
+  };
   EXPECT_THROW(SolveFewestImpulses(p, o), std::runtime_error);
 }
 
@@ -413,7 +428,8 @@ TEST(FewestImpulsesReliability, ContinuationFromTheNextCountArrives) {
         ExpectRowArrives(p, c);
       }
       if (!c.reached) {
-        EXPECT_EQ(c.verdict, 2 * c.impulses < 5 ? FewestCountVerdict::kGenericallyImpossible : FewestCountVerdict::kNotFound);
+        EXPECT_EQ(c.verdict,
+                  2 * c.impulses < 5 ? FewestCountVerdict::kGenericallyImpossible : FewestCountVerdict::kNotFound);
       }
       if (c.impulses < s.fewest && c.verdict == FewestCountVerdict::kNotFound) smaller_not_found = true;
     }

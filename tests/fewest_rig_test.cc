@@ -17,7 +17,7 @@
 namespace plateball {
 namespace {
 
-constexpr double kPositionTol = 1e-12;     // the arrival tolerances of the search
+constexpr double kPositionTol = 1e-12;  // the arrival tolerances of the search
 constexpr double kOrientationTol = 1e-10;
 
 // problems/figure7_fewest.json: (0, 0) -> (3, 3) with the identity, lambda = 2, rolling from the
@@ -130,7 +130,8 @@ TEST(FewestRig, ImpulseTimesOnATickGridStillArriveExactly) {
   ASSERT_EQ(s.status, FewestImpulsesStatus::kFound) << s.BriefReport();
   // With the stop on the grid too, n turns are the only free unknowns: n < 5 reaches no generic goal.
   EXPECT_EQ(s.fewest, 5);
-  for (int n = 1; n < 5; ++n) EXPECT_EQ(s.counts[static_cast<std::size_t>(n - 1)].verdict, FewestCountVerdict::kGenericallyImpossible);
+  for (int n = 1; n < 5; ++n)
+    EXPECT_EQ(s.counts[static_cast<std::size_t>(n - 1)].verdict, FewestCountVerdict::kGenericallyImpossible);
   const FewestImpulsesCount& row = *s.Fewest();
   ExpectReachedWithinLimits(p, row);
   for (const ExactImpulse& e : row.plan) {
@@ -144,7 +145,7 @@ TEST(FewestRig, ImpulseTimesOnATickGridStillArriveExactly) {
 TEST(FewestRig, LimitsNoArrivalMeetsAreAStatusNamingThem) {
   FewestImpulsesProblem p = Figure7().problem;
   FewestImpulsesOptions o = Figure7().options;
-  o.max_impulses = 2;  // n = 2 arrives without limits (two straight rolls)
+  o.max_impulses = 2;                         // n = 2 arrives without limits (two straight rolls)
   p.limits.max_plate_velocity_change = 0.05;  // the stop alone needs 2 |omega_h|
   const FewestImpulsesSummary s = SolveFewestImpulses(p, o);
   EXPECT_EQ(s.status, FewestImpulsesStatus::kLimitsNotMet);

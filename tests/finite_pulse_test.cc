@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -40,8 +39,10 @@ Eigen::Vector2d OmegaFromK(const PhysicalParameters& p, const Eigen::Vector3d& z
 // Newton-Euler of ball (about its centre) and plate with the force F on the plate; unknowns
 // (omega'[3], Q[2], G[2], tau):  M_ball a = Q + G,  I omega' + (I3 - I1)(z.omega) omega x z =
 // r e3 x Q - r e3 x G + tau e3,  M_plate 2 a = F - Q,  omega'_3 = 0, with a = r omega' x e3.
-Eigen::Vector3d OmegaRateByNewtonEuler(const PhysicalParameters& p, const Eigen::Vector3d& z,
-                                       const Eigen::Vector3d& w, const Eigen::Vector3d& f) {
+Eigen::Vector3d OmegaRateByNewtonEuler(const PhysicalParameters& p,
+                                       const Eigen::Vector3d& z,
+                                       const Eigen::Vector3d& w,
+                                       const Eigen::Vector3d& f) {
   Eigen::Matrix3d cross_e3;  // w -> w x e3
   cross_e3 << 0, 1, 0, -1, 0, 0, 0, 0, 0;
   Eigen::Matrix<double, 3, 2> e3_cross;  // horizontal F -> e3 x F
@@ -156,13 +157,21 @@ TEST(FinitePulse, BadPulsesAreRejectedNamingTheField) {
   const PhysicalParameters p = PhysicalUnitsBall();
   const PulsedState s;
   const Eigen::Vector3d j(0.01, 0, 0);
-  EXPECT_NE(message([&] { RunPulsed(p, s, 0, 1, {{0.2, 0.3, j}, {0.4, 0.1, j}}); }).find("pulses[1].start: value 0.4"),
+  EXPECT_NE(message([&] {
+              RunPulsed(p, s, 0, 1, {{0.2, 0.3, j}, {0.4, 0.1, j}});
+            }).find("pulses[1].start: value 0.4"),
             std::string::npos);
-  EXPECT_NE(message([&] { RunPulsed(p, s, 0, 1, {{0.9, 0.3, j}}); }).find("pulses[0].start: value 0.9"),
+  EXPECT_NE(message([&] {
+              RunPulsed(p, s, 0, 1, {{0.9, 0.3, j}});
+            }).find("pulses[0].start: value 0.9"),
             std::string::npos);
-  EXPECT_NE(message([&] { RunPulsed(p, s, 0, 1, {{0.1, 0.0, j}}); }).find("pulses[0].duration: value 0"),
+  EXPECT_NE(message([&] {
+              RunPulsed(p, s, 0, 1, {{0.1, 0.0, j}});
+            }).find("pulses[0].duration: value 0"),
             std::string::npos);
-  EXPECT_NE(message([&] { RunPulsed(p, s, 0, 1, {{0.1, 0.1, {NAN, 0, 0}}}); }).find("pulses[0].impulse[0]"),
+  EXPECT_NE(message([&] {
+              RunPulsed(p, s, 0, 1, {{0.1, 0.1, {NAN, 0, 0}}});
+            }).find("pulses[0].impulse[0]"),
             std::string::npos);
 }
 

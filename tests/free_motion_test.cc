@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -40,7 +39,9 @@ IntegrationOptions Tight() {
   return o;
 }
 
-FreeMotionStart StartFromAngles(const BallModel& model, const AngleState& a, double mu,
+FreeMotionStart StartFromAngles(const BallModel& model,
+                                const AngleState& a,
+                                double mu,
                                 const Eigen::Vector2d& x0 = Eigen::Vector2d::Zero()) {
   FreeMotionStart s;
   s.state = StateFromAngles(a, mu, model);
@@ -210,7 +211,9 @@ TEST(FreeMotion, TrajectoriesThroughBothPolesKeepUnitZEnergyAndPeriod) {
   // c = 0 starts that cross theta = 0 and theta = pi each period (w0 = +-pi/2), a start on the
   // south pole, and a nearly polar one (c = 1e-7): FreeMotion::At against direct integration,
   // |z| = 1, energy, periodicity of z and omega, and the drift of a straight line for c = 0.
-  const std::vector<AngleState> starts = {{1.0, M_PI / 2 + 0.3, 0.3}, {2.9, -M_PI / 2, 0.0}, {M_PI, 0.4, -1.0},
+  const std::vector<AngleState> starts = {{1.0, M_PI / 2 + 0.3, 0.3},
+                                          {2.9, -M_PI / 2, 0.0},
+                                          {M_PI, 0.4, -1.0},
                                           {1.0, std::acos(1e-7 / std::sin(1.0)), 0.0}};
   for (double lambda : {0.5, 2.0, 5.0})
     for (const AngleState& a : starts) {
@@ -245,7 +248,8 @@ TEST(FreeMotion, ConstraintsHoldAlongTrajectories) {
   // angles give back the returned z and omega.
   for (double lambda : {0.5, 2.0}) {
     const BallModel model = BallModel::FromLambda(lambda);
-    for (const AngleState& a : {AngleState{M_PI / 3, 0.4, 0.1}, AngleState{0.0, 0.0, 1.0}, AngleState{-M_PI / 3, M_PI / 2, 0.0}}) {
+    for (const AngleState& a :
+         {AngleState{M_PI / 3, 0.4, 0.1}, AngleState{0.0, 0.0, 1.0}, AngleState{-M_PI / 3, M_PI / 2, 0.0}}) {
       const double mu = 1.5;
       const FreeMotion motion = FreeMotion::FromAngles(model, a, mu);
       for (const MotionSample& s : motion.Sample(0.0, 2.0 * motion.Period(), 41)) {
@@ -298,8 +302,9 @@ TEST(FreeMotion, RejectsInvalidInputNamingTheField) {
   EXPECT_NE(message([&] { FreeMotion(model, nan_x); }).find("x0"), std::string::npos);
   IntegrationOptions bad;
   bad.relative_tolerance = -1.0;
-  EXPECT_NE(message([&] { FreeMotion::FromAngles(model, {1.0, 0.0, 0.0}, 1.0, {0, 0}, Eigen::Matrix3d::Identity(), bad); })
-                .find("relative_tolerance"),
+  EXPECT_NE(message([&] {
+              FreeMotion::FromAngles(model, {1.0, 0.0, 0.0}, 1.0, {0, 0}, Eigen::Matrix3d::Identity(), bad);
+            }).find("relative_tolerance"),
             std::string::npos);
   EXPECT_NE(message([&] { FreeMotion::FromAngles(model, {1.0, 0.0, 0.0}, -1.0); }).find("mu"), std::string::npos);
   const FreeMotion ok = FreeMotion::FromAngles(model, {1.0, 0.0, 0.0}, 1.0);

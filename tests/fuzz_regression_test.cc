@@ -34,7 +34,8 @@ std::vector<std::vector<std::uint8_t>> Inputs(const std::vector<std::string>& di
 }  // namespace
 
 TEST(FuzzRegression, ProblemReaderInputsNeverCrash) {
-  const auto inputs = Inputs({"fuzz/regressions/problem_reader_fuzzer", "fuzz/seeds/problem_reader_fuzzer", "problems"});
+  const auto inputs =
+      Inputs({"fuzz/regressions/problem_reader_fuzzer", "fuzz/seeds/problem_reader_fuzzer", "problems"});
   ASSERT_GE(inputs.size(), 3u);  // the seeds and the problems folder are always there
   for (const auto& in : inputs) plateball::fuzz::ProblemReader(in.data(), in.size());
 }

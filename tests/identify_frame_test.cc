@@ -63,7 +63,8 @@ IdentifyProblem MakeTrack(const TrackSpec& spec) {
       if (spec.sigma > 0) p.sigma_orientation.push_back(spec.sigma_frame);
     }
     if (spec.body_rate) {
-      p.body_rate.push_back(m.A.transpose() * m.state.omega + spec.sigma_frame * Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+      p.body_rate.push_back(m.A.transpose() * m.state.omega +
+                            spec.sigma_frame * Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
       p.sigma_body_rate.push_back(spec.sigma_frame);
     }
   }
@@ -94,8 +95,11 @@ TEST(IdentifyFrame, ModelFrameAndItsJacobianMatchFreeMotionAndCentralDifferences
     out.orientation_jacobian = aj.data();
     out.body_rate = b.data();
     out.body_rate_jacobian = bj.data();
-    internal::EvaluateImpulsiveTrack(q.data(), tau.data(), n, impulses, tight, x.data(), jac.data(), &tight, nullptr, &out);
-    auto frame = [](const std::vector<double>& v, std::size_t i) { return Eigen::Matrix<double, 3, 3, Eigen::RowMajor>(v.data() + 9 * i); };
+    internal::EvaluateImpulsiveTrack(
+        q.data(), tau.data(), n, impulses, tight, x.data(), jac.data(), &tight, nullptr, &out);
+    auto frame = [](const std::vector<double>& v, std::size_t i) {
+      return Eigen::Matrix<double, 3, 3, Eigen::RowMajor>(v.data() + 9 * i);
+    };
     for (std::size_t j = 0; j < p; ++j) {
       const double h = 1e-5;
       std::vector<double> qp = q, qm = q, xp(2 * n), ap(9 * n), am(9 * n), bp(3 * n), bm(3 * n);
@@ -106,15 +110,18 @@ TEST(IdentifyFrame, ModelFrameAndItsJacobianMatchFreeMotionAndCentralDifferences
       op.body_rate = bp.data();
       om.orientation = am.data();
       om.body_rate = bm.data();
-      internal::EvaluateImpulsiveTrack(qp.data(), tau.data(), n, impulses, tight, xp.data(), nullptr, nullptr, nullptr, &op);
-      internal::EvaluateImpulsiveTrack(qm.data(), tau.data(), n, impulses, tight, xp.data(), nullptr, nullptr, nullptr, &om);
+      internal::EvaluateImpulsiveTrack(
+          qp.data(), tau.data(), n, impulses, tight, xp.data(), nullptr, nullptr, nullptr, &op);
+      internal::EvaluateImpulsiveTrack(
+          qm.data(), tau.data(), n, impulses, tight, xp.data(), nullptr, nullptr, nullptr, &om);
       for (std::size_t i = 0; i < n; ++i) {
         // The body-frame derivative vee(A^T dA/dq_j) ~ Log(A(q - h)^T A(q + h)) / (2h); central
         // differences: h^2 ~ 1e-10 truncation, 1e-13/h rounding.
         const Eigen::Vector3d fd = LogSO3(frame(am, i).transpose() * frame(ap, i)) / (2 * h);
         for (int c = 0; c < 3; ++c) {
           EXPECT_NEAR(aj[(3 * i + c) * p + j], fd[c], 1e-7) << "orientation sample " << i << " parameter " << j;
-          EXPECT_NEAR(bj[(3 * i + c) * p + j], (bp[3 * i + c] - bm[3 * i + c]) / (2 * h), 1e-7) << "rate sample " << i << " parameter " << j;
+          EXPECT_NEAR(bj[(3 * i + c) * p + j], (bp[3 * i + c] - bm[3 * i + c]) / (2 * h), 1e-7)
+              << "rate sample " << i << " parameter " << j;
         }
       }
     }
@@ -148,7 +155,9 @@ TEST(IdentifyFrame, NoiselessPositionsAndOrientationsRecoverLambdaAndTheFrame) {
   EXPECT_LT(RotationAngle(fitted.toRotationMatrix(), internal::StartFrame(kAngles.theta, kAngles.phi, kChi)), 1e-8);
   EXPECT_LT(s.orientation_max_residual, 1e-8);
   std::printf("noiseless orientations: |lambda - 1.3| = %.2e, |mu - 4| = %.2e, largest orientation residual %.2e rad\n",
-              std::abs(s.lambda - 1.3), std::abs(s.mu - kMu), s.orientation_max_residual);
+              std::abs(s.lambda - 1.3),
+              std::abs(s.mu - kMu),
+              s.orientation_max_residual);
 }
 
 TEST(IdentifyFrame, NoiselessPositionsAndBodyRatesRecoverLambda) {
@@ -160,7 +169,8 @@ TEST(IdentifyFrame, NoiselessPositionsAndBodyRatesRecoverLambda) {
   ASSERT_NE(s.status, IdentifyStatus::kFailed) << s.BriefReport();
   EXPECT_NEAR(s.lambda, 1.3, kNoiselessLambdaTolerance);
   EXPECT_LT(s.body_rate_max_residual, 1e-8);
-  std::printf("near-noiseless body rates: |lambda - 1.3| = %.2e, largest rate residual %.2e\n", std::abs(s.lambda - 1.3),
+  std::printf("near-noiseless body rates: |lambda - 1.3| = %.2e, largest rate residual %.2e\n",
+              std::abs(s.lambda - 1.3),
               s.body_rate_max_residual);
 }
 
@@ -181,7 +191,9 @@ TEST(IdentifyFrame, OrientationsIdentifyLambdaOnAShortFlightThatPositionsDoNot) 
   spec.body_rate = true;
   const IdentifySummary imu = Identify(MakeTrack(spec));
   std::printf("0.15-period flight: lambda se contact %.3g, with orientations %.3g, with body rates %.3g\n",
-              contact.standard_errors[0], frame.standard_errors[0], imu.standard_errors[0]);
+              contact.standard_errors[0],
+              frame.standard_errors[0],
+              imu.standard_errors[0]);
   EXPECT_EQ(contact.status, IdentifyStatus::kLambdaNotIdentified) << contact.BriefReport();
   ASSERT_EQ(frame.status, IdentifyStatus::kIdentified) << frame.BriefReport();
   ASSERT_EQ(imu.status, IdentifyStatus::kIdentified) << imu.BriefReport();
@@ -274,13 +286,15 @@ TEST(IdentifyFrame, BadFrameColumnsAreRejectedNamingFieldAndRow) {
   EXPECT_NE(p.Validate().find("orientation[2].z: value nan: must be finite"), std::string::npos) << p.Validate();
   p = good;
   p.orientation.pop_back();
-  EXPECT_NE(p.Validate().find("orientation (rows): value 19: must have one row per time (20)"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().find("orientation (rows): value 19: must have one row per time (20)"), std::string::npos)
+      << p.Validate();
   p = good;
   p.sigma_orientation.clear();
   EXPECT_NE(p.Validate().find("sigma_orientation (rows): value 0: sigma is given"), std::string::npos) << p.Validate();
   p = good;
   p.sigma_orientation[6] = -1.0;
-  EXPECT_NE(p.Validate().find("sigma_orientation[6]: value -1: must be finite and > 0"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().find("sigma_orientation[6]: value -1: must be finite and > 0"), std::string::npos)
+      << p.Validate();
   // Body rates: with spin (mixed columns), without noise, NaN.
   spec.orientation = false;
   spec.body_rate = true;
@@ -289,10 +303,12 @@ TEST(IdentifyFrame, BadFrameColumnsAreRejectedNamingFieldAndRow) {
   p = rates;
   p.spin.assign(20, 0.1);
   p.sigma_spin.assign(20, 0.1);
-  EXPECT_NE(p.Validate().find("body_rate (rows): value 20: give either spin or body_rate, not both"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().find("body_rate (rows): value 20: give either spin or body_rate, not both"), std::string::npos)
+      << p.Validate();
   p = rates;
   p.sigma.clear();
-  EXPECT_NE(p.Validate().find("sigma (rows): value 0: measured body rates need sigma given too"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().find("sigma (rows): value 0: measured body rates need sigma given too"), std::string::npos)
+      << p.Validate();
   p = rates;
   p.body_rate[3][1] = std::nan("");
   EXPECT_NE(p.Validate().find("body_rate[3][1]: value nan: must be finite"), std::string::npos) << p.Validate();

@@ -9,8 +9,8 @@
 #include <map>
 #include <random>
 
-#include "identify_model.h"
 #include "exact_chain.h"
+#include "identify_model.h"
 #include "kinematics.h"
 #include "plateball/free_motion.h"
 #include "plateball/identify.h"
@@ -141,14 +141,23 @@ TEST(IdentifyImpulses, NoiselessPlanTrackRecoversLambdaAndEveryDeltaPsi) {
     EXPECT_NEAR(s.flights[k].t_start, step.t_impulse, 1e-12);
     EXPECT_NEAR((s.flights[k].x - step.p_begin).norm(), 0.0, 1e-7) << k;
     EXPECT_NEAR(StateFromAngles(s.flights[k].angles, s.mu, BallModel::FromLambda(2.0)).omega.norm(),
-                StateFromAngles(step.impulse.after, step.mu, BallModel::FromLambda(2.0)).omega.norm(), 1e-7);
+                StateFromAngles(step.impulse.after, step.mu, BallModel::FromLambda(2.0)).omega.norm(),
+                1e-7);
     EXPECT_NEAR((StateFromAngles(s.flights[k].angles, s.mu, BallModel::FromLambda(2.0)).z -
-                 StateFromAngles(step.impulse.after, step.mu, BallModel::FromLambda(2.0)).z).norm(), 0.0, 1e-7) << k;
+                 StateFromAngles(step.impulse.after, step.mu, BallModel::FromLambda(2.0)).z)
+                    .norm(),
+                0.0,
+                1e-7)
+        << k;
   }
   EXPECT_FALSE(s.straight_path);
   double worst = std::abs(s.lambda - track.lambda);
-  for (std::size_t k = 0; k < s.delta_psi.size(); ++k) worst = std::max(worst, std::abs(internal::WrapPi(s.delta_psi[k] - track.delta_psi[k])));
-  std::printf("noiseless: largest error of lambda and delta psi %.2e, rms residual %.2e, %d starts\n", worst, s.rms_residual, s.starts);
+  for (std::size_t k = 0; k < s.delta_psi.size(); ++k)
+    worst = std::max(worst, std::abs(internal::WrapPi(s.delta_psi[k] - track.delta_psi[k])));
+  std::printf("noiseless: largest error of lambda and delta psi %.2e, rms residual %.2e, %d starts\n",
+              worst,
+              s.rms_residual,
+              s.starts);
 }
 
 // Noise 1e-3 radii, given: lambda and each delta psi within 4 standard errors of the truth
@@ -164,7 +173,8 @@ TEST(IdentifyImpulses, NoisyPlanTrackRecoversLambdaAndDeltaPsiWithinTheirStandar
     EXPECT_LT(std::abs(s.lambda - track.lambda), kStandardErrors * s.standard_errors[0]) << seed;
     EXPECT_LT(std::abs(s.mu - track.mu), kStandardErrors * s.standard_errors[1]) << seed;
     for (std::size_t k = 0; k < s.delta_psi.size(); ++k)
-      EXPECT_LT(std::abs(internal::WrapPi(s.delta_psi[k] - track.delta_psi[k])), kStandardErrors * s.standard_errors[7 + k])
+      EXPECT_LT(std::abs(internal::WrapPi(s.delta_psi[k] - track.delta_psi[k])),
+                kStandardErrors * s.standard_errors[7 + k])
           << seed << " impulse " << k;
     // Reduced chi-square near 1: the model fits to the noise.
     EXPECT_NEAR(s.chi_square / (s.residuals - 15), 1.0, 0.3) << seed;
@@ -202,7 +212,9 @@ TEST(IdentifyImpulses, JointFitGivesATighterLambdaThanTheFlightsSeparately) {
   EXPECT_LT(joint.standard_errors[0], combined);
   EXPECT_LT(joint.standard_errors[0], best_single);
   std::printf("lambda standard error: joint %.3g, flights combined %.3g, best single flight %.3g\n",
-              joint.standard_errors[0], combined, best_single);
+              joint.standard_errors[0],
+              combined,
+              best_single);
 }
 
 // Coverage of the 95% profile interval of lambda across impulses: the count of covering seeds is
@@ -237,7 +249,8 @@ TEST(IdentifyImpulses, ManyShortFlightsFromTheMultiStart) {
       const IdentifySummary s = Identify(track.problem, FastOptions());
       ASSERT_EQ(s.status, IdentifyStatus::kIdentified) << s.BriefReport();
       EXPECT_LT(std::abs(s.lambda - track.lambda), kStandardErrors * s.standard_errors[0]) << n << " " << seed;
-      std::printf("n %d seed %u: lambda %.6f +- %.2g, rms %.3g\n", n, seed, s.lambda, s.standard_errors[0], s.rms_residual);
+      std::printf(
+          "n %d seed %u: lambda %.6f +- %.2g, rms %.3g\n", n, seed, s.lambda, s.standard_errors[0], s.rms_residual);
     }
   }
 }
@@ -254,7 +267,8 @@ TEST(IdentifyImpulses, BadImpulseTimesAreRejectedNamingTheFieldAndValue) {
   EXPECT_NE(message({t2, t1}).find("impulse_times[1]: value"), std::string::npos) << message({t2, t1});
   EXPECT_NE(message({t2, t1}).find("strictly increasing"), std::string::npos);
   EXPECT_NE(message({t1, t1}).find("impulse_times[1]"), std::string::npos);
-  EXPECT_NE(message({-1.0}).find("impulse_times[0]: value -1: must be inside the track"), std::string::npos) << message({-1.0});
+  EXPECT_NE(message({-1.0}).find("impulse_times[0]: value -1: must be inside the track"), std::string::npos)
+      << message({-1.0});
   EXPECT_NE(message({1e9}).find("impulse_times[0]: value 1e+09"), std::string::npos) << message({1e9});
   EXPECT_NE(message({std::nan("")}).find("impulse_times[0]"), std::string::npos);
   // Two impulses one sample apart: the flight between them has 1 sample.

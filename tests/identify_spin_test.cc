@@ -15,7 +15,12 @@ namespace {
 
 /// n samples over `periods` periods of FreeMotion from `angles`, noise sigma on the positions
 /// and sigma_spin on the spin (both given), with the spin when `with_spin`.
-IdentifyProblem MakeTrack(double lambda, const AngleState& angles, int n, double sigma, double sigma_spin, unsigned seed,
+IdentifyProblem MakeTrack(double lambda,
+                          const AngleState& angles,
+                          int n,
+                          double sigma,
+                          double sigma_spin,
+                          unsigned seed,
                           bool with_spin = true) {
   const double mu = 4.0;
   const FreeMotion motion = FreeMotion::FromAngles(BallModel::FromLambda(lambda), angles, mu, {0.5, -0.2});
@@ -51,7 +56,8 @@ TEST(IdentifySpin, ModelSpinAndItsJacobianMatchFreeMotionAndCentralDifferences) 
     internal::BodyOutput out;
     out.spin = v.data();
     out.spin_jacobian = vj.data();
-    internal::EvaluateImpulsiveTrack(q.data(), tau.data(), n, impulses, tight, x.data(), jac.data(), &tight, nullptr, &out);
+    internal::EvaluateImpulsiveTrack(
+        q.data(), tau.data(), n, impulses, tight, x.data(), jac.data(), &tight, nullptr, &out);
     for (std::size_t j = 0; j < p; ++j) {
       const double h = 1e-5;
       std::vector<double> qp = q, qm = q;
@@ -60,8 +66,10 @@ TEST(IdentifySpin, ModelSpinAndItsJacobianMatchFreeMotionAndCentralDifferences) 
       internal::BodyOutput op, om;
       op.spin = vp.data();
       om.spin = vm.data();
-      internal::EvaluateImpulsiveTrack(qp.data(), tau.data(), n, impulses, tight, x.data(), nullptr, nullptr, nullptr, &op);
-      internal::EvaluateImpulsiveTrack(qm.data(), tau.data(), n, impulses, tight, x.data(), nullptr, nullptr, nullptr, &om);
+      internal::EvaluateImpulsiveTrack(
+          qp.data(), tau.data(), n, impulses, tight, x.data(), nullptr, nullptr, nullptr, &op);
+      internal::EvaluateImpulsiveTrack(
+          qm.data(), tau.data(), n, impulses, tight, x.data(), nullptr, nullptr, nullptr, &om);
       for (std::size_t i = 0; i < n; ++i)  // central difference: h^2 ~ 1e-10 truncation, 1e-13/h rounding
         EXPECT_NEAR(vj[i * p + j], (vp[i] - vm[i]) / (2 * h), 1e-7) << "sample " << i << " parameter " << j;
     }
@@ -106,7 +114,8 @@ TEST(IdentifySpin, SpinTightensLambdaOnACurvedTrack) {
   ASSERT_EQ(s.status, IdentifyStatus::kIdentified) << s.BriefReport();
   EXPECT_LT(std::abs(s.lambda - 1.3), 4.0 * s.standard_errors[0]);
   EXPECT_LT(s.standard_errors[0], contact.standard_errors[0]);
-  std::printf("lambda standard error: contact %.3g, with spin %.3g\n", contact.standard_errors[0], s.standard_errors[0]);
+  std::printf(
+      "lambda standard error: contact %.3g, with spin %.3g\n", contact.standard_errors[0], s.standard_errors[0]);
 }
 
 TEST(IdentifySpin, BadSpinIsRejectedNamingTheField) {
@@ -117,7 +126,8 @@ TEST(IdentifySpin, BadSpinIsRejectedNamingTheField) {
   EXPECT_NE(p.Validate().find("sigma_spin (rows): value 0"), std::string::npos) << p.Validate();
   p = good;
   p.sigma.clear();
-  EXPECT_NE(p.Validate().find("sigma (rows): value 0: a measured spin needs sigma given too"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().find("sigma (rows): value 0: a measured spin needs sigma given too"), std::string::npos)
+      << p.Validate();
   p = good;
   p.spin.pop_back();
   EXPECT_NE(p.Validate().find("spin (rows): value 19"), std::string::npos) << p.Validate();

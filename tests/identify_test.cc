@@ -26,7 +26,8 @@ double PeriodOf(const Truth& t) { return 2.0 * M_PI / std::sqrt(t.mu); }
 
 /// n samples of x(t) on [t0, t0 + span] of FreeMotion (state `truth` at t0), Gaussian noise sigma.
 IdentifyProblem MakeTrack(const Truth& truth, double t0, double span, int n, double sigma, unsigned seed) {
-  const FreeMotion motion = FreeMotion::FromAngles(BallModel::FromLambda(truth.lambda), truth.angles, truth.mu, truth.x0);
+  const FreeMotion motion =
+      FreeMotion::FromAngles(BallModel::FromLambda(truth.lambda), truth.angles, truth.mu, truth.x0);
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, 1.0);
   IdentifyProblem p;
@@ -57,8 +58,10 @@ TEST(Identify, NoiselessTracksRecoverLambdaAndMuFromTheMultiStart) {
     EXPECT_DOUBLE_EQ(s.t_ref, 0.7);
     EXPECT_GT(s.starts, 1);
     // z -> -z gives the same contact track: theta is determined up to theta -> pi - theta.
-    EXPECT_NEAR(std::min(std::abs(s.angles.theta - truth.angles.theta), std::abs(M_PI - s.angles.theta - truth.angles.theta)),
-                0.0, 1e-7);
+    EXPECT_NEAR(
+        std::min(std::abs(s.angles.theta - truth.angles.theta), std::abs(M_PI - s.angles.theta - truth.angles.theta)),
+        0.0,
+        1e-7);
   }
 }
 
@@ -92,7 +95,9 @@ TEST(Identify, ModelJacobianMatchesCentralDifferences) {
     internal::EvaluateTrack(qp, tau.data(), tau.size(), tight, xp.data(), nullptr);
     internal::EvaluateTrack(qm, tau.data(), tau.size(), tight, xm.data(), nullptr);
     for (int k = 0; k < 8; ++k)  // central difference: h^2 ~ 1e-10 truncation, 1e-13/h rounding
-      EXPECT_NEAR(jac[static_cast<std::size_t>(k * 7 + j)], (xp[static_cast<std::size_t>(k)] - xm[static_cast<std::size_t>(k)]) / (2 * h), 1e-7)
+      EXPECT_NEAR(jac[static_cast<std::size_t>(k * 7 + j)],
+                  (xp[static_cast<std::size_t>(k)] - xm[static_cast<std::size_t>(k)]) / (2 * h),
+                  1e-7)
           << "residual " << k << " parameter " << kIdentifyParameterNames[j];
   }
   // The values agree with FreeMotion (an independent integration of one stored period).
@@ -114,7 +119,8 @@ TEST(Identify, ProfileIntervalCoversTheTruthInAbout95PercentOfSeeds) {
     truth.lambda = lambda;
     int covered = 0;
     for (int seed = 0; seed < kCoverageSeeds; ++seed) {
-      const IdentifyProblem p = MakeTrack(truth, 0.0, 1.5 * PeriodOf(truth), 40, 0.003, 1000u + static_cast<unsigned>(seed));
+      const IdentifyProblem p =
+          MakeTrack(truth, 0.0, 1.5 * PeriodOf(truth), 40, 0.003, 1000u + static_cast<unsigned>(seed));
       IdentifyOptions o;
       o.integration = {1e-9, 1e-9, 2'000'000};
       o.guess = IdentifyGuess{truth.lambda, truth.mu, truth.angles, truth.x0, {}};
@@ -265,10 +271,20 @@ TEST(Identify, BadInputIsRejectedNamingTheFieldAndRow) {
       {"nan time", [](IdentifyProblem* p) { p->t[2] = std::nan(""); }, "t[2]: value nan"},
       {"nan x", [](IdentifyProblem* p) { p->x[6].x() = std::nan(""); }, "x[6]: value nan"},
       {"inf y", [](IdentifyProblem* p) { p->x[1].y() = INFINITY; }, "y[1]: value inf"},
-      {"too few", [](IdentifyProblem* p) { p->t.resize(7); p->x.resize(7); }, "t (rows): value 7"},
+      {"too few",
+       [](IdentifyProblem* p) {
+         p->t.resize(7);
+         p->x.resize(7);
+       },
+       "t (rows): value 7"},
       {"rows differ", [](IdentifyProblem* p) { p->x.pop_back(); }, "x (rows)"},
       {"sigma rows", [](IdentifyProblem* p) { p->sigma.assign(3, 0.1); }, "sigma (rows): value 3"},
-      {"sigma zero", [](IdentifyProblem* p) { p->sigma.assign(p->t.size(), 0.1); p->sigma[9] = 0; }, "sigma[9]: value 0"},
+      {"sigma zero",
+       [](IdentifyProblem* p) {
+         p->sigma.assign(p->t.size(), 0.1);
+         p->sigma[9] = 0;
+       },
+       "sigma[9]: value 0"},
   };
   const IdentifyProblem good = MakeTrack(Truth{}, 0.0, 1.0, 20, 0.0, 1);
   EXPECT_EQ(good.Validate(), "");

@@ -31,12 +31,17 @@ std::string ErrorOf(const std::function<void()>& f) { return plateball::testing:
 
 Path T2Circle() { return Path({SmoothCurve::Circle({-2, 0}, 2, 0, 2 * M_PI)}); }
 
-PlanProblem MakePlan(const Path& path, std::vector<PartitionRule> partition, std::vector<EnergyChange> changes = {},
-                    double mu = 1.0, const Eigen::Matrix3d& A0 = Eigen::Matrix3d::Identity()) {
+PlanProblem MakePlan(const Path& path,
+                     std::vector<PartitionRule> partition,
+                     std::vector<EnergyChange> changes = {},
+                     double mu = 1.0,
+                     const Eigen::Matrix3d& A0 = Eigen::Matrix3d::Identity()) {
   return PlanProblem{kModel, kStart, mu, A0, path, std::move(partition), std::move(changes)};
 }
 
-PlanSummary PlanUniform(const Path& path, int n, const std::vector<EnergyChange>& changes = {},
+PlanSummary PlanUniform(const Path& path,
+                        int n,
+                        const std::vector<EnergyChange>& changes = {},
                         const PlanOptions& options = {}) {
   return PlanImpulses(MakePlan(path, {UniformParameter{n}}, changes), options);
 }
@@ -134,7 +139,8 @@ TEST(ImpulsePlanner, ReportedBoundHoldsAndCorollary3IsAboveTheorem26) {
     EXPECT_LE(plan.bounds.theorem_2_6, plan.bounds.corollary_3 * (1 + 1e-12));
     // Uniform partition of [0, 2 pi]: Corollary 3 is (Kbar + Ktilde) T^3 / n^2.
     const auto& c = plan.bounds.constants;
-    EXPECT_NEAR(plan.bounds.corollary_3, (c.K_bar_p + c.K_tilde_p) * std::pow(2 * M_PI, 3) / (n * n),
+    EXPECT_NEAR(plan.bounds.corollary_3,
+                (c.K_bar_p + c.K_tilde_p) * std::pow(2 * M_PI, 3) / (n * n),
                 1e-12 * plan.bounds.corollary_3);
     // On a circle of radius 2: |p'| = 2, |p''| = 2 exactly.
     EXPECT_NEAR(c.K_p, 2.0, 1e-12);
@@ -167,7 +173,8 @@ TEST(ImpulsePlanner, EnergyChangingImpulsesKeepTheGeometry) {
 }
 
 TEST(ImpulsePlanner, PiecewisePathIsPlannedPieceByPiece) {
-  const Path path({SmoothCurve::Line({0, 0}, {2, 0}), SmoothCurve::Circle({2, 1}, 1, -M_PI / 2, M_PI / 2),
+  const Path path({SmoothCurve::Line({0, 0}, {2, 0}),
+                   SmoothCurve::Circle({2, 1}, 1, -M_PI / 2, M_PI / 2),
                    SmoothCurve::Line({2, 2}, {0, 3})});
   const PlanSummary plan = PlanUniform(path, 12);
   ASSERT_TRUE(plan.IsSolutionUsable()) << plan.BriefReport();
@@ -199,9 +206,13 @@ TEST(ImpulsePlanner, BadInputNamesTheField) {
             std::string::npos);
   EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, {UniformArcLength{0}})); }).find("partition.n"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, part, {{8, 2.0}})); }).find("energy_changes[0].index"),
+  EXPECT_NE(ErrorOf([&] {
+              PlanImpulses(MakePlan(path, part, {{8, 2.0}}));
+            }).find("energy_changes[0].index"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, part, {{1, 0.0}})); }).find("energy_changes[0].factor"),
+  EXPECT_NE(ErrorOf([&] {
+              PlanImpulses(MakePlan(path, part, {{1, 0.0}}));
+            }).find("energy_changes[0].factor"),
             std::string::npos);
   EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, part, {}, 0.0)); }).find("mu"), std::string::npos);
   EXPECT_NE(ErrorOf([&] { PlanImpulses(MakePlan(path, part, {}, 1.0, 2.0 * I)); }).find("A0"), std::string::npos);

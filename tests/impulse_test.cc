@@ -18,11 +18,12 @@ namespace {
 
 constexpr double kExactEnergy = 1e-14;  // relative: (9) holds by construction of (15)-(18)
 constexpr double kRoundOff = 1e-13;
-constexpr double kAgreement = 1e-9;     // two integrations at tolerances 1e-12
+constexpr double kAgreement = 1e-9;  // two integrations at tolerances 1e-12
 
 TEST(Impulse, EnergyPreservingImpulseKeepsMuExactly) {
   for (double lambda : {0.3, 1.0, 2.0, 5.0})
-    for (const AngleState& a : {AngleState{M_PI / 3, 0.4, 0.1}, AngleState{0.0, 0.0, 1.0}, AngleState{2.9, -2.0, 0.5}}) {
+    for (const AngleState& a :
+         {AngleState{M_PI / 3, 0.4, 0.1}, AngleState{0.0, 0.0, 1.0}, AngleState{2.9, -2.0, 0.5}}) {
       const BallModel model = BallModel::FromLambda(lambda);
       const double mu = 1.7;
       for (int i = -20; i <= 20; ++i) {
@@ -120,7 +121,10 @@ TEST(Impulse, InvalidInputIsRejectedNamingTheField) {
   EXPECT_NE(message([&] { EnergyChangingImpulse(a, 1.0, 0.0, model); }).find("factor: value"), std::string::npos);
   EXPECT_NE(message([&] { EnergyChangingImpulse(a, 1.0, -2.0, model); }).find("factor: value"), std::string::npos);
   EXPECT_NE(message([&] { ImpulseToEnergy(a, 1.0, -1.0, model); }).find("mu_after: value"), std::string::npos);
-  EXPECT_NE(message([&] { EnergyPreservingImpulse({NAN, 0.0, 0.0}, 1.0, 1.0, model); }).find("theta: value"), std::string::npos);
+  EXPECT_NE(message([&] {
+              EnergyPreservingImpulse({NAN, 0.0, 0.0}, 1.0, 1.0, model);
+            }).find("theta: value"),
+            std::string::npos);
 }
 
 }  // namespace

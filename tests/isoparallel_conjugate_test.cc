@@ -13,8 +13,8 @@
 #include "plateball/elastica.h"
 #include "plateball/isoparallel.h"
 #include "plateball/problem_io.h"
-#include "plateball/task_adapters.h"
 #include "plateball/so3.h"
+#include "plateball/task_adapters.h"
 #include "support/test_support.h"
 
 namespace plateball::internal {
@@ -52,7 +52,8 @@ TEST(IsoparallelConjugate, InflectionalPlanarElasticaIsConjugateBetweenTheFirstA
         const Elastica e(p);
         const std::vector<double> inflections = Inflections(e, 3, 2.0 * e.Period());
         ASSERT_EQ(inflections.size(), 3u);
-        const ConjugateTime c = FirstConjugateTime(ConjugateProblem::kPlanarElastica, ExtremalDataOf(p), 2.0 * e.Period());
+        const ConjugateTime c =
+            FirstConjugateTime(ConjugateProblem::kPlanarElastica, ExtremalDataOf(p), 2.0 * e.Period());
         ASSERT_TRUE(c.found) << "k " << k << " phase " << phase << " rate " << rate;
         EXPECT_GE(c.time, inflections[0]) << "k " << k << " phase " << phase << " rate " << rate;
         EXPECT_LE(c.time, inflections[2]) << "k " << k << " phase " << phase << " rate " << rate;
@@ -70,7 +71,8 @@ TEST(IsoparallelConjugate, NonInflectionalPlanarElasticaHasNoConjugatePoint) {
     for (double phase : {0.0, 0.9}) {
       const ElasticaParameters p{PendulumRegime::kRotating, 1.1, k, phase, -0.4};
       const Elastica e(p);
-      const ConjugateTime c = FirstConjugateTime(ConjugateProblem::kPlanarElastica, ExtremalDataOf(p), 5.0 * e.Period());
+      const ConjugateTime c =
+          FirstConjugateTime(ConjugateProblem::kPlanarElastica, ExtremalDataOf(p), 5.0 * e.Period());
       EXPECT_FALSE(c.found) << "k " << k << " phase " << phase << " at " << c.time;
     }
   }
@@ -118,7 +120,7 @@ double FiniteDifferenceRoot(const ExtremalData& d, double lo, double hi) {
 
 TEST(IsoparallelConjugate, PlateBallDeterminantAgreesWithFiniteDifferencesOfTheClosedForm) {
   constexpr double kDeterminantTolerance = 1e-5;  // relative: the differences' error ~1e-10 / |det| >= 1e-7
-  constexpr double kRootTolerance = 1e-6;  // relative: the differences' error ~1e-10 over a slope ~1e-4
+  constexpr double kRootTolerance = 1e-6;         // relative: the differences' error ~1e-10 over a slope ~1e-4
   const ElasticaParameters cases[] = {{PendulumRegime::kOscillating, 0.8, 0.6, 0.3, 0.2},
                                       {PendulumRegime::kOscillating, 1.3, 0.9, 1.1, -0.7},
                                       {PendulumRegime::kRotating, 0.9, 0.5, 0.2, 1.0},
@@ -152,7 +154,8 @@ TEST(IsoparallelConjugate, Figure7FamiliesAreConjugateAtTheirEnd) {
   ASSERT_TRUE(s.IsSolutionUsable()) << s.BriefReport();
   ASSERT_EQ(s.solutions.size(), 47u);
   EXPECT_TRUE(s.solutions.front().locally_optimal);
-  EXPECT_NEAR(s.solutions.front().conjugate_time, s.solutions.front().length, kEndTolerance * s.solutions.front().length);
+  EXPECT_NEAR(
+      s.solutions.front().conjugate_time, s.solutions.front().length, kEndTolerance * s.solutions.front().length);
   int at_end = 0, before = 0;
   for (const IsoparallelSolution& sol : s.solutions) {
     ASSERT_TRUE(sol.family);

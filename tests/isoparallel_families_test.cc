@@ -45,8 +45,10 @@ FamilySearch Figure7Families(double cell = 0.5, int certified_run = 3) {
 TEST(CostateTransport, RollingCarriesTheCostateAlongEveryElastica) {
   // v(s) = Q(0, s) v(0) with Q by dopri5 and v from the closed forms, at arbitrary s (not whole
   // periods), oscillating and rotating, both senses.
-  for (const auto& [G, hw, h0, k0] : {std::tuple{0.62, 0.3, 0.1, 0.4}, std::tuple{1.3, -1.0, 2.0, 2.9},
-                                      std::tuple{0.2, 2.0, -0.5, -1.4}, std::tuple{0.05, 0.0, 1.0, 0.05}}) {
+  for (const auto& [G, hw, h0, k0] : {std::tuple{0.62, 0.3, 0.1, 0.4},
+                                      std::tuple{1.3, -1.0, 2.0, 2.9},
+                                      std::tuple{0.2, 2.0, -0.5, -1.4},
+                                      std::tuple{0.05, 0.0, 1.0, 0.05}}) {
     const Elastica e = Elastica::FromInitialState(G, hw, h0, k0);
     const Eigen::Vector3d v0 = ElasticaCostate(e, 0.0);
     for (double s : {0.37, 2.9, 7.31}) {
@@ -150,8 +152,8 @@ TEST(IdentityFamilies, LongChordAgreesWithTheShootingIncludingNearTheSeparatrix)
   bool separatrix_family = false;
   for (const IsoparallelSolution& e : enumerated.solutions) {
     EXPECT_LT(e.orientation_residual, 1e-9) << e.length;
-    separatrix_family = separatrix_family || (std::abs(e.length - 15.36243998) < 1e-7 &&
-                                              e.parameters.regime == PendulumRegime::kRotating);
+    separatrix_family = separatrix_family ||
+                        (std::abs(e.length - 15.36243998) < 1e-7 && e.parameters.regime == PendulumRegime::kRotating);
   }
   EXPECT_TRUE(separatrix_family);
   IsoparallelOptions shoot;
@@ -284,16 +286,17 @@ TEST(IdentityFamilies, InvalidInputNamesTheField) {
   o.max_length = 10.0;
   EXPECT_NE(plateball::testing::InvalidArgumentMessage([&] { EnumerateIdentityFamilies(-1.0, o); }).find("chord"),
             std::string::npos);
-  EXPECT_NE(plateball::testing::InvalidArgumentMessage([&] { EnumerateIdentityFamilies(std::nan(""), o); }).find("chord"),
-            std::string::npos);
+  EXPECT_NE(
+      plateball::testing::InvalidArgumentMessage([&] { EnumerateIdentityFamilies(std::nan(""), o); }).find("chord"),
+      std::string::npos);
   o.max_length = std::nan("");
   EXPECT_NE(plateball::testing::InvalidArgumentMessage([&] { EnumerateIdentityFamilies(1.0, o); }).find("max_length"),
             std::string::npos);
   o.max_length = 10.0;
   o.length_cap_factor = 0.5;
-  EXPECT_NE(plateball::testing::InvalidArgumentMessage([&] { EnumerateIdentityFamilies(1.0, o); })
-                .find("length_cap_factor"),
-            std::string::npos);
+  EXPECT_NE(
+      plateball::testing::InvalidArgumentMessage([&] { EnumerateIdentityFamilies(1.0, o); }).find("length_cap_factor"),
+      std::string::npos);
   o.length_cap_factor = 0.0;
   o.cell = 0.0;
   EXPECT_NE(plateball::testing::InvalidArgumentMessage([&] { EnumerateIdentityFamilies(1.0, o); }).find("cell"),

@@ -15,11 +15,11 @@
 #include "chord_residual.h"
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
-#include "rotation_trick.h"
-#include "support/test_support.h"
 #include "plateball/elastica.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
+#include "rotation_trick.h"
+#include "support/test_support.h"
 
 using namespace plateball;
 
@@ -125,7 +125,8 @@ TEST(ElasticaRolling, ChordReachBoundsEveryNodeChord) {
     ASSERT_EQ(static_cast<long>(reach.size()), count + 1);
     std::vector<double> longest(count + 1, 0.0);  // the longest chord over exactly k nodes
     for (long k = 1; k <= count; ++k)
-      for (long j = 0; j + k < static_cast<long>(x.size()); ++j) longest[k] = std::max(longest[k], (x[j + k] - x[j]).norm());
+      for (long j = 0; j + k < static_cast<long>(x.size()); ++j)
+        longest[k] = std::max(longest[k], (x[j + k] - x[j]).norm());
     double running = 0.0;
     for (long k = 0; k <= count; ++k) {
       running = std::max(running, longest[k]);
@@ -209,7 +210,8 @@ TEST(ElasticaRolling, ReachSkipKeepsSkippedNodesBeyondTheEdge) {
           if (k < 1) continue;
           skipped += k;
           for (long m = l - 1; m <= l + k; ++m)
-            ASSERT_EQ((x[m] - x[j]).norm() > edge, c > edge) << modulus << " " << edge << " " << j << " " << l << " " << m;
+            ASSERT_EQ((x[m] - x[j]).norm() > edge, c > edge)
+                << modulus << " " << edge << " " << j << " " << l << " " << m;
         }
   }
   EXPECT_GT(skipped, 1000);
@@ -232,7 +234,8 @@ TEST(Isoparallel, ScanResidualMatchesTheRotationTrick) {
     const double goal_angle = M_PI * unit(rng);
     const Eigen::Vector2d chord = trial == 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d(3 * unit(rng), 3 * unit(rng));
     const Eigen::Vector3d expected = internal::RotationTrickResidual(target, internal::ChordTurn(goal_angle, chord), q);
-    const Eigen::Vector3d got = internal::ChordResidual(target.transpose(), {std::cos(goal_angle), std::sin(goal_angle)}, chord, q);
+    const Eigen::Vector3d got =
+        internal::ChordResidual(target.transpose(), {std::cos(goal_angle), std::sin(goal_angle)}, chord, q);
     largest = std::max(largest, expected.norm());
     if (expected.norm() < 3.0) {
       ASSERT_LT((got - expected).norm(), 1e-12) << trial;
@@ -320,7 +323,8 @@ TEST(ElasticaRolling, QuaternionTableMatchesTheMatrixTable) {
     ASSERT_EQ(xq, xm) << trial;
     const long n_steps = quats.Steps();
     for (long i = 0; trial < 7 && i <= quats.NodeCount(); ++i)
-      ASSERT_EQ(xq[i], (static_cast<double>(i / n_steps) * e.DriftPerPeriod() + xq[i % n_steps]).eval()) << trial << " " << i;
+      ASSERT_EQ(xq[i], (static_cast<double>(i / n_steps) * e.DriftPerPeriod() + xq[i % n_steps]).eval())
+          << trial << " " << i;
     const std::vector<Eigen::Matrix3d> pm = matrices.MonodromyPowers();
     const std::vector<Eigen::Quaterniond> pq = quats.MonodromyQuaternionPowers();
     ASSERT_EQ(pq.size(), pm.size());
@@ -339,8 +343,8 @@ TEST(ElasticaRolling, QuaternionTableMatchesTheMatrixTable) {
   line.rate = 0.0;
   const Elastica straight(line);
   ASSERT_TRUE(straight.IsStraight());
-  const internal::ElasticaRollingTable ms(straight, 3.0, 12, 0.5), qs(straight, 3.0, 12, 0.5, 200000,
-                                                                          internal::TableRotations::kQuaternions);
+  const internal::ElasticaRollingTable ms(straight, 3.0, 12, 0.5),
+      qs(straight, 3.0, 12, 0.5, 200000, internal::TableRotations::kQuaternions);
   const std::vector<Eigen::Quaterniond> none = qs.MonodromyQuaternionPowers();
   EXPECT_LT((qs.NodeQuaternion(1, none).toRotationMatrix() - ms.NodeRolling(1, ms.MonodromyPowers())).norm(), 1e-15);
   std::uniform_real_distribution<double> sym(-1.0, 1.0);

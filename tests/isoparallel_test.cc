@@ -19,8 +19,6 @@
 #include "elastica_closed_rolling.h"
 #include "elastica_rolling.h"
 #include "isoparallel/twins.h"
-#include "rotation_trick.h"
-#include "support/test_support.h"
 #include "plateball/elastica.h"
 #include "plateball/isoparallel_plan.h"
 #include "plateball/path.h"
@@ -28,6 +26,8 @@
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
+#include "rotation_trick.h"
+#include "support/test_support.h"
 
 using namespace plateball;
 
@@ -508,7 +508,9 @@ TEST(IsoparallelPlan, CustomCurveAgreesWithTheAnalyticCircle) {
   const SmoothCurve circle = SmoothCurve::Circle({1.0, 2.0}, 1.5, 0.2, 2.9);
   const SmoothCurve custom = SmoothCurve::Custom([&](double t) { return circle.Value(t); },
                                                  [&](double t) { return circle.Derivative(t); },
-                                                 [&](double t) { return circle.SecondDerivative(t); }, 0.2, 2.9);
+                                                 [&](double t) { return circle.SecondDerivative(t); },
+                                                 0.2,
+                                                 2.9);
   EXPECT_EQ(custom.kind(), CurveKind::kCustom);
   EXPECT_NEAR(custom.Length(), 1.5 * 2.7, 1e-12);  // radius times angle
   EXPECT_THROW(SmoothCurve::Custom(nullptr, nullptr, nullptr, 0.0, 1.0), std::invalid_argument);
@@ -546,8 +548,11 @@ TEST(IsoparallelPlan, InitialAnglesComeFromTheStartOrientation) {
 }
 
 TEST(Isoparallel, ProblemFilesSolveToTheirExpectedValues) {
-  for (const char* name : {"problems/figure7.json", "problems/isoparallel_rotation.json", "problems/isoparallel_t3.json",
-                           "problems/isoparallel_t7.json", "problems/isoparallel_t9.json",
+  for (const char* name : {"problems/figure7.json",
+                           "problems/isoparallel_rotation.json",
+                           "problems/isoparallel_t3.json",
+                           "problems/isoparallel_t7.json",
+                           "problems/isoparallel_t9.json",
                            "problems/isoparallel_t10.json"}) {
     const Problem p = ReadProblemFile(plateball::testing::SourcePath(name));
     ASSERT_TRUE(p.isoparallel.has_value()) << name;

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <stdexcept>
 
@@ -21,8 +20,8 @@ constexpr double kStateTolerance = 1e-10;
 
 // The end point of the free motion from `start` with psi shifted by s, by direct integration
 // (IntegrateFreeMotion: a different code path from the join's sensitivity rollout).
-MotionSample Arrive(const BallModel& model, const AngleState& start, double mu, const Eigen::Vector2d& x0,
-                    double s, double t) {
+MotionSample Arrive(
+    const BallModel& model, const AngleState& start, double mu, const Eigen::Vector2d& x0, double s, double t) {
   FreeMotionStart fs;
   fs.state = StateFromAngles({start.theta, start.phi, start.psi + s}, mu, model);
   fs.x0 = x0;
@@ -149,8 +148,10 @@ TEST(Join, WorksForSeveralLambdaThroughThePolesAndForNegativeTheta) {
   const Eigen::Vector2d x0(0.5, 0.25);
   for (double lambda : {0.4, 1.5, 2.0, 5.0}) {
     const BallModel model = BallModel::FromLambda(lambda);
-    for (const AngleState& start : {AngleState{0.0, 0.0, 0.3}, AngleState{M_PI, 0.2, -1.0},
-                                    AngleState{M_PI / 2, 1.0, 2.0}, AngleState{-M_PI / 3, M_PI / 2, 0.0}}) {
+    for (const AngleState& start : {AngleState{0.0, 0.0, 0.3},
+                                    AngleState{M_PI, 0.2, -1.0},
+                                    AngleState{M_PI / 2, 1.0, 2.0},
+                                    AngleState{-M_PI / 3, M_PI / 2, 0.0}}) {
       for (double b : {0.3, 2.0, 4.1}) {
         const Eigen::Vector2d target = x0 + 0.1 * Eigen::Vector2d(std::cos(b), std::sin(b));
         const JoinSummary j = Join(JoinProblem{model, start, 0.7, x0, target});

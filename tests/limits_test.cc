@@ -64,7 +64,8 @@ TEST(Limits, NestingDeeperThan64IsRejectedNamingTheLimit) {
 TEST(Limits, NulByteAndGarbageAfterTheDocumentAreRejected) {
   const std::string good = R"({"ball": {"lambda": 2}, "initial": {"theta": 1, "phi": 0, "psi": 0, "mu": 1}})";
   EXPECT_NO_THROW(ParseProblem(good, "limits.json"));
-  ExpectNames(ParseMessage(good + std::string(1, '\0') + "garbage"), {"NUL byte at offset " + std::to_string(good.size())});
+  ExpectNames(ParseMessage(good + std::string(1, '\0') + "garbage"),
+              {"NUL byte at offset " + std::to_string(good.size())});
 }
 
 TEST(Limits, FileLargerThan16MiBIsBadInputNotAnIoError) {
@@ -97,7 +98,10 @@ TEST(Limits, LambdaOutsideItsRangeIsRefusedNamingIt) {
 
 TEST(Limits, EnergyOutsideItsRangeIsRefusedNamingMu) {
   const BallModel m = BallModel::FromLambda(2.0);
-  ExpectNames(InvalidArgumentMessage([&] { StateFromAngles({1, 0, 0}, 1e50, m); }), {"mu: value 1e+50", "[1e-12, 1e+12]"});
+  ExpectNames(InvalidArgumentMessage([&] {
+                StateFromAngles({1, 0, 0}, 1e50, m);
+              }),
+              {"mu: value 1e+50", "[1e-12, 1e+12]"});
   ExpectNames(InvalidArgumentMessage([&] { StateFromAngles({1, 0, 0}, 1e-310, m); }), {"mu: value 1e-310"});
   EXPECT_NO_THROW(StateFromAngles({1, 0, 0}, 1e12, m));
   EXPECT_NO_THROW(StateFromAngles({1, 0, 0}, 1e-12, m));
@@ -190,7 +194,8 @@ TEST(Limits, ImpulseAndPartitionCountsAreBounded) {
   iso.impulses = 1000000;
   ExpectNames(InvalidArgumentMessage([&] { PlanOptimalPath(iso); }), {"impulses: value 1000000", "[1, 10000]"});
   // Every piece gets n steps: 3 pieces of n = 5000 are 15000 steps.
-  const Path path({SmoothCurve::Line({0, 0}, {1, 0}), SmoothCurve::Line({1, 0}, {2, 0}), SmoothCurve::Line({2, 0}, {3, 0})});
+  const Path path(
+      {SmoothCurve::Line({0, 0}, {1, 0}), SmoothCurve::Line({1, 0}, {2, 0}), SmoothCurve::Line({2, 0}, {3, 0})});
   ExpectNames(InvalidArgumentMessage([&] { MakePartition(path, {UniformParameter{5000}}, "plan.partition"); }),
               {"plan.partition (n x 3 pieces): value 15000", "steps over all pieces must be <= 10000"});
 }

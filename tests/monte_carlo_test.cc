@@ -153,8 +153,9 @@ TEST(MonteCarlo, CellWithoutACompletedTrialHasNoDistributionAndLeavesTheFit) {
 TEST(MonteCarlo, EveryTrialLostGivesNoDistribution) {
   MonteCarloProblem p = CircleStudy(64, 20);
   p.strategies = {ExecutionStrategy::kFeedback};
-  p.scenarios = {{"hard", ParseErrorModel("impulse_magnitude=0.5,impulse_angle=0.5,energy_loss=0.5,timing=0.1,"
-                                          "lambda=0.1,observation=0.1")}};
+  p.scenarios = {{"hard",
+                  ParseErrorModel("impulse_magnitude=0.5,impulse_angle=0.5,energy_loss=0.5,timing=0.1,"
+                                  "lambda=0.1,observation=0.1")}};
   const MonteCarloSummary s = RunMonteCarlo(p, {});
   ASSERT_EQ(s.cells.size(), 1u);
   ASSERT_EQ(s.failed_trials, 20);
@@ -170,13 +171,15 @@ TEST(MonteCarlo, LimitsNameTheFieldAndTheValue) {
   EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }), "trials: value 0: must be in [1, 1000000]");
   p = CircleStudy();
   p.trials = 1'000'000;
-  EXPECT_NE(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }).find("trials: value 1000000: the study would run 4000000"),
-            std::string::npos);
+  EXPECT_NE(
+      InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }).find("trials: value 1000000: the study would run 4000000"),
+      std::string::npos);
   // The work bound, counted before any sweep plan: 2 scenarios x 2 strategies x 200000 trials x
   // n = 200 impulses = 1.6e8 executions > 1e8, though the 800000 trials are within kMaxTasks.
   p = CircleStudy(200, 200'000);
-  EXPECT_NE(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); })
-                .find("trials: value 200000: the study would execute about 160000000 impulses"),
+  EXPECT_NE(InvalidArgumentMessage([&] {
+              MonteCarloWork(p, {});
+            }).find("trials: value 200000: the study would execute about 160000000 impulses"),
             std::string::npos);
   // feedback_exact adds W^3 per trial: 2 x 1 x 100000 x (200 + 12^3) = 3.856e8.
   p = CircleStudy(200, 100'000);
@@ -188,7 +191,8 @@ TEST(MonteCarlo, LimitsNameTheFieldAndTheValue) {
             "scenarios[1].timing: value 1: must be a number in [0, 0.1]");
   p = CircleStudy();
   p.strategies = {ExecutionStrategy::kFeedback, ExecutionStrategy::kFeedback};
-  EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }), "strategies: value (repeated): give each strategy once");
+  EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }),
+            "strategies: value (repeated): give each strategy once");
   p = CircleStudy();
   p.sweep_n = {16, 0};
   EXPECT_EQ(InvalidArgumentMessage([&] { MonteCarloWork(p, {}); }), "sweep_n[1]: value 0: must be in [1, 10000]");

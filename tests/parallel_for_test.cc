@@ -19,7 +19,8 @@ void ExpectEveryIndexOnce(Loop loop) {
     for (int n : {0, 1, 2, 7, 50}) {
       std::vector<std::atomic<int>> runs(static_cast<std::size_t>(n));
       loop(n, threads, [&](int i) { ++runs[static_cast<std::size_t>(i)]; });
-      for (int i = 0; i < n; ++i) EXPECT_EQ(runs[static_cast<std::size_t>(i)].load(), 1) << n << " " << threads << " " << i;
+      for (int i = 0; i < n; ++i)
+        EXPECT_EQ(runs[static_cast<std::size_t>(i)].load(), 1) << n << " " << threads << " " << i;
     }
 }
 

@@ -2,14 +2,14 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_support.h"
-#include "plateball/task_adapters.h"
-
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
 #include <string>
+
+#include "plateball/task_adapters.h"
+#include "support/test_support.h"
 
 using namespace plateball;
 
@@ -45,10 +45,17 @@ TEST(Partition, BadPartitionsNameWhatIsWrong) {
   EXPECT_NE(ErrorOf([&] { UniformParameterPartition(c, 0); }).find("at least 2 points"), std::string::npos);
   EXPECT_NE(ErrorOf([&] { ExplicitPartition(c, {0.0}); }).find("at least 2 points"), std::string::npos);
   // A full circle in one step: p(0) = p(2 pi).
-  EXPECT_NE(ErrorOf([&] { ExplicitPartition(c, {0.0, 2 * M_PI}); }).find("1e-12 x the path length apart"), std::string::npos);
-  EXPECT_NE(ErrorOf([&] { ExplicitPartition(c, {0.0, 1.0, 1.0, 2 * M_PI}); }).find("partition.taus[2]"),
+  EXPECT_NE(ErrorOf([&] {
+              ExplicitPartition(c, {0.0, 2 * M_PI});
+            }).find("1e-12 x the path length apart"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { ExplicitPartition(c, {0.1, 2 * M_PI}); }).find("start of the parameter interval"),
+  EXPECT_NE(ErrorOf([&] {
+              ExplicitPartition(c, {0.0, 1.0, 1.0, 2 * M_PI});
+            }).find("partition.taus[2]"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] {
+              ExplicitPartition(c, {0.1, 2 * M_PI});
+            }).find("start of the parameter interval"),
             std::string::npos);
   EXPECT_NE(ErrorOf([&] { ExplicitPartition(c, {0.0, NAN, 2 * M_PI}); }).find("must be finite"), std::string::npos);
   const Path path({SmoothCurve::Line({0, 0}, {1, 0}), SmoothCurve::Line({1, 0}, {1, 1})});
@@ -73,8 +80,12 @@ TEST(Partition, RulesAreAClosedSetOneRulePerPieceOrOneForAll) {
   ASSERT_EQ(mixed.size(), 2u);
   EXPECT_EQ(mixed[0], (std::vector<double>{0.0, 0.5, 1.0}));
   EXPECT_EQ(mixed[1], (std::vector<double>{0.0, 0.25, 1.0}));
-  const std::string e = ErrorOf([&] { MakePartition(path, {UniformParameter{2}, UniformParameter{2}, UniformParameter{2}}); });
+  const std::string e = ErrorOf([&] {
+    MakePartition(path, {UniformParameter{2}, UniformParameter{2}, UniformParameter{2}});
+  });
   EXPECT_NE(e.find("rule count"), std::string::npos) << e;
-  EXPECT_NE(ErrorOf([&] { MakePartition(path, {UniformParameter{2}, ExplicitTaus{{0.0, 2.0}}}); }).find("partition[1].taus"),
+  EXPECT_NE(ErrorOf([&] {
+              MakePartition(path, {UniformParameter{2}, ExplicitTaus{{0.0, 2.0}}});
+            }).find("partition[1].taus"),
             std::string::npos);
 }

@@ -2,14 +2,13 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_support.h"
-
 #include <boost/math/special_functions/ellint_2.hpp>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "plateball/partition.h"
+#include "support/test_support.h"
 
 using namespace plateball;
 
@@ -37,7 +36,8 @@ TEST(Path, DerivativesAgreeWithFiniteDifferences) {
       const Eigen::Vector2d d1 = (c.Value(tau + h) - c.Value(tau - h)) / (2 * h);
       const Eigen::Vector2d d2 = (c.Derivative(tau + h) - c.Derivative(tau - h)) / (2 * h);
       EXPECT_LT((d1 - c.Derivative(tau)).norm(), kFiniteDifferenceTolerance) << ToString(c.kind()) << " tau " << tau;
-      EXPECT_LT((d2 - c.SecondDerivative(tau)).norm(), kFiniteDifferenceTolerance) << ToString(c.kind()) << " tau " << tau;
+      EXPECT_LT((d2 - c.SecondDerivative(tau)).norm(), kFiniteDifferenceTolerance)
+          << ToString(c.kind()) << " tau " << tau;
     }
   }
 }
@@ -63,10 +63,12 @@ TEST(Path, LengthsMatchClosedForms) {
   // Lemniscate of Bernoulli of half-width s: 2 varpi s, varpi = 2.622057554292119810464839589891.
   EXPECT_NEAR(SmoothCurve::Circle({0, 0}, 2.5, 0.3, 4.0).Length(), 2.5 * 3.7, kLengthTolerance);
   const double e = std::sqrt(1.0 - 0.25);
-  EXPECT_NEAR(SmoothCurve::Ellipse({0, 0}, {2, 1}, 0.7, 0, 2 * M_PI).Length(), 8.0 * boost::math::ellint_2(e),
+  EXPECT_NEAR(SmoothCurve::Ellipse({0, 0}, {2, 1}, 0.7, 0, 2 * M_PI).Length(),
+              8.0 * boost::math::ellint_2(e),
               kLengthTolerance);
   EXPECT_NEAR(SmoothCurve::Lemniscate({0, 0}, 1.5, 0.0, 0, 2 * M_PI).Length(),
-              2.0 * 2.622057554292119810464839589891 * 1.5, kLengthTolerance);
+              2.0 * 2.622057554292119810464839589891 * 1.5,
+              kLengthTolerance);
   EXPECT_NEAR(SmoothCurve::Line({1, 2}, {4, 6}).Length(), 5.0, kLengthTolerance);
 }
 

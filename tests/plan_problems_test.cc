@@ -7,12 +7,12 @@
 #include <optional>
 #include <string>
 
-#include "plateball/task_adapters.h"
 #include "plateball/convergence.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/path.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
+#include "plateball/task_adapters.h"
 #include "support/test_support.h"
 
 using namespace plateball;

@@ -49,8 +49,10 @@ Reach DenseDistances(const CirclePlan& c) {
   for (const PlanStep& s : c.plan.steps) {
     std::vector<double> times;
     for (int i = 0; i <= 2000; ++i) times.push_back(s.duration * i / 2000);
-    for (const MotionSample& q : IntegrateFreeMotion(c.setup.problem.model, FreeMotionStart{s.impulse.state_after, x, a},
-                                                     times, IntegrationOptions{1e-12, 1e-12, 2000000})) {
+    for (const MotionSample& q : IntegrateFreeMotion(c.setup.problem.model,
+                                                     FreeMotionStart{s.impulse.state_after, x, a},
+                                                     times,
+                                                     IntegrationOptions{1e-12, 1e-12, 2000000})) {
       r.least = std::min(r.least, (q.x - kCentre).norm());
       r.most = std::max(r.most, (q.x - kCentre).norm());
     }
@@ -98,8 +100,10 @@ TEST(PlanRigCheck, AnObstacleInsideTheBowIsExceededAtAFlight) {
   EXPECT_NE(check.violations[0].find(" at flight "), std::string::npos) << check.violations[0];
   EXPECT_NEAR(check.margins.at("obstacles[0]"), r.least - radius, kBowFraction * (2.0 - r.least));
   // The line gives the largest excess (the deepest sample of the bow), not the first sample's.
-  EXPECT_NE(check.violations[0].find("exceeded by " + internal::FormatNumber(-check.margins.at("obstacles[0]")) + " at"),
-            std::string::npos) << check.violations[0];
+  EXPECT_NE(
+      check.violations[0].find("exceeded by " + internal::FormatNumber(-check.margins.at("obstacles[0]")) + " at"),
+      std::string::npos)
+      << check.violations[0];
   // A plate smaller than the circle: every pass point is 0.1 outside (to the replay's ~1e-13).
   const RigCheck small = CheckPlanRigLimits(c.setup.problem, c.plan, PlateAndObstacle(1.9, 0.5), std::nullopt);
   ASSERT_EQ(small.violations.size(), 1u);

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-
 #include <cmath>
 #include <random>
 
@@ -72,7 +71,8 @@ TEST(PlateImpulse, ForwardNewtonEulerOfThePlateImpulseGivesBackTheJump) {
     const double scale = KineticEnergy(p, imp.state_before);
     EXPECT_NEAR(work, KineticEnergy(p, imp.state_after) - scale, kAgreement * scale) << i;
     EXPECT_NEAR(work, 0.0, kAgreement * scale) << i;  // energy-preserving: the actuator does no net work
-    EXPECT_LT((j.plate_velocity_change - (v_after - v_before)).norm(), kAgreement * j.plate_velocity_change.norm()) << i;
+    EXPECT_LT((j.plate_velocity_change - (v_after - v_before)).norm(), kAgreement * j.plate_velocity_change.norm())
+        << i;
   }
 }
 
@@ -81,7 +81,8 @@ TEST(PlateImpulse, HomogeneousBallHasTheReducedMassAtThePlate) {
   // J = ((I0 + M r^2)/(4 r^2) + M_plate) dV, and the ball's orientation does not matter.
   PhysicalParameters p = PhysicalUnitsBall();
   p.inertia_1 = p.inertia_3 = 0.4 * p.ball_mass * p.radius * p.radius;
-  const double mass_at_plate = (p.inertia_1 + p.ball_mass * p.radius * p.radius) / (4 * p.radius * p.radius) + p.plate_mass;
+  const double mass_at_plate =
+      (p.inertia_1 + p.ball_mass * p.radius * p.radius) / (4 * p.radius * p.radius) + p.plate_mass;
   const Eigen::Vector3d dw(0.3, -1.2, 0.0);
   for (const Eigen::Vector3d& z : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0.6, 0, 0.8)}) {
     const PlateImpulse j = PlateImpulseFor(p, z, dw);
@@ -102,7 +103,8 @@ TEST(PlateImpulse, TheImpulseDependsOnTheOrientation) {
   // J_y = -(I dw)_x / (2r) - (M_ball r^2 dw_x)/(2r) - 2 r M_plate dw_x; (I dw)_x = I1 (up), (I1 + I3)/2 (tilted).
   const double r = p.radius;
   EXPECT_NEAR(up.plate.y(), -(p.inertia_1 + p.ball_mass * r * r) / (2 * r) - 2 * r * p.plate_mass, 1e-15);
-  EXPECT_NEAR(tilt.plate.y(), -(0.5 * (p.inertia_1 + p.inertia_3) + p.ball_mass * r * r) / (2 * r) - 2 * r * p.plate_mass,
+  EXPECT_NEAR(tilt.plate.y(),
+              -(0.5 * (p.inertia_1 + p.inertia_3) + p.ball_mass * r * r) / (2 * r) - 2 * r * p.plate_mass,
               1e-15);
   EXPECT_NEAR(tilt.torsion, 0.5 * (p.inertia_3 - p.inertia_1), 1e-18);
   EXPECT_NEAR(up.torsion, 0.0, 1e-20);
@@ -112,7 +114,9 @@ TEST(PlateImpulse, InvalidInputIsRejectedNamingTheField) {
   const auto message = [](auto&& f) { return plateball::testing::InvalidArgumentMessage(f, "no exception"); };
   const PhysicalParameters p = PhysicalUnitsBall();
   EXPECT_NE(message([&] { PlateImpulseFor(p, {0, 0, 2}, {1, 0, 0}); }).find("z: value 2"), std::string::npos);
-  EXPECT_NE(message([&] { PlateImpulseFor(p, {0, 0, 1}, {1, 0, 0.5}); }).find("delta_omega[2]: value 0.5"),
+  EXPECT_NE(message([&] {
+              PlateImpulseFor(p, {0, 0, 1}, {1, 0, 0.5});
+            }).find("delta_omega[2]: value 0.5"),
             std::string::npos);
   EXPECT_NE(message([&] { PlateImpulseFor(p, {0, 0, 1}, {NAN, 0, 0}); }).find("delta_omega: value"), std::string::npos);
   PhysicalParameters bad = p;

@@ -2,9 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <nlopt.hpp>
-
 #include <cmath>
+#include <nlopt.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -74,12 +73,13 @@ double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() 
 struct DenseHit {
   double s, t;
 };
-std::vector<DenseHit> DenseScan(const ReachProblem& p, double horizon_periods, int directions, int per_period,
-                                double* best_distance = nullptr) {
+std::vector<DenseHit> DenseScan(
+    const ReachProblem& p, double horizon_periods, int directions, int per_period, double* best_distance = nullptr) {
   const double period = 2 * M_PI / std::sqrt(p.mu);
   const int m = static_cast<int>(std::ceil(horizon_periods * per_period));
   std::vector<double> times(static_cast<std::size_t>(m) + 1);
-  for (int j = 0; j <= m; ++j) times[static_cast<std::size_t>(j)] = std::min(j * period / per_period, horizon_periods * period);
+  for (int j = 0; j <= m; ++j)
+    times[static_cast<std::size_t>(j)] = std::min(j * period / per_period, horizon_periods * period);
   std::vector<std::vector<Eigen::Vector2d>> x(static_cast<std::size_t>(directions));
   double best = 1e300;
   for (int i = 0; i < directions; ++i) {
@@ -225,7 +225,8 @@ TEST(Reach, DenserIndependentScanFindsNoOtherSolutionForFigure8Targets) {
 TEST(Reach, SeveralSolutionsAreSortedDistinctAndMatchADenserScan) {
   // Targets that the slender ball reaches three times within five periods (alternating signs of
   // the Jacobian determinant: the map (s, t) -> x folds over itself).
-  for (const Eigen::Vector2d& target : {Eigen::Vector2d(-15, -1.5), Eigen::Vector2d(-13.5, -10.5), Eigen::Vector2d(-14.25, 1.5)}) {
+  for (const Eigen::Vector2d& target :
+       {Eigen::Vector2d(-15, -1.5), Eigen::Vector2d(-13.5, -10.5), Eigen::Vector2d(-14.25, 1.5)}) {
     const ReachProblem p = Slender(target);
     const ReachSummary s = Reach(p);
     ASSERT_EQ(s.status, ReachStatus::kSolved) << s.BriefReport();
@@ -500,14 +501,17 @@ TEST(ReachInternal, ImpulseVelocityIsEqs25To28) {
       EXPECT_NEAR(w[1], st.omega.y(), 1e-14);
       // (27): |x'|^2 = a^2 cos^2(phi - psi) + b^2 sin^2(phi - psi).
       const double sa = SemiAxisA(theta, mu, model.lambda()), sb = std::sqrt(mu), wv = a.phi - a.psi;
-      EXPECT_NEAR(w[0] * w[0] + w[1] * w[1], sa * sa * std::cos(wv) * std::cos(wv) + sb * sb * std::sin(wv) * std::sin(wv), 1e-13);
+      EXPECT_NEAR(w[0] * w[0] + w[1] * w[1],
+                  sa * sa * std::cos(wv) * std::cos(wv) + sb * sb * std::sin(wv) * std::sin(wv),
+                  1e-13);
       // (28): |d x'/ds|^2 = a^2 sin^2 + b^2 cos^2, checked with a central difference in psi.
       const double h = 1e-6;
       double wp[2], wm[2];
       internal::OmegaHFromAngles(a.theta, a.phi, a.psi + h, mu, model.lambda(), wp);
       internal::OmegaHFromAngles(a.theta, a.phi, a.psi - h, mu, model.lambda(), wm);
       const Eigen::Vector2d dw((wp[0] - wm[0]) / (2 * h), (wp[1] - wm[1]) / (2 * h));
-      EXPECT_NEAR(dw.squaredNorm(), sa * sa * std::sin(wv) * std::sin(wv) + sb * sb * std::cos(wv) * std::cos(wv), 1e-8);
+      EXPECT_NEAR(
+          dw.squaredNorm(), sa * sa * std::sin(wv) * std::sin(wv) + sb * sb * std::cos(wv) * std::cos(wv), 1e-8);
     }
 }
 
@@ -521,7 +525,8 @@ TEST(ReachInternal, SensitivitiesMatchCentralDifferences) {
       const internal::TightPoint tp = internal::EvaluateTight(d, lambda, period, t, true, o);
       const double h = 1e-5;
       auto x_at = [&](double ss, double tt) {
-        return internal::EvaluateTight(internal::DirectionFor(p.start, p.mu, lambda, ss), lambda, period, tt, false, o).x;
+        return internal::EvaluateTight(internal::DirectionFor(p.start, p.mu, lambda, ss), lambda, period, tt, false, o)
+            .x;
       };
       const Eigen::Vector2d fd_s = (x_at(s + h, t) - x_at(s - h, t)) / (2 * h);
       const Eigen::Vector2d fd_t = (x_at(s, t + h) - x_at(s, t - h)) / (2 * h);
@@ -537,7 +542,8 @@ TEST(ReachPlannerFallback, CoarsePartitionOfALongPathStillGivesAPlan) {
   // (Lemma 2.1) finds no solution on its local branch for such a segment.
   const ReachProblem start = Slender({0, 0});
   const Path path({SmoothCurve::Line({0, 0}, {30, 30})});
-  const PlanProblem problem{start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, {UniformParameter{3}}, {}};
+  const PlanProblem problem{
+      start.model, start.start, start.mu, Eigen::Matrix3d::Identity(), path, {UniformParameter{3}}, {}};
   PlanOptions local_only;
   local_only.reach_fallback = false;
   const PlanSummary without = PlanImpulses(problem, local_only);
@@ -572,7 +578,8 @@ TEST(ReachInternal, LockstepTabulationEqualsOneDirectionAtATime) {
       EXPECT_LT((one.v[j] - lockstep[i].v[j]).norm(), 1e-14);
     }
     // And the cheap table is close to the tight integration (RK4, 32 steps: ~1e-4 per period).
-    const FreeMotion m = FreeMotion::FromAngles(p.model, {p.start.theta, p.start.phi, p.start.psi + 0.9 * static_cast<double>(i)}, p.mu);
+    const FreeMotion m =
+        FreeMotion::FromAngles(p.model, {p.start.theta, p.start.phi, p.start.psi + 0.9 * static_cast<double>(i)}, p.mu);
     EXPECT_LT((one.drift - m.DriftPerPeriod()).norm(), 1e-3);
   }
 }

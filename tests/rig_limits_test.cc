@@ -21,7 +21,7 @@
 namespace plateball {
 namespace {
 
-constexpr double kPositionTol = 1e-12;     // the arrival tolerances of exact arrival
+constexpr double kPositionTol = 1e-12;  // the arrival tolerances of exact arrival
 constexpr double kOrientationTol = 1e-10;
 
 // Figure 7 (problems/figure7.json) along its shortest isoparallel path (tests/support).
@@ -124,7 +124,8 @@ TEST(RigLimits, TheShortestIntervalAndThePlateVelocityBoundAreMetAndReportedActi
   p.limits.min_interval = 0.85;  // the free optimum's shortest flight is 0.7885
   const ExactArrivalSummary s = SolveExactArrival(p);
   ExpectArrivesWithinLimits(p, s);
-  EXPECT_NE(std::find(s.limits.active.begin(), s.limits.active.end(), "max_plate_velocity_change"), s.limits.active.end());
+  EXPECT_NE(std::find(s.limits.active.begin(), s.limits.active.end(), "max_plate_velocity_change"),
+            s.limits.active.end());
   EXPECT_NE(std::find(s.limits.active.begin(), s.limits.active.end(), "min_interval"), s.limits.active.end());
 }
 
@@ -134,8 +135,9 @@ TEST(RigLimits, ThePlateImpulseBoundUsesTheEffectiveMassOfBallAndPlate) {
   p.physical = PhysicalParameters{1.0, 1.0, 2.0, 1.0, 0.5};
   double largest = 0.0;  // the free optimum's largest |J|, from its replayed axis and delta omega
   for (const ExactImpulse& e : FreeOptimum().impulses)
-    largest = std::max(largest, PlateImpulseFor(*p.physical, StateFromAngles(e.angles_before, p.mu, p.model).z,
-                                                e.delta_omega).plate.norm());
+    largest = std::max(
+        largest,
+        PlateImpulseFor(*p.physical, StateFromAngles(e.angles_before, p.mu, p.model).z, e.delta_omega).plate.norm());
   p.limits.max_plate_impulse = 0.8 * largest;
   const ExactArrivalSummary s = SolveExactArrival(p);
   ExpectArrivesWithinLimits(p, s);

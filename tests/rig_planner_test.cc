@@ -38,7 +38,7 @@ const BlockedCircle& Blocked() {
 
 const Eigen::Vector2d kCentre(-2.0, 0.0);
 constexpr int kDenseCheckSamples = 512;  // 8 x the planner's default check, 16 x its own sampling
-constexpr int kDensePoints = 300;  // per flight for the other integrator: 10 x the planner's sampling
+constexpr int kDensePoints = 300;        // per flight for the other integrator: 10 x the planner's sampling
 // A pass point is met to the join's tolerance (1e-12 in the problem file) plus the arc's rounding.
 constexpr double kPassMiss = 1e-11;
 // The replay carries its own contact point over 64 flights: their integration errors add up.
@@ -57,8 +57,10 @@ double LeastDistance(const PlanProblem& problem, const PlanSummary& plan) {
   for (const PlanStep& s : plan.steps) {
     std::vector<double> times;
     for (int i = 0; i <= kDensePoints; ++i) times.push_back(s.duration * i / kDensePoints);
-    for (const MotionSample& q : IntegrateFreeMotion(problem.model, FreeMotionStart{s.impulse.state_after, x, a},
-                                                     times, IntegrationOptions{1e-12, 1e-12, 2000000}))
+    for (const MotionSample& q : IntegrateFreeMotion(problem.model,
+                                                     FreeMotionStart{s.impulse.state_after, x, a},
+                                                     times,
+                                                     IntegrationOptions{1e-12, 1e-12, 2000000}))
       least = std::min(least, (q.x - kCentre).norm());
     x = s.x_end;
     a = s.A_impulsive;
@@ -113,8 +115,7 @@ TEST(RigPlanner, APathThroughAnObstacleIsBlockedNamingTheObstacleAndThePoint) {
   const RigPlanSummary r = PlanImpulsesOnRig(c.setup.problem, l, std::nullopt, c.setup.options);
   EXPECT_EQ(r.status, RigPlanStatus::kLimitsNotMet);
   EXPECT_EQ(r.blocking, std::vector<std::string>{"obstacles[0]"});
-  EXPECT_NE(r.message.find("the path itself enters obstacles[0] by 0.2499999999999"), std::string::npos)
-      << r.message;
+  EXPECT_NE(r.message.find("the path itself enters obstacles[0] by 0.2499999999999"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("at p(tau = 1.5707963267948966) = (-1.9999999999999998, 2) (piece 0)"), std::string::npos)
       << r.message;
   EXPECT_EQ(r.points_added, 0) << "refinement cannot help a path through an obstacle";
@@ -124,8 +125,10 @@ TEST(RigPlanner, APathThroughAnObstacleIsBlockedNamingTheObstacleAndThePoint) {
   PlanProblem coarse = c.setup.problem;
   coarse.partition = {UniformParameter{4}};
   const Eigen::Vector2d u(std::cos(0.3), std::sin(0.3)), v(-u.y(), u.x());
-  l.obstacles = {PolygonShape{{kCentre + 1.3 * u - 0.005 * v, kCentre + 2.5 * u - 0.005 * v,
-                               kCentre + 2.5 * u + 0.005 * v, kCentre + 1.3 * u + 0.005 * v}}};
+  l.obstacles = {PolygonShape{{kCentre + 1.3 * u - 0.005 * v,
+                               kCentre + 2.5 * u - 0.005 * v,
+                               kCentre + 2.5 * u + 0.005 * v,
+                               kCentre + 1.3 * u + 0.005 * v}}};
   const RigPlanSummary wall = PlanImpulsesOnRig(coarse, l, std::nullopt, c.setup.options);
   EXPECT_EQ(wall.blocking, std::vector<std::string>{"obstacles[0]"});
   EXPECT_NE(wall.message.find("the path itself enters obstacles[0] by 0.00"), std::string::npos) << wall.message;
@@ -155,7 +158,8 @@ TEST(RigPlanner, ImpulseTimesSlideOntoTheTickAndStillMeetThePartitionPoints) {
   EXPECT_EQ(r.points_slid, 63) << "every interior point; the ends of the circle stay fixed";
   EXPECT_TRUE(Contains(r.active, "tick"));
   for (const PlanStep& s : r.plan.steps) {
-    EXPECT_EQ(s.t_impulse, static_cast<double>(std::llround(s.t_impulse / l.tick)) * l.tick) << "impulse " << s.global_index;
+    EXPECT_EQ(s.t_impulse, static_cast<double>(std::llround(s.t_impulse / l.tick)) * l.tick)
+        << "impulse " << s.global_index;
     EXPECT_LE(s.pass_miss, kPassMiss) << "impulse " << s.global_index;
     EXPECT_NEAR((s.p_end - kCentre).norm(), 2.0, 1e-12) << "the slid point stays on the path";
   }

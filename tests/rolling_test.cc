@@ -34,15 +34,18 @@ Eigen::Matrix3d CircleOrientation(double rho, double tau, const Eigen::Matrix3d&
 
 // Reorientation A(b) A(a)^-1 along the circle from its closed form.
 Eigen::Matrix3d CircleReorientation(double rho, double a, double b) {
-  return CircleOrientation(rho, b, Eigen::Matrix3d::Identity()) * CircleOrientation(rho, a, Eigen::Matrix3d::Identity()).transpose();
+  return CircleOrientation(rho, b, Eigen::Matrix3d::Identity()) *
+         CircleOrientation(rho, a, Eigen::Matrix3d::Identity()).transpose();
 }
 
 TEST(Rolling, CircleMatchesClosedForm) {
   for (double rho : {0.3, 1.0, 2.5})
-    for (const auto& [a, b] : std::vector<std::pair<double, double>>{{0.0, 1.0}, {0.0, 2 * M_PI}, {-1.0, 4.0}, {2.0, 0.5}}) {
+    for (const auto& [a, b] :
+         std::vector<std::pair<double, double>>{{0.0, 1.0}, {0.0, 2 * M_PI}, {-1.0, 4.0}, {2.0, 0.5}}) {
       const PlanarVelocity v = [rho](double tau) { return Eigen::Vector2d(-rho * std::sin(tau), rho * std::cos(tau)); };
       const Eigen::Matrix3d r = RollingReorientation(v, a, b);
-      EXPECT_LT((r - CircleReorientation(rho, a, b)).norm(), kAgreement) << "rho " << rho << " [" << a << ", " << b << "]";
+      EXPECT_LT((r - CircleReorientation(rho, a, b)).norm(), kAgreement)
+          << "rho " << rho << " [" << a << ", " << b << "]";
       EXPECT_TRUE(IsRotationMatrix(r));
     }
 }
@@ -52,8 +55,8 @@ TEST(Rolling, ReorientationIsIndependentOfTheParametrisation) {
   // [0, sqrt 2], speed 0 at the start) and s = u + 0.5 sin u (u in [0, u1], non-uniform speed).
   auto dp = [](double s) { return Eigen::Vector2d(-std::sin(s) + 0.3, 2.0 * std::cos(2.0 * s)); };
   const Eigen::Matrix3d r1 = RollingReorientation(dp, 0.0, 2.0);
-  const Eigen::Matrix3d r2 = RollingReorientation([&](double sg) { return Eigen::Vector2d(dp(sg * sg) * 2.0 * sg); }, 0.0,
-                                                  std::sqrt(2.0));
+  const Eigen::Matrix3d r2 =
+      RollingReorientation([&](double sg) { return Eigen::Vector2d(dp(sg * sg) * 2.0 * sg); }, 0.0, std::sqrt(2.0));
   // Solve u1 + 0.5 sin(u1) = 2 by Newton (g' = 1 + 0.5 cos u > 0).
   double u1 = 2.0;
   for (int i = 0; i < 50; ++i) u1 -= (u1 + 0.5 * std::sin(u1) - 2.0) / (1.0 + 0.5 * std::cos(u1));
@@ -68,9 +71,7 @@ TEST(Rolling, ReorientationIsIndependentOfTheParametrisation) {
 TEST(Rolling, ArcLengthParametrisationOfTheCircleGivesTheSameRotation) {
   const double rho = 1.7, tau1 = 2.2;
   // Arc length sigma = rho tau: unit speed.
-  const PlanarVelocity unit = [rho](double sg) {
-    return Eigen::Vector2d(-std::sin(sg / rho), std::cos(sg / rho));
-  };
+  const PlanarVelocity unit = [rho](double sg) { return Eigen::Vector2d(-std::sin(sg / rho), std::cos(sg / rho)); };
   EXPECT_LT((RollingReorientation(unit, 0.0, rho * tau1) - CircleReorientation(rho, 0.0, tau1)).norm(), kAgreement);
 }
 

@@ -25,9 +25,17 @@ namespace {
 template <class Summary>
 class SummaryShape : public ::testing::Test {};
 
-using Summaries = ::testing::Types<JoinSummary, ReachSummary, PlanSummary, ConvergenceStudy, IsoparallelSummary,
-                                   ExactArrivalSummary, FewestImpulsesSummary, ExecutionSummary, MonteCarloSummary,
-                                   IdentifySummary, IsoparallelCertificate>;
+using Summaries = ::testing::Types<JoinSummary,
+                                   ReachSummary,
+                                   PlanSummary,
+                                   ConvergenceStudy,
+                                   IsoparallelSummary,
+                                   ExactArrivalSummary,
+                                   FewestImpulsesSummary,
+                                   ExecutionSummary,
+                                   MonteCarloSummary,
+                                   IdentifySummary,
+                                   IsoparallelCertificate>;
 TYPED_TEST_SUITE(SummaryShape, Summaries);
 
 TYPED_TEST(SummaryShape, DefaultSaysNotRun) {

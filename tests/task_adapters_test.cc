@@ -25,7 +25,8 @@ Problem Read(const std::string& file) { return ReadProblemFile(plateball::testin
 }  // namespace
 
 TEST(TaskAdapters, PathFromSpecBuildsEveryTypeAndPiecewiseChains) {
-  const PathSpec pw{PiecewiseSpec{{PathSpec{LineSpec{{0, 0}, {2, 0}}}, PathSpec{CircleSpec{{2, 1}, 1, -M_PI / 2, M_PI / 2}}}}};
+  const PathSpec pw{
+      PiecewiseSpec{{PathSpec{LineSpec{{0, 0}, {2, 0}}}, PathSpec{CircleSpec{{2, 1}, 1, -M_PI / 2, M_PI / 2}}}}};
   EXPECT_EQ(ToString(pw), "piecewise");
   const Path p = PathFromSpec(pw);
   EXPECT_EQ(p.PieceCount(), 2);
@@ -38,25 +39,38 @@ TEST(TaskAdapters, PathFromSpecBuildsEveryTypeAndPiecewiseChains) {
 }
 
 TEST(TaskAdapters, BadSpecsNameTheField) {
-  EXPECT_NE(ErrorOf([] { PathFromSpec(PathSpec{CircleSpec{{0, 0}, 0.0, 0.0, 1.0}}, "plan.path"); }).find("plan.path.radius"),
+  EXPECT_NE(ErrorOf([] {
+              PathFromSpec(PathSpec{CircleSpec{{0, 0}, 0.0, 0.0, 1.0}}, "plan.path");
+            }).find("plan.path.radius"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] { PathFromSpec(PathSpec{CircleSpec{{0, 0}, 1.0, 0.0, 0.0}}, "plan.path"); }).find("plan.path.tau_end"),
+  EXPECT_NE(ErrorOf([] {
+              PathFromSpec(PathSpec{CircleSpec{{0, 0}, 1.0, 0.0, 0.0}}, "plan.path");
+            }).find("plan.path.tau_end"),
             std::string::npos);
   EXPECT_NE(ErrorOf([] { PathFromSpec(PathSpec{LineSpec{{1, 1}, {1, 1}}}); }).find("zero speed"), std::string::npos);
   EXPECT_NE(ErrorOf([] { PathFromSpec(PathSpec{LineSpec{{1, 1}, {NAN, 0}}}); }).find("path.to"), std::string::npos);
-  EXPECT_NE(ErrorOf([] { PathFromSpec(PathSpec{SamplesSpec{{{0, 0}, {1, 1}, {1, 1}, {2, 0}}}}); }).find("points[2]"),
+  EXPECT_NE(ErrorOf([] {
+              PathFromSpec(PathSpec{SamplesSpec{{{0, 0}, {1, 1}, {1, 1}, {2, 0}}}});
+            }).find("points[2]"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] { PathFromSpec(PathSpec{SamplesSpec{{{0, 0}, {INFINITY, 1}}}}); }).find("must be finite"),
+  EXPECT_NE(ErrorOf([] {
+              PathFromSpec(PathSpec{SamplesSpec{{{0, 0}, {INFINITY, 1}}}});
+            }).find("must be finite"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] { PathFromSpec(PathSpec{SineSpec{{0, 0}, 0.0, 1.0, 0.5, 0.0}}); }).find("path.wavelength"),
+  EXPECT_NE(ErrorOf([] {
+              PathFromSpec(PathSpec{SineSpec{{0, 0}, 0.0, 1.0, 0.5, 0.0}});
+            }).find("path.wavelength"),
             std::string::npos);
   // A gap between pieces; no pieces; nested pieces.
   const PathSpec a{LineSpec{{0, 0}, {1, 0}}};
-  EXPECT_NE(ErrorOf([&] { PathFromSpec(PathSpec{PiecewiseSpec{{a, PathSpec{LineSpec{{1, 0.5}, {2, 0}}}}}}); }).find("pieces[1]"),
+  EXPECT_NE(ErrorOf([&] {
+              PathFromSpec(PathSpec{PiecewiseSpec{{a, PathSpec{LineSpec{{1, 0.5}, {2, 0}}}}}});
+            }).find("pieces[1]"),
             std::string::npos);
   EXPECT_NE(ErrorOf([] { PathFromSpec(PathSpec{PiecewiseSpec{}}); }).find("pieces"), std::string::npos);
-  EXPECT_NE(ErrorOf([&] { PathFromSpec(PathSpec{PiecewiseSpec{{PathSpec{PiecewiseSpec{{a}}}}}}); }).find("may not nest"),
-            std::string::npos);
+  EXPECT_NE(
+      ErrorOf([&] { PathFromSpec(PathSpec{PiecewiseSpec{{PathSpec{PiecewiseSpec{{a}}}}}}); }).find("may not nest"),
+      std::string::npos);
 }
 
 TEST(TaskAdapters, PlanSetupIsTheFilesPlanWithItsIntegrationSection) {

@@ -22,9 +22,9 @@
 // --closed-rolling 0 turns off the closed-form rolling bound of the rotation test
 // (certify/rolling.h; on by default); --chart-rolling 0 the theta/2 chart's bound
 // (same header, smooth through G = 1; on by default); --centred-rolling 0 the centred form's bound
-// (certify/centred.h: vertex rollings plus a second-order remainder; on by default); the phase window is [-P/2, P/2] (P the
-// period at k_max: |u0| and so the secular terms of the bounds halved), --centred-phase 0 takes
-// [0, P] instead (the same paths; the figures of rounds before the tenth);
+// (certify/centred.h: vertex rollings plus a second-order remainder; on by default); the phase window is [-P/2, P/2] (P
+// the period at k_max: |u0| and so the secular terms of the bounds halved), --centred-phase 0 takes [0, P] instead (the
+// same paths; the figures of rounds before the tenth);
 // --fixed-periods 0 turns off the bounds compared at a fixed number of periods and the split
 // along their shares (certify/periods.h; on by default: the trace's shares are then
 // those of the fixed-periods bound where it is below D);
@@ -40,9 +40,9 @@
 
 #include <array>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -147,8 +147,8 @@ std::vector<std::array<double, 2>> RateRanges(const Settings& s, PendulumRegime 
   return {{-s.rate_max, -s.rate_min}, {s.rate_min, s.rate_max}};
 }
 
-CertifyWindowOptions WindowFor(const Settings& s, PendulumRegime regime, const std::array<double, 2>& rates,
-                               double radius, double cap) {
+CertifyWindowOptions WindowFor(
+    const Settings& s, PendulumRegime regime, const std::array<double, 2>& rates, double radius, double cap) {
   CertifyWindowOptions o;
   o.regime = regime;
   o.max_boxes = s.budget;
@@ -202,7 +202,10 @@ int Run(const Settings& s) {
     if (!s.known) known.clear();
     for (double factor : s.caps)
       std::printf("%s, cap %.2fx: MaxSolutionRateOver k [%.10g, %.10g] = %.6g (the rate beyond which no solution)\n",
-                  ToString(regime).c_str(), factor, s.k_min, s.k_max,
+                  ToString(regime).c_str(),
+                  factor,
+                  s.k_min,
+                  s.k_max,
                   MaxSolutionRateOver(target, regime, s.k_min, s.k_max, factor * shortest, 1e-7));
     for (double factor : s.caps)
       for (const std::array<double, 2>& rates : RateRanges(s, regime)) {
@@ -217,16 +220,28 @@ int Run(const Settings& s) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
         std::printf("cap %.2fx %s, rate [%g, %g], k [%.10g, %.10g]: %s; resolved volume %.6f; %.1f s (%.1f s CPU)\n",
-                    factor, ToString(regime).c_str(), rates[0], rates[1], s.k_min, s.k_max, w.message.c_str(),
-                    w.resolved_volume, seconds, cpu);
-        std::printf("  excluded by rotation %ld (%ld only with the closed-form rolling bound, %ld then only with the "
-                    "theta/2 chart's, %ld then only with the centred form)\n",
-                    w.excluded_by_rotation, w.excluded_by_closed_rolling, w.excluded_by_chart_rolling,
-                    w.excluded_by_centred_rolling);
+                    factor,
+                    ToString(regime).c_str(),
+                    rates[0],
+                    rates[1],
+                    s.k_min,
+                    s.k_max,
+                    w.message.c_str(),
+                    w.resolved_volume,
+                    seconds,
+                    cpu);
+        std::printf(
+            "  excluded by rotation %ld (%ld only with the closed-form rolling bound, %ld then only with the "
+            "theta/2 chart's, %ld then only with the centred form)\n",
+            w.excluded_by_rotation,
+            w.excluded_by_closed_rolling,
+            w.excluded_by_chart_rolling,
+            w.excluded_by_centred_rolling);
         std::printf("  excluded only with the fixed-periods bounds %ld\n", w.excluded_by_fixed_periods);
         for (size_t i = 0; i < w.found.size(); ++i) {
           const CertifyPoint& f = w.found[i];
-          const std::string match = w.found_known[i] >= 0 ? "solver's solution " + std::to_string(w.found_known[i]) : "new";
+          const std::string match =
+              w.found_known[i] >= 0 ? "solver's solution " + std::to_string(w.found_known[i]) : "new";
           std::printf("  proved unique {%.12g, %.12g, %.12g, %.12g}: %s\n", f[0], f[1], f[2], f[3], match.c_str());
         }
       }

@@ -32,17 +32,37 @@ using bench::PositionalNumber;
 
 void Print(PendulumRegime regime, const LoopFamilyOptions& o, const LoopFamilyResult& r, double cpu) {
   const CertifyBox& w = r.window;
-  std::printf("%s: k_t %.12g (K_t %.6g), W2 %.6g, eps L_max %.3g (heading error %.3g)\n", ToString(regime).c_str(),
-              o.k_t, CompleteEllipticK(o.k_t), r.core_half_width, r.heading_error * o.cap, r.heading_error);
-  std::printf("  window rate [%g, %g] run [%g, %g] phase [%g, %g] L [%g, %g], both senses\n", w.lo[0], w.hi[0],
-              w.lo[1], w.hi[1], w.lo[2], w.hi[2], w.lo[3], w.hi[3]);
-  std::printf("  %s; boxes %ld (chord %ld, rotation %ld, outside the domain %ld), undecided %ld, resolved volume %.6f; %.1f s CPU\n",
-              ToString(r.status).c_str(), r.boxes, r.excluded_by_chord, r.excluded_by_rotation, r.outside_domain, r.undecided,
-              r.resolved_volume, cpu);
+  std::printf("%s: k_t %.12g (K_t %.6g), W2 %.6g, eps L_max %.3g (heading error %.3g)\n",
+              ToString(regime).c_str(),
+              o.k_t,
+              CompleteEllipticK(o.k_t),
+              r.core_half_width,
+              r.heading_error * o.cap,
+              r.heading_error);
+  std::printf("  window rate [%g, %g] run [%g, %g] phase [%g, %g] L [%g, %g], both senses\n",
+              w.lo[0],
+              w.hi[0],
+              w.lo[1],
+              w.hi[1],
+              w.lo[2],
+              w.hi[2],
+              w.lo[3],
+              w.hi[3]);
+  std::printf(
+      "  %s; boxes %ld (chord %ld, rotation %ld, outside the domain %ld), undecided %ld, resolved volume %.6f; %.1f s "
+      "CPU\n",
+      ToString(r.status).c_str(),
+      r.boxes,
+      r.excluded_by_chord,
+      r.excluded_by_rotation,
+      r.outside_domain,
+      r.undecided,
+      r.resolved_volume,
+      cpu);
   for (std::size_t i = 0; i < r.undecided_boxes.size(); ++i) {
     const CertifyPoint c = r.undecided_boxes[i].Centre();
-    std::printf("  undecided sense %+d centre {%.9g, %.9g, %.9g, %.9g}\n", r.undecided_senses[i], c[0], c[1], c[2],
-                c[3]);
+    std::printf(
+        "  undecided sense %+d centre {%.9g, %.9g, %.9g, %.9g}\n", r.undecided_senses[i], c[0], c[1], c[2], c[3]);
   }
 }
 
@@ -62,8 +82,8 @@ int Run(int argc, char** argv) {
   const std::string which = argc > 7 ? argv[7] : "both";
   o.core_half_width = PositionalNumber(argc, argv, 8, 0.0, 1e3, 0.0);
   o.length_lo = target.radius;
-  std::printf("%s: cap %.9g, |x1 - x0| %.9g, delta0 %.9g\n", file.c_str(), o.cap, target.radius,
-              StraightResidual(target));
+  std::printf(
+      "%s: cap %.9g, |x1 - x0| %.9g, delta0 %.9g\n", file.c_str(), o.cap, target.radius, StraightResidual(target));
   for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
     if (which != "both" && which != ToString(regime)) continue;
     o.regime = regime;

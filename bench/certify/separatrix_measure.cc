@@ -8,7 +8,6 @@
 // rate_max 0.5, k_lo 0.95, budget 2,000,000 boxes, both regimes (REGIME: oscillating, rotating,
 // both). Prints W (the run distance), the near-loop window, the box counts and the undecided boxes.
 #include <boost/math/special_functions/ellint_1.hpp>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -32,11 +31,24 @@ using bench::PositionalNumber;
 
 void Print(PendulumRegime regime, const SeparatrixTailResult& r, double seconds) {
   const CertifyBox& w = r.window;
-  std::printf("%s: W %.6g; window rate [%g, %g] k [%g, 1] phase [%g, %g] L [%g, %g]\n", ToString(regime).c_str(),
-              r.run_distance, w.lo[0], w.hi[0], w.lo[1], w.lo[2], w.hi[2], w.lo[3], w.hi[3]);
+  std::printf("%s: W %.6g; window rate [%g, %g] k [%g, 1] phase [%g, %g] L [%g, %g]\n",
+              ToString(regime).c_str(),
+              r.run_distance,
+              w.lo[0],
+              w.hi[0],
+              w.lo[1],
+              w.lo[2],
+              w.hi[2],
+              w.lo[3],
+              w.hi[3]);
   std::printf("  %s; boxes %ld (chord %ld, rotation %ld), undecided %ld, resolved volume %.6f; %.1f s\n",
-              ToString(r.status).c_str(), r.boxes, r.excluded_by_chord, r.excluded_by_rotation, r.undecided,
-              r.resolved_volume, seconds);
+              ToString(r.status).c_str(),
+              r.boxes,
+              r.excluded_by_chord,
+              r.excluded_by_rotation,
+              r.undecided,
+              r.resolved_volume,
+              seconds);
   for (const CertifyBox& b : r.undecided_boxes) {
     const CertifyPoint c = b.Centre();
     std::printf("  undecided centre {%.9g, %.9g, %.9g, %.9g}\n", c[0], c[1], c[2], c[3]);
@@ -56,8 +68,8 @@ int Run(int argc, char** argv) {
   o.max_boxes = static_cast<long>(PositionalNumber(argc, argv, 5, 1.0, 1e10, 2e6));
   o.length_lo = target.radius;
   const std::string which = argc > 6 ? argv[6] : "both";
-  std::printf("%s: cap %.9g, |x1 - x0| %.9g, delta0 %.9g\n", file.c_str(), o.cap, target.radius,
-              StraightResidual(target));
+  std::printf(
+      "%s: cap %.9g, |x1 - x0| %.9g, delta0 %.9g\n", file.c_str(), o.cap, target.radius, StraightResidual(target));
   for (const IsoparallelSolution& sol : solved.solutions) {
     const CertifyPoint c = CanonicalSolution(sol.parameters, sol.length);
     if (c[kCertifyModulus] < o.k_lo || sol.length > o.cap) continue;
@@ -65,7 +77,12 @@ int Run(int argc, char** argv) {
     const double half = 2.0 * boost::math::ellint_1(c[kCertifyModulus]);
     const double from_loop = c[kCertifyPhase] - half * std::round(c[kCertifyPhase] / half);
     std::printf("tail solution (%s) {rate %.9g, k %.9g, phase %.9g (%.9g from a loop), L %.9g}\n",
-                ToString(sol.parameters.regime).c_str(), c[0], c[1], c[2], from_loop, c[3]);
+                ToString(sol.parameters.regime).c_str(),
+                c[0],
+                c[1],
+                c[2],
+                from_loop,
+                c[3]);
   }
   for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating}) {
     if (which != "both" && which != ToString(regime)) continue;

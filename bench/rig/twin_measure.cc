@@ -31,13 +31,21 @@ RigPlan FreeRigPlan(const Problem& p, const BallModel& model) {
 
 void Row(const std::string& label, const RigPlan& plan, const ReplayOptions& o) {
   const ReplayReport r = ReplayInTwin(plan, PlannedTrajectory(plan), o);
-  std::printf("| %s | %d | %.2e | %.2e | %.2e | %.2e | %.2e |\n", label.c_str(), r.steps, r.position_error,
-              r.orientation_error, r.energy_error, r.max_slip_speed, r.max_spin_rate);
+  std::printf("| %s | %d | %.2e | %.2e | %.2e | %.2e | %.2e |\n",
+              label.c_str(),
+              r.steps,
+              r.position_error,
+              r.orientation_error,
+              r.energy_error,
+              r.max_slip_speed,
+              r.max_spin_rate);
 }
 
 void Header(const char* first) {
-  std::printf("\n| %s | steps | position (r) | orientation (rad) | energy (rel.) | max slip (m/s) | max spin (rad/s) |\n"
-              "|---|---|---|---|---|---|---|\n", first);
+  std::printf(
+      "\n| %s | steps | position (r) | orientation (rad) | energy (rel.) | max slip (m/s) | max spin (rad/s) |\n"
+      "|---|---|---|---|---|---|---|\n",
+      first);
 }
 
 }  // namespace
@@ -52,7 +60,9 @@ int main(int argc, char** argv) {
     const PhysicalParameters& ph = *p.physical;
     const BallModel paper = BallModel::FromAlphaBeta(
         ph.inertia_3 / ph.inertia_1, (ph.ball_mass + 2 * ph.plate_mass) * ph.radius * ph.radius / ph.inertia_1);
-    std::printf("Free motion of %s over two periods (lambda %.9f; the paper's %.9f)\n", argv[1], p.model.lambda(),
+    std::printf("Free motion of %s over two periods (lambda %.9f; the paper's %.9f)\n",
+                argv[1],
+                p.model.lambda(),
                 paper.lambda());
     Header("dt (s), lambda");
     for (const double dt : {2e-3, 1e-3, 5e-4, 2e-4, 1e-4}) {

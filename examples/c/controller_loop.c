@@ -48,7 +48,10 @@ int main(int argc, char** argv) {
   memcpy(start.A, identity, sizeof identity);
   if (!check(pb_steer(2.0, &start, goal_x, identity, 4, steer, 4), "steer")) goto done;
   for (k = 0; k < 4; ++k)
-    printf("steer impulse %d: t %.6f, delta psi %.6f, flight %.6f\n", k, steer[k].t_impulse, steer[k].delta_psi,
+    printf("steer impulse %d: t %.6f, delta psi %.6f, flight %.6f\n",
+           k,
+           steer[k].t_impulse,
+           steer[k].delta_psi,
            steer[k].duration);
 
   pb_controller_options_default(&options);

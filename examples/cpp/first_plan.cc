@@ -21,8 +21,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s\n", plan.BriefReport().c_str());
       return 4;
     }
-    std::printf("status %s, %d impulses, measured error %.6g <= bound %.6g\n", plateball::ToString(plan.status).c_str(),
-                plan.segments, plan.measured_error, plan.bounds.a_posteriori);
+    std::printf("status %s, %d impulses, measured error %.6g <= bound %.6g\n",
+                plateball::ToString(plan.status).c_str(),
+                plan.segments,
+                plan.measured_error,
+                plan.bounds.a_posteriori);
     return 0;
   } catch (const std::exception& e) {  // an unreadable or invalid problem file names the field
     std::fprintf(stderr, "first_plan: %s\n", e.what());

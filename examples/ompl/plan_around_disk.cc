@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
   setup.setPlanner(rrt);
 
   const ob::PlannerStatus status = setup.solve(120.0);
-  std::printf("OMPL status: %s%s\n", status.asString().c_str(),
+  std::printf("OMPL status: %s%s\n",
+              status.asString().c_str(),
               status == ob::PlannerStatus::EXACT_SOLUTION ? " (EXACT_SOLUTION)" : "");
   if (status != ob::PlannerStatus::EXACT_SOLUTION) return 4;
 
@@ -73,10 +74,19 @@ int main(int argc, char** argv) {
     const plateball::ReplayResult replay = plateball::ReplayExactArrival(c.problem, c.summary.impulses);
     const double node_error = (ps::ContactPoint(path.getState(i + 1)) - replay.x).norm();
     for (const plateball::MotionSample& s : c.samples) min_clearance = std::min(min_clearance, Clearance(s.x));
-    std::printf("connection %zu: (%.4f, %.4f) -> (%.4f, %.4f), %zu impulses, T = %.6f, replay position error %.3g, "
-                "orientation error %.3g, node error %.3g\n",
-                i, c.problem.x0.x(), c.problem.x0.y(), c.problem.x1.x(), c.problem.x1.y(), c.summary.impulses.size(),
-                c.summary.total_time, replay.position_error, replay.orientation_error, node_error);
+    std::printf(
+        "connection %zu: (%.4f, %.4f) -> (%.4f, %.4f), %zu impulses, T = %.6f, replay position error %.3g, "
+        "orientation error %.3g, node error %.3g\n",
+        i,
+        c.problem.x0.x(),
+        c.problem.x0.y(),
+        c.problem.x1.x(),
+        c.problem.x1.y(),
+        c.summary.impulses.size(),
+        c.summary.total_time,
+        replay.position_error,
+        replay.orientation_error,
+        node_error);
     ok = ok && replay.position_error < kArrivalTolerance && replay.orientation_error < kArrivalTolerance &&
          node_error < kArrivalTolerance;
     connections.push_back(std::move(c));
@@ -90,10 +100,17 @@ int main(int argc, char** argv) {
   // The sequence to execute: each later connection's first delta psi re-based on the ball's psi there.
   std::printf("impulse sequence (time, contact point, delta psi, then flight time):\n");
   for (const plateball::ExactImpulse& e : chained)
-    std::printf("  t %.6f at (%.6f, %.6f): delta psi %+.9f, then %.6f\n", e.t_impulse, e.position.x(),
-                e.position.y(), e.delta_psi, e.duration);
+    std::printf("  t %.6f at (%.6f, %.6f): delta psi %+.9f, then %.6f\n",
+                e.t_impulse,
+                e.position.x(),
+                e.position.y(),
+                e.delta_psi,
+                e.duration);
   std::printf("whole path: %zu connections, %zu impulses, goal position error %.3g, orientation error %.3g\n",
-              connections.size(), chained.size(), replay.position_error, replay.orientation_error);
+              connections.size(),
+              chained.size(),
+              replay.position_error,
+              replay.orientation_error);
   std::printf("smallest clearance from the disk along the motion: %.4f\n", min_clearance);
   ok = ok && replay.position_error < kArrivalTolerance && replay.orientation_error < kArrivalTolerance &&
        min_clearance > 0.0;

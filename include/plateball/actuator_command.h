@@ -3,10 +3,9 @@
 // `PhysicalParameters`, read as SI (kg, m, s) since gravity enters through the contacts' normal loads.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "plateball/ball_model.h"
 #include "plateball/export.h"
@@ -16,9 +15,9 @@ namespace plateball PLATEBALL_EXPORT {
 
 /// The pulse and the contacts: what turns an impulse into a force and a friction demand.
 struct PulseOptions {
-  double duration = 1e-3;      ///< delta (s) > 0: the pulse's length; the mean force is J / delta
-  double preload = 0.0;        ///< extra normal force (N) >= 0 pressing the upper plate on the ball
-  double gravity = 9.80665;    ///< g (m/s^2) > 0 (standard gravity)
+  double duration = 1e-3;    ///< delta (s) > 0: the pulse's length; the mean force is J / delta
+  double preload = 0.0;      ///< extra normal force (N) >= 0 pressing the upper plate on the ball
+  double gravity = 9.80665;  ///< g (m/s^2) > 0 (standard gravity)
   /// mu_s >= 0, the static friction coefficient of both contacts; 0 means not given (nothing is
   /// checked, the least coefficient needed is still reported).
   double static_friction = 0.0;
@@ -33,11 +32,11 @@ struct PulseOptions {
 /// The mean forces of one pulse and the friction they need (forces in N, torques in N m).
 struct PulseForces {
   Eigen::Vector3d mean_force = Eigen::Vector3d::Zero();  ///< J / delta on the upper plate
-  double top_normal_load = 0.0;     ///< M_plate g + preload
-  double bottom_normal_load = 0.0;  ///< top load + M_ball g
-  double top_tangential_force = 0.0;     ///< |top_contact| / delta
-  double bottom_tangential_force = 0.0;  ///< |bottom_contact| / delta
-  double torsional_torque = 0.0;         ///< |torsion| / delta, shared by the two contacts
+  double top_normal_load = 0.0;                          ///< M_plate g + preload
+  double bottom_normal_load = 0.0;                       ///< top load + M_ball g
+  double top_tangential_force = 0.0;                     ///< |top_contact| / delta
+  double bottom_tangential_force = 0.0;                  ///< |bottom_contact| / delta
+  double torsional_torque = 0.0;                         ///< |torsion| / delta, shared by the two contacts
   /// The least mu_s with which neither contact slides: max over contacts of tangential / normal.
   /// +inf when a contact carries a tangential force without a normal load (a massless, unloaded plate).
   double sliding_friction_needed = 0.0;
@@ -49,7 +48,8 @@ struct PulseForces {
 
 /// The mean forces of a pulse giving `impulse` over `options.duration`. Throws std::invalid_argument
 /// naming the field for invalid parameters or options.
-PulseForces PulseForcesFor(const PhysicalParameters& physical, const PlateImpulse& impulse,
+PulseForces PulseForcesFor(const PhysicalParameters& physical,
+                           const PlateImpulse& impulse,
                            const PulseOptions& options);
 
 /// Where a pulse lies relative to its impulse time t_k.
@@ -64,7 +64,9 @@ const char* PulseAlignmentName(PulseAlignment alignment);
 /// Empty when the pulses of duration `duration` at the increasing impulse times `times` fit in
 /// [0, final_time] without overlapping; otherwise a message naming the first pulse at fault
 /// ("impulses[K].time: value T: ..."), e.g. a pulse longer than its flight.
-std::string CheckPulseSchedule(const std::vector<double>& times, double final_time, double duration,
+std::string CheckPulseSchedule(const std::vector<double>& times,
+                               double final_time,
+                               double duration,
                                PulseAlignment alignment);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -17,10 +17,10 @@ namespace plateball PLATEBALL_EXPORT {
 
 /// How an angle-form integration ended.
 enum class AngleFormStatus {
-  kCompleted,     ///< every requested time was reached
-  kReachedPole,   ///< |sin theta| fell below the threshold (or theta crossed 0 or pi): stopped
-  kStepLimit,     ///< IntegrationOptions::max_steps exceeded
-  kFailed,        ///< non-finite state or step-size underflow
+  kCompleted,    ///< every requested time was reached
+  kReachedPole,  ///< |sin theta| fell below the threshold (or theta crossed 0 or pi): stopped
+  kStepLimit,    ///< IntegrationOptions::max_steps exceeded
+  kFailed,       ///< non-finite state or step-size underflow
 };
 /// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(AngleFormStatus status);
@@ -55,15 +55,18 @@ struct AngleFormResult {
 
 /// Right-hand side of (19)-(21) and (25)-(26): d/dt of (theta, phi, psi) and x at energy mu.
 /// Requires sin(theta) != 0.
-void AngleFormDerivative(const AngleState& s, double mu, const BallModel& model, AngleState* d_angles,
-                         Eigen::Vector2d* d_x);
+void AngleFormDerivative(
+    const AngleState& s, double mu, const BallModel& model, AngleState* d_angles, Eigen::Vector2d* d_x);
 
 /// Integrates (19)-(21) and (25)-(26) from (angles, x0) at t = 0, energy mu > 0, reporting the
 /// given non-decreasing times >= 0. Never hangs: a pole (also a start on a pole) or the step
 /// limit ends it with a status. Throws std::invalid_argument (naming the field) for non-finite
 /// input, mu <= 0, negative or unordered times or invalid options.
-AngleFormResult IntegrateAngleForm(const BallModel& model, const AngleState& angles, double mu,
-                                   const Eigen::Vector2d& x0, const std::vector<double>& times,
+AngleFormResult IntegrateAngleForm(const BallModel& model,
+                                   const AngleState& angles,
+                                   double mu,
+                                   const Eigen::Vector2d& x0,
+                                   const std::vector<double>& times,
                                    const AngleFormOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

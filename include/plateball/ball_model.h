@@ -70,4 +70,4 @@ class BallModel {
   bool has_inertia_;
 };
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -62,4 +62,4 @@ Eigen::Vector4d ConstraintResiduals(const PhaseVariables& p, double mu, const Ba
 /// Throws std::invalid_argument (naming the field) when |z| != 1, omega_3 != 0 or values are not finite.
 void ValidateState(const BallState& s, const char* field = "state");
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -53,8 +53,7 @@ class AppendixSolution {
   /// theta0 outside [0, pi] is first mapped by AngleState::Canonicalize(). A start on a pole
   /// (sin theta0 = 0, where phi is not determined by z) is put on the meridian it moves along.
   /// c is treated as 0 when |c| <= pole_family_tolerance.
-  AppendixSolution(const BallModel& model, const AngleState& initial, double mu,
-                   double pole_family_tolerance = 1e-15);
+  AppendixSolution(const BallModel& model, const AngleState& initial, double mu, double pole_family_tolerance = 1e-15);
 
   /// The constants of the closed form (appendix (30)-(34)) of this motion.
   const AppendixConstants& constants() const { return k_; }
@@ -93,4 +92,4 @@ double AppendixC(const AngleState& s);
 /// Left-hand side of (34): sqrt((lambda - 1) c^2 + 1) sin(phi - d) + sin(w) (zero on a solution).
 double AppendixResidual34(const AngleState& s, double d, const BallModel& model);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

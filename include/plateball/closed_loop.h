@@ -39,14 +39,14 @@ class TrialErrors {
 /// The end of a closed loop: the controller's last status and the true ball at the last tick.
 struct SimulatedLoopResult {
   ControllerStatus status = ControllerStatus::kNotRun;  ///< the controller's last status
-  int impulses = 0;           ///< impulses the controller gave
-  long ticks = 0;             ///< Updates called
-  int rejected = 0;           ///< ticks whose measurement was rejected
-  Eigen::Vector2d x = Eigen::Vector2d::Zero();      ///< the true contact point at the last tick
-  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();  ///< the true orientation then
-  double position_error = 0.0;     ///< |x - goal| (radii)
-  double orientation_error = 0.0;  ///< angle of goal_orientation^T A (rad)
-  double lambda = 0.0;             ///< the simulated ball's true lambda
+  int impulses = 0;                                     ///< impulses the controller gave
+  long ticks = 0;                                       ///< Updates called
+  int rejected = 0;                                     ///< ticks whose measurement was rejected
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();          ///< the true contact point at the last tick
+  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();      ///< the true orientation then
+  double position_error = 0.0;                          ///< |x - goal| (radii)
+  double orientation_error = 0.0;                       ///< angle of goal_orientation^T A (rad)
+  double lambda = 0.0;                                  ///< the simulated ball's true lambda
 };
 
 /// The controller on the library's simulated ball of trial (seed, trial) under `errors` (ideal
@@ -54,8 +54,11 @@ struct SimulatedLoopResult {
 /// observation noise are not modelled: std::invalid_argument names them). Ticks 0, 1, ... until
 /// the controller is done, lost or fails, at most 2 total_time / tick_period + 2 ticks. With
 /// contact_point_only the measurements carry the contact point alone.
-SimulatedLoopResult RunSimulatedClosedLoop(std::shared_ptr<const NominalPlan> nominal, const ControllerOptions& options,
-                                           const ErrorModel& errors, std::uint64_t seed, std::uint64_t trial,
+SimulatedLoopResult RunSimulatedClosedLoop(std::shared_ptr<const NominalPlan> nominal,
+                                           const ControllerOptions& options,
+                                           const ErrorModel& errors,
+                                           std::uint64_t seed,
+                                           std::uint64_t trial,
                                            bool contact_point_only = false);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

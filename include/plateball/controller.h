@@ -50,14 +50,14 @@ struct ControllerOptions {
 };
 
 enum class ControllerStatus {
-  kNotRun,                ///< default: no update yet
-  kOk,                    ///< the measurement was used; a command (or none) is given
-  kMeasurementRejected,   ///< the measurement contradicts the model (NaN, not a rotation, spin, a
-                          ///< jump): the prediction is used instead and reported
-  kTimeOutOfOrder,        ///< the time is not finite or precedes the last tick: nothing changed
-  kDone,                  ///< every impulse was given; the estimate keeps rolling freely
-  kLost,                  ///< the next pass point cannot be joined from the estimate: no command
-  kIntegrationFailure,    ///< an ODE integration failed: no command
+  kNotRun,               ///< default: no update yet
+  kOk,                   ///< the measurement was used; a command (or none) is given
+  kMeasurementRejected,  ///< the measurement contradicts the model (NaN, not a rotation, spin, a
+                         ///< jump): the prediction is used instead and reported
+  kTimeOutOfOrder,       ///< the time is not finite or precedes the last tick: nothing changed
+  kDone,                 ///< every impulse was given; the estimate keeps rolling freely
+  kLost,                 ///< the next pass point cannot be joined from the estimate: no command
+  kIntegrationFailure,   ///< an ODE integration failed: no command
 };
 /// The value's word ("ok", "measurement_rejected", ...).
 std::string ToString(ControllerStatus status);
@@ -87,20 +87,20 @@ struct ControllerOutput {
   /// A static text saying why the measurement was rejected or the tick failed ("" when kOk);
   /// Controller::message() has the full text of a lost ball.
   const char* reason = "";
-  long tick = 0;                 ///< this tick: round(time / tick_period)
-  bool impulse = false;          ///< an impulse is due at `tick`
-  int impulse_index = -1;        ///< its index k in the plan (0 .. n-1)
-  double delta_psi = 0.0;        ///< the impulse psi -> psi + delta psi (exact tail: as planned)
+  long tick = 0;           ///< this tick: round(time / tick_period)
+  bool impulse = false;    ///< an impulse is due at `tick`
+  int impulse_index = -1;  ///< its index k in the plan (0 .. n-1)
+  double delta_psi = 0.0;  ///< the impulse psi -> psi + delta psi (exact tail: as planned)
   Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();            ///< the ball's jump (rad/s)
   Eigen::Vector3d plate_velocity_change = Eigen::Vector3d::Zero();  ///< 2 r delta_omega x e3
   bool has_plate_impulse = false;                                   ///< options.physical given
-  PlateImpulse plate_impulse;    ///< PlateImpulseFor(physical, z, delta_omega)
-  bool exact_replan = false;     ///< this impulse comes from a new exact re-plan
-  long next_impulse_tick = -1;   ///< the next impulse's tick (-1: none left)
-  bool late = false;             ///< the impulse's tick was skipped: it fires at this, later, tick
-  bool budget_exhausted = false; ///< see ControllerOptions::time_budget
+  PlateImpulse plate_impulse;                                       ///< PlateImpulseFor(physical, z, delta_omega)
+  bool exact_replan = false;                                        ///< this impulse comes from a new exact re-plan
+  long next_impulse_tick = -1;                                      ///< the next impulse's tick (-1: none left)
+  bool late = false;              ///< the impulse's tick was skipped: it fires at this, later, tick
+  bool budget_exhausted = false;  ///< see ControllerOptions::time_budget
   bool measurement_used = false;
-  ControllerEstimate now;        ///< after this tick's impulse, if any
+  ControllerEstimate now;              ///< after this tick's impulse, if any
   ControllerEstimate at_next_impulse;  ///< predicted just before the next impulse (= now when none)
 };
 
@@ -145,10 +145,10 @@ class Controller {
   std::unique_ptr<internal::FeedbackPolicy> policy_;
   ControllerEstimate estimate_;
   bool started_ = false;
-  int next_impulse_ = 0;          // index of the next impulse (n: done)
+  int next_impulse_ = 0;  // index of the next impulse (n: done)
   long next_impulse_tick_ = 0;
   ControllerOutput out_;
   std::string message_;
 };
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

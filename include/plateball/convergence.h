@@ -64,7 +64,7 @@ struct ConvergenceStudy {
   std::optional<double> time_slope;   ///< same for the plan time (only with options.timings)
   bool bound_holds = true;            ///< measured error <= bound on every successful row
   int failed_rows = 0;
-  std::string message = "not run";    ///< empty once run, or why there is no slope
+  std::string message = "not run";  ///< empty once run, or why there is no slope
 
   /// True when the slopes were fitted (status kCompleted).
   bool IsSolutionUsable() const { return status == ConvergenceStatus::kCompleted; }
@@ -85,4 +85,4 @@ void ValidatePartitionSizes(const std::vector<int>& ns, const std::string& field
 /// fails is a row status.
 ConvergenceStudy RunConvergenceStudy(const ConvergenceProblem& problem, const ConvergenceOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

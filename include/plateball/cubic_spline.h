@@ -15,7 +15,8 @@ class CubicSpline2d {
   /// Throws std::invalid_argument (naming the sample index) for fewer than 2 points, non-finite
   /// points, repeated consecutive points or non-increasing knots.
   explicit CubicSpline2d(const std::vector<Eigen::Vector2d>& points);
-  /// The natural spline through the points at the given knots (strictly increasing, one per point); throws as the constructor above.
+  /// The natural spline through the points at the given knots (strictly increasing, one per point); throws as the
+  /// constructor above.
   CubicSpline2d(const std::vector<double>& knots, const std::vector<Eigen::Vector2d>& points);
 
   /// The first knot.
@@ -39,4 +40,4 @@ class CubicSpline2d {
   std::vector<Eigen::Vector2d> m_;  // second derivatives at the knots
 };
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

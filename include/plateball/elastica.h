@@ -23,7 +23,7 @@
 namespace plateball::internal {
 struct ElasticaAccess;
 class ElasticaClosedRolling;  // src/elastica_closed_rolling.h
-struct JacobiAgm;  // src/jacobi_elliptic.h
+struct JacobiAgm;             // src/jacobi_elliptic.h
 }  // namespace plateball::internal
 
 namespace plateball PLATEBALL_EXPORT {
@@ -92,7 +92,7 @@ class Elastica {
   bool IsStraight() const { return p_.rate == 0.0; }
 
  private:
-  friend struct internal::ElasticaAccess;  // elastica_rolling.cc marches the Jacobi functions
+  friend struct internal::ElasticaAccess;        // elastica_rolling.cc marches the Jacobi functions
   friend class internal::ElasticaClosedRolling;  // shares the AGM sequence, K, k'^2, g_W and s = 0 values
   struct Jacobi {
     double sn, cn, dn;
@@ -103,18 +103,18 @@ class Elastica {
   Eigen::Vector2d PositionAt(double s, Jacobi* j, double* integral_sn2) const;
   Eigen::Vector2d TangentOf(const Jacobi& j) const;
   double CurvatureOf(const Jacobi& j) const;
-  double IntegralSn2(double u) const;  // int_0^u sn^2
+  double IntegralSn2(double u) const;             // int_0^u sn^2
   double IntegralSn2(double u, Jacobi* j) const;  // the same, and the Jacobi functions at u
-  double AmplitudeOf(double u) const;  // am(u), continuous
-  void SetRateTerms();  // G, E, the period and the drift from p_.rate (and k, K, D, g_W)
+  double AmplitudeOf(double u) const;             // am(u), continuous
+  void SetRateTerms();                            // G, E, the period and the drift from p_.rate (and k, K, D, g_W)
   ElasticaParameters p_;
-  double k_ = 0.0;       // |modulus|
+  double k_ = 0.0;                                  // |modulus|
   std::shared_ptr<const internal::JacobiAgm> agm_;  // AGM sequence of k (immutable, shared by copies)
-  double kk_ = 0.0;      // complete K(k)
-  double dk_ = 0.0;      // complete D(k) = int_0^K sn^2
-  double kc2_ = 1.0;     // k'^2 = 1 - k^2 (formed without cancellation)
-  Jacobi j0_{0.0, 1.0, 1.0};  // the Jacobi functions at u = phase (s = 0)
-  double i0_ = 0.0;      // int_0^phase sn^2
+  double kk_ = 0.0;                                 // complete K(k)
+  double dk_ = 0.0;                                 // complete D(k) = int_0^K sn^2
+  double kc2_ = 1.0;                                // k'^2 = 1 - k^2 (formed without cancellation)
+  Jacobi j0_{0.0, 1.0, 1.0};                        // the Jacobi functions at u = phase (s = 0)
+  double i0_ = 0.0;                                 // int_0^phase sn^2
   double g_ = 0.0;
   double energy_ = 0.0;
   double period_ = 0.0;
@@ -122,4 +122,4 @@ class Elastica {
   Eigen::Vector2d drift_ = Eigen::Vector2d::Zero();
 };
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

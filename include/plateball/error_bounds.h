@@ -36,16 +36,16 @@ struct ErrorBoundConstants {
 /// Bounds on ||A(T) - A_n|| reported by a plan (initial error 0).
 struct ErrorBounds {
   ErrorBoundConstants constants;
-  double sum_dtau_cubed = 0.0;      ///< sum_k |tau_k+1 - tau_k|^3
-  double parameter_norm = 0.0;      ///< ||P||_[0,T] (max over pieces)
-  int segments = 0;                 ///< n (all pieces)
-  double theorem_2_5 = 0.0;         ///< Kbar_p sum dtau^3: polyline vs planned path
-  double corollary_2 = 0.0;         ///< Kbar_p n ||P||^3
-  double theorem_2_6 = 0.0;         ///< (Kbar_p + Ktilde_p) sum dtau^3: impulsive vs planned
-  double corollary_3 = 0.0;         ///< (Kbar_p + Ktilde_p) n ||P||^3
-  double a_posteriori_path = 0.0;   ///< sum_k max|p'| max|p''| h_k^3 / 12 (polyline vs path)
-  double a_posteriori_arcs = 0.0;   ///< sum_k max|x'| max|x''| dt_k^3 / 12 (arcs vs polyline)
-  double a_posteriori = 0.0;        ///< the sum of both: the bound the planner reports
+  double sum_dtau_cubed = 0.0;     ///< sum_k |tau_k+1 - tau_k|^3
+  double parameter_norm = 0.0;     ///< ||P||_[0,T] (max over pieces)
+  int segments = 0;                ///< n (all pieces)
+  double theorem_2_5 = 0.0;        ///< Kbar_p sum dtau^3: polyline vs planned path
+  double corollary_2 = 0.0;        ///< Kbar_p n ||P||^3
+  double theorem_2_6 = 0.0;        ///< (Kbar_p + Ktilde_p) sum dtau^3: impulsive vs planned
+  double corollary_3 = 0.0;        ///< (Kbar_p + Ktilde_p) n ||P||^3
+  double a_posteriori_path = 0.0;  ///< sum_k max|p'| max|p''| h_k^3 / 12 (polyline vs path)
+  double a_posteriori_arcs = 0.0;  ///< sum_k max|x'| max|x''| dt_k^3 / 12 (arcs vs polyline)
+  double a_posteriori = 0.0;       ///< the sum of both: the bound the planner reports
 
   /// One line: the status, the message and the main numbers.
   std::string BriefReport() const;
@@ -102,4 +102,4 @@ void AccumulateSegment(const SegmentMeasures& m, ErrorBounds* b);
 /// segments from the accumulated sums and maxima.
 void CompleteBounds(int n, ErrorBounds* b);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -66,4 +66,4 @@ ErrorModel ParseErrorModel(const std::string& text, const std::string& field = "
 /// that starts with "--", e.g. "command line: --noise").
 std::string ErrorModelKeyField(const std::string& field, const std::string& key);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -35,12 +35,12 @@
 namespace plateball PLATEBALL_EXPORT {
 
 enum class ExactArrivalStatus {
-  kNotRun,               ///< default: nothing was solved
-  kArrived,              ///< position and orientation within the tolerances
-  kNotReached,           ///< the iteration stopped without meeting the tolerances (closest arrival reported)
-  kWarmStartFailed,      ///< the paper's plan along the reference failed (its message is kept)
-  kIntegrationFailure,   ///< an ODE integration failed
-  kLimitsNotMet,         ///< no exact arrival meets the rig's limits (closest feasible arrival reported)
+  kNotRun,              ///< default: nothing was solved
+  kArrived,             ///< position and orientation within the tolerances
+  kNotReached,          ///< the iteration stopped without meeting the tolerances (closest arrival reported)
+  kWarmStartFailed,     ///< the paper's plan along the reference failed (its message is kept)
+  kIntegrationFailure,  ///< an ODE integration failed
+  kLimitsNotMet,        ///< no exact arrival meets the rig's limits (closest feasible arrival reported)
 };
 /// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(ExactArrivalStatus status);
@@ -50,13 +50,13 @@ std::string ToString(ExactArrivalStatus status);
 struct ExactArrivalProblem {
   BallModel model = BallModel::FromLambda(1.0);
   AngleState initial{M_PI / 3, 0.4, 0.1};  ///< (theta, phi, psi) at the start
-  double mu = 1.0;                          ///< energy, eq. (9), > 0, kept by every impulse
+  double mu = 1.0;                         ///< energy, eq. (9), > 0, kept by every impulse
   /// Start orientation R_WB, rotated minimally so that A0 e3 = z (AlignOrientationToAxis).
   Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();
   Eigen::Vector2d x0 = Eigen::Vector2d::Zero();  ///< start point (= reference start)
   Path reference = Path({SmoothCurve::Line(Eigen::Vector2d::Zero(), Eigen::Vector2d::UnitX())});
-  int impulses = 12;  ///< n in [3, kMaxExactImpulses] (2n unknowns >= 5 conditions)
-  Eigen::Vector2d x1 = Eigen::Vector2d::UnitX();   ///< goal position
+  int impulses = 12;                                 ///< n in [3, kMaxExactImpulses] (2n unknowns >= 5 conditions)
+  Eigen::Vector2d x1 = Eigen::Vector2d::UnitX();     ///< goal position
   Eigen::Matrix3d A1 = Eigen::Matrix3d::Identity();  ///< goal orientation (a rotation)
   /// The ball starts at rest at x0 with the axis of `initial`: the first impulse is then
   /// energy-changing (0 -> mu) and sets the horizontal angular velocity to that of the angles
@@ -80,9 +80,9 @@ inline constexpr int kMaxExactImpulses = 200;
 
 struct ExactArrivalOptions {
   static constexpr int kMaxIterations = 50;  ///< the tools' value: bounds the work with kMaxExactImpulses
-  double position_tolerance = 1e-12;     ///< |x(T) - x1| to reach
-  double orientation_tolerance = 1e-10;  ///< |LogSO3(A1^T A(T))| (rad) to reach
-  int max_iterations = 50;               ///< Gauss-Newton (KKT) iterations, in [1, kMaxIterations]
+  double position_tolerance = 1e-12;         ///< |x(T) - x1| to reach
+  double orientation_tolerance = 1e-10;      ///< |LogSO3(A1^T A(T))| (rad) to reach
+  int max_iterations = 50;                   ///< Gauss-Newton (KKT) iterations, in [1, kMaxIterations]
   /// Once arrived, the iteration stops when the deviation falls by less than this fraction.
   double deviation_tolerance = 1e-6;
   /// Rollouts of the solver (tighter than the library default so that 1e-12 is meaningful).
@@ -90,7 +90,7 @@ struct ExactArrivalOptions {
   /// The variational equations of the exact Jacobian (src/exact_chain.h): ceres::Jet through the
   /// kinematics kernel, looser than the rollouts (Newton needs the derivatives to ~1e-8).
   IntegrationOptions jacobian_integration{1e-10, 1e-10, 2'000'000};
-  PlanOptions warm_start;                ///< options of the paper's plan (the warm start)
+  PlanOptions warm_start;  ///< options of the paper's plan (the warm start)
 
   /// Empty when the options are valid; else a message naming the field and its value.
   std::string Validate() const;
@@ -107,16 +107,16 @@ std::string ToString(ExactImpulseKind kind);
 /// One impulse k at time t_impulse, then the free arc of duration t_k.
 struct ExactImpulse {
   ExactImpulseKind kind = ExactImpulseKind::kEnergyPreserving;
-  double t_impulse = 0.0;                             ///< since the start
+  double t_impulse = 0.0;                              ///< since the start
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  ///< contact point at the impulse
   double delta_psi = 0.0;
-  double duration = 0.0;                              ///< t_k
+  double duration = 0.0;  ///< t_k
   Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();
   Eigen::Vector3d plate_velocity_change = Eigen::Vector3d::Zero();  ///< 2 delta_omega x e3
-  AngleState angles_before;                           ///< (theta, phi, psi) before the impulse
-  double mu_before = 0.0, mu_after = 0.0;             ///< energies (equal unless kStart / kStop)
-  Eigen::Vector2d planned_position = Eigen::Vector2d::Zero();  ///< p(tau_k) of the reference
-  double planned_delta_psi = 0.0, planned_duration = 0.0;     ///< the paper's plan (warm start)
+  AngleState angles_before;                                         ///< (theta, phi, psi) before the impulse
+  double mu_before = 0.0, mu_after = 0.0;                           ///< energies (equal unless kStart / kStop)
+  Eigen::Vector2d planned_position = Eigen::Vector2d::Zero();       ///< p(tau_k) of the reference
+  double planned_delta_psi = 0.0, planned_duration = 0.0;           ///< the paper's plan (warm start)
   /// With a rig tick: the impulse's index on the grid, t_impulse = tick x limits.tick exactly; else -1.
   long long tick = -1;
 };
@@ -140,7 +140,7 @@ struct ExactArrivalSummary {
   /// The iteration stopped at ExactArrivalOptions::max_iterations before the deviation settled:
   /// with kArrived, the arrival is exact but the pass points may not be the closest (the message says so).
   bool iteration_limit_reached = false;
-  int rollouts = 0;                    ///< trajectories integrated (with or without their Jacobian)
+  int rollouts = 0;  ///< trajectories integrated (with or without their Jacobian)
   // The paper's plan (warm start), for comparison.
   double planned_position_error = 0.0;
   double planned_orientation_error = 0.0;
@@ -155,9 +155,9 @@ struct ExactArrivalSummary {
 };
 
 /// Solves the exact-arrival problem in the time scale of mu = 1 (mu only rescales time by
-/// 1/sqrt(mu)): every mu gives the same pass points, with times scaled by 1/sqrt(mu). Throws std::invalid_argument naming the field for invalid
-/// input (impulses < 3, mu, angles, A0 or A1 not rotations, x0 not the reference start, options);
-/// a goal that is not reached is the status kNotReached with the closest arrival found.
+/// 1/sqrt(mu)): every mu gives the same pass points, with times scaled by 1/sqrt(mu). Throws std::invalid_argument
+/// naming the field for invalid input (impulses < 3, mu, angles, A0 or A1 not rotations, x0 not the reference start,
+/// options); a goal that is not reached is the status kNotReached with the closest arrival found.
 ExactArrivalSummary SolveExactArrival(const ExactArrivalProblem& problem, const ExactArrivalOptions& options = {});
 
 /// Independent check: re-integrates the reported impulses with FreeMotion (one stored period per
@@ -170,14 +170,17 @@ struct ReplayResult {
   double orientation_error = 0.0;
 };
 /// Re-integrates `impulses` from the problem's start with `integration` (the independent check above).
-ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
+ReplayResult ReplayExactArrival(const ExactArrivalProblem& problem,
+                                const std::vector<ExactImpulse>& impulses,
                                 const IntegrationOptions& integration = {1e-14, 1e-14, 2000000});
 
 /// The independent check of a result against the problem's limits: re-integrates the impulses with
 /// FreeMotion, samples every arc at `samples_per_arc` points and checks every contact point, plate
 /// displacement, impulse (its delta omega from the replayed states, J by PlateImpulseFor), interval
 /// and grid time (exactly) against the limits with `tolerances`.
-RigCheck CheckRigLimits(const ExactArrivalProblem& problem, const ExactArrivalSummary& summary,
-                        const RigCheckTolerances& tolerances = {}, int samples_per_arc = 64);
+RigCheck CheckRigLimits(const ExactArrivalProblem& problem,
+                        const ExactArrivalSummary& summary,
+                        const RigCheckTolerances& tolerances = {},
+                        int samples_per_arc = 64);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

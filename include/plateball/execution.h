@@ -95,21 +95,21 @@ struct ExecutionSummary {
   ExecutionStrategy strategy = ExecutionStrategy::kFeedback;
   ExecutionStatus status = ExecutionStatus::kNotRun;
   std::string message = "not run";
-  int impulses = 0;                  ///< impulses applied
+  int impulses = 0;  ///< impulses applied
   /// |x - p(tau_k)| when impulse k fires, k = 1 .. n-1, and at the end (k = n).
   std::vector<double> pass_misses;
-  std::vector<double> pass_speeds;   ///< the contact speed |x'| at those moments
-  int missed_pass_points = 0;        ///< pass_misses above ExecutionOptions::miss_tolerance
+  std::vector<double> pass_speeds;  ///< the contact speed |x'| at those moments
+  int missed_pass_points = 0;       ///< pass_misses above ExecutionOptions::miss_tolerance
   double max_pass_miss = 0.0;
-  double position_error = 0.0;       ///< |x(end) - x1|
-  double orientation_error = 0.0;    ///< |LogSO3(A1^T A(end))| in rad
-  double total_time = 0.0;           ///< time from the first impulse to the end
+  double position_error = 0.0;     ///< |x(end) - x1|
+  double orientation_error = 0.0;  ///< |LogSO3(A1^T A(end))| in rad
+  double total_time = 0.0;         ///< time from the first impulse to the end
   Eigen::Vector2d x_final = Eigen::Vector2d::Zero();
   Eigen::Matrix3d A_final = Eigen::Matrix3d::Identity();
-  double mu_final = 0.0;             ///< energy at the end (nominal lambda)
-  double lambda = 0.0;               ///< the ball's true lambda in this trial
-  int exact_solves = 0;              ///< feedback_exact: exact re-plans that arrived
-  int exact_failures = 0;            ///< ... that did not (the last exact plan goes on, else a join)
+  double mu_final = 0.0;   ///< energy at the end (nominal lambda)
+  double lambda = 0.0;     ///< the ball's true lambda in this trial
+  int exact_solves = 0;    ///< feedback_exact: exact re-plans that arrived
+  int exact_failures = 0;  ///< ... that did not (the last exact plan goes on, else a join)
 
   /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == ExecutionStatus::kCompleted; }
@@ -135,12 +135,13 @@ struct PulseDurationChoice {
 /// scales by (0.9 tolerance / error)^(1/2) (centred; causal: ^1, docs/rig.md), caps at the shortest flight,
 /// and verifies by executing, halving (at most 8 times) while the error exceeds the tolerance.
 /// Throws std::invalid_argument naming `tolerance` when it is not finite and > 0.
-PulseDurationChoice ChoosePulseDuration(const std::shared_ptr<const NominalPlan>& nominal, double tolerance,
+PulseDurationChoice ChoosePulseDuration(const std::shared_ptr<const NominalPlan>& nominal,
+                                        double tolerance,
                                         bool causal = false);
 
 /// Executes one trial. Throws std::invalid_argument naming the field for a missing nominal plan,
-/// a plan that is not usable, invalid errors or options, pulses that do not fit the plan's flights; a lost ball or a failed integration is a
-/// status. The result depends only on (nominal, strategy, errors, seed, trial, options).
+/// a plan that is not usable, invalid errors or options, pulses that do not fit the plan's flights; a lost ball or a
+/// failed integration is a status. The result depends only on (nominal, strategy, errors, seed, trial, options).
 ExecutionSummary Execute(const ExecutionProblem& problem, const ExecutionOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

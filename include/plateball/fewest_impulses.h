@@ -52,9 +52,9 @@
 // when 2n < m), its row the closest feasible arrival of the constrained solver with the limits that
 // block it. With a tick, a count whose free unknowns (n turns, + 1 for the last flight without a
 // stop) are fewer than m is kGenericallyImpossible: each of the countably many choices of grid
-// times leaves a null set of goals. Limits that every candidate meets change nothing: the summary is the one without them,
-// bit for bit. When no count is reached within the limits but some count arrives without them, the
-// status is kLimitsNotMet naming the blocking limits.
+// times leaves a null set of goals. Limits that every candidate meets change nothing: the summary is the one without
+// them, bit for bit. When no count is reached within the limits but some count arrives without them, the status is
+// kLimitsNotMet naming the blocking limits.
 //
 // The objective "fewest" (ArrivalObjective::kFewest) is this search: the fewest count reached; ties
 // within that count (several arrivals) are broken by the shortest total time found, then by the
@@ -62,8 +62,8 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <optional>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -89,11 +89,11 @@ std::string ToString(FewestImpulsesStatus status);
 
 /// What is known of one impulse count after the search (see the header comment, "What is proved").
 enum class FewestCountVerdict {
-  kReached,                ///< an arrival within the window was found and re-integrated
+  kReached,  ///< an arrival within the window was found and re-integrated
   /// 2n < conditions, or with a rig tick fewer free unknowns than conditions (n turns, + 1 for the
   /// last flight without a stop; the grid times are countably many): no generic goal is reachable (Sard)
   kGenericallyImpossible,
-  kNotFound,               ///< 2n >= conditions and no start arrived: not found, NOT proved impossible
+  kNotFound,  ///< 2n >= conditions and no start arrived: not found, NOT proved impossible
 };
 /// "reached", "generically_impossible" or "not_found", as in the JSON.
 std::string ToString(FewestCountVerdict verdict);
@@ -101,14 +101,14 @@ std::string ToString(FewestCountVerdict verdict);
 struct FewestImpulsesProblem {
   BallModel model = BallModel::FromLambda(1.0);
   AngleState initial{M_PI / 3, 0.4, 0.1};  ///< (theta, phi, psi) at the start (psi: reference of s_0 from rest)
-  double mu = 1.0;                          ///< energy of the motion, > 0
+  double mu = 1.0;                         ///< energy of the motion, > 0
   Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();  ///< start orientation (turned onto the axis)
   Eigen::Vector2d x0 = Eigen::Vector2d::Zero();
-  bool start_at_rest = false;  ///< the ball is at rest at the start (first impulse 0 -> mu)
-  bool stop_at_goal = false;   ///< one more impulse at the goal brings omega to zero
+  bool start_at_rest = false;                        ///< the ball is at rest at the start (first impulse 0 -> mu)
+  bool stop_at_goal = false;                         ///< one more impulse at the goal brings omega to zero
   Eigen::Vector2d x1 = Eigen::Vector2d::UnitX();     ///< goal position (ignored with orientation_only)
   Eigen::Matrix3d A1 = Eigen::Matrix3d::Identity();  ///< goal orientation
-  bool orientation_only = false;  ///< only the orientation is prescribed (three conditions)
+  bool orientation_only = false;                     ///< only the orientation is prescribed (three conditions)
   /// The rig's limits (rig_limits.h; needs the goal position: not with orientation_only); empty: none.
   RigLimits limits;
   /// The masses behind the impulse bounds (limits.max_plate_impulse, limits.max_force) and the
@@ -119,9 +119,9 @@ struct FewestImpulsesProblem {
 struct FewestImpulsesOptions {
   static constexpr int kMaxImpulses = 20;
   static constexpr int kMaxStarts = 10000;
-  int max_impulses = 6;    ///< largest count searched, in [1, kMaxImpulses]
-  int pareto_counts = 3;   ///< rows of the Pareto table from the fewest count up, in [1, kMaxImpulses]
-  int starts = 24;         ///< starts per count, in [1, kMaxStarts]
+  int max_impulses = 6;        ///< largest count searched, in [1, kMaxImpulses]
+  int pareto_counts = 3;       ///< rows of the Pareto table from the fewest count up, in [1, kMaxImpulses]
+  int starts = 24;             ///< starts per count, in [1, kMaxStarts]
   int arrivals_per_count = 4;  ///< a count stops after this many arrivals, in [1, kMaxStarts]
   /// Starts in all (the first `starts` included) for a count with 2n >= conditions that no start
   /// reached, in [0, kMaxStarts]; at most `starts` are tried when smaller.
@@ -130,11 +130,11 @@ struct FewestImpulsesOptions {
   /// 2 pi) / sqrt(mu): one and a half times the time to roll the distance, the turn and a full turn
   /// at the speed sqrt(mu). Starts take total times in [0.1, 0.9] of the window.
   double max_total_time = 0.0;
-  int max_iterations = 15;                ///< Levenberg-Marquardt iterations per start, in [1, 10000]
-  double position_tolerance = 1e-12;      ///< |x(T) - x1| to reach
-  double orientation_tolerance = 1e-10;   ///< rad
-  IntegrationOptions integration{1e-14, 1e-14, 2'000'000};         ///< final rollouts
-  IntegrationOptions search_integration{1e-8, 1e-8, 2'000'000};    ///< rollouts + Jacobians of the search
+  int max_iterations = 15;                                  ///< Levenberg-Marquardt iterations per start, in [1, 10000]
+  double position_tolerance = 1e-12;                        ///< |x(T) - x1| to reach
+  double orientation_tolerance = 1e-10;                     ///< rad
+  IntegrationOptions integration{1e-14, 1e-14, 2'000'000};  ///< final rollouts
+  IntegrationOptions search_integration{1e-8, 1e-8, 2'000'000};  ///< rollouts + Jacobians of the search
   /// Called on the calling thread before each start of the search with the count n being searched
   /// and the starts tried so far in all counts; may throw to abandon the search (the exception
   /// propagates out of SolveFewestImpulses). Empty: no calls.
@@ -146,10 +146,10 @@ struct FewestImpulsesOptions {
 
 /// One count n of the search (a row of the Pareto table when it arrived).
 struct FewestImpulsesCount {
-  int impulses = 0;       ///< n
-  int starts = 0;         ///< starts tried
-  int arrived = 0;        ///< starts that arrived exactly within the window
-  bool reached = false;   ///< arrived > 0
+  int impulses = 0;      ///< n
+  int starts = 0;        ///< starts tried
+  int arrived = 0;       ///< starts that arrived exactly within the window
+  bool reached = false;  ///< arrived > 0
   FewestCountVerdict verdict = FewestCountVerdict::kNotFound;
   /// The arrival was found by continuation from count n + 1 (a flight shrunk to zero).
   bool by_continuation = false;
@@ -171,10 +171,10 @@ struct FewestImpulsesCount {
   /// the straight line x0 -> x1 cut into n equal parts (exact_arrival.h's deviation for that line).
   double deviation = 0.0;
   // With limits:
-  int within_limits = 0;             ///< arrivals that met the limits (reached = within_limits > 0)
-  std::vector<std::string> active;   ///< limits active at the row's arrival (when reached)
+  int within_limits = 0;              ///< arrivals that met the limits (reached = within_limits > 0)
+  std::vector<std::string> active;    ///< limits active at the row's arrival (when reached)
   std::vector<std::string> blocking;  ///< not reached: limits active at the closest feasible arrival
-  std::optional<RigCheck> check;     ///< when reached: the independent replay check (passed)
+  std::optional<RigCheck> check;      ///< when reached: the independent replay check (passed)
 };
 
 /// A default-constructed summary says "not run".
@@ -189,10 +189,10 @@ struct FewestImpulsesSummary {
   double max_total_time = 0.0;              ///< the window used
   std::string searched;                     ///< what was searched, in words
   int rollouts = 0;                         ///< trajectories integrated
-  bool limited = false;     ///< the problem had limits: rows are reached only within them
-  int constrained_solves = 0;  ///< constrained solver runs (candidates that needed it)
-  int evaluations = 0;         ///< SLSQP evaluations of those runs
-  std::vector<std::string> blocking;  ///< kLimitsNotMet: the limits that blocked the counts that arrived
+  bool limited = false;                     ///< the problem had limits: rows are reached only within them
+  int constrained_solves = 0;               ///< constrained solver runs (candidates that needed it)
+  int evaluations = 0;                      ///< SLSQP evaluations of those runs
+  std::vector<std::string> blocking;        ///< kLimitsNotMet: the limits that blocked the counts that arrived
 
   /// True when the status gives a result that may be used.
   bool IsSolutionUsable() const { return status == FewestImpulsesStatus::kFound; }
@@ -212,4 +212,4 @@ FewestImpulsesSummary SolveFewestImpulses(const FewestImpulsesProblem& problem,
 /// straight line x0 -> x1 (x0 -> x0 + e1 when they coincide).
 ExactArrivalProblem ReplayProblemFor(const FewestImpulsesProblem& problem, int impulses);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -65,7 +65,9 @@ struct FieldSpec {
     hint = why;
     return Check(FieldCheck::kNonNegative, 0.0, hi);
   }
-  FieldSpec& Tolerance() { return Check(FieldCheck::kTolerance, 1e-15, 1.0); }  ///< An integration tolerance, in [1e-15, 1).
+  FieldSpec& Tolerance() {
+    return Check(FieldCheck::kTolerance, 1e-15, 1.0);
+  }  ///< An integration tolerance, in [1e-15, 1).
   FieldSpec& Closed(double lo, double hi) { return Check(FieldCheck::kClosed, lo, hi); }  ///< A number in [lo, hi].
   FieldSpec& NotInFile() {
     in_file = false;

@@ -3,9 +3,8 @@
 // the free motion. Units: those of `PhysicalParameters` (SI), time in s, omega in rad/s.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "plateball/ball_model.h"
 #include "plateball/export.h"
@@ -23,7 +22,7 @@ Eigen::Vector2d MomentumRate(const PhysicalParameters& physical, const Eigen::Ve
 /// A constant force impulse / duration on the upper plate over [start, start + duration].
 struct Pulse {
   double start = 0.0;
-  double duration = 0.0;                           ///< > 0
+  double duration = 0.0;                              ///< > 0
   Eigen::Vector3d impulse = Eigen::Vector3d::Zero();  ///< J, e.g. PlateImpulseFor(...).plate
 };
 
@@ -39,7 +38,11 @@ struct PulsedState {
 /// edge. Pulses must lie in [t0, t1], be sorted and not overlap. Throws std::invalid_argument naming
 /// the field ("pulses[K].start: value V: ...") for bad input, std::runtime_error when the integration
 /// fails (step limit).
-PulsedState RunPulsed(const PhysicalParameters& physical, const PulsedState& initial, double t0, double t1,
-                      const std::vector<Pulse>& pulses, const IntegrationOptions& options = {});
+PulsedState RunPulsed(const PhysicalParameters& physical,
+                      const PulsedState& initial,
+                      double t0,
+                      double t1,
+                      const std::vector<Pulse>& pulses,
+                      const IntegrationOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

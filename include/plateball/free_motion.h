@@ -39,8 +39,11 @@ class FreeMotion {
   /// Throws std::invalid_argument for an invalid state (naming the field), mu = 0 (a ball at
   /// rest has no period), a non-rotation A0 or invalid options.
   FreeMotion(const BallModel& model, const FreeMotionStart& start, const IntegrationOptions& options = {});
-  /// The free motion from the angles (theta, phi, psi), energy mu, contact point x0 and orientation A0; throws as the constructor.
-  static FreeMotion FromAngles(const BallModel& model, const AngleState& angles, double mu,
+  /// The free motion from the angles (theta, phi, psi), energy mu, contact point x0 and orientation A0; throws as the
+  /// constructor.
+  static FreeMotion FromAngles(const BallModel& model,
+                               const AngleState& angles,
+                               double mu,
                                const Eigen::Vector2d& x0 = Eigen::Vector2d::Zero(),
                                const Eigen::Matrix3d& A0 = Eigen::Matrix3d::Identity(),
                                const IntegrationOptions& options = {});
@@ -89,8 +92,9 @@ class FreeMotion {
 
 /// Direct integration (no use of periodicity) of the chart-free equations from `start`,
 /// reporting the given non-decreasing times. The second method the tests compare against.
-std::vector<MotionSample> IntegrateFreeMotion(const BallModel& model, const FreeMotionStart& start,
+std::vector<MotionSample> IntegrateFreeMotion(const BallModel& model,
+                                              const FreeMotionStart& start,
                                               const std::vector<double>& times,
                                               const IntegrationOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

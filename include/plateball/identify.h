@@ -113,11 +113,11 @@ struct IdentifyOptions {
 };
 
 enum class IdentifyStatus {
-  kNotRun,                ///< default: nothing was fitted
-  kIdentified,            ///< lambda, mu and the state fitted, lambda identified
-  kLambdaNotIdentified,   ///< mu and the state fitted; the track carries no (or too little) information on lambda
-  kNoFit,                 ///< no free motion fits the track (the residual is reported)
-  kFailed,                ///< the solver or an integration failed (message)
+  kNotRun,               ///< default: nothing was fitted
+  kIdentified,           ///< lambda, mu and the state fitted, lambda identified
+  kLambdaNotIdentified,  ///< mu and the state fitted; the track carries no (or too little) information on lambda
+  kNoFit,                ///< no free motion fits the track (the residual is reported)
+  kFailed,               ///< the solver or an integration failed (message)
 };
 /// The status as the JSON spells it (e.g. "identified", "lambda_not_identified").
 std::string ToString(IdentifyStatus status);
@@ -130,7 +130,7 @@ inline constexpr const char* kIdentifyParameterNames[7] = {"lambda", "mu", "thet
 /// The fitted state at the start of one flight: just after its impulse (the first flight: at t_ref).
 struct IdentifiedFlight {
   double t_start = 0.0;
-  AngleState angles;                          ///< canonical (theta in [0, pi])
+  AngleState angles;                            ///< canonical (theta in [0, pi])
   Eigen::Vector2d x = Eigen::Vector2d::Zero();  ///< contact point (radii)
 };
 
@@ -142,9 +142,9 @@ struct IdentifySummary {
   double t_ref = 0.0;
   double lambda = 0.0;
   double mu = 0.0;
-  AngleState angles;                          ///< (theta, phi, psi) at t_ref, theta in [0, pi]
+  AngleState angles;                             ///< (theta, phi, psi) at t_ref, theta in [0, pi]
   Eigen::Vector2d x0 = Eigen::Vector2d::Zero();  ///< contact point at t_ref (radii)
-  double period = 0.0;                        ///< 2 pi / sqrt(mu)
+  double period = 0.0;                           ///< 2 pi / sqrt(mu)
   /// The impulse times (IdentifyProblem::impulse_times) and the fitted delta_psi of each, in
   /// (-pi, pi].
   std::vector<double> impulse_times;
@@ -190,13 +190,13 @@ struct IdentifySummary {
   bool straight_path = false;
   // Residuals.
   int samples = 0;
-  int residuals = 0;  ///< 2 per sample, one per measured spin, 3 per orientation, 3 per body rate
-  double rms_residual = 0.0;      ///< sqrt(mean of the squared coordinate residuals), radii
-  double max_residual = 0.0;      ///< largest |x_i - x(t_i)|, radii
-  double sigma = 0.0;             ///< noise used for the errors (given mean or estimated)
+  int residuals = 0;          ///< 2 per sample, one per measured spin, 3 per orientation, 3 per body rate
+  double rms_residual = 0.0;  ///< sqrt(mean of the squared coordinate residuals), radii
+  double max_residual = 0.0;  ///< largest |x_i - x(t_i)|, radii
+  double sigma = 0.0;         ///< noise used for the errors (given mean or estimated)
   bool sigma_estimated = true;
-  double chi_square = 0.0;        ///< sum of squared weighted residuals
-  double track_spread = 0.0;      ///< RMS distance of the track from its mean, radii
+  double chi_square = 0.0;              ///< sum of squared weighted residuals
+  double track_spread = 0.0;            ///< RMS distance of the track from its mean, radii
   std::vector<Eigen::Vector2d> fitted;  ///< the fitted x(t_i), radii
   /// With a measured spin: the fitted v0(t_i), and the RMS and largest |v0(t_i) - v0_i|.
   std::vector<double> fitted_spin;
@@ -213,9 +213,9 @@ struct IdentifySummary {
   std::vector<Eigen::Vector3d> fitted_body_rate;
   double body_rate_rms_residual = 0.0;
   double body_rate_max_residual = 0.0;
-  int starts = 0;                 ///< multi-start fits run
-  int iterations = 0;             ///< solver iterations of the final fit
-  int profile_fits = 0;           ///< fits at fixed lambda for the profile interval
+  int starts = 0;        ///< multi-start fits run
+  int iterations = 0;    ///< solver iterations of the final fit
+  int profile_fits = 0;  ///< fits at fixed lambda for the profile interval
 
   /// True when lambda, mu and the state were all identified.
   bool IsSolutionUsable() const { return status == IdentifyStatus::kIdentified; }
@@ -230,4 +230,4 @@ struct IdentifySummary {
 /// no free motion fits is the status kNoFit with its residual.
 IdentifySummary Identify(const IdentifyProblem& problem, const IdentifyOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -12,8 +12,8 @@ namespace plateball PLATEBALL_EXPORT {
 
 /// What an impulse does to the ball and what the upper plate must do to realise it.
 struct Impulse {
-  AngleState before;                 ///< (theta, phi, psi) just before
-  AngleState after;                  ///< just after (theta, phi unchanged)
+  AngleState before;  ///< (theta, phi, psi) just before
+  AngleState after;   ///< just after (theta, phi unchanged)
   double mu_before = 0.0;
   double mu_after = 0.0;
   Eigen::Vector3d delta_u = Eigen::Vector3d::Zero();      ///< jump of u, from (15)-(17)
@@ -37,4 +37,4 @@ Impulse EnergyChangingImpulse(const AngleState& angles, double mu, double factor
 /// Same as EnergyChangingImpulse with the target energy given: factor = sqrt(mu_after / mu).
 Impulse ImpulseToEnergy(const AngleState& angles, double mu, double mu_after, const BallModel& model);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -41,7 +41,7 @@ struct EnergyChange {
 struct PlanProblem {
   BallModel model = BallModel::FromLambda(1.0);
   AngleState initial{M_PI / 3, 0.4, 0.1};  ///< (theta, phi, psi) at the start
-  double mu = 1.0;                          ///< initial energy, eq. (9), > 0
+  double mu = 1.0;                         ///< initial energy, eq. (9), > 0
   /// Initial orientation R_WB, rotated minimally so that A0 e3 = z (AlignOrientationToAxis).
   Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();
   /// The planned path (default: the unit segment from the origin along x).
@@ -52,14 +52,14 @@ struct PlanProblem {
 };
 
 struct PlanOptions {
-  JoinOptions join;                 ///< per-segment join (tolerances, local-branch factor)
+  JoinOptions join;  ///< per-segment join (tolerances, local-branch factor)
   /// A segment beyond the join's local radius is connected by Reach (reach.h, earliest solution)
   /// so that coarse partitions still give a plan; false: such a segment ends the plan with
   /// kSegmentBeyondLocalRadius.
   bool reach_fallback = true;
-  ReachOptions reach;               ///< options of that fallback (integration: join's)
-  IntegrationOptions integration;   ///< arcs with orientation and the rolling reference
-  int bound_samples = 5;            ///< samples of p', p'' per segment for the bounds (>= 2)
+  ReachOptions reach;              ///< options of that fallback (integration: join's)
+  IntegrationOptions integration;  ///< arcs with orientation and the rolling reference
+  int bound_samples = 5;           ///< samples of p', p'' per segment for the bounds (>= 2)
 
   /// Empty when the options are valid; else a message naming the field and its value.
   std::string Validate() const;
@@ -67,9 +67,9 @@ struct PlanOptions {
 
 /// One segment k: the impulse at p(tau_k) and the free arc to p(tau_k+1).
 struct PlanStep {
-  int piece = 0;           ///< smooth piece of the path
-  int index = 0;           ///< k within the piece
-  int global_index = 0;    ///< k over the whole plan
+  int piece = 0;         ///< smooth piece of the path
+  int index = 0;         ///< k within the piece
+  int global_index = 0;  ///< k over the whole plan
   double tau_begin = 0.0, tau_end = 0.0;
   Eigen::Vector2d p_begin = Eigen::Vector2d::Zero();  ///< p(tau_k)
   Eigen::Vector2d p_end = Eigen::Vector2d::Zero();    ///< p(tau_k+1)
@@ -83,11 +83,11 @@ struct PlanStep {
   BallState state_before;               ///< on arrival at p(tau_k), before any impulse
   BallState state_after;                ///< on arrival at p(tau_k+1)
   AngleState angles_before, angles_after;
-  double mu = 0.0;                      ///< energy on this arc
+  double mu = 0.0;                                  ///< energy on this arc
   Eigen::Vector2d x_end = Eigen::Vector2d::Zero();  ///< contact point reached (independent arc integration)
-  double pass_miss = 0.0;               ///< |x_end - p(tau_k+1)|
+  double pass_miss = 0.0;                           ///< |x_end - p(tau_k+1)|
   JoinStatus join_status = JoinStatus::kConverged;
-  bool reached_globally = false;        ///< connected by the Reach fallback, not the local join
+  bool reached_globally = false;  ///< connected by the Reach fallback, not the local join
   double join_residual = 0.0;
   int join_iterations = 0;
   Eigen::Matrix3d A_planned = Eigen::Matrix3d::Identity();    ///< A(tau_k+1) rolling along p
@@ -95,8 +95,8 @@ struct PlanStep {
   Eigen::Matrix3d A_impulsive = Eigen::Matrix3d::Identity();  ///< Atilde_k+1 of the impulsive trajectory
   double path_max_speed = 0.0, path_max_acceleration = 0.0;   ///< max |p'|, |p''| on [tau_k, tau_k+1]
   double arc_max_speed = 0.0, arc_max_acceleration = 0.0;     ///< max |x'|, |x''| on the arc
-  double path_bound = 0.0;  ///< ||R_k - S_k|| <= max|p'| max|p''| h^3 / 12
-  double arc_bound = 0.0;   ///< ||S_k - Rtilde_k|| <= max|x'| max|x''| t_k^3 / 12
+  double path_bound = 0.0;                                    ///< ||R_k - S_k|| <= max|p'| max|p''| h^3 / 12
+  double arc_bound = 0.0;                                     ///< ||S_k - Rtilde_k|| <= max|x'| max|x''| t_k^3 / 12
 };
 
 /// A default-constructed summary says "not run".
@@ -110,15 +110,15 @@ struct PlanSummary {
   PlanStatus status = PlanStatus::kNotRun;
   std::string message = "not run";  ///< why, when not kSuccess
   std::vector<PlanStep> steps;
-  double total_time = 0.0;        ///< physical time of the whole impulsive trajectory
-  double max_pass_miss = 0.0;     ///< max_k |x(t_k) - p(tau_k)|
+  double total_time = 0.0;     ///< physical time of the whole impulsive trajectory
+  double max_pass_miss = 0.0;  ///< max_k |x(t_k) - p(tau_k)|
   double max_join_residual = 0.0;
   Eigen::Matrix3d A_planned = Eigen::Matrix3d::Identity();    ///< A(T)
   Eigen::Matrix3d A_polyline = Eigen::Matrix3d::Identity();   ///< Abar_n
   Eigen::Matrix3d A_impulsive = Eigen::Matrix3d::Identity();  ///< Atilde_n
-  double measured_error = 0.0;   ///< ||A(T) - Atilde_n|| (operator norm)
-  double polyline_error = 0.0;   ///< ||A(T) - Abar_n||
-  ErrorBounds bounds;            ///< bounds.a_posteriori is the reported bound
+  double measured_error = 0.0;                                ///< ||A(T) - Atilde_n|| (operator norm)
+  double polyline_error = 0.0;                                ///< ||A(T) - Abar_n||
+  ErrorBounds bounds;                                         ///< bounds.a_posteriori is the reported bound
   BallState final_state;
   double mu_final = 0.0;
 
@@ -135,4 +135,4 @@ struct PlanSummary {
 /// factors, mu, A0, options); a join or an integration that fails is a status.
 PlanSummary PlanImpulses(const PlanProblem& problem, const PlanOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

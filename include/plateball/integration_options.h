@@ -27,4 +27,4 @@ struct IntegrationOptions {
   }
 };
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -90,18 +90,18 @@ struct IsoparallelOptions {
   /// max_length and integration come from elsewhere in a file).
   template <class Archive>
   void Serialize(Archive* a) {
-    a->Visit(PLATEBALL_FIELD(starts, "shapes scanned (general targets) or shooting starts (identity targets)")
-                 .Counts(1, kMaxStarts),
-             PLATEBALL_FIELD(length_cap_factor, "report solutions up to this times the shortest length")
-                 .Closed(1.0, kMaxLengthCapFactor),
-             PLATEBALL_FIELD(max_iterations, "Levenberg-Marquardt iterations per local solve").Counts(1, kMaxIterations),
-             PLATEBALL_FIELD(tolerance, "accepted |LogSO3| orientation residual (radians)").Tolerance(),
-             PLATEBALL_FIELD(threads, "worker threads (results do not depend on it)").Counts(1, kMaxThreads),
-             PLATEBALL_FIELD(seed, "scrambles the shooting's start sequence at an identity target").NotInFile(),
-             PLATEBALL_FIELD(max_length, "longest path searched before a shortest one is known; 0: automatic")
-                 .NotInFile(),
-             PLATEBALL_FIELD(enumerate_families, "identity targets: enumerate the families (false: multi-start shooting)"),
-             PLATEBALL_FIELD(integration, "tolerances and step bound of the verification by rolling").NotInFile());
+    a->Visit(
+        PLATEBALL_FIELD(starts, "shapes scanned (general targets) or shooting starts (identity targets)")
+            .Counts(1, kMaxStarts),
+        PLATEBALL_FIELD(length_cap_factor, "report solutions up to this times the shortest length")
+            .Closed(1.0, kMaxLengthCapFactor),
+        PLATEBALL_FIELD(max_iterations, "Levenberg-Marquardt iterations per local solve").Counts(1, kMaxIterations),
+        PLATEBALL_FIELD(tolerance, "accepted |LogSO3| orientation residual (radians)").Tolerance(),
+        PLATEBALL_FIELD(threads, "worker threads (results do not depend on it)").Counts(1, kMaxThreads),
+        PLATEBALL_FIELD(seed, "scrambles the shooting's start sequence at an identity target").NotInFile(),
+        PLATEBALL_FIELD(max_length, "longest path searched before a shortest one is known; 0: automatic").NotInFile(),
+        PLATEBALL_FIELD(enumerate_families, "identity targets: enumerate the families (false: multi-start shooting)"),
+        PLATEBALL_FIELD(integration, "tolerances and step bound of the verification by rolling").NotInFile());
   }
 };
 
@@ -120,9 +120,9 @@ struct IsoparallelSolution {
   double length = 0.0;
   /// Which crossing of the circle |x - x0| = |x1 - x0| ends the path: 1 + the roots before the end.
   int crossing = 1;
-  double G = 0.0;           ///< pendulum "gravity" |W| (1/length^2); R ~ 1/sqrt(G)
-  double energy = 0.0;      ///< pendulum energy E = theta'^2/2 - G cos(theta)
-  double periods = 0.0;     ///< length / curvature period
+  double G = 0.0;        ///< pendulum "gravity" |W| (1/length^2); R ~ 1/sqrt(G)
+  double energy = 0.0;   ///< pendulum energy E = theta'^2/2 - G cos(theta)
+  double periods = 0.0;  ///< length / curvature period
   /// A one-parameter family: the path covers a whole number of curvature periods and stays a
   /// solution for every starting phase (e.g. identity target). Counted once; the phase
   /// reported is the canonical one, parameters.phase = 0.
@@ -172,8 +172,8 @@ enum class IsoparallelStatus {
 std::string ToString(IsoparallelStatus status);
 
 enum class IsoparallelMethod {
-  kShooting,            ///< seeded multi-start shooting (general targets)
-  kFamilyEnumeration,   ///< identity target: families enumerated directly
+  kShooting,           ///< seeded multi-start shooting (general targets)
+  kFamilyEnumeration,  ///< identity target: families enumerated directly
 };
 /// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(IsoparallelMethod method);
@@ -226,4 +226,4 @@ IsoparallelSummary SolveIsoparallel(const IsoparallelProblem& problem, const Iso
 /// exceeds integration.max_steps.
 Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution, const IntegrationOptions& integration = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -25,12 +25,12 @@ namespace plateball PLATEBALL_EXPORT {
 
 /// One piece of parameter space and what its certificate gave.
 struct IsoparallelCertificatePiece {
-  std::string name;     ///< e.g. "rotating window, k [0, 0.95], rate [-11.595842, 11.595842]"
-  bool closed = false;  ///< certified (every solution in it proved) or excluded (none in it)
-  std::string result;   ///< the piece certificate's status and message
-  long boxes = 0;       ///< boxes examined
+  std::string name;              ///< e.g. "rotating window, k [0, 0.95], rate [-11.595842, 11.595842]"
+  bool closed = false;           ///< certified (every solution in it proved) or excluded (none in it)
+  std::string result;            ///< the piece certificate's status and message
+  long boxes = 0;                ///< boxes examined
   double resolved_volume = 0.0;  ///< fraction of the piece decided, in [0, 1]
-  int proved = 0;               ///< solutions proved in it (windows only)
+  int proved = 0;                ///< solutions proved in it (windows only)
   double cpu_seconds = 0.0;
 };
 
@@ -78,9 +78,9 @@ struct CertifiedSolution {
 
 struct IsoparallelCertificate {
   IsoparallelCertificateStatus status = IsoparallelCertificateStatus::kNotRun;
-  std::string message = "not run";  ///< why, when not kComplete (empty when complete)
-  double length_cap = 0.0;          ///< every solution of length <= this is certified
-  double straight_residual = 0.0;   ///< delta0: the straight rolling's distance to the target (rad)
+  std::string message = "not run";           ///< why, when not kComplete (empty when complete)
+  double length_cap = 0.0;                   ///< every solution of length <= this is certified
+  double straight_residual = 0.0;            ///< delta0: the straight rolling's distance to the target (rad)
   std::vector<CertifiedSolution> solutions;  ///< proved solutions, sorted by length
   /// Indices of the solver's solutions of length <= length_cap that no piece proved. Empty when
   /// complete (a solver's solution outside the proved list would contradict the certificate,
@@ -109,4 +109,4 @@ struct IsoparallelCertificate {
 IsoparallelCertificate CertifyIsoparallel(const IsoparallelSummary& solved,
                                           const IsoparallelCertificateOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -86,4 +86,4 @@ double SignedRotationAngle(const Eigen::Matrix3d& p, const Eigen::Vector3d& n);
 /// one-period rolling, and transported by the rolling, v(s) = Q(0, s) v(0).
 Eigen::Vector3d ElasticaCostate(const Elastica& e, double s);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -25,11 +25,11 @@ AngleState InitialAnglesFromOrientation(const Eigen::Matrix3d& A0, double psi);
 /// What is asked: the ball at the start of an optimal path and the number of impulses.
 struct IsoparallelPlanProblem {
   BallModel model = BallModel::FromLambda(1.0);
-  double psi = 0.0;  ///< initial psi (theta and phi come from A0 e3)
-  double mu = 1.0;   ///< energy level, eq. (9), > 0
+  double psi = 0.0;                                  ///< initial psi (theta and phi come from A0 e3)
+  double mu = 1.0;                                   ///< energy level, eq. (9), > 0
   Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();  ///< start orientation (a rotation)
-  IsoparallelSolution solution;                       ///< the optimal path to follow
-  int impulses = 12;                                  ///< segments of equal arc length, >= 1
+  IsoparallelSolution solution;                      ///< the optimal path to follow
+  int impulses = 12;                                 ///< segments of equal arc length, >= 1
 };
 
 /// The impulsive approximation with problem.impulses segments of equal arc length (impulses at
@@ -39,4 +39,4 @@ struct IsoparallelPlanProblem {
 /// (options.integration) is a status.
 PlanSummary PlanOptimalPath(const IsoparallelPlanProblem& problem, const PlanOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -59,9 +59,9 @@ struct JoinSummary {
 
   JoinStatus status = JoinStatus::kNotRun;
   std::string message = "not run";  ///< why, when not kConverged (empty when converged)
-  double delta_psi = 0.0;  ///< s of Lemma 2.1, in (-pi, pi]
-  double t = 0.0;          ///< time of flight, >= 0
-  double residual = 0.0;   ///< |x_s(t) - target|
+  double delta_psi = 0.0;           ///< s of Lemma 2.1, in (-pi, pi]
+  double t = 0.0;                   ///< time of flight, >= 0
+  double residual = 0.0;            ///< |x_s(t) - target|
   /// Quasi-Newton steps on rollouts (and Levenberg-Marquardt iterations, where those fail); 0 when
   /// the first rollout (at the guess refined on the Taylor model of a short arc) was already
   /// within the tolerance.
@@ -70,14 +70,14 @@ struct JoinSummary {
   /// a Taylor model of x(s, t) (t sqrt(mu) <= 0.2: checked there; up to 3: as the guess, when the
   /// model's Newton steps converge).
   double initial_guess_residual = 0.0;
-  double time_limit = 0.0;              ///< K1 |target - x0|: the local branch has t <= this
+  double time_limit = 0.0;  ///< K1 |target - x0|: the local branch has t <= this
   /// |det J| / (|J_s| |J_t|) at the solution: sine of the angle between dx/ds and dx/dt
   /// (0 = degenerate polar coordinates). dx/ds is the Taylor model's (to ~1e-6) when iterations = 0.
   double jacobian_conditioning = 0.0;
 
-  Impulse impulse;             ///< the impulse at x0 (delta omega, plate velocity change)
-  BallState state_after;       ///< (z, omega) on arrival at the target, before any next impulse
-  AngleState angles_after;     ///< canonical angles on arrival
+  Impulse impulse;                                    ///< the impulse at x0 (delta omega, plate velocity change)
+  BallState state_after;                              ///< (z, omega) on arrival at the target, before any next impulse
+  AngleState angles_after;                            ///< canonical angles on arrival
   Eigen::Vector2d x_after = Eigen::Vector2d::Zero();  ///< contact point on arrival (~ target)
 
   /// True when the status gives a result that may be used.
@@ -99,4 +99,4 @@ double MinimumContactSpeed(double mu, const BallModel& model);
 /// A chart-free start state enters through AnglesFromState (ball_state.h).
 JoinSummary Join(const JoinProblem& problem, const JoinOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

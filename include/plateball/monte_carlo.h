@@ -50,8 +50,8 @@ struct MonteCarloOptions {
   static constexpr long long kMaxWork = 100'000'000;
   PlanOptions plan;
   ExecutionOptions execution;
-  int threads = 1;       ///< 1 ... 256; the results do not depend on it
-  int sweep_trials = 0;  ///< trials per cell at the sweep's other n (0: `trials`), 0 ... kMaxTrials
+  int threads = 1;          ///< 1 ... 256; the results do not depend on it
+  int sweep_trials = 0;     ///< trials per cell at the sweep's other n (0: `trials`), 0 ... kMaxTrials
   bool keep_trials = true;  ///< keep every trial's record in the summary
   /// Called after each task with (tasks done, tasks to do), on the thread that ran it (the calling
   /// thread among them); may throw to abandon the run: each thread stops at its next task and the
@@ -169,10 +169,10 @@ class MonteCarloWork {
   std::vector<SweepSeries> MakeSweeps(const MonteCarloSummary& summary) const;
   MonteCarloProblem problem_;
   MonteCarloOptions options_;
-  std::vector<int> ns_;                               // main n first, then the sweep's others
-  std::shared_ptr<const NominalPlan> main_;           // the main n's plan; the others are re-planned
-  std::vector<NominalInfo> info_;                     // per n (in ns_ order): what the summary reports
-  std::vector<long long> offsets_;                    // first task of each n
+  std::vector<int> ns_;                      // main n first, then the sweep's others
+  std::shared_ptr<const NominalPlan> main_;  // the main n's plan; the others are re-planned
+  std::vector<NominalInfo> info_;            // per n (in ns_ order): what the summary reports
+  std::vector<long long> offsets_;           // first task of each n
   long long total_ = 0;
   bool planned_ = true;
 };
@@ -180,4 +180,4 @@ class MonteCarloWork {
 /// Runs every task on this process: MonteCarloWork(problem, options).Summarize(Run(0, TaskCount())).
 MonteCarloSummary RunMonteCarlo(const MonteCarloProblem& problem, const MonteCarloOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

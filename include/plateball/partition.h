@@ -22,7 +22,9 @@ std::vector<double> ExplicitPartition(const SmoothCurve& curve, const std::vecto
 /// Validates a partition of `curve` (the checks of ExplicitPartition) and throws
 /// std::invalid_argument naming `field`[k] for the first violation, including repeated path
 /// points p(tau_k) == p(tau_{k+1}).
-void ValidatePartition(const SmoothCurve& curve, const std::vector<double>& taus, const std::string& field = "partition");
+void ValidatePartition(const SmoothCurve& curve,
+                       const std::vector<double>& taus,
+                       const std::string& field = "partition");
 
 /// n equal steps of the parameter of a piece (n >= 1).
 struct UniformParameter {
@@ -44,7 +46,8 @@ std::string ToString(const PartitionRule& rule);
 /// One partition per smooth piece of `path`: `rules` holds one rule per piece, or a single rule
 /// that applies to every piece. Throws std::invalid_argument naming `field`[i] for an invalid
 /// rule or a rule count that is neither 1 nor the piece count.
-std::vector<std::vector<double>> MakePartition(const Path& path, const std::vector<PartitionRule>& rules,
+std::vector<std::vector<double>> MakePartition(const Path& path,
+                                               const std::vector<PartitionRule>& rules,
                                                const std::string& field = "partition");
 
 /// ||P||_p = max_k |p(tau_{k+1}) - p(tau_k)|.
@@ -52,4 +55,4 @@ double PointNorm(const SmoothCurve& curve, const std::vector<double>& taus);
 /// ||P||_[0,T] = max_k (tau_{k+1} - tau_k).
 double ParameterNorm(const std::vector<double>& taus);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

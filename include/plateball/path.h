@@ -33,15 +33,18 @@ class SmoothCurve {
   /// p = center + radius (cos tau, sin tau).
   static SmoothCurve Circle(const Eigen::Vector2d& center, double radius, double tau_begin, double tau_end);
   /// p = center + Rot(rotation) (a cos tau, b sin tau) with (a, b) = semi_axes.
-  static SmoothCurve Ellipse(const Eigen::Vector2d& center, const Eigen::Vector2d& semi_axes, double rotation,
-                             double tau_begin, double tau_end);
+  static SmoothCurve Ellipse(const Eigen::Vector2d& center,
+                             const Eigen::Vector2d& semi_axes,
+                             double rotation,
+                             double tau_begin,
+                             double tau_end);
   /// Lemniscate of Bernoulli of half-width `scale`:
   /// p = center + Rot(rotation) scale (cos tau, sin tau cos tau) / (1 + sin^2 tau).
-  static SmoothCurve Lemniscate(const Eigen::Vector2d& center, double scale, double rotation, double tau_begin,
-                                double tau_end);
+  static SmoothCurve Lemniscate(
+      const Eigen::Vector2d& center, double scale, double rotation, double tau_begin, double tau_end);
   /// p = from + Rot(rotation) (tau, amplitude sin(2 pi tau / wavelength)), tau in [0, length].
-  static SmoothCurve Sine(const Eigen::Vector2d& from, double rotation, double length, double amplitude,
-                          double wavelength);
+  static SmoothCurve Sine(
+      const Eigen::Vector2d& from, double rotation, double length, double amplitude, double wavelength);
   /// Natural C^2 cubic spline through the samples, tau = cumulative chord length.
   static SmoothCurve Samples(const std::vector<Eigen::Vector2d>& points);
   /// Any analytic curve given by its value and first and second derivatives on [tau_begin, tau_end]
@@ -49,8 +52,8 @@ class SmoothCurve {
   /// there; the speed check applies.
   using CurveFunction = std::function<Eigen::Vector2d(double)>;
   /// A curve from its value and derivative functions (see CurveFunction).
-  static SmoothCurve Custom(CurveFunction value, CurveFunction derivative, CurveFunction second_derivative,
-                            double tau_begin, double tau_end);
+  static SmoothCurve Custom(
+      CurveFunction value, CurveFunction derivative, CurveFunction second_derivative, double tau_begin, double tau_end);
 
   /// Which kind of curve this is.
   CurveKind kind() const { return kind_; }
@@ -126,4 +129,4 @@ class Path {
   std::vector<SmoothCurve> pieces_;
 };
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

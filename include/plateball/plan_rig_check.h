@@ -21,8 +21,11 @@ namespace plateball PLATEBALL_EXPORT {
 /// against the impulse bound (PlateImpulseFor; without `physical` that bound is not checked); its
 /// time against the tick grid (exactly) and the flight before the next against min_interval.
 /// Tolerances as CheckRigLimits'. Throws std::invalid_argument for samples_per_arc < 1.
-RigCheck CheckPlanRigLimits(const PlanProblem& problem, const PlanSummary& plan, const RigLimits& limits,
-                            const std::optional<PhysicalParameters>& physical, const RigCheckTolerances& tolerances = {},
+RigCheck CheckPlanRigLimits(const PlanProblem& problem,
+                            const PlanSummary& plan,
+                            const RigLimits& limits,
+                            const std::optional<PhysicalParameters>& physical,
+                            const RigCheckTolerances& tolerances = {},
                             int samples_per_arc = 64);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

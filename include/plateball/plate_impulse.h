@@ -36,7 +36,8 @@ struct PlateImpulse {
 ///   2 r e3 x Q = [I delta_omega]_h + M_ball r^2 delta_omega,
 ///   J = Q + M_plate 2 r delta_omega x e3,   G = M_ball r delta_omega x e3 - Q,
 ///   torsion = [I delta_omega]_3 = (I3 - I1) (z . delta_omega) z_3,   I = I1 + (I3 - I1) z z^T.
-PlateImpulse PlateImpulseFor(const PhysicalParameters& physical, const Eigen::Vector3d& z,
+PlateImpulse PlateImpulseFor(const PhysicalParameters& physical,
+                             const Eigen::Vector3d& z,
                              const Eigen::Vector3d& delta_omega);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -73,21 +73,26 @@ typedef struct pb_ball_state {
  * `start` to the contact point goal_x with orientation goal_A exactly (exact_arrival.h, along the
  * segment start.x -> goal_x as reference). Writes min(impulses, capacity) impulses to `out`.
  * PB_NO_SOLUTION when the solver does not arrive. */
-PB_API pb_status pb_steer(double lambda, const pb_ball_state* start, const double goal_x[2], const double goal_A[9],
-                          int impulses, pb_impulse* out, int capacity);
+PB_API pb_status pb_steer(double lambda,
+                          const pb_ball_state* start,
+                          const double goal_x[2],
+                          const double goal_A[9],
+                          int impulses,
+                          pb_impulse* out,
+                          int capacity);
 
 /* ------------------------------------------------------------------ controller */
 typedef enum pb_strategy { PB_FEEDBACK = 0, PB_FEEDBACK_EXACT = 1 } pb_strategy;
 
 typedef struct pb_controller_options {
-  double tick_period;                /**< the loop's tick (s) */
+  double tick_period; /**< the loop's tick (s) */
   pb_strategy strategy;
   double time_budget;                /**< wall-clock seconds per update */
   double jump_tolerance;             /**< radii */
   double orientation_jump_tolerance; /**< rad */
   double rotation_tolerance;
-  int exact_window;                  /**< feedback_exact: exact re-plans while 3..exact_window impulses remain */
-  int plate_impulse;                 /**< 1: report J (the problem file must give physical parameters) */
+  int exact_window;  /**< feedback_exact: exact re-plans while 3..exact_window impulses remain */
+  int plate_impulse; /**< 1: report J (the problem file must give physical parameters) */
 } pb_controller_options;
 /** The defaults of ControllerOptions. */
 PB_API void pb_controller_options_default(pb_controller_options* options);
@@ -103,43 +108,44 @@ typedef enum pb_controller_status {
 } pb_controller_status;
 
 typedef struct pb_measurement {
-  double x[2];          /**< contact point (required) */
-  int has_orientation;  /**< 1: A and omega are given */
+  double x[2];         /**< contact point (required) */
+  int has_orientation; /**< 1: A and omega are given */
   double A[9];
   double omega[3];
 } pb_measurement;
 
 typedef struct pb_command {
   pb_controller_status status;
-  const char* reason;   /**< static text: why a measurement was rejected or the tick failed */
+  const char* reason; /**< static text: why a measurement was rejected or the tick failed */
   long tick;
-  int impulse;          /**< 1: an impulse is due at `tick` */
+  int impulse; /**< 1: an impulse is due at `tick` */
   int impulse_index;
   double delta_psi;
   double delta_omega[3];
   double plate_velocity_change[3];
   int has_plate_impulse;
-  double plate_impulse[3];  /**< J (N s for SI parameters) */
+  double plate_impulse[3]; /**< J (N s for SI parameters) */
   int exact_replan;
-  long next_impulse_tick;   /**< -1: none left */
+  long next_impulse_tick; /**< -1: none left */
   int late;
   int budget_exhausted;
   int measurement_used;
   double x_now[2];
   double A_now[9];
   double omega_now[3];
-  double x_next[2];         /**< predicted just before the next impulse */
+  double x_next[2]; /**< predicted just before the next impulse */
   double A_next[9];
   double omega_next[3];
 } pb_command;
 
 typedef struct pb_controller pb_controller;
 /** A controller for the plan (it shares the plan: the plan handle may be destroyed first). */
-PB_API pb_status pb_controller_create(const pb_plan* plan, const pb_controller_options* options,
-                                      pb_controller** out);
+PB_API pb_status pb_controller_create(const pb_plan* plan, const pb_controller_options* options, pb_controller** out);
 /** One tick; allocates nothing on ticks without a new exact re-plan. PB_OK whatever the
  * controller's status (see command->status); PB_INVALID_INPUT only for null pointers. */
-PB_API pb_status pb_controller_update(pb_controller* controller, double time, const pb_measurement* measurement,
+PB_API pb_status pb_controller_update(pb_controller* controller,
+                                      double time,
+                                      const pb_measurement* measurement,
                                       pb_command* command);
 /** Frees a controller (null: nothing). */
 PB_API void pb_controller_destroy(pb_controller* controller);

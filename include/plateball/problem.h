@@ -136,7 +136,7 @@ struct IsoparallelTask {
 struct SteerTask {
   Eigen::Vector2d goal = Eigen::Vector2d::Zero();
   Eigen::Matrix3d goal_orientation = Eigen::Matrix3d::Identity();
-  int impulses = 12;  ///< n >= 3
+  int impulses = 12;           ///< n >= 3
   bool start_at_rest = false;  ///< the ball starts at rest (first impulse energy-changing)
   bool stop_at_goal = false;   ///< arrive and stop: one more impulse brings omega to zero
   /// What the exact arrival minimises under the rig's limits (rig_limits.h).
@@ -156,7 +156,8 @@ struct SteerTask {
       using O = FewestImpulsesOptions;
       a->Visit(PLATEBALL_FIELD(max_impulses, "largest impulse count searched").Counts(1, O::kMaxImpulses),
                PLATEBALL_FIELD(starts, "starts per count").Counts(1, O::kMaxStarts),
-               PLATEBALL_FIELD(pareto_counts, "rows of the Pareto table from the fewest count up").Counts(1, O::kMaxImpulses),
+               PLATEBALL_FIELD(pareto_counts, "rows of the Pareto table from the fewest count up")
+                   .Counts(1, O::kMaxImpulses),
                PLATEBALL_FIELD(max_total_time, "search window: total time T <= max_total_time")
                    .NonNegative(kMaxTotalTime, "0: automatic"),
                PLATEBALL_FIELD(orientation_only, "only the goal orientation is prescribed (three conditions)"));
@@ -199,4 +200,4 @@ struct Problem {
   std::map<std::string, ExpectedValue> expected;
 };
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -39,7 +39,8 @@ std::string WriteProblemJson(const Problem& p);
 /// {"quaternion": [w, x, y, z]}, {"matrix": [[...], [...], [...]]} or
 /// {"axis_angle": {"axis": [x, y, z], "angle": a}}. `field` names it in messages. Used by tools
 /// that take an orientation on the command line.
-Eigen::Matrix3d ParseOrientation(const std::string& json_text, const std::string& field,
+Eigen::Matrix3d ParseOrientation(const std::string& json_text,
+                                 const std::string& field,
                                  const std::string& source_name = "<command line>");
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -24,8 +24,8 @@ struct ReachProblem {
   /// (-theta, phi + pi, psi) are the same physical state (ball_state.h), so the paper's
   /// theta0 = -pi/3 of Figure 8 is used as written.
   AngleState start;
-  double mu = 1.0;                                  ///< energy level, eq. (9), > 0
-  Eigen::Vector2d x0 = Eigen::Vector2d::Zero();     ///< contact point at the impulse
+  double mu = 1.0;                               ///< energy level, eq. (9), > 0
+  Eigen::Vector2d x0 = Eigen::Vector2d::Zero();  ///< contact point at the impulse
   /// Orientation R_WB at the impulse (FreeMotion::FromAngles puts the start's z on its third
   /// column); only the reported end states use it.
   Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();
@@ -59,26 +59,26 @@ struct ReachOptions {
 };
 
 enum class ReachStatus {
-  kNotRun,                     ///< default: no reach was run
-  kSolved,                     ///< at least one solution with t <= horizon
-  kUnreachableWithinHorizon,   ///< none found; closest_approach says how near the ball gets
-  kNumericalFailure,           ///< an integration failed (step bound); message says where
-  kTargetEqualsStart,          ///< |target - x0| <= tolerance: nothing to reach (t = 0)
+  kNotRun,                    ///< default: no reach was run
+  kSolved,                    ///< at least one solution with t <= horizon
+  kUnreachableWithinHorizon,  ///< none found; closest_approach says how near the ball gets
+  kNumericalFailure,          ///< an integration failed (step bound); message says where
+  kTargetEqualsStart,         ///< |target - x0| <= tolerance: nothing to reach (t = 0)
 };
 /// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(ReachStatus status);
 
 /// One way to reach the target: impulse psi -> psi + delta_psi, then free rolling for time t.
 struct ReachSolution {
-  double delta_psi = 0.0;   ///< s in [0, 2 pi)
-  double t = 0.0;           ///< arrival time, 0 < t <= horizon
-  double periods = 0.0;     ///< t / T
-  double residual = 0.0;    ///< |x_s(t) - target| of the tight integration
+  double delta_psi = 0.0;  ///< s in [0, 2 pi)
+  double t = 0.0;          ///< arrival time, 0 < t <= horizon
+  double periods = 0.0;    ///< t / T
+  double residual = 0.0;   ///< |x_s(t) - target| of the tight integration
   /// det d(x)/d(s, t) at the solution: nonzero for an isolated (transversal) solution; its sign
   /// tells on which side of a fold of the map (s, t) -> x the solution lies.
   double jacobian_determinant = 0.0;
-  Impulse impulse;          ///< the energy-preserving impulse (plate velocity change included)
-  MotionSample end;         ///< state on arrival (z, omega, x, A, angles, energy)
+  Impulse impulse;   ///< the energy-preserving impulse (plate velocity change included)
+  MotionSample end;  ///< state on arrival (z, omega, x, A, angles, energy)
 };
 
 /// The closest the ball comes to the target over s in [0, 2 pi), t in [0, horizon].
@@ -90,8 +90,8 @@ struct ClosestApproach {
 
 struct ReachSummary {
   ReachProblem problem;
-  double period = 0.0;              ///< T = 2 pi / sqrt(mu)
-  double horizon = 0.0;             ///< horizon_periods * T
+  double period = 0.0;   ///< T = 2 pi / sqrt(mu)
+  double horizon = 0.0;  ///< horizon_periods * T
   ReachStatus status = ReachStatus::kNotRun;
   std::string message = "not run";  ///< why, for kNumericalFailure (empty otherwise once run)
   /// Distinct solutions sorted by t (earliest first).
@@ -124,7 +124,8 @@ struct ReachSummary {
 /// Levenberg-Marquardt refinement of (s, t) (Ceres TinySolver, exact Jacobian: dx/dt is the
 /// contact velocity, dx/ds comes from the variational equations); results are de-duplicated and
 /// sorted by t. NLopt's global DIRECT-L search over s of the closest approach runs alongside:
-/// its minimiser is refined the same way, and when nothing is found it gives the closest approach. Throws std::invalid_argument (naming the field) for invalid problem or options.
+/// its minimiser is refined the same way, and when nothing is found it gives the closest approach. Throws
+/// std::invalid_argument (naming the field) for invalid problem or options.
 ReachSummary Reach(const ReachProblem& problem, const ReachOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -84,30 +84,31 @@ struct RigLimits {
   template <class Archive>
   void Serialize(Archive* a) {
     constexpr double kUnbounded = std::numeric_limits<double>::infinity();
-    a->Visit(PLATEBALL_FIELD(plate, "the region the contact point stays in").ByHand(),
-             PLATEBALL_FIELD(obstacles, "regions the contact point stays out of").ByHand(),
-             PLATEBALL_FIELD(clearance, "distance kept from the edges of the plate and the obstacles").NonNegative(),
-             PLATEBALL_FIELD(stroke, "half-ranges of the upper plate's displacement 2 (x - x0) from its start").ByHand(),
-             PLATEBALL_FIELD(max_plate_velocity_change, "largest plate velocity change |2 delta_omega x e3| of one impulse")
-                 .Positive()
-                 .OmittedAt(kUnbounded),
-             PLATEBALL_FIELD(max_plate_impulse, "largest |J| (N s with SI physical parameters); needs ball.physical")
-                 .Positive()
-                 .OmittedAt(kUnbounded),
-             PLATEBALL_FIELD(max_force, "largest mean force |J| / pulse_duration; needs ball.physical and pulse_duration")
-                 .Positive()
-                 .OmittedAt(kUnbounded),
-             PLATEBALL_FIELD(pulse_duration, "duration of a pulse; only with max_force").ByHand(),
-             PLATEBALL_FIELD(min_interval, "shortest time between two impulses").NonNegative().OmittedAt(0.0),
-             PLATEBALL_FIELD(tick, "impulse times are multiples of tick (the control loop's period)")
-                 .Positive()
-                 .OmittedAt(0.0));
+    a->Visit(
+        PLATEBALL_FIELD(plate, "the region the contact point stays in").ByHand(),
+        PLATEBALL_FIELD(obstacles, "regions the contact point stays out of").ByHand(),
+        PLATEBALL_FIELD(clearance, "distance kept from the edges of the plate and the obstacles").NonNegative(),
+        PLATEBALL_FIELD(stroke, "half-ranges of the upper plate's displacement 2 (x - x0) from its start").ByHand(),
+        PLATEBALL_FIELD(max_plate_velocity_change, "largest plate velocity change |2 delta_omega x e3| of one impulse")
+            .Positive()
+            .OmittedAt(kUnbounded),
+        PLATEBALL_FIELD(max_plate_impulse, "largest |J| (N s with SI physical parameters); needs ball.physical")
+            .Positive()
+            .OmittedAt(kUnbounded),
+        PLATEBALL_FIELD(max_force, "largest mean force |J| / pulse_duration; needs ball.physical and pulse_duration")
+            .Positive()
+            .OmittedAt(kUnbounded),
+        PLATEBALL_FIELD(pulse_duration, "duration of a pulse; only with max_force").ByHand(),
+        PLATEBALL_FIELD(min_interval, "shortest time between two impulses").NonNegative().OmittedAt(0.0),
+        PLATEBALL_FIELD(tick, "impulse times are multiples of tick (the control loop's period)")
+            .Positive()
+            .OmittedAt(0.0));
   }
 };
 
 /// What the solver reports about the limits in its result.
 struct RigLimitsReport {
-  bool constrained = false;        ///< the limits cut the free optimum: the constrained solve ran
+  bool constrained = false;         ///< the limits cut the free optimum: the constrained solve ran
   std::vector<std::string> active;  ///< limits active at the result ("plate", "obstacles[0]", ...)
   /// When the limits could not be met together with the arrival: the limits active at the closest
   /// feasible arrival, which block the goal.
@@ -122,7 +123,8 @@ struct RigCheck {
   /// Per limit ("plate", "obstacles[0]", "stroke.x", "max_plate_impulse", "min_interval", ...): the
   /// smallest margin (bound - value, in the limit's unit) over everything checked; >= 0 when met.
   std::map<std::string, double> margins;
-  std::vector<std::string> violations;  ///< one line per limit exceeded beyond its tolerance: its largest excess, and where
+  std::vector<std::string>
+      violations;  ///< one line per limit exceeded beyond its tolerance: its largest excess, and where
 };
 
 /// Tolerances of the check: positions and impulses to these; the grid exactly (tolerance zero).
@@ -132,4 +134,4 @@ struct RigCheckTolerances {
   double time = 1e-12;     ///< relative, for the shortest interval
 };
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -48,12 +48,12 @@ std::string ToString(RigPlanStatus status);
 struct RigPlanSummary {
   RigPlanStatus status = RigPlanStatus::kNotRun;
   std::string message = "not run";
-  PlanSummary plan;            ///< the plan of the final partition (its steps carry their taus)
-  RigCheck check;              ///< the independent check of `plan` (CheckPlanRigLimits)
-  int segments_initial = 0;    ///< partition segments asked for
-  int points_added = 0;        ///< partition points the refinement added
-  int points_slid = 0;         ///< partition points slid onto the tick grid (final plan)
-  int rounds = 0;              ///< refinement rounds run (0: the given partition was enough)
+  PlanSummary plan;          ///< the plan of the final partition (its steps carry their taus)
+  RigCheck check;            ///< the independent check of `plan` (CheckPlanRigLimits)
+  int segments_initial = 0;  ///< partition segments asked for
+  int points_added = 0;      ///< partition points the refinement added
+  int points_slid = 0;       ///< partition points slid onto the tick grid (final plan)
+  int rounds = 0;            ///< refinement rounds run (0: the given partition was enough)
   /// Limits that shaped the plan: the geometric limits refined against ("plate", "obstacles[0]",
   /// "stroke.x", ...) and "tick" when points slid onto the grid.
   std::vector<std::string> active;
@@ -81,8 +81,10 @@ struct RigPlanSummary {
 /// bounds, min_interval, ...) is blocking. Slack limits leave the plan bit for bit as
 /// PlanImpulses(problem, options) gives it. Throws std::invalid_argument for invalid input
 /// (as PlanImpulses, limits.Validate(), options.Validate()).
-RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem, const RigLimits& limits,
-                                 const std::optional<PhysicalParameters>& physical, const PlanOptions& options = {},
+RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem,
+                                 const RigLimits& limits,
+                                 const std::optional<PhysicalParameters>& physical,
+                                 const PlanOptions& options = {},
                                  const RigPlanOptions& rig_options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -21,18 +21,21 @@ namespace plateball PLATEBALL_EXPORT {
 
 /// The plate, obstacle and stroke limits ("plate", "obstacles[i]", "stroke.x", "stroke.y") that the
 /// path breaks at any of `samples_per_piece` + 1 points of each piece (x0: the stroke's origin).
-std::vector<std::string> PathLimitBreaks(const Path& path, const RigLimits& limits, const Eigen::Vector2d& x0,
+std::vector<std::string> PathLimitBreaks(const Path& path,
+                                         const RigLimits& limits,
+                                         const Eigen::Vector2d& x0,
                                          int samples_per_piece = 2000);
 
 struct ReferenceChoice {
-  std::size_t index = 0;                      ///< the solution steered along
-  std::vector<std::string> shortest_breaks;   ///< the limits the shortest solution's path breaks
-  std::vector<std::string> chosen_breaks;     ///< those the chosen one breaks (empty when it meets them)
+  std::size_t index = 0;                     ///< the solution steered along
+  std::vector<std::string> shortest_breaks;  ///< the limits the shortest solution's path breaks
+  std::vector<std::string> chosen_breaks;    ///< those the chosen one breaks (empty when it meets them)
 };
 
 /// The shortest solution of `summary` whose optimal path meets the geometric limits, else the
 /// shortest. The summary must hold at least one solution (std::invalid_argument otherwise).
-ReferenceChoice ChooseIsoparallelReference(const IsoparallelSummary& summary, const RigLimits& limits,
+ReferenceChoice ChooseIsoparallelReference(const IsoparallelSummary& summary,
+                                           const RigLimits& limits,
                                            const Eigen::Vector2d& x0);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

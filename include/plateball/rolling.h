@@ -21,7 +21,9 @@ inline Eigen::Vector3d RollingAngularVelocity(const Eigen::Vector2d& xdot) { ret
 /// parametrisation (checked by tests). `breakpoints` inside (a, b) are where x' may jump (a
 /// piecewise-smooth path); integration restarts there. Throws std::invalid_argument for
 /// non-finite bounds and std::runtime_error when the integration fails (non-finite velocity).
-Eigen::Matrix3d RollingReorientation(const PlanarVelocity& velocity, double a, double b,
+Eigen::Matrix3d RollingReorientation(const PlanarVelocity& velocity,
+                                     double a,
+                                     double b,
                                      const std::vector<double>& breakpoints = {},
                                      const IntegrationOptions& options = {});
 
@@ -30,7 +32,6 @@ Eigen::Matrix3d RollAlongSegment(const Eigen::Vector2d& p, const Eigen::Vector2d
 /// Product of RollAlongSegment over consecutive points.
 Eigen::Matrix3d RollAlongPolyline(const std::vector<Eigen::Vector2d>& points);
 /// Reorientation along the natural C^2 cubic spline through the samples (chord-length knots).
-Eigen::Matrix3d RollAlongSamples(const std::vector<Eigen::Vector2d>& points,
-                                 const IntegrationOptions& options = {});
+Eigen::Matrix3d RollAlongSamples(const std::vector<Eigen::Vector2d>& points, const IntegrationOptions& options = {});
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

@@ -35,4 +35,4 @@ Eigen::Matrix3d AlignOrientationToAxis(const Eigen::Matrix3d& A0, const Eigen::V
 /// or non-finite quaternion.
 Eigen::Matrix3d QuaternionToRotation(const Eigen::Vector4d& wxyz, const std::string& field = "quaternion");
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

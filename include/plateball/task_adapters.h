@@ -31,7 +31,8 @@ Path PathFromSpec(const PathSpec& spec, const std::string& field = "path");
 /// A single smooth curve from a PathSpec whose type is not "piecewise".
 SmoothCurve CurveFromSpec(const PathSpec& spec, const std::string& field = "path");
 /// The partition rules of a file's partition for `path` (explicit taus: single-piece paths only).
-std::vector<PartitionRule> PartitionFromSpec(const PartitionSpec& spec, const Path& path,
+std::vector<PartitionRule> PartitionFromSpec(const PartitionSpec& spec,
+                                             const Path& path,
                                              const std::string& field = "partition");
 
 /// `simulate`: the free motion from the initial state, with the file's integration options.
@@ -67,8 +68,10 @@ struct ConvergenceSetup {
 /// `converge`: the plan section with the partition sizes `ns` (checked with
 /// ValidatePartitionSizes, messages naming `ns_field`), else plan.converge_n, else 16 ... 1024.
 /// An explicit partition has no n to vary: rejected, naming `ns_field` when ns were given.
-ConvergenceSetup ConvergenceSetupFor(const Problem& problem, const std::vector<int>& ns = {},
-                                     const std::string& ns_field = "ns", bool timings = false);
+ConvergenceSetup ConvergenceSetupFor(const Problem& problem,
+                                     const std::vector<int>& ns = {},
+                                     const std::string& ns_field = "ns",
+                                     bool timings = false);
 
 struct IsoparallelSetup {
   IsoparallelProblem problem;
@@ -83,7 +86,8 @@ struct IsoparallelPlanSetup {
 };
 /// The impulsive approximation of `solution` with the file's ball, psi, mu, start orientation,
 /// impulse count (`impulses` > 0 overrides it) and integration section.
-IsoparallelPlanSetup IsoparallelPlanSetupFor(const Problem& problem, const IsoparallelSolution& solution,
+IsoparallelPlanSetup IsoparallelPlanSetupFor(const Problem& problem,
+                                             const IsoparallelSolution& solution,
                                              int impulses = 0);
 
 struct ExactArrivalSetup {
@@ -92,13 +96,16 @@ struct ExactArrivalSetup {
 };
 /// `steer` along the plan section's path: the file's ball, initial state, x0 (= the path's start),
 /// the steer section's goal and impulse count (`impulses` > 0 overrides it, naming `n_field`).
-ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, int impulses = 0,
+ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem,
+                                       int impulses = 0,
                                        const std::string& n_field = "impulses");
 /// `steer` / `isoparallel_solve --exact` along an isoparallel optimal path: ball, psi, mu and
 /// start orientation as IsoparallelPlanSetupFor; goal and impulse count from the steer section
 /// when present, else the isoparallel section's goal, goal orientation and impulses.
-ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, const IsoparallelSolution& solution,
-                                       int impulses = 0, const std::string& n_field = "impulses");
+ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem,
+                                       const IsoparallelSolution& solution,
+                                       int impulses = 0,
+                                       const std::string& n_field = "impulses");
 
 struct FewestImpulsesSetup {
   FewestImpulsesProblem problem;
@@ -111,4 +118,4 @@ struct FewestImpulsesSetup {
 /// physical ball's masses.
 FewestImpulsesSetup FewestImpulsesSetupFor(const Problem& problem);
 
-}  // namespace plateball
+}  // namespace PLATEBALL_EXPORT

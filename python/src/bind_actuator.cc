@@ -8,20 +8,28 @@
 namespace plateball::python {
 
 void BindActuator(py::module_& m) {
-  py::class_<PlateImpulse>(m, "PlateImpulse",
+  py::class_<PlateImpulse>(m,
+                           "PlateImpulse",
                            "The impulses of one jump delta_omega of the ball's angular velocity, in the units of "
                            "PhysicalParameters (N s and N m s for SI input).")
-      .def_readonly("plate", &PlateImpulse::plate,
+      .def_readonly("plate",
+                    &PlateImpulse::plate,
                     "J: the impulse the actuator gives the upper plate (depends on the ball's orientation)")
       .def_readonly("top_contact", &PlateImpulse::top_contact, "friction impulse of the upper plate on the ball")
       .def_readonly("bottom_contact", &PlateImpulse::bottom_contact, "friction impulse of the lower plate on the ball")
       .def_readonly("torsion", &PlateImpulse::torsion, "vertical angular impulse of the contacts (no spin)")
-      .def_readonly("plate_velocity_change", &PlateImpulse::plate_velocity_change,
+      .def_readonly("plate_velocity_change",
+                    &PlateImpulse::plate_velocity_change,
                     "the plate's velocity change 2 r delta_omega x e3");
-  m.def("plate_impulse_for", &PlateImpulseFor, py::arg("physical"), py::arg("z"), py::arg("delta_omega"),
+  m.def("plate_impulse_for",
+        &PlateImpulseFor,
+        py::arg("physical"),
+        py::arg("z"),
+        py::arg("delta_omega"),
         "The PlateImpulse that changes omega by the horizontal delta_omega while the symmetry axis is the unit "
         "vector z (ValueError naming the field for invalid input).");
-  py::class_<PulseOptions> options(m, "PulseOptions",
+  py::class_<PulseOptions> options(m,
+                                   "PulseOptions",
                                    "A pulse and its contacts: duration (s), preload (N), gravity (m/s^2), "
                                    "static_friction mu_s and torsional_friction ell (m); 0 friction: not given.");
   WithKeywordInit(options)
@@ -38,13 +46,19 @@ void BindActuator(py::module_& m) {
       .def_readonly("top_tangential_force", &PulseForces::top_tangential_force, "top friction force (N)")
       .def_readonly("bottom_tangential_force", &PulseForces::bottom_tangential_force, "bottom friction force (N)")
       .def_readonly("torsional_torque", &PulseForces::torsional_torque, "torque about the vertical (N m)")
-      .def_readonly("sliding_friction_needed", &PulseForces::sliding_friction_needed,
+      .def_readonly("sliding_friction_needed",
+                    &PulseForces::sliding_friction_needed,
                     "the least mu_s with which neither contact slides (inf without a normal load)")
-      .def_readonly("torsional_friction_needed", &PulseForces::torsional_friction_needed,
+      .def_readonly("torsional_friction_needed",
+                    &PulseForces::torsional_friction_needed,
                     "the least ell (m) with which the ball does not spin")
       .def_readonly("slides", &PulseForces::slides, "static_friction given and below the need")
       .def_readonly("spins", &PulseForces::spins, "torsional_friction given and below the need");
-  m.def("pulse_forces_for", &PulseForcesFor, py::arg("physical"), py::arg("impulse"), py::arg("options") = PulseOptions{},
+  m.def("pulse_forces_for",
+        &PulseForcesFor,
+        py::arg("physical"),
+        py::arg("impulse"),
+        py::arg("options") = PulseOptions{},
         "The PulseForces of a pulse giving the PlateImpulse `impulse` over options.duration.");
 }
 
@@ -66,10 +80,12 @@ void BindPlanActuator(py::class_<PlanSummary>& plan) {
           [](const PlanSummary& s, const PhysicalParameters& physical, const PulseOptions& options) {
             std::vector<PulseForces> out;
             for (const PlanStep& q : s.steps)
-              out.push_back(PulseForcesFor(physical, PlateImpulseFor(physical, q.state_before.z, q.delta_omega), options));
+              out.push_back(
+                  PulseForcesFor(physical, PlateImpulseFor(physical, q.state_before.z, q.delta_omega), options));
             return out;
           },
-          py::arg("physical"), py::arg("options") = PulseOptions{},
+          py::arg("physical"),
+          py::arg("options") = PulseOptions{},
           "The PulseForces of every step's pulse (steps[].actuator.pulse in the tools' JSON).");
 }
 

@@ -45,8 +45,9 @@ py::class_<T, Extra...>& WithKeywordInit(py::class_<T, Extra...>& cls) {
                 } catch (py::error_already_set& e) {
                   if (!e.matches(PyExc_TypeError)) throw;
                   // pybind11's setter names neither the attribute nor the value: "CLS(): KEY: value V: ...".
-                  throw py::type_error(std::string(py::str(py::type::of(view).attr("__name__"))) + "(): " + key + ": value " +
-                                       std::string(py::repr(item.second)) + ": " + WrongTypeText(e.what()));
+                  throw py::type_error(std::string(py::str(py::type::of(view).attr("__name__"))) + "(): " + key +
+                                       ": value " + std::string(py::repr(item.second)) + ": " +
+                                       WrongTypeText(e.what()));
                 }
               }
             }
@@ -71,7 +72,8 @@ struct Trajectory {
 
 // Rows of a matrix built from one vector per element.
 template <int Cols, typename Seq, typename F>
-Eigen::Matrix<double, Eigen::Dynamic, Cols, (Cols == 1 ? Eigen::ColMajor : Eigen::RowMajor)> Stack(const Seq& seq, F&& f) {
+Eigen::Matrix<double, Eigen::Dynamic, Cols, (Cols == 1 ? Eigen::ColMajor : Eigen::RowMajor)> Stack(const Seq& seq,
+                                                                                                   F&& f) {
   Eigen::Matrix<double, Eigen::Dynamic, Cols, (Cols == 1 ? Eigen::ColMajor : Eigen::RowMajor)> m(
       static_cast<Eigen::Index>(seq.size()), Cols);
   Eigen::Index i = 0;
@@ -96,11 +98,18 @@ py::array_t<double> StackMatrices(const Seq& seq, F&& f) {
 // status (word), usable, message, report: the shape every summary shares.
 template <typename S>
 void AddSummaryShape(py::class_<S>& cls) {
-  cls.def_property_readonly("status", [](const S& s) { return ToString(s.status); },
-                            "The outcome as the tools' \"status\" word (e.g. \"converged\", \"success\"; \"not run\" before a solve).")
-      .def_readonly("message", &S::message, "What went wrong or what limits the result, in words; empty when there is nothing to say.")
-      .def_property_readonly("usable", &S::IsSolutionUsable, "Whether the result can be used (the tools' \"usable\" field).")
-      .def_property_readonly("report", &S::BriefReport, "The status and the result's key numbers in one line (the tools' \"report\" field).")
+  cls.def_property_readonly(
+         "status",
+         [](const S& s) { return ToString(s.status); },
+         "The outcome as the tools' \"status\" word (e.g. \"converged\", \"success\"; \"not run\" before a solve).")
+      .def_readonly("message",
+                    &S::message,
+                    "What went wrong or what limits the result, in words; empty when there is nothing to say.")
+      .def_property_readonly(
+          "usable", &S::IsSolutionUsable, "Whether the result can be used (the tools' \"usable\" field).")
+      .def_property_readonly("report",
+                             &S::BriefReport,
+                             "The status and the result's key numbers in one line (the tools' \"report\" field).")
       .def("__repr__", &S::BriefReport, "The one-line report.");
 }
 

@@ -1,9 +1,9 @@
 // Python binding: the fewest-impulse search (fewest_impulses.h): its problem, options,
 // summary with the Pareto table, and the exact-arrival problem that replays a row's impulses.
-#include "bind_common.h"
-#include "interrupt.h"
 #include <optional>
 
+#include "bind_common.h"
+#include "interrupt.h"
 #include "plateball/fewest_impulses.h"
 
 namespace plateball::python {
@@ -11,7 +11,10 @@ namespace plateball::python {
 namespace {
 
 void BindFewestInputs(py::module_& m) {
-  py::class_<FewestImpulsesOptions> options(m, "FewestImpulsesOptions", "Options of fewest_impulses(): the counts searched, the starts per count, the search window and the tolerances of an exact arrival.");
+  py::class_<FewestImpulsesOptions> options(m,
+                                            "FewestImpulsesOptions",
+                                            "Options of fewest_impulses(): the counts searched, the starts per count, "
+                                            "the search window and the tolerances of an exact arrival.");
   WithKeywordInit(options)
       .def_readwrite("max_impulses", &FewestImpulsesOptions::max_impulses)
       .def_readwrite("pareto_counts", &FewestImpulsesOptions::pareto_counts)
@@ -24,9 +27,11 @@ void BindFewestInputs(py::module_& m) {
       .def_readwrite("orientation_tolerance", &FewestImpulsesOptions::orientation_tolerance)
       .def_readwrite("integration", &FewestImpulsesOptions::integration)
       .def_readwrite("search_integration", &FewestImpulsesOptions::search_integration)
-      .def("validate", &FewestImpulsesOptions::Validate, "Empty when the options are valid; else a message naming the field and its value.");
-  py::class_<FewestImpulsesProblem> problem(m, "FewestImpulsesProblem",
-                                            "The fewest impulses that bring the ball to (x1, A1) exactly.");
+      .def("validate",
+           &FewestImpulsesOptions::Validate,
+           "Empty when the options are valid; else a message naming the field and its value.");
+  py::class_<FewestImpulsesProblem> problem(
+      m, "FewestImpulsesProblem", "The fewest impulses that bring the ball to (x1, A1) exactly.");
   WithKeywordInit(problem)
       .def_readwrite("model", &FewestImpulsesProblem::model)
       .def_readwrite("initial", &FewestImpulsesProblem::initial)
@@ -38,20 +43,25 @@ void BindFewestInputs(py::module_& m) {
       .def_readwrite("x1", &FewestImpulsesProblem::x1)
       .def_readwrite("goal_orientation", &FewestImpulsesProblem::A1)
       .def_readwrite("orientation_only", &FewestImpulsesProblem::orientation_only)
-      .def_readwrite("limits", &FewestImpulsesProblem::limits,
+      .def_readwrite("limits",
+                     &FewestImpulsesProblem::limits,
                      "the rig's limits (RigLimits): only arrivals within them count; empty: none")
-      .def_readwrite("physical", &FewestImpulsesProblem::physical,
+      .def_readwrite("physical",
+                     &FewestImpulsesProblem::physical,
                      "the masses behind the impulse bounds and the total impulse (PhysicalParameters or None)");
 }
 
 void BindFewestCount(py::module_& m) {
-  py::class_<FewestImpulsesCount>(m, "FewestImpulsesCount", "One impulse count of the search (a Pareto row when reached).")
+  py::class_<FewestImpulsesCount>(
+      m, "FewestImpulsesCount", "One impulse count of the search (a Pareto row when reached).")
       .def_readonly("impulses", &FewestImpulsesCount::impulses)
       .def_readonly("starts", &FewestImpulsesCount::starts)
       .def_readonly("arrived", &FewestImpulsesCount::arrived)
       .def_readonly("reached", &FewestImpulsesCount::reached)
-      .def_property_readonly("verdict", [](const FewestImpulsesCount& c) { return ToString(c.verdict); },
-                             "reached, generically_impossible (2n below the conditions) or not_found (not proved impossible)")
+      .def_property_readonly(
+          "verdict",
+          [](const FewestImpulsesCount& c) { return ToString(c.verdict); },
+          "reached, generically_impossible (2n below the conditions) or not_found (not proved impossible)")
       .def_readonly("by_continuation", &FewestImpulsesCount::by_continuation)
       .def_readonly("plan", &FewestImpulsesCount::plan)
       .def_readonly("stop", &FewestImpulsesCount::stop)
@@ -62,16 +72,22 @@ void BindFewestCount(py::module_& m) {
       .def_readonly("x_final", &FewestImpulsesCount::x_final)
       .def_readonly("orientation_final", &FewestImpulsesCount::A_final)
       .def_readonly("parameters", &FewestImpulsesCount::parameters)
-      .def_readonly("total_impulse", &FewestImpulsesCount::total_impulse,
-                    "sum of the norm of J over the impulses with physical parameters, else of the plate velocity changes")
-      .def_readonly("deviation", &FewestImpulsesCount::deviation,
-                    "the interior impulse points against the straight line x0 -> x1 cut into n equal parts (root of the sum of squares)")
+      .def_readonly(
+          "total_impulse",
+          &FewestImpulsesCount::total_impulse,
+          "sum of the norm of J over the impulses with physical parameters, else of the plate velocity changes")
+      .def_readonly("deviation",
+                    &FewestImpulsesCount::deviation,
+                    "the interior impulse points against the straight line x0 -> x1 cut into n equal parts (root of "
+                    "the sum of squares)")
       .def_readonly("within_limits", &FewestImpulsesCount::within_limits, "arrivals that met the rig's limits")
-      .def_readonly("active", &FewestImpulsesCount::active, "limits active at the row's arrival (with limits, when reached)")
-      .def_readonly("blocking", &FewestImpulsesCount::blocking,
+      .def_readonly(
+          "active", &FewestImpulsesCount::active, "limits active at the row's arrival (with limits, when reached)")
+      .def_readonly("blocking",
+                    &FewestImpulsesCount::blocking,
                     "not reached under limits: the limits active at the closest feasible arrival")
-      .def_readonly("check", &FewestImpulsesCount::check,
-                    "with limits, when reached: the independent replay check (RigCheck)");
+      .def_readonly(
+          "check", &FewestImpulsesCount::check, "with limits, when reached: the independent replay check (RigCheck)");
 }
 
 }  // namespace
@@ -79,31 +95,49 @@ void BindFewestCount(py::module_& m) {
 void BindFewestImpulses(py::module_& m) {
   BindFewestInputs(m);
   BindFewestCount(m);
-  py::class_<FewestImpulsesSummary> summary(m, "FewestImpulsesSummary", "The result of fewest_impulses(): the fewest impulse count found, one row per count searched (the Pareto table) and what was searched; status \"not run\" until solved.");
+  py::class_<FewestImpulsesSummary> summary(
+      m,
+      "FewestImpulsesSummary",
+      "The result of fewest_impulses(): the fewest impulse count found, one row per count searched (the Pareto table) "
+      "and what was searched; status \"not run\" until solved.");
   AddSummaryShape(summary);
   summary.def_readonly("fewest", &FewestImpulsesSummary::fewest)
       .def_readonly("counts", &FewestImpulsesSummary::counts)
-      .def_readonly("minimal_for_generic_goal", &FewestImpulsesSummary::minimal_for_generic_goal,
+      .def_readonly("minimal_for_generic_goal",
+                    &FewestImpulsesSummary::minimal_for_generic_goal,
                     "Every smaller count is impossible for a generic goal (dimension count).")
       .def_readonly("max_total_time", &FewestImpulsesSummary::max_total_time)
       .def_readonly("searched", &FewestImpulsesSummary::searched)
       .def_readonly("rollouts", &FewestImpulsesSummary::rollouts)
       .def_readonly("limited", &FewestImpulsesSummary::limited, "True when the problem had rig limits")
-      .def_readonly("constrained_solves", &FewestImpulsesSummary::constrained_solves,
+      .def_readonly("constrained_solves",
+                    &FewestImpulsesSummary::constrained_solves,
                     "arrivals taken through the constrained solver (SLSQP)")
       .def_readonly("evaluations", &FewestImpulsesSummary::evaluations, "SLSQP evaluations of those solves")
-      .def_readonly("blocking", &FewestImpulsesSummary::blocking,
+      .def_readonly("blocking",
+                    &FewestImpulsesSummary::blocking,
                     "status limits_not_met: the limits that block the counts that arrive without them")
-      .def_property_readonly("fewest_count", [](const FewestImpulsesSummary& s) -> std::optional<FewestImpulsesCount> {
+      .def_property_readonly(
+          "fewest_count",
+          [](const FewestImpulsesSummary& s) -> std::optional<FewestImpulsesCount> {
             const FewestImpulsesCount* f = s.Fewest();
             return f ? std::optional<FewestImpulsesCount>(*f) : std::nullopt;
-          }, "The row of the fewest count (None when not found).");
-  m.def("_fewest_impulses", [](const FewestImpulsesProblem& problem, FewestImpulsesOptions options) {
-          const Interruptible interrupt;  // Ctrl-C abandons the search (KeyboardInterrupt)
-          options.progress = [interrupt](int, int) { interrupt.Check(); };
-          return interrupt.Run([&] { return SolveFewestImpulses(problem, options); });
-        }, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
-  m.def("replay_problem_for", &ReplayProblemFor, py::arg("problem"), py::arg("impulses"),
+          },
+          "The row of the fewest count (None when not found).");
+  m.def(
+      "_fewest_impulses",
+      [](const FewestImpulsesProblem& problem, FewestImpulsesOptions options) {
+        const Interruptible interrupt;  // Ctrl-C abandons the search (KeyboardInterrupt)
+        options.progress = [interrupt](int, int) { interrupt.Check(); };
+        return interrupt.Run([&] { return SolveFewestImpulses(problem, options); });
+      },
+      py::arg("problem"),
+      py::arg("options"),
+      py::call_guard<py::gil_scoped_release>());
+  m.def("replay_problem_for",
+        &ReplayProblemFor,
+        py::arg("problem"),
+        py::arg("impulses"),
         "The exact-arrival problem that replays a count's impulses (for replay_exact_arrival).");
 }
 

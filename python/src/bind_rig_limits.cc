@@ -13,7 +13,9 @@ namespace {
 
 ArrivalObjective ObjectiveFromWord(const std::string& word) {
   const auto o = ArrivalObjectiveFromString(word);
-  if (!o) throw std::invalid_argument("objective: value " + word + ": must be \"deviation\", \"time\", \"impulse\" or \"fewest\"");
+  if (!o)
+    throw std::invalid_argument("objective: value " + word +
+                                ": must be \"deviation\", \"time\", \"impulse\" or \"fewest\"");
   return *o;
 }
 
@@ -24,19 +26,30 @@ void BindShapes(py::module_& m) {
       .def_readwrite("radius", &DiskShape::radius, "its radius (> 0)");
   py::class_<PolygonShape> polygon(m, "PolygonShape", "A simple polygon (>= 3 vertices, either orientation).");
   WithKeywordInit(polygon).def_readwrite("vertices", &PolygonShape::vertices, "the vertices, not repeated at the end");
-  m.def("signed_distance_inside", [](const PlateShape& s, const Eigen::Vector2d& x) { return SignedDistanceInside(s, x); },
-        py::arg("shape"), py::arg("x"), "Signed distance of x to the shape's boundary, positive inside.");
+  m.def(
+      "signed_distance_inside",
+      [](const PlateShape& s, const Eigen::Vector2d& x) { return SignedDistanceInside(s, x); },
+      py::arg("shape"),
+      py::arg("x"),
+      "Signed distance of x to the shape's boundary, positive inside.");
 }
 
 void BindLimits(py::module_& m) {
-  py::class_<RigLimits> limits(m, "RigLimits", "The limits of a physical rig that exact arrival honours (rig_limits.h).");
+  py::class_<RigLimits> limits(
+      m, "RigLimits", "The limits of a physical rig that exact arrival honours (rig_limits.h).");
   WithKeywordInit(limits)
-      .def_readwrite("plate", &RigLimits::plate, "the region the contact point stays in (DiskShape, PolygonShape or None)")
+      .def_readwrite(
+          "plate", &RigLimits::plate, "the region the contact point stays in (DiskShape, PolygonShape or None)")
       .def_readwrite("obstacles", &RigLimits::obstacles, "regions the contact point stays out of")
       .def_readwrite("clearance", &RigLimits::clearance, "distance kept from the plate's edge and the obstacles")
-      .def_readwrite("stroke", &RigLimits::stroke, "half-ranges (s_x, s_y) of the upper plate's displacement 2 (x - x0), or None")
-      .def_readwrite("max_plate_velocity_change", &RigLimits::max_plate_velocity_change, "largest norm of one impulse's plate velocity change 2 delta_omega x e3")
-      .def_readwrite("max_plate_impulse", &RigLimits::max_plate_impulse, "largest norm of J, the actuator's impulse (needs physical parameters)")
+      .def_readwrite(
+          "stroke", &RigLimits::stroke, "half-ranges (s_x, s_y) of the upper plate's displacement 2 (x - x0), or None")
+      .def_readwrite("max_plate_velocity_change",
+                     &RigLimits::max_plate_velocity_change,
+                     "largest norm of one impulse's plate velocity change 2 delta_omega x e3")
+      .def_readwrite("max_plate_impulse",
+                     &RigLimits::max_plate_impulse,
+                     "largest norm of J, the actuator's impulse (needs physical parameters)")
       .def_readwrite("max_force", &RigLimits::max_force, "largest mean force, the norm of J over pulse_duration")
       .def_readwrite("pulse_duration", &RigLimits::pulse_duration, "the pulse duration of max_force")
       .def_readwrite("min_interval", &RigLimits::min_interval, "shortest time between two impulses")
@@ -44,10 +57,16 @@ void BindLimits(py::module_& m) {
       .def_property_readonly("empty", &RigLimits::Empty, "True when no limit is set")
       .def("validate", &RigLimits::Validate, "Empty when valid; else a message naming the field.");
   py::class_<RigLimitsReport>(m, "RigLimitsReport", "What the rig's limits did in an exact arrival.")
-      .def_readonly("constrained", &RigLimitsReport::constrained, "True when the limits cut the free optimum and the constrained solve ran")
+      .def_readonly("constrained",
+                    &RigLimitsReport::constrained,
+                    "True when the limits cut the free optimum and the constrained solve ran")
       .def_readonly("active", &RigLimitsReport::active, "limits active at the result")
-      .def_readonly("blocking", &RigLimitsReport::blocking, "the limits active at the closest feasible arrival (status limits_not_met)")
-      .def_readonly("evaluations", &RigLimitsReport::evaluations, "evaluations of the constrained solve(s) (Gauss-Newton SQP steps and SLSQP)");
+      .def_readonly("blocking",
+                    &RigLimitsReport::blocking,
+                    "the limits active at the closest feasible arrival (status limits_not_met)")
+      .def_readonly("evaluations",
+                    &RigLimitsReport::evaluations,
+                    "evaluations of the constrained solve(s) (Gauss-Newton SQP steps and SLSQP)");
   py::class_<RigCheck>(m, "RigCheck", "The independent replay check of a result against the limits.")
       .def_readonly("passed", &RigCheck::passed, "every checked quantity within its limit and tolerance")
       .def_readonly("samples", &RigCheck::samples, "contact points checked")
@@ -56,25 +75,48 @@ void BindLimits(py::module_& m) {
 }
 
 void BindReference(py::module_& m) {
-  py::class_<ReferenceChoice>(m, "ReferenceChoice", "The isoparallel solution steered along on a rig (rig_reference.h).")
+  py::class_<ReferenceChoice>(
+      m, "ReferenceChoice", "The isoparallel solution steered along on a rig (rig_reference.h).")
       .def_readonly("index", &ReferenceChoice::index, "the solution steered along")
-      .def_readonly("shortest_breaks", &ReferenceChoice::shortest_breaks, "the limits the shortest solution's path breaks")
-      .def_readonly("chosen_breaks", &ReferenceChoice::chosen_breaks, "the limits the chosen one breaks (empty when it meets them)");
-  m.def("path_limit_breaks", &PathLimitBreaks, py::arg("path"), py::arg("limits"), py::arg("x0"),
-        py::arg("samples_per_piece") = 2000, "The plate, obstacle and stroke limits the path breaks at its samples.");
-  m.def("choose_isoparallel_reference", &ChooseIsoparallelReference, py::arg("summary"), py::arg("limits"), py::arg("x0"),
+      .def_readonly(
+          "shortest_breaks", &ReferenceChoice::shortest_breaks, "the limits the shortest solution's path breaks")
+      .def_readonly("chosen_breaks",
+                    &ReferenceChoice::chosen_breaks,
+                    "the limits the chosen one breaks (empty when it meets them)");
+  m.def("path_limit_breaks",
+        &PathLimitBreaks,
+        py::arg("path"),
+        py::arg("limits"),
+        py::arg("x0"),
+        py::arg("samples_per_piece") = 2000,
+        "The plate, obstacle and stroke limits the path breaks at its samples.");
+  m.def("choose_isoparallel_reference",
+        &ChooseIsoparallelReference,
+        py::arg("summary"),
+        py::arg("limits"),
+        py::arg("x0"),
         "The shortest isoparallel solution whose path meets the plate, obstacle and stroke limits, else the shortest.");
 }
 
 void BindRigPlanner(py::module_& m) {
-  py::class_<RigPlanOptions> options(m, "RigPlanOptions", "Options of plan_on_rig (rig_planner.h); the check's tolerances are the defaults.");
+  py::class_<RigPlanOptions> options(
+      m, "RigPlanOptions", "Options of plan_on_rig (rig_planner.h); the check's tolerances are the defaults.");
   WithKeywordInit(options)
-      .def_readwrite("max_rounds", &RigPlanOptions::max_rounds, "refinement rounds, each bisecting the segments whose flights exceed a geometric limit")
-      .def_readwrite("max_added_points", &RigPlanOptions::max_added_points, "partition points the refinement may add over all rounds")
-      .def_readwrite("samples_per_flight", &RigPlanOptions::samples_per_flight, "samples per flight at which the planner looks for its smallest margin")
-      .def_readwrite("check_samples_per_flight", &RigPlanOptions::check_samples_per_flight, "samples per flight of the final independent check")
+      .def_readwrite("max_rounds",
+                     &RigPlanOptions::max_rounds,
+                     "refinement rounds, each bisecting the segments whose flights exceed a geometric limit")
+      .def_readwrite("max_added_points",
+                     &RigPlanOptions::max_added_points,
+                     "partition points the refinement may add over all rounds")
+      .def_readwrite("samples_per_flight",
+                     &RigPlanOptions::samples_per_flight,
+                     "samples per flight at which the planner looks for its smallest margin")
+      .def_readwrite("check_samples_per_flight",
+                     &RigPlanOptions::check_samples_per_flight,
+                     "samples per flight of the final independent check")
       .def("validate", &RigPlanOptions::Validate, "Empty when valid; else a message naming the field.");
-  py::class_<RigPlanSummary> summary(m, "RigPlanSummary", "The result of plan_on_rig(): the plan, its independent check and what the limits did.");
+  py::class_<RigPlanSummary> summary(
+      m, "RigPlanSummary", "The result of plan_on_rig(): the plan, its independent check and what the limits did.");
   AddSummaryShape(summary);
   summary.def_readonly("plan", &RigPlanSummary::plan, "the plan of the final partition (PlanSummary)")
       .def_readonly("check", &RigPlanSummary::check, "the independent check of the plan (RigCheck)")
@@ -84,8 +126,14 @@ void BindRigPlanner(py::module_& m) {
       .def_readonly("rounds", &RigPlanSummary::rounds, "refinement rounds run")
       .def_readonly("active", &RigPlanSummary::active, "the limits that shaped the plan (refined against, or tick)")
       .def_readonly("blocking", &RigPlanSummary::blocking, "the limits that cannot be met");
-  m.def("plan_on_rig", &PlanImpulsesOnRig, py::arg("problem"), py::arg("limits"), py::arg("physical") = py::none(),
-        py::arg("options") = PlanOptions{}, py::arg("rig_options") = RigPlanOptions{}, py::call_guard<py::gil_scoped_release>(),
+  m.def("plan_on_rig",
+        &PlanImpulsesOnRig,
+        py::arg("problem"),
+        py::arg("limits"),
+        py::arg("physical") = py::none(),
+        py::arg("options") = PlanOptions{},
+        py::arg("rig_options") = RigPlanOptions{},
+        py::call_guard<py::gil_scoped_release>(),
         "Plans the path under a rig's limits: refines the partition where a flight leaves the plate or the stroke "
         "box or enters an obstacle, slides the partition points onto the tick grid, and names the limits it "
         "cannot meet; the final plan is checked by check_plan_rig_limits.");
@@ -98,32 +146,45 @@ void BindRigLimits(py::module_& m) {
   BindLimits(m);
   BindReference(m);
   BindRigPlanner(m);
-  m.def("check_plan_rig_limits",
-        [](const PlanProblem& p, const PlanSummary& plan, const RigLimits& limits,
-           const std::optional<PhysicalParameters>& physical, int samples_per_arc) {
-          return CheckPlanRigLimits(p, plan, limits, physical, {}, samples_per_arc);
-        },
-        py::arg("problem"), py::arg("plan"), py::arg("limits"), py::arg("physical") = py::none(),
-        py::arg("samples_per_arc") = 64, py::call_guard<py::gil_scoped_release>(),
-        "Checks a path-following plan against a rig's limits: replays every flight with FreeMotion and checks "
-        "every sampled contact point, every actuation (the impulses at one partition point together), interval "
-        "and grid time; the impulse bound only with `physical`.");
+  m.def(
+      "check_plan_rig_limits",
+      [](const PlanProblem& p,
+         const PlanSummary& plan,
+         const RigLimits& limits,
+         const std::optional<PhysicalParameters>& physical,
+         int samples_per_arc) { return CheckPlanRigLimits(p, plan, limits, physical, {}, samples_per_arc); },
+      py::arg("problem"),
+      py::arg("plan"),
+      py::arg("limits"),
+      py::arg("physical") = py::none(),
+      py::arg("samples_per_arc") = 64,
+      py::call_guard<py::gil_scoped_release>(),
+      "Checks a path-following plan against a rig's limits: replays every flight with FreeMotion and checks "
+      "every sampled contact point, every actuation (the impulses at one partition point together), interval "
+      "and grid time; the impulse bound only with `physical`.");
 }
 
-void BindExactArrivalLimits(py::class_<ExactArrivalProblem>& problem, py::class_<ExactArrivalSummary>& summary,
+void BindExactArrivalLimits(py::class_<ExactArrivalProblem>& problem,
+                            py::class_<ExactArrivalSummary>& summary,
                             py::module_& m) {
   problem.def_readwrite("limits", &ExactArrivalProblem::limits, "the rig's limits (RigLimits)")
       .def_property(
-          "objective", [](const ExactArrivalProblem& p) { return ToString(p.objective); },
+          "objective",
+          [](const ExactArrivalProblem& p) { return ToString(p.objective); },
           [](ExactArrivalProblem& p, const std::string& w) { p.objective = ObjectiveFromWord(w); },
           "what is minimised under the limits (deviation, time or impulse)")
       .def_readwrite("physical", &ExactArrivalProblem::physical, "the masses behind the impulse bounds, or None");
   summary.def_readonly("limits", &ExactArrivalSummary::limits, "what the rig's limits did (RigLimitsReport)");
-  m.def("check_rig_limits", [](const ExactArrivalProblem& p, const ExactArrivalSummary& s, int samples_per_arc) {
+  m.def(
+      "check_rig_limits",
+      [](const ExactArrivalProblem& p, const ExactArrivalSummary& s, int samples_per_arc) {
         return CheckRigLimits(p, s, {}, samples_per_arc);
       },
-        py::arg("problem"), py::arg("summary"), py::arg("samples_per_arc") = 64, py::call_guard<py::gil_scoped_release>(),
-        "Replays the result with FreeMotion and checks every sampled contact point, impulse, interval and grid time.");
+      py::arg("problem"),
+      py::arg("summary"),
+      py::arg("samples_per_arc") = 64,
+      py::call_guard<py::gil_scoped_release>(),
+      "Replays the result with FreeMotion and checks every sampled contact point, impulse, interval and grid time.");
 }
 
 }  // namespace plateball::python

@@ -22,7 +22,10 @@ namespace {
 using Scalar1 = Eigen::Matrix<double, 1, 1>;
 
 void BindJoin(py::module_& m) {
-  py::class_<JoinOptions> options(m, "JoinOptions", "Options of join(): the tolerance, iterations and integration of joining a close target with one impulse.");
+  py::class_<JoinOptions> options(
+      m,
+      "JoinOptions",
+      "Options of join(): the tolerance, iterations and integration of joining a close target with one impulse.");
   WithKeywordInit(options)
       .def_readwrite("residual_tolerance", &JoinOptions::residual_tolerance)
       .def_readwrite("max_iterations", &JoinOptions::max_iterations)
@@ -36,7 +39,8 @@ void BindJoin(py::module_& m) {
       .def_readwrite("mu", &JoinProblem::mu)
       .def_readwrite("x0", &JoinProblem::x0)
       .def_readwrite("target", &JoinProblem::target);
-  py::class_<JoinSummary> summary(m, "JoinSummary", "The answer of Join, with what was asked. A default-constructed summary says \"not run\".");
+  py::class_<JoinSummary> summary(
+      m, "JoinSummary", "The answer of Join, with what was asked. A default-constructed summary says \"not run\".");
   AddSummaryShape(summary);
   summary.def_readonly("start", &JoinSummary::start)
       .def_readonly("mu", &JoinSummary::mu)
@@ -57,7 +61,10 @@ void BindJoin(py::module_& m) {
 }
 
 void BindReachTypes(py::module_& m) {
-  py::class_<ReachOptions> options(m, "ReachOptions", "Options of reach(): the horizon, the scan of (delta_psi, t), the global search and the refinement's tolerance.");
+  py::class_<ReachOptions> options(
+      m,
+      "ReachOptions",
+      "Options of reach(): the horizon, the scan of (delta_psi, t), the global search and the refinement's tolerance.");
   WithKeywordInit(options)
       .def_readwrite("horizon_periods", &ReachOptions::horizon_periods)
       .def_readwrite("scan_directions", &ReachOptions::scan_directions)
@@ -67,8 +74,10 @@ void BindReachTypes(py::module_& m) {
       .def_readwrite("max_candidates", &ReachOptions::max_candidates)
       .def_readwrite("global_max_evaluations", &ReachOptions::global_max_evaluations)
       .def_readwrite("integration", &ReachOptions::integration)
-      .def("validate", &ReachOptions::Validate, "Empty when valid; otherwise names the field, its value and the bound.");
-  py::class_<ReachProblem> problem(m, "ReachProblem", "Reach a distant target with one impulse (section 2.3, Figure 8).");
+      .def(
+          "validate", &ReachOptions::Validate, "Empty when valid; otherwise names the field, its value and the bound.");
+  py::class_<ReachProblem> problem(
+      m, "ReachProblem", "Reach a distant target with one impulse (section 2.3, Figure 8).");
   WithKeywordInit(problem)
       .def_readwrite("model", &ReachProblem::model)
       .def_readwrite("start", &ReachProblem::start)
@@ -76,7 +85,8 @@ void BindReachTypes(py::module_& m) {
       .def_readwrite("x0", &ReachProblem::x0)
       .def_readwrite("orientation", &ReachProblem::A0)
       .def_readwrite("target", &ReachProblem::target);
-  py::class_<ReachSolution>(m, "ReachSolution", "One way to reach the target: impulse psi -> psi + delta_psi, then free rolling for time t.")
+  py::class_<ReachSolution>(
+      m, "ReachSolution", "One way to reach the target: impulse psi -> psi + delta_psi, then free rolling for time t.")
       .def_readonly("delta_psi", &ReachSolution::delta_psi)
       .def_readonly("t", &ReachSolution::t)
       .def_readonly("periods", &ReachSolution::periods)
@@ -84,7 +94,8 @@ void BindReachTypes(py::module_& m) {
       .def_readonly("jacobian_determinant", &ReachSolution::jacobian_determinant)
       .def_readonly("impulse", &ReachSolution::impulse)
       .def_readonly("end", &ReachSolution::end);
-  py::class_<ClosestApproach>(m, "ClosestApproach", "The closest the ball comes to the target over s in [0, 2 pi), t in [0, horizon].")
+  py::class_<ClosestApproach>(
+      m, "ClosestApproach", "The closest the ball comes to the target over s in [0, 2 pi), t in [0, horizon].")
       .def_readonly("distance", &ClosestApproach::distance)
       .def_readonly("delta_psi", &ClosestApproach::delta_psi)
       .def_readonly("t", &ClosestApproach::t);
@@ -92,7 +103,11 @@ void BindReachTypes(py::module_& m) {
 
 void BindReach(py::module_& m) {
   BindReachTypes(m);
-  py::class_<ReachSummary> summary(m, "ReachSummary", "The result of reach(): every (delta_psi, t) that reaches the target within the horizon, earliest first, or the closest approach; status \"not run\" until solved.");
+  py::class_<ReachSummary> summary(
+      m,
+      "ReachSummary",
+      "The result of reach(): every (delta_psi, t) that reaches the target within the horizon, earliest first, or the "
+      "closest approach; status \"not run\" until solved.");
   AddSummaryShape(summary);
   summary.def_readonly("problem", &ReachSummary::problem)
       .def_readonly("period", &ReachSummary::period)
@@ -106,13 +121,20 @@ void BindReach(py::module_& m) {
       .def_readonly("tight_evaluations", &ReachSummary::tight_evaluations)
       .def_readonly("global_evaluations", &ReachSummary::global_evaluations)
       .def("earliest", &ReachSummary::Earliest, "The earliest solution (RuntimeError when there is none).")
-      .def_property_readonly("delta_psi", [](const ReachSummary& s) { return Stack<1>(s.solutions, [](const ReachSolution& q) { return Scalar1(q.delta_psi); }); })
-      .def_property_readonly("t", [](const ReachSummary& s) { return Stack<1>(s.solutions, [](const ReachSolution& q) { return Scalar1(q.t); }); });
+      .def_property_readonly("delta_psi",
+                             [](const ReachSummary& s) {
+                               return Stack<1>(s.solutions,
+                                               [](const ReachSolution& q) { return Scalar1(q.delta_psi); });
+                             })
+      .def_property_readonly("t", [](const ReachSummary& s) {
+        return Stack<1>(s.solutions, [](const ReachSolution& q) { return Scalar1(q.t); });
+      });
   m.def("_reach", &Reach, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
 }
 
 void BindBounds(py::module_& m) {
-  py::class_<ErrorBoundConstants>(m, "ErrorBoundConstants", "The constants of Lemmas 2.1-2.4 and Theorems 2.5-2.6, estimated over one plan.")
+  py::class_<ErrorBoundConstants>(
+      m, "ErrorBoundConstants", "The constants of Lemmas 2.1-2.4 and Theorems 2.5-2.6, estimated over one plan.")
       .def_readonly("K_p", &ErrorBoundConstants::K_p)
       .def_readonly("M_prime_p", &ErrorBoundConstants::M_prime_p)
       .def_readonly("K_bar_p", &ErrorBoundConstants::K_bar_p)
@@ -141,15 +163,21 @@ void BindBounds(py::module_& m) {
 void BindPlanInputs(py::module_& m) {
   py::class_<EnergyChange> change(m, "EnergyChange", "An energy-changing impulse at partition index `index`.");
   WithKeywordInit(change).def_readwrite("index", &EnergyChange::index).def_readwrite("factor", &EnergyChange::factor);
-  py::class_<PlanOptions> options(m, "PlanOptions", "Options of plan(): the join and reach options of each segment (reach as a fallback), the integration of the free arcs and the samples of the error bounds.");
+  py::class_<PlanOptions> options(m,
+                                  "PlanOptions",
+                                  "Options of plan(): the join and reach options of each segment (reach as a "
+                                  "fallback), the integration of the free arcs and the samples of the error bounds.");
   WithKeywordInit(options)
       .def_readwrite("join", &PlanOptions::join)
       .def_readwrite("reach_fallback", &PlanOptions::reach_fallback)
       .def_readwrite("reach", &PlanOptions::reach)
       .def_readwrite("integration", &PlanOptions::integration)
       .def_readwrite("bound_samples", &PlanOptions::bound_samples)
-      .def("validate", &PlanOptions::Validate, "Empty when the options are valid; else a message naming the field and its value.");
-  py::class_<PlanProblem> problem(m, "PlanProblem", "Follow a planned path with energy-preserving impulses (section 2.3).");
+      .def("validate",
+           &PlanOptions::Validate,
+           "Empty when the options are valid; else a message naming the field and its value.");
+  py::class_<PlanProblem> problem(
+      m, "PlanProblem", "Follow a planned path with energy-preserving impulses (section 2.3).");
   WithKeywordInit(problem)
       .def_readwrite("model", &PlanProblem::model)
       .def_readwrite("initial", &PlanProblem::initial)
@@ -196,7 +224,10 @@ void BindPlanStep(py::module_& m) {
 
 // The impulsive trajectory of a plan: each free arc re-integrated from its impulse, chained in
 // position and orientation (as `plateball plan --svg` draws it).
-Trajectory PlanTrajectory(const PlanSummary& plan, const BallModel& model, int per_arc, const IntegrationOptions& integration) {
+Trajectory PlanTrajectory(const PlanSummary& plan,
+                          const BallModel& model,
+                          int per_arc,
+                          const IntegrationOptions& integration) {
   RequireCount("samples_per_arc", per_arc, 1, 100000);
   Trajectory out;
   if (plan.steps.empty()) return out;
@@ -207,7 +238,8 @@ Trajectory PlanTrajectory(const PlanSummary& plan, const BallModel& model, int p
     if (s.duration <= 0) break;
     std::vector<double> times;
     for (int i = (out.samples.empty() ? 0 : 1); i <= per_arc; ++i) times.push_back(s.duration * i / per_arc);
-    for (MotionSample q : IntegrateFreeMotion(model, FreeMotionStart{s.impulse.state_after, x, a}, times, integration)) {
+    for (MotionSample q :
+         IntegrateFreeMotion(model, FreeMotionStart{s.impulse.state_after, x, a}, times, integration)) {
       q.t += t0;
       out.samples.push_back(q);
     }
@@ -219,7 +251,10 @@ Trajectory PlanTrajectory(const PlanSummary& plan, const BallModel& model, int p
 }
 
 void BindPlanSummary(py::module_& m) {
-  py::class_<PlanSummary> summary(m, "PlanSummary", "The result of plan(): one PlanStep per impulse, the measured error, the error bounds and the final orientations; status \"not run\" until planned.");
+  py::class_<PlanSummary> summary(m,
+                                  "PlanSummary",
+                                  "The result of plan(): one PlanStep per impulse, the measured error, the error "
+                                  "bounds and the final orientations; status \"not run\" until planned.");
   AddSummaryShape(summary);
   summary.def_readonly("pieces", &PlanSummary::pieces)
       .def_readonly("segments", &PlanSummary::segments)
@@ -237,27 +272,63 @@ void BindPlanSummary(py::module_& m) {
       .def_readonly("bounds", &PlanSummary::bounds)
       .def_readonly("final_state", &PlanSummary::final_state)
       .def_readonly("mu_final", &PlanSummary::mu_final)
-      .def_property_readonly("pass_points", [](const PlanSummary& s) { return Stack<2>(s.steps, [](const PlanStep& q) { return q.p_begin.transpose(); }); },
-                             "(n, 2): p(tau_k), where the impulses act")
-      .def_property_readonly("t_impulse", [](const PlanSummary& s) { return Stack<1>(s.steps, [](const PlanStep& q) { return Scalar1(q.t_impulse); }); })
-      .def_property_readonly("delta_psi", [](const PlanSummary& s) { return Stack<1>(s.steps, [](const PlanStep& q) { return Scalar1(q.delta_psi); }); })
-      .def_property_readonly("durations", [](const PlanSummary& s) { return Stack<1>(s.steps, [](const PlanStep& q) { return Scalar1(q.duration); }); })
-      .def_property_readonly("delta_omega", [](const PlanSummary& s) { return Stack<3>(s.steps, [](const PlanStep& q) { return q.delta_omega.transpose(); }); })
-      .def_property_readonly("plate_velocity_changes", [](const PlanSummary& s) { return Stack<3>(s.steps, [](const PlanStep& q) { return q.plate_velocity_change.transpose(); }); })
-      .def_property_readonly("orientations_impulsive", [](const PlanSummary& s) { return StackMatrices(s.steps, [](const PlanStep& q) { return q.A_impulsive; }); })
-      .def("trajectory", &PlanTrajectory, py::arg("model"), py::arg("samples_per_arc") = 24,
-           py::arg("integration") = IntegrationOptions{}, py::call_guard<py::gil_scoped_release>(),
+      .def_property_readonly(
+          "pass_points",
+          [](const PlanSummary& s) {
+            return Stack<2>(s.steps, [](const PlanStep& q) { return q.p_begin.transpose(); });
+          },
+          "(n, 2): p(tau_k), where the impulses act")
+      .def_property_readonly("t_impulse",
+                             [](const PlanSummary& s) {
+                               return Stack<1>(s.steps, [](const PlanStep& q) { return Scalar1(q.t_impulse); });
+                             })
+      .def_property_readonly("delta_psi",
+                             [](const PlanSummary& s) {
+                               return Stack<1>(s.steps, [](const PlanStep& q) { return Scalar1(q.delta_psi); });
+                             })
+      .def_property_readonly(
+          "durations",
+          [](const PlanSummary& s) { return Stack<1>(s.steps, [](const PlanStep& q) { return Scalar1(q.duration); }); })
+      .def_property_readonly("delta_omega",
+                             [](const PlanSummary& s) {
+                               return Stack<3>(s.steps, [](const PlanStep& q) { return q.delta_omega.transpose(); });
+                             })
+      .def_property_readonly("plate_velocity_changes",
+                             [](const PlanSummary& s) {
+                               return Stack<3>(s.steps,
+                                               [](const PlanStep& q) { return q.plate_velocity_change.transpose(); });
+                             })
+      .def_property_readonly(
+          "orientations_impulsive",
+          [](const PlanSummary& s) { return StackMatrices(s.steps, [](const PlanStep& q) { return q.A_impulsive; }); })
+      .def("trajectory",
+           &PlanTrajectory,
+           py::arg("model"),
+           py::arg("samples_per_arc") = 24,
+           py::arg("integration") = IntegrationOptions{},
+           py::call_guard<py::gil_scoped_release>(),
            "The impulsive trajectory, every free arc re-integrated from its impulse.");
   BindPlanActuator(summary);
   m.def("_plan", &PlanImpulses, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
 }
 
 void BindConvergence(py::module_& m) {
-  py::class_<ConvergenceProblem> problem(m, "ConvergenceProblem", "What is asked: the plan problem (its partition rules must be uniform; each n of `ns` replaces their n) and the distinct partition sizes.");
-  WithKeywordInit(problem).def_readwrite("plan", &ConvergenceProblem::plan).def_readwrite("ns", &ConvergenceProblem::ns);
-  py::class_<ConvergenceOptions> options(m, "ConvergenceOptions", "Options of converge(): the plan options of every row and whether plans are timed.");
-  WithKeywordInit(options).def_readwrite("plan", &ConvergenceOptions::plan).def_readwrite("timings", &ConvergenceOptions::timings);
-  py::class_<ConvergenceRow>(m, "ConvergenceRow", "One row of a convergence study: the plan of one n, its measured error and the paper's bounds.")
+  py::class_<ConvergenceProblem> problem(m,
+                                         "ConvergenceProblem",
+                                         "What is asked: the plan problem (its partition rules must be uniform; each n "
+                                         "of `ns` replaces their n) and the distinct partition sizes.");
+  WithKeywordInit(problem)
+      .def_readwrite("plan", &ConvergenceProblem::plan)
+      .def_readwrite("ns", &ConvergenceProblem::ns);
+  py::class_<ConvergenceOptions> options(
+      m, "ConvergenceOptions", "Options of converge(): the plan options of every row and whether plans are timed.");
+  WithKeywordInit(options)
+      .def_readwrite("plan", &ConvergenceOptions::plan)
+      .def_readwrite("timings", &ConvergenceOptions::timings);
+  py::class_<ConvergenceRow>(
+      m,
+      "ConvergenceRow",
+      "One row of a convergence study: the plan of one n, its measured error and the paper's bounds.")
       .def_readonly("n", &ConvergenceRow::n)
       .def_readonly("segments", &ConvergenceRow::segments)
       .def_readonly("plan_seconds", &ConvergenceRow::plan_seconds)
@@ -269,7 +340,11 @@ void BindConvergence(py::module_& m) {
       .def_readonly("max_pass_miss", &ConvergenceRow::max_pass_miss)
       .def_property_readonly("status", [](const ConvergenceRow& r) { return ToString(r.status); })
       .def_readonly("message", &ConvergenceRow::message);
-  py::class_<ConvergenceStudy> study(m, "ConvergenceStudy", "The result of converge(): one row per n and the fitted slopes of the error, the bound and the time against n; status \"not run\" (no rows, no slopes) until run, \"completed\" with the slopes, \"no_slope\" with fewer than 2 successful rows.");
+  py::class_<ConvergenceStudy> study(m,
+                                     "ConvergenceStudy",
+                                     "The result of converge(): one row per n and the fitted slopes of the error, the "
+                                     "bound and the time against n; status \"not run\" (no rows, no slopes) until run, "
+                                     "\"completed\" with the slopes, \"no_slope\" with fewer than 2 successful rows.");
   AddSummaryShape(study);
   study.def_readonly("rows", &ConvergenceStudy::rows)
       .def_readonly("error_slope", &ConvergenceStudy::error_slope)
@@ -277,26 +352,41 @@ void BindConvergence(py::module_& m) {
       .def_readonly("time_slope", &ConvergenceStudy::time_slope)
       .def_readonly("bound_holds", &ConvergenceStudy::bound_holds)
       .def_readonly("failed_rows", &ConvergenceStudy::failed_rows)
-      .def("column", [](const ConvergenceStudy& s, const std::string& name) {
-             static const std::map<std::string, double ConvergenceRow::*> kColumns{
-                 {"plan_seconds", &ConvergenceRow::plan_seconds}, {"measured_error", &ConvergenceRow::measured_error},
-                 {"polyline_error", &ConvergenceRow::polyline_error}, {"bound", &ConvergenceRow::bound},
-                 {"theorem_2_6", &ConvergenceRow::theorem_2_6}, {"corollary_3", &ConvergenceRow::corollary_3},
-                 {"max_pass_miss", &ConvergenceRow::max_pass_miss}};
-             if (name == "n") return Stack<1>(s.rows, [](const ConvergenceRow& r) { return Scalar1(r.n); });
-             const auto it = kColumns.find(name);
-             if (it == kColumns.end()) throw std::invalid_argument("column: value '" + name + "': unknown column");
-             return Stack<1>(s.rows, [&](const ConvergenceRow& r) { return Scalar1(r.*(it->second)); });
-           }, py::arg("name"), "One column of the rows as an array: n, measured_error, polyline_error, bound, ...");
-  m.def("log_log_slope", &LogLogSlope, py::arg("x"), py::arg("y"), "The least-squares slope of log(y) against log(x) (the convergence rate).");
-  m.def("_converge", &RunConvergenceStudy, py::arg("problem"), py::arg("options"), py::call_guard<py::gil_scoped_release>());
+      .def(
+          "column",
+          [](const ConvergenceStudy& s, const std::string& name) {
+            static const std::map<std::string, double ConvergenceRow::*> kColumns{
+                {"plan_seconds", &ConvergenceRow::plan_seconds},
+                {"measured_error", &ConvergenceRow::measured_error},
+                {"polyline_error", &ConvergenceRow::polyline_error},
+                {"bound", &ConvergenceRow::bound},
+                {"theorem_2_6", &ConvergenceRow::theorem_2_6},
+                {"corollary_3", &ConvergenceRow::corollary_3},
+                {"max_pass_miss", &ConvergenceRow::max_pass_miss}};
+            if (name == "n") return Stack<1>(s.rows, [](const ConvergenceRow& r) { return Scalar1(r.n); });
+            const auto it = kColumns.find(name);
+            if (it == kColumns.end()) throw std::invalid_argument("column: value '" + name + "': unknown column");
+            return Stack<1>(s.rows, [&](const ConvergenceRow& r) { return Scalar1(r.*(it->second)); });
+          },
+          py::arg("name"),
+          "One column of the rows as an array: n, measured_error, polyline_error, bound, ...");
+  m.def("log_log_slope",
+        &LogLogSlope,
+        py::arg("x"),
+        py::arg("y"),
+        "The least-squares slope of log(y) against log(x) (the convergence rate).");
+  m.def("_converge",
+        &RunConvergenceStudy,
+        py::arg("problem"),
+        py::arg("options"),
+        py::call_guard<py::gil_scoped_release>());
 }
 
 }  // namespace
 
-void BindIsoparallel(py::module_& m);    // bind_isoparallel.cc
-void BindExactArrival(py::module_& m);   // bind_isoparallel.cc
-void BindRigLimits(py::module_& m);      // bind_rig_limits.cc
+void BindIsoparallel(py::module_& m);     // bind_isoparallel.cc
+void BindExactArrival(py::module_& m);    // bind_isoparallel.cc
+void BindRigLimits(py::module_& m);       // bind_rig_limits.cc
 void BindFewestImpulses(py::module_& m);  // bind_fewest.cc
 void BindIdentify(py::module_& m);        // bind_identify.cc
 

@@ -8,12 +8,18 @@ namespace plateball::internal {
 
 std::string ToString(ExclusionStatus status) {
   switch (status) {
-    case ExclusionStatus::kNotRun: return "not run";
-    case ExclusionStatus::kExcluded: return "excluded";
-    case ExclusionStatus::kUndecided: return "undecided boxes remain";
-    case ExclusionStatus::kBudgetExhausted: return "budget exhausted";
-    case ExclusionStatus::kInvalidInput: return "invalid input";
-    case ExclusionStatus::kInterrupted: return "interrupted";
+    case ExclusionStatus::kNotRun:
+      return "not run";
+    case ExclusionStatus::kExcluded:
+      return "excluded";
+    case ExclusionStatus::kUndecided:
+      return "undecided boxes remain";
+    case ExclusionStatus::kBudgetExhausted:
+      return "budget exhausted";
+    case ExclusionStatus::kInvalidInput:
+      return "invalid input";
+    case ExclusionStatus::kInterrupted:
+      return "interrupted";
   }
   return "unknown";
 }
@@ -44,7 +50,7 @@ BoxDecision DecideByVerdict(BoxVerdict verdict, double deviation, double accept_
 }
 
 ExclusionStatus BisectionTally::Status() const {
-  return interrupted      ? ExclusionStatus::kInterrupted
+  return interrupted     ? ExclusionStatus::kInterrupted
          : !budget_left  ? ExclusionStatus::kBudgetExhausted
          : undecided > 0 ? ExclusionStatus::kUndecided
                          : ExclusionStatus::kExcluded;

@@ -51,8 +51,13 @@ double BoxShare(const CertifyBox& box, const CertifyBox& window);
 /// that make one whole, as the loop family's two senses). `interrupt` (InterruptRequested) stops
 /// it, and every later call on the same tally, with tally->interrupted set.
 template <class Decide, class Keep>
-void Bisect(const CertifyBox& window, double weight, long max_boxes, Decide&& decide, Keep&& keep,
-            const CertifyInterrupt& interrupt, BisectionTally* tally) {
+void Bisect(const CertifyBox& window,
+            double weight,
+            long max_boxes,
+            Decide&& decide,
+            Keep&& keep,
+            const CertifyInterrupt& interrupt,
+            BisectionTally* tally) {
   std::vector<CertifyBox> stack = {window};
   while (!stack.empty() && tally->boxes < max_boxes) {
     if (tally->interrupted || (tally->interrupted = InterruptRequested(interrupt, tally->boxes))) break;
@@ -61,10 +66,18 @@ void Bisect(const CertifyBox& window, double weight, long max_boxes, Decide&& de
     ++tally->boxes;
     const BoxDecision decision = decide(box);
     switch (decision.fate) {
-      case BoxFate::kExcludedByChord: ++tally->excluded_by_chord; break;
-      case BoxFate::kExcludedByRotation: ++tally->excluded_by_rotation; break;
-      case BoxFate::kOutsideDomain: ++tally->outside_domain; break;
-      case BoxFate::kUndecided: ++tally->undecided, keep(box); continue;
+      case BoxFate::kExcludedByChord:
+        ++tally->excluded_by_chord;
+        break;
+      case BoxFate::kExcludedByRotation:
+        ++tally->excluded_by_rotation;
+        break;
+      case BoxFate::kOutsideDomain:
+        ++tally->outside_domain;
+        break;
+      case BoxFate::kUndecided:
+        ++tally->undecided, keep(box);
+        continue;
       case BoxFate::kSplit: {
         const int axis = decision.split_axis;
         const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);

@@ -105,16 +105,16 @@ double CentredRollingDeviationBound(PendulumRegime regime, const CertifyBox& box
   // rolling at each end, 2 h_u / |rate|_min.
   const double rate_min = RateMin(box);
   if (rate_min > 0.0) {
-    const double base = fixed + 2.0 * box.HalfWidth(kCertifyPhase) / rate_min +
-                        CentredRemainderBound(regime, box, true);
+    const double base =
+        fixed + 2.0 * box.HalfWidth(kCertifyPhase) / rate_min + CentredRemainderBound(regime, box, true);
     if (base < stop_above)
       best = base + LargestVertexDistance(regime, box, {kCertifyRate, kCertifyModulus}, stop_above - base);
   }
   const double stop = std::min(best, stop_above);
   const double base = fixed + CentredRemainderBound(regime, box, false);
   if (base < stop)
-    best = std::min(best, base + LargestVertexDistance(regime, box, {kCertifyRate, kCertifyModulus, kCertifyPhase},
-                                                       stop - base));
+    best = std::min(
+        best, base + LargestVertexDistance(regime, box, {kCertifyRate, kCertifyModulus, kCertifyPhase}, stop - base));
   return best < stop_above ? best : kInfinity;
 }
 

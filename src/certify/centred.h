@@ -31,7 +31,9 @@ double CentredRemainderBound(PendulumRegime regime, const CertifyBox& box, bool 
 /// over (rate, k) plus the phase shift 2 h_u / |rate|_min; + h_L, + 2 margin for the closed-form
 /// rollings' error. +infinity when no form is finite or below stop_above (it stops as soon as a
 /// form's remainder reaches it).
-double CentredRollingDeviationBound(PendulumRegime regime, const CertifyBox& box, double margin,
+double CentredRollingDeviationBound(PendulumRegime regime,
+                                    const CertifyBox& box,
+                                    double margin,
                                     double stop_above = std::numeric_limits<double>::infinity());
 
 }  // namespace plateball::internal

@@ -1,10 +1,8 @@
-#include "plateball/isoparallel_certificate.h"
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <iomanip>
 #include <ctime>
+#include <iomanip>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
@@ -13,6 +11,7 @@
 #include "certify/window.h"
 #include "check.h"
 #include "parallel_for.h"
+#include "plateball/isoparallel_certificate.h"
 #include "plateball/so3.h"
 
 namespace plateball {
@@ -39,7 +38,9 @@ double LengthCap(const IsoparallelSummary& solved, const IsoparallelCertificateO
 }
 
 // Adds a piece's proved solutions, once each (pieces meet on their faces).
-void AddProved(const IsoparallelSummary& solved, PendulumRegime regime, const std::vector<CertifyPoint>& found,
+void AddProved(const IsoparallelSummary& solved,
+               PendulumRegime regime,
+               const std::vector<CertifyPoint>& found,
                std::vector<CertifiedSolution>* out) {
   for (const CertifyPoint& p : found) {
     const bool seen = std::any_of(out->begin(), out->end(), [&](const CertifiedSolution& c) {
@@ -54,8 +55,10 @@ void AddProved(const IsoparallelSummary& solved, PendulumRegime regime, const st
 
 // Runs every piece (in parallel, each to the next free thread: their costs differ by 100x), fills
 // `pieces` and the proved solutions.
-void RunPieces(const IsoparallelSummary& solved, const internal::CertifyTarget& target,
-               const std::vector<internal::CoveragePiece>& plan, const IsoparallelCertificateOptions& options,
+void RunPieces(const IsoparallelSummary& solved,
+               const internal::CertifyTarget& target,
+               const std::vector<internal::CoveragePiece>& plan,
+               const IsoparallelCertificateOptions& options,
                IsoparallelCertificate* out) {
   const int n = static_cast<int>(plan.size());
   std::vector<internal::CoveragePieceResult> results(plan.size());
@@ -92,8 +95,9 @@ void RunPieces(const IsoparallelSummary& solved, const internal::CertifyTarget& 
     out->boxes += out->pieces[i].boxes;
     out->cpu_seconds += out->pieces[i].cpu_seconds;
   }
-  std::sort(out->solutions.begin(), out->solutions.end(),
-            [](const CertifiedSolution& a, const CertifiedSolution& b) { return a.length < b.length; });
+  std::sort(out->solutions.begin(), out->solutions.end(), [](const CertifiedSolution& a, const CertifiedSolution& b) {
+    return a.length < b.length;
+  });
   if (stopped.load()) out->status = IsoparallelCertificateStatus::kInterrupted;
 }
 
@@ -101,15 +105,16 @@ void RunPieces(const IsoparallelSummary& solved, const internal::CertifyTarget& 
 void Conclude(const IsoparallelSummary& solved, IsoparallelCertificate* out) {
   for (std::size_t i = 0; i < solved.solutions.size(); ++i) {
     if (solved.solutions[i].length > out->length_cap) continue;
-    const bool proved = std::any_of(out->solutions.begin(), out->solutions.end(),
-                                    [&](const CertifiedSolution& c) { return c.solver_index == static_cast<int>(i); });
+    const bool proved = std::any_of(out->solutions.begin(), out->solutions.end(), [&](const CertifiedSolution& c) {
+      return c.solver_index == static_cast<int>(i);
+    });
     if (!proved) out->solver_unproved.push_back(static_cast<int>(i));
   }
-  const auto open = std::find_if(out->pieces.begin(), out->pieces.end(),
-                                 [](const IsoparallelCertificatePiece& p) { return !p.closed; });
+  const auto open = std::find_if(
+      out->pieces.begin(), out->pieces.end(), [](const IsoparallelCertificatePiece& p) { return !p.closed; });
   if (out->status == IsoparallelCertificateStatus::kInterrupted) {
-    const long closed = std::count_if(out->pieces.begin(), out->pieces.end(),
-                                      [](const IsoparallelCertificatePiece& p) { return p.closed; });
+    const long closed = std::count_if(
+        out->pieces.begin(), out->pieces.end(), [](const IsoparallelCertificatePiece& p) { return p.closed; });
     out->message = "interrupted: " + std::to_string(closed) + " of " + std::to_string(out->pieces.size()) +
                    " pieces closed before the stop; nothing is claimed about the others";
     return;
@@ -132,11 +137,16 @@ void Conclude(const IsoparallelSummary& solved, IsoparallelCertificate* out) {
 
 std::string ToString(IsoparallelCertificateStatus status) {
   switch (status) {
-    case IsoparallelCertificateStatus::kNotRun: return "not_run";
-    case IsoparallelCertificateStatus::kComplete: return "complete";
-    case IsoparallelCertificateStatus::kIncomplete: return "incomplete";
-    case IsoparallelCertificateStatus::kNotApplicable: return "not_applicable";
-    case IsoparallelCertificateStatus::kInterrupted: return "interrupted";
+    case IsoparallelCertificateStatus::kNotRun:
+      return "not_run";
+    case IsoparallelCertificateStatus::kComplete:
+      return "complete";
+    case IsoparallelCertificateStatus::kIncomplete:
+      return "incomplete";
+    case IsoparallelCertificateStatus::kNotApplicable:
+      return "not_applicable";
+    case IsoparallelCertificateStatus::kInterrupted:
+      return "interrupted";
   }
   return "unknown";
 }
@@ -154,8 +164,8 @@ std::string IsoparallelCertificateOptions::Validate() const {
 }
 
 int IsoparallelCertificate::MissedBySolver() const {
-  return static_cast<int>(std::count_if(solutions.begin(), solutions.end(),
-                                        [](const CertifiedSolution& s) { return s.solver_index < 0; }));
+  return static_cast<int>(
+      std::count_if(solutions.begin(), solutions.end(), [](const CertifiedSolution& s) { return s.solver_index < 0; }));
 }
 
 IsoparallelCertificate CertifyIsoparallel(const IsoparallelSummary& solved,
@@ -204,7 +214,8 @@ std::string IsoparallelCertificate::FullReport() const {
   for (const CertifiedSolution& s : solutions)
     os << std::setprecision(10) << "  " << ToString(s.regime) << " rate " << s.rate << " k " << s.modulus << " phase "
        << s.phase << " length " << s.length
-       << (s.solver_index >= 0 ? " (the solver's #" + std::to_string(s.solver_index + 1) + ")" : " (missed by the solver)")
+       << (s.solver_index >= 0 ? " (the solver's #" + std::to_string(s.solver_index + 1) + ")"
+                               : " (missed by the solver)")
        << "\n";
   for (const IsoparallelCertificatePiece& p : pieces)
     os << std::setprecision(4) << "  " << (p.closed ? "closed " : "OPEN   ") << p.name << ": " << p.boxes << " boxes, "

@@ -119,7 +119,10 @@ double CostateDeviationBound(PendulumRegime regime, const CertifyBox& box, bool 
   return sum;
 }
 
-bool EvaluateCostateAngle(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x, CostateAngle* out) {
+bool EvaluateCostateAngle(const CertifyTarget& target,
+                          PendulumRegime regime,
+                          const CertifyPoint& x,
+                          CostateAngle* out) {
   const double length = x[kCertifyLength];
   for (double value : x)
     if (!std::isfinite(value)) return false;
@@ -151,7 +154,9 @@ double MinCostateAngleOverTurn(const CertifyTarget& target, const CostateAngle& 
   return least - 0.5 * lipschitz * spacing;
 }
 
-double CostateEndsDeviationBound(PendulumRegime regime, const CertifyBox& box, const CostateAngle& centre,
+double CostateEndsDeviationBound(PendulumRegime regime,
+                                 const CertifyBox& box,
+                                 const CostateAngle& centre,
                                  double margin) {
   const auto end_angle = [&](bool at_end, double norm) {
     const double delta = margin + CostateDeviationBound(regime, box, at_end);
@@ -160,8 +165,8 @@ double CostateEndsDeviationBound(PendulumRegime regime, const CertifyBox& box, c
   return end_angle(false, centre.start.norm()) + end_angle(true, centre.end.norm());
 }
 
-bool CostateExcludes(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
-                     double chord_deviation, double margin) {
+bool CostateExcludes(
+    const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box, double chord_deviation, double margin) {
   CostateAngle centre;
   if (!EvaluateCostateAngle(target, regime, box.Centre(), &centre)) return false;
   const double ends = CostateEndsDeviationBound(regime, box, centre, margin);

@@ -71,7 +71,9 @@ double MinCostateAngleOverTurn(const CertifyTarget& target, const CostateAngle& 
 /// The bound on the angles through which vhat(0) and vhat(L) move over the box (their sum), from
 /// CostateDerivativeBounds and the centre's |v| (a vector within delta of w, delta < |w|, makes an
 /// angle of at most asin(delta/|w|) with it; pi otherwise); margin added to each delta.
-double CostateEndsDeviationBound(PendulumRegime regime, const CertifyBox& box, const CostateAngle& centre,
+double CostateEndsDeviationBound(PendulumRegime regime,
+                                 const CertifyBox& box,
+                                 const CostateAngle& centre,
                                  double margin);
 
 /// The costate test: true when no point x of the box can be a solution. For every x,
@@ -79,7 +81,7 @@ double CostateEndsDeviationBound(PendulumRegime regime, const CertifyBox& box, c
 /// turn = asin((chord_deviation + margin)/|c(centre)|) of the centre's (every beta when
 /// chord_deviation + margin >= |c(centre)|): excluded when MinCostateAngleOverTurn exceeds the
 /// ends' deviation bound plus 3 margin. chord_deviation bounds |c(x) - c(centre)| over the box.
-bool CostateExcludes(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
-                     double chord_deviation, double margin);
+bool CostateExcludes(
+    const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box, double chord_deviation, double margin);
 
 }  // namespace plateball::internal

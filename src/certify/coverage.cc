@@ -22,8 +22,8 @@ double LoopModulus() {
 
 // The middle windows (|rate| in [0.5, A] for k in [k_lo, k_hi]) and the loop family of a regime,
 // those with a non-empty rate range.
-void AddFastTail(const CertifyTarget& target, PendulumRegime regime, double cap, double margin,
-                 std::vector<CoveragePiece>* pieces) {
+void AddFastTail(
+    const CertifyTarget& target, PendulumRegime regime, double cap, double margin, std::vector<CoveragePiece>* pieces) {
   const double slow = kCoverageSlowRate;
   std::vector<std::array<double, 2>> middles = {{kCoverageWindowModulus, kCoverageMiddleModulus}};
   if (regime == PendulumRegime::kOscillating)
@@ -46,8 +46,12 @@ std::string Interval(double lo, double hi) {
   return s.str();
 }
 
-CoveragePieceResult RunWindow(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
-                              double margin, const CertifyInterrupt& interrupt) {
+CoveragePieceResult RunWindow(const CertifyTarget& target,
+                              const CoveragePiece& piece,
+                              double cap,
+                              long max_boxes,
+                              double margin,
+                              const CertifyInterrupt& interrupt) {
   CertifyWindowOptions o;
   o.interrupted = interrupt;
   o.regime = piece.regime;
@@ -82,8 +86,12 @@ CoveragePieceResult FromExclusion(const Result& e) {
 
 // The fields the tail certificates share: regime, L in [|x1 - x0|, cap], budget and margin.
 template <class Options>
-Options ExclusionOptions(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
-                         double margin, const CertifyInterrupt& interrupt) {
+Options ExclusionOptions(const CertifyTarget& target,
+                         const CoveragePiece& piece,
+                         double cap,
+                         long max_boxes,
+                         double margin,
+                         const CertifyInterrupt& interrupt) {
   Options o;
   o.interrupted = interrupt;
   o.regime = piece.regime;
@@ -94,16 +102,24 @@ Options ExclusionOptions(const CertifyTarget& target, const CoveragePiece& piece
   return o;
 }
 
-CoveragePieceResult RunSlowTail(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
-                                double margin, const CertifyInterrupt& interrupt) {
+CoveragePieceResult RunSlowTail(const CertifyTarget& target,
+                                const CoveragePiece& piece,
+                                double cap,
+                                long max_boxes,
+                                double margin,
+                                const CertifyInterrupt& interrupt) {
   auto o = ExclusionOptions<SeparatrixTailOptions>(target, piece, cap, max_boxes, margin, interrupt);
   o.k_lo = piece.k_lo;
   o.rate_max = piece.rate_hi;
   return FromExclusion(CertifySeparatrixTail(target, o));
 }
 
-CoveragePieceResult RunLoops(const CertifyTarget& target, const CoveragePiece& piece, double cap, long max_boxes,
-                             double margin, const CertifyInterrupt& interrupt) {
+CoveragePieceResult RunLoops(const CertifyTarget& target,
+                             const CoveragePiece& piece,
+                             double cap,
+                             long max_boxes,
+                             double margin,
+                             const CertifyInterrupt& interrupt) {
   auto o = ExclusionOptions<LoopFamilyOptions>(target, piece, cap, max_boxes, margin, interrupt);
   o.k_t = piece.k_lo;
   // The heading error eps decreases in W2: oscillating (larger gap G_t), cores as wide as their
@@ -119,9 +135,12 @@ CoveragePieceResult RunLoops(const CertifyTarget& target, const CoveragePiece& p
 
 std::string ToString(CoveragePieceKind kind) {
   switch (kind) {
-    case CoveragePieceKind::kWindow: return "window";
-    case CoveragePieceKind::kSlowTail: return "slow tail";
-    case CoveragePieceKind::kLoops: return "loops";
+    case CoveragePieceKind::kWindow:
+      return "window";
+    case CoveragePieceKind::kSlowTail:
+      return "slow tail";
+    case CoveragePieceKind::kLoops:
+      return "loops";
   }
   return "unknown";
 }
@@ -153,21 +172,31 @@ CoveragePlan PlanCoverage(const CertifyTarget& target, double cap, double margin
   const double a_rot = MaxSolutionRateOver(target, PendulumRegime::kRotating, 0.0, k0, cap, margin);
   pieces.push_back(CoveragePiece{CoveragePieceKind::kWindow, PendulumRegime::kRotating, 0.0, k0, -a_rot, a_rot});
   for (PendulumRegime regime : {PendulumRegime::kOscillating, PendulumRegime::kRotating})
-    pieces.push_back(CoveragePiece{CoveragePieceKind::kSlowTail, regime, k0, 1.0, -kCoverageSlowRate, kCoverageSlowRate});
+    pieces.push_back(
+        CoveragePiece{CoveragePieceKind::kSlowTail, regime, k0, 1.0, -kCoverageSlowRate, kCoverageSlowRate});
   return plan;
 }
 
-CoveragePieceResult RunCoveragePiece(const CertifyTarget& target, const CoveragePiece& piece, double cap,
-                                     long max_boxes, const CertifyInterrupt& interrupt, double margin) {
+CoveragePieceResult RunCoveragePiece(const CertifyTarget& target,
+                                     const CoveragePiece& piece,
+                                     double cap,
+                                     long max_boxes,
+                                     const CertifyInterrupt& interrupt,
+                                     double margin) {
   switch (piece.kind) {
-    case CoveragePieceKind::kWindow: return RunWindow(target, piece, cap, max_boxes, margin, interrupt);
-    case CoveragePieceKind::kSlowTail: return RunSlowTail(target, piece, cap, max_boxes, margin, interrupt);
-    case CoveragePieceKind::kLoops: return RunLoops(target, piece, cap, max_boxes, margin, interrupt);
+    case CoveragePieceKind::kWindow:
+      return RunWindow(target, piece, cap, max_boxes, margin, interrupt);
+    case CoveragePieceKind::kSlowTail:
+      return RunSlowTail(target, piece, cap, max_boxes, margin, interrupt);
+    case CoveragePieceKind::kLoops:
+      return RunLoops(target, piece, cap, max_boxes, margin, interrupt);
   }
   return {};
 }
 
-int MatchingSolution(const std::vector<IsoparallelSolution>& solutions, PendulumRegime regime, const CertifyPoint& p,
+int MatchingSolution(const std::vector<IsoparallelSolution>& solutions,
+                     PendulumRegime regime,
+                     const CertifyPoint& p,
                      double tolerance) {
   for (std::size_t i = 0; i < solutions.size(); ++i) {
     const IsoparallelSolution& s = solutions[i];

@@ -26,11 +26,11 @@
 
 namespace plateball::internal {
 
-inline constexpr double kCoverageWindowModulus = 0.95;  // top of the windows from k = 0
-inline constexpr double kCoverageMiddleSplit = 0.999;   // the oscillating middle is split here
-inline constexpr double kCoverageMiddleModulus = 0.99995;  // top of the middle windows
+inline constexpr double kCoverageWindowModulus = 0.95;          // top of the windows from k = 0
+inline constexpr double kCoverageMiddleSplit = 0.999;           // the oscillating middle is split here
+inline constexpr double kCoverageMiddleModulus = 0.99995;       // top of the middle windows
 inline constexpr double kCoverageLoopModulusComplement = 1e-2;  // k'_t of the loop family
-inline constexpr double kCoverageSlowRate = 0.5;        // the slow tail's |rate| bound
+inline constexpr double kCoverageSlowRate = 0.5;                // the slow tail's |rate| bound
 
 enum class CoveragePieceKind { kWindow, kSlowTail, kLoops };
 std::string ToString(CoveragePieceKind kind);
@@ -48,9 +48,9 @@ struct CoveragePiece {
 };
 
 struct CoveragePlan {
-  std::string message;              // empty when valid, else the invalid-value message
-  double straight_residual = 0.0;   // delta0
-  bool rate_tail_excluded = false;  // delta0 > margin: the pieces are the whole certificate
+  std::string message;                // empty when valid, else the invalid-value message
+  double straight_residual = 0.0;     // delta0
+  bool rate_tail_excluded = false;    // delta0 > margin: the pieces are the whole certificate
   std::vector<CoveragePiece> pieces;  // empty unless rate_tail_excluded
 };
 
@@ -72,12 +72,18 @@ struct CoveragePieceResult {
 /// Runs the piece's certificate over lengths [target.radius, cap] with the given box budget,
 /// the first-order tests on and no known solution (every solution must be proved). `interrupt`
 /// is asked from the piece's box loop (InterruptRequested): true stops it, not closed.
-CoveragePieceResult RunCoveragePiece(const CertifyTarget& target, const CoveragePiece& piece, double cap,
-                                     long max_boxes, const CertifyInterrupt& interrupt = {}, double margin = 1e-7);
+CoveragePieceResult RunCoveragePiece(const CertifyTarget& target,
+                                     const CoveragePiece& piece,
+                                     double cap,
+                                     long max_boxes,
+                                     const CertifyInterrupt& interrupt = {},
+                                     double margin = 1e-7);
 
 /// The index of the solution in `solutions` that is the path `p` (canonical, of this regime):
 /// the same regime and SamePath within `tolerance` of its CanonicalSolution; -1 when none.
-int MatchingSolution(const std::vector<IsoparallelSolution>& solutions, PendulumRegime regime, const CertifyPoint& p,
+int MatchingSolution(const std::vector<IsoparallelSolution>& solutions,
+                     PendulumRegime regime,
+                     const CertifyPoint& p,
                      double tolerance);
 
 }  // namespace plateball::internal

@@ -1,8 +1,8 @@
 #include "certify/jacobian.h"
 
-#include <boost/math/special_functions/ellint_2.hpp>
 #include <Eigen/LU>
 #include <algorithm>
+#include <boost/math/special_functions/ellint_2.hpp>
 #include <cmath>
 #include <vector>
 
@@ -36,8 +36,12 @@ struct PathVariation {
 };
 
 // The rate, modulus and phase columns of the path's variation (quadrature along [0, L]).
-void IntegrateVariations(PendulumRegime regime, const CertifyPoint& x, const Elastica& e,
-                         const ElasticaRollingTable& table, double max_step, PathVariation* var) {
+void IntegrateVariations(PendulumRegime regime,
+                         const CertifyPoint& x,
+                         const Elastica& e,
+                         const ElasticaRollingTable& table,
+                         double max_step,
+                         PathVariation* var) {
   const CertifyQuadrature quad = CertifyQuadratureAlong(x[kCertifyLength], max_step);
   const std::vector<HeadingDerivatives> heading =
       HeadingDerivativesAtNodes(regime, x[kCertifyModulus], x[kCertifyRate], x[kCertifyPhase], quad);
@@ -136,7 +140,7 @@ ColumnSums SumColumnBounds(PendulumRegime regime, const CertifyBox& box) {
     const double mk = HeadingModulusBound(regime, k_max, v_max);
     const HeadingSecondBounds b = HeadingSecondDerivativeBounds(regime, k_max, v_max);
     const double dg = HeadingDeviation(box, s, mk, mv);  // |theta(s; x) - theta(s; c)|, |t_x - t_c|
-    const double rolled = out.rolling + dg * ds;            // |Q_x(s) - Q_c(s)|
+    const double rolled = out.rolling + dg * ds;         // |Q_x(s) - Q_c(s)|
     const double theta_p[3] = {s * mv, mk, mv};
     const double delta_p[3] = {s * (lin * b.vv + hk * b.vk), lin * b.vk + hk * b.kk, lin * b.vv + hk * b.vk};
     for (int p = 0; p < 3; ++p) {
@@ -160,8 +164,8 @@ struct EnclosureGeometry {
   double deviation = 0.0, chord_lo = 0.0, turn = 0.0, chord_min = 0.0, rho = 0.0, r_c = 0.0, r_max = 0.0;
 };
 
-bool EnclosureGeometryOf(double rolling, double hl, double chord_norm, double rotation, double margin,
-                         EnclosureGeometry* g) {
+bool EnclosureGeometryOf(
+    double rolling, double hl, double chord_norm, double rotation, double margin, EnclosureGeometry* g) {
   g->deviation = rolling + hl;  // chord and rolling at the end, lengths included
   g->chord_lo = chord_norm - margin;
   if (!(g->deviation < g->chord_lo)) return false;
@@ -190,12 +194,12 @@ EndHeadingBounds EndHeadingBoundsOf(PendulumRegime regime, const CertifyBox& box
   return ends;
 }
 
-bool CertifyEnclosureAvailable(PendulumRegime regime, const CertifyBox& box, double chord_norm, double rotation,
-                               double margin) {
+bool CertifyEnclosureAvailable(
+    PendulumRegime regime, const CertifyBox& box, double chord_norm, double rotation, double margin) {
   if (!AdmissibleForEnclosure(box)) return false;
   EnclosureGeometry g;
-  return EnclosureGeometryOf(SumColumnBounds(regime, box).rolling, box.HalfWidth(kCertifyLength), chord_norm, rotation,
-                             margin - 1e-9, &g);
+  return EnclosureGeometryOf(
+      SumColumnBounds(regime, box).rolling, box.HalfWidth(kCertifyLength), chord_norm, rotation, margin - 1e-9, &g);
 }
 
 HeadingDerivatives HeadingDerivativesAt(PendulumRegime regime, double k, double v) {
@@ -215,15 +219,16 @@ CertifyQuadrature CertifyQuadratureAlong(double length, double max_step) {
   return q;
 }
 
-std::vector<HeadingDerivatives> HeadingDerivativesAtNodes(PendulumRegime regime, double k, double rate, double phase,
-                                                          const CertifyQuadrature& quad) {
+std::vector<HeadingDerivatives> HeadingDerivativesAtNodes(
+    PendulumRegime regime, double k, double rate, double phase, const CertifyQuadrature& quad) {
   const JacobiAgm agm(k);
   const double kk = CompleteEllipticK(k);
   // The four gaps between consecutive nodes (the first across a step's end), their sn and E(am).
   JacobiPoint gap[4];
   double gap_epsilon[4];
   for (int j = 0; j < 4; ++j) {
-    const double ds = j == 0 ? quad.step * (1.0 + 0.5 * (kNodes[0] - kNodes[3])) : 0.5 * quad.step * (kNodes[j] - kNodes[j - 1]);
+    const double ds =
+        j == 0 ? quad.step * (1.0 + 0.5 * (kNodes[0] - kNodes[3])) : 0.5 * quad.step * (kNodes[j] - kNodes[j - 1]);
     gap[j] = JacobiUnwrapped(agm, kk, rate * ds);
     gap_epsilon[j] = EpsilonAt(k, gap[j]);
   }
@@ -244,8 +249,8 @@ std::vector<HeadingDerivatives> HeadingDerivativesAtNodes(PendulumRegime regime,
   return out;
 }
 
-bool EvaluateCertifyJacobian(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
-                             double max_step, CertifyJacobian* out) {
+bool EvaluateCertifyJacobian(
+    const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x, double max_step, CertifyJacobian* out) {
   const double length = x[kCertifyLength];
   for (double c : x)
     if (!std::isfinite(c)) return false;
@@ -292,8 +297,12 @@ double CertifyJacobianStep(double max_step, double rate) {
   return std::min(max_step, kJacobianArcStep / std::abs(rate));
 }
 
-bool NewtonRefineCertify(const CertifyTarget& target, PendulumRegime regime, double max_step, double tolerance,
-                         int max_iterations, CertifyPoint* x) {
+bool NewtonRefineCertify(const CertifyTarget& target,
+                         PendulumRegime regime,
+                         double max_step,
+                         double tolerance,
+                         int max_iterations,
+                         CertifyPoint* x) {
   CertifyJacobian f;
   for (int it = 0; it <= max_iterations; ++it) {
     if (!EvaluateCertifyJacobian(target, regime, *x, max_step, &f)) return false;
@@ -311,9 +320,9 @@ bool NewtonRefineCertify(const CertifyTarget& target, PendulumRegime regime, dou
 HeadingSecondBounds HeadingSecondDerivativeBounds(PendulumRegime regime, double k_max, double v_max) {
   const double k = k_max, v = v_max;
   const double kp2 = (1.0 - k) * (1.0 + k), kp = std::sqrt(kp2);
-  const double am_k = k * (0.5 + v) / kp2;                                   // |d am/dk|
-  const double dn_k = (k + k * k * am_k) / kp;                                // |d dn/dk|
-  const double g_k = am_k + dn_k * v + k * (v + v * v) / kp2;                 // |d/dk (sn cn - dn I)|
+  const double am_k = k * (0.5 + v) / kp2;                                       // |d am/dk|
+  const double dn_k = (k + k * k * am_k) / kp;                                   // |d dn/dk|
+  const double g_k = am_k + dn_k * v + k * (v + v * v) / kp2;                    // |d/dk (sn cn - dn I)|
   const double am_kk = (1.0 + k * k) / (kp2 * kp2) * (0.5 + v) + k / kp2 * g_k;  // |d2 am/dk2|
   HeadingSecondBounds b;
   if (regime == PendulumRegime::kRotating) {  // theta = 2 am, d theta/dv = 2 dn
@@ -328,8 +337,11 @@ HeadingSecondBounds HeadingSecondDerivativeBounds(PendulumRegime regime, double 
   return b;
 }
 
-bool CertifyJacobianEnclosure(PendulumRegime regime, const CertifyBox& box, const CertifyJacobian& centre,
-                              double margin, Eigen::Matrix4d* radius) {
+bool CertifyJacobianEnclosure(PendulumRegime regime,
+                              const CertifyBox& box,
+                              const CertifyJacobian& centre,
+                              double margin,
+                              Eigen::Matrix4d* radius) {
   if (!AdmissibleForEnclosure(box)) return false;
   const ColumnSums sums = SumColumnBounds(regime, box);
   const double hl = box.HalfWidth(kCertifyLength);
@@ -345,7 +357,7 @@ bool CertifyJacobianEnclosure(PendulumRegime regime, const CertifyBox& box, cons
                        HeadingRateBound(regime, box.hi[kCertifyModulus]);  // sup |curvature|
   for (int c = 0; c < 4; ++c) {
     double sup = 1.0, d_chord, d_xi;  // sup |d chord| (= sup |xi|), and their variations
-    if (c == kCertifyLength) {  // d chord = t(L), xi = Q(L)^T n(L)
+    if (c == kCertifyLength) {        // d chord = t(L), xi = Q(L)^T n(L)
       d_chord = std::min(sums.heading_end + kappa * hl, 2.0);
       d_xi = deviation + d_chord;
     } else {
@@ -368,15 +380,21 @@ bool CertifyJacobianEnclosure(PendulumRegime regime, const CertifyBox& box, cons
 
 std::string ToString(FirstOrderVerdict verdict) {
   switch (verdict) {
-    case FirstOrderVerdict::kNotRun: return "not run";
-    case FirstOrderVerdict::kExcluded: return "excluded";
-    case FirstOrderVerdict::kUnique: return "unique";
-    case FirstOrderVerdict::kUndecided: return "undecided";
+    case FirstOrderVerdict::kNotRun:
+      return "not run";
+    case FirstOrderVerdict::kExcluded:
+      return "excluded";
+    case FirstOrderVerdict::kUnique:
+      return "unique";
+    case FirstOrderVerdict::kUndecided:
+      return "undecided";
   }
   return "unknown";
 }
 
-FirstOrderVerdict FirstOrderTest(const CertifyBox& box, const CertifyJacobian& centre, const Eigen::Matrix4d& radius,
+FirstOrderVerdict FirstOrderTest(const CertifyBox& box,
+                                 const CertifyJacobian& centre,
+                                 const Eigen::Matrix4d& radius,
                                  double margin) {
   const CertifyPoint c = box.Centre();
   Eigen::Vector4d h;
@@ -403,8 +421,13 @@ FirstOrderVerdict FirstOrderTest(const CertifyBox& box, const CertifyJacobian& c
   return inside ? FirstOrderVerdict::kUnique : FirstOrderVerdict::kUndecided;
 }
 
-bool ProveAroundNewtonPoint(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
-                            const CertifyJacobian& centre, double max_step, double margin, CertifyBox* proved,
+bool ProveAroundNewtonPoint(const CertifyTarget& target,
+                            PendulumRegime regime,
+                            const CertifyBox& box,
+                            const CertifyJacobian& centre,
+                            double max_step,
+                            double margin,
+                            CertifyBox* proved,
                             CertifyPoint* solution) {
   const Eigen::FullPivLU<Eigen::Matrix4d> lu(centre.jacobian);
   if (!lu.isInvertible()) return false;

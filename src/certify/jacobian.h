@@ -40,8 +40,8 @@ CertifyQuadrature CertifyQuadratureAlong(double length, double max_step);
 /// E(u + w) = E(u) + E(w) - k^2 sn(u) sn(w) sn(u + w): one incomplete integral per gap length
 /// (four in all) and a restart every 64 nodes, instead of one per node. Agrees with
 /// HeadingDerivativesAt to ~1e-13 (1 + |v|) / k'^3.
-std::vector<HeadingDerivatives> HeadingDerivativesAtNodes(PendulumRegime regime, double k, double rate, double phase,
-                                                          const CertifyQuadrature& quad);
+std::vector<HeadingDerivatives> HeadingDerivativesAtNodes(
+    PendulumRegime regime, double k, double rate, double phase, const CertifyQuadrature& quad);
 
 /// F and dF/dx at one parameter point x = (rate, k, phase, L) (columns in CertifyAxis order).
 struct CertifyJacobian {
@@ -57,8 +57,8 @@ struct CertifyJacobian {
 /// (the rolling inside them by a sixth-order Magnus table on the same steps); the Log map
 /// by the inverse right Jacobian of SO(3). False for an inadmissible point (k outside [0, 1),
 /// L <= 0, a degenerate chord, non-finite values, a rotation residual within 1e-6 of pi).
-bool EvaluateCertifyJacobian(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
-                             double max_step, CertifyJacobian* out);
+bool EvaluateCertifyJacobian(
+    const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x, double max_step, CertifyJacobian* out);
 
 /// The arc of the pendulum argument v = rate s + u0 that one quadrature or Magnus step of
 /// EvaluateCertifyJacobian may cover: the heading's derivatives in s scale with |rate|, so a step
@@ -77,8 +77,12 @@ double CertifyResidualError(const CertifyBox& box);
 
 /// Newton's method on F from x (at most max_iterations steps, k kept >= 0); true when |F| (max
 /// norm) drops below tolerance. x receives the last iterate.
-bool NewtonRefineCertify(const CertifyTarget& target, PendulumRegime regime, double max_step, double tolerance,
-                         int max_iterations, CertifyPoint* x);
+bool NewtonRefineCertify(const CertifyTarget& target,
+                         PendulumRegime regime,
+                         double max_step,
+                         double tolerance,
+                         int max_iterations,
+                         CertifyPoint* x);
 
 /// Bounds on |d2 theta/dv2|, |d2 theta/dv dk|, |d2 theta/dk2| (k at fixed v) over moduli in
 /// [0, k_max] and |v| <= v_max (k_max < 1); each increasing in k_max and v_max (derived in the
@@ -105,15 +109,18 @@ inline constexpr double kJacobianMargin = 1e-6;
 /// EvaluateCertifyJacobian computed at box.Centre() (its floating-point error included). False
 /// when no enclosure is available: the chord may vanish in the box, the rotation residual may
 /// exceed 2.5 rad, or k_max >= 1.
-bool CertifyJacobianEnclosure(PendulumRegime regime, const CertifyBox& box, const CertifyJacobian& centre,
-                              double margin, Eigen::Matrix4d* radius);
+bool CertifyJacobianEnclosure(PendulumRegime regime,
+                              const CertifyBox& box,
+                              const CertifyJacobian& centre,
+                              double margin,
+                              Eigen::Matrix4d* radius);
 
 /// Whether CertifyJacobianEnclosure can succeed over `box` for a centre with this chord length
 /// and rotation residual angle (its requirements Dev < |chord| - margin and r_max <= 2.5, with
 /// 1e-9 of slack so that it never refuses a box the enclosure accepts): a cheap check before the
 /// centre's Jacobian is computed (the zeroth-order residual gives both numbers).
-bool CertifyEnclosureAvailable(PendulumRegime regime, const CertifyBox& box, double chord_norm, double rotation,
-                               double margin);
+bool CertifyEnclosureAvailable(
+    PendulumRegime regime, const CertifyBox& box, double chord_norm, double rotation, double margin);
 
 enum class FirstOrderVerdict { kNotRun, kExcluded, kUnique, kUndecided };
 std::string ToString(FirstOrderVerdict verdict);
@@ -122,17 +129,24 @@ std::string ToString(FirstOrderVerdict verdict);
 /// per component) and the enclosure `radius`: kExcluded when 0 is outside F(c) + J(X)(X - c)
 /// componentwise or the Krawczyk image K(X) = c - A F(c) + (I - A J(X))(X - c) (A = J_c^-1) is
 /// disjoint from X; kUnique when K(X) lies inside the interior of X (exactly one solution in X).
-FirstOrderVerdict FirstOrderTest(const CertifyBox& box, const CertifyJacobian& centre, const Eigen::Matrix4d& radius,
+FirstOrderVerdict FirstOrderTest(const CertifyBox& box,
+                                 const CertifyJacobian& centre,
+                                 const Eigen::Matrix4d& radius,
                                  double margin);
 
 /// The standard remedy for a solution on a face shared by two boxes of a subdivision (it lies in
 /// the interior of neither, so Krawczyk proves it in neither): when the Newton step from the
 /// centre lands near `box` (within twice its half-widths of its centre), Newton's method (at most 8
-/// steps, |F| < 1e-11); if it converges to a point near the box, the first-order tests on the box of the same half-widths
-/// centred at that point (the solution now in its interior). True when that box is proved to hold
-/// exactly one solution: *proved receives the box, *solution the Newton point.
-bool ProveAroundNewtonPoint(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
-                            const CertifyJacobian& centre, double max_step, double margin, CertifyBox* proved,
+/// steps, |F| < 1e-11); if it converges to a point near the box, the first-order tests on the box of the same
+/// half-widths centred at that point (the solution now in its interior). True when that box is proved to hold exactly
+/// one solution: *proved receives the box, *solution the Newton point.
+bool ProveAroundNewtonPoint(const CertifyTarget& target,
+                            PendulumRegime regime,
+                            const CertifyBox& box,
+                            const CertifyJacobian& centre,
+                            double max_step,
+                            double margin,
+                            CertifyBox* proved,
                             CertifyPoint* solution);
 
 }  // namespace plateball::internal

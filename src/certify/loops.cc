@@ -123,8 +123,12 @@ LoopModelRolling RollLoopModel(PendulumRegime regime, int sense, double core_hal
   return out;
 }
 
-bool EvaluateLoopModelResidual(const CertifyTarget& target, PendulumRegime regime, int sense,
-                               double core_half_width, const CertifyPoint& x, CertifyResidual* out) {
+bool EvaluateLoopModelResidual(const CertifyTarget& target,
+                               PendulumRegime regime,
+                               int sense,
+                               double core_half_width,
+                               const CertifyPoint& x,
+                               CertifyResidual* out) {
   if (!(x[kLoopRate] > 0.0) || !(x[kLoopRun] >= 0.0) || !(x[kLoopLength] > 0.0) || !std::isfinite(x[kLoopPhase]) ||
       !std::isfinite(x[kLoopRate] * x[kLoopLength]) || !std::isfinite(x[kLoopRun] + x[kLoopLength]))
     return false;
@@ -217,7 +221,8 @@ LoopFamilyResult CertifyLoopFamily(const CertifyTarget& target, const LoopFamily
   BisectionTally tally;
   for (const int sense : {1, -1}) {
     const auto decide = [&](const CertifyBox& box) {
-      if (LoopBoxOutsideDomain(w2, run_min_k, result.window.hi[kLoopRun], box)) return BoxDecision{BoxFate::kOutsideDomain};
+      if (LoopBoxOutsideDomain(w2, run_min_k, result.window.hi[kLoopRun], box))
+        return BoxDecision{BoxFate::kOutsideDomain};
       CertifyPoint share;
       const double model = LoopModelDeviationBound(w2, box, &share);
       const double deviation = model + heading_error.ForBox(box) * box.hi[kLoopLength];

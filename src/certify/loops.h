@@ -78,8 +78,12 @@ LoopModelRolling RollLoopModel(PendulumRegime regime, int sense, double core_hal
 
 /// The free-length residual of a model point (the definition of EvaluateCertifyResidual: the
 /// rotation trick on the model's rolling and chord). False for an inadmissible point.
-bool EvaluateLoopModelResidual(const CertifyTarget& target, PendulumRegime regime, int sense,
-                               double core_half_width, const CertifyPoint& x, CertifyResidual* out);
+bool EvaluateLoopModelResidual(const CertifyTarget& target,
+                               PendulumRegime regime,
+                               int sense,
+                               double core_half_width,
+                               const CertifyPoint& x,
+                               CertifyResidual* out);
 
 /// Bound D on the rotation distance of Q(0, L) and on the chord distance between any model point
 /// of the box (same regime and sense) and the box centre: 2 |dt0| (a shift along the path) +
@@ -107,17 +111,17 @@ bool LoopBoxOutsideDomain(double core_half_width, double run_min_k, double run_c
 
 struct LoopFamilyOptions {
   PendulumRegime regime = PendulumRegime::kRotating;
-  double k_t = 1.0 - 1e-4;        // the family covers k in [k_t, 1)
-  double core_half_width = 0.0;   // W2 in v; 0: LoopCoreHalfWidthFor(regime, k_t)
-  double rate_lo = 0.5;           // a_lo: |rate| in [rate_lo, rate_max]
-  double rate_max = 30.0;         // A
-  double length_lo = 0.0;         // L in [length_lo, cap]
+  double k_t = 1.0 - 1e-4;       // the family covers k in [k_t, 1)
+  double core_half_width = 0.0;  // W2 in v; 0: LoopCoreHalfWidthFor(regime, k_t)
+  double rate_lo = 0.5;          // a_lo: |rate| in [rate_lo, rate_max]
+  double rate_max = 30.0;        // A
+  double length_lo = 0.0;        // L in [length_lo, cap]
   double cap = 1.0;
-  long max_boxes = 1000000;       // over both senses
+  long max_boxes = 1000000;        // over both senses
   double accept_deviation = 1e-3;  // a box whose model part of D is below this is undecided, not split
   int keep_undecided = 16;
-  double margin = 1e-7;            // on the centre residual
-  CertifyInterrupt interrupted;    // if set: asked every kInterruptPollBoxes boxes (kInterrupted)
+  double margin = 1e-7;          // on the centre residual
+  CertifyInterrupt interrupted;  // if set: asked every kInterruptPollBoxes boxes (kInterrupted)
   std::string Validate() const;
 };
 

@@ -77,8 +77,12 @@ double FixedPeriodsDeviationBound(PendulumRegime regime, const CertifyBox& box, 
   return share + rest;
 }
 
-double FixedPeriodsRollingDeviationBound(PendulumRegime regime, const CertifyBox& box, double margin,
-                                         bool closed_rolling, bool chart_rolling, double stop_above) {
+double FixedPeriodsRollingDeviationBound(PendulumRegime regime,
+                                         const CertifyBox& box,
+                                         double margin,
+                                         bool closed_rolling,
+                                         bool chart_rolling,
+                                         double stop_above) {
   const double share = FixedPeriodsModulusShare(regime, box);
   const CertifyBox periods = FixedPeriodsBox(box);
   double rest = RollingDeviationBound(regime, periods);
@@ -94,14 +98,17 @@ double FixedPeriodsChordDeviationBound(PendulumRegime regime, const CertifyBox& 
          std::min(RollingDeviationBound(regime, periods), ChordDeviationBound(regime, periods));
 }
 
-BoxVerdict FixedPeriodsTest(const CertifyWindowOptions& options, const CertifyBox& box, const CertifyResidual& centre,
-                            double deviation, double chord_deviation) {
+BoxVerdict FixedPeriodsTest(const CertifyWindowOptions& options,
+                            const CertifyBox& box,
+                            const CertifyResidual& centre,
+                            double deviation,
+                            double chord_deviation) {
   const double chord = std::min(chord_deviation, FixedPeriodsChordDeviationBound(options.regime, box));
   if (std::abs(centre.chord_miss) > chord + options.margin) return BoxVerdict::kExcludedByChord;
   const double slack = RotationSlack(centre, chord, options.margin);
   if (!(slack > box.HalfWidth(kCertifyLength))) return BoxVerdict::kUndecided;  // every bound holds h_L
-  const double rolling = FixedPeriodsRollingDeviationBound(options.regime, box, options.margin, options.closed_rolling,
-                                                           options.chart_rolling, std::min(deviation, slack));
+  const double rolling = FixedPeriodsRollingDeviationBound(
+      options.regime, box, options.margin, options.closed_rolling, options.chart_rolling, std::min(deviation, slack));
   return rolling < slack ? BoxVerdict::kExcludedByRotation : BoxVerdict::kUndecided;
 }
 

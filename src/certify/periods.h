@@ -40,8 +40,11 @@ double FixedPeriodsDeviationBound(PendulumRegime regime, const CertifyBox& box, 
 /// Bound on the rotation distance between Q(0, L) of any point of the box and Q(0, Lc) of its
 /// centre: the k share plus the smallest of D, R (with `closed_rolling`) and Rt (with
 /// `chart_rolling`) of FixedPeriodsBox; R and Rt are skipped when D's already attains stop_above.
-double FixedPeriodsRollingDeviationBound(PendulumRegime regime, const CertifyBox& box, double margin,
-                                         bool closed_rolling, bool chart_rolling,
+double FixedPeriodsRollingDeviationBound(PendulumRegime regime,
+                                         const CertifyBox& box,
+                                         double margin,
+                                         bool closed_rolling,
+                                         bool chart_rolling,
                                          double stop_above = std::numeric_limits<double>::infinity());
 
 /// Bound on the distance between the chord of any point of the box and the centre's: the k share
@@ -51,7 +54,10 @@ double FixedPeriodsChordDeviationBound(PendulumRegime regime, const CertifyBox& 
 /// The chord and rotation tests (TestBox) of a box the tests with D, R and Rt leave undecided,
 /// redone with the chord bound min(chord_deviation, FixedPeriodsChordDeviationBound) and the
 /// rolling bound FixedPeriodsRollingDeviationBound (stopped at min(deviation, slack)).
-BoxVerdict FixedPeriodsTest(const CertifyWindowOptions& options, const CertifyBox& box, const CertifyResidual& centre,
-                            double deviation, double chord_deviation);
+BoxVerdict FixedPeriodsTest(const CertifyWindowOptions& options,
+                            const CertifyBox& box,
+                            const CertifyResidual& centre,
+                            double deviation,
+                            double chord_deviation);
 
 }  // namespace plateball::internal

@@ -1,10 +1,9 @@
 #include "certify/rolling.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Geometry>
 
 #include "certify/costate.h"
 #include "jacobi_elliptic.h"
@@ -13,7 +12,6 @@
 namespace plateball::internal {
 
 namespace {
-
 
 // The suprema over the box that the twist's derivatives use (notes), besides its extremes.
 struct TwistScales {
@@ -129,8 +127,8 @@ double HalfHeadingDeviationBound(PendulumRegime regime, const CertifyBox& box, b
   // the smaller of the two heading bounds over |w| <= w_max.
   const double w_max = at_end ? EndArgumentBound(box) : e.phase_max;
   const double mv = HeadingRateBound(regime, e.k_max);
-  const double theta_k = std::min(HeadingModulusBound(regime, e.k_max, w_max),
-                                  HeadingModulusBoundByZeta(regime, e.k_min, e.k_max, w_max));
+  const double theta_k =
+      std::min(HeadingModulusBound(regime, e.k_max, w_max), HeadingModulusBoundByZeta(regime, e.k_min, e.k_max, w_max));
   double dw = box.HalfWidth(kCertifyPhase);
   if (at_end) dw += e.length_max * box.HalfWidth(kCertifyRate) + e.rate_max * box.HalfWidth(kCertifyLength);
   return 0.5 * (mv * dw + theta_k * box.HalfWidth(kCertifyModulus));
@@ -199,8 +197,8 @@ CertifyPoint ChartTwistDerivativeBounds(PendulumRegime regime, const CertifyBox&
   const double q = gap2 <= 4.0 * r2 ? 1.0 / (den_min * den_min) : 1.0 / (16.0 * r2 * gap2);  // sup S/den^2
   // dP/dG = 2 S ((1 - G)^2 S - 4 G rate^2) / den^2, |.| <= 2 max(1, G) S/den; dP/drate|_G = -8 rate N S/den^2.
   const double p_g = 2.0 * std::max(1.0, t.g_max) / den_min, p_r = 8.0 * r * n_max * q;
-  const double spread = 0.5 * t.v_max * p1;   // sup over w of |phi(w1) - phi(w2)|
-  const double phi_w = 0.5 * t.v_max * p_s;   // sup |dphi/dw| (|dS/dw| = |2 sn cn dn| <= 1)
+  const double spread = 0.5 * t.v_max * p1;  // sup over w of |phi(w1) - phi(w2)|
+  const double phi_w = 0.5 * t.v_max * p_s;  // sup |dphi/dw| (|dS/dw| = |2 sn cn dn| <= 1)
   // V^2 = (1 - G)^2 + 4 rate^2 k^2 (oscillating, G = rate^2): dV/drate = (4 rate k^2 - 2 (1 - G) rate)/V,
   // dV/dk = 4 rate^2 k / V; rotating (G = rate^2 k^2, + 4 rate^2): dV/drate = (4 rate - 2 (1 - G) rate k^2)/V,
   // dV/dk = -2 (1 - G) rate^2 k / V. Each also <= the V-free bounds of TwistDerivativeBounds.
@@ -218,8 +216,8 @@ CertifyPoint ChartTwistDerivativeBounds(PendulumRegime regime, const CertifyBox&
   // k at fixed w: S_k = Sigma_k - (K_k/K) w S_w, |Sigma_k| = |2 sn cn am_k|_periods| <= A0, and
   // int w phi_w ds = u0 (phi(u1) - phi(u0))/rate + int_0^L (phi(u1) - phi(s)) ds.
   const double a0 = k * (1.0 + CompleteEllipticK(k)) / (2.0 * OneMinusSquare(k));  // Jacobi's zeta form
-  const double secular = PeriodLogSlope(e.k_min, k) *
-                         (e.phase_max * by_phase + std::min(len * spread, 0.5 * r * len * len * phi_w));
+  const double secular =
+      PeriodLogSlope(e.k_min, k) * (e.phase_max * by_phase + std::min(len * spread, 0.5 * r * len * len * phi_w));
   CertifyPoint d;
   d[kCertifyRate] = len * (0.5 * dv_dr * one_p + 0.5 * t.v_max * (p_g * dg_dr + p_r)) + by_parts;
   d[kCertifyModulus] = len * (0.5 * dv_dk * one_p + 0.5 * t.v_max * (p_g * dg_dk + p_s * a0)) + secular;
@@ -240,7 +238,11 @@ enum class RollingChart { kCostate, kHalfHeading };
 
 // `start` plus the chart's terms (twist, then each frame) on a box whose length is collapsed to
 // the centre's (and maybe its phase), +infinity as soon as the partial sum reaches stop_above.
-double CollapsedBound(RollingChart chart, PendulumRegime regime, const CertifyBox& fixed, double start, double margin,
+double CollapsedBound(RollingChart chart,
+                      PendulumRegime regime,
+                      const CertifyBox& fixed,
+                      double start,
+                      double margin,
                       double stop_above) {
   const CertifyPoint x = fixed.Centre();
   const bool costate_chart = chart == RollingChart::kCostate;
@@ -262,8 +264,8 @@ double CollapsedBound(RollingChart chart, PendulumRegime regime, const CertifyBo
   return bound < stop_above ? bound : kInfinity;
 }
 
-double RollingDeviationInChart(RollingChart chart, PendulumRegime regime, const CertifyBox& box, double margin,
-                               double stop_above) {
+double RollingDeviationInChart(
+    RollingChart chart, PendulumRegime regime, const CertifyBox& box, double margin, double stop_above) {
   const CertifyPoint x = box.Centre();
   if (!(x[kCertifyModulus] < 1.0) || !(x[kCertifyLength] > 0.0)) return kInfinity;
   // Q(0, L) moves at unit speed in L (|e3 x x'| = 1): Q(p) is within h_L of Q at (p, L_centre),

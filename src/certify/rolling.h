@@ -18,9 +18,8 @@
 // min |1 - G| over the box is below kMinUnitGap, and the certificate takes min(D, this bound).
 #pragma once
 
-#include <limits>
-
 #include <Eigen/Core>
+#include <limits>
 
 #include "certify/vocabulary.h"
 
@@ -44,7 +43,9 @@ double FrameDeviationAngle(double delta, double norm, double norm_h);
 /// centre, from the closed form (above); margin added to each end's costate deviation. +infinity
 /// when min |1 - G| over the box < kMinUnitGap, the centre is inadmissible, or the bound is not
 /// below stop_above (then it stops as soon as a partial sum reaches it: the caller's D).
-double ClosedRollingDeviationBound(PendulumRegime regime, const CertifyBox& box, double margin,
+double ClosedRollingDeviationBound(PendulumRegime regime,
+                                   const CertifyBox& box,
+                                   double margin,
                                    double stop_above = std::numeric_limits<double>::infinity());
 
 // ---------------------------------------------------------------------------------------------
@@ -86,7 +87,9 @@ double HalfHeadingDeviationBound(PendulumRegime regime, const CertifyBox& box, b
 
 /// As ClosedRollingDeviationBound, in the theta/2 chart: +infinity when the box meets rate 0, the
 /// centre is inadmissible, or the bound is not below stop_above; finite through G = 1.
-double ChartRollingDeviationBound(PendulumRegime regime, const CertifyBox& box, double margin,
+double ChartRollingDeviationBound(PendulumRegime regime,
+                                  const CertifyBox& box,
+                                  double margin,
                                   double stop_above = std::numeric_limits<double>::infinity());
 
 }  // namespace plateball::internal

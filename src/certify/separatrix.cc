@@ -12,7 +12,6 @@ namespace plateball::internal {
 
 namespace {
 
-
 // The largest |v| a box reaches: its start phase plus rate times length.
 double MaxAbsV(const CertifyBox& box) {
   const double phase = std::max(std::abs(box.lo[kCertifyPhase]), std::abs(box.hi[kCertifyPhase]));

@@ -41,16 +41,16 @@ double SeparatrixDeviationBound(PendulumRegime regime, const CertifyBox& box, Ce
 
 struct SeparatrixTailOptions {
   PendulumRegime regime = PendulumRegime::kRotating;
-  double k_lo = 0.95;        // the tail is k in [k_lo, 1)
-  double rate_max = 0.5;     // A: rates in [-A, A]
-  double length_lo = 0.0;    // L in [length_lo, cap] (length_lo >= 0; L = 0 is no path)
+  double k_lo = 0.95;      // the tail is k in [k_lo, 1)
+  double rate_max = 0.5;   // A: rates in [-A, A]
+  double length_lo = 0.0;  // L in [length_lo, cap] (length_lo >= 0; L = 0 is no path)
   double cap = 1.0;
   long max_boxes = 1000000;
   double accept_deviation = 1e-3;  // an undecided box with D below this is reported, not split
   int keep_undecided = 16;         // how many undecided boxes to keep in the result
   double margin = 1e-7;            // on the centre residual (as CertifyWindowOptions)
   double max_step = 0.05;
-  CertifyInterrupt interrupted;    // if set: asked every kInterruptPollBoxes boxes (kInterrupted)
+  CertifyInterrupt interrupted;  // if set: asked every kInterruptPollBoxes boxes (kInterrupted)
   std::string Validate() const;
 };
 
@@ -62,9 +62,9 @@ struct SeparatrixTailResult {
   CertifyBox window;          // the near-loop window searched (k in [k_lo, 1])
   long boxes = 0;
   long excluded_by_chord = 0, excluded_by_rotation = 0;
-  long undecided = 0;                        // boxes with D <= accept_deviation not excluded
-  std::vector<CertifyBox> undecided_boxes;   // the first keep_undecided of them
-  double resolved_volume = 0.0;              // fraction of the window excluded
+  long undecided = 0;                       // boxes with D <= accept_deviation not excluded
+  std::vector<CertifyBox> undecided_boxes;  // the first keep_undecided of them
+  double resolved_volume = 0.0;             // fraction of the window excluded
   std::string message;
   bool Excluded() const { return status == SeparatrixTailStatus::kExcluded; }
 };

@@ -1,7 +1,7 @@
 #include "certify/tails.h"
 
-#include <boost/math/special_functions/ellint_2.hpp>
 #include <algorithm>
+#include <boost/math/special_functions/ellint_2.hpp>
 #include <cmath>
 #include <limits>
 
@@ -12,7 +12,6 @@
 namespace plateball::internal {
 
 namespace {
-
 
 // The drift ratio rho (signed): oscillating 2E/K - 1 (mean of cos theta), rotating 1 - 2D/K.
 // Both are decreasing in k (E/K and D/K are means of decreasing resp. increasing functions of
@@ -40,7 +39,8 @@ double DeviationAngle(double b) { return b >= 2.0 ? M_PI : 2.0 * std::asin(0.5 *
 
 double StraightResidual(const CertifyTarget& target) {
   // e3 x (x1 - x0) with x1 - x0 = radius (cos goal, sin goal).
-  const Eigen::Vector3d w(-target.radius * std::sin(target.goal_angle), target.radius * std::cos(target.goal_angle), 0.0);
+  const Eigen::Vector3d w(
+      -target.radius * std::sin(target.goal_angle), target.radius * std::cos(target.goal_angle), 0.0);
   return RotationTrickResidual(target.target, 0.0, ExpSO3(w)).norm();
 }
 
@@ -146,7 +146,7 @@ namespace {
 // phi is where Delta_a^2 = r: sin^2 phi = min(1, (1 - r) / a^2). Exact for a = b (dn^2 = E/K).
 // E(phi, a) = F - a^2 D(phi) and 1 - r = b^2 D(b) / K(b) without cancellation.
 double ZetaMaxOver(double a, double b) {
-  if (!(b > 0.0)) return 0.0;  // Z = 0 for k = 0
+  if (!(b > 0.0)) return 0.0;                                                                  // Z = 0 for k = 0
   if (!(b < 1.0)) return a < 1.0 ? CompleteEllipticK(a) - a * a * CompleteEllipticD(a) : 1.0;  // r = 0: E(a)
   const double one_minus_r = b * b * CompleteEllipticD(b) / CompleteEllipticK(b);
   const double s2 = a > 0.0 ? std::min(1.0, one_minus_r / (a * a)) : 1.0;
@@ -247,8 +247,8 @@ double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, doubl
   return scale == 0.0 ? kInfinity : 2.0 * PeriodicPartDiameter(regime, k) * scale;
 }
 
-double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
-                           double margin) {
+double MaxSolutionRateOver(
+    const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap, double margin) {
   const double scale = RateScale(target, cap, margin);
   return scale == 0.0 ? kInfinity : 2.0 * PeriodicPartDiameterOver(regime, k_lo, k_hi) * scale;
 }

@@ -108,7 +108,7 @@ double SeparatrixHeadingGapGrowing(PendulumRegime regime, double k, double v);
 double MaxSolutionRate(const CertifyTarget& target, PendulumRegime regime, double k, double cap, double margin);
 /// A rigorous sup of MaxSolutionRate over moduli in [k_lo, k_hi], k_hi <= 1 allowed
 /// (PeriodicPartDiameterOver): finite up to the separatrix.
-double MaxSolutionRateOver(const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap,
-                           double margin);
+double MaxSolutionRateOver(
+    const CertifyTarget& target, PendulumRegime regime, double k_lo, double k_hi, double cap, double margin);
 
 }  // namespace plateball::internal

@@ -77,7 +77,7 @@ double JacobiZetaOverModulusBound(double k_min, double k_max) {
 
 double HeadingModulusBound(PendulumRegime regime, double k_max, double v_max) {
   const double kp2 = (1.0 - k_max) * (1.0 + k_max);  // k'^2, decreasing in k: the sup is at k_max
-  const double am_k = k_max * (0.5 + v_max) / kp2;    // sup |d am / dk|
+  const double am_k = k_max * (0.5 + v_max) / kp2;   // sup |d am / dk|
   if (regime == PendulumRegime::kRotating) return 2.0 * am_k;
   // The oscillating form 2 (1 + k am_k) / k' of HeadingModulusFromAmplitude at every k: the zeta
   // form below takes the smaller one above k = 1/sqrt 2, and D the smaller of the two bounds; this
@@ -99,8 +99,8 @@ namespace {
 
 // The deviation bound of a box for a bound mk0 + mk_slope (|v| - |u0|_max) on |d theta/dk| (the
 // bounds are affine in v_max), and each axis' uncapped share (optional).
-double DeviationForModulusBound(PendulumRegime regime, const CertifyBox& box, double mk0, double mk_slope,
-                                CertifyPoint* contributions) {
+double DeviationForModulusBound(
+    PendulumRegime regime, const CertifyBox& box, double mk0, double mk_slope, CertifyPoint* contributions) {
   const double k_max = box.hi[kCertifyModulus];
   const double length_max = box.hi[kCertifyLength];
   const double mv = HeadingRateBound(regime, k_max);
@@ -117,12 +117,13 @@ double DeviationForModulusBound(PendulumRegime regime, const CertifyBox& box, do
                           : box.hi[kCertifyRate] < 0.0 ? -box.hi[kCertifyRate]
                                                        : 0.0;
   const double by_heading = IntegralOfCappedLine(alpha + hu * mv, beta, 2.0, length_max);
-  const double by_shift = rate_min > 0.0 ? 2.0 * hu / rate_min + IntegralOfCappedLine(alpha, beta, 2.0, length_max)
-                                         : by_heading;
+  const double by_shift =
+      rate_min > 0.0 ? 2.0 * hu / rate_min + IntegralOfCappedLine(alpha, beta, 2.0, length_max) : by_heading;
   if (contributions != nullptr) {
     (*contributions)[kCertifyRate] = 0.5 * hr * mv * length_max * length_max;
     (*contributions)[kCertifyModulus] = hk * (mk0 * length_max + 0.5 * mk_slope * slope * length_max * length_max);
-    (*contributions)[kCertifyPhase] = hu * (rate_min > 0.0 ? std::min(mv * length_max, 2.0 / rate_min) : mv * length_max);
+    (*contributions)[kCertifyPhase] =
+        hu * (rate_min > 0.0 ? std::min(mv * length_max, 2.0 / rate_min) : mv * length_max);
     (*contributions)[kCertifyLength] = hl;
   }
   // |w1 - w2| = 2 |sin(dg / 2)| <= min(|dg|, 2); the extra length rolls at unit speed.
@@ -147,7 +148,9 @@ double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, Certi
   return std::min(by_v, by_z);
 }
 
-double RollingDeviationBoundFor(PendulumRegime regime, const CertifyBox& box, double modulus_bound,
+double RollingDeviationBoundFor(PendulumRegime regime,
+                                const CertifyBox& box,
+                                double modulus_bound,
                                 CertifyPoint* contributions) {
   return DeviationForModulusBound(regime, box, modulus_bound, 0.0, contributions);
 }
@@ -171,8 +174,11 @@ Elastica CertifyElastica(PendulumRegime regime, const CertifyPoint& x) {
   return Elastica(p);
 }
 
-bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
-                             double /*max_step: the rolling is in closed form*/, CertifyResidual* out) {
+bool EvaluateCertifyResidual(const CertifyTarget& target,
+                             PendulumRegime regime,
+                             const CertifyPoint& x,
+                             double /*max_step: the rolling is in closed form*/,
+                             CertifyResidual* out) {
   const double length = x[kCertifyLength];
   if (!(std::abs(x[kCertifyModulus]) < 1.0) || !(length > 0.0) || !std::isfinite(x[kCertifyRate]) ||
       !std::isfinite(x[kCertifyPhase]) || !std::isfinite(length) ||
@@ -192,11 +198,16 @@ bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime,
 
 std::string ToString(BoxVerdict verdict) {
   switch (verdict) {
-    case BoxVerdict::kNotRun: return "not run";
-    case BoxVerdict::kExcludedByChord: return "excluded by chord";
-    case BoxVerdict::kExcludedByRotation: return "excluded by rotation";
-    case BoxVerdict::kExcludedByCostate: return "excluded by costate";
-    case BoxVerdict::kUndecided: return "undecided";
+    case BoxVerdict::kNotRun:
+      return "not run";
+    case BoxVerdict::kExcludedByChord:
+      return "excluded by chord";
+    case BoxVerdict::kExcludedByRotation:
+      return "excluded by rotation";
+    case BoxVerdict::kExcludedByCostate:
+      return "excluded by costate";
+    case BoxVerdict::kUndecided:
+      return "undecided";
   }
   return "unknown";
 }
@@ -232,13 +243,17 @@ std::string CertifyWindowOptions::Validate() const {
   }
   if (window.lo[kCertifyModulus] < 0.0 || window.hi[kCertifyModulus] > kMaxWindowModulus)
     return InvalidValueMessage("window.modulus", window.hi[kCertifyModulus], "must lie in [0, 1 - 1e-9]");
-  if (window.lo[kCertifyLength] <= 0.0) return InvalidValueMessage("window.length", window.lo[kCertifyLength], "must be > 0");
-  if (window.hi[kCertifyLength] > 1000.0) return InvalidValueMessage("window.length", window.hi[kCertifyLength], "must be <= 1000");
-  if (!(max_boxes >= 1 && max_boxes <= 2000000000L)) return InvalidValueMessage("max_boxes", max_boxes, "must be in [1, 2e9]");
+  if (window.lo[kCertifyLength] <= 0.0)
+    return InvalidValueMessage("window.length", window.lo[kCertifyLength], "must be > 0");
+  if (window.hi[kCertifyLength] > 1000.0)
+    return InvalidValueMessage("window.length", window.hi[kCertifyLength], "must be <= 1000");
+  if (!(max_boxes >= 1 && max_boxes <= 2000000000L))
+    return InvalidValueMessage("max_boxes", max_boxes, "must be in [1, 2e9]");
   if (!(accept_deviation > 0.0 && accept_deviation <= 1.0))
     return InvalidValueMessage("accept_deviation", accept_deviation, "must be in (0, 1]");
   if (!(margin >= 0.0 && margin <= 1e-2)) return InvalidValueMessage("margin", margin, "must be in [0, 1e-2]");
-  if (!(max_step >= 1e-4 && max_step <= 0.5)) return InvalidValueMessage("max_step", max_step, "must be in [1e-4, 0.5]");
+  if (!(max_step >= 1e-4 && max_step <= 0.5))
+    return InvalidValueMessage("max_step", max_step, "must be in [1e-4, 0.5]");
   if (!(first_order_deviation >= 0.0 && first_order_deviation <= 10.0))
     return InvalidValueMessage("first_order_deviation", first_order_deviation, "must be in [0, 10]");
   if (!(first_order_min_deviation >= 1e-14 && first_order_min_deviation <= 1.0))

@@ -95,14 +95,16 @@ double HeadingModulusFromAmplitude(PendulumRegime regime, double k_max, double a
 double RollingDeviationBound(PendulumRegime regime, const CertifyBox& box, CertifyPoint* contributions = nullptr);
 /// The same bound D for a given constant bound `modulus_bound` on |d theta/dk| over the box (the
 /// separatrix tail uses HeadingModulusBoundNearSeparatrix, valid for moduli up to k = 1).
-double RollingDeviationBoundFor(PendulumRegime regime, const CertifyBox& box, double modulus_bound,
+double RollingDeviationBoundFor(PendulumRegime regime,
+                                const CertifyBox& box,
+                                double modulus_bound,
                                 CertifyPoint* contributions = nullptr);
 
 /// The target of a general isoparallel problem, in the form the residual uses.
 struct CertifyTarget {
   Eigen::Matrix3d target = Eigen::Matrix3d::Identity();  // A1 A0^-1
-  double radius = 1.0;                                  // |x1 - x0|
-  double goal_angle = 0.0;                              // direction of x1 - x0
+  double radius = 1.0;                                   // |x1 - x0|
+  double goal_angle = 0.0;                               // direction of x1 - x0
 };
 
 /// The certificate's form of an isoparallel problem (target A1 A0^-1, |x1 - x0|, arg(x1 - x0)).
@@ -121,8 +123,8 @@ Elastica CertifyElastica(PendulumRegime regime, const CertifyPoint& x);
 /// The free-length residual at one parameter point (closed-form chord, closed-form rolling:
 /// ElasticaClosedRolling; max_step is no longer used here and kept for the callers). False for an
 /// inadmissible point (k >= 1, L <= 0, rate * L overflowing).
-bool EvaluateCertifyResidual(const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x,
-                             double max_step, CertifyResidual* out);
+bool EvaluateCertifyResidual(
+    const CertifyTarget& target, PendulumRegime regime, const CertifyPoint& x, double max_step, CertifyResidual* out);
 
 enum class BoxVerdict { kNotRun, kExcludedByChord, kExcludedByRotation, kExcludedByCostate, kUndecided };
 std::string ToString(BoxVerdict verdict);
@@ -173,15 +175,15 @@ inline bool InterruptRequested(const CertifyInterrupt& interrupt, long boxes) {
 
 struct CertifyWindowOptions {
   PendulumRegime regime = PendulumRegime::kOscillating;
-  CertifyBox window;             // rate, k in [0, kMaxWindowModulus], phase, L > 0
-  long max_boxes = 1000000;      // budget of examined boxes
+  CertifyBox window;               // rate, k in [0, kMaxWindowModulus], phase, L > 0
+  long max_boxes = 1000000;        // budget of examined boxes
   double accept_deviation = 1e-3;  // an undecided box with D below this must meet a neighbourhood
   /// Half-widths (rate, k, phase, length) of the neighbourhood of each known solution that is not
   /// searched: the certificate states that every solution of the window lies in one of them.
   CertifyPoint match = {0.01, 0.005, 0.02, 0.02};
   bool stop_at_unaccounted = true;  // a failed certificate needs no further boxes
-  double margin = 1e-7;          // floating-point margin on the centre's residual (rad, length)
-  double max_step = 0.05;        // Magnus step of the centre's rolling
+  double margin = 1e-7;             // floating-point margin on the centre's residual (rad, length)
+  double max_step = 0.05;           // Magnus step of the centre's rolling
   /// First-order tests (certify/jacobian.h) on boxes the zeroth-order test leaves
   /// undecided once D <= first_order_deviation: mean-value exclusion and Krawczyk. A box with
   /// exactly one solution is a found solution (refined by Newton, reported in `found`); boxes
@@ -217,7 +219,7 @@ struct CertifyWindowOptions {
   /// instead of the arithmetic midpoint; in [0, 1], 1 = never.
   double log_modulus_split = 1.0;
   std::function<void(const CertifyBoxTrace&)> trace;  // if set: called for every box split
-  CertifyInterrupt interrupted;  // if set: asked every kInterruptPollBoxes boxes (kInterrupted)
+  CertifyInterrupt interrupted;                       // if set: asked every kInterruptPollBoxes boxes (kInterrupted)
   std::string Validate() const;
 };
 

@@ -17,8 +17,8 @@ namespace {
 
 // Whether the box meets (inside = false) or lies inside (inside = true) the neighbourhood
 // |x_i - known_i| <= match_i of a known solution, the phase taken modulo its period.
-bool InNeighbourhood(const CertifyBox& box, PendulumRegime regime, const CertifyPoint& known,
-                     const CertifyPoint& match, bool inside) {
+bool InNeighbourhood(
+    const CertifyBox& box, PendulumRegime regime, const CertifyPoint& known, const CertifyPoint& match, bool inside) {
   const auto fits = [&](int axis, double centre) {
     const double lo = centre - match[axis], hi = centre + match[axis];
     return inside ? box.lo[axis] >= lo && box.hi[axis] <= hi : box.hi[axis] >= lo && box.lo[axis] <= hi;
@@ -39,7 +39,9 @@ double BoxVolume(const CertifyBox& box) {
 }
 
 // Index of the known solution whose neighbourhood holds (inside) or meets the box, or -1.
-int MatchKnown(const CertifyBox& box, const CertifyWindowOptions& options, const std::vector<CertifyPoint>& known,
+int MatchKnown(const CertifyBox& box,
+               const CertifyWindowOptions& options,
+               const std::vector<CertifyPoint>& known,
                bool inside) {
   for (size_t i = 0; i < known.size(); ++i)
     if (InNeighbourhood(box, options.regime, known[i], options.match, inside)) return static_cast<int>(i);
@@ -59,7 +61,9 @@ bool InsideAny(const CertifyBox& box, const std::vector<CertifyBox>& boxes) {
 // A solution proved unique in its box, in canonical form: recorded with the known one whose
 // neighbourhood holds it, unless the same path is already found (the phase window of one period
 // at k_max holds a path twice for smaller k: boxes one period apart).
-void RecordFound(const CertifyPoint& x, const CertifyWindowOptions& options, const std::vector<CertifyPoint>& known,
+void RecordFound(const CertifyPoint& x,
+                 const CertifyWindowOptions& options,
+                 const std::vector<CertifyPoint>& known,
                  CertifyWindowResult* result) {
   ElasticaParameters parameters;
   parameters.regime = options.regime;
@@ -95,7 +99,9 @@ struct FirstOrderOutcome {
   bool proved_nearby = false;  // undecided, but a box around a Newton point in it is proved
 };
 
-FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindowOptions& options, const CertifyBox& box,
+FirstOrderOutcome FirstOrderBox(const CertifyTarget& target,
+                                const CertifyWindowOptions& options,
+                                const CertifyBox& box,
                                 const std::vector<CertifyBox>& proved) {
   FirstOrderOutcome out;
   CertifyJacobian centre;
@@ -117,7 +123,8 @@ FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindow
   } else if (out.verdict == FirstOrderVerdict::kUndecided) {
     const Eigen::FullPivLU<Eigen::Matrix4d> lu(centre.jacobian);
     const Eigen::Matrix4d a = lu.isInvertible() ? Eigen::Matrix4d(lu.inverse()) : Eigen::Matrix4d::Identity();
-    const Eigen::Matrix4d spread = (Eigen::Matrix4d::Identity() - a * centre.jacobian).cwiseAbs() + a.cwiseAbs() * radius;
+    const Eigen::Matrix4d spread =
+        (Eigen::Matrix4d::Identity() - a * centre.jacobian).cwiseAbs() + a.cwiseAbs() * radius;
     double best = -1.0;
     for (int j = 0; j < 4; ++j) {
       const double share = spread.col(j).sum() * box.HalfWidth(j);
@@ -132,16 +139,18 @@ FirstOrderOutcome FirstOrderBox(const CertifyTarget& target, const CertifyWindow
     CertifyBox target_point;
     for (int i = 0; i < 4; ++i) target_point.lo[i] = target_point.hi[i] = box.Centre()[i] - newton[i];
     if (((spread * h).array() < h.array()).all() && !InsideAny(target_point, proved))
-      out.proved_nearby = ProveAroundNewtonPoint(target, options.regime, box, centre, options.max_step, margin,
-                                                 &out.proved, &out.solution);
+      out.proved_nearby = ProveAroundNewtonPoint(
+          target, options.regime, box, centre, options.max_step, margin, &out.proved, &out.solution);
   }
   return out;
 }
 
 // Counts a first-order outcome and records its proved solution and box; true when the box is
 // resolved (excluded, or proved to hold exactly one solution).
-bool RecordFirstOrder(const FirstOrderOutcome& first, const CertifyWindowOptions& options,
-                      const std::vector<CertifyPoint>& known, std::vector<CertifyBox>* proved,
+bool RecordFirstOrder(const FirstOrderOutcome& first,
+                      const CertifyWindowOptions& options,
+                      const std::vector<CertifyPoint>& known,
+                      std::vector<CertifyBox>* proved,
                       CertifyWindowResult* result) {
   if (first.verdict != FirstOrderVerdict::kNotRun) ++result->first_order_tried;
   if (first.verdict == FirstOrderVerdict::kUnique || first.proved_nearby) {
@@ -173,12 +182,18 @@ std::string CertifyMessage(const CertifyWindowResult& result, bool first_order) 
 
 std::string ToString(CertifyStatus status) {
   switch (status) {
-    case CertifyStatus::kNotRun: return "not run";
-    case CertifyStatus::kCertified: return "certified";
-    case CertifyStatus::kUnaccounted: return "unaccounted box";
-    case CertifyStatus::kBudgetExhausted: return "budget exhausted";
-    case CertifyStatus::kInvalidInput: return "invalid input";
-    case CertifyStatus::kInterrupted: return "interrupted";
+    case CertifyStatus::kNotRun:
+      return "not run";
+    case CertifyStatus::kCertified:
+      return "certified";
+    case CertifyStatus::kUnaccounted:
+      return "unaccounted box";
+    case CertifyStatus::kBudgetExhausted:
+      return "budget exhausted";
+    case CertifyStatus::kInvalidInput:
+      return "invalid input";
+    case CertifyStatus::kInterrupted:
+      return "interrupted";
   }
   return "unknown";
 }
@@ -188,7 +203,10 @@ namespace {
 // The rotation test with min(D, R, Rt, Rc) (R: the costate chart, Rt: the theta/2 chart,
 // certify/rolling.h; Rc: the centred form, certify/centred.h) on a box D
 // leaves undecided; stop = min(D, slack).
-BoxVerdict ClosedFormRotationTest(const CertifyWindowOptions& options, const CertifyBox& box, double stop, double slack,
+BoxVerdict ClosedFormRotationTest(const CertifyWindowOptions& options,
+                                  const CertifyBox& box,
+                                  double stop,
+                                  double slack,
                                   CertifyWindowResult* result) {
   if (options.closed_rolling && ClosedRollingDeviationBound(options.regime, box, options.margin, stop) < slack) {
     ++result->excluded_by_closed_rolling;
@@ -207,7 +225,8 @@ BoxVerdict ClosedFormRotationTest(const CertifyWindowOptions& options, const Cer
 
 }  // namespace
 
-CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector<CertifyPoint>& known,
+CertifyWindowResult CertifyWindow(const CertifyTarget& target,
+                                  const std::vector<CertifyPoint>& known,
                                   const CertifyWindowOptions& options) {
   CertifyWindowResult result;
   result.matched.assign(known.size(), 0);
@@ -263,8 +282,8 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     int axis = static_cast<int>(std::max_element(share.begin(), share.end()) - share.begin());
     FirstOrderOutcome first;
     if (hit < 0 && options.first_order && deviation <= options.first_order_deviation &&
-        CertifyEnclosureAvailable(options.regime, box, centre.chord_norm, centre.rotation,
-                                  FirstOrderMargin(options, box))) {
+        CertifyEnclosureAvailable(
+            options.regime, box, centre.chord_norm, centre.rotation, FirstOrderMargin(options, box))) {
       first = FirstOrderBox(target, options, box, proved);
       if (RecordFirstOrder(first, options, known, &proved, &result)) {
         result.resolved_volume += BoxVolume(box) / window_volume;
@@ -295,7 +314,7 @@ CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector
     stack.push_back(right);
     stack.push_back(left);
   }
-  result.status = interrupted               ? CertifyStatus::kInterrupted
+  result.status = interrupted              ? CertifyStatus::kInterrupted
                   : result.unaccounted > 0 ? CertifyStatus::kUnaccounted
                   : stack.empty()          ? CertifyStatus::kCertified
                                            : CertifyStatus::kBudgetExhausted;

@@ -21,24 +21,24 @@ struct CertifyWindowResult {
   long excluded_by_chord = 0;
   long excluded_by_rotation = 0;
   long excluded_by_costate = 0;
-  long excluded_by_closed_rolling = 0;  // of excluded_by_rotation: only with the closed-form bound
-  long excluded_by_chart_rolling = 0;   // of excluded_by_rotation: only with the theta/2 chart's bound
+  long excluded_by_closed_rolling = 0;   // of excluded_by_rotation: only with the closed-form bound
+  long excluded_by_chart_rolling = 0;    // of excluded_by_rotation: only with the theta/2 chart's bound
   long excluded_by_centred_rolling = 0;  // of excluded_by_rotation: only with the centred form, after those
-  long excluded_by_fixed_periods = 0;   // of excluded_by_chord/rotation: only with the fixed-periods bounds
-  long accounted = 0;        // boxes inside, or small undecided ones meeting, a known neighbourhood
-  long unaccounted = 0;      // small undecided boxes outside every known neighbourhood
-  std::vector<int> matched;  // per known solution: how many accounted boxes it explains
-  long first_order_tried = 0;       // boxes given the first-order tests (with an enclosure)
-  long excluded_first_order = 0;    // by the mean-value form or a Krawczyk image disjoint from the box
+  long excluded_by_fixed_periods = 0;    // of excluded_by_chord/rotation: only with the fixed-periods bounds
+  long accounted = 0;                    // boxes inside, or small undecided ones meeting, a known neighbourhood
+  long unaccounted = 0;                  // small undecided boxes outside every known neighbourhood
+  std::vector<int> matched;              // per known solution: how many accounted boxes it explains
+  long first_order_tried = 0;            // boxes given the first-order tests (with an enclosure)
+  long excluded_first_order = 0;         // by the mean-value form or a Krawczyk image disjoint from the box
   /// One per path proved (Krawczyk) to be the only solution of its box (a box of the subdivision,
-/// or, for a solution on a face of the subdivision, a box of the same size centred at its Newton
-/// point: boxes inside it are then resolved), in canonical form
+  /// or, for a solution on a face of the subdivision, a box of the same size centred at its Newton
+  /// point: boxes inside it are then resolved), in canonical form
   /// (CanonicalSolution); a path proved again in a box one phase period away (the same path, or
   /// within kSamePathTolerance of it) is counted in found_repeated instead.
   std::vector<CertifyPoint> found;
-  std::vector<int> found_known;     // per found solution: the known one whose neighbourhood holds it, or -1
+  std::vector<int> found_known;  // per found solution: the known one whose neighbourhood holds it, or -1
   long found_repeated = 0;
-  long inside_found = 0;  // boxes inside a box proved to hold exactly one found solution
+  long inside_found = 0;         // boxes inside a box proved to hold exactly one found solution
   double resolved_volume = 0.0;  // fraction of the window's volume excluded or accounted
   CertifyBox first_unaccounted;
   std::string message;
@@ -54,7 +54,8 @@ struct CertifyWindowResult {
 /// proved). With first_order, kCertified means: every solution of the window lies within `match`
 /// of a known one or is one of `found`, each the only solution in its box (an empty known list
 /// is then allowed).
-CertifyWindowResult CertifyWindow(const CertifyTarget& target, const std::vector<CertifyPoint>& known,
+CertifyWindowResult CertifyWindow(const CertifyTarget& target,
+                                  const std::vector<CertifyPoint>& known,
                                   const CertifyWindowOptions& options);
 
 }  // namespace plateball::internal

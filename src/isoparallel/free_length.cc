@@ -119,7 +119,9 @@ bool FreeLengthFunctor::ResidualOf(const Eigen::Vector2d& xs, const Eigen::Matri
 
 // The residual of the path from 0 to `length` of the rolling's elastica (x(0) = 0), Q(0, L) in
 // closed form; its chord and rolling are kept in `last`.
-bool FreeLengthFunctor::ResidualFrom(const Elastica& e, const internal::ElasticaClosedRolling& rolling, double length,
+bool FreeLengthFunctor::ResidualFrom(const Elastica& e,
+                                     const internal::ElasticaClosedRolling& rolling,
+                                     double length,
                                      double* r) const {
   ++evaluations;
   last.end = rolling.Path(e, length);
@@ -133,14 +135,16 @@ bool FreeLengthFunctor::ResidualFrom(const Elastica& e, const internal::Elastica
 // the step's midpoint (error O(h^3), as the chord's): the phase and length columns without the
 // two positions and two closed-form rollings they took (docs/paper_notes.md, "General targets",
 // point 12).
-bool FreeLengthFunctor::ShiftedResiduals(const Elastica& e, double length, double s0, double h, double* rp,
-                                         double* rl) const {
+bool FreeLengthFunctor::ShiftedResiduals(
+    const Elastica& e, double length, double s0, double h, double* rp, double* rl) const {
   Eigen::Vector2d t0, t1;
   double k0 = 0, k1 = 0;
   e.TangentAndCurvature(0.0, &t0, &k0);
   e.TangentAndCurvature(length, &t1, &k1);
   const Eigen::Vector2d n0 = k0 * Eigen::Vector2d(-t0.y(), t0.x()), n1 = k1 * Eigen::Vector2d(-t1.y(), t1.x());
-  const auto spin = [](const Eigen::Vector2d& t, double step) { return ExpSO3(step * Eigen::Vector3d(-t.y(), t.x(), 0.0)); };
+  const auto spin = [](const Eigen::Vector2d& t, double step) {
+    return ExpSO3(step * Eigen::Vector3d(-t.y(), t.x(), 0.0));
+  };
   const Eigen::Vector2d chord_p = last.end.chord + s0 * (t1 - t0) + 0.5 * s0 * s0 * (n1 - n0);
   const Eigen::Matrix3d q_p = spin(t1 + 0.5 * s0 * n1, s0) * last.end.q * spin(t0 + 0.5 * s0 * n0, -s0);
   const Eigen::Vector2d chord_l = last.end.chord + h * t1 + 0.5 * h * h * n1;
@@ -201,8 +205,8 @@ bool FreeLengthFunctor::operator()(const double* x, double* r, double* jacobian)
 // Whether the run stalls at an accepted point of residual norm `norm` (TinySolver evaluates the
 // Jacobian exactly at the accepted points): see kStallRatio.
 bool FreeLengthFunctor::Stalls(double norm) const {
-  const bool stall = stall_stop && norm >= kStallFloor && norm > kStallRatio * accepted[1] &&
-                     accepted[1] > kStallRatio * accepted[0];
+  const bool stall =
+      stall_stop && norm >= kStallFloor && norm > kStallRatio * accepted[1] && accepted[1] > kStallRatio * accepted[0];
   accepted[0] = accepted[1];
   accepted[1] = norm;
   return stall;
@@ -224,8 +228,9 @@ bool FreeLengthFunctor::ReachesKnown(const double* x, const double* r, const dou
   const Eigen::Map<const Eigen::Matrix4d> jac(jacobian);
   // At a converged point (no Jacobian computed: Converged) the point itself, within kSearchStop
   // of a root, stands for the Gauss-Newton step.
-  const Eigen::Vector4d y = Converged(r) ? Eigen::Vector4d(Eigen::Map<const Eigen::Vector4d>(x))
-                                         : Eigen::Vector4d(Eigen::Map<const Eigen::Vector4d>(x) - jac.fullPivLu().solve(res));
+  const Eigen::Vector4d y = Converged(r)
+                                ? Eigen::Vector4d(Eigen::Map<const Eigen::Vector4d>(x))
+                                : Eigen::Vector4d(Eigen::Map<const Eigen::Vector4d>(x) - jac.fullPivLu().solve(res));
   if (!y.allFinite()) return false;
   for (const SearchRoot& root : *known)
     if (SameRoot(regime, y, root)) return true;
@@ -237,7 +242,8 @@ bool FreeLengthFunctor::ReachesKnown(const double* x, const double* r, const dou
 // Not at an identity target: its comparison shooting (random starts, no shape scan) then misses
 // Figure 7's shortest path with 512 starts.
 bool FreeLengthFunctor::SecantColumns(const double* x, const double* r, double* jacobian) const {
-  if (!secant || ctx->identity || !kept.valid || !(Eigen::Map<const Eigen::Vector4d>(r).norm() > kSecantResidual)) return false;
+  if (!secant || ctx->identity || !kept.valid || !(Eigen::Map<const Eigen::Vector4d>(r).norm() > kSecantResidual))
+    return false;
   const Eigen::Map<const Eigen::Matrix4d> old(kept.jacobian);
   const Eigen::Vector4d dx = Eigen::Map<const Eigen::Vector4d>(x) - Eigen::Map<const Eigen::Vector4d>(kept.x);
   const Eigen::Vector4d dr = Eigen::Map<const Eigen::Vector4d>(r) - Eigen::Map<const Eigen::Vector4d>(kept.r);

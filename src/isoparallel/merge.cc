@@ -31,8 +31,8 @@ Candidate MakeRoughCandidate(const Context&, const IsoparallelProblem& problem, 
 // 0.31 and 0.67 curvature periods (the length kept) still solve the target to kFamilyTol, the
 // canonical member (phase 0) replaces p and ev (true).
 bool CanonicalFamilyMember(const Context& ctx, PendulumRegime regime, ElasticaParameters* p, Evaluation* ev) {
-  const double u_period = (regime == PendulumRegime::kOscillating ? 2.0 : 1.0) * 2.0 *
-                          internal::CompleteEllipticK(std::abs(p->modulus));
+  const double u_period =
+      (regime == PendulumRegime::kOscillating ? 2.0 : 1.0) * 2.0 * internal::CompleteEllipticK(std::abs(p->modulus));
   for (double frac : {0.31, 0.67}) {
     ElasticaParameters q = *p;
     q.phase += frac * u_period;
@@ -56,8 +56,7 @@ bool CanonicalFamilyMember(const Context& ctx, PendulumRegime regime, ElasticaPa
 // every such run.
 Candidate MakeCandidate(const Context& ctx, const IsoparallelProblem& problem, const LocalResult& r, double tolerance) {
   if (std::abs(r.ev.s - ctx.radius) <= kStraightTol * (1 + ctx.radius)) {
-    const double residual =
-        LogSO3(ctx.target.transpose() * RollAlongSegment(problem.start, problem.goal)).norm();
+    const double residual = LogSO3(ctx.target.transpose() * RollAlongSegment(problem.start, problem.goal)).norm();
     if (residual <= tolerance) return StraightCandidate(ctx, problem, ElasticaParameters{}, ctx.radius, residual);
   }
   Candidate c;
@@ -108,8 +107,8 @@ bool Known(const std::vector<Candidate>& found, const Candidate& c, double tol) 
 
 // The straight segment from start to goal (p with rate 0, heading along the chord), as a solution
 // of the given length (the chord) and residual.
-Candidate StraightCandidate(const Context& ctx, const IsoparallelProblem& problem, ElasticaParameters p, double length,
-                            double residual) {
+Candidate StraightCandidate(
+    const Context& ctx, const IsoparallelProblem& problem, ElasticaParameters p, double length, double residual) {
   Candidate c;
   IsoparallelSolution& sol = c.solution;
   p.rate = 0.0;
@@ -124,8 +123,12 @@ Candidate StraightCandidate(const Context& ctx, const IsoparallelProblem& proble
 }
 
 // Adds a search result to `found` when it polishes to a new solution; true if it did.
-bool MergeResult(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
-                 LocalResult* r, std::vector<Candidate>* found, IsoparallelSummary* summary) {
+bool MergeResult(const Context& ctx,
+                 const IsoparallelProblem& problem,
+                 const IsoparallelOptions& options,
+                 LocalResult* r,
+                 std::vector<Candidate>* found,
+                 IsoparallelSummary* summary) {
   ++summary->local_solves;
   summary->evaluations += r->evaluations;
   if (r->duplicate) ++summary->converged_solves;
@@ -156,8 +159,11 @@ double CapLength(const IsoparallelOptions& options, const std::vector<Candidate>
 // Polishes the searched results that are not known yet and adds the new distinct solutions; for
 // a general target, each new solution's twin across a fold (TwinSearches) is tried at once, unless
 // the solution lies beyond the cap by more than kTwinReach.
-void MergeResults(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
-                  std::vector<std::vector<LocalResult>> per_start, std::vector<Candidate>* found,
+void MergeResults(const Context& ctx,
+                  const IsoparallelProblem& problem,
+                  const IsoparallelOptions& options,
+                  std::vector<std::vector<LocalResult>> per_start,
+                  std::vector<Candidate>* found,
                   IsoparallelSummary* summary) {
   for (auto& results : per_start) {
     for (LocalResult& r : results) {

@@ -64,8 +64,8 @@ std::string IsoparallelSummary::FullReport() const {
     const IsoparallelSolution& s = solutions[i];
     os << std::setprecision(10) << "  #" << i + 1 << " length " << s.length << " " << ToString(s.parameters.regime)
        << " G " << s.G << " E " << s.energy << " periods " << s.periods << (s.family ? " family" : "")
-       << std::setprecision(3) << " crossing " << s.crossing << " residual " << s.orientation_residual
-       << " endpoint " << s.endpoint_error << " conjugate " << s.conjugate_time
+       << std::setprecision(3) << " crossing " << s.crossing << " residual " << s.orientation_residual << " endpoint "
+       << s.endpoint_error << " conjugate " << s.conjugate_time
        << (s.locally_optimal ? " locally optimal" : " NOT locally optimal") << "\n";
   }
   os << "  Maxwell pairs (equal length, same goal): " << maxwell_pairs.size() << "\n";

@@ -144,8 +144,12 @@ double Halton(long index, int base) {
 // is handed off (at the crossing nearest its length, the residual checked there) to the
 // polish. A run that reaches one of the `known` solutions stops there (LocalResult::duplicate), a
 // run that stalls (kStallRatio) too.
-LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
-                                  const IsoparallelOptions& options, const std::vector<SearchRoot>* known) {
+LocalResult SearchLocalFreeLength(const Context& ctx,
+                                  PendulumRegime regime,
+                                  const double* x0,
+                                  double length0,
+                                  const IsoparallelOptions& options,
+                                  const std::vector<SearchRoot>* known) {
   LocalResult out;
   out.regime = regime;
   FreeLengthFunctor f{&ctx, regime};
@@ -206,8 +210,8 @@ void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalRes
 // unshifted shapes (phase 0: SearchShape scans the phase), so the solution list does not depend
 // on the seed; identity target (shooting only as a comparison with the enumeration): starts with
 // a Cranley-Patterson shift drawn from the seed.
-std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit, double radius, bool seeded,
-                              bool shapes) {
+std::vector<Start> MakeStarts(
+    const IsoparallelOptions& options, double s_limit, double radius, bool seeded, bool shapes) {
   std::mt19937_64 rng(options.seed);
   auto unit = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   double shift[4] = {0, 0, 0, 0};
@@ -240,7 +244,8 @@ std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit,
 
 // Local searches from every start, over the crossings beyond `covered` (the identity target's
 // comparison shooting).
-std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const IsoparallelOptions& options,
+std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx,
+                                                   const IsoparallelOptions& options,
                                                    double covered) {
   const std::vector<Start> starts = MakeStarts(options, ctx.s_limit, ctx.radius, ctx.identity, false);
   const int n = static_cast<int>(starts.size());

@@ -3,7 +3,6 @@
 // with a small rotation residual; the local minima start the free-length search (search.cc).
 // The shapes run in batches, each merged (merge.cc) before the next.
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 
@@ -30,8 +29,8 @@ struct ShapeNodes {
 // shape's table (the rotation trick with B from the chord's direction; q0c = Q(0, s0)'s conjugate,
 // Q(s0, s) = Q(0, s) Q(0, s0)^T).
 Eigen::Quaterniond NodeResidualRotation(const ShapeNodes& nodes, const Eigen::Quaterniond& q0c, long i0, long i) {
-  return internal::ChordQuaternion(nodes.target_conj, nodes.goal, nodes.x[i] - nodes.x[i0],
-                                   nodes.table->NodeQuaternion(i, nodes.powers) * q0c);
+  return internal::ChordQuaternion(
+      nodes.target_conj, nodes.goal, nodes.x[i] - nodes.x[i0], nodes.table->NodeQuaternion(i, nodes.powers) * q0c);
 }
 
 // |residual| of a crossing between nodes i0 + l - 1 and i0 + l (interpolated with weight t on the
@@ -72,8 +71,14 @@ struct ShapeScan {
 // Elsewhere the squared chord against precomputed bounds decides, with a square root only where a
 // skip or an event is possible.
 // Not inlined: ScanShape's loop over rows would crowd its registers (the node loop spills).
-[[gnu::noinline]] void ScanRow(const Context& ctx, const ShapeNodes& nodes, const std::vector<double>& reach,
-                               double h, long i0, long l_end, double limit, std::vector<ScanPoint>* row) {
+[[gnu::noinline]] void ScanRow(const Context& ctx,
+                               const ShapeNodes& nodes,
+                               const std::vector<double>& reach,
+                               double h,
+                               long i0,
+                               long l_end,
+                               double limit,
+                               std::vector<ScanPoint>* row) {
   const std::vector<Eigen::Vector2d>& x = nodes.x;
   const Eigen::Quaterniond q0c = nodes.table->NodeQuaternion(i0, nodes.powers).conjugate();
   const Eigen::Vector2d x0 = x[i0];
@@ -84,7 +89,8 @@ struct ShapeScan {
   const double band_lo = near > 0 ? near * near * (1 - 1e-9) : -1.0, band_hi = far * far * (1 + 1e-9);
   const double out_edge = far * (1 + 1e-9), in_edge = near * (1 - 1e-9);
   const double skip_out = (out_edge + reach[kMinSkip]) * (out_edge + reach[kMinSkip]);
-  const double skip_in = in_edge - reach[kMinSkip] > 0 ? (in_edge - reach[kMinSkip]) * (in_edge - reach[kMinSkip]) : -1.0;
+  const double skip_in =
+      in_edge - reach[kMinSkip] > 0 ? (in_edge - reach[kMinSkip]) * (in_edge - reach[kMinSkip]) : -1.0;
   const std::size_t first = row->size();
   double f_prev = -r2, f_prev2 = -r2;  // |chord|^2 - radius^2 at the two previous nodes
   for (long l = 1; l <= l_end; ++l) {
@@ -127,10 +133,17 @@ struct ShapeScan {
 ShapeScan ScanShape(const Context& ctx, const Elastica& e) {
   ShapeScan scan;
   if (e.IsStraight() || !std::isfinite(e.Period())) return scan;
-  const internal::ElasticaRollingTable table(e, ctx.s_limit + e.Period(), kSearch.steps_per_period, kSearch.max_step,
-                                             kTableMaxSteps, internal::TableRotations::kQuaternions);
+  const internal::ElasticaRollingTable table(e,
+                                             ctx.s_limit + e.Period(),
+                                             kSearch.steps_per_period,
+                                             kSearch.max_step,
+                                             kTableMaxSteps,
+                                             internal::TableRotations::kQuaternions);
   if (!table.Valid()) return scan;
-  ShapeNodes nodes{&table, table.MonodromyQuaternionPowers(), {}, Eigen::Quaterniond(ctx.target).conjugate(),
+  ShapeNodes nodes{&table,
+                   table.MonodromyQuaternionPowers(),
+                   {},
+                   Eigen::Quaterniond(ctx.target).conjugate(),
                    {std::cos(ctx.goal_angle), std::sin(ctx.goal_angle)}};
   table.NodePositions(&nodes.x);
   const double h = table.Step();
@@ -153,8 +166,11 @@ ShapeScan ScanShape(const Context& ctx, const Elastica& e) {
 // Search from one shape: every scan point with a residual below kScanResidual that is a local
 // minimum over s0 (against the point of the same index in the two neighbouring rows, cyclic)
 // starts the free-length search with phase rate s0 and length L.
-std::vector<LocalResult> SearchShape(const Context& ctx, const Start& shape, const IsoparallelOptions& options,
-                                     double covered, const std::vector<SearchRoot>& known) {
+std::vector<LocalResult> SearchShape(const Context& ctx,
+                                     const Start& shape,
+                                     const IsoparallelOptions& options,
+                                     double covered,
+                                     const std::vector<SearchRoot>& known) {
   std::vector<LocalResult> out;
   const ShapeScan scan = ScanShape(ctx, Elastica(ToParameters(shape.regime, shape.x)));
   const long n_rows = static_cast<long>(scan.row_end.size());
@@ -182,16 +198,25 @@ std::vector<LocalResult> SearchShape(const Context& ctx, const Start& shape, con
 // in batches (kFirstShapeBatch, then kShapeBatch); after each batch the search length shrinks to
 // the cap of the solutions found so far (nothing longer is reported), deterministically for any
 // thread count.
-void SearchShapes(Context* ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options, double covered,
-                  std::vector<Candidate>* found, IsoparallelSummary* summary) {
+void SearchShapes(Context* ctx,
+                  const IsoparallelProblem& problem,
+                  const IsoparallelOptions& options,
+                  double covered,
+                  std::vector<Candidate>* found,
+                  IsoparallelSummary* summary) {
   const std::vector<Start> shapes = MakeStarts(options, ctx->s_limit, ctx->radius, false, true);
   const int total = static_cast<int>(shapes.size());
   for (int first = 0, count = 0; first < total; first += count) {
     count = std::min(first == 0 ? kFirstShapeBatch : kShapeBatch, total - first);
     const std::vector<SearchRoot> known = SearchRoots(*found);  // fixed for the batch: any thread count
-    MergeResults(*ctx, problem, options, SearchAll(first, count, total, options, [&](int i) {
-                   return SearchShape(*ctx, shapes[i], options, covered, known);
-                 }), found, summary);
+    MergeResults(
+        *ctx,
+        problem,
+        options,
+        SearchAll(
+            first, count, total, options, [&](int i) { return SearchShape(*ctx, shapes[i], options, covered, known); }),
+        found,
+        summary);
     if (!found->empty()) ctx->s_limit = std::min(ctx->s_limit, CapLength(options, *found) * (1 + kCapMargin));
   }
 }

@@ -21,14 +21,19 @@ namespace {
 void CheckStartBudget(const IsoparallelProblem& problem, const IsoparallelOptions& options) {
   const double start_work = options.starts * (problem.goal - problem.start).norm();
   if (start_work > internal::kMaxStartsTimesChord)
-    internal::ThrowInvalid("starts", options.starts, "starts x |goal - start| = " + internal::FormatNumber(start_work) +
-                                                         " exceeds the multi-start budget " +
-                                                         internal::FormatNumber(internal::kMaxStartsTimesChord));
+    internal::ThrowInvalid("starts",
+                           options.starts,
+                           "starts x |goal - start| = " + internal::FormatNumber(start_work) +
+                               " exceeds the multi-start budget " +
+                               internal::FormatNumber(internal::kMaxStartsTimesChord));
 }
 
 // A reported solution from an enumerated family (sense = +-1: the mirror image of a rotating
 // family), rotated so that its end lands on the goal.
-Candidate FamilyCandidate(const Context& ctx, const IsoparallelProblem& problem, const ElasticaFamily& f, double sense) {
+Candidate FamilyCandidate(const Context& ctx,
+                          const IsoparallelProblem& problem,
+                          const ElasticaFamily& f,
+                          double sense) {
   Candidate c;
   IsoparallelSolution& sol = c.solution;
   ElasticaParameters p = f.Parameters();
@@ -50,8 +55,10 @@ Candidate FamilyCandidate(const Context& ctx, const IsoparallelProblem& problem,
 }
 
 // Identity target: every solution is a family (isoparallel_families.h); enumerate them.
-std::vector<Candidate> SolveByFamilies(Context* ctx, const IsoparallelProblem& problem,
-                                       const IsoparallelOptions& options, IsoparallelSummary* summary) {
+std::vector<Candidate> SolveByFamilies(Context* ctx,
+                                       const IsoparallelProblem& problem,
+                                       const IsoparallelOptions& options,
+                                       IsoparallelSummary* summary) {
   FamilySearchOptions fo;
   fo.length_cap_factor = options.length_cap_factor;
   fo.tolerance = options.tolerance;
@@ -78,8 +85,11 @@ std::vector<Candidate> SolveByFamilies(Context* ctx, const IsoparallelProblem& p
 }
 
 // Shooting passes: search, merge, then lengthen the search until the cap is covered.
-void SolveByShooting(Context* ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
-                     std::vector<Candidate>* found, IsoparallelSummary* summary) {
+void SolveByShooting(Context* ctx,
+                     const IsoparallelProblem& problem,
+                     const IsoparallelOptions& options,
+                     std::vector<Candidate>* found,
+                     IsoparallelSummary* summary) {
   double covered = 0.0;  // crossings up to this length were already searched
   for (int pass = 0; pass < kShootingPasses; ++pass) {
     if (ctx->identity)
@@ -128,9 +138,11 @@ void ValidateProblem(const IsoparallelProblem& problem) {
   internal::RequireFinite("start_orientation", problem.start_orientation);
   internal::RequireFinite("goal_orientation", problem.goal_orientation);
   const double chord = (problem.goal - problem.start).norm();
-  if (chord == 0.0) internal::ThrowInvalid("goal", "(equal to start)", "the isoparallel rotation trick needs |x1 - x0| > 0");
+  if (chord == 0.0)
+    internal::ThrowInvalid("goal", "(equal to start)", "the isoparallel rotation trick needs |x1 - x0| > 0");
   if (chord > internal::kMaxIsoparallelChord)  // the family search grows like chord^3 (README, "Limits")
-    internal::ThrowInvalid("goal", chord, "|goal - start| must be <= " + internal::FormatNumber(internal::kMaxIsoparallelChord));
+    internal::ThrowInvalid(
+        "goal", chord, "|goal - start| must be <= " + internal::FormatNumber(internal::kMaxIsoparallelChord));
   if (!IsRotation(problem.start_orientation, 1e-9))
     internal::ThrowInvalid("start_orientation", "(matrix)", "not a rotation matrix (R^T R = I, det R = 1 to 1e-9)");
   if (!IsRotation(problem.goal_orientation, 1e-9))
@@ -159,10 +171,11 @@ std::string IsoparallelOptions::Validate() const {
   if (starts < 1 || starts > kMaxStarts)
     return InvalidValueMessage("starts", starts, "must be in [1, " + std::to_string(kMaxStarts) + "]");
   if (!(length_cap_factor >= 1.0 && length_cap_factor <= kMaxLengthCapFactor))
-    return InvalidValueMessage("length_cap_factor", length_cap_factor,
-                               "must be in [1, " + internal::FormatNumber(kMaxLengthCapFactor) + "]");
+    return InvalidValueMessage(
+        "length_cap_factor", length_cap_factor, "must be in [1, " + internal::FormatNumber(kMaxLengthCapFactor) + "]");
   if (max_iterations < 1 || max_iterations > kMaxIterations)
-    return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, " + std::to_string(kMaxIterations) + "]");
+    return InvalidValueMessage(
+        "max_iterations", max_iterations, "must be in [1, " + std::to_string(kMaxIterations) + "]");
   if (!(tolerance >= internal::kMinTolerance && tolerance < 1))
     return InvalidValueMessage("tolerance", tolerance, "must be in [1e-15, 1)");
   if (threads < 1 || threads > kMaxThreads)

@@ -56,7 +56,7 @@ struct LocalResult {
   bool converged = false;
   PendulumRegime regime = PendulumRegime::kOscillating;
   double x[3] = {0, 0, 0};
-  bool searched = false;  // handed to the polish: within kSearchAccept, or kTangentHandOff at a near-tangency
+  bool searched = false;   // handed to the polish: within kSearchAccept, or kTangentHandOff at a near-tangency
   bool duplicate = false;  // the search stopped at a solution known before its batch
   Evaluation ev;
   long evaluations = 0;
@@ -122,7 +122,9 @@ struct FreeLengthFunctor {
   double cost_threshold = 0.0;
 
   // Whether the residual r ends the TinySolver run (its test: cost |r|^2 / 2 below the threshold).
-  bool Converged(const double* r) const { return Eigen::Map<const Eigen::Vector4d>(r).squaredNorm() / 2 < cost_threshold; }
+  bool Converged(const double* r) const {
+    return Eigen::Map<const Eigen::Vector4d>(r).squaredNorm() / 2 < cost_threshold;
+  }
 
   bool Admissible(const ElasticaParameters& p, double length) const;
   // The residual of a path with chord xs and rolling q.
@@ -190,8 +192,8 @@ Context MakeContext(const IsoparallelProblem& problem, const IsoparallelOptions&
 // Runs search(i) for the starts or shapes i in [first, first + count) of `total` on the option's
 // threads (results per index do not depend on the thread count) and reports progress.
 template <class Search>
-std::vector<std::vector<LocalResult>> SearchAll(int first, int count, int total, const IsoparallelOptions& options,
-                                                Search&& search) {
+std::vector<std::vector<LocalResult>> SearchAll(
+    int first, int count, int total, const IsoparallelOptions& options, Search&& search) {
   std::vector<std::vector<LocalResult>> results(count);
   std::mutex progress_mutex;
   int done = first;
@@ -207,38 +209,56 @@ std::vector<std::vector<LocalResult>> SearchAll(int first, int count, int total,
 
 // ---------------------------------------------------------------- search and polish (search.cc)
 // The free-length search from a start (x0, length0); a run that reaches a `known` solution stops.
-LocalResult SearchLocalFreeLength(const Context& ctx, PendulumRegime regime, const double* x0, double length0,
-                                  const IsoparallelOptions& options, const std::vector<SearchRoot>* known = nullptr);
+LocalResult SearchLocalFreeLength(const Context& ctx,
+                                  PendulumRegime regime,
+                                  const double* x0,
+                                  double length0,
+                                  const IsoparallelOptions& options,
+                                  const std::vector<SearchRoot>* known = nullptr);
 // The polish of a handed-off result to options.tolerance (r->converged).
 void PolishLocal(const Context& ctx, const IsoparallelOptions& options, LocalResult* r);
 // The first options.starts Halton points as starts (shapes: phase 0, denser near the separatrix).
-std::vector<Start> MakeStarts(const IsoparallelOptions& options, double s_limit, double radius, bool seeded,
-                              bool shapes);
+std::vector<Start> MakeStarts(
+    const IsoparallelOptions& options, double s_limit, double radius, bool seeded, bool shapes);
 // Local searches from every start over the crossings beyond `covered` (the identity target's comparison shooting).
-std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx, const IsoparallelOptions& options,
+std::vector<std::vector<LocalResult>> SearchStarts(const Context& ctx,
+                                                   const IsoparallelOptions& options,
                                                    double covered);
 
 // ---------------------------------------------------------------- shape scan (shape_scan.cc)
 // General targets: the shapes' scans and searches in batches, merged into `found`; the search length
 // shrinks to the cap after each batch.
-void SearchShapes(Context* ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options, double covered,
-                  std::vector<Candidate>* found, IsoparallelSummary* summary);
+void SearchShapes(Context* ctx,
+                  const IsoparallelProblem& problem,
+                  const IsoparallelOptions& options,
+                  double covered,
+                  std::vector<Candidate>* found,
+                  IsoparallelSummary* summary);
 
 // ---------------------------------------------------------------- twin search (twins.cc)
 // The searches started from the twins of solution r across a fold (at most two).
-std::vector<LocalResult> TwinSearches(const Context& ctx, const LocalResult& r, const IsoparallelOptions& options,
+std::vector<LocalResult> TwinSearches(const Context& ctx,
+                                      const LocalResult& r,
+                                      const IsoparallelOptions& options,
                                       long* evaluations);
 
 // ---------------------------------------------------------------- merge (merge.cc)
 // The straight segment from start to goal as a solution of the given length and residual.
-Candidate StraightCandidate(const Context& ctx, const IsoparallelProblem& problem, ElasticaParameters p, double length,
-                            double residual);
+Candidate StraightCandidate(
+    const Context& ctx, const IsoparallelProblem& problem, ElasticaParameters p, double length, double residual);
 // Adds a search result to `found` when it polishes to a new solution; true if it did.
-bool MergeResult(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
-                 LocalResult* r, std::vector<Candidate>* found, IsoparallelSummary* summary);
+bool MergeResult(const Context& ctx,
+                 const IsoparallelProblem& problem,
+                 const IsoparallelOptions& options,
+                 LocalResult* r,
+                 std::vector<Candidate>* found,
+                 IsoparallelSummary* summary);
 // MergeResult for every result, and (general targets) the twin searches from each new solution.
-void MergeResults(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
-                  std::vector<std::vector<LocalResult>> per_start, std::vector<Candidate>* found,
+void MergeResults(const Context& ctx,
+                  const IsoparallelProblem& problem,
+                  const IsoparallelOptions& options,
+                  std::vector<std::vector<LocalResult>> per_start,
+                  std::vector<Candidate>* found,
                   IsoparallelSummary* summary);
 // The longest length reported: length_cap_factor times the shortest solution found.
 double CapLength(const IsoparallelOptions& options, const std::vector<Candidate>& found);
@@ -247,7 +267,10 @@ std::vector<SearchRoot> SearchRoots(const std::vector<Candidate>& found);
 
 // ---------------------------------------------------------------- verify (verify.cc)
 // The solutions up to the length cap, sorted and verified by rolling, into summary->solutions.
-void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
-                    std::vector<Candidate> found, IsoparallelSummary* summary);
+void ReportVerified(const Context& ctx,
+                    const IsoparallelProblem& problem,
+                    const IsoparallelOptions& options,
+                    std::vector<Candidate> found,
+                    IsoparallelSummary* summary);
 
 }  // namespace plateball::internal::isoparallel

@@ -2,6 +2,8 @@
 // free-length map, and a start near the pair converges to one of them. From each new solution the
 // curve on which all residuals but one vanish is followed both ways (a predictor-corrector
 // continuation), and a sign change of the last residual starts a search for the twin.
+#include "isoparallel/twins.h"
+
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/SVD>
@@ -10,7 +12,6 @@
 #include "check.h"
 #include "dense_solve.h"
 #include "isoparallel/stages.h"
-#include "isoparallel/twins.h"
 
 namespace plateball::internal::isoparallel {
 namespace {
@@ -47,8 +48,11 @@ Eigen::Vector4d CurveTangent(const CurveFrame& w, const Eigen::Matrix4d& jac, do
 // kTwinCorrections steps), the first with the Jacobian `previous` of the last curve point (one
 // residual), the others with the Jacobian where they start: next to a tangency of the chord with
 // the circle (where fold pairs sit) it changes quickly along L. `out` gets the Jacobian at the end.
-bool CorrectOntoCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eigen::Matrix4d& previous,
-                      Eigen::Vector4d y, CurvePoint* out) {
+bool CorrectOntoCurve(const FreeLengthFunctor& f,
+                      const CurveFrame& w,
+                      const Eigen::Matrix4d& previous,
+                      Eigen::Vector4d y,
+                      CurvePoint* out) {
   out->jac = previous;
   for (int i = 0;; ++i) {
     const bool fresh = i > 0;
@@ -70,8 +74,12 @@ bool CorrectOntoCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eig
 // Follows the curve from x* (`start`) along `direction` (+-v) for up to kTwinSteps steps; where
 // g = u.F changes sign, the point interpolated between the two curve points is a start for the
 // twin's search (true).
-bool FollowCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eigen::Vector4d& u, const CurvePoint& start,
-                 const Eigen::Vector4d& direction, Eigen::Vector4d* twin_start) {
+bool FollowCurve(const FreeLengthFunctor& f,
+                 const CurveFrame& w,
+                 const Eigen::Vector4d& u,
+                 const CurvePoint& start,
+                 const Eigen::Vector4d& direction,
+                 Eigen::Vector4d* twin_start) {
   CurvePoint p = start;
   const double orientation = TangentOrientation(w, start.jac, direction);
   // Next to x*, g grows like s t along +v (J v = s u): a first point of the other sign has passed a root.
@@ -100,7 +108,9 @@ bool FollowCurve(const FreeLengthFunctor& f, const CurveFrame& w, const Eigen::V
 // docs/paper_notes.md: 22.73757780 and 22.75708870), and a start near the pair converges to one of
 // them. From each new solution x* the curve of FollowCurve is followed both ways; a sign change of
 // g starts a search (at most two: `twins`).
-std::vector<LocalResult> TwinSearches(const Context& ctx, const LocalResult& r, const IsoparallelOptions& options,
+std::vector<LocalResult> TwinSearches(const Context& ctx,
+                                      const LocalResult& r,
+                                      const IsoparallelOptions& options,
                                       long* evaluations) {
   std::vector<LocalResult> twins;
   FreeLengthFunctor f{&ctx, r.regime};
@@ -124,7 +134,8 @@ std::vector<LocalResult> TwinSearches(const Context& ctx, const LocalResult& r, 
 
 namespace plateball::internal {
 
-std::vector<IsoparallelSolution> IsoparallelTwins(const IsoparallelProblem& problem, const IsoparallelSolution& solution,
+std::vector<IsoparallelSolution> IsoparallelTwins(const IsoparallelProblem& problem,
+                                                  const IsoparallelSolution& solution,
                                                   const IsoparallelOptions& options) {
   isoparallel::ValidateProblem(problem);
   ThrowIfInvalid(options.Validate());

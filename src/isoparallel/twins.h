@@ -13,7 +13,8 @@ namespace plateball::internal {
 // The solutions the twin search finds from `solution` (a solution of `problem`, e.g. from
 // SolveIsoparallel), polished to options.tolerance and distinct from `solution`; not verified by
 // rolling (VerifyRolling does that).
-std::vector<IsoparallelSolution> IsoparallelTwins(const IsoparallelProblem& problem, const IsoparallelSolution& solution,
+std::vector<IsoparallelSolution> IsoparallelTwins(const IsoparallelProblem& problem,
+                                                  const IsoparallelSolution& solution,
                                                   const IsoparallelOptions& options = {});
 
 }  // namespace plateball::internal

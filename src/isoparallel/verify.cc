@@ -38,8 +38,9 @@ std::vector<int> MirrorImages(const std::vector<IsoparallelSolution>& sols, Isop
 
 // The first conjugate time of the solution's extremal and Jacobi's condition.
 void SetConjugateTime(IsoparallelSolution* sol) {
-  const internal::ConjugateTime c = internal::FirstConjugateTime(
-      internal::ConjugateProblem::kPlateBall, internal::ExtremalDataOf(sol->parameters), kConjugateSearchFactor * sol->length);
+  const internal::ConjugateTime c = internal::FirstConjugateTime(internal::ConjugateProblem::kPlateBall,
+                                                                 internal::ExtremalDataOf(sol->parameters),
+                                                                 kConjugateSearchFactor * sol->length);
   sol->conjugate_time = c.found ? c.time : std::numeric_limits<double>::infinity();
   sol->locally_optimal = sol->conjugate_time >= sol->length * (1 - kConjugateEndTolerance);
 }
@@ -48,7 +49,8 @@ void SetConjugateTime(IsoparallelSolution* sol) {
 std::vector<MaxwellPair> MaxwellPairs(const std::vector<IsoparallelSolution>& sols) {
   std::vector<MaxwellPair> pairs;
   for (std::size_t i = 0; i < sols.size(); ++i)
-    for (std::size_t j = i + 1; j < sols.size() && sols[j].length <= sols[i].length * (1 + kMaxwellLengthTolerance); ++j)
+    for (std::size_t j = i + 1; j < sols.size() && sols[j].length <= sols[i].length * (1 + kMaxwellLengthTolerance);
+         ++j)
       pairs.push_back({static_cast<int>(i), static_cast<int>(j)});
   return pairs;
 }
@@ -57,10 +59,14 @@ std::vector<MaxwellPair> MaxwellPairs(const std::vector<IsoparallelSolution>& so
 
 // The solutions up to the length cap, sorted, each verified independently by rolling
 // (VerifyRolling along the path, spread over the threads; a failed integration is rethrown here).
-void ReportVerified(const Context& ctx, const IsoparallelProblem& problem, const IsoparallelOptions& options,
-                    std::vector<Candidate> found, IsoparallelSummary* summary) {
-  std::stable_sort(found.begin(), found.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.solution.length < b.solution.length; });
+void ReportVerified(const Context& ctx,
+                    const IsoparallelProblem& problem,
+                    const IsoparallelOptions& options,
+                    std::vector<Candidate> found,
+                    IsoparallelSummary* summary) {
+  std::stable_sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) {
+    return a.solution.length < b.solution.length;
+  });
   if (found.empty()) return;
   const double cap = options.length_cap_factor * found.front().solution.length * (1 + 1e-12);
   for (const Candidate& c : found) {
@@ -113,13 +119,14 @@ Eigen::Matrix3d VerifyRolling(const IsoparallelSolution& solution, const Integra
   // whole number of periods only to its own tolerance and is integrated over its whole length.)
   const long whole = solution.family && !e.IsStraight() ? std::lround(solution.length / e.Period()) : 1;
   const int m = whole >= 2 && std::abs(solution.length - whole * e.Period()) <= 1e-13 * solution.length
-                    ? static_cast<int>(whole) : 1;
+                    ? static_cast<int>(whole)
+                    : 1;
   const double span = solution.length / m;
   internal::RowMajor3x3 y{1, 0, 0, 0, 1, 0, 0, 0, 1};
   using Stepper = boost::numeric::odeint::runge_kutta_fehlberg78<internal::RowMajor3x3>;
   if (span > 0)
-    internal::IntegrateAdaptive<Stepper>(rhs, y, 0.0, span, span / 16.0, VerifyTolerances(integration),
-                                         [](double, const internal::RowMajor3x3&) {});
+    internal::IntegrateAdaptive<Stepper>(
+        rhs, y, 0.0, span, span / 16.0, VerifyTolerances(integration), [](double, const internal::RowMajor3x3&) {});
   const Eigen::Matrix3d p = ProjectToSO3(internal::MatrixFromRowMajor(y.data()));
   Eigen::Matrix3d q = p;
   for (int i = 1; i < std::max(m, 1); ++i) q = p * q;

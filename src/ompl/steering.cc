@@ -1,16 +1,16 @@
 #include "plateball/ompl/steering.h"
 
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SO3StateSpace.h>
+#include <ompl/control/SteeredControlSampler.h>
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
-
-#include <ompl/base/spaces/RealVectorStateSpace.h>
-#include <ompl/base/spaces/SO3StateSpace.h>
-#include <ompl/control/SteeredControlSampler.h>
-#include <ompl/control/spaces/RealVectorControlSpace.h>
 
 #include "check.h"
 #include "plateball/impulse.h"
@@ -106,7 +106,8 @@ ob::StateSpacePtr MakeBallStateSpace(const Eigen::Vector2d& low, const Eigen::Ve
   for (int i = 0; i < 2; ++i) {
     internal::RequireFinite("low", low[i]);
     internal::RequireFinite("high", high[i]);
-    if (!(low[i] < high[i])) internal::ThrowInvalid("high", high[i], "must exceed low (" + internal::FormatNumber(low[i]) + ")");
+    if (!(low[i] < high[i]))
+      internal::ThrowInvalid("high", high[i], "must exceed low (" + internal::FormatNumber(low[i]) + ")");
   }
   auto point = std::make_shared<ob::RealVectorStateSpace>(2);
   ob::RealVectorBounds bounds(2);
@@ -180,12 +181,18 @@ Eigen::Matrix3d TargetOrientation(const oc::Control* control) {
 
 std::string ToString(ConnectionStatus status) {
   switch (status) {
-    case ConnectionStatus::kNotRun: return "not_run";
-    case ConnectionStatus::kConnected: return "connected";
-    case ConnectionStatus::kInvalidState: return "invalid_state";
-    case ConnectionStatus::kTooClose: return "too_close";
-    case ConnectionStatus::kNotReached: return "not_reached";
-    case ConnectionStatus::kInvalidMotion: return "invalid_motion";
+    case ConnectionStatus::kNotRun:
+      return "not_run";
+    case ConnectionStatus::kConnected:
+      return "connected";
+    case ConnectionStatus::kInvalidState:
+      return "invalid_state";
+    case ConnectionStatus::kTooClose:
+      return "too_close";
+    case ConnectionStatus::kNotReached:
+      return "not_reached";
+    case ConnectionStatus::kInvalidMotion:
+      return "invalid_motion";
   }
   return "unknown";
 }
@@ -211,8 +218,7 @@ std::vector<ExactImpulse> ChainImpulses(const std::vector<Connection>& connectio
       if (k == 0 && i > 0) {
         // The ball arrives with the psi of the previous connection's end state; this connection
         // planned its first impulse from psi = problem.initial.psi (same theta, phi: z = A e3).
-        const double psi_actual =
-            AnglesFromState(connections[i - 1].end_state, connections[i - 1].problem.model).psi;
+        const double psi_actual = AnglesFromState(connections[i - 1].end_state, connections[i - 1].problem.model).psi;
         // psi is an angle: the re-based value is reduced to [-pi, pi].
         e.delta_psi = std::remainder(e.delta_psi + c.problem.initial.psi - psi_actual, 2 * M_PI);
       }
@@ -237,7 +243,8 @@ Connection ExactSteeringPropagator::Connect(const ob::State* from, const ob::Sta
   return ConnectTo(from, ContactPoint(to), Orientation(to));
 }
 
-Connection ExactSteeringPropagator::ConnectTo(const ob::State* from, const Eigen::Vector2d& x1,
+Connection ExactSteeringPropagator::ConnectTo(const ob::State* from,
+                                              const Eigen::Vector2d& x1,
                                               const Eigen::Matrix3d& A1) const {
   Connection c;
   const Eigen::Vector2d x0 = ContactPoint(from);
@@ -246,8 +253,10 @@ Connection ExactSteeringPropagator::ConnectTo(const ob::State* from, const Eigen
   if (!IsFiniteConfiguration(x1, A1)) return Failed(c, ConnectionStatus::kInvalidState, "the target is not finite");
   const double distance = (x1 - x0).norm();
   if (distance < options_.min_distance)
-    return Failed(c, ConnectionStatus::kTooClose,
-                  InvalidValueMessage("distance", distance,
+    return Failed(c,
+                  ConnectionStatus::kTooClose,
+                  InvalidValueMessage("distance",
+                                      distance,
                                       "below min_distance " + internal::FormatNumber(options_.min_distance) +
                                           ": no straight reference"));
   ExactArrivalProblem& p = c.problem;
@@ -273,7 +282,8 @@ Connection ExactSteeringPropagator::ConnectTo(const ob::State* from, const Eigen
     SetConfiguration(probe, s.x, ProjectToSO3(s.A));
     if (!si_c_->satisfiesBounds(probe) || !si_c_->isValid(probe)) {
       si_c_->freeState(probe);
-      return Failed(c, ConnectionStatus::kInvalidMotion,
+      return Failed(c,
+                    ConnectionStatus::kInvalidMotion,
                     "the motion passes through an invalid configuration at contact point (" +
                         internal::FormatNumber(s.x.x()) + ", " + internal::FormatNumber(s.x.y()) + ")");
     }
@@ -284,7 +294,9 @@ Connection ExactSteeringPropagator::ConnectTo(const ob::State* from, const Eigen
   return c;
 }
 
-void ExactSteeringPropagator::propagate(const ob::State* state, const oc::Control* control, double /*duration*/,
+void ExactSteeringPropagator::propagate(const ob::State* state,
+                                        const oc::Control* control,
+                                        double /*duration*/,
                                         ob::State* result) const {
   const std::vector<double> key = CacheKey(state, control);
   {
@@ -307,7 +319,9 @@ void ExactSteeringPropagator::propagate(const ob::State* state, const oc::Contro
   cache_A_ = A;
 }
 
-bool ExactSteeringPropagator::steer(const ob::State* from, const ob::State* to, oc::Control* result,
+bool ExactSteeringPropagator::steer(const ob::State* from,
+                                    const ob::State* to,
+                                    oc::Control* result,
                                     double& duration) const {
   const Connection c = Connect(from, to);
   if (!c.IsSolutionUsable()) return false;
@@ -340,4 +354,3 @@ std::shared_ptr<ExactSteeringPropagator> UseExactSteering(const oc::SpaceInforma
 }
 
 }  // namespace plateball::ompl_steering
-

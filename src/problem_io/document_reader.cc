@@ -5,8 +5,21 @@ namespace plateball::internal::problem_io {
 
 Problem DocumentReader::Document(const json& root) const {
   if (!root.is_object()) Fail("(document)", root, "a problem file must be a JSON object");
-  Object(root, "", {"name", "description", "seed", "integration", "ball", "initial", "simulate", "reach",
-                    "plan", "isoparallel", "steer", "rig", "expected"});
+  Object(root,
+         "",
+         {"name",
+          "description",
+          "seed",
+          "integration",
+          "ball",
+          "initial",
+          "simulate",
+          "reach",
+          "plan",
+          "isoparallel",
+          "steer",
+          "rig",
+          "expected"});
   Problem p;
   p.source = source();
   if (const json* v = Find(root, "name")) p.name = String(*v, "name");
@@ -18,7 +31,8 @@ Problem DocumentReader::Document(const json& root) const {
   if (const json* v = Find(root, "simulate")) p.simulate = RunSectionsReader(*this).Simulate(*v, "simulate");
   if (const json* v = Find(root, "reach")) p.reach = RunSectionsReader(*this).Reach(*v, "reach");
   if (const json* v = Find(root, "plan")) p.plan = PlanReader(*this).Plan(*v, "plan");
-  if (const json* v = Find(root, "isoparallel")) p.isoparallel = IsoparallelReader(*this).Isoparallel(*v, "isoparallel");
+  if (const json* v = Find(root, "isoparallel"))
+    p.isoparallel = IsoparallelReader(*this).Isoparallel(*v, "isoparallel");
   if (const json* v = Find(root, "steer")) p.steer = SteerReader(*this).Steer(*v, "steer");
   if (const json* v = Find(root, "rig")) p.rig = RigReader(*this).Rig(*v, "rig", p.physical);
   if (const json* v = Find(root, "expected")) p.expected = RunSectionsReader(*this).Expected(*v, "expected");

@@ -73,14 +73,19 @@ class SectionReader {
 
   double Number(const json& v, const std::string& path, const FieldSpec<double>& f) const {
     switch (f.check) {
-      case FieldCheck::kFinite: return r_.Number(v, path);
-      case FieldCheck::kPositive: return r_.Positive(v, path);
-      case FieldCheck::kTolerance: return r_.Tolerance(v, path);
-      case FieldCheck::kClosed: return r_.InClosedRange(v, path, f.lower, f.upper);
+      case FieldCheck::kFinite:
+        return r_.Number(v, path);
+      case FieldCheck::kPositive:
+        return r_.Positive(v, path);
+      case FieldCheck::kTolerance:
+        return r_.Tolerance(v, path);
+      case FieldCheck::kClosed:
+        return r_.InClosedRange(v, path, f.lower, f.upper);
       case FieldCheck::kNonNegative: {
         const double d = r_.NonNegative(v, path);
         if (d > f.upper)
-          r_.Fail(path, v, "must be in [0, " + BoundText(f.upper) + "]" + (f.hint ? std::string(" (") + f.hint + ")" : ""));
+          r_.Fail(
+              path, v, "must be in [0, " + BoundText(f.upper) + "]" + (f.hint ? std::string(" (") + f.hint + ")" : ""));
         return d;
       }
     }
@@ -142,8 +147,8 @@ class SectionSchema {
   }
   /// {"type": "object", "properties": ..., "required": [], "additionalProperties": false}
   ojson Fragment() const {
-    return ojson{{"type", "object"}, {"properties", properties_}, {"required", ojson::array()},
-                 {"additionalProperties", false}};
+    return ojson{
+        {"type", "object"}, {"properties", properties_}, {"required", ojson::array()}, {"additionalProperties", false}};
   }
 
  private:
@@ -168,8 +173,11 @@ class SectionSchema {
   }
   static void Bounds(const FieldSpec<double>& f, ojson* p) {
     switch (f.check) {
-      case FieldCheck::kFinite: return;
-      case FieldCheck::kPositive: (*p)["exclusiveMinimum"] = 0; return;
+      case FieldCheck::kFinite:
+        return;
+      case FieldCheck::kPositive:
+        (*p)["exclusiveMinimum"] = 0;
+        return;
       case FieldCheck::kTolerance:
         (*p)["minimum"] = f.lower;
         (*p)["exclusiveMaximum"] = 1;
@@ -188,8 +196,8 @@ class SectionSchema {
 /// Reads `*value` from section `j` at `path` by its field list; `leading`: keys of the section
 /// that are not the struct's fields (the caller reads them), admitted before the list's.
 template <class S>
-void ReadSection(const FieldReader& r, const json& j, const std::string& path, S* value,
-                 std::vector<const char*> leading = {}) {
+void ReadSection(
+    const FieldReader& r, const json& j, const std::string& path, S* value, std::vector<const char*> leading = {}) {
   SectionReader reader(r, j, path, std::move(leading));
   value->Serialize(&reader);
 }

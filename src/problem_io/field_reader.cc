@@ -128,8 +128,10 @@ const json& FieldReader::Array(const json& v, const std::string& path, long long
   return v;
 }
 
-std::vector<Eigen::Vector2d> FieldReader::Points(const json& v, const std::string& path, long long min_size,
-                                                long long max_size) const {
+std::vector<Eigen::Vector2d> FieldReader::Points(const json& v,
+                                                 const std::string& path,
+                                                 long long min_size,
+                                                 long long max_size) const {
   Array(v, path, min_size, max_size);
   std::vector<Eigen::Vector2d> out;
   out.reserve(v.size());

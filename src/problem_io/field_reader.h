@@ -62,12 +62,15 @@ class FieldReader {
     if (!v.is_array() || v.size() != static_cast<std::size_t>(N))
       Fail(path, v, "must be an array of " + std::to_string(N) + " numbers");
     Eigen::Matrix<double, N, 1> out;
-    for (int i = 0; i < N; ++i) out(i) = Number(v[static_cast<std::size_t>(i)], Index(path, static_cast<std::size_t>(i)));
+    for (int i = 0; i < N; ++i)
+      out(i) = Number(v[static_cast<std::size_t>(i)], Index(path, static_cast<std::size_t>(i)));
     return out;
   }
 
   const json& Array(const json& v, const std::string& path, long long min_size, long long max_size) const;
-  std::vector<Eigen::Vector2d> Points(const json& v, const std::string& path, long long min_size,
+  std::vector<Eigen::Vector2d> Points(const json& v,
+                                      const std::string& path,
+                                      long long min_size,
                                       long long max_size) const;
 
   /// An orientation in one of three forms: quaternion, matrix or axis_angle (orientation_reader.cc).

@@ -14,11 +14,14 @@ IsoparallelTask IsoparallelReader::Isoparallel(const json& j, const std::string&
   t.goal = Point(Require(j, path, "goal"), Join(path, "goal"));
   const double chord = (t.goal - t.start).norm();
   if (!(chord <= internal::kMaxIsoparallelChord))  // the family search grows like chord^3
-    Fail(Join(path, "goal"), j["goal"], "|goal - start| = " + NumberText(chord) + " must be <= " +
-                                            NumberText(internal::kMaxIsoparallelChord));
-  if (const json* v = Find(j, "start_orientation")) t.start_orientation = Orientation(*v, Join(path, "start_orientation"));
+    Fail(Join(path, "goal"),
+         j["goal"],
+         "|goal - start| = " + NumberText(chord) + " must be <= " + NumberText(internal::kMaxIsoparallelChord));
+  if (const json* v = Find(j, "start_orientation"))
+    t.start_orientation = Orientation(*v, Join(path, "start_orientation"));
   if (const json* v = Find(j, "goal_orientation")) t.goal_orientation = Orientation(*v, Join(path, "goal_orientation"));
-  if (const json* v = Find(j, "impulses")) t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 1, kMaxPartitionCount));
+  if (const json* v = Find(j, "impulses"))
+    t.impulses = static_cast<int>(Integer(*v, Join(path, "impulses"), 1, kMaxPartitionCount));
   if (const json* v = Find(j, "solver")) Solver(*v, Join(path, "solver"), &t.solver);
   return t;
 }

@@ -113,7 +113,8 @@ json ParseJson(const std::string& text, const FieldReader& reader, const std::st
   // ignored silently.
   const std::size_t nul = text.find('\0');
   if (nul != std::string::npos)
-    reader.Fail(root_field, "(NUL byte at offset " + std::to_string(nul) + ")",
+    reader.Fail(root_field,
+                "(NUL byte at offset " + std::to_string(nul) + ")",
                 "a problem file is JSON text; it must not contain a NUL byte");
   json root;
   DomBuilder detector(&root);
@@ -157,10 +158,13 @@ json ParseJson(const std::string& text, const FieldReader& reader, const std::st
     reader.Fail(UnderRoot(root_field, field), value, "malformed JSON: " + what);
   }
   if (detector.depth_exceeded())
-    reader.Fail(UnderRoot(root_field, detector.CurrentPath()), "(nested arrays/objects)",
-                "nested deeper than " + std::to_string(limits::kMaxJsonDepth) + " levels (the limit of a problem file)");
+    reader.Fail(
+        UnderRoot(root_field, detector.CurrentPath()),
+        "(nested arrays/objects)",
+        "nested deeper than " + std::to_string(limits::kMaxJsonDepth) + " levels (the limit of a problem file)");
   if (!detector.duplicate_path().empty())
-    reader.Fail(UnderRoot(root_field, detector.duplicate_path()), "(duplicate)", "key given more than once in the same object");
+    reader.Fail(
+        UnderRoot(root_field, detector.duplicate_path()), "(duplicate)", "key given more than once in the same object");
   return root;
 }
 

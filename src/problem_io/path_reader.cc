@@ -25,7 +25,9 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> EndPoints(const PathSpec& spec) {
   struct Visitor {
     Ends operator()(const LineSpec& l) const { return {l.from, l.to}; }
     Ends operator()(const CircleSpec& c) const {
-      auto at = [&](double t) -> Eigen::Vector2d { return c.center + c.radius * Eigen::Vector2d(std::cos(t), std::sin(t)); };
+      auto at = [&](double t) -> Eigen::Vector2d {
+        return c.center + c.radius * Eigen::Vector2d(std::cos(t), std::sin(t));
+      };
       return {at(c.tau_begin), at(c.tau_end)};
     }
     Ends operator()(const EllipseSpec& e) const {
@@ -34,9 +36,12 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> EndPoints(const PathSpec& spec) {
       };
       return {at(e.tau_begin), at(e.tau_end)};
     }
-    Ends operator()(const LemniscateSpec& l) const { return {LemniscatePoint(l, l.tau_begin), LemniscatePoint(l, l.tau_end)}; }
+    Ends operator()(const LemniscateSpec& l) const {
+      return {LemniscatePoint(l, l.tau_begin), LemniscatePoint(l, l.tau_end)};
+    }
     Ends operator()(const SineSpec& w) const {
-      return {w.from, w.from + Rot(w.rotation, {w.length, w.amplitude * std::sin(2.0 * M_PI * w.length / w.wavelength)})};
+      return {w.from,
+              w.from + Rot(w.rotation, {w.length, w.amplitude * std::sin(2.0 * M_PI * w.length / w.wavelength)})};
     }
     Ends operator()(const SamplesSpec& m) const { return {m.points.front(), m.points.back()}; }
     Ends operator()(const PiecewiseSpec& w) const {
@@ -69,7 +74,8 @@ PathSpec PathReader::Path(const json& j, const std::string& path, int depth) con
   if (type == "sine") return Sine(j, path);
   if (type == "samples") return {Samples(j, path)};
   if (type == "piecewise") return {Piecewise(j, path, depth)};
-  Fail(Join(path, "type"), j["type"],
+  Fail(Join(path, "type"),
+       j["type"],
        "unknown path type (one of line, circle, ellipse, lemniscate, sine, samples, piecewise)");
 }
 
@@ -149,7 +155,8 @@ PiecewiseSpec PathReader::Piecewise(const json& j, const std::string& path, int 
       const Eigen::Vector2d start = EndPoints(s.pieces[i]).first;
       const double gap = (end - start).norm();
       if (!(gap <= kJoinTolerance * (1.0 + end.norm())))
-        Fail(Index(pp, i), VectorText(start.data(), 2),
+        Fail(Index(pp, i),
+             VectorText(start.data(), 2),
              "starts " + NumberText(gap) + " away from the end " + VectorText(end.data(), 2) +
                  " of the previous piece (consecutive pieces must share end points to 1e-9)");
     }

@@ -35,7 +35,9 @@ PartitionSpec PlanReader::Partition(const json& j, const std::string& path) cons
     return s;
   }
   if (type != "uniform_parameter" && type != "uniform_arc_length")
-    Fail(Join(path, "type"), j["type"], "unknown partition type (one of uniform_parameter, uniform_arc_length, explicit)");
+    Fail(Join(path, "type"),
+         j["type"],
+         "unknown partition type (one of uniform_parameter, uniform_arc_length, explicit)");
   if (const json* v = Find(j, "taus")) Fail(Join(path, "taus"), *v, "only allowed for an explicit partition");
   int n = UniformParameter{}.n;
   if (const json* v = Find(j, "n")) n = static_cast<int>(Integer(*v, Join(path, "n"), 1, kMaxPartitionCount));

@@ -5,7 +5,8 @@
 
 namespace plateball::internal::problem_io {
 
-RigLimits RigReader::Rig(const json& j, const std::string& path,
+RigLimits RigReader::Rig(const json& j,
+                         const std::string& path,
                          const std::optional<PhysicalParameters>& physical) const {
   // The key set and the scalar limits by RigLimits' field list; its ByHand fields (the shapes,
   // the stroke and pulse_duration) below, as the list cannot express them.
@@ -24,7 +25,8 @@ RigLimits RigReader::Rig(const json& j, const std::string& path,
   if (const json* v = Find(j, "plate")) l.plate = Shape(*v, Join(path, "plate"), scale);
   if (const json* v = Find(j, "obstacles")) {
     const json& a = Array(*v, Join(path, "obstacles"), 0, 1000);
-    for (std::size_t i = 0; i < a.size(); ++i) l.obstacles.push_back(Shape(a[i], Index(Join(path, "obstacles"), i), scale));
+    for (std::size_t i = 0; i < a.size(); ++i)
+      l.obstacles.push_back(Shape(a[i], Index(Join(path, "obstacles"), i), scale));
   }
   l.clearance *= scale;
   if (const json* v = Find(j, "stroke")) {

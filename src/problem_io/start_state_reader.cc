@@ -19,11 +19,11 @@ void StartStateReader::Ball(const json& j, const std::string& path, Problem* p) 
   const bool has_lambda = Find(j, "lambda"), has_alpha = Find(j, "alpha"), has_beta = Find(j, "beta"),
              has_physical = Find(j, "physical");
   const int forms = int(has_lambda) + int(has_alpha || has_beta) + int(has_physical);
-  if (forms != 1)
-    Fail(path, j, "must give exactly one of {lambda}, {alpha, beta} or {physical}");
+  if (forms != 1) Fail(path, j, "must give exactly one of {lambda}, {alpha, beta} or {physical}");
   if (has_lambda) {
     Positive(j["lambda"], Join(path, "lambda"));
-    p->model = BallModel::FromLambda(InClosedRange(j["lambda"], Join(path, "lambda"), internal::kMinLambda, internal::kMaxLambda));
+    p->model = BallModel::FromLambda(
+        InClosedRange(j["lambda"], Join(path, "lambda"), internal::kMinLambda, internal::kMaxLambda));
     p->physical.reset();
     return;
   }
@@ -46,14 +46,16 @@ void StartStateReader::PhysicalBall(const json& ph, const std::string& pp, Probl
   par.inertia_1 = Positive(Require(ph, pp, "inertia_1"), Join(pp, "inertia_1"));
   par.inertia_3 = Positive(Require(ph, pp, "inertia_3"), Join(pp, "inertia_3"));
   if (par.inertia_3 > 2.0 * par.inertia_1 * (1.0 + 1e-12))
-    Fail(Join(pp, "inertia_3"), ph["inertia_3"], "a rigid body has I3 <= I1 + I2 = 2 inertia_1 = " +
-                                                     NumberText(2.0 * par.inertia_1));
+    Fail(Join(pp, "inertia_3"),
+         ph["inertia_3"],
+         "a rigid body has I3 <= I1 + I2 = 2 inertia_1 = " + NumberText(2.0 * par.inertia_1));
   par.ball_mass = NonNegative(Require(ph, pp, "ball_mass"), Join(pp, "ball_mass"));
   par.radius = Positive(Require(ph, pp, "radius"), Join(pp, "radius"));
   par.plate_mass = NonNegative(Require(ph, pp, "plate_mass"), Join(pp, "plate_mass"));
   const double moment_sum = 2.0 * par.inertia_1 + par.inertia_3;
   if (!(moment_sum <= 2.0 * par.ball_mass * par.radius * par.radius * (1.0 + 1e-12)))
-    Fail(Join(pp, "ball_mass"), ph["ball_mass"],
+    Fail(Join(pp, "ball_mass"),
+         ph["ball_mass"],
          "a rigid ball holds its mass within its radius, 2 I1 + I3 <= 2 ball_mass radius^2 (2 I1 + I3 = " +
              NumberText(moment_sum) + ")");
   RequireLambdaOf(par.inertia_3 / par.inertia_1, par.EffectiveMass() * par.radius * par.radius / par.inertia_1, pp, ph);
@@ -68,8 +70,10 @@ void StartStateReader::PhysicalBall(const json& ph, const std::string& pp, Probl
 void StartStateReader::RequireLambdaOf(double alpha, double beta, const std::string& path, const json& v) const {
   const double lambda = (alpha + beta) / (1.0 + beta);
   if (!(lambda >= internal::kMinLambda && lambda <= internal::kMaxLambda))
-    Fail(path, v, "gives lambda = " + NumberText(lambda) + ", outside [" + NumberText(internal::kMinLambda) + ", " +
-                      NumberText(internal::kMaxLambda) + "]");
+    Fail(path,
+         v,
+         "gives lambda = " + NumberText(lambda) + ", outside [" + NumberText(internal::kMinLambda) + ", " +
+             NumberText(internal::kMaxLambda) + "]");
 }
 
 // An angle of the start: finite, and within kMaxAngleMagnitude (beyond it no digit is left modulo

@@ -21,11 +21,21 @@ void AppendValueText(const json& j, int depth, std::string* out) {
     return;
   }
   switch (j.type()) {
-    case json::value_t::null: *out += "null"; return;
-    case json::value_t::boolean: *out += j.get<bool>() ? "true" : "false"; return;
-    case json::value_t::number_integer: *out += std::to_string(j.get<std::int64_t>()); return;
-    case json::value_t::number_unsigned: *out += std::to_string(j.get<std::uint64_t>()); return;
-    case json::value_t::number_float: *out += NumberText(j.get<double>()); return;
+    case json::value_t::null:
+      *out += "null";
+      return;
+    case json::value_t::boolean:
+      *out += j.get<bool>() ? "true" : "false";
+      return;
+    case json::value_t::number_integer:
+      *out += std::to_string(j.get<std::int64_t>());
+      return;
+    case json::value_t::number_unsigned:
+      *out += std::to_string(j.get<std::uint64_t>());
+      return;
+    case json::value_t::number_float:
+      *out += NumberText(j.get<double>());
+      return;
     case json::value_t::string:
       *out += Truncate(json(j.get<std::string>()).dump(-1, ' ', false, json::error_handler_t::replace), 64);
       return;
@@ -64,10 +74,11 @@ void AppendValueText(const json& j, int depth, std::string* out) {
       *out += "}";
       return;
     }
-    default: *out += "(binary)"; return;
+    default:
+      *out += "(binary)";
+      return;
   }
 }
-
 
 }  // namespace
 
@@ -103,6 +114,5 @@ std::string VectorText(const double* v, int n) {
   for (int i = 0; i < n; ++i) s += (i ? ", " : "") + NumberText(v[i]);
   return s + "]";
 }
-
 
 }  // namespace plateball::internal::problem_io

@@ -15,10 +15,13 @@ namespace {
 class Writer {
  public:
   double Num(const std::string& path, double v) const { return WrittenNumber(path, v); }
-  ojson Vec(const std::string& path, const Eigen::Vector2d& v) const { return ojson::array({Num(path, v.x()), Num(path, v.y())}); }
+  ojson Vec(const std::string& path, const Eigen::Vector2d& v) const {
+    return ojson::array({Num(path, v.x()), Num(path, v.y())});
+  }
   ojson Mat(const std::string& path, const Eigen::Matrix3d& m) const {
     ojson rows = ojson::array();
-    for (int i = 0; i < 3; ++i) rows.push_back(ojson::array({Num(path, m(i, 0)), Num(path, m(i, 1)), Num(path, m(i, 2))}));
+    for (int i = 0; i < 3; ++i)
+      rows.push_back(ojson::array({Num(path, m(i, 0)), Num(path, m(i, 1)), Num(path, m(i, 2))}));
     return ojson{{"matrix", rows}};
   }
   ojson Points(const std::string& path, const std::vector<Eigen::Vector2d>& pts) const {
@@ -73,11 +76,12 @@ class Writer {
   ojson Ball(const Problem& p) const {
     if (p.physical) {
       const PhysicalParameters& q = *p.physical;
-      return ojson{{"physical", ojson{{"inertia_1", Num("ball.physical.inertia_1", q.inertia_1)},
-                                      {"inertia_3", Num("ball.physical.inertia_3", q.inertia_3)},
-                                      {"ball_mass", Num("ball.physical.ball_mass", q.ball_mass)},
-                                      {"radius", Num("ball.physical.radius", q.radius)},
-                                      {"plate_mass", Num("ball.physical.plate_mass", q.plate_mass)}}}};
+      return ojson{{"physical",
+                    ojson{{"inertia_1", Num("ball.physical.inertia_1", q.inertia_1)},
+                          {"inertia_3", Num("ball.physical.inertia_3", q.inertia_3)},
+                          {"ball_mass", Num("ball.physical.ball_mass", q.ball_mass)},
+                          {"radius", Num("ball.physical.radius", q.radius)},
+                          {"plate_mass", Num("ball.physical.plate_mass", q.plate_mass)}}}};
     }
     if (p.model.has_inertia())
       return ojson{{"alpha", Num("ball.alpha", p.model.alpha())}, {"beta", Num("ball.beta", p.model.beta())}};
@@ -109,13 +113,12 @@ class Writer {
   }
 
   ojson Isoparallel(const IsoparallelTask& t) const {
-    return ojson{
-        {"start", Vec("isoparallel.start", t.start)},
-        {"goal", Vec("isoparallel.goal", t.goal)},
-        {"start_orientation", Mat("isoparallel.start_orientation.matrix", t.start_orientation)},
-        {"goal_orientation", Mat("isoparallel.goal_orientation.matrix", t.goal_orientation)},
-        {"impulses", t.impulses},
-        {"solver", WriteSection(t.solver, "isoparallel.solver")}};
+    return ojson{{"start", Vec("isoparallel.start", t.start)},
+                 {"goal", Vec("isoparallel.goal", t.goal)},
+                 {"start_orientation", Mat("isoparallel.start_orientation.matrix", t.start_orientation)},
+                 {"goal_orientation", Mat("isoparallel.goal_orientation.matrix", t.goal_orientation)},
+                 {"impulses", t.impulses},
+                 {"solver", WriteSection(t.solver, "isoparallel.solver")}};
   }
 
   ojson Steer(const SteerTask& task) const {
@@ -125,14 +128,14 @@ class Writer {
                     {"start_at_rest", task.start_at_rest},
                     {"stop_at_goal", task.stop_at_goal},
                     {"objective", ToString(task.objective)}};
-    if (const auto& f = task.fewest)
-      s["fewest"] = WriteSection(*f, "steer.fewest");
+    if (const auto& f = task.fewest) s["fewest"] = WriteSection(*f, "steer.fewest");
     return s;
   }
 
   ojson Shape(const std::string& path, const PlateShape& shape) const {
     if (const auto* d = std::get_if<DiskShape>(&shape))
-      return ojson{{"type", "disk"}, {"center", Vec(path + ".center", d->center)}, {"radius", Num(path + ".radius", d->radius)}};
+      return ojson{
+          {"type", "disk"}, {"center", Vec(path + ".center", d->center)}, {"radius", Num(path + ".radius", d->radius)}};
     return ojson{{"type", "polygon"}, {"vertices", Points(path + ".vertices", std::get<PolygonShape>(shape).vertices)}};
   }
 
@@ -173,8 +176,7 @@ class Writer {
                          {"mu", Num("initial.mu", p.mu)},
                          {"x0", Vec("initial.x0", p.x0)},
                          {"orientation", Mat("initial.orientation.matrix", p.A0)}};
-    if (p.simulate)
-      d["simulate"] = WriteSection(*p.simulate, "simulate");
+    if (p.simulate) d["simulate"] = WriteSection(*p.simulate, "simulate");
     if (p.reach)
       d["reach"] = ojson{{"targets", Points("reach.targets", p.reach->targets)},
                          {"horizon_periods", Num("reach.horizon_periods", p.reach->horizon_periods)}};

@@ -38,7 +38,8 @@ IsoparallelProblem RotationProblem() {
 // rate is the positive one mirrored).
 bool Covered(const CoveragePiece& p, PendulumRegime regime, double k, double rate) {
   if (p.regime != regime || k < p.k_lo || k > p.k_hi) return false;
-  const double r = regime == PendulumRegime::kOscillating || p.kind != CoveragePieceKind::kWindow ? std::abs(rate) : rate;
+  const double r =
+      regime == PendulumRegime::kOscillating || p.kind != CoveragePieceKind::kWindow ? std::abs(rate) : rate;
   if (p.kind == CoveragePieceKind::kSlowTail) return r <= p.rate_hi;
   return r >= p.rate_lo && r <= p.rate_hi;
 }
@@ -74,7 +75,8 @@ TEST(IsoparallelCertificate, PlanCoversEveryRateTheLemmaLeaves) {
     samples.push_back({regime, k, (2.0 * unit(rng) - 1.0) * a});
   }
   for (const Sample& s : samples)
-    ASSERT_TRUE(CoveredByAny(plan.pieces, s.regime, s.k, s.rate)) << ToString(s.regime) << " k " << s.k << " rate " << s.rate;
+    ASSERT_TRUE(CoveredByAny(plan.pieces, s.regime, s.k, s.rate))
+        << ToString(s.regime) << " k " << s.k << " rate " << s.rate;
   for (std::size_t drop = 0; drop < plan.pieces.size(); ++drop) {
     std::vector<CoveragePiece> without = plan.pieces;
     without.erase(without.begin() + static_cast<long>(drop));
@@ -244,15 +246,17 @@ TEST(IsoparallelCertificate, MatchesAProvedPathToTheSolversSolution) {
   const std::vector<IsoparallelSolution> list = {other, shortest};
   internal::CertifyPoint p = internal::CanonicalSolution(shortest.parameters, shortest.length);
   EXPECT_EQ(internal::MatchingSolution(list, PendulumRegime::kOscillating, p, 1e-6), 1);
-  p[internal::kCertifyPhase] += internal::PhasePeriod(PendulumRegime::kOscillating, p[internal::kCertifyModulus]) - 1e-8;
+  p[internal::kCertifyPhase] +=
+      internal::PhasePeriod(PendulumRegime::kOscillating, p[internal::kCertifyModulus]) - 1e-8;
   EXPECT_EQ(internal::MatchingSolution(list, PendulumRegime::kOscillating, p, 1e-6), 1);
   p[internal::kCertifyLength] += 1e-4;
   EXPECT_EQ(internal::MatchingSolution(list, PendulumRegime::kOscillating, p, 1e-6), -1);
-  EXPECT_EQ(internal::MatchingSolution({other}, PendulumRegime::kOscillating,
-                                      internal::CanonicalSolution(shortest.parameters, shortest.length), 1e-6),
+  EXPECT_EQ(internal::MatchingSolution({other},
+                                       PendulumRegime::kOscillating,
+                                       internal::CanonicalSolution(shortest.parameters, shortest.length),
+                                       1e-6),
             -1);
 }
-
 
 // The rotation problem's whole certificate at 1.0001 x its shortest length costs 209M boxes
 // (minutes of CPU): a stop must end each piece within kInterruptPollBoxes boxes of the question

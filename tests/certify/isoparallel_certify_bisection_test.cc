@@ -1,10 +1,10 @@
 // The bisection shared by the tail certificates (src/certify/bisection.h): counts,
 // resolved volume, order, budget and status on a window whose decisions are known by hand.
-#include "certify/bisection.h"
-
 #include <gtest/gtest.h>
 
 #include <vector>
+
+#include "certify/bisection.h"
 
 namespace plateball::internal {
 namespace {
@@ -31,8 +31,8 @@ CertifyBox Window() {
 TEST(IsoparallelCertifyBisection, CountsVolumeAndOrderMatchTheHandCount) {
   BisectionTally tally;
   std::vector<double> kept;
-  Bisect(Window(), 1.0, 1000, DecideAlongAxisZero,
-         [&](const CertifyBox& box) { kept.push_back(box.lo[0]); }, {}, &tally);
+  Bisect(
+      Window(), 1.0, 1000, DecideAlongAxisZero, [&](const CertifyBox& box) { kept.push_back(box.lo[0]); }, {}, &tally);
   EXPECT_EQ(tally.boxes, 11);
   EXPECT_EQ(tally.excluded_by_chord, 1);
   EXPECT_EQ(tally.excluded_by_rotation, 1);
@@ -51,7 +51,9 @@ TEST(IsoparallelCertifyBisection, OutsideBoxesCountAsResolvedAndAWindowCanBeExcl
     return BoxDecision{BoxFate::kSplit, 0};
   };
   // Two calls on one tally (as the loop family's two senses), each of weight 1/2.
-  for (int call = 0; call < 2; ++call) Bisect(Window(), 0.5, 1000, decide, [](const CertifyBox&) {}, {}, &tally);
+  for (int call = 0; call < 2; ++call)
+    Bisect(
+        Window(), 0.5, 1000, decide, [](const CertifyBox&) {}, {}, &tally);
   EXPECT_EQ(tally.boxes, 6);
   EXPECT_EQ(tally.outside_domain, 2);
   EXPECT_EQ(tally.excluded_by_rotation, 2);
@@ -70,25 +72,28 @@ TEST(IsoparallelCertifyBisection, ADegenerateWindowIsMeasuredOnItsOtherAxes) {
   const auto decide = [](const CertifyBox& box) {
     return box.hi[0] - box.lo[0] <= 0.25 ? BoxDecision{BoxFate::kExcludedByRotation} : BoxDecision{BoxFate::kSplit, 0};
   };
-  Bisect(flat, 1.0, 1000, decide, [](const CertifyBox&) {}, {}, &tally);
+  Bisect(
+      flat, 1.0, 1000, decide, [](const CertifyBox&) {}, {}, &tally);
   EXPECT_EQ(tally.boxes, 7);
   EXPECT_EQ(tally.excluded_by_rotation, 4);
   EXPECT_DOUBLE_EQ(tally.resolved_volume, 1.0);
   CertifyBox quarter = flat;
   quarter.hi[0] = 0.25;
   quarter.hi[2] = 1.0;
-  EXPECT_DOUBLE_EQ(BoxShare(quarter, flat), 0.125);  // 1/4 along axis 0, 1/2 along axis 2
+  EXPECT_DOUBLE_EQ(BoxShare(quarter, flat), 0.125);    // 1/4 along axis 0, 1/2 along axis 2
   EXPECT_DOUBLE_EQ(BoxShare(quarter, Window()), 0.0);  // zero width inside a full window
 }
 
 TEST(IsoparallelCertifyBisection, TheBudgetCountsOverCallsAndEndsWithBudgetExhausted) {
   BisectionTally tally;
-  Bisect(Window(), 1.0, 5, DecideAlongAxisZero, [](const CertifyBox&) {}, {}, &tally);
+  Bisect(
+      Window(), 1.0, 5, DecideAlongAxisZero, [](const CertifyBox&) {}, {}, &tally);
   EXPECT_EQ(tally.boxes, 5);
   EXPECT_EQ(tally.Status(), ExclusionStatus::kBudgetExhausted);
   BisectionTally second = tally;
   second.budget_left = true;
-  Bisect(Window(), 1.0, 5, DecideAlongAxisZero, [](const CertifyBox&) {}, {}, &second);
+  Bisect(
+      Window(), 1.0, 5, DecideAlongAxisZero, [](const CertifyBox&) {}, {}, &second);
   EXPECT_EQ(second.boxes, 5);  // no box left in the budget: the window stays on the stack
   EXPECT_EQ(second.Status(), ExclusionStatus::kBudgetExhausted);
 }
@@ -102,18 +107,21 @@ TEST(IsoparallelCertifyBisection, AnInterruptStopsAtTheNextPollAndLaterCallsOnTh
   int asked = 0;
   const CertifyInterrupt third = [&] { return ++asked == 3; };
   BisectionTally tally;
-  Bisect(Window(), 0.5, 1000000, split_for_ever, [](const CertifyBox&) {}, third, &tally);
+  Bisect(
+      Window(), 0.5, 1000000, split_for_ever, [](const CertifyBox&) {}, third, &tally);
   EXPECT_EQ(asked, 3);
   EXPECT_EQ(tally.boxes, 2 * kInterruptPollBoxes);
   EXPECT_TRUE(tally.interrupted);
   EXPECT_EQ(tally.Status(), ExclusionStatus::kInterrupted);
   EXPECT_EQ(ToString(tally.Status()), "interrupted");
-  Bisect(Window(), 0.5, 1000000, split_for_ever, [](const CertifyBox&) {}, third, &tally);
+  Bisect(
+      Window(), 0.5, 1000000, split_for_ever, [](const CertifyBox&) {}, third, &tally);
   EXPECT_EQ(asked, 3);
   EXPECT_EQ(tally.boxes, 2 * kInterruptPollBoxes);
   // Set before the start: no box at all.
   BisectionTally first;
-  Bisect(Window(), 1.0, 1000000, split_for_ever, [](const CertifyBox&) {}, [] { return true; }, &first);
+  Bisect(
+      Window(), 1.0, 1000000, split_for_ever, [](const CertifyBox&) {}, [] { return true; }, &first);
   EXPECT_EQ(first.boxes, 0);
   EXPECT_EQ(first.Status(), ExclusionStatus::kInterrupted);
 }

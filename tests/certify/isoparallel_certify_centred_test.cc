@@ -3,8 +3,6 @@
 // derivative at the centre by central differences), the bound never below sampled rotation
 // distances (closed form; a dopri5 rolling at the farthest sample), never excluding a box that
 // holds a solution, and boxes it decides in the oscillating window's stalled region.
-#include "certify/centred.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "certify/centred.h"
 #include "certify/costate.h"
 #include "certify/rolling.h"
 #include "certify/support/dopri_rolling.h"
@@ -41,7 +40,8 @@ const PendulumRegime kRegimes[] = {PendulumRegime::kOscillating, PendulumRegime:
 CertifyBox SmallBox(PendulumRegime regime, std::mt19937* rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const bool rotating = regime == PendulumRegime::kRotating;
-  CertifyBox box = plateball::testing::RandomCertifyBox(regime, {0.05, 5.0, 0.02, 0.95, 0.5, 10.0, 1.0, 1e-5, 0.03}, rng);
+  CertifyBox box =
+      plateball::testing::RandomCertifyBox(regime, {0.05, 5.0, 0.02, 0.95, 0.5, 10.0, 1.0, 1e-5, 0.03}, rng);
   if (rotating && unit(*rng) < 0.1)  // across rate 0, or centred on it
     box.lo[kCertifyRate] = (unit(*rng) < 0.5 ? -0.5 : -1.0) * box.hi[kCertifyRate];
   if (unit(*rng) < 0.1) box.lo[kCertifyModulus] = 0.0;
@@ -68,10 +68,11 @@ Eigen::Matrix3d Closed(PendulumRegime regime, const CertifyPoint& x) {
 
 // exp(mean log r) of positive ratios (1 for none).
 double Mean(const std::vector<double>& ratios) {
-  return ratios.empty() ? 1.0
-                        : std::exp(std::accumulate(ratios.begin(), ratios.end(), 0.0,
-                                                   [](double sum, double r) { return sum + std::log(r); }) /
-                                   static_cast<double>(ratios.size()));
+  return ratios.empty()
+             ? 1.0
+             : std::exp(std::accumulate(
+                            ratios.begin(), ratios.end(), 0.0, [](double sum, double r) { return sum + std::log(r); }) /
+                        static_cast<double>(ratios.size()));
 }
 
 }  // namespace
@@ -114,7 +115,9 @@ TEST(IsoparallelCertifyCentred, RemainderBoundsTheFirstOrderError) {
       }
     }
     std::printf("%s: %d boxes; remainder bound / first-order error geometric mean %.1f, smallest %.2f\n",
-                ToString(regime).c_str(), finite, Mean(ratios),
+                ToString(regime).c_str(),
+                finite,
+                Mean(ratios),
                 ratios.empty() ? 0.0 : *std::min_element(ratios.begin(), ratios.end()));
     EXPECT_GT(finite, 300) << ToString(regime);
   }
@@ -157,9 +160,14 @@ TEST(IsoparallelCertifyCentred, BoundNeverUndershootsSampledRotationDistances) {
       against_d.push_back(bound / RollingDeviationBound(regime, box));
     }
     const long below_d = std::count_if(against_d.begin(), against_d.end(), [](double r) { return r < 1.0; });
-    std::printf("%s: %d of 1000 boxes finite; bound / largest sampled distance geometric mean %.2f; bound / D "
-                "geometric mean %.2f, below D on %ld\n",
-                ToString(regime).c_str(), finite, Mean(ratios), Mean(against_d), below_d);
+    std::printf(
+        "%s: %d of 1000 boxes finite; bound / largest sampled distance geometric mean %.2f; bound / D "
+        "geometric mean %.2f, below D on %ld\n",
+        ToString(regime).c_str(),
+        finite,
+        Mean(ratios),
+        Mean(against_d),
+        below_d);
     EXPECT_GT(finite, 700) << ToString(regime);
     EXPECT_GT(below_d, finite / 2) << ToString(regime);
   }
@@ -176,8 +184,10 @@ BoxVerdict CentredVerdict(const CertifyTarget& target, PendulumRegime regime, co
     ADD_FAILURE() << "centre residual not available";
     return BoxVerdict::kExcludedByChord;
   }
-  return TestBox(centre, std::min(d, CentredRollingDeviationBound(regime, box, 1e-7)),
-                 std::min(d, ChordDeviationBound(regime, box)), 1e-7);
+  return TestBox(centre,
+                 std::min(d, CentredRollingDeviationBound(regime, box, 1e-7)),
+                 std::min(d, ChordDeviationBound(regime, box)),
+                 1e-7);
 }
 
 }  // namespace
@@ -250,8 +260,10 @@ TEST(IsoparallelCertifyCentred, NeverExcludesABoxHoldingASolution) {
     const CertifyTarget made = plateball::testing::MadeCertifyTarget(kRegimes[b % 2], x);
     ASSERT_EQ(CentredVerdict(made, kRegimes[b % 2], box), BoxVerdict::kUndecided) << "random box " << b;
   }
-  std::printf("centred form: %d boxes with a solution kept; turned target: %d of %zu boxes excluded\n", boxes,
-              turned_excluded, 6 * cases.size());
+  std::printf("centred form: %d boxes with a solution kept; turned target: %d of %zu boxes excluded\n",
+              boxes,
+              turned_excluded,
+              6 * cases.size());
   EXPECT_GE(turned_excluded, static_cast<int>(cases.size()));
 }
 
@@ -273,9 +285,12 @@ TEST(IsoparallelCertifyCentred, DecidesBoxesInTheStalledRegion) {
   const CertifyWindowResult with = CertifyWindow(target, {}, options);
   options.centred_rolling = false;
   const CertifyWindowResult without = CertifyWindow(target, {}, options);
-  std::printf("20,000 boxes: %ld excluded by rotation only with the centred form; resolved volume %.6f (%.6f "
-              "without)\n",
-              with.excluded_by_centred_rolling, with.resolved_volume, without.resolved_volume);
+  std::printf(
+      "20,000 boxes: %ld excluded by rotation only with the centred form; resolved volume %.6f (%.6f "
+      "without)\n",
+      with.excluded_by_centred_rolling,
+      with.resolved_volume,
+      without.resolved_volume);
   EXPECT_GT(with.excluded_by_centred_rolling, 1000);
   EXPECT_EQ(without.excluded_by_centred_rolling, 0);
   EXPECT_GT(with.resolved_volume, without.resolved_volume + 0.002);

@@ -3,8 +3,6 @@
 // to 0.95, rates 0.05..20), the costate's closed form and its transport by the rolling, the
 // costate angle zero at known solutions and never excluding a box that holds one, and boxes
 // decided by the new tests that the old ones leave undecided.
-#include "certify/costate.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "certify/costate.h"
 #include "certify/support/dopri_rolling.h"
 #include "certify/support/made_certify_target.h"
 #include "elastica_rolling.h"
@@ -40,7 +39,10 @@ CertifyBox RandomBox(PendulumRegime regime, std::mt19937* rng) {
   const CertifyPoint c = {rate, 0.95 * unit(*rng), -6.0 + 12.0 * unit(*rng), 0.5 + 7.5 * unit(*rng)};
   CertifyBox box;
   for (int i = 0; i < 4; ++i) {
-    const double scale = i == kCertifyRate ? std::abs(rate) : i == kCertifyModulus ? 0.3 : i == kCertifyPhase ? 1.0 : 2.0;
+    const double scale = i == kCertifyRate      ? std::abs(rate)
+                         : i == kCertifyModulus ? 0.3
+                         : i == kCertifyPhase   ? 1.0
+                                                : 2.0;
     const double h = scale * std::exp(std::log(1e-4) + unit(*rng) * std::log(3e3));
     box.lo[i] = c[i] - h;
     box.hi[i] = c[i] + h;
@@ -85,8 +87,9 @@ CertifyPoint CentralDifferenceNorms(const CertifyPoint& x, F&& f) {
   return d;
 }
 
-Eigen::Matrix3d Dopri(const Elastica& e, double length) { return plateball::testing::DopriElasticaRolling(e, length, 1e-12); }
-
+Eigen::Matrix3d Dopri(const Elastica& e, double length) {
+  return plateball::testing::DopriElasticaRolling(e, length, 1e-12);
+}
 
 CertifyBox BoxAround(const CertifyPoint& x, const CertifyPoint& offset, double h) {
   CertifyBox box;
@@ -144,7 +147,10 @@ TEST(IsoparallelCertifyCostate, ChordBoundsNeverUndershootSampledMaxima) {
       if (bound < RollingDeviationBound(regime, box)) ++sharper;
     }
     std::printf("%s: chord bound / largest sampled deviation median %.2f; below D in %d of %d boxes\n",
-                ToString(regime).c_str(), Median(ratios), sharper, boxes);
+                ToString(regime).c_str(),
+                Median(ratios),
+                sharper,
+                boxes);
     EXPECT_GT(sharper, boxes / 4) << ToString(regime);  // the new bound is the sharper one often
   }
 }
@@ -172,7 +178,8 @@ TEST(IsoparallelCertifyCostate, CostateBoundsNeverUndershootSampledMaxima) {
         if (worst > 1e-12) ratios.push_back(bound / worst);
       }
     }
-    std::printf("%s: costate bound / largest sampled deviation median %.2f\n", ToString(regime).c_str(), Median(ratios));
+    std::printf(
+        "%s: costate bound / largest sampled deviation median %.2f\n", ToString(regime).c_str(), Median(ratios));
   }
 }
 
@@ -196,7 +203,8 @@ TEST(IsoparallelCertifyCostate, CostateLowerBoundHoldsOverTheBox) {
       const double least = MinCostateAngleOverTurn(target, centre, turn);
       double dense = M_PI;
       for (int i = 0; i <= 2000; ++i)
-        dense = std::min(dense, CostateAngleAt(target, centre, centre.beta + std::min(turn, M_PI) * (i / 1000.0 - 1.0)));
+        dense =
+            std::min(dense, CostateAngleAt(target, centre, centre.beta + std::min(turn, M_PI) * (i / 1000.0 - 1.0)));
       ASSERT_LE(least, dense + 1e-12) << ToString(regime) << " box " << b;
       ASSERT_GE(least, dense - 0.05) << ToString(regime) << " box " << b;
       const double lower = least - CostateEndsDeviationBound(regime, box, centre, 1e-7);
@@ -282,8 +290,11 @@ TEST(IsoparallelCertifyCostate, NeverExcludesABoxHoldingASolution) {
       }
     }
   }
-  std::printf("%d boxes around %zu solutions; %d of %zu small boxes excluded for the turned target\n", boxes,
-              cases.size(), perturbed_excluded, 2 * cases.size());
+  std::printf("%d boxes around %zu solutions; %d of %zu small boxes excluded for the turned target\n",
+              boxes,
+              cases.size(),
+              perturbed_excluded,
+              2 * cases.size());
   EXPECT_GE(perturbed_excluded, static_cast<int>(cases.size()));
 }
 
@@ -309,8 +320,10 @@ TEST(IsoparallelCertifyCostate, NeverExcludesARandomBoxAroundAMadeSolution) {
       turned_excluded += CostateExcludes(turned, regime, box, dc, 1e-7) ? 1 : 0;
       ++boxes;
     }
-    std::printf("%s: %d boxes around made solutions; %d excluded for the turned target\n", ToString(regime).c_str(),
-                boxes, turned_excluded);
+    std::printf("%s: %d boxes around made solutions; %d excluded for the turned target\n",
+                ToString(regime).c_str(),
+                boxes,
+                turned_excluded);
     EXPECT_GT(turned_excluded, boxes / 10) << ToString(regime);
   }
 }
@@ -344,7 +357,9 @@ TEST(IsoparallelCertifyCostate, ExcludesBoxesTheOldTestsLeaveUndecided) {
     by_costate += CostateExcludes(target, regime, box, dc, 1e-7) ? 1 : 0;
   }
   std::printf("%d boxes undecided by the old tests: %d decided with the closed-form chord bound, %d by the costate\n",
-              undecided, by_split, by_costate);
+              undecided,
+              by_split,
+              by_costate);
   EXPECT_GT(undecided, 100);
   EXPECT_GT(by_split, 0);
   EXPECT_GT(by_costate, 0);

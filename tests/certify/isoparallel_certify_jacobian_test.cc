@@ -2,23 +2,20 @@
 // closed-form heading derivatives against central differences of the elastica's pendulum angle,
 // the residual's Jacobian against central differences of the residual computed independently
 // (dopri5 rollings of the closed-form tangent), and Newton's method recovering a made solution.
-#include "certify/jacobian.h"
-
-#include "certify/window.h"
-
 #include <gtest/gtest.h>
-
-#include <boost/math/special_functions/ellint_1.hpp>
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <boost/math/special_functions/ellint_1.hpp>
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "certify/jacobian.h"
 #include "certify/support/dopri_rolling.h"
+#include "certify/window.h"
 #include "elastica_rolling.h"
 #include "plateball/elastica.h"
 #include "plateball/rolling.h"
@@ -91,8 +88,8 @@ TEST(IsoparallelCertifyJacobian, HeadingDerivativesMatchCentralDifferences) {
         worst = std::max(worst, err);
       }
     }
-    std::printf("%s: worst |d theta/dk - central difference| / ((1 + |v|) / k'^3) = %.2e\n", ToString(regime).c_str(),
-                worst);
+    std::printf(
+        "%s: worst |d theta/dk - central difference| / ((1 + |v|) / k'^3) = %.2e\n", ToString(regime).c_str(), worst);
   }
 }
 
@@ -105,7 +102,8 @@ TEST(IsoparallelCertifyJacobian, JacobianMatchesCentralDifferencesOfDopriResidua
   const double h = 1e-5;
   double worst = 0.0;
   for (PendulumRegime regime : kBothRegimes) {
-    const CertifyTarget target = MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
+    const CertifyTarget target =
+        MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
     for (int trial = 0; trial < 7; ++trial) {
       CertifyPoint x = regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating;
       if (trial > 0) x = {-1.5 + 3 * uni(rng), 0.05 + 0.85 * uni(rng), 4 * uni(rng), 0.5 + 7.5 * uni(rng)};
@@ -120,7 +118,8 @@ TEST(IsoparallelCertifyJacobian, JacobianMatchesCentralDifferencesOfDopriResidua
         const Eigen::Vector4d fd = (DopriResidual(target, regime, xp) - DopriResidual(target, regime, xm)) / (2 * h);
         const double err = (j.jacobian.col(c) - fd).lpNorm<Eigen::Infinity>() / (1 + fd.lpNorm<Eigen::Infinity>());
         EXPECT_LT(err, 2e-6) << ToString(regime) << " trial " << trial << " column " << c << "\n"
-                             << j.jacobian.col(c).transpose() << "\n" << fd.transpose();
+                             << j.jacobian.col(c).transpose() << "\n"
+                             << fd.transpose();
         worst = std::max(worst, err);
       }
     }
@@ -156,7 +155,8 @@ CertifyBox PointBox(const CertifyPoint& x) {
 TEST(IsoparallelCertifyJacobian, ResidualIsWithinItsErrorBoundAtHighRatesAndLengths) {
   std::mt19937 rng(20261125);
   for (PendulumRegime regime : kBothRegimes) {
-    const CertifyTarget target = MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
+    const CertifyTarget target =
+        MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
     double worst = 0.0;
     int points = 0;
     for (double rate_max : {1.5, 10.0, 30.0, 80.0}) {
@@ -171,7 +171,8 @@ TEST(IsoparallelCertifyJacobian, ResidualIsWithinItsErrorBoundAtHighRatesAndLeng
           const Eigen::Vector2d chord = e.Position(x[kCertifyLength]);
           Eigen::Vector4d f;
           f << chord.norm() - target.radius,
-              RotationTrickResidual(target.target, ChordTurn(target.goal_angle, chord), fine.Rolling(x[kCertifyLength]));
+              RotationTrickResidual(
+                  target.target, ChordTurn(target.goal_angle, chord), fine.Rolling(x[kCertifyLength]));
           const double ratio = (j.residual - f).lpNorm<Eigen::Infinity>() / CertifyResidualError(PointBox(x));
           EXPECT_LT(ratio, 0.2) << ToString(regime) << " rate " << x[0] << " k " << x[1] << " L " << x[3];
           worst = std::max(worst, ratio);
@@ -181,7 +182,9 @@ TEST(IsoparallelCertifyJacobian, ResidualIsWithinItsErrorBoundAtHighRatesAndLeng
     }
     EXPECT_GE(points, 60) << ToString(regime);
     std::printf("%s: %d points, largest |residual - Magnus residual| / CertifyResidualError = %.3g\n",
-                ToString(regime).c_str(), points, worst);
+                ToString(regime).c_str(),
+                points,
+                worst);
   }
 }
 
@@ -194,7 +197,8 @@ TEST(IsoparallelCertifyJacobian, ResidualIsWithinItsErrorBoundAtHighRatesAndLeng
 TEST(IsoparallelCertifyJacobian, JacobianHoldsItsMarginAtHighRates) {
   std::mt19937 rng(11);
   for (PendulumRegime regime : kBothRegimes) {
-    const CertifyTarget target = MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
+    const CertifyTarget target =
+        MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
     double worst = 0.0;
     int points = 0;
     for (double rate_max : {10.0, 26.0, 75.0}) {
@@ -217,7 +221,8 @@ TEST(IsoparallelCertifyJacobian, JacobianHoldsItsMarginAtHighRates) {
                            : c == kCertifyModulus ? 3e-2 * kp2 / (1.0 + v_max)
                            : c == kCertifyPhase   ? 1e-3
                                                   : 1e-3 / (1.0 + std::abs(x[kCertifyRate]));
-          const Eigen::Vector4d fd = (8.0 * (residual(c, h) - residual(c, -h)) - (residual(c, 2 * h) - residual(c, -2 * h))) / (12.0 * h);
+          const Eigen::Vector4d fd =
+              (8.0 * (residual(c, h) - residual(c, -h)) - (residual(c, 2 * h) - residual(c, -2 * h))) / (12.0 * h);
           const double err = (j.jacobian.col(c) - fd).lpNorm<Eigen::Infinity>() / (1.0 + fd.lpNorm<Eigen::Infinity>());
           EXPECT_LT(err, kJacobianMargin) << ToString(regime) << " rate " << x[0] << " k " << x[1] << " column " << c;
           worst = std::max(worst, err);
@@ -226,8 +231,8 @@ TEST(IsoparallelCertifyJacobian, JacobianHoldsItsMarginAtHighRates) {
       }
     }
     EXPECT_GE(points, 20) << ToString(regime);
-    std::printf("%s: %d points, worst relative |J - central difference| = %.2e\n", ToString(regime).c_str(), points,
-                worst);
+    std::printf(
+        "%s: %d points, worst relative |J - central difference| = %.2e\n", ToString(regime).c_str(), points, worst);
   }
 }
 
@@ -244,8 +249,12 @@ TEST(IsoparallelCertifyJacobian, NewtonRecoversMadeSolutions) {
     CertifyJacobian j;
     ASSERT_TRUE(EvaluateCertifyJacobian(target, regime, x, 0.02, &j));
     const Eigen::Vector4d sv = Eigen::JacobiSVD<Eigen::Matrix4d>(j.jacobian).singularValues();
-    std::printf("%s made solution: singular values %.3g %.3g %.3g %.3g\n", ToString(regime).c_str(), sv[0], sv[1],
-                sv[2], sv[3]);
+    std::printf("%s made solution: singular values %.3g %.3g %.3g %.3g\n",
+                ToString(regime).c_str(),
+                sv[0],
+                sv[1],
+                sv[2],
+                sv[3]);
     EXPECT_GT(sv[3], 1e-3);
   }
 }
@@ -260,8 +269,10 @@ TEST(IsoparallelCertifyJacobian, HeadingSecondDerivativeBoundsNeverUndershoot) {
     for (double k = 0.02; k <= 0.961; k += 0.06) {
       for (double v = -30.0; v <= 30.0; v += 0.0931) {
         const HeadingSecondBounds b = HeadingSecondDerivativeBounds(regime, k, std::abs(v));
-        const HeadingDerivatives vp = HeadingDerivativesAt(regime, k, v + h), vm = HeadingDerivativesAt(regime, k, v - h);
-        const HeadingDerivatives kp = HeadingDerivativesAt(regime, k + h, v), km = HeadingDerivativesAt(regime, k - h, v);
+        const HeadingDerivatives vp = HeadingDerivativesAt(regime, k, v + h),
+                                 vm = HeadingDerivativesAt(regime, k, v - h);
+        const HeadingDerivatives kp = HeadingDerivativesAt(regime, k + h, v),
+                                 km = HeadingDerivativesAt(regime, k - h, v);
         const double vv = (vp.dv - vm.dv) / (2 * h), vk = (kp.dv - km.dv) / (2 * h), kk = (kp.dk - km.dk) / (2 * h);
         ASSERT_LE(std::abs(vv), b.vv * (1 + 1e-6) + 1e-6) << ToString(regime) << " k " << k << " v " << v;
         ASSERT_LE(std::abs(vk), b.vk * (1 + 1e-6) + 1e-6) << ToString(regime) << " k " << k << " v " << v;
@@ -292,8 +303,8 @@ TEST(IsoparallelCertifyJacobian, EndHeadingBoundsHoldOverTheWholeLengthRange) {
       box.hi = {rate + half[0], k + half[1], -rate * l_max + half[2], l_max};
       const EndHeadingBounds ends = EndHeadingBoundsOf(regime, box);
       const CertifyPoint c = box.Centre();
-      const double last_piece = HeadingModulusBound(regime, box.hi[kCertifyModulus],
-                                                    ArgumentBoundOver(box, l_max - l_max / 64, l_max));
+      const double last_piece =
+          HeadingModulusBound(regime, box.hi[kCertifyModulus], ArgumentBoundOver(box, l_max - l_max / 64, l_max));
       double sampled_dk = 0.0;
       for (int m = 0; m < 256; ++m) {  // the 16 corners of (rate, k, u0, s) first, then interior points
         double t[4];
@@ -301,8 +312,10 @@ TEST(IsoparallelCertifyJacobian, EndHeadingBoundsHoldOverTheWholeLengthRange) {
         CertifyPoint x;
         for (int i = 0; i < 4; ++i) x[i] = box.lo[i] + t[i] * (box.hi[i] - box.lo[i]);
         const double s = x[kCertifyLength];
-        const HeadingDerivatives h = HeadingDerivativesAt(regime, x[kCertifyModulus], x[kCertifyRate] * s + x[kCertifyPhase]);
-        const HeadingDerivatives hc = HeadingDerivativesAt(regime, c[kCertifyModulus], c[kCertifyRate] * s + c[kCertifyPhase]);
+        const HeadingDerivatives h =
+            HeadingDerivativesAt(regime, x[kCertifyModulus], x[kCertifyRate] * s + x[kCertifyPhase]);
+        const HeadingDerivatives hc =
+            HeadingDerivativesAt(regime, c[kCertifyModulus], c[kCertifyRate] * s + c[kCertifyPhase]);
         ASSERT_LE(std::abs(h.dk), ends.dk * (1 + 1e-12)) << ToString(regime) << " trial " << trial;
         ASSERT_LE(std::min(std::abs(h.theta - hc.theta), 2.0), ends.deviation * (1 + 1e-12))
             << ToString(regime) << " trial " << trial;
@@ -312,7 +325,9 @@ TEST(IsoparallelCertifyJacobian, EndHeadingBoundsHoldOverTheWholeLengthRange) {
       if (sampled_dk > last_piece) ++beyond_last_piece;
     }
     std::printf("%s: sampled |d theta/dk| / end bound up to %.3g; beyond the last piece's bound in %d of 100 boxes\n",
-                ToString(regime).c_str(), worst_dk, beyond_last_piece);
+                ToString(regime).c_str(),
+                worst_dk,
+                beyond_last_piece);
     EXPECT_GE(beyond_last_piece, 40) << ToString(regime);
     EXPECT_GT(worst_dk, 0.2) << ToString(regime);  // the bound is not vacuous
   }
@@ -343,7 +358,8 @@ TEST(IsoparallelCertifyJacobian, EnclosureNeverUndershootsSampledJacobians) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   for (PendulumRegime regime : kBothRegimes) {
-    const CertifyTarget target = MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
+    const CertifyTarget target =
+        MadeTarget(regime, regime == PendulumRegime::kRotating ? kMadeRotating : kMadeOscillating);
     int boxes = 0;
     std::vector<double> ratios;
     for (int trial = 0; trial < 100 && boxes < 12; ++trial) {
@@ -375,14 +391,19 @@ TEST(IsoparallelCertifyJacobian, EnclosureNeverUndershootsSampledJacobians) {
     EXPECT_GE(boxes, 10) << ToString(regime);
     std::sort(ratios.begin(), ratios.end());
     std::printf("%s: %d boxes, radius / largest sampled deviation (entrywise worst): median %.3g, min %.3g\n",
-                ToString(regime).c_str(), boxes, ratios[ratios.size() / 2], ratios.front());
+                ToString(regime).c_str(),
+                boxes,
+                ratios[ratios.size() / 2],
+                ratios.front());
   }
 }
 
 namespace {
 
 // The first-order verdict of the box of half-width `half` (every axis) centred at `centre`.
-FirstOrderVerdict VerdictAround(PendulumRegime regime, const CertifyTarget& target, const CertifyPoint& centre,
+FirstOrderVerdict VerdictAround(PendulumRegime regime,
+                                const CertifyTarget& target,
+                                const CertifyPoint& centre,
                                 double half) {
   CertifyBox box;
   for (int i = 0; i < 4; ++i) {
@@ -505,8 +526,9 @@ TEST(IsoparallelCertifyJacobian, HeadingAlongNodesMatchesBoostAtEveryNode) {
         const double v = rate * quad.nodes[i] + phase;
         const HeadingDerivatives d = HeadingDerivativesAt(regime, k, v);
         const double scale = (1.0 + std::abs(v)) / (kp * kp * kp);
-        const double err = std::max({std::abs(along[i].theta - d.theta), std::abs(along[i].dv - d.dv),
-                                     std::abs(along[i].dk - d.dk)}) / scale;
+        const double err =
+            std::max({std::abs(along[i].theta - d.theta), std::abs(along[i].dv - d.dv), std::abs(along[i].dk - d.dk)}) /
+            scale;
         worst = std::max(worst, err);
       }
     }

@@ -2,8 +2,6 @@
 // their loop models, the model's core rolling against dopri5 on the separatrix and its closed-form
 // chord, the run-length cap, the box bound against sampled model and real rollings, and the
 // certificate against a target made from a tail path with two loops (it must not exclude it).
-#include "certify/loops.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "certify/loops.h"
 #include "certify/support/dopri_rolling.h"
 #include "certify/support/made_certify_target.h"
 #include "certify/support/random_certify_box.h"
@@ -74,8 +73,11 @@ TEST(IsoparallelCertifyLoops, RealTailPathsStayWithinTheHeadingErrorOfTheirModel
       EXPECT_LE(d, bound) << ToString(regime) << " " << e.parameters().modulus << " " << e.parameters().rate;
       worst = std::max(worst, d / bound);
     }
-    std::printf("%s: W2 %.4g, eps %.3g, worst deviation / (eps L) %.3f\n", ToString(regime).c_str(), w2,
-                LoopModelHeadingError(regime, TailModulus(regime), w2), worst);
+    std::printf("%s: W2 %.4g, eps %.3g, worst deviation / (eps L) %.3f\n",
+                ToString(regime).c_str(),
+                w2,
+                LoopModelHeadingError(regime, TailModulus(regime), w2),
+                worst);
   }
 }
 
@@ -115,8 +117,8 @@ TEST(IsoparallelCertifyLoops, RealTailHeadingsStayWithinEpsOfTheModelHeading) {
         for (int n = 0; n <= 3000; ++n) {
           const double s = length * n / 3000.0;
           const double d = AngleDistance(e.PendulumAngle(s), ModelHeading(regime, m.sense, w2, m.x, s));
-          ASSERT_LE(d, eps) << ToString(regime) << " k " << e.parameters().modulus << " rate "
-                            << e.parameters().rate << " s " << s;
+          ASSERT_LE(d, eps) << ToString(regime) << " k " << e.parameters().modulus << " rate " << e.parameters().rate
+                            << " s " << s;
           worst = std::max(worst, d / eps);
         }
       }
@@ -132,8 +134,9 @@ TEST(IsoparallelCertifyLoops, RealTailRollingsAgreeWithDopri) {
     for (int i = 0; i < 4; ++i) {
       const Elastica e = RandomTailElastica(regime, &rng);
       const double length = LogUniform(0.5, 3.0, &rng);
-      EXPECT_LE(Angle(ElasticaClosedRolling(e).Rolling(length), plateball::testing::DopriElasticaRolling(e, length, 1e-12)),
-                1e-10);  // observed <= 5e-12 (k' 3e-8 .. 4e-6, rates up to 111)
+      EXPECT_LE(
+          Angle(ElasticaClosedRolling(e).Rolling(length), plateball::testing::DopriElasticaRolling(e, length, 1e-12)),
+          1e-10);  // observed <= 5e-12 (k' 3e-8 .. 4e-6, rates up to 111)
     }
   }
 }
@@ -239,7 +242,9 @@ TEST(IsoparallelCertifyLoops, DeviationBoundNeverUndershootsSampledModelRollings
     }
   }
   std::sort(ratios.begin(), ratios.end());
-  std::printf("D / sampled deviation (D < 1): %zu boxes, best %.3g, median %.3g\n", ratios.size(), ratios.front(),
+  std::printf("D / sampled deviation (D < 1): %zu boxes, best %.3g, median %.3g\n",
+              ratios.size(),
+              ratios.front(),
               ratios[ratios.size() / 2]);
 }
 
@@ -263,8 +268,8 @@ TEST(IsoparallelCertifyLoops, BoxBoundCoversRealTailPaths) {
       box.lo[kLoopRun] = std::max(box.lo[kLoopRun], 0.0);
       const double d = LoopModelDeviationBound(w2, box) + RealPathTolerance(regime, w2, box.hi[kLoopLength]);
       const LoopModelRolling c = RollLoopModel(regime, m.sense, w2, box.Centre());
-      const double actual = std::max(Angle(ElasticaClosedRolling(e).Rolling(length), c.rolling),
-                                     (e.Position(length) - c.chord).norm());
+      const double actual =
+          std::max(Angle(ElasticaClosedRolling(e).Rolling(length), c.rolling), (e.Position(length) - c.chord).norm());
       EXPECT_LE(actual, d) << ToString(regime) << " path " << i;
     }
   }
@@ -279,7 +284,8 @@ TEST(IsoparallelCertifyLoops, SlowPathsWithinOneCoreStayWithinTheLocalGap) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double kp = 1e-2, k_t = std::sqrt((1.0 - kp) * (1.0 + kp));
   for (const PendulumRegime regime : kRegimes) {
-    const double w2 = regime == PendulumRegime::kOscillating ? CompleteEllipticK(k_t) : LoopCoreHalfWidthFor(regime, k_t);
+    const double w2 =
+        regime == PendulumRegime::kOscillating ? CompleteEllipticK(k_t) : LoopCoreHalfWidthFor(regime, k_t);
     const LoopHeadingError heading(regime, k_t, w2);
     const double core_gap = SeparatrixHeadingGapSup(PendulumRegime::kRotating, kLoopCoreModulus);
     double worst_point = 0.0, worst_rolling = 0.0, largest_gain = 0.0;
@@ -312,17 +318,21 @@ TEST(IsoparallelCertifyLoops, SlowPathsWithinOneCoreStayWithinTheLocalGap) {
         box.hi[a] = box.lo[a] + 2.0 * h;
       }
       const LoopModelRolling c = RollLoopModel(regime, m.sense, w2, box.Centre());
-      const double actual = std::max(Angle(ElasticaClosedRolling(e).Rolling(length), c.rolling),
-                                     (e.Position(length) - c.chord).norm());
+      const double actual =
+          std::max(Angle(ElasticaClosedRolling(e).Rolling(length), c.rolling), (e.Position(length) - c.chord).norm());
       const double d = LoopModelDeviationBound(w2, box) + heading.ForBox(box) * box.hi[kLoopLength];
       EXPECT_LE(actual, d) << ToString(regime) << " path " << i;
       worst_rolling = std::max(worst_rolling, actual / d);
     }
     // The local gap is nearly reached at k_t (the bound is not loose enough to hide an error).
     EXPECT_GT(worst_point, 0.3) << ToString(regime);
-    std::printf("%s: heading deviation / local gap at k_t, worst %.3f; rolling deviation / bound, worst %.3f; "
-                "family eps / local eps up to %.3g\n",
-                ToString(regime).c_str(), worst_point, worst_rolling, largest_gain);
+    std::printf(
+        "%s: heading deviation / local gap at k_t, worst %.3f; rolling deviation / bound, worst %.3f; "
+        "family eps / local eps up to %.3g\n",
+        ToString(regime).c_str(),
+        worst_point,
+        worst_rolling,
+        largest_gain);
   }
 }
 
@@ -333,8 +343,8 @@ void ExpectNestedBoxesKept(PendulumRegime regime, const CertifyPoint& x, double 
   const double w2 = LoopCoreHalfWidthFor(regime, k_t);
   const LoopModelPoint m = LoopModelOf(CertifyElastica(regime, x), x[kCertifyLength], w2);
   ASSERT_LT(m.x[kLoopRun] + 2.0 * w2 / m.x[kLoopRate], x[kCertifyLength]);  // two cores meet the path
-  const double eps = LoopModelHeadingError(regime, k_t, w2) +
-                     SeparatrixHeadingGapSup(PendulumRegime::kRotating, kLoopCoreModulus);
+  const double eps =
+      LoopModelHeadingError(regime, k_t, w2) + SeparatrixHeadingGapSup(PendulumRegime::kRotating, kLoopCoreModulus);
   for (int i = 0; i < 40; ++i) {
     CertifyBox box;
     for (int a = 0; a < 4; ++a) {

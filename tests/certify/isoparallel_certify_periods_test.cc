@@ -5,8 +5,6 @@
 // bounds never below sampled closed-form distances (and, as a planted error, the bound without its
 // k share below them); never excluding a box that holds a solution; and the oscillating window
 // resolving more volume with the same budget.
-#include "certify/periods.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +14,7 @@
 #include <vector>
 
 #include "certify/costate.h"
+#include "certify/periods.h"
 #include "certify/rolling.h"
 #include "certify/window.h"
 #include "elastica_closed_rolling.h"
@@ -33,9 +32,7 @@ namespace {
 
 const PendulumRegime kRegimes[] = {PendulumRegime::kOscillating, PendulumRegime::kRotating};
 
-double Uniform(double lo, double hi, std::mt19937* rng) {
-  return std::uniform_real_distribution<double>(lo, hi)(*rng);
-}
+double Uniform(double lo, double hi, std::mt19937* rng) { return std::uniform_real_distribution<double>(lo, hi)(*rng); }
 
 // The pendulum angle theta at phase v and modulus k (rate 1, s = 0).
 double Theta(PendulumRegime regime, double k, double v) {
@@ -48,10 +45,14 @@ double Theta(PendulumRegime regime, double k, double v) {
 // 0.1 of 1, L 2.5..3.4, k 0.5..0.95).
 CertifyBox RandomBox(PendulumRegime regime, bool stalled, std::mt19937* rng) {
   const double sign = regime == PendulumRegime::kRotating && Uniform(0.0, 1.0, rng) < 0.5 ? -1.0 : 1.0;
-  const CertifyPoint c = stalled ? CertifyPoint{Uniform(0.9, 1.1, rng), Uniform(0.5, 0.95, rng),
-                                                Uniform(-5.8, 5.8, rng), Uniform(2.5, 3.4, rng)}
-                                 : CertifyPoint{sign * Uniform(0.2, 3.0, rng), Uniform(0.05, 0.95, rng),
-                                                Uniform(-5.8, 5.8, rng), Uniform(0.5, 12.0, rng)};
+  const CertifyPoint c = stalled ? CertifyPoint{Uniform(0.9, 1.1, rng),
+                                                Uniform(0.5, 0.95, rng),
+                                                Uniform(-5.8, 5.8, rng),
+                                                Uniform(2.5, 3.4, rng)}
+                                 : CertifyPoint{sign * Uniform(0.2, 3.0, rng),
+                                                Uniform(0.05, 0.95, rng),
+                                                Uniform(-5.8, 5.8, rng),
+                                                Uniform(0.5, 12.0, rng)};
   const CertifyPoint scale = {std::abs(c[kCertifyRate]), 0.3, 1.0, 1.0};
   CertifyBox box;
   for (int i = 0; i < 4; ++i) {
@@ -121,9 +122,13 @@ TEST(IsoparallelCertifyPeriods, HeadingModulusBoundAtFixedPeriodsHolds) {
       const double dv = std::abs(Theta(regime, k + h, v) - Theta(regime, k - h, v)) / (2.0 * h);
       fixed_phase_above += dv > bound ? 1 : 0;
     }
-    std::printf("%s: largest |d theta/dk| at fixed z / Mz %.3f (k <= 0.95), %.3f (0.95 < k <= 0.9999); at fixed v "
-                "above Mz at %d of 8000 points\n",
-                ToString(regime).c_str(), worst_ratio[0], worst_ratio[1], fixed_phase_above);
+    std::printf(
+        "%s: largest |d theta/dk| at fixed z / Mz %.3f (k <= 0.95), %.3f (0.95 < k <= 0.9999); at fixed v "
+        "above Mz at %d of 8000 points\n",
+        ToString(regime).c_str(),
+        worst_ratio[0],
+        worst_ratio[1],
+        fixed_phase_above);
     EXPECT_GT(worst_ratio[0], 0.05) << ToString(regime);  // the bound is not vacuous
     EXPECT_GT(worst_ratio[1], 0.05) << ToString(regime);
     EXPECT_GT(fixed_phase_above, 200) << ToString(regime);
@@ -202,15 +207,20 @@ TEST(IsoparallelCertifyPeriods, NeverUndershootsSampledRotationAndChordDistances
       ASSERT_LE(worst_chord, chord_bound * (1.0 + 1e-9) + 1e-9) << ToString(regime) << " box " << b;
       caught += worst > planted * (1.0 + 1e-9) + 1e-9 ? 1 : 0;
       const double d = RollingDeviationBound(regime, box);
-      const double existing = std::min({d, ClosedRollingDeviationBound(regime, box, 0.0),
-                                        ChartRollingDeviationBound(regime, box, 0.0)});
+      const double existing =
+          std::min({d, ClosedRollingDeviationBound(regime, box, 0.0), ChartRollingDeviationBound(regime, box, 0.0)});
       if (worst > 1e-12 && std::isfinite(bound)) ratios.Add(bound / worst);
       if (worst > 1e-12 && std::isfinite(existing)) main_ratios.Add(existing / worst);
       sharper += bound < existing ? 1 : 0;
     }
-    std::printf("%s: bound / largest sampled distance geometric mean %.2f (min(D, R, Rt): %.2f); below min(D, R, Rt) "
-                "on %d of 600 boxes; without the k share below a sample on %d\n",
-                ToString(regime).c_str(), ratios.Value(), main_ratios.Value(), sharper, caught);
+    std::printf(
+        "%s: bound / largest sampled distance geometric mean %.2f (min(D, R, Rt): %.2f); below min(D, R, Rt) "
+        "on %d of 600 boxes; without the k share below a sample on %d\n",
+        ToString(regime).c_str(),
+        ratios.Value(),
+        main_ratios.Value(),
+        sharper,
+        caught);
     EXPECT_GT(sharper, 60) << ToString(regime);
     planted_caught += caught;
   }
@@ -278,9 +288,13 @@ TEST(IsoparallelCertifyPeriods, NeverExcludesABoxHoldingASolution) {
       ASSERT_EQ(verdict(c.target, regime, box), BoxVerdict::kUndecided) << ToString(regime) << " box " << b;
       ++boxes;
     }
-  std::printf("%d boxes holding a solution, none excluded; %d of %zu boxes around %zu solutions excluded by rotation "
-              "for the turned target\n",
-              boxes, turned_excluded, 6 * cases.size(), cases.size());
+  std::printf(
+      "%d boxes holding a solution, none excluded; %d of %zu boxes around %zu solutions excluded by rotation "
+      "for the turned target\n",
+      boxes,
+      turned_excluded,
+      6 * cases.size(),
+      cases.size());
   EXPECT_GE(turned_excluded, static_cast<int>(cases.size()));
 }
 
@@ -302,7 +316,9 @@ TEST(IsoparallelCertifyPeriods, ResolvesMoreOfTheOscillatingWindow) {
   options.fixed_periods = false;
   const CertifyWindowResult without = CertifyWindow(target, {}, options);
   std::printf("100,000 boxes: %ld excluded only with the fixed-periods bounds; resolved volume %.6f (%.6f without)\n",
-              with.excluded_by_fixed_periods, with.resolved_volume, without.resolved_volume);
+              with.excluded_by_fixed_periods,
+              with.resolved_volume,
+              without.resolved_volume);
   EXPECT_GT(with.excluded_by_fixed_periods, 100);
   EXPECT_EQ(without.excluded_by_fixed_periods, 0);
   EXPECT_GT(with.resolved_volume, without.resolved_volume);

@@ -4,8 +4,6 @@
 // extreme sample checked by an independent Magnus rolling; the twist's per-axis bounds against
 // central differences; boxes it decides that D leaves undecided; and never excluding a box that
 // holds a known solution (the solver's, made ones).
-#include "certify/rolling.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +14,7 @@
 #include <vector>
 
 #include "certify/costate.h"
+#include "certify/rolling.h"
 #include "certify/support/random_certify_box.h"
 #include "certify/window.h"
 #include "elastica_closed_rolling.h"
@@ -41,7 +40,8 @@ using plateball::testing::LogUniform;
 // its rate range is widened to hold G = 1 (rate 1, or rate 1/k when rotating).
 CertifyBox RandomRollingBox(PendulumRegime regime, bool across_unit, std::mt19937* rng) {
   const bool rotating = regime == PendulumRegime::kRotating;
-  CertifyBox box = plateball::testing::RandomCertifyBox(regime, {0.05, 20.0, 0.1, 0.95, 0.5, 20.0, 2.0, 1e-4, 0.3}, rng);
+  CertifyBox box =
+      plateball::testing::RandomCertifyBox(regime, {0.05, 20.0, 0.1, 0.95, 0.5, 20.0, 2.0, 1e-4, 0.3}, rng);
   const double sign = box.Centre()[kCertifyRate] < 0.0 ? -1.0 : 1.0;
   box.lo[kCertifyModulus] = std::max(0.0, box.lo[kCertifyModulus]);
   box.hi[kCertifyModulus] = std::min(0.95, box.hi[kCertifyModulus]);
@@ -95,7 +95,9 @@ double LargestSampledDistance(PendulumRegime regime, const CertifyBox& box, std:
 }
 
 // |f(x + h e_i) - f(x - h e_i)| / (2h), h = step max(1, |x_i|).
-double CentralDifference(const std::function<double(const CertifyPoint&)>& f, const CertifyPoint& x, int i,
+double CentralDifference(const std::function<double(const CertifyPoint&)>& f,
+                         const CertifyPoint& x,
+                         int i,
                          double step) {
   const double h = step * std::max(1.0, std::abs(x[i]));
   CertifyPoint p = x, m = x;
@@ -106,7 +108,9 @@ double CentralDifference(const std::function<double(const CertifyPoint&)>& f, co
 
 // Whether the rotation test excludes the box with min(D, the closed-form bounds of both charts)
 // (margin 1e-7).
-BoxVerdict VerdictWithClosedForm(const CertifyTarget& target, PendulumRegime regime, const CertifyBox& box,
+BoxVerdict VerdictWithClosedForm(const CertifyTarget& target,
+                                 PendulumRegime regime,
+                                 const CertifyBox& box,
                                  bool closed_form) {
   const double d = RollingDeviationBound(regime, box);
   const double rolling =
@@ -134,10 +138,10 @@ CertifyTarget TargetSolvedBy(PendulumRegime regime, const CertifyPoint& x) {
 // Psit = int_0^L phi ds of the theta/2 chart by composite 5-point Gauss-Legendre quadrature
 // (pieces <= 0.1 long in w = rate s + u0; phi is smooth with |phi_w| bounded, so the error is far below 1e-12).
 double ChartTwistByQuadrature(PendulumRegime regime, const CertifyPoint& x) {
-  static const double kNode[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
-                                  0.9061798459386640};
-  static const double kWeight[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
-                                    0.2369268850561891, 0.2369268850561891};
+  static const double kNode[5] = {
+      0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640, 0.9061798459386640};
+  static const double kWeight[5] = {
+      0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891, 0.2369268850561891};
   const double len = x[kCertifyLength];
   const int pieces = std::max(1, static_cast<int>(std::ceil(len * std::max(1.0, std::abs(x[kCertifyRate])) / 0.1)));
   const double h = len / pieces;
@@ -193,9 +197,16 @@ TEST(IsoparallelCertifyRolling, BoundNeverUndershootsSampledRotationDistances) {
       if (worst > 1e-12) ratios.push_back(bound / worst);
       if (bound < RollingDeviationBound(regime, box)) ++sharper;
     }
-    std::printf("%s: %d of %d boxes finite (%d of %d across G = 1 infinite); bound / largest sampled distance "
-                "geometric mean %.2f; below D in %d\n",
-                ToString(regime).c_str(), finite, boxes, across_infinite, boxes / 5, GeometricMean(ratios), sharper);
+    std::printf(
+        "%s: %d of %d boxes finite (%d of %d across G = 1 infinite); bound / largest sampled distance "
+        "geometric mean %.2f; below D in %d\n",
+        ToString(regime).c_str(),
+        finite,
+        boxes,
+        across_infinite,
+        boxes / 5,
+        GeometricMean(ratios),
+        sharper);
     EXPECT_GT(finite, boxes / 2) << ToString(regime);
     EXPECT_GT(sharper, finite / 10) << ToString(regime);
   }
@@ -255,10 +266,14 @@ TEST(IsoparallelCertifyRolling, DecidesBoxesDLeavesUndecided) {
   const CertifyWindowResult costate_chart = CertifyWindow(target, {}, options);
   options.closed_rolling = false;
   const CertifyWindowResult without = CertifyWindow(target, {}, options);
-  std::printf("250,000 boxes: %ld excluded by rotation only with the closed-form bound, %ld more only with the "
-              "theta/2 chart's; resolved volume %.15f (%.15f without the theta/2 chart, %.15f with D alone)\n",
-              with.excluded_by_closed_rolling, with.excluded_by_chart_rolling, with.resolved_volume,
-              costate_chart.resolved_volume, without.resolved_volume);
+  std::printf(
+      "250,000 boxes: %ld excluded by rotation only with the closed-form bound, %ld more only with the "
+      "theta/2 chart's; resolved volume %.15f (%.15f without the theta/2 chart, %.15f with D alone)\n",
+      with.excluded_by_closed_rolling,
+      with.excluded_by_chart_rolling,
+      with.resolved_volume,
+      costate_chart.resolved_volume,
+      without.resolved_volume);
   EXPECT_GT(with.excluded_by_closed_rolling, 50);
   EXPECT_GT(with.excluded_by_chart_rolling, 50);
   EXPECT_EQ(costate_chart.excluded_by_chart_rolling, 0);
@@ -322,9 +337,13 @@ TEST(IsoparallelCertifyRolling, NeverExcludesABoxHoldingASolution) {
           << ToString(regime) << " box " << b;
       ++boxes;
     }
-  std::printf("%d boxes holding a solution, none excluded; %d of %zu boxes around %zu solutions excluded for the "
-              "turned target\n",
-              boxes, turned_excluded, 6 * cases.size(), cases.size());
+  std::printf(
+      "%d boxes holding a solution, none excluded; %d of %zu boxes around %zu solutions excluded for the "
+      "turned target\n",
+      boxes,
+      turned_excluded,
+      6 * cases.size(),
+      cases.size());
   EXPECT_GE(turned_excluded, static_cast<int>(cases.size()));
 }
 
@@ -363,8 +382,8 @@ TEST(IsoparallelCertifyRolling, ChartFrameAndTwistReproduceTheClosedForm) {
       ++points;
     }
   }
-  std::printf("%d points: largest entry difference between the theta/2 chart and the closed form %.2e\n", points,
-              worst);
+  std::printf(
+      "%d points: largest entry difference between the theta/2 chart and the closed form %.2e\n", points, worst);
 }
 
 // The chart's bound is never below the largest of 8 sampled dist(Q(x), Q(centre)) (closed form)
@@ -397,12 +416,22 @@ TEST(IsoparallelCertifyRolling, ChartBoundNeverUndershootsSampledRotationDistanc
       if (worst > 1e-12 && costate_chart < M_PI) costate_ratios.push_back(costate_chart / worst);
       if (bound < std::min(costate_chart, RollingDeviationBound(regime, box))) ++sharper;
     }
-    std::printf("%s: %d of %d boxes finite (%d of %d across G = 1); bound / largest sampled distance geometric "
-                "mean %.2f (%zu boxes), across G = 1 %.2f (%zu), costate chart %.2f (%zu); below D and the costate "
-                "chart's in %d\n",
-                ToString(regime).c_str(), finite, boxes, across_finite, boxes / 2, GeometricMean(ratios),
-                ratios.size(), GeometricMean(across_ratios), across_ratios.size(), GeometricMean(costate_ratios),
-                costate_ratios.size(), sharper);
+    std::printf(
+        "%s: %d of %d boxes finite (%d of %d across G = 1); bound / largest sampled distance geometric "
+        "mean %.2f (%zu boxes), across G = 1 %.2f (%zu), costate chart %.2f (%zu); below D and the costate "
+        "chart's in %d\n",
+        ToString(regime).c_str(),
+        finite,
+        boxes,
+        across_finite,
+        boxes / 2,
+        GeometricMean(ratios),
+        ratios.size(),
+        GeometricMean(across_ratios),
+        across_ratios.size(),
+        GeometricMean(costate_ratios),
+        costate_ratios.size(),
+        sharper);
     EXPECT_EQ(across_finite, boxes / 2) << ToString(regime);
     EXPECT_GT(sharper, boxes / 10) << ToString(regime);
   }
@@ -434,8 +463,10 @@ TEST(IsoparallelCertifyRolling, ChartTwistAndFrameBoundsNeverUndershoot) {
           const double s_x = at_end ? x[kCertifyLength] : 0.0, s_c = at_end ? c[kCertifyLength] : 0.0;
           const ChartFrameAt fx = ChartFrame(CertifyElastica(regime, x), s_x);
           const ChartFrameAt fc = ChartFrame(CertifyElastica(regime, c), s_c);
-          const double bound = ChartFrameDeviationAngle(CostateDeviationBound(regime, box, at_end), fc.costate_norm,
-                                                        HalfHeadingDeviationBound(regime, box, at_end), fc.projection);
+          const double bound = ChartFrameDeviationAngle(CostateDeviationBound(regime, box, at_end),
+                                                        fc.costate_norm,
+                                                        HalfHeadingDeviationBound(regime, box, at_end),
+                                                        fc.projection);
           ASSERT_LE(RotationAngle(fx.frame, fc.frame), bound + 1e-9) << ToString(regime) << " box " << b;
           const double half = 0.5 * std::abs(CertifyElastica(regime, x).PendulumAngle(s_x) -
                                              CertifyElastica(regime, c).PendulumAngle(s_c));
@@ -443,7 +474,9 @@ TEST(IsoparallelCertifyRolling, ChartTwistAndFrameBoundsNeverUndershoot) {
         }
       }
     }
-    std::printf("%s: %d boxes; smallest bound / central difference of the twist %.2f\n", ToString(regime).c_str(),
-                tested, tightest);
+    std::printf("%s: %d boxes; smallest bound / central difference of the twist %.2f\n",
+                ToString(regime).c_str(),
+                tested,
+                tightest);
   }
 }

@@ -2,18 +2,16 @@
 // closed-form heading of real elastica with k in [0.95, 0.99999], the run distance against its
 // defining inequality, the deviation bound of boxes reaching k = 1 against dopri5 rollings, and
 // the tail certificate against a target built from a tail path (it must not exclude it).
-#include "certify/separatrix.h"
-
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
-
-#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
 
+#include "certify/separatrix.h"
 #include "certify/support/dopri_rolling.h"
 #include "certify/tails.h"
 #include "plateball/elastica.h"
@@ -31,8 +29,9 @@ const double kModuli[] = {0.95, 0.99, 0.999, 0.9999, 0.99999};
 double Heading(PendulumRegime regime, double k, double v) {
   double cn = 0.0, dn = 0.0;
   const double sn = boost::math::jacobi_elliptic(k, v, &cn, &dn);
-  return regime == PendulumRegime::kRotating ? 2.0 * std::atan2(sn, cn) + 4.0 * M_PI * std::floor(v / (4.0 * boost::math::ellint_1(k)) + 0.5)
-                                             : 2.0 * std::asin(k * sn);
+  return regime == PendulumRegime::kRotating
+             ? 2.0 * std::atan2(sn, cn) + 4.0 * M_PI * std::floor(v / (4.0 * boost::math::ellint_1(k)) + 0.5)
+             : 2.0 * std::asin(k * sn);
 }
 
 TEST(SeparatrixTail, RunHeadingSpreadBoundsTheRunsOfRealElastica) {

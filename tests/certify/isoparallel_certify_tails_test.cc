@@ -4,20 +4,18 @@
 // and their interval sups against sampled moduli; the drift deficit against the closed-form chord
 // per period; the rate bound a_max(k) against the known solutions, against dopri5 rollings of fast
 // paths ending on the circle |x| = |x1 - x0|, and finite up to the separatrix; the coverage statement.
-#include "certify/separatrix.h"
-#include "certify/tails.h"
-
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/ellint_2.hpp>
-
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <vector>
 
+#include "certify/separatrix.h"
+#include "certify/tails.h"
 #include "elastica_rolling.h"
 #include "plateball/elastica.h"
 #include "plateball/isoparallel.h"
@@ -74,8 +72,11 @@ double Median(std::vector<double> v) {
 }
 
 void PrintRatios(const char* what, const std::vector<double>& ratios) {
-  std::printf("%s: bound / dopri5 deviation over %zu points with bound < 1: median %.2f, best %.2f, worst %.2f\n", what,
-              ratios.size(), Median(ratios), *std::min_element(ratios.begin(), ratios.end()),
+  std::printf("%s: bound / dopri5 deviation over %zu points with bound < 1: median %.2f, best %.2f, worst %.2f\n",
+              what,
+              ratios.size(),
+              Median(ratios),
+              *std::min_element(ratios.begin(), ratios.end()),
               *std::max_element(ratios.begin(), ratios.end()));
 }
 
@@ -136,8 +137,22 @@ TEST(IsoparallelCertifyTails, PeriodicPartLengthNeverUndershootsTheQuadrature) {
   EXPECT_EQ(PeriodicPartLength(PendulumRegime::kOscillating, 0.0), 0.0);  // the straight line
   for (PendulumRegime regime : kRegimes) {
     double worst = 1e9, best = 0.0, last = 0.0;
-    for (double k : {0.0, 0.05, 0.1, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95, 0.99, 0.999, 1 - 1e-4, 1 - 1e-6, 1 - 1e-8,
-                     1 - 1e-10, 1 - 1e-12}) {
+    for (double k : {0.0,
+                     0.05,
+                     0.1,
+                     0.3,
+                     0.5,
+                     0.7,
+                     0.8,
+                     0.9,
+                     0.95,
+                     0.99,
+                     0.999,
+                     1 - 1e-4,
+                     1 - 1e-6,
+                     1 - 1e-8,
+                     1 - 1e-10,
+                     1 - 1e-12}) {
       if (regime == PendulumRegime::kOscillating && k == 0.0) continue;
       const double exact = PeriodicPartLengthByQuadrature(regime, k), bound = PeriodicPartLength(regime, k);
       ASSERT_LE(exact, bound * (1 + 1e-9)) << ToString(regime) << " k " << k;
@@ -146,11 +161,18 @@ TEST(IsoparallelCertifyTails, PeriodicPartLengthNeverUndershootsTheQuadrature) {
       best = std::max(best, bound / exact);
       last = bound / exact;
       std::printf("%s k = %.12g: bound %.4f, quadrature %.4f, ratio %.3f, Cauchy-Schwarz %.4f\n",
-                  ToString(regime).c_str(), k, bound, exact, bound / exact,
+                  ToString(regime).c_str(),
+                  k,
+                  bound,
+                  exact,
+                  bound / exact,
                   PhasePeriod(regime, k) * DriftDeficit(regime, k));
     }
-    std::printf("%s: bound / quadrature from %.3f to %.3f, %.3f at k = 1 - 1e-12\n", ToString(regime).c_str(), worst,
-                best, last);
+    std::printf("%s: bound / quadrature from %.3f to %.3f, %.3f at k = 1 - 1e-12\n",
+                ToString(regime).c_str(),
+                worst,
+                best,
+                last);
     EXPECT_LT(last, 1.3);  // finite and close at the separatrix
   }
   EXPECT_DOUBLE_EQ(PeriodicPartLength(PendulumRegime::kRotating, 1.0), 2 * M_PI + 4);
@@ -183,17 +205,26 @@ TEST(IsoparallelCertifyTails, PeriodicPartDiameterBoundsTheSampledCurve) {
       ASSERT_LE(diameter, bound * (1 + 1e-9)) << ToString(regime) << " k " << k;
       ASSERT_LE(diameter, PeriodicPartDiameter(regime, 1.0)) << ToString(regime) << " k " << k;
       const double box = (hi - lo).norm();
-      std::printf("%s k = %.12g: diameter bound %.4f, sampled diameter %.4f (%.3fx), sampled box diagonal %.4f, "
-                  "half the length bound %.4f\n", ToString(regime).c_str(), k, bound, diameter, bound / diameter, box,
-                  0.5 * PeriodicPartLength(regime, k));
+      std::printf(
+          "%s k = %.12g: diameter bound %.4f, sampled diameter %.4f (%.3fx), sampled box diagonal %.4f, "
+          "half the length bound %.4f\n",
+          ToString(regime).c_str(),
+          k,
+          bound,
+          diameter,
+          bound / diameter,
+          box,
+          0.5 * PeriodicPartLength(regime, k));
       if (k > 0.5) {  // the zeta box is the sampled box (exact for one k)
         EXPECT_NEAR(std::min(box, 0.5 * PeriodicPartLength(regime, k)), bound, 1e-3 * bound) << k;
       }
       worst = std::min(worst, bound / diameter);
       last = bound / diameter;
     }
-    std::printf("%s: diameter bound / sampled diameter at least %.3f, %.3f at k = 1 - 1e-12\n", ToString(regime).c_str(),
-                worst, last);
+    std::printf("%s: diameter bound / sampled diameter at least %.3f, %.3f at k = 1 - 1e-12\n",
+                ToString(regime).c_str(),
+                worst,
+                last);
   }
   EXPECT_DOUBLE_EQ(PeriodicPartDiameter(PendulumRegime::kRotating, 1.0), std::sqrt(20.0));
   EXPECT_DOUBLE_EQ(PeriodicPartDiameter(PendulumRegime::kOscillating, 1.0), std::sqrt(32.0));
@@ -255,8 +286,10 @@ TEST(IsoparallelCertifyTails, StraightRunBoundNeverUndershootsDopriRollings) {
     if (bound < 1.0 && d.actual > 1e-9) ratios.push_back(bound / d.actual);
   }
   ASSERT_GE(ratios.size(), 50u);
-  std::printf("straight runs: bound / dopri5 deviation over %zu points: median %.2f, best %.2f\n", ratios.size(),
-              Median(ratios), *std::min_element(ratios.begin(), ratios.end()));
+  std::printf("straight runs: bound / dopri5 deviation over %zu points: median %.2f, best %.2f\n",
+              ratios.size(),
+              Median(ratios),
+              *std::min_element(ratios.begin(), ratios.end()));
 }
 
 double Theta(PendulumRegime regime, double k, double v) {
@@ -281,12 +314,17 @@ TEST(IsoparallelCertifyTails, ZetaModulusBoundNeverUndershootsFiniteDifferences)
       const double zeta = HeadingModulusBoundByZeta(regime, k_min, k, v_max);
       worst_ratio = std::max(worst_ratio, zeta / sup_k);
       best_gain = std::max(best_gain, HeadingModulusBound(regime, k, v_max) / zeta);
-      const double slope_z = HeadingModulusBoundByZeta(regime, 0.0, k, 1.0) - HeadingModulusBoundByZeta(regime, 0.0, k, 0.0);
+      const double slope_z =
+          HeadingModulusBoundByZeta(regime, 0.0, k, 1.0) - HeadingModulusBoundByZeta(regime, 0.0, k, 0.0);
       const double slope_v = HeadingModulusBound(regime, k, 1.0) - HeadingModulusBound(regime, k, 0.0);
       EXPECT_LE(slope_z, 0.5 * slope_v * (1 + 1e-9));
     }
-    std::printf("%s: zeta bound / sampled sup of |d theta/dk| over |v| <= 40: worst %.2f; fixed-v bound / zeta bound "
-                "up to %.2f\n", ToString(regime).c_str(), worst_ratio, best_gain);
+    std::printf(
+        "%s: zeta bound / sampled sup of |d theta/dk| over |v| <= 40: worst %.2f; fixed-v bound / zeta bound "
+        "up to %.2f\n",
+        ToString(regime).c_str(),
+        worst_ratio,
+        best_gain);
     EXPECT_GT(best_gain, 1.5);
   }
 }
@@ -313,7 +351,9 @@ TEST(IsoparallelCertifyTails, SeparatrixModulusBoundNeverUndershootsFiniteDiffer
       last_ratio = HeadingModulusBoundNearSeparatrix(regime, k, 8.0) / sup_k;
     }
     std::printf("%s: separatrix bound / sampled sup of |d theta/dk| over |v| <= 8: worst %.1f, at k = 0.99999 %.2f\n",
-                ToString(regime).c_str(), worst_ratio, last_ratio);
+                ToString(regime).c_str(),
+                worst_ratio,
+                last_ratio);
     EXPECT_GT(HeadingModulusBound(regime, 0.99999, 4.0), 1e3 * HeadingModulusBoundNearSeparatrix(regime, 0.99999, 4.0));
   }
 }
@@ -335,8 +375,13 @@ TEST(IsoparallelCertifyTails, LoopStaysWithinTheGapOfTheSeparatrixLoop) {
       }
       ASSERT_LE(seen, sup + 1e-12) << ToString(regime) << " k " << k;
       const double kp = std::sqrt((1 - k) * (1 + k));
-      std::printf("%s k' %.2e: sup gap bound %.3e = %.2f k', sampled sup %.3e (%.2fx)\n", ToString(regime).c_str(), kp,
-                  sup, sup / kp, seen, sup / seen);
+      std::printf("%s k' %.2e: sup gap bound %.3e = %.2f k', sampled sup %.3e (%.2fx)\n",
+                  ToString(regime).c_str(),
+                  kp,
+                  sup,
+                  sup / kp,
+                  seen,
+                  sup / seen);
       EXPECT_LE(SeparatrixHeadingGapSup(regime, 1.0 - 0.5 * (1.0 - k)), sup);  // uniform on [k, 1)
     }
     EXPECT_LT(SeparatrixHeadingGapSup(regime, 0.999999), regime == PendulumRegime::kRotating ? 2e-3 : 0.1);
@@ -378,11 +423,13 @@ TEST(IsoparallelCertifyTails, RateBoundIsWhereTheAveragingBoundMeetsTheStraightR
       EXPECT_NEAR(eps, delta0 - margin, 1e-9) << ToString(regime) << " k " << k;
       // The old Cauchy-Schwarz rate (diameter <= P sqrt(1 - rho^2) / 2) is no smaller, and its bound
       // meets delta0 there too.
-      const double a_cs = 0.5 * PhasePeriod(regime, k) * DriftDeficit(regime, k) / PeriodicPartDiameter(regime, k) * a_max;
+      const double a_cs =
+          0.5 * PhasePeriod(regime, k) * DriftDeficit(regime, k) / PeriodicPartDiameter(regime, k) * a_max;
       EXPECT_GE(a_cs, a_max * (1 - 1e-12));
-      EXPECT_NEAR(AveragingDeviationBound(0.5 * Elastica(p).Period() * DriftDeficit(regime, k) * a_max / a_cs, cap,
-                                          target.radius),
-                  delta0 - margin, 1e-9);
+      EXPECT_NEAR(AveragingDeviationBound(
+                      0.5 * Elastica(p).Period() * DriftDeficit(regime, k) * a_max / a_cs, cap, target.radius),
+                  delta0 - margin,
+                  1e-9);
       // The interval sup is at least every sampled value.
       for (double kk = 0.0; kk <= k; kk += k / 16)
         EXPECT_LE(MaxSolutionRate(target, regime, kk, cap, margin),
@@ -477,11 +524,18 @@ TEST(IsoparallelCertifyTails, RateBoundIsFiniteUpToTheSeparatrix) {
       const auto old_rate = [&](double k) {
         return PhasePeriod(regime, k) * DriftDeficit(regime, k) * at_one / (2 * PeriodicPartDiameter(regime, 1.0));
       };
-      std::printf("cap %.4f %s: tail rate bound over [0.95, 1] %.2f (largest sampled %.2f, at k = 1 %.2f); sup over "
-                  "[0, 0.95] %.2f; Cauchy-Schwarz a_max at k = 0.95, 0.99, 0.9999: %.2f, %.2f, %.2f\n",
-                  cap, ToString(regime).c_str(), tail, sampled, at_one,
-                  MaxSolutionRateOver(target, regime, 0.0, 0.95, cap, margin),
-                  old_rate(0.95), old_rate(0.99), old_rate(0.9999));
+      std::printf(
+          "cap %.4f %s: tail rate bound over [0.95, 1] %.2f (largest sampled %.2f, at k = 1 %.2f); sup over "
+          "[0, 0.95] %.2f; Cauchy-Schwarz a_max at k = 0.95, 0.99, 0.9999: %.2f, %.2f, %.2f\n",
+          cap,
+          ToString(regime).c_str(),
+          tail,
+          sampled,
+          at_one,
+          MaxSolutionRateOver(target, regime, 0.0, 0.95, cap, margin),
+          old_rate(0.95),
+          old_rate(0.99),
+          old_rate(0.9999));
     }
   }
   // Still nothing excluded for the straight target.

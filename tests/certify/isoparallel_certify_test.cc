@@ -3,8 +3,6 @@
 // rollings by dopri5 at sampled points of boxes, the centre residual against dopri5, and the
 // branch and bound on a small window of the rotation problem (certifies; fails without the
 // known solution; an invalid window is rejected by name).
-#include "certify/window.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 #include <vector>
 
 #include "certify/support/made_certify_target.h"
+#include "certify/window.h"
 #include "jacobi_elliptic.h"
 #include "plateball/elastica.h"
 #include "plateball/isoparallel.h"
@@ -100,8 +99,8 @@ TEST(IsoparallelCertify, HeadingDerivativeBoundsNeverUndershootFiniteDifferences
       }
       worst_ratio = std::max(worst_ratio, HeadingModulusBound(regime, k, v_max) / sup_k);
     }
-    std::printf("%s: bound / sampled sup of |d theta/dk| over |v| <= 30: worst %.2f\n", ToString(regime).c_str(),
-                worst_ratio);
+    std::printf(
+        "%s: bound / sampled sup of |d theta/dk| over |v| <= 30: worst %.2f\n", ToString(regime).c_str(), worst_ratio);
     EXPECT_LT(worst_ratio, regime == PendulumRegime::kRotating ? 4.0 : 12.0) << ToString(regime);
   }
 }
@@ -153,7 +152,9 @@ TEST(IsoparallelCertify, HeadingModulusBoundsHoldNearTheSeparatrix) {
       }
     }
     std::printf("%s, k 0.95..0.9999: largest sampled |d theta/dk| / bound: fixed v %.3f, zeta %.3f\n",
-                ToString(regime).c_str(), worst_fixed_v, worst_zeta);
+                ToString(regime).c_str(),
+                worst_fixed_v,
+                worst_zeta);
     EXPECT_GT(worst_zeta, 0.05) << ToString(regime);
   }
 }
@@ -299,8 +300,11 @@ TEST(IsoparallelCertify, DeviationBoundCoversDopriRollingsAtSampledBoxPoints) {
     std::sort(ratios.begin(), ratios.end());
     ASSERT_FALSE(ratios.empty());
     const double median = ratios[ratios.size() / 2];
-    std::printf("%s: D / largest sampled deviation: median %.1f, worst %.1f (%zu boxes)\n", ToString(regime).c_str(),
-                median, ratios.back(), ratios.size());
+    std::printf("%s: D / largest sampled deviation: median %.1f, worst %.1f (%zu boxes)\n",
+                ToString(regime).c_str(),
+                median,
+                ratios.back(),
+                ratios.size());
     EXPECT_LT(median, 30.0) << ToString(regime);
   }
 }
@@ -310,8 +314,8 @@ TEST(IsoparallelCertify, DeviationBoundCoversDopriRollingsAtSampledBoxPoints) {
 TEST(IsoparallelCertify, CentreResidualAgreesWithDopri) {
   const CertifyTarget t = RotationProblemTarget();
   for (PendulumRegime regime : kRegimes) {
-    for (const CertifyPoint& x : {CertifyPoint{0.53, 0.66, 5.49, 5.99}, CertifyPoint{1.3, 0.9, 1.0, 17.0},
-                                  CertifyPoint{0.1, 0.3, 3.0, 3.0}}) {
+    for (const CertifyPoint& x :
+         {CertifyPoint{0.53, 0.66, 5.49, 5.99}, CertifyPoint{1.3, 0.9, 1.0, 17.0}, CertifyPoint{0.1, 0.3, 3.0, 3.0}}) {
       CertifyResidual r;
       ASSERT_TRUE(EvaluateCertifyResidual(t, regime, x, 0.05, &r));
       const Elastica e = PathAt(regime, x);
@@ -424,4 +428,3 @@ TEST(IsoparallelCertify, InvalidWindowIsRejectedByName) {
   EXPECT_EQ(r.status, CertifyStatus::kBudgetExhausted) << r.message;
   EXPECT_EQ(r.boxes, 10);
 }
-

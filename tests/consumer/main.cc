@@ -22,7 +22,9 @@ int main() {
     return 1;
   }
   // T = 2 pi / sqrt(mu) = pi for mu = 4.
-  std::printf("plateball %s consumer: period %.15f energy %.12f\n", PLATEBALL_VERSION_STRING, motion.Period(),
+  std::printf("plateball %s consumer: period %.15f energy %.12f\n",
+              PLATEBALL_VERSION_STRING,
+              motion.Period(),
               motion.At(2.5).energy);
   return std::abs(motion.Period() - M_PI) < 1e-12 ? 0 : 1;
 }

@@ -1,9 +1,9 @@
 // The installed OMPL component in use: one exact steer between two configurations of the ball
 // (include/plateball/ompl/steering.h) and OMPL's propagate to its target, checked against the target.
-#include <cstdio>
-
 #include <ompl/base/ScopedState.h>
 #include <ompl/control/SpaceInformation.h>
+
+#include <cstdio>
 
 #include "plateball/ompl/steering.h"
 #include "plateball/so3.h"

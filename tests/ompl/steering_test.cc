@@ -6,10 +6,6 @@
 #include "plateball/ompl/steering.h"
 
 #include <gtest/gtest.h>
-
-#include <cmath>
-#include <limits>
-
 #include <ompl/base/PlannerStatus.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/control/PathControl.h>
@@ -17,6 +13,9 @@
 #include <ompl/control/planners/rrt/RRT.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
+
+#include <cmath>
+#include <limits>
 
 #include "plateball/impulse.h"
 #include "plateball/so3.h"

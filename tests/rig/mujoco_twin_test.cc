@@ -1,6 +1,8 @@
 // The MuJoCo twin against the library: MuJoCo is an independent rigid-body engine (contacts with
 // friction, no rolling constraint), the library integrates the reduced rolling equations (FreeMotion).
 // Tolerances are the agreement measured in docs/mujoco_twin.md with a margin of about 5.
+#include "rig/mujoco_twin.h"
+
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
@@ -16,7 +18,6 @@
 #include "plateball/impulse_planner.h"
 #include "plateball/problem_io.h"
 #include "plateball/task_adapters.h"
-#include "rig/mujoco_twin.h"
 #include "rig/rig_plan.h"
 
 namespace plateball::tools::rig {
@@ -82,7 +83,8 @@ TEST(MujocoTwin, FreeMotionMatchesTheCorrectedLambdaNotThePapers) {
   EXPECT_LT(corrected.energy_error, kFreeEnergyTolerance);
   const PhysicalParameters& ph = *p.physical;
   const double paper_beta = (ph.ball_mass + 2 * ph.plate_mass) * ph.radius * ph.radius / ph.inertia_1;
-  const ReplayReport paper = Replay(FreeRigPlan(BallModel::FromAlphaBeta(ph.inertia_3 / ph.inertia_1, paper_beta)), 1e-3);
+  const ReplayReport paper =
+      Replay(FreeRigPlan(BallModel::FromAlphaBeta(ph.inertia_3 / ph.inertia_1, paper_beta)), 1e-3);
   EXPECT_GT(paper.position_error, kPaperLambdaMiss);
   EXPECT_GT(paper.orientation_error, kPaperLambdaMiss);
 }
@@ -104,9 +106,9 @@ TEST(MujocoTwin, FreeMotionErrorFallsWithTheTimestepSquared) {
 constexpr double kPlanPositionTolerance = 1e-7;
 constexpr double kPlanOrientationTolerance = 1e-5;
 constexpr double kPlanEnergyTolerance = 5e-8;
-constexpr double kSlipTolerance = 2e-8;         // m/s
-constexpr double kIdealSpinTolerance = 5e-9;    // rad/s
-constexpr double kPulseSpinTolerance = 2e-5;    // rad/s: a pulse's torsion (measured 3.3e-6 at D = 0.01 s)
+constexpr double kSlipTolerance = 2e-8;       // m/s
+constexpr double kIdealSpinTolerance = 5e-9;  // rad/s
+constexpr double kPulseSpinTolerance = 2e-5;  // rad/s: a pulse's torsion (measured 3.3e-6 at D = 0.01 s)
 
 TEST(MujocoTwin, PlanWithIdealJumpsFollowsThePlan) {
   const RigPlan plan = ReadRigPlan(PlanResult(kSource + "/problems/circle_physical.json", 64, "circle64.json"));
@@ -149,8 +151,11 @@ TEST(MujocoTwin, SteerResultArrivesAndStops) {
   Append(doc, Json{{"total_time", s.total_time}});
   Json list = Json::array();
   auto add = [&](const ExactImpulse& e) {
-    list.push_back(Json{{"t_impulse", e.t_impulse}, {"x", ToJson(e.position)}, {"delta_omega", ToJson(e.delta_omega)},
-                        {"angles_before", ToJson(e.angles_before)}, {"mu_before", e.mu_before}});
+    list.push_back(Json{{"t_impulse", e.t_impulse},
+                        {"x", ToJson(e.position)},
+                        {"delta_omega", ToJson(e.delta_omega)},
+                        {"angles_before", ToJson(e.angles_before)},
+                        {"mu_before", e.mu_before}});
   };
   for (const ExactImpulse& e : s.impulses) add(e);
   ASSERT_TRUE(s.stop.has_value());
@@ -236,7 +241,8 @@ TEST(MujocoTwin, BallsMujocoCannotBuildAreNamed) {
   p.inertia_3 = 2 * p.inertia_1 * (1 + 5e-13);  // within the reader's rigid-body rounding, not MuJoCo's
   EXPECT_EQ(p.Validate(), "");
   EXPECT_NE(TwinBuildableMessage(p).find("physical.inertia_3: value"), std::string::npos);
-  EXPECT_THROW(TwinMjcf(p, Eigen::Vector2d::Zero(), Eigen::Matrix3d::Identity(), TwinSettings{}), std::invalid_argument);
+  EXPECT_THROW(TwinMjcf(p, Eigen::Vector2d::Zero(), Eigen::Matrix3d::Identity(), TwinSettings{}),
+               std::invalid_argument);
   p.inertia_3 = 1.2e-5;
   p.plate_mass = 0.0;
   EXPECT_EQ(TwinBuildableMessage(p).rfind("physical.plate_mass: value 0:", 0), 0u);
@@ -285,7 +291,8 @@ TEST(MujocoTwin, OverlappingPulsesAndTooLittleFrictionAreNamed) {
     ReplayInTwin(plan, PlannedTrajectory(plan), o);
     FAIL() << "a slipping pulse was accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("pulse_duration: value 0.001: too short: impulse 0 would slip", 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("pulse_duration: value 0.001: too short: impulse 0 would slip", 0), 0u)
+        << e.what();
   }
 }
 

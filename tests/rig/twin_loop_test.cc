@@ -3,6 +3,8 @@
 // loop (closed_loop.h) and open loop (Execute) for the same seed and errors. MuJoCo integrates a
 // rigid body with friction contacts, the library the reduced rolling equations; their difference
 // (the contacts' penetration, O(dt^2): docs/mujoco_twin.md) bounds the agreement.
+#include "rig/twin_loop.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,7 +15,6 @@
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
 #include "plateball/task_adapters.h"
-#include "rig/twin_loop.h"
 
 namespace plateball::tools::rig {
 namespace {
@@ -82,8 +83,8 @@ TwinLoopOptions TwinOptions(bool contact_point_only = false) {
 
 TwinLoopRun Closed(const ErrorModel& e, std::uint64_t trial, bool contact_point_only = false) {
   Controller controller(Nominal(), LoopOptions());
-  return RunTwinClosedLoop(controller, *LoopProblem().physical, TrialErrors(e, kSeed, trial),
-                           TwinOptions(contact_point_only));
+  return RunTwinClosedLoop(
+      controller, *LoopProblem().physical, TrialErrors(e, kSeed, trial), TwinOptions(contact_point_only));
 }
 
 ExecutionSummary ExecuteOpenLoop(const ErrorModel& e, std::uint64_t trial) {
@@ -99,7 +100,8 @@ ExecutionSummary ExecuteOpenLoop(const ErrorModel& e, std::uint64_t trial) {
 TEST(TwinLoop, WithoutErrorsTheClosedLoopReachesTheGoalAsTheOpenLoopDoes) {
   ASSERT_TRUE(Nominal()->plan.IsSolutionUsable()) << Nominal()->plan.BriefReport();
   const TwinLoopRun closed = Closed(ErrorModel{}, 0);
-  const TwinLoopRun open = RunTwinOpenLoop(*Nominal(), *LoopProblem().physical, TrialErrors({}, kSeed, 0), TwinOptions());
+  const TwinLoopRun open =
+      RunTwinOpenLoop(*Nominal(), *LoopProblem().physical, TrialErrors({}, kSeed, 0), TwinOptions());
   EXPECT_EQ(closed.status, ControllerStatus::kDone) << closed.message;
   EXPECT_EQ(closed.impulses.size(), 16u);
   EXPECT_EQ(closed.rejected, 0);
@@ -194,10 +196,12 @@ TEST(TwinLoop, PulsesLongerThanAFlightOrTooStrongForTheFrictionAreNamed) {
     RunTwinClosedLoop(controller, *LoopProblem().physical, TrialErrors({}, kSeed, 0), o);
     FAIL() << "overlapping pulses were accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("pulse_duration: value 1: longer than the flight"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("pulse_duration: value 1: longer than the flight"), std::string::npos)
+        << e.what();
   }
   o.pulse_duration = 1e-6;  // 2.7 kN at the top, where mu_s = 100 holds 49 N
-  EXPECT_THROW(RunTwinOpenLoop(*Nominal(), *LoopProblem().physical, TrialErrors({}, kSeed, 0), o), std::invalid_argument);
+  EXPECT_THROW(RunTwinOpenLoop(*Nominal(), *LoopProblem().physical, TrialErrors({}, kSeed, 0), o),
+               std::invalid_argument);
 }
 
 TEST(TwinLoop, TheTrialsLambdaIsTheTwinsBall) {
@@ -214,7 +218,8 @@ TEST(TwinLoop, TheTrialsLambdaIsTheTwinsBall) {
     BallWithLambda(p, 1.2, "errors.lambda");
     FAIL() << "an unbuildable ball was accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("errors.lambda: value 1.2: the twin realises the trial's lambda by I3", 0), 0u)
+    EXPECT_EQ(std::string(e.what()).rfind("errors.lambda: value 1.2: the twin realises the trial's lambda by I3", 0),
+              0u)
         << e.what();
   }
 }
@@ -227,7 +232,8 @@ TEST(TwinLoop, ErrorsTheTwinDoesNotModelAreNamed) {
     RunTwinClosedLoop(controller, *LoopProblem().physical, TrialErrors(e, kSeed, 0), TwinOptions());
     FAIL() << "timing jitter was accepted";
   } catch (const std::invalid_argument& x) {
-    EXPECT_EQ(std::string(x.what()).rfind("errors.timing: value 0.001: the twin's loop fires on ticks", 0), 0u) << x.what();
+    EXPECT_EQ(std::string(x.what()).rfind("errors.timing: value 0.001: the twin's loop fires on ticks", 0), 0u)
+        << x.what();
   }
   e = {};
   e.observation = 1e-3;

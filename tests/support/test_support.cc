@@ -16,7 +16,8 @@ namespace plateball::testing {
   if (orth > tol || std::abs(det - 1.0) > tol || round_trip > tol) {
     return ::testing::AssertionFailure() << "not a rotation to " << tol << ": |R^T R - I|_max = " << orth
                                          << ", det - 1 = " << det - 1.0 << ", |exp(log R) - R|_max = " << round_trip
-                                         << "\n" << r;
+                                         << "\n"
+                                         << r;
   }
   return ::testing::AssertionSuccess();
 }

@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
-
-#include "plateball/ball_model.h"
 #include <functional>
 #include <string>
+
+#include "plateball/ball_model.h"
 
 namespace plateball::testing {
 

@@ -4,8 +4,8 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -31,10 +31,13 @@ using namespace plateball::tools;
 namespace {
 int CodeFor(const std::function<void()>& thrower, std::string* message = nullptr) {
   std::ostringstream err;
-  const int code = RunWithExitCodes("tool", [&] {
-    thrower();
-    return kExitSuccess;
-  }, err);
+  const int code = RunWithExitCodes(
+      "tool",
+      [&] {
+        thrower();
+        return kExitSuccess;
+      },
+      err);
   if (message) *message = err.str();
   return code;
 }
@@ -66,8 +69,14 @@ TEST(ToolErrors, InvalidInputHasTheStandardFormatAndExitCode) {
 }
 
 TEST(JsonOutput, DoublesReadBackBitExactly) {
-  const double values[] = {0.1, 1.0 / 3.0, M_PI, -2.5e-300, std::numeric_limits<double>::denorm_min(),
-                           std::numeric_limits<double>::max(), -0.0, 123456789.123456789};
+  const double values[] = {0.1,
+                           1.0 / 3.0,
+                           M_PI,
+                           -2.5e-300,
+                           std::numeric_limits<double>::denorm_min(),
+                           std::numeric_limits<double>::max(),
+                           -0.0,
+                           123456789.123456789};
   Json doc = Json::array();
   for (double v : values) doc.push_back(v);
   const nlohmann::json back = nlohmann::json::parse(DumpJson(Json{{"v", doc}}));
@@ -141,9 +150,10 @@ TEST(ToolOptions, OverridesApplyOnTopOfTheDefaultsAndAreValidated) {
   CLI::App app;
   ProblemOptions options;
   options.Add(app);
-  app.parse("--lambda 2 --mu 4 --x0 1,-2 --seed 18446744073709551615 --orientation "
-            "{\"axis_angle\":{\"axis\":[0,0,1],\"angle\":0.5}}",
-            false);
+  app.parse(
+      "--lambda 2 --mu 4 --x0 1,-2 --seed 18446744073709551615 --orientation "
+      "{\"axis_angle\":{\"axis\":[0,0,1],\"angle\":0.5}}",
+      false);
   const Problem p = options.Load();
   EXPECT_EQ(p.model.lambda(), 2.0);
   EXPECT_EQ(p.mu, 4.0);
@@ -203,7 +213,12 @@ TEST(OutputFile, PathsAreCheckedBeforeAnyWork) {
   const std::string in = dir + "/in.json";
   WriteOutput(in, "{}\n");
   std::string message;
-  EXPECT_EQ(CodeFor([&] { CheckOutputPaths({{"--out", dir + "/a"}, {"--svg", dir + "/./a"}}); }, &message), kExitBadInput);
+  EXPECT_EQ(CodeFor(
+                [&] {
+                  CheckOutputPaths({{"--out", dir + "/a"}, {"--svg", dir + "/./a"}});
+                },
+                &message),
+            kExitBadInput);
   EXPECT_NE(message.find("--out and --svg"), std::string::npos) << message;
   EXPECT_EQ(CodeFor([&] { CheckOutputPaths({{"--out", in}}, {{"PROBLEM.json", in}}); }, &message), kExitBadInput);
   EXPECT_NE(message.find("--out and PROBLEM.json"), std::string::npos) << message;
@@ -222,8 +237,8 @@ TEST(CommandLine, SeedsAreUnsigned64BitIntegers) {
       ParseSeedOption("--seed", bad);
       ADD_FAILURE() << "accepted " << bad;
     } catch (const std::invalid_argument& e) {
-      EXPECT_EQ(std::string(e.what()), std::string("command line: --seed: value \"") + bad +
-                                           "\": must be an integer in [0, 2^64 - 1]");
+      EXPECT_EQ(std::string(e.what()),
+                std::string("command line: --seed: value \"") + bad + "\": must be an integer in [0, 2^64 - 1]");
     }
   }
 }
@@ -256,9 +271,18 @@ TEST(PlanJson, OneLayoutWithOrWithoutSteps) {
   std::vector<std::string> keys;
   for (auto it = brief.begin(); it != brief.end(); ++it) keys.push_back(it.key());
   // docs/output_contract.md: the four result fields first, "message" always present.
-  const std::vector<std::string> expected{"status", "usable", "message", "report", "total_time", "max_pass_miss",
-                                          "max_join_residual", "measured_error", "polyline_error", "bounds",
-                                          "rotation_final", "final"};
+  const std::vector<std::string> expected{"status",
+                                          "usable",
+                                          "message",
+                                          "report",
+                                          "total_time",
+                                          "max_pass_miss",
+                                          "max_join_residual",
+                                          "measured_error",
+                                          "polyline_error",
+                                          "bounds",
+                                          "rotation_final",
+                                          "final"};
   EXPECT_EQ(keys, expected);
   ASSERT_TRUE(full.contains("steps"));
   EXPECT_EQ(full["steps"].size(), 2u);
@@ -273,8 +297,9 @@ TEST(OutputContract, EveryDocumentStartsWithTheHeader) {
   const Json h = HeaderJson("plateball", "simulate", p, "problems/some_problem.json");
   std::vector<std::string> keys;
   for (auto it = h.begin(); it != h.end(); ++it) keys.push_back(it.key());
-  EXPECT_EQ(keys, (std::vector<std::string>{"schema_version", "tool", "version", "command", "problem", "model",
-                                            "integration", "seed"}));
+  EXPECT_EQ(keys,
+            (std::vector<std::string>{
+                "schema_version", "tool", "version", "command", "problem", "model", "integration", "seed"}));
   EXPECT_EQ(h["schema_version"].get<int>(), kSchemaVersion);
   EXPECT_EQ(h["problem"]["name"].get<std::string>(), "some_problem");  // no name: the file's stem
   EXPECT_EQ(h["seed"].get<std::uint64_t>(), 18446744073709551615ULL);

@@ -74,11 +74,20 @@ TEST(Progress, TextShowsFractionElapsedAndEta) {
 
 TEST(Progress, QuietPrintsNothingAndAlwaysPrintsTheFinalLine) {
   testing::internal::CaptureStderr();
-  { Progress p("quiet", 10, ProgressMode::kQuiet, false); p.Update(10); }
-  { Progress p("auto-on-a-pipe", 10, ProgressMode::kAuto, false); p.Update(10); }
+  {
+    Progress p("quiet", 10, ProgressMode::kQuiet, false);
+    p.Update(10);
+  }
+  {
+    Progress p("auto-on-a-pipe", 10, ProgressMode::kAuto, false);
+    p.Update(10);
+  }
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
   testing::internal::CaptureStderr();
-  { Progress p("always", 10, ProgressMode::kAlways, false); p.Update(10); }
+  {
+    Progress p("always", 10, ProgressMode::kAlways, false);
+    p.Update(10);
+  }
   EXPECT_EQ(testing::internal::GetCapturedStderr().rfind("always: done (10 of 10) in ", 0), 0u);
 }
 

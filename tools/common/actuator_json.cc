@@ -39,11 +39,13 @@ Json PulseJson(const PulseForces& f, const PulseOptions& o) {
 // Too little friction for the pulse's force is invalid input naming the option and the impulse.
 void ThrowIfSlips(const PulseForces& f, const PulseOptions& o, const std::string& where) {
   if (f.slides)
-    ThrowInvalidInput(CommandLineField("--static-friction"), FormatNumber(o.static_friction),
+    ThrowInvalidInput(CommandLineField("--static-friction"),
+                      FormatNumber(o.static_friction),
                       "impulse " + where + " would slip: its pulse of " + FormatNumber(o.duration) +
                           " s needs mu_s >= " + FormatNumber(f.sliding_friction_needed));
   if (f.spins)
-    ThrowInvalidInput(CommandLineField("--torsional-friction"), FormatNumber(o.torsional_friction),
+    ThrowInvalidInput(CommandLineField("--torsional-friction"),
+                      FormatNumber(o.torsional_friction),
                       "impulse " + where + " would spin: its pulse of " + FormatNumber(o.duration) +
                           " s needs ell >= " + FormatNumber(f.torsional_friction_needed) + " m");
 }
@@ -51,17 +53,20 @@ void ThrowIfSlips(const PulseForces& f, const PulseOptions& o, const std::string
 }  // namespace
 
 void ActuatorOptions::Add(CLI::App& app, CLI::Option* pulse_error) {
-  duration_opt_ = app.add_option("--pulse-duration", duration_,
+  duration_opt_ = app.add_option("--pulse-duration",
+                                 duration_,
                                  "report each impulse's pulse of this duration (s): mean force and the friction it "
                                  "needs (with ball.physical; default: no pulse)");
   if (pulse_error) duration_opt_->excludes(pulse_error);
-  CLI::Option* mu = app.add_option("--static-friction", static_friction_,
+  CLI::Option* mu = app.add_option("--static-friction",
+                                   static_friction_,
                                    "mu_s of both contacts: an impulse whose pulse needs more is invalid input");
-  CLI::Option* ell = app.add_option("--torsional-friction", torsional_friction_,
+  CLI::Option* ell = app.add_option("--torsional-friction",
+                                    torsional_friction_,
                                     "ell (m) of both contacts (torque per normal force): an impulse whose pulse "
                                     "needs more is invalid input");
-  CLI::Option* preload = app.add_option("--preload", preload_,
-                                        "extra normal force (N) pressing the upper plate on the ball (default 0)");
+  CLI::Option* preload =
+      app.add_option("--preload", preload_, "extra normal force (N) pressing the upper plate on the ball (default 0)");
   extras_ = {mu, ell, preload};
   pulse_error_opt_ = pulse_error;
 }
@@ -77,7 +82,8 @@ ActuatorRequest ActuatorOptions::Request() const {
   const bool pulse = duration_opt_->count() > 0 || (pulse_error_opt_ && pulse_error_opt_->count() > 0);
   for (const CLI::Option* opt : extras_)
     if (opt->count() > 0 && !pulse)
-      ThrowInvalidInput(CommandLineField(opt->get_name()), opt->as<std::string>(),
+      ThrowInvalidInput(CommandLineField(opt->get_name()),
+                        opt->as<std::string>(),
                         std::string("needs --pulse-duration") + (pulse_error_opt_ ? " or --pulse-error" : ""));
   if (duration_opt_ && duration_opt_->count() > 0) {
     if (!(std::isfinite(duration_) && duration_ > 0))
@@ -88,13 +94,20 @@ ActuatorRequest ActuatorOptions::Request() const {
   return r;
 }
 
-Json ActuatorJson(const Problem& problem, const Eigen::Vector3d& z, const Eigen::Vector3d& delta_omega,
-                  const ActuatorRequest& request, const std::string& where) {
+Json ActuatorJson(const Problem& problem,
+                  const Eigen::Vector3d& z,
+                  const Eigen::Vector3d& delta_omega,
+                  const ActuatorRequest& request,
+                  const std::string& where) {
   if (!problem.physical) {
-    return Json{{"plate_impulse", nullptr},       {"plate_velocity_jump", nullptr},
-                {"top_contact_impulse", nullptr}, {"bottom_contact_impulse", nullptr},
-                {"torsional_impulse", nullptr},   {"reason", kNeedsPhysical},
-                {"pulse", nullptr},               {"pulse_reason", kNeedsPhysical}};
+    return Json{{"plate_impulse", nullptr},
+                {"plate_velocity_jump", nullptr},
+                {"top_contact_impulse", nullptr},
+                {"bottom_contact_impulse", nullptr},
+                {"torsional_impulse", nullptr},
+                {"reason", kNeedsPhysical},
+                {"pulse", nullptr},
+                {"pulse_reason", kNeedsPhysical}};
   }
   // The records' delta_omega is horizontal up to rounding; the vertical part is not commanded.
   const Eigen::Vector3d dw(delta_omega.x(), delta_omega.y(), 0.0);
@@ -116,7 +129,9 @@ Json ActuatorJson(const Problem& problem, const Eigen::Vector3d& z, const Eigen:
   return j;
 }
 
-void CheckPulseFlights(const std::vector<double>& times, double final_time, const ActuatorRequest& request,
+void CheckPulseFlights(const std::vector<double>& times,
+                       double final_time,
+                       const ActuatorRequest& request,
                        const std::string& list) {
   if (!request.has_pulse) return;
   const double d = request.pulse.duration;
@@ -125,15 +140,19 @@ void CheckPulseFlights(const std::vector<double>& times, double final_time, cons
     const double flight = (last ? final_time : times[k + 1]) - times[k];
     if (last && flight <= 0) continue;  // an impulse at the end (a stop)
     if (d > flight)
-      ThrowInvalidInput(CommandLineField("--pulse-duration"), FormatNumber(d),
-                        "longer than the flight of " + FormatNumber(flight) + " s after impulse " + list + "[" +
-                            std::to_string(k) + "]: " +
-                            (last ? "its pulse would run past the end" : "its pulse would overlap the next one's"));
+      ThrowInvalidInput(
+          CommandLineField("--pulse-duration"),
+          FormatNumber(d),
+          "longer than the flight of " + FormatNumber(flight) + " s after impulse " + list + "[" + std::to_string(k) +
+              "]: " + (last ? "its pulse would run past the end" : "its pulse would overlap the next one's"));
   }
 }
 
-Json ActuatorJsonFromAngles(const Problem& problem, const AngleState& angles_before, double mu_before,
-                            const Eigen::Vector3d& delta_omega, const ActuatorRequest& request,
+Json ActuatorJsonFromAngles(const Problem& problem,
+                            const AngleState& angles_before,
+                            double mu_before,
+                            const Eigen::Vector3d& delta_omega,
+                            const ActuatorRequest& request,
                             const std::string& where) {
   // z does not depend on the energy; a ball at rest (mu 0) has the same axis.
   const Eigen::Vector3d z = StateFromAngles(angles_before, mu_before > 0 ? mu_before : 1.0, problem.model).z;

@@ -6,11 +6,10 @@
 // lambda fixes no masses) the values are null and "reason" says why.
 #pragma once
 
-#include <string>
-#include <vector>
-
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
+#include <string>
+#include <vector>
 
 #include "common/json_output.h"
 #include "plateball/actuator_command.h"
@@ -59,19 +58,27 @@ class ActuatorOptions {
 ///    "pulse_reason": null or why "pulse" is null}.
 /// With a friction coefficient given that the pulse's force exceeds, throws std::invalid_argument
 /// "--static-friction: value MU: impulse `where` would slip: ..." (or --torsional-friction: spin).
-Json ActuatorJson(const Problem& problem, const Eigen::Vector3d& z, const Eigen::Vector3d& delta_omega,
-                  const ActuatorRequest& request, const std::string& where);
+Json ActuatorJson(const Problem& problem,
+                  const Eigen::Vector3d& z,
+                  const Eigen::Vector3d& delta_omega,
+                  const ActuatorRequest& request,
+                  const std::string& where);
 
 /// With a pulse duration D: each impulse's pulse (D long around its time) must fit the flight to the
 /// next impulse, the last one's the flight to `final_time` (an impulse at the end, a stop, is exempt).
 /// Throws std::invalid_argument "--pulse-duration: value D: longer than the flight of F s after impulse
 /// PREFIX[K]: ..." otherwise. `times` increase.
-void CheckPulseFlights(const std::vector<double>& times, double final_time, const ActuatorRequest& request,
+void CheckPulseFlights(const std::vector<double>& times,
+                       double final_time,
+                       const ActuatorRequest& request,
                        const std::string& list);
 
 /// ActuatorJson of an impulse given by its angles and energy before it (z from StateFromAngles).
-Json ActuatorJsonFromAngles(const Problem& problem, const AngleState& angles_before, double mu_before,
-                            const Eigen::Vector3d& delta_omega, const ActuatorRequest& request,
+Json ActuatorJsonFromAngles(const Problem& problem,
+                            const AngleState& angles_before,
+                            double mu_before,
+                            const Eigen::Vector3d& delta_omega,
+                            const ActuatorRequest& request,
                             const std::string& where);
 
 }  // namespace plateball::tools

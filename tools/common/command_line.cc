@@ -21,8 +21,7 @@ std::string NumberProblem(const std::string& type, const std::string& value) {
     if (end == value.c_str() || *end != '\0') return "value \"" + shown + "\": must be a number";
   } else if (type == "INT" || type == "UINT") {
     (void)std::strtoll(value.c_str(), &end, 10);
-    if (end == value.c_str() || *end != '\0' || errno == ERANGE)
-      return "value \"" + shown + "\": must be an integer";
+    if (end == value.c_str() || *end != '\0' || errno == ERANGE) return "value \"" + shown + "\": must be an integer";
   }
   return "";
 }

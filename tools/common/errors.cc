@@ -52,7 +52,7 @@ int ReportCurrentException(const std::string& program, std::ostream& err) {
 int RunWithExitCodes(const std::string& program, const std::function<int()>& run, std::ostream& err) {
   try {
     const int code = WithOutputsTogether(run);  // a run's output files are put in place together
-    FlushStandardOutput();  // a write error on standard output is an I/O failure (exit code 5)
+    FlushStandardOutput();                      // a write error on standard output is an I/O failure (exit code 5)
     return code;
   } catch (...) {
     return ReportCurrentException(program, err);

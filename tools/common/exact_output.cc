@@ -36,10 +36,11 @@ Json RigCheckJson(const RigCheck& check) {
   for (const auto& [name, margin] : check.margins) margins[name] = margin;
   return Json{{"passed", check.passed},
               {"samples", check.samples},
-              {"tolerances", Json{{"position", tol.position},
-                                  {"impulse_relative", tol.impulse},
-                                  {"interval_relative", tol.time},
-                                  {"tick", 0.0}}},
+              {"tolerances",
+               Json{{"position", tol.position},
+                    {"impulse_relative", tol.impulse},
+                    {"interval_relative", tol.time},
+                    {"tick", 0.0}}},
               {"margins", margins},
               {"violations", check.violations}};
 }
@@ -63,52 +64,74 @@ Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, co
   }
   if (e.tick >= 0) j["tick"] = e.tick;
   if (actuator)
-    j["actuator"] = ActuatorJsonFromAngles(actuator->problem, e.angles_before, e.mu_before, e.delta_omega,
-                                           actuator->request, actuator->prefix + "impulses[" + std::to_string(k) + "]");
+    j["actuator"] = ActuatorJsonFromAngles(actuator->problem,
+                                           e.angles_before,
+                                           e.mu_before,
+                                           e.delta_omega,
+                                           actuator->request,
+                                           actuator->prefix + "impulses[" + std::to_string(k) + "]");
   return j;
 }
 
-Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses,
+Json ExactArrivalToJson(const ExactArrivalSummary& s,
+                        const ReplayResult& replay,
+                        bool with_impulses,
                         const ActuatorContext* actuator) {
   Json j = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
-  Append(j, Json{{"impulse_count", s.impulses.size()},
-         {"total_time", s.total_time},
-         {"iterations", s.iterations},
-         {"iteration_limit_reached", s.iteration_limit_reached},
-         {"rollouts", s.rollouts},
-         {"arrival", Json{{"x", ToJson(s.x_final)},
-                          {"rotation", RotationToJson(s.A_final)},
-                          {"position_error", s.position_error},
-                          {"orientation_error", s.orientation_error}}},
-         {"replay", Json{{"x", ToJson(replay.x)},
-                         {"position_error", replay.position_error},
-                         {"orientation_error", replay.orientation_error}}},
-         {"deviation", Json{{"definition", "sqrt(sum_k |x_k - p(tau_k)|^2) over the interior pass points"},
-                            {"value", s.deviation},
-                            {"max_pass_displacement", s.max_pass_displacement}}},
-         {"stop_at_goal", s.stop.has_value()},
-         {"paper_plan", Json{{"position_error", s.planned_position_error},
-                             {"orientation_error", s.planned_orientation_error},
-                             {"total_time", s.planned_total_time}}}});
-  if (actuator) CheckPulseFlights(ImpulseTimes(s.impulses, s.stop), s.total_time, actuator->request, actuator->prefix + "impulses");
+  Append(j,
+         Json{{"impulse_count", s.impulses.size()},
+              {"total_time", s.total_time},
+              {"iterations", s.iterations},
+              {"iteration_limit_reached", s.iteration_limit_reached},
+              {"rollouts", s.rollouts},
+              {"arrival",
+               Json{{"x", ToJson(s.x_final)},
+                    {"rotation", RotationToJson(s.A_final)},
+                    {"position_error", s.position_error},
+                    {"orientation_error", s.orientation_error}}},
+              {"replay",
+               Json{{"x", ToJson(replay.x)},
+                    {"position_error", replay.position_error},
+                    {"orientation_error", replay.orientation_error}}},
+              {"deviation",
+               Json{{"definition", "sqrt(sum_k |x_k - p(tau_k)|^2) over the interior pass points"},
+                    {"value", s.deviation},
+                    {"max_pass_displacement", s.max_pass_displacement}}},
+              {"stop_at_goal", s.stop.has_value()},
+              {"paper_plan",
+               Json{{"position_error", s.planned_position_error},
+                    {"orientation_error", s.planned_orientation_error},
+                    {"total_time", s.planned_total_time}}}});
+  if (actuator)
+    CheckPulseFlights(ImpulseTimes(s.impulses, s.stop), s.total_time, actuator->request, actuator->prefix + "impulses");
   if (with_impulses) {
     Json list = Json::array();
-    for (std::size_t k = 0; k < s.impulses.size(); ++k) list.push_back(ExactImpulseToJson(s.impulses[k], k, true, actuator));
+    for (std::size_t k = 0; k < s.impulses.size(); ++k)
+      list.push_back(ExactImpulseToJson(s.impulses[k], k, true, actuator));
     if (s.stop) list.push_back(ExactImpulseToJson(*s.stop, s.impulses.size(), false, actuator));
     j["impulses"] = list;
   }
   return j;
 }
 
-Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses,
+Json FewestImpulsesToJson(const FewestImpulsesProblem& problem,
+                          const FewestImpulsesSummary& s,
+                          bool with_impulses,
                           const ActuatorContext* actuator) {
   Json rows = Json::array();
   for (const FewestImpulsesCount& c : s.counts) {
-    Json row{{"impulse_count", c.impulses}, {"reached", c.reached},   {"verdict", ToString(c.verdict)},
-             {"by_continuation", c.by_continuation}, {"starts", c.starts},
-             {"arrived", c.arrived},        {"total_time", c.total_time}, {"path_length", c.path_length},
-             {"position_error", c.position_error}, {"orientation_error", c.orientation_error},
-             {"total_impulse", c.total_impulse}, {"deviation", c.deviation}};
+    Json row{{"impulse_count", c.impulses},
+             {"reached", c.reached},
+             {"verdict", ToString(c.verdict)},
+             {"by_continuation", c.by_continuation},
+             {"starts", c.starts},
+             {"arrived", c.arrived},
+             {"total_time", c.total_time},
+             {"path_length", c.path_length},
+             {"position_error", c.position_error},
+             {"orientation_error", c.orientation_error},
+             {"total_impulse", c.total_impulse},
+             {"deviation", c.deviation}};
     if (s.limited) row["rig"] = FewestRowRigJson(c);
     if (!c.plan.empty()) {  // the independent re-integration of the row's impulses
       const ReplayResult r = ReplayExactArrival(ReplayProblemFor(problem, c.impulses), c.plan);
@@ -119,32 +142,37 @@ Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpu
     rows.push_back(row);
   }
   Json j = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
-  Append(j, Json{{"fewest_impulses", s.fewest},
-         {"minimal_for_generic_goal", s.minimal_for_generic_goal},
-         {"pareto_times", "shortest_found"},
-         {"searched", s.searched},
-         {"max_total_time", s.max_total_time},
-         {"rollouts", s.rollouts},
-         {"start_at_rest", problem.start_at_rest},
-         {"stop_at_goal", problem.stop_at_goal},
-         {"orientation_only", problem.orientation_only},
-         {"total_impulse_measure", problem.physical ? "sum_abs_J" : "sum_plate_velocity_change"},
-         {"deviation_definition",
-          "sqrt(sum_k |x_k - (x0 + k (x1 - x0) / n)|^2) over the interior impulse points: the straight line x0 -> x1 "
-          "cut into n equal parts"},
-         {"pareto", rows}});
+  Append(
+      j,
+      Json{{"fewest_impulses", s.fewest},
+           {"minimal_for_generic_goal", s.minimal_for_generic_goal},
+           {"pareto_times", "shortest_found"},
+           {"searched", s.searched},
+           {"max_total_time", s.max_total_time},
+           {"rollouts", s.rollouts},
+           {"start_at_rest", problem.start_at_rest},
+           {"stop_at_goal", problem.stop_at_goal},
+           {"orientation_only", problem.orientation_only},
+           {"total_impulse_measure", problem.physical ? "sum_abs_J" : "sum_plate_velocity_change"},
+           {"deviation_definition",
+            "sqrt(sum_k |x_k - (x0 + k (x1 - x0) / n)|^2) over the interior impulse points: the straight line x0 -> x1 "
+            "cut into n equal parts"},
+           {"pareto", rows}});
   if (s.limited)
     j["rig"] = Json{{"objective", "fewest"},
-                    {"tie_break", "the fewest count reached within the limits; within it the shortest total time found, "
-                                  "then the first found"},
-                    {"method", "each exact arrival found is kept when it meets the limits (no tick), else taken through "
-                               "SLSQP under the limits minimising the total time (times on the tick grid); a count is "
-                               "reached only when an arrival within the limits passes the independent replay check"},
+                    {"tie_break",
+                     "the fewest count reached within the limits; within it the shortest total time found, "
+                     "then the first found"},
+                    {"method",
+                     "each exact arrival found is kept when it meets the limits (no tick), else taken through "
+                     "SLSQP under the limits minimising the total time (times on the tick grid); a count is "
+                     "reached only when an arrival within the limits passes the independent replay check"},
                     {"constrained_solves", s.constrained_solves},
                     {"evaluations", s.evaluations},
                     {"blocking", s.blocking}};
   const FewestImpulsesCount* f = s.Fewest();
-  if (actuator && f) CheckPulseFlights(ImpulseTimes(f->plan, f->stop), f->total_time, actuator->request, actuator->prefix + "impulses");
+  if (actuator && f)
+    CheckPulseFlights(ImpulseTimes(f->plan, f->stop), f->total_time, actuator->request, actuator->prefix + "impulses");
   if (with_impulses && f) {
     Json list = Json::array();
     for (std::size_t k = 0; k < f->plan.size(); ++k) list.push_back(ExactImpulseToJson(f->plan[k], k, false, actuator));
@@ -194,8 +222,11 @@ void DrawLimits(const ExactArrivalProblem& problem, SvgFigure* fig) {
   if (!l.obstacles.empty()) fig->Legend("obstacles", obstacle, SvgFigure::Swatch::kPoint);
   if (l.stroke) {
     const Eigen::Vector2d h = 0.5 * *l.stroke, c = problem.x0;
-    fig->Polyline({c + Eigen::Vector2d(-h.x(), -h.y()), c + Eigen::Vector2d(h.x(), -h.y()), c + h,
-                   c + Eigen::Vector2d(-h.x(), h.y()), c + Eigen::Vector2d(-h.x(), -h.y())},
+    fig->Polyline({c + Eigen::Vector2d(-h.x(), -h.y()),
+                   c + Eigen::Vector2d(h.x(), -h.y()),
+                   c + h,
+                   c + Eigen::Vector2d(-h.x(), h.y()),
+                   c + Eigen::Vector2d(-h.x(), -h.y())},
                   stroke);
     fig->Legend("upper plate's stroke (contact point box)", stroke);
   }
@@ -203,13 +234,18 @@ void DrawLimits(const ExactArrivalProblem& problem, SvgFigure* fig) {
 
 }  // namespace
 
-void DrawExactArrival(const ExactArrivalProblem& problem, const ExactArrivalSummary& s, const std::string& title,
+void DrawExactArrival(const ExactArrivalProblem& problem,
+                      const ExactArrivalSummary& s,
+                      const std::string& title,
                       const std::string& file) {
   DrawExactArrival(problem, s.impulses, title, file, "reference path");
 }
 
-void DrawExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
-                      const std::string& title, const std::string& file, const std::string& reference_label) {
+void DrawExactArrival(const ExactArrivalProblem& problem,
+                      const std::vector<ExactImpulse>& impulses,
+                      const std::string& title,
+                      const std::string& file,
+                      const std::string& reference_label) {
   SvgFigure fig;
   DrawLimits(problem, &fig);
   const SvgFigure::Style reference{"#1f5fbf", 1.6, "7,5", "none"};

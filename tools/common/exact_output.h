@@ -20,7 +20,9 @@ namespace plateball::tools {
 ///  impulse: k, t_impulse, x, p, delta_psi, duration, delta_omega,
 ///  plate_velocity_change, angles_before, planned_delta_psi, planned_duration; with `actuator` also
 ///  "actuator", ActuatorJson of the impulse)}.
-Json ExactArrivalToJson(const ExactArrivalSummary& s, const ReplayResult& replay, bool with_impulses = true,
+Json ExactArrivalToJson(const ExactArrivalSummary& s,
+                        const ReplayResult& replay,
+                        bool with_impulses = true,
                         const ActuatorContext* actuator = nullptr);
 
 /// The independent check's record (CheckRigLimits, CheckPlanRigLimits): {"passed", "samples",
@@ -39,7 +41,10 @@ Json RigJson(const ExactArrivalProblem& problem, const ExactArrivalSummary& s, c
 /// plate_velocity_change, angles_before, mu_before, mu_after and with `with_plan` the paper's
 /// planned_position, planned_delta_psi, planned_duration; with `actuator` "actuator", ActuatorJson of
 /// the impulse at its axis before it, named "PREFIXimpulses[K]" in messages).
-Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, const ActuatorContext* actuator = nullptr);
+Json ExactImpulseToJson(const ExactImpulse& e,
+                        std::size_t k,
+                        bool with_plan,
+                        const ActuatorContext* actuator = nullptr);
 
 /// The fewest-impulse search: {"status", "usable", "message", "report", "fewest_impulses", "searched",
 /// "max_total_time", "rollouts", "start_at_rest", "stop_at_goal", "orientation_only", "pareto" (per
@@ -49,16 +54,23 @@ Json ExactImpulseToJson(const ExactImpulse& e, std::size_t k, bool with_plan, co
 /// "deviation_definition", with limits "rig" ({"objective", "tie_break", "method",
 /// "constrained_solves", "evaluations", "blocking"}), with `with_impulses` "impulses" of the
 /// fewest count (the stop impulse last), each with `actuator` as ExactImpulseToJson's}.
-Json FewestImpulsesToJson(const FewestImpulsesProblem& problem, const FewestImpulsesSummary& s, bool with_impulses,
+Json FewestImpulsesToJson(const FewestImpulsesProblem& problem,
+                          const FewestImpulsesSummary& s,
+                          bool with_impulses,
                           const ActuatorContext* actuator = nullptr);
 
 /// The plate as SVG: the reference dashed, the exact impulsive trajectory solid (each free arc
 /// re-integrated from its reported impulse), the impulse points and the goal marked.
-void DrawExactArrival(const ExactArrivalProblem& problem, const ExactArrivalSummary& s, const std::string& title,
+void DrawExactArrival(const ExactArrivalProblem& problem,
+                      const ExactArrivalSummary& s,
+                      const std::string& title,
                       const std::string& file);
 /// The same for any impulse sequence from the problem's start (the fewest-impulse answer), the
 /// problem's reference dashed under `reference_label`.
-void DrawExactArrival(const ExactArrivalProblem& problem, const std::vector<ExactImpulse>& impulses,
-                      const std::string& title, const std::string& file, const std::string& reference_label);
+void DrawExactArrival(const ExactArrivalProblem& problem,
+                      const std::vector<ExactImpulse>& impulses,
+                      const std::string& title,
+                      const std::string& file,
+                      const std::string& reference_label);
 
 }  // namespace plateball::tools

@@ -5,9 +5,9 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "common/errors.h"
 #include "common/invalid_input.h"
 #include "common/limits.h"
-#include "common/errors.h"
 #include "plateball/problem_io.h"
 
 namespace plateball::tools {
@@ -26,7 +26,8 @@ std::string ReadAtMost(std::istream& in, const std::string& name, std::size_t li
 std::string ReadBounded(std::istream& in, const std::string& name) {
   std::string text = ReadAtMost(in, name, kMaxResultFileBytes);
   if (text.size() > kMaxResultFileBytes)
-    ThrowInvalidInput(name + ": (document)", "(more than " + std::to_string(kMaxResultFileBytes >> 20) + " MiB)",
+    ThrowInvalidInput(name + ": (document)",
+                      "(more than " + std::to_string(kMaxResultFileBytes >> 20) + " MiB)",
                       "the file is larger than the limit of " + std::to_string(kMaxResultFileBytes >> 20) + " MiB");
   return text;
 }

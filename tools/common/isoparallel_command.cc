@@ -4,7 +4,6 @@
 // impulsive approximation (section 2.3) as in Figure 7. Failures are reported by the caller's
 // RunWithExitCodes (tools/common/errors.h), the plan file is written with json_output.h and the
 // figure with svg.h.
-#include "common/invalid_input.h"
 #include "common/isoparallel_command.h"
 
 #include <CLI/CLI.hpp>
@@ -23,6 +22,7 @@
 #include "common/errors.h"
 #include "common/exact_output.h"
 #include "common/exit_codes.h"
+#include "common/invalid_input.h"
 #include "common/json_output.h"
 #include "common/number_format.h"
 #include "common/output_file.h"
@@ -34,9 +34,9 @@
 #include "plateball/isoparallel.h"
 #include "plateball/isoparallel_certificate.h"
 #include "plateball/isoparallel_plan.h"
-#include "plateball/task_adapters.h"
 #include "plateball/problem_io.h"
 #include "plateball/so3.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
@@ -65,7 +65,8 @@ std::vector<Eigen::Vector2d> SamplePath(const plateball::IsoparallelSolution& s,
 
 // The impulsive trajectory: each free arc sampled from its post-impulse state.
 std::vector<std::vector<Eigen::Vector2d>> SampleArcs(const plateball::BallModel& model,
-                                                     const plateball::PlanSummary& plan, int per_arc) {
+                                                     const plateball::PlanSummary& plan,
+                                                     int per_arc) {
   std::vector<std::vector<Eigen::Vector2d>> arcs;
   for (const plateball::PlanStep& st : plan.steps) {
     plateball::FreeMotionStart start;
@@ -113,34 +114,42 @@ Json SolutionJson(const plateball::IsoparallelSolution& s) {
 
 // The plan file (--out): the header, what was solved, every solution, the sampled optimal path and
 // the impulsive plan. No timings, so the same problem and seed give a byte-identical file.
-Json PlanFileJson(const IsoparallelCliOptions& cli, const plateball::Problem& problem,
-                  const plateball::IsoparallelProblem& prob, const plateball::IsoparallelOptions& opt,
-                  const plateball::IsoparallelSummary& summary, const std::vector<Eigen::Vector2d>& path_pts,
-                  const plateball::PlanSummary& plan, const std::vector<std::vector<Eigen::Vector2d>>& arcs,
-                  double final_error, const ActuatorRequest& request) {
+Json PlanFileJson(const IsoparallelCliOptions& cli,
+                  const plateball::Problem& problem,
+                  const plateball::IsoparallelProblem& prob,
+                  const plateball::IsoparallelOptions& opt,
+                  const plateball::IsoparallelSummary& summary,
+                  const std::vector<Eigen::Vector2d>& path_pts,
+                  const plateball::PlanSummary& plan,
+                  const std::vector<std::vector<Eigen::Vector2d>>& arcs,
+                  double final_error,
+                  const ActuatorRequest& request) {
   using namespace plateball;
   Json j = HeaderJson(cli.tool, "isoparallel", problem, cli.problem.file());
   // The state the plan starts from: the axis of the start orientation, the file's psi and mu.
-  j["initial"] = Json{{"angles", ToJson(InitialAnglesFromOrientation(prob.start_orientation, problem.initial_angles.psi))},
-                      {"mu", problem.mu},
-                      {"x0", ToJson(prob.start)},
-                      {"orientation", ToJson(prob.start_orientation)}};
+  j["initial"] =
+      Json{{"angles", ToJson(InitialAnglesFromOrientation(prob.start_orientation, problem.initial_angles.psi))},
+           {"mu", problem.mu},
+           {"x0", ToJson(prob.start)},
+           {"orientation", ToJson(prob.start_orientation)}};
   j["isoparallel"] = Json{{"start", ToJson(prob.start)},
                           {"goal", ToJson(prob.goal)},
                           {"start_orientation", ToJson(prob.start_orientation)},
                           {"goal_orientation", ToJson(prob.goal_orientation)},
                           {"impulses", plan.steps.size()}};
   // No "report": the solver's BriefReport() includes its wall time, and this file has none.
-  Json solver{{"status", ToString(summary.status)}, {"usable", summary.IsSolutionUsable()}, {"message", summary.message}};
-  Append(solver, Json{{"method", ToString(summary.method)},
-                      {"complete", summary.complete},
-                      {"periods_searched", summary.periods_searched},
-                      {"starts", opt.starts},
-                      {"length_cap_factor", opt.length_cap_factor},
-                      {"tolerance", opt.tolerance},
-                      {"local_solves", summary.local_solves},
-                      {"searched_length", summary.searched_length},
-                      {"maxwell_pairs", MaxwellPairsJson(summary)}});
+  Json solver{
+      {"status", ToString(summary.status)}, {"usable", summary.IsSolutionUsable()}, {"message", summary.message}};
+  Append(solver,
+         Json{{"method", ToString(summary.method)},
+              {"complete", summary.complete},
+              {"periods_searched", summary.periods_searched},
+              {"starts", opt.starts},
+              {"length_cap_factor", opt.length_cap_factor},
+              {"tolerance", opt.tolerance},
+              {"local_solves", summary.local_solves},
+              {"searched_length", summary.searched_length},
+              {"maxwell_pairs", MaxwellPairsJson(summary)}});
   j["solver"] = std::move(solver);
   Json sols = Json::array();
   for (const auto& s : summary.solutions) sols.push_back(SolutionJson(s));
@@ -160,7 +169,8 @@ Json PlanFileJson(const IsoparallelCliOptions& cli, const plateball::Problem& pr
 
 // The plate as in Figure 7: optimal path dashed, impulsive trajectory solid, impulse points as dots,
 // start x0 and goal x1 with the direction of motion (svg.h).
-plateball::tools::SvgFigure Figure(const std::string& name, const plateball::IsoparallelProblem& prob,
+plateball::tools::SvgFigure Figure(const std::string& name,
+                                   const plateball::IsoparallelProblem& prob,
                                    const plateball::IsoparallelSolution& best,
                                    const std::vector<Eigen::Vector2d>& path,
                                    const std::vector<std::vector<Eigen::Vector2d>>& arcs,
@@ -212,18 +222,20 @@ plateball::IsoparallelSummary SolveWithProgress(plateball::IsoparallelSetup setu
   return plateball::SolveIsoparallel(setup.problem, setup.options);
 }
 
-void PrintNoSolution(const plateball::IsoparallelSummary& summary, const plateball::IsoparallelOptions& opt,
+void PrintNoSolution(const plateball::IsoparallelSummary& summary,
+                     const plateball::IsoparallelOptions& opt,
                      std::ostream& out) {
   using plateball::IsoparallelMethod;
   if (summary.status == plateball::IsoparallelStatus::kIntegrationFailure)
     out << "solver failed: " << plateball::ToString(summary.status) << ": " << summary.message << "\n";
   else if (summary.method == IsoparallelMethod::kFamilyEnumeration)
     out << "no solution found (family enumeration over 1.." << summary.periods_searched
-              << " curvature periods, paths up to length " << summary.searched_length << ")\n";
+        << " curvature periods, paths up to length " << summary.searched_length << ")\n";
   else
     out << "no solution found (" << summary.local_solves << " local solves from " << opt.starts
-              << (summary.seeded ? " starts, " : " shapes, ") << (summary.seeded ? "seed " + std::to_string(opt.seed) : "deterministic")
-              << ", paths up to length " << summary.searched_length << ")\n";
+        << (summary.seeded ? " starts, " : " shapes, ")
+        << (summary.seeded ? "seed " + std::to_string(opt.seed) : "deterministic") << ", paths up to length "
+        << summary.searched_length << ")\n";
 }
 
 // Jacobi's condition for the shortest and how many solutions meet it; the Maxwell pairs.
@@ -233,49 +245,55 @@ void PrintConjugatePoints(const plateball::IsoparallelSummary& summary, std::ost
   for (const plateball::IsoparallelSolution& s : summary.solutions) local += s.locally_optimal ? 1 : 0;
   const std::streamsize precision = out.precision(10);
   out << "first conjugate point of the shortest: ";
-  if (!std::isfinite(best.conjugate_time)) out << "none up to " << plateball::kConjugateSearchFactor << "x its length";
+  if (!std::isfinite(best.conjugate_time))
+    out << "none up to " << plateball::kConjugateSearchFactor << "x its length";
   else if (best.locally_optimal && best.conjugate_time <= best.length * (1 + plateball::kConjugateEndTolerance))
     out << "at its end (s = " << best.conjugate_time << ")";
-  else out << "s = " << best.conjugate_time;
+  else
+    out << "s = " << best.conjugate_time;
   out << (best.locally_optimal ? ", none before the end: locally optimal" : ", before the end: NOT locally optimal")
-      << "; locally optimal: " << local << " of " << summary.solutions.size() << " solutions; Maxwell pairs (equal length): "
-      << summary.maxwell_pairs.size() << "\n";
+      << "; locally optimal: " << local << " of " << summary.solutions.size()
+      << " solutions; Maxwell pairs (equal length): " << summary.maxwell_pairs.size() << "\n";
   out.precision(precision);
 }
 
-void PrintSolutions(const plateball::IsoparallelSummary& summary, const plateball::IsoparallelOptions& opt,
+void PrintSolutions(const plateball::IsoparallelSummary& summary,
+                    const plateball::IsoparallelOptions& opt,
                     std::ostream& out) {
   using namespace plateball;
   const IsoparallelSolution& best = summary.Shortest();
   out << "solutions found: " << summary.solutions.size() << " (distinct, up to " << opt.length_cap_factor
-            << "x the shortest; ";
+      << "x the shortest; ";
   if (summary.method == IsoparallelMethod::kFamilyEnumeration)
     out << "identity target: one-parameter families enumerated over 1.." << summary.periods_searched
-              << " curvature periods, " << (summary.complete ? "certified complete" : "NOT certified complete") << ")\n";
+        << " curvature periods, " << (summary.complete ? "certified complete" : "NOT certified complete") << ")\n";
   else
-    out << opt.starts << (summary.seeded ? " starts, " : " shapes, ") << (summary.seeded ? "seed " + std::to_string(opt.seed) : "deterministic")
+    out << opt.starts << (summary.seeded ? " starts, " : " shapes, ")
+        << (summary.seeded ? "seed " + std::to_string(opt.seed) : "deterministic")
         << ": a sample, NOT certified complete)\n";
   out << std::setprecision(10) << "shortest length: " << best.length << std::setprecision(6) << "  ("
-            << ToString(best.parameters.regime) << " pendulum, G = " << best.G << ", energy = " << best.energy
-            << ", " << best.periods << " curvature period(s)"
-            << (best.family ? ", a one-parameter family: phase free, phase 0 reported" : "") << ")\n";
-  out << std::setprecision(3) << "verified by rolling (Runge-Kutta-Fehlberg 7(8)): orientation residual " << best.orientation_residual
-            << " rad, endpoint error " << best.endpoint_error << "\n";
+      << ToString(best.parameters.regime) << " pendulum, G = " << best.G << ", energy = " << best.energy << ", "
+      << best.periods << " curvature period(s)"
+      << (best.family ? ", a one-parameter family: phase free, phase 0 reported" : "") << ")\n";
+  out << std::setprecision(3) << "verified by rolling (Runge-Kutta-Fehlberg 7(8)): orientation residual "
+      << best.orientation_residual << " rad, endpoint error " << best.endpoint_error << "\n";
   PrintConjugatePoints(summary, out);
 }
 
-void PrintPlan(const plateball::PlanSummary& plan, double final_error, double solve_seconds, double plan_seconds,
+void PrintPlan(const plateball::PlanSummary& plan,
+               double final_error,
+               double solve_seconds,
+               double plan_seconds,
                std::ostream& out) {
   out << "impulses: " << plan.steps.size() << " (" << plateball::ToString(plan.status) << "), max pass miss "
-            << plan.max_pass_miss << "\n";
+      << plan.max_pass_miss << "\n";
   if (plan.IsSolutionUsable()) {
     out << "final orientation error ||A_goal - A~_n|| = " << final_error << ", bound (Theorem 2.6) "
-              << plan.bounds.theorem_2_6 << ", a-posteriori bound " << plan.bounds.a_posteriori << "\n";
+        << plan.bounds.theorem_2_6 << ", a-posteriori bound " << plan.bounds.a_posteriori << "\n";
   } else {
     out << "impulsive plan failed: " << plan.message << " (try more impulses)\n";
   }
-  out << std::setprecision(3) << "time: solve " << solve_seconds * 1e3 << " ms, plan " << plan_seconds * 1e3
-            << " ms\n";
+  out << std::setprecision(3) << "time: solve " << solve_seconds * 1e3 << " ms, plan " << plan_seconds * 1e3 << " ms\n";
   out.flush();
 }
 
@@ -286,7 +304,9 @@ struct ExactRun {
   plateball::ExactArrivalSummary summary;
   plateball::ReplayResult replay;
 };
-ExactRun SolveExact(const plateball::Problem& problem, const plateball::IsoparallelSolution& best, int impulses,
+ExactRun SolveExact(const plateball::Problem& problem,
+                    const plateball::IsoparallelSolution& best,
+                    int impulses,
                     std::ostream& out) {
   using namespace plateball;
   const ExactArrivalSetup setup = ExactArrivalSetupFor(problem, best, impulses, "--impulses");
@@ -295,10 +315,10 @@ ExactRun SolveExact(const plateball::Problem& problem, const plateball::Isoparal
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.replay = ReplayExactArrival(setup.problem, r.summary.impulses);
   out << std::setprecision(3) << "exact arrival: " << ToString(r.summary.status) << " with "
-            << r.summary.impulses.size() << " impulses, re-integrated errors: position " << r.replay.position_error
-            << ", orientation " << r.replay.orientation_error << " rad; max pass-point displacement "
-            << r.summary.max_pass_displacement << ", total time " << r.summary.total_time << ", "
-            << r.summary.iterations << " iterations, " << seconds * 1e3 << " ms\n";
+      << r.summary.impulses.size() << " impulses, re-integrated errors: position " << r.replay.position_error
+      << ", orientation " << r.replay.orientation_error << " rad; max pass-point displacement "
+      << r.summary.max_pass_displacement << ", total time " << r.summary.total_time << ", " << r.summary.iterations
+      << " iterations, " << seconds * 1e3 << " ms\n";
   return r;
 }
 
@@ -310,14 +330,16 @@ void CheckCertifyOptions(const IsoparallelCliOptions& cli, const plateball::Isop
     ThrowInvalidInput(CommandLineField("--certify-cap"), FormatNumber(cli.certify_cap), "must be in [1, 10]");
   const double chord = (prob.goal - prob.start).norm();
   if (cli.certify_length_given && !(cli.certify_length > chord && cli.certify_length <= 1e3))
-    ThrowInvalidInput(CommandLineField("--certify-length"), FormatNumber(cli.certify_length),
+    ThrowInvalidInput(CommandLineField("--certify-length"),
+                      FormatNumber(cli.certify_length),
                       "must exceed |goal - start| = " + FormatNumber(chord) + " and be <= 1000");
 }
 
 // --certify: the certificate of the solution list (isoparallel_certificate.h), one line per
 // piece on standard error as it ends (not under --quiet), the result on `out`.
 plateball::IsoparallelCertificate Certify(const IsoparallelCliOptions& cli,
-                                          const plateball::IsoparallelSummary& summary, std::ostream& out) {
+                                          const plateball::IsoparallelSummary& summary,
+                                          std::ostream& out) {
   using namespace plateball;
   IsoparallelCertificateOptions o;
   o.cap_factor = cli.certify_cap;
@@ -351,16 +373,30 @@ plateball::IsoparallelCertificate Certify(const IsoparallelCliOptions& cli,
 Json CertificateJson(const plateball::IsoparallelCertificate& c, double cap_factor) {
   Json sols = Json::array(), pieces = Json::array();
   for (const plateball::CertifiedSolution& s : c.solutions)
-    sols.push_back(Json{{"regime", plateball::ToString(s.regime)}, {"rate", s.rate}, {"modulus", s.modulus},
-                        {"phase", s.phase}, {"length", s.length}, {"solver_index", s.solver_index}});
+    sols.push_back(Json{{"regime", plateball::ToString(s.regime)},
+                        {"rate", s.rate},
+                        {"modulus", s.modulus},
+                        {"phase", s.phase},
+                        {"length", s.length},
+                        {"solver_index", s.solver_index}});
   for (const plateball::IsoparallelCertificatePiece& p : c.pieces)
-    pieces.push_back(Json{{"name", p.name}, {"closed", p.closed}, {"result", p.result}, {"boxes", p.boxes},
-                          {"resolved_volume", p.resolved_volume}, {"proved", p.proved}});
+    pieces.push_back(Json{{"name", p.name},
+                          {"closed", p.closed},
+                          {"result", p.result},
+                          {"boxes", p.boxes},
+                          {"resolved_volume", p.resolved_volume},
+                          {"proved", p.proved}});
   // The result state without "report" (its BriefReport has a wall time; docs/output_contract.md).
-  return Json{{"status", plateball::ToString(c.status)}, {"usable", c.IsSolutionUsable()}, {"message", c.message},
+  return Json{{"status", plateball::ToString(c.status)},
+              {"usable", c.IsSolutionUsable()},
+              {"message", c.message},
               {"complete", c.IsComplete()},
-              {"cap_factor", cap_factor}, {"length_cap", c.length_cap}, {"straight_residual", c.straight_residual},
-              {"solutions", std::move(sols)}, {"solver_unproved", c.solver_unproved}, {"pieces", std::move(pieces)},
+              {"cap_factor", cap_factor},
+              {"length_cap", c.length_cap},
+              {"straight_residual", c.straight_residual},
+              {"solutions", std::move(sols)},
+              {"solver_unproved", c.solver_unproved},
+              {"pieces", std::move(pieces)},
               {"boxes", c.boxes}};
 }
 
@@ -377,15 +413,17 @@ int Run(const IsoparallelCliOptions& cli, std::ostream& out) {
   if (cli.certify) CheckCertifyOptions(cli, prob);
   // Exact arrival needs 2n unknowns >= 5 conditions (exact_arrival.h): checked before the solve.
   if (cli.exact && impulses != 0 && (impulses < 3 || impulses > plateball::kMaxExactImpulses))
-    ThrowInvalidInput(CommandLineField("--impulses"), std::to_string(impulses),
+    ThrowInvalidInput(CommandLineField("--impulses"),
+                      std::to_string(impulses),
                       "--exact needs 3 ... " + std::to_string(plateball::kMaxExactImpulses) + " impulses");
   const IsoparallelSummary summary = SolveWithProgress(setup, cli.program);
 
-  const double angle = RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
+  const double angle =
+      RotationAngle(prob.goal_orientation * prob.start_orientation.transpose(), Eigen::Matrix3d::Identity());
   const std::string name = ProblemName(problem);
   out << std::setprecision(6);
   out << cli.program << ": " << TerminalSafe(name) << ": (" << prob.start.x() << ", " << prob.start.y() << ") -> ("
-            << prob.goal.x() << ", " << prob.goal.y() << "), target reorientation angle " << angle << " rad\n";
+      << prob.goal.x() << ", " << prob.goal.y() << "), target reorientation angle " << angle << " rad\n";
   if (!summary.IsSolutionUsable()) {
     PrintNoSolution(summary, opt, out);
     return kExitNoSolution;
@@ -431,20 +469,27 @@ void AddIsoparallelOptions(CLI::App& app, IsoparallelCliOptions& cli) {
   cli.problem.SetDefault(kFigure7, "figure7 (built-in)");
   cli.problem.Add(app);
   cli.problem.AddIsoparallel(app);
-  cli.impulses_opt = app.add_option("--impulses", cli.impulses, "number of impulses, 1 ... 1e4 (overrides isoparallel.impulses)");
-  app.add_option("--out", cli.out, cli.json_to_stdout ? "write the JSON to this file instead of standard output"
-                                                      : "write the full plan as JSON");
+  cli.impulses_opt =
+      app.add_option("--impulses", cli.impulses, "number of impulses, 1 ... 1e4 (overrides isoparallel.impulses)");
+  app.add_option(
+      "--out",
+      cli.out,
+      cli.json_to_stdout ? "write the JSON to this file instead of standard output" : "write the full plan as JSON");
   app.add_option("--svg", cli.svg, "write an SVG figure of the plate (as Figure 7)");
   AddFigureSizeOption(app);
-  app.add_flag("--shooting", cli.shooting,
-               "identity targets: use the multi-start shooting instead of the family enumeration");
-  CLI::Option* certify = app.add_flag(
-      "--certify", cli.certify,
-      "general targets: also certify the solution list, every solution up to --certify-cap x 1.0001 x the "
-      "shortest proved and the rest of parameter space excluded (an offline check: minutes to hours; "
-      "JSON section \"certificate\", exit code 7 when it does not close)");
-  app.add_option("--certify-cap", cli.certify_cap, "with --certify: the length cap as a factor of the shortest, 1 ... 10 "
-                 "(default 1: the shortest proved the shortest)")->needs(certify);
+  app.add_flag(
+      "--shooting", cli.shooting, "identity targets: use the multi-start shooting instead of the family enumeration");
+  CLI::Option* certify =
+      app.add_flag("--certify",
+                   cli.certify,
+                   "general targets: also certify the solution list, every solution up to --certify-cap x 1.0001 x the "
+                   "shortest proved and the rest of parameter space excluded (an offline check: minutes to hours; "
+                   "JSON section \"certificate\", exit code 7 when it does not close)");
+  app.add_option("--certify-cap",
+                 cli.certify_cap,
+                 "with --certify: the length cap as a factor of the shortest, 1 ... 10 "
+                 "(default 1: the shortest proved the shortest)")
+      ->needs(certify);
   app.add_option_function<double>(
          "--certify-length",
          [&cli](double length) {
@@ -457,7 +502,8 @@ void AddIsoparallelOptions(CLI::App& app, IsoparallelCliOptions& cli) {
       ->excludes("--certify-cap");
   app.add_option("--certify-budget", cli.certify_budget, "with --certify: boxes per piece, 1 ... 1e10 (default 2.5e8)")
       ->needs(certify);
-  app.add_flag("--exact", cli.exact,
+  app.add_flag("--exact",
+               cli.exact,
                "also solve exact arrival at the goal position and orientation with the same impulse count "
                "(JSON section \"exact\", SVG: the exact trajectory)");
   cli.actuator.Add(app);

@@ -24,7 +24,7 @@ struct IsoparallelCliOptions {
   CLI::Option* impulses_opt = nullptr;
   std::string out, svg;
   bool shooting = false;
-  bool exact = false;  ///< exact arrival along the optimal path (exact_arrival.h)
+  bool exact = false;    ///< exact arrival along the optimal path (exact_arrival.h)
   bool certify = false;  ///< certify the solution list up to certify_cap (isoparallel_certificate.h)
   double certify_cap = 1.0;
   double certify_length = 0.0;  ///< with certify_length_given: this length cap instead of certify_cap x the shortest
@@ -37,7 +37,8 @@ struct IsoparallelCliOptions {
 void AddIsoparallelOptions(CLI::App& app, IsoparallelCliOptions& cli);
 
 /// Solves, plans, writes; returns the exit code (0 solved and planned, 4 no solution or the plan
-/// failed, 7 a requested certificate did not close). Throws as every subcommand does (errors.h maps the exceptions to exit codes).
+/// failed, 7 a requested certificate did not close). Throws as every subcommand does (errors.h maps the exceptions to
+/// exit codes).
 int RunIsoparallel(const IsoparallelCliOptions& cli);
 
 }  // namespace plateball::tools

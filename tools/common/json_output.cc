@@ -49,13 +49,14 @@ Json RotationToJson(const Eigen::Matrix3d& r) {
 
 std::string ProblemName(const Problem& p) {
   if (!p.name.empty()) return p.name;
-  std::string base = p.source.substr(p.source.find_last_of('/') == std::string::npos ? 0 : p.source.find_last_of('/') + 1);
+  std::string base =
+      p.source.substr(p.source.find_last_of('/') == std::string::npos ? 0 : p.source.find_last_of('/') + 1);
   if (base.size() > 5 && base.compare(base.size() - 5, 5, ".json") == 0) base.resize(base.size() - 5);
   return base.empty() ? p.source : base;
 }
 
-Json HeaderJson(const std::string& tool, const std::string& command, const Problem& p, const std::string& file,
-                bool with_model) {
+Json HeaderJson(
+    const std::string& tool, const std::string& command, const Problem& p, const std::string& file, bool with_model) {
   Json j{{"schema_version", kSchemaVersion},
          {"tool", tool},
          {"version", PLATEBALL_VERSION_STRING},
@@ -88,7 +89,8 @@ void CheckFinite(const Json& j, const std::string& path) {
     throw std::logic_error("output value " + (path.empty() ? std::string("(document)") : path) + " = " +
                            std::to_string(j.get<double>()) + " is not finite");
   if (j.is_object())
-    for (auto it = j.begin(); it != j.end(); ++it) CheckFinite(it.value(), path.empty() ? it.key() : path + "." + it.key());
+    for (auto it = j.begin(); it != j.end(); ++it)
+      CheckFinite(it.value(), path.empty() ? it.key() : path + "." + it.key());
   if (j.is_array())
     for (std::size_t i = 0; i < j.size(); ++i) CheckFinite(j[i], path + "[" + std::to_string(i) + "]");
 }

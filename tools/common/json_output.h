@@ -42,7 +42,10 @@ std::string ProblemName(const Problem& p);
 /// The header every output document starts with (docs/output_contract.md, section 1):
 /// schema_version, tool, version, command, problem {name, file (null when none)}, model (unless
 /// `with_model` is false), integration, seed.
-Json HeaderJson(const std::string& tool, const std::string& command, const Problem& p, const std::string& file,
+Json HeaderJson(const std::string& tool,
+                const std::string& command,
+                const Problem& p,
+                const std::string& file,
                 bool with_model = true);
 
 /// The initial state of a problem as a state object: {"angles", "mu", "x0"}.

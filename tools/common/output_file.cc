@@ -4,8 +4,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <csignal>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -67,7 +67,8 @@ bool SameFile(const std::string& a, const std::string& b) {
 
 void CheckWritable(const PathArgument& out) {
   if (IsExistingNonRegular(out.path)) {
-    if (::access(out.path.c_str(), W_OK) != 0) throw IoError(out.path + ": cannot write (" + out.option + "): " + ErrnoText(errno));
+    if (::access(out.path.c_str(), W_OK) != 0)
+      throw IoError(out.path + ": cannot write (" + out.option + "): " + ErrnoText(errno));
     return;
   }
   const std::string dir = DirectoryOf(out.path);
@@ -181,7 +182,8 @@ void DiscardPending(std::vector<PendingOutput>* pending) {
 void WriteStreamedAtomically(const std::string& path, const std::function<void(const OutputSink&)>& produce) {
   std::string temp = (fs::path(DirectoryOf(path)) / ("." + fs::path(path).filename().string() + ".tmpXXXXXX")).string();
   const int fd = ::mkstemp(temp.data());
-  if (fd < 0) throw IoError(path + ": cannot create a temporary file in " + DirectoryOf(path) + ": " + ErrnoText(errno));
+  if (fd < 0)
+    throw IoError(path + ": cannot create a temporary file in " + DirectoryOf(path) + ": " + ErrnoText(errno));
   const int slot = RegisterTemporary(temp);
   BufferedFd out(fd);
   try {
@@ -270,14 +272,15 @@ void CheckOutputPaths(const std::vector<PathArgument>& outputs, const std::vecto
       if (b.path.empty()) continue;
       const bool both_stdout = a.path == "-" && b.path == "-";
       if (both_stdout || (a.path != "-" && b.path != "-" && SameFile(a.path, b.path)))
-        ThrowInvalidInput(CommandLineField(b.option + " and " + a.option), a.path,
+        ThrowInvalidInput(CommandLineField(b.option + " and " + a.option),
+                          a.path,
                           std::string("two outputs name the same ") + (both_stdout ? "standard output" : "file"));
     }
     if (a.path == "-") continue;
     for (const PathArgument& in : inputs)
       if (!in.path.empty() && in.path != "-" && SameFile(a.path, in.path))
-        ThrowInvalidInput(CommandLineField(a.option + " and " + in.option), a.path,
-                          "the output would overwrite the input file");
+        ThrowInvalidInput(
+            CommandLineField(a.option + " and " + in.option), a.path, "the output would overwrite the input file");
   }
   for (const PathArgument& a : outputs)
     if (!IsStandardOutput(a.path)) CheckWritable(a);

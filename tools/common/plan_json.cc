@@ -18,9 +18,16 @@ Json BoundsToJson(const ErrorBounds& b) {
               {"sum_dtau_cubed", b.sum_dtau_cubed},
               {"parameter_norm", b.parameter_norm},
               {"constants",
-               Json{{"K_p", c.K_p}, {"M_prime_p", c.M_prime_p}, {"K_bar_p", c.K_bar_p}, {"C_p", c.C_p},
-                    {"M_prime", c.M_prime}, {"K_10", c.K_10}, {"K_tilde", c.K_tilde}, {"K1", c.K1},
-                    {"D_p", c.D_p}, {"K_tilde_p", c.K_tilde_p}}}};
+               Json{{"K_p", c.K_p},
+                    {"M_prime_p", c.M_prime_p},
+                    {"K_bar_p", c.K_bar_p},
+                    {"C_p", c.C_p},
+                    {"M_prime", c.M_prime},
+                    {"K_10", c.K_10},
+                    {"K_tilde", c.K_tilde},
+                    {"K1", c.K1},
+                    {"D_p", c.D_p},
+                    {"K_tilde_p", c.K_tilde_p}}}};
 }
 
 Json StepToJson(const PlanStep& s, const ActuatorContext* actuator) {
@@ -43,8 +50,8 @@ Json StepToJson(const PlanStep& s, const ActuatorContext* actuator) {
          {"omega_after", ToJson(s.state_after.omega)},
          {"x_end", ToJson(s.x_end)},
          {"pass_miss", s.pass_miss},
-         {"join", Json{{"status", ToString(s.join_status)}, {"residual", s.join_residual},
-                       {"iterations", s.join_iterations}}},
+         {"join",
+          Json{{"status", ToString(s.join_status)}, {"residual", s.join_residual}, {"iterations", s.join_iterations}}},
          {"orientation_planned", ToJson(s.A_planned)},
          {"orientation_polyline", ToJson(s.A_polyline)},
          {"orientation_impulsive", ToJson(s.A_impulsive)},
@@ -53,10 +60,15 @@ Json StepToJson(const PlanStep& s, const ActuatorContext* actuator) {
   if (!s.energy_changes.empty()) {
     Json e = Json::array();
     for (const Impulse& i : s.energy_changes) {
-      Json c{{"mu_before", i.mu_before}, {"mu_after", i.mu_after}, {"delta_omega", ToJson(i.delta_omega)},
+      Json c{{"mu_before", i.mu_before},
+             {"mu_after", i.mu_after},
+             {"delta_omega", ToJson(i.delta_omega)},
              {"plate_velocity_change", ToJson(i.plate_velocity_change)}};
       if (actuator)
-        c["actuator"] = ActuatorJson(actuator->problem, i.state_before.z, i.delta_omega, actuator->request,
+        c["actuator"] = ActuatorJson(actuator->problem,
+                                     i.state_before.z,
+                                     i.delta_omega,
+                                     actuator->request,
                                      where + ".energy_changes[" + std::to_string(e.size()) + "]");
       e.push_back(std::move(c));
     }
@@ -78,9 +90,10 @@ Json PlanSummaryToJson(const PlanSummary& plan, bool with_steps, const ActuatorC
   doc["polyline_error"] = plan.polyline_error;
   doc["bounds"] = BoundsToJson(plan.bounds);
   doc["rotation_final"] = Json{{"planned", RotationToJson(plan.A_planned)},
-                              {"polyline", RotationToJson(plan.A_polyline)},
-                              {"impulsive", RotationToJson(plan.A_impulsive)}};
-  doc["final"] = Json{{"mu", plan.mu_final}, {"z", ToJson(plan.final_state.z)}, {"omega", ToJson(plan.final_state.omega)}};
+                               {"polyline", RotationToJson(plan.A_polyline)},
+                               {"impulsive", RotationToJson(plan.A_impulsive)}};
+  doc["final"] =
+      Json{{"mu", plan.mu_final}, {"z", ToJson(plan.final_state.z)}, {"omega", ToJson(plan.final_state.omega)}};
   if (actuator) {
     std::vector<double> times;
     for (const PlanStep& s : plan.steps) times.push_back(s.t_impulse);

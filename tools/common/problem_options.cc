@@ -11,9 +11,9 @@
 #include "common/command_line.h"
 #include "common/input_file.h"
 #include "common/limits.h"
-#include "plateball/task_adapters.h"
 #include "common/number_format.h"
 #include "plateball/problem_io.h"
+#include "plateball/task_adapters.h"
 
 namespace plateball::tools {
 namespace {
@@ -63,7 +63,8 @@ void RequirePartitionSteps(const std::string& option, long long n, const Problem
   if (!p.plan) return;
   const long long pieces = static_cast<long long>(PathFromSpec(p.plan->path, p.source + ": plan.path").PieceCount());
   if (n * pieces > kMaxPartitionSteps)
-    Fail(option, std::to_string(n),
+    Fail(option,
+         std::to_string(n),
          "must be <= " + std::to_string(kMaxPartitionSteps / pieces) + " (n x " + std::to_string(pieces) +
              (pieces == 1 ? " smooth piece" : " smooth pieces") + " = " + std::to_string(n * pieces) +
              " impulses; at most " + std::to_string(kMaxPartitionSteps) + ")");
@@ -72,7 +73,8 @@ void RequirePartitionSteps(const std::string& option, long long n, const Problem
 void RequireCoordinatesOption(const std::string& option, const std::vector<Eigen::Vector2d>& points) {
   for (std::size_t i = 0; i < points.size(); ++i)
     if (!(points[i].cwiseAbs().maxCoeff() <= kMaxCoordinate))
-      Fail(option + "[" + std::to_string(i) + "]", FormatNumber(points[i].x()) + "," + FormatNumber(points[i].y()),
+      Fail(option + "[" + std::to_string(i) + "]",
+           FormatNumber(points[i].x()) + "," + FormatNumber(points[i].y()),
            "|coordinate| must be <= " + FormatNumber(kMaxCoordinate) + " (precision limit)");
 }
 
@@ -85,7 +87,8 @@ Eigen::Vector2d ParsePointOption(const std::string& option, const std::string& t
   return p;
 }
 
-std::vector<Eigen::Vector2d> ParsePointsOption(const std::string& option, const std::string& text,
+std::vector<Eigen::Vector2d> ParsePointsOption(const std::string& option,
+                                               const std::string& text,
                                                std::size_t min_points) {
   // Points are separated by ';' or by white space; a point is "X,Y" without spaces.
   std::vector<Eigen::Vector2d> points;
@@ -109,27 +112,39 @@ std::vector<Eigen::Vector2d> ParsePointsOption(const std::string& option, const 
 }
 
 void ProblemOptions::Add(CLI::App& app, Seed seed) {
-  app.add_option("problem", file_, "problem file (JSON, see README \"Problem files\"; \"-\": standard input); options below override it");
+  app.add_option("problem",
+                 file_,
+                 "problem file (JSON, see README \"Problem files\"; \"-\": standard input); options below override it");
   lambda_opt_ = app.add_option("--lambda", lambda_, "ball parameter lambda = (alpha+beta)/(1+beta) > 0");
   theta_opt_ = app.add_option("--theta", theta_, "initial theta (rad)");
   phi_opt_ = app.add_option("--phi", phi_, "initial phi (rad)");
   psi_opt_ = app.add_option("--psi", psi_, "initial psi (rad)");
   mu_opt_ = app.add_option("--mu", mu_, "energy mu > 0 (the period is 2 pi/sqrt(mu))");
   x0_opt_ = app.add_option("--x0", x0_, "initial contact point X,Y");
-  orientation_opt_ = app.add_option("--orientation", orientation_,
-                                    "initial orientation as JSON: {\"quaternion\": [w,x,y,z]}, {\"matrix\": [[..],[..],[..]]} "
-                                    "or {\"axis_angle\": {\"axis\": [x,y,z], \"angle\": a}}");
+  orientation_opt_ =
+      app.add_option("--orientation",
+                     orientation_,
+                     "initial orientation as JSON: {\"quaternion\": [w,x,y,z]}, {\"matrix\": [[..],[..],[..]]} "
+                     "or {\"axis_angle\": {\"axis\": [x,y,z], \"angle\": a}}");
   atol_opt_ = app.add_option("--atol", atol_, "absolute tolerance of the integration, in (0, 1)");
   rtol_opt_ = app.add_option("--rtol", rtol_, "relative tolerance of the integration, in (0, 1)");
   max_steps_opt_ = app.add_option("--max-steps", max_steps_, "step limit of one integration (>= 1)");
   if (seed == Seed::kAccepted)
-    seed_opt_ = app.add_option("--seed", seed_, "seed of randomised searches, 0 ... 2^64 - 1")->type_name(kSeedTypeName);
-  fields_ = {{"ball.lambda", lambda_opt_},  {"ball", lambda_opt_}, {"lambda", lambda_opt_},
-             {"initial.theta", theta_opt_}, {"initial.phi", phi_opt_},
-             {"initial.psi", psi_opt_},     {"initial.mu", mu_opt_},
-             {"initial.x0", x0_opt_},       {"initial.orientation", orientation_opt_},
-             {"integration.absolute_tolerance", atol_opt_}, {"integration.relative_tolerance", rtol_opt_},
-             {"integration.max_steps", max_steps_opt_},     {"seed", seed_opt_}};
+    seed_opt_ =
+        app.add_option("--seed", seed_, "seed of randomised searches, 0 ... 2^64 - 1")->type_name(kSeedTypeName);
+  fields_ = {{"ball.lambda", lambda_opt_},
+             {"ball", lambda_opt_},
+             {"lambda", lambda_opt_},
+             {"initial.theta", theta_opt_},
+             {"initial.phi", phi_opt_},
+             {"initial.psi", psi_opt_},
+             {"initial.mu", mu_opt_},
+             {"initial.x0", x0_opt_},
+             {"initial.orientation", orientation_opt_},
+             {"integration.absolute_tolerance", atol_opt_},
+             {"integration.relative_tolerance", rtol_opt_},
+             {"integration.max_steps", max_steps_opt_},
+             {"seed", seed_opt_}};
 }
 
 void ProblemOptions::AddIsoparallel(CLI::App& app) {
@@ -140,12 +155,22 @@ void ProblemOptions::AddIsoparallel(CLI::App& app) {
   };
   add("--start", start_, "isoparallel.start", "start point X,Y (overrides isoparallel.start)");
   add("--goal", goal_, "isoparallel.goal", "goal point X,Y (overrides isoparallel.goal)");
-  add("--start-orientation", start_orientation_, "isoparallel.start_orientation",
+  add("--start-orientation",
+      start_orientation_,
+      "isoparallel.start_orientation",
       "start orientation as JSON (as --orientation; overrides isoparallel.start_orientation)");
-  add("--goal-orientation", goal_orientation_, "isoparallel.goal_orientation",
+  add("--goal-orientation",
+      goal_orientation_,
+      "isoparallel.goal_orientation",
       "goal orientation as JSON (as --orientation; overrides isoparallel.goal_orientation)");
-  add("--starts", starts_, "isoparallel.solver.starts", "multi-start count, 1 ... 1e4 (overrides isoparallel.solver.starts)");
-  add("--threads", threads_, "isoparallel.solver.threads", "solver threads, 1 ... 256 (overrides isoparallel.solver.threads)");
+  add("--starts",
+      starts_,
+      "isoparallel.solver.starts",
+      "multi-start count, 1 ... 1e4 (overrides isoparallel.solver.starts)");
+  add("--threads",
+      threads_,
+      "isoparallel.solver.threads",
+      "solver threads, 1 ... 256 (overrides isoparallel.solver.threads)");
 }
 
 void ProblemOptions::SetDefault(std::string json_text, std::string source_name) {
@@ -159,7 +184,8 @@ bool Given(const CLI::Option* o) { return o != nullptr && o->count() > 0; }
 
 // A library or reader message "[SOURCE: ]FIELD[INDEX]: value ..." about a field an option gave,
 // renamed "command line: OPTION[INDEX]: value ...".
-std::string RenameField(const std::string& message, const std::string& source,
+std::string RenameField(const std::string& message,
+                        const std::string& source,
                         const std::vector<std::pair<std::string, CLI::Option*>>& fields) {
   std::string rest = message;
   if (rest.compare(0, source.size() + 2, source + ": ") == 0) rest = rest.substr(source.size() + 2);
@@ -184,12 +210,14 @@ void ProblemOptions::ApplyIsoparallel(Problem* p) const {
     return false;
   };
   const bool any = given("isoparallel.start") || given("isoparallel.goal") || given("isoparallel.start_orientation") ||
-                   given("isoparallel.goal_orientation") ||
-                   given("isoparallel.solver.starts") || given("isoparallel.solver.threads");
+                   given("isoparallel.goal_orientation") || given("isoparallel.solver.starts") ||
+                   given("isoparallel.solver.threads");
   if (!any) return;
   if (!p->isoparallel)
-    ThrowInvalidInput(p->source + ": isoparallel", "(missing)",
-                      "the options --start, --goal, ... override the problem's isoparallel section, which it does not have");
+    ThrowInvalidInput(
+        p->source + ": isoparallel",
+        "(missing)",
+        "the options --start, --goal, ... override the problem's isoparallel section, which it does not have");
   IsoparallelTask& t = *p->isoparallel;
   if (given("isoparallel.start")) t.start = ParsePointOption("--start", start_);
   if (given("isoparallel.goal")) t.goal = ParsePointOption("--goal", goal_);
@@ -205,13 +233,17 @@ void ProblemOptions::ApplyIsoparallel(Problem* p) const {
 
 Problem ProblemOptions::Load() const {
   Problem p;
-  if (!file_.empty()) p = ReadProblemInput(file_);
-  else if (!default_text_.empty()) p = ParseProblem(default_text_, default_source_), p.source = default_source_;
-  else p.source = "(built-in defaults)";
+  if (!file_.empty())
+    p = ReadProblemInput(file_);
+  else if (!default_text_.empty())
+    p = ParseProblem(default_text_, default_source_), p.source = default_source_;
+  else
+    p.source = "(built-in defaults)";
   bool overridden = false;
   for (const auto& field : fields_) overridden = overridden || Given(field.second);
   try {
-    if (Given(lambda_opt_)) p.model = BallModel::FromLambda(RequirePositiveOption("--lambda", lambda_)), p.physical.reset();
+    if (Given(lambda_opt_))
+      p.model = BallModel::FromLambda(RequirePositiveOption("--lambda", lambda_)), p.physical.reset();
     if (Given(theta_opt_)) p.initial_angles.theta = RequireFiniteOption("--theta", theta_);
     if (Given(phi_opt_)) p.initial_angles.phi = RequireFiniteOption("--phi", phi_);
     if (Given(psi_opt_)) p.initial_angles.psi = RequireFiniteOption("--psi", psi_);
@@ -226,7 +258,9 @@ Problem ProblemOptions::Load() const {
       if (!(std::isfinite(rtol_) && rtol_ > 0 && rtol_ < 1)) Fail("--rtol", FormatNumber(rtol_), "must be in (0, 1)");
       p.integration.relative_tolerance = rtol_;
     }
-    if (Given(max_steps_opt_)) p.integration.max_steps = static_cast<long>(RequireIntegerInRange("--max-steps", max_steps_, 1, 1'000'000'000'000LL));
+    if (Given(max_steps_opt_))
+      p.integration.max_steps =
+          static_cast<long>(RequireIntegerInRange("--max-steps", max_steps_, 1, 1'000'000'000'000LL));
     if (Given(seed_opt_)) p.seed = ParseSeedOption("--seed", seed_);
     ApplyIsoparallel(&p);
     if (overridden) {

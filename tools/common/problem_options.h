@@ -78,7 +78,8 @@ void RequireCoordinatesOption(const std::string& option, const std::vector<Eigen
 Eigen::Vector2d ParsePointOption(const std::string& option, const std::string& text);
 /// "X1,Y1;X2,Y2;..." or "X1,Y1 X2,Y2 ..." (separated by ';' or white space; at least
 /// `min_points` points).
-std::vector<Eigen::Vector2d> ParsePointsOption(const std::string& option, const std::string& text,
+std::vector<Eigen::Vector2d> ParsePointsOption(const std::string& option,
+                                               const std::string& text,
                                                std::size_t min_points = 1);
 
 }  // namespace plateball::tools

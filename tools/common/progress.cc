@@ -15,8 +15,10 @@ ProgressMode g_mode = ProgressMode::kAuto;
 
 std::string Seconds(double s) {
   std::ostringstream os;
-  if (s < 10) os.precision(2), os << s;
-  else os << std::llround(s);
+  if (s < 10)
+    os.precision(2), os << s;
+  else
+    os << std::llround(s);
   return os.str() + " s";
 }
 
@@ -26,10 +28,12 @@ void AddProgressOptions(CLI::App& app) {
   // A command with its own --quiet reports its progress itself.
   if (app.get_option_no_throw("--quiet") != nullptr) return;
   CLI::Option* quiet = app.add_flag_callback(
-      "--quiet,-q", [] { SetProgressSetting(ProgressMode::kQuiet); },
+      "--quiet,-q",
+      [] { SetProgressSetting(ProgressMode::kQuiet); },
       "no progress and no summary lines on standard error (errors only)");
   CLI::Option* progress = app.add_flag_callback(
-      "--progress", [] { SetProgressSetting(ProgressMode::kAlways); },
+      "--progress",
+      [] { SetProgressSetting(ProgressMode::kAlways); },
       "show the progress (with an ETA) also when standard error is not a terminal, and a final \"done\" line");
   quiet->excludes(progress);
 }
@@ -87,12 +91,16 @@ void Progress::Print(bool final_line) {
   const double total = total_.load();
   std::string text = label_ + ": ";
   if (final_line)
-    text += "done" + (total > 0 ? " (" + std::to_string(std::llround(total)) + " of " + std::to_string(std::llround(total)) + ")" : std::string()) +
+    text += "done" +
+            (total > 0 ? " (" + std::to_string(std::llround(total)) + " of " + std::to_string(std::llround(total)) + ")"
+                       : std::string()) +
             " in " + Seconds(elapsed);
   else
     text += ProgressText(done_.load(), total, elapsed);
-  if (terminal_ && !final_line) std::cerr << "\r\033[K" << text << std::flush;
-  else std::cerr << (terminal_ && printed_ ? "\r\033[K" : "") << text << "\n" << std::flush;
+  if (terminal_ && !final_line)
+    std::cerr << "\r\033[K" << text << std::flush;
+  else
+    std::cerr << (terminal_ && printed_ ? "\r\033[K" : "") << text << "\n" << std::flush;
   printed_ = true;
 }
 

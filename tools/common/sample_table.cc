@@ -35,8 +35,8 @@ std::vector<std::pair<std::string, std::string>> CsvColumns(const Json& sample) 
   return out;
 }
 
-void WriteSampleDocument(const std::string& path, Json header, std::size_t count, const SampleSource& sample,
-                         Progress* progress) {
+void WriteSampleDocument(
+    const std::string& path, Json header, std::size_t count, const SampleSource& sample, Progress* progress) {
   header["samples"] = Json::array();
   std::string head = DumpJson(header);
   const std::string tail = "\"samples\": []\n}\n";

@@ -20,8 +20,8 @@ using SampleSource = std::function<Json(std::size_t)>;
 /// Writes `header` with a last key "samples" holding samples 0 ... count-1: byte for byte what
 /// WriteJson would write for the whole document, without holding it. `progress` (may be null) is
 /// updated with the number of samples written.
-void WriteSampleDocument(const std::string& path, Json header, std::size_t count, const SampleSource& sample,
-                         Progress* progress);
+void WriteSampleDocument(
+    const std::string& path, Json header, std::size_t count, const SampleSource& sample, Progress* progress);
 
 /// Writes the samples as CSV: a line of column names, then a line per sample. The columns are the
 /// sample's keys in order, nested keys joined by '.', array elements by their index (x.0, x.1,

@@ -1,4 +1,3 @@
-#include "common/invalid_input.h"
 #include "common/svg.h"
 
 #include <algorithm>
@@ -6,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/invalid_input.h"
 #include "common/output_file.h"
 
 namespace plateball::tools {
@@ -21,21 +21,27 @@ namespace {
 
 FigureSize g_figure_size;  // set once from the command line (AddFigureSizeOption)
 
-constexpr double kFont = 12;        // tick labels, legend
-constexpr double kLegendRow = 20;   // pixels per legend row
-constexpr double kArrowPx = 26;     // length of a start/goal direction arrow
+constexpr double kFont = 12;       // tick labels, legend
+constexpr double kLegendRow = 20;  // pixels per legend row
+constexpr double kArrowPx = 26;    // length of a start/goal direction arrow
 
 std::string Escape(const std::string& s) {
   std::string out;
   for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
     // C0 controls other than tab, line feed and carriage return are not XML 1.0 characters (not
     // even as references): each is shown as U+FFFD, the replacement character.
-    else if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') out += "\xEF\xBF\xBD";
-    else out += c;
+    else if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r')
+      out += "\xEF\xBF\xBD";
+    else
+      out += c;
   }
   return out;
 }
@@ -55,7 +61,11 @@ double TextWidth(const std::string& text, double size) {
   return 0.56 * size * static_cast<double>(chars);
 }
 
-std::string TextTag(double x, double y, double size, const std::string& anchor, const std::string& text,
+std::string TextTag(double x,
+                    double y,
+                    double size,
+                    const std::string& anchor,
+                    const std::string& text,
                     const std::string& extra = "") {
   std::ostringstream os;
   os.precision(6);
@@ -137,10 +147,11 @@ std::string EndSymbol(bool start, const Eigen::Vector2d& q, const Eigen::Vector2
 std::string Swatch(SvgFigure::Swatch kind, const SvgFigure::Style& style, bool with_point, double x, double y) {
   std::ostringstream os;
   os.precision(6);
-  if (kind == SvgFigure::Swatch::kAuto) kind = style.fill != "none" ? SvgFigure::Swatch::kPoint : SvgFigure::Swatch::kLine;
+  if (kind == SvgFigure::Swatch::kAuto)
+    kind = style.fill != "none" ? SvgFigure::Swatch::kPoint : SvgFigure::Swatch::kLine;
   if (kind == SvgFigure::Swatch::kLine || with_point)
-    os << "<line x1=\"" << x << "\" y1=\"" << y << "\" x2=\"" << x + 30 << "\" y2=\"" << y << "\" "
-       << StyleAttr(style) << "/>\n";
+    os << "<line x1=\"" << x << "\" y1=\"" << y << "\" x2=\"" << x + 30 << "\" y2=\"" << y << "\" " << StyleAttr(style)
+       << "/>\n";
   if (kind == SvgFigure::Swatch::kPoint || with_point)
     os << "<circle cx=\"" << x + 15 << "\" cy=\"" << y << "\" r=\"3.2\" fill=\""
        << (style.fill != "none" ? style.fill : style.stroke) << "\" stroke=\"" << style.stroke << "\"/>\n";
@@ -150,7 +161,6 @@ std::string Swatch(SvgFigure::Swatch kind, const SvgFigure::Style& style, bool w
   }
   return os.str();
 }
-
 
 // Legend entries flowed into rows under the plot, from `top`, between `left` and `right`.
 // Returns the SVG and sets *height to the rows' height.
@@ -169,8 +179,8 @@ std::string LegendRows(const std::vector<LegendItem>& items, double left, double
 
 std::string SvgOpen(double width, double height) {
   std::ostringstream os;
-  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
-     << "\" viewBox=\"0 0 " << width << " " << height << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height << "\" viewBox=\"0 0 "
+     << width << " " << height << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   return os.str();
 }
 
@@ -181,8 +191,8 @@ std::string TitleLines(const std::vector<std::string>& lines, double width) {
 }
 
 // The axis labels: x centred under the plot box, y rotated left of it.
-std::string AxisLabelTags(const std::string& x_label, const std::string& y_label, double left, double top, double w,
-                          double h) {
+std::string AxisLabelTags(
+    const std::string& x_label, const std::string& y_label, double left, double top, double w, double h) {
   std::ostringstream os;
   os.precision(6);
   os << TextTag(left + w / 2, top + h + 38, 13, "middle", x_label);
@@ -192,7 +202,14 @@ std::string AxisLabelTags(const std::string& x_label, const std::string& y_label
 }
 
 // Linear ticks of [lo, hi] with `step`, mapped by `map` (grid lines across the plot box).
-std::string LinearTicks(bool x_axis, double lo, double hi, double step, double left, double top, double w, double h,
+std::string LinearTicks(bool x_axis,
+                        double lo,
+                        double hi,
+                        double step,
+                        double left,
+                        double top,
+                        double w,
+                        double h,
                         const std::function<double(double)>& map) {
   std::ostringstream os;
   os.precision(6);
@@ -225,7 +242,8 @@ FigureSize ParseFigureSize(const std::string& option, const std::string& text) {
   const double h = x == std::string::npos ? -1.0 : number(text.substr(x + 1));
   if (!(w >= 200 && w <= 8000 && h >= 200 && h <= 8000)) {
     const std::string shown = text.size() > 40 ? text.substr(0, 40) + "..." : text;
-    ThrowInvalidInput(CommandLineField(option), "\"" + shown + "\"",
+    ThrowInvalidInput(CommandLineField(option),
+                      "\"" + shown + "\"",
                       "must be WIDTHxHEIGHT in pixels, each an integer in [200, 8000]");
   }
   return {w, h};
@@ -241,15 +259,15 @@ void AddFigureSizeOption(CLI::App& app) {
              throw CLI::ValidationError(e.what());
            }
          },
-         "size of the SVG figures in pixels, WIDTHxHEIGHT, e.g. 800x600 (default: 640 wide, height fitted; charts 720x520)")
+         "size of the SVG figures in pixels, WIDTHxHEIGHT, e.g. 800x600 (default: 640 wide, height fitted; charts "
+         "720x520)")
       ->type_name("WxH");
 }
 
 FigureSize CurrentFigureSize() { return g_figure_size; }
 void SetFigureSize(const FigureSize& size) { g_figure_size = size; }
 
-SvgFigure::SvgFigure()
-    : width_(g_figure_size.width > 0 ? g_figure_size.width : 640), height_(g_figure_size.height) {}
+SvgFigure::SvgFigure() : width_(g_figure_size.width > 0 ? g_figure_size.width : 640), height_(g_figure_size.height) {}
 
 void SvgFigure::Polyline(const std::vector<Eigen::Vector2d>& points, const Style& style) {
   items_.push_back({Kind::kPolyline, points, style, 0, ""});
@@ -262,7 +280,10 @@ void SvgFigure::Text(const Eigen::Vector2d& p, const std::string& text, double s
   s.stroke = color;
   items_.push_back({Kind::kText, {p}, s, size_px, text});
 }
-void SvgFigure::AddEnd(Kind kind, const Eigen::Vector2d& p, const Eigen::Vector2d& direction, const std::string& label) {
+void SvgFigure::AddEnd(Kind kind,
+                       const Eigen::Vector2d& p,
+                       const Eigen::Vector2d& direction,
+                       const std::string& label) {
   const Eigen::Vector2d d = direction.allFinite() ? direction : Eigen::Vector2d::Zero();
   items_.push_back({kind, {p, d}, Style{}, 13, label});
   const bool start = kind == Kind::kStart;
@@ -270,8 +291,9 @@ void SvgFigure::AddEnd(Kind kind, const Eigen::Vector2d& p, const Eigen::Vector2
   for (const LegendEntry& e : legend_)
     if (e.text == entry) return;
   // Start and goal lead the legend, start first.
-  const auto at = start ? legend_.begin()
-                        : std::find_if(legend_.begin(), legend_.end(), [](const LegendEntry& e) { return e.swatch != Swatch::kStart; });
+  const auto at = start ? legend_.begin() : std::find_if(legend_.begin(), legend_.end(), [](const LegendEntry& e) {
+    return e.swatch != Swatch::kStart;
+  });
   legend_.insert(at, {entry, Style{}, start ? Swatch::kStart : Swatch::kGoal});
 }
 void SvgFigure::Start(const Eigen::Vector2d& p, const Eigen::Vector2d& direction, const std::string& label) {
@@ -355,7 +377,8 @@ std::string SvgFigure::EndItem(const Item& it, const Frame& f) const {
   Eigen::Vector2d n = normal(u, start);
   if (!start)
     for (const Item& other : items_)
-      if (other.kind == Kind::kStart && (f.Map(other.points[0]) - q).norm() < 20) n = -normal(ArrowDirection(other, f), true);
+      if (other.kind == Kind::kStart && (f.Map(other.points[0]) - q).norm() < 20)
+        n = -normal(ArrowDirection(other, f), true);
   std::string out = EndSymbol(start, q, u, kArrowPx);
   if (it.text.empty()) return out;
   const Eigen::Vector2d at = q + 14 * n;
@@ -368,16 +391,22 @@ std::string SvgFigure::ItemTag(const Item& it, const Frame& f) const {
   os.precision(6);
   const Eigen::Vector2d q = f.Map(it.points[0]);
   if (it.kind == Kind::kPolyline) {
-    os << "<polyline " << (axes_ ? "clip-path=\"url(#plot)\" " : "") << StyleAttr(it.style) << " stroke-linejoin=\"round\" points=\"";
+    os << "<polyline " << (axes_ ? "clip-path=\"url(#plot)\" " : "") << StyleAttr(it.style)
+       << " stroke-linejoin=\"round\" points=\"";
     for (const auto& p : it.points)
       if (p.allFinite()) os << f.Map(p).x() << "," << f.Map(p).y() << " ";
     os << "\"/>\n";
   } else if (it.kind == Kind::kMarker) {
-    os << "<circle cx=\"" << q.x() << "\" cy=\"" << q.y() << "\" r=\"" << it.size << "\" " << StyleAttr(it.style) << "/>\n";
+    os << "<circle cx=\"" << q.x() << "\" cy=\"" << q.y() << "\" r=\"" << it.size << "\" " << StyleAttr(it.style)
+       << "/>\n";
   } else if (it.kind == Kind::kText) {
     const bool flip = q.x() + 4 + TextWidth(it.text, it.size) > width_ - 2;
     const double dx = axes_ ? 4 : 0, dy = axes_ ? 4 : 0;  // without axes: at the point, as the caller placed it
-    os << TextTag(flip ? q.x() - dx : q.x() + dx, q.y() - dy, it.size, flip ? "end" : "start", it.text,
+    os << TextTag(flip ? q.x() - dx : q.x() + dx,
+                  q.y() - dy,
+                  it.size,
+                  flip ? "end" : "start",
+                  it.text,
                   " fill=\"" + it.style.stroke + "\"");
   } else {
     os << EndItem(it, f);
@@ -401,10 +430,12 @@ std::string SvgFigure::Render() const {
   const double step_x =
       NiceStep(equal_aspect_ ? span.maxCoeff() * std::min(f.w, f.h) / std::max(f.w, f.h) : span.x(), tick_count);
   const double step_y = equal_aspect_ ? step_x : NiceStep(span.y(), tick_count);
-  os << LinearTicks(true, f.lo.x(), f.hi.x(), step_x, f.left, f.top, f.w, f.h,
-                    [&](double v) { return f.Map({v, f.lo.y()}).x(); });
-  os << LinearTicks(false, f.lo.y(), f.hi.y(), step_y, f.left, f.top, f.w, f.h,
-                    [&](double v) { return f.Map({f.lo.x(), v}).y(); });
+  os << LinearTicks(true, f.lo.x(), f.hi.x(), step_x, f.left, f.top, f.w, f.h, [&](double v) {
+    return f.Map({v, f.lo.y()}).x();
+  });
+  os << LinearTicks(false, f.lo.y(), f.hi.y(), step_y, f.left, f.top, f.w, f.h, [&](double v) {
+    return f.Map({f.lo.x(), v}).y();
+  });
   os << "<rect x=\"" << f.left << "\" y=\"" << f.top << "\" width=\"" << f.w << "\" height=\"" << f.h
      << "\" fill=\"none\" stroke=\"black\"/>\n";
   os << AxisLabelTags(x_label_, y_label_, f.left, f.top, f.w, f.h);
@@ -455,8 +486,8 @@ LogRange DataRange(const std::vector<LogLogSeries>& series, bool y_axis) {
 
 // Decade ticks 10^k labelled, with 2..9 x 10^k minor ticks; when fewer than two decades fall in
 // the range, the 2x and 5x ticks are labelled too.
-std::string LogTicks(bool x_axis, LogRange r, const std::function<double(double)>& map, double left, double top,
-                     double w, double h) {
+std::string LogTicks(
+    bool x_axis, LogRange r, const std::function<double(double)>& map, double left, double top, double w, double h) {
   std::ostringstream os;
   os.precision(6);
   int decades = 0;
@@ -479,8 +510,10 @@ std::string LogTicks(bool x_axis, LogRange r, const std::function<double(double)
            << "\" stroke=\"black\"/>\n";
       if (!labelled) continue;
       std::ostringstream label;
-      if (major && (d < -2 || d > 3)) label << "1e" << d;
-      else label << m * std::pow(10.0, d);
+      if (major && (d < -2 || d > 3))
+        label << "1e" << d;
+      else
+        label << m * std::pow(10.0, d);
       os << (x_axis ? TextTag(p, top + h + 18, kFont, "middle", label.str())
                     : TextTag(left - 8, p + 4, kFont, "end", label.str()));
     }
@@ -489,8 +522,12 @@ std::string LogTicks(bool x_axis, LogRange r, const std::function<double(double)
 
 }  // namespace
 
-std::string RenderLogLogChart(const std::string& title, const std::string& x_label, const std::string& y_label,
-                              const std::vector<LogLogSeries>& series, double width_px, double height_px) {
+std::string RenderLogLogChart(const std::string& title,
+                              const std::string& x_label,
+                              const std::string& y_label,
+                              const std::vector<LogLogSeries>& series,
+                              double width_px,
+                              double height_px) {
   if (width_px <= 0) width_px = g_figure_size.width > 0 ? g_figure_size.width : 720;
   if (height_px <= 0) height_px = g_figure_size.height > 0 ? g_figure_size.height : 520;
   const LogRange rx = DataRange(series, false), ry = DataRange(series, true);
@@ -519,8 +556,8 @@ std::string RenderLogLogChart(const std::string& title, const std::string& x_lab
     if (s.markers)
       for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
         if (s.x[i] > 0 && s.y[i] > 0)
-          os << "<circle cx=\"" << X(std::log10(s.x[i])) << "\" cy=\"" << Y(std::log10(s.y[i])) << "\" r=\"3.2\" fill=\""
-             << s.style.stroke << "\" stroke=\"" << s.style.stroke << "\"/>\n";
+          os << "<circle cx=\"" << X(std::log10(s.x[i])) << "\" cy=\"" << Y(std::log10(s.y[i]))
+             << "\" r=\"3.2\" fill=\"" << s.style.stroke << "\" stroke=\"" << s.style.stroke << "\"/>\n";
   }
   os << LegendRows(legend_items, left, width_px - right, top + h + 50, &legend_h) << "</svg>\n";
   return os.str();

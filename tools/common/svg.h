@@ -36,8 +36,8 @@ class SvgFigure {
  public:
   struct Style {
     std::string stroke = "black";
-    double width = 1.5;         ///< in pixels
-    std::string dash;           ///< e.g. "6,4"; empty = solid
+    double width = 1.5;  ///< in pixels
+    std::string dash;    ///< e.g. "6,4"; empty = solid
     std::string fill = "none";
   };
   /// How a legend entry's swatch is drawn: kAuto is a point for a filled style, else a line.
@@ -115,7 +115,11 @@ struct LogLogSeries {
   bool markers = true;
 };
 /// width_px/height_px 0: --figure-size, else 720 x 520.
-std::string RenderLogLogChart(const std::string& title, const std::string& x_label, const std::string& y_label,
-                              const std::vector<LogLogSeries>& series, double width_px = 0, double height_px = 0);
+std::string RenderLogLogChart(const std::string& title,
+                              const std::string& x_label,
+                              const std::string& y_label,
+                              const std::vector<LogLogSeries>& series,
+                              double width_px = 0,
+                              double height_px = 0);
 
 }  // namespace plateball::tools

@@ -1,4 +1,3 @@
-#include "common/invalid_input.h"
 #include "common/units.h"
 
 #include <cmath>
@@ -6,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/invalid_input.h"
 #include "common/number_format.h"
 
 namespace plateball::tools {
@@ -14,18 +14,28 @@ namespace {
 enum class Dimension { kTime, kLength, kVelocity };
 
 const std::map<std::string, Dimension>& Dimensions() {
-  static const std::map<std::string, Dimension> kTable = {
-      {"t", Dimension::kTime},          {"t_impulse", Dimension::kTime},
-      {"duration", Dimension::kTime},   {"total_time", Dimension::kTime},
-      {"period", Dimension::kTime},     {"t_end", Dimension::kTime},
-      {"horizon", Dimension::kTime},    {"x", Dimension::kLength},
-      {"x0", Dimension::kLength},       {"x_end", Dimension::kLength},
-      {"p", Dimension::kLength},        {"p_begin", Dimension::kLength},
-      {"p_end", Dimension::kLength},    {"target", Dimension::kLength},
-      {"goal", Dimension::kLength},     {"start", Dimension::kLength},
-      {"length", Dimension::kLength},   {"distance", Dimension::kLength},
-      {"position_error", Dimension::kLength}, {"drift_per_period", Dimension::kLength},
-      {"plate_velocity_change", Dimension::kVelocity}, {"mean_velocity", Dimension::kVelocity}};
+  static const std::map<std::string, Dimension> kTable = {{"t", Dimension::kTime},
+                                                          {"t_impulse", Dimension::kTime},
+                                                          {"duration", Dimension::kTime},
+                                                          {"total_time", Dimension::kTime},
+                                                          {"period", Dimension::kTime},
+                                                          {"t_end", Dimension::kTime},
+                                                          {"horizon", Dimension::kTime},
+                                                          {"x", Dimension::kLength},
+                                                          {"x0", Dimension::kLength},
+                                                          {"x_end", Dimension::kLength},
+                                                          {"p", Dimension::kLength},
+                                                          {"p_begin", Dimension::kLength},
+                                                          {"p_end", Dimension::kLength},
+                                                          {"target", Dimension::kLength},
+                                                          {"goal", Dimension::kLength},
+                                                          {"start", Dimension::kLength},
+                                                          {"length", Dimension::kLength},
+                                                          {"distance", Dimension::kLength},
+                                                          {"position_error", Dimension::kLength},
+                                                          {"drift_per_period", Dimension::kLength},
+                                                          {"plate_velocity_change", Dimension::kVelocity},
+                                                          {"mean_velocity", Dimension::kVelocity}};
   return kTable;
 }
 
@@ -71,7 +81,8 @@ double KineticEnergyOf(const Problem& problem) {
   const PhysicalParameters& q = *problem.physical;
   const double energy = 0.5 * problem.mu * (q.inertia_1 + q.EffectiveMass() * q.radius * q.radius);  // docs/units.md
   if (!std::isfinite(energy))
-    ThrowInvalidInput("initial.mu", FormatNumber(problem.mu),
+    ThrowInvalidInput("initial.mu",
+                      FormatNumber(problem.mu),
                       "with ball.physical the kinetic energy mu (I1 + M r^2) / 2 = " + FormatNumber(energy) +
                           " J is not finite; reduce initial.mu or the inertias");
   return energy;
@@ -93,8 +104,12 @@ void AddPhysicalUnits(const Problem& problem, Json* doc) {
   AddSi(doc, *s);
   const PhysicalParameters& q = *problem.physical;
   (*doc)["units"] = Json{
-      {"physical", Json{{"inertia_1", q.inertia_1}, {"inertia_3", q.inertia_3}, {"ball_mass", q.ball_mass},
-                        {"radius", q.radius}, {"plate_mass", q.plate_mass}}},
+      {"physical",
+       Json{{"inertia_1", q.inertia_1},
+            {"inertia_3", q.inertia_3},
+            {"ball_mass", q.ball_mass},
+            {"radius", q.radius},
+            {"plate_mass", q.plate_mass}}},
       {"normalisation", "I1 = 1, r = 1, time unchanged (section 2.1); mu in s^-2; see docs/units.md"},
       {"scales", Json{{"length_m", s->length_m}, {"time_s", s->time_s}, {"velocity_m_per_s", s->velocity_m_per_s}}},
       {"kinetic_energy_J", KineticEnergyOf(problem)}};

@@ -19,9 +19,10 @@
 
 int main(int argc, char** argv) {
   using namespace plateball::tools;
-  CLI::App app{"isoparallel_solve: shortest path on the plate whose rolling gives a prescribed reorientation "
-               "(section 2.2), and its impulsive approximation (Figure 7); the same as `plateball isoparallel`, "
-               "with the report on standard output"};
+  CLI::App app{
+      "isoparallel_solve: shortest path on the plate whose rolling gives a prescribed reorientation "
+      "(section 2.2), and its impulsive approximation (Figure 7); the same as `plateball isoparallel`, "
+      "with the report on standard output"};
   app.set_version_flag("--version", std::string("isoparallel_solve (plateball) ") + PLATEBALL_VERSION_STRING);
   IsoparallelCliOptions cli;
   cli.program = "isoparallel_solve";

@@ -36,13 +36,14 @@ std::string Csv(const ConvergenceStudy& s, bool timings) {
   std::ostringstream os;
   // The JSON row's keys, nested ones joined by '.' (docs/output_contract.md).
   os << "n,segments," << (timings ? "plan_seconds," : "")
-     << "measured_error,polyline_error,bounds.a_posteriori,bounds.theorem_2_6,bounds.corollary_3,max_pass_miss,status\n";
+     << "measured_error,polyline_error,bounds.a_posteriori,bounds.theorem_2_6,bounds.corollary_3,max_pass_miss,"
+        "status\n";
   for (const auto& r : s.rows) {
     os << r.n << "," << r.segments << ",";
     if (timings) os << FormatNumber(r.plan_seconds) << ",";
-    os << FormatNumber(r.measured_error) << "," << FormatNumber(r.polyline_error) << "," << FormatNumber(r.bound)
-       << "," << FormatNumber(r.theorem_2_6) << "," << FormatNumber(r.corollary_3) << ","
-       << FormatNumber(r.max_pass_miss) << "," << ToString(r.status) << "\n";
+    os << FormatNumber(r.measured_error) << "," << FormatNumber(r.polyline_error) << "," << FormatNumber(r.bound) << ","
+       << FormatNumber(r.theorem_2_6) << "," << FormatNumber(r.corollary_3) << "," << FormatNumber(r.max_pass_miss)
+       << "," << ToString(r.status) << "\n";
   }
   return os.str();
 }
@@ -126,10 +127,15 @@ int RunConverge(const ConvergeCliOptions& o) {
     for (const auto& r : s.rows) {
       Json j{{"n", r.n}, {"segments", r.segments}};
       if (o.timings) j["plan_seconds"] = r.plan_seconds;
-      Append(j, Json{{"status", ToString(r.status)}, {"usable", r.status == PlanStatus::kSuccess}, {"message", r.message},
-                     {"measured_error", r.measured_error}, {"polyline_error", r.polyline_error},
-                     {"bounds", Json{{"a_posteriori", r.bound}, {"theorem_2_6", r.theorem_2_6}, {"corollary_3", r.corollary_3}}},
-                     {"max_pass_miss", r.max_pass_miss}});
+      Append(j,
+             Json{{"status", ToString(r.status)},
+                  {"usable", r.status == PlanStatus::kSuccess},
+                  {"message", r.message},
+                  {"measured_error", r.measured_error},
+                  {"polyline_error", r.polyline_error},
+                  {"bounds",
+                   Json{{"a_posteriori", r.bound}, {"theorem_2_6", r.theorem_2_6}, {"corollary_3", r.corollary_3}}},
+                  {"max_pass_miss", r.max_pass_miss}});
       rows.push_back(std::move(j));
     }
     doc["rows"] = std::move(rows);
@@ -149,15 +155,20 @@ int RunConverge(const ConvergeCliOptions& o) {
 std::function<int()> SetupConverge(CLI::App& sub) {
   auto o = std::make_shared<ConvergeCliOptions>();
   o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
-  sub.add_option("--impulses,--n", o->ns,
+  sub.add_option("--impulses,--n",
+                 o->ns,
                  "distinct numbers of impulses per smooth piece (partition sizes n), e.g. --impulses 16,32,64 "
                  "(default: plan.converge_n, else 16 ... 1024; a uniform partition only; --n: deprecated alias)")
       ->delimiter(',');
   sub.add_option("--format", o->format, "json (default) or csv");
   sub.add_option("--out", o->out, "write the table to this file instead of standard output (\"-\": standard output)");
-  sub.add_option("--svg", o->svg, "draw the log-log chart (error, bound, fitted slope) to this SVG file (\"-\": standard output, with --out FILE)");
+  sub.add_option(
+      "--svg",
+      o->svg,
+      "draw the log-log chart (error, bound, fitted slope) to this SVG file (\"-\": standard output, with --out FILE)");
   AddFigureSizeOption(sub);
-  sub.add_flag("--timings", o->timings,
+  sub.add_flag("--timings",
+               o->timings,
                "also report the wall time of every plan (plan_seconds, time_slope); without it the output is "
                "reproducible byte for byte");
   sub.footer(
@@ -170,7 +181,8 @@ std::function<int()> SetupConverge(CLI::App& sub) {
 }
 
 const CommandRegistrar kRegistrar{
-    {"converge", "convergence study: plan for several n, fit the log-log slope of the error (JSON/CSV, SVG)",
+    {"converge",
+     "convergence study: plan for several n, fit the log-log slope of the error (JSON/CSV, SVG)",
      SetupConverge}};
 
 }  // namespace

@@ -41,7 +41,9 @@ struct IdentifyCliOptions {
   CLI::Option* impulses_opt = nullptr;
 };
 
-[[noreturn]] void TrackError(const std::string& file, const std::string& field, const std::string& value,
+[[noreturn]] void TrackError(const std::string& file,
+                             const std::string& field,
+                             const std::string& value,
                              const std::string& what) {
   ThrowInvalidInput(file + ": " + field, value, what);
 }
@@ -74,9 +76,39 @@ std::vector<std::string> SplitCells(const std::string& line) {
 
 /// The CSV columns: t, x, y required, the rest optional; an orientation (qw, qx, qy, qz) and a
 /// body rate (wx, wy, wz) come with all their columns or none.
-enum CsvColumn { kT, kX, kY, kSigma, kSpin, kSigmaSpin, kQw, kQx, kQy, kQz, kSigmaOrientation, kWx, kWy, kWz, kSigmaBodyRate, kColumns };
-constexpr const char* kCsvNames[kColumns] = {"t",  "x",  "y",  "sigma", "spin", "sigma_spin", "qw", "qx",
-                                             "qy", "qz", "sigma_orientation", "wx", "wy", "wz", "sigma_body_rate"};
+enum CsvColumn {
+  kT,
+  kX,
+  kY,
+  kSigma,
+  kSpin,
+  kSigmaSpin,
+  kQw,
+  kQx,
+  kQy,
+  kQz,
+  kSigmaOrientation,
+  kWx,
+  kWy,
+  kWz,
+  kSigmaBodyRate,
+  kColumns
+};
+constexpr const char* kCsvNames[kColumns] = {"t",
+                                             "x",
+                                             "y",
+                                             "sigma",
+                                             "spin",
+                                             "sigma_spin",
+                                             "qw",
+                                             "qx",
+                                             "qy",
+                                             "qz",
+                                             "sigma_orientation",
+                                             "wx",
+                                             "wy",
+                                             "wz",
+                                             "sigma_body_rate"};
 constexpr const char* kCsvColumnList =
     "t, x, y and optionally sigma, spin, sigma_spin, qw, qx, qy, qz, sigma_orientation, wx, wy, wz and sigma_body_rate";
 
@@ -85,7 +117,9 @@ void RequireGroup(const std::string& file, const int* col, int first, int last, 
   for (int m = first; m <= last; ++m)
     for (int k = first; k <= last; ++k)
       if (col[m] >= 0 && col[k] < 0)
-        TrackError(file, std::string("header column ") + kCsvNames[k], "(missing)",
+        TrackError(file,
+                   std::string("header column ") + kCsvNames[k],
+                   "(missing)",
                    std::string("column ") + kCsvNames[m] + " is given: " + what);
 }
 
@@ -108,13 +142,18 @@ IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
         for (int m = 0; m < kColumns; ++m)
           if (cells[c] == kCsvNames[m]) k = m;
         if (k < 0)
-          TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"",
+          TrackError(file,
+                     "header column " + std::to_string(c),
+                     "\"" + cells[c] + "\"",
                      std::string("unknown column (the columns are ") + kCsvColumnList + ")");
-        if (col[k] >= 0) TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"", "repeated column");
+        if (col[k] >= 0)
+          TrackError(file, "header column " + std::to_string(c), "\"" + cells[c] + "\"", "repeated column");
         col[k] = static_cast<int>(c);
       }
       for (int m = 0; m < 3; ++m)
-        if (col[m] < 0) TrackError(file, std::string("header column ") + kCsvNames[m], "(missing)", "the columns t, x and y are required");
+        if (col[m] < 0)
+          TrackError(
+              file, std::string("header column ") + kCsvNames[m], "(missing)", "the columns t, x and y are required");
       RequireGroup(file, col, kQw, kQz, "an orientation is the unit quaternion qw, qx, qy, qz (all four columns)");
       RequireGroup(file, col, kWx, kWz, "a body rate has the three columns wx, wy, wz");
       if (col[kSigmaOrientation] >= 0 && col[kQw] < 0)
@@ -126,7 +165,10 @@ IdentifyProblem ReadTrackCsv(const std::string& file, const std::string& text) {
     const std::size_t row = p.t.size();
     const std::string r = "[" + std::to_string(row) + "]";
     if (cells.size() != columns.size())
-      TrackError(file, "row" + r, std::to_string(cells.size()) + " cells", "must have " + std::to_string(columns.size()) + " cells like the header");
+      TrackError(file,
+                 "row" + r,
+                 std::to_string(cells.size()) + " cells",
+                 "must have " + std::to_string(columns.size()) + " cells like the header");
     auto cell = [&](int k) { return ParseCell(file, kCsvNames[k] + r, cells[static_cast<std::size_t>(col[k])]); };
     p.t.push_back(cell(kT));
     p.x.emplace_back(cell(kX), cell(kY));
@@ -153,12 +195,23 @@ IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) 
   } catch (const json::exception& e) {
     TrackError(file, "(document)", "(see message)", std::string("malformed JSON: ") + e.what());
   }
-  if (!doc.is_object()) TrackError(file, "(document)", "(not an object)", "must be an object {\"t\": [...], \"x\": [[x, y], ...]}");
-  const char* keys[] = {"t", "x", "sigma", "impulse_times", "spin", "sigma_spin", "orientation", "sigma_orientation", "body_rate",
+  if (!doc.is_object())
+    TrackError(file, "(document)", "(not an object)", "must be an object {\"t\": [...], \"x\": [[x, y], ...]}");
+  const char* keys[] = {"t",
+                        "x",
+                        "sigma",
+                        "impulse_times",
+                        "spin",
+                        "sigma_spin",
+                        "orientation",
+                        "sigma_orientation",
+                        "body_rate",
                         "sigma_body_rate"};
   for (auto it = doc.begin(); it != doc.end(); ++it)
     if (std::find(std::begin(keys), std::end(keys), it.key()) == std::end(keys))
-      TrackError(file, it.key(), "(any)",
+      TrackError(file,
+                 it.key(),
+                 "(any)",
                  "unknown key (a track has t, x and optionally sigma, impulse_times, spin, sigma_spin, orientation, "
                  "sigma_orientation, body_rate and sigma_body_rate)");
   for (const char* key : {"t", "x"})
@@ -178,7 +231,8 @@ IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) 
   auto numbers = [&](const char* key, std::vector<double>* out) {
     if (!doc.contains(key)) return;
     if (!doc[key].is_array()) TrackError(file, key, doc[key].dump(), "must be an array of numbers");
-    for (std::size_t i = 0; i < doc[key].size(); ++i) out->push_back(number(doc[key][i], std::string(key) + "[" + std::to_string(i) + "]"));
+    for (std::size_t i = 0; i < doc[key].size(); ++i)
+      out->push_back(number(doc[key][i], std::string(key) + "[" + std::to_string(i) + "]"));
   };
   numbers("sigma", &p.sigma);
   numbers("spin", &p.spin);
@@ -192,14 +246,18 @@ IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) 
     for (std::size_t i = 0; i < doc[key].size(); ++i) {
       const json& v = doc[key][i];
       const std::string f = std::string(key) + "[" + std::to_string(i) + "]";
-      if (!v.is_array() || v.size() != static_cast<std::size_t>(k)) TrackError(file, f, v.dump(), std::string("must be ") + what);
+      if (!v.is_array() || v.size() != static_cast<std::size_t>(k))
+        TrackError(file, f, v.dump(), std::string("must be ") + what);
       double c[4] = {0, 0, 0, 0};
       for (int m = 0; m < k; ++m) c[m] = number(v[static_cast<std::size_t>(m)], f + "[" + std::to_string(m) + "]");
       push(c);
     }
   };
-  tuples("orientation", 4, "a unit quaternion [w, x, y, z]", [&](const double* c) { p.orientation.emplace_back(c[0], c[1], c[2], c[3]); });
-  tuples("body_rate", 3, "a body rate [wx, wy, wz]", [&](const double* c) { p.body_rate.emplace_back(c[0], c[1], c[2]); });
+  tuples("orientation", 4, "a unit quaternion [w, x, y, z]", [&](const double* c) {
+    p.orientation.emplace_back(c[0], c[1], c[2], c[3]);
+  });
+  tuples(
+      "body_rate", 3, "a body rate [wx, wy, wz]", [&](const double* c) { p.body_rate.emplace_back(c[0], c[1], c[2]); });
   if (doc.contains("impulse_times")) {
     const json& times = doc["impulse_times"];
     if (!times.is_array()) TrackError(file, "impulse_times", times.dump(), "must be an array of times");
@@ -213,11 +271,14 @@ IdentifyProblem ReadTrackJson(const std::string& file, const std::string& text) 
 IdentifyProblem ReadTrack(const std::string& file, const IdentifyCliOptions& o) {
   const std::string text = ReadInputText(file);
   const auto first = text.find_first_not_of(" \t\r\n");
-  IdentifyProblem p = first != std::string::npos && (text[first] == '{' || text[first] == '[') ? ReadTrackJson(file, text)
-                                                                                                 : ReadTrackCsv(file, text);
+  IdentifyProblem p = first != std::string::npos && (text[first] == '{' || text[first] == '[')
+                          ? ReadTrackJson(file, text)
+                          : ReadTrackCsv(file, text);
   if (o.impulses_opt->count() > 0) {
     if (!p.impulse_times.empty())
-      ThrowInvalidInput(CommandLineField("--impulses"), "(set)", "the track file " + file + " has impulse_times already: give them once");
+      ThrowInvalidInput(CommandLineField("--impulses"),
+                        "(set)",
+                        "the track file " + file + " has impulse_times already: give them once");
     p.impulse_times = o.impulses;
   }
   // The library names its field ("impulse_times[0]: value ..."): times from --impulses are named so.
@@ -237,12 +298,14 @@ std::size_t FirstImpulse(const IdentifySummary& s) { return s.frame_fitted ? 8 :
 
 Json ErrorsJson(const IdentifySummary& s) {
   Json j = Json::object();
-  for (int i = 0; i < 5; ++i) j[kIdentifyParameterNames[i]] = FiniteOrNull(s.standard_errors[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < 5; ++i)
+    j[kIdentifyParameterNames[i]] = FiniteOrNull(s.standard_errors[static_cast<std::size_t>(i)]);
   j["x0"] = Json::array({FiniteOrNull(s.standard_errors[5]), FiniteOrNull(s.standard_errors[6])});
   if (s.frame_fitted) j["chi"] = FiniteOrNull(s.standard_errors[7]);
   if (!s.delta_psi.empty()) {
     j["delta_psi"] = Json::array();
-    for (std::size_t k = 0; k < s.delta_psi.size(); ++k) j["delta_psi"].push_back(FiniteOrNull(s.standard_errors[FirstImpulse(s) + k]));
+    for (std::size_t k = 0; k < s.delta_psi.size(); ++k)
+      j["delta_psi"].push_back(FiniteOrNull(s.standard_errors[FirstImpulse(s) + k]));
   }
   return j;
 }
@@ -262,19 +325,28 @@ Json ImpulsesJson(const IdentifySummary& s) {
   Json impulses = Json::array();
   for (std::size_t k = 0; k < s.delta_psi.size(); ++k) {
     const IdentifiedFlight& after = s.flights[k + 1];
-    impulses.push_back(Json{{"t", s.impulse_times[k]}, {"delta_psi", s.delta_psi[k]},
+    impulses.push_back(Json{{"t", s.impulse_times[k]},
+                            {"delta_psi", s.delta_psi[k]},
                             {"delta_psi_error", FiniteOrNull(s.standard_errors[FirstImpulse(s) + k])},
-                            {"angles_after", ToJson(after.angles)}, {"x", ToJson(after.x)}});
+                            {"angles_after", ToJson(after.angles)},
+                            {"x", ToJson(after.x)}});
   }
   return impulses;
 }
 
 Json FitJson(const IdentifySummary& s) {
-  Json j{{"t_ref", s.t_ref}, {"lambda", s.lambda}, {"mu", s.mu}, {"angles", ToJson(s.angles)},
-         {"x0", ToJson(s.x0)}, {"period", s.period}, {"standard_errors", ErrorsJson(s)}};
+  Json j{{"t_ref", s.t_ref},
+         {"lambda", s.lambda},
+         {"mu", s.mu},
+         {"angles", ToJson(s.angles)},
+         {"x0", ToJson(s.x0)},
+         {"period", s.period},
+         {"standard_errors", ErrorsJson(s)}};
   if (std::isfinite(s.lambda_low) || std::isinf(s.lambda_high))
-    j["lambda_interval"] = Json{{"low", s.lambda_low}, {"high", FiniteOrNull(s.lambda_high)},
-                                {"closed", s.lambda_low > 0 && std::isfinite(s.lambda_high)}, {"confidence", 0.95},
+    j["lambda_interval"] = Json{{"low", s.lambda_low},
+                                {"high", FiniteOrNull(s.lambda_high)},
+                                {"closed", s.lambda_low > 0 && std::isfinite(s.lambda_high)},
+                                {"confidence", 0.95},
                                 {"method", s.interval_method}};
   j["identifiability"] = Json{{"lambda_identified", s.lambda_identified},
                               {"lambda_relative_error", FiniteOrNull(s.lambda_relative_error)},
@@ -283,28 +355,42 @@ Json FitJson(const IdentifySummary& s) {
                               {"straight_path", s.straight_path},
                               {"unidentified", s.unidentified}};
   if (!s.delta_psi.empty()) j["impulses"] = ImpulsesJson(s);
-  if (s.frame_fitted) j["orientation"] = Json::array({s.orientation[0], s.orientation[1], s.orientation[2], s.orientation[3]});
+  if (s.frame_fitted)
+    j["orientation"] = Json::array({s.orientation[0], s.orientation[1], s.orientation[2], s.orientation[3]});
   j["correlation"] = CorrelationJson(s);
   j["parameters"] = s.parameters;
   return j;
 }
 
 Json ResidualsJson(const IdentifySummary& s) {
-  Json j{{"samples", s.samples}, {"rms", s.rms_residual}, {"max", s.max_residual}, {"chi_square", s.chi_square},
-         {"sigma", s.sigma}, {"sigma_estimated", s.sigma_estimated}, {"track_spread", s.track_spread}};
+  Json j{{"samples", s.samples},
+         {"rms", s.rms_residual},
+         {"max", s.max_residual},
+         {"chi_square", s.chi_square},
+         {"sigma", s.sigma},
+         {"sigma_estimated", s.sigma_estimated},
+         {"track_spread", s.track_spread}};
   if (!s.fitted_spin.empty()) j["spin"] = Json{{"rms", s.spin_rms_residual}, {"max", s.spin_max_residual}};
-  if (!s.fitted_orientation.empty()) j["orientation"] = Json{{"rms", s.orientation_rms_residual}, {"max", s.orientation_max_residual}};
-  if (!s.fitted_body_rate.empty()) j["body_rate"] = Json{{"rms", s.body_rate_rms_residual}, {"max", s.body_rate_max_residual}};
+  if (!s.fitted_orientation.empty())
+    j["orientation"] = Json{{"rms", s.orientation_rms_residual}, {"max", s.orientation_max_residual}};
+  if (!s.fitted_body_rate.empty())
+    j["body_rate"] = Json{{"rms", s.body_rate_rms_residual}, {"max", s.body_rate_max_residual}};
   return j;
 }
 
 /// The fitted model as problem-file sections (ball, initial) that plan and steer read.
 Json FittedProblemJson(const IdentifySummary& s) {
   Json j{{"ball", Json{{"lambda", s.lambda}}},
-         {"initial", Json{{"theta", s.angles.theta}, {"phi", s.angles.phi}, {"psi", s.angles.psi}, {"mu", s.mu}, {"x0", ToJson(s.x0)}}}};
+         {"initial",
+          Json{{"theta", s.angles.theta},
+               {"phi", s.angles.phi},
+               {"psi", s.angles.psi},
+               {"mu", s.mu},
+               {"x0", ToJson(s.x0)}}}};
   // With the frame fitted: the orientation at t_ref too (its third column is the fitted axis).
   if (s.frame_fitted)
-    j["initial"]["orientation"] = Json{{"quaternion", Json::array({s.orientation[0], s.orientation[1], s.orientation[2], s.orientation[3]})}};
+    j["initial"]["orientation"] =
+        Json{{"quaternion", Json::array({s.orientation[0], s.orientation[1], s.orientation[2], s.orientation[3]})}};
   return j;
 }
 
@@ -333,11 +419,13 @@ SvgFigure PlateFigure(const IdentifyProblem& track, const IdentifySummary& s, do
       const IdentifiedFlight& flight = s.flights[f];
       const double end = f + 1 < s.flights.size() ? s.flights[f + 1].t_start : track.t.back();
       const FreeMotion motion = FreeMotion::FromAngles(BallModel::FromLambda(s.lambda), flight.angles, s.mu, flight.x);
-      const int points = std::max(2, static_cast<int>(kCurvePoints * (end - flight.t_start) / (track.t.back() - track.t.front())));
+      const int points =
+          std::max(2, static_cast<int>(kCurvePoints * (end - flight.t_start) / (track.t.back() - track.t.front())));
       for (int i = 0; i <= points; ++i) curve.push_back(motion.PositionAt((end - flight.t_start) * i / points));
     }
     fig.Polyline(curve, {"#1f77b4", 1.2, "", "none"});
-    fig.Legend(s.flights.size() > 1 ? "fitted free flights between the impulses" : "fitted free motion", {"#1f77b4", 1.2, "", "none"});
+    fig.Legend(s.flights.size() > 1 ? "fitted free flights between the impulses" : "fitted free motion",
+               {"#1f77b4", 1.2, "", "none"});
   }
   return fig;
 }
@@ -370,14 +458,16 @@ SvgFigure FrameResidualFigure(const IdentifyProblem& track, const IdentifySummar
   const bool orientation = !s.fitted_orientation.empty();
   fig.Title(orientation ? "orientation residuals, rms " + Short(s.orientation_rms_residual) + " rad"
                         : "body-rate residuals, rms " + Short(s.body_rate_rms_residual));
-  fig.AxisLabels("t", orientation ? "angle between measured and fitted (rad)" : "measured - fitted (rad per time unit)");
+  fig.AxisLabels("t",
+                 orientation ? "angle between measured and fitted (rad)" : "measured - fitted (rad per time unit)");
   fig.Polyline({{track.t.front(), 0.0}, {track.t.back(), 0.0}}, {"gray", 1.0, "4,3", "none"});
   const char* colours[3] = {"#d62728", "#2ca02c", "#1f77b4"};
   if (orientation) {
     std::vector<Eigen::Vector2d> angle;
     for (std::size_t i = 0; i < track.t.size(); ++i) {
       const Eigen::Vector4d& q = s.fitted_orientation[i];
-      angle.emplace_back(track.t[i], RotationAngle(QuaternionToRotation(track.orientation[i]), QuaternionToRotation(q)));
+      angle.emplace_back(track.t[i],
+                         RotationAngle(QuaternionToRotation(track.orientation[i]), QuaternionToRotation(q)));
     }
     fig.Polyline(angle, {colours[0], 1.0, "", "none"});
     fig.Legend("orientation residual angle", {colours[0], 1.0, "", "none"});
@@ -385,7 +475,8 @@ SvgFigure FrameResidualFigure(const IdentifyProblem& track, const IdentifySummar
   }
   for (int c = 0; c < 3; ++c) {
     std::vector<Eigen::Vector2d> r;
-    for (std::size_t i = 0; i < track.t.size(); ++i) r.emplace_back(track.t[i], track.body_rate[i][c] - s.fitted_body_rate[i][c]);
+    for (std::size_t i = 0; i < track.t.size(); ++i)
+      r.emplace_back(track.t[i], track.body_rate[i][c] - s.fitted_body_rate[i][c]);
     fig.Polyline(r, {colours[c], 1.0, "", "none"});
     fig.Legend(std::string("body rate ") + "xyz"[c] + " residual", {colours[c], 1.0, "", "none"});
   }
@@ -397,7 +488,8 @@ void WriteFigure(const std::string& path, const IdentifyProblem& track, const Id
   const bool fitted = !s.fitted.empty() && s.mu > 0;
   std::vector<std::string> panels{PlateFigure(track, s, radius, fitted).Render()};
   if (fitted) panels.push_back(ResidualFigure(track, s, radius).Render());
-  if (fitted && (!s.fitted_orientation.empty() || !s.fitted_body_rate.empty())) panels.push_back(FrameResidualFigure(track, s).Render());
+  if (fitted && (!s.fitted_orientation.empty() || !s.fitted_body_rate.empty()))
+    panels.push_back(FrameResidualFigure(track, s).Render());
   double height = 0;
   std::string body;
   for (std::string& panel : panels) {
@@ -408,8 +500,9 @@ void WriteFigure(const std::string& path, const IdentifyProblem& track, const Id
     body += panel;
     height += panel_height;
   }
-  WriteOutput(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"" + Short(height) +
-                        "\" viewBox=\"0 0 640 " + Short(height) + "\">\n" + body + "</svg>\n");
+  WriteOutput(path,
+              "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"" + Short(height) +
+                  "\" viewBox=\"0 0 640 " + Short(height) + "\">\n" + body + "</svg>\n");
 }
 
 int RunIdentify(const IdentifyCliOptions& o) {
@@ -419,7 +512,8 @@ int RunIdentify(const IdentifyCliOptions& o) {
   p.source = "(built-in defaults)";
   if (!o.problem.empty()) p = ReadProblemInput(o.problem);
   IdentifyOptions opt;
-  opt.integration = {std::max(p.integration.absolute_tolerance, 1e-13), std::max(p.integration.relative_tolerance, 1e-13),
+  opt.integration = {std::max(p.integration.absolute_tolerance, 1e-13),
+                     std::max(p.integration.relative_tolerance, 1e-13),
                      p.integration.max_steps};
   if (o.problem.empty()) opt.integration = IdentifyOptions().integration;
   if (p.physical) opt.radius = p.physical->radius;
@@ -437,12 +531,20 @@ int RunIdentify(const IdentifyCliOptions& o) {
   doc["integration"] = Json{{"absolute_tolerance", opt.integration.absolute_tolerance},
                             {"relative_tolerance", opt.integration.relative_tolerance},
                             {"max_steps", opt.integration.max_steps}};
-  doc["options"] = Json{{"radius", opt.radius}, {"lambda_min", opt.lambda_min}, {"lambda_max", opt.lambda_max},
+  doc["options"] = Json{{"radius", opt.radius},
+                        {"lambda_min", opt.lambda_min},
+                        {"lambda_max", opt.lambda_max},
                         {"max_lambda_relative_error", opt.max_lambda_relative_error},
-                        {"profile_interval", opt.profile_interval}, {"guess", o.guess}};
-  doc["track"] = Json{{"file", o.track}, {"samples", track.t.size()}, {"t_first", track.t.front()}, {"t_last", track.t.back()},
-                      {"sigma_given", !track.sigma.empty()}, {"spin_given", !track.spin.empty()},
-                      {"orientation_given", !track.orientation.empty()}, {"body_rate_given", !track.body_rate.empty()},
+                        {"profile_interval", opt.profile_interval},
+                        {"guess", o.guess}};
+  doc["track"] = Json{{"file", o.track},
+                      {"samples", track.t.size()},
+                      {"t_first", track.t.front()},
+                      {"t_last", track.t.back()},
+                      {"sigma_given", !track.sigma.empty()},
+                      {"spin_given", !track.spin.empty()},
+                      {"orientation_given", !track.orientation.empty()},
+                      {"body_rate_given", !track.body_rate.empty()},
                       {"impulse_times", track.impulse_times}};
   Append(doc, ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport()));
   const bool fitted = s.status == IdentifyStatus::kIdentified || s.status == IdentifyStatus::kLambdaNotIdentified;
@@ -459,25 +561,33 @@ int RunIdentify(const IdentifyCliOptions& o) {
 
 std::function<int()> SetupIdentify(CLI::App& sub) {
   auto o = std::make_shared<IdentifyCliOptions>();
-  sub.add_option("TRACK", o->track,
-                 "the track: CSV with a header t,x,y[,sigma][,spin,sigma_spin][,qw,qx,qy,qz[,sigma_orientation]]"
-                 "[,wx,wy,wz,sigma_body_rate] or JSON {\"t\", \"x\", \"sigma\", \"impulse_times\", \"spin\", \"sigma_spin\", "
-                 "\"orientation\", \"sigma_orientation\", \"body_rate\", \"sigma_body_rate\"} (\"-\": standard input)")
+  sub.add_option(
+         "TRACK",
+         o->track,
+         "the track: CSV with a header t,x,y[,sigma][,spin,sigma_spin][,qw,qx,qy,qz[,sigma_orientation]]"
+         "[,wx,wy,wz,sigma_body_rate] or JSON {\"t\", \"x\", \"sigma\", \"impulse_times\", \"spin\", \"sigma_spin\", "
+         "\"orientation\", \"sigma_orientation\", \"body_rate\", \"sigma_body_rate\"} (\"-\": standard input)")
       ->required();
-  sub.add_option("PROBLEM.json", o->problem,
+  sub.add_option("PROBLEM.json",
+                 o->problem,
                  "optional problem file: its integration tolerances, ball.physical.radius (a track in metres) and, "
                  "with --guess, its ball.lambda and initial state as the start of the fit");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
   sub.add_option("--svg", o->svg, "draw the track, the fitted motion and the residuals to this SVG file");
-  o->radius_opt = sub.add_option("--radius", o->radius, "the ball's radius in the track's length unit (default 1, or ball.physical.radius)");
-  o->impulses_opt = sub.add_option("--impulses", o->impulses,
-                                    "times of known energy-preserving impulses that separate the track's flights, "
-                                    "comma-separated (T1,T2,...): one delta psi fitted per impulse")
-                       ->delimiter(',');
-  sub.add_flag("--guess", o->guess, "start from PROBLEM.json's ball.lambda and initial state instead of the multi-start");
+  o->radius_opt = sub.add_option(
+      "--radius", o->radius, "the ball's radius in the track's length unit (default 1, or ball.physical.radius)");
+  o->impulses_opt = sub.add_option("--impulses",
+                                   o->impulses,
+                                   "times of known energy-preserving impulses that separate the track's flights, "
+                                   "comma-separated (T1,T2,...): one delta psi fitted per impulse")
+                        ->delimiter(',');
+  sub.add_flag(
+      "--guess", o->guess, "start from PROBLEM.json's ball.lambda and initial state instead of the multi-start");
   sub.add_flag("--no-profile", o->no_profile, "skip the profile-likelihood interval of lambda (faster)");
-  sub.add_option("--threads", o->threads, "threads for the multi-start and the profile (default: the hardware's; "
-                                          "results do not depend on it)");
+  sub.add_option("--threads",
+                 o->threads,
+                 "threads for the multi-start and the profile (default: the hardware's; "
+                 "results do not depend on it)");
   sub.footer(
       "Fits lambda, mu and the state (angles, contact point) at the track's first time to a measured track of\n"
       "the contact point (docs/identify.md); with --impulses (or the JSON track's impulse_times) the flights\n"

@@ -22,14 +22,16 @@ std::function<int()> SetupIsoparallel(CLI::App& sub) {
       "The initial section gives psi and mu; --theta, --phi, --x0, --orientation are not used (the start\n"
       "orientation fixes the axis). Prints JSON (docs/output_contract.md); the report goes to standard error.\n"
       "Example: plateball isoparallel problems/figure7.json --impulses 24 --svg figure7.svg\n"
-      "         plateball isoparallel --goal 2,1 --goal-orientation '{\"axis_angle\": {\"axis\": [0,0,1], \"angle\": 1.2}}'\n"
+      "         plateball isoparallel --goal 2,1 --goal-orientation '{\"axis_angle\": {\"axis\": [0,0,1], \"angle\": "
+      "1.2}}'\n"
       "Exit codes: 0 solved and planned, 2 usage, 3 invalid input, 4 no solution (or the plan failed),\n"
       "5 unreadable/unwritable file.");
   return [o] { return RunIsoparallel(*o); };
 }
 
 const CommandRegistrar kRegistrar{
-    {"isoparallel", "the isoparallel problem: shortest path for a prescribed reorientation, and its impulses (Figure 7)",
+    {"isoparallel",
+     "the isoparallel problem: shortest path for a prescribed reorientation, and its impulses (Figure 7)",
      SetupIsoparallel}};
 
 }  // namespace

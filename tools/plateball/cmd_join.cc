@@ -9,8 +9,8 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
-#include "common/units.h"
 #include "common/progress.h"
+#include "common/units.h"
 #include "plateball/join.h"
 #include "plateball/task_adapters.h"
 
@@ -40,13 +40,14 @@ Json ImpulseToJson(const Impulse& i) {
 Json JoinToJson(const JoinSummary& j) {
   Json out{{"target", ToJson(j.target)}};
   Append(out, ResultJson(ToString(j.status), j.IsSolutionUsable(), j.message, j.BriefReport()));
-  Append(out, Json{{"delta_psi", j.delta_psi},
-           {"t", j.t},
-           {"residual", j.residual},
-           {"iterations", j.iterations},
-           {"initial_guess_residual", j.initial_guess_residual},
-           {"time_limit_K1_distance", j.time_limit},
-           {"jacobian_conditioning", j.jacobian_conditioning}});
+  Append(out,
+         Json{{"delta_psi", j.delta_psi},
+              {"t", j.t},
+              {"residual", j.residual},
+              {"iterations", j.iterations},
+              {"initial_guess_residual", j.initial_guess_residual},
+              {"time_limit_K1_distance", j.time_limit},
+              {"jacobian_conditioning", j.jacobian_conditioning}});
   out["impulse"] = ImpulseToJson(j.impulse);
   out["arrival"] = Json{{"x", ToJson(j.x_after)},
                         {"angles", ToJson(j.angles_after)},
@@ -59,10 +60,13 @@ int RunJoin(const JoinCliOptions& o) {
   CheckOutputPaths({{"--out", o.out}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   std::vector<Eigen::Vector2d> targets;
-  if (!o.targets.empty()) RequireCoordinatesOption("--targets", targets = ParsePointsOption("--targets", o.targets));
-  else if (p.reach) targets = p.reach->targets;
+  if (!o.targets.empty())
+    RequireCoordinatesOption("--targets", targets = ParsePointsOption("--targets", o.targets));
+  else if (p.reach)
+    targets = p.reach->targets;
   if (targets.empty())
-    ThrowInvalidInput(CommandLineField("--targets"), "(missing)",
+    ThrowInvalidInput(CommandLineField("--targets"),
+                      "(missing)",
                       "give targets with --targets X,Y;X,Y or in the file's reach.targets");
   JoinOptions options = JoinSetupFor(p, p.x0).options;
   options.max_iterations = static_cast<int>(RequireIntegerInRange("--max-iterations", o.max_iterations, 1, 10000));

@@ -17,8 +17,8 @@
 #include "common/json_output.h"
 #include "common/number_format.h"
 #include "common/output_file.h"
-#include "common/progress.h"
 #include "common/problem_options.h"
+#include "common/progress.h"
 #include "montecarlo_charts.h"
 #include "montecarlo_ranks.h"
 #include "plateball/monte_carlo.h"
@@ -68,12 +68,13 @@ std::pair<MonteCarloProblem, MonteCarloOptions> BuildStudy(const MonteCarloCliOp
     RequirePartitionSteps("--sweep-n", v, p);
     PlanSetupFor(p, static_cast<int>(v), Option("--sweep-n"));  // an n too small for a closed path
   }
-  mo.sweep_trials = static_cast<int>(RequireIntegerInRange("--sweep-trials", o.sweep_trials, 0, MonteCarloOptions::kMaxTrials));
+  mo.sweep_trials =
+      static_cast<int>(RequireIntegerInRange("--sweep-trials", o.sweep_trials, 0, MonteCarloOptions::kMaxTrials));
   if (!(o.miss_tolerance > 0 && o.miss_tolerance <= 1e6))
     ThrowInvalidInput(Option("--miss-tolerance"), FormatNumber(o.miss_tolerance), "must be a number in (0, 1e6]");
   mo.execution.miss_tolerance = o.miss_tolerance;
-  mo.execution.exact_window = static_cast<int>(
-      RequireIntegerInRange("--exact-window", o.exact_window, 3, ExecutionOptions::kMaxExactWindow));
+  mo.execution.exact_window =
+      static_cast<int>(RequireIntegerInRange("--exact-window", o.exact_window, 3, ExecutionOptions::kMaxExactWindow));
   mo.threads = ThreadsOption(o.threads);
   return {mp, mo};
 }
@@ -94,25 +95,42 @@ Json OptionsJson(const MonteCarloProblem& mp, const MonteCarloOptions& mo, int m
   for (const MonteCarloScenario& s : mp.scenarios) {
     const ErrorModel& e = s.errors;
     scenarios.push_back(Json{{"name", s.name},
-                             {"errors", Json{{"impulse_magnitude", e.impulse_magnitude}, {"impulse_angle", e.impulse_angle},
-                                             {"timing", e.timing}, {"energy_loss", e.energy_loss},
-                                             {"lambda", e.lambda}, {"observation", e.observation},
-                                             {"pulse_duration", e.pulse_duration}, {"pulse_causal", e.pulse_causal}}}});
+                             {"errors",
+                              Json{{"impulse_magnitude", e.impulse_magnitude},
+                                   {"impulse_angle", e.impulse_angle},
+                                   {"timing", e.timing},
+                                   {"energy_loss", e.energy_loss},
+                                   {"lambda", e.lambda},
+                                   {"observation", e.observation},
+                                   {"pulse_duration", e.pulse_duration},
+                                   {"pulse_causal", e.pulse_causal}}}});
   }
-  return Json{{"trials", mp.trials}, {"impulses", main_n}, {"strategies", strategies}, {"scenarios", scenarios},
-              {"sweep_n", mp.sweep_n}, {"sweep_trials", mo.sweep_trials == 0 ? mp.trials : mo.sweep_trials},
-              {"miss_tolerance", mo.execution.miss_tolerance}, {"exact_window", mo.execution.exact_window}};
+  return Json{{"trials", mp.trials},
+              {"impulses", main_n},
+              {"strategies", strategies},
+              {"scenarios", scenarios},
+              {"sweep_n", mp.sweep_n},
+              {"sweep_trials", mo.sweep_trials == 0 ? mp.trials : mo.sweep_trials},
+              {"miss_tolerance", mo.execution.miss_tolerance},
+              {"exact_window", mo.execution.exact_window}};
 }
 
 Json ResultsJson(const MonteCarloProblem& mp, const MonteCarloSummary& s) {
   Json nominal = Json::array(), results = Json::array(), sweeps = Json::array();
   for (const NominalInfo& n : s.nominal)
-    nominal.push_back(Json{{"n", n.n}, {"status", ToString(n.status)}, {"usable", n.status == PlanStatus::kSuccess},
-                           {"message", n.message}, {"orientation_error", n.orientation_error},
-                           {"measured_error", n.measured_error}, {"total_time", n.total_time}});
+    nominal.push_back(Json{{"n", n.n},
+                           {"status", ToString(n.status)},
+                           {"usable", n.status == PlanStatus::kSuccess},
+                           {"message", n.message},
+                           {"orientation_error", n.orientation_error},
+                           {"measured_error", n.measured_error},
+                           {"total_time", n.total_time}});
   for (const MonteCarloCell& c : s.cells) {
-    Json cell{{"n", c.n}, {"scenario", mp.scenarios[static_cast<std::size_t>(c.scenario)].name},
-              {"strategy", ToString(c.strategy)}, {"trials", c.trials}, {"completed", c.completed},
+    Json cell{{"n", c.n},
+              {"scenario", mp.scenarios[static_cast<std::size_t>(c.scenario)].name},
+              {"strategy", ToString(c.strategy)},
+              {"trials", c.trials},
+              {"completed", c.completed},
               {"position_error", DistributionJson(c.position_error)},
               {"orientation_error", DistributionJson(c.orientation_error)},
               {"max_pass_miss", DistributionJson(c.max_pass_miss)},
@@ -124,7 +142,8 @@ Json ResultsJson(const MonteCarloProblem& mp, const MonteCarloSummary& s) {
   for (const SweepSeries& w : s.sweeps) {
     Json rows = Json::array();
     for (std::size_t i = 0; i < w.n.size(); ++i) {
-      Json row{{"n", w.n[i]}, {"median_orientation_error", NullableNumber(w.median_orientation_error[i])},
+      Json row{{"n", w.n[i]},
+               {"median_orientation_error", NullableNumber(w.median_orientation_error[i])},
                {"median_position_error", NullableNumber(w.median_position_error[i])},
                {"plan_orientation_error", w.plan_orientation_error[i]}};
       if (w.Missing(i)) row["missing"] = "no trial completed: left out of slope and local_slopes";
@@ -133,8 +152,11 @@ Json ResultsJson(const MonteCarloProblem& mp, const MonteCarloSummary& s) {
     Json local = Json::array();
     for (const auto& l : w.local_slopes) local.push_back(NullableSlope(l));
     sweeps.push_back(Json{{"scenario", mp.scenarios[static_cast<std::size_t>(w.scenario)].name},
-                          {"strategy", ToString(w.strategy)}, {"rows", rows}, {"slope", NullableSlope(w.slope)},
-                          {"local_slopes", local}, {"plan_slope", NullableSlope(w.plan_slope)}});
+                          {"strategy", ToString(w.strategy)},
+                          {"rows", rows},
+                          {"slope", NullableSlope(w.slope)},
+                          {"local_slopes", local},
+                          {"plan_slope", NullableSlope(w.plan_slope)}});
   }
   Json out = ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport());
   Append(out, Json{{"failed_trials", s.failed_trials}, {"nominal", nominal}, {"results", results}, {"sweep", sweeps}});
@@ -155,16 +177,18 @@ std::string TrialsCsv(const MonteCarloProblem& mp, const std::vector<TrialRecord
 }
 
 int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
-  CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--csv", o.csv}, {"--svg", o.svg},
-                    {"--svg-sweep", o.svg_sweep}},
-                   {{"PROBLEM.json", o.problem.file()}});
+  CheckOutputPaths(
+      {{"--out", o.out.empty() ? "-" : o.out}, {"--csv", o.csv}, {"--svg", o.svg}, {"--svg-sweep", o.svg_sweep}},
+      {{"PROBLEM.json", o.problem.file()}});
   const Ranks ranks;
   // Standard input reaches one process only: under MPI the other ranks would read nothing. Rank 0
   // says so once; the others end with the same exit code in silence.
   if (ranks.size() > 1 && o.problem.file() == "-") {
     if (ranks.rank() != 0) return kExitBadInput;
-    ThrowInvalidInput("PROBLEM.json", "-", "standard input reaches rank 0 only: under MPI (" +
-                                               std::to_string(ranks.size()) + " ranks) give the problem as a file");
+    ThrowInvalidInput("PROBLEM.json",
+                      "-",
+                      "standard input reaches rank 0 only: under MPI (" + std::to_string(ranks.size()) +
+                          " ranks) give the problem as a file");
   }
   const Problem p = o.problem.Load();
   auto [mp, mo] = BuildStudy(o, p);
@@ -172,9 +196,9 @@ int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
     ThrowInvalidInput(Option("--svg-sweep"), o.svg_sweep, "needs --sweep-n");
   const auto start = std::chrono::steady_clock::now();
   // Rank 0 shows the trials of its own share (the ranks' shares differ by at most one trial).
-  const std::string label = ranks.size() > 1 ? "plateball montecarlo (trials of rank 0 of " +
-                                                   std::to_string(ranks.size()) + ")"
-                                             : "plateball montecarlo (trials)";
+  const std::string label = ranks.size() > 1
+                                ? "plateball montecarlo (trials of rank 0 of " + std::to_string(ranks.size()) + ")"
+                                : "plateball montecarlo (trials)";
   Progress progress = ranks.rank() == 0 ? Progress(label, 0) : Progress(label, 0, ProgressMode::kQuiet, false);
   mo.progress = [&progress](long long done, long long) { progress.Update(static_cast<double>(done)); };
   const MonteCarloWork work = [&] {
@@ -199,8 +223,10 @@ int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
   doc["options"] = OptionsJson(mp, mo, work.Ns().front());
   Append(doc, ResultsJson(mp, s));
   if (o.timings)
-    doc["timing"] = Json{{"run_seconds", seconds}, {"seconds_per_trial", seconds / std::max(1.0, double(s.records.size()))},
-                         {"ranks", ranks.size()}, {"threads", mo.threads}};
+    doc["timing"] = Json{{"run_seconds", seconds},
+                         {"seconds_per_trial", seconds / std::max(1.0, double(s.records.size()))},
+                         {"ranks", ranks.size()},
+                         {"threads", mo.threads}};
   WriteJson(doc, o.out);
   if (!o.csv.empty()) WriteOutput(o.csv, TrialsCsv(mp, s.records));
   if (!o.svg.empty()) WriteOutput(o.svg, RenderErrorDistributions(mp, s, work.MainPlan()));
@@ -212,22 +238,29 @@ std::function<int()> SetupMonteCarlo(CLI::App& sub) {
   auto o = std::make_shared<MonteCarloCliOptions>();
   o->problem.Add(sub);
   sub.add_option("--trials", o->trials, "trials per strategy and error scenario (1 ... 10^6, default 100)");
-  sub.add_option("--strategy", o->strategies, "open_loop, feedback, feedback_exact (comma-separated; default open_loop,feedback)")
+  sub.add_option("--strategy",
+                 o->strategies,
+                 "open_loop, feedback, feedback_exact (comma-separated; default open_loop,feedback)")
       ->delimiter(',');
-  sub.add_option("--noise", o->noise,
+  sub.add_option("--noise",
+                 o->noise,
                  "an error scenario KEY=VALUE[,KEY=VALUE] with keys impulse_magnitude, impulse_angle, timing, "
-                 "energy_loss, lambda, observation, pulse_duration, pulse_causal (\"none\": no error); repeat for more scenarios (default "
+                 "energy_loss, lambda, observation, pulse_duration, pulse_causal (\"none\": no error); repeat for more "
+                 "scenarios (default "
                  "impulse_magnitude=1e-3)");
-  o->n_opt = sub.add_option("--impulses,--n", o->n, "impulses of the main plan, overrides plan.partition.n (--n: alias)");
+  o->n_opt =
+      sub.add_option("--impulses,--n", o->n, "impulses of the main plan, overrides plan.partition.n (--n: alias)");
   sub.add_option("--sweep-n", o->sweep_n, "further n for the error against n, e.g. 16,32,128,256")->delimiter(',');
   sub.add_option("--sweep-trials", o->sweep_trials, "trials per cell at the sweep's other n (default: --trials)");
   sub.add_option("--miss-tolerance", o->miss_tolerance, "a pass point farther than this is missed (default 1e-3)");
-  sub.add_option("--exact-window", o->exact_window, "feedback_exact: re-plan exactly while 3 ... W impulses remain (default 12)");
+  sub.add_option(
+      "--exact-window", o->exact_window, "feedback_exact: re-plan exactly while 3 ... W impulses remain (default 12)");
   sub.add_option("--threads", o->threads, "threads per process (default: the hardware's; results do not depend on it)");
   sub.add_option("--out", o->out, "write the JSON summary to this file instead of standard output");
   sub.add_option("--csv", o->csv, "write one line per trial to this CSV file");
   sub.add_option("--svg", o->svg, "draw the distributions of the final errors per strategy (SVG)");
-  sub.add_option("--svg-sweep", o->svg_sweep, "draw the median final error against n, log-log, with the fitted slopes (SVG)");
+  sub.add_option(
+      "--svg-sweep", o->svg_sweep, "draw the median final error against n, log-log, with the fitted slopes (SVG)");
   sub.add_flag("--timings", o->timings, "add the wall time (the output then differs from run to run)");
   sub.footer(
       "Executes the plan of plan.path under seeded errors, trial i of every cell drawing from (seed, i) alone.\n"
@@ -239,7 +272,8 @@ std::function<int()> SetupMonteCarlo(CLI::App& sub) {
 }
 
 const CommandRegistrar kRegistrar{
-    {"montecarlo", "execute a plan many times under seeded errors: open loop, feedback, exact re-solve (JSON, CSV, SVG)",
+    {"montecarlo",
+     "execute a plan many times under seeded errors: open loop, feedback, exact re-solve (JSON, CSV, SVG)",
      SetupMonteCarlo}};
 
 }  // namespace

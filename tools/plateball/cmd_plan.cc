@@ -9,17 +9,17 @@
 #include <vector>
 
 #include "common/actuator_json.h"
-#include "common/exact_output.h"
 #include "common/command_registry.h"
+#include "common/exact_output.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/plan_json.h"
 #include "common/problem_options.h"
-#include "common/units.h"
 #include "common/progress.h"
 #include "common/svg.h"
+#include "common/units.h"
 #include "plateball/execution.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
@@ -46,7 +46,9 @@ struct PlanCliOptions {
 
 // The pulse schedule for a stated error: ChoosePulseDuration's duration (centred pulses, executed open
 // loop against the ideal impulses) and per impulse its window, J and mean force (ActuatorJson).
-Json PulseScheduleJson(const Problem& p, const std::shared_ptr<const NominalPlan>& nominal, double tolerance,
+Json PulseScheduleJson(const Problem& p,
+                       const std::shared_ptr<const NominalPlan>& nominal,
+                       double tolerance,
                        ActuatorRequest* request) {
   const PulseDurationChoice c = ChoosePulseDuration(nominal, tolerance, false);
   request->pulse.duration = c.duration;
@@ -143,8 +145,11 @@ std::string ActiveNote(const RigPlanSummary& r) {
 // checked only (--rig-check-only): the check of the plan as given (CheckPlanRigLimits). A plan the
 // rig cannot execute is the status limits_not_met (not usable). True when the limits are met (or
 // there are none).
-bool AddRigSection(const Problem& p, const PlanSetup& setup, const std::optional<RigPlanSummary>& honoured,
-                   const PlanSummary& plan, Json* doc) {
+bool AddRigSection(const Problem& p,
+                   const PlanSetup& setup,
+                   const std::optional<RigPlanSummary>& honoured,
+                   const PlanSummary& plan,
+                   Json* doc) {
   if (p.rig.Empty() || !plan.IsSolutionUsable()) return true;
   std::string message;
   bool met = false;
@@ -160,7 +165,8 @@ bool AddRigSection(const Problem& p, const PlanSetup& setup, const std::optional
     for (std::size_t i = 0; i < check.violations.size(); ++i) message += (i ? "; " : "") + check.violations[i];
   }
   if (met) {
-    (*doc)["report"] = (*doc)["report"].get<std::string>() + "; rig limits met" + (honoured ? ActiveNote(*honoured) : "");
+    (*doc)["report"] =
+        (*doc)["report"].get<std::string>() + "; rig limits met" + (honoured ? ActiveNote(*honoured) : "");
     return true;
   }
   (*doc)["status"] = "limits_not_met";
@@ -207,8 +213,8 @@ int RunPlan(const PlanCliOptions& o) {
   doc["path"] = Json{{"type", ToString(p.plan->path)}, {"pieces", path.PieceCount()}, {"length", path.Length()}};
   doc["partition"] = Json{{"type", ToString(p.plan->partition)}, {"segments", plan.segments}};
   if (schedule) {
-    doc["pulse_schedule"] = plan.IsSolutionUsable() ? PulseScheduleJson(p, nominal, o.pulse_error, &request)
-                                                    : Json(nullptr);
+    doc["pulse_schedule"] =
+        plan.IsSolutionUsable() ? PulseScheduleJson(p, nominal, o.pulse_error, &request) : Json(nullptr);
     doc["pulse_schedule_reason"] = plan.IsSolutionUsable() ? Json(nullptr) : Json("the plan is not usable");
   }
   const ActuatorContext actuator{p, request, ""};
@@ -223,19 +229,27 @@ int RunPlan(const PlanCliOptions& o) {
 std::function<int()> SetupPlan(CLI::App& sub) {
   auto o = std::make_shared<PlanCliOptions>();
   o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
-  o->n_opt = sub.add_option("--impulses,--n", o->n,
-                            "impulses (partition segments) per smooth piece, overrides plan.partition.n (--n: deprecated alias)");
+  o->n_opt = sub.add_option(
+      "--impulses,--n",
+      o->n,
+      "impulses (partition segments) per smooth piece, overrides plan.partition.n (--n: deprecated alias)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
-  sub.add_option("--svg", o->svg, "draw the plate to this SVG file (planned path dashed, trajectory solid; \"-\": standard output, with --out FILE)");
+  sub.add_option("--svg",
+                 o->svg,
+                 "draw the plate to this SVG file (planned path dashed, trajectory solid; \"-\": standard output, with "
+                 "--out FILE)");
   AddFigureSizeOption(sub);
-  o->pulse_error_opt = sub.add_option("--pulse-error", o->pulse_error,
-                                      "emit a pulse schedule: centred pulses of a duration chosen from the measured "
-                                      "O(D^2) error and verified by executing open loop, ending within this error of the "
-                                      "ideal impulses' (position + rotation angle; \"within\" says whether it did); "
-                                      "the impulses' pulse records use it");
+  o->pulse_error_opt =
+      sub.add_option("--pulse-error",
+                     o->pulse_error,
+                     "emit a pulse schedule: centred pulses of a duration chosen from the measured "
+                     "O(D^2) error and verified by executing open loop, ending within this error of the "
+                     "ideal impulses' (position + rotation angle; \"within\" says whether it did); "
+                     "the impulses' pulse records use it");
   o->actuator.Add(sub, o->pulse_error_opt);
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
-  sub.add_flag("--rig-check-only", o->rig_check_only,
+  sub.add_flag("--rig-check-only",
+               o->rig_check_only,
                "with a rig section: plan the partition as given and only check it against the limits "
                "(default: honour them, refining the partition and sliding its points onto the tick grid)");
   sub.footer(
@@ -251,13 +265,15 @@ std::function<int()> SetupPlan(CLI::App& sub) {
       "limits it cannot change (the path itself outside, shortest interval, impulse bounds) are named in\n"
       "\"rig\": {\"blocking\"} with status limits_not_met. An independent replay checks every limit (\"rig\":\n"
       "{\"check\"}); --rig-check-only plans the partition as given and only checks it.\n"
-      "Exit codes: 0 ok, 2 usage, 3 invalid input (also: friction below a pulse's need), 4 a segment could not be joined\n"
+      "Exit codes: 0 ok, 2 usage, 3 invalid input (also: friction below a pulse's need), 4 a segment could not be "
+      "joined\n"
       "or the plan exceeds the rig's limits, 5 unreadable file.");
   return [o] { return RunPlan(*o); };
 }
 
 const CommandRegistrar kRegistrar{
-    {"plan", "plan the impulses that follow a planned path, with orientations and error bounds (JSON, SVG)",
+    {"plan",
+     "plan the impulses that follow a planned path, with orientations and error bounds (JSON, SVG)",
      SetupPlan}};
 
 }  // namespace

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,9 +19,9 @@
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
-#include "common/units.h"
 #include "common/progress.h"
 #include "common/svg.h"
+#include "common/units.h"
 #include "plateball/free_motion.h"
 #include "plateball/reach.h"
 #include "plateball/task_adapters.h"
@@ -49,19 +49,20 @@ json SummaryJson(const ReachSummary& s) {
   for (const ReachSolution& sol : s.solutions) sols.push_back(SolutionJson(sol));
   json out{{"target", Vec(s.problem.target)}};
   Append(out, ResultJson(ToString(s.status), s.IsSolutionUsable(), s.message, s.BriefReport()));
-  Append(out, json{{"period", s.period},
-           {"horizon", s.horizon},
-           {"solutions", sols},
-           {"closest_approach",
-            {{"distance", s.closest_approach.distance},
-             {"delta_psi", s.closest_approach.delta_psi},
-             {"t", s.closest_approach.t}}},
-           {"counts",
-            {{"candidates", s.candidates},
-             {"refine_iterations", s.refine_iterations},
-             {"tight_evaluations", s.tight_evaluations},
-             {"scan_periods_integrated", s.scan_periods_integrated},
-             {"global_evaluations", s.global_evaluations}}}});
+  Append(out,
+         json{{"period", s.period},
+              {"horizon", s.horizon},
+              {"solutions", sols},
+              {"closest_approach",
+               {{"distance", s.closest_approach.distance},
+                {"delta_psi", s.closest_approach.delta_psi},
+                {"t", s.closest_approach.t}}},
+              {"counts",
+               {{"candidates", s.candidates},
+                {"refine_iterations", s.refine_iterations},
+                {"tight_evaluations", s.tight_evaluations},
+                {"scan_periods_integrated", s.scan_periods_integrated},
+                {"global_evaluations", s.global_evaluations}}}});
   // The paper's first guess (absent when the target is x0: no direction).
   if (std::isfinite(s.drift_guess_delta_psi)) out["drift_guess_delta_psi"] = s.drift_guess_delta_psi;
   return out;
@@ -79,7 +80,8 @@ std::string Short(double v) {
 std::vector<Eigen::Vector2d> ReachPath(const Problem& problem, double s, double t) {
   AngleState a = problem.initial_angles;
   a.psi += s;
-  const FreeMotion m = FreeMotion::FromAngles(problem.model, a, problem.mu, problem.x0, problem.A0, problem.integration);
+  const FreeMotion m =
+      FreeMotion::FromAngles(problem.model, a, problem.mu, problem.x0, problem.A0, problem.integration);
   const int n = std::clamp(static_cast<int>(t / m.Period() * 200.0), 50, 5000);
   std::vector<Eigen::Vector2d> points;
   for (int i = 0; i <= n; ++i) points.push_back(m.PositionAt(t * i / n));
@@ -90,10 +92,15 @@ std::vector<Eigen::Vector2d> ReachPath(const Problem& problem, double s, double 
 // target, later solutions dashed; dashed grey: the closest approach of an unreachable target),
 // each tagged with a number on the curve and its delta psi and t in the legend.
 SvgFigure Figure(const Problem& problem, const std::vector<ReachSummary>& summaries, bool all_solutions) {
-  static const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2"};
+  static const char* kColours[] = {
+      "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2"};
   SvgFigure fig;
   int tag = 0;
-  auto add_path = [&](const Eigen::Vector2d& target, double s, double t, const std::string& colour, bool dashed,
+  auto add_path = [&](const Eigen::Vector2d& target,
+                      double s,
+                      double t,
+                      const std::string& colour,
+                      bool dashed,
                       const std::string& what) {
     const std::vector<Eigen::Vector2d> points = ReachPath(problem, s, t);
     const SvgFigure::Style style{colour, 1.5, dashed ? "6,4" : "", "none"};
@@ -101,7 +108,8 @@ SvgFigure Figure(const Problem& problem, const std::vector<ReachSummary>& summar
     fig.Text(points[points.size() * 11 / 20], std::to_string(++tag), 12, colour);
     fig.Legend(std::to_string(tag) + ": (" + FormatNumber(target.x()) + ", " + FormatNumber(target.y()) + ") " + what +
                    ": Δψ = " + Short(s) + ", t = " + Short(t),
-               style, SvgFigure::Swatch::kLine);
+               style,
+               SvgFigure::Swatch::kLine);
     return CurveDirection(points, true);
   };
   for (std::size_t k = 0; k < summaries.size(); ++k) {
@@ -142,16 +150,19 @@ int RunReach(const ReachCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem problem = o.problem.Load();
   ReachTask task = problem.reach.value_or(ReachTask{});
-  if (o.targets_opt->count() > 0) RequireCoordinatesOption("--targets", task.targets = ParsePointsOption("--targets", o.targets));
+  if (o.targets_opt->count() > 0)
+    RequireCoordinatesOption("--targets", task.targets = ParsePointsOption("--targets", o.targets));
   if (o.horizon_opt->count() > 0) {
     task.horizon_periods = RequirePositiveOption("--horizon-periods", o.horizon_periods);
     if (task.horizon_periods > limits::kMaxHorizonPeriods)
-      ThrowInvalidInput(CommandLineField("--horizon-periods"), FormatNumber(task.horizon_periods),
+      ThrowInvalidInput(CommandLineField("--horizon-periods"),
+                        FormatNumber(task.horizon_periods),
                         "must be <= " + FormatNumber(limits::kMaxHorizonPeriods) + " (as in a problem file)");
   }
   if (task.targets.empty())
     ThrowInvalidInput((o.problem.file().empty() ? std::string(kCommandLine) : o.problem.file()) + ": reach.targets",
-                      "(missing)", "no target; give a problem file with a \"reach\" section or --targets X,Y");
+                      "(missing)",
+                      "no target; give a problem file with a \"reach\" section or --targets X,Y");
   std::vector<ReachSummary> summaries;
   json results = json::array();
   bool all_solved = true;
@@ -160,7 +171,8 @@ int RunReach(const ReachCliOptions& o) {
     ReachSetup setup = ReachSetupFor(problem, target);
     setup.options.horizon_periods = task.horizon_periods;
     summaries.push_back(Reach(setup.problem, setup.options));
-    if (summaries.back().status == ReachStatus::kNumericalFailure) throw std::runtime_error(summaries.back().BriefReport());
+    if (summaries.back().status == ReachStatus::kNumericalFailure)
+      throw std::runtime_error(summaries.back().BriefReport());
     results.push_back(SummaryJson(summaries.back()));
     all_solved = all_solved && summaries.back().IsSolutionUsable();
     progress.Update(static_cast<double>(summaries.size()));
@@ -180,11 +192,17 @@ int RunReach(const ReachCliOptions& o) {
 std::function<int()> SetupReach(CLI::App& sub) {
   auto o = std::make_shared<ReachCliOptions>();
   o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
-  o->targets_opt = sub.add_option("--targets", o->targets, "reach these points \"X1,Y1;X2,Y2;...\" instead of the file's reach.targets");
-  o->horizon_opt = sub.add_option("--horizon-periods", o->horizon_periods,
-                                  "enumerate solutions with t up to this many periods, (0, 1e4] (default: the file's, else 5)");
+  o->targets_opt = sub.add_option(
+      "--targets", o->targets, "reach these points \"X1,Y1;X2,Y2;...\" instead of the file's reach.targets");
+  o->horizon_opt =
+      sub.add_option("--horizon-periods",
+                     o->horizon_periods,
+                     "enumerate solutions with t up to this many periods, (0, 1e4] (default: the file's, else 5)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
-  sub.add_option("--svg", o->svg, "draw the trajectories reaching the targets (like Figure 8) into this SVG file (\"-\": standard output, with --out FILE)");
+  sub.add_option("--svg",
+                 o->svg,
+                 "draw the trajectories reaching the targets (like Figure 8) into this SVG file (\"-\": standard "
+                 "output, with --out FILE)");
   AddFigureSizeOption(sub);
   sub.add_flag("--svg-all", o->svg_all, "draw every solution, not only the earliest (later ones dashed)");
   sub.footer(
@@ -200,7 +218,9 @@ std::function<int()> SetupReach(CLI::App& sub) {
 }
 
 const CommandRegistrar kRegistrar{
-    {"reach", "reach distant points: every (delta psi, t) within a horizon of periods (section 2.3, Figure 8)", SetupReach}};
+    {"reach",
+     "reach distant points: every (delta psi, t) within a horizon of periods (section 2.3, Figure 8)",
+     SetupReach}};
 
 }  // namespace
 }  // namespace plateball::tools

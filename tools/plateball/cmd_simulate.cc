@@ -12,9 +12,9 @@
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
-#include "common/units.h"
 #include "common/progress.h"
 #include "common/sample_table.h"
+#include "common/units.h"
 #include "plateball/free_motion.h"
 #include "plateball/task_adapters.h"
 
@@ -33,8 +33,7 @@ struct SimulateOptions {
 
 int RunSimulate(const SimulateOptions& o) {
   // With --csv only, the JSON document is not written (unless --out names a file).
-  CheckOutputPaths({{"--out", o.out}, {"--csv", o.csv}},
-                   {{"PROBLEM.json", o.problem.file()}});
+  CheckOutputPaths({{"--out", o.out}, {"--csv", o.csv}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
   SimulateTask task = p.simulate.value_or(SimulateTask{});
   if (o.t_end_opt->count() > 0) task.t_end = RequirePositiveOption("--t-end", o.t_end);
@@ -43,19 +42,21 @@ int RunSimulate(const SimulateOptions& o) {
   // free_motion.h evaluates |t| <= 1e12 periods: checked here to name the option.
   const double period = 2.0 * M_PI / std::sqrt(p.mu);
   if (task.t_end > kMaxPeriods * period)
-    ThrowInvalidInput(o.t_end_opt->count() > 0 ? CommandLineField("--t-end") : p.source + ": simulate.t_end",
-                      FormatNumber(task.t_end),
-                      "must be <= 1e12 periods (" + FormatNumber(kMaxPeriods * period) + " at mu = " + FormatNumber(p.mu) + ")");
+    ThrowInvalidInput(
+        o.t_end_opt->count() > 0 ? CommandLineField("--t-end") : p.source + ": simulate.t_end",
+        FormatNumber(task.t_end),
+        "must be <= 1e12 periods (" + FormatNumber(kMaxPeriods * period) + " at mu = " + FormatNumber(p.mu) + ")");
 
   const FreeMotion motion = FreeMotionFor(p);
 
   Json doc = HeaderJson("plateball", "simulate", p, o.problem.file());
   const MotionSample start = motion.At(0.0);
   Json initial = InitialJson(p);
-  Append(initial, Json{{"orientation", ToJson(motion.start().A0)},
-                       {"z", ToJson(motion.start().state.z)},
-                       {"omega", ToJson(motion.start().state.omega)},
-                       {"energy", start.energy}});
+  Append(initial,
+         Json{{"orientation", ToJson(motion.start().A0)},
+              {"z", ToJson(motion.start().state.z)},
+              {"omega", ToJson(motion.start().state.omega)},
+              {"energy", start.energy}});
   doc["initial"] = std::move(initial);
   doc["period"] = motion.Period();
   doc["drift_per_period"] = ToJson(motion.DriftPerPeriod());
@@ -65,7 +66,9 @@ int RunSimulate(const SimulateOptions& o) {
   AddPhysicalUnits(p, &doc);
   // Streamed (sample_table.h): sample i at t_end i/(n-1), as FreeMotion::Sample, one at a time.
   const auto n = static_cast<std::size_t>(task.samples);
-  const SampleSource sample = [&](std::size_t i) { return ToJson(motion.At(task.t_end * static_cast<double>(i) / static_cast<double>(n - 1))); };
+  const SampleSource sample = [&](std::size_t i) {
+    return ToJson(motion.At(task.t_end * static_cast<double>(i) / static_cast<double>(n - 1)));
+  };
   const bool json = o.csv.empty() || !IsStandardOutput(o.out);
   if (!o.csv.empty()) {
     Progress progress(json ? "plateball simulate (CSV)" : "plateball simulate", static_cast<double>(n));
@@ -82,10 +85,13 @@ std::function<int()> SetupSimulate(CLI::App& sub) {
   auto o = std::make_shared<SimulateOptions>();
   o->problem.Add(sub, ProblemOptions::Seed::kNone);  // deterministic: no --seed
   o->t_end_opt = sub.add_option("--t-end", o->t_end, "end time > 0 (default: the file's simulate.t_end, else 10)");
-  o->samples_opt = sub.add_option("--samples", o->samples,
-                                  "number of equally spaced samples on [0, t-end], 2 ... 100000 (default: the file's, else 101)");
+  o->samples_opt =
+      sub.add_option("--samples",
+                     o->samples,
+                     "number of equally spaced samples on [0, t-end], 2 ... 100000 (default: the file's, else 101)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output");
-  sub.add_option("--csv", o->csv,
+  sub.add_option("--csv",
+                 o->csv,
                  "write the samples as CSV to this file (\"-\": standard output); the JSON is then written only "
                  "with --out FILE");
   sub.footer(
@@ -99,7 +105,9 @@ std::function<int()> SetupSimulate(CLI::App& sub) {
 }
 
 const CommandRegistrar kRegistrar{
-    {"simulate", "sample the free rolling of the ball (angles, z, x, orientation, omega, energy) as JSON", SetupSimulate}};
+    {"simulate",
+     "sample the free rolling of the ball (angles, z, x, orientation, omega, energy) as JSON",
+     SetupSimulate}};
 
 }  // namespace
 }  // namespace plateball::tools

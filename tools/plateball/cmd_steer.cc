@@ -2,8 +2,8 @@
 // steer section's goal position and orientation exactly, along a reference (the plan section's
 // path, else the shortest isoparallel path of the isoparallel section), as JSON and optionally
 // the plate as SVG (reference dashed, exact impulsive trajectory solid).
-#include <memory>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -16,9 +16,9 @@
 #include "common/json_output.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
-#include "common/units.h"
 #include "common/progress.h"
 #include "common/svg.h"
+#include "common/units.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/fewest_impulses.h"
 #include "plateball/isoparallel.h"
@@ -62,13 +62,16 @@ std::string FileFieldsOfSearch(const std::string& message, const Problem& p, con
 int RunFewest(const SteerCliOptions& o, const Problem& p) {
   FewestImpulsesSetup setup = FewestImpulsesSetupFor(p);
   if (p.steer && p.steer->objective == ArrivalObjective::kTotalImpulse)
-    ThrowInvalidInput(o.problem.file() + ": steer.objective", "\"impulse\"",
+    ThrowInvalidInput(o.problem.file() + ": steer.objective",
+                      "\"impulse\"",
                       "the fewest-impulse search ranks the arrivals of a count by total time (the Pareto table "
                       "reports each count's total impulse): use \"fewest\" or \"time\"");
   using O = FewestImpulsesOptions;
   if (o.max_impulses_opt->count() > 0)
-    setup.options.max_impulses = static_cast<int>(RequireIntegerInRange("--max-impulses", o.max_impulses, 1, O::kMaxImpulses));
-  if (o.starts_opt->count() > 0) setup.options.starts = static_cast<int>(RequireIntegerInRange("--starts", o.starts, 1, O::kMaxStarts));
+    setup.options.max_impulses =
+        static_cast<int>(RequireIntegerInRange("--max-impulses", o.max_impulses, 1, O::kMaxImpulses));
+  if (o.starts_opt->count() > 0)
+    setup.options.starts = static_cast<int>(RequireIntegerInRange("--starts", o.starts, 1, O::kMaxStarts));
   setup.problem.stop_at_goal = setup.problem.stop_at_goal || o.stop_at_goal;
   setup.problem.start_at_rest = setup.problem.start_at_rest || o.start_at_rest;
   const ActuatorContext actuator{p, o.actuator.Request(), ""};
@@ -95,8 +98,8 @@ int RunFewest(const SteerCliOptions& o, const Problem& p) {
     title.precision(3);
     title << (p.name.empty() ? std::string("steer") : p.name) << ": fewest impulses n = " << f->impulses
           << ", T = " << f->total_time << ", path length " << f->path_length;
-    DrawExactArrival(ReplayProblemFor(setup.problem, f->impulses), f->plan, title.str(), o.svg,
-                     "straight line to the goal");
+    DrawExactArrival(
+        ReplayProblemFor(setup.problem, f->impulses), f->plan, title.str(), o.svg, "straight line to the goal");
   }
   return s.IsSolutionUsable() ? kExitSuccess : kExitNoSolution;
 }
@@ -108,7 +111,8 @@ int RunSteer(const SteerCliOptions& o) {
     return RunFewest(o, p);
   for (const CLI::Option* search : {o.max_impulses_opt, o.starts_opt})  // options of the search only
     if (search->count() > 0)
-      ThrowInvalidInput(CommandLineField(search->get_name()), search->as<std::string>(),
+      ThrowInvalidInput(CommandLineField(search->get_name()),
+                        search->as<std::string>(),
                         "needs --fewest-impulses (or steer.fewest in the problem file)");
   const int n = o.impulses_opt->count() == 0
                     ? 0
@@ -124,8 +128,8 @@ int RunSteer(const SteerCliOptions& o) {
     const IsoparallelSetup iso = IsoparallelSetupFor(p);
     const IsoparallelSummary solved = SolveIsoparallel(iso.problem, iso.options);
     if (!solved.IsSolutionUsable()) throw std::runtime_error("isoparallel reference: " + solved.BriefReport());
-    const ReferenceChoice choice = p.rig.Empty() ? ReferenceChoice{}
-                                                 : ChooseIsoparallelReference(solved, p.rig, solved.Shortest().start);
+    const ReferenceChoice choice =
+        p.rig.Empty() ? ReferenceChoice{} : ChooseIsoparallelReference(solved, p.rig, solved.Shortest().start);
     setup = ExactArrivalSetupFor(p, solved.solutions[choice.index], n, n_field);
     reference = choice.index == 0 ? "isoparallel shortest path"
                                   : "isoparallel solution " + std::to_string(choice.index) +
@@ -164,8 +168,8 @@ int RunSteer(const SteerCliOptions& o) {
   if (!o.svg.empty()) {
     std::ostringstream title;
     title.precision(3);
-    title << (p.name.empty() ? std::string("steer") : p.name) << ": n = " << s.impulses.size()
-          << ", arrival errors " << replay.position_error << ", " << replay.orientation_error << " rad";
+    title << (p.name.empty() ? std::string("steer") : p.name) << ": n = " << s.impulses.size() << ", arrival errors "
+          << replay.position_error << ", " << replay.orientation_error << " rad";
     DrawExactArrival(setup.problem, s, title.str(), o.svg);
   }
   return s.IsSolutionUsable() && (!check || check->passed) ? kExitSuccess : kExitNoSolution;
@@ -180,8 +184,11 @@ std::function<int()> SetupSteer(CLI::App& sub) {
   AddFigureSizeOption(sub);
   sub.add_flag("--summary-only", o->summary_only, "omit the per-impulse records");
   sub.add_flag("--fewest-impulses", o->fewest, "search the fewest impulses that reach the goal exactly (Pareto table)");
-  o->max_impulses_opt = sub.add_option("--max-impulses", o->max_impulses, "largest impulse count the search tries (overrides steer.fewest.max_impulses)");
-  o->starts_opt = sub.add_option("--starts", o->starts, "starts per impulse count of the search (overrides steer.fewest.starts)");
+  o->max_impulses_opt = sub.add_option("--max-impulses",
+                                       o->max_impulses,
+                                       "largest impulse count the search tries (overrides steer.fewest.max_impulses)");
+  o->starts_opt =
+      sub.add_option("--starts", o->starts, "starts per impulse count of the search (overrides steer.fewest.starts)");
   sub.add_flag("--stop-at-goal", o->stop_at_goal, "arrive and stop: one more impulse brings omega to zero at the goal");
   sub.add_flag("--start-at-rest", o->start_at_rest, "the ball starts at rest (the first impulse sets it rolling)");
   o->actuator.Add(sub);
@@ -208,8 +215,7 @@ std::function<int()> SetupSteer(CLI::App& sub) {
 }
 
 const CommandRegistrar kRegistrar{
-    {"steer", "impulses that reach a goal position and orientation exactly along a reference (JSON, SVG)",
-     SetupSteer}};
+    {"steer", "impulses that reach a goal position and orientation exactly along a reference (JSON, SVG)", SetupSteer}};
 
 }  // namespace
 }  // namespace plateball::tools

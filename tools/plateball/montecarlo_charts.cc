@@ -25,8 +25,10 @@ std::string Decade(int d) {
 
 std::string Short(double v) {
   char buf[32];
-  if (v == std::floor(v) && std::abs(v) < 1e7) std::snprintf(buf, sizeof buf, "%.0f", v);
-  else std::snprintf(buf, sizeof buf, "%.3g", v);
+  if (v == std::floor(v) && std::abs(v) < 1e7)
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  else
+    std::snprintf(buf, sizeof buf, "%.3g", v);
   return buf;
 }
 
@@ -100,7 +102,8 @@ class LogChart {
   void Draw(const ChartSeries& s, SvgFigure* fig) const {
     std::vector<Eigen::Vector2d> pts;
     for (std::size_t i = 0; i < s.x.size(); ++i)
-      if (s.x[i] > 0 && s.y[i] > 0 && std::isfinite(s.x[i]) && std::isfinite(s.y[i])) pts.push_back(Map(s.x[i], s.y[i]));
+      if (s.x[i] > 0 && s.y[i] > 0 && std::isfinite(s.x[i]) && std::isfinite(s.y[i]))
+        pts.push_back(Map(s.x[i], s.y[i]));
     if (pts.size() >= 2) fig->Polyline(pts, s.style);
     if (s.markers)
       for (const auto& p : pts) fig->Marker(p, 3.2, {s.style.stroke, 1, "", s.style.stroke});
@@ -114,24 +117,28 @@ class LogChart {
 
 std::string Color(const MonteCarloProblem& p, int scenario, ExecutionStrategy s) {
   static const char* kStrategy[] = {"#c0392b", "#1f5fbf", "#1e8449"};
-  static const char* kPalette[] = {"#c0392b", "#1f5fbf", "#1e8449", "#8e44ad", "#d68910", "#17a589", "#7f8c8d", "#2c3e50"};
+  static const char* kPalette[] = {
+      "#c0392b", "#1f5fbf", "#1e8449", "#8e44ad", "#d68910", "#17a589", "#7f8c8d", "#2c3e50"};
   if (p.scenarios.size() == 1) return kStrategy[static_cast<int>(s)];
-  const std::size_t k = static_cast<std::size_t>(scenario) * p.strategies.size() +
-                        static_cast<std::size_t>(std::find(p.strategies.begin(), p.strategies.end(), s) - p.strategies.begin());
+  const std::size_t k =
+      static_cast<std::size_t>(scenario) * p.strategies.size() +
+      static_cast<std::size_t>(std::find(p.strategies.begin(), p.strategies.end(), s) - p.strategies.begin());
   return kPalette[k % 8];
 }
 
 // Error against n: the colour names the scenario (the strategy when there is one scenario), the
 // dash the strategy (open loop dashed, feedback solid, exact re-solve dotted).
 SvgFigure::Style SweepStyle(const MonteCarloProblem& p, int scenario, ExecutionStrategy s) {
-  static const char* kPalette[] = {"#c0392b", "#1f5fbf", "#1e8449", "#8e44ad", "#d68910", "#17a589", "#7f8c8d", "#2c3e50"};
+  static const char* kPalette[] = {
+      "#c0392b", "#1f5fbf", "#1e8449", "#8e44ad", "#d68910", "#17a589", "#7f8c8d", "#2c3e50"};
   static const char* kDash[] = {"8,4", "", "2,3"};
   const std::string color = p.scenarios.size() == 1 ? Color(p, scenario, s) : kPalette[scenario % 8];
   return {color, 1.8, kDash[static_cast<int>(s)], "none"};
 }
 
 std::string CellName(const MonteCarloProblem& p, int scenario, ExecutionStrategy s) {
-  return ToString(s) + (p.scenarios.size() > 1 ? " (" + p.scenarios[static_cast<std::size_t>(scenario)].name + ")" : "");
+  return ToString(s) +
+         (p.scenarios.size() > 1 ? " (" + p.scenarios[static_cast<std::size_t>(scenario)].name + ")" : "");
 }
 
 // P(value > x) at the sorted values: the empirical survival function.
@@ -148,7 +155,8 @@ ChartSeries Survival(std::vector<double> v, const std::string& label, const SvgF
 
 }  // namespace
 
-std::string RenderErrorDistributions(const MonteCarloProblem& problem, const MonteCarloSummary& summary,
+std::string RenderErrorDistributions(const MonteCarloProblem& problem,
+                                     const MonteCarloSummary& summary,
                                      const NominalPlan& plan) {
   std::vector<ChartSeries> series;
   const int n = summary.cells.empty() ? 0 : summary.cells.front().n;
@@ -165,10 +173,11 @@ std::string RenderErrorDistributions(const MonteCarloProblem& problem, const Mon
       series.push_back({name + ": no trial completed", {}, {}, {color, 1.8, "", "none"}, false});
       continue;
     }
-    series.push_back(Survival(ori, name + ": orientation error (rad), median " + Short(c.orientation_error->median),
+    series.push_back(Survival(ori,
+                              name + ": orientation error (rad), median " + Short(c.orientation_error->median),
                               {color, 1.8, "", "none"}));
-    series.push_back(Survival(pos, name + ": position error, median " + Short(c.position_error->median),
-                              {color, 1.4, "6,4", "none"}));
+    series.push_back(Survival(
+        pos, name + ": position error, median " + Short(c.position_error->median), {color, 1.4, "6,4", "none"}));
   }
   const double floor_p = 1.0 / std::max(1, problem.trials);
   series.push_back({"plan without errors: orientation error " + Short(plan.plan_orientation_error) + " rad",
@@ -176,10 +185,10 @@ std::string RenderErrorDistributions(const MonteCarloProblem& problem, const Mon
                     {floor_p, 1.0},
                     {"black", 1.2, "2,3", "none"},
                     false});
-  return LogChart(series, {}).Render("Final errors, n = " + std::to_string(n) + ", " + std::to_string(problem.trials) +
-                                         " trials per strategy",
-                                     "final error e (orientation: rad; position: ball radii)",
-                                     "P(error > e)");
+  return LogChart(series, {})
+      .Render("Final errors, n = " + std::to_string(n) + ", " + std::to_string(problem.trials) + " trials per strategy",
+              "final error e (orientation: rad; position: ball radii)",
+              "P(error > e)");
 }
 
 std::string RenderErrorAgainstN(const MonteCarloProblem& problem, const MonteCarloSummary& summary) {
@@ -205,10 +214,15 @@ std::string RenderErrorAgainstN(const MonteCarloProblem& problem, const MonteCar
   if (!summary.sweeps.empty()) {
     const SweepSeries& w = summary.sweeps.front();
     series.push_back({"plan without errors (Theorem 2.6), slope " + (w.plan_slope ? Short(*w.plan_slope) : "none"),
-                      ticks, w.plan_orientation_error, {"black", 2.4, "1,3", "none"}, true});
+                      ticks,
+                      w.plan_orientation_error,
+                      {"black", 2.4, "1,3", "none"},
+                      true});
   }
-  return LogChart(series, ticks).Render("Final orientation error against the number of impulses n",
-                                        "impulses n", "median final orientation error (rad)");
+  return LogChart(series, ticks)
+      .Render("Final orientation error against the number of impulses n",
+              "impulses n",
+              "median final orientation error (rad)");
 }
 
 }  // namespace plateball::tools

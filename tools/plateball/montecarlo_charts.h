@@ -11,7 +11,8 @@ namespace plateball::tools {
 
 /// Survival functions P(error > e) of the final orientation error (solid) and position error
 /// (dashed) at the main n, per scenario and strategy, log-log; the plan's own error as a dotted line.
-std::string RenderErrorDistributions(const MonteCarloProblem& problem, const MonteCarloSummary& summary,
+std::string RenderErrorDistributions(const MonteCarloProblem& problem,
+                                     const MonteCarloSummary& summary,
                                      const NominalPlan& plan);
 
 /// Median final orientation error against n per scenario and strategy with the fitted log-log

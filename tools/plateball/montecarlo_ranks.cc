@@ -94,8 +94,7 @@ std::vector<TrialRecord> Ranks::Gather(const std::vector<TrialRecord>& local) co
   }
   if (total > 2'000'000'000LL) throw std::runtime_error("MPI gather: too many records for one message");
   std::vector<double> all(rank_ == 0 ? static_cast<std::size_t>(total) : 0);
-  MPI_Gatherv(send.data(), mine, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, 0,
-              MPI_COMM_WORLD);
+  MPI_Gatherv(send.data(), mine, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
   std::vector<TrialRecord> out;
   for (std::size_t i = 0; i < all.size(); i += kRecordDoubles) out.push_back(Unpack(&all[i]));
   return out;

@@ -3,12 +3,12 @@
 // export writes the machine as MJCF and the pulse schedule beside it; replay runs the plan in MuJoCo
 // and reports how far the engine's ball ends from the plan. `rig loop PROBLEM.json` runs the
 // real-time controller with the twin as its plant (rig/loop_command.h).
+#include <mujoco/mujoco.h>
+
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
-
-#include <mujoco/mujoco.h>
 
 #include "common/actuator_json.h"
 #include "common/command_registry.h"
@@ -46,9 +46,12 @@ rig::ReplayOptions ReplayOptionsOf(const RigCliOptions& o) {
   if (!(std::isfinite(o.dt) && o.dt > 0 && o.dt <= 0.1))
     ThrowInvalidInput(CommandLineField("--dt"), FormatNumber(o.dt), "must be in (0, 0.1] s");
   if (!(std::isfinite(o.pulse_duration) && o.pulse_duration >= 0))
-    ThrowInvalidInput(CommandLineField("--pulse-duration"), FormatNumber(o.pulse_duration), "must be finite and >= 0 s (0: ideal velocity jumps)");
+    ThrowInvalidInput(CommandLineField("--pulse-duration"),
+                      FormatNumber(o.pulse_duration),
+                      "must be finite and >= 0 s (0: ideal velocity jumps)");
   if (o.causal && o.pulse_duration == 0)
-    ThrowInvalidInput(CommandLineField("--pulse-causal"), "true", "needs --pulse-duration > 0 (ideal jumps have no window)");
+    ThrowInvalidInput(
+        CommandLineField("--pulse-causal"), "true", "needs --pulse-duration > 0 (ideal jumps have no window)");
   return r;
 }
 
@@ -64,7 +67,8 @@ auto WithOptionNames(F f) {
     return f();
   } catch (const std::invalid_argument& e) {
     std::string m = e.what();
-    if (m.rfind("pulse_duration:", 0) == 0) m = CommandLineField("--pulse-duration") + m.substr(std::string("pulse_duration").size());
+    if (m.rfind("pulse_duration:", 0) == 0)
+      m = CommandLineField("--pulse-duration") + m.substr(std::string("pulse_duration").size());
     throw std::invalid_argument(m);
   }
 }
@@ -83,22 +87,23 @@ Json ScheduleJson(const RigCliOptions& o, const rig::RigPlan& plan, const std::s
   doc["schedule"] = schedule_file;
   doc["settings"] = TwinSettingsJson(ReplayOptionsOf(o).settings);
   doc["pulse_duration"] = D;
-  doc["pulse_alignment"] = D > 0 ? Json(PulseAlignmentName(o.causal ? PulseAlignment::kCausal : PulseAlignment::kCentred))
-                                 : Json(nullptr);
-  doc["start"] = Json{{"t", 0.0}, {"x0", ToJson(plan.x0)}, {"orientation", ToJson(plan.A0)},
-                      {"omega", ToJson(plan.start.omega)}};
+  doc["pulse_alignment"] =
+      D > 0 ? Json(PulseAlignmentName(o.causal ? PulseAlignment::kCausal : PulseAlignment::kCentred)) : Json(nullptr);
+  doc["start"] =
+      Json{{"t", 0.0}, {"x0", ToJson(plan.x0)}, {"orientation", ToJson(plan.A0)}, {"omega", ToJson(plan.start.omega)}};
   Json pulses = Json::array();
   for (std::size_t k = 0; k < plan.impulses.size(); ++k) {
     const rig::RigImpulse& i = plan.impulses[k];
     ActuatorRequest request;  // the engine's friction is checked by CheckPulseFriction
     request.has_pulse = D > 0;
     if (D > 0) request.pulse.duration = D;
-    Json j{{"k", k},
-           {"t_impulse", i.t},
-           {"z", ToJson(i.z)},
-           {"delta_omega", ToJson(i.delta_omega)},
-           {"omega_after", ToJson(i.omega_after)},
-           {"actuator", ActuatorJson(plan.problem, i.z, i.delta_omega, request, "impulses[" + std::to_string(k) + "]")}};
+    Json j{
+        {"k", k},
+        {"t_impulse", i.t},
+        {"z", ToJson(i.z)},
+        {"delta_omega", ToJson(i.delta_omega)},
+        {"omega_after", ToJson(i.omega_after)},
+        {"actuator", ActuatorJson(plan.problem, i.z, i.delta_omega, request, "impulses[" + std::to_string(k) + "]")}};
     const double start = o.causal ? i.t : i.t - D / 2;
     if (D > 0) j["window"] = Json::array({start, start + D});
     pulses.push_back(std::move(j));
@@ -139,46 +144,64 @@ int RunReplay(const RigCliOptions& o) {
   const rig::PlannedTrajectory reference(plan);
   const rig::ReplayReport r = WithOptionNames([&] { return rig::ReplayInTwin(plan, reference, options); });
   Json doc = HeaderJson("plateball", "rig_replay", plan.problem, plan.problem.source);
-  doc["result"] = Json{{"file", o.result}, {"command", plan.command}, {"impulse_count", plan.impulses.size()},
+  doc["result"] = Json{{"file", o.result},
+                       {"command", plan.command},
+                       {"impulse_count", plan.impulses.size()},
                        {"total_time", plan.t_end}};
   doc["settings"] = TwinSettingsJson(options.settings);
-  doc["execution"] = Json{{"kind", o.pulse_duration == 0 ? "ideal_jumps" : o.causal ? "causal_pulses" : "centred_pulses"},
+  doc["execution"] = Json{{"kind",
+                           o.pulse_duration == 0 ? "ideal_jumps"
+                           : o.causal            ? "causal_pulses"
+                                                 : "centred_pulses"},
                           {"pulse_duration", o.pulse_duration}};
-  doc["replay"] = Json{{"t_begin", r.t_begin},
-                       {"t_end", r.t_end},
-                       {"steps", r.steps},
-                       {"position_error", r.position_error},
-                       {"orientation_error", r.orientation_error},
-                       {"energy", Json{{"planned", r.energy_planned}, {"engine", r.energy_engine},
-                                       {"relative_error", r.energy_error}}},
-                       {"max_slip_speed", r.max_slip_speed},
-                       {"max_spin_rate", r.max_spin_rate}};
+  doc["replay"] = Json{
+      {"t_begin", r.t_begin},
+      {"t_end", r.t_end},
+      {"steps", r.steps},
+      {"position_error", r.position_error},
+      {"orientation_error", r.orientation_error},
+      {"energy", Json{{"planned", r.energy_planned}, {"engine", r.energy_engine}, {"relative_error", r.energy_error}}},
+      {"max_slip_speed", r.max_slip_speed},
+      {"max_spin_rate", r.max_spin_rate}};
   AddPhysicalUnits(plan.problem, &doc);
   WriteJson(doc, o.out);
   return kExitSuccess;
 }
 
 void AddCommon(CLI::App& sub, RigCliOptions& o) {
-  sub.add_option("result", o.result, "a result of `plateball plan`, `steer` or `isoparallel` (with its per-impulse records) whose problem has ball.physical")
+  sub.add_option("result",
+                 o.result,
+                 "a result of `plateball plan`, `steer` or `isoparallel` (with its per-impulse records) whose problem "
+                 "has ball.physical")
       ->required();
   sub.add_option("--dt", o.dt, "the engine's RK4 timestep in s (default 1e-3)");
-  sub.add_option("--pulse-duration", o.pulse_duration,
-                 "pulse duration D in s: force J/D on the plate over [t_k - D/2, t_k + D/2] (default 0: ideal velocity jumps)");
-  sub.add_flag("--pulse-causal", o.causal, "with --pulse-duration: causal pulses over [t_k, t_k + D] (error O(D)) instead of centred (O(D^2))");
+  sub.add_option(
+      "--pulse-duration",
+      o.pulse_duration,
+      "pulse duration D in s: force J/D on the plate over [t_k - D/2, t_k + D/2] (default 0: ideal velocity jumps)");
+  sub.add_flag("--pulse-causal",
+               o.causal,
+               "with --pulse-duration: causal pulses over [t_k, t_k + D] (error O(D)) instead of centred (O(D^2))");
 }
 
 std::function<int()> SetupRig(CLI::App& sub) {
   auto o = std::make_shared<RigCliOptions>();
   sub.require_subcommand(1);
-  o->export_cmd = sub.add_subcommand("export", "write the machine of a plan as MuJoCo MJCF and its pulse schedule (JSON) beside it and on standard output");
+  o->export_cmd = sub.add_subcommand(
+      "export",
+      "write the machine of a plan as MuJoCo MJCF and its pulse schedule (JSON) beside it and on standard output");
   AddCommon(*o->export_cmd, *o);
-  o->export_cmd->add_option("--mjcf", o->mjcf, "the MJCF file to write; the schedule goes to the same name with .pulses.json")
+  o->export_cmd
+      ->add_option("--mjcf", o->mjcf, "the MJCF file to write; the schedule goes to the same name with .pulses.json")
       ->required();
-  o->replay_cmd = sub.add_subcommand("replay", "run a plan in MuJoCo and report how far the engine ends from it (JSON)");
+  o->replay_cmd =
+      sub.add_subcommand("replay", "run a plan in MuJoCo and report how far the engine ends from it (JSON)");
   AddCommon(*o->replay_cmd, *o);
-  o->replay_cmd->add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
-  CLI::App* loop_cmd = sub.add_subcommand(
-      "loop", "run the real-time controller with the twin as its plant, beside the open loop and the library's simulated loop (JSON)");
+  o->replay_cmd->add_option(
+      "--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
+  CLI::App* loop_cmd = sub.add_subcommand("loop",
+                                          "run the real-time controller with the twin as its plant, beside the open "
+                                          "loop and the library's simulated loop (JSON)");
   const std::function<int()> run_loop = SetupRigLoop(*loop_cmd);
   sub.footer(
       "The MuJoCo digital twin (docs/mujoco_twin.md): a fixed lower plate, the ball (inertia I1 I1 I3 along its\n"
@@ -194,8 +217,10 @@ std::function<int()> SetupRig(CLI::App& sub) {
   };
 }
 
-const CommandRegistrar kRegistrar{
-    {"rig", "the MuJoCo digital twin: export a plan's machine (MJCF), replay the plan in MuJoCo or close the controller's loop on it (JSON)", SetupRig}};
+const CommandRegistrar kRegistrar{{"rig",
+                                   "the MuJoCo digital twin: export a plan's machine (MJCF), replay the plan in MuJoCo "
+                                   "or close the controller's loop on it (JSON)",
+                                   SetupRig}};
 
 }  // namespace
 }  // namespace plateball::tools

@@ -37,9 +37,14 @@ struct LoopCliOptions {
 std::string Option(const char* name) { return CommandLineField(name); }
 
 Json ErrorsJson(const ErrorModel& e) {
-  return Json{{"impulse_magnitude", e.impulse_magnitude}, {"impulse_angle", e.impulse_angle}, {"timing", e.timing},
-              {"energy_loss", e.energy_loss}, {"lambda", e.lambda}, {"observation", e.observation},
-              {"pulse_duration", e.pulse_duration}, {"pulse_causal", e.pulse_causal}};
+  return Json{{"impulse_magnitude", e.impulse_magnitude},
+              {"impulse_angle", e.impulse_angle},
+              {"timing", e.timing},
+              {"energy_loss", e.energy_loss},
+              {"lambda", e.lambda},
+              {"observation", e.observation},
+              {"pulse_duration", e.pulse_duration},
+              {"pulse_causal", e.pulse_causal}};
 }
 
 Json RunJson(const rig::TwinLoopRun& r, bool closed, bool pulsed) {
@@ -71,9 +76,13 @@ Json RunJson(const rig::TwinLoopRun& r, bool closed, bool pulsed) {
 }
 
 Json SimulatedJson(const SimulatedLoopResult& s) {
-  return Json{{"status", ToString(s.status)}, {"impulses", s.impulses}, {"ticks", s.ticks},
-              {"rejected_measurements", s.rejected}, {"lambda", s.lambda},
-              {"position_error", s.position_error}, {"orientation_error", s.orientation_error}};
+  return Json{{"status", ToString(s.status)},
+              {"impulses", s.impulses},
+              {"ticks", s.ticks},
+              {"rejected_measurements", s.rejected},
+              {"lambda", s.lambda},
+              {"position_error", s.position_error},
+              {"orientation_error", s.orientation_error}};
 }
 
 struct LoopSetup {
@@ -87,7 +96,8 @@ struct LoopSetup {
 // The command line as the library's objects, every value checked and named by its option.
 LoopSetup BuildLoop(const LoopCliOptions& o, const Problem& p) {
   if (!p.physical)
-    ThrowInvalidInput("ball.physical", "(missing)", "the twin needs the ball's physical parameters (problem " + p.source + ")");
+    ThrowInvalidInput(
+        "ball.physical", "(missing)", "the twin needs the ball's physical parameters (problem " + p.source + ")");
   if (const std::string m = rig::TwinBuildableMessage(*p.physical); !m.empty()) throw std::invalid_argument(m);
   const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--impulses", o.n, 1, 10'000));
   if (n > 0) RequirePartitionSteps("--impulses", n, p);
@@ -97,11 +107,14 @@ LoopSetup BuildLoop(const LoopCliOptions& o, const Problem& p) {
   s.trial = static_cast<std::uint64_t>(RequireIntegerInRange("--trial", o.trial, 0, 1'000'000'000));
   s.controller.strategy = ParseExecutionStrategy(o.strategy, Option("--strategy"));
   if (s.controller.strategy == ExecutionStrategy::kOpenLoop)
-    ThrowInvalidInput(Option("--strategy"), o.strategy, "the controller feeds back (feedback, feedback_exact); the open loop is always run beside it");
+    ThrowInvalidInput(Option("--strategy"),
+                      o.strategy,
+                      "the controller feeds back (feedback, feedback_exact); the open loop is always run beside it");
   if (!(std::isfinite(o.tick) && o.tick >= 1e-5 && o.tick <= 0.1))
     ThrowInvalidInput(Option("--tick"), FormatNumber(o.tick), "must be in [1e-5, 0.1] s");
   if (!(std::isfinite(o.dt) && o.dt > 0 && o.dt <= o.tick))
-    ThrowInvalidInput(Option("--dt"), FormatNumber(o.dt), "must be in (0, --tick] s (the engine steps within each tick)");
+    ThrowInvalidInput(
+        Option("--dt"), FormatNumber(o.dt), "must be in (0, --tick] s (the engine steps within each tick)");
   s.controller.tick_period = o.tick;
   // Not a real-time loop: the budget never cuts an exact re-plan short, so the run is reproducible.
   s.controller.time_budget = 10.0;
@@ -109,7 +122,8 @@ LoopSetup BuildLoop(const LoopCliOptions& o, const Problem& p) {
   s.twin.settings.timestep = o.dt;
   s.twin.contact_point_only = o.contact_point_only;
   if (!(std::isfinite(o.pulse_duration) && o.pulse_duration >= 0))
-    ThrowInvalidInput(Option("--pulse-duration"), FormatNumber(o.pulse_duration), "must be finite and >= 0 s (0: ideal jumps)");
+    ThrowInvalidInput(
+        Option("--pulse-duration"), FormatNumber(o.pulse_duration), "must be finite and >= 0 s (0: ideal jumps)");
   s.twin.pulse_duration = o.pulse_duration;
   const PlanSetup setup = PlanSetupFor(p, n, Option("--impulses"));
   auto nominal = std::make_shared<NominalPlan>(MakeNominalPlan(setup.problem, setup.options));
@@ -121,7 +135,8 @@ LoopSetup BuildLoop(const LoopCliOptions& o, const Problem& p) {
     rig::CheckPulseFriction(plan, o.pulse_duration, s.twin.settings, Option("--pulse-duration"));
   }
   if (s.errors.lambda != 0.0)
-    rig::BallWithLambda(*p.physical, TrialErrors(s.errors, p.seed, s.trial).TrueLambda(nominal->model.lambda()),
+    rig::BallWithLambda(*p.physical,
+                        TrialErrors(s.errors, p.seed, s.trial).TrueLambda(nominal->model.lambda()),
                         Option("--noise") + " lambda");
   s.nominal = std::move(nominal);
   return s;
@@ -130,8 +145,8 @@ LoopSetup BuildLoop(const LoopCliOptions& o, const Problem& p) {
 std::string Brief(const rig::TwinLoopRun& closed, const rig::TwinLoopRun& open, const SimulatedLoopResult& sim) {
   return "closed loop in the twin " + ToString(closed.status) + " after " + std::to_string(closed.impulses.size()) +
          " impulses: position error " + FormatNumber(closed.position_error) + ", orientation error " +
-         FormatNumber(closed.orientation_error) + " (open loop in the twin " + FormatNumber(open.position_error) + ", " +
-         FormatNumber(open.orientation_error) + "; the library's simulated closed loop " +
+         FormatNumber(closed.orientation_error) + " (open loop in the twin " + FormatNumber(open.position_error) +
+         ", " + FormatNumber(open.orientation_error) + "; the library's simulated closed loop " +
          FormatNumber(sim.position_error) + ", " + FormatNumber(sim.orientation_error) + ")";
 }
 
@@ -149,13 +164,17 @@ int RunLoop(const LoopCliOptions& o) {
   doc["initial"] = InitialJson(p);
   doc["initial"]["orientation"] = ToJson(s.nominal->plan.A0);
   doc["settings"] = TwinSettingsJson(s.twin.settings);
-  doc["loop"] = Json{{"strategy", ToString(s.controller.strategy)}, {"tick_period", s.controller.tick_period},
-                     {"contact_point_only", s.twin.contact_point_only},
-                     {"execution", Json{{"kind", o.pulse_duration > 0 ? "causal_pulses" : "ideal_jumps"},
-                                        {"pulse_duration", o.pulse_duration}}},
-                     {"trial", s.trial},
-                     {"errors", ErrorsJson(s.errors)}, {"true_lambda", errors.TrueLambda(s.nominal->model.lambda())}};
-  doc["nominal"] = Json{{"impulse_count", s.nominal->plan.steps.size()}, {"total_time", s.nominal->plan.total_time},
+  doc["loop"] = Json{
+      {"strategy", ToString(s.controller.strategy)},
+      {"tick_period", s.controller.tick_period},
+      {"contact_point_only", s.twin.contact_point_only},
+      {"execution",
+       Json{{"kind", o.pulse_duration > 0 ? "causal_pulses" : "ideal_jumps"}, {"pulse_duration", o.pulse_duration}}},
+      {"trial", s.trial},
+      {"errors", ErrorsJson(s.errors)},
+      {"true_lambda", errors.TrueLambda(s.nominal->model.lambda())}};
+  doc["nominal"] = Json{{"impulse_count", s.nominal->plan.steps.size()},
+                        {"total_time", s.nominal->plan.total_time},
                         {"goal", ToJson(s.nominal->goal)},
                         {"plan_orientation_error", s.nominal->plan_orientation_error}};
   doc["closed_loop"] = RunJson(closed, true, o.pulse_duration > 0);
@@ -188,16 +207,20 @@ std::function<int()> SetupRigLoop(CLI::App& sub) {
   auto o = std::make_shared<LoopCliOptions>();
   o->problem.Add(sub);
   o->n_opt = sub.add_option("--impulses", o->n, "impulses of the plan, overrides plan.partition.n");
-  sub.add_option("--noise", o->noise,
+  sub.add_option("--noise",
+                 o->noise,
                  "the trial's errors KEY=VALUE[,KEY=VALUE] with keys impulse_magnitude, impulse_angle, energy_loss, "
                  "lambda (default none; drawn as montecarlo's trial from the problem's seed)");
   sub.add_option("--trial", o->trial, "the trial whose errors are drawn (default 0)");
   sub.add_option("--strategy", o->strategy, "feedback or feedback_exact (default feedback)");
   sub.add_option("--tick", o->tick, "the loop's tick period in s (default 1e-4)");
   sub.add_option("--dt", o->dt, "the engine's RK4 timestep in s, at most the tick (default 1e-4)");
-  sub.add_flag("--contact-point-only", o->contact_point_only, "measure the contact point alone (a camera without orientation)");
-  sub.add_option("--pulse-duration", o->pulse_duration,
-                 "causal pulses: a force J/D on the plate over [t_k, t_k + D] s from each decision (default 0: ideal jumps)");
+  sub.add_flag(
+      "--contact-point-only", o->contact_point_only, "measure the contact point alone (a camera without orientation)");
+  sub.add_option(
+      "--pulse-duration",
+      o->pulse_duration,
+      "causal pulses: a force J/D on the plate over [t_k, t_k + D] s from each decision (default 0: ideal jumps)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
   return [o] { return RunLoop(*o); };
 }

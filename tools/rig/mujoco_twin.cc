@@ -32,9 +32,9 @@ void ThrowIf(const std::string& message) {
 // output, where the tools write their JSON; the twin reads its data's warning counters instead.
 void QuietWarning(const char*) {}
 
-constexpr double kSettleTimeConstants = 60.0;    // vertical settling: e^-60 of the initial transient
-constexpr double kMaxReplaySteps = 1e8;           // about 10 minutes of RK4 on one core
-constexpr double kMaxPlateHalfSizeRadii = 1e6;    // the largest upper plate, in ball radii
+constexpr double kSettleTimeConstants = 60.0;   // vertical settling: e^-60 of the initial transient
+constexpr double kMaxReplaySteps = 1e8;         // about 10 minutes of RK4 on one core
+constexpr double kMaxPlateHalfSizeRadii = 1e6;  // the largest upper plate, in ball radii
 const char* const kXmlName = "plateball_twin.xml";
 
 }  // namespace
@@ -44,14 +44,16 @@ std::string TwinSettings::Validate() const {
     return Bad("timestep", timestep, "must be in (0, 0.1] s");
   if (!(std::isfinite(time_constant_steps) && time_constant_steps >= 2 && time_constant_steps <= 1e3))
     return Bad("time_constant_steps", time_constant_steps, "must be in [2, 1000] (MuJoCo clamps below 2)");
-  if (!(std::isfinite(sliding_friction) && sliding_friction > 0)) return Bad("sliding_friction", sliding_friction, "must be finite and > 0");
+  if (!(std::isfinite(sliding_friction) && sliding_friction > 0))
+    return Bad("sliding_friction", sliding_friction, "must be finite and > 0");
   if (!(std::isfinite(torsional_friction) && torsional_friction > 0))
     return Bad("torsional_friction", torsional_friction, "must be finite and > 0");
   if (!(std::isfinite(impedance) && impedance >= 0.5 && impedance <= 0.9999))
     return Bad("impedance", impedance, "must be in [0.5, 0.9999] (MuJoCo clamps above 0.9999)");
   if (noslip_iterations < 0 || noslip_iterations > 10000)
     return Bad("noslip_iterations", noslip_iterations, "must be in [0, 10000]");
-  if (!(std::isfinite(gravity) && gravity > 0)) return Bad("gravity", gravity, "must be finite and > 0 (it presses the plate)");
+  if (!(std::isfinite(gravity) && gravity > 0))
+    return Bad("gravity", gravity, "must be finite and > 0 (it presses the plate)");
   if (!(std::isfinite(plate_half_size_radii) && plate_half_size_radii >= 2 &&
         plate_half_size_radii <= kMaxPlateHalfSizeRadii))
     return Bad("plate_half_size_radii", plate_half_size_radii, "must be in [2, 1e6]");
@@ -61,17 +63,22 @@ std::string TwinSettings::Validate() const {
 std::string TwinBuildableMessage(const PhysicalParameters& p) {
   if (std::string m = p.Validate(); !m.empty()) return m;
   if (p.inertia_3 > 2.0 * p.inertia_1)
-    return Bad("physical.inertia_3", p.inertia_3,
+    return Bad("physical.inertia_3",
+               p.inertia_3,
                "MuJoCo's compiler rejects principal moments that break the triangle inequality, I3 <= 2 I1 (I1 = " +
                    Num(p.inertia_1) + ")");
   if (!(p.plate_mass > 0))
-    return Bad("physical.plate_mass", p.plate_mass,
+    return Bad("physical.plate_mass",
+               p.plate_mass,
                "the twin's upper plate is a moving body pressed by its weight: MuJoCo needs a mass > 0");
   return {};
 }
 
-std::string TwinMjcf(const PhysicalParameters& p, const Eigen::Vector2d& x0, const Eigen::Matrix3d& A0,
-                     const TwinSettings& settings, const Eigen::Vector3d& omega0) {
+std::string TwinMjcf(const PhysicalParameters& p,
+                     const Eigen::Vector2d& x0,
+                     const Eigen::Matrix3d& A0,
+                     const TwinSettings& settings,
+                     const Eigen::Vector3d& omega0) {
   ThrowIf(TwinBuildableMessage(p));
   ThrowIf(settings.Validate());
   const double r = p.radius;
@@ -91,10 +98,12 @@ std::string TwinMjcf(const PhysicalParameters& p, const Eigen::Vector2d& x0, con
     << " solver=\"Newton\" iterations=\"100\" tolerance=\"1e-14\" gravity=\"0 0 " << Num(-settings.gravity) << "\"/>\n"
     << "  <default>\n"
     << "    <geom condim=\"4\" friction=\"" << Num(settings.sliding_friction) << " " << Num(settings.torsional_friction)
-    << " 0\" solref=\"" << Num(settings.time_constant_steps * settings.timestep) << " 1\" solimp=\"" << Num(settings.impedance) << " " << Num(settings.impedance) << " 0.001 0.5 2\"/>\n"
+    << " 0\" solref=\"" << Num(settings.time_constant_steps * settings.timestep) << " 1\" solimp=\""
+    << Num(settings.impedance) << " " << Num(settings.impedance) << " 0.001 0.5 2\"/>\n"
     << "  </default>\n"
     << "  <worldbody>\n"
-    << "    <geom name=\"lower_plate\" type=\"plane\" size=\"" << Num(half) << " " << Num(half) << " " << Num(thick) << "\"/>\n"
+    << "    <geom name=\"lower_plate\" type=\"plane\" size=\"" << Num(half) << " " << Num(half) << " " << Num(thick)
+    << "\"/>\n"
     << "    <body name=\"ball\" pos=\"" << Num(x0.x() * r) << " " << Num(x0.y() * r) << " " << Num(r) << "\" quat=\""
     << Num(q.w()) << " " << Num(q.x()) << " " << Num(q.y()) << " " << Num(q.z()) << "\">\n"
     << "      <freejoint name=\"ball\"/>\n"
@@ -102,22 +111,24 @@ std::string TwinMjcf(const PhysicalParameters& p, const Eigen::Vector2d& x0, con
     << Num(p.inertia_1) << " " << Num(p.inertia_3) << "\"/>\n"
     << "      <geom name=\"ball\" type=\"sphere\" size=\"" << Num(r) << "\"/>\n"
     << "    </body>\n"
-    << "    <body name=\"upper_plate\" pos=\"" << Num(x0.x() * r) << " " << Num(x0.y() * r) << " " << Num(2 * r + thick) << "\">\n"
+    << "    <body name=\"upper_plate\" pos=\"" << Num(x0.x() * r) << " " << Num(x0.y() * r) << " " << Num(2 * r + thick)
+    << "\">\n"
     << "      <joint name=\"plate_x\" type=\"slide\" axis=\"1 0 0\"/>\n"
     << "      <joint name=\"plate_y\" type=\"slide\" axis=\"0 1 0\"/>\n"
     << "      <joint name=\"plate_z\" type=\"slide\" axis=\"0 0 1\"/>\n"
     << "      <inertial pos=\"0 0 0\" mass=\"" << Num(p.plate_mass) << "\" diaginertia=\"" << Num(plate_moment) << " "
     << Num(plate_moment) << " " << Num(2 * plate_moment) << "\"/>\n"
-    << "      <geom name=\"upper_plate\" type=\"box\" size=\"" << Num(half) << " " << Num(half) << " " << Num(thick) << "\"/>\n"
+    << "      <geom name=\"upper_plate\" type=\"box\" size=\"" << Num(half) << " " << Num(half) << " " << Num(thick)
+    << "\"/>\n"
     << "    </body>\n"
     << "  </worldbody>\n"
     << "  <keyframe>\n"
     << "    <!-- the plan's start: qpos = ball (x y z, quat w x y z), plate slides (x y z); qvel = ball\n"
     << "         (linear velocity, world frame; angular velocity, body frame), plate (x y z) -->\n"
     << "    <key name=\"start\" qpos=\"" << Num(x0.x() * r) << " " << Num(x0.y() * r) << " " << Num(r) << " "
-    << Num(q.w()) << " " << Num(q.x()) << " " << Num(q.y()) << " " << Num(q.z()) << " 0 0 0\" qvel=\""
-    << Num(v.x()) << " " << Num(v.y()) << " 0 " << Num(w_body.x()) << " " << Num(w_body.y()) << " " << Num(w_body.z())
-    << " " << Num(2 * v.x()) << " " << Num(2 * v.y()) << " 0\"/>\n"
+    << Num(q.w()) << " " << Num(q.x()) << " " << Num(q.y()) << " " << Num(q.z()) << " 0 0 0\" qvel=\"" << Num(v.x())
+    << " " << Num(v.y()) << " 0 " << Num(w_body.x()) << " " << Num(w_body.y()) << " " << Num(w_body.z()) << " "
+    << Num(2 * v.x()) << " " << Num(2 * v.y()) << " 0\"/>\n"
     << "  </keyframe>\n"
     << "</mujoco>\n";
   return x.str();
@@ -128,8 +139,8 @@ std::string TwinMjcf(const PhysicalParameters& p, const Eigen::Vector2d& x0, con
 struct MujocoTwin::Engine {
   mjModel* m = nullptr;
   mjData* d = nullptr;
-  int ball_q = 0, ball_v = 0;      // qpos / qvel addresses of the ball's free joint
-  int plate_q = 0, plate_v = 0;    // of plate_x (plate_y, plate_z follow)
+  int ball_q = 0, ball_v = 0;    // qpos / qvel addresses of the ball's free joint
+  int plate_q = 0, plate_v = 0;  // of plate_x (plate_y, plate_z follow)
   ~Engine() {
     if (d) mj_deleteData(d);
     if (m) mj_deleteModel(m);
@@ -227,7 +238,8 @@ TwinState MujocoTwin::State() const {
   s.A = Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized().toRotationMatrix();
   s.omega = s.A * Eigen::Vector3d(qv[3], qv[4], qv[5]);
   s.v = Eigen::Vector3d(qv[0], qv[1], qv[2]);
-  s.plate_velocity = Eigen::Vector3d(d->qvel[engine_->plate_v], d->qvel[engine_->plate_v + 1], d->qvel[engine_->plate_v + 2]);
+  s.plate_velocity =
+      Eigen::Vector3d(d->qvel[engine_->plate_v], d->qvel[engine_->plate_v + 1], d->qvel[engine_->plate_v + 2]);
   const Eigen::Vector3d body_moments(p.inertia_1, p.inertia_1, p.inertia_3);
   const Eigen::Vector3d w_body = s.A.transpose() * s.omega;
   s.energy = 0.5 * p.ball_mass * s.v.head<2>().squaredNorm() + 0.5 * w_body.dot(body_moments.cwiseProduct(w_body)) +
@@ -257,7 +269,8 @@ void CheckPulseWindows(const RigPlan& plan, double duration, const std::string& 
     if (last && flight <= 0) continue;  // a stop at the end: its pulse runs past t_end
     if (duration > flight)
       throw std::invalid_argument(Bad(
-          field, duration,
+          field,
+          duration,
           "longer than the flight of " + Num(flight) + " s after impulse " + std::to_string(i) +
               (last ? " (the last: its pulse would run past the plan's end)"
                     : ": the pulses of impulses " + std::to_string(i) + " and " + std::to_string(i + 1) + " overlap")));
@@ -283,7 +296,8 @@ void CheckPulseFriction(const RigPlan& plan, double duration, const TwinSettings
       what = "the contacts need a torsional torque of " + Num(f.torsional_torque) + " N m, more than mu_t " +
              Num(s.torsional_friction) + " m times their loads";
     if (!what.empty())
-      throw std::invalid_argument(Bad(field, duration, "too short: impulse " + std::to_string(i) + " would slip: " + what));
+      throw std::invalid_argument(
+          Bad(field, duration, "too short: impulse " + std::to_string(i) + " would slip: " + what));
   }
 }
 
@@ -299,12 +313,14 @@ double PlateHalfSizeFor(const RigPlan& plan, const PlannedTrajectory& reference,
   longest_flight = std::max(longest_flight, plan.t_end - previous);
   extent = std::max(extent, (reference.At(plan.t_end).x - plan.x0).norm());
   // |x'| = |omega_h| <= sqrt(mu / min(1, lambda)) (eq. (9)) bounds a flight's path in radii.
-  const double speed = std::sqrt(reference.MaxEnergy() * 2 /
-                                 (plan.physical.inertia_1 + plan.physical.EffectiveMass() * std::pow(plan.physical.radius, 2)) /
-                                 std::min(1.0, plan.model.lambda()));
+  const double speed =
+      std::sqrt(reference.MaxEnergy() * 2 /
+                (plan.physical.inertia_1 + plan.physical.EffectiveMass() * std::pow(plan.physical.radius, 2)) /
+                std::min(1.0, plan.model.lambda()));
   const double half = std::max(settings.plate_half_size_radii, 2 * (extent + speed * longest_flight) + 10);
   if (!(half <= kMaxPlateHalfSizeRadii))
-    throw std::invalid_argument(Bad("total_time", plan.t_end,
+    throw std::invalid_argument(Bad("total_time",
+                                    plan.t_end,
                                     "the plan travels up to " + Num(half / 2) + " radii, more than the twin's plate (" +
                                         Num(kMaxPlateHalfSizeRadii) + " radii) holds"));
   return half;
@@ -334,7 +350,8 @@ std::vector<double> BreakTimes(const RigPlan& plan, double D, bool causal) {
 void CheckStepCount(const RigPlan& plan, double span, double dt) {
   const double steps = span / dt;
   if (steps > kMaxReplaySteps)
-    throw std::invalid_argument(Bad("total_time", plan.t_end,
+    throw std::invalid_argument(Bad("total_time",
+                                    plan.t_end,
                                     "the replay would take " + Num(std::ceil(steps)) + " steps of " + Num(dt) +
                                         " s, more than " + Num(kMaxReplaySteps)));
 }

@@ -16,14 +16,14 @@ namespace plateball::tools::rig {
 
 /// Engine settings (SI units). The defaults are the ones docs/mujoco_twin.md measures.
 struct TwinSettings {
-  double timestep = 1e-3;               ///< s, RK4 step
-  double time_constant_steps = 2.0;     ///< contact solref time constant in timesteps (MuJoCo's minimum is 2)
-  double sliding_friction = 100.0;      ///< dimensionless, both plates
-  double torsional_friction = 1.0;      ///< m (MuJoCo's torsional coefficient: torque per normal force)
-  double impedance = 0.9999;            ///< contact solimp dmin = dmax (MuJoCo's maximum; its default is 0.9 to 0.95)
-  int noslip_iterations = 50;           ///< MuJoCo's no-slip post-processing iterations
-  double gravity = 9.81;                ///< m/s^2: the plate's weight presses it on the ball
-  double plate_half_size_radii = 1e3;   ///< upper plate's half side in ball radii
+  double timestep = 1e-3;              ///< s, RK4 step
+  double time_constant_steps = 2.0;    ///< contact solref time constant in timesteps (MuJoCo's minimum is 2)
+  double sliding_friction = 100.0;     ///< dimensionless, both plates
+  double torsional_friction = 1.0;     ///< m (MuJoCo's torsional coefficient: torque per normal force)
+  double impedance = 0.9999;           ///< contact solimp dmin = dmax (MuJoCo's maximum; its default is 0.9 to 0.95)
+  int noslip_iterations = 50;          ///< MuJoCo's no-slip post-processing iterations
+  double gravity = 9.81;               ///< m/s^2: the plate's weight presses it on the ball
+  double plate_half_size_radii = 1e3;  ///< upper plate's half side in ball radii
   /// Empty when valid, else "FIELD: value V: what is wrong".
   std::string Validate() const;
 };
@@ -37,21 +37,24 @@ std::string TwinBuildableMessage(const PhysicalParameters& p);
 /// and orientation A0, and the keyframe "start": the ball rolling with angular velocity omega0 (its
 /// vertical part dropped), the plate moving with the top point. Throws std::invalid_argument naming
 /// the field for an unbuildable ball or invalid settings.
-std::string TwinMjcf(const PhysicalParameters& p, const Eigen::Vector2d& x0, const Eigen::Matrix3d& A0,
-                     const TwinSettings& settings, const Eigen::Vector3d& omega0 = Eigen::Vector3d::Zero());
+std::string TwinMjcf(const PhysicalParameters& p,
+                     const Eigen::Vector2d& x0,
+                     const Eigen::Matrix3d& A0,
+                     const TwinSettings& settings,
+                     const Eigen::Vector3d& omega0 = Eigen::Vector3d::Zero());
 
 /// The engine's ball and plate at one instant (SI units; x normalised like the library's).
 struct TwinState {
   double t = 0.0;
-  Eigen::Vector2d x = Eigen::Vector2d::Zero();       ///< ball centre's horizontal position / r
-  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();   ///< R_WB
-  Eigen::Vector3d omega = Eigen::Vector3d::Zero();   ///< spatial angular velocity, rad/s
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();       ///< ball centre's velocity, m/s
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();               ///< ball centre's horizontal position / r
+  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();           ///< R_WB
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();           ///< spatial angular velocity, rad/s
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();               ///< ball centre's velocity, m/s
   Eigen::Vector3d plate_velocity = Eigen::Vector3d::Zero();  ///< m/s
-  double energy = 0.0;        ///< horizontal kinetic energy of ball and plate plus the ball's rotation, J
-  double slip_speed = 0.0;    ///< largest horizontal slip speed of the two contacts, m/s
-  double spin_rate = 0.0;     ///< |omega_3| relative to the (non-rotating) plates, rad/s
-  int contacts = 0;           ///< active contacts (2 while the ball is between the plates)
+  double energy = 0.0;      ///< horizontal kinetic energy of ball and plate plus the ball's rotation, J
+  double slip_speed = 0.0;  ///< largest horizontal slip speed of the two contacts, m/s
+  double spin_rate = 0.0;   ///< |omega_3| relative to the (non-rotating) plates, rad/s
+  int contacts = 0;         ///< active contacts (2 while the ball is between the plates)
 };
 
 /// A loaded model and its data. Not copyable.
@@ -92,13 +95,13 @@ struct ReplayOptions {
 struct ReplayReport {
   double t_begin = 0.0, t_end = 0.0;  ///< s (t_begin < 0 when the first pulse starts before 0)
   int steps = 0;
-  double position_error = 0.0;        ///< |x_engine - x_plan| at t_end, normalised (r)
-  double orientation_error = 0.0;     ///< angle of R_plan^T R_engine at t_end, rad
-  double energy_planned = 0.0;        ///< J
-  double energy_engine = 0.0;         ///< J
-  double energy_error = 0.0;          ///< |E_engine - E_plan| / the plan's largest energy (J when it is 0)
-  double max_slip_speed = 0.0;        ///< m/s over all steps
-  double max_spin_rate = 0.0;         ///< rad/s over all steps
+  double position_error = 0.0;                 ///< |x_engine - x_plan| at t_end, normalised (r)
+  double orientation_error = 0.0;              ///< angle of R_plan^T R_engine at t_end, rad
+  double energy_planned = 0.0;                 ///< J
+  double energy_engine = 0.0;                  ///< J
+  double energy_error = 0.0;                   ///< |E_engine - E_plan| / the plan's largest energy (J when it is 0)
+  double max_slip_speed = 0.0;                 ///< m/s over all steps
+  double max_spin_rate = 0.0;                  ///< rad/s over all steps
   std::vector<Eigen::Vector3d> pulse_impulse;  ///< J per impulse (N s), PlateImpulseFor
 };
 

@@ -85,8 +85,8 @@ Problem LoadProblemOf(const json& doc, const std::string& result_file) {
   return ReadProblemFile(file);
 }
 
-RigImpulse ImpulseOf(const json& step, const std::string& where, const BallModel& model, bool plan,
-                     BallState* before_state) {
+RigImpulse ImpulseOf(
+    const json& step, const std::string& where, const BallModel& model, bool plan, BallState* before_state) {
   RigImpulse k;
   k.t = Number(step, where, "t_impulse");
   k.delta_omega = Vector<3>(step, where, "delta_omega");
@@ -115,12 +115,14 @@ RigPlan ReadRigPlan(const std::string& result_file) {
   out.command = command.get<std::string>();
   out.problem = LoadProblemOf(doc, result_file);
   const Problem& p = out.problem;
-  if (!p.physical) Fail("ball.physical", "(missing)", "the rig needs the ball's physical parameters (problem " + p.source + ")");
+  if (!p.physical)
+    Fail("ball.physical", "(missing)", "the rig needs the ball's physical parameters (problem " + p.source + ")");
   const double lambda = Number(Get(doc, "", "model"), "model.", "lambda");
   if (std::abs(lambda - p.model.lambda()) > 1e-12 * p.model.lambda())
-    Fail("model.lambda", Text(Get(doc, "", "model").at("lambda")),
-         "the result was planned for another ball than its problem file's now (lambda " +
-             Text(json(p.model.lambda())) + ")");
+    Fail("model.lambda",
+         Text(Get(doc, "", "model").at("lambda")),
+         "the result was planned for another ball than its problem file's now (lambda " + Text(json(p.model.lambda())) +
+             ")");
   out.physical = *p.physical;
   out.model = p.model;
   out.integration = p.integration;

@@ -17,8 +17,8 @@ namespace plateball::tools::rig {
 
 /// One planned impulse: at time t the ball's angular velocity jumps by delta_omega to omega_after.
 struct RigImpulse {
-  double t = 0.0;                                        ///< s since the start
-  Eigen::Vector3d z = Eigen::Vector3d::UnitZ();          ///< symmetry axis at the impulse
+  double t = 0.0;                                         ///< s since the start
+  Eigen::Vector3d z = Eigen::Vector3d::UnitZ();           ///< symmetry axis at the impulse
   Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();  ///< rad/s
   Eigen::Vector3d omega_after = Eigen::Vector3d::Zero();  ///< planned post-impulse omega, rad/s
 };
@@ -30,11 +30,11 @@ struct RigPlan {
   Problem problem;      ///< the problem file the result names
   PhysicalParameters physical;
   BallModel model = BallModel::FromLambda(1.0);
-  BallState start;                                  ///< before the first impulse, at t = 0
+  BallState start;                                   ///< before the first impulse, at t = 0
   Eigen::Vector2d x0 = Eigen::Vector2d::Zero();      ///< contact point at t = 0 (normalised)
   Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();  ///< R_WB at t = 0, A0 e3 = start.z
-  std::vector<RigImpulse> impulses;                 ///< increasing t in [0, t_end]
-  double t_end = 0.0;                               ///< s
+  std::vector<RigImpulse> impulses;                  ///< increasing t in [0, t_end]
+  double t_end = 0.0;                                ///< s
   IntegrationOptions integration;
 };
 

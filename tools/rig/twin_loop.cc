@@ -24,7 +24,8 @@ std::string Bad(const std::string& field, double value, const std::string& what)
 // more leaves room for the errors' energy).
 double PlateHalfSize(const NominalPlan& nominal, const TwinSettings& settings) {
   double extent = 0.0, flight = 0.0, mu = nominal.mu;
-  for (const Eigen::Vector2d& p : nominal.pass_points) extent = std::max(extent, (p - nominal.pass_points.front()).norm());
+  for (const Eigen::Vector2d& p : nominal.pass_points)
+    extent = std::max(extent, (p - nominal.pass_points.front()).norm());
   for (const PlanStep& s : nominal.plan.steps) {
     flight = std::max(flight, s.duration);
     mu = std::max(mu, s.mu);
@@ -36,7 +37,10 @@ double PlateHalfSize(const NominalPlan& nominal, const TwinSettings& settings) {
 // The engine, its step and what it saw; a causal pulse in progress.
 class Plant {
  public:
-  Plant(const NominalPlan& nominal, const PhysicalParameters& ball, const TwinSettings& settings, double pulse_duration,
+  Plant(const NominalPlan& nominal,
+        const PhysicalParameters& ball,
+        const TwinSettings& settings,
+        double pulse_duration,
         TwinLoopRun* run)
       : twin_(ball, settings), ball_(ball), pulse_duration_(pulse_duration), run_(run) {
     const BallState start = StateFromAngles(nominal.initial, nominal.mu, nominal.model);
@@ -55,7 +59,9 @@ class Plant {
   }
   // Impulse k: the jump the plate gives (the errors' draw for k), then the restitution; an ideal
   // jump, or a pulse J/D of the applied jump's plate impulse from now on.
-  TwinLoopImpulse Impulse(int k, const Eigen::Vector3d& commanded, const TrialErrors& errors,
+  TwinLoopImpulse Impulse(int k,
+                          const Eigen::Vector3d& commanded,
+                          const TrialErrors& errors,
                           const PhysicalParameters& physical) {
     const TwinState s = twin_.State();
     TwinLoopImpulse r;
@@ -110,8 +116,8 @@ class Plant {
   PhysicalParameters ball_;
   double pulse_duration_;
   TwinLoopRun* run_;
-  double t_ = 0.0;             // the run's time: the sum of the steps (the engine's clock rounds)
-  double pulse_end_ = -1.0;    // the running pulse's end (none when <= t_)
+  double t_ = 0.0;           // the run's time: the sum of the steps (the engine's clock rounds)
+  double pulse_end_ = -1.0;  // the running pulse's end (none when <= t_)
   Eigen::Vector2d force_ = Eigen::Vector2d::Zero();
   double restitution_ = 1.0;
 };
@@ -122,15 +128,20 @@ struct Setup {
   PhysicalParameters ball;
 };
 
-Setup SetupFor(const NominalPlan& nominal, const PhysicalParameters& physical, const TrialErrors& errors,
-               const TwinLoopOptions& options, double span) {
+Setup SetupFor(const NominalPlan& nominal,
+               const PhysicalParameters& physical,
+               const TrialErrors& errors,
+               const TwinLoopOptions& options,
+               double span) {
   if (const std::string m = options.Validate(); !m.empty()) throw std::invalid_argument(m);
   RequireTwinModelled(errors.errors(), "errors");
   if (span / options.settings.timestep > kMaxSteps)
-    throw std::invalid_argument(Bad("timestep", options.settings.timestep,
+    throw std::invalid_argument(Bad("timestep",
+                                    options.settings.timestep,
                                     "the run would take more than 1e8 engine steps over " + FormatNumber(span) + " s"));
   if (!(std::isfinite(options.pulse_duration) && options.pulse_duration >= 0))
-    throw std::invalid_argument(Bad("pulse_duration", options.pulse_duration, "must be finite and >= 0 s (0: ideal jumps)"));
+    throw std::invalid_argument(
+        Bad("pulse_duration", options.pulse_duration, "must be finite and >= 0 s (0: ideal jumps)"));
   if (options.pulse_duration > 0) {
     const RigPlan plan = RigPlanOf(nominal, physical);
     CheckPulseWindows(plan, options.pulse_duration, "pulse_duration");
@@ -166,8 +177,10 @@ PhysicalParameters BallWithLambda(const PhysicalParameters& p, double lambda, co
   std::string why = out.inertia_3 > 0 ? out.Validate() : "I3 would not be positive";
   if (why.empty()) why = TwinBuildableMessage(out);
   if (!why.empty())
-    throw std::invalid_argument(Bad(field, lambda, "the twin realises the trial's lambda by I3 = " +
-                                                       FormatNumber(out.inertia_3) + ", not a ball it can build: " + why));
+    throw std::invalid_argument(Bad(field,
+                                    lambda,
+                                    "the twin realises the trial's lambda by I3 = " + FormatNumber(out.inertia_3) +
+                                        ", not a ball it can build: " + why));
   return out;
 }
 
@@ -191,7 +204,9 @@ RigPlan RigPlanOf(const NominalPlan& nominal, const PhysicalParameters& physical
   return plan;
 }
 
-TwinLoopRun RunTwinClosedLoop(Controller& controller, const PhysicalParameters& physical, const TrialErrors& errors,
+TwinLoopRun RunTwinClosedLoop(Controller& controller,
+                              const PhysicalParameters& physical,
+                              const TrialErrors& errors,
                               const TwinLoopOptions& options) {
   const NominalPlan& nominal = controller.nominal();
   const double tick = controller.options().tick_period;
@@ -229,7 +244,9 @@ TwinLoopRun RunTwinClosedLoop(Controller& controller, const PhysicalParameters& 
   return run;
 }
 
-TwinLoopRun RunTwinOpenLoop(const NominalPlan& nominal, const PhysicalParameters& physical, const TrialErrors& errors,
+TwinLoopRun RunTwinOpenLoop(const NominalPlan& nominal,
+                            const PhysicalParameters& physical,
+                            const TrialErrors& errors,
                             const TwinLoopOptions& options) {
   const Setup setup = SetupFor(nominal, physical, errors, options, nominal.plan.total_time);
   TwinLoopRun run;

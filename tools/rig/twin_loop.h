@@ -38,13 +38,14 @@ RigPlan RigPlanOf(const NominalPlan& nominal, const PhysicalParameters& physical
 /// One impulse of a run in the twin.
 struct TwinLoopImpulse {
   int k = 0;
-  long tick = -1;                                          ///< -1 in the open loop (no ticks)
-  double t = 0.0;                                          ///< s
-  Eigen::Vector2d x = Eigen::Vector2d::Zero();             ///< the twin's contact point then (radii)
-  Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();   ///< commanded jump, rad/s
-  Eigen::Vector3d applied = Eigen::Vector3d::Zero();       ///< the jump the plate gave (errors), rad/s
-  Eigen::Vector3d plate_impulse = Eigen::Vector3d::Zero(); ///< J for the commanded jump (PlateImpulseFor), N s
-  Eigen::Vector3d pulse_impulse = Eigen::Vector3d::Zero(); ///< with pulses: J of the applied jump on the twin's ball, N s
+  long tick = -1;                                           ///< -1 in the open loop (no ticks)
+  double t = 0.0;                                           ///< s
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();              ///< the twin's contact point then (radii)
+  Eigen::Vector3d delta_omega = Eigen::Vector3d::Zero();    ///< commanded jump, rad/s
+  Eigen::Vector3d applied = Eigen::Vector3d::Zero();        ///< the jump the plate gave (errors), rad/s
+  Eigen::Vector3d plate_impulse = Eigen::Vector3d::Zero();  ///< J for the commanded jump (PlateImpulseFor), N s
+  Eigen::Vector3d pulse_impulse =
+      Eigen::Vector3d::Zero();  ///< with pulses: J of the applied jump on the twin's ball, N s
   bool exact_replan = false;
   bool late = false;
 };
@@ -56,14 +57,14 @@ struct TwinLoopRun {
   long ticks = 0;                                       ///< Updates called (0 in the open loop)
   int rejected = 0;                                     ///< rejected measurements
   int exact_solves = 0;
-  long steps = 0;                                       ///< engine steps
-  double t_end = 0.0;                                   ///< s
-  Eigen::Vector2d x = Eigen::Vector2d::Zero();          ///< the twin's contact point at t_end (radii)
-  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();      ///< the twin's orientation at t_end
-  double position_error = 0.0;                          ///< |x - goal| (radii)
-  double orientation_error = 0.0;                       ///< angle of goal_orientation^T A (rad)
-  double max_slip_speed = 0.0;                          ///< m/s
-  double max_spin_rate = 0.0;                           ///< rad/s
+  long steps = 0;                                   ///< engine steps
+  double t_end = 0.0;                               ///< s
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();      ///< the twin's contact point at t_end (radii)
+  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();  ///< the twin's orientation at t_end
+  double position_error = 0.0;                      ///< |x - goal| (radii)
+  double orientation_error = 0.0;                   ///< angle of goal_orientation^T A (rad)
+  double max_slip_speed = 0.0;                      ///< m/s
+  double max_spin_rate = 0.0;                       ///< rad/s
   std::vector<TwinLoopImpulse> impulses;
 };
 
@@ -81,12 +82,16 @@ PhysicalParameters BallWithLambda(const PhysicalParameters& p, double lambda, co
 /// invalid options, pulses that overlap a flight or slip, or errors the twin does not model (the
 /// error model's timing, pulse_duration and observation: RequireTwinModelled), std::runtime_error
 /// when the engine fails or a pulse is still running when the next impulse is due.
-TwinLoopRun RunTwinClosedLoop(Controller& controller, const PhysicalParameters& physical, const TrialErrors& errors,
+TwinLoopRun RunTwinClosedLoop(Controller& controller,
+                              const PhysicalParameters& physical,
+                              const TrialErrors& errors,
                               const TwinLoopOptions& options);
 
 /// The open loop: the plan's jumps, perturbed by the same errors, at the planned times, to the
 /// plan's end (the engine stepping to each impulse time exactly).
-TwinLoopRun RunTwinOpenLoop(const NominalPlan& nominal, const PhysicalParameters& physical, const TrialErrors& errors,
+TwinLoopRun RunTwinOpenLoop(const NominalPlan& nominal,
+                            const PhysicalParameters& physical,
+                            const TrialErrors& errors,
                             const TwinLoopOptions& options);
 
 }  // namespace plateball::tools::rig

@@ -63,13 +63,18 @@ std::string ScriptSafeJson(const nlohmann::json& value) {
   out.reserve(text.size());
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
-    if (c == '<') out += "\\u003c";
-    else if (c == '>') out += "\\u003e";
-    else if (c == '&') out += "\\u0026";
-    else if (c == '\xE2' && i + 2 < text.size() && text[i + 1] == '\x80' && (text[i + 2] == '\xA8' || text[i + 2] == '\xA9')) {
+    if (c == '<')
+      out += "\\u003c";
+    else if (c == '>')
+      out += "\\u003e";
+    else if (c == '&')
+      out += "\\u0026";
+    else if (c == '\xE2' && i + 2 < text.size() && text[i + 1] == '\x80' &&
+             (text[i + 2] == '\xA8' || text[i + 2] == '\xA9')) {
       out += text[i + 2] == '\xA8' ? "\\u2028" : "\\u2029";
       i += 2;
-    } else out += c;
+    } else
+      out += c;
   }
   return out;
 }
@@ -78,11 +83,20 @@ std::string HtmlEscape(const std::string& text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -101,21 +115,25 @@ int RunView(const ViewCliOptions& o) {
   view::CheckDrawable(o.result, data);
   nlohmann::json page_data = view::ViewDataToJson(data);
   page_data["generator"] = std::string("plateball ") + PLATEBALL_VERSION_STRING + ", three.js " + view::kThreeVersion;
-  const std::string page = FillTemplate(view::kViewTemplate, {{"@TITLE@", HtmlEscape(data.title)},
-                                                                {"/*@THREE@*/", view::kThreeScript},
-                                                                {"/*@VIEW@*/", view::kViewScript},
-                                                                {"\"@DATA@\"", ScriptSafeJson(page_data)}});
+  const std::string page = FillTemplate(view::kViewTemplate,
+                                        {{"@TITLE@", HtmlEscape(data.title)},
+                                         {"/*@THREE@*/", view::kThreeScript},
+                                         {"/*@VIEW@*/", view::kViewScript},
+                                         {"\"@DATA@\"", ScriptSafeJson(page_data)}});
   WriteOutput(o.html, page);
   return kExitSuccess;
 }
 
 std::function<int()> SetupView(CLI::App& sub) {
   auto o = std::make_shared<ViewCliOptions>();
-  sub.add_option("RESULT.json", o->result, "a result of plateball simulate, plan, steer, isoparallel or of isoparallel_solve --out (\"-\": standard input)")
+  sub.add_option("RESULT.json",
+                 o->result,
+                 "a result of plateball simulate, plan, steer, isoparallel or of isoparallel_solve --out (\"-\": "
+                 "standard input)")
       ->required();
   sub.add_option("--html", o->html, "write the page to this file (\"-\": standard output)")->required();
-  sub.add_option("--problem", o->problem,
-                 "the problem file of a plan or steer result (default: the result's problem.file)");
+  sub.add_option(
+      "--problem", o->problem, "the problem file of a plan or steer result (default: the result's problem.file)");
   sub.add_option("--samples", o->samples, "samples of the motion at least, 100 ... 100000 (default 4000)");
   sub.footer(
       "Writes one self-contained HTML page (data, script and three.js inside; opens offline, no network):\n"
@@ -125,12 +143,14 @@ std::function<int()> SetupView(CLI::App& sub) {
       "a time slider, play/pause, speed, and the orientation error against time. For a steer result with a\n"
       "rig: the plate region, the obstacles with their clearance, the upper plate's stroke box and the replay\n"
       "check's verdict and margins.\n"
-      "Example: plateball plan problems/circle.json --out circle.json && plateball view circle.json --html circle.html\n"
+      "Example: plateball plan problems/circle.json --out circle.json && plateball view circle.json --html "
+      "circle.html\n"
       "Exit codes: 0 ok, 2 usage, 3 invalid result (the field is named), 5 unreadable or unwritable file.");
   return [o] { return RunView(*o); };
 }
 
-const CommandRegistrar kRegistrar{{"view", "write a self-contained interactive 3-D page of a result (HTML)", SetupView}};
+const CommandRegistrar kRegistrar{
+    {"view", "write a self-contained interactive 3-D page of a result (HTML)", SetupView}};
 
 }  // namespace
 }  // namespace plateball::tools

@@ -83,7 +83,8 @@ namespace {
 template <int N>
 Eigen::Matrix<double, N, 1> VectorFrom(const ResultReader& r, const json& j, const std::string& field) {
   Eigen::Matrix<double, N, 1> v;
-  if (!j.is_array() || j.size() != N) r.Fail(field, ValueText(j), "must be an array of " + std::to_string(N) + " numbers");
+  if (!j.is_array() || j.size() != N)
+    r.Fail(field, ValueText(j), "must be an array of " + std::to_string(N) + " numbers");
   for (int i = 0; i < N; ++i) {
     if (!j[i].is_number() || !std::isfinite(j[i].get<double>()))
       r.Fail(field, ValueText(j), "must be an array of " + std::to_string(N) + " finite numbers");
@@ -101,7 +102,9 @@ Eigen::Vector3d ResultReader::Vector3(const json& at, const std::string& where, 
   return VectorFrom<3>(*this, Get(at, where, concept_name), Join(where, fields_.Paths(concept_name).front()));
 }
 
-Eigen::Matrix3d ResultReader::Rotation(const json& at, const std::string& where, const std::string& concept_name) const {
+Eigen::Matrix3d ResultReader::Rotation(const json& at,
+                                       const std::string& where,
+                                       const std::string& concept_name) const {
   const json& j = Get(at, where, concept_name);
   const std::string field = Join(where, fields_.Paths(concept_name).front());
   Eigen::Matrix3d m;
@@ -111,8 +114,11 @@ Eigen::Matrix3d ResultReader::Rotation(const json& at, const std::string& where,
   return m;
 }
 
-const json& ResultReader::Array(const json& at, const std::string& where, const std::string& concept_name,
-                                std::size_t min_size, std::size_t max_size) const {
+const json& ResultReader::Array(const json& at,
+                                const std::string& where,
+                                const std::string& concept_name,
+                                std::size_t min_size,
+                                std::size_t max_size) const {
   const json& j = Get(at, where, concept_name);
   if (!j.is_array() || j.size() < min_size || j.size() > max_size)
     Fail(Join(where, fields_.Paths(concept_name).front()),
@@ -124,7 +130,8 @@ const json& ResultReader::Array(const json& at, const std::string& where, const 
 json ParseResult(const std::string& file, const std::string& text) {
   const json::parser_callback_t depth_limit = [&](int depth, json::parse_event_t, json&) {
     if (depth > kMaxJsonDepth)
-      ThrowInvalidInput(file + ": (document)", "(nested deeper than " + std::to_string(kMaxJsonDepth) + ")",
+      ThrowInvalidInput(file + ": (document)",
+                        "(nested deeper than " + std::to_string(kMaxJsonDepth) + ")",
                         "arrays and objects may be nested at most that deep");
     return true;
   };
@@ -136,15 +143,16 @@ json ParseResult(const std::string& file, const std::string& text) {
 }
 
 void CheckDrawable(const std::string& file, const ViewData& d) {
-  const auto check = [&](const char* what, const std::vector<Eigen::Vector2d>& points,
-                         const char* advice = "shorten the motion") {
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const double r = points[i].cwiseAbs().maxCoeff();
-      if (!(r <= kMaxDrawnCoordinate))
-        ThrowInvalidInput(file + ": " + what + "[" + std::to_string(i) + "]", FormatNumber(r),
-                          std::string("the page draws coordinates up to 1e6 ball radii; ") + advice);
-    }
-  };
+  const auto check =
+      [&](const char* what, const std::vector<Eigen::Vector2d>& points, const char* advice = "shorten the motion") {
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          const double r = points[i].cwiseAbs().maxCoeff();
+          if (!(r <= kMaxDrawnCoordinate))
+            ThrowInvalidInput(file + ": " + what + "[" + std::to_string(i) + "]",
+                              FormatNumber(r),
+                              std::string("the page draws coordinates up to 1e6 ball radii; ") + advice);
+        }
+      };
   check("contact path (re-simulated)", d.x);
   check("planned path", d.planned);
   for (const auto& [label, points] : d.spread) check(("Monte Carlo final points of " + label).c_str(), points);

@@ -1,6 +1,6 @@
 // The web assets of `plateball view`, embedded at build time by web/embed_assets.cmake: the page
-// template (web/view.html), its script (web/rig_layers.js then web/view.js), three.js from the npm registry (web/package.json,
-// node_modules/three/build/three.module.min.js, its ES-module export turned into a `THREE` object)
+// template (web/view.html), its script (web/rig_layers.js then web/view.js), three.js from the npm registry
+// (web/package.json, node_modules/three/build/three.module.min.js, its ES-module export turned into a `THREE` object)
 // and the result-field mapping (web/result_fields.json).
 #pragma once
 

@@ -14,13 +14,13 @@
 #include <variant>
 
 #include "common/limits.h"
-#include "common/plan_json.h"
 #include "common/number_format.h"
+#include "common/plan_json.h"
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
+#include "plateball/execution.h"
 #include "plateball/fewest_impulses.h"
 #include "plateball/free_motion.h"
-#include "plateball/execution.h"
 #include "plateball/isoparallel.h"
 #include "plateball/monte_carlo.h"
 #include "plateball/problem_io.h"
@@ -65,8 +65,8 @@ BallModel ModelFrom(const ResultReader& r, const ViewOptions& options) {
   const json& m = r.Get(r.doc(), "", "model");
   if (r.Find(m, "alpha") && r.Find(m, "beta")) {
     const double alpha = r.Number(m, "model", "alpha"), beta = r.Number(m, "model", "beta");
-    return InResultFields(r, {{"alpha", "model.alpha"}, {"beta", "model.beta"}},
-                          [&] { return BallModel::FromAlphaBeta(alpha, beta); });
+    return InResultFields(
+        r, {{"alpha", "model.alpha"}, {"beta", "model.beta"}}, [&] { return BallModel::FromAlphaBeta(alpha, beta); });
   }
   const double lambda = r.Number(m, "model", "lambda");
   return InResultFields(r, {{"lambda", "model.lambda"}}, [&] { return BallModel::FromLambda(lambda); });
@@ -78,8 +78,9 @@ IntegrationOptions IntegrationFrom(const ResultReader& r) {
     if (r.Find(*i, "absolute_tolerance")) o.absolute_tolerance = r.Number(*i, "integration", "absolute_tolerance");
     if (r.Find(*i, "relative_tolerance")) o.relative_tolerance = r.Number(*i, "integration", "relative_tolerance");
   }
-  return InResultFields(r, {{"absolute_tolerance", "integration.absolute_tolerance"},
-                            {"relative_tolerance", "integration.relative_tolerance"}},
+  return InResultFields(r,
+                        {{"absolute_tolerance", "integration.absolute_tolerance"},
+                         {"relative_tolerance", "integration.relative_tolerance"}},
                         [&] {
                           if (const std::string bad = o.Validate(); !bad.empty()) throw std::invalid_argument(bad);
                           return o;
@@ -94,8 +95,13 @@ double MaxEntry(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) { return (a 
 
 // One free arc from `start` over [0, duration]: `m` samples at duration * i / m, i < m, appended
 // to `out`; returns the state at the end of the arc.
-MotionSample AppendArc(const BallModel& model, const FreeMotionStart& start, double t0, double duration, int m,
-                       const IntegrationOptions& integration, ViewData* out) {
+MotionSample AppendArc(const BallModel& model,
+                       const FreeMotionStart& start,
+                       double t0,
+                       double duration,
+                       int m,
+                       const IntegrationOptions& integration,
+                       ViewData* out) {
   const FreeMotion motion(model, start, integration);
   for (int i = 0; i < m; ++i) {
     const MotionSample s = motion.At(duration * i / m);
@@ -143,9 +149,12 @@ void BuildSimulate(const ResultReader& r, const ViewOptions& options, ViewData* 
   const json& doc = r.doc();
   const json& samples = r.Array(doc, "", "samples", 2, kMaxSamples);
   const AngleState angles = AnglesFrom(r, r.Get(doc, "", "initial_angles"), "initial");
-  const FreeMotion motion = FreeMotion::FromAngles(ModelFrom(r, options), angles, r.Number(doc, "", "initial_mu"),
+  const FreeMotion motion = FreeMotion::FromAngles(ModelFrom(r, options),
+                                                   angles,
+                                                   r.Number(doc, "", "initial_mu"),
                                                    r.Vector2(doc, "", "initial_x0"),
-                                                   r.Rotation(doc, "", "initial_orientation"), IntegrationFrom(r));
+                                                   r.Rotation(doc, "", "initial_orientation"),
+                                                   IntegrationFrom(r));
   const std::size_t n = samples.size();
   const std::size_t stride = (n + kMaxViewSamples - 1) / kMaxViewSamples;  // thin a huge result
   const int insert = n >= static_cast<std::size_t>(options.samples)
@@ -175,20 +184,23 @@ void BuildSimulate(const ResultReader& r, const ViewOptions& options, ViewData* 
 // each free arc re-integrated from its impulse, starting where the result says the previous arc
 // ended (x_end, orientation_impulsive), so the page's A at every impulse is the result's.
 struct PlanSteps {
-  std::vector<double> t;               // impulse times, then the end time
-  std::vector<Eigen::Vector2d> p;      // p(tau_k), then the path's end point
+  std::vector<double> t;                   // impulse times, then the end time
+  std::vector<Eigen::Vector2d> p;          // p(tau_k), then the path's end point
   std::vector<Eigen::Matrix3d> A_planned;  // A(tau_k) rolling along the path, k = 0..n
 };
 
-PlanSteps BuildPlanTrajectory(const ResultReader& r, const json& steps, const std::string& steps_field,
-                              const ViewOptions& options, ViewData* out) {
+PlanSteps BuildPlanTrajectory(const ResultReader& r,
+                              const json& steps,
+                              const std::string& steps_field,
+                              const ViewOptions& options,
+                              ViewData* out) {
   const BallModel model = ModelFrom(r, options);
   const IntegrationOptions integration = IntegrationFrom(r);
   const json& doc = r.doc();
   Eigen::Vector2d x = r.Vector2(doc, "", "initial_x0");
   const AngleState angles0 = AnglesFrom(r, r.Get(doc, "", "initial_angles"), "initial");
-  Eigen::Matrix3d A = AlignOrientationToAxis(r.Rotation(doc, "", "initial_orientation"),
-                                             StateFromAngles(angles0, 1.0, model).z);
+  Eigen::Matrix3d A =
+      AlignOrientationToAxis(r.Rotation(doc, "", "initial_orientation"), StateFromAngles(angles0, 1.0, model).z);
   const double total = TotalDuration(r, steps, steps_field);
   PlanSteps plan;
   plan.A_planned.push_back(A);
@@ -208,8 +220,11 @@ PlanSteps BuildPlanTrajectory(const ResultReader& r, const json& steps, const st
     plan.p.push_back(r.Vector2(s, where, "p_begin"));
     const std::string x_field = k == 0 ? "initial.x0" : steps_field + "[" + std::to_string(k - 1) + "].x_end";
     const MotionSample end = InResultFields(
-        r, {{"t", where + ".duration"}, {"start.state.omega", where + ".omega_after_impulse"}, {"start.x0", x_field}},
-        [&] { return AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples), integration, out); });
+        r,
+        {{"t", where + ".duration"}, {"start.state.omega", where + ".omega_after_impulse"}, {"start.x0", x_field}},
+        [&] {
+          return AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples), integration, out);
+        });
     x = r.Vector2(s, where, "x_end");
     A = r.Rotation(s, where, "orientation_impulsive");
     plan.A_planned.push_back(r.Rotation(s, where, "orientation_planned"));
@@ -264,8 +279,11 @@ struct Polyline {
 // impulse time t_k (arc length linear in time between them); its orientation is the rolling
 // along the dense polyline (exact per chord, rolling.h), reset to the result's A(tau_k) where
 // the result reports it.
-void BuildGhost(const Polyline& path, const std::vector<double>& key_t, const std::vector<Eigen::Vector2d>& key_p,
-                const std::vector<Eigen::Matrix3d>& key_A, ViewData* out) {
+void BuildGhost(const Polyline& path,
+                const std::vector<double>& key_t,
+                const std::vector<Eigen::Vector2d>& key_p,
+                const std::vector<Eigen::Matrix3d>& key_A,
+                ViewData* out) {
   std::vector<double> key_s;
   std::size_t from = 0;
   for (const Eigen::Vector2d& p : key_p) key_s.push_back(path.Locate(p, &from));
@@ -316,7 +334,8 @@ Problem LoadProblem(const ResultReader& r, const ViewOptions& options) {
   if (file.empty()) {
     const json* f = r.Find(r.doc(), "problem_file");
     if (!f || !f->is_string())
-      r.Fail("problem.file", f ? ValueText(*f) : "(missing)",
+      r.Fail("problem.file",
+             f ? ValueText(*f) : "(missing)",
              "the planned path is not in the result: give the problem file with --problem FILE");
     file = f->get<std::string>();
     const std::filesystem::path beside = std::filesystem::path(r.file()).parent_path() / file;
@@ -363,14 +382,17 @@ SteerStart SteerStartOf(const ResultReader& r, const Problem& problem) {
 }
 
 // An array of strings of the result's rig object (limit names, violation lines).
-std::vector<std::string> Strings(const ResultReader& r, const json& at, const std::string& where,
+std::vector<std::string> Strings(const ResultReader& r,
+                                 const json& at,
+                                 const std::string& where,
                                  const std::string& concept_name) {
   const json& list = r.Array(at, where, concept_name, 0, kMaxSteps);
   std::vector<std::string> out;
   for (std::size_t i = 0; i < list.size(); ++i) {
     if (!list[i].is_string())
       r.Fail(where + "." + r.fields().Paths(concept_name).front().get<std::string>() + "[" + std::to_string(i) + "]",
-             ValueText(list[i]), "must be a string");
+             ValueText(list[i]),
+             "must be a string");
     out.push_back(list[i].get<std::string>());
   }
   return out;
@@ -379,7 +401,8 @@ std::vector<std::string> Strings(const ResultReader& r, const json& at, const st
 bool Boolean(const ResultReader& r, const json& at, const std::string& where, const std::string& concept_name) {
   const json& j = r.Get(at, where, concept_name);
   if (!j.is_boolean())
-    r.Fail(where + "." + r.fields().Paths(concept_name).front().get<std::string>(), ValueText(j), "must be true or false");
+    r.Fail(
+        where + "." + r.fields().Paths(concept_name).front().get<std::string>(), ValueText(j), "must be true or false");
   return j.get<bool>();
 }
 
@@ -445,15 +468,16 @@ void BuildSteer(const ResultReader& r, const ViewOptions& options, ViewData* out
     keys.t.push_back(t);
     // The planned pass point; the fewest search plans none (its ghost passes the impulse points).
     keys.p.push_back(r.Find(e, "impulse_p") ? r.Vector2(e, where, "impulse_p") : start.x0);
-    const MotionSample end = AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples),
-                                       integration, out);
+    const MotionSample end =
+        AppendArc(model, start, t, duration, ArcSamples(duration, total, options.samples), integration, out);
     A = end.A;
     x = end.x;
     t += duration;
   }
   AppendFinal(t, x, A, out);
-  out->resimulation_mismatch = MaxEntry(A, r.Find(doc, "arrival_orientation") ? r.Rotation(doc, "", "arrival_orientation")
-                                                                             : r.Rotation(doc, "", "goal_orientation"));
+  out->resimulation_mismatch = MaxEntry(A,
+                                        r.Find(doc, "arrival_orientation") ? r.Rotation(doc, "", "arrival_orientation")
+                                                                           : r.Rotation(doc, "", "goal_orientation"));
   keys.t.push_back(t);
   keys.p.push_back(begin.reference.back());
   keys.A_planned.push_back(begin.A0);
@@ -474,9 +498,12 @@ constexpr double kMaxSpreadImpulses = 2e5;
 ErrorModel ErrorsFrom(const ResultReader& r, const json& errors, const std::string& where) {
   ErrorModel e;
   const std::pair<const char*, double ErrorModel::*> members[] = {
-      {"error_impulse_magnitude", &ErrorModel::impulse_magnitude}, {"error_impulse_angle", &ErrorModel::impulse_angle},
-      {"error_timing", &ErrorModel::timing}, {"error_energy_loss", &ErrorModel::energy_loss},
-      {"error_lambda", &ErrorModel::lambda}, {"error_observation", &ErrorModel::observation}};
+      {"error_impulse_magnitude", &ErrorModel::impulse_magnitude},
+      {"error_impulse_angle", &ErrorModel::impulse_angle},
+      {"error_timing", &ErrorModel::timing},
+      {"error_energy_loss", &ErrorModel::energy_loss},
+      {"error_lambda", &ErrorModel::lambda},
+      {"error_observation", &ErrorModel::observation}};
   for (const auto& [concept_name, member] : members) e.*member = r.Number(errors, where, concept_name);
   // Results written before finite pulses have no pulse fields: ideal impulses.
   if (r.Find(errors, "error_pulse_duration") != nullptr) {
@@ -504,7 +531,9 @@ double ResultMedian(const ResultReader& r, int n, const std::string& scenario, c
 }
 
 // The nominal plan as `plateball plan` would write it, read back like a plan result.
-PlanSteps NominalTrajectory(const ResultReader& r, const NominalPlan& nominal, const ViewOptions& options,
+PlanSteps NominalTrajectory(const ResultReader& r,
+                            const NominalPlan& nominal,
+                            const ViewOptions& options,
                             ViewData* out) {
   json plan_doc = PlanSummaryToJson(nominal.plan);
   plan_doc["model"] = r.Get(r.doc(), "", "model");
@@ -584,12 +613,14 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
   }
   out->goal = nominal->goal;
   out->has_goal = true;
-  out->facts.push_back({"trials re-run", std::to_string(trials) + " per cell (Execute, seed " + seed.dump() + ")" +
-                                             (trials == budget_trials && trials < file_trials
-                                                  ? ", the view's work budget of 2e5 impulses over all cells"
-                                                  : "")});
-  out->facts.push_back({"re-run vs file", compared > 0 ? "median final position errors agree to " + FormatNumber(mismatch)
-                                                       : std::string("not compared: no cell has a median in both")});
+  out->facts.push_back(
+      {"trials re-run",
+       std::to_string(trials) + " per cell (Execute, seed " + seed.dump() + ")" +
+           (trials == budget_trials && trials < file_trials ? ", the view's work budget of 2e5 impulses over all cells"
+                                                            : "")});
+  out->facts.push_back({"re-run vs file",
+                        compared > 0 ? "median final position errors agree to " + FormatNumber(mismatch)
+                                     : std::string("not compared: no cell has a median in both")});
 }
 
 std::string TitleOf(const ResultReader& r, const std::string& kind) {
@@ -626,8 +657,10 @@ ViewData BuildView(const ResultReader& r, const ViewOptions& options) {
       path.push_back({pts[i][0].get<double>(), pts[i][1].get<double>()});
     }
     // The optimal path's samples through a C^2 spline, sampled densely for the ghost's rolling.
-    AddPlanned(SamplePath(InResultFields(r, {{"points", "optimal_path"}}, [&] { return Path({SmoothCurve::Samples(path)}); })),
-               plan, &out);
+    AddPlanned(
+        SamplePath(InResultFields(r, {{"points", "optimal_path"}}, [&] { return Path({SmoothCurve::Samples(path)}); })),
+        plan,
+        &out);
     out.goal = r.Vector2(doc, "", "goal");
     out.has_goal = true;
   } else if (out.kind == "steer") {
@@ -684,16 +717,25 @@ json RigToJson(const ViewRig& rig) {
   if (rig.checked) {
     json margins = json::array();
     for (const auto& [name, value] : rig.margins) margins.push_back(json::array({name, value}));
-    j["check"] = json{{"passed", rig.passed}, {"samples", rig.samples}, {"margins", margins},
-                      {"violations", rig.violations}, {"active", rig.active}, {"blocking", rig.blocking},
-                      {"constrained", rig.constrained}, {"objective", rig.objective}};
+    j["check"] = json{{"passed", rig.passed},
+                      {"samples", rig.samples},
+                      {"margins", margins},
+                      {"violations", rig.violations},
+                      {"active", rig.active},
+                      {"blocking", rig.blocking},
+                      {"constrained", rig.constrained},
+                      {"objective", rig.objective}};
   }
   return j;
 }
 }  // namespace
 
 json ViewDataToJson(const ViewData& d) {
-  json j{{"kind", d.kind}, {"title", d.title}, {"t", d.t}, {"x", Flat(d.x)}, {"q", Quaternions(d.A)},
+  json j{{"kind", d.kind},
+         {"title", d.title},
+         {"t", d.t},
+         {"x", Flat(d.x)},
+         {"q", Quaternions(d.A)},
          {"planned", Flat(d.planned)},
          {"resimulation_mismatch", d.resimulation_mismatch}};
   json facts = json::array();
@@ -709,8 +751,10 @@ json ViewDataToJson(const ViewData& d) {
   j["spread"] = spread;
   json impulses = json::array();
   for (const ViewImpulse& i : d.impulses)
-    impulses.push_back(json{{"t", i.t}, {"x", {i.x.x(), i.x.y()}},
-                            {"dv", {i.plate_velocity_change.x(), i.plate_velocity_change.y(), i.plate_velocity_change.z()}}});
+    impulses.push_back(
+        json{{"t", i.t},
+             {"x", {i.x.x(), i.x.y()}},
+             {"dv", {i.plate_velocity_change.x(), i.plate_velocity_change.y(), i.plate_velocity_change.z()}}});
   j["impulses"] = impulses;
   if (d.has_goal) j["goal"] = {d.goal.x(), d.goal.y()};
   if (d.rig) j["rig"] = RigToJson(*d.rig);

@@ -48,8 +48,11 @@ class ResultReader {
   /// A rotation matrix (rows), checked to 1e-9.
   Eigen::Matrix3d Rotation(const nlohmann::json& at, const std::string& where, const std::string& concept_name) const;
   /// An array with at least `min_size` and at most `max_size` elements.
-  const nlohmann::json& Array(const nlohmann::json& at, const std::string& where, const std::string& concept_name,
-                              std::size_t min_size, std::size_t max_size) const;
+  const nlohmann::json& Array(const nlohmann::json& at,
+                              const std::string& where,
+                              const std::string& concept_name,
+                              std::size_t min_size,
+                              std::size_t max_size) const;
   [[noreturn]] void Fail(const std::string& field, const std::string& value, const std::string& what) const;
 
  private:
@@ -85,8 +88,8 @@ struct ViewRig {
 
 /// Everything the page draws; times are the motion's own (normalised units).
 struct ViewData {
-  std::string kind;   ///< "simulate", "plan", "isoparallel", "steer", "montecarlo"
-  std::string title;  ///< problem name and command
+  std::string kind;                                        ///< "simulate", "plan", "isoparallel", "steer", "montecarlo"
+  std::string title;                                       ///< problem name and command
   std::vector<std::pair<std::string, std::string>> facts;  ///< label, value (the info panel)
   std::vector<double> t;
   std::vector<Eigen::Vector2d> x;

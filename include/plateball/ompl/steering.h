@@ -30,17 +30,17 @@
 // steer(): their controls are random targets, and they reach the goal only approximately.
 #pragma once
 
-#include <Eigen/Core>
-#include <memory>
-#include <mutex>
-#include <string>
-#include <vector>
-
 #include <ompl/base/State.h>
 #include <ompl/base/StateSpace.h>
 #include <ompl/control/Control.h>
 #include <ompl/control/SpaceInformation.h>
 #include <ompl/control/StatePropagator.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
 
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
@@ -102,8 +102,8 @@ std::string ToString(ConnectionStatus status);
 struct Connection {
   ConnectionStatus status = ConnectionStatus::kNotRun;
   std::string message = "not run";
-  ExactArrivalProblem problem;   ///< what was solved (start, straight reference, goal)
-  ExactArrivalSummary summary;   ///< the impulses and the arrival
+  ExactArrivalProblem problem;  ///< what was solved (start, straight reference, goal)
+  ExactArrivalSummary summary;  ///< the impulses and the arrival
   /// The sampled configurations of the motion (start to arrival; filled when the solve arrived).
   std::vector<MotionSample> samples;
   /// The ball's state (z, omega) at the arrival, before any next impulse (filled with `samples`).
@@ -118,8 +118,8 @@ struct Connection {
 /// The impulses of consecutive connections as one sequence from the first connection's start: the
 /// impulse times are shifted by the earlier connections' durations, and the first impulse of each
 /// later connection gets the delta psi that takes the psi the ball actually has there (at the end of
-/// the previous connection) to the psi its connection planned, reduced to [-pi, pi]. Throws std::invalid_argument when a
-/// connection is not usable.
+/// the previous connection) to the psi its connection planned, reduced to [-pi, pi]. Throws std::invalid_argument when
+/// a connection is not usable.
 std::vector<ExactImpulse> ChainImpulses(const std::vector<Connection>& connections);
 
 /// The StatePropagator of the mapping described at the top of this file.
@@ -136,10 +136,14 @@ class ExactSteeringPropagator : public ompl::control::StatePropagator {
 
   /// The arrival configuration of the connection to the control's target (the start state when
   /// the connection is not usable). `duration` is ignored: a control lasts one step.
-  void propagate(const ompl::base::State* state, const ompl::control::Control* control, double duration,
+  void propagate(const ompl::base::State* state,
+                 const ompl::control::Control* control,
+                 double duration,
                  ompl::base::State* result) const override;
   /// Control = `to` as target, duration = 1 step, when Connect(from, to) is usable; else false.
-  bool steer(const ompl::base::State* from, const ompl::base::State* to, ompl::control::Control* result,
+  bool steer(const ompl::base::State* from,
+             const ompl::base::State* to,
+             ompl::control::Control* result,
              double& duration) const override;
   /// True: steer() is implemented.
   bool canSteer() const override { return true; }

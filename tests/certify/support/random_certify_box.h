@@ -28,8 +28,10 @@ inline internal::CertifyBox RandomCertifyBox(PendulumRegime regime, const Random
   using internal::CertifyPoint;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double sign = regime == PendulumRegime::kRotating && unit(*rng) < 0.5 ? -1.0 : 1.0;
-  const CertifyPoint c = {sign * LogUniform(r.rate_lo, r.rate_hi, rng), r.k_lo + (r.k_hi - r.k_lo) * unit(*rng),
-                          -6.0 + 12.0 * unit(*rng), r.length_lo + (r.length_hi - r.length_lo) * unit(*rng)};
+  const CertifyPoint c = {sign * LogUniform(r.rate_lo, r.rate_hi, rng),
+                          r.k_lo + (r.k_hi - r.k_lo) * unit(*rng),
+                          -6.0 + 12.0 * unit(*rng),
+                          r.length_lo + (r.length_hi - r.length_lo) * unit(*rng)};
   const CertifyPoint scale = {std::abs(c[internal::kCertifyRate]), 0.3, 1.0, r.length_scale};
   internal::CertifyBox box;
   for (int i = 0; i < 4; ++i) {
