@@ -5,18 +5,15 @@ planner honours them by default) write the same JSON, byte for byte, once the re
 rig has are removed: the "rig" section, the report's "; rig limits met" and the problem's name and
 file. The rig record must say that nothing was refined or slid.
 Usage: plan_slack_rig.py PLATEBALL SOURCE_DIR"""
-import json
-import subprocess
 import sys
+
+from json_compare import require_identical, run_json
 
 RIG_SUFFIX = "; rig limits met"
 
 
 def run(plateball, problem):
-    out = subprocess.run([plateball, "plan", problem], check=False, capture_output=True, text=True)
-    if out.returncode != 0:
-        sys.exit(f"{problem}: exit {out.returncode}: {out.stderr}")
-    return json.loads(out.stdout)
+    return run_json([plateball, "plan", problem])
 
 
 def main():
@@ -33,13 +30,8 @@ def main():
     if not slack["report"].endswith(RIG_SUFFIX):
         sys.exit(f"the report does not say the limits are met: {slack['report']}")
     slack["report"] = slack["report"][: -len(RIG_SUFFIX)]
-    a, b = json.dumps(free, indent=2), json.dumps(slack, indent=2)
-    if a != b:
-        for i, (x, y) in enumerate(zip(a.splitlines(), b.splitlines())):
-            if x != y:
-                sys.exit(f"first difference at line {i + 1}:\n  without rig: {x}\n  slack rig:   {y}")
-        sys.exit("the documents differ in length")
-    print(f"plan: identical with slack rig limits ({len(a)} characters, {free['partition']['segments']} segments)")
+    length = require_identical(free, slack)
+    print(f"plan: identical with slack rig limits ({length} characters, {free['partition']['segments']} segments)")
 
 
 if __name__ == "__main__":
