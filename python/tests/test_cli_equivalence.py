@@ -421,7 +421,7 @@ def test_plan_honours_a_rig(problems, run_cli):
     assert honoured.usable and doc["status"] == "success"
     assert json_get(doc, "rig.mode") == "honour"
     assert json_get(doc, "partition.segments") == honoured.plan.segments == 128
-    for key in ("segments_initial", "points_added", "points_slid", "rounds", "active", "blocking"):
+    for key in ("segments_initial", "points_added", "points_removed", "points_slid", "rounds", "active", "blocking"):
         assert json_get(doc, "rig." + key) == getattr(honoured, key), key
     assert honoured.active == ["obstacles[0]", "tick"]
     times = [s["t_impulse"] for s in doc["steps"]]
