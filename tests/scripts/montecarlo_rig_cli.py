@@ -58,6 +58,12 @@ def valid(doc, command):
     return not errors, "; ".join(errors[:3])
 
 
+def page_data(html):
+    """The page's data: the JSON literal of `const PLATEBALL_DATA = ...;`."""
+    text = open(html, encoding="utf-8").read()
+    return json.loads(re.search(r"<script>const PLATEBALL_DATA = (.*);</script>", text).group(1))
+
+
 # ---- honoured: the same refined plan as `plan`
 code_p, plan, _ = run("plan", BLOCKED, "--summary-only")
 code_m, mc, err = run("montecarlo", BLOCKED, *STUDY, "--out", "-")
@@ -80,8 +86,7 @@ if plan and mc:
     code_v, _, err_v = run("view", f"{work}/mc.json", "--html", f"{work}/mc.html")
     check(code_v == 0, "view of the honoured study exits 0", err_v.strip())
     if code_v == 0:
-        text = open(f"{work}/mc.html", encoding="utf-8").read()
-        data = json.loads(re.search(r"<script>const PLATEBALL_DATA = (.*);</script>", text).group(1))
+        data = page_data(f"{work}/mc.html")
         _, full, _ = run("plan", BLOCKED)
         times = [s["t_impulse"] for s in full["steps"]]
         shown = [i["t"] for i in data["impulses"]]
@@ -99,6 +104,16 @@ if doc:
           "status limits_not_met, no results, obstacles[0] blocking", doc["report"][:160])
     ok, why = valid(doc, "montecarlo")
     check(ok, "limits_not_met output validates against montecarlo.schema.json", why)
+    # The view shows the refused plan and re-runs no trial (the study ran none).
+    with open(f"{work}/refused.json", "w") as f:
+        json.dump(doc, f)
+    code_v, _, err_v = run("view", f"{work}/refused.json", "--html", f"{work}/refused.html")
+    check(code_v == 0, "view of the refused study exits 0", err_v.strip())
+    if code_v == 0:
+        data = page_data(f"{work}/refused.html")
+        facts = dict(data["facts"])
+        check(facts.get("trials re-run", "").startswith("none") and not data.get("spread"),
+              "the view of the refused study re-runs no trial", facts.get("trials re-run", "(missing)"))
 
 # ---- --rig-check-only: the partition as given, checked, run all the same
 code, doc, err = run("montecarlo", BLOCKED, *STUDY, "--rig-check-only")

@@ -610,6 +610,12 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
     out->facts.push_back({"rig",
                           std::string(planned.limits_met ? "limits met" : "limits NOT met") + " (" +
                               planned.rig["mode"].get<std::string>() + ")" + planned.note});
+  if (!planned.limits_met && RigMode(r) == "honour") {  // `montecarlo` refused the plan: no trial to re-run
+    out->goal = nominal->goal;
+    out->has_goal = true;
+    out->facts.push_back({"trials re-run", "none: the nominal plan cannot meet the rig's limits (no trial ran)"});
+    return;
+  }
   AddPlanned(SamplePath(setup.problem.path), NominalTrajectory(r, *nominal, options, out), out);
   ExecutionOptions eo;
   eo.miss_tolerance = r.Number(o, "options", "mc_miss_tolerance");
