@@ -386,6 +386,7 @@ bool PlanSegment(const BallModel& model,
       grid.report->missed.push_back("partition point " + std::to_string(s->global_index + 1) + " (piece " +
                                     std::to_string(s->piece) + ", tau = " + internal::FormatNumber(s->tau_end) +
                                     "): " + why);
+      grid.report->missed_points.emplace_back(s->piece, s->index + 1);
     }
   }
   s->p_end = cur->p = curve.Value(s->tau_end);

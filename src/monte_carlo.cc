@@ -106,6 +106,8 @@ void ValidateProblem(const MonteCarloProblem& p, const MonteCarloOptions& o) {
     if (!e.empty()) throw std::invalid_argument("scenarios[" + std::to_string(i) + "]." + e);
   }
   if (p.sweep_n.empty()) return;
+  if (p.main_plan)
+    internal::ThrowInvalid("sweep_n", p.sweep_n.front(), "not with a given main_plan (its n is not the partition's)");
   ValidatePartitionSizes(p.sweep_n, "sweep_n");
   const bool uniform = p.plan.partition.size() == 1 && !std::holds_alternative<ExplicitTaus>(p.plan.partition.front());
   if (!uniform) internal::ThrowInvalid("sweep_n", p.sweep_n.front(), "needs a single uniform partition rule to vary n");
@@ -134,7 +136,9 @@ MonteCarloWork::MonteCarloWork(const MonteCarloProblem& problem, const MonteCarl
   for (int n : problem.sweep_n)
     if (n != MainN(problem.plan)) others.push_back(n);
   std::sort(others.begin(), others.end());
-  main_ = std::make_shared<NominalPlan>(MakeNominalPlan(problem.plan, options.plan));
+  main_ =
+      std::make_shared<NominalPlan>(problem.main_plan ? MakeNominalPlan(problem.plan, options.plan, *problem.main_plan)
+                                                      : MakeNominalPlan(problem.plan, options.plan));
   ns_.push_back(main_->plan.segments);
   for (int n : others) ns_.push_back(n);
   // The tasks and the work up front, before the sweep's plans (each n also plans once, about n

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "plateball/impulse_planner.h"
@@ -25,6 +26,8 @@ struct PlanGrid {
 struct PlanGridReport {
   int slid = 0;
   std::vector<std::string> missed;
+  /// The points of `missed`: (piece, index of the point in the piece's partition).
+  std::vector<std::pair<int, int>> missed_points;
 };
 
 /// The plan for explicit per-piece partitions (validated as PlanImpulses validates its problem).

@@ -54,8 +54,8 @@ std::string RigPlanOptions::Validate() const {
 std::string RigPlanSummary::BriefReport() const {
   std::ostringstream os;
   os << "Rig plan: " << ToString(status) << ", " << plan.segments << " segments (" << segments_initial << " asked, "
-     << points_added << " added in " << rounds << " round" << (rounds == 1 ? "" : "s") << ", " << points_slid
-     << " slid onto the tick grid)";
+     << points_added << " added in " << rounds << " round" << (rounds == 1 ? "" : "s") << ", " << points_removed
+     << " removed, " << points_slid << " slid onto the tick grid)";
   if (!message.empty()) os << " (" << message << ")";
   os << "; " << plan.BriefReport();
   return os.str();
@@ -305,6 +305,155 @@ bool Bisect(const PlanSummary& plan,
   return true;
 }
 
+// Coarsening. A point whose removal merges a flight shorter than min_interval (not the last: the
+// check's rule) or a flight the tick grid could not place with its neighbour: the flight's end when
+// it is an interior point of its piece without energy changes and not frozen, else its begin. No two
+// neighbours are removed in one round (each merge joins two segments).
+using PointSet = std::vector<std::pair<int, int>>;         // (piece, index of the point in the piece)
+using FrozenPoints = std::vector<std::pair<int, double>>;  // (piece, tau): kept whatever the indices become
+
+bool Removable(const Refinement& r, const FrozenPoints& frozen, int piece, int k) {
+  const std::size_t p = static_cast<std::size_t>(piece);
+  if (!(k > 0 && k + 1 < static_cast<int>(r.partition[p].size()) && r.owners[p][static_cast<std::size_t>(k)].empty()))
+    return false;
+  const double tau = r.partition[p][static_cast<std::size_t>(k)];
+  return std::find(frozen.begin(), frozen.end(), std::make_pair(piece, tau)) == frozen.end();
+}
+
+void ChooseMerge(const Refinement& r, const FrozenPoints& frozen, int piece, int end, PointSet* chosen) {
+  const auto has = [&](int k) {
+    return std::find(chosen->begin(), chosen->end(), std::make_pair(piece, k)) != chosen->end();
+  };
+  if (has(end) || has(end - 1)) return;  // the flight already merges
+  for (int k : {end, end - 1})
+    if (Removable(r, frozen, piece, k) && !has(k - 1) && !has(k + 1)) {
+      chosen->emplace_back(piece, k);
+      return;
+    }
+}
+
+PointSet PointsToMerge(const PlanSummary& plan,
+                       const RigLimits& limits,
+                       const internal::PlanGridReport& grid,
+                       const RigPlanOptions& options,
+                       const Refinement& r,
+                       const FrozenPoints& frozen) {
+  PointSet chosen;
+  for (std::size_t k = 0; k + 1 < plan.steps.size(); ++k) {
+    const PlanStep& s = plan.steps[k];
+    if (limits.min_interval > 0 && s.duration < limits.min_interval * (1 - options.tolerances.time))
+      ChooseMerge(r, frozen, s.piece, s.index + 1, &chosen);
+  }
+  for (const auto& [piece, k] : grid.missed_points) ChooseMerge(r, frozen, piece, k, &chosen);
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
+}
+
+// The partition without the chosen points (sorted); `merged` gets, per point, its merged flight's
+// (piece, index) in the new partition.
+Refinement WithoutPoints(const Refinement& r, const PointSet& points, PointSet* merged) {
+  Refinement out = r;
+  for (auto it = points.rbegin(); it != points.rend(); ++it) {
+    const std::size_t p = static_cast<std::size_t>(it->first);
+    out.partition[p].erase(out.partition[p].begin() + it->second);
+    out.owners[p].erase(out.owners[p].begin() + it->second);
+  }
+  for (const auto& [piece, k] : points) {
+    int before = 0;  // removed points of the piece before this one
+    for (const auto& [q, j] : points) before += q == piece && j < k;
+    merged->emplace_back(piece, k - 1 - before);
+  }
+  return out;
+}
+
+// The flights of `plan` shorter than min_interval, but the last (the check's rule).
+int ShortFlights(const PlanSummary& plan, const RigLimits& limits, const RigPlanOptions& options) {
+  int n = 0;
+  for (std::size_t k = 0; k + 1 < plan.steps.size(); ++k)
+    n += limits.min_interval > 0 && plan.steps[k].duration < limits.min_interval * (1 - options.tolerances.time);
+  return n;
+}
+
+// Merges the flights that are too short (PointsToMerge) round by round and plans again, keeping a
+// round's merges only when every flight of the new plan stays within the geometric limits: a
+// merge whose flight would leave them is frozen (its point stays, named in the reasons) and the
+// round is retried without it. Stops when no flight is too short, nothing can be merged, or after
+// max_rounds accepted rounds.
+void Coarsen(const PlanProblem& problem,
+             const RigLimits& limits,
+             const PlanOptions& options,
+             const RigPlanOptions& rig_options,
+             const internal::PlanGrid& grid,
+             Refinement* r,
+             internal::PlanGridReport* grid_report,
+             RigPlanSummary* out) {
+  FrozenPoints frozen;
+  for (int accepted = 0; accepted < rig_options.max_rounds;) {
+    const PointSet points = PointsToMerge(out->plan, limits, *grid_report, rig_options, *r, frozen);
+    if (points.empty()) return;
+    PointSet merged;
+    Refinement candidate = WithoutPoints(*r, points, &merged);
+    internal::PlanGridReport report;
+    PlanSummary plan = internal::PlanPartitioned(problem.model,
+                                                 problem.initial,
+                                                 problem.mu,
+                                                 problem.A0,
+                                                 problem.path,
+                                                 candidate.partition,
+                                                 PlacedEnergyChanges(problem, candidate.owners),
+                                                 options,
+                                                 grid,
+                                                 &report);
+    PointSet refused;
+    if (!plan.IsSolutionUsable()) {
+      refused = points;
+      r->reasons.push_back("merging flights shorter than min_interval or the tick fails: " + plan.message);
+    } else if (HasGeometricLimits(limits)) {
+      const std::vector<Margin> margins =
+          FlightMargins(problem, plan, limits, options.integration, rig_options.samples_per_flight);
+      bool other = false;  // a flight that was not merged now exceeds a limit: refuse the round
+      std::string first;   // the first refused merge, for the reasons
+      for (std::size_t k = 0; k < margins.size(); ++k) {
+        if (!(margins[k].value < -rig_options.tolerances.position)) continue;
+        const PlanStep& s = plan.steps[k];
+        const auto at = std::find(merged.begin(), merged.end(), std::make_pair(s.piece, s.index));
+        if (at == merged.end()) {
+          other = true;
+          continue;
+        }
+        const std::pair<int, int> point = points[static_cast<std::size_t>(at - merged.begin())];
+        refused.push_back(point);
+        if (first.empty())
+          first = "at partition point " + std::to_string(point.second) + " (piece " + std::to_string(point.first) +
+                  ") the merged flight " + Crossing(margins[k].limit) + " by " +
+                  internal::FormatNumber(-margins[k].value);
+      }
+      if (!refused.empty())
+        r->reasons.push_back(std::to_string(refused.size()) +
+                             " merges of flights shorter than min_interval or the tick keep their points, their "
+                             "flights would exceed a geometric limit (the first " +
+                             first + ")");
+      if (other && refused.empty()) {
+        refused = points;
+        r->reasons.push_back("merging " + std::to_string(points.size()) +
+                             " flights shorter than min_interval or the tick pushes other flights out of the limits");
+      }
+    }
+    if (!refused.empty()) {
+      for (const auto& [piece, k] : refused)
+        frozen.emplace_back(piece, r->partition[static_cast<std::size_t>(piece)][static_cast<std::size_t>(k)]);
+      continue;
+    }
+    if (!grid_report->missed_points.empty()) AddOnce("tick", &out->active);
+    if (ShortFlights(out->plan, limits, rig_options) > 0) AddOnce("min_interval", &out->active);
+    out->points_removed += static_cast<int>(points.size());
+    out->plan = std::move(plan);
+    *grid_report = std::move(report);
+    *r = std::move(candidate);
+    ++accepted;
+  }
+}
+
 // The final verdict: the independent check, the grid's misses and the refinement's reasons.
 void Conclude(const PlanProblem& problem,
               const RigLimits& limits,
@@ -390,6 +539,8 @@ RigPlanSummary PlanImpulsesOnRig(const PlanProblem& problem,
     if (!Bisect(out.plan, margins, limits, rig_options, &r, &out)) break;
     out.rounds = round + 1;
   }
+  if (out.plan.IsSolutionUsable() && out.blocking.empty())
+    Coarsen(problem, limits, options, rig_options, grid, &r, &grid_report, &out);
   Conclude(problem, limits, physical, rig_options, grid_report, &r, &out);
   return out;
 }

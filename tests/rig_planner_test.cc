@@ -177,18 +177,98 @@ TEST(RigPlanner, ImpulseTimesSlideOntoTheTickAndStillMeetThePartitionPoints) {
   EXPECT_NEAR(r.plan.steps.back().p_end.x(), 0.0, 1e-12) << "the path's end is fixed";
 }
 
-TEST(RigPlanner, ATickCoarserThanTheFlightsIsBlocking) {
+// The shortest time between two impulses of `plan` (but the last flight, the check's rule), from
+// the impulse times replayed: t_0 + the sum of the flights before, independent of t_impulse.
+double ShortestInterval(const PlanSummary& plan) {
+  double t = plan.steps.front().t_impulse, least = INFINITY;
+  for (std::size_t k = 0; k + 1 < plan.steps.size(); ++k) {
+    const double next = t + plan.steps[k].duration;
+    least = std::min(least, next - t);
+    EXPECT_NEAR(plan.steps[k + 1].t_impulse, next, 1e-12) << "impulse " << k + 1;
+    t = next;
+  }
+  return least;
+}
+
+TEST(RigPlanner, ATickCoarserThanTheFlightsIsBlockingWithoutCoarsening) {
   // Flights of about 0.257 on a grid of 0.3: the drift of the arrivals grows until a multiple lies
-  // beyond the next partition point's arrival, where the point cannot slide.
+  // beyond the next partition point's arrival, where the point cannot slide (max_rounds = 0: the
+  // partition is neither refined nor coarsened).
   const BlockedCircle& c = Blocked();
   RigLimits l;
   l.tick = 0.3;
-  const RigPlanSummary r = PlanImpulsesOnRig(c.setup.problem, l, std::nullopt, c.setup.options);
+  RigPlanOptions fixed;
+  fixed.max_rounds = 0;
+  const RigPlanSummary r = PlanImpulsesOnRig(c.setup.problem, l, std::nullopt, c.setup.options, fixed);
   EXPECT_EQ(r.status, RigPlanStatus::kLimitsNotMet);
   EXPECT_EQ(r.blocking, std::vector<std::string>{"tick"});
   EXPECT_NE(r.message.find("lies beyond the arrival at the next partition point"), std::string::npos) << r.message;
   EXPECT_LT(r.points_slid, 63);
+  EXPECT_EQ(r.points_removed, 0);
   EXPECT_LT(r.check.margins.at("tick"), 0.0);
+}
+
+TEST(RigPlanner, ATickCoarserThanTheFlightsMergesThem) {
+  // The same grid of 0.3 with coarsening: the points the grid cannot place are removed (their
+  // flights merge with the next) until every impulse lands on the grid.
+  const BlockedCircle& c = Blocked();
+  RigLimits l;
+  l.tick = 0.3;
+  const RigPlanSummary r = PlanImpulsesOnRig(c.setup.problem, l, std::nullopt, c.setup.options);
+  ASSERT_TRUE(r.IsSolutionUsable()) << r.BriefReport();
+  EXPECT_GT(r.points_removed, 0);
+  EXPECT_EQ(r.plan.segments, 64 - r.points_removed);
+  EXPECT_TRUE(Contains(r.active, "tick"));
+  const RigCheck dense =
+      CheckPlanRigLimits(c.setup.problem, r.plan, l, std::nullopt, RigCheckTolerances{}, kDenseCheckSamples);
+  EXPECT_TRUE(dense.passed) << dense.violations.front();
+  for (const PlanStep& s : r.plan.steps) {
+    EXPECT_EQ(s.t_impulse, static_cast<double>(std::llround(s.t_impulse / l.tick)) * l.tick) << s.global_index;
+    EXPECT_LE(s.pass_miss, kPassMiss) << "impulse " << s.global_index;
+  }
+  EXPECT_GE(ShortestInterval(r.plan), l.tick * (1 - 1e-9)) << "two impulses on one tick";
+}
+
+TEST(RigPlanner, AShortestIntervalLongerThanTheFlightsMergesThem) {
+  // Flights of about 0.257 and a shortest interval of 0.3: every other interior point is removed
+  // (32 flights of about 0.515). The merged flights bow to about 1.981 from the centre: the plate
+  // of radius 3 and the obstacle of radius 1.5 stay clear (a dense integration measures it).
+  const BlockedCircle& c = Blocked();
+  RigLimits l;
+  l.plate = DiskShape{kCentre, 3.0};
+  l.obstacles = {DiskShape{kCentre, 1.5}};
+  l.min_interval = 0.3;
+  ASSERT_FALSE(
+      CheckPlanRigLimits(c.setup.problem, PlanImpulses(c.setup.problem, c.setup.options), l, std::nullopt).passed);
+  const RigPlanSummary r = PlanImpulsesOnRig(c.setup.problem, l, std::nullopt, c.setup.options);
+  ASSERT_TRUE(r.IsSolutionUsable()) << r.BriefReport();
+  EXPECT_EQ(r.points_removed, 32);
+  EXPECT_EQ(r.plan.segments, 32);
+  EXPECT_EQ(r.active, std::vector<std::string>{"min_interval"});
+  const RigCheck dense =
+      CheckPlanRigLimits(c.setup.problem, r.plan, l, std::nullopt, RigCheckTolerances{}, kDenseCheckSamples);
+  EXPECT_TRUE(dense.passed) << dense.violations.front();
+  EXPECT_GE(ShortestInterval(r.plan), l.min_interval);
+  const double least = LeastDistance(c.setup.problem, r.plan);
+  EXPECT_GT(least, 1.5);
+  EXPECT_LT(least, 1.99) << "the merged flights bow deeper than the 64 flights' 1.9952";
+  for (const PlanStep& s : r.plan.steps) EXPECT_LE(s.pass_miss, kPassMiss) << "impulse " << s.global_index;
+}
+
+TEST(RigPlanner, AMergeWhoseFlightWouldEnterAnObstacleKeepsItsPoint) {
+  // An obstacle of radius 1.99: the 64 flights (bow 1.9952) pass it, the merged 32 (bow 1.981)
+  // would enter it, so no flight may merge and the shortest interval blocks.
+  const BlockedCircle& c = Blocked();
+  RigLimits l;
+  l.obstacles = {DiskShape{kCentre, 1.99}};
+  l.min_interval = 0.3;
+  const RigPlanSummary r = PlanImpulsesOnRig(c.setup.problem, l, std::nullopt, c.setup.options);
+  EXPECT_EQ(r.status, RigPlanStatus::kLimitsNotMet);
+  EXPECT_EQ(r.points_removed, 0);
+  EXPECT_EQ(r.plan.segments, 64);
+  EXPECT_EQ(r.blocking, std::vector<std::string>{"min_interval"}) << r.message;
+  EXPECT_NE(r.message.find("the merged flight enters obstacles[0]"), std::string::npos) << r.message;
+  EXPECT_GE(r.check.margins.at("obstacles[0]"), 0.0) << "the obstacle is still avoided";
 }
 
 TEST(RigPlanner, PassPointsOnThePlatesEdgeAreMetWithoutRefinement) {

@@ -39,6 +39,11 @@ struct MonteCarloProblem {
   std::uint64_t seed = 1;
   /// Further n for the error-against-n study (uniform partitions, distinct, 3 ... 10^4); empty: none.
   std::vector<int> sweep_n;
+  /// The main n's plan of `plan`, planned elsewhere (e.g. PlanImpulsesOnRig, rig_planner.h, on a
+  /// refined partition slid onto a tick grid): executed as it is (MakeNominalPlan(plan, options,
+  /// main_plan)) instead of planning plan.partition. Not with sweep_n (its n would not be the
+  /// partition's). Empty: plan.partition is planned.
+  std::optional<PlanSummary> main_plan;
 };
 
 struct MonteCarloOptions {

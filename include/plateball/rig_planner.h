@@ -53,9 +53,13 @@ struct RigPlanSummary {
   int segments_initial = 0;  ///< partition segments asked for
   int points_added = 0;      ///< partition points the refinement added
   int points_slid = 0;       ///< partition points slid onto the tick grid (final plan)
-  int rounds = 0;            ///< refinement rounds run (0: the given partition was enough)
+  /// Partition points removed to merge flights shorter than min_interval, or that the tick grid
+  /// could not place, with a neighbour (coarsening)
+  int points_removed = 0;
+  int rounds = 0;  ///< refinement rounds run (0: the given partition was enough)
   /// Limits that shaped the plan: the geometric limits refined against ("plate", "obstacles[0]",
-  /// "stroke.x", ...) and "tick" when points slid onto the grid.
+  /// "stroke.x", ...), "tick" when points slid onto the grid or were removed for it, and
+  /// "min_interval" when points were removed for it.
   std::vector<std::string> active;
   /// Limits that cannot be met, each once; the message says where and why.
   std::vector<std::string> blocking;
@@ -77,6 +81,11 @@ struct RigPlanSummary {
 /// With a tick every interior point of a piece slides along the path onto the grid (the flight's
 /// duration is the grid's difference; the ends of a piece stay fixed, and an impulse at a junction
 /// of pieces that falls off the grid is blocked by "tick"). Energy changes keep their partition points.
+/// Then the partition is coarsened where flights are too short: a flight shorter than min_interval
+/// (but the last) or one whose end the grid could not place merges with a neighbour (an interior
+/// point without energy changes is removed, no two neighbours in one round) and the path is planned
+/// again, keeping a round's merges only while every flight stays within the geometric limits (a
+/// merge whose flight would leave them keeps its point), for at most max_rounds rounds.
 /// The final plan is checked by CheckPlanRigLimits; a limit it reports exceeded (the impulse
 /// bounds, min_interval, ...) is blocking. Slack limits leave the plan bit for bit as
 /// PlanImpulses(problem, options) gives it. Throws std::invalid_argument for invalid input

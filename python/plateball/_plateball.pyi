@@ -1065,6 +1065,7 @@ class MonteCarloOptions:
     def validate(self) -> str: ...
 
 class MonteCarloProblem:
+    main_plan: Optional[PlanSummary]
     plan: PlanProblem
     scenarios: List[MonteCarloScenario]
     seed: int
@@ -1573,6 +1574,8 @@ class RigPlanSummary:
     def plan(self) -> PlanSummary: ...
     @property
     def points_added(self) -> int: ...
+    @property
+    def points_removed(self) -> int: ...
     @property
     def points_slid(self) -> int: ...
     @property

@@ -78,7 +78,11 @@ void BindInputs(py::module_& m) {
       .def_readwrite("scenarios", &MonteCarloProblem::scenarios)
       .def_readwrite("trials", &MonteCarloProblem::trials)
       .def_readwrite("seed", &MonteCarloProblem::seed)
-      .def_readwrite("sweep_n", &MonteCarloProblem::sweep_n);
+      .def_readwrite("sweep_n", &MonteCarloProblem::sweep_n)
+      .def_readwrite("main_plan",
+                     &MonteCarloProblem::main_plan,
+                     "the main n's plan, planned elsewhere (e.g. plan_on_rig(...).plan): executed as it is instead "
+                     "of planning plan.partition; not with sweep_n (None: plan.partition is planned)");
   py::class_<MonteCarloOptions> options(m,
                                         "MonteCarloOptions",
                                         "Options of montecarlo(): the plan options, the execution, the trials of the "

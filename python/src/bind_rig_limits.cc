@@ -123,6 +123,10 @@ void BindRigPlanner(py::module_& m) {
       .def_readonly("segments_initial", &RigPlanSummary::segments_initial, "partition segments asked for")
       .def_readonly("points_added", &RigPlanSummary::points_added, "partition points the refinement added")
       .def_readonly("points_slid", &RigPlanSummary::points_slid, "partition points slid onto the tick grid")
+      .def_readonly("points_removed",
+                    &RigPlanSummary::points_removed,
+                    "partition points removed to merge flights shorter than min_interval (or that the tick grid "
+                    "could not place) with a neighbour")
       .def_readonly("rounds", &RigPlanSummary::rounds, "refinement rounds run")
       .def_readonly("active", &RigPlanSummary::active, "the limits that shaped the plan (refined against, or tick)")
       .def_readonly("blocking", &RigPlanSummary::blocking, "the limits that cannot be met");

@@ -368,6 +368,28 @@ def test_montecarlo(problems, run_cli):
     assert_same(doc, summary, "montecarlo")
 
 
+def test_montecarlo_on_a_rig_runs_the_rig_plan(problems, run_cli):
+    """`plateball montecarlo` with a rig section runs plan_on_rig's plan: the library study given that plan
+    (main_plan) has the tool's n, nominal numbers and results."""
+    data = problems.parent / "tests" / "data" / "plan_rig_blocked.json"
+    doc = run_cli("plateball", "montecarlo", data, "--trials", 2, "--strategy", "open_loop", "--noise",
+                  "impulse_magnitude=1e-3", "--threads", 1, "--quiet")
+    problem = pb.load_problem(data)
+    setup = pb.plan_setup_for(problem)
+    honoured = pb.plan_on_rig(setup.problem, problem.rig, problem.physical, setup.options)
+    assert honoured.usable and honoured.plan.segments == 128
+    assert json_get(doc, "rig.points_added") == honoured.points_added == 64
+    errors = pb.parse_error_model("impulse_magnitude=1e-3")
+    study = pb.MonteCarloProblem(plan=setup.problem, trials=2, seed=problem.seed, strategies=["open_loop"],
+                                 scenarios=[pb.MonteCarloScenario(name=str(errors), errors=errors)],
+                                 main_plan=honoured.plan)
+    summary = pb.montecarlo(study, pb.MonteCarloOptions(plan=setup.options, threads=1))
+    assert summary.nominal[0].n == json_get(doc, "options.impulses") == 128
+    assert summary.nominal[0].total_time == doc["nominal"][0]["total_time"]
+    medians = [r["position_error"]["median"] for r in doc["results"]]
+    assert medians == [summary.cells[0].position_error.median]
+
+
 def test_montecarlo_cell_without_a_completed_trial_is_none(problems, run_cli):
     """A cell where every trial lost the ball has no distribution: null in the JSON, None here."""
     noise = "impulse_magnitude=0.5,impulse_angle=0.5,energy_loss=0.5,timing=0.1,lambda=0.1,observation=0.1"
@@ -421,7 +443,7 @@ def test_plan_honours_a_rig(problems, run_cli):
     assert honoured.usable and doc["status"] == "success"
     assert json_get(doc, "rig.mode") == "honour"
     assert json_get(doc, "partition.segments") == honoured.plan.segments == 128
-    for key in ("segments_initial", "points_added", "points_slid", "rounds", "active", "blocking"):
+    for key in ("segments_initial", "points_added", "points_removed", "points_slid", "rounds", "active", "blocking"):
         assert json_get(doc, "rig." + key) == getattr(honoured, key), key
     assert honoured.active == ["obstacles[0]", "tick"]
     times = [s["t_impulse"] for s in doc["steps"]]

@@ -33,3 +33,9 @@ add_test(NAME cli.plan.rig_slack_identical
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/scripts/plan_slack_rig.py $<TARGET_FILE:plateball_cli>
                  ${PROJECT_SOURCE_DIR})
 set_tests_properties(cli.plan.rig_slack_identical PROPERTIES TIMEOUT 120 LABELS cli)
+# Flights of about 0.257 under a shortest interval of 0.3: every other interior point is removed
+# (coarsening; tests/rig_planner_test.cc checks the intervals from the replayed impulse times).
+plateball_cli_test(plan.rig_short_flights_merged 0
+  REGEX "rig limits met \\(active: min_interval; 0 partition points added, 32 removed, 0 slid onto the tick grid\\).*\"points_removed\": 32,.*\"passed\": true"
+  --at partition.segments 32 0 --at rig.points_removed 32 0
+  -- plan tests/data/plan_rig_short.json --summary-only)

@@ -100,3 +100,17 @@ plateball_cli_test(rig.loop_causal_pulses 0
 plateball_cli_test(rig.loop_overlapping_pulses 3
   REGEX "command line: --pulse-duration: value 1: longer than the flight of [0-9.e-]+ s after impulse 0"
   -- rig loop ${loop_problem} --pulse-duration 1)
+
+# With a rig section the loop runs `plan`'s nominal plan (PlanImpulsesOnRig): the 16 flights of the
+# quarter circle bow into an obstacle of radius 1.998 at its centre, so the plan is refined to 32
+# impulses (as `plateball plan tests/data/rig_loop_rig.json` plans it). A path through an obstacle is
+# refused (exit 4, limits_not_met) unless --rig-check-only, which runs the partition as given.
+plateball_cli_test(rig.loop_on_rig_runs_plans_plan 0
+  REGEX "\"impulse_count\": 32,.*\"closed_loop\": {\n *\"status\": \"done\",.*\"report\": \"closed loop in the twin done after 32 impulses[^\"]*; rig limits met \\(active: obstacles\\[0\\]; 16 partition points added.*\"rig\": {\n *\"mode\": \"honour\""
+  -- rig loop tests/data/rig_loop_rig.json --tick 1e-3 --dt 1e-3)
+plateball_cli_test(rig.loop_on_rig_limits_not_met 4
+  REGEX "computation failed: limits_not_met: the plan cannot meet the rig's limits [^\n]*the path itself enters obstacles\\[0\\]"
+  -- rig loop tests/data/rig_loop_rig_blocked.json --tick 1e-3 --dt 1e-3)
+plateball_cli_test(rig.loop_on_rig_check_only 0
+  REGEX "\"impulse_count\": 16,.*rig limits NOT met \\(--rig-check-only: the loop ran the plan as given\\).*\"mode\": \"check\""
+  -- rig loop tests/data/rig_loop_rig.json --tick 1e-3 --dt 1e-3 --rig-check-only)

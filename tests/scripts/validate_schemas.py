@@ -201,6 +201,15 @@ def check_tool_outputs(run, problems):
         run.output(["plateball", "montecarlo", "problems/circle.json", "--impulses", "16", "--trials", "3", "--quiet",
                     "--strategy", "open_loop,feedback", "--sweep-n", "32,64", "--noise",
                     "impulse_magnitude=0.5,impulse_angle=0.5,energy_loss=0.5,timing=0.1,lambda=0.1,observation=0.1"])
+        # With a rig section: the nominal plan honoured (the rig record), refused (limits_not_met) and as given.
+        run.output(["plateball", "montecarlo", "tests/data/plan_rig_blocked.json", "--trials", "2", "--quiet",
+                    "--strategy", "open_loop", "--noise", "none"])
+        run.output(["plateball", "montecarlo", "tests/data/plan_rig_path_blocked.json", "--trials", "2", "--quiet"],
+                   ok_codes=(4,))
+        run.output(["plateball", "montecarlo", "tests/data/plan_rig_blocked.json", "--trials", "2", "--quiet",
+                    "--strategy", "open_loop", "--noise", "none", "--rig-check-only"])
+        if rig_built(run):
+            run.output(["plateball", "rig", "loop", "tests/data/rig_loop_rig.json", "--tick", "1e-3", "--dt", "1e-3"])
 
 
 def readme_examples(text):

@@ -19,6 +19,7 @@
 #include "common/output_file.h"
 #include "common/problem_options.h"
 #include "common/progress.h"
+#include "common/rig_plan_output.h"
 #include "montecarlo_charts.h"
 #include "montecarlo_ranks.h"
 #include "plateball/monte_carlo.h"
@@ -41,12 +42,20 @@ struct MonteCarloCliOptions {
   long long threads = 0;
   std::string out, csv, svg, svg_sweep;
   bool timings = false;
+  bool rig_check_only = false;
 };
 
 std::string Option(const char* name) { return CommandLineField(name); }
 
+struct Study {
+  MonteCarloProblem problem;
+  MonteCarloOptions options;
+  RigNominal rig;  // with a rig section: the main plan and its rig record (PlanOnRig)
+};
+
 // The command line as the library's problem and options (every value checked, naming the option).
-std::pair<MonteCarloProblem, MonteCarloOptions> BuildStudy(const MonteCarloCliOptions& o, const Problem& p) {
+// With a rig section the main plan is planned here, as `plateball plan` plans it (PlanOnRig).
+Study BuildStudy(const MonteCarloCliOptions& o, const Problem& p) {
   const int n = o.n_opt->count() == 0 ? 0 : static_cast<int>(RequireIntegerInRange("--impulses", o.n, 1, 10'000));
   if (n > 0) RequirePartitionSteps("--impulses", n, p);
   const PlanSetup setup = PlanSetupFor(p, n, Option("--impulses"));
@@ -76,7 +85,16 @@ std::pair<MonteCarloProblem, MonteCarloOptions> BuildStudy(const MonteCarloCliOp
   mo.execution.exact_window =
       static_cast<int>(RequireIntegerInRange("--exact-window", o.exact_window, 3, ExecutionOptions::kMaxExactWindow));
   mo.threads = ThreadsOption(o.threads);
-  return {mp, mo};
+  Study study{mp, mo, {}};
+  if (p.rig.Empty()) return study;
+  if (!o.rig_check_only && !mp.sweep_n.empty())
+    ThrowInvalidInput(Option("--sweep-n"),
+                      std::to_string(mp.sweep_n.front()),
+                      "with a rig section the partition is refined to honour the limits (n is not the study's "
+                      "variable): drop --sweep-n, or plan the partitions as given with --rig-check-only");
+  study.rig = PlanOnRig(p, setup, o.rig_check_only);
+  if (!o.rig_check_only) study.problem.main_plan = study.rig.plan;
+  return study;
 }
 
 // null for a cell where no trial completed (it has no distribution).
@@ -115,16 +133,19 @@ Json OptionsJson(const MonteCarloProblem& mp, const MonteCarloOptions& mo, int m
               {"exact_window", mo.execution.exact_window}};
 }
 
+Json NominalJson(const NominalInfo& n) {
+  return Json{{"n", n.n},
+              {"status", ToString(n.status)},
+              {"usable", n.status == PlanStatus::kSuccess},
+              {"message", n.message},
+              {"orientation_error", n.orientation_error},
+              {"measured_error", n.measured_error},
+              {"total_time", n.total_time}};
+}
+
 Json ResultsJson(const MonteCarloProblem& mp, const MonteCarloSummary& s) {
   Json nominal = Json::array(), results = Json::array(), sweeps = Json::array();
-  for (const NominalInfo& n : s.nominal)
-    nominal.push_back(Json{{"n", n.n},
-                           {"status", ToString(n.status)},
-                           {"usable", n.status == PlanStatus::kSuccess},
-                           {"message", n.message},
-                           {"orientation_error", n.orientation_error},
-                           {"measured_error", n.measured_error},
-                           {"total_time", n.total_time}});
+  for (const NominalInfo& n : s.nominal) nominal.push_back(NominalJson(n));
   for (const MonteCarloCell& c : s.cells) {
     Json cell{{"n", c.n},
               {"scenario", mp.scenarios[static_cast<std::size_t>(c.scenario)].name},
@@ -163,6 +184,44 @@ Json ResultsJson(const MonteCarloProblem& mp, const MonteCarloSummary& s) {
   return out;
 }
 
+// With a rig section the record of the main plan (as `plateball plan` writes it); with
+// --rig-check-only a plan that exceeds the limits was run all the same, and the report says so.
+void AddStudyRigRecord(const RigNominal& r, bool check_only, Json* doc) {
+  if (r.rig.is_null()) return;
+  if (!check_only || r.limits_met) {
+    AddRigRecord(r, doc);
+    return;
+  }
+  (*doc)["rig"] = r.rig;
+  (*doc)["report"] = (*doc)["report"].get<std::string>() +
+                     "; rig limits NOT met (--rig-check-only: the trials ran "
+                     "on the plan as given): " +
+                     r.message;
+}
+
+// The output of a study whose nominal plan cannot meet the rig's limits: no trial ran.
+Json LimitsNotMetJson(const MonteCarloCliOptions& o, const Problem& p, const Study& study) {
+  Json doc = HeaderJson("plateball", "montecarlo", p, o.problem.file());
+  doc["initial"] = InitialJson(p);
+  doc["initial"]["orientation"] = ToJson(study.rig.plan.A0);
+  doc["options"] = OptionsJson(study.problem, study.options, study.rig.plan.segments);
+  Append(doc, ResultJson("limits_not_met", false, study.rig.message, ""));
+  const NominalPlan n = MakeNominalPlan(study.problem.plan, study.options.plan, study.rig.plan);
+  const NominalInfo info{n.plan.segments,
+                         n.plan.status,
+                         n.plan.message,
+                         n.plan_orientation_error,
+                         n.plan.measured_error,
+                         n.plan.total_time};
+  Append(doc,
+         Json{{"failed_trials", 0},
+              {"nominal", Json::array({NominalJson(info)})},
+              {"results", Json::array()},
+              {"sweep", Json::array()}});
+  AddRigRecord(study.rig, &doc);
+  return doc;
+}
+
 std::string TrialsCsv(const MonteCarloProblem& mp, const std::vector<TrialRecord>& records) {
   std::string out =
       "n,scenario,strategy,trial,status,position_error,orientation_error,max_pass_miss,missed_pass_points,total_time\n";
@@ -191,9 +250,17 @@ int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
                           " ranks) give the problem as a file");
   }
   const Problem p = o.problem.Load();
-  auto [mp, mo] = BuildStudy(o, p);
+  Study study = BuildStudy(o, p);
+  MonteCarloProblem& mp = study.problem;
+  MonteCarloOptions& mo = study.options;
   if (!o.svg_sweep.empty() && mp.sweep_n.empty())
     ThrowInvalidInput(Option("--svg-sweep"), o.svg_sweep, "needs --sweep-n");
+  // A nominal plan the rig cannot execute is not run (unless --rig-check-only: the plan as given).
+  if (!study.rig.limits_met && !o.rig_check_only) {
+    if (ranks.rank() != 0) return kExitNoSolution;
+    WriteJson(LimitsNotMetJson(o, p, study), o.out);
+    return kExitNoSolution;
+  }
   const auto start = std::chrono::steady_clock::now();
   // Rank 0 shows the trials of its own share (the ranks' shares differ by at most one trial).
   const std::string label = ranks.size() > 1
@@ -222,6 +289,7 @@ int RunMonteCarloCommand(const MonteCarloCliOptions& o) {
   doc["initial"]["orientation"] = ToJson(work.MainPlan().plan.A0);
   doc["options"] = OptionsJson(mp, mo, work.Ns().front());
   Append(doc, ResultsJson(mp, s));
+  AddStudyRigRecord(study.rig, o.rig_check_only, &doc);
   if (o.timings)
     doc["timing"] = Json{{"run_seconds", seconds},
                          {"seconds_per_trial", seconds / std::max(1.0, double(s.records.size()))},
@@ -262,12 +330,20 @@ std::function<int()> SetupMonteCarlo(CLI::App& sub) {
   sub.add_option(
       "--svg-sweep", o->svg_sweep, "draw the median final error against n, log-log, with the fitted slopes (SVG)");
   sub.add_flag("--timings", o->timings, "add the wall time (the output then differs from run to run)");
+  sub.add_flag("--rig-check-only",
+               o->rig_check_only,
+               "with a rig section: plan the partition as given, check it against the limits and run the trials "
+               "whatever the check says (default: honour the limits as `plateball plan` does, and run no trial on "
+               "a plan that cannot meet them)");
   sub.footer(
       "Executes the plan of plan.path under seeded errors, trial i of every cell drawing from (seed, i) alone.\n"
       "Under MPI (a build with Open MPI): mpirun -np K plateball montecarlo ... splits the trials over the\n"
       "ranks; rank 0 writes one output, byte-identical for any K and any --threads.\n"
       "Example: plateball montecarlo problems/circle.json --trials 200 --noise impulse_magnitude=1e-3\n"
-      "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 the nominal plan failed, 5 unreadable/unwritable file.");
+      "With a rig section the nominal plan honours its limits as `plateball plan`'s does (\"rig\" is the same\n"
+      "record); a plan that cannot meet them runs no trial (status limits_not_met).\n"
+      "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 the nominal plan failed or cannot meet the rig's limits,\n"
+      "5 unreadable/unwritable file.");
   return [o] { return RunMonteCarloCommand(*o); };
 }
 

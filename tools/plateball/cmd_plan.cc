@@ -3,14 +3,12 @@
 // planned path dashed, impulsive trajectory solid, impulse points marked).
 #include <cmath>
 #include <memory>
-#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "common/actuator_json.h"
 #include "common/command_registry.h"
-#include "common/exact_output.h"
 #include "common/exit_codes.h"
 #include "common/json_output.h"
 #include "common/number_format.h"
@@ -18,14 +16,13 @@
 #include "common/plan_json.h"
 #include "common/problem_options.h"
 #include "common/progress.h"
+#include "common/rig_plan_output.h"
 #include "common/svg.h"
 #include "common/units.h"
 #include "plateball/execution.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/path.h"
-#include "plateball/plan_rig_check.h"
-#include "plateball/rig_planner.h"
 #include "plateball/task_adapters.h"
 
 namespace plateball::tools {
@@ -118,64 +115,6 @@ void DrawPlan(const Problem& p, const Path& path, const PlanSummary& plan, const
   fig.Write(file);
 }
 
-// The record of a plan that honoured the rig (PlanImpulsesOnRig).
-Json HonouredRigJson(const RigPlanSummary& r) {
-  return Json{{"mode", "honour"},
-              {"segments_initial", r.segments_initial},
-              {"points_added", r.points_added},
-              {"points_slid", r.points_slid},
-              {"rounds", r.rounds},
-              {"active", r.active},
-              {"blocking", r.blocking},
-              {"check", RigCheckJson(r.check)}};
-}
-
-// " (active: obstacles[0] tick; 64 partition points added, 127 slid onto the tick grid)", or
-// nothing when no limit shaped the plan.
-std::string ActiveNote(const RigPlanSummary& r) {
-  if (r.active.empty()) return "";
-  std::string note = " (active:";
-  for (const std::string& a : r.active) note += " " + a;
-  return note + "; " + std::to_string(r.points_added) + " partition points added, " + std::to_string(r.points_slid) +
-         " slid onto the tick grid)";
-}
-
-// With a rig section: the rig's record and the status. Honoured (PlanImpulsesOnRig): the refinement,
-// the limits that shaped the plan and those that block it, and the final independent check;
-// checked only (--rig-check-only): the check of the plan as given (CheckPlanRigLimits). A plan the
-// rig cannot execute is the status limits_not_met (not usable). True when the limits are met (or
-// there are none).
-bool AddRigSection(const Problem& p,
-                   const PlanSetup& setup,
-                   const std::optional<RigPlanSummary>& honoured,
-                   const PlanSummary& plan,
-                   Json* doc) {
-  if (p.rig.Empty() || !plan.IsSolutionUsable()) return true;
-  std::string message;
-  bool met = false;
-  if (honoured) {
-    (*doc)["rig"] = HonouredRigJson(*honoured);
-    met = honoured->IsSolutionUsable();
-    message = "the plan cannot meet the rig's limits (problem file's rig section): " + honoured->message;
-  } else {
-    const RigCheck check = CheckPlanRigLimits(setup.problem, plan, p.rig, p.physical);
-    (*doc)["rig"] = Json{{"mode", "check"}, {"check", RigCheckJson(check)}};
-    met = check.passed;
-    message = "the plan exceeds the rig's limits (problem file's rig section): ";
-    for (std::size_t i = 0; i < check.violations.size(); ++i) message += (i ? "; " : "") + check.violations[i];
-  }
-  if (met) {
-    (*doc)["report"] =
-        (*doc)["report"].get<std::string>() + "; rig limits met" + (honoured ? ActiveNote(*honoured) : "");
-    return true;
-  }
-  (*doc)["status"] = "limits_not_met";
-  (*doc)["usable"] = false;
-  (*doc)["message"] = message;
-  (*doc)["report"] = "limits_not_met: " + message;
-  return false;
-}
-
 int RunPlan(const PlanCliOptions& o) {
   CheckOutputPaths({{"--out", o.out.empty() ? "-" : o.out}, {"--svg", o.svg}}, {{"PROBLEM.json", o.problem.file()}});
   const Problem p = o.problem.Load();
@@ -188,19 +127,14 @@ int RunPlan(const PlanCliOptions& o) {
     ThrowInvalidInput(CommandLineField("--pulse-error"), FormatNumber(o.pulse_error), "must be finite and > 0");
   // With --pulse-error the plan is executed (execution.h), which needs its pass points and goal.
   // With a rig section the plan honours it (PlanImpulsesOnRig) unless --rig-check-only.
-  std::optional<RigPlanSummary> honoured;
-  const auto nominal = std::make_shared<const NominalPlan>([&] {
+  RigNominal planned = [&] {
     Progress progress("plateball plan", 0);  // one solve: the elapsed time
-    PlanSummary planned;
-    if (!p.rig.Empty() && !o.rig_check_only) {
-      honoured = PlanImpulsesOnRig(setup.problem, p.rig, p.physical, setup.options);
-      planned = honoured->plan;
-    } else {
-      planned = PlanImpulses(setup.problem, setup.options);
-    }
-    if (schedule) return MakeNominalPlan(setup.problem, setup.options, std::move(planned));
+    return PlanOnRig(p, setup, o.rig_check_only);
+  }();
+  const auto nominal = std::make_shared<const NominalPlan>([&] {
+    if (schedule) return MakeNominalPlan(setup.problem, setup.options, std::move(planned.plan));
     NominalPlan n;
-    n.plan = std::move(planned);
+    n.plan = std::move(planned.plan);
     return n;
   }());
   const PlanSummary& plan = nominal->plan;
@@ -219,7 +153,7 @@ int RunPlan(const PlanCliOptions& o) {
   }
   const ActuatorContext actuator{p, request, ""};
   Append(doc, PlanSummaryToJson(plan, !o.summary_only, &actuator));
-  const bool within_limits = AddRigSection(p, setup, honoured, plan, &doc);
+  const bool within_limits = AddRigRecord(planned, &doc);
   AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   if (!o.svg.empty()) DrawPlan(p, path, plan, o.svg);

@@ -12,6 +12,7 @@
 #include "common/number_format.h"
 #include "common/output_file.h"
 #include "common/problem_options.h"
+#include "common/rig_plan_output.h"
 #include "common/units.h"
 #include "plateball/closed_loop.h"
 #include "plateball/task_adapters.h"
@@ -32,6 +33,7 @@ struct LoopCliOptions {
   bool contact_point_only = false;
   double pulse_duration = 0.0;
   std::string out;
+  bool rig_check_only = false;
 };
 
 std::string Option(const char* name) { return CommandLineField(name); }
@@ -91,6 +93,7 @@ struct LoopSetup {
   ErrorModel errors;
   std::uint64_t trial = 0;
   rig::TwinLoopOptions twin;
+  RigNominal rig;  // the nominal plan's rig record (PlanOnRig; its plan is moved into `nominal`)
 };
 
 // The command line as the library's objects, every value checked and named by its option.
@@ -126,9 +129,13 @@ LoopSetup BuildLoop(const LoopCliOptions& o, const Problem& p) {
         Option("--pulse-duration"), FormatNumber(o.pulse_duration), "must be finite and >= 0 s (0: ideal jumps)");
   s.twin.pulse_duration = o.pulse_duration;
   const PlanSetup setup = PlanSetupFor(p, n, Option("--impulses"));
-  auto nominal = std::make_shared<NominalPlan>(MakeNominalPlan(setup.problem, setup.options));
+  // With a rig section the nominal plan honours it as `plateball plan`'s does (unless --rig-check-only).
+  s.rig = PlanOnRig(p, setup, o.rig_check_only);
+  auto nominal = std::make_shared<NominalPlan>(MakeNominalPlan(setup.problem, setup.options, std::move(s.rig.plan)));
   if (!nominal->plan.IsSolutionUsable())
     throw std::runtime_error("the nominal plan failed: " + nominal->plan.BriefReport());
+  if (!s.rig.limits_met && !o.rig_check_only)
+    throw std::runtime_error("limits_not_met: " + s.rig.message + " (--rig-check-only runs the plan as given)");
   if (o.pulse_duration > 0) {
     const rig::RigPlan plan = rig::RigPlanOf(*nominal, *p.physical);
     rig::CheckPulseWindows(plan, o.pulse_duration, Option("--pulse-duration"));
@@ -182,6 +189,12 @@ int RunLoop(const LoopCliOptions& o) {
   doc["simulated_rig"] = SimulatedJson(sim);
   const bool done = closed.status == ControllerStatus::kDone;
   Append(doc, ResultJson(ToString(closed.status), done, done ? "" : closed.message, Brief(closed, open, sim)));
+  if (!s.rig.rig.is_null()) {
+    doc["rig"] = s.rig.rig;
+    doc["report"] = doc["report"].get<std::string>() +
+                    (s.rig.limits_met ? "; rig limits met" + s.rig.note
+                                      : "; rig limits NOT met (--rig-check-only: the loop ran the plan as given)");
+  }
   AddPhysicalUnits(p, &doc);
   WriteJson(doc, o.out);
   return done ? kExitSuccess : kExitNoSolution;
@@ -222,6 +235,11 @@ std::function<int()> SetupRigLoop(CLI::App& sub) {
       o->pulse_duration,
       "causal pulses: a force J/D on the plate over [t_k, t_k + D] s from each decision (default 0: ideal jumps)");
   sub.add_option("--out", o->out, "write the JSON to this file instead of standard output (\"-\": standard output)");
+  sub.add_flag("--rig-check-only",
+               o->rig_check_only,
+               "with a rig section: plan the partition as given, check it against the limits and run the loop "
+               "whatever the check says (default: honour the limits as `plateball plan` does, and refuse a plan "
+               "that cannot meet them, exit 4)");
   return [o] { return RunLoop(*o); };
 }
 

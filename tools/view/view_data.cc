@@ -16,6 +16,7 @@
 #include "common/limits.h"
 #include "common/number_format.h"
 #include "common/plan_json.h"
+#include "common/rig_plan_output.h"
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/execution.h"
@@ -23,6 +24,7 @@
 #include "plateball/free_motion.h"
 #include "plateball/isoparallel.h"
 #include "plateball/monte_carlo.h"
+#include "plateball/partition.h"
 #include "plateball/problem_io.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
@@ -555,6 +557,38 @@ long long CountIn(const ResultReader& r, double v, const std::string& field, lon
   return static_cast<long long>(v);
 }
 
+// The mode of a montecarlo result's rig record ("honour", "check"), or "" without one.
+std::string RigMode(const ResultReader& r) {
+  const json* rig = r.Find(r.doc(), "rig");
+  if (!rig) return "";
+  if (!rig->is_object()) r.Fail("rig", ValueText(*rig), "must be an object (the nominal plan's rig record)");
+  const json* mode = rig->contains("mode") ? &(*rig)["mode"] : nullptr;
+  if (!mode || !mode->is_string() || (*mode != "honour" && *mode != "check"))
+    r.Fail("rig.mode", mode ? ValueText(*mode) : "(missing)", "must be \"honour\" or \"check\"");
+  return mode->get<std::string>();
+}
+
+// The plan setup `plateball montecarlo` planned: the partition of options.impulses (n), or, when
+// the plan honoured a rig (its partition refined), the partition asked for: the problem's own when
+// its segments are the record's segments_initial, else segments_initial spread over the pieces.
+PlanSetup MonteCarloPlanSetup(const ResultReader& r, const Problem& problem, int n) {
+  if (RigMode(r) != "honour") return PlanSetupFor(problem, n, "options.impulses");
+  const json& rig = *r.Find(r.doc(), "rig");
+  const json* asked = rig.contains("segments_initial") ? &rig["segments_initial"] : nullptr;
+  if (!asked || !asked->is_number())
+    r.Fail("rig.segments_initial", asked ? ValueText(*asked) : "(missing)", "must be an integer");
+  const long long initial = CountIn(r, asked->get<double>(), "rig.segments_initial", 1, limits::kMaxPartitionSteps);
+  const PlanSetup own = PlanSetupFor(problem);
+  long long own_segments = 0;
+  for (const auto& taus : MakePartition(own.problem.path, own.problem.partition, "plan.partition"))
+    own_segments += static_cast<long long>(taus.size()) - 1;
+  if (own_segments == initial) return own;
+  const long long pieces = own.problem.path.PieceCount();
+  if (initial % pieces != 0)
+    r.Fail("rig.segments_initial", std::to_string(initial), "is not a partition of the problem's path");
+  return PlanSetupFor(problem, static_cast<int>(initial / pieces), "rig.segments_initial");
+}
+
 // The nominal plan's motion, and the final contact points of the trials re-run with the library
 // (Execute of (nominal plan, strategy, errors, seed, trial): what `plateball montecarlo` ran).
 void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData* out) {
@@ -563,9 +597,25 @@ void BuildMonteCarlo(const ResultReader& r, const ViewOptions& options, ViewData
   const json& o = r.Get(doc, "", "mc_options");
   const double n_value = r.Number(o, "options", "mc_impulses");
   const int n = static_cast<int>(CountIn(r, n_value, "options.impulses", 1, limits::kMaxPartitionSteps));
-  const PlanSetup setup = PlanSetupFor(problem, n, "options.impulses");
-  const auto nominal = std::make_shared<const NominalPlan>(MakeNominalPlan(setup.problem, setup.options));
+  const PlanSetup setup = MonteCarloPlanSetup(r, problem, n);
+  RigNominal planned = PlanOnRig(problem, setup, RigMode(r) != "honour");
+  const auto nominal =
+      std::make_shared<const NominalPlan>(MakeNominalPlan(setup.problem, setup.options, std::move(planned.plan)));
   if (!nominal->plan.IsSolutionUsable()) r.Fail("options.impulses", FormatNumber(n_value), nominal->plan.BriefReport());
+  if (nominal->plan.segments != n)
+    r.Fail("options.impulses",
+           FormatNumber(n_value),
+           "the nominal plan re-planned from the problem has " + std::to_string(nominal->plan.segments) + " segments");
+  if (!planned.rig.is_null())
+    out->facts.push_back({"rig",
+                          std::string(planned.limits_met ? "limits met" : "limits NOT met") + " (" +
+                              planned.rig["mode"].get<std::string>() + ")" + planned.note});
+  if (!planned.limits_met && RigMode(r) == "honour") {  // `montecarlo` refused the plan: no trial to re-run
+    out->goal = nominal->goal;
+    out->has_goal = true;
+    out->facts.push_back({"trials re-run", "none: the nominal plan cannot meet the rig's limits (no trial ran)"});
+    return;
+  }
   AddPlanned(SamplePath(setup.problem.path), NominalTrajectory(r, *nominal, options, out), out);
   ExecutionOptions eo;
   eo.miss_tolerance = r.Number(o, "options", "mc_miss_tolerance");
