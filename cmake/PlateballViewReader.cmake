@@ -19,6 +19,7 @@ const char* const kResultFields = R\"pbfields(@PLATEBALL_RESULT_FIELDS@)pbfields
 }  // namespace plateball::tools::view
 " @ONLY)
 add_library(plateball_view_reader STATIC ${view_reader_common} ${PROJECT_SOURCE_DIR}/tools/view/view_data.cc
+            ${PROJECT_SOURCE_DIR}/tools/view/ghost.cc
             ${PROJECT_SOURCE_DIR}/tools/view/result_reader.cc
             ${PROJECT_BINARY_DIR}/view_reader/result_fields.cc)
 target_include_directories(plateball_view_reader PUBLIC ${PROJECT_SOURCE_DIR}/tools)
