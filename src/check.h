@@ -22,6 +22,18 @@ inline std::string FormatNumber(double value) {
   return std::string(buf, res.ptr);
 }
 
+/// A bound in a message: the shorter of the plain and the exponent form ("1e6", not "1e+06").
+inline std::string BoundText(double v) {
+  const std::string plain = FormatNumber(v);
+  const std::size_t e = plain.find('e');
+  if (e == std::string::npos) return plain;
+  std::string exponent = plain.substr(e + 1);
+  const bool negative = exponent[0] == '-';
+  if (exponent[0] == '+' || negative) exponent.erase(0, 1);
+  while (exponent.size() > 1 && exponent[0] == '0') exponent.erase(0, 1);
+  return plain.substr(0, e) + "e" + (negative ? "-" : "") + exponent;
+}
+
 /// The one message for an invalid value: "FIELD: value V: WHAT".
 inline std::string InvalidValueMessage(const std::string& field,
                                        const std::string& value_text,

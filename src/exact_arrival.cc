@@ -10,6 +10,7 @@
 #include "constrained_arrival.h"
 #include "dense_solve.h"
 #include "exact_chain.h"
+#include "field_check.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/so3.h"
@@ -47,14 +48,8 @@ std::string ToString(ExactImpulseKind kind) {
 }
 
 std::string ExactArrivalOptions::Validate() const {
-  using internal::InvalidValueMessage;
-  std::string e = internal::ValidateArrivalTolerances(position_tolerance, orientation_tolerance);
+  std::string e = internal::CheckRanges(*this);  // tolerances and iterations (the field list)
   if (!e.empty()) return e;
-  if (max_iterations < 1 || max_iterations > kMaxIterations)
-    return InvalidValueMessage(
-        "max_iterations", max_iterations, "must be in [1, " + std::to_string(kMaxIterations) + "]");
-  if (!(std::isfinite(deviation_tolerance) && deviation_tolerance >= 0))
-    return InvalidValueMessage("deviation_tolerance", deviation_tolerance, "must be finite and >= 0");
   e = integration.Validate();
   if (!e.empty()) return "integration." + e;
   e = jacobian_integration.Validate();
@@ -484,14 +479,6 @@ void ValidateStartAndGoal(double mu,
   RequireFinite("A1", A1);
   if (!IsRotation(A0, 1e-9)) ThrowInvalid("A0", "(matrix)", "not a rotation matrix (to 1e-9)");
   if (!IsRotation(A1, 1e-9)) ThrowInvalid("A1", "(matrix)", "not a rotation matrix (to 1e-9)");
-}
-
-std::string ValidateArrivalTolerances(double position_tolerance, double orientation_tolerance) {
-  if (!(std::isfinite(position_tolerance) && position_tolerance > 0))
-    return InvalidValueMessage("position_tolerance", position_tolerance, "must be finite and > 0");
-  if (!(std::isfinite(orientation_tolerance) && orientation_tolerance > 0))
-    return InvalidValueMessage("orientation_tolerance", orientation_tolerance, "must be finite and > 0");
-  return "";
 }
 
 ChainNode StartNode(const BallModel& model,

@@ -105,9 +105,6 @@ void ValidateStartAndGoal(double mu,
                           const Eigen::Vector2d& x1,
                           const Eigen::Matrix3d& A0,
                           const Eigen::Matrix3d& A1);
-/// "" or the message naming position_tolerance / orientation_tolerance (finite, > 0).
-std::string ValidateArrivalTolerances(double position_tolerance, double orientation_tolerance);
-
 /// The start node: the state of `initial` at energy mu (its K), x0 and A0 turned onto its axis.
 ChainNode StartNode(
     const BallModel& model, const AngleState& initial, double mu, const Eigen::Vector2d& x0, const Eigen::Matrix3d& A0);

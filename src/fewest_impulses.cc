@@ -20,6 +20,7 @@
 #include "dense_solve.h"
 #include "exact_chain.h"
 #include "fewest_search.h"
+#include "field_check.h"
 #include "plateball/limits.h"
 #include "plateball/plate_impulse.h"
 #include "plateball/so3.h"
@@ -53,25 +54,7 @@ std::string ToString(FewestCountVerdict verdict) {
 }
 
 std::string FewestImpulsesOptions::Validate() const {
-  using internal::InvalidValueMessage;
-  const std::string n_range = "must be in [1, " + std::to_string(kMaxImpulses) + "]";
-  if (max_impulses < 1 || max_impulses > kMaxImpulses)
-    return InvalidValueMessage("max_impulses", max_impulses, n_range);
-  if (pareto_counts < 1 || pareto_counts > kMaxImpulses)
-    return InvalidValueMessage("pareto_counts", pareto_counts, n_range);
-  if (starts < 1 || starts > kMaxStarts)
-    return InvalidValueMessage("starts", starts, "must be in [1, " + std::to_string(kMaxStarts) + "]");
-  if (arrivals_per_count < 1 || arrivals_per_count > kMaxStarts)
-    return InvalidValueMessage(
-        "arrivals_per_count", arrivals_per_count, "must be in [1, " + std::to_string(kMaxStarts) + "]");
-  if (adaptive_starts < 0 || adaptive_starts > kMaxStarts)
-    return InvalidValueMessage(
-        "adaptive_starts", adaptive_starts, "must be in [0, " + std::to_string(kMaxStarts) + "]");
-  if (!(std::isfinite(max_total_time) && max_total_time >= 0 && max_total_time <= 1e6))
-    return InvalidValueMessage("max_total_time", max_total_time, "must be in [0, 1e6] (0: automatic)");
-  if (max_iterations < 1 || max_iterations > 10000)
-    return InvalidValueMessage("max_iterations", max_iterations, "must be in [1, 10000]");
-  std::string e = internal::ValidateArrivalTolerances(position_tolerance, orientation_tolerance);
+  std::string e = internal::CheckRanges(*this);  // counts, window, tolerances (the field list)
   if (!e.empty()) return e;
   e = integration.Validate();
   if (!e.empty()) return "integration." + e;

@@ -13,6 +13,7 @@
 #include "check.h"
 #include "connect.h"
 #include "dynamics.h"
+#include "field_check.h"
 #include "plan_partitioned.h"
 #include "plateball/partition.h"
 #include "plateball/rolling.h"
@@ -44,9 +45,9 @@ std::string ToString(PlanStatus status) {
 }
 
 std::string PlanOptions::Validate() const {
-  if (bound_samples < 2 || bound_samples > 100000)
-    return internal::InvalidValueMessage("bound_samples", bound_samples, "must be in [2, 100000]");
-  std::string e = join.Validate();
+  std::string e = internal::CheckRanges(*this);  // bound_samples (the field list)
+  if (!e.empty()) return e;
+  e = join.Validate();
   if (!e.empty()) return e;
   if (reach_fallback) {
     e = reach.Validate();

@@ -16,6 +16,7 @@
 #include "dopri5.h"
 #include "dynamics.h"
 #include "fehlberg78.h"
+#include "field_check.h"
 
 namespace plateball {
 namespace {
@@ -564,10 +565,8 @@ std::string JoinOptions::Validate() const {
   // called every target the start), below 1e-15 no double residual meets it.
   if (!(residual_tolerance >= kMinResidualTolerance && residual_tolerance <= kMaxResidualTolerance))
     return internal::InvalidValueMessage("residual_tolerance", residual_tolerance, "must be in [1e-15, 1e-3]");
-  if (max_iterations < 1 || max_iterations > 10000)
-    return internal::InvalidValueMessage("max_iterations", max_iterations, "must be in [1, 10000]");
-  if (!(local_time_factor >= 1 && local_time_factor <= 1000))
-    return internal::InvalidValueMessage("local_time_factor", local_time_factor, "must be in [1, 1000]");
+  const std::string e = internal::CheckRanges(*this);  // iterations, local-time factor (the field list)
+  if (!e.empty()) return e;
   return integration.Validate();
 }
 

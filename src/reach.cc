@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "field_check.h"
 #include "golden_section.h"
 #include "reach_internal.h"
 
@@ -433,18 +434,8 @@ std::string ReachOptions::Validate() const {
   using internal::InvalidValueMessage;
   if (!(horizon_periods > 0 && horizon_periods <= 1e4))
     return InvalidValueMessage("horizon_periods", horizon_periods, "must be in (0, 1e4]");
-  if (scan_directions < 8 || scan_directions > 100000)
-    return InvalidValueMessage("scan_directions", scan_directions, "must be in [8, 100000]");
-  if (scan_steps_per_period < 8 || scan_steps_per_period > 100000)
-    return InvalidValueMessage("scan_steps_per_period", scan_steps_per_period, "must be in [8, 100000]");
-  if (!(std::isfinite(tolerance) && tolerance > 0))
-    return InvalidValueMessage("tolerance", tolerance, "must be finite and > 0");
-  if (max_refine_iterations < 1 || max_refine_iterations > 1000)
-    return InvalidValueMessage("max_refine_iterations", max_refine_iterations, "must be in [1, 1000]");
-  if (max_candidates < 1 || max_candidates > 100000)
-    return InvalidValueMessage("max_candidates", max_candidates, "must be in [1, 100000]");
-  if (global_max_evaluations < 1 || global_max_evaluations > 100000)
-    return InvalidValueMessage("global_max_evaluations", global_max_evaluations, "must be in [1, 100000]");
+  const std::string range = internal::CheckRanges(*this);  // scan grid, tolerance, budgets (the field list)
+  if (!range.empty()) return range;
   // Work budget (README, "Limits"): the scan visits directions x steps x periods nodes and each
   // candidate is refined by integrations over up to the whole horizon.
   const double scan_nodes = horizon_periods * scan_directions * scan_steps_per_period;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "check.h"
+#include "field_check.h"
 #include "golden_section.h"
 #include "plan_partitioned.h"
 #include "plateball/free_motion.h"
@@ -32,23 +33,9 @@ std::string ToString(RigPlanStatus status) {
 }
 
 std::string RigPlanOptions::Validate() const {
-  if (max_rounds < 0 || max_rounds > 64)
-    return internal::InvalidValueMessage("max_rounds", max_rounds, "must be in [0, 64]");
-  if (max_added_points < 0 || max_added_points > internal::kMaxPartitionSteps)
-    return internal::InvalidValueMessage(
-        "max_added_points", max_added_points, "must be in [0, " + std::to_string(internal::kMaxPartitionSteps) + "]");
-  if (samples_per_flight < 2 || samples_per_flight > 100000)
-    return internal::InvalidValueMessage("samples_per_flight", samples_per_flight, "must be in [2, 100000]");
-  if (check_samples_per_flight < 1 || check_samples_per_flight > 100000)
-    return internal::InvalidValueMessage(
-        "check_samples_per_flight", check_samples_per_flight, "must be in [1, 100000]");
-  if (!(tolerances.position >= 0) || !std::isfinite(tolerances.position))
-    return internal::InvalidValueMessage("tolerances.position", tolerances.position, "must be finite and >= 0");
-  if (!(tolerances.impulse >= 0) || !std::isfinite(tolerances.impulse))
-    return internal::InvalidValueMessage("tolerances.impulse", tolerances.impulse, "must be finite and >= 0");
-  if (!(tolerances.time >= 0) || !std::isfinite(tolerances.time))
-    return internal::InvalidValueMessage("tolerances.time", tolerances.time, "must be finite and >= 0");
-  return {};
+  const std::string e = internal::CheckRanges(*this);  // rounds and samples (the field list)
+  if (!e.empty()) return e;
+  return internal::CheckRanges(tolerances, "tolerances.");
 }
 
 std::string RigPlanSummary::BriefReport() const {

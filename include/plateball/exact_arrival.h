@@ -27,6 +27,7 @@
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/export.h"
+#include "plateball/field_list.h"
 #include "plateball/impulse_planner.h"
 #include "plateball/integration_options.h"
 #include "plateball/path.h"
@@ -92,8 +93,23 @@ struct ExactArrivalOptions {
   IntegrationOptions jacobian_integration{1e-10, 1e-10, 2'000'000};
   PlanOptions warm_start;  ///< options of the paper's plan (the warm start)
 
-  /// Empty when the options are valid; else a message naming the field and its value.
+  /// Empty when the options are valid; else a message naming the field and its value (the ranges
+  /// of the field list, then the integrations' and the warm start's).
   std::string Validate() const;
+
+  /// The field list (field_list.h): the Python attributes and the ranges Validate() checks.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(PLATEBALL_FIELD(position_tolerance, "|x(T) - x1| to reach").Positive(),
+             PLATEBALL_FIELD(orientation_tolerance, "|LogSO3(A1^T A(T))| to reach (rad)").Positive(),
+             PLATEBALL_FIELD(max_iterations, "Gauss-Newton (KKT) iterations").Counts(1, kMaxIterations),
+             PLATEBALL_FIELD(deviation_tolerance,
+                             "once arrived, the iteration stops when the deviation falls by less than this fraction")
+                 .NonNegative(),
+             PLATEBALL_FIELD(integration, "tolerances and step bound of the solver's rollouts"),
+             PLATEBALL_FIELD(jacobian_integration, "tolerances and step bound of the exact Jacobian's integration"),
+             PLATEBALL_FIELD(warm_start, "options of the paper's plan (the warm start)"));
+  }
 };
 
 enum class ExactImpulseKind {

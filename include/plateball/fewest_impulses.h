@@ -71,6 +71,7 @@
 #include "plateball/ball_state.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/export.h"
+#include "plateball/field_list.h"
 #include "plateball/integration_options.h"
 #include "plateball/rig_limits.h"
 
@@ -119,7 +120,9 @@ struct FewestImpulsesProblem {
 struct FewestImpulsesOptions {
   static constexpr int kMaxImpulses = 20;
   static constexpr int kMaxStarts = 10000;
-  int max_impulses = 6;        ///< largest count searched, in [1, kMaxImpulses]
+  static constexpr int kMaxIterations = 10000;
+  static constexpr double kMaxTotalTime = 1e6;  ///< the largest search window
+  int max_impulses = 6;                         ///< largest count searched, in [1, kMaxImpulses]
   int pareto_counts = 3;       ///< rows of the Pareto table from the fewest count up, in [1, kMaxImpulses]
   int starts = 24;             ///< starts per count, in [1, kMaxStarts]
   int arrivals_per_count = 4;  ///< a count stops after this many arrivals, in [1, kMaxStarts]
@@ -130,18 +133,38 @@ struct FewestImpulsesOptions {
   /// 2 pi) / sqrt(mu): one and a half times the time to roll the distance, the turn and a full turn
   /// at the speed sqrt(mu). Starts take total times in [0.1, 0.9] of the window.
   double max_total_time = 0.0;
-  int max_iterations = 15;                                  ///< Levenberg-Marquardt iterations per start, in [1, 10000]
-  double position_tolerance = 1e-12;                        ///< |x(T) - x1| to reach
-  double orientation_tolerance = 1e-10;                     ///< rad
-  IntegrationOptions integration{1e-14, 1e-14, 2'000'000};  ///< final rollouts
+  int max_iterations = 15;               ///< Levenberg-Marquardt iterations per start, in [1, kMaxIterations]
+  double position_tolerance = 1e-12;     ///< |x(T) - x1| to reach
+  double orientation_tolerance = 1e-10;  ///< rad
+  IntegrationOptions integration{1e-14, 1e-14, 2'000'000};       ///< final rollouts
   IntegrationOptions search_integration{1e-8, 1e-8, 2'000'000};  ///< rollouts + Jacobians of the search
   /// Called on the calling thread before each start of the search with the count n being searched
   /// and the starts tried so far in all counts; may throw to abandon the search (the exception
   /// propagates out of SolveFewestImpulses). Empty: no calls.
   std::function<void(int n, int starts)> progress;
 
-  /// Empty when the options are valid; else a message naming the field and its value.
+  /// Empty when the options are valid; else a message naming the field and its value (the ranges
+  /// of the field list, then the two integrations').
   std::string Validate() const;
+
+  /// The field list (field_list.h): the Python attributes and the ranges Validate() checks.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(
+        PLATEBALL_FIELD(max_impulses, "largest impulse count searched").Counts(1, kMaxImpulses),
+        PLATEBALL_FIELD(pareto_counts, "rows of the Pareto table from the fewest count up").Counts(1, kMaxImpulses),
+        PLATEBALL_FIELD(starts, "starts per count").Counts(1, kMaxStarts),
+        PLATEBALL_FIELD(arrivals_per_count, "a count stops after this many arrivals").Counts(1, kMaxStarts),
+        PLATEBALL_FIELD(adaptive_starts, "starts in all for a count with 2n >= conditions that no start reached")
+            .Counts(0, kMaxStarts),
+        PLATEBALL_FIELD(max_total_time, "search window: total time T <= max_total_time")
+            .NonNegative(kMaxTotalTime, "0: automatic"),
+        PLATEBALL_FIELD(max_iterations, "Levenberg-Marquardt iterations per start").Counts(1, kMaxIterations),
+        PLATEBALL_FIELD(position_tolerance, "|x(T) - x1| to reach").Positive(),
+        PLATEBALL_FIELD(orientation_tolerance, "|LogSO3(A1^T A(T))| to reach (rad)").Positive(),
+        PLATEBALL_FIELD(integration, "tolerances and step bound of the final rollouts"),
+        PLATEBALL_FIELD(search_integration, "tolerances and step bound of the search's rollouts and Jacobians"));
+  }
 };
 
 /// One count n of the search (a row of the Pareto table when it arrived).

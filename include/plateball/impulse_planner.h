@@ -11,6 +11,7 @@
 #include "plateball/ball_state.h"
 #include "plateball/error_bounds.h"
 #include "plateball/export.h"
+#include "plateball/field_list.h"
 #include "plateball/impulse.h"
 #include "plateball/integration_options.h"
 #include "plateball/join.h"
@@ -61,8 +62,19 @@ struct PlanOptions {
   IntegrationOptions integration;  ///< arcs with orientation and the rolling reference
   int bound_samples = 5;           ///< samples of p', p'' per segment for the bounds (>= 2)
 
-  /// Empty when the options are valid; else a message naming the field and its value.
+  /// Empty when the options are valid; else a message naming the field and its value (the ranges
+  /// of the field list, then the join's, the reach's and the integration's).
   std::string Validate() const;
+
+  /// The field list (field_list.h): the Python attributes and the ranges Validate() checks.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(PLATEBALL_FIELD(join, "options of each segment's join (tolerances, local-branch factor)"),
+             PLATEBALL_FIELD(reach_fallback, "connect a segment beyond the join's local radius by reach"),
+             PLATEBALL_FIELD(reach, "options of that fallback (integration: join's)"),
+             PLATEBALL_FIELD(integration, "tolerances and step bound of the arcs and the rolling reference"),
+             PLATEBALL_FIELD(bound_samples, "samples of p', p'' per segment for the error bounds").Counts(2, 100000));
+  }
 };
 
 /// One segment k: the impulse at p(tau_k) and the free arc to p(tau_k+1).

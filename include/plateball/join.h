@@ -8,6 +8,7 @@
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/export.h"
+#include "plateball/field_list.h"
 #include "plateball/impulse.h"
 #include "plateball/integration_options.h"
 
@@ -36,8 +37,19 @@ struct JoinOptions {
   /// |x'| >= v_min; see docs/paper_notes.md, "Joining close points").
   double local_time_factor = 2.0;
   IntegrationOptions integration;
-  /// Empty when valid, else names the field, the value and the bound.
+  /// Empty when valid, else names the field, the value and the bound: residual_tolerance in
+  /// [1e-15, 1e-3], then the ranges of the field list, then the integration's.
   std::string Validate() const;
+
+  /// The field list (field_list.h): the Python attributes and the ranges Validate() checks.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(PLATEBALL_FIELD(residual_tolerance, "accept when |x_s(t) - target| <= this"),
+             PLATEBALL_FIELD(max_iterations, "Levenberg-Marquardt iterations").Counts(1, 10000),
+             PLATEBALL_FIELD(local_time_factor, "K1 of Lemma 2.1 for the local-branch test, times 1 / v_min")
+                 .Closed(1.0, 1000.0),
+             PLATEBALL_FIELD(integration, "tolerances and step bound of the integrations"));
+  }
 };
 
 /// What is asked (Lemma 2.1): the ball just before the impulse at x0, and the point to reach.

@@ -162,8 +162,8 @@ struct SteerTask {
                    .NonNegative(kMaxTotalTime, "0: automatic"),
                PLATEBALL_FIELD(orientation_only, "only the goal orientation is prescribed (three conditions)"));
     }
-    /// The largest search window a problem file may ask for.
-    static constexpr double kMaxTotalTime = 1e6;
+    /// The largest search window a problem file may ask for: the library's.
+    static constexpr double kMaxTotalTime = FewestImpulsesOptions::kMaxTotalTime;
   };
   std::optional<Fewest> fewest;
 };

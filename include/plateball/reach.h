@@ -11,6 +11,7 @@
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
 #include "plateball/export.h"
+#include "plateball/field_list.h"
 #include "plateball/free_motion.h"
 #include "plateball/impulse.h"
 #include "plateball/integration_options.h"
@@ -54,8 +55,24 @@ struct ReachOptions {
   /// Tolerances of the tight integrations (refinement, end states).
   IntegrationOptions integration;
 
-  /// Empty when valid; otherwise names the field, its value and the bound.
+  /// Empty when valid; otherwise names the field, its value and the bound: horizon_periods in
+  /// (0, 1e4], the ranges of the field list, the work budget, then the integration's.
   std::string Validate() const;
+
+  /// The field list (field_list.h): the Python attributes and the ranges Validate() checks.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(
+        PLATEBALL_FIELD(horizon_periods, "solutions with t up to this many periods 2 pi / sqrt(mu) are enumerated"),
+        PLATEBALL_FIELD(scan_directions, "directions s of the deterministic scan").Counts(8, 100000),
+        PLATEBALL_FIELD(scan_steps_per_period, "time steps per period of the scan").Counts(8, 100000),
+        PLATEBALL_FIELD(tolerance, "a refined (s, t) is a solution when |x_s(t) - target| <= tolerance").Positive(),
+        PLATEBALL_FIELD(max_refine_iterations, "Levenberg-Marquardt iterations per candidate").Counts(1, 1000),
+        PLATEBALL_FIELD(max_candidates, "candidates refined at most").Counts(1, 100000),
+        PLATEBALL_FIELD(global_max_evaluations, "function evaluations of the global search of the closest approach")
+            .Counts(1, 100000),
+        PLATEBALL_FIELD(integration, "tolerances and step bound of the tight integrations"));
+  }
 };
 
 enum class ReachStatus {

@@ -132,6 +132,14 @@ struct RigCheckTolerances {
   double position = 1e-9;  ///< ball radii, for the plate, obstacles and stroke
   double impulse = 1e-9;   ///< relative, for the velocity-change and impulse bounds
   double time = 1e-12;     ///< relative, for the shortest interval
+
+  /// The field list (field_list.h): the Python attributes and the ranges RigPlanOptions::Validate checks.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(PLATEBALL_FIELD(position, "tolerance of the plate, obstacles and stroke (ball radii)").NonNegative(),
+             PLATEBALL_FIELD(impulse, "relative tolerance of the velocity-change and impulse bounds").NonNegative(),
+             PLATEBALL_FIELD(time, "relative tolerance of the shortest interval").NonNegative());
+  }
 };
 
 }  // namespace PLATEBALL_EXPORT

@@ -11,7 +11,9 @@
 
 #include "plateball/ball_model.h"
 #include "plateball/export.h"
+#include "plateball/field_list.h"
 #include "plateball/impulse_planner.h"
+#include "plateball/limits.h"
 #include "plateball/rig_limits.h"
 
 namespace plateball PLATEBALL_EXPORT {
@@ -32,8 +34,25 @@ struct RigPlanOptions {
   int check_samples_per_flight = 64;
   RigCheckTolerances tolerances;  ///< of the final check and of the path's own margins
 
-  /// Empty when the options are valid; else a message naming the field and its value.
+  /// Empty when the options are valid; else a message naming the field and its value (the ranges
+  /// of the field list, the tolerances' as tolerances.FIELD).
   std::string Validate() const;
+
+  /// The field list (field_list.h): the Python attributes and the ranges Validate() checks.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(
+        PLATEBALL_FIELD(max_rounds,
+                        "refinement rounds, each bisecting the segments whose flights exceed a geometric limit")
+            .Counts(0, 64),
+        PLATEBALL_FIELD(max_added_points, "partition points the refinement may add over all rounds")
+            .Counts(0, limits::kMaxPartitionSteps),
+        PLATEBALL_FIELD(samples_per_flight, "samples per flight at which the planner looks for its smallest margin")
+            .Counts(2, 100000),
+        PLATEBALL_FIELD(check_samples_per_flight, "samples per flight of the final independent check")
+            .Counts(1, 100000),
+        PLATEBALL_FIELD(tolerances, "tolerances of the final check and of the path's own margins"));
+  }
 };
 
 enum class RigPlanStatus {

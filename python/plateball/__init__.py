@@ -57,7 +57,8 @@ def _set(caller, target, key, value):
     try:
         setattr(target, key, value)
     except TypeError as error:
-        expected = re.search(r"arg0: (.*?)\) ->", str(error))
+        # A field property's "CLASS.FIELD: value V: must be TYPE", or pybind11's signature.
+        expected = re.search(r": must be ([^\n]*)$", str(error)) or re.search(r"arg0: (.*?)\) ->", str(error))
         raise TypeError(f"{caller}(): {key}: value {value!r}: "
                         + (f"must be {expected.group(1)}" if expected else "has the wrong type")) from None
 

@@ -19,8 +19,11 @@ namespace plateball::python {
 
 namespace py = pybind11;
 
-// "must be TYPE" from pybind11's message about a setter's argument ("... (self: C, arg0: TYPE) -> None").
+// "must be TYPE" from a setter's TypeError: a field property's "CLASS.FIELD: value V: must be TYPE"
+// (field_binding.h), or pybind11's message about a setter's argument ("... (self: C, arg0: TYPE) -> None").
 inline std::string WrongTypeText(const std::string& pybind_message) {
+  const auto own = pybind_message.rfind(": must be ");
+  if (own != std::string::npos) return pybind_message.substr(own + 2, pybind_message.find('\n', own) - own - 2);
   const auto at = pybind_message.find("arg0: ");
   const auto end = at == std::string::npos ? at : pybind_message.find(") ->", at);
   if (end == std::string::npos) return "has the wrong type";

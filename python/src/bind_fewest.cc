@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "bind_common.h"
+#include "field_binding.h"
 #include "interrupt.h"
 #include "plateball/fewest_impulses.h"
 
@@ -15,18 +16,7 @@ void BindFewestInputs(py::module_& m) {
                                             "FewestImpulsesOptions",
                                             "Options of fewest_impulses(): the counts searched, the starts per count, "
                                             "the search window and the tolerances of an exact arrival.");
-  WithKeywordInit(options)
-      .def_readwrite("max_impulses", &FewestImpulsesOptions::max_impulses)
-      .def_readwrite("pareto_counts", &FewestImpulsesOptions::pareto_counts)
-      .def_readwrite("starts", &FewestImpulsesOptions::starts)
-      .def_readwrite("arrivals_per_count", &FewestImpulsesOptions::arrivals_per_count)
-      .def_readwrite("adaptive_starts", &FewestImpulsesOptions::adaptive_starts)
-      .def_readwrite("max_total_time", &FewestImpulsesOptions::max_total_time)
-      .def_readwrite("max_iterations", &FewestImpulsesOptions::max_iterations)
-      .def_readwrite("position_tolerance", &FewestImpulsesOptions::position_tolerance)
-      .def_readwrite("orientation_tolerance", &FewestImpulsesOptions::orientation_tolerance)
-      .def_readwrite("integration", &FewestImpulsesOptions::integration)
-      .def_readwrite("search_integration", &FewestImpulsesOptions::search_integration)
+  DefFieldAttributes(WithKeywordInit(options))
       .def("validate",
            &FewestImpulsesOptions::Validate,
            "Empty when the options are valid; else a message naming the field and its value.");

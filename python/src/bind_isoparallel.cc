@@ -4,6 +4,7 @@
 #include <future>
 
 #include "bind_common.h"
+#include "field_binding.h"
 #include "interrupt.h"
 #include "plateball/elastica.h"
 #include "plateball/exact_arrival.h"
@@ -80,16 +81,7 @@ void BindIsoparallelInputs(py::module_& m) {
       "IsoparallelOptions",
       "Options of isoparallel(). A problem file's \"isoparallel.solver\" section (plus its seed and integration "
       "section) sets them, with the same ranges as validate().");
-  WithKeywordInit(options)
-      .def_readwrite("starts", &IsoparallelOptions::starts)
-      .def_readwrite("length_cap_factor", &IsoparallelOptions::length_cap_factor)
-      .def_readwrite("max_iterations", &IsoparallelOptions::max_iterations)
-      .def_readwrite("tolerance", &IsoparallelOptions::tolerance)
-      .def_readwrite("threads", &IsoparallelOptions::threads)
-      .def_readwrite("seed", &IsoparallelOptions::seed)
-      .def_readwrite("max_length", &IsoparallelOptions::max_length)
-      .def_readwrite("enumerate_families", &IsoparallelOptions::enumerate_families)
-      .def_readwrite("integration", &IsoparallelOptions::integration)
+  DefFieldAttributes(WithKeywordInit(options))
       .def("validate",
            &IsoparallelOptions::Validate,
            "Empty when valid, else a message naming the field, the value and the bound.");
@@ -283,14 +275,7 @@ void BindExactInputs(py::module_& m) {
       "ExactArrivalOptions",
       "Options of steer(): the tolerances of the exact arrival, the Gauss-Newton iterations, the rollouts' and the "
       "Jacobian's integration and the warm start's plan options.");
-  WithKeywordInit(options)
-      .def_readwrite("position_tolerance", &ExactArrivalOptions::position_tolerance)
-      .def_readwrite("orientation_tolerance", &ExactArrivalOptions::orientation_tolerance)
-      .def_readwrite("max_iterations", &ExactArrivalOptions::max_iterations)
-      .def_readwrite("deviation_tolerance", &ExactArrivalOptions::deviation_tolerance)
-      .def_readwrite("integration", &ExactArrivalOptions::integration)
-      .def_readwrite("jacobian_integration", &ExactArrivalOptions::jacobian_integration)
-      .def_readwrite("warm_start", &ExactArrivalOptions::warm_start)
+  DefFieldAttributes(WithKeywordInit(options))
       .def("validate",
            &ExactArrivalOptions::Validate,
            "Empty when the options are valid; else a message naming the field and its value.");

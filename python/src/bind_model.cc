@@ -2,6 +2,7 @@
 #include <array>
 
 #include "bind_common.h"
+#include "field_binding.h"
 #include "plateball/angle_form.h"
 #include "plateball/ball_model.h"
 #include "plateball/ball_state.h"
@@ -81,10 +82,7 @@ void BindStates(py::module_& m) {
   WithKeywordInit(state).def_readwrite("z", &BallState::z).def_readwrite("omega", &BallState::omega);
   py::class_<IntegrationOptions> integration(
       m, "IntegrationOptions", "Tolerances and step bound of the ODE integrations.");
-  WithKeywordInit(integration)
-      .def_readwrite("absolute_tolerance", &IntegrationOptions::absolute_tolerance)
-      .def_readwrite("relative_tolerance", &IntegrationOptions::relative_tolerance)
-      .def_readwrite("max_steps", &IntegrationOptions::max_steps)
+  DefFieldAttributes(WithKeywordInit(integration))
       .def("validate",
            &IntegrationOptions::Validate,
            "Empty when valid, else a message naming the field, the value and the bound. Each tolerance must be in "

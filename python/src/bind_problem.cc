@@ -1,6 +1,7 @@
 // Python binding: problem files (problem.h, problem_io.h) and the task adapters (task_adapters.h),
 // so that Python runs exactly what the tools run for a file.
 #include "bind_common.h"
+#include "field_binding.h"
 #include "plateball/limits.h"
 #include "plateball/problem.h"
 #include "plateball/problem_io.h"
@@ -11,9 +12,7 @@ namespace {
 
 void BindTasks(py::module_& m) {
   py::class_<SimulateTask> simulate(m, "SimulateTask", "`plateball simulate`: sample the free motion on [0, t_end].");
-  WithKeywordInit(simulate)
-      .def_readwrite("t_end", &SimulateTask::t_end)
-      .def_readwrite("samples", &SimulateTask::samples);
+  DefFieldAttributes(WithKeywordInit(simulate));
   py::class_<ReachTask> reach(
       m, "ReachTask", "`plateball join` / `plateball reach`: reach target points from the initial state.");
   WithKeywordInit(reach)

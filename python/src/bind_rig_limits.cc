@@ -1,6 +1,7 @@
 // The rig's limits (rig_limits.h): plate shapes, the limits, what the solver did and the
 // independent checks (CheckRigLimits, CheckPlanRigLimits).
 #include "bind_common.h"
+#include "field_binding.h"
 #include "plateball/exact_arrival.h"
 #include "plateball/plan_rig_check.h"
 #include "plateball/rig_limits.h"
@@ -37,23 +38,7 @@ void BindShapes(py::module_& m) {
 void BindLimits(py::module_& m) {
   py::class_<RigLimits> limits(
       m, "RigLimits", "The limits of a physical rig that exact arrival honours (rig_limits.h).");
-  WithKeywordInit(limits)
-      .def_readwrite(
-          "plate", &RigLimits::plate, "the region the contact point stays in (DiskShape, PolygonShape or None)")
-      .def_readwrite("obstacles", &RigLimits::obstacles, "regions the contact point stays out of")
-      .def_readwrite("clearance", &RigLimits::clearance, "distance kept from the plate's edge and the obstacles")
-      .def_readwrite(
-          "stroke", &RigLimits::stroke, "half-ranges (s_x, s_y) of the upper plate's displacement 2 (x - x0), or None")
-      .def_readwrite("max_plate_velocity_change",
-                     &RigLimits::max_plate_velocity_change,
-                     "largest norm of one impulse's plate velocity change 2 delta_omega x e3")
-      .def_readwrite("max_plate_impulse",
-                     &RigLimits::max_plate_impulse,
-                     "largest norm of J, the actuator's impulse (needs physical parameters)")
-      .def_readwrite("max_force", &RigLimits::max_force, "largest mean force, the norm of J over pulse_duration")
-      .def_readwrite("pulse_duration", &RigLimits::pulse_duration, "the pulse duration of max_force")
-      .def_readwrite("min_interval", &RigLimits::min_interval, "shortest time between two impulses")
-      .def_readwrite("tick", &RigLimits::tick, "impulse times are multiples of tick (0 for any time)")
+  DefFieldAttributes(WithKeywordInit(limits))
       .def_property_readonly("empty", &RigLimits::Empty, "True when no limit is set")
       .def("validate", &RigLimits::Validate, "Empty when valid; else a message naming the field.");
   py::class_<RigLimitsReport>(m, "RigLimitsReport", "What the rig's limits did in an exact arrival.")
@@ -99,21 +84,17 @@ void BindReference(py::module_& m) {
 }
 
 void BindRigPlanner(py::module_& m) {
+  py::class_<RigCheckTolerances> tolerances(
+      m,
+      "RigCheckTolerances",
+      "Tolerances of the independent check against a rig's limits (rig_limits.h): positions and impulses to these, "
+      "the grid exactly.");
+  DefFieldAttributes(WithKeywordInit(tolerances));
   py::class_<RigPlanOptions> options(
-      m, "RigPlanOptions", "Options of plan_on_rig (rig_planner.h); the check's tolerances are the defaults.");
-  WithKeywordInit(options)
-      .def_readwrite("max_rounds",
-                     &RigPlanOptions::max_rounds,
-                     "refinement rounds, each bisecting the segments whose flights exceed a geometric limit")
-      .def_readwrite("max_added_points",
-                     &RigPlanOptions::max_added_points,
-                     "partition points the refinement may add over all rounds")
-      .def_readwrite("samples_per_flight",
-                     &RigPlanOptions::samples_per_flight,
-                     "samples per flight at which the planner looks for its smallest margin")
-      .def_readwrite("check_samples_per_flight",
-                     &RigPlanOptions::check_samples_per_flight,
-                     "samples per flight of the final independent check")
+      m,
+      "RigPlanOptions",
+      "Options of plan_on_rig (rig_planner.h): the refinement and the final check's samples and tolerances.");
+  DefFieldAttributes(WithKeywordInit(options))
       .def("validate", &RigPlanOptions::Validate, "Empty when valid; else a message naming the field.");
   py::class_<RigPlanSummary> summary(
       m, "RigPlanSummary", "The result of plan_on_rig(): the plan, its independent check and what the limits did.");

@@ -2,6 +2,7 @@
 // arrival) with its problem, options and summary. The solver calls release the GIL. Status enums
 // are exposed as their ToString words ("converged", "success", ...), as in the tools' JSON.
 #include "bind_common.h"
+#include "field_binding.h"
 #include "plateball/convergence.h"
 #include "plateball/elastica.h"
 #include "plateball/error_bounds.h"
@@ -26,11 +27,7 @@ void BindJoin(py::module_& m) {
       m,
       "JoinOptions",
       "Options of join(): the tolerance, iterations and integration of joining a close target with one impulse.");
-  WithKeywordInit(options)
-      .def_readwrite("residual_tolerance", &JoinOptions::residual_tolerance)
-      .def_readwrite("max_iterations", &JoinOptions::max_iterations)
-      .def_readwrite("local_time_factor", &JoinOptions::local_time_factor)
-      .def_readwrite("integration", &JoinOptions::integration)
+  DefFieldAttributes(WithKeywordInit(options))
       .def("validate", &JoinOptions::Validate, "Empty when valid, else names the field, the value and the bound.");
   py::class_<JoinProblem> problem(m, "JoinProblem", "Join x0 to a close target with one impulse (Lemma 2.1).");
   WithKeywordInit(problem)
@@ -65,15 +62,7 @@ void BindReachTypes(py::module_& m) {
       m,
       "ReachOptions",
       "Options of reach(): the horizon, the scan of (delta_psi, t), the global search and the refinement's tolerance.");
-  WithKeywordInit(options)
-      .def_readwrite("horizon_periods", &ReachOptions::horizon_periods)
-      .def_readwrite("scan_directions", &ReachOptions::scan_directions)
-      .def_readwrite("scan_steps_per_period", &ReachOptions::scan_steps_per_period)
-      .def_readwrite("tolerance", &ReachOptions::tolerance)
-      .def_readwrite("max_refine_iterations", &ReachOptions::max_refine_iterations)
-      .def_readwrite("max_candidates", &ReachOptions::max_candidates)
-      .def_readwrite("global_max_evaluations", &ReachOptions::global_max_evaluations)
-      .def_readwrite("integration", &ReachOptions::integration)
+  DefFieldAttributes(WithKeywordInit(options))
       .def(
           "validate", &ReachOptions::Validate, "Empty when valid; otherwise names the field, its value and the bound.");
   py::class_<ReachProblem> problem(
@@ -167,12 +156,7 @@ void BindPlanInputs(py::module_& m) {
                                   "PlanOptions",
                                   "Options of plan(): the join and reach options of each segment (reach as a "
                                   "fallback), the integration of the free arcs and the samples of the error bounds.");
-  WithKeywordInit(options)
-      .def_readwrite("join", &PlanOptions::join)
-      .def_readwrite("reach_fallback", &PlanOptions::reach_fallback)
-      .def_readwrite("reach", &PlanOptions::reach)
-      .def_readwrite("integration", &PlanOptions::integration)
-      .def_readwrite("bound_samples", &PlanOptions::bound_samples)
+  DefFieldAttributes(WithKeywordInit(options))
       .def("validate",
            &PlanOptions::Validate,
            "Empty when the options are valid; else a message naming the field and its value.");

@@ -25,18 +25,6 @@ inline double WrittenNumber(const std::string& path, double v) {
   return v;
 }
 
-/// A bound in a message: the shorter of the plain and the exponent form ("1e6", not "1e+06").
-inline std::string BoundText(double v) {
-  const std::string plain = internal::FormatNumber(v);
-  const std::size_t e = plain.find('e');
-  if (e == std::string::npos) return plain;
-  std::string exponent = plain.substr(e + 1);
-  const bool negative = exponent[0] == '-';
-  if (exponent[0] == '+' || negative) exponent.erase(0, 1);
-  while (exponent.size() > 1 && exponent[0] == '0') exponent.erase(0, 1);
-  return plain.substr(0, e) + "e" + (negative ? "-" : "") + exponent;
-}
-
 /// Reads one section into a struct: `value.Serialize(&reader)`. Keys outside the list's file
 /// fields (and the caller's `leading` keys) are an error; each field present is checked and
 /// stored, absent ones keep their value; ByHand fields are left to the caller.
