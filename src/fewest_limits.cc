@@ -20,6 +20,12 @@
 
 namespace plateball::internal::fewest {
 
+// SLSQP evaluations of one constrained run in the search. The arrivals within the limits of the
+// benchmark search (docs/benchmarks.md, T12) take at most about 50 in a run; a run still going
+// beyond this wanders outside the limits (one took 135 and failed), and the search tries the
+// count's further arrivals instead.
+constexpr int kSearchEvaluations = 64;
+
 // The constrained exact arrival of count n (constrained_arrival.h) at the problem's mu: the
 // limits in the problem's time unit, the total time minimised, the pass points of the deviation
 // the straight line x0 -> x1 cut into n equal parts.
@@ -41,6 +47,7 @@ internal::ConstrainedSetup ConstrainedFor(const Search& s, int n) {
   cs.jacobian_integration = s.options->search_integration;
   cs.position_tolerance = s.options->position_tolerance;
   cs.orientation_tolerance = s.options->orientation_tolerance;
+  cs.max_evaluations = kSearchEvaluations;
   return cs;
 }
 
