@@ -20,10 +20,9 @@
 
 namespace plateball::internal::fewest {
 
-// SLSQP evaluations of one constrained run in the search. The arrivals within the limits of the
-// benchmark search (docs/benchmarks.md, T12) take at most about 50 in a run; a run still going
-// beyond this wanders outside the limits (one took 135 and failed), and the search tries the
-// count's further arrivals instead.
+// SLSQP evaluations of one constrained run in the search. A run that arrives within the limits
+// takes far fewer (at most about 50 on docs/benchmarks.md's T12); one still going beyond this is
+// wandering outside the limits, and the search tries the count's further arrivals instead.
 constexpr int kSearchEvaluations = 64;
 
 // The constrained exact arrival of count n (constrained_arrival.h) at the problem's mu: the
