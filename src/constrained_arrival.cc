@@ -21,6 +21,9 @@ constexpr double kMinFlight = 1e-6;
 constexpr double kActiveTolerance = 1e-6;
 // The solver's constraints count as met to this (the sampling margin keeps the check's room).
 constexpr double kFeasibilityTolerance = 1e-7;
+// The impulse bounds are imposed this much tighter (relative): SLSQP holds an inequality to 1e-10
+// absolute, which for a small bound (0.05) can exceed the independent check's relative tolerance.
+constexpr double kImpulseMargin = 1e-8;
 // Points per flight of the dense look between sample nodes, and the rounds of adding missed points.
 constexpr int kDenseSamples = 32;
 constexpr int kExchangeRounds = 3;
@@ -227,11 +230,12 @@ void AddImpulseTerms(const ConstrainedSetup& s,
   for (int k = 0; k < ImpulseCount(s); ++k) {
     if (limit_v) {
       const ImpulseTerm t = ImpulseTermAt(s, sm, nodes, cj, u, k, false);
-      AddConstraint(e, "max_plate_velocity_change", t.value - l.max_plate_velocity_change, t.gradient);
+      AddConstraint(
+          e, "max_plate_velocity_change", t.value - (1 - kImpulseMargin) * l.max_plate_velocity_change, t.gradient);
     }
     if (limit_j) {
       const ImpulseTerm t = ImpulseTermAt(s, sm, nodes, cj, u, k, true);
-      AddConstraint(e, "max_plate_impulse", t.value - l.ImpulseBound(), t.gradient);
+      AddConstraint(e, "max_plate_impulse", t.value - (1 - kImpulseMargin) * l.ImpulseBound(), t.gradient);
     }
     if (objective) {
       const ImpulseTerm t = ImpulseTermAt(s, sm, nodes, cj, u, k, s.physical.has_value());
@@ -297,10 +301,13 @@ double MaxViolationOfValues(const ConstrainedSetup& s, const Samples& sm, const 
     const ImpulseRole role = RoleOf(s, k);
     const double turn = k < s.n ? u[k] : 0.0;
     if (limit_v)
-      worst = std::max(
-          worst, ImpulseMagnitude(s, nodes[node].z, nodes[node].k, turn, role, false) - l.max_plate_velocity_change);
+      worst = std::max(worst,
+                       ImpulseMagnitude(s, nodes[node].z, nodes[node].k, turn, role, false) -
+                           (1 - kImpulseMargin) * l.max_plate_velocity_change);
     if (limit_j)
-      worst = std::max(worst, ImpulseMagnitude(s, nodes[node].z, nodes[node].k, turn, role, true) - l.ImpulseBound());
+      worst = std::max(worst,
+                       ImpulseMagnitude(s, nodes[node].z, nodes[node].k, turn, role, true) -
+                           (1 - kImpulseMargin) * l.ImpulseBound());
   }
   return worst;
 }
