@@ -21,6 +21,9 @@ constexpr double kMinFlight = 1e-6;
 constexpr double kActiveTolerance = 1e-6;
 // The solver's constraints count as met to this (the sampling margin keeps the check's room).
 constexpr double kFeasibilityTolerance = 1e-7;
+// The impulse bounds are imposed this much tighter (relative): SLSQP holds an inequality to 1e-10
+// absolute, which for a small bound (0.05) can exceed the independent check's relative tolerance.
+constexpr double kImpulseMargin = 1e-8;
 // Points per flight of the dense look between sample nodes, and the rounds of adding missed points.
 constexpr int kDenseSamples = 32;
 constexpr int kExchangeRounds = 3;
@@ -188,6 +191,12 @@ struct ImpulseTerm {
   Eigen::RowVectorXd gradient;
 };
 
+// Impulse k of the chain (k = n: the stop).
+ImpulseRole RoleOf(const ConstrainedSetup& s, int k) {
+  if (k == s.n) return ImpulseRole::kStop;
+  return k == 0 && s.start_at_rest ? ImpulseRole::kStart : ImpulseRole::kTurn;
+}
+
 // The bounded magnitude of impulse k (k = n: the stop) and its gradient with respect to u.
 ImpulseTerm ImpulseTermAt(const ConstrainedSetup& s,
                           const Samples& sm,
@@ -197,9 +206,7 @@ ImpulseTerm ImpulseTermAt(const ConstrainedSetup& s,
                           int k,
                           bool as_impulse) {
   const std::size_t node = static_cast<std::size_t>(sm.offset[static_cast<std::size_t>(k)]);
-  const ImpulseRole role = k == s.n                      ? ImpulseRole::kStop
-                           : (k == 0 && s.start_at_rest) ? ImpulseRole::kStart
-                                                         : ImpulseRole::kTurn;
+  const ImpulseRole role = RoleOf(s, k);
   const double turn = k < s.n ? u[k] : 0.0;
   ImpulseTerm t;
   t.value = ImpulseMagnitude(s, nodes[node].z, nodes[node].k, turn, role, as_impulse);
@@ -223,11 +230,12 @@ void AddImpulseTerms(const ConstrainedSetup& s,
   for (int k = 0; k < ImpulseCount(s); ++k) {
     if (limit_v) {
       const ImpulseTerm t = ImpulseTermAt(s, sm, nodes, cj, u, k, false);
-      AddConstraint(e, "max_plate_velocity_change", t.value - l.max_plate_velocity_change, t.gradient);
+      AddConstraint(
+          e, "max_plate_velocity_change", t.value - (1 - kImpulseMargin) * l.max_plate_velocity_change, t.gradient);
     }
     if (limit_j) {
       const ImpulseTerm t = ImpulseTermAt(s, sm, nodes, cj, u, k, true);
-      AddConstraint(e, "max_plate_impulse", t.value - l.ImpulseBound(), t.gradient);
+      AddConstraint(e, "max_plate_impulse", t.value - (1 - kImpulseMargin) * l.ImpulseBound(), t.gradient);
     }
     if (objective) {
       const ImpulseTerm t = ImpulseTermAt(s, sm, nodes, cj, u, k, s.physical.has_value());
@@ -275,6 +283,35 @@ Evaluation Evaluate(const ConstrainedSetup& s, const Samples& sm, const Eigen::V
   return e;
 }
 
+// The largest violation of the limits at the sample nodes of u, from a rollout without the Jacobian
+// (the values of Evaluate's constraints; MeetsLimits needs no gradients).
+double MaxViolationOfValues(const ConstrainedSetup& s, const Samples& sm, const Eigen::VectorXd& u) {
+  std::vector<ChainNode> nodes(static_cast<std::size_t>(sm.nodes) + 1);
+  nodes[0] = s.start;
+  RollChain(s.lambda, SubParameters(u, sm), s.jacobian_integration, &nodes);
+  Evaluation e;
+  const Eigen::MatrixXd no_dx = Eigen::MatrixXd::Zero(2, 2 * s.n);
+  for (std::size_t i = 1; i < nodes.size(); ++i) AddPositionConstraints(s, nodes[i].x, no_dx, &e);
+  double worst = 0.0;
+  for (double g : e.g) worst = std::max(worst, g);
+  const RigLimits& l = s.limits;
+  const bool limit_v = !std::isinf(l.max_plate_velocity_change), limit_j = !std::isinf(l.ImpulseBound());
+  for (int k = 0; k < ImpulseCount(s); ++k) {
+    const std::size_t node = static_cast<std::size_t>(sm.offset[static_cast<std::size_t>(k)]);
+    const ImpulseRole role = RoleOf(s, k);
+    const double turn = k < s.n ? u[k] : 0.0;
+    if (limit_v)
+      worst = std::max(worst,
+                       ImpulseMagnitude(s, nodes[node].z, nodes[node].k, turn, role, false) -
+                           (1 - kImpulseMargin) * l.max_plate_velocity_change);
+    if (limit_j)
+      worst = std::max(worst,
+                       ImpulseMagnitude(s, nodes[node].z, nodes[node].k, turn, role, true) -
+                           (1 - kImpulseMargin) * l.ImpulseBound());
+  }
+  return worst;
+}
+
 // The plate, obstacle and stroke constraints at `dense` points per flight of u (values only): for
 // each flight, the fraction of its worst point when that point breaks a limit by more than half
 // the sampling margin (the sample nodes missed it), else nothing.
@@ -307,14 +344,20 @@ struct Stage {
         const Samples& samples,
         Eigen::VectorXd start,
         std::vector<int> free_entries,
-        bool closest_arrival)
-      : s(&setup), sm(&samples), base(std::move(start)), free(std::move(free_entries)), closest(closest_arrival) {}
+        bool closest_arrival,
+        Evaluation known = {})
+      : s(&setup),
+        sm(&samples),
+        base(std::move(start)),
+        free(std::move(free_entries)),
+        closest(closest_arrival),
+        last(std::move(known)) {}
   const ConstrainedSetup* s;
   const Samples* sm;
   Eigen::VectorXd base;
   std::vector<int> free;
-  bool closest;  // minimise |arrival residual|^2 under the inequalities (no equalities)
-  Evaluation last;
+  bool closest;     // minimise |arrival residual|^2 under the inequalities (no equalities)
+  Evaluation last;  // the latest evaluation (or the caller's, at the samples `sm`): At reuses it
   int rollouts = 0;
   int evaluations = 0;
 
@@ -445,14 +488,16 @@ double FeasibilityMerit(const Evaluation& e) {
 // From a point SLSQP left off the arrival or just outside its tolerance (round-off, e.g. on the
 // kinks of the total impulse at zero impulses): Newton steps (minimum norm) on the arrival
 // conditions together with the violated inequalities, each pulled onto its bound, kept while they
-// reduce FeasibilityMerit. A point within both tolerances is left unchanged.
+// reduce FeasibilityMerit. A point within both tolerances is left unchanged. `known` (at the
+// samples sm) is used instead of evaluating u again when it is at u.
 Evaluation RestoreFeasibility(const ConstrainedSetup& s,
                               const Samples& sm,
                               const std::vector<int>& free_entries,
                               Eigen::VectorXd* u,
+                              const Evaluation& known,
                               int* rollouts) {
   constexpr int kSteps = 6;
-  Evaluation e = Evaluate(s, sm, *u, rollouts);
+  Evaluation e = known.u.size() == u->size() && known.u == *u ? known : Evaluate(s, sm, *u, rollouts);
   const std::vector<int> free = NewtonEntries(s, free_entries, *u);
   for (int i = 0; i < kSteps && (MaxViolation(e) > kFeasibilityTolerance || e.r.norm() > kRestoreResidual); ++i) {
     std::vector<Eigen::RowVectorXd> rows;
@@ -479,10 +524,12 @@ Evaluation RestoreFeasibility(const ConstrainedSetup& s,
 }
 
 // Newton steps (minimum norm) on the arrival conditions over the free entries, rolled at the final
-// tolerance; flight times held at their lower bound stay there.
-void Polish(const ConstrainedSetup& s,
+// tolerance; flight times held at their lower bound stay there. `known` (at the samples sm) gives
+// the Jacobian when it is at u. Returns true when u arrives within the tolerances.
+bool Polish(const ConstrainedSetup& s,
             const Samples& sm,
             const std::vector<int>& free_entries,
+            const Evaluation& known,
             Eigen::VectorXd* u,
             int* rollouts) {
   const std::vector<int> free = NewtonEntries(s, free_entries, *u);
@@ -491,22 +538,27 @@ void Polish(const ConstrainedSetup& s,
   RollChain(s.lambda, *u, s.integration, &nodes);
   ++*rollouts;
   Eigen::Matrix<double, 5, 1> r = ArrivalResidual(nodes.back(), s.x1, s.A1);
+  const auto arrived = [&s](const Eigen::Matrix<double, 5, 1>& r) {
+    return r.head<2>().norm() <= s.position_tolerance && r.tail<3>().norm() <= s.orientation_tolerance;
+  };
   for (int i = 0; i < 10 && free.size() >= 5; ++i) {
-    if (r.head<2>().norm() <= s.position_tolerance && r.tail<3>().norm() <= s.orientation_tolerance) return;
-    const Eigen::MatrixXd dr = Evaluate(s, sm, *u, rollouts).dr;
+    if (arrived(r)) return true;
+    const Eigen::MatrixXd dr =
+        i == 0 && known.u.size() == u->size() && known.u == *u ? known.dr : Evaluate(s, sm, *u, rollouts).dr;
     Eigen::MatrixXd J(5, free.size());
     for (std::size_t c = 0; c < free.size(); ++c) J.col(static_cast<Eigen::Index>(c)) = dr.col(free[c]);
     const Eigen::VectorXd step = -J.transpose() * internal::FullPivLuSolve(J * J.transpose(), r);
     Eigen::VectorXd trial = *u;
     for (std::size_t c = 0; c < free.size(); ++c) trial[free[c]] += step[static_cast<Eigen::Index>(c)];
-    if ((trial.tail(s.n).array() <= 0).any()) return;
+    if ((trial.tail(s.n).array() <= 0).any()) return arrived(r);
     RollChain(s.lambda, trial, s.integration, &nodes);
     ++*rollouts;
     const Eigen::Matrix<double, 5, 1> r_new = ArrivalResidual(nodes.back(), s.x1, s.A1);
-    if (!(r_new.norm() < r.norm())) return;
+    if (!(r_new.norm() < r.norm())) return arrived(r);
     *u = trial;
     r = r_new;
   }
+  return arrived(r);
 }
 
 // Fixes the impulse times to the tick grid (the nearest multiples that keep the shortest interval)
@@ -534,15 +586,6 @@ std::vector<int> FreeEntries(const ConstrainedSetup& s, bool grid) {
     if (!time_fixed) free.push_back(j);
   }
   return free;
-}
-
-bool Arrived(const ConstrainedSetup& s, const Eigen::VectorXd& u, int* rollouts) {
-  std::vector<ChainNode> nodes(static_cast<std::size_t>(s.n) + 1);
-  nodes[0] = s.start;
-  RollChain(s.lambda, u, s.integration, &nodes);
-  ++*rollouts;
-  const Eigen::Matrix<double, 5, 1> r = ArrivalResidual(nodes.back(), s.x1, s.A1);
-  return r.head<2>().norm() <= s.position_tolerance && r.tail<3>().norm() <= s.orientation_tolerance;
 }
 
 }  // namespace
@@ -608,7 +651,7 @@ bool MeetsLimits(const ConstrainedSetup& setup, const Eigen::VectorXd& u) {
     if (u[setup.n + k] < FlightLowerBound(setup, k)) return false;
   int rollouts = 0;
   const Samples sm = Samples::Uniform(setup.n, setup.samples_per_arc);
-  if (MaxViolation(Evaluate(setup, sm, u, &rollouts)) > 0.0) return false;
+  if (MaxViolationOfValues(setup, sm, u) > 0.0) return false;
   const auto missed = MissedPoints(setup, u, kDenseSamples, &rollouts);
   return std::all_of(missed.begin(), missed.end(), [](const auto& m) { return m.empty(); });
 }
@@ -626,13 +669,13 @@ double Merit(const Evaluation& e, double rho) {
 // squares), which SLSQP's quasi-Newton model would have to learn from its iterates: each solves the
 // QP of the deviation's Gauss-Newton model (Levenberg-damped) under the linearised arrival
 // conditions, limits and flight bounds (dense_qp.h), and a backtracking line search on the L1 merit
-// accepts it. Returns the last accepted u, from which SLSQP finishes.
-Eigen::VectorXd GaussNewtonSqp(const ConstrainedSetup& s,
-                               const Samples& sm,
-                               const std::vector<int>& free,
-                               Eigen::VectorXd u,
-                               int* evaluations,
-                               int* rollouts) {
+// accepts it. Returns the evaluation at the last accepted u, from which SLSQP finishes.
+Evaluation GaussNewtonSqp(const ConstrainedSetup& s,
+                          const Samples& sm,
+                          const std::vector<int>& free,
+                          Eigen::VectorXd u,
+                          int* evaluations,
+                          int* rollouts) {
   const Eigen::Index nv = static_cast<Eigen::Index>(free.size());
   const auto at = [&free](Eigen::Index i) { return free[static_cast<std::size_t>(i)]; };
   Evaluation e = Evaluate(s, sm, u, rollouts);
@@ -687,27 +730,43 @@ Eigen::VectorXd GaussNewtonSqp(const ConstrainedSetup& s,
     }
     damping = accepted ? std::max(kSqpDamping, damping * 0.1) : damping * 100.0;
   }
-  return u;
+  return e;
 }
 
 // SLSQP rounds, each followed by a dense look at the flights; a flight whose worst point breaks a
 // limit between the sample nodes gets that point as a new node (an exchange method for the
 // semi-infinite constraint "every point of the path"). Returns true when no point was missed.
-bool SolveWithExchange(
-    const ConstrainedSetup& s, Samples* sm, const std::vector<int>& free, Eigen::VectorXd* u, ConstrainedOutcome* out) {
+// `last` is the evaluation at the final u and samples, or empty after a round that added nodes.
+bool SolveWithExchange(const ConstrainedSetup& s,
+                       Samples* sm,
+                       const std::vector<int>& free,
+                       Eigen::VectorXd* u,
+                       ConstrainedOutcome* out,
+                       Evaluation* last) {
+  *last = Evaluation();
   for (int round = 0; round < kExchangeRounds; ++round) {
-    if (s.objective == ArrivalObjective::kDeviation)
-      *u = GaussNewtonSqp(s, *sm, free, *u, &out->evaluations, &out->rollouts);
-    Stage st(s, *sm, *u, free, false);
+    // The evaluation at the Gauss-Newton steps' end is SLSQP's first.
+    Evaluation start;
+    if (s.objective == ArrivalObjective::kDeviation) {
+      start = GaussNewtonSqp(s, *sm, free, *u, &out->evaluations, &out->rollouts);
+      *u = start.u;
+    }
+    Stage st(s, *sm, *u, free, false, std::move(start));
     *u = RunSlsqp(&st, &out->evaluations);
     out->rollouts += st.rollouts;
     // Still far outside at its own sample nodes (more than the sampling margin's half, the largest
     // miss the exchange adds): more nodes only add constraints, so a further round would repeat
     // the failure. A round that ends just outside is run again.
-    const Evaluation at_u = RestoreFeasibility(s, *sm, free, u, &out->rollouts);
-    if (MaxViolation(at_u) > kRestartViolation * s.sampling_margin) return false;
+    Evaluation at_u = RestoreFeasibility(s, *sm, free, u, st.last, &out->rollouts);
+    if (MaxViolation(at_u) > kRestartViolation * s.sampling_margin) {
+      *last = std::move(at_u);
+      return false;
+    }
     const auto missed = MissedPoints(s, *u, kDenseSamples, &out->rollouts);
-    if (std::all_of(missed.begin(), missed.end(), [](const auto& m) { return m.empty(); })) return true;
+    if (std::all_of(missed.begin(), missed.end(), [](const auto& m) { return m.empty(); })) {
+      *last = std::move(at_u);
+      return true;
+    }
     auto fractions = sm->fractions;
     for (std::size_t k = 0; k < missed.size(); ++k)
       for (double f : missed[k]) {
@@ -749,15 +808,16 @@ ConstrainedOutcome SolveConstrainedArrival(const ConstrainedSetup& s, const Eige
   ConstrainedOutcome out;
   Samples sm = Samples::Uniform(s.n, s.samples_per_arc);
   Eigen::VectorXd u = u0;
-  bool covered = SolveWithExchange(s, &sm, FreeEntries(s, false), &u, &out);
+  Evaluation last;  // at u and the samples sm, when known
+  bool covered = SolveWithExchange(s, &sm, FreeEntries(s, false), &u, &out, &last);
   if (grid) {
     out.ticks = SnapToGrid(s, &u);
-    covered = SolveWithExchange(s, &sm, free, &u, &out);
+    covered = SolveWithExchange(s, &sm, free, &u, &out, &last);
   }
-  Polish(s, sm, free, &u, &out.rollouts);
-  Evaluation e = Evaluate(s, sm, u, &out.rollouts);
+  const bool arrived = Polish(s, sm, free, last, &u, &out.rollouts);
+  Evaluation e = last.u.size() == u.size() && last.u == u ? std::move(last) : Evaluate(s, sm, u, &out.rollouts);
   out.feasible = covered && MaxViolation(e) <= kFeasibilityTolerance;
-  out.arrived = out.feasible && Arrived(s, u, &out.rollouts);
+  out.arrived = out.feasible && arrived;
   if (!out.arrived && !s.closest_arrival) {  // the limits that stop it at the solver's end point
     out.blocking = ActiveNames(s, e);
     if (grid) out.blocking.push_back("tick");

@@ -2,6 +2,7 @@
 
 #include <ceres/jet.h>
 
+#include <algorithm>
 #include <array>
 
 #include "dynamics.h"
@@ -72,8 +73,14 @@ struct ArcDerivative {
   Eigen::Matrix<double, kTracked, kParams + 1> d;
 };
 
-ArcDerivative DifferentiateArc(
-    double lambda, const Eigen::Vector3d& z0, const Eigen::Vector2d& k, double t, const IntegrationOptions& options) {
+// `step` (optional): in, the first step to try (0: the whole arc); out, the arc's largest accepted
+// step when it took more than one, else 0.
+ArcDerivative DifferentiateArc(double lambda,
+                               const Eigen::Vector3d& z0,
+                               const Eigen::Vector2d& k,
+                               double t,
+                               const IntegrationOptions& options,
+                               double* step = nullptr) {
   ArcSensState y{};
   for (int i = 0; i < 3; ++i) {
     y[i] = z0[i];
@@ -82,9 +89,15 @@ ArcDerivative DifferentiateArc(
   y[5] = y[9] = y[13] = 1.0;
   const ArcSensRhs rhs{lambda, {k.x(), k.y()}};
   namespace odeint = boost::numeric::odeint;
+  const double first = step && *step > 0 ? std::min(*step, t) : t;
+  double largest = 0.0, reached = 0.0;
   if (t > 0)
     IntegrateAdaptive<odeint::runge_kutta_fehlberg78<ArcSensState>>(
-        rhs, y, 0.0, t, t, options, [](double, const auto&) {});
+        rhs, y, 0.0, t, first, options, [&](double now, const auto&) {
+          largest = std::max(largest, now - reached);
+          reached = now;
+        });
+  if (step) *step = largest < t ? largest : 0.0;
   ArcSensState f{};
   rhs(y, f, t);
   ArcDerivative out;
@@ -202,13 +215,17 @@ void RollChain(double lambda,
     jacobian->dz.assign(1, dz);
     jacobian->dk.assign(1, dk);
   }
+  // With columns (a chain cut into sub-arcs), each sub-arc's first step is the largest its
+  // predecessor took when that one needed several (the whole sub-arc otherwise): a sub-arc as long
+  // as the step allows is then not first tried at its whole length and rejected.
+  double step = 0.0;
   for (int k = 0; k < n; ++k) {
     ChainNode& a = (*nodes)[static_cast<std::size_t>(k)];
     Eigen::Vector2d k_after;
     ImpulseMomentum(a.z.data(), a.k.data(), u[k], lambda, k_after.data());
     ArcDerivative arc_d;
     if (jacobian) {
-      arc_d = DifferentiateArc(lambda, a.z, k_after, u[n + k], integration);
+      arc_d = DifferentiateArc(lambda, a.z, k_after, u[n + k], integration, columns ? &step : nullptr);
     } else {
       const FullState arc = RollArc(lambda, a.z, k_after, u[n + k], integration);
       for (int i = 0; i < kValues; ++i) arc_d.end[i] = arc[static_cast<std::size_t>(i)];

@@ -20,6 +20,11 @@
 
 namespace plateball::internal::fewest {
 
+// SLSQP evaluations of one constrained run in the search. A run that arrives within the limits
+// takes far fewer (at most about 50 on docs/benchmarks.md's T12); one still going beyond this is
+// wandering outside the limits, and the search tries the count's further arrivals instead.
+constexpr int kSearchEvaluations = 64;
+
 // The constrained exact arrival of count n (constrained_arrival.h) at the problem's mu: the
 // limits in the problem's time unit, the total time minimised, the pass points of the deviation
 // the straight line x0 -> x1 cut into n equal parts.
@@ -41,6 +46,7 @@ internal::ConstrainedSetup ConstrainedFor(const Search& s, int n) {
   cs.jacobian_integration = s.options->search_integration;
   cs.position_tolerance = s.options->position_tolerance;
   cs.orientation_tolerance = s.options->orientation_tolerance;
+  cs.max_evaluations = kSearchEvaluations;
   return cs;
 }
 
