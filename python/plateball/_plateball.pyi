@@ -364,20 +364,15 @@ class ExactArrivalOptions:
     def __init__(self, **kwargs) -> None: ...
     def validate(self) -> str: ...
 
-class ExactArrivalProblem:
+class ExactArrivalProblem(StartState):
     goal_orientation: numpy.typing.NDArray[numpy.float64]
     impulses: int
-    initial: AngleState
     limits: Any
-    model: BallModel
-    mu: float
     objective: str
-    orientation: numpy.typing.NDArray[numpy.float64]
     physical: Optional[PhysicalParameters]
     reference: Path
     start_at_rest: bool
     stop_at_goal: bool
-    x0: numpy.typing.NDArray[numpy.float64]
     x1: numpy.typing.NDArray[numpy.float64]
     def __init__(self, **kwargs) -> None: ...
 
@@ -548,18 +543,13 @@ class FewestImpulsesOptions:
     def __init__(self, **kwargs) -> None: ...
     def validate(self) -> str: ...
 
-class FewestImpulsesProblem:
+class FewestImpulsesProblem(StartState):
     goal_orientation: numpy.typing.NDArray[numpy.float64]
-    initial: AngleState
     limits: Any
-    model: BallModel
-    mu: float
-    orientation: numpy.typing.NDArray[numpy.float64]
     orientation_only: bool
     physical: Optional[PhysicalParameters]
     start_at_rest: bool
     stop_at_goal: bool
-    x0: numpy.typing.NDArray[numpy.float64]
     x1: numpy.typing.NDArray[numpy.float64]
     def __init__(self, **kwargs) -> None: ...
 
@@ -1188,12 +1178,8 @@ class PlanOptions:
     def __init__(self, **kwargs) -> None: ...
     def validate(self) -> str: ...
 
-class PlanProblem:
+class PlanProblem(StartMotion):
     energy_changes: List[EnergyChange]
-    initial: AngleState
-    model: BallModel
-    mu: float
-    orientation: numpy.typing.NDArray[numpy.float64]
     partition: List[Union[UniformParameter,UniformArcLength,ExplicitTaus]]
     path: Path
     def __init__(self, **kwargs) -> None: ...
@@ -1351,16 +1337,13 @@ class PolygonShape:
     vertices: List[numpy.typing.NDArray[numpy.float64]]
     def __init__(self, **kwargs) -> None: ...
 
-class Problem:
+class Problem(StartState):
     description: str
     expected: Dict[str,ExpectedValue]
     initial_angles: AngleState
     integration: IntegrationOptions
     isoparallel: Optional[IsoparallelTask]
-    model: BallModel
-    mu: float
     name: str
-    orientation: numpy.typing.NDArray[numpy.float64]
     physical: Optional[PhysicalParameters]
     plan: Optional[PlanTask]
     reach: Optional[ReachTask]
@@ -1369,7 +1352,6 @@ class Problem:
     simulate: Optional[SimulateTask]
     source: str
     steer: Optional[SteerTask]
-    x0: numpy.typing.NDArray[numpy.float64]
     def __init__(self, **kwargs) -> None: ...
 
 class ProblemFileReadError(OSError): ...
@@ -1616,6 +1598,17 @@ class SmoothCurve:
     def length(self) -> float: ...
     @property
     def start_point(self) -> numpy.typing.NDArray[numpy.float64]: ...
+
+class StartMotion:
+    initial: AngleState
+    model: BallModel
+    mu: float
+    orientation: numpy.typing.NDArray[numpy.float64]
+    def __init__(self, **kwargs) -> None: ...
+
+class StartState(StartMotion):
+    x0: numpy.typing.NDArray[numpy.float64]
+    def __init__(self, **kwargs) -> None: ...
 
 class SteerTask:
     goal: numpy.typing.NDArray[numpy.float64]
