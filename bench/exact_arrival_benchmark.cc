@@ -31,7 +31,7 @@ Problem Figure7() {
   Problem p;
   p.name = "figure7";
   p.model = BallModel::FromLambda(2.0);
-  p.initial_angles = {0.0, 0.0, 0.0};
+  p.initial = {0.0, 0.0, 0.0};
   p.mu = 1.0;
   IsoparallelTask t;
   t.goal = {3.0, 3.0};

@@ -19,7 +19,7 @@ using namespace plateball;
 Problem T2Problem() {
   Problem p;
   p.model = BallModel::FromLambda(2.0);
-  p.initial_angles = {M_PI / 3, 0.4, 0.1};
+  p.initial = {M_PI / 3, 0.4, 0.1};
   p.mu = 1.0;
   p.x0 = {0, 0};
   p.plan = PlanTask{};

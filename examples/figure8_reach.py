@@ -14,7 +14,7 @@ from gallery_common import PROBLEMS, out_dir_from_argv, plt, save
 
 
 def free_path(problem, delta_psi, t_end, n=600):
-    a = problem.initial_angles
+    a = problem.initial
     motion = pb.FreeMotion(problem.model, (a.theta, a.phi, a.psi + delta_psi), problem.mu, problem.x0,
                            problem.orientation, problem.integration)
     return motion.sample(0.0, t_end, n).x

@@ -102,12 +102,12 @@ std::vector<PartitionRule> PartitionFromSpec(const PartitionSpec& spec, const Pa
 
 FreeMotion FreeMotionFor(const Problem& problem) {
   return FreeMotion::FromAngles(
-      problem.model, problem.initial_angles, problem.mu, problem.x0, problem.A0, problem.integration);
+      problem.model, problem.initial, problem.mu, problem.x0, problem.A0, problem.integration);
 }
 
 JoinSetup JoinSetupFor(const Problem& problem, const Eigen::Vector2d& target) {
   JoinSetup s;
-  s.problem = JoinProblem{problem.model, problem.initial_angles, problem.mu, problem.x0, target};
+  s.problem = JoinProblem{problem.model, problem.initial, problem.mu, problem.x0, target};
   s.options.integration = problem.integration;
   return s;
 }
@@ -115,7 +115,7 @@ JoinSetup JoinSetupFor(const Problem& problem, const Eigen::Vector2d& target) {
 ReachSetup ReachSetupFor(const Problem& problem, const Eigen::Vector2d& target) {
   ReachSetup s;
   s.problem.model = problem.model;
-  s.problem.start = problem.initial_angles;
+  s.problem.start = problem.initial;
   s.problem.mu = problem.mu;
   s.problem.x0 = problem.x0;
   s.problem.A0 = problem.A0;
@@ -129,7 +129,7 @@ PlanSetup PlanSetupFor(const Problem& problem, int n, const std::string& n_field
   const PlanTask& task = RequirePlan(problem);
   PlanSetup s;
   s.problem.model = problem.model;
-  s.problem.initial = problem.initial_angles;
+  s.problem.initial = problem.initial;
   s.problem.mu = problem.mu;
   s.problem.A0 = problem.A0;
   s.problem.path = PathFromSpec(task.path, problem.source + ": plan.path");
@@ -204,7 +204,7 @@ IsoparallelPlanSetup IsoparallelPlanSetupFor(const Problem& problem,
   const IsoparallelTask& task = RequireIsoparallel(problem);
   IsoparallelPlanSetup s;
   s.problem.model = problem.model;
-  s.problem.psi = problem.initial_angles.psi;
+  s.problem.psi = problem.initial.psi;
   s.problem.mu = problem.mu;
   s.problem.A0 = task.start_orientation;
   s.problem.solution = solution;
@@ -250,7 +250,7 @@ ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem, int impulses, con
   const PlanTask& task = RequirePlan(problem);
   ExactArrivalSetup s;
   s.problem.model = problem.model;
-  s.problem.initial = problem.initial_angles;
+  s.problem.initial = problem.initial;
   s.problem.mu = problem.mu;
   s.problem.A0 = problem.A0;
   s.problem.x0 = problem.x0;
@@ -298,11 +298,11 @@ FewestImpulsesSetup FewestImpulsesSetupFor(const Problem& problem) {
   s.problem.mu = problem.mu;
   if (problem.isoparallel && !problem.plan) {
     s.problem.A0 = problem.isoparallel->start_orientation;
-    s.problem.initial = InitialAnglesFromOrientation(s.problem.A0, problem.initial_angles.psi);
+    s.problem.initial = InitialAnglesFromOrientation(s.problem.A0, problem.initial.psi);
     s.problem.x0 = problem.isoparallel->start;
   } else {
     s.problem.A0 = problem.A0;
-    s.problem.initial = problem.initial_angles;
+    s.problem.initial = problem.initial;
     s.problem.x0 = problem.x0;
   }
   s.problem.x1 = steer.goal;

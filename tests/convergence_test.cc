@@ -20,7 +20,7 @@ constexpr double kPassTolerance = 1e-10;
 Problem FileProblem(const PathSpec& path) {
   Problem p;
   p.model = BallModel::FromLambda(2.0);
-  p.initial_angles = {M_PI / 3, 0.4, 0.1};
+  p.initial = {M_PI / 3, 0.4, 0.1};
   p.mu = 1.0;
   p.plan = PlanTask{};
   p.plan->path = path;

@@ -36,7 +36,7 @@ PlanProblem MakePlan(const Path& path,
                      std::vector<EnergyChange> changes = {},
                      double mu = 1.0,
                      const Eigen::Matrix3d& A0 = Eigen::Matrix3d::Identity()) {
-  return PlanProblem{kModel, kStart, mu, A0, path, std::move(partition), std::move(changes)};
+  return PlanProblem{{kModel, kStart, mu, A0}, path, std::move(partition), std::move(changes)};
 }
 
 PlanSummary PlanUniform(const Path& path,

@@ -99,9 +99,9 @@ void ExpectSameProblem(const Problem& a, const Problem& b) {
     EXPECT_EQ(a.physical->radius, b.physical->radius);
     EXPECT_EQ(a.physical->plate_mass, b.physical->plate_mass);
   }
-  EXPECT_EQ(a.initial_angles.theta, b.initial_angles.theta);
-  EXPECT_EQ(a.initial_angles.phi, b.initial_angles.phi);
-  EXPECT_EQ(a.initial_angles.psi, b.initial_angles.psi);
+  EXPECT_EQ(a.initial.theta, b.initial.theta);
+  EXPECT_EQ(a.initial.phi, b.initial.phi);
+  EXPECT_EQ(a.initial.psi, b.initial.psi);
   EXPECT_EQ(a.mu, b.mu);
   EXPECT_EQ(a.x0, b.x0);
   EXPECT_EQ(a.A0, b.A0);
@@ -181,7 +181,7 @@ TEST(ProblemIo, FullDocumentParsesEveryField) {
   // lambda = (alpha+beta)/(1+beta).
   const double alpha = 0.3 / 0.4, beta = 2.0 / 0.4;
   EXPECT_DOUBLE_EQ(p.model.lambda(), (alpha + beta) / (1.0 + beta));
-  EXPECT_DOUBLE_EQ(p.initial_angles.theta, -M_PI / 3);
+  EXPECT_DOUBLE_EQ(p.initial.theta, -M_PI / 3);
   EXPECT_EQ(p.x0, Eigen::Vector2d(0.5, -0.25));
   EXPECT_TRUE(plateball::testing::IsRotationMatrix(p.A0));
   ASSERT_TRUE(p.plan.has_value());
@@ -206,7 +206,7 @@ TEST(ProblemIo, RoundTripsProblemsBuiltInCode) {
   Problem p;
   p.name = "in code";
   p.model = BallModel::FromAlphaBeta(0.7, 2.5);
-  p.initial_angles = {0.1, -2.0, 3.0};
+  p.initial = {0.1, -2.0, 3.0};
   p.mu = 1.0 / 3.0;
   p.x0 = {M_PI, -M_E};
   p.A0 = Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();

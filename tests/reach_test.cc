@@ -187,14 +187,14 @@ TEST(Reach, Figure8ProblemFileExpectedValuesHold) {
   const Problem problem = ReadProblemFile(plateball::testing::SourcePath("problems/figure8_reach.json"));
   ASSERT_TRUE(problem.reach.has_value());
   ASSERT_EQ(problem.reach->targets.size(), 3u);
-  EXPECT_EQ(problem.initial_angles.theta, -M_PI / 3);  // as the paper gives it
+  EXPECT_EQ(problem.initial.theta, -M_PI / 3);  // as the paper gives it
   ReachOptions o;
   o.horizon_periods = problem.reach->horizon_periods;
   o.integration = problem.integration;
   for (std::size_t k = 0; k < problem.reach->targets.size(); ++k) {
     ReachProblem rp;
     rp.model = problem.model;
-    rp.start = problem.initial_angles;
+    rp.start = problem.initial;
     rp.mu = problem.mu;
     rp.x0 = problem.x0;
     rp.A0 = problem.A0;

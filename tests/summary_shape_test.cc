@@ -1,6 +1,8 @@
 // The shape every solver summary shares (README, "Library shape"): a default-constructed summary
 // says "not run" (status kNotRun, ToString "not_run", message "not run", not usable), and the
-// accessors of the best solution throw std::logic_error on an empty result.
+// accessors of the best solution throw std::logic_error on an empty result. The list is every summary
+// with IsSolutionUsable() in include/plateball/*.h (the OMPL steering's connection result, in the
+// optional plateball_ompl library, is checked by tests/ompl/steering_test.cc).
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -17,6 +19,7 @@
 #include "plateball/join.h"
 #include "plateball/monte_carlo.h"
 #include "plateball/reach.h"
+#include "plateball/rig_planner.h"
 
 using namespace plateball;
 
@@ -35,7 +38,8 @@ using Summaries = ::testing::Types<JoinSummary,
                                    ExecutionSummary,
                                    MonteCarloSummary,
                                    IdentifySummary,
-                                   IsoparallelCertificate>;
+                                   IsoparallelCertificate,
+                                   RigPlanSummary>;
 TYPED_TEST_SUITE(SummaryShape, Summaries);
 
 TYPED_TEST(SummaryShape, DefaultSaysNotRun) {

@@ -21,7 +21,7 @@ RigPlan FreeRigPlan(const Problem& p, const BallModel& model) {
   plan.physical = *p.physical;
   plan.model = model;
   plan.integration = p.integration;
-  const FreeMotion fm = FreeMotion::FromAngles(model, p.initial_angles, p.mu, p.x0, p.A0, p.integration);
+  const FreeMotion fm = FreeMotion::FromAngles(model, p.initial, p.mu, p.x0, p.A0, p.integration);
   plan.start = fm.start().state;
   plan.x0 = fm.start().x0;
   plan.A0 = fm.start().A0;

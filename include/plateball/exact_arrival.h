@@ -32,6 +32,7 @@
 #include "plateball/integration_options.h"
 #include "plateball/path.h"
 #include "plateball/rig_limits.h"
+#include "plateball/start_state.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
@@ -46,15 +47,9 @@ enum class ExactArrivalStatus {
 /// The value's word as the tools write it in their JSON output and messages.
 std::string ToString(ExactArrivalStatus status);
 
-/// What is asked: the ball at `x0` with angles `initial`, energy mu and orientation A0, the
-/// reference path (it must start at x0), n impulses and the goal (x1, A1).
-struct ExactArrivalProblem {
-  BallModel model = BallModel::FromLambda(1.0);
-  AngleState initial{M_PI / 3, 0.4, 0.1};  ///< (theta, phi, psi) at the start
-  double mu = 1.0;                         ///< energy, eq. (9), > 0, kept by every impulse
-  /// Start orientation R_WB, rotated minimally so that A0 e3 = z (AlignOrientationToAxis).
-  Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();
-  Eigen::Vector2d x0 = Eigen::Vector2d::Zero();  ///< start point (= reference start)
+/// What is asked: the ball's start state (StartState: at `x0` with angles `initial`, energy mu
+/// and orientation A0), the reference path (it must start at x0), n impulses and the goal (x1, A1).
+struct ExactArrivalProblem : StartState {
   Path reference = Path({SmoothCurve::Line(Eigen::Vector2d::Zero(), Eigen::Vector2d::UnitX())});
   int impulses = 12;                                 ///< n in [3, kMaxExactImpulses] (2n unknowns >= 5 conditions)
   Eigen::Vector2d x1 = Eigen::Vector2d::UnitX();     ///< goal position

@@ -74,6 +74,7 @@
 #include "plateball/field_list.h"
 #include "plateball/integration_options.h"
 #include "plateball/rig_limits.h"
+#include "plateball/start_state.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
@@ -99,12 +100,8 @@ enum class FewestCountVerdict {
 /// "reached", "generically_impossible" or "not_found", as in the JSON.
 std::string ToString(FewestCountVerdict verdict);
 
-struct FewestImpulsesProblem {
-  BallModel model = BallModel::FromLambda(1.0);
-  AngleState initial{M_PI / 3, 0.4, 0.1};  ///< (theta, phi, psi) at the start (psi: reference of s_0 from rest)
-  double mu = 1.0;                         ///< energy of the motion, > 0
-  Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();  ///< start orientation (turned onto the axis)
-  Eigen::Vector2d x0 = Eigen::Vector2d::Zero();
+/// What is asked: the ball's start state (StartState: model, initial, mu, A0, x0) and the goal.
+struct FewestImpulsesProblem : StartState {
   bool start_at_rest = false;                        ///< the ball is at rest at the start (first impulse 0 -> mu)
   bool stop_at_goal = false;                         ///< one more impulse at the goal brings omega to zero
   Eigen::Vector2d x1 = Eigen::Vector2d::UnitX();     ///< goal position (ignored with orientation_only)

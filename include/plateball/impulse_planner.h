@@ -19,6 +19,7 @@
 #include "plateball/path.h"
 #include "plateball/reach.h"
 #include "plateball/so3.h"  // AlignOrientationToAxis
+#include "plateball/start_state.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
@@ -39,12 +40,8 @@ struct EnergyChange {
 };
 
 /// What is asked (section 2.3): the ball at p(tau_0) of the first piece and the path to follow.
-struct PlanProblem {
-  BallModel model = BallModel::FromLambda(1.0);
-  AngleState initial{M_PI / 3, 0.4, 0.1};  ///< (theta, phi, psi) at the start
-  double mu = 1.0;                         ///< initial energy, eq. (9), > 0
-  /// Initial orientation R_WB, rotated minimally so that A0 e3 = z (AlignOrientationToAxis).
-  Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();
+/// The start (model, initial, mu, A0) is StartMotion's; the start point is the path's start.
+struct PlanProblem : StartMotion {
   /// The planned path (default: the unit segment from the origin along x).
   Path path = Path({SmoothCurve::Line(Eigen::Vector2d::Zero(), Eigen::Vector2d::UnitX())});
   /// One rule per smooth piece, or one rule for every piece (partition.h).

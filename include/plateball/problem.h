@@ -23,6 +23,7 @@
 #include "plateball/limits.h"
 #include "plateball/partition.h"
 #include "plateball/rig_limits.h"
+#include "plateball/start_state.h"
 
 namespace plateball PLATEBALL_EXPORT {
 
@@ -174,19 +175,13 @@ struct ExpectedValue {
   double tolerance = 0.0;
 };
 
-struct Problem {
+/// The start state (StartState: JSON "model", "initial", "mu", "x0" and "orientation", which a file
+/// may give as a quaternion, a rotation matrix or an axis-angle) and the task sections.
+struct Problem : StartState {
   std::string source = "<memory>";  ///< file name, for messages
   std::string name;
   std::string description;
-  BallModel model = BallModel::FromLambda(1.0);
   std::optional<PhysicalParameters> physical;  ///< when the file gave physical parameters
-  AngleState initial_angles{M_PI / 3, 0.4, 0.1};
-  double mu = 1.0;
-  Eigen::Vector2d x0 = Eigen::Vector2d::Zero();
-  /// Initial orientation R_WB. Its third column is set to the z of the initial angles by the
-  /// solvers (FreeMotion::FromAngles rotates it minimally); a file may give it as a quaternion,
-  /// a rotation matrix or an axis-angle.
-  Eigen::Matrix3d A0 = Eigen::Matrix3d::Identity();
   std::uint64_t seed = 1;
   IntegrationOptions integration;
 

@@ -126,9 +126,15 @@ def plan_optimal_path(problem=None, options=None, **kwargs):
     return _solve(_plan_optimal_path, IsoparallelPlanProblem, PlanOptions, problem, options, kwargs)
 
 
-def steer(problem=None, options=None, **kwargs):
-    """Exact arrival at (x1, A1) with n impulses closest to a reference path: an ExactArrivalSummary."""
+def exact_arrival(problem=None, options=None, **kwargs):
+    """Exact arrival at (x1, A1) with n impulses closest to a reference path (C++ SolveExactArrival,
+    `plateball steer`): an ExactArrivalSummary."""
     return _solve(_steer, ExactArrivalProblem, ExactArrivalOptions, problem, options, kwargs)
+
+
+def steer(problem=None, options=None, **kwargs):
+    """The same call as exact_arrival(), under the name of the `plateball steer` command (kept)."""
+    return exact_arrival(problem, options, **kwargs)
 
 
 def identify(t, xy, sigma=None, options=None, impulse_times=None, spin=None, sigma_spin=None, orientation=None,
@@ -177,7 +183,7 @@ def simulate(model=None, angles=None, mu=1.0, x0=(0.0, 0.0), orientation=None, t
         return motion, motion.sample(0.0, task.t_end, task.samples)
     import numpy as np
     motion = FreeMotion(model if model is not None else BallModel(1.0),
-                        AngleState(*angles) if angles is not None else AngleState(1.0471975511965976, 0.4, 0.1),
+                        AngleState(*angles) if angles is not None else StartMotion().initial,
                         mu, np.asarray(x0, dtype=float),
                         np.eye(3) if orientation is None else np.asarray(orientation, dtype=float),
                         integration if integration is not None else IntegrationOptions())

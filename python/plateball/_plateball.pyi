@@ -120,7 +120,7 @@ class ControllerEstimate:
     @property
     def orientation(self) -> numpy.typing.NDArray[numpy.float64]: ...
     @property
-    def state(self) -> BallState: ...
+    def state(self) -> Any: ...
     @property
     def tick(self) -> int: ...
     @property
@@ -364,20 +364,15 @@ class ExactArrivalOptions:
     def __init__(self, **kwargs) -> None: ...
     def validate(self) -> str: ...
 
-class ExactArrivalProblem:
+class ExactArrivalProblem(StartState):
     goal_orientation: numpy.typing.NDArray[numpy.float64]
     impulses: int
-    initial: AngleState
-    limits: RigLimits
-    model: BallModel
-    mu: float
+    limits: Any
     objective: str
-    orientation: numpy.typing.NDArray[numpy.float64]
     physical: Optional[PhysicalParameters]
     reference: Path
     start_at_rest: bool
     stop_at_goal: bool
-    x0: numpy.typing.NDArray[numpy.float64]
     x1: numpy.typing.NDArray[numpy.float64]
     def __init__(self, **kwargs) -> None: ...
 
@@ -495,11 +490,11 @@ class FewestImpulsesCount:
     @property
     def arrived(self) -> int: ...
     @property
-    def blocking(self) -> List[str]: ...
+    def blocking(self) -> not reached under limits: ...
     @property
     def by_continuation(self) -> bool: ...
     @property
-    def check(self) -> Optional[RigCheck]: ...
+    def check(self) -> Any: ...
     @property
     def deviation(self) -> float: ...
     @property
@@ -548,18 +543,13 @@ class FewestImpulsesOptions:
     def __init__(self, **kwargs) -> None: ...
     def validate(self) -> str: ...
 
-class FewestImpulsesProblem:
+class FewestImpulsesProblem(StartState):
     goal_orientation: numpy.typing.NDArray[numpy.float64]
-    initial: AngleState
-    limits: RigLimits
-    model: BallModel
-    mu: float
-    orientation: numpy.typing.NDArray[numpy.float64]
+    limits: Any
     orientation_only: bool
     physical: Optional[PhysicalParameters]
     start_at_rest: bool
     stop_at_goal: bool
-    x0: numpy.typing.NDArray[numpy.float64]
     x1: numpy.typing.NDArray[numpy.float64]
     def __init__(self, **kwargs) -> None: ...
 
@@ -572,7 +562,7 @@ class FewestImpulsesSetup:
 class FewestImpulsesSummary:
     def __init__(self, *args, **kwargs) -> None: ...
     @property
-    def blocking(self) -> List[str]: ...
+    def blocking(self) -> status limits_not_met: ...
     @property
     def constrained_solves(self) -> int: ...
     @property
@@ -629,7 +619,7 @@ class FreeMotion:
 class IdentifiedFlight:
     def __init__(self, *args, **kwargs) -> None: ...
     @property
-    def angles(self) -> AngleState: ...
+    def angles(self) -> Any: ...
     @property
     def t_start(self) -> float: ...
     @property
@@ -679,15 +669,15 @@ class IdentifySummary:
     @property
     def fitted(self) -> numpy.typing.NDArray[numpy.float64]: ...
     @property
-    def fitted_body_rate(self) -> numpy.typing.NDArray[numpy.float64]: ...
+    def fitted_body_rate(self) -> With measured body rates: ...
     @property
-    def fitted_orientation(self) -> numpy.typing.NDArray[numpy.float64]: ...
+    def fitted_orientation(self) -> With measured orientations: ...
     @property
-    def fitted_spin(self) -> List[float]: ...
+    def fitted_spin(self) -> With a measured spin: ...
     @property
     def flights(self) -> List[IdentifiedFlight]: ...
     @property
-    def frame_fitted(self) -> bool: ...
+    def frame_fitted(self) -> True with orientations or body rates: ...
     @property
     def impulse_times(self) -> List[float]: ...
     @property
@@ -709,7 +699,7 @@ class IdentifySummary:
     @property
     def mu(self) -> float: ...
     @property
-    def orientation(self) -> numpy.typing.NDArray[numpy.float64]: ...
+    def orientation(self) -> With frame_fitted: ...
     @property
     def orientation_max_residual(self) -> float: ...
     @property
@@ -745,7 +735,7 @@ class IdentifySummary:
     @property
     def status(self) -> str: ...
     @property
-    def straight_path(self) -> bool: ...
+    def straight_path(self) -> True when the fitted path is a straight line within the noise: ...
     @property
     def t_ref(self) -> float: ...
     @property
@@ -1065,7 +1055,6 @@ class MonteCarloOptions:
     def validate(self) -> str: ...
 
 class MonteCarloProblem:
-    main_plan: Optional[PlanSummary]
     plan: PlanProblem
     scenarios: List[MonteCarloScenario]
     seed: int
@@ -1189,12 +1178,8 @@ class PlanOptions:
     def __init__(self, **kwargs) -> None: ...
     def validate(self) -> str: ...
 
-class PlanProblem:
+class PlanProblem(StartMotion):
     energy_changes: List[EnergyChange]
-    initial: AngleState
-    model: BallModel
-    mu: float
-    orientation: numpy.typing.NDArray[numpy.float64]
     partition: List[Union[UniformParameter,UniformArcLength,ExplicitTaus]]
     path: Path
     def __init__(self, **kwargs) -> None: ...
@@ -1340,7 +1325,7 @@ class PlateImpulse:
     @property
     def bottom_contact(self) -> numpy.typing.NDArray[numpy.float64]: ...
     @property
-    def plate(self) -> numpy.typing.NDArray[numpy.float64]: ...
+    def plate(self) -> J: ...
     @property
     def plate_velocity_change(self) -> numpy.typing.NDArray[numpy.float64]: ...
     @property
@@ -1352,16 +1337,13 @@ class PolygonShape:
     vertices: List[numpy.typing.NDArray[numpy.float64]]
     def __init__(self, **kwargs) -> None: ...
 
-class Problem:
+class Problem(StartState):
     description: str
     expected: Dict[str,ExpectedValue]
     initial_angles: AngleState
     integration: IntegrationOptions
     isoparallel: Optional[IsoparallelTask]
-    model: BallModel
-    mu: float
     name: str
-    orientation: numpy.typing.NDArray[numpy.float64]
     physical: Optional[PhysicalParameters]
     plan: Optional[PlanTask]
     reach: Optional[ReachTask]
@@ -1370,7 +1352,6 @@ class Problem:
     simulate: Optional[SimulateTask]
     source: str
     steer: Optional[SteerTask]
-    x0: numpy.typing.NDArray[numpy.float64]
     def __init__(self, **kwargs) -> None: ...
 
 class ProblemFileReadError(OSError): ...
@@ -1525,12 +1506,6 @@ class RigCheck:
     @property
     def violations(self) -> List[str]: ...
 
-class RigCheckTolerances:
-    impulse: float
-    position: float
-    time: float
-    def __init__(self, **kwargs) -> None: ...
-
 class RigLimits:
     clearance: float
     max_force: float
@@ -1563,7 +1538,6 @@ class RigPlanOptions:
     max_added_points: int
     max_rounds: int
     samples_per_flight: int
-    tolerances: RigCheckTolerances
     def __init__(self, **kwargs) -> None: ...
     def validate(self) -> str: ...
 
@@ -1581,8 +1555,6 @@ class RigPlanSummary:
     def plan(self) -> PlanSummary: ...
     @property
     def points_added(self) -> int: ...
-    @property
-    def points_removed(self) -> int: ...
     @property
     def points_slid(self) -> int: ...
     @property
@@ -1626,6 +1598,17 @@ class SmoothCurve:
     def length(self) -> float: ...
     @property
     def start_point(self) -> numpy.typing.NDArray[numpy.float64]: ...
+
+class StartMotion:
+    initial: AngleState
+    model: BallModel
+    mu: float
+    orientation: numpy.typing.NDArray[numpy.float64]
+    def __init__(self, **kwargs) -> None: ...
+
+class StartState(StartMotion):
+    x0: numpy.typing.NDArray[numpy.float64]
+    def __init__(self, **kwargs) -> None: ...
 
 class SteerTask:
     goal: numpy.typing.NDArray[numpy.float64]

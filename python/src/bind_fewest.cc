@@ -20,14 +20,9 @@ void BindFewestInputs(py::module_& m) {
       .def("validate",
            &FewestImpulsesOptions::Validate,
            "Empty when the options are valid; else a message naming the field and its value.");
-  py::class_<FewestImpulsesProblem> problem(
+  py::class_<FewestImpulsesProblem, StartState> problem(
       m, "FewestImpulsesProblem", "The fewest impulses that bring the ball to (x1, A1) exactly.");
   WithKeywordInit(problem)
-      .def_readwrite("model", &FewestImpulsesProblem::model)
-      .def_readwrite("initial", &FewestImpulsesProblem::initial)
-      .def_readwrite("mu", &FewestImpulsesProblem::mu)
-      .def_readwrite("orientation", &FewestImpulsesProblem::A0)
-      .def_readwrite("x0", &FewestImpulsesProblem::x0)
       .def_readwrite("start_at_rest", &FewestImpulsesProblem::start_at_rest)
       .def_readwrite("stop_at_goal", &FewestImpulsesProblem::stop_at_goal)
       .def_readwrite("x1", &FewestImpulsesProblem::x1)

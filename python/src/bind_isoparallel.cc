@@ -279,14 +279,9 @@ void BindExactInputs(py::module_& m) {
       .def("validate",
            &ExactArrivalOptions::Validate,
            "Empty when the options are valid; else a message naming the field and its value.");
-  py::class_<ExactArrivalProblem> problem(
+  py::class_<ExactArrivalProblem, StartState> problem(
       m, "ExactArrivalProblem", "Arrive at (x1, A1) exactly with n impulses near a reference path.");
   WithKeywordInit(problem)
-      .def_readwrite("model", &ExactArrivalProblem::model)
-      .def_readwrite("initial", &ExactArrivalProblem::initial)
-      .def_readwrite("mu", &ExactArrivalProblem::mu)
-      .def_readwrite("orientation", &ExactArrivalProblem::A0)
-      .def_readwrite("x0", &ExactArrivalProblem::x0)
       .def_readwrite("reference", &ExactArrivalProblem::reference)
       .def_readwrite("impulses", &ExactArrivalProblem::impulses)
       .def_readwrite("x1", &ExactArrivalProblem::x1)

@@ -13,6 +13,7 @@
 #include "plateball/join.h"
 #include "plateball/rolling.h"
 #include "plateball/so3.h"
+#include "plateball/start_state.h"
 
 namespace plateball::python {
 namespace {
@@ -337,10 +338,27 @@ void BindRolling(py::module_& m) {
         "The rotation closest to `orientation` whose third column is the unit vector z (minimal rotation).");
 }
 
+// The start state, bound once: the problem classes derive from these two (start_state.h).
+void BindStartState(py::module_& m) {
+  py::class_<StartMotion> motion(
+      m, "StartMotion", "The ball at the start without its contact point: model, angles, energy, orientation.");
+  WithKeywordInit(motion)
+      .def_readwrite("model", &StartMotion::model, "the ball")
+      .def_readwrite("initial", &StartMotion::initial, "the angles theta, phi and psi at the start")
+      .def_readwrite("mu", &StartMotion::mu, "energy, eq. (9), > 0")
+      .def_readwrite(
+          "orientation",
+          &StartMotion::A0,
+          "start orientation R_WB (A0), rotated minimally so that its third column is the axis of `initial`");
+  py::class_<StartState, StartMotion> state(m, "StartState", "The ball at the start with its contact point x0.");
+  WithKeywordInit(state).def_readwrite("x0", &StartState::x0, "start contact point on the plate");
+}
+
 }  // namespace
 
 void BindModel(py::module_& m) {
   BindStates(m);
+  BindStartState(m);
   BindImpulses(m);
   BindTrajectory(m);
   BindFreeMotion(m);

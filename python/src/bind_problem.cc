@@ -71,17 +71,13 @@ void BindTasks(py::module_& m) {
 }
 
 void BindProblemValue(py::module_& m) {
-  py::class_<Problem> problem(m, "Problem", "A problem file's content (README: \"Problem files\").");
+  py::class_<Problem, StartState> problem(m, "Problem", "A problem file's content (README: \"Problem files\").");
   WithKeywordInit(problem)
       .def_readwrite("source", &Problem::source)
       .def_readwrite("name", &Problem::name)
       .def_readwrite("description", &Problem::description)
-      .def_readwrite("model", &Problem::model)
       .def_readwrite("physical", &Problem::physical)
-      .def_readwrite("initial_angles", &Problem::initial_angles)
-      .def_readwrite("mu", &Problem::mu)
-      .def_readwrite("x0", &Problem::x0)
-      .def_readwrite("orientation", &Problem::A0)
+      .def_readwrite("initial_angles", &Problem::initial, "an alias of `initial`, the former name of the start angles")
       .def_readwrite("seed", &Problem::seed)
       .def_readwrite("integration", &Problem::integration)
       .def_readwrite("simulate", &Problem::simulate)

@@ -160,13 +160,9 @@ void BindPlanInputs(py::module_& m) {
       .def("validate",
            &PlanOptions::Validate,
            "Empty when the options are valid; else a message naming the field and its value.");
-  py::class_<PlanProblem> problem(
+  py::class_<PlanProblem, StartMotion> problem(
       m, "PlanProblem", "Follow a planned path with energy-preserving impulses (section 2.3).");
   WithKeywordInit(problem)
-      .def_readwrite("model", &PlanProblem::model)
-      .def_readwrite("initial", &PlanProblem::initial)
-      .def_readwrite("mu", &PlanProblem::mu)
-      .def_readwrite("orientation", &PlanProblem::A0)
       .def_readwrite("path", &PlanProblem::path)
       .def_readwrite("partition", &PlanProblem::partition)
       .def_readwrite("energy_changes", &PlanProblem::energy_changes);

@@ -231,6 +231,30 @@ def test_steer_from_rest_and_stop_at_goal():
     assert pb.steer(impulses=4).stop is None
 
 
+def test_exact_arrival_is_steer_under_the_cpp_name():
+    """exact_arrival() (C++ SolveExactArrival) and its alias steer() (the CLI command) solve the same."""
+    a, b = pb.exact_arrival(impulses=4), pb.steer(impulses=4)
+    assert a.status == b.status == "arrived"
+    assert np.array_equal(a.positions, b.positions) and np.array_equal(a.delta_psi, b.delta_psi)
+
+
+def test_problems_share_one_start_state():
+    """The start state is bound once (StartMotion, StartState): every problem that starts a ball has
+    its attributes, with the same defaults; Problem.initial_angles is an alias of initial."""
+    for cls in (pb.ExactArrivalProblem, pb.FewestImpulsesProblem, pb.Problem):
+        assert issubclass(cls, pb.StartState)
+        assert cls().x0.tolist() == [0.0, 0.0]
+    for cls in (pb.ExactArrivalProblem, pb.FewestImpulsesProblem, pb.Problem, pb.PlanProblem):
+        assert issubclass(cls, pb.StartMotion)
+        assert tuple(cls().initial) == tuple(pb.StartMotion().initial)
+        assert cls().mu == 1.0 and cls().model.lambda_ == 1.0
+        assert np.array_equal(cls().orientation, np.eye(3))
+    p = pb.Problem(initial_angles=pb.AngleState(0.1, 0.2, 0.3))
+    assert tuple(p.initial) == (0.1, 0.2, 0.3)
+    p.initial = pb.AngleState(0.4, 0.5, 0.6)
+    assert tuple(p.initial_angles) == (0.4, 0.5, 0.6)
+
+
 def test_certificate_proves_a_lower_bound_and_says_which_piece_stays_open():
     # 3 rad about e3 and 0.2 away: rolling turns the ball by at most the length rolled, so no
     # solution is shorter than 3; the certificate up to 0.25 closes every piece and proves none.

@@ -87,9 +87,9 @@ double StartStateReader::Angle(const json& j, const std::string& path, const cha
 
 void StartStateReader::Initial(const json& j, const std::string& path, Problem* p) const {
   Object(j, path, {"theta", "phi", "psi", "mu", "x0", "orientation"});
-  p->initial_angles.theta = Angle(j, path, "theta");
-  p->initial_angles.phi = Angle(j, path, "phi");
-  p->initial_angles.psi = Angle(j, path, "psi");
+  p->initial.theta = Angle(j, path, "theta");
+  p->initial.phi = Angle(j, path, "phi");
+  p->initial.psi = Angle(j, path, "psi");
   p->mu = Positive(Require(j, path, "mu"), Join(path, "mu"));
   InClosedRange(j["mu"], Join(path, "mu"), internal::kMinMu, internal::kMaxMu);
   p->x0 = Eigen::Vector2d::Zero();

@@ -170,9 +170,9 @@ class Writer {
     d["seed"] = p.seed;
     d["integration"] = WriteSection(p.integration, "integration");
     d["ball"] = Ball(p);
-    d["initial"] = ojson{{"theta", Num("initial.theta", p.initial_angles.theta)},
-                         {"phi", Num("initial.phi", p.initial_angles.phi)},
-                         {"psi", Num("initial.psi", p.initial_angles.psi)},
+    d["initial"] = ojson{{"theta", Num("initial.theta", p.initial.theta)},
+                         {"phi", Num("initial.phi", p.initial.phi)},
+                         {"psi", Num("initial.psi", p.initial.psi)},
                          {"mu", Num("initial.mu", p.mu)},
                          {"x0", Vec("initial.x0", p.x0)},
                          {"orientation", Mat("initial.orientation.matrix", p.A0)}};

@@ -15,7 +15,7 @@ int main() {
       R"({"ball": {"lambda": 2}, "initial": {"theta": 1.0471975511965976, "phi": 0.4, "psi": 0.1, "mu": 4}})",
       "consumer.json");
   const plateball::FreeMotion motion =
-      plateball::FreeMotion::FromAngles(p.model, p.initial_angles, p.mu, p.x0, p.A0, p.integration);
+      plateball::FreeMotion::FromAngles(p.model, p.initial, p.mu, p.x0, p.A0, p.integration);
   // The header's version is the package's (find_package's plateball_VERSION, given by CMakeLists.txt).
   if (std::strcmp(PLATEBALL_VERSION_STRING, CONSUMER_EXPECTED_VERSION) != 0) {
     std::printf("version.h says %s, the package %s\n", PLATEBALL_VERSION_STRING, CONSUMER_EXPECTED_VERSION);

@@ -36,7 +36,7 @@ RigPlan FreeRigPlan(const BallModel& model) {
   plan.physical = *p.physical;
   plan.model = model;
   plan.integration = p.integration;
-  const FreeMotion fm = FreeMotion::FromAngles(model, p.initial_angles, p.mu, p.x0, p.A0, p.integration);
+  const FreeMotion fm = FreeMotion::FromAngles(model, p.initial, p.mu, p.x0, p.A0, p.integration);
   plan.start = fm.start().state;
   plan.x0 = fm.start().x0;
   plan.A0 = fm.start().A0;
@@ -174,7 +174,7 @@ TEST(MujocoTwin, SteerResultArrivesAndStops) {
 // ---------------------------------------------------------------- the model and bad input
 TEST(MujocoTwin, ExportedMjcfLoadsWithTheBallsInertiaAndOrientation) {
   const Problem p = ReadProblemFile(kSource + "/problems/physical_units.json");
-  const Eigen::Matrix3d A0 = FreeMotion::FromAngles(p.model, p.initial_angles, p.mu).start().A0;
+  const Eigen::Matrix3d A0 = FreeMotion::FromAngles(p.model, p.initial, p.mu).start().A0;
   const std::string file = TempFile("model.xml");
   const Eigen::Vector3d omega0(0.3, -0.7, 0.0);
   std::ofstream(file) << TwinMjcf(*p.physical, Eigen::Vector2d(1.5, -2.0), A0, TwinSettings{}, omega0);

@@ -160,7 +160,7 @@ TEST(ToolOptions, OverridesApplyOnTopOfTheDefaultsAndAreValidated) {
   EXPECT_EQ(p.x0, Eigen::Vector2d(1, -2));
   EXPECT_EQ(p.seed, 18446744073709551615ull);
   EXPECT_LT((p.A0 - ExpSO3(Eigen::Vector3d(0, 0, 0.5))).norm(), 1e-15);
-  EXPECT_EQ(p.initial_angles.phi, Problem{}.initial_angles.phi);  // not overridden
+  EXPECT_EQ(p.initial.phi, Problem{}.initial.phi);  // not overridden
 
   CLI::App app2;
   ProblemOptions bad;

@@ -127,11 +127,10 @@ Json PlanFileJson(const IsoparallelCliOptions& cli,
   using namespace plateball;
   Json j = HeaderJson(cli.tool, "isoparallel", problem, cli.problem.file());
   // The state the plan starts from: the axis of the start orientation, the file's psi and mu.
-  j["initial"] =
-      Json{{"angles", ToJson(InitialAnglesFromOrientation(prob.start_orientation, problem.initial_angles.psi))},
-           {"mu", problem.mu},
-           {"x0", ToJson(prob.start)},
-           {"orientation", ToJson(prob.start_orientation)}};
+  j["initial"] = Json{{"angles", ToJson(InitialAnglesFromOrientation(prob.start_orientation, problem.initial.psi))},
+                      {"mu", problem.mu},
+                      {"x0", ToJson(prob.start)},
+                      {"orientation", ToJson(prob.start_orientation)}};
   j["isoparallel"] = Json{{"start", ToJson(prob.start)},
                           {"goal", ToJson(prob.goal)},
                           {"start_orientation", ToJson(prob.start_orientation)},

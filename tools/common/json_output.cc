@@ -70,9 +70,7 @@ Json HeaderJson(
   return j;
 }
 
-Json InitialJson(const Problem& p) {
-  return Json{{"angles", ToJson(p.initial_angles)}, {"mu", p.mu}, {"x0", ToJson(p.x0)}};
-}
+Json InitialJson(const Problem& p) { return Json{{"angles", ToJson(p.initial)}, {"mu", p.mu}, {"x0", ToJson(p.x0)}}; }
 
 Json ResultJson(const std::string& status, bool usable, const std::string& message, const std::string& report) {
   return Json{{"status", status}, {"usable", usable}, {"message", message}, {"report", report}};

@@ -244,9 +244,9 @@ Problem ProblemOptions::Load() const {
   try {
     if (Given(lambda_opt_))
       p.model = BallModel::FromLambda(RequirePositiveOption("--lambda", lambda_)), p.physical.reset();
-    if (Given(theta_opt_)) p.initial_angles.theta = RequireFiniteOption("--theta", theta_);
-    if (Given(phi_opt_)) p.initial_angles.phi = RequireFiniteOption("--phi", phi_);
-    if (Given(psi_opt_)) p.initial_angles.psi = RequireFiniteOption("--psi", psi_);
+    if (Given(theta_opt_)) p.initial.theta = RequireFiniteOption("--theta", theta_);
+    if (Given(phi_opt_)) p.initial.phi = RequireFiniteOption("--phi", phi_);
+    if (Given(psi_opt_)) p.initial.psi = RequireFiniteOption("--psi", psi_);
     if (Given(mu_opt_)) p.mu = RequirePositiveOption("--mu", mu_);
     if (Given(x0_opt_)) p.x0 = ParsePointOption("--x0", x0_);
     if (Given(orientation_opt_)) p.A0 = ParseOrientation(orientation_, "--orientation", kCommandLine);

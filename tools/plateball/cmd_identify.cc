@@ -523,7 +523,7 @@ int RunIdentify(const IdentifyCliOptions& o) {
   if (o.guess) {
     if (o.problem.empty())
       ThrowInvalidInput(CommandLineField("--guess"), "(set)", "needs PROBLEM.json (its ball.lambda and initial state)");
-    opt.guess = IdentifyGuess{p.model.lambda(), p.mu, p.initial_angles, p.x0 * opt.radius, {}};
+    opt.guess = IdentifyGuess{p.model.lambda(), p.mu, p.initial, p.x0 * opt.radius, {}};
   }
   const IdentifySummary s = Identify(track, opt);
 

@@ -78,7 +78,7 @@ std::string Short(double v) {
 
 // The contact-point path of the free motion after the impulse delta_psi = s, on [0, t].
 std::vector<Eigen::Vector2d> ReachPath(const Problem& problem, double s, double t) {
-  AngleState a = problem.initial_angles;
+  AngleState a = problem.initial;
   a.psi += s;
   const FreeMotion m =
       FreeMotion::FromAngles(problem.model, a, problem.mu, problem.x0, problem.A0, problem.integration);
@@ -129,8 +129,8 @@ SvgFigure Figure(const Problem& problem, const std::vector<ReachSummary>& summar
   std::ostringstream title;
   title.precision(4);
   title << (problem.name.empty() ? std::string("reach") : problem.name) << ": lambda = " << problem.model.lambda()
-        << ", mu = " << problem.mu << ", (theta, phi, psi) = (" << problem.initial_angles.theta << ", "
-        << problem.initial_angles.phi << ", " << problem.initial_angles.psi << ")";
+        << ", mu = " << problem.mu << ", (theta, phi, psi) = (" << problem.initial.theta << ", " << problem.initial.phi
+        << ", " << problem.initial.psi << ")";
   fig.Title(title.str());
   return fig;
 }

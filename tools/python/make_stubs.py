@@ -22,6 +22,7 @@ SOLVERS = {  # wrapper: (problem type, options type, summary type)
     "converge": ("ConvergenceProblem", "ConvergenceOptions", "ConvergenceStudy"),
     "isoparallel": ("IsoparallelProblem", "IsoparallelOptions", "IsoparallelSummary"),
     "plan_optimal_path": ("IsoparallelPlanProblem", "PlanOptions", "PlanSummary"),
+    "exact_arrival": ("ExactArrivalProblem", "ExactArrivalOptions", "ExactArrivalSummary"),
     "steer": ("ExactArrivalProblem", "ExactArrivalOptions", "ExactArrivalSummary"),
     "fewest_impulses": ("FewestImpulsesProblem", "FewestImpulsesOptions", "FewestImpulsesSummary"),
     "montecarlo": ("MonteCarloProblem", "MonteCarloOptions", "MonteCarloSummary"),
