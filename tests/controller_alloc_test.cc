@@ -61,15 +61,6 @@ std::shared_ptr<const NominalPlan> Circle() {
   return std::make_shared<NominalPlan>(MakeNominalPlan(setup.problem, setup.options));
 }
 
-ErrorModel RigErrors() {
-  ErrorModel e;
-  e.impulse_magnitude = 0.02;
-  e.impulse_angle = 0.02;
-  e.lambda = 0.02;
-  e.energy_loss = 0.001;
-  return e;
-}
-
 struct Counts {
   long ticks = 0, impulse_ticks = 0, exact_ticks = 0;
   long quiet_allocations = 0;  // on ticks without an impulse
@@ -84,7 +75,7 @@ Counts NoisyCircle(ExecutionStrategy strategy) {
   o.tick_period = kTick;
   o.strategy = strategy;
   Controller c(plan, o);
-  internal::SimulatedRig rig(*plan, RigErrors(), 3, 0, kMeasurementNoise);
+  internal::SimulatedRig rig(*plan, testing::ControllerTestErrors(), 3, 0, kMeasurementNoise);
   Counts n;
   for (long tick = 0; tick < 20000; ++tick) {
     const ControllerMeasurement m = rig.Measure(tick);

@@ -53,15 +53,6 @@ std::shared_ptr<const NominalPlan> Circle() {
   return plan;
 }
 
-ErrorModel RigErrors() {
-  ErrorModel e;
-  e.impulse_magnitude = 0.02;
-  e.impulse_angle = 0.02;
-  e.lambda = 0.02;
-  e.energy_loss = 0.001;
-  return e;
-}
-
 ControllerOptions LoopOptions(ExecutionStrategy strategy = ExecutionStrategy::kFeedback) {
   ControllerOptions o;
   o.tick_period = kTick;
@@ -86,7 +77,7 @@ TEST(Controller, ClosedLoopMatchesMonteCarloFeedbackTrials) {
   MonteCarloOptions options;
   mc.plan = CirclePlanProblem(&options.plan);
   mc.strategies = {ExecutionStrategy::kFeedback};
-  mc.scenarios = {{"rig", RigErrors()}};
+  mc.scenarios = {{"rig", testing::ControllerTestErrors()}};
   mc.trials = 3;
   mc.seed = 11;
   const MonteCarloSummary s = RunMonteCarlo(mc, options);
@@ -95,7 +86,7 @@ TEST(Controller, ClosedLoopMatchesMonteCarloFeedbackTrials) {
   for (const TrialRecord& r : s.records) {
     ASSERT_EQ(r.status, ExecutionStatus::kCompleted);
     const internal::ClosedLoopResult loop =
-        Loop(RigErrors(), mc.seed, static_cast<std::uint64_t>(r.trial), LoopOptions());
+        Loop(testing::ControllerTestErrors(), mc.seed, static_cast<std::uint64_t>(r.trial), LoopOptions());
     EXPECT_EQ(loop.status, ControllerStatus::kDone) << "trial " << r.trial;
     EXPECT_EQ(loop.impulses, kImpulses);
     const double position_error = (loop.x - Circle()->goal).norm();
@@ -111,7 +102,7 @@ TEST(Controller, ClosedLoopMatchesExecuteFeedbackExact) {
   ExecutionProblem ep;
   ep.nominal = Circle();
   ep.strategy = ExecutionStrategy::kFeedbackExact;
-  ep.errors = RigErrors();
+  ep.errors = testing::ControllerTestErrors();
   ep.seed = 5;
   const ControllerOptions o = LoopOptions(ExecutionStrategy::kFeedbackExact);
   const ExecutionSummary s = Execute(ep);
@@ -208,14 +199,14 @@ TEST(Controller, AnExhaustedBudgetGivesTheJoinWithAFlag) {
   ControllerOptions o = LoopOptions(ExecutionStrategy::kFeedbackExact);
   o.time_budget = 1e-12;  // spent before any exact re-plan could start
   Controller c(Circle(), o);
-  internal::SimulatedRig rig(*Circle(), RigErrors(), 3, 0);
+  internal::SimulatedRig rig(*Circle(), testing::ControllerTestErrors(), 3, 0);
   const internal::ClosedLoopResult loop =
       internal::RunClosedLoop(c, rig, std::lround(2.0 * Circle()->plan.total_time / kTick));
   EXPECT_EQ(loop.status, ControllerStatus::kDone);
   EXPECT_EQ(c.exact_solves(), 0);
   EXPECT_GE(loop.budget_exhausted, 10);  // at least the ten impulses that wanted an exact re-plan
   // Every impulse was the re-join: the run is the feedback strategy's, to the last bit.
-  const internal::ClosedLoopResult feedback = Loop(RigErrors(), 3, 0, LoopOptions());
+  const internal::ClosedLoopResult feedback = Loop(testing::ControllerTestErrors(), 3, 0, LoopOptions());
   EXPECT_EQ(loop.x, feedback.x);
   EXPECT_EQ(loop.A, feedback.A);
 }
@@ -240,9 +231,9 @@ TEST(Controller, AMissedImpulseTickFiresLateAtTheNextUpdate) {
 TEST(Controller, ThePublicTrialErrorsAndSimulatedLoopAreExecutesDrawsAndTheRigsLoop) {
   ControllerOptions o = LoopOptions();
   o.tick_period = 1e-3;  // the same loop on a coarser tick: a tenth of the work
-  const SimulatedLoopResult pub = RunSimulatedClosedLoop(Circle(), o, RigErrors(), 11, 1);
+  const SimulatedLoopResult pub = RunSimulatedClosedLoop(Circle(), o, testing::ControllerTestErrors(), 11, 1);
   Controller controller(Circle(), o);
-  internal::SimulatedRig rig(*Circle(), RigErrors(), 11, 1);
+  internal::SimulatedRig rig(*Circle(), testing::ControllerTestErrors(), 11, 1);
   const internal::ClosedLoopResult loop =
       internal::RunClosedLoop(controller, rig, std::lround(2.0 * Circle()->plan.total_time / o.tick_period) + 2);
   EXPECT_EQ(pub.status, loop.status);
@@ -252,14 +243,14 @@ TEST(Controller, ThePublicTrialErrorsAndSimulatedLoopAreExecutesDrawsAndTheRigsL
   EXPECT_EQ(pub.A, loop.A);
   EXPECT_EQ(pub.position_error, (loop.x - Circle()->goal).norm());
   EXPECT_EQ(pub.orientation_error, RotationAngle(Circle()->goal_orientation, loop.A));
-  const TrialErrors errors(RigErrors(), 11, 1);
-  const internal::ExecutionNoise noise(RigErrors(), 11, 1);
+  const TrialErrors errors(testing::ControllerTestErrors(), 11, 1);
+  const internal::ExecutionNoise noise(testing::ControllerTestErrors(), 11, 1);
   const Eigen::Vector3d d(0.3, -0.2, 0.0);
   for (int k : {0, 7, 31}) EXPECT_EQ(errors.PerturbImpulse(k, d), noise.PerturbImpulse(k, d));
   EXPECT_NE(errors.PerturbImpulse(7, d), d);
   EXPECT_EQ(errors.TrueLambda(2.0), noise.TrueLambda(2.0));
   EXPECT_EQ(pub.lambda, errors.TrueLambda(2.0));
-  EXPECT_EQ(errors.Restitution(), std::sqrt(1 - RigErrors().energy_loss));
+  EXPECT_EQ(errors.Restitution(), std::sqrt(1 - testing::ControllerTestErrors().energy_loss));
   ErrorModel bad;
   bad.impulse_angle = -1.0;
   EXPECT_NE(

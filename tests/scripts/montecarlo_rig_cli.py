@@ -16,24 +16,17 @@ import shutil
 import subprocess
 import sys
 
+from check_list import Checks
+
 
 pb, src, work = sys.argv[1], sys.argv[2], sys.argv[3]
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
-passed = failed = 0
+check = Checks()
 BLOCKED = f"{src}/tests/data/plan_rig_blocked.json"  # refined from 64 to 128 segments
 PATH_BLOCKED = f"{src}/tests/data/plan_rig_path_blocked.json"  # the path itself enters the obstacle
 STUDY = ["--trials", "2", "--strategy", "open_loop", "--noise", "none", "--quiet"]
 TIME_TOLERANCE = 1e-12  # the page's impulse times are the plan's, written and read back as JSON doubles
-
-
-def check(ok, name, detail=""):
-    global passed, failed
-    print(("ok - " if ok else "FAIL: ") + name + (": " + detail if detail else ""))
-    if ok:
-        passed += 1
-    else:
-        failed += 1
 
 
 def run(*args):
@@ -146,5 +139,4 @@ if free and slack:
 else:
     check(False, "slack limits: both studies ran")
 
-print(f"{passed} passed, {failed} failed")
-sys.exit(1 if failed else 0)
+check.finish()

@@ -15,19 +15,12 @@ import shutil
 import subprocess
 import sys
 
+from check_list import Checks
+
 pb, src, work = sys.argv[1], sys.argv[2], sys.argv[3]
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
-passed = failed = 0
-
-
-def check(ok, name, detail=""):
-    global passed, failed
-    print(("ok - " if ok else "FAIL: ") + name + (": " + detail if detail else ""))
-    if ok:
-        passed += 1
-    else:
-        failed += 1
+check = Checks()
 
 
 def run(*args):
@@ -169,5 +162,4 @@ code, err = run("view", f"{work}/huge_result.json", "--html", f"{work}/huge.html
 check(code == 3 and "rig shape (plate, obstacles, stroke box)[0]: value 2000001.5: the page draws coordinates up to 1e6" in err,
       "a plate reaching beyond 1e6 ball radii: exit 3 naming the rig shape", err.strip())
 
-print(f"{passed} passed, {failed} failed")
-sys.exit(1 if failed else 0)
+check.finish()

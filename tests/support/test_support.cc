@@ -43,4 +43,13 @@ PhysicalParameters PhysicalUnitsBall() {
   return p;
 }
 
+ErrorModel ControllerTestErrors() {
+  ErrorModel e;
+  e.impulse_magnitude = 0.02;
+  e.impulse_angle = 0.02;
+  e.lambda = 0.02;
+  e.energy_loss = 0.001;
+  return e;
+}
+
 }  // namespace plateball::testing

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "plateball/ball_model.h"
+#include "plateball/error_model.h"
 
 namespace plateball::testing {
 
@@ -24,5 +25,9 @@ std::string SourcePath(const std::string& relative);
 /// problems/physical_units.json's ball and plate: a 2 cm, 100 g ball (I1 = 1.6e-5, I3 = 1.2e-5 kg m^2)
 /// under a 50 g upper plate.
 PhysicalParameters PhysicalUnitsBall();
+
+/// The execution errors of the controller's tests: 2 % impulse magnitude, 0.02 rad impulse angle,
+/// 2 % lambda and 0.1 % energy loss per impulse.
+ErrorModel ControllerTestErrors();
 
 }  // namespace plateball::testing
