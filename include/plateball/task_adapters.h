@@ -35,36 +35,32 @@ std::vector<PartitionRule> PartitionFromSpec(const PartitionSpec& spec,
                                              const Path& path,
                                              const std::string& field = "partition");
 
+/// What a task adapter makes of a problem file: the solver's problem and options, ready for its
+/// solve call (one type for every task; the aliases below name each).
+template <class ProblemT, class OptionsT>
+struct TaskSetup {
+  ProblemT problem;
+  OptionsT options;
+};
+
 /// `simulate`: the free motion from the initial state, with the file's integration options.
 FreeMotion FreeMotionFor(const Problem& problem);
 
-struct JoinSetup {
-  JoinProblem problem;
-  JoinOptions options;
-};
+using JoinSetup = TaskSetup<JoinProblem, JoinOptions>;
 /// `join`: from the initial state at x0 to `target` (integration options from the file).
 JoinSetup JoinSetupFor(const Problem& problem, const Eigen::Vector2d& target);
 
-struct ReachSetup {
-  ReachProblem problem;
-  ReachOptions options;
-};
+using ReachSetup = TaskSetup<ReachProblem, ReachOptions>;
 /// `reach`: from the initial state at x0 to `target`; horizon from the reach section (when
 /// present), seed and integration options from the file.
 ReachSetup ReachSetupFor(const Problem& problem, const Eigen::Vector2d& target);
 
-struct PlanSetup {
-  PlanProblem problem;
-  PlanOptions options;
-};
+using PlanSetup = TaskSetup<PlanProblem, PlanOptions>;
 /// `plan`: the plan section. `n` > 0 replaces the n of a uniform partition (an explicit one
 /// rejects it, naming `n_field`). Requires problem.x0 == the path's start point.
 PlanSetup PlanSetupFor(const Problem& problem, int n = 0, const std::string& n_field = "n");
 
-struct ConvergenceSetup {
-  ConvergenceProblem problem;
-  ConvergenceOptions options;
-};
+using ConvergenceSetup = TaskSetup<ConvergenceProblem, ConvergenceOptions>;
 /// `converge`: the plan section with the partition sizes `ns` (checked with
 /// ValidatePartitionSizes, messages naming `ns_field`), else plan.converge_n, else 16 ... 1024.
 /// An explicit partition has no n to vary: rejected, naming `ns_field` when ns were given.
@@ -73,27 +69,19 @@ ConvergenceSetup ConvergenceSetupFor(const Problem& problem,
                                      const std::string& ns_field = "ns",
                                      bool timings = false);
 
-struct IsoparallelSetup {
-  IsoparallelProblem problem;
-  IsoparallelOptions options;  ///< the file's solver section, seed and integration section
-};
+/// The options: the file's solver section, seed and integration section.
+using IsoparallelSetup = TaskSetup<IsoparallelProblem, IsoparallelOptions>;
 /// `isoparallel_solve`: the isoparallel section.
 IsoparallelSetup IsoparallelSetupFor(const Problem& problem);
 
-struct IsoparallelPlanSetup {
-  IsoparallelPlanProblem problem;
-  PlanOptions options;
-};
+using IsoparallelPlanSetup = TaskSetup<IsoparallelPlanProblem, PlanOptions>;
 /// The impulsive approximation of `solution` with the file's ball, psi, mu, start orientation,
 /// impulse count (`impulses` > 0 overrides it) and integration section.
 IsoparallelPlanSetup IsoparallelPlanSetupFor(const Problem& problem,
                                              const IsoparallelSolution& solution,
                                              int impulses = 0);
 
-struct ExactArrivalSetup {
-  ExactArrivalProblem problem;
-  ExactArrivalOptions options;
-};
+using ExactArrivalSetup = TaskSetup<ExactArrivalProblem, ExactArrivalOptions>;
 /// `steer` along the plan section's path: the file's ball, initial state, x0 (= the path's start),
 /// the steer section's goal and impulse count (`impulses` > 0 overrides it, naming `n_field`).
 ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem,
@@ -107,10 +95,7 @@ ExactArrivalSetup ExactArrivalSetupFor(const Problem& problem,
                                        int impulses = 0,
                                        const std::string& n_field = "impulses");
 
-struct FewestImpulsesSetup {
-  FewestImpulsesProblem problem;
-  FewestImpulsesOptions options;
-};
+using FewestImpulsesSetup = TaskSetup<FewestImpulsesProblem, FewestImpulsesOptions>;
 /// `plateball steer` on a file whose steer section asks for the fewest impulses: the ball, mu,
 /// start (the isoparallel section's start and start orientation when the file has one and no
 /// plan, else the initial section's x0 and orientation), the steer section's goal, start at rest,
