@@ -600,52 +600,6 @@ std::vector<std::string> ActiveLimits(const ConstrainedSetup& setup, const Eigen
   return ActiveNames(setup, Evaluate(setup, Samples::Uniform(setup.n, setup.samples_per_arc), u, &rollouts));
 }
 
-namespace {
-
-std::string PointText(const Eigen::Vector2d& x) { return "(" + FormatNumber(x.x()) + ", " + FormatNumber(x.y()) + ")"; }
-
-// The start and the goal must themselves meet the plate and obstacle limits.
-void RequireAdmissiblePoint(const char* field, const Eigen::Vector2d& x, const RigLimits& l) {
-  if (l.plate && SignedDistanceInside(*l.plate, x) < l.clearance)
-    ThrowInvalid(field, PointText(x), "lies outside rig.plate (or within rig.clearance of its edge)");
-  for (std::size_t i = 0; i < l.obstacles.size(); ++i)
-    if (-SignedDistanceInside(l.obstacles[i], x) < l.clearance)
-      ThrowInvalid(
-          field, PointText(x), "lies inside rig.obstacles[" + std::to_string(i) + "] (or within rig.clearance of it)");
-}
-
-}  // namespace
-
-void ValidateRigProblem(const RigLimits& l,
-                        const std::optional<PhysicalParameters>& physical,
-                        const Eigen::Vector2d& x0,
-                        const Eigen::Vector2d& x1) {
-  ThrowIfInvalid(l.Validate());
-  if (l.NeedsPhysical() && !physical)
-    ThrowInvalid(std::isinf(l.max_plate_impulse) ? "rig.max_force" : "rig.max_plate_impulse",
-                 std::min(l.max_plate_impulse, l.max_force),
-                 "needs ball.physical (a bare lambda fixes no masses)");
-  if (physical) ThrowIfInvalid(physical->Validate());
-  RequireAdmissiblePoint("x0", x0, l);
-  RequireAdmissiblePoint("x1", x1, l);
-  if (l.stroke && ((2.0 * (x1 - x0)).cwiseAbs().array() > l.stroke->array()).any())
-    ThrowInvalid("x1", PointText(x1), "needs a plate displacement 2 (x1 - x0) beyond rig.stroke");
-}
-
-double PlaceOnGrid(double tick,
-                   std::vector<ExactImpulse>* impulses,
-                   std::optional<ExactImpulse>* stop,
-                   double total_time) {
-  if (!(tick > 0) || impulses->empty() || impulses->front().tick < 0) return total_time;
-  std::vector<ExactImpulse*> all;
-  for (ExactImpulse& e : *impulses) all.push_back(&e);
-  if (*stop) all.push_back(&**stop);
-  for (ExactImpulse* e : all) e->t_impulse = static_cast<double>(e->tick) * tick;
-  for (std::size_t k = 0; k + 1 < all.size(); ++k) all[k]->duration = all[k + 1]->t_impulse - all[k]->t_impulse;
-  const ExactImpulse& last = impulses->back();
-  return last.t_impulse + last.duration;
-}
-
 bool MeetsLimits(const ConstrainedSetup& setup, const Eigen::VectorXd& u) {
   for (int k = 0; k < setup.n; ++k)
     if (u[setup.n + k] < FlightLowerBound(setup, k)) return false;
