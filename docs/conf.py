@@ -93,5 +93,12 @@ def _render_man_pages(app):
             target.write_text(content)
 
 
+def _literal_bars(app, what, name, obj, options, lines):
+    """The Python docstrings are plain text whose |x| means a norm (the field lists' documentation
+    lines, shared with the input schema); reStructuredText would read |x| as a substitution."""
+    lines[:] = [line.replace("|", "\\|") for line in lines]
+
+
 def setup(app):
     app.connect("builder-inited", _render_man_pages)
+    app.connect("autodoc-process-docstring", _literal_bars)
