@@ -85,9 +85,13 @@ endif()
 # With a rig section the nominal plan is `plan`'s (PlanImpulsesOnRig): the same rig record, segments,
 # total time and measured error as `plan`'s output; the view re-runs that plan; a plan that cannot
 # meet the limits runs no trial (exit 4) unless --rig-check-only; slack limits change nothing
-# (tests/scripts/montecarlo_rig_cli.py).
+# (tests/scripts/montecarlo_rig_cli.py; the view's checks where `view` is built, web/CMakeLists.txt).
+set(montecarlo_rig_view no-view)
+if(EXISTS ${PROJECT_SOURCE_DIR}/web/node_modules/three/build/three.module.min.js)
+  set(montecarlo_rig_view with-view)
+endif()
 add_test(NAME cli.montecarlo.rig_nominal_is_plans
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/scripts/montecarlo_rig_cli.py $<TARGET_FILE:plateball_cli>
-                 ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/montecarlo_rig_cli)
+                 ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/montecarlo_rig_cli ${montecarlo_rig_view})
 set_tests_properties(cli.montecarlo.rig_nominal_is_plans PROPERTIES TIMEOUT 120 LABELS cli
                      PASS_REGULAR_EXPRESSION "[1-9][0-9]* passed, 0 failed" FAIL_REGULAR_EXPRESSION "FAIL: ")

@@ -7,7 +7,7 @@ impulses at plan's times). A plan that cannot meet the limits runs no trial (lim
 nothing: the study of problems/plan_rig_circle.json equals that of problems/circle.json once the
 records only a rig has are removed. Every output is validated against its schema.
 
-Usage: montecarlo_rig_cli.py PLATEBALL SOURCE_DIR WORKDIR. Prints one line per check and "N passed, M failed".
+Usage: montecarlo_rig_cli.py PLATEBALL SOURCE_DIR WORKDIR [with-view]. Prints one line per check and "N passed, M failed".
 """
 import json
 import os
@@ -20,6 +20,7 @@ from check_list import Checks
 
 
 pb, src, work = sys.argv[1], sys.argv[2], sys.argv[3]
+WITH_VIEW = sys.argv[4:] == ["with-view"]  # else the view checks are left out
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 check = Checks()
@@ -73,20 +74,21 @@ if plan and mc:
           "the study completed, its report says the limits are met", mc["report"][-120:])
     ok, why = valid(mc, "montecarlo")
     check(ok, "honoured study validates against montecarlo.schema.json", why)
-    # The view re-runs the study's nominal plan: its impulses are plan's, at plan's times.
-    with open(f"{work}/mc.json", "w") as f:
-        json.dump(mc, f)
-    code_v, _, err_v = run("view", f"{work}/mc.json", "--html", f"{work}/mc.html")
-    check(code_v == 0, "view of the honoured study exits 0", err_v.strip())
-    if code_v == 0:
-        data = page_data(f"{work}/mc.html")
-        _, full, _ = run("plan", BLOCKED)
-        times = [s["t_impulse"] for s in full["steps"]]
-        shown = [i["t"] for i in data["impulses"]]
-        check(len(shown) == len(times) and all(abs(a - b) <= TIME_TOLERANCE for a, b in zip(shown, times)),
-              "the view's impulses are plan's 128, at plan's times", f"{len(shown)} impulses")
-        check(any(label == "rig" and value.startswith("limits met (honour)") for label, value in data["facts"]),
-              "the view says the rig's limits are met")
+    if WITH_VIEW:  # `view` is built where three.js is (web/CMakeLists.txt)
+        # The view re-runs the study's nominal plan: its impulses are plan's, at plan's times.
+        with open(f"{work}/mc.json", "w") as f:
+            json.dump(mc, f)
+        code_v, _, err_v = run("view", f"{work}/mc.json", "--html", f"{work}/mc.html")
+        check(code_v == 0, "view of the honoured study exits 0", err_v.strip())
+        if code_v == 0:
+            data = page_data(f"{work}/mc.html")
+            _, full, _ = run("plan", BLOCKED)
+            times = [s["t_impulse"] for s in full["steps"]]
+            shown = [i["t"] for i in data["impulses"]]
+            check(len(shown) == len(times) and all(abs(a - b) <= TIME_TOLERANCE for a, b in zip(shown, times)),
+                  "the view's impulses are plan's 128, at plan's times", f"{len(shown)} impulses")
+            check(any(label == "rig" and value.startswith("limits met (honour)") for label, value in data["facts"]),
+                  "the view says the rig's limits are met")
 
 # ---- limits not met: no trial
 code, doc, err = run("montecarlo", PATH_BLOCKED, *STUDY)
@@ -97,16 +99,17 @@ if doc:
           "status limits_not_met, no results, obstacles[0] blocking", doc["report"][:160])
     ok, why = valid(doc, "montecarlo")
     check(ok, "limits_not_met output validates against montecarlo.schema.json", why)
-    # The view shows the refused plan and re-runs no trial (the study ran none).
-    with open(f"{work}/refused.json", "w") as f:
-        json.dump(doc, f)
-    code_v, _, err_v = run("view", f"{work}/refused.json", "--html", f"{work}/refused.html")
-    check(code_v == 0, "view of the refused study exits 0", err_v.strip())
-    if code_v == 0:
-        data = page_data(f"{work}/refused.html")
-        facts = dict(data["facts"])
-        check(facts.get("trials re-run", "").startswith("none") and not data.get("spread"),
-              "the view of the refused study re-runs no trial", facts.get("trials re-run", "(missing)"))
+    if WITH_VIEW:  # `view` is built where three.js is (web/CMakeLists.txt)
+        # The view shows the refused plan and re-runs no trial (the study ran none).
+        with open(f"{work}/refused.json", "w") as f:
+            json.dump(doc, f)
+        code_v, _, err_v = run("view", f"{work}/refused.json", "--html", f"{work}/refused.html")
+        check(code_v == 0, "view of the refused study exits 0", err_v.strip())
+        if code_v == 0:
+            data = page_data(f"{work}/refused.html")
+            facts = dict(data["facts"])
+            check(facts.get("trials re-run", "").startswith("none") and not data.get("spread"),
+                  "the view of the refused study re-runs no trial", facts.get("trials re-run", "(missing)"))
 
 # ---- --rig-check-only: the partition as given, checked, run all the same
 code, doc, err = run("montecarlo", BLOCKED, *STUDY, "--rig-check-only")
